@@ -1,0 +1,47 @@
+// archipelago-cli: headless front end of the Archipelago engine (core only, no Qt).
+// Each subcommand parses its options, calls core and formats; every error is one line "ERROR: ..." on
+// stderr with a non-zero exit status.
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <exception>
+#include <string>
+
+#include "OrbitCommand.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"archipelago-cli " ARCHIPELAGO_VERSION
+               " -- exact trapping statistics of the quadratic map Q* (Karney, Physica D 8, 1983)"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("archipelago-cli ") + ARCHIPELAGO_VERSION);
+  archipelago::cli::addOrbitCommand(app);
+  if (argc > 1 && argv[1][0] != '-') {  // name an unknown command instead of CLI11's generic message
+    std::string names;
+    bool known = false;
+    for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
+      known = known || sub->get_name() == argv[1];
+      names += (names.empty() ? "" : ", ") + sub->get_name();
+    }
+    if (!known) {
+      std::fprintf(stderr, "ERROR: unknown command '%s' (commands: %s)\n", argv[1], names.c_str());
+      return 2;
+    }
+  }
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "ERROR: %s\n", e.what());
+    return e.get_exit_code() != 0 ? e.get_exit_code() : 2;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "ERROR: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

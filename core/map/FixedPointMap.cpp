@@ -1,0 +1,59 @@
+#include "map/FixedPointMap.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+// The coefficients must be computed exactly as DESIGN.md orders them; core is compiled with
+// -ffp-contract=off so that no FMA contraction changes a rounding.
+
+namespace archipelago {
+
+MapCoefficients computeCoefficients(const MapParameters& p) {
+  validate(p);
+  const double L = p.xmax - p.xmin;
+  const double a = 2 * L;
+  const double b = -4 * p.xmin;
+  const double c = 2 * (p.xmin * p.xmin - p.K) / L;
+  int m = 0;
+  while (!(a < std::ldexp(1.0, m) && b < std::ldexp(1.0, m) && c < std::ldexp(1.0, m))) ++m;
+  for (;; ++m) {
+    if (m > FixedPointMap::kMaxShift) {
+      std::ostringstream s;
+      s.precision(17);
+      s << "the box is too large: max(2L, -4 xmin, 2(xmin^2 - K)/L) = " << std::max({a, b, c})
+        << " must be < 2^" << FixedPointMap::kMaxShift << " for the 64-bit fixed-point map";
+      throw std::invalid_argument(s.str());
+    }
+    const MapCoefficients k{std::llround(std::ldexp(a, FixedPointMap::kBits - m)),
+                            std::llround(std::ldexp(b, FixedPointMap::kBits - m)),
+                            std::llround(std::ldexp(c, FixedPointMap::kBits - m)), m};
+    const auto one = static_cast<std::int64_t>(FixedPointMap::kOne);
+    if (k.A < one && k.B < one && k.C < one) return k;
+  }
+}
+
+FixedPointMap::FixedPointMap(const MapParameters& p) : params_(p), coef_(computeCoefficients(p)) {}
+
+long double FixedPointMap::gridUnit() const noexcept {
+  return std::ldexp(static_cast<long double>(params_.width()), -kBits);
+}
+
+UnitState FixedPointMap::toUnit(long double x, long double y) const noexcept {
+  const long double L = params_.width();
+  auto reduce = [](long double v) {  // v in units of the box; nearest grid point, reduced mod 1
+    v -= std::floor(v);
+    const long double scaled = std::nearbyint(std::ldexp(v, kBits));
+    return static_cast<std::uint64_t>(scaled) & kMask;
+  };
+  return {reduce((x - params_.xmin) / L), reduce((y + L / 2) / L)};
+}
+
+PhysicalPoint FixedPointMap::toPhysical(const UnitState& z) const noexcept {
+  const long double L = params_.width();
+  return {params_.xmin + L * std::ldexp(static_cast<long double>(z.X), -kBits),
+          -L / 2 + L * std::ldexp(static_cast<long double>(z.Y), -kBits)};
+}
+
+}  // namespace archipelago
