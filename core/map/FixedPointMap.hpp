@@ -59,12 +59,50 @@ struct MapCoefficients {
 /// (a box so large that 2^m·G no longer fits in 64 bits).
 [[nodiscard]] MapCoefficients computeCoefficients(const MapParameters& p);
 
+namespace fixedpoint {
+inline constexpr int kBits = 52;
+inline constexpr std::uint64_t kOne = std::uint64_t{1} << kBits;
+inline constexpr std::uint64_t kHalf = kOne >> 1;
+inline constexpr std::uint64_t kMask = kOne - 1;
+}  // namespace fixedpoint
+
+/// G(X) = 2^m (⌊A⌊X²/2^52⌋/2^52⌋ − ⌊B X/2^52⌋ + C), in units of 2^−52; exact.
+[[nodiscard]] inline std::int64_t fixedPointG(const MapCoefficients& k, std::uint64_t X) noexcept {
+  using namespace fixedpoint;
+  const std::uint64_t x2 = static_cast<std::uint64_t>((uint128{X} * X) >> kBits);
+  const auto ax2 = static_cast<std::int64_t>((uint128(static_cast<std::uint64_t>(k.A)) * x2) >> kBits);
+  const auto bx = static_cast<std::int64_t>((uint128(static_cast<std::uint64_t>(k.B)) * X) >> kBits);
+  return static_cast<std::int64_t>(static_cast<std::uint64_t>(ax2 - bx + k.C) << k.m);
+}
+
+/// N⁻¹: X ← X − Y + 2^51, Y ← Y − G(X), both mod 2^52.  Returns true when a sum left [0, 2^52) (a wrap).
+inline bool backwardStep(const MapCoefficients& k, UnitState& z) noexcept {
+  using namespace fixedpoint;
+  const std::uint64_t s = z.X - z.Y + kHalf;  // modulo 2^64: a negative sum becomes ≥ 2^63
+  const std::uint64_t X = s & kMask;
+  const std::uint64_t u = z.Y - static_cast<std::uint64_t>(fixedPointG(k, X));
+  z.X = X;
+  z.Y = u & kMask;
+  return (s | u) >= kOne;
+}
+
+/// N: Y ← Y + G(X), X ← X + Y − 2^51, both mod 2^52; the exact inverse of backwardStep().
+inline bool forwardStep(const MapCoefficients& k, UnitState& z) noexcept {
+  using namespace fixedpoint;
+  const std::uint64_t u = z.Y + static_cast<std::uint64_t>(fixedPointG(k, z.X));
+  const std::uint64_t Y = u & kMask;
+  const std::uint64_t s = z.X + Y - kHalf;
+  z.X = s & kMask;
+  z.Y = Y;
+  return (s | u) >= kOne;
+}
+
 class FixedPointMap {
  public:
-  static constexpr int kBits = 52;
-  static constexpr std::uint64_t kOne = std::uint64_t{1} << kBits;   ///< 2^52, the unit
-  static constexpr std::uint64_t kHalf = std::uint64_t{1} << (kBits - 1);
-  static constexpr std::uint64_t kMask = kOne - 1;
+  static constexpr int kBits = fixedpoint::kBits;
+  static constexpr std::uint64_t kOne = fixedpoint::kOne;  ///< 2^52, the unit
+  static constexpr std::uint64_t kHalf = fixedpoint::kHalf;
+  static constexpr std::uint64_t kMask = fixedpoint::kMask;
   static constexpr int kMaxShift = 9;  ///< |2^m G| < 2^(53+m) must leave room in int64 for Y − G
 
   /// Builds the map from validated physical parameters (throws std::invalid_argument otherwise).
@@ -74,32 +112,11 @@ class FixedPointMap {
   [[nodiscard]] const MapCoefficients& coefficients() const noexcept { return coef_; }
 
   /// G(X) in units of 2^−52 (may be negative or exceed 2^52; exact integer arithmetic).
-  [[nodiscard]] std::int64_t G(std::uint64_t X) const noexcept {
-    const std::uint64_t x2 = static_cast<std::uint64_t>((uint128{X} * X) >> kBits);
-    const auto ax2 = static_cast<std::int64_t>((uint128(static_cast<std::uint64_t>(coef_.A)) * x2) >> kBits);
-    const auto bx = static_cast<std::int64_t>((uint128(static_cast<std::uint64_t>(coef_.B)) * X) >> kBits);
-    return static_cast<std::int64_t>(static_cast<std::uint64_t>(ax2 - bx + coef_.C) << coef_.m);
-  }
-
+  [[nodiscard]] std::int64_t G(std::uint64_t X) const noexcept { return fixedPointG(coef_, X); }
   /// N⁻¹ (appendix B, steps 7.1–7.2).  Returns true when either sum left [0, 2^52) (the orbit wrapped).
-  bool backward(UnitState& z) const noexcept {
-    const auto s = static_cast<std::int64_t>(z.X) - static_cast<std::int64_t>(z.Y) + static_cast<std::int64_t>(kHalf);
-    const std::uint64_t X = static_cast<std::uint64_t>(s) & kMask;
-    const std::int64_t u = static_cast<std::int64_t>(z.Y) - G(X);
-    z.X = X;
-    z.Y = static_cast<std::uint64_t>(u) & kMask;
-    return (static_cast<std::uint64_t>(s) | static_cast<std::uint64_t>(u)) >= kOne;  // negative sums are huge
-  }
-
+  bool backward(UnitState& z) const noexcept { return backwardStep(coef_, z); }
   /// N, the exact inverse of backward().  Returns true when the orbit wrapped.
-  bool forward(UnitState& z) const noexcept {
-    const std::int64_t u = static_cast<std::int64_t>(z.Y) + G(z.X);
-    const std::uint64_t Y = static_cast<std::uint64_t>(u) & kMask;
-    const auto s = static_cast<std::int64_t>(z.X) + static_cast<std::int64_t>(Y) - static_cast<std::int64_t>(kHalf);
-    z.X = static_cast<std::uint64_t>(s) & kMask;
-    z.Y = Y;
-    return (static_cast<std::uint64_t>(s) | static_cast<std::uint64_t>(u)) >= kOne;
-  }
+  bool forward(UnitState& z) const noexcept { return forwardStep(coef_, z); }
 
   /// The involution J (appendix B): N⁻¹ = J N J and J² = 1, exactly.
   static void involution(UnitState& z) noexcept {

@@ -1,0 +1,64 @@
+#pragma once
+/// \file BlockKernel.hpp
+/// \brief The trapping block (appendix B, steps 5–9) for a group of orbits, and where ended segments go.
+///
+/// One block of an orbit: length ← length + 1; if X ≤ ⌊Xr·2^52⌋ then Y ← Y + U (the orbit's next draw) and the
+/// segment ends; then N⁻¹ is applied q times and any wrap ends the segment.  When the segment ends it is
+/// handed to the SegmentSink with its start state, and the next segment starts from the state after the
+/// block.  Kernels (scalar here; vector ones in core/kernels) must produce bit-identical orbit states and
+/// identical sink calls, in any order.
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "trapping/LongestSegments.hpp"
+#include "trapping/TrappingHistogram.hpp"
+#include "trapping/TrappingParameters.hpp"
+
+namespace archipelago {
+
+/// What a kernel needs besides the orbits: plain integers.
+struct KernelSettings {
+  MapCoefficients coefficients;
+  std::uint64_t randomizingX = 0;  ///< ⌊Xr·2^52⌋
+  std::uint32_t q = 1;
+  std::uint64_t seed = 0;
+};
+
+/// Collects ended segments of one thread: the histogram of each subset and the longest segments.
+class SegmentSink {
+ public:
+  SegmentSink(std::uint32_t subsets, std::size_t longestKept) : subsets_(subsets), longest_(longestKept) {}
+
+  /// Records a segment that ended.  The segment that ends in an orbit's first block (it started on X = 0,
+  /// inside the randomizing zone) is not recorded, so every recorded segment starts at a random point.
+  void record(std::uint64_t orbit, std::uint64_t length, const SegmentStart& start) {
+    if (start.block == 0) return;
+    subsets_[orbit % subsets_.size()].add(length);
+    if (longest_.mightKeep(length)) longest_.insert({orbit, length, start});
+  }
+
+  [[nodiscard]] std::vector<TrappingHistogram>& subsets() noexcept { return subsets_; }
+  [[nodiscard]] const std::vector<TrappingHistogram>& subsets() const noexcept { return subsets_; }
+  [[nodiscard]] LongestSegments& longest() noexcept { return longest_; }
+  [[nodiscard]] const LongestSegments& longest() const noexcept { return longest_; }
+
+ private:
+  std::vector<TrappingHistogram> subsets_;
+  LongestSegments longest_;
+};
+
+/// Advances `orbits` (the orbits with indices firstOrbit, firstOrbit + 1, …) by `blocks` blocks each.
+using BlockKernel = void (*)(const KernelSettings& settings, std::span<OrbitState> orbits,
+                             std::uint64_t firstOrbit, std::uint64_t blocks, SegmentSink& sink);
+
+/// The portable scalar reference kernel (interleaves orbits to hide multiply latency).
+void advanceBlocksScalar(const KernelSettings& settings, std::span<OrbitState> orbits, std::uint64_t firstOrbit,
+                         std::uint64_t blocks, SegmentSink& sink);
+
+/// One block of one orbit, the definition every kernel must match.  Returns true when the segment ended.
+/// `orbit` is the orbit's index (it selects its random numbers).
+bool advanceOneBlock(const KernelSettings& settings, std::uint64_t orbit, OrbitState& s, SegmentSink* sink);
+
+}  // namespace archipelago

@@ -1,0 +1,42 @@
+#pragma once
+/// \file LongestSegments.hpp
+/// \brief The N longest trapped segments, each with the exact state at its start (DESIGN.md).
+///
+/// Order: longer first; ties by orbit, then by start block.  This is a total order on segments, so the
+/// kept set does not depend on the order of insertion or merging (threads, ranks, checkpoints).
+
+#include <cstddef>
+#include <vector>
+
+#include "trapping/TrappingParameters.hpp"
+
+namespace archipelago {
+
+class LongestSegments {
+ public:
+  explicit LongestSegments(std::size_t capacity = 100) : capacity_(capacity) {}
+
+  /// True when `a` ranks before `b`.
+  [[nodiscard]] static bool ranksBefore(const SegmentRecord& a, const SegmentRecord& b) noexcept {
+    if (a.length != b.length) return a.length > b.length;
+    if (a.orbit != b.orbit) return a.orbit < b.orbit;
+    return a.start.block < b.start.block;
+  }
+  /// Would a segment of this length be kept now?  (Cheap pre-test for kernels.)
+  [[nodiscard]] bool mightKeep(std::uint64_t length) const noexcept {
+    return capacity_ > 0 && (items_.size() < capacity_ || length >= items_.back().length);
+  }
+  void insert(const SegmentRecord& s);
+  void merge(const LongestSegments& other);
+
+  [[nodiscard]] const std::vector<SegmentRecord>& items() const noexcept { return items_; }  ///< ranked
+  [[nodiscard]] std::size_t capacity() const noexcept { return capacity_; }
+
+  friend bool operator==(const LongestSegments&, const LongestSegments&) = default;
+
+ private:
+  std::size_t capacity_;
+  std::vector<SegmentRecord> items_;
+};
+
+}  // namespace archipelago

@@ -1,0 +1,42 @@
+#include "trapping/TrappingParameters.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace archipelago {
+
+std::optional<std::string> validationError(const TrappingParameters& p) {
+  if (auto e = validationError(p.map)) return e;
+  std::ostringstream s;
+  s.precision(17);
+  if (!(std::isfinite(p.Xr) && p.Xr >= 0 && p.Xr < 1)) {
+    s << "Xr = " << p.Xr << " must lie in [0, 1) (width of the randomizing zone in unit X)";
+    return s.str();
+  }
+  if (p.q < 1) return "q = 0 must be >= 1 (steps of N^-1 per block)";
+  if (p.T < 1) return "T = 0 must be >= 1 (blocks per orbit)";
+  if (p.T > (std::uint64_t{1} << 62)) return "T must be < 2^62 blocks";
+  if (p.M < 1) return "M = 0 must be >= 1 (number of orbits)";
+  if (p.subsets < 1) return "subsets = 0 must be >= 1";
+  if (p.subsets > p.M) {
+    s << "subsets = " << p.subsets << " must be <= M = " << p.M << " (each subset needs an orbit)";
+    return s.str();
+  }
+  try {
+    (void)computeCoefficients(p.map);
+  } catch (const std::invalid_argument& e) {
+    return std::string(e.what());
+  }
+  return std::nullopt;
+}
+
+void validate(const TrappingParameters& p) {
+  if (auto e = validationError(p)) throw std::invalid_argument(*e);
+}
+
+std::uint64_t randomizingThreshold(double Xr) noexcept {
+  return static_cast<std::uint64_t>(std::floor(std::ldexp(Xr, FixedPointMap::kBits)));
+}
+
+}  // namespace archipelago

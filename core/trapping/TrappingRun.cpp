@@ -1,0 +1,156 @@
+#include "trapping/TrappingRun.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include "random/CounterRng.hpp"
+
+namespace archipelago {
+
+TrappingHistogram TrappingState::total() const {
+  TrappingHistogram h;
+  for (const auto& s : subsets) h.merge(s);
+  return h;
+}
+
+double TrappingState::stepsDone() const noexcept {
+  return static_cast<double>(orbitEnd - orbitBegin) * static_cast<double>(blocksDone) * params.q;
+}
+
+TrappingState startTrapping(const TrappingParameters& params, std::uint64_t orbitBegin, std::uint64_t orbitEnd) {
+  validate(params);
+  orbitEnd = std::min(orbitEnd, params.M);
+  if (orbitBegin >= orbitEnd) throw std::invalid_argument("the orbit range is empty");
+  TrappingState s;
+  s.params = params;
+  s.coefficients = computeCoefficients(params.map);
+  s.orbitBegin = orbitBegin;
+  s.orbitEnd = orbitEnd;
+  s.orbits.resize(orbitEnd - orbitBegin);  // every orbit starts at (X, Y) = (0, 0), appendix B step 2
+  s.subsets.resize(params.subsets);
+  s.longest = LongestSegments(params.longestKept);
+  return s;
+}
+
+TrappingState mergeTrapping(const TrappingState& a, const TrappingState& b) {
+  if (!(a.params == b.params) || !(a.coefficients == b.coefficients))
+    throw std::invalid_argument("cannot merge runs with different parameters");
+  if (a.blocksDone != b.blocksDone)
+    throw std::invalid_argument("cannot merge runs at different progress (blocks done differ)");
+  const TrappingState& lo = a.orbitBegin <= b.orbitBegin ? a : b;
+  const TrappingState& hi = a.orbitBegin <= b.orbitBegin ? b : a;
+  if (lo.orbitEnd != hi.orbitBegin) throw std::invalid_argument("cannot merge runs over non-adjacent orbit ranges");
+  TrappingState m = lo;
+  m.orbitEnd = hi.orbitEnd;
+  m.orbits.insert(m.orbits.end(), hi.orbits.begin(), hi.orbits.end());
+  for (std::size_t i = 0; i < m.subsets.size(); ++i) m.subsets[i].merge(hi.subsets[i]);
+  m.longest.merge(hi.longest);
+  m.elapsedSeconds = a.elapsedSeconds + b.elapsedSeconds;
+  return m;
+}
+
+namespace {
+using Clock = std::chrono::steady_clock;
+
+KernelSettings kernelSettings(const TrappingState& s) {
+  return {s.coefficients, randomizingThreshold(s.params.Xr), s.params.q, s.params.seed};
+}
+}  // namespace
+
+TrappingState runTrapping(TrappingState state, const TrappingRunOptions& options, const TrappingObserver& observer,
+                          std::stop_token stop) {
+  const KernelSettings settings = kernelSettings(state);
+  const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
+  const std::size_t orbitCount = state.orbits.size();
+  // Work is split into groups of orbits; a group is one task, so every thread gets several.
+  const std::size_t groupSize =
+      std::clamp<std::size_t>(orbitCount / (4 * static_cast<std::size_t>(threads)) / 8 * 8, 8, 64);
+  const std::size_t groups = (orbitCount + groupSize - 1) / groupSize;
+  state.kernel = options.kernelName;
+
+  const auto sessionStart = Clock::now();
+  const double stepsPerBlock = static_cast<double>(orbitCount) * state.params.q;
+  std::uint64_t chunk = 16;  // blocks per chunk; adapted to options.chunkSeconds as the rate is measured
+  std::uint64_t sessionBlocks = 0;
+
+  while (!state.finished() && !stop.stop_requested()) {
+    std::uint64_t blocks = std::min(chunk, state.params.T - state.blocksDone);
+    if (options.maxChunkBlocks) blocks = std::min(blocks, options.maxChunkBlocks);
+    std::vector<SegmentSink> sinks(static_cast<std::size_t>(threads),
+                                   SegmentSink(state.params.subsets, state.params.longestKept));
+    const auto chunkStart = Clock::now();
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
+    for (std::size_t g = 0; g < groups; ++g) {
+      const std::size_t first = g * groupSize;
+      const std::size_t n = std::min(groupSize, orbitCount - first);
+      options.kernel(settings, std::span<OrbitState>(state.orbits.data() + first, n), state.orbitBegin + first,
+                     blocks, sinks[static_cast<std::size_t>(omp_get_thread_num())]);
+    }
+    for (const auto& sink : sinks) {
+      for (std::size_t i = 0; i < state.subsets.size(); ++i) state.subsets[i].merge(sink.subsets()[i]);
+      state.longest.merge(sink.longest());
+    }
+    state.blocksDone += blocks;
+    sessionBlocks += blocks;
+    const auto now = Clock::now();
+    const double chunkSeconds = std::chrono::duration<double>(now - chunkStart).count();
+    const double sessionSeconds = std::chrono::duration<double>(now - sessionStart).count();
+    state.elapsedSeconds += chunkSeconds;
+    // Aim the next chunk at options.chunkSeconds, growing at most 4× at a time.
+    const double perBlock = chunkSeconds / static_cast<double>(blocks);
+    if (perBlock > 0) {
+      const double target = options.chunkSeconds / perBlock;
+      chunk = static_cast<std::uint64_t>(std::clamp(target, 1.0, 4.0 * static_cast<double>(blocks)));
+    } else {
+      chunk = 4 * blocks;
+    }
+    if (observer) {
+      TrappingProgress p;
+      p.blocksDone = state.blocksDone;
+      p.blocksTotal = state.params.T;
+      p.fraction = static_cast<double>(state.blocksDone) / static_cast<double>(state.params.T);
+      p.sessionSeconds = sessionSeconds;
+      p.stepsPerSecond = sessionSeconds > 0 ? static_cast<double>(sessionBlocks) * stepsPerBlock / sessionSeconds : 0;
+      p.etaSeconds = p.stepsPerSecond > 0
+                         ? static_cast<double>(state.params.T - state.blocksDone) * stepsPerBlock / p.stepsPerSecond
+                         : 0;
+      observer(state, p);
+    }
+  }
+  return state;
+}
+
+std::uint64_t replaySegment(const TrappingParameters& params, const SegmentRecord& record,
+                            const std::function<void(std::uint64_t, const UnitState&)>& visit) {
+  validate(params);
+  const KernelSettings k{computeCoefficients(params.map), randomizingThreshold(params.Xr), params.q, params.seed};
+  OrbitState s;
+  s.z = record.start.z;
+  s.block = record.start.block;
+  s.draws = record.start.draws;
+  s.start = record.start;
+  std::uint64_t step = 0;
+  if (visit) visit(step, s.z);
+  for (;;) {
+    // The same block as advanceOneBlock(), with every intermediate point visited.
+    s.length += 1;
+    bool ended = false;
+    if (s.z.X <= k.randomizingX) {
+      s.draws += 1;
+      s.z.Y = (s.z.Y + orbitDraw(orbitKey(k.seed, record.orbit), s.draws)) & fixedpoint::kMask;
+      ended = true;
+    }
+    for (std::uint32_t j = 0; j < k.q; ++j) {
+      ended |= backwardStep(k.coefficients, s.z);
+      if (visit) visit(++step, s.z);
+    }
+    s.block += 1;
+    if (ended || s.block >= params.T) return s.length;
+  }
+}
+
+}  // namespace archipelago

@@ -1,0 +1,80 @@
+#pragma once
+/// \file TrappingRun.hpp
+/// \brief Trapping-statistics runs: M orbits × T blocks of N^−q (Karney 1983, §3, appendix B).
+///
+/// A run is a value, TrappingState: parameters, the integer map coefficients, every orbit's state, the
+/// subset histograms and the longest segments.  runTrapping() advances it chunk by chunk, in parallel over
+/// orbits with OpenMP, calling an observer at each chunk boundary and honouring a stop token there.  Each
+/// orbit depends only on (seed, orbit index), so the result does not depend on the number of threads, on the
+/// chunk sizes, or on being stopped and resumed; any range of orbit indices can run alone and the results be
+/// merged (mergeTrapping), which is how checkpoints and (later) MPI ranks share one mechanism.
+
+#include <cstdint>
+#include <functional>
+#include <stop_token>
+#include <string>
+#include <vector>
+
+#include "trapping/BlockKernel.hpp"
+
+namespace archipelago {
+
+struct TrappingState {
+  TrappingParameters params;
+  MapCoefficients coefficients;        ///< the map, exactly; derived from params.map
+  std::uint64_t orbitBegin = 0;        ///< this state covers orbits [orbitBegin, orbitEnd)
+  std::uint64_t orbitEnd = 0;
+  std::uint64_t blocksDone = 0;        ///< every orbit has done this many blocks (≤ params.T)
+  std::vector<OrbitState> orbits;      ///< orbitEnd − orbitBegin entries
+  std::vector<TrappingHistogram> subsets;  ///< params.subsets histograms; orbit i goes to subset i mod subsets
+  LongestSegments longest;
+  double elapsedSeconds = 0;           ///< compute time, summed over every session of the run
+  std::string kernel;                  ///< the kernel that computed it last
+
+  [[nodiscard]] bool finished() const noexcept { return blocksDone >= params.T; }
+  /// The sum of the subset histograms.
+  [[nodiscard]] TrappingHistogram total() const;
+  /// Steps of N⁻¹ done so far: (orbitEnd − orbitBegin) · blocksDone · q.
+  [[nodiscard]] double stepsDone() const noexcept;
+};
+
+/// A fresh run over orbits [orbitBegin, orbitEnd) (default: all M); validates the parameters.
+[[nodiscard]] TrappingState startTrapping(const TrappingParameters& params, std::uint64_t orbitBegin = 0,
+                                          std::uint64_t orbitEnd = UINT64_MAX);
+
+/// Merges two states of the same run (same parameters, same blocksDone) over adjacent orbit ranges.
+/// Throws std::invalid_argument when they do not fit together.
+[[nodiscard]] TrappingState mergeTrapping(const TrappingState& a, const TrappingState& b);
+
+/// Progress at a chunk boundary.
+struct TrappingProgress {
+  std::uint64_t blocksDone = 0;
+  std::uint64_t blocksTotal = 0;
+  double fraction = 0;          ///< blocksDone / blocksTotal
+  double stepsPerSecond = 0;    ///< this session's rate of N⁻¹ steps
+  double etaSeconds = 0;        ///< at this rate
+  double sessionSeconds = 0;    ///< wall time of this session so far
+};
+
+/// Called on the computing thread at every chunk boundary (never inside a parallel region).
+using TrappingObserver = std::function<void(const TrappingState&, const TrappingProgress&)>;
+
+struct TrappingRunOptions {
+  int threads = 0;              ///< 0: OpenMP's default
+  double chunkSeconds = 0.25;   ///< target wall time of a chunk (progress and stop granularity)
+  std::uint64_t maxChunkBlocks = 0;  ///< 0: no limit; otherwise chunks have at most this many blocks
+  BlockKernel kernel = &advanceBlocksScalar;
+  std::string kernelName = "scalar";
+};
+
+/// Advances `state` until it is finished or `stop` is requested (checked at chunk boundaries).
+[[nodiscard]] TrappingState runTrapping(TrappingState state, const TrappingRunOptions& options,
+                                        const TrappingObserver& observer = {}, std::stop_token stop = {});
+
+/// Replays a recorded segment bit for bit from its start state, calling visit(step, z) for its first point
+/// (step 0) and after every step of N⁻¹ (steps 1 … q·length).  Returns the segment's length in blocks as
+/// replayed (equal to record.length when the record belongs to these parameters).
+std::uint64_t replaySegment(const TrappingParameters& params, const SegmentRecord& record,
+                            const std::function<void(std::uint64_t step, const UnitState& z)>& visit);
+
+}  // namespace archipelago
