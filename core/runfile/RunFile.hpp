@@ -1,0 +1,35 @@
+#pragma once
+/// \file RunFile.hpp
+/// \brief Run files: a versioned JSON document holding a whole TrappingState (DESIGN.md, issue 3).
+///
+/// A run file holds the parameters, the integer map coefficients (A, B, C, m) that define the map exactly,
+/// the run settings and seed, the subset histograms (integer counts and length sums per bin, with the bin
+/// edges), the longest segments with their exact start states, every orbit's state (so that the run can be
+/// resumed), timing, the kernel and the program version.  Integers are written as JSON integers (exact up
+/// to 2^64); doubles with 17 significant digits (round-trip exact).
+///
+/// Writing is atomic: a temporary file in the same folder, fsync, rename over the target, fsync of the
+/// folder.  A reader never sees a half-written file, and a crash leaves either the old or the new file.
+
+#include <filesystem>
+#include <string>
+
+#include "trapping/TrappingRun.hpp"
+
+namespace archipelago {
+
+inline constexpr int kRunFileFormatVersion = 1;
+inline constexpr const char* kRunFileFormatName = "archipelago-run";
+
+/// The JSON text of a run file.
+[[nodiscard]] std::string runFileText(const TrappingState& state);
+/// Parses run-file text.  Throws std::runtime_error with a one-line message for corrupt, truncated or
+/// inconsistent content, a different format or an unsupported version.
+[[nodiscard]] TrappingState parseRunFile(const std::string& text);
+
+/// Writes atomically (temp file + fsync + rename).  Throws std::runtime_error naming the path on failure.
+void saveRunFile(const std::filesystem::path& path, const TrappingState& state);
+/// Reads and validates a run file.  Throws std::runtime_error naming the path on failure.
+[[nodiscard]] TrappingState loadRunFile(const std::filesystem::path& path);
+
+}  // namespace archipelago
