@@ -6,7 +6,8 @@
 ///   s_i        q·t̄_i, the point at which the bin's segments are placed
 ///   w_i        n_i/(M(T + 1 − t̄_i))/q, their weight (segment starts per step of record)
 ///   grid       the τ (or t) at which P, C, S, D_t and the local exponent are sampled
-/// Sums run over non-empty bins only, in long double, each term non-negative (see the header).
+/// Sums run over non-empty bins only, in long double, each term non-negative (see the header).  The masses
+/// come out sorted by s (bins are disjoint ranges), which the sweep over the grid relies on.
 
 #include "stats/TrappingStatistics.hpp"
 
@@ -72,17 +73,24 @@ std::vector<Real> makeGrid(std::uint32_t q, std::uint64_t longestBlocks) {
   return grid;
 }
 
-// Σ_{τ=1}^{min(s,t)} (t − τ)(s − τ) for integer t ≥ 0 and real s ≥ 0, as a sum of non-negative terms.
-Real crossSum(Real s, Real t) {
-  const Real m = std::min(t, std::floor(s));
-  if (m <= 0) return 0;
-  const Real big = t - m, frac = s - m;  // Δ, δ ≥ 0
-  return m * big * frac + (big + frac) * (m * (m - 1) / 2) + (m - 1) * m * (2 * m - 1) / 6;
+// eq. (spreaddef) for one point mass, S_t = Σ w k(s, t), split at s = t into two forms that are linear in t
+// with non-negative coefficients (m = ⌊s⌋, δ = s − m; t an integer):
+//   s > t:  k = t² (s − t) + (2t³ + t)/3
+//   s ≤ t:  k = (t − s) a(s) + b(s),  a = s + 2mδ + m(m − 1),  b = s² + 2mδ² + 2δ m(m − 1) + (m − 1) m (2m − 1)/3
+// (for integer s, k = t s² − (s³ − s)/3 when s ≤ t).  Sweeping the sorted grid over the sorted masses, the
+// sums over masses become prefix and suffix sums; the differences t − s are folded in by recurrences on
+// adjacent masses, so every addition is of non-negative terms.
+Real spreadSlope(Real s) {
+  const Real m = std::floor(s), frac = s - m;
+  return s + 2 * m * frac + m * (m - 1);
+}
+Real spreadOffset(Real s) {
+  const Real m = std::floor(s), frac = s - m;
+  return s * s + 2 * m * frac * frac + 2 * frac * m * (m - 1) + (m - 1) * m * (2 * m - 1) / 3;
 }
 
 // Everything for one histogram, on a given grid; NaN marks an undefined local exponent.
 struct Raw {
-  bool empty = true;
   std::vector<Real> f;  // per bin index (kBins), 0 where empty
   Real alpha = 0, D = 0, sumTf = 0;
   std::vector<Real> P, C, S, exponent;
@@ -102,7 +110,6 @@ Raw computeRaw(const TrappingHistogram& h, std::uint64_t orbits, std::uint64_t b
     std::fill(r.P.begin(), r.P.end(), r.alpha);
     return r;
   }
-  r.empty = false;
 
   Real sumW = 0, sumSW = 0, sumS2W = 0;
   for (const auto& m : masses) {
@@ -117,19 +124,33 @@ Raw computeRaw(const TrappingHistogram& h, std::uint64_t orbits, std::uint64_t b
   r.sumTf = sumSW;  // = C_0
   r.D = sumS2W / 2;  // eq. (ddef)
 
+  // Suffix sums over masses j..n−1: W_j = Σ w_i, G_j = Σ w_i (s_i − s_j).  Prefix sums over 0..j:
+  // A_j = Σ w_i a_i, E_j = Σ w_i a_i (s_j − s_i), B_j = Σ w_i b_i.
+  const std::size_t n = masses.size();
+  std::vector<Real> W(n + 1, 0), G(n + 1, 0), A(n, 0), E(n, 0), B(n, 0);  // W[n] = 0: nothing above
+  for (std::size_t j = n; j-- > 0;) {
+    W[j] = W[j + 1] + masses[j].w;
+    if (j + 1 < n) G[j] = G[j + 1] + (masses[j + 1].s - masses[j].s) * W[j + 1];
+  }
+  for (std::size_t j = 0; j < n; ++j) {
+    const Real previousA = j > 0 ? A[j - 1] : 0;
+    A[j] = previousA + masses[j].w * spreadSlope(masses[j].s);
+    B[j] = (j > 0 ? B[j - 1] : 0) + masses[j].w * spreadOffset(masses[j].s);
+    E[j] = j > 0 ? E[j - 1] + (masses[j].s - masses[j - 1].s) * previousA : 0;
+  }
+  std::size_t above = 0;  // first mass with s > t
   for (std::size_t g = 0; g < grid.size(); ++g) {
     const Real t = grid[g];
-    Real tail = 0, c = 0, s = 0;
-    for (const auto& m : masses) {
-      if (m.s > t) {
-        tail += m.w;
-        c += m.w * (m.s - t);  // eq. (cdef)
-      }
-      s += m.w * (t * m.s + 2 * crossSum(m.s, t));  // eq. (spreaddef), summed over τ in closed form
+    while (above < n && masses[above].s <= t) ++above;
+    const Real c = above < n ? G[above] + (masses[above].s - t) * W[above] : 0;  // eq. (cdef)
+    Real spread = t * t * c + (2 * t * t * t + t) / 3 * W[above];
+    if (above > 0) {
+      const std::size_t l = above - 1;
+      spread += E[l] + (t - masses[l].s) * A[l] + B[l];
     }
-    r.P[g] = r.alpha * tail;  // eq. (pdef)
+    r.P[g] = r.alpha * W[above];  // eq. (pdef)
     r.C[g] = c;
-    r.S[g] = s;
+    r.S[g] = spread;  // eq. (spreaddef)
   }
   for (std::size_t g = 1; g + 1 < grid.size(); ++g) {
     if (grid[g - 1] <= 0 || r.C[g - 1] <= 0 || r.C[g + 1] <= 0) continue;

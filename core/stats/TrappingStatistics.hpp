@@ -27,12 +27,14 @@
 ///    second moments (D, S_t) miss the within-bin variance, a relative error below (width/t)²/12 ≈ 5·10⁻⁴
 ///    at 30 bins per decade.  Lengths in steps need not be integers (s_i is a mean); C_τ is piecewise
 ///    linear between the s_i.  With non-integer s_i, ½C_0 + Σ_{τ≥1} C_τ (the limit of D_t) exceeds
-///    D = ½Σ s_i² w_i by Σ w_i δ_i(1 − δ_i)/2 ≤ 1/(8α), δ_i = s_i − ⌊s_i⌋: negligible against D ≥ 1/(2α).
+///    D = ½Σ s_i² w_i by Σ w_i δ_i(1 − δ_i)/2, δ_i = s_i − ⌊s_i⌋: only logarithmic bins (s_i > 50) have
+///    δ_i ≠ 0, so each mass's share of D is raised by less than 1/(4 s_i²) < 10⁻⁴ in that limit.
 ///  - Closed forms (no loop over t): C_τ = Σ w_i (s_i − τ)₊, P_t = α Σ_{s_i > t} w_i, and
 ///      S_t = Σ w_i k(s_i, t),  k(s, t) = t s + 2 Σ_{τ=1}^{min(s,t)} (t − τ)(s − τ),
-///    the last sum written with m = min(t, ⌊s⌋), Δ = t − m, δ = s − m as
-///      m Δ δ + (Δ + δ) m(m − 1)/2 + (m − 1) m (2m − 1)/6,
-///    all terms non-negative, evaluated in long double: no cancellation even for t, s ~ 10¹⁰.
+///    where k, a sum of polynomials, is linear in t on each side of s = t with non-negative coefficients
+///    (k = t s² − (s³ − s)/3 for integer s ≤ t).  One sweep of the sorted grid over the sorted masses
+///    evaluates all of them in O(grid + bins), in long double, by prefix/suffix sums and recurrences in
+///    which every term is non-negative: no cancellation even for t, s ~ 10¹⁰.
 ///
 /// Grid for P, C, S, D_t and the local exponent (steps, integers): 0, 1, …, min(50q, 4096) (every length in
 /// the exact bins when q ≤ 81), then 30 points per decade, rounded to integers, up to twice the longest
@@ -44,8 +46,9 @@
 /// the total); the error is the standard error of the mean over the n subsets, s/√n with s the sample
 /// standard deviation (n − 1 in the denominator) — the paper's method for D = 6400 ± 800 (§5).  Values come
 /// from the total histogram.  With one subset, or one histogram, every error is 0.  For the local exponent
-/// only the subsets where it is defined at that τ contribute.  As the paper warns, a few very long segments
-/// make the subset values skewed, so these errors may be underestimates.
+/// only the subsets where it is defined at that τ contribute.  An empty subset counts as f = C = S = D = 0
+/// and has no α, p or P.  As the paper warns, a few very long segments make the subset values skewed, so
+/// these errors may be underestimates.
 
 #include <cstdint>
 #include <vector>
