@@ -10,6 +10,7 @@
 
 #include "OrbitCommand.hpp"
 #include "RunCommand.hpp"
+#include "StatsCommand.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"archipelago-cli " ARCHIPELAGO_VERSION
@@ -18,6 +19,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("archipelago-cli ") + ARCHIPELAGO_VERSION);
   archipelago::cli::addOrbitCommand(app);
   archipelago::cli::addRunCommand(app);
+  archipelago::cli::addStatsCommand(app);
   archipelago::cli::addReplayCommand(app);
   if (argc > 1 && argv[1][0] != '-') {  // name an unknown command instead of CLI11's generic message
     std::string names;

@@ -66,6 +66,18 @@ check(r.returncode == 0 and len(rows) == 1 + longest["length"] * 16 + 1,
 first = rows[1].split(",")
 check((int(first[3]), int(first[4])) == tuple(longest["start"]["z"]), "the replay starts at the recorded state")
 
+# stats: the summary and every series as CSV.
+csvdir = os.path.join(tmp, "csv")
+r = run("stats", ref, "--csv", csvdir)
+check(r.returncode == 0 and "alpha" in r.stdout and "sum t f_t" in r.stdout, f"stats prints a summary ({r.stderr.strip()})")
+names = sorted(os.listdir(csvdir)) if os.path.isdir(csvdir) else []
+check(names == sorted(["f.csv", "p.csv", "P.csv", "C.csv", "local_exponent.csv", "S.csv", "D_t.csv", "summary.csv"]),
+      f"stats --csv writes every series ({names})")
+if "C.csv" in names:
+    rows = [l.split(",") for l in open(os.path.join(csvdir, "C.csv")).read().strip().splitlines()]
+    check(rows[0] == ["tau", "C_tau", "error"] and abs(float(rows[1][1]) - 1) < 0.05,
+          f"C.csv starts at C_0 close to 1 ({rows[1]})")
+
 # Bad input: one line starting with ERROR:, non-zero exit, never a crash.
 bad = os.path.join(tmp, "bad.json")
 def write(path, text):
@@ -80,6 +92,7 @@ cases = [
     (["run", "--resume", ref, "--K", "0.2"], "do not also give --K"),
     (["run", "--resume", ref], "already finished"),
     (["replay", "/nonexistent/run.json", "--out", csv], "cannot read"),
+    (["stats", "/nonexistent/run.json"], "cannot read"),
     (["replay", ref, "--segment", "100000", "--out", csv], "out of range"),
 ]
 for args, mention in cases:
