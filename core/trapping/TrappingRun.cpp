@@ -7,7 +7,6 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "random/CounterRng.hpp"
 
 namespace archipelago {
 
@@ -136,19 +135,10 @@ std::uint64_t replaySegment(const TrappingParameters& params, const SegmentRecor
   std::uint64_t step = 0;
   if (visit) visit(step, s.z);
   for (;;) {
-    // The same block as advanceOneBlock(), with every intermediate point visited.
-    s.length += 1;
-    bool ended = false;
-    if (s.z.X <= k.randomizingX) {
-      s.draws += 1;
-      s.z.Y = (s.z.Y + orbitDraw(orbitKey(k.seed, record.orbit), s.draws)) & fixedpoint::kMask;
-      ended = true;
-    }
-    for (std::uint32_t j = 0; j < k.q; ++j) {
-      ended |= backwardStep(k.coefficients, s.z);
-      if (visit) visit(++step, s.z);
-    }
-    s.block += 1;
+    const bool ended = advanceBlockVisiting(k, record.orbit, s, [&](const UnitState& z) {
+      ++step;
+      if (visit) visit(step, z);
+    });
     if (ended || s.block >= params.T) return s.length;
   }
 }
