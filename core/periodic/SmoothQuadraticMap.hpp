@@ -41,7 +41,6 @@ template <class Real>
 [[nodiscard]] Real squareRoot(Real v) noexcept {
   if (!(v > 0)) return Real(0);
   long double seed = static_cast<long double>(v);
-  // sqrtl via the builtin keeps <cmath> out of constexpr trouble; exact enough as a seed
   Real r = static_cast<Real>(__builtin_sqrtl(seed));
   for (int i = 0; i < 2; ++i) r = (r + v / r) / 2;
   return r;
