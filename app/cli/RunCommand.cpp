@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "CliCommon.hpp"
+#include "periodic/IslandChain.hpp"
 #include "runfile/RunFile.hpp"
 #include "trapping/TrappingRun.hpp"
 
@@ -140,6 +141,7 @@ struct ReplayOptions {
   std::size_t segment = 0;
   std::string out;
   std::uint64_t stride = 1;
+  bool identify = false;
 };
 
 void replayCommand(const ReplayOptions& o) {
@@ -156,9 +158,12 @@ void replayCommand(const ReplayOptions& o) {
   out << "step,x,y,X,Y\n";
   out.precision(17);
   const std::uint64_t lastStep = rec.length * state.params.q;
+  std::vector<PhysicalPoint> points;  // for --identify: every step, in physical coordinates
+  constexpr std::uint64_t kMaxIdentifyPoints = 20'000'000;
   const std::uint64_t length = replaySegment(state.params, rec, [&](std::uint64_t step, const UnitState& z) {
-    if (step % o.stride != 0 && step != lastStep) return;
     const PhysicalPoint p = map.toPhysical(z);
+    if (o.identify && step < kMaxIdentifyPoints) points.push_back(p);
+    if (step % o.stride != 0 && step != lastStep) return;
     out << step << ',' << static_cast<double>(p.x) << ',' << static_cast<double>(p.y) << ',' << z.X << ',' << z.Y
         << '\n';
   });
@@ -170,6 +175,18 @@ void replayCommand(const ReplayOptions& o) {
   std::fprintf(stderr, "segment %zu: orbit %llu, %llu blocks (%llu steps), replayed bit for bit to %s\n", o.segment,
                static_cast<unsigned long long>(rec.orbit), static_cast<unsigned long long>(rec.length),
                static_cast<unsigned long long>(lastStep), o.out.c_str());
+  if (o.identify) {
+    // The segment iterates N⁻¹ (time reversed); the chain it sticks to is the same for Q.
+    const IslandChain chain = identifyIslandChain(state.params.map.K, points);
+    std::printf("# chain_period: %d\n# hierarchy:", chain.period);
+    for (int level : chain.hierarchy) std::printf(" %d", level);
+    std::printf("\n# member: %.12Lg,%.12Lg\n", chain.member.x, chain.member.y);
+    if (chain.centre) {
+      std::printf("# centre_orbit: period %d at %.12Lg,%.12Lg, residue %.9Lg (%s)\n", chain.centre->period,
+                  chain.centre->points.front().x, chain.centre->points.front().y, chain.centre->residue,
+                  chain.centre->stable() ? "stable" : "unstable");
+    }
+  }
 }
 }  // namespace
 
@@ -180,6 +197,7 @@ void addReplayCommand(CLI::App& app) {
   cmd->add_option("--segment", o->segment, "rank of the segment (0: the longest)")->capture_default_str();
   cmd->add_option("--out", o->out, "CSV file to write")->required();
   cmd->add_option("--stride", o->stride, "write every stride-th step")->capture_default_str();
+  cmd->add_flag("--identify", o->identify, "identify the island chain the segment sticks to (period, centre orbit)");
   cmd->callback([o] { replayCommand(*o); });
 }
 

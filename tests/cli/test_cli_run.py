@@ -66,6 +66,17 @@ check(r.returncode == 0 and len(rows) == 1 + longest["length"] * 16 + 1,
 first = rows[1].split(",")
 check((int(first[3]), int(first[4])) == tuple(longest["start"]["z"]), "the replay starts at the recorded state")
 
+# --identify names the island chain the segment sticks to, with a periodic orbit at its centre.
+r = run("replay", ref, "--segment", "0", "--out", csv, "--stride", "100", "--identify")
+lines = dict(l[2:].split(": ", 1) for l in r.stdout.splitlines() if l.startswith("# "))
+period = int(lines.get("chain_period", "0"))
+hierarchy = [int(v) for v in lines.get("hierarchy", "").split()]
+check(r.returncode == 0 and period >= 1 and hierarchy and hierarchy[0] == 1 and hierarchy[-1] == period
+      and all(b % a == 0 for a, b in zip(hierarchy, hierarchy[1:])),
+      f"replay --identify: chain period {period}, hierarchy {hierarchy} ({r.stderr.strip()[-80:]})")
+check("centre_orbit" in lines and f"period {period}" in lines.get("centre_orbit", ""),
+      f"the chain's centre orbit is found ({lines.get('centre_orbit')})")
+
 # stats: the summary and every series as CSV.
 csvdir = os.path.join(tmp, "csv")
 r = run("stats", ref, "--csv", csvdir)
