@@ -1,0 +1,218 @@
+#include "periodic/SegmentAnalysis.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <numeric>
+#include <stdexcept>
+
+#include "trapping/BlockKernel.hpp"
+
+#if __has_include("portrait/PortraitExport.hpp")
+#include "portrait/PortraitExport.hpp"  // writeNpy
+#else
+namespace archipelago {
+namespace {
+// TEMPORARY until the portrait module (and its .npy writer) is merged.
+void writeNpy(const std::string& path, const std::vector<double>& data, std::size_t rows, std::size_t cols) {
+  std::string header = "{'descr': '<f8', 'fortran_order': False, 'shape': (" + std::to_string(rows) + ", " +
+                       std::to_string(cols) + "), }";
+  while ((10 + header.size() + 1) % 64 != 0) header += ' ';
+  header += '\n';
+  std::ofstream out(path, std::ios::binary);
+  if (!out) throw std::runtime_error("cannot write " + path);
+  out.write("\x93NUMPY\x01\x00", 8);
+  const char len[2] = {static_cast<char>(header.size() & 0xff), static_cast<char>(header.size() >> 8)};
+  out.write(len, 2);
+  out << header;
+  out.write(reinterpret_cast<const char*>(data.data()), static_cast<std::streamsize>(data.size() * sizeof(double)));
+  if (!out) throw std::runtime_error("cannot write " + path);
+}
+}  // namespace
+}  // namespace archipelago
+#endif
+
+namespace archipelago {
+
+namespace {
+
+/// How many blocks run between two looks at the stop token (a few ms of work at q = 16).
+constexpr std::uint64_t kBlocksBetweenStopChecks = 4096;
+
+/// The replay loop of replaySegment() (TrappingRun.cpp) with a stop token: visit(step, z) for step 0 and
+/// after every step; visit returns false to end early.  Returns the blocks replayed, or nothing when stopped.
+template <class Visitor>
+std::optional<std::uint64_t> replayStoppable(const TrappingParameters& params, const SegmentRecord& record,
+                                             std::stop_token stop, Visitor&& visit) {
+  validate(params);
+  const KernelSettings k{computeCoefficients(params.map), randomizingThreshold(params.Xr), params.q, params.seed};
+  OrbitState s;
+  s.z = record.start.z;
+  s.block = record.start.block;
+  s.draws = record.start.draws;
+  s.start = record.start;
+  std::uint64_t step = 0;
+  bool more = visit(step, s.z);
+  while (more) {
+    if (s.length % kBlocksBetweenStopChecks == 0 && stop.stop_requested()) return std::nullopt;
+    const bool ended = advanceBlockVisiting(k, record.orbit, s, [&](const UnitState& z) {
+      ++step;
+      if (more) more = visit(step, z);
+    });
+    if (ended || s.block >= params.T) break;
+  }
+  return s.length;
+}
+
+}  // namespace
+
+std::size_t SegmentTrace::indexNear(std::uint64_t step) const noexcept {
+  if (states.empty()) return 0;
+  if (step >= steps) return states.size() - 1;
+  const std::size_t i = static_cast<std::size_t>((step + stride / 2) / stride);
+  return std::min(i, states.size() - 1);
+}
+
+std::optional<SegmentTrace> traceSegment(const TrappingParameters& params, const SegmentRecord& record,
+                                         std::uint64_t maxPoints, std::stop_token stop) {
+  if (maxPoints < 3) throw std::invalid_argument("maxPoints = " + std::to_string(maxPoints) + " must be >= 3");
+  validate(params);
+  SegmentTrace trace;
+  trace.record = record;
+  const std::uint64_t expectedSteps = record.length * params.q;
+  trace.stride = expectedSteps + 1 <= maxPoints ? 1 : (expectedSteps + maxPoints - 3) / (maxPoints - 2);
+  trace.states.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(expectedSteps / trace.stride + 2, maxPoints)));
+  UnitState last;
+  std::uint64_t lastStep = 0;
+  const auto blocks = replayStoppable(params, record, stop, [&](std::uint64_t step, const UnitState& z) {
+    last = z;
+    lastStep = step;
+    // A record of other parameters could run longer than announced: never keep more than maxPoints states.
+    if (step % trace.stride == 0 && trace.states.size() + 1 < maxPoints) trace.states.push_back(z);
+    return true;
+  });
+  if (!blocks) return std::nullopt;
+  trace.blocks = *blocks;
+  trace.steps = lastStep;
+  if (trace.states.empty() || lastStep % trace.stride != 0 || (lastStep / trace.stride) + 1 != trace.states.size())
+    trace.states.push_back(last);
+  const FixedPointMap map(params.map);
+  trace.points.reserve(trace.states.size());
+  for (const UnitState& z : trace.states) trace.points.push_back(map.toPhysical(z));
+  return trace;
+}
+
+std::optional<std::vector<PhysicalPoint>> segmentPrefix(const TrappingParameters& params, const SegmentRecord& record,
+                                                        std::uint64_t count, std::stop_token stop) {
+  validate(params);
+  const FixedPointMap map(params.map);
+  std::vector<PhysicalPoint> points;
+  points.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(count, record.length * params.q + 1)));
+  const auto blocks = replayStoppable(params, record, stop, [&](std::uint64_t, const UnitState& z) {
+    if (points.size() >= count) return false;
+    points.push_back(map.toPhysical(z));
+    return true;
+  });
+  if (!blocks) return std::nullopt;
+  return points;
+}
+
+SegmentRegion dwellRegion(std::span<const PhysicalPoint> points, double fraction, int grid, double margin) {
+  if (points.empty()) throw std::invalid_argument("dwellRegion: no points");
+  if (!(fraction > 0 && fraction <= 1)) throw std::invalid_argument("dwellRegion: fraction must be in (0, 1]");
+  if (grid < 1) throw std::invalid_argument("dwellRegion: grid must be >= 1");
+  if (!(margin >= 0) || !std::isfinite(margin)) throw std::invalid_argument("dwellRegion: margin must be >= 0");
+  long double x0 = points.front().x, x1 = x0, y0 = points.front().y, y1 = y0;
+  for (const PhysicalPoint& p : points) {
+    x0 = std::min(x0, p.x);
+    x1 = std::max(x1, p.x);
+    y0 = std::min(y0, p.y);
+    y1 = std::max(y1, p.y);
+  }
+  const auto n = static_cast<std::size_t>(grid);
+  auto cellOf = [&](long double v, long double lo, long double hi) {
+    if (hi <= lo) return std::size_t{0};
+    const long double c = std::floor((v - lo) / (hi - lo) * static_cast<long double>(grid));
+    return static_cast<std::size_t>(std::clamp(c, 0.0L, static_cast<long double>(grid - 1)));
+  };
+  std::vector<std::uint64_t> counts(n * n, 0);
+  for (const PhysicalPoint& p : points) counts[cellOf(p.y, y0, y1) * n + cellOf(p.x, x0, x1)] += 1;
+  std::vector<std::size_t> order(counts.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  // Fullest first; ties by cell index so that the region does not depend on the sort's whims.
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return counts[a] != counts[b] ? counts[a] > counts[b] : a < b;
+  });
+  const auto wanted = static_cast<std::uint64_t>(std::ceil(fraction * static_cast<double>(points.size())));
+  std::uint64_t taken = 0;
+  std::size_t cx0 = n, cx1 = 0, cy0 = n, cy1 = 0;
+  for (std::size_t cell : order) {
+    if (taken >= wanted || counts[cell] == 0) break;
+    taken += counts[cell];
+    cx0 = std::min(cx0, cell % n);
+    cx1 = std::max(cx1, cell % n);
+    cy0 = std::min(cy0, cell / n);
+    cy1 = std::max(cy1, cell / n);
+  }
+  const long double cw = (x1 - x0) / static_cast<long double>(grid);
+  const long double ch = (y1 - y0) / static_cast<long double>(grid);
+  SegmentRegion r;
+  r.x0 = x0 + cw * static_cast<long double>(cx0);
+  r.x1 = x0 + cw * static_cast<long double>(cx1 + 1);
+  r.y0 = y0 + ch * static_cast<long double>(cy0);
+  r.y1 = y0 + ch * static_cast<long double>(cy1 + 1);
+  // The cells' box may hold more than the cells taken: count what it really holds.
+  std::uint64_t inside = 0;
+  for (const PhysicalPoint& p : points)
+    if (p.x >= r.x0 && p.x <= r.x1 && p.y >= r.y0 && p.y <= r.y1) ++inside;
+  r.fraction = static_cast<double>(inside) / static_cast<double>(points.size());
+  const long double mx = static_cast<long double>(margin) * r.width();
+  const long double my = static_cast<long double>(margin) * r.height();
+  r.x0 -= mx;
+  r.x1 += mx;
+  r.y0 -= my;
+  r.y1 += my;
+  return r;
+}
+
+std::optional<IslandChain> identifySegmentChain(const TrappingParameters& params, const SegmentRecord& record,
+                                                std::uint64_t maxPoints, const IslandChainOptions& options,
+                                                std::stop_token stop) {
+  auto points = segmentPrefix(params, record, maxPoints, stop);
+  if (!points) return std::nullopt;
+  if (points->size() < 2 * static_cast<std::size_t>(std::max(options.minPointsPerPhase, 1)))
+    throw std::invalid_argument("segment of " + std::to_string(points->size()) +
+                                " points is too short to identify its island chain");
+  if (stop.stop_requested()) return std::nullopt;
+  return identifyIslandChain(params.map.K, *points, options);
+}
+
+void writeSegmentCsv(const std::string& path, const SegmentTrace& trace) {
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error("cannot write " + path);
+  out << "step,x,y,X,Y\n";
+  char line[160];
+  for (std::size_t i = 0; i < trace.states.size(); ++i) {
+    std::snprintf(line, sizeof line, "%llu,%.17g,%.17g,%llu,%llu\n", static_cast<unsigned long long>(trace.stepAt(i)),
+                  static_cast<double>(trace.points[i].x), static_cast<double>(trace.points[i].y),
+                  static_cast<unsigned long long>(trace.states[i].X),
+                  static_cast<unsigned long long>(trace.states[i].Y));
+    out << line;
+  }
+  out.close();
+  if (!out) throw std::runtime_error("cannot write " + path);
+}
+
+void writeSegmentNpy(const std::string& path, const SegmentTrace& trace) {
+  std::vector<double> data;
+  data.reserve(trace.states.size() * 3);
+  for (std::size_t i = 0; i < trace.states.size(); ++i) {
+    data.push_back(static_cast<double>(trace.stepAt(i)));
+    data.push_back(static_cast<double>(trace.points[i].x));
+    data.push_back(static_cast<double>(trace.points[i].y));
+  }
+  writeNpy(path, data, trace.states.size(), 3);
+}
+
+}  // namespace archipelago

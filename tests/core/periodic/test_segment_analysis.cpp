@@ -1,0 +1,176 @@
+// Replayed segments in buffers, where they spent their time, their chains (core/periodic/SegmentAnalysis.hpp).
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "periodic/SegmentAnalysis.hpp"
+#include "trapping/TrappingRun.hpp"
+
+namespace archipelago {
+namespace {
+
+/// A short K = 0.1 run whose longest segments are a few thousand steps long.
+const TrappingState& shortRun() {
+  static const TrappingState state = [] {
+    TrappingParameters p;
+    p.M = 16;
+    p.T = 20000;
+    p.longestKept = 10;
+    TrappingRunOptions o;
+    o.threads = 1;
+    return runTrapping(startTrapping(p), o);
+  }();
+  return state;
+}
+
+struct Visit {
+  std::uint64_t step;
+  UnitState z;
+};
+
+std::vector<Visit> reference(const TrappingState& state, const SegmentRecord& record) {
+  std::vector<Visit> visits;
+  replaySegment(state.params, record, [&](std::uint64_t step, const UnitState& z) { visits.push_back({step, z}); });
+  return visits;
+}
+
+TEST(SegmentAnalysis, TraceWithStrideOneIsBitIdenticalToReplaySegment) {
+  const TrappingState& state = shortRun();
+  ASSERT_GE(state.longest.items().size(), 3u);
+  for (std::size_t rank : {0u, 2u}) {
+    const SegmentRecord& record = state.longest.items()[rank];
+    const std::vector<Visit> visits = reference(state, record);
+    const auto trace = traceSegment(state.params, record, visits.size());
+    ASSERT_TRUE(trace.has_value());
+    EXPECT_EQ(trace->stride, 1u);
+    EXPECT_EQ(trace->blocks, record.length);
+    EXPECT_EQ(trace->steps, record.length * state.params.q);
+    ASSERT_EQ(trace->states.size(), visits.size());
+    for (std::size_t i = 0; i < visits.size(); ++i) {
+      ASSERT_EQ(trace->stepAt(i), visits[i].step);
+      ASSERT_EQ(trace->states[i], visits[i].z) << "step " << i;
+    }
+    const FixedPointMap map(state.params.map);
+    EXPECT_EQ(trace->points[5].x, map.toPhysical(visits[5].z).x);
+    EXPECT_EQ(trace->points[5].y, map.toPhysical(visits[5].z).y);
+  }
+}
+
+TEST(SegmentAnalysis, StridedTraceKeepsExactStatesAndTheLastStep) {
+  const TrappingState& state = shortRun();
+  const SegmentRecord& record = state.longest.items().front();
+  const std::vector<Visit> visits = reference(state, record);
+  const std::uint64_t maxPoints = 101;
+  const auto trace = traceSegment(state.params, record, maxPoints);
+  ASSERT_TRUE(trace.has_value());
+  EXPECT_GT(trace->stride, 1u);
+  EXPECT_LE(trace->states.size(), maxPoints);
+  EXPECT_GE(trace->states.size(), maxPoints / 2);
+  for (std::size_t i = 0; i < trace->states.size(); ++i) {
+    const std::uint64_t step = trace->stepAt(i);
+    ASSERT_LT(step, visits.size());
+    ASSERT_EQ(trace->states[i], visits[step].z) << "index " << i << ", step " << step;
+  }
+  EXPECT_EQ(trace->stepAt(trace->states.size() - 1), visits.back().step);
+  EXPECT_EQ(trace->indexNear(0), 0u);
+  EXPECT_EQ(trace->indexNear(trace->stride), 1u);
+  EXPECT_EQ(trace->indexNear(UINT64_MAX), trace->states.size() - 1);
+  EXPECT_THROW((void)traceSegment(state.params, record, 2), std::invalid_argument);
+}
+
+TEST(SegmentAnalysis, StoppedReplaysReturnNothing) {
+  const TrappingState& state = shortRun();
+  std::stop_source stop;
+  stop.request_stop();
+  const SegmentRecord& record = state.longest.items().front();
+  EXPECT_FALSE(traceSegment(state.params, record, 1000, stop.get_token()).has_value());
+  EXPECT_FALSE(segmentPrefix(state.params, record, 1000, stop.get_token()).has_value());
+  EXPECT_FALSE(identifySegmentChain(state.params, record, 1000, {}, stop.get_token()).has_value());
+}
+
+TEST(SegmentAnalysis, PrefixIsTheFirstConsecutivePoints) {
+  const TrappingState& state = shortRun();
+  const SegmentRecord& record = state.longest.items().front();
+  const std::vector<Visit> visits = reference(state, record);
+  const FixedPointMap map(state.params.map);
+  const auto prefix = segmentPrefix(state.params, record, 100);
+  ASSERT_TRUE(prefix.has_value());
+  ASSERT_EQ(prefix->size(), 100u);
+  for (std::size_t i = 0; i < prefix->size(); ++i) {
+    ASSERT_EQ((*prefix)[i].x, map.toPhysical(visits[i].z).x);
+    ASSERT_EQ((*prefix)[i].y, map.toPhysical(visits[i].z).y);
+  }
+  const auto all = segmentPrefix(state.params, record, UINT64_MAX);
+  ASSERT_TRUE(all.has_value());
+  EXPECT_EQ(all->size(), visits.size());
+}
+
+TEST(SegmentAnalysis, ChainOfASegmentIsTheChainOfItsPrefix) {
+  const TrappingState& state = shortRun();
+  const SegmentRecord& record = state.longest.items().front();
+  IslandChainOptions options;
+  options.findCentreOrbit = false;
+  const auto chain = identifySegmentChain(state.params, record, 4000, options);
+  ASSERT_TRUE(chain.has_value());
+  const auto prefix = segmentPrefix(state.params, record, 4000);
+  const IslandChain direct = identifyIslandChain(state.params.map.K, *prefix, options);
+  EXPECT_EQ(chain->period, direct.period);
+  EXPECT_EQ(chain->hierarchy, direct.hierarchy);
+  EXPECT_EQ(chain->windingTurns, direct.windingTurns);
+  EXPECT_THROW((void)identifySegmentChain(state.params, record, 10, options), std::invalid_argument);
+}
+
+TEST(SegmentAnalysis, DwellRegionIgnoresShortExcursions) {
+  // 950 points spread over [0, 1] × [2, 3] and 50 far away on a line: the 90 % region is the square.
+  std::vector<PhysicalPoint> points;
+  for (int i = 0; i < 950; ++i) points.push_back({(i % 31) / 30.0L, 2 + (i % 29) / 28.0L});
+  for (int i = 0; i < 50; ++i) points.push_back({5 + i * 0.1L, -4});
+  const SegmentRegion r = dwellRegion(points, 0.9, 64, 0);
+  EXPECT_GE(r.fraction, 0.9);
+  EXPECT_LE(r.fraction, 0.951);
+  EXPECT_GE(r.x0, -1e-12L);
+  EXPECT_LT(r.x1, 1.2L);
+  EXPECT_GT(r.y0, 1.9L);
+  EXPECT_LE(r.y1, 3 + 1e-12L);
+  EXPECT_LT(r.x0, 0.2L);
+  EXPECT_GT(r.y1, 2.8L);
+  const SegmentRegion padded = dwellRegion(points, 0.9, 64, 0.1);
+  EXPECT_NEAR(static_cast<double>(padded.width()), 1.2 * static_cast<double>(r.width()), 1e-12);
+  const SegmentRegion everything = dwellRegion(points, 1.0, 64, 0);
+  EXPECT_EQ(everything.fraction, 1.0);
+  EXPECT_THROW((void)dwellRegion({}, 0.9), std::invalid_argument);
+  EXPECT_THROW((void)dwellRegion(points, 0.0), std::invalid_argument);
+  EXPECT_THROW((void)dwellRegion(points, 0.9, 0), std::invalid_argument);
+}
+
+TEST(SegmentAnalysis, CsvHasOneLinePerKeptState) {
+  const TrappingState& state = shortRun();
+  const auto trace = traceSegment(state.params, state.longest.items().front(), 50);
+  ASSERT_TRUE(trace.has_value());
+  const std::string path = (std::filesystem::temp_directory_path() / "archipelago_segment_test.csv").string();
+  writeSegmentCsv(path, *trace);
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "step,x,y,X,Y");
+  std::size_t lines = 0;
+  std::string last;
+  while (std::getline(in, line)) {
+    ++lines;
+    last = line;
+  }
+  EXPECT_EQ(lines, trace->states.size());
+  EXPECT_EQ(last.substr(0, last.find(',')), std::to_string(trace->steps));
+  EXPECT_EQ(last.substr(last.rfind(',') + 1), std::to_string(trace->states.back().Y));
+  std::filesystem::remove(path);
+  EXPECT_THROW(writeSegmentCsv("/nonexistent-dir/x.csv", *trace), std::runtime_error);
+}
+
+}  // namespace
+}  // namespace archipelago

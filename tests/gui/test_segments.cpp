@@ -1,0 +1,229 @@
+// The long-segment table and the periodic-orbit dialog (ui/segments, ui/periodic), on Qt's offscreen platform.
+
+#include <QApplication>
+#include <QPushButton>
+#include <QSignalSpy>
+#include <QTableWidget>
+#include <QTableView>
+#include <QTemporaryDir>
+#include <QtTest>
+
+#include <cmath>
+#include <vector>
+
+#include "periodic/PeriodicOrbitDialog.hpp"
+#include "segments/LongSegmentsPanel.hpp"
+#include "trapping/TrappingRun.hpp"
+
+using namespace archipelago;
+using namespace archipelago::ui;
+
+namespace {
+
+/// A finished K = 0.1 run of 16 × 20000 blocks (5·10⁶ steps): its longest segments are 10³–10⁵ steps long.
+const TrappingState& shortRun() {
+  static const TrappingState state = [] {
+    TrappingParameters p;
+    p.M = 16;
+    p.T = 20000;
+    p.longestKept = 12;
+    TrappingRunOptions o;
+    o.threads = 1;
+    return runTrapping(startTrapping(p), o);
+  }();
+  return state;
+}
+
+std::vector<UnitState> replayedByCore(const TrappingParameters& params, const SegmentRecord& record) {
+  std::vector<UnitState> states;
+  replaySegment(params, record, [&](std::uint64_t, const UnitState& z) { states.push_back(z); });
+  return states;
+}
+
+}  // namespace
+
+class TestSegments : public QObject {
+  Q_OBJECT
+ private Q_SLOTS:
+  void tableFillsFromAFinishedRun();
+  void selectingARowReplaysTheSegmentBitForBit();
+  void onlyTheLatestSelectionIsShown();
+  void exportsTheReplay();
+  void periodicDialogFindsTheEllipticPeriodSixOrbit();
+};
+
+void TestSegments::tableFillsFromAFinishedRun() {
+  const TrappingState& state = shortRun();
+  const auto& items = state.longest.items();
+  QVERIFY(items.size() >= 10);
+  LongSegmentsPanel panel;
+  panel.setAutoIdentifiedRows(3);
+  panel.updateSegments(state.params, state.longest);
+  LongestSegmentsModel& model = *panel.model();
+  QCOMPARE(model.rowCount(), static_cast<int>(items.size()));
+  const QLocale locale;
+  for (int row : {0, 5}) {
+    const SegmentRecord& r = items[static_cast<std::size_t>(row)];
+    QCOMPARE(model.index(row, LongestSegmentsModel::Length).data().toString(),
+             locale.toString(static_cast<qulonglong>(r.length * state.params.q)));
+    QCOMPARE(model.index(row, LongestSegmentsModel::Orbit).data().toULongLong(), static_cast<qulonglong>(r.orbit));
+    QCOMPARE(model.index(row, LongestSegmentsModel::StartBlock).data().toString(),
+             locale.toString(static_cast<qulonglong>(r.start.block)));
+    const FixedPointMap map(state.params.map);
+    QCOMPARE(model.index(row, LongestSegmentsModel::StartX).data().toString().toDouble(),
+             std::round(static_cast<double>(map.toPhysical(r.start.z).x) * 1e8) / 1e8);
+  }
+  // Longest first.
+  QVERIFY(items[0].length >= items[1].length);
+  // The top rows get their chains in the background; the others are not touched.
+  QTRY_VERIFY_WITH_TIMEOUT(panel.idle(), 20000);
+  for (int row = 0; row < 3; ++row) {
+    const SegmentKey key = SegmentKey::of(items[static_cast<std::size_t>(row)]);
+    QCOMPARE(model.chainStatus(key), LongestSegmentsModel::ChainStatus::done);
+    const ChainResultPtr chain = model.chain(key);
+    QVERIFY(chain);
+    if (chain->chain)
+      QCOMPARE(model.index(row, LongestSegmentsModel::Chain).data().toInt(), chain->chain->period);
+    else
+      QVERIFY(!chain->error.isEmpty());
+  }
+  QCOMPARE(model.chainStatus(SegmentKey::of(items[5])), LongestSegmentsModel::ChainStatus::unknown);
+  // The same segments again (a live update with nothing new) keep the chains; a new run forgets them.
+  panel.updateSegments(state.params, state.longest);
+  QCOMPARE(model.chainStatus(SegmentKey::of(items[0])), LongestSegmentsModel::ChainStatus::done);
+  TrappingParameters other = state.params;
+  other.seed = 2;
+  panel.setAutoIdentifiedRows(0);
+  panel.updateSegments(other, state.longest);
+  QCOMPARE(model.chainStatus(SegmentKey::of(items[0])), LongestSegmentsModel::ChainStatus::unknown);
+}
+
+void TestSegments::selectingARowReplaysTheSegmentBitForBit() {
+  const TrappingState& state = shortRun();
+  LongSegmentsPanel panel;
+  panel.setAutoIdentifiedRows(0);
+  panel.setMaxReplayPoints(10'000'000);  // stride 1: every step
+  panel.updateSegments(state.params, state.longest);
+  QSignalSpy replays(&panel, &LongSegmentsPanel::replayReady);
+  QSignalSpy chains(&panel, &LongSegmentsPanel::chainReady);
+  panel.selectRow(1);
+  QVERIFY(replays.wait(20000));
+  const SegmentReplayPtr replay = panel.currentReplay();
+  QVERIFY(replay);
+  const SegmentRecord& record = state.longest.items()[1];
+  QCOMPARE(replay->trace.record, record);
+  QCOMPARE(replay->trace.stride, std::uint64_t{1});
+  const std::vector<UnitState> expected = replayedByCore(state.params, record);
+  QCOMPARE(replay->trace.states.size(), expected.size());
+  QVERIFY(replay->trace.states == expected);  // bit for bit, every step
+  QCOMPARE(replay->trace.steps, record.length * state.params.q);
+  // The view: where it spent its time holds most of the points.
+  QVERIFY(replay->region.fraction >= 0.9);
+  QVERIFY(replay->region.width() > 0 && replay->region.height() > 0);
+  // Its chain is identified for the selected row even with no automatic rows.
+  QTRY_VERIFY_WITH_TIMEOUT(panel.currentChain() != nullptr, 20000);
+  QVERIFY(chains.count() >= 1);
+  // Stepping moves through the exact states.
+  panel.setCurrentIndex(17);
+  QCOMPARE(panel.currentIndex(), std::size_t{17});
+  panel.setCurrentIndex(expected.size() + 5);
+  QCOMPARE(panel.currentIndex(), expected.size() - 1);
+}
+
+void TestSegments::onlyTheLatestSelectionIsShown() {
+  const TrappingState& state = shortRun();
+  LongSegmentsPanel panel;
+  panel.setAutoIdentifiedRows(0);
+  panel.updateSegments(state.params, state.longest);
+  QSignalSpy replays(&panel, &LongSegmentsPanel::replayReady);
+  panel.selectRow(0);
+  panel.selectRow(3);
+  panel.selectRow(2);
+  QTRY_VERIFY_WITH_TIMEOUT(panel.idle() && replays.count() >= 1, 20000);
+  QCoreApplication::processEvents();
+  // Stale replays (rows 0 and 3) were cancelled or dropped: every replay shown is row 2's.
+  for (const QList<QVariant>& args : replays) {
+    const auto replay = args.at(0).value<SegmentReplayPtr>();
+    QCOMPARE(replay->trace.record, state.longest.items()[2]);
+  }
+  QCOMPARE(panel.currentReplay()->trace.record, state.longest.items()[2]);
+  // A live update that moves the segment keeps it selected (by segment, not by row).
+  LongestSegments fewer(state.longest.capacity());
+  for (std::size_t i = 2; i < state.longest.items().size(); ++i) fewer.insert(state.longest.items()[i]);
+  panel.updateSegments(state.params, fewer);
+  QCOMPARE(panel.selectedRow(), 0);
+  QCOMPARE(replays.count(), 1);  // no second replay of the same segment
+}
+
+void TestSegments::exportsTheReplay() {
+  const TrappingState& state = shortRun();
+  LongSegmentsPanel panel;
+  panel.setAutoIdentifiedRows(0);
+  panel.setMaxReplayPoints(1000);
+  panel.updateSegments(state.params, state.longest);
+  QString error;
+  QTemporaryDir dir;
+  QVERIFY(!panel.exportCsv(dir.filePath(QStringLiteral("none.csv")), &error));
+  QVERIFY(!error.isEmpty());
+  QSignalSpy replays(&panel, &LongSegmentsPanel::replayReady);
+  panel.selectRow(0);
+  QVERIFY(replays.wait(20000));
+  const SegmentTrace& trace = panel.currentReplay()->trace;
+  QVERIFY(trace.stride > 1);
+  QVERIFY(trace.states.size() <= 1000);
+  const QString csv = dir.filePath(QStringLiteral("segment.csv"));
+  QVERIFY2(panel.exportCsv(csv, &error), qPrintable(error));
+  QFile file(csv);
+  QVERIFY(file.open(QIODevice::ReadOnly));
+  const QList<QByteArray> lines = file.readAll().trimmed().split('\n');
+  QCOMPARE(lines.size(), static_cast<int>(trace.states.size()) + 1);
+  QCOMPARE(lines.front(), QByteArray("step,x,y,X,Y"));
+  const QString npy = dir.filePath(QStringLiteral("segment.npy"));
+  QVERIFY2(panel.exportNpy(npy, &error), qPrintable(error));
+  QFile array(npy);
+  QVERIFY(array.open(QIODevice::ReadOnly));
+  const QByteArray bytes = array.readAll();
+  QVERIFY(bytes.startsWith("\x93NUMPY"));
+  QVERIFY(bytes.contains(QByteArray("'shape': (") + QByteArray::number(static_cast<qulonglong>(trace.states.size())) +
+                         ", 3)"));
+  QVERIFY(!panel.exportCsv(QStringLiteral("/nonexistent-folder/x.csv"), &error));
+}
+
+void TestSegments::periodicDialogFindsTheEllipticPeriodSixOrbit() {
+  PeriodicOrbitDialog dialog;
+  dialog.setK(0.1);
+  dialog.setPeriod(6);
+  dialog.setNear(0.0509, 0.0974);
+  dialog.setStableOnly(true);
+  QSignalSpy finished(&dialog, &PeriodicOrbitDialog::searchFinished);
+  QSignalSpy overlays(&dialog, &PeriodicOrbitDialog::overlayRequested);
+  dialog.find();
+  QVERIFY(finished.wait(20000));
+  QCOMPARE(finished.front().at(0).toBool(), true);
+  QVERIFY(dialog.orbit().has_value());
+  const PeriodicOrbit& orbit = *dialog.orbit();
+  QCOMPARE(orbit.period, 6);
+  QVERIFY(orbit.residue > 0 && orbit.residue < 1);
+  QVERIFY(orbit.stable());
+  QVERIFY(std::fabs(static_cast<double>(orbit.rotationNumber) - 1.0 / 6) < 1e-12);
+  QVERIFY(std::hypot(static_cast<double>(orbit.points[0].x) - 0.0509, static_cast<double>(orbit.points[0].y) - 0.0974) <
+          1e-3);
+  auto* table = dialog.findChild<QTableWidget*>();
+  QVERIFY(table);
+  QCOMPARE(table->rowCount(), 6);
+  // "Overlay" hands the orbit on.
+  for (QPushButton* button : dialog.findChildren<QPushButton*>())
+    if (button->text().remove('&') == QStringLiteral("Overlay")) button->click();
+  QCOMPARE(overlays.count(), 1);
+  // Nothing of period 6 near a point far from the chain, stable only: a clear failure, no orbit.
+  dialog.setNear(-0.7, 0.6);
+  dialog.setPeriod(7);
+  finished.clear();
+  dialog.find();
+  QVERIFY(finished.wait(20000));
+  QCOMPARE(finished.front().at(0).toBool(), false);
+  QVERIFY(!dialog.orbit().has_value());
+}
+
+QTEST_MAIN(TestSegments)
+#include "test_segments.moc"

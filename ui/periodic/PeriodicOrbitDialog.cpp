@@ -1,0 +1,187 @@
+#include "periodic/PeriodicOrbitDialog.hpp"
+
+#include <QCheckBox>
+#include <QDialogButtonBox>
+#include <QDoubleSpinBox>
+#include <QDoubleValidator>
+#include <QFormLayout>
+#include <QHBoxLayout>
+#include <QHeaderView>
+#include <QLabel>
+#include <QLineEdit>
+#include <QPushButton>
+#include <QSpinBox>
+#include <QTableWidget>
+#include <QVBoxLayout>
+
+#include <exception>
+
+#include "periodic/PeriodicOrbitFinder.hpp"
+#include "segments/JobThread.hpp"
+
+namespace archipelago::ui {
+
+namespace {
+QLineEdit* numberEdit(QWidget* parent, double value) {
+  auto* edit = new QLineEdit(QString::number(value, 'g', 17), parent);
+  auto* validator = new QDoubleValidator(edit);
+  validator->setLocale(QLocale::c());
+  edit->setValidator(validator);
+  return edit;
+}
+double numberOf(const QLineEdit* edit, bool* ok) { return QLocale::c().toDouble(edit->text().trimmed(), ok); }
+}  // namespace
+
+PeriodicOrbitDialog::PeriodicOrbitDialog(QWidget* parent) : QDialog(parent) {
+  qRegisterMetaType<PeriodicOrbit>();
+  setWindowTitle(tr("Find periodic orbit"));
+  thread_ = new JobThread(this);
+
+  kEdit_ = numberEdit(this, 0.1);
+  kEdit_->setToolTip(tr("The map parameter K of Q (from the current run parameters)"));
+  periodBox_ = new QSpinBox(this);
+  periodBox_->setRange(1, PeriodicOrbitSearch::kMaxPeriod);
+  periodBox_->setValue(6);
+  periodBox_->setToolTip(tr("Minimal period n of the orbit (e.g. 6 or 138 at K = 0.1)"));
+  xEdit_ = numberEdit(this, 0.0509);
+  yEdit_ = numberEdit(this, 0.0974);
+  auto* nearRow = new QHBoxLayout;
+  nearRow->addWidget(xEdit_);
+  nearRow->addWidget(yEdit_);
+  radiusBox_ = new QDoubleSpinBox(this);
+  radiusBox_->setDecimals(6);
+  radiusBox_->setRange(1e-6, 1.0);
+  radiusBox_->setSingleStep(0.001);
+  radiusBox_->setValue(0.01);
+  radiusBox_->setToolTip(tr("How far from the guess's iterates the symmetry lines are scanned"));
+  stableBox_ = new QCheckBox(tr("Stable (elliptic) orbits only"), this);
+  stableBox_->setChecked(true);
+
+  auto* form = new QFormLayout;
+  form->addRow(tr("&K:"), kEdit_);
+  form->addRow(tr("&Period n:"), periodBox_);
+  form->addRow(tr("&Near (x, y):"), nearRow);
+  form->addRow(tr("Search &radius:"), radiusBox_);
+  form->addRow(QString(), stableBox_);
+
+  summary_ = new QLabel(tr("Enter a period and a point near the orbit, then Find."), this);
+  summary_->setWordWrap(true);
+  summary_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  points_ = new QTableWidget(0, 3, this);
+  points_->setHorizontalHeaderLabels({tr("k"), tr("x"), tr("y")});
+  points_->verticalHeader()->hide();
+  points_->horizontalHeader()->setStretchLastSection(true);
+  points_->setEditTriggers(QAbstractItemView::NoEditTriggers);
+
+  findButton_ = new QPushButton(tr("&Find"), this);
+  findButton_->setDefault(true);
+  overlayButton_ = new QPushButton(tr("&Overlay"), this);
+  overlayButton_->setToolTip(tr("Draw the orbit on the phase portrait"));
+  overlayButton_->setEnabled(false);
+  auto* buttons = new QDialogButtonBox(QDialogButtonBox::Close, this);
+  buttons->addButton(findButton_, QDialogButtonBox::ActionRole);
+  buttons->addButton(overlayButton_, QDialogButtonBox::ActionRole);
+  connect(buttons, &QDialogButtonBox::rejected, this, &QDialog::reject);
+  connect(findButton_, &QPushButton::clicked, this, &PeriodicOrbitDialog::find);
+  connect(overlayButton_, &QPushButton::clicked, this, [this] {
+    if (orbit_) Q_EMIT overlayRequested(*orbit_);
+  });
+
+  auto* layout = new QVBoxLayout(this);
+  layout->addLayout(form);
+  layout->addWidget(summary_);
+  layout->addWidget(points_, 1);
+  layout->addWidget(buttons);
+  resize(520, 560);
+}
+
+PeriodicOrbitDialog::~PeriodicOrbitDialog() {
+  delete thread_;  // waits for a running search before the widgets it reports to go away
+  thread_ = nullptr;
+}
+
+void PeriodicOrbitDialog::setK(double K) { kEdit_->setText(QString::number(K, 'g', 17)); }
+void PeriodicOrbitDialog::setPeriod(int period) { periodBox_->setValue(period); }
+void PeriodicOrbitDialog::setNear(double x, double y) {
+  xEdit_->setText(QString::number(x, 'g', 17));
+  yEdit_->setText(QString::number(y, 'g', 17));
+}
+void PeriodicOrbitDialog::setStableOnly(bool on) { stableBox_->setChecked(on); }
+double PeriodicOrbitDialog::K() const {
+  bool ok = false;
+  const double K = numberOf(kEdit_, &ok);
+  return ok ? K : 0.0;
+}
+
+void PeriodicOrbitDialog::find() {
+  bool okK = false, okX = false, okY = false;
+  const double K = numberOf(kEdit_, &okK);
+  const double x = numberOf(xEdit_, &okX);
+  const double y = numberOf(yEdit_, &okY);
+  if (!okK || !okX || !okY) {
+    summary_->setText(tr("<b>Not a number:</b> %1").arg(!okK ? tr("K") : !okX ? tr("x") : tr("y")));
+    Q_EMIT searchFinished(false);
+    return;
+  }
+  PeriodicOrbitSearch search;
+  search.period = periodBox_->value();
+  search.near = {x, y};
+  search.searchRadius = radiusBox_->value();
+  search.stableOnly = stableBox_->isChecked();
+  const quint64 id = ++request_;
+  searching_ = true;
+  findButton_->setEnabled(false);
+  summary_->setText(tr("Searching for an orbit of period %1 near (%2, %3)\u2026").arg(search.period).arg(x).arg(y));
+  thread_->cancelAll();
+  thread_->submit([this, id, K, search](std::stop_token) {
+    std::optional<PeriodicOrbit> orbit;
+    QString error;
+    try {
+      orbit = findPeriodicOrbit(K, search);
+    } catch (const std::exception& e) {
+      error = QString::fromStdString(e.what());
+    }
+    JobThread::postTo(this, [this, id, orbit, error] { onResult(id, orbit, error); });
+  });
+}
+
+void PeriodicOrbitDialog::onResult(quint64 requestId, const std::optional<PeriodicOrbit>& orbit, const QString& error) {
+  if (requestId != request_) return;  // an older search
+  searching_ = false;
+  findButton_->setEnabled(true);
+  orbit_ = orbit;
+  overlayButton_->setEnabled(orbit_.has_value());
+  if (!orbit_) {
+    summary_->setText(tr("<b>No orbit found:</b> %1").arg(error.toHtmlEscaped()));
+    points_->setRowCount(0);
+  } else {
+    showOrbit();
+  }
+  Q_EMIT searchFinished(orbit_.has_value());
+}
+
+void PeriodicOrbitDialog::showOrbit() {
+  const PeriodicOrbit& o = *orbit_;
+  summary_->setText(tr("Period <b>%1</b>: residue R = <b>%2</b> (%3), rotation number %4 = %5/%1 about the "
+                       "centre, trace DQ<sup>n</sup> = %6, closure %7, symmetry %8")
+                        .arg(o.period)
+                        .arg(static_cast<double>(o.residue), 0, 'g', 10)
+                        .arg(o.stable() ? tr("stable, elliptic")
+                                        : (o.residue > 1 ? tr("unstable, hyperbolic with reflection")
+                                                         : tr("unstable, hyperbolic")))
+                        .arg(static_cast<double>(o.rotationNumber), 0, 'g', 8)
+                        .arg(o.windingTurns)
+                        .arg(static_cast<double>(o.trace), 0, 'g', 10)
+                        .arg(static_cast<double>(o.closure), 0, 'g', 2)
+                        .arg(QString::fromLatin1(toString(o.symmetry))));
+  points_->setRowCount(static_cast<int>(o.points.size()));
+  for (std::size_t k = 0; k < o.points.size(); ++k) {
+    const int row = static_cast<int>(k);
+    points_->setItem(row, 0, new QTableWidgetItem(QString::number(row)));
+    points_->setItem(row, 1, new QTableWidgetItem(QString::number(static_cast<double>(o.points[k].x), 'g', 17)));
+    points_->setItem(row, 2, new QTableWidgetItem(QString::number(static_cast<double>(o.points[k].y), 'g', 17)));
+  }
+  points_->resizeColumnsToContents();
+}
+
+}  // namespace archipelago::ui

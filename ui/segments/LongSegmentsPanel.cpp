@@ -1,0 +1,377 @@
+#include "segments/LongSegmentsPanel.hpp"
+
+#include <QElapsedTimer>
+#include <QFileDialog>
+#include <QHBoxLayout>
+#include <QHeaderView>
+#include <QItemSelectionModel>
+#include <QLabel>
+#include <QLocale>
+#include <QPushButton>
+#include <QSlider>
+#include <QSpinBox>
+#include <QTableView>
+#include <QTimer>
+#include <QToolButton>
+#include <QVBoxLayout>
+
+#include <algorithm>
+#include <exception>
+
+namespace archipelago::ui {
+
+namespace {
+/// Play through a segment in about this many timer ticks (30 Hz: ~15 s), whatever its length.
+constexpr std::size_t kPlayTicks = 450;
+}  // namespace
+
+LongSegmentsPanel::LongSegmentsPanel(QWidget* parent) : QWidget(parent) {
+  qRegisterMetaType<SegmentReplayPtr>();
+  qRegisterMetaType<ChainResultPtr>();
+  model_ = new LongestSegmentsModel(this);
+  replayThread_ = new JobThread(this);
+  chainThread_ = new JobThread(this);
+
+  table_ = new QTableView(this);
+  table_->setModel(model_);
+  table_->setSelectionBehavior(QAbstractItemView::SelectRows);
+  table_->setSelectionMode(QAbstractItemView::SingleSelection);
+  table_->setAlternatingRowColors(true);
+  table_->verticalHeader()->hide();
+  table_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
+  table_->horizontalHeader()->setStretchLastSection(true);
+  table_->setToolTip(tr("Select a segment to replay it exactly from its recorded start state"));
+  connect(table_->selectionModel(), &QItemSelectionModel::selectionChanged, this,
+          &LongSegmentsPanel::onSelectionChanged);
+
+  info_ = new QLabel(tr("Run or open a run file; the longest trapped segments appear here."), this);
+  info_->setWordWrap(true);
+  info_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+
+  playButton_ = new QToolButton(this);
+  playButton_->setText(tr("Play"));
+  playButton_->setCheckable(true);
+  playButton_->setToolTip(tr("Play through the segment"));
+  connect(playButton_, &QToolButton::clicked, this, &LongSegmentsPanel::togglePlay);
+  slider_ = new QSlider(Qt::Horizontal, this);
+  slider_->setToolTip(tr("Step through the segment"));
+  connect(slider_, &QSlider::valueChanged, this, [this](int v) { setCurrentIndex(static_cast<std::size_t>(v)); });
+  stepBox_ = new QSpinBox(this);
+  stepBox_->setToolTip(tr("Step of N\u207B\u00B9 shown (snapped to the kept states)"));
+  stepBox_->setKeyboardTracking(false);
+  connect(stepBox_, qOverload<int>(&QSpinBox::valueChanged), this, [this](int step) {
+    if (replay_) setCurrentIndex(replay_->trace.indexNear(static_cast<std::uint64_t>(std::max(step, 0))));
+  });
+  stepLabel_ = new QLabel(this);
+  csvButton_ = new QPushButton(tr("Export CSV\u2026"), this);
+  npyButton_ = new QPushButton(tr("Export .npy\u2026"), this);
+  connect(csvButton_, &QPushButton::clicked, this, [this] { exportDialog(false); });
+  connect(npyButton_, &QPushButton::clicked, this, [this] { exportDialog(true); });
+
+  auto* steps = new QHBoxLayout;
+  steps->addWidget(playButton_);
+  steps->addWidget(slider_, 1);
+  steps->addWidget(stepBox_);
+  steps->addWidget(stepLabel_);
+  auto* exports = new QHBoxLayout;
+  exports->addStretch(1);
+  exports->addWidget(csvButton_);
+  exports->addWidget(npyButton_);
+  auto* layout = new QVBoxLayout(this);
+  layout->addWidget(table_, 1);
+  layout->addWidget(info_);
+  layout->addLayout(steps);
+  layout->addLayout(exports);
+
+  playTimer_ = new QTimer(this);
+  playTimer_->setInterval(33);
+  connect(playTimer_, &QTimer::timeout, this, &LongSegmentsPanel::advancePlay);
+  updateStepControls();
+}
+
+LongSegmentsPanel::~LongSegmentsPanel() {
+  // The threads are children and would be destroyed after this object's members; stop them first so that no
+  // job can post to a half-destroyed panel.
+  delete replayThread_;
+  delete chainThread_;
+  replayThread_ = nullptr;
+  chainThread_ = nullptr;
+}
+
+void LongSegmentsPanel::updateSegments(const TrappingParameters& params, const LongestSegments& longest) {
+  const quint64 generation = model_->generation();
+  if (!model_->setSegments(params, longest.items())) return;
+  if (model_->generation() != generation) chainThread_->cancelAll();  // chains of another run are useless now
+  // Keep the selection on the segment, wherever it moved.
+  const int row = model_->rowOf(wantedKey_);
+  if (row >= 0) {
+    const QSignalBlocker block(table_->selectionModel());
+    table_->selectRow(row);
+  }
+  requestTopChains();
+}
+
+void LongSegmentsPanel::clear() {
+  replayThread_->cancelAll();
+  chainThread_->cancelAll();
+  ++replayRequest_;
+  replayPending_ = false;
+  model_->clear();
+  wantedKey_ = {UINT64_MAX, UINT64_MAX};
+  replay_.reset();
+  chain_.reset();
+  index_ = 0;
+  playTimer_->stop();
+  updateStepControls();
+  updateInfo();
+}
+
+void LongSegmentsPanel::selectRow(int row) { table_->selectRow(row); }
+
+int LongSegmentsPanel::selectedRow() const {
+  const QModelIndexList rows = table_->selectionModel()->selectedRows();
+  return rows.isEmpty() ? -1 : rows.front().row();
+}
+
+void LongSegmentsPanel::onSelectionChanged() {
+  const SegmentRecord* record = model_->record(selectedRow());
+  if (record == nullptr) return;
+  if (SegmentKey::of(*record) == wantedKey_ && (replay_ || replayPending_)) return;
+  requestReplay(*record);
+}
+
+void LongSegmentsPanel::requestReplay(const SegmentRecord& record) {
+  wantedKey_ = SegmentKey::of(record);
+  const quint64 id = ++replayRequest_;
+  replayPending_ = true;
+  chain_ = model_->chain(wantedKey_);
+  replayThread_->cancelAll();
+  const TrappingParameters params = model_->parameters();
+  const std::uint64_t maxPoints = maxReplayPoints_;
+  replayThread_->submit([this, id, params, record, maxPoints](std::stop_token stop) {
+    SegmentReplayPtr result;
+    QString error;
+    try {
+      QElapsedTimer clock;
+      clock.start();
+      auto trace = traceSegment(params, record, maxPoints, stop);
+      if (!trace) return;  // cancelled: a newer request is coming
+      auto replay = std::make_shared<SegmentReplay>();
+      replay->params = params;
+      replay->region = dwellRegion(trace->points, 0.9);
+      replay->trace = std::move(*trace);
+      replay->seconds = static_cast<double>(clock.nsecsElapsed()) * 1e-9;
+      result = std::move(replay);
+    } catch (const std::exception& e) {
+      error = QString::fromStdString(e.what());
+    }
+    JobThread::postTo(this, [this, id, result, error] { onReplay(id, result, error); });
+  });
+  requestChain(record, true);
+  updateInfo();
+}
+
+void LongSegmentsPanel::requestChain(const SegmentRecord& record, bool urgent) {
+  const SegmentKey key = SegmentKey::of(record);
+  if (model_->chainStatus(key) != LongestSegmentsModel::ChainStatus::unknown) {
+    if (!urgent || model_->chainStatus(key) == LongestSegmentsModel::ChainStatus::done) return;
+  }
+  model_->setChainPending(key);
+  const quint64 generation = model_->generation();
+  const TrappingParameters params = model_->parameters();
+  const std::uint64_t points = chainPoints_;
+  chainThread_->submit(
+      [this, generation, key, params, record, points](std::stop_token stop) {
+        auto result = std::make_shared<ChainResult>();
+        try {
+          QElapsedTimer clock;
+          clock.start();
+          result->chain = identifySegmentChain(params, record, points, {}, stop);
+          if (!result->chain) return;  // cancelled with its run
+          result->seconds = static_cast<double>(clock.nsecsElapsed()) * 1e-9;
+        } catch (const std::exception& e) {
+          result->error = QString::fromStdString(e.what());
+        }
+        ChainResultPtr done = std::move(result);
+        JobThread::postTo(this, [this, generation, key, done] { onChain(generation, key, done); });
+      },
+      urgent);
+}
+
+void LongSegmentsPanel::requestTopChains() {
+  const auto& items = model_->segments();
+  const std::size_t n = std::min(items.size(), static_cast<std::size_t>(std::max(autoRows_, 0)));
+  for (std::size_t i = 0; i < n; ++i) requestChain(items[i], false);
+}
+
+void LongSegmentsPanel::onReplay(quint64 requestId, const SegmentReplayPtr& replay, const QString& error) {
+  if (requestId != replayRequest_) return;  // stale: the user selected another segment since
+  replayPending_ = false;
+  if (!replay) {
+    Q_EMIT statusMessage(tr("Replay failed: %1").arg(error));
+    updateInfo();
+    return;
+  }
+  replay_ = replay;
+  index_ = 0;
+  updateStepControls();
+  updateInfo();
+  Q_EMIT replayReady(replay_);
+  if (chain_) Q_EMIT chainReady(chain_);
+  Q_EMIT currentIndexChanged(index_);
+  Q_EMIT statusMessage(tr("Replayed %1 steps bit for bit in %2 s")
+                           .arg(QLocale().toString(static_cast<qulonglong>(replay_->trace.steps)))
+                           .arg(replay_->seconds, 0, 'f', 2));
+}
+
+void LongSegmentsPanel::onChain(quint64 generation, SegmentKey key, const ChainResultPtr& chain) {
+  if (generation != model_->generation()) return;  // a chain of a previous run
+  model_->setChain(key, chain);
+  if (key == wantedKey_) {
+    chain_ = chain;
+    updateInfo();
+    if (replay_ && SegmentKey::of(replay_->trace.record) == key) Q_EMIT chainReady(chain_);
+  }
+}
+
+void LongSegmentsPanel::setCurrentIndex(std::size_t index) {
+  if (!replay_) return;
+  index = std::min(index, replay_->trace.states.size() - 1);
+  if (index == index_ && slider_->value() == static_cast<int>(index)) return;
+  index_ = index;
+  {
+    const QSignalBlocker b1(slider_);
+    const QSignalBlocker b2(stepBox_);
+    slider_->setValue(static_cast<int>(index_));
+    stepBox_->setValue(static_cast<int>(std::min<std::uint64_t>(replay_->trace.stepAt(index_), INT32_MAX)));
+  }
+  const PhysicalPoint& p = replay_->trace.points[index_];
+  stepLabel_->setText(tr("(%1, %2)").arg(static_cast<double>(p.x), 0, 'f', 9).arg(static_cast<double>(p.y), 0, 'f', 9));
+  Q_EMIT currentIndexChanged(index_);
+}
+
+void LongSegmentsPanel::updateStepControls() {
+  const bool have = replay_ != nullptr;
+  for (QWidget* w : std::initializer_list<QWidget*>{slider_, stepBox_, playButton_, csvButton_, npyButton_})
+    w->setEnabled(have);
+  const QSignalBlocker b1(slider_);
+  const QSignalBlocker b2(stepBox_);
+  if (!have) {
+    slider_->setRange(0, 0);
+    stepBox_->setRange(0, 0);
+    stepLabel_->clear();
+    return;
+  }
+  const SegmentTrace& t = replay_->trace;
+  slider_->setRange(0, static_cast<int>(t.states.size() - 1));
+  slider_->setValue(static_cast<int>(index_));
+  stepBox_->setRange(0, static_cast<int>(std::min<std::uint64_t>(t.steps, INT32_MAX)));
+  stepBox_->setSingleStep(static_cast<int>(std::min<std::uint64_t>(t.stride, INT32_MAX)));
+  stepBox_->setValue(static_cast<int>(std::min<std::uint64_t>(t.stepAt(index_), INT32_MAX)));
+  const PhysicalPoint& p = t.points[index_];
+  stepLabel_->setText(tr("(%1, %2)").arg(static_cast<double>(p.x), 0, 'f', 9).arg(static_cast<double>(p.y), 0, 'f', 9));
+}
+
+void LongSegmentsPanel::updateInfo() {
+  const SegmentRecord* shown = replay_ ? &replay_->trace.record : nullptr;
+  if (replayPending_) {
+    info_->setText(tr("Replaying\u2026"));
+    return;
+  }
+  if (shown == nullptr) return;
+  const QLocale locale;
+  const SegmentTrace& t = replay_->trace;
+  QString text = tr("Orbit %1, block %2: %3 steps replayed exactly")
+                     .arg(t.record.orbit)
+                     .arg(locale.toString(static_cast<qulonglong>(t.record.start.block)))
+                     .arg(locale.toString(static_cast<qulonglong>(t.steps)));
+  if (t.stride > 1) text += tr(" (every %1th kept)").arg(locale.toString(static_cast<qulonglong>(t.stride)));
+  text += tr("; %1 % of its time in x \u2208 [%2, %3], y \u2208 [%4, %5].")
+              .arg(100 * replay_->region.fraction, 0, 'f', 0)
+              .arg(static_cast<double>(replay_->region.x0), 0, 'f', 5)
+              .arg(static_cast<double>(replay_->region.x1), 0, 'f', 5)
+              .arg(static_cast<double>(replay_->region.y0), 0, 'f', 5)
+              .arg(static_cast<double>(replay_->region.y1), 0, 'f', 5);
+  if (!chain_) {
+    text += tr("<br>Identifying its island chain\u2026");
+  } else if (!chain_->chain) {
+    text += tr("<br>Island chain: %1").arg(chain_->error.toHtmlEscaped());
+  } else {
+    const IslandChain& c = *chain_->chain;
+    QStringList levels;
+    for (int level : c.hierarchy) levels << QString::number(level);
+    text += tr("<br>Sticks to a chain of period <b>%1</b> (%2)").arg(c.period).arg(levels.join(QStringLiteral(" \u2192 ")));
+    if (c.centre)
+      text += tr("; centre orbit: residue %1, %2, rotation number %3")
+                  .arg(static_cast<double>(c.centre->residue), 0, 'g', 6)
+                  .arg(c.centre->stable() ? tr("elliptic") : tr("hyperbolic"))
+                  .arg(static_cast<double>(c.centre->rotationNumber), 0, 'g', 6);
+  }
+  info_->setText(text);
+}
+
+void LongSegmentsPanel::togglePlay() {
+  if (!replay_ || playTimer_->isActive()) {
+    playTimer_->stop();
+    playButton_->setChecked(false);
+    playButton_->setText(tr("Play"));
+    return;
+  }
+  if (index_ + 1 >= replay_->trace.states.size()) setCurrentIndex(0);
+  playTimer_->start();
+  playButton_->setChecked(true);
+  playButton_->setText(tr("Pause"));
+}
+
+void LongSegmentsPanel::advancePlay() {
+  if (!replay_) return;
+  const std::size_t n = replay_->trace.states.size();
+  const std::size_t next = index_ + std::max<std::size_t>(1, n / kPlayTicks);
+  setCurrentIndex(std::min(next, n - 1));
+  if (index_ + 1 >= n) togglePlay();
+}
+
+bool LongSegmentsPanel::exportCsv(const QString& path, QString* error) {
+  if (!replay_) {
+    if (error != nullptr) *error = tr("no segment replayed");
+    return false;
+  }
+  try {
+    writeSegmentCsv(path.toStdString(), replay_->trace);
+  } catch (const std::exception& e) {
+    if (error != nullptr) *error = QString::fromStdString(e.what());
+    return false;
+  }
+  return true;
+}
+
+bool LongSegmentsPanel::exportNpy(const QString& path, QString* error) {
+  if (!replay_) {
+    if (error != nullptr) *error = tr("no segment replayed");
+    return false;
+  }
+  try {
+    writeSegmentNpy(path.toStdString(), replay_->trace);
+  } catch (const std::exception& e) {
+    if (error != nullptr) *error = QString::fromStdString(e.what());
+    return false;
+  }
+  return true;
+}
+
+void LongSegmentsPanel::exportDialog(bool npy) {
+  if (!replay_) return;
+  const SegmentRecord& r = replay_->trace.record;
+  const QString suggested =
+      QStringLiteral("segment-orbit%1-block%2.%3").arg(r.orbit).arg(r.start.block).arg(npy ? "npy" : "csv");
+  const QString path = QFileDialog::getSaveFileName(this, npy ? tr("Export segment as .npy") : tr("Export segment as CSV"),
+                                                    suggested, npy ? tr("NumPy arrays (*.npy)") : tr("CSV files (*.csv)"));
+  if (path.isEmpty()) return;
+  QString error;
+  const bool ok = npy ? exportNpy(path, &error) : exportCsv(path, &error);
+  Q_EMIT statusMessage(ok ? tr("Wrote %1").arg(path) : tr("Export failed: %1").arg(error));
+}
+
+void LongSegmentsPanel::setPortraitView(PortraitView*) {}
+
+}  // namespace archipelago::ui

@@ -1,0 +1,127 @@
+#pragma once
+/// \file LongSegmentsPanel.hpp
+/// \brief The "Long segments" panel: the live table of the longest trapped segments, exact replay, stepping,
+/// export, and (through PortraitView) drawing the segment zoomed in with its chain's centre orbit.
+///
+/// Karney (1983), §6 and fig. 6: the longest segment at K = 0.1 sticks to a chain of 6 × 23 = 138 islands.
+///
+/// Threads (Qt's threaded-Mandelbrot pattern, STYLE.md): two JobThreads do all the work, calling core
+/// (periodic/SegmentAnalysis.hpp).  Selecting a row submits a replay tagged with a new request id and cancels
+/// the one running; results of any other id are dropped.  Chains are identified on the other thread, lazily:
+/// for the top `autoIdentifiedRows()` rows and, first of all, the selected one.  The GUI thread only stores the
+/// values they return and draws.  The panel is fed by updateSegments() from the run's snapshots (the GUI's
+/// refresh timer), so the table follows the run live; the selection is kept by segment, not by row.
+
+#include <QWidget>
+
+#include <cstdint>
+
+#include "segments/JobThread.hpp"
+#include "segments/LongestSegmentsModel.hpp"
+#include "segments/SegmentResults.hpp"
+#include "trapping/LongestSegments.hpp"
+
+class QLabel;
+class QPushButton;
+class QSlider;
+class QSpinBox;
+class QTableView;
+class QTimer;
+class QToolButton;
+
+namespace archipelago::ui {
+
+class PortraitView;
+class SegmentOverlay;
+
+class LongSegmentsPanel : public QWidget {
+  Q_OBJECT
+ public:
+  explicit LongSegmentsPanel(QWidget* parent = nullptr);
+  ~LongSegmentsPanel() override;
+
+  /// The segments of the run shown (from a snapshot or an opened run file).
+  void updateSegments(const TrappingParameters& params, const LongestSegments& longest);
+  /// Forgets the run (a new run with other parameters starts from an empty table).
+  void clear();
+
+  /// Draw replayed segments and their chains' centre orbits in this portrait view (may be null).
+  void setPortraitView(PortraitView* view);
+
+  /// Selects the segment of rank `row` (0: the longest), which replays it.
+  void selectRow(int row);
+  [[nodiscard]] int selectedRow() const;
+
+  /// The replay shown (null before the first one).
+  [[nodiscard]] SegmentReplayPtr currentReplay() const noexcept { return replay_; }
+  /// The chain of the segment shown (null while unknown).
+  [[nodiscard]] ChainResultPtr currentChain() const noexcept { return chain_; }
+  /// The index into currentReplay()->trace of the step shown.
+  [[nodiscard]] std::size_t currentIndex() const noexcept { return index_; }
+  void setCurrentIndex(std::size_t index);
+
+  /// Most states a replay keeps for drawing and export (stride > 1 beyond that).
+  void setMaxReplayPoints(std::uint64_t points) noexcept { maxReplayPoints_ = points; }
+  /// Consecutive points used to identify a chain.
+  void setChainPoints(std::uint64_t points) noexcept { chainPoints_ = points; }
+  /// How many of the top rows get their chain identified without being selected.
+  void setAutoIdentifiedRows(int rows) noexcept { autoRows_ = rows; }
+  [[nodiscard]] int autoIdentifiedRows() const noexcept { return autoRows_; }
+
+  /// Exports the replay shown.  False (with the reason in `error`) when there is none or writing failed.
+  bool exportCsv(const QString& path, QString* error = nullptr);
+  bool exportNpy(const QString& path, QString* error = nullptr);
+
+  /// Nothing queued or running on either worker (tests).
+  [[nodiscard]] bool idle() const noexcept { return replayThread_->idle() && chainThread_->idle(); }
+
+  [[nodiscard]] LongestSegmentsModel* model() const noexcept { return model_; }
+  [[nodiscard]] QTableView* table() const noexcept { return table_; }
+
+ Q_SIGNALS:
+  /// A replay arrived (after the stale ones were dropped).
+  void replayReady(archipelago::ui::SegmentReplayPtr replay);
+  /// The chain of the segment shown is known (or failed: then chain has an error).
+  void chainReady(archipelago::ui::ChainResultPtr chain);
+  void currentIndexChanged(std::size_t index);
+  void statusMessage(const QString& text);
+
+ private:
+  void onSelectionChanged();
+  void requestReplay(const SegmentRecord& record);
+  void requestChain(const SegmentRecord& record, bool urgent);
+  void requestTopChains();
+  void onReplay(quint64 requestId, const SegmentReplayPtr& replay, const QString& error);
+  void onChain(quint64 generation, SegmentKey key, const ChainResultPtr& chain);
+  void updateInfo();
+  void updateStepControls();
+  void togglePlay();
+  void advancePlay();
+  void exportDialog(bool npy);
+
+  LongestSegmentsModel* model_ = nullptr;
+  QTableView* table_ = nullptr;
+  QLabel* info_ = nullptr;
+  QSlider* slider_ = nullptr;
+  QSpinBox* stepBox_ = nullptr;
+  QLabel* stepLabel_ = nullptr;
+  QToolButton* playButton_ = nullptr;
+  QPushButton* csvButton_ = nullptr;
+  QPushButton* npyButton_ = nullptr;
+  QTimer* playTimer_ = nullptr;
+  JobThread* replayThread_ = nullptr;
+  JobThread* chainThread_ = nullptr;
+  SegmentOverlay* overlay_ = nullptr;
+
+  quint64 replayRequest_ = 0;   // the request whose result is wanted; others are stale
+  bool replayPending_ = false;
+  SegmentKey wantedKey_{UINT64_MAX, UINT64_MAX};  // segment requested or shown
+  SegmentReplayPtr replay_;
+  ChainResultPtr chain_;
+  std::size_t index_ = 0;
+  std::uint64_t maxReplayPoints_ = 1'000'000;
+  std::uint64_t chainPoints_ = 2'000'000;
+  int autoRows_ = 10;
+};
+
+}  // namespace archipelago::ui
