@@ -176,16 +176,27 @@ SegmentRegion dwellRegion(std::span<const PhysicalPoint> points, double fraction
   return r;
 }
 
-std::optional<IslandChain> identifySegmentChain(const TrappingParameters& params, const SegmentRecord& record,
-                                                std::uint64_t maxPoints, const IslandChainOptions& options,
-                                                std::stop_token stop) {
+std::optional<SegmentChain> identifySegmentChain(const TrappingParameters& params, const SegmentRecord& record,
+                                                 std::uint64_t maxPoints, const IslandChainOptions& options,
+                                                 std::stop_token stop) {
   auto points = segmentPrefix(params, record, maxPoints, stop);
   if (!points) return std::nullopt;
   if (points->size() < 2 * static_cast<std::size_t>(std::max(options.minPointsPerPhase, 1)))
     throw std::invalid_argument("segment of " + std::to_string(points->size()) +
                                 " points is too short to identify its island chain");
   if (stop.stop_requested()) return std::nullopt;
-  return identifyIslandChain(params.map.K, *points, options);
+  SegmentChain result{identifyIslandChain(params.map.K, *points, options), {}};
+  const int level = result.chain.hierarchy.size() > 1 ? result.chain.hierarchy[1] : 1;
+  result.island = islandRegion(*points, level);
+  return result;
+}
+
+SegmentRegion islandRegion(std::span<const PhysicalPoint> consecutive, int level, double fraction, double margin) {
+  if (level < 1) throw std::invalid_argument("islandRegion: level must be >= 1");
+  std::vector<PhysicalPoint> sub;
+  sub.reserve(consecutive.size() / static_cast<std::size_t>(level) + 1);
+  for (std::size_t i = 0; i < consecutive.size(); i += static_cast<std::size_t>(level)) sub.push_back(consecutive[i]);
+  return dwellRegion(sub, fraction, 64, margin);
 }
 
 void writeSegmentCsv(const std::string& path, const SegmentTrace& trace) {

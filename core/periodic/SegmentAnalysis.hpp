@@ -78,14 +78,30 @@ struct SegmentRegion {
 [[nodiscard]] SegmentRegion dwellRegion(std::span<const PhysicalPoint> points, double fraction = 0.9, int grid = 64,
                                         double margin = 0.05);
 
-/// The chain of a recorded segment: identifyIslandChain() over its first `maxPoints` consecutive points.
-/// Returns nothing when stopped.  Throws std::invalid_argument when the segment is too short to identify
-/// (fewer than 2·options.minPointsPerPhase points) and whatever identifyIslandChain() throws.
-[[nodiscard]] std::optional<IslandChain> identifySegmentChain(const TrappingParameters& params,
-                                                              const SegmentRecord& record,
-                                                              std::uint64_t maxPoints = 2'000'000,
-                                                              const IslandChainOptions& options = {},
-                                                              std::stop_token stop = {});
+/// The chain of a recorded segment, and where it spent its time near one island of the chain.
+struct SegmentChain {
+  IslandChain chain;
+  /// dwellRegion() of the points z_{k·n₁} (k = 0, 1, …), n₁ = chain.hierarchy[1] the first level above the
+  /// central island: they stay near the island of that level that z_0 is near, so this region frames one
+  /// island with the satellites the segment winds around (e.g. one of the six islands and its 11 satellites
+  /// for a chain of period 66 = 6 × 11).  For a segment on the central island itself (period 1) it frames the
+  /// whole segment.
+  SegmentRegion island;
+};
+
+/// identifyIslandChain() over the first `maxPoints` consecutive points of a recorded segment, and the
+/// island region above.  Returns nothing when stopped.  Throws std::invalid_argument when the segment is too
+/// short to identify (fewer than 2·options.minPointsPerPhase points) and whatever identifyIslandChain() throws.
+[[nodiscard]] std::optional<SegmentChain> identifySegmentChain(const TrappingParameters& params,
+                                                               const SegmentRecord& record,
+                                                               std::uint64_t maxPoints = 2'000'000,
+                                                               const IslandChainOptions& options = {},
+                                                               std::stop_token stop = {});
+
+/// The island region of SegmentChain for consecutive points z_0, z_1, … and the level n₁ ≥ 1 (every n₁-th
+/// point from z_0).  Throws std::invalid_argument when n₁ < 1 or there are no points.
+[[nodiscard]] SegmentRegion islandRegion(std::span<const PhysicalPoint> consecutive, int level, double fraction = 0.9,
+                                         double margin = 0.05);
 
 /// Writes the trace as CSV: a header line "step,x,y,X,Y", then one line per kept state (x, y with 17
 /// significant digits, X, Y the exact integers).  Throws std::runtime_error naming the file on failure.

@@ -186,8 +186,10 @@ void LongSegmentsPanel::requestChain(const SegmentRecord& record, bool urgent) {
         try {
           QElapsedTimer clock;
           clock.start();
-          result->chain = identifySegmentChain(params, record, points, {}, stop);
-          if (!result->chain) return;  // cancelled with its run
+          auto found = identifySegmentChain(params, record, points, {}, stop);
+          if (!found) return;  // cancelled with its run
+          result->chain = std::move(found->chain);
+          result->island = found->island;
           result->seconds = static_cast<double>(clock.nsecsElapsed()) * 1e-9;
         } catch (const std::exception& e) {
           result->error = QString::fromStdString(e.what());

@@ -28,6 +28,7 @@ using SegmentReplayPtr = std::shared_ptr<const SegmentReplay>;
 /// The island chain of a segment, or why it could not be identified.
 struct ChainResult {
   std::optional<IslandChain> chain;
+  SegmentRegion island;     ///< SegmentChain::island: one island of the chain with its satellites
   QString error;
   double seconds = 0;
 };

@@ -120,9 +120,13 @@ TEST(SegmentAnalysis, ChainOfASegmentIsTheChainOfItsPrefix) {
   ASSERT_TRUE(chain.has_value());
   const auto prefix = segmentPrefix(state.params, record, 4000);
   const IslandChain direct = identifyIslandChain(state.params.map.K, *prefix, options);
-  EXPECT_EQ(chain->period, direct.period);
-  EXPECT_EQ(chain->hierarchy, direct.hierarchy);
-  EXPECT_EQ(chain->windingTurns, direct.windingTurns);
+  EXPECT_EQ(chain->chain.period, direct.period);
+  EXPECT_EQ(chain->chain.hierarchy, direct.hierarchy);
+  EXPECT_EQ(chain->chain.windingTurns, direct.windingTurns);
+  const int level = direct.hierarchy.size() > 1 ? direct.hierarchy[1] : 1;
+  const SegmentRegion island = islandRegion(*prefix, level);
+  EXPECT_EQ(chain->island.x0, island.x0);
+  EXPECT_EQ(chain->island.y1, island.y1);
   EXPECT_THROW((void)identifySegmentChain(state.params, record, 10, options), std::invalid_argument);
 }
 
@@ -147,6 +151,23 @@ TEST(SegmentAnalysis, DwellRegionIgnoresShortExcursions) {
   EXPECT_THROW((void)dwellRegion({}, 0.9), std::invalid_argument);
   EXPECT_THROW((void)dwellRegion(points, 0.0), std::invalid_argument);
   EXPECT_THROW((void)dwellRegion(points, 0.9, 0), std::invalid_argument);
+}
+
+TEST(SegmentAnalysis, IslandRegionFramesEveryLevelthPoint) {
+  // Points alternate between two clusters (a chain of period 2): every second point from z_0 stays in the
+  // first cluster, so the region frames it alone.
+  std::vector<PhysicalPoint> points;
+  for (int i = 0; i < 400; ++i) {
+    const long double jitter = (i % 7) * 0.01L;
+    points.push_back(i % 2 == 0 ? PhysicalPoint{1 + jitter, 1 + jitter} : PhysicalPoint{-1 - jitter, -1});
+  }
+  const SegmentRegion one = islandRegion(points, 2, 1.0, 0);
+  EXPECT_EQ(one.x0, 1.0L);
+  EXPECT_EQ(one.y0, 1.0L);
+  EXPECT_NEAR(static_cast<double>(one.x1), 1.06, 1e-15);
+  const SegmentRegion both = islandRegion(points, 1, 1.0, 0);
+  EXPECT_LT(both.x0, -1.0L);
+  EXPECT_THROW((void)islandRegion(points, 0), std::invalid_argument);
 }
 
 TEST(SegmentAnalysis, CsvHasOneLinePerKeptState) {
