@@ -6,6 +6,8 @@
 #include <fstream>
 #include <numeric>
 #include <stdexcept>
+#include <tuple>
+#include <utility>
 
 #include "trapping/BlockKernel.hpp"
 
@@ -174,6 +176,29 @@ SegmentRegion dwellRegion(std::span<const PhysicalPoint> points, double fraction
   r.y0 -= my;
   r.y1 += my;
   return r;
+}
+
+SegmentRegion framedInBox(const SegmentRegion& r, const MapParameters& map, double aspect, long double minSize) {
+  if (!(aspect > 0) || !std::isfinite(aspect)) throw std::invalid_argument("framedInBox: aspect must be > 0");
+  if (!(minSize >= 0) || !std::isfinite(minSize)) throw std::invalid_argument("framedInBox: minSize must be >= 0");
+  const long double a = aspect;
+  long double w = std::max(r.width(), minSize);
+  long double h = std::max(r.height(), minSize);
+  if (w < a * h)
+    w = a * h;
+  else
+    h = w / a;
+  const long double L = map.width();
+  w = std::min(w, L);
+  h = std::min(h, L);
+  auto place = [](long double centre, long double size, long double lo, long double hi) {
+    const long double start = std::clamp(centre - size / 2, lo, hi - size);
+    return std::pair{start, start + size};
+  };
+  SegmentRegion f = r;
+  std::tie(f.x0, f.x1) = place((r.x0 + r.x1) / 2, w, static_cast<long double>(map.xmin), static_cast<long double>(map.xmax));
+  std::tie(f.y0, f.y1) = place((r.y0 + r.y1) / 2, h, -L / 2, L / 2);
+  return f;
 }
 
 std::optional<SegmentChain> identifySegmentChain(const TrappingParameters& params, const SegmentRecord& record,

@@ -78,6 +78,13 @@ struct SegmentRegion {
 [[nodiscard]] SegmentRegion dwellRegion(std::span<const PhysicalPoint> points, double fraction = 0.9, int grid = 64,
                                         double margin = 0.05);
 
+/// `r` widened (never shrunk) about its centre to the aspect ratio width/height = aspect and to at least
+/// minSize in both directions, then shifted, and cut where it is larger than the box, to lie inside the box
+/// [xmin, xmax] × [−L/2, L/2] of `map` (a view of the portrait must).  aspect > 0 and minSize ≥ 0, finite;
+/// throws std::invalid_argument otherwise.
+[[nodiscard]] SegmentRegion framedInBox(const SegmentRegion& r, const MapParameters& map, double aspect,
+                                        long double minSize);
+
 /// The chain of a recorded segment, and where it spent its time near one island of the chain.
 struct SegmentChain {
   IslandChain chain;

@@ -170,6 +170,28 @@ TEST(SegmentAnalysis, IslandRegionFramesEveryLevelthPoint) {
   EXPECT_THROW((void)islandRegion(points, 0), std::invalid_argument);
 }
 
+TEST(SegmentAnalysis, FramedInBoxKeepsTheAspectAndStaysInTheBox) {
+  const MapParameters map;  // [-0.8, 0.5] × [-0.65, 0.65]
+  SegmentRegion r;
+  r.x0 = 0.1L, r.x1 = 0.2L, r.y0 = 0.0L, r.y1 = 0.01L;
+  const SegmentRegion f = framedInBox(r, map, 1.5, 0);
+  EXPECT_NEAR(static_cast<double>(f.width() / f.height()), 1.5, 1e-15);
+  EXPECT_NEAR(static_cast<double>(f.width()), 0.1, 1e-15);
+  EXPECT_NEAR(static_cast<double>(f.y0 + f.y1), 0.01, 1e-15);  // same centre
+  // Near the edge: shifted inside.
+  r.x0 = 0.45L, r.x1 = 0.5L, r.y0 = 0.6L, r.y1 = 0.65L;
+  const SegmentRegion edge = framedInBox(r, map, 1, 0.2L);
+  EXPECT_NEAR(static_cast<double>(edge.width()), 0.2, 1e-15);
+  EXPECT_EQ(edge.x1, 0.5L);
+  EXPECT_NEAR(static_cast<double>(edge.y1), 0.65, 1e-15);
+  // Larger than the box: cut to it.
+  r.x0 = -2, r.x1 = 2, r.y0 = -1, r.y1 = 1;
+  const SegmentRegion all = framedInBox(r, map, 1, 0);
+  EXPECT_NEAR(static_cast<double>(all.x0), -0.8, 1e-15);
+  EXPECT_NEAR(static_cast<double>(all.x1), 0.5, 1e-15);
+  EXPECT_THROW((void)framedInBox(r, map, 0, 0), std::invalid_argument);
+}
+
 TEST(SegmentAnalysis, CsvHasOneLinePerKeptState) {
   const TrappingState& state = shortRun();
   const auto trace = traceSegment(state.params, state.longest.items().front(), 50);
