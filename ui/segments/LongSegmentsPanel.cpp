@@ -15,6 +15,9 @@
 #include <QToolButton>
 #include <QVBoxLayout>
 
+#include "portrait/PortraitView.hpp"
+#include "segments/SegmentOverlay.hpp"
+
 #include <algorithm>
 #include <exception>
 
@@ -73,7 +76,15 @@ LongSegmentsPanel::LongSegmentsPanel(QWidget* parent) : QWidget(parent) {
   steps->addWidget(slider_, 1);
   steps->addWidget(stepBox_);
   steps->addWidget(stepLabel_);
+  zoomSegmentButton_ = new QPushButton(tr("Zoom to segment"), this);
+  zoomSegmentButton_->setToolTip(tr("Show the region where the segment spent 90 % of its time"));
+  zoomIslandButton_ = new QPushButton(tr("Zoom to island"), this);
+  zoomIslandButton_->setToolTip(tr("Show one island of its chain with the satellites the segment winds around"));
+  connect(zoomSegmentButton_, &QPushButton::clicked, this, &LongSegmentsPanel::zoomToSegment);
+  connect(zoomIslandButton_, &QPushButton::clicked, this, &LongSegmentsPanel::zoomToIsland);
   auto* exports = new QHBoxLayout;
+  exports->addWidget(zoomSegmentButton_);
+  exports->addWidget(zoomIslandButton_);
   exports->addStretch(1);
   exports->addWidget(csvButton_);
   exports->addWidget(npyButton_);
@@ -122,6 +133,7 @@ void LongSegmentsPanel::clear() {
   chain_.reset();
   index_ = 0;
   playTimer_->stop();
+  if (overlay_ != nullptr) overlay_->clear();
   updateStepControls();
   updateInfo();
 }
@@ -218,6 +230,11 @@ void LongSegmentsPanel::onReplay(quint64 requestId, const SegmentReplayPtr& repl
   index_ = 0;
   updateStepControls();
   updateInfo();
+  showOnPortrait();
+  if (overlay_ != nullptr) {
+    overlay_->showChain(chain_);
+    overlay_->showStep(index_);
+  }
   Q_EMIT replayReady(replay_);
   if (chain_) Q_EMIT chainReady(chain_);
   Q_EMIT currentIndexChanged(index_);
@@ -232,7 +249,11 @@ void LongSegmentsPanel::onChain(quint64 generation, SegmentKey key, const ChainR
   if (key == wantedKey_) {
     chain_ = chain;
     updateInfo();
-    if (replay_ && SegmentKey::of(replay_->trace.record) == key) Q_EMIT chainReady(chain_);
+    if (replay_ && SegmentKey::of(replay_->trace.record) == key) {
+      if (overlay_ != nullptr) overlay_->showChain(chain_);
+      updateStepControls();
+      Q_EMIT chainReady(chain_);
+    }
   }
 }
 
@@ -249,6 +270,7 @@ void LongSegmentsPanel::setCurrentIndex(std::size_t index) {
   }
   const PhysicalPoint& p = replay_->trace.points[index_];
   stepLabel_->setText(tr("(%1, %2)").arg(static_cast<double>(p.x), 0, 'f', 9).arg(static_cast<double>(p.y), 0, 'f', 9));
+  if (overlay_ != nullptr) overlay_->showStep(index_);
   Q_EMIT currentIndexChanged(index_);
 }
 
@@ -256,6 +278,8 @@ void LongSegmentsPanel::updateStepControls() {
   const bool have = replay_ != nullptr;
   for (QWidget* w : std::initializer_list<QWidget*>{slider_, stepBox_, playButton_, csvButton_, npyButton_})
     w->setEnabled(have);
+  zoomSegmentButton_->setEnabled(have && overlay_ != nullptr);
+  zoomIslandButton_->setEnabled(have && overlay_ != nullptr && chain_ && chain_->chain);
   const QSignalBlocker b1(slider_);
   const QSignalBlocker b2(stepBox_);
   if (!have) {
@@ -374,6 +398,35 @@ void LongSegmentsPanel::exportDialog(bool npy) {
   Q_EMIT statusMessage(ok ? tr("Wrote %1").arg(path) : tr("Export failed: %1").arg(error));
 }
 
-void LongSegmentsPanel::setPortraitView(PortraitView*) {}
+void LongSegmentsPanel::setPortraitView(PortraitView* view) {
+  delete overlay_;
+  overlay_ = view != nullptr ? new SegmentOverlay(view, this) : nullptr;
+  portrait_ = view;
+  if (overlay_ != nullptr && replay_) {
+    showOnPortrait();
+    overlay_->showChain(chain_);
+    overlay_->showStep(index_);
+  }
+  updateStepControls();
+}
+
+void LongSegmentsPanel::showOnPortrait() {
+  if (overlay_ == nullptr || !replay_ || !portrait_) return;
+  // Draw over a portrait of the run's own map.
+  if (!(portrait_->parameters() == replay_->params.map)) portrait_->setParameters(replay_->params.map);
+  overlay_->showReplay(replay_);
+}
+
+void LongSegmentsPanel::showPeriodicOrbit(const PeriodicOrbit& orbit) {
+  if (overlay_ != nullptr) overlay_->showPeriodicOrbit(orbit);
+}
+
+void LongSegmentsPanel::zoomToSegment() {
+  if (overlay_ != nullptr) overlay_->zoomToSegment();
+}
+
+void LongSegmentsPanel::zoomToIsland() {
+  if (overlay_ != nullptr) overlay_->zoomToIsland();
+}
 
 }  // namespace archipelago::ui

@@ -12,6 +12,7 @@
 /// values they return and draws.  The panel is fed by updateSegments() from the run's snapshots (the GUI's
 /// refresh timer), so the table follows the run live; the selection is kept by segment, not by row.
 
+#include <QPointer>
 #include <QWidget>
 
 #include <cstdint>
@@ -19,6 +20,7 @@
 #include "segments/JobThread.hpp"
 #include "segments/LongestSegmentsModel.hpp"
 #include "segments/SegmentResults.hpp"
+#include "periodic/PeriodicOrbit.hpp"
 #include "trapping/LongestSegments.hpp"
 
 class QLabel;
@@ -47,6 +49,12 @@ class LongSegmentsPanel : public QWidget {
 
   /// Draw replayed segments and their chains' centre orbits in this portrait view (may be null).
   void setPortraitView(PortraitView* view);
+
+  /// Draws a periodic orbit (from the dialog) on the portrait view.
+  void showPeriodicOrbit(const PeriodicOrbit& orbit);
+  /// Zoom the portrait to where the segment spent its time / to one island of its chain.
+  void zoomToSegment();
+  void zoomToIsland();
 
   /// Selects the segment of rank `row` (0: the longest), which replays it.
   void selectRow(int row);
@@ -98,6 +106,7 @@ class LongSegmentsPanel : public QWidget {
   void togglePlay();
   void advancePlay();
   void exportDialog(bool npy);
+  void showOnPortrait();
 
   LongestSegmentsModel* model_ = nullptr;
   QTableView* table_ = nullptr;
@@ -108,10 +117,13 @@ class LongSegmentsPanel : public QWidget {
   QToolButton* playButton_ = nullptr;
   QPushButton* csvButton_ = nullptr;
   QPushButton* npyButton_ = nullptr;
+  QPushButton* zoomSegmentButton_ = nullptr;
+  QPushButton* zoomIslandButton_ = nullptr;
   QTimer* playTimer_ = nullptr;
   JobThread* replayThread_ = nullptr;
   JobThread* chainThread_ = nullptr;
   SegmentOverlay* overlay_ = nullptr;
+  QPointer<PortraitView> portrait_;
 
   quint64 replayRequest_ = 0;   // the request whose result is wanted; others are stale
   bool replayPending_ = false;

@@ -1,0 +1,208 @@
+#include "segments/SegmentOverlay.hpp"
+
+#include <QPainter>
+#include <qwt_plot.h>
+#include <qwt_plot_item.h>
+#include <qwt_scale_map.h>
+
+#include <algorithm>
+
+#include "portrait/ColourMap.hpp"
+#include "portrait/PortraitView.hpp"
+#include "portrait/Viewport.hpp"
+
+namespace archipelago::ui {
+
+/// Points in physical coordinates drawn as dots (coloured by their position in the list), a polyline, or
+/// symbols.  (A plain QwtPlotItem, like the portrait's orbits: Qwt 6.1's curve headers are not C++20.)
+class PointsItem : public QwtPlotItem {
+ public:
+  enum class Style { timeDots, trail, discs, diamonds };
+
+  PointsItem(Style style, double z) : style_(style) {
+    setZ(z);
+    setItemAttribute(QwtPlotItem::AutoScale, false);
+  }
+  int rtti() const override { return QwtPlotItem::Rtti_PlotUserItem + 40; }
+  void setPoints(std::vector<QPointF> points) { points_ = std::move(points); }
+  [[nodiscard]] std::size_t size() const noexcept { return points_.size(); }
+
+  void draw(QPainter* painter, const QwtScaleMap& xMap, const QwtScaleMap& yMap,
+            const QRectF& canvasRect) const override {
+    if (points_.empty()) return;
+    const QRectF clip = canvasRect.adjusted(-8, -8, 8, 8);
+    auto toCanvas = [&](const QPointF& p) { return QPointF(xMap.transform(p.x()), yMap.transform(p.y())); };
+    painter->save();
+    painter->setRenderHint(QPainter::Antialiasing, style_ != Style::timeDots);
+    switch (style_) {
+      case Style::timeDots: {
+        // Time runs from dark blue to yellow in kBins groups, so each group is one drawPoints call.
+        constexpr std::size_t kBins = 48;
+        const ColourMap colours(ColourMapName::Viridis);
+        QVector<QPointF> visible;
+        for (std::size_t b = 0; b < kBins; ++b) {
+          const std::size_t begin = points_.size() * b / kBins, end = points_.size() * (b + 1) / kBins;
+          visible.clear();
+          for (std::size_t i = begin; i < end; ++i) {
+            const QPointF q = toCanvas(points_[i]);
+            if (clip.contains(q)) visible.append(q);
+          }
+          const Rgb c = colours.at(0.15 + 0.85 * static_cast<double>(b) / (kBins - 1));
+          painter->setPen(QPen(QColor(c.r, c.g, c.b), 1.6));
+          painter->drawPoints(visible.constData(), visible.size());
+        }
+        break;
+      }
+      case Style::trail: {
+        QPolygonF line;
+        for (const QPointF& p : points_) line << toCanvas(p);
+        painter->setPen(QPen(QColor(0, 0, 0, 160), 3.2));
+        painter->drawPolyline(line);
+        painter->setPen(QPen(Qt::white, 1.4));
+        painter->drawPolyline(line);
+        painter->setBrush(Qt::NoBrush);
+        painter->setPen(QPen(QColor(255, 64, 64), 2.5));
+        painter->drawEllipse(line.back(), 7, 7);
+        break;
+      }
+      case Style::discs:
+      case Style::diamonds: {
+        const bool discs = style_ == Style::discs;
+        painter->setPen(QPen(Qt::black, 1.5));
+        painter->setBrush(discs ? QColor(0, 230, 255) : QColor(255, 60, 220));
+        for (const QPointF& p : points_) {
+          const QPointF q = toCanvas(p);
+          if (!clip.contains(q)) continue;
+          if (discs) {
+            painter->drawEllipse(q, 5.5, 5.5);
+          } else {
+            const QPointF d[4] = {q + QPointF(0, -7), q + QPointF(7, 0), q + QPointF(0, 7), q + QPointF(-7, 0)};
+            painter->drawPolygon(d, 4);
+          }
+        }
+        break;
+      }
+    }
+    painter->restore();
+  }
+
+ private:
+  Style style_;
+  std::vector<QPointF> points_;
+};
+
+namespace {
+/// Steps of the trail drawn behind the step shown (kept states).
+constexpr std::size_t kTrailStates = 400;
+
+std::vector<QPointF> toQt(const std::vector<PhysicalPoint>& points, std::size_t begin, std::size_t end) {
+  std::vector<QPointF> out;
+  out.reserve(end - begin);
+  for (std::size_t i = begin; i < end; ++i)
+    out.emplace_back(static_cast<double>(points[i].x), static_cast<double>(points[i].y));
+  return out;
+}
+}  // namespace
+
+SegmentOverlay::SegmentOverlay(PortraitView* view, QObject* parent) : QObject(parent), view_(view) {
+  segment_ = new PointsItem(PointsItem::Style::timeDots, 30);
+  trail_ = new PointsItem(PointsItem::Style::trail, 32);
+  centre_ = new PointsItem(PointsItem::Style::discs, 34);
+  periodic_ = new PointsItem(PointsItem::Style::diamonds, 35);
+  for (PointsItem* item : {segment_, trail_, centre_, periodic_}) item->attach(plot());
+  // The plot deletes attached items when it goes: detach ours first if it goes before us.
+  connect(plot(), &QObject::destroyed, this, [this] {
+    for (PointsItem** item : {&segment_, &trail_, &centre_, &periodic_}) *item = nullptr;
+  });
+}
+
+SegmentOverlay::~SegmentOverlay() {
+  for (PointsItem* item : {segment_, trail_, centre_, periodic_}) {
+    if (item == nullptr) continue;
+    item->detach();
+    delete item;
+  }
+}
+
+QwtPlot* SegmentOverlay::plot() const { return view_ ? view_->plot() : nullptr; }
+
+void SegmentOverlay::replot() {
+  if (QwtPlot* p = plot(); p != nullptr && segment_ != nullptr) p->replot();
+}
+
+void SegmentOverlay::showReplay(const SegmentReplayPtr& replay) {
+  if (segment_ == nullptr) return;
+  replay_ = replay;
+  chain_.reset();
+  centre_->setPoints({});
+  trail_->setPoints({});
+  if (!replay_) {
+    segment_->setPoints({});
+    replot();
+    return;
+  }
+  segment_->setPoints(toQt(replay_->trace.points, 0, replay_->trace.points.size()));
+  zoomToSegment();
+  replot();
+}
+
+void SegmentOverlay::showChain(const ChainResultPtr& chain) {
+  if (centre_ == nullptr) return;
+  chain_ = chain;
+  if (chain_ && chain_->chain && chain_->chain->centre)
+    centre_->setPoints(toQt(chain_->chain->centre->points, 0, chain_->chain->centre->points.size()));
+  else
+    centre_->setPoints({});
+  replot();
+}
+
+void SegmentOverlay::showStep(std::size_t index) {
+  if (trail_ == nullptr || !replay_) return;
+  const auto& points = replay_->trace.points;
+  index = std::min(index, points.size() - 1);
+  const std::size_t begin = index >= kTrailStates ? index - kTrailStates : 0;
+  trail_->setPoints(toQt(points, begin, index + 1));
+  replot();
+}
+
+void SegmentOverlay::showPeriodicOrbit(const PeriodicOrbit& orbit) {
+  if (periodic_ == nullptr) return;
+  periodic_->setPoints(toQt(orbit.points, 0, orbit.points.size()));
+  replot();
+}
+
+void SegmentOverlay::clear() {
+  replay_.reset();
+  chain_.reset();
+  for (PointsItem* item : {segment_, trail_, centre_, periodic_})
+    if (item != nullptr) item->setPoints({});
+  replot();
+}
+
+void SegmentOverlay::zoomToSegment() {
+  if (replay_) zoomTo(replay_->region);
+}
+
+void SegmentOverlay::zoomToIsland() {
+  if (chain_ && chain_->chain)
+    zoomTo(chain_->island);
+  else
+    zoomToSegment();
+}
+
+void SegmentOverlay::zoomTo(const SegmentRegion& region) {
+  if (!view_ || plot() == nullptr) return;
+  const MapParameters& map = view_->parameters();
+  const QWidget* canvas = plot()->canvas();
+  const double aspect = canvas->height() > 0 ? static_cast<double>(canvas->width()) / canvas->height() : 1.0;
+  // At least 2^16 grid units: a few pixels of the finest view the portrait allows, far below any island.
+  const long double minSize = map.width() * 0x1p-36L;
+  try {
+    const SegmentRegion framed = framedInBox(region, map, aspect, minSize);
+    view_->setViewport(Viewport::fromPhysical(map, {framed.x0, framed.x1, framed.y0, framed.y1}));
+  } catch (const std::exception&) {
+    // A region outside this view's map (its parameters differ from the run's): leave the view alone.
+  }
+}
+
+}  // namespace archipelago::ui
