@@ -12,6 +12,7 @@
 #include <immintrin.h>
 
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstdint>
 
@@ -100,19 +101,43 @@ struct Avx2 {
     return ~laneBits(_mm256_cmpeq_epi64(_mm256_and_si256(wrapBits, c.notMask), _mm256_setzero_si256())) & 0xFu;
   }
 
-  static void randomize(const Constants&, unsigned lanes, Vec key, Vec& D, Vec& Y) {
-    alignas(32) std::uint64_t k[kLanes], d[kLanes], y[kLanes];
-    store(k, key);
-    store(d, D);
-    store(y, Y);
+  static void refreshDraws(const Constants&, unsigned lanes, const std::uint64_t* key, const std::uint64_t* draws,
+                           std::uint64_t* next) {
     for (unsigned bits = lanes; bits; bits &= bits - 1) {
       const int l = __builtin_ctz(bits);
-      d[l] += 1;
-      y[l] = (y[l] + orbitDraw(k[l], d[l])) & fixedpoint::kMask;
+      next[l] = orbitDraw(key[l], draws[l] + 1);
     }
-    D = load(d);
-    Y = load(y);
   }
+  static Vec addModMasked(const Constants& c, Vec Y, unsigned lanes, Vec U) {
+    return _mm256_and_si256(_mm256_add_epi64(Y, _mm256_and_si256(U, laneMask(lanes))), c.mask);
+  }
+
+  static Vec set1(std::uint64_t x) { return _mm256_set1_epi64x(static_cast<long long>(x)); }
+  static Vec add(Vec a, Vec b) { return _mm256_add_epi64(a, b); }
+  static Vec sub(Vec a, Vec b) { return _mm256_sub_epi64(a, b); }
+  static unsigned atLeast(Vec a, Vec b) { return ~laneBits(_mm256_cmpgt_epi64(b, a)) & 0xFu; }
+  static Vec tag(Vec length, Vec lane) { return _mm256_or_si256(_mm256_slli_epi64(length, 6), lane); }
+  /// All-ones in the 64-bit lanes whose bit is set in `lanes`.
+  static Vec laneMask(unsigned lanes) {
+    const Vec bit = _mm256_setr_epi64x(1, 2, 4, 8);
+    return _mm256_cmpeq_epi64(_mm256_and_si256(_mm256_set1_epi64x(lanes), bit), bit);
+  }
+  static void storeMasked(std::uint64_t* p, unsigned lanes, Vec v) {
+    _mm256_maskstore_epi64(reinterpret_cast<long long*>(p), laneMask(lanes), v);
+  }
+  /// Packs the selected lanes to the front (a permutation from a 16-entry table) and stores all four.
+  static void compressStore(std::uint64_t* p, unsigned lanes, Vec v) {
+    store(p, _mm256_permutevar8x32_epi32(v, load(kCompress[lanes].data())));
+  }
+  static constexpr auto kCompress = [] {
+    std::array<std::array<std::uint64_t, kLanes>, 16> table{};
+    for (unsigned m = 0; m < 16; ++m) {
+      std::size_t out = 0;
+      for (unsigned l = 0; l < kLanes; ++l)
+        if (m & (1u << l)) table[m][out++] = (2 * l) | (std::uint64_t{2 * l + 1} << 32);  // two 32-bit indices
+    }
+    return table;
+  }();
 };
 
 #include "kernels/SimdDriver.inl"

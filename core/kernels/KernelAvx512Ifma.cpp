@@ -88,11 +88,28 @@ struct Avx512Ifma {
     return _mm512_xor_si512(z, _mm512_srli_epi64(z, 31));
   }
 
-  static void randomize(const Constants& c, unsigned lanes, Vec key, Vec& D, Vec& Y) {
-    const auto m = static_cast<__mmask8>(lanes);
-    D = _mm512_mask_add_epi64(D, m, D, c.one);
-    const Vec U = _mm512_srli_epi64(mix64(c, _mm512_add_epi64(key, _mm512_mullo_epi64(D, c.golden))), 12);
-    Y = _mm512_and_si512(_mm512_mask_add_epi64(Y, m, Y, U), c.mask);
+  static void refreshDraws(const Constants& c, unsigned lanes, const std::uint64_t* key, const std::uint64_t* draws,
+                           std::uint64_t* next) {
+    const Vec k = _mm512_add_epi64(load(draws), c.one);
+    const Vec U = _mm512_srli_epi64(mix64(c, _mm512_add_epi64(load(key), _mm512_mullo_epi64(k, c.golden))), 12);
+    _mm512_mask_storeu_epi64(next, static_cast<__mmask8>(lanes), U);
+  }
+  static Vec addModMasked(const Constants& c, Vec Y, unsigned lanes, Vec U) {
+    return _mm512_and_si512(_mm512_mask_add_epi64(Y, static_cast<__mmask8>(lanes), Y, U), c.mask);
+  }
+
+  static Vec set1(std::uint64_t x) { return _mm512_set1_epi64(static_cast<long long>(x)); }
+  static Vec add(Vec a, Vec b) { return _mm512_add_epi64(a, b); }
+  static Vec sub(Vec a, Vec b) { return _mm512_sub_epi64(a, b); }
+  static unsigned atLeast(Vec a, Vec b) { return _mm512_cmpge_epu64_mask(a, b); }
+  static Vec tag(Vec length, Vec lane) { return _mm512_or_si512(_mm512_slli_epi64(length, 6), lane); }
+  static void storeMasked(std::uint64_t* p, unsigned lanes, Vec v) {
+    _mm512_mask_storeu_epi64(p, static_cast<__mmask8>(lanes), v);
+  }
+  /// Packs the selected lanes to the front and stores all eight words.
+  static void compressStore(std::uint64_t* p, unsigned lanes, Vec v) {
+    // The register form and a full store: the memory form of vpcompressq is slow on Intel cores.
+    _mm512_storeu_si512(p, _mm512_maskz_compress_epi64(static_cast<__mmask8>(lanes), v));
   }
 };
 

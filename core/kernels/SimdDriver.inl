@@ -12,92 +12,184 @@
 //   forward(c, X, Y)                  one N step;
 //   atMost(c, X) -> unsigned          bit l set when lane l has X ≤ Xr (the randomizing zone);
 //   wrapped(c, wrapBits) -> unsigned  bit l set when lane l wrapped;
-//   randomize(c, lanes, key, D, Y)    for the lanes in `lanes`: D ← D + 1, Y ← (Y + orbitDraw(key, D)) mod 2^52.
+//   refreshDraws(c, lanes, key, D, U) for the lanes in `lanes`: U ← orbitDraw(key, D + 1) (arrays of kLanes words);
+//   addModMasked(c, Y, lanes, U)      Y + U mod 2^52 in the lanes in `lanes`, Y elsewhere;
+//   set1, add, sub                    64-bit lane arithmetic;
+//   atLeast(a, b) -> unsigned         bit l set when a ≥ b in lane l (values < 2^63);
+//   tag(length, lane)                 (length << 6) | lane;
+//   storeMasked(p, lanes, v)          stores the lanes in `lanes` only;
+//   compressStore(p, lanes, v)        stores the lanes in `lanes`, packed, at p (may write kLanes words).
 
-/// Runs `blocks` trapping blocks on n ≤ V·kLanes orbits held in V vectors (appendix B, steps 5–9).
+// Loops over the V vectors must be unrolled, so that X[v], Y[v] stay in registers (GCC does not unroll them
+// at -O2 by itself).
+#if defined(__clang__)
+#define ARCHIPELAGO_UNROLL_VECTORS _Pragma("clang loop unroll(full)")
+#else
+#define ARCHIPELAGO_UNROLL_VECTORS _Pragma("GCC unroll 16")
+#endif
+
+/// The lowest segment length that LongestSegments::mightKeep() accepts now (INT64_MAX: none).
+inline std::uint64_t keepThreshold(const LongestSegments& longest) {
+  if (longest.capacity() == 0) return static_cast<std::uint64_t>(INT64_MAX);
+  return longest.items().size() < longest.capacity() ? 0 : longest.items().back().length;
+}
+
+/// Runs `blocks` trapping blocks on n ≤ V·kLanes orbits held in V vectors (appendix B, steps 5–9), with the
+/// same effect as advanceOneBlock() on each.
 ///
-/// The hot loop carries only X, Y and a wrap accumulator per vector.  The per-lane bookkeeping of
-/// advanceOneBlock() is kept out of it: a lane's open-segment length is (blocks done) − (block at which the
-/// segment began), so nothing is counted per block, and the start state, block and draw counters are
-/// touched only when a lane's segment ends — a per-block test of the ended mask that is almost always zero
-/// at large q and cheap at q = 1.
+/// Only X, Y and a wrap accumulator per vector live in registers.  Everything else is per-lane arrays touched
+/// when a lane's segment ends, which in the chaotic sea is often (at q = 1 about a third of the blocks, at
+/// q = 16 most), so that path is vectorised too:
+///   - the open segment's length is (blocks done) − segmentBegin, so nothing is counted per block;
+///   - the next segment's start (X, Y, block, draws) is written with masked stores;
+///   - ended segments go, compressed, into an event buffer as (length << 6) | lane, binned in a tight loop
+///     later: lengths ≤ kExactMax into per-lane counts (merged into the sink's subset histograms at the end),
+///     longer ones straight into the histogram;
+///   - only a segment long enough for the longest-segments list (rare once the list is full) takes the scalar
+///     path, at once, while its start state is still at hand.
+/// The histograms and the longest list do not depend on the order of insertion, so this equals the scalar
+/// kernel's sink bit for bit.
 template <class Simd, int V>
 void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, OrbitState* orbits, std::size_t n,
                   std::uint64_t firstOrbit, std::uint64_t blocks, SegmentSink& sink) {
   using Vec = typename Simd::Vec;
   constexpr std::size_t W = Simd::kLanes;
   constexpr std::size_t L = W * V;
-  alignas(64) std::uint64_t xs[L], ys[L], draws[L], keys[L];
-  std::uint64_t segmentBegin[L], firstBlock[L];  // segmentBegin: local block index where the open segment began
+  static_assert(L <= 64, "an event tag holds the lane in 6 bits");
+  constexpr std::uint64_t kExact = TrappingHistogram::kExactMax;
+  alignas(64) std::uint64_t xs[L], ys[L], draws[L], keys[L], lanes[L];
+  alignas(64) std::uint64_t startX[L], startY[L], startBlock[L], startDraws[L];
+  alignas(64) std::uint64_t segmentBegin[L], firstBlock[L];  // segmentBegin: local block where the segment began
+  unsigned recordable[V] = {};  // lanes whose open segment will be recorded (it did not start at block 0)
   for (std::size_t l = 0; l < L; ++l) {
-    if (l < n) {
-      const OrbitState& s = orbits[l];
-      xs[l] = s.z.X;
-      ys[l] = s.z.Y;
-      draws[l] = s.draws;
-      keys[l] = orbitKey(k.seed, firstOrbit + l);
-      segmentBegin[l] = std::uint64_t{0} - s.length;  // modulo 2^64: (b + 1) − segmentBegin = length
-      firstBlock[l] = s.block;
-    } else {  // padding lanes: computed, never recorded nor stored
-      xs[l] = ys[l] = draws[l] = keys[l] = segmentBegin[l] = firstBlock[l] = 0;
-    }
+    const OrbitState s = l < n ? orbits[l] : OrbitState{};  // padding lanes: computed, never recorded or stored
+    xs[l] = s.z.X;
+    ys[l] = s.z.Y;
+    draws[l] = s.draws;
+    keys[l] = l < n ? orbitKey(k.seed, firstOrbit + l) : 0;
+    lanes[l] = l;
+    startX[l] = s.start.z.X;
+    startY[l] = s.start.z.Y;
+    startBlock[l] = s.start.block;
+    startDraws[l] = s.start.draws;
+    segmentBegin[l] = std::uint64_t{0} - s.length;  // modulo 2^64: (b + 1) − segmentBegin = length
+    firstBlock[l] = s.block;
+    if (l < n && s.start.block != 0) recordable[l / W] |= 1u << (l % W);
   }
-  Vec X[V], Y[V], D[V], key[V];
+  Vec X[V], Y[V];
   unsigned active[V];
-  for (int v = 0; v < V; ++v) {
+  ARCHIPELAGO_UNROLL_VECTORS
+  for (std::size_t v = 0; v < V; ++v) {
     X[v] = Simd::load(xs + v * W);
     Y[v] = Simd::load(ys + v * W);
-    D[v] = Simd::load(draws + v * W);
-    key[v] = Simd::load(keys + v * W);
-    const std::size_t begin = static_cast<std::size_t>(v) * W;
-    const std::size_t inVector = n > begin ? std::min(W, n - begin) : 0;
-    active[v] = (1u << inVector) - 1u;
+    const std::size_t begin = v * W;
+    active[v] = (1u << (n > begin ? std::min(W, n - begin) : 0)) - 1u;
   }
+
+  alignas(64) std::uint64_t nextDraw[L];  // orbitDraw(key, draws + 1): the draw each lane uses next
+  for (std::size_t l = 0; l < L; ++l) nextDraw[l] = orbitDraw(keys[l], draws[l] + 1);
+  unsigned stale[V] = {};  // lanes whose nextDraw was used and must be recomputed
+  const Vec one = Simd::set1(1);
+  constexpr std::uint64_t kRefreshBlocks = 8;
+  const auto refreshDraws = [&] {
+    ARCHIPELAGO_UNROLL_VECTORS
+    for (std::size_t v = 0; v < V; ++v) {
+      Simd::refreshDraws(c, stale[v], keys + v * W, draws + v * W, nextDraw + v * W);
+      stale[v] = 0;
+    }
+  };
+
+  LongestSegments& longest = sink.longest();
+  Vec keepFrom = Simd::set1(keepThreshold(longest));
+  constexpr std::size_t kEventCapacity = 2048;
+  alignas(64) std::uint64_t events[kEventCapacity];
+  std::size_t eventCount = 0;
+  std::uint64_t exactCounts[(kExact + 1) * 64] = {};  // [length·64 + lane], lengths 1 … kExactMax
+  const auto binEvents = [&] {
+    for (std::size_t i = 0; i < eventCount; ++i) {
+      const std::uint64_t tag = events[i];
+      if (tag < ((kExact + 1) << 6)) [[likely]] {
+        exactCounts[tag] += 1;
+      } else {
+        const std::uint64_t orbit = firstOrbit + (tag & 63);
+        sink.subsets()[orbit % sink.subsets().size()].add(tag >> 6);
+      }
+    }
+    eventCount = 0;
+  };
 
   const std::uint32_t q = k.q;
   for (std::uint64_t b = 0; b < blocks; ++b) {
+    // Appendix B, 6.1–6.2: in the zone, Y ← Y + U (the orbit's next draw) and the segment ends.  The draw
+    // was computed ahead (nextDraw), so the zone costs a few branch-free masked operations here; the
+    // 64-bit multiplies of the next draws are batched every kRefreshBlocks blocks, or done at once in the
+    // rare case that a lane enters the zone again before its draw was refreshed.
     unsigned zone[V];
-    unsigned anyZone = 0;
-    for (int v = 0; v < V; ++v) {
+    unsigned reusedStale = 0;
+    ARCHIPELAGO_UNROLL_VECTORS
+    for (std::size_t v = 0; v < V; ++v) {
       zone[v] = Simd::atMost(c, X[v]) & active[v];
-      anyZone |= zone[v];
+      reusedStale |= zone[v] & stale[v];
     }
-    if (anyZone) [[unlikely]] {  // appendix B, 6.1–6.2: Y ← Y + U in the zone; the segment ends
-      for (int v = 0; v < V; ++v)
-        if (zone[v]) Simd::randomize(c, zone[v], key[v], D[v], Y[v]);
+    if (reusedStale) [[unlikely]] refreshDraws();
+    ARCHIPELAGO_UNROLL_VECTORS
+    for (std::size_t v = 0; v < V; ++v) {
+      const std::size_t o = v * W;
+      Y[v] = Simd::addModMasked(c, Y[v], zone[v], Simd::load(nextDraw + o));
+      Simd::storeMasked(draws + o, zone[v], Simd::add(Simd::load(draws + o), one));
+      stale[v] |= zone[v];
     }
+    if (b % kRefreshBlocks == kRefreshBlocks - 1) refreshDraws();
     Vec wrapBits[V];
-    for (int v = 0; v < V; ++v) wrapBits[v] = Simd::zero();
-    for (std::uint32_t j = 0; j < q; ++j)
-      for (int v = 0; v < V; ++v) Simd::backward(c, X[v], Y[v], wrapBits[v]);
+    ARCHIPELAGO_UNROLL_VECTORS
+    for (std::size_t v = 0; v < V; ++v) wrapBits[v] = Simd::zero();
+    for (std::uint32_t j = 0; j < q; ++j) {
+      ARCHIPELAGO_UNROLL_VECTORS
+      for (std::size_t v = 0; v < V; ++v) Simd::backward(c, X[v], Y[v], wrapBits[v]);
+    }
     unsigned ended[V];
     unsigned anyEnded = 0;
-    for (int v = 0; v < V; ++v) {
+    ARCHIPELAGO_UNROLL_VECTORS
+    for (std::size_t v = 0; v < V; ++v) {
       ended[v] = (Simd::wrapped(c, wrapBits[v]) | zone[v]) & active[v];
       anyEnded |= ended[v];
     }
-    if (anyEnded) {
-      const std::uint64_t after = b + 1;  // local blocks done after this one
-      for (int v = 0; v < V; ++v) {
-        if (!ended[v]) continue;
-        Simd::store(xs + v * W, X[v]);
-        Simd::store(ys + v * W, Y[v]);
-        Simd::store(draws + v * W, D[v]);
-        for (unsigned bits = ended[v]; bits; bits &= bits - 1) {
-          const std::size_t l = v * W + static_cast<std::size_t>(__builtin_ctz(bits));
-          OrbitState& s = orbits[l];
-          sink.record(firstOrbit + l, after - segmentBegin[l], s.start);
-          s.start = {{xs[l], ys[l]}, firstBlock[l] + after, draws[l]};
-          segmentBegin[l] = after;
+    if (!anyEnded) continue;
+    const Vec after = Simd::set1(b + 1);  // local blocks done after this one
+    ARCHIPELAGO_UNROLL_VECTORS
+    for (std::size_t v = 0; v < V; ++v) {
+      const unsigned e = ended[v];  // usually nonzero at small q; with e = 0 the masked work below is void
+      const std::size_t o = v * W;
+      const Vec length = Simd::sub(after, Simd::load(segmentBegin + o));
+      const unsigned recorded = e & recordable[v];
+      Simd::compressStore(events + eventCount, recorded, Simd::tag(length, Simd::load(lanes + o)));
+      eventCount += static_cast<std::size_t>(__builtin_popcount(recorded));
+      if (const unsigned keep = recorded & Simd::atLeast(length, keepFrom)) [[unlikely]] {
+        alignas(64) std::uint64_t lengths[W];
+        Simd::store(lengths, length);
+        for (unsigned bits = keep; bits; bits &= bits - 1) {
+          const std::size_t lane = static_cast<std::size_t>(__builtin_ctz(bits));
+          const std::size_t l = o + lane;
+          longest.insert({firstOrbit + l, lengths[lane], {{startX[l], startY[l]}, startBlock[l], startDraws[l]}});
         }
+        keepFrom = Simd::set1(keepThreshold(longest));
       }
+      Simd::storeMasked(startX + o, e, X[v]);
+      Simd::storeMasked(startY + o, e, Y[v]);
+      Simd::storeMasked(startDraws + o, e, Simd::load(draws + o));
+      Simd::storeMasked(startBlock + o, e, Simd::add(Simd::load(firstBlock + o), after));
+      Simd::storeMasked(segmentBegin + o, e, after);
+      recordable[v] |= e;
     }
+    if (eventCount > kEventCapacity - L) binEvents();
   }
+  binEvents();
 
-  for (int v = 0; v < V; ++v) {
+  ARCHIPELAGO_UNROLL_VECTORS
+
+  for (std::size_t v = 0; v < V; ++v) {
     Simd::store(xs + v * W, X[v]);
     Simd::store(ys + v * W, Y[v]);
-    Simd::store(draws + v * W, D[v]);
   }
   for (std::size_t l = 0; l < n; ++l) {
     OrbitState& s = orbits[l];
@@ -105,6 +197,13 @@ void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, Or
     s.draws = draws[l];
     s.block = firstBlock[l] + blocks;
     s.length = blocks - segmentBegin[l];
+    s.start = {{startX[l], startY[l]}, startBlock[l], startDraws[l]};
+    TrappingHistogram& h = sink.subsets()[(firstOrbit + l) % sink.subsets().size()];
+    for (std::uint64_t t = 1; t <= kExact; ++t) {
+      const std::uint64_t count = exactCounts[t * 64 + l];
+      const int bin = static_cast<int>(t);  // TrappingHistogram::binOf(t) = t for t ≤ kExactMax
+      if (count) h.setBin(bin, h.count(bin) + count, h.lengthSum(bin) + count * t);
+    }
   }
 }
 
@@ -147,11 +246,13 @@ void iterateGroup(const typename Simd::Constants& c, MapDirection direction, Uni
     ys[l] = l < n ? orbits[l].Y : 0;
   }
   Vec X[V], Y[V];
+  ARCHIPELAGO_UNROLL_VECTORS
   for (int v = 0; v < V; ++v) {
     X[v] = Simd::load(xs + v * W);
     Y[v] = Simd::load(ys + v * W);
   }
   const auto record = [&](std::uint64_t j) {
+    ARCHIPELAGO_UNROLL_VECTORS
     for (int v = 0; v < V; ++v) {
       Simd::store(xs + v * W, X[v]);
       Simd::store(ys + v * W, Y[v]);
@@ -161,17 +262,21 @@ void iterateGroup(const typename Simd::Constants& c, MapDirection direction, Uni
   };
   if (direction == MapDirection::backward) {
     Vec unused[V];
+    ARCHIPELAGO_UNROLL_VECTORS
     for (int v = 0; v < V; ++v) unused[v] = Simd::zero();
     for (std::uint64_t j = 0; j < steps; ++j) {
+      ARCHIPELAGO_UNROLL_VECTORS
       for (int v = 0; v < V; ++v) Simd::backward(c, X[v], Y[v], unused[v]);
       if (trace) record(j);
     }
   } else {
     for (std::uint64_t j = 0; j < steps; ++j) {
+      ARCHIPELAGO_UNROLL_VECTORS
       for (int v = 0; v < V; ++v) Simd::forward(c, X[v], Y[v]);
       if (trace) record(j);
     }
   }
+  ARCHIPELAGO_UNROLL_VECTORS
   for (int v = 0; v < V; ++v) {
     Simd::store(xs + v * W, X[v]);
     Simd::store(ys + v * W, Y[v]);
