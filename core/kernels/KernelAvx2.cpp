@@ -101,12 +101,19 @@ struct Avx2 {
     return ~laneBits(_mm256_cmpeq_epi64(_mm256_and_si256(wrapBits, c.notMask), _mm256_setzero_si256())) & 0xFu;
   }
 
-  static void refreshDraws(const Constants&, unsigned lanes, const std::uint64_t* key, const std::uint64_t* draws,
-                           std::uint64_t* next) {
+  static void refreshDraws(const Constants&, unsigned lanes, const std::uint64_t* key, Vec D, std::uint64_t* next) {
+    alignas(32) std::uint64_t d[kLanes], u[kLanes];
+    store(d, D);
+    store(u, load(next));
     for (unsigned bits = lanes; bits; bits &= bits - 1) {
       const int l = __builtin_ctz(bits);
-      next[l] = orbitDraw(key[l], draws[l] + 1);
+      u[l] = orbitDraw(key[l], d[l] + 1);
     }
+    store(next, load(u));  // one full store, which a later vector load can forward from
+  }
+  static Vec select(unsigned lanes, Vec a, Vec b) {
+    return _mm256_castpd_si256(
+        _mm256_blendv_pd(_mm256_castsi256_pd(b), _mm256_castsi256_pd(a), _mm256_castsi256_pd(laneMask(lanes))));
   }
   static Vec addModMasked(const Constants& c, Vec Y, unsigned lanes, Vec U) {
     return _mm256_and_si256(_mm256_add_epi64(Y, _mm256_and_si256(U, laneMask(lanes))), c.mask);
@@ -116,7 +123,6 @@ struct Avx2 {
   static Vec add(Vec a, Vec b) { return _mm256_add_epi64(a, b); }
   static Vec sub(Vec a, Vec b) { return _mm256_sub_epi64(a, b); }
   static unsigned atLeast(Vec a, Vec b) { return ~laneBits(_mm256_cmpgt_epi64(b, a)) & 0xFu; }
-  static Vec tag(Vec length, Vec lane) { return _mm256_or_si256(_mm256_slli_epi64(length, 6), lane); }
   /// All-ones in the 64-bit lanes whose bit is set in `lanes`.
   static Vec laneMask(unsigned lanes) {
     const Vec bit = _mm256_setr_epi64x(1, 2, 4, 8);

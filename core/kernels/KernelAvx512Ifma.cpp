@@ -88,12 +88,12 @@ struct Avx512Ifma {
     return _mm512_xor_si512(z, _mm512_srli_epi64(z, 31));
   }
 
-  static void refreshDraws(const Constants& c, unsigned lanes, const std::uint64_t* key, const std::uint64_t* draws,
-                           std::uint64_t* next) {
-    const Vec k = _mm512_add_epi64(load(draws), c.one);
+  static void refreshDraws(const Constants& c, unsigned lanes, const std::uint64_t* key, Vec D, std::uint64_t* next) {
+    const Vec k = _mm512_add_epi64(D, c.one);
     const Vec U = _mm512_srli_epi64(mix64(c, _mm512_add_epi64(load(key), _mm512_mullo_epi64(k, c.golden))), 12);
-    _mm512_mask_storeu_epi64(next, static_cast<__mmask8>(lanes), U);
+    store(next, _mm512_mask_mov_epi64(load(next), static_cast<__mmask8>(lanes), U));  // a full store forwards
   }
+  static Vec select(unsigned lanes, Vec a, Vec b) { return _mm512_mask_mov_epi64(b, static_cast<__mmask8>(lanes), a); }
   static Vec addModMasked(const Constants& c, Vec Y, unsigned lanes, Vec U) {
     return _mm512_and_si512(_mm512_mask_add_epi64(Y, static_cast<__mmask8>(lanes), Y, U), c.mask);
   }
@@ -102,7 +102,6 @@ struct Avx512Ifma {
   static Vec add(Vec a, Vec b) { return _mm512_add_epi64(a, b); }
   static Vec sub(Vec a, Vec b) { return _mm512_sub_epi64(a, b); }
   static unsigned atLeast(Vec a, Vec b) { return _mm512_cmpge_epu64_mask(a, b); }
-  static Vec tag(Vec length, Vec lane) { return _mm512_or_si512(_mm512_slli_epi64(length, 6), lane); }
   static void storeMasked(std::uint64_t* p, unsigned lanes, Vec v) {
     _mm512_mask_storeu_epi64(p, static_cast<__mmask8>(lanes), v);
   }

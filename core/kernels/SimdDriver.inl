@@ -12,11 +12,11 @@
 //   forward(c, X, Y)                  one N step;
 //   atMost(c, X) -> unsigned          bit l set when lane l has X ≤ Xr (the randomizing zone);
 //   wrapped(c, wrapBits) -> unsigned  bit l set when lane l wrapped;
-//   refreshDraws(c, lanes, key, D, U) for the lanes in `lanes`: U ← orbitDraw(key, D + 1) (arrays of kLanes words);
+//   refreshDraws(c, lanes, key, D, U) for the lanes in `lanes`: U ← orbitDraw(key, D + 1) (key, U: arrays);
+//   select(lanes, a, b)               a in the lanes in `lanes`, b elsewhere;
 //   addModMasked(c, Y, lanes, U)      Y + U mod 2^52 in the lanes in `lanes`, Y elsewhere;
 //   set1, add, sub                    64-bit lane arithmetic;
 //   atLeast(a, b) -> unsigned         bit l set when a ≥ b in lane l (values < 2^63);
-//   tag(length, lane)                 (length << 6) | lane;
 //   storeMasked(p, lanes, v)          stores the lanes in `lanes` only;
 //   compressStore(p, lanes, v)        stores the lanes in `lanes`, packed, at p (may write kLanes words).
 
@@ -28,10 +28,14 @@
 #define ARCHIPELAGO_UNROLL_VECTORS _Pragma("GCC unroll 16")
 #endif
 
-/// The lowest segment length that LongestSegments::mightKeep() accepts now (INT64_MAX: none).
-inline std::uint64_t keepThreshold(const LongestSegments& longest) {
-  if (longest.capacity() == 0) return static_cast<std::uint64_t>(INT64_MAX);
-  return longest.items().size() < longest.capacity() ? 0 : longest.items().back().length;
+/// The lowest event tag (length << 6 | lane) whose length LongestSegments::mightKeep() accepts now;
+/// INT64_MAX when none (tags stay below 2^63).
+inline std::uint64_t keepTag(const LongestSegments& longest) {
+  constexpr auto kNone = static_cast<std::uint64_t>(INT64_MAX);
+  if (longest.capacity() == 0) return kNone;
+  if (longest.items().size() < longest.capacity()) return 0;
+  const std::uint64_t length = longest.items().back().length;
+  return length >= (std::uint64_t{1} << 56) ? kNone : length << 6;
 }
 
 /// Runs `blocks` trapping blocks on n ≤ V·kLanes orbits held in V vectors (appendix B, steps 5–9), with the
@@ -40,7 +44,7 @@ inline std::uint64_t keepThreshold(const LongestSegments& longest) {
 /// Only X, Y and a wrap accumulator per vector live in registers.  Everything else is per-lane arrays touched
 /// when a lane's segment ends, which in the chaotic sea is often (at q = 1 about a third of the blocks, at
 /// q = 16 most), so that path is vectorised too:
-///   - the open segment's length is (blocks done) − segmentBegin, so nothing is counted per block;
+///   - the open segment's length is (blocks done) − (block where it began), so nothing is counted per block;
 ///   - the next segment's start (X, Y, block, draws) is written with masked stores;
 ///   - ended segments go, compressed, into an event buffer as (length << 6) | lane, binned in a tight loop
 ///     later: lengths ≤ kExactMax into per-lane counts (merged into the sink's subset histograms at the end),
@@ -58,8 +62,12 @@ void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, Or
   static_assert(L <= 64, "an event tag holds the lane in 6 bits");
   constexpr std::uint64_t kExact = TrappingHistogram::kExactMax;
   alignas(64) std::uint64_t xs[L], ys[L], draws[L], keys[L], lanes[L];
-  alignas(64) std::uint64_t startX[L], startY[L], startBlock[L], startDraws[L];
-  alignas(64) std::uint64_t segmentBegin[L], firstBlock[L];  // segmentBegin: local block where the segment began
+  // The open segment's start; its block is kept relative to firstBlock (modulo 2^64).
+  alignas(64) std::uint64_t startX[L], startY[L], startBlockLocal[L], startDraws[L];
+  // tagBase = segmentBegin·64 − lane, segmentBegin being the local block where the open segment began, so
+  // that the event tag (length << 6) | lane of a segment ending after local block a is a·64 − tagBase (all
+  // modulo 2^64; lane < 64 and lengths < 2^57).
+  alignas(64) std::uint64_t tagBase[L], firstBlock[L];
   unsigned recordable[V] = {};  // lanes whose open segment will be recorded (it did not start at block 0)
   for (std::size_t l = 0; l < L; ++l) {
     const OrbitState s = l < n ? orbits[l] : OrbitState{};  // padding lanes: computed, never recorded or stored
@@ -70,18 +78,22 @@ void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, Or
     lanes[l] = l;
     startX[l] = s.start.z.X;
     startY[l] = s.start.z.Y;
-    startBlock[l] = s.start.block;
+    startBlockLocal[l] = s.start.block - s.block;
     startDraws[l] = s.start.draws;
-    segmentBegin[l] = std::uint64_t{0} - s.length;  // modulo 2^64: (b + 1) − segmentBegin = length
+    tagBase[l] = ((std::uint64_t{0} - s.length) << 6) - l;  // segmentBegin = −length
     firstBlock[l] = s.block;
     if (l < n && s.start.block != 0) recordable[l / W] |= 1u << (l % W);
   }
-  Vec X[V], Y[V];
+  // Per-lane values read every block stay in registers: a load of words just written by a masked store
+  // cannot take them from the store buffer and would stall.
+  Vec X[V], Y[V], D[V], base[V];  // base: tagBase
   unsigned active[V];
   ARCHIPELAGO_UNROLL_VECTORS
   for (std::size_t v = 0; v < V; ++v) {
     X[v] = Simd::load(xs + v * W);
     Y[v] = Simd::load(ys + v * W);
+    D[v] = Simd::load(draws + v * W);
+    base[v] = Simd::load(tagBase + v * W);
     const std::size_t begin = v * W;
     active[v] = (1u << (n > begin ? std::min(W, n - begin) : 0)) - 1u;
   }
@@ -94,13 +106,13 @@ void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, Or
   const auto refreshDraws = [&] {
     ARCHIPELAGO_UNROLL_VECTORS
     for (std::size_t v = 0; v < V; ++v) {
-      Simd::refreshDraws(c, stale[v], keys + v * W, draws + v * W, nextDraw + v * W);
+      Simd::refreshDraws(c, stale[v], keys + v * W, D[v], nextDraw + v * W);
       stale[v] = 0;
     }
   };
 
   LongestSegments& longest = sink.longest();
-  Vec keepFrom = Simd::set1(keepThreshold(longest));
+  Vec keepFrom = Simd::set1(keepTag(longest));
   constexpr std::size_t kEventCapacity = 2048;
   alignas(64) std::uint64_t events[kEventCapacity];
   std::size_t eventCount = 0;
@@ -128,7 +140,7 @@ void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, Or
     unsigned reusedStale = 0;
     ARCHIPELAGO_UNROLL_VECTORS
     for (std::size_t v = 0; v < V; ++v) {
-      zone[v] = Simd::atMost(c, X[v]) & active[v];
+      zone[v] = Simd::atMost(c, X[v]);  // padding lanes too: harmless, never recorded nor stored
       reusedStale |= zone[v] & stale[v];
     }
     if (reusedStale) [[unlikely]] refreshDraws();
@@ -136,7 +148,7 @@ void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, Or
     for (std::size_t v = 0; v < V; ++v) {
       const std::size_t o = v * W;
       Y[v] = Simd::addModMasked(c, Y[v], zone[v], Simd::load(nextDraw + o));
-      Simd::storeMasked(draws + o, zone[v], Simd::add(Simd::load(draws + o), one));
+      D[v] = Simd::select(zone[v], Simd::add(D[v], one), D[v]);
       stale[v] |= zone[v];
     }
     if (b % kRefreshBlocks == kRefreshBlocks - 1) refreshDraws();
@@ -151,35 +163,37 @@ void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, Or
     unsigned anyEnded = 0;
     ARCHIPELAGO_UNROLL_VECTORS
     for (std::size_t v = 0; v < V; ++v) {
-      ended[v] = (Simd::wrapped(c, wrapBits[v]) | zone[v]) & active[v];
+      ended[v] = Simd::wrapped(c, wrapBits[v]) | zone[v];
       anyEnded |= ended[v];
     }
     if (!anyEnded) continue;
-    const Vec after = Simd::set1(b + 1);  // local blocks done after this one
+    const std::uint64_t after = b + 1;  // local blocks done after this one
+    const Vec afterTag = Simd::set1(after << 6);
     ARCHIPELAGO_UNROLL_VECTORS
     for (std::size_t v = 0; v < V; ++v) {
       const unsigned e = ended[v];  // usually nonzero at small q; with e = 0 the masked work below is void
       const std::size_t o = v * W;
-      const Vec length = Simd::sub(after, Simd::load(segmentBegin + o));
+      const Vec tag = Simd::sub(afterTag, base[v]);
       const unsigned recorded = e & recordable[v];
-      Simd::compressStore(events + eventCount, recorded, Simd::tag(length, Simd::load(lanes + o)));
+      Simd::compressStore(events + eventCount, recorded, tag);
       eventCount += static_cast<std::size_t>(__builtin_popcount(recorded));
-      if (const unsigned keep = recorded & Simd::atLeast(length, keepFrom)) [[unlikely]] {
-        alignas(64) std::uint64_t lengths[W];
-        Simd::store(lengths, length);
+      if (const unsigned keep = recorded & Simd::atLeast(tag, keepFrom)) [[unlikely]] {
+        alignas(64) std::uint64_t tags[W];
+        Simd::store(tags, tag);
         for (unsigned bits = keep; bits; bits &= bits - 1) {
           const std::size_t lane = static_cast<std::size_t>(__builtin_ctz(bits));
           const std::size_t l = o + lane;
-          longest.insert({firstOrbit + l, lengths[lane], {{startX[l], startY[l]}, startBlock[l], startDraws[l]}});
+          longest.insert({firstOrbit + l, tags[lane] >> 6,
+                          {{startX[l], startY[l]}, firstBlock[l] + startBlockLocal[l], startDraws[l]}});
         }
-        keepFrom = Simd::set1(keepThreshold(longest));
+        keepFrom = Simd::set1(keepTag(longest));
       }
       Simd::storeMasked(startX + o, e, X[v]);
       Simd::storeMasked(startY + o, e, Y[v]);
-      Simd::storeMasked(startDraws + o, e, Simd::load(draws + o));
-      Simd::storeMasked(startBlock + o, e, Simd::add(Simd::load(firstBlock + o), after));
-      Simd::storeMasked(segmentBegin + o, e, after);
-      recordable[v] |= e;
+      Simd::storeMasked(startDraws + o, e, D[v]);
+      Simd::storeMasked(startBlockLocal + o, e, Simd::set1(after));
+      base[v] = Simd::select(e, Simd::sub(afterTag, Simd::load(lanes + o)), base[v]);
+      recordable[v] |= e & active[v];
     }
     if (eventCount > kEventCapacity - L) binEvents();
   }
@@ -190,14 +204,16 @@ void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, Or
   for (std::size_t v = 0; v < V; ++v) {
     Simd::store(xs + v * W, X[v]);
     Simd::store(ys + v * W, Y[v]);
+    Simd::store(draws + v * W, D[v]);
+    Simd::store(tagBase + v * W, base[v]);
   }
   for (std::size_t l = 0; l < n; ++l) {
     OrbitState& s = orbits[l];
     s.z = {xs[l], ys[l]};
     s.draws = draws[l];
     s.block = firstBlock[l] + blocks;
-    s.length = blocks - segmentBegin[l];
-    s.start = {{startX[l], startY[l]}, startBlock[l], startDraws[l]};
+    s.length = ((blocks << 6) - tagBase[l]) >> 6;
+    s.start = {{startX[l], startY[l]}, firstBlock[l] + startBlockLocal[l], startDraws[l]};
     TrappingHistogram& h = sink.subsets()[(firstOrbit + l) % sink.subsets().size()];
     for (std::uint64_t t = 1; t <= kExact; ++t) {
       const std::uint64_t count = exactCounts[t * 64 + l];
