@@ -65,9 +65,13 @@ TrappingState runTrapping(TrappingState state, const TrappingRunOptions& options
   const KernelSettings settings = kernelSettings(state);
   const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
   const std::size_t orbitCount = state.orbits.size();
-  // Work is split into groups of orbits; a group is one task, so every thread gets several.
+  // Work is split into groups of orbits; a group is one task, so every thread gets several.  Groups of 32
+  // fill the vector kernels (4 vectors of 8 lanes in flight); with fewer orbits, smaller groups keep every
+  // thread busy.
   const std::size_t groupSize =
-      std::clamp<std::size_t>(orbitCount / (4 * static_cast<std::size_t>(threads)) / 8 * 8, 8, 64);
+      orbitCount >= 64 * static_cast<std::size_t>(threads)
+          ? 32
+          : std::clamp<std::size_t>(orbitCount / (4 * static_cast<std::size_t>(threads)) / 8 * 8, 8, 32);
   const std::size_t groups = (orbitCount + groupSize - 1) / groupSize;
   state.kernel = options.kernelName;
 
