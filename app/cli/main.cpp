@@ -9,6 +9,7 @@
 #include <string>
 
 #include "OrbitCommand.hpp"
+#include "PortraitCommand.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"archipelago-cli " ARCHIPELAGO_VERSION
@@ -16,6 +17,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("archipelago-cli ") + ARCHIPELAGO_VERSION);
   archipelago::cli::addOrbitCommand(app);
+  archipelago::cli::addPortraitCommand(app);
   if (argc > 1 && argv[1][0] != '-') {  // name an unknown command instead of CLI11's generic message
     std::string names;
     bool known = false;

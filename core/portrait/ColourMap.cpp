@@ -111,14 +111,28 @@ RasterImage colourize(const PortraitRaster& raster, ColourMapName name) {
   auto scaled = [](double t) { return kLowest + (1 - kLowest) * t; };
   switch (raster.mode) {
     case PortraitMode::Density: {
-      std::uint64_t top = 0;
-      for (std::size_t i = 0; i < n; ++i) top = std::max(top, raster.counts[i]);
-      const double logTop = std::log1p(static_cast<double>(top));
-      image.quantity = "log10(1 + visits)";
-      image.scaleMax = logTop / std::log(10.0);
+      // Log scale between robust extremes of the visited pixels (0.5% and 99.9% quantiles): a few pixels
+      // grazed once at the islands' edges would otherwise flatten the whole sea into one colour.
+      std::vector<std::uint64_t> visited;
+      for (std::size_t i = 0; i < n; ++i)
+        if (raster.counts[i] > 0) visited.push_back(raster.counts[i]);
+      double lo = 0, hi = 0;
+      if (!visited.empty()) {
+        auto quantile = [&](double f) {
+          auto it = visited.begin() + static_cast<std::ptrdiff_t>(f * static_cast<double>(visited.size() - 1));
+          std::nth_element(visited.begin(), it, visited.end());
+          return std::log10(static_cast<double>(*it));
+        };
+        lo = quantile(0.005);
+        hi = quantile(0.999);
+      }
+      image.quantity = "log10(visits)";
+      image.scaleMin = lo;
+      image.scaleMax = hi;
       for (std::size_t i = 0; i < n; ++i) {
         const std::uint64_t c = raster.counts[i];
-        put(i, c == 0 ? map.at(0) : map.at(scaled(logTop > 0 ? std::log1p(static_cast<double>(c)) / logTop : 1)));
+        put(i, c == 0 ? map.at(0)
+                      : map.at(scaled(hi > lo ? (std::log10(static_cast<double>(c)) - lo) / (hi - lo) : 1)));
       }
       break;
     }
@@ -144,10 +158,11 @@ RasterImage colourize(const PortraitRaster& raster, ColourMapName name) {
     }
     case PortraitMode::Orbits: {
       image.quantity = "orbit";
-      const Rgb background{16, 16, 24};
+      const Rgb background{16, 16, 24}, sea{96, 96, 104};
       for (std::size_t i = 0; i < n; ++i) {
         const std::uint32_t label = i < raster.labels.size() ? raster.labels[i] : 0;
-        put(i, label == 0 ? background : orbitColour(label));
+        const bool wrapped = label > 0 && label <= raster.orbitWrapped.size() && raster.orbitWrapped[label - 1];
+        put(i, label == 0 ? background : wrapped ? sea : orbitColour(label));
       }
       break;
     }

@@ -4,9 +4,11 @@
 ///
 /// The perceptual maps are the matplotlib maps "inferno" and "viridis" (van der Walt & Smith, CC0),
 /// evaluated from degree-6 polynomial fits (max error < 1/255 per channel), plus a grey ramp.  Scales:
-///   - Density: t = log(1 + count) / log(1 + max count)  (counts span many decades near hyperbolic points);
+///   - Density: t = (log c − log cmin) / (log cmax − log cmin) over the visited pixels (the sea is nearly
+///     uniform, so a log scale between its extremes shows where sticky orbits linger);
 ///   - Stickiness: t = (log10 L − log10 Lmin) / (log10 Lmax − log10 Lmin), L the mean segment length (§3);
-///   - Orbits: each label gets its own hue (golden-ratio steps around the colour wheel), not a scale.
+///   - Orbits: each label gets its own hue (golden-ratio steps around the colour wheel), not a scale;
+///     orbits that wrapped around the torus (the sea and accelerator modes) share one grey.
 /// Non-empty pixels use t in [kLowest, 1] so that the faintest visit stays distinguishable from an empty
 /// pixel, which gets the map's colour at 0 (black for inferno) or the background of the Orbits mode.
 
@@ -57,7 +59,7 @@ struct RasterImage {
   std::vector<std::uint8_t> rgb;  ///< 3 bytes per pixel, row-major
   double scaleMin = 0;            ///< the colour bar's range, in `quantity` (log10 units; 0 … 0 in Orbits mode)
   double scaleMax = 0;
-  std::string quantity;           ///< e.g. "log10(1 + visits)", "log10(mean segment length / steps)"
+  std::string quantity;           ///< e.g. "log10(visits)", "log10(mean segment length / steps)"
 };
 
 /// The lowest t given to a non-empty pixel.

@@ -35,6 +35,10 @@ struct PortraitRaster {
   std::vector<std::uint64_t> counts;
   /// Orbits mode: 1 + the smallest index of the seeds whose orbit visits the pixel, 0 for none (else empty).
   std::vector<std::uint32_t> labels;
+  /// Orbits mode: for each seed, 1 when its orbit has wrapped around the torus (a chaotic-sea orbit, or one
+  /// in a spurious accelerator-mode island of Q*, §2), 0 for an orbit that stayed inside the box (an island of
+  /// Q).  Drawing uses it to paint the sea in one colour instead of a noise of labels.
+  std::vector<std::uint8_t> orbitWrapped;
   /// Stickiness mode: Σ over the visits of the length, in steps of N⁻¹, of the segment making it (else empty).
   std::vector<std::uint64_t> lengthSums;
   std::uint64_t pointsIterated = 0;  ///< steps of the map done, all orbits together

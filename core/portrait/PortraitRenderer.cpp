@@ -227,6 +227,7 @@ class Renderer {
     if (r_.mode == PortraitMode::Stickiness) raster.lengthSums.assign(pixels, 0);
 
     initOrbits();
+    if (r_.mode == PortraitMode::Orbits) wrapped_.assign(orbitCount_, 0);
     threads_.resize(static_cast<std::size_t>(std::max(1, omp_get_max_threads())));
     for (ThreadRaster& t : threads_) {
       t.counts.assign(pixels, 0);
@@ -320,19 +321,24 @@ class Renderer {
     if (n == kLanes) {
       UnitState z[kLanes];
       for (std::size_t l = 0; l < kLanes; ++l) z[l] = states_[first + l];
+      bool wrapped[kLanes] = {};
       for (std::uint64_t s = 0; s < chunk; ++s) {
-        for (std::size_t l = 0; l < kLanes; ++l) forwardStep(coef_, z[l]);
+        for (std::size_t l = 0; l < kLanes; ++l) wrapped[l] |= forwardStep(coef_, z[l]);
         for (std::size_t l = 0; l < kLanes; ++l) bin<kLabels>(z[l], first + l, out);
       }
       for (std::size_t l = 0; l < kLanes; ++l) states_[first + l] = z[l];
+      if constexpr (kLabels)
+        for (std::size_t l = 0; l < kLanes; ++l) wrapped_[first + l] |= wrapped[l] ? 1 : 0;
     } else {
       for (std::uint64_t o = first; o < first + n; ++o) {
         UnitState z = states_[o];
+        bool wrapped = false;
         for (std::uint64_t s = 0; s < chunk; ++s) {
-          forwardStep(coef_, z);
+          wrapped |= forwardStep(coef_, z);
           bin<kLabels>(z, o, out);
         }
         states_[o] = z;
+        if constexpr (kLabels) wrapped_[o] |= wrapped ? 1 : 0;
       }
     }
   }
@@ -401,6 +407,7 @@ class Renderer {
       raster.pointsBinned += t.binned;
       t.binned = 0;
     }
+    raster.orbitWrapped = wrapped_;
     raster.pointsIterated = pointsDone_.load();
   }
 
@@ -426,6 +433,7 @@ class Renderer {
   std::uint64_t randomizingX_;
   std::vector<UnitState> states_;
   std::vector<TrappingOrbit> trapping_;
+  std::vector<std::uint8_t> wrapped_;  // Orbits mode, per seed (each written by the one thread owning its group)
   std::vector<ThreadRaster> threads_;
   std::atomic<std::uint64_t> pointsDone_{0};
 };
