@@ -126,6 +126,15 @@ Viewport Viewport::zoomedAboutFraction(long double fx, long double fy, long doub
   return zoomedAbout((fx - 0.5L) * width_, (fy - 0.5L) * height_, factor);
 }
 
+Viewport Viewport::cropped(long double fx0, long double fx1, long double fy0, long double fy1) const noexcept {
+  for (long double f : {fx0, fx1, fy0, fy1})
+    if (!std::isfinite(f)) return *this;
+  if (!(fx1 > fx0 && fy1 > fy0)) return *this;
+  const long double cx = static_cast<long double>(centre_.X) + ((fx0 + fx1) / 2 - 0.5L) * width_;
+  const long double cy = static_cast<long double>(centre_.Y) + ((fy0 + fy1) / 2 - 0.5L) * height_;
+  return clamped(cx, cy, (fx1 - fx0) * width_, (fy1 - fy0) * height_);
+}
+
 Viewport Viewport::panned(long double fx, long double fy) const noexcept {
   if (!(std::isfinite(fx) && std::isfinite(fy))) return *this;
   return clamped(static_cast<long double>(centre_.X) + fx * width_, static_cast<long double>(centre_.Y) + fy * height_,

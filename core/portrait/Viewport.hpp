@@ -67,6 +67,9 @@ class Viewport {
   /// The same, with the fixed point given as fractions of the view: (0, 0) the bottom-left corner,
   /// (1, 1) the top-right one.
   [[nodiscard]] Viewport zoomedAboutFraction(long double fx, long double fy, long double factor) const noexcept;
+  /// The sub-rectangle [fx0, fx1] × [fy0, fy1] of the view in fractions (0 = left/bottom, 1 = right/top),
+  /// e.g. a rubber band; clamped like zoomedAbout().  Unchanged when the fractions are not finite or empty.
+  [[nodiscard]] Viewport cropped(long double fx0, long double fx1, long double fy0, long double fy1) const noexcept;
   /// Moves the view by (fx·width, fy·height), clamped inside the box.
   [[nodiscard]] Viewport panned(long double fx, long double fy) const noexcept;
 

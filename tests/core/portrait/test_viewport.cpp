@@ -104,5 +104,15 @@ TEST(Viewport, ZoomOutAndPanStayInsideTheBox) {
   EXPECT_EQ(corner.zoomedAbout(0, 0, std::numeric_limits<long double>::quiet_NaN()), corner);
 }
 
+TEST(Viewport, CroppedToARubberBand) {
+  const Viewport v;
+  const Viewport c = v.cropped(0.25L, 0.75L, 0.5L, 0.625L);
+  EXPECT_EQ(c.widthUnits(), v.widthUnits() / 2);
+  EXPECT_EQ(c.heightUnits(), v.heightUnits() / 8);
+  EXPECT_EQ(c.centre().X, FixedPointMap::kHalf);
+  EXPECT_EQ(c.centre().Y, FixedPointMap::kHalf + FixedPointMap::kOne / 16);
+  EXPECT_EQ(v.cropped(0.5L, 0.5L, 0, 1), v);  // empty: unchanged
+}
+
 }  // namespace
 }  // namespace archipelago
