@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "CliCommon.hpp"
+#include "kernels/KernelDispatch.hpp"
 #include "periodic/IslandChain.hpp"
 #include "runfile/RunFile.hpp"
 #include "trapping/TrappingRun.hpp"
@@ -30,6 +31,7 @@ struct RunOptions {
   std::string resume;
   int threads = 0;
   std::uint64_t maxChunkBlocks = 0;
+  std::string kernel;  // empty: $ARCHIPELAGO_KERNEL, else the fastest the CPU supports
   bool quiet = false;
 };
 
@@ -69,7 +71,10 @@ void runCommand(const RunOptions& o, const std::vector<std::string>& explicitPar
   std::stop_source stopper;
   std::signal(SIGINT, onInterrupt);
   std::signal(SIGTERM, onInterrupt);
+  const KernelInfo& kernel = selectKernel(o.kernel);
   TrappingRunOptions options;
+  options.kernel = kernel.blocks;
+  options.kernelName = std::string(kernel.name);
   options.threads = o.threads;
   options.maxChunkBlocks = o.maxChunkBlocks;
   auto lastCheckpoint = std::chrono::steady_clock::now();
@@ -126,6 +131,8 @@ void addRunCommand(CLI::App& app) {
   cmd->add_option("--checkpoint-interval", o->checkpointSeconds, "seconds between checkpoints")->capture_default_str();
   cmd->add_option("--resume", o->resume, "continue the run in this checkpoint or run file");
   cmd->add_option("--max-chunk", o->maxChunkBlocks, "at most this many blocks between progress reports (0: adaptive)");
+  cmd->add_option("--kernel", o->kernel,
+                  "instruction-set path: auto, " + supportedKernelNames() + " (default: $ARCHIPELAGO_KERNEL or auto)");
   cmd->add_flag("--quiet", o->quiet, "no progress bar or summary");
   cmd->callback([o, cmd] {
     std::vector<std::string> given;

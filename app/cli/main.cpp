@@ -12,6 +12,7 @@
 #include "RunCommand.hpp"
 #include "StatsCommand.hpp"
 #include "PeriodicCommand.hpp"
+#include "PortraitCommand.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"archipelago-cli " ARCHIPELAGO_VERSION
@@ -23,6 +24,7 @@ int main(int argc, char** argv) {
   archipelago::cli::addStatsCommand(app);
   archipelago::cli::addReplayCommand(app);
   archipelago::cli::addPeriodicCommand(app);
+  archipelago::cli::addPortraitCommand(app);
   if (argc > 1 && argv[1][0] != '-') {  // name an unknown command instead of CLI11's generic message
     std::string names;
     bool known = false;

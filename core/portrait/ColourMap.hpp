@@ -1,0 +1,71 @@
+#pragma once
+/// \file ColourMap.hpp
+/// \brief Colour maps and the conversion of a PortraitRaster into RGB pixels, shared by the CLI and the GUI.
+///
+/// The perceptual maps are the matplotlib maps "inferno" and "viridis" (van der Walt & Smith, CC0),
+/// evaluated from degree-6 polynomial fits (max error < 1/255 per channel), plus a grey ramp.  Scales:
+///   - Density: t = (log c − log cmin) / (log cmax − log cmin) over the visited pixels (the sea is nearly
+///     uniform, so a log scale between its extremes shows where sticky orbits linger);
+///   - Stickiness: t = (log10 L − log10 Lmin) / (log10 Lmax − log10 Lmin), L the mean segment length (§3);
+///   - Orbits: each label gets its own hue (golden-ratio steps around the colour wheel), not a scale;
+///     orbits that wrapped around the torus (the sea and accelerator modes) share one grey.
+/// Non-empty pixels use t in [kLowest, 1] so that the faintest visit stays distinguishable from an empty
+/// pixel, which gets the map's colour at 0 (black for inferno) or the background of the Orbits mode.
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "portrait/PortraitRaster.hpp"
+
+namespace archipelago {
+
+struct Rgb {
+  std::uint8_t r = 0;
+  std::uint8_t g = 0;
+  std::uint8_t b = 0;
+  friend bool operator==(const Rgb&, const Rgb&) = default;
+};
+
+enum class ColourMapName { Inferno, Viridis, Grey };
+
+[[nodiscard]] std::string_view toString(ColourMapName name) noexcept;
+[[nodiscard]] std::optional<ColourMapName> parseColourMap(std::string_view name) noexcept;
+[[nodiscard]] std::vector<ColourMapName> allColourMaps();
+
+/// A 256-entry table; at(t) picks the entry nearest t ∈ [0, 1] (clamped; NaN gives entry 0).
+class ColourMap {
+ public:
+  explicit ColourMap(ColourMapName name);
+  [[nodiscard]] Rgb at(double t) const noexcept;
+  [[nodiscard]] const std::array<Rgb, 256>& table() const noexcept { return table_; }
+  [[nodiscard]] ColourMapName name() const noexcept { return name_; }
+
+ private:
+  ColourMapName name_;
+  std::array<Rgb, 256> table_;
+};
+
+/// The colour of orbit label `label` (≥ 1) in Orbits mode.
+[[nodiscard]] Rgb orbitColour(std::uint32_t label) noexcept;
+
+/// A raster as RGB, row 0 at the top, and the range of the scale for a colour bar.
+struct RasterImage {
+  int width = 0;
+  int height = 0;
+  std::vector<std::uint8_t> rgb;  ///< 3 bytes per pixel, row-major
+  double scaleMin = 0;            ///< the colour bar's range, in `quantity` (log10 units; 0 … 0 in Orbits mode)
+  double scaleMax = 0;
+  std::string quantity;           ///< e.g. "log10(visits)", "log10(mean segment length / steps)"
+};
+
+/// The lowest t given to a non-empty pixel.
+inline constexpr double kLowest = 0.12;
+
+/// Colours a raster as described above.
+[[nodiscard]] RasterImage colourize(const PortraitRaster& raster, ColourMapName map);
+
+}  // namespace archipelago

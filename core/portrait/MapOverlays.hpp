@@ -1,0 +1,28 @@
+#pragma once
+/// \file MapOverlays.hpp
+/// \brief What a portrait view draws over the raster: the fixed points of Q* and single orbits.
+
+#include <cstdint>
+#include <vector>
+
+#include "map/FixedPointMap.hpp"
+
+namespace archipelago {
+
+/// A fixed point of Q (eq. qu): y = 0, x² = K.
+struct FixedPoint {
+  PhysicalPoint position;
+  bool elliptic = false;  ///< x = −√K (the centre of the central island, stable for 0 < K < 1); else hyperbolic
+};
+
+/// The fixed points of Q* inside the box [xmin, xmax): (±√K + nL, 0) for every integer n (g is periodic in
+/// x with period L, eq. gstar).  None when K < 0.  Elliptic means |trace| < 2 of the Jacobian
+/// [[1 + 4x, 1], [4x, 1]], i.e. −1 < x < 0.
+[[nodiscard]] std::vector<FixedPoint> fixedPoints(const MapParameters& map);
+
+/// The orbit of the exact map N from the grid point nearest (x, y): the start and `steps` images, in
+/// physical coordinates.  `steps` ≤ 10^8.
+[[nodiscard]] std::vector<PhysicalPoint> traceOrbit(const MapParameters& map, long double x, long double y,
+                                                    std::uint64_t steps);
+
+}  // namespace archipelago

@@ -1,0 +1,448 @@
+#include "portrait/PortraitRenderer.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <mutex>
+#include <sstream>
+#include <stdexcept>
+
+#include "random/CounterRng.hpp"
+#include "trapping/TrappingParameters.hpp"
+
+// Glossary: an "orbit" is one trajectory of N (Density, Orbits) or of trapping blocks of N⁻¹ (Stickiness);
+// a "group" is up to kLanes orbits advanced in lockstep by one thread; a "chunk" is at most chunkSteps points
+// of every orbit of a group; a "round" advances every group by one chunk; a "pass" ends at a refinement level.
+
+namespace archipelago {
+
+std::string_view toString(PortraitMode mode) noexcept {
+  switch (mode) {
+    case PortraitMode::Density: return "density";
+    case PortraitMode::Orbits: return "orbits";
+    case PortraitMode::Stickiness: return "stickiness";
+  }
+  return "unknown";
+}
+
+std::optional<PortraitMode> parsePortraitMode(std::string_view name) noexcept {
+  for (PortraitMode m : {PortraitMode::Density, PortraitMode::Orbits, PortraitMode::Stickiness})
+    if (name == toString(m)) return m;
+  return std::nullopt;
+}
+
+std::vector<double> PortraitRaster::meanSegmentLengths() const {
+  std::vector<double> mean(pixelCount(), 0.0);
+  for (std::size_t i = 0; i < mean.size(); ++i) mean[i] = meanSegmentLength(i);
+  return mean;
+}
+
+std::size_t PortraitRaster::nonEmptyPixels() const noexcept {
+  return static_cast<std::size_t>(std::count_if(counts.begin(), counts.end(), [](std::uint64_t c) { return c > 0; }));
+}
+
+std::uint64_t PortraitRequest::orbitCount() const noexcept {
+  return mode == PortraitMode::Orbits ? std::uint64_t{seedColumns} * seedRows : std::uint64_t{orbits};
+}
+
+std::uint64_t PortraitRequest::stepsPerOrbit() const noexcept {
+  const std::uint64_t n = orbitCount();
+  if (n == 0) return 0;
+  std::uint64_t steps = (points + n - 1) / n;
+  if (mode == PortraitMode::Stickiness && q > 0) steps = (steps + q - 1) / q * q;
+  return steps;
+}
+
+std::optional<std::string> validationError(const PortraitRequest& r) {
+  if (auto e = validationError(r.map)) return e;
+  try {
+    (void)computeCoefficients(r.map);
+  } catch (const std::invalid_argument& e) {
+    return std::string(e.what());
+  }
+  std::ostringstream s;
+  if (r.width < 1 || r.width > 16384 || r.height < 1 || r.height > 16384) {
+    s << "raster size " << r.width << "x" << r.height << " must be 1 ... 16384 pixels each way";
+    return s.str();
+  }
+  if (r.points < 1) return "points = 0 must be >= 1";
+  if (r.points > (std::uint64_t{1} << 50)) return "points must be < 2^50";
+  if (r.mode != PortraitMode::Orbits && (r.orbits < 1 || r.orbits > 65536)) {
+    s << "orbits = " << r.orbits << " must be 1 ... 65536";
+    return s.str();
+  }
+  if (r.mode == PortraitMode::Orbits &&
+      (r.seedColumns < 1 || r.seedColumns > 4096 || r.seedRows < 1 || r.seedRows > 4096)) {
+    s << "seed grid " << r.seedColumns << "x" << r.seedRows << " must be 1 ... 4096 each way";
+    return s.str();
+  }
+  if (r.mode == PortraitMode::Stickiness) {
+    if (!(std::isfinite(r.Xr) && r.Xr >= 0 && r.Xr < 1)) {
+      s << "Xr = " << r.Xr << " must lie in [0, 1) (width of the randomizing zone in unit X)";
+      return s.str();
+    }
+    if (r.q < 1 || r.q > 4096) {
+      s << "q = " << r.q << " must be 1 ... 4096";
+      return s.str();
+    }
+  }
+  if (r.passes < 1 || r.passes > 30) {
+    s << "passes = " << r.passes << " must be 1 ... 30";
+    return s.str();
+  }
+  if (r.chunkSteps < 1 || r.chunkSteps > (1u << 20)) {
+    s << "chunkSteps = " << r.chunkSteps << " must be 1 ... 2^20";
+    return s.str();
+  }
+  return std::nullopt;
+}
+
+PixelMapping::PixelMapping(const Viewport& view, int width, int height) noexcept
+    : cx_(view.centre().X),
+      cy_(view.centre().Y),
+      sx_(static_cast<double>(width / view.widthUnits())),
+      sy_(static_cast<double>(height / view.heightUnits())),
+      hw_(width / 2.0),
+      hh_(height / 2.0),
+      w_(width),
+      h_(height),
+      iw_(width),
+      ih_(height) {}
+
+UnitState orbitSeed(const Viewport& view, std::uint32_t columns, std::uint32_t rows, std::uint32_t i,
+                    std::uint32_t j) noexcept {
+  const long double dx = ((i + 0.5L) / columns - 0.5L) * view.widthUnits();
+  const long double dy = ((j + 0.5L) / rows - 0.5L) * view.heightUnits();
+  const auto ox = static_cast<std::int64_t>(std::llround(dx)), oy = static_cast<std::int64_t>(std::llround(dy));
+  return {(view.centre().X + static_cast<std::uint64_t>(ox)) & FixedPointMap::kMask,
+          (view.centre().Y + static_cast<std::uint64_t>(oy)) & FixedPointMap::kMask};
+}
+
+namespace {
+
+constexpr std::size_t kLanes = 8;  // orbits in lockstep: overlaps the latency of the 128-bit products
+constexpr std::uint32_t kNoLabel = std::numeric_limits<std::uint32_t>::max();
+// Per-thread counts are 32-bit; they are flushed into the 64-bit raster before they could overflow.
+constexpr std::uint64_t kFlushThreshold = std::uint64_t{1} << 31;
+constexpr std::size_t kOpenSegmentBuffer = std::size_t{1} << 16;
+
+/// A thread's private accumulators.
+struct ThreadRaster {
+  std::vector<std::uint32_t> counts;
+  std::vector<std::uint32_t> labels;      // Orbits: smallest seed index, kNoLabel when none
+  std::vector<std::uint64_t> lengthSums;  // Stickiness
+  std::uint64_t binned = 0;               // since the last flush
+  std::uint64_t binnedTotal = 0;
+};
+
+/// The points of a trapped segment still open: pixel indices, aggregated into (pixel, count) pairs when the
+/// buffer fills so that memory stays bounded by the number of distinct pixels however long the segment.
+struct OpenSegment {
+  std::vector<std::uint32_t> pixels;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> aggregated;
+
+  void add(std::uint32_t pixel) {
+    pixels.push_back(pixel);
+    if (pixels.size() >= kOpenSegmentBuffer) aggregate();
+  }
+  void aggregate() {
+    std::sort(pixels.begin(), pixels.end());
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> runs;
+    for (std::size_t i = 0; i < pixels.size();) {
+      std::size_t j = i;
+      while (j < pixels.size() && pixels[j] == pixels[i]) ++j;
+      runs.emplace_back(pixels[i], static_cast<std::uint32_t>(j - i));
+      i = j;
+    }
+    pixels.clear();
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> merged;
+    merged.reserve(runs.size() + aggregated.size());
+    std::size_t a = 0, b = 0;
+    while (a < aggregated.size() || b < runs.size()) {
+      if (b == runs.size() || (a < aggregated.size() && aggregated[a].first < runs[b].first)) {
+        merged.push_back(aggregated[a++]);
+      } else if (a == aggregated.size() || runs[b].first < aggregated[a].first) {
+        merged.push_back(runs[b++]);
+      } else {
+        merged.emplace_back(runs[b].first, runs[b].second + aggregated[a].second);
+        ++a, ++b;
+      }
+    }
+    aggregated.swap(merged);
+  }
+  /// Adds the ended segment of length `steps` to the thread's raster (when `record`) and empties it.
+  /// (A single segment of more than 2^31 points inside the view could overflow a 32-bit thread count; at
+  /// K = 0.1 the longest segments are ~10^9 steps (§5), so this needs budgets far beyond interactive use.)
+  void close(bool record, std::uint64_t steps, ThreadRaster& out) {
+    if (record) {
+      for (std::uint32_t p : pixels) {
+        out.counts[p] += 1;
+        out.lengthSums[p] += steps;
+      }
+      for (auto [p, n] : aggregated) {
+        out.counts[p] += n;
+        out.lengthSums[p] += steps * n;
+      }
+      out.binned += pixels.size();
+      for (auto [p, n] : aggregated) out.binned += n;
+    }
+    pixels.clear();
+    aggregated.clear();
+  }
+};
+
+/// State of one trapping orbit (Stickiness mode) between chunks.
+struct TrappingOrbit {
+  std::uint64_t draws = 0;
+  std::uint64_t blocks = 0;        // in the open segment
+  bool firstSegment = true;        // the segment starting on X = 0 is not recorded (BlockKernel.hpp)
+  OpenSegment open;
+};
+
+class Renderer {
+ public:
+  Renderer(const PortraitRequest& r, const PortraitObserver& observer, std::stop_token stop)
+      : r_(r),
+        observer_(observer),
+        stop_(std::move(stop)),
+        coef_(computeCoefficients(r.map)),
+        mapping_(r.view, r.width, r.height),
+        orbitCount_(r.orbitCount()),
+        steps_(r.stepsPerOrbit()),
+        randomizingX_(randomizingThreshold(r.Xr)) {}
+
+  PortraitResult run() {
+    PortraitResult result;
+    PortraitRaster& raster = result.raster;
+    raster.width = r_.width;
+    raster.height = r_.height;
+    raster.mode = r_.mode;
+    const std::size_t pixels = raster.pixelCount();
+    raster.counts.assign(pixels, 0);
+    if (r_.mode == PortraitMode::Orbits) raster.labels.assign(pixels, 0);
+    if (r_.mode == PortraitMode::Stickiness) raster.lengthSums.assign(pixels, 0);
+
+    initOrbits();
+    if (r_.mode == PortraitMode::Orbits) wrapped_.assign(orbitCount_, 0);
+    threads_.resize(static_cast<std::size_t>(std::max(1, omp_get_max_threads())));
+    for (ThreadRaster& t : threads_) {
+      t.counts.assign(pixels, 0);
+      if (r_.mode == PortraitMode::Orbits) t.labels.assign(pixels, kNoLabel);
+      if (r_.mode == PortraitMode::Stickiness) t.lengthSums.assign(pixels, 0);
+    }
+
+    std::uint64_t done = 0;  // steps per orbit done by every orbit
+    for (std::uint32_t pass = 0; pass < r_.passes; ++pass) {
+      std::uint64_t passEnd = steps_ >> (r_.passes - 1 - pass);
+      if (r_.mode == PortraitMode::Stickiness) passEnd = passEnd / r_.q * r_.q;  // whole blocks
+      if (pass + 1 == r_.passes) passEnd = steps_;
+      while (done < passEnd) {
+        const std::uint64_t chunk = std::min<std::uint64_t>(passEnd - done, chunkSteps());
+        runRound(done, chunk);
+        if (stop_.stop_requested()) break;
+        done += chunk;
+        flushIfNeeded(raster, false);
+        notify(pass, nullptr, false);
+      }
+      if (stop_.stop_requested()) {
+        result.cancelled = true;
+        break;
+      }
+      flushIfNeeded(raster, true);
+      result.passesDone = pass + 1;
+      notify(pass, &raster, pass + 1 == r_.passes);
+    }
+    flushIfNeeded(raster, true);
+    raster.pointsIterated = pointsDone_.load();
+    return result;
+  }
+
+ private:
+  std::uint64_t chunkSteps() const noexcept {
+    std::uint64_t c = r_.chunkSteps;
+    if (r_.mode == PortraitMode::Stickiness) c = std::max<std::uint64_t>(c / r_.q, 1) * r_.q;
+    return c;
+  }
+
+  void initOrbits() {
+    states_.resize(orbitCount_);
+    for (std::uint64_t i = 0; i < orbitCount_; ++i) {
+      switch (r_.mode) {
+        case PortraitMode::Density: {
+          // A random point of the strip 0.98 ≤ X/2^52 < 1: beyond the hyperbolic fixed point, in the sea.
+          const std::uint64_t key = orbitKey(r_.seed, i);
+          const std::uint64_t strip = FixedPointMap::kOne / 50;
+          states_[i] = {FixedPointMap::kOne - 1 - orbitDraw(key, 1) % strip, orbitDraw(key, 2)};
+          break;
+        }
+        case PortraitMode::Orbits:
+          states_[i] = orbitSeed(r_.view, r_.seedColumns, r_.seedRows, static_cast<std::uint32_t>(i % r_.seedColumns),
+                                 static_cast<std::uint32_t>(i / r_.seedColumns));
+          break;
+        case PortraitMode::Stickiness:
+          states_[i] = {0, 0};
+          break;
+      }
+    }
+    if (r_.mode == PortraitMode::Stickiness) trapping_.assign(orbitCount_, TrappingOrbit{});
+  }
+
+  void runRound(std::uint64_t done, std::uint64_t chunk) {
+    const auto groups = static_cast<std::int64_t>((orbitCount_ + kLanes - 1) / kLanes);
+    std::exception_ptr error;
+    std::mutex errorMutex;
+#pragma omp parallel for schedule(dynamic, 1)
+    for (std::int64_t g = 0; g < groups; ++g) {
+      if (stop_.stop_requested()) continue;  // checked before every chunk
+      try {
+        ThreadRaster& out = threads_[static_cast<std::size_t>(omp_get_thread_num())];
+        const std::uint64_t first = static_cast<std::uint64_t>(g) * kLanes;
+        const std::uint64_t n = std::min<std::uint64_t>(kLanes, orbitCount_ - first);
+        switch (r_.mode) {
+          case PortraitMode::Density: advanceMapOrbits<false>(first, n, chunk, out); break;
+          case PortraitMode::Orbits: advanceMapOrbits<true>(first, n, chunk, out); break;
+          case PortraitMode::Stickiness: advanceTrappingOrbits(first, n, done, chunk, out); break;
+        }
+        pointsDone_.fetch_add(n * chunk, std::memory_order_relaxed);
+      } catch (...) {
+        std::lock_guard lock(errorMutex);
+        if (!error) error = std::current_exception();
+      }
+    }
+    if (error) std::rethrow_exception(error);
+  }
+
+  template <bool kLabels>
+  void advanceMapOrbits(std::uint64_t first, std::uint64_t n, std::uint64_t chunk, ThreadRaster& out) {
+    if (n == kLanes) {
+      UnitState z[kLanes];
+      for (std::size_t l = 0; l < kLanes; ++l) z[l] = states_[first + l];
+      bool wrapped[kLanes] = {};
+      for (std::uint64_t s = 0; s < chunk; ++s) {
+        for (std::size_t l = 0; l < kLanes; ++l) wrapped[l] |= forwardStep(coef_, z[l]);
+        for (std::size_t l = 0; l < kLanes; ++l) bin<kLabels>(z[l], first + l, out);
+      }
+      for (std::size_t l = 0; l < kLanes; ++l) states_[first + l] = z[l];
+      if constexpr (kLabels)
+        for (std::size_t l = 0; l < kLanes; ++l) wrapped_[first + l] |= wrapped[l] ? 1 : 0;
+    } else {
+      for (std::uint64_t o = first; o < first + n; ++o) {
+        UnitState z = states_[o];
+        bool wrapped = false;
+        for (std::uint64_t s = 0; s < chunk; ++s) {
+          wrapped |= forwardStep(coef_, z);
+          bin<kLabels>(z, o, out);
+        }
+        states_[o] = z;
+        if constexpr (kLabels) wrapped_[o] |= wrapped ? 1 : 0;
+      }
+    }
+  }
+
+  template <bool kLabels>
+  void bin(const UnitState& z, std::uint64_t orbit, ThreadRaster& out) const noexcept {
+    const std::int64_t p = mapping_.pixelOf(z);
+    if (p < 0) return;
+    const auto i = static_cast<std::size_t>(p);
+    out.counts[i] += 1;
+    out.binned += 1;
+    if constexpr (kLabels) out.labels[i] = std::min(out.labels[i], static_cast<std::uint32_t>(orbit));
+  }
+
+  // Trapping blocks (appendix B, steps 5–9; BlockKernel.hpp's advanceOneBlock), one orbit at a time:
+  // Stickiness is not the throughput mode, and the per-orbit bookkeeping dominates anyway.
+  void advanceTrappingOrbits(std::uint64_t first, std::uint64_t n, std::uint64_t /*done*/, std::uint64_t chunk,
+                             ThreadRaster& out) {
+    const std::uint64_t blocks = chunk / r_.q;
+    for (std::uint64_t o = first; o < first + n; ++o) {
+      UnitState z = states_[o];
+      TrappingOrbit& t = trapping_[o];
+      const std::uint64_t key = orbitKey(r_.seed, o);
+      for (std::uint64_t b = 0; b < blocks; ++b) {
+        t.blocks += 1;
+        bool ended = false;
+        if (z.X <= randomizingX_) {
+          t.draws += 1;
+          z.Y = (z.Y + orbitDraw(key, t.draws)) & FixedPointMap::kMask;
+          ended = true;
+        }
+        for (std::uint32_t j = 0; j < r_.q; ++j) {
+          ended |= backwardStep(coef_, z);
+          const std::int64_t p = mapping_.pixelOf(z);
+          if (p >= 0) t.open.add(static_cast<std::uint32_t>(p));
+        }
+        if (ended) {
+          t.open.close(!t.firstSegment, t.blocks * r_.q, out);
+          t.firstSegment = false;
+          t.blocks = 0;
+        }
+      }
+      states_[o] = z;
+    }
+  }
+
+  /// Adds the threads' rasters into `raster` when forced or when a 32-bit count could overflow next round.
+  void flushIfNeeded(PortraitRaster& raster, bool force) {
+    bool needed = force;
+    for (const ThreadRaster& t : threads_) needed = needed || t.binned >= kFlushThreshold;
+    if (!needed) return;
+    const std::size_t pixels = raster.pixelCount();
+    for (ThreadRaster& t : threads_) {
+      for (std::size_t i = 0; i < pixels; ++i) raster.counts[i] += t.counts[i];
+      std::fill(t.counts.begin(), t.counts.end(), 0);
+      if (!t.labels.empty()) {
+        for (std::size_t i = 0; i < pixels; ++i)
+          if (t.labels[i] != kNoLabel && (raster.labels[i] == 0 || t.labels[i] + 1 < raster.labels[i]))
+            raster.labels[i] = t.labels[i] + 1;
+        // labels are a minimum: keeping them is harmless and saves a pass
+      }
+      if (!t.lengthSums.empty()) {
+        for (std::size_t i = 0; i < pixels; ++i) raster.lengthSums[i] += t.lengthSums[i];
+        std::fill(t.lengthSums.begin(), t.lengthSums.end(), 0);
+      }
+      raster.pointsBinned += t.binned;
+      t.binned = 0;
+    }
+    raster.orbitWrapped = wrapped_;
+    raster.pointsIterated = pointsDone_.load();
+  }
+
+  void notify(std::uint32_t pass, const PortraitRaster* snapshot, bool final) {
+    if (!observer_) return;
+    PortraitProgress p;
+    p.pointsDone = pointsDone_.load();
+    p.pointsTotal = orbitCount_ * steps_;
+    p.pass = pass;
+    p.passes = r_.passes;
+    p.snapshot = snapshot;
+    p.final = final;
+    observer_(p);
+  }
+
+  const PortraitRequest& r_;
+  const PortraitObserver& observer_;
+  std::stop_token stop_;
+  MapCoefficients coef_;
+  PixelMapping mapping_;
+  std::uint64_t orbitCount_;
+  std::uint64_t steps_;
+  std::uint64_t randomizingX_;
+  std::vector<UnitState> states_;
+  std::vector<TrappingOrbit> trapping_;
+  std::vector<std::uint8_t> wrapped_;  // Orbits mode, per seed (each written by the one thread owning its group)
+  std::vector<ThreadRaster> threads_;
+  std::atomic<std::uint64_t> pointsDone_{0};
+};
+
+}  // namespace
+
+PortraitResult renderPortrait(const PortraitRequest& request, const PortraitObserver& observer, std::stop_token stop) {
+  if (auto e = validationError(request)) throw std::invalid_argument(*e);
+  return Renderer(request, observer, std::move(stop)).run();
+}
+
+}  // namespace archipelago

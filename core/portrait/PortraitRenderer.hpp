@@ -1,0 +1,124 @@
+#pragma once
+/// \file PortraitRenderer.hpp
+/// \brief Renders a phase portrait of Q* (Karney 1983, fig. 2 and its enlargements) into a PortraitRaster.
+///
+/// One entry point, renderPortrait(request, observer, stop): an immutable request in, a raster out, a
+/// progress observer and a stop token (the Fraktaler/XaoS shape: GUI and CLI both call it).
+///
+/// The orbits are those of the exact map N (FixedPointMap.hpp), so every pixel is reproducible bit for bit:
+///   - Density (a): `orbits` orbits of N start in the chaotic sea — on random points of the strip
+///     0.98 ≤ X/2^52 < 1 next to xmax, outside the islands of Q — and each of their points inside the view
+///     is counted.  The sea is connected on the torus, so the counts approach the invariant density of the
+///     sea and the islands stay empty.  At deep zoom the sea rarely enters a view of width w (the chance per
+///     step is about the view's area w² over the sea's area b₂L²), so density views below ~10⁻⁴ are nearly
+///     empty: use Orbits there.
+///   - Orbits (b): a seedColumns × seedRows grid of seeds at the centres of the cells of the view, each
+///     iterated by N; a pixel's label is 1 + the smallest seed index reaching it, so every orbit (a KAM curve
+///     or island chain) gets its own colour.  Seeding inside the view is what makes content appear at depth:
+///     orbits near an elliptic periodic point stay near it.
+///   - Stickiness (c): `orbits` trapping orbits exactly as trapping runs (§3, appendix B, BlockKernel.hpp):
+///     from (0, 0), blocks of q steps of N⁻¹ with the randomizing zone X ≤ ⌊Xr·2^52⌋; a segment ends on a
+///     wrap or in the zone.  When a segment ends, each of its points inside the view adds its length (in
+///     steps, q·blocks) to its pixel; a pixel's value is the mean over its visits (log scale when drawn).
+///     The first segment of each orbit (it starts at X = 0) and the open segment at the end are dropped,
+///     as in the trapping statistics.
+///
+/// Progressive refinement: the work is split into `passes` passes ending at 2^−(passes−1), 2^−(passes−2),
+/// …, 1 of the points per orbit; each pass continues the same orbits, so nothing is recomputed, and the
+/// observer receives a snapshot of the raster after each pass.  Within a pass the work goes in rounds in
+/// which every orbit advances by at most `chunkSteps` points; the stop token is checked before every chunk
+/// of every orbit, so after a stop request each thread finishes at most the chunk it is in.
+///
+/// Parallel over orbits with OpenMP, each thread into its own raster, merged with integer sums (and the
+/// minimum for labels): the raster does not depend on the number of threads.  No exception leaves a
+/// parallel region: one raised inside (e.g. std::bad_alloc) is rethrown after it.
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <stop_token>
+#include <string>
+#include <vector>
+
+#include "map/FixedPointMap.hpp"
+#include "portrait/PortraitRaster.hpp"
+#include "portrait/Viewport.hpp"
+
+namespace archipelago {
+
+/// Everything that defines a portrait, as plain values.
+struct PortraitRequest {
+  MapParameters map;                    ///< K, xmin, xmax (default: the paper's K = 0.1 box, §5)
+  Viewport view;                        ///< default: the whole box
+  int width = 512;                      ///< pixels, 1 … 16384
+  int height = 512;                     ///< pixels, 1 … 16384
+  PortraitMode mode = PortraitMode::Density;
+  std::uint64_t points = 20'000'000;    ///< map steps in all; each orbit does ⌈points / orbits⌉ of them
+  std::uint32_t orbits = 256;           ///< Density and Stickiness: number of orbits, 1 … 65536
+  std::uint32_t seedColumns = 24;       ///< Orbits: seed grid, 1 … 4096 each way
+  std::uint32_t seedRows = 24;
+  double Xr = 0.02;                     ///< Stickiness: randomizing zone in unit X, [0, 1) (appendix B)
+  std::uint32_t q = 16;                 ///< Stickiness: steps of N⁻¹ per block, 1 … 4096
+  std::uint64_t seed = 1;               ///< random numbers (CounterRng.hpp): start points and randomization
+  std::uint32_t passes = 6;             ///< progressive refinement, 1 … 30
+  std::uint32_t chunkSteps = 8192;      ///< points per orbit per chunk, 1 … 2^20: the cancellation latency
+
+  /// Number of orbits in the chosen mode (seedColumns·seedRows in Orbits mode).
+  [[nodiscard]] std::uint64_t orbitCount() const noexcept;
+  /// Steps per orbit: ⌈points / orbitCount⌉, rounded up to a multiple of q in Stickiness mode.
+  [[nodiscard]] std::uint64_t stepsPerOrbit() const noexcept;
+};
+
+/// The first violated rule, naming the field, or nothing when the request is valid.
+[[nodiscard]] std::optional<std::string> validationError(const PortraitRequest& r);
+
+/// Progress, reported on the calling thread after every round (never inside a parallel region).
+struct PortraitProgress {
+  std::uint64_t pointsDone = 0;       ///< steps done so far, all orbits
+  std::uint64_t pointsTotal = 0;      ///< orbitCount · stepsPerOrbit
+  std::uint32_t pass = 0;             ///< the pass in progress (0-based), or the one just finished
+  std::uint32_t passes = 0;
+  const PortraitRaster* snapshot = nullptr;  ///< non-null after a pass ended: the raster so far
+  bool final = false;                 ///< the last snapshot
+};
+
+using PortraitObserver = std::function<void(const PortraitProgress&)>;
+
+struct PortraitResult {
+  PortraitRaster raster;
+  bool cancelled = false;          ///< stopped before the last pass ended
+  std::uint32_t passesDone = 0;
+};
+
+/// Renders the portrait; throws std::invalid_argument when validationError(request) is set.  On a stop
+/// request, returns at once (within one chunk per thread) the raster accumulated so far, with cancelled set.
+[[nodiscard]] PortraitResult renderPortrait(const PortraitRequest& request, const PortraitObserver& observer = {},
+                                            std::stop_token stop = {});
+
+/// Where the points of a view fall: the pixel (col, row) of a unit state, exactly as renderPortrait bins.
+class PixelMapping {
+ public:
+  PixelMapping(const Viewport& view, int width, int height) noexcept;
+  /// The pixel index row·width + col of z, or −1 when z lies outside the view.
+  [[nodiscard]] std::int64_t pixelOf(const UnitState& z) const noexcept {
+    // Offsets from the exact centre are exact integers below 2^53, hence exact in double.
+    const double fx = static_cast<double>(static_cast<std::int64_t>(z.X - cx_)) * sx_ + hw_;
+    const double fy = hh_ - static_cast<double>(static_cast<std::int64_t>(z.Y - cy_)) * sy_;
+    if (!(fx >= 0 && fx < w_ && fy >= 0 && fy < h_)) return -1;
+    auto col = static_cast<std::int64_t>(fx), row = static_cast<std::int64_t>(fy);
+    col = col < iw_ ? col : iw_ - 1;  // guard against fx rounding up to exactly w_ in the product
+    row = row < ih_ ? row : ih_ - 1;
+    return row * iw_ + col;
+  }
+
+ private:
+  std::uint64_t cx_, cy_;
+  double sx_, sy_, hw_, hh_, w_, h_;
+  std::int64_t iw_, ih_;
+};
+
+/// The unit state of the centre of seed cell (i, j) (i across, j up from the bottom) in Orbits mode.
+[[nodiscard]] UnitState orbitSeed(const Viewport& view, std::uint32_t columns, std::uint32_t rows, std::uint32_t i,
+                                  std::uint32_t j) noexcept;
+
+}  // namespace archipelago

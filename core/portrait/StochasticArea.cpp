@@ -1,0 +1,131 @@
+#include "portrait/StochasticArea.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <exception>
+#include <mutex>
+#include <sstream>
+#include <stdexcept>
+
+#include "map/FixedPointMap.hpp"
+#include "random/CounterRng.hpp"
+#include "trapping/TrappingParameters.hpp"
+
+namespace archipelago {
+
+std::optional<std::string> validationError(const StochasticAreaRequest& r) {
+  if (auto e = validationError(r.map)) return e;
+  try {
+    (void)computeCoefficients(r.map);
+  } catch (const std::invalid_argument& e) {
+    return std::string(e.what());
+  }
+  std::ostringstream s;
+  s.precision(17);
+  if (!(std::isfinite(r.Xr) && r.Xr >= 0 && r.Xr < 1)) {
+    s << "Xr = " << r.Xr << " must lie in [0, 1) (width of the randomizing zone in unit X)";
+    return s.str();
+  }
+  if (r.q < 1 || r.q > 4096) {
+    s << "q = " << r.q << " must be 1 ... 4096";
+    return s.str();
+  }
+  if (r.orbits < 1 || r.orbits > 65536) {
+    s << "orbits = " << r.orbits << " must be 1 ... 65536";
+    return s.str();
+  }
+  if (r.gridBits < 1 || r.gridBits > 12) {
+    s << "gridBits = " << r.gridBits << " must be 1 ... 12";
+    return s.str();
+  }
+  if (r.iterations < 1 || r.iterations > (std::uint64_t{1} << 50)) return "iterations must be 1 ... 2^50";
+  if (r.firstCheckpoint < 1) return "firstCheckpoint = 0 must be >= 1";
+  return std::nullopt;
+}
+
+StochasticAreaResult computeStochasticArea(const StochasticAreaRequest& r, const StochasticAreaObserver& observer,
+                                           std::stop_token stop) {
+  if (auto e = validationError(r)) throw std::invalid_argument(*e);
+  const MapCoefficients coef = computeCoefficients(r.map);
+  const std::uint64_t zone = randomizingThreshold(r.Xr);
+  const int shift = FixedPointMap::kBits - r.gridBits;
+  const std::uint64_t boxes = std::uint64_t{1} << (2 * r.gridBits);
+  const std::size_t words = static_cast<std::size_t>((boxes + 63) / 64);
+  constexpr std::uint64_t kChunkBlocks = std::uint64_t{1} << 12;  // ≤ 2^16 steps at q = 16
+
+  // Blocks per orbit at each checkpoint: total steps doubling from firstCheckpoint, ending at `iterations`.
+  auto blocksFor = [&](std::uint64_t totalSteps) {
+    const std::uint64_t perOrbit = (totalSteps + r.orbits - 1) / r.orbits;
+    return (perOrbit + r.q - 1) / r.q;
+  };
+  std::vector<std::uint64_t> checkpoints;
+  for (std::uint64_t t = std::min(r.firstCheckpoint, r.iterations); t < r.iterations; t *= 2)
+    if (checkpoints.empty() || blocksFor(t) > checkpoints.back()) checkpoints.push_back(blocksFor(t));
+  if (checkpoints.empty() || blocksFor(r.iterations) > checkpoints.back()) checkpoints.push_back(blocksFor(r.iterations));
+
+  struct Orbit {
+    UnitState z;
+    std::uint64_t key = 0;
+    std::uint64_t draws = 0;
+  };
+  std::vector<Orbit> orbits(r.orbits);
+  for (std::uint32_t i = 0; i < r.orbits; ++i) orbits[i].key = orbitKey(r.seed, i);
+  std::vector<std::vector<std::uint64_t>> threadBits(static_cast<std::size_t>(std::max(1, omp_get_max_threads())),
+                                                     std::vector<std::uint64_t>(words, 0));
+  std::vector<std::uint64_t> visited(words, 0);
+
+  StochasticAreaResult result;
+  result.boxes = boxes;
+  std::uint64_t blocksDone = 0;
+  for (const std::uint64_t target : checkpoints) {
+    while (blocksDone < target && !stop.stop_requested()) {
+      const std::uint64_t blocks = std::min(kChunkBlocks, target - blocksDone);
+      std::exception_ptr error;
+      std::mutex errorMutex;
+#pragma omp parallel for schedule(dynamic, 1)
+      for (std::int64_t i = 0; i < static_cast<std::int64_t>(r.orbits); ++i) {
+        try {
+          std::uint64_t* bits = threadBits[static_cast<std::size_t>(omp_get_thread_num())].data();
+          Orbit& o = orbits[static_cast<std::size_t>(i)];
+          UnitState z = o.z;
+          for (std::uint64_t b = 0; b < blocks; ++b) {
+            if (z.X <= zone) {  // appendix B, 6.1–6.2, as in trapping runs
+              o.draws += 1;
+              z.Y = (z.Y + orbitDraw(o.key, o.draws)) & FixedPointMap::kMask;
+            }
+            for (std::uint32_t j = 0; j < r.q; ++j) {
+              backwardStep(coef, z);
+              const std::uint64_t box = ((z.Y >> shift) << r.gridBits) | (z.X >> shift);
+              bits[box >> 6] |= std::uint64_t{1} << (box & 63);
+            }
+          }
+          o.z = z;
+        } catch (...) {
+          std::lock_guard lock(errorMutex);
+          if (!error) error = std::current_exception();
+        }
+      }
+      if (error) std::rethrow_exception(error);
+      blocksDone += blocks;
+    }
+    if (blocksDone < target) {
+      result.cancelled = true;
+      break;
+    }
+    for (const auto& bits : threadBits)
+      for (std::size_t w = 0; w < words; ++w) visited[w] |= bits[w];
+    std::uint64_t count = 0;
+    for (std::uint64_t w : visited) count += static_cast<std::uint64_t>(std::popcount(w));
+    StochasticAreaPoint p{blocksDone * r.q * r.orbits, count, static_cast<double>(count) / static_cast<double>(boxes)};
+    result.convergence.push_back(p);
+    if (observer) observer(p);
+  }
+  result.visited.resize(static_cast<std::size_t>(boxes));
+  for (std::uint64_t b = 0; b < boxes; ++b) result.visited[b] = static_cast<std::uint8_t>((visited[b >> 6] >> (b & 63)) & 1);
+  return result;
+}
+
+}  // namespace archipelago

@@ -1,0 +1,66 @@
+#pragma once
+/// \file StochasticArea.hpp
+/// \brief The stochastic area b₂ of Q* (Karney 1983, §5) and its convergence with the number of iterations.
+///
+/// §5: "the area b₂ occupied by the stochastic trajectories … was calculated by dividing the phase space into
+/// 1024 × 1024 little boxes, iterating the mapping many times, and counting the number of occupied boxes";
+/// with xmin = −0.8, xmax = 0.5, Xr = 0.02 at K = 0.1 the paper finds b₂ = 0.693 (as a fraction of the box
+/// area L²).  Here the orbits are exactly those of the trapping runs (appendix B, BlockKernel.hpp): orbit i
+/// starts at (0, 0) and iterates blocks of q steps of N⁻¹, its Y randomized (its own counter-based draws)
+/// whenever a block starts in the zone X ≤ ⌊Xr·2^52⌋.  Every point after every step marks its box
+/// (X >> 42, Y >> 42) — exact integer boxing of the unit square.
+///
+/// Convergence: the visited fraction is recorded each time the total number of steps doubles, from
+/// firstCheckpoint up to `iterations`; each checkpoint has every orbit at the same number of steps, so the
+/// curve does not depend on the number of threads.  b₂ can only grow with the iterations (it counts a union),
+/// and it approaches the area of the sea slowly because the orbits must reach "all the nooks and crannies".
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <stop_token>
+#include <string>
+#include <vector>
+
+#include "map/MapParameters.hpp"
+
+namespace archipelago {
+
+struct StochasticAreaRequest {
+  MapParameters map;                       ///< default: the paper's K = 0.1 box
+  double Xr = 0.02;                        ///< randomizing zone in unit X, [0, 1)
+  std::uint32_t q = 16;                    ///< steps of N⁻¹ per block, 1 … 4096
+  std::uint32_t orbits = 64;               ///< orbits in parallel, 1 … 65536
+  std::uint64_t seed = 1;                  ///< CounterRng seed of the randomization
+  std::uint64_t iterations = 1ULL << 28;   ///< total steps, all orbits (rounded up to whole blocks per orbit)
+  std::uint64_t firstCheckpoint = 1ULL << 20;  ///< total steps at the first point of the convergence curve
+  int gridBits = 10;                       ///< boxes per side = 2^gridBits, 1 … 12 (paper: 1024)
+};
+
+[[nodiscard]] std::optional<std::string> validationError(const StochasticAreaRequest& r);
+
+/// One point of the convergence curve.
+struct StochasticAreaPoint {
+  std::uint64_t iterations = 0;     ///< total steps of N⁻¹ so far, all orbits
+  std::uint64_t boxesVisited = 0;
+  double b2 = 0;                    ///< boxesVisited / boxes
+};
+
+struct StochasticAreaResult {
+  std::vector<StochasticAreaPoint> convergence;  ///< at doubling iterations; the last is the final value
+  std::uint64_t boxes = 0;                       ///< 4^gridBits
+  std::vector<std::uint8_t> visited;             ///< row-major (row = Y box, col = X box): 1 visited, 0 not
+  bool cancelled = false;
+  [[nodiscard]] double b2() const noexcept { return convergence.empty() ? 0.0 : convergence.back().b2; }
+};
+
+/// Called on the calling thread at every checkpoint of the convergence curve.
+using StochasticAreaObserver = std::function<void(const StochasticAreaPoint&)>;
+
+/// Computes b₂ and its convergence curve; throws std::invalid_argument on an invalid request.  On a stop
+/// request (checked between chunks of at most 2^16 steps per orbit) returns the curve so far, cancelled set.
+[[nodiscard]] StochasticAreaResult computeStochasticArea(const StochasticAreaRequest& request,
+                                                         const StochasticAreaObserver& observer = {},
+                                                         std::stop_token stop = {});
+
+}  // namespace archipelago

@@ -1,0 +1,321 @@
+// Portrait rendering: pixels of a known orbit, a deep zoom into the chain of six islands, refinement,
+// cancellation and determinism (Karney 1983, §5 and fig. 2).
+#include <gtest/gtest.h>
+
+#include <omp.h>
+
+#include <algorithm>
+#include <atomic>
+#include <thread>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include "portrait/ColourMap.hpp"
+#include "portrait/MapOverlays.hpp"
+#include "portrait/PortraitRenderer.hpp"
+
+namespace archipelago {
+namespace {
+
+const MapParameters kPaper{0.1, -0.8, 0.5};  // §5
+
+// The pixel of a physical point, computed independently of PixelMapping, in long double.
+long double columnOf(const PhysicalRect& r, int width, long double x) { return (x - r.x0) / (r.x1 - r.x0) * width; }
+long double rowOf(const PhysicalRect& r, int height, long double y) { return (r.y1 - y) / (r.y1 - r.y0) * height; }
+
+TEST(PortraitRenderer, KnownOrbitLandsInTheRightPixels) {
+  PortraitRequest req;
+  req.map = kPaper;
+  req.view = Viewport::fromPhysical(kPaper, {-0.7L, 0.2L, -0.45L, 0.35L});
+  req.width = 180;
+  req.height = 160;
+  req.mode = PortraitMode::Orbits;
+  req.seedColumns = req.seedRows = 1;  // one seed, at the centre of the view
+  req.points = 20000;
+  req.passes = 3;
+  req.chunkSteps = 999;
+  const PortraitResult res = renderPortrait(req);
+  ASSERT_FALSE(res.cancelled);
+  EXPECT_EQ(res.raster.pointsIterated, 20000u);
+
+  // The same orbit by hand: N from the seed, binned by its physical coordinates.
+  const FixedPointMap N(kPaper);
+  UnitState z = orbitSeed(req.view, 1, 1, 0, 0);
+  EXPECT_EQ(z, req.view.centre());
+  const PhysicalRect r = req.view.physical(kPaper);
+  std::vector<std::uint64_t> expected(static_cast<std::size_t>(req.width * req.height), 0);
+  std::uint64_t inside = 0;
+  for (int i = 0; i < 20000; ++i) {
+    N.forward(z);
+    const PhysicalPoint p = N.toPhysical(z);
+    const long double c = columnOf(r, req.width, p.x), w = rowOf(r, req.height, p.y);
+    if (c < 0 || c >= req.width || w < 0 || w >= req.height) continue;
+    expected[static_cast<std::size_t>(w) * static_cast<std::size_t>(req.width) + static_cast<std::size_t>(c)] += 1;
+    ++inside;
+  }
+  ASSERT_GT(inside, 1000u);  // the seed lies in the central island: its orbit stays in view
+  EXPECT_EQ(res.raster.pointsBinned, inside);
+  EXPECT_EQ(res.raster.counts, expected);
+  for (std::size_t i = 0; i < expected.size(); ++i) EXPECT_EQ(res.raster.labels[i], expected[i] ? 1u : 0u);
+}
+
+// Newton's method for the period-6 orbit of Q (eq. qu) in long double: returns a point of the elliptic
+// orbit at the centres of the chain of six islands around the central island at K = 0.1.
+PhysicalPoint periodSixIslandCentre() {
+  const long double K = 0.1L;
+  long double x = -0.33959L, y = 0.26244L;  // from a scan of Q^6 along the symmetry line 2y = g(x − y)
+  for (int it = 0; it < 20; ++it) {
+    long double X = x, Y = y, j11 = 1, j12 = 0, j21 = 0, j22 = 1;
+    for (int s = 0; s < 6; ++s) {
+      const long double g1 = 4 * X;  // g'(x)
+      Y += 2 * (X * X - K);
+      X += Y;
+      // Jacobian of one step: [[1 + g', 1], [g', 1]]
+      const long double a11 = 1 + g1, a12 = 1, a21 = g1, a22 = 1;
+      const long double n11 = a11 * j11 + a12 * j21, n12 = a11 * j12 + a12 * j22;
+      const long double n21 = a21 * j11 + a22 * j21, n22 = a21 * j12 + a22 * j22;
+      j11 = n11, j12 = n12, j21 = n21, j22 = n22;
+    }
+    const long double fx = X - x, fy = Y - y, a = j11 - 1, b = j12, c = j21, d = j22 - 1, det = a * d - b * c;
+    x -= (d * fx - b * fy) / det;
+    y -= (-c * fx + a * fy) / det;
+  }
+  return {x, y};
+}
+
+TEST(PortraitRenderer, DeepZoomIntoTheSixIslandChainShowsItsCentre) {
+  const PhysicalPoint centre = periodSixIslandCentre();
+  EXPECT_NEAR(static_cast<double>(centre.x), -0.33958976097517, 1e-12);
+  EXPECT_NEAR(static_cast<double>(centre.y), 0.26244081789623, 1e-12);
+  const long double half = 0.5e-9L;  // a view of width 10^-9
+  PortraitRequest req;
+  req.map = kPaper;
+  req.view = Viewport::fromPhysical(kPaper, {centre.x - half, centre.x + half, centre.y - half, centre.y + half});
+  req.width = req.height = 128;
+  req.mode = PortraitMode::Orbits;
+  req.seedColumns = req.seedRows = 6;
+  req.points = 36 * 12000;
+  const PortraitResult res = renderPortrait(req);
+  const PortraitRaster& ras = res.raster;
+  // Seeds near an elliptic period-6 point stay on small invariant curves around it: 1 point in 6 returns
+  // to the view, except along the arcs of the outer (elongated) curves that leave the square view.
+  EXPECT_GT(ras.pointsBinned, req.points / 6 / 4);
+  EXPECT_LE(ras.pointsBinned, req.points / 6 + 36);
+  EXPECT_GT(ras.nonEmptyPixels(), 2000u);
+  // Correct placement: the content surrounds the centre of the view (the island centre) symmetrically,
+  // and the pixel at the centre (the periodic point itself) stays empty: no invariant curve passes there.
+  double sx = 0, sy = 0, n = 0;
+  int quadrants[2][2] = {{0, 0}, {0, 0}};
+  for (int row = 0; row < ras.height; ++row)
+    for (int col = 0; col < ras.width; ++col) {
+      const auto c = static_cast<double>(ras.counts[ras.index(col, row)]);
+      if (c == 0) continue;
+      sx += c * (col + 0.5), sy += c * (row + 0.5), n += c;
+      quadrants[row < ras.height / 2][col < ras.width / 2] += 1;
+    }
+  EXPECT_NEAR(sx / n, ras.width / 2.0, ras.width * 0.05);
+  EXPECT_NEAR(sy / n, ras.height / 2.0, ras.height * 0.05);
+  for (auto& q : quadrants)
+    for (int count : q) EXPECT_GT(count, 200);
+  EXPECT_EQ(ras.counts[ras.index(ras.width / 2, ras.height / 2)], 0u);
+  // Each seed's orbit keeps its own label; inner curves do not cross outer ones, so many labels survive.
+  std::vector<std::uint32_t> labels(ras.labels.begin(), ras.labels.end());
+  std::sort(labels.begin(), labels.end());
+  EXPECT_GT(std::unique(labels.begin(), labels.end()) - labels.begin(), 10);
+}
+
+TEST(PortraitRenderer, DensityLeavesTheIslandsEmpty) {
+  PortraitRequest req;
+  req.map = kPaper;
+  req.width = req.height = 130;  // pixels of 0.01 in x and y
+  req.points = 4'000'000;
+  const PortraitResult res = renderPortrait(req);
+  const PortraitRaster& ras = res.raster;
+  EXPECT_EQ(res.passesDone, req.passes);
+  EXPECT_EQ(ras.pointsBinned, ras.pointsIterated);  // the whole box is in view
+  // The elliptic fixed point (−√K, 0), the centre of the central island: column (x + 0.8)/0.01, row (0.65 − y)/0.01.
+  const auto col = static_cast<int>((-std::sqrt(0.1) + 0.8) / 0.01), row = 65;
+  for (int dr = -3; dr <= 3; ++dr)
+    for (int dc = -3; dc <= 3; ++dc) EXPECT_EQ(ras.counts[ras.index(col + dc, row + dr)], 0u);
+  const double filled = static_cast<double>(ras.nonEmptyPixels()) / static_cast<double>(ras.pixelCount());
+  EXPECT_GT(filled, 0.7);   // the sea (b2 ≈ 0.81 of the box, see test_stochastic_area.cpp)
+  EXPECT_LT(filled, 0.9);   // … but not the islands
+}
+
+TEST(PortraitRenderer, ResultDoesNotDependOnTheThreadCount) {
+  for (PortraitMode mode : {PortraitMode::Density, PortraitMode::Orbits, PortraitMode::Stickiness}) {
+    PortraitRequest req;
+    req.map = kPaper;
+    req.width = 64;
+    req.height = 48;
+    req.mode = mode;
+    req.points = 300'000;
+    req.orbits = 37;  // not a multiple of the lanes
+    req.seedColumns = 5;
+    req.seedRows = 3;
+    const int saved = omp_get_max_threads();
+    omp_set_num_threads(1);
+    const PortraitRaster one = renderPortrait(req).raster;
+    omp_set_num_threads(3);
+    const PortraitRaster three = renderPortrait(req).raster;
+    omp_set_num_threads(saved);
+    EXPECT_EQ(one.counts, three.counts) << toString(mode);
+    EXPECT_EQ(one.labels, three.labels) << toString(mode);
+    EXPECT_EQ(one.lengthSums, three.lengthSums) << toString(mode);
+    EXPECT_EQ(one.pointsBinned, three.pointsBinned) << toString(mode);
+    EXPECT_GT(one.nonEmptyPixels(), 0u) << toString(mode);
+  }
+}
+
+TEST(PortraitRenderer, RefinementDeliversOneSnapshotPerPass) {
+  PortraitRequest req;
+  req.map = kPaper;
+  req.width = req.height = 64;
+  req.points = 1 << 20;
+  req.orbits = 16;
+  req.passes = 5;
+  req.chunkSteps = 1000;
+  std::vector<std::uint64_t> snapshotPoints;
+  std::vector<std::uint64_t> snapshotBinned;
+  std::uint64_t last = 0;
+  bool monotone = true, sawFinal = false;
+  const PortraitResult res = renderPortrait(req, [&](const PortraitProgress& p) {
+    monotone = monotone && p.pointsDone >= last;
+    last = p.pointsDone;
+    EXPECT_EQ(p.pointsTotal, req.points);
+    if (p.snapshot) {
+      snapshotPoints.push_back(p.snapshot->pointsIterated);
+      snapshotBinned.push_back(p.snapshot->pointsBinned);
+      sawFinal = p.final;
+    }
+  });
+  EXPECT_TRUE(monotone);
+  EXPECT_TRUE(sawFinal);
+  // Passes end at 1/16, 1/8, 1/4, 1/2 and all of the 2^16 steps per orbit: coarse first, then finer.
+  EXPECT_EQ(snapshotPoints, (std::vector<std::uint64_t>{1 << 16, 1 << 17, 1 << 18, 1 << 19, 1 << 20}));
+  EXPECT_EQ(snapshotBinned, snapshotPoints);  // whole box in view
+  EXPECT_EQ(res.raster.pointsIterated, std::uint64_t{1} << 20);
+}
+
+TEST(PortraitRenderer, CancellationStopsWithinOneChunk) {
+  PortraitRequest req;
+  req.map = kPaper;
+  req.width = req.height = 64;
+  req.points = std::uint64_t{1} << 30;  // minutes of work if it were not stopped
+  req.orbits = 32;
+  req.chunkSteps = 4096;
+  std::stop_source source;
+  std::uint64_t atStop = 0;
+  int calls = 0;
+  const PortraitResult res = renderPortrait(
+      req,
+      [&](const PortraitProgress& p) {
+        if (++calls == 3) {  // after three rounds of one chunk per orbit
+          atStop = p.pointsDone;
+          source.request_stop();
+        }
+      },
+      source.get_token());
+  EXPECT_TRUE(res.cancelled);
+  EXPECT_EQ(atStop, 3u * 32u * 4096u);
+  EXPECT_EQ(res.raster.pointsIterated, atStop);  // no chunk started after the request
+  EXPECT_EQ(res.raster.pointsBinned, atStop);    // and what was done is in the raster
+
+  // A request from another thread while the work runs: the round in progress finishes at most the chunk
+  // each orbit is in, and no further round starts.
+  std::stop_source other;
+  std::atomic<std::uint64_t> lastReported{0};
+  std::atomic<int> rounds{0};
+  PortraitResult concurrent;
+  std::thread worker([&] {
+    concurrent = renderPortrait(req, [&](const PortraitProgress& p) {
+      lastReported = p.pointsDone;
+      ++rounds;
+    }, other.get_token());
+  });
+  while (rounds.load() < 2) std::this_thread::yield();
+  other.request_stop();
+  worker.join();
+  EXPECT_TRUE(concurrent.cancelled);
+  EXPECT_LE(concurrent.raster.pointsIterated, lastReported.load() + std::uint64_t{32} * 4096);
+  EXPECT_LT(concurrent.raster.pointsIterated, req.points / 100);
+
+  std::stop_source before;
+  before.request_stop();
+  EXPECT_EQ(renderPortrait(req, {}, before.get_token()).raster.pointsIterated, 0u);  // not a single chunk
+}
+
+TEST(PortraitRenderer, StickinessMeansAreWholeBlocksAndLongestNearTheIslands) {
+  PortraitRequest req;
+  req.map = kPaper;
+  req.width = req.height = 65;  // pixels of 0.02
+  req.mode = PortraitMode::Stickiness;
+  req.points = 6'000'000;
+  req.orbits = 64;
+  const PortraitRaster ras = renderPortrait(req).raster;
+  ASSERT_GT(ras.nonEmptyPixels(), ras.pixelCount() / 2);
+  double nearIslands = 0, farAway = 0;
+  int nNear = 0, nFar = 0;
+  for (int row = 0; row < ras.height; ++row)
+    for (int col = 0; col < ras.width; ++col) {
+      const std::size_t i = ras.index(col, row);
+      if (ras.counts[i] == 0) continue;
+      EXPECT_GE(ras.meanSegmentLength(i), req.q);  // every segment is at least one block of q steps
+      const double x = -0.8 + 0.02 * (col + 0.5), y = 0.65 - 0.02 * (row + 0.5);
+      const double r = std::hypot(x + 0.2, y);  // distance from the middle of the island chain
+      if (r < 0.35) nearIslands += std::log(ras.meanSegmentLength(i)), ++nNear;
+      if (x > 0.35) farAway += std::log(ras.meanSegmentLength(i)), ++nFar;
+    }
+  ASSERT_GT(nNear, 10);
+  ASSERT_GT(nFar, 10);
+  // Segments passing close to the islands are longer (the stickiness, §5) than those near the box edge.
+  EXPECT_GT(nearIslands / nNear, farAway / nFar + std::log(2.0));
+}
+
+TEST(PortraitRenderer, BadRequestsGiveClearErrors) {
+  PortraitRequest req;
+  req.width = 0;
+  EXPECT_NE(validationError(req)->find("raster size 0x512"), std::string::npos);
+  req = {};
+  req.points = 0;
+  EXPECT_NE(validationError(req)->find("points"), std::string::npos);
+  req = {};
+  req.map.xmin = 0.0;
+  EXPECT_NE(validationError(req)->find("xmin"), std::string::npos);
+  req = {};
+  req.chunkSteps = 0;
+  EXPECT_THROW((void)renderPortrait(req), std::invalid_argument);
+  EXPECT_FALSE(validationError(PortraitRequest{}));
+}
+
+TEST(MapOverlays, FixedPointsOfThePaperBox) {
+  const auto points = fixedPoints(kPaper);
+  ASSERT_EQ(points.size(), 2u);
+  EXPECT_DOUBLE_EQ(static_cast<double>(points[0].position.x), -std::sqrt(0.1));
+  EXPECT_TRUE(points[0].elliptic);
+  EXPECT_DOUBLE_EQ(static_cast<double>(points[1].position.x), std::sqrt(0.1));
+  EXPECT_FALSE(points[1].elliptic);
+  const auto orbit = traceOrbit(kPaper, points[0].position.x, 0, 100);
+  ASSERT_EQ(orbit.size(), 101u);
+  EXPECT_NEAR(static_cast<double>(orbit.back().x), -std::sqrt(0.1), 1e-12);  // a fixed point stays put
+}
+
+TEST(ColourMap, EndsAndOrbitColours) {
+  const ColourMap inferno(ColourMapName::Inferno);
+  EXPECT_LE(inferno.at(0).r + inferno.at(0).g + inferno.at(0).b, 10);    // black
+  EXPECT_GE(inferno.at(1).r, 245);                                        // pale yellow
+  EXPECT_GE(inferno.at(1).g, 245);
+  EXPECT_NE(orbitColour(1), orbitColour(2));
+  EXPECT_EQ(parseColourMap("viridis"), ColourMapName::Viridis);
+  EXPECT_FALSE(parseColourMap("jet"));
+  PortraitRaster r;
+  r.width = 2, r.height = 1, r.counts = {0, 5};
+  const RasterImage image = colourize(r, ColourMapName::Grey);
+  ASSERT_EQ(image.rgb.size(), 6u);
+  EXPECT_EQ(image.rgb[0], 255);  // empty: white, as the paper's figures
+  EXPECT_EQ(image.rgb[3], 0);    // the most visited pixel: black
+}
+
+}  // namespace
+}  // namespace archipelago

@@ -1,0 +1,98 @@
+#include "portrait/PortraitWorker.hpp"
+
+#include <QElapsedTimer>
+#include <QMutexLocker>
+
+#include <exception>
+
+namespace archipelago::ui {
+
+PortraitWorker::PortraitWorker(QObject* parent) : QThread(parent) {
+  qRegisterMetaType<archipelago::ui::PortraitFrame>("archipelago::ui::PortraitFrame");
+}
+
+PortraitWorker::~PortraitWorker() {
+  {
+    QMutexLocker lock(&mutex_);
+    quitting_ = true;
+    current_.request_stop();
+    wake_.wakeOne();
+  }
+  wait();
+}
+
+quint64 PortraitWorker::render(const PortraitRequest& request, ColourMapName colours) {
+  QMutexLocker lock(&mutex_);
+  pending_ = request;
+  pendingColours_ = colours;
+  pendingId_ = ++nextId_;
+  current_.request_stop();  // the render in progress ends within one chunk
+  if (!isRunning())
+    start(QThread::LowPriority);
+  else
+    wake_.wakeOne();
+  return pendingId_;
+}
+
+void PortraitWorker::cancel() {
+  QMutexLocker lock(&mutex_);
+  pending_.reset();
+  current_.request_stop();
+}
+
+void PortraitWorker::run() {
+  for (;;) {
+    PortraitRequest request;
+    ColourMapName colours;
+    quint64 id;
+    std::stop_token stop;
+    {
+      QMutexLocker lock(&mutex_);
+      while (!pending_ && !quitting_) wake_.wait(&mutex_);
+      if (quitting_) return;
+      request = *pending_;
+      colours = pendingColours_;
+      id = pendingId_;
+      pending_.reset();
+      current_ = std::stop_source();
+      stop = current_.get_token();
+    }
+    QElapsedTimer clock;
+    clock.start();
+    qint64 lastProgress = -1000;
+    auto makeFrame = [&](const PortraitRaster& raster, std::uint64_t done, std::uint64_t total, bool final) {
+      const RasterImage rgb = colourize(raster, colours);
+      PortraitFrame frame;
+      frame.requestId = id;
+      frame.request = request;
+      frame.raster = std::make_shared<const PortraitRaster>(raster);
+      frame.image = QImage(rgb.rgb.data(), rgb.width, rgb.height, 3 * rgb.width, QImage::Format_RGB888).copy();
+      frame.scaleMin = rgb.scaleMin;
+      frame.scaleMax = rgb.scaleMax;
+      frame.quantity = QString::fromStdString(rgb.quantity);
+      frame.pointsDone = done;
+      frame.pointsTotal = total;
+      frame.final = final;
+      frame.seconds = static_cast<double>(clock.elapsed()) / 1000.0;
+      return frame;
+    };
+    try {
+      const PortraitResult result = renderPortrait(
+          request,
+          [&](const PortraitProgress& p) {
+            if (stop.stop_requested()) return;
+            if (p.snapshot) Q_EMIT frameReady(makeFrame(*p.snapshot, p.pointsDone, p.pointsTotal, p.final));
+            if (clock.elapsed() - lastProgress >= 100) {
+              lastProgress = clock.elapsed();
+              Q_EMIT progress(id, p.pointsDone, p.pointsTotal);
+            }
+          },
+          stop);
+      (void)result;  // a cancelled render emits nothing more: a newer request replaces it
+    } catch (const std::exception& e) {
+      Q_EMIT failed(id, QString::fromUtf8(e.what()));
+    }
+  }
+}
+
+}  // namespace archipelago::ui
