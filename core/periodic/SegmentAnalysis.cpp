@@ -11,29 +11,7 @@
 
 #include "trapping/BlockKernel.hpp"
 
-#if __has_include("portrait/PortraitExport.hpp")
 #include "portrait/PortraitExport.hpp"  // writeNpy
-#else
-namespace archipelago {
-namespace {
-// TEMPORARY until the portrait module (and its .npy writer) is merged.
-void writeNpy(const std::string& path, const std::vector<double>& data, std::size_t rows, std::size_t cols) {
-  std::string header = "{'descr': '<f8', 'fortran_order': False, 'shape': (" + std::to_string(rows) + ", " +
-                       std::to_string(cols) + "), }";
-  while ((10 + header.size() + 1) % 64 != 0) header += ' ';
-  header += '\n';
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw std::runtime_error("cannot write " + path);
-  out.write("\x93NUMPY\x01\x00", 8);
-  const char len[2] = {static_cast<char>(header.size() & 0xff), static_cast<char>(header.size() >> 8)};
-  out.write(len, 2);
-  out << header;
-  out.write(reinterpret_cast<const char*>(data.data()), static_cast<std::streamsize>(data.size() * sizeof(double)));
-  if (!out) throw std::runtime_error("cannot write " + path);
-}
-}  // namespace
-}  // namespace archipelago
-#endif
 
 namespace archipelago {
 

@@ -6,12 +6,15 @@
 #include <QTableWidget>
 #include <QTableView>
 #include <QTemporaryDir>
+#include <qwt_plot.h>
 #include <QtTest>
 
 #include <cmath>
 #include <vector>
 
 #include "periodic/PeriodicOrbitDialog.hpp"
+#include "periodic/PeriodicOrbitFinder.hpp"
+#include "portrait/PortraitView.hpp"
 #include "segments/LongSegmentsPanel.hpp"
 #include "trapping/TrappingRun.hpp"
 
@@ -49,6 +52,7 @@ class TestSegments : public QObject {
   void selectingARowReplaysTheSegmentBitForBit();
   void onlyTheLatestSelectionIsShown();
   void exportsTheReplay();
+  void drawsTheSegmentZoomedOnThePortrait();
   void periodicDialogFindsTheEllipticPeriodSixOrbit();
 };
 
@@ -77,6 +81,7 @@ void TestSegments::tableFillsFromAFinishedRun() {
   QVERIFY(items[0].length >= items[1].length);
   // The top rows get their chains in the background; the others are not touched.
   QTRY_VERIFY_WITH_TIMEOUT(panel.idle(), 20000);
+  QCoreApplication::processEvents();  // the last job's result is posted just before the thread goes idle
   for (int row = 0; row < 3; ++row) {
     const SegmentKey key = SegmentKey::of(items[static_cast<std::size_t>(row)]);
     QCOMPARE(model.chainStatus(key), LongestSegmentsModel::ChainStatus::done);
@@ -187,6 +192,62 @@ void TestSegments::exportsTheReplay() {
   QVERIFY(bytes.contains(QByteArray("'shape': (") + QByteArray::number(static_cast<qulonglong>(trace.states.size())) +
                          ", 3)"));
   QVERIFY(!panel.exportCsv(QStringLiteral("/nonexistent-folder/x.csv"), &error));
+}
+
+void TestSegments::drawsTheSegmentZoomedOnThePortrait() {
+  const TrappingState& state = shortRun();
+  PortraitView view;
+  view.resize(600, 500);
+  view.setPointBudget(20000);  // the portrait beneath is not what is tested
+  MapParameters other;
+  other.K = 0.2;
+  view.setParameters(other);
+  // A segment that starts 0.01 from the centre of one of the six islands around the central one: it never
+  // reaches the randomizing zone, so it lasts until the run's last block.
+  const FixedPointMap map(state.params.map);
+  SegmentRecord inside;
+  inside.orbit = 3;
+  inside.length = 2000;
+  inside.start = {map.toUnit(0.0609L, 0.0974L), state.params.T - inside.length, 0};
+  LongestSegments longest = state.longest;
+  longest.insert(inside);
+  LongSegmentsPanel panel;
+  panel.setAutoIdentifiedRows(0);
+  panel.setPortraitView(&view);
+  panel.updateSegments(state.params, longest);
+  const int row = panel.model()->rowOf(SegmentKey::of(inside));
+  QVERIFY(row >= 0);
+  QSignalSpy replays(&panel, &LongSegmentsPanel::replayReady);
+  panel.selectRow(row);
+  QVERIFY(replays.wait(20000));
+  QCOMPARE(panel.currentReplay()->trace.blocks, inside.length);
+  // The portrait switched to the run's map and zoomed to where the segment spent its time.
+  QVERIFY(view.parameters() == state.params.map);
+  const SegmentRegion& region = panel.currentReplay()->region;
+  const PhysicalRect shown = view.viewport().physical(view.parameters());
+  QVERIFY(shown.x0 <= region.x0 + 1e-12L && shown.x1 >= region.x1 - 1e-12L);
+  QVERIFY(shown.y0 <= region.y0 + 1e-12L && shown.y1 >= region.y1 - 1e-12L);
+  QVERIFY(shown.x1 - shown.x0 < 0.8L * state.params.map.width());
+  int overlays = 0;
+  for (const QwtPlotItem* item : view.plot()->itemList()) overlays += item->rtti() == QwtPlotItem::Rtti_PlotUserItem + 40;
+  QCOMPARE(overlays, 4);  // segment, trail, centre orbit, dialog orbit
+  // Once the chain is known the view can zoom to one island of it, which lies inside the segment's region.
+  QTRY_VERIFY_WITH_TIMEOUT(panel.currentChain() != nullptr, 20000);
+  QVERIFY(panel.currentChain()->chain.has_value());
+  QCOMPARE(panel.currentChain()->chain->period, 6);
+  panel.zoomToIsland();
+  const PhysicalRect island = view.viewport().physical(view.parameters());
+  QVERIFY(island.x1 - island.x0 < 0.5L * (shown.x1 - shown.x0));
+  panel.zoomToSegment();
+  QVERIFY(view.viewport().physical(view.parameters()).x0 == shown.x0);
+  // Stepping and an orbit from the dialog draw without trouble; destroying the view first is safe.
+  panel.setCurrentIndex(panel.currentReplay()->trace.states.size() / 2);
+  PeriodicOrbitSearch search;
+  search.period = 6;
+  search.near = {0.0509L, 0.0974L};
+  panel.showPeriodicOrbit(findPeriodicOrbit(0.1L, search));
+  QImage image = view.grab().toImage();
+  QVERIFY(!image.isNull());
 }
 
 void TestSegments::periodicDialogFindsTheEllipticPeriodSixOrbit() {
