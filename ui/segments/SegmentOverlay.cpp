@@ -1,8 +1,11 @@
 #include "segments/SegmentOverlay.hpp"
 
+#include <QLocale>
 #include <QPainter>
 #include <qwt_plot.h>
 #include <qwt_plot_item.h>
+#include <qwt_plot_textlabel.h>
+#include <qwt_text.h>
 #include <qwt_scale_map.h>
 
 #include <algorithm>
@@ -54,15 +57,23 @@ class PointsItem : public QwtPlotItem {
         break;
       }
       case Style::trail: {
-        QPolygonF line;
-        for (const QPointF& p : points_) line << toCanvas(p);
-        painter->setPen(QPen(QColor(0, 0, 0, 160), 3.2));
-        painter->drawPolyline(line);
-        painter->setPen(QPen(Qt::white, 1.4));
-        painter->drawPolyline(line);
+        // Consecutive steps jump across the island, so the trail is dots (a line would zigzag), growing
+        // towards the step shown, which gets a ring.
+        painter->setPen(Qt::NoPen);
+        const std::size_t n = points_.size();
+        for (std::size_t i = 0; i < n; ++i) {
+          const QPointF q = toCanvas(points_[i]);
+          if (!clip.contains(q)) continue;
+          const double age = static_cast<double>(n - 1 - i) / static_cast<double>(std::max<std::size_t>(n, 2) - 1);
+          painter->setBrush(QColor(255, 255, 255, static_cast<int>(255 - 175 * age)));
+          const double r = 3.2 - 1.6 * age;
+          painter->drawEllipse(q, r, r);
+        }
         painter->setBrush(Qt::NoBrush);
-        painter->setPen(QPen(QColor(255, 64, 64), 2.5));
-        painter->drawEllipse(line.back(), 7, 7);
+        painter->setPen(QPen(QColor(0, 0, 0, 200), 4.5));
+        painter->drawEllipse(toCanvas(points_.back()), 8, 8);
+        painter->setPen(QPen(QColor(255, 70, 70), 2.5));
+        painter->drawEllipse(toCanvas(points_.back()), 8, 8);
         break;
       }
       case Style::discs:
@@ -93,7 +104,7 @@ class PointsItem : public QwtPlotItem {
 
 namespace {
 /// Steps of the trail drawn behind the step shown (kept states).
-constexpr std::size_t kTrailStates = 400;
+constexpr std::size_t kTrailStates = 200;
 
 std::vector<QPointF> toQt(const std::vector<PhysicalPoint>& points, std::size_t begin, std::size_t end) {
   std::vector<QPointF> out;
@@ -110,13 +121,21 @@ SegmentOverlay::SegmentOverlay(PortraitView* view, QObject* parent) : QObject(pa
   centre_ = new PointsItem(PointsItem::Style::discs, 34);
   periodic_ = new PointsItem(PointsItem::Style::diamonds, 35);
   for (PointsItem* item : {segment_, trail_, centre_, periodic_}) item->attach(plot());
+  legend_ = new QwtPlotTextLabel;
+  legend_->setZ(40);
+  legend_->attach(plot());
   // The plot deletes attached items when it goes: detach ours first if it goes before us.
   connect(plot(), &QObject::destroyed, this, [this] {
     for (PointsItem** item : {&segment_, &trail_, &centre_, &periodic_}) *item = nullptr;
+    legend_ = nullptr;
   });
 }
 
 SegmentOverlay::~SegmentOverlay() {
+  if (legend_ != nullptr) {
+    legend_->detach();
+    delete legend_;
+  }
   for (PointsItem* item : {segment_, trail_, centre_, periodic_}) {
     if (item == nullptr) continue;
     item->detach();
@@ -126,7 +145,43 @@ SegmentOverlay::~SegmentOverlay() {
 
 QwtPlot* SegmentOverlay::plot() const { return view_ ? view_->plot() : nullptr; }
 
+void SegmentOverlay::updateLegend() {
+  if (legend_ == nullptr) return;
+  QStringList lines;
+  if (replay_) {
+    const SegmentTrace& t = replay_->trace;
+    lines << tr("<span style='color:#35b779'>●</span><span style='color:#fde725'>●</span> segment of orbit %1, "
+                "%2 steps (colour: time)")
+                 .arg(t.record.orbit)
+                 .arg(QLocale().toString(static_cast<qulonglong>(t.steps)));
+  }
+  if (chain_ && chain_->chain && chain_->chain->centre) {
+    const PeriodicOrbit& o = *chain_->chain->centre;
+    lines << tr("<span style='color:#00e6ff'>⬤</span> centre of its chain: period %1, R = %2 (%3)")
+                 .arg(o.period)
+                 .arg(static_cast<double>(o.residue), 0, 'g', 4)
+                 .arg(o.stable() ? tr("elliptic") : tr("hyperbolic"));
+  }
+  if (periodicPeriod_ > 0)
+    lines << tr("<span style='color:#ff3cdc'>◆</span> periodic orbit of period %1").arg(periodicPeriod_);
+  if (lines.isEmpty()) {
+    legend_->setText(QwtText());
+    return;
+  }
+  QwtText text(lines.join(QStringLiteral("<br>")), QwtText::RichText);
+  text.setRenderFlags(Qt::AlignTop | Qt::AlignLeft);
+  text.setBackgroundBrush(QColor(255, 255, 255, 215));
+  text.setBorderRadius(4);
+  text.setBorderPen(QPen(QColor(0, 0, 0, 120)));
+  QFont font = text.font();
+  font.setPointSizeF(font.pointSizeF() * 1.05);
+  text.setFont(font);
+  legend_->setText(text);
+  legend_->setMargin(10);
+}
+
 void SegmentOverlay::replot() {
+  updateLegend();
   if (QwtPlot* p = plot(); p != nullptr && segment_ != nullptr) p->replot();
 }
 
@@ -168,6 +223,7 @@ void SegmentOverlay::showStep(std::size_t index) {
 void SegmentOverlay::showPeriodicOrbit(const PeriodicOrbit& orbit) {
   if (periodic_ == nullptr) return;
   periodic_->setPoints(toQt(orbit.points, 0, orbit.points.size()));
+  periodicPeriod_ = orbit.period;
   replot();
 }
 
@@ -176,6 +232,7 @@ void SegmentOverlay::clear() {
   chain_.reset();
   for (PointsItem* item : {segment_, trail_, centre_, periodic_})
     if (item != nullptr) item->setPoints({});
+  periodicPeriod_ = 0;
   replot();
 }
 

@@ -19,6 +19,7 @@
 #include "segments/SegmentResults.hpp"
 
 class QwtPlot;
+class QwtPlotTextLabel;
 
 namespace archipelago::ui {
 
@@ -49,6 +50,7 @@ class SegmentOverlay : public QObject {
  private:
   void zoomTo(const SegmentRegion& region);
   void replot();
+  void updateLegend();
   [[nodiscard]] QwtPlot* plot() const;
 
   QPointer<PortraitView> view_;
@@ -58,6 +60,8 @@ class SegmentOverlay : public QObject {
   PointsItem* trail_ = nullptr;
   PointsItem* centre_ = nullptr;
   PointsItem* periodic_ = nullptr;
+  QwtPlotTextLabel* legend_ = nullptr;   // what is drawn, top left of the canvas
+  int periodicPeriod_ = 0;               // of the dialog's orbit shown (0: none)
 };
 
 }  // namespace archipelago::ui
