@@ -9,6 +9,8 @@
 #include <string>
 
 #include "OrbitCommand.hpp"
+#include "RunCommand.hpp"
+#include "StatsCommand.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"archipelago-cli " ARCHIPELAGO_VERSION
@@ -16,6 +18,9 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("archipelago-cli ") + ARCHIPELAGO_VERSION);
   archipelago::cli::addOrbitCommand(app);
+  archipelago::cli::addRunCommand(app);
+  archipelago::cli::addStatsCommand(app);
+  archipelago::cli::addReplayCommand(app);
   if (argc > 1 && argv[1][0] != '-') {  // name an unknown command instead of CLI11's generic message
     std::string names;
     bool known = false;

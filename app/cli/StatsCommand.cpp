@@ -1,0 +1,53 @@
+#include "StatsCommand.hpp"
+
+#include <cstdio>
+#include <memory>
+
+#include "runfile/RunFile.hpp"
+#include "stats/RunStatistics.hpp"
+
+namespace archipelago::cli {
+
+namespace {
+struct StatsOptions {
+  std::string runFile;
+  std::string csvDir;
+};
+
+void statsCommand(const StatsOptions& o) {
+  const TrappingState state = loadRunFile(o.runFile);
+  const TrappingStatistics s = statisticsOf(state);
+  const TrappingParameters& p = state.params;
+  std::printf("run         %s (%s)\n", o.runFile.c_str(), state.finished() ? "finished" : "in progress");
+  std::printf("map         K = %.17g, xmin = %.17g, xmax = %.17g;  A = %lld, B = %lld, C = %lld, m = %d\n", p.map.K,
+              p.map.xmin, p.map.xmax, static_cast<long long>(state.coefficients.A),
+              static_cast<long long>(state.coefficients.B), static_cast<long long>(state.coefficients.C),
+              state.coefficients.m);
+  std::printf("run        Xr = %.17g, q = %u, T = %llu (done %llu), M = %llu, seed = %llu, subsets = %u\n", p.Xr, p.q,
+              static_cast<unsigned long long>(p.T), static_cast<unsigned long long>(state.blocksDone),
+              static_cast<unsigned long long>(p.M), static_cast<unsigned long long>(p.seed), p.subsets);
+  std::printf("segments    %llu\n", static_cast<unsigned long long>(s.segments));
+  std::printf("alpha       %.6g +- %.2g   (mean segment length, steps)\n", s.alpha, s.alphaError);
+  std::printf("D           %.6g +- %.2g   (eq. ddef)\n", s.D, s.DError);
+  std::printf("sum t f_t   %.9f           (should be close to 1)\n", s.sumTf);
+  std::printf("longest:    rank, length (steps), orbit, start block\n");
+  const auto& items = state.longest.items();
+  for (std::size_t i = 0; i < items.size() && i < 10; ++i)
+    std::printf("            %zu, %llu, %llu, %llu\n", i, static_cast<unsigned long long>(items[i].length * p.q),
+                static_cast<unsigned long long>(items[i].orbit), static_cast<unsigned long long>(items[i].start.block));
+  if (!o.csvDir.empty()) {
+    writeStatisticsCsv(o.csvDir, s);
+    std::printf("wrote       %s/{f,p,P,C,local_exponent,S,D_t,summary}.csv\n", o.csvDir.c_str());
+  }
+}
+}  // namespace
+
+void addStatsCommand(CLI::App& app) {
+  auto o = std::make_shared<StatsOptions>();
+  CLI::App* cmd = app.add_subcommand("stats", "statistics of a run file: f_t, P_t, C_tau, D, S_t, D_t with errors");
+  cmd->add_option("run", o->runFile, "run file")->required();
+  cmd->add_option("--csv", o->csvDir, "write every series as CSV into this folder");
+  cmd->callback([o] { statsCommand(*o); });
+}
+
+}  // namespace archipelago::cli

@@ -1,0 +1,7 @@
+#pragma once
+#include <CLI/CLI.hpp>
+
+namespace archipelago::cli {
+/// `archipelago-cli stats RUN.json [--csv DIR]`: the derived statistics of a run file.
+void addStatsCommand(CLI::App& app);
+}  // namespace archipelago::cli

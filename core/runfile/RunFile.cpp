@@ -1,0 +1,271 @@
+#include "runfile/RunFile.hpp"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <stdexcept>
+
+namespace archipelago {
+
+using nlohmann::json;
+
+namespace {
+
+json toJson(const UnitState& z) { return json::array({z.X, z.Y}); }
+json toJson(const SegmentStart& s) { return {{"z", toJson(s.z)}, {"block", s.block}, {"draws", s.draws}}; }
+
+json toJson(const TrappingHistogram& h) {
+  // Sparse: [bin, count, lengthSum] for every non-empty bin.
+  json bins = json::array();
+  for (int i = 1; i < TrappingHistogram::kBins; ++i)
+    if (h.count(i) != 0) bins.push_back(json::array({i, h.count(i), h.lengthSum(i)}));
+  return bins;
+}
+
+// --- reading, with one-line errors naming what is wrong -------------------------------------------------
+
+[[noreturn]] void corrupt(const std::string& what) { throw std::runtime_error("corrupt run file: " + what); }
+
+const json& field(const json& j, const char* key) {
+  if (!j.is_object()) corrupt(std::string("expected an object holding '") + key + "'");
+  const auto it = j.find(key);
+  if (it == j.end()) corrupt(std::string("missing field '") + key + "'");
+  return *it;
+}
+
+std::uint64_t u64(const json& j, const char* key) {
+  const json& v = field(j, key);
+  if (!v.is_number_unsigned() && !(v.is_number_integer() && v.get<std::int64_t>() >= 0))
+    corrupt(std::string("field '") + key + "' must be a non-negative integer");
+  return v.get<std::uint64_t>();
+}
+
+std::int64_t i64(const json& j, const char* key) {
+  const json& v = field(j, key);
+  if (!v.is_number_integer()) corrupt(std::string("field '") + key + "' must be an integer");
+  return v.get<std::int64_t>();
+}
+
+double f64(const json& j, const char* key) {
+  const json& v = field(j, key);
+  if (!v.is_number()) corrupt(std::string("field '") + key + "' must be a number");
+  return v.get<double>();
+}
+
+UnitState unitState(const json& j) {
+  if (!j.is_array() || j.size() != 2 || !j[0].is_number_unsigned() || !j[1].is_number_unsigned())
+    corrupt("a state must be [X, Y] with non-negative integers");
+  const UnitState z{j[0].get<std::uint64_t>(), j[1].get<std::uint64_t>()};
+  if (z.X >= FixedPointMap::kOne || z.Y >= FixedPointMap::kOne) corrupt("a state lies outside [0, 2^52)");
+  return z;
+}
+
+SegmentStart segmentStart(const json& j) { return {unitState(field(j, "z")), u64(j, "block"), u64(j, "draws")}; }
+
+TrappingHistogram histogram(const json& j) {
+  if (!j.is_array()) corrupt("a histogram must be an array of [bin, count, lengthSum]");
+  TrappingHistogram h;
+  for (const json& b : j) {
+    if (!b.is_array() || b.size() != 3 || !b[0].is_number_unsigned() || !b[1].is_number_unsigned() ||
+        !b[2].is_number_unsigned())
+      corrupt("a histogram bin must be [bin, count, lengthSum] with non-negative integers");
+    const auto i = b[0].get<std::uint64_t>();
+    if (i < 1 || i >= static_cast<std::uint64_t>(TrappingHistogram::kBins)) corrupt("histogram bin out of range");
+    const auto count = b[1].get<std::uint64_t>();
+    const auto sum = b[2].get<std::uint64_t>();
+    const int bin = static_cast<int>(i);
+    // Every length in the bin lies in [lower, upper): the sum must be consistent with the count.
+    if (count == 0 || sum / count < TrappingHistogram::binLower(bin) ||
+        (bin + 1 < TrappingHistogram::kBins && sum / count >= TrappingHistogram::binUpper(bin)))
+      corrupt("histogram bin " + std::to_string(bin) + " has inconsistent count and length sum");
+    h.setBin(bin, count, sum);
+  }
+  return h;
+}
+
+}  // namespace
+
+std::string runFileText(const TrappingState& s) {
+  const TrappingParameters& p = s.params;
+  json j;
+  j["format"] = kRunFileFormatName;
+  j["version"] = kRunFileFormatVersion;
+  j["program"] = std::string("archipelago ") + ARCHIPELAGO_VERSION;
+  j["parameters"] = {{"K", p.map.K}, {"xmin", p.map.xmin}, {"xmax", p.map.xmax}, {"Xr", p.Xr},
+                     {"q", p.q},     {"T", p.T},           {"M", p.M},           {"seed", p.seed},
+                     {"subsets", p.subsets}, {"longestKept", p.longestKept}};
+  j["coefficients"] = {{"A", s.coefficients.A}, {"B", s.coefficients.B}, {"C", s.coefficients.C},
+                       {"m", s.coefficients.m}};
+  j["orbitBegin"] = s.orbitBegin;
+  j["orbitEnd"] = s.orbitEnd;
+  j["blocksDone"] = s.blocksDone;
+  j["finished"] = s.finished();
+  j["elapsedSeconds"] = s.elapsedSeconds;
+  j["kernel"] = s.kernel;
+  json edges = json::array();
+  for (int i = TrappingHistogram::kExactMax + 1; i < TrappingHistogram::kBins; ++i)
+    edges.push_back(TrappingHistogram::binLower(i));
+  j["histogramBins"] = {{"exactMax", TrappingHistogram::kExactMax},
+                        {"binsPerDecade", TrappingHistogram::kBinsPerDecade},
+                        {"logBinLowerEdges", edges}};
+  json subsets = json::array();
+  for (const auto& h : s.subsets) subsets.push_back(toJson(h));
+  j["subsets"] = subsets;
+  json longest = json::array();
+  for (const auto& r : s.longest.items())
+    longest.push_back({{"orbit", r.orbit}, {"length", r.length}, {"start", toJson(r.start)}});
+  j["longest"] = longest;
+  json orbits = json::array();
+  for (const auto& o : s.orbits)
+    orbits.push_back(json::array({o.z.X, o.z.Y, o.block, o.draws, o.length, o.start.z.X, o.start.z.Y,
+                                  o.start.block, o.start.draws}));
+  j["orbits"] = orbits;
+  return j.dump(1) + "\n";
+}
+
+TrappingState parseRunFile(const std::string& text) {
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::parse_error& e) {
+    throw std::runtime_error(std::string("corrupt or truncated run file: ") + e.what());
+  }
+  if (!j.is_object() || !j.contains("format") || j["format"] != kRunFileFormatName)
+    throw std::runtime_error("not an Archipelago run file (missing \"format\": \"archipelago-run\")");
+  const std::int64_t version = i64(j, "version");
+  if (version != kRunFileFormatVersion)
+    throw std::runtime_error("run file format version " + std::to_string(version) + " is not supported (this program reads version " +
+                             std::to_string(kRunFileFormatVersion) + ")");
+  const json& jp = field(j, "parameters");
+  TrappingParameters p;
+  p.map = {f64(jp, "K"), f64(jp, "xmin"), f64(jp, "xmax")};
+  p.Xr = f64(jp, "Xr");
+  const std::uint64_t q = u64(jp, "q"), subsets = u64(jp, "subsets"), kept = u64(jp, "longestKept");
+  if (q > UINT32_MAX || subsets > UINT32_MAX || kept > UINT32_MAX) corrupt("q, subsets or longestKept too large");
+  p.q = static_cast<std::uint32_t>(q);
+  p.T = u64(jp, "T");
+  p.M = u64(jp, "M");
+  p.seed = u64(jp, "seed");
+  p.subsets = static_cast<std::uint32_t>(subsets);
+  p.longestKept = static_cast<std::uint32_t>(kept);
+  if (auto e = validationError(p)) corrupt("invalid parameters: " + *e);
+
+  TrappingState s;
+  s.params = p;
+  s.coefficients = computeCoefficients(p.map);
+  const json& jc = field(j, "coefficients");
+  const MapCoefficients stored{i64(jc, "A"), i64(jc, "B"), i64(jc, "C"), static_cast<int>(i64(jc, "m"))};
+  if (!(stored == s.coefficients))
+    throw std::runtime_error("run file coefficients (A, B, C, m) differ from those this program derives from K, xmin, xmax;"
+                             " the file was written by an incompatible program");
+  const json& bins = field(j, "histogramBins");
+  if (i64(bins, "exactMax") != TrappingHistogram::kExactMax || i64(bins, "binsPerDecade") != TrappingHistogram::kBinsPerDecade)
+    throw std::runtime_error("run file uses a different histogram binning");
+  const json& edges = field(bins, "logBinLowerEdges");
+  if (!edges.is_array() || edges.size() != static_cast<std::size_t>(TrappingHistogram::kBins - TrappingHistogram::kExactMax - 1))
+    throw std::runtime_error("run file uses a different histogram binning");
+  for (int i = TrappingHistogram::kExactMax + 1; i < TrappingHistogram::kBins; ++i)
+    if (edges[static_cast<std::size_t>(i - TrappingHistogram::kExactMax - 1)] != TrappingHistogram::binLower(i))
+      throw std::runtime_error("run file uses different histogram bin edges");
+
+  s.orbitBegin = u64(j, "orbitBegin");
+  s.orbitEnd = u64(j, "orbitEnd");
+  if (s.orbitBegin >= s.orbitEnd || s.orbitEnd > p.M) corrupt("orbit range outside [0, M)");
+  s.blocksDone = u64(j, "blocksDone");
+  if (s.blocksDone > p.T) corrupt("blocksDone exceeds T");
+  s.elapsedSeconds = f64(j, "elapsedSeconds");
+  const json& kernel = field(j, "kernel");
+  if (!kernel.is_string()) corrupt("field 'kernel' must be a string");
+  s.kernel = kernel.get<std::string>();
+
+  const json& js = field(j, "subsets");
+  if (!js.is_array() || js.size() != p.subsets) corrupt("expected one histogram per subset");
+  for (const json& h : js) s.subsets.push_back(histogram(h));
+
+  s.longest = LongestSegments(p.longestKept);
+  const json& jl = field(j, "longest");
+  if (!jl.is_array() || jl.size() > p.longestKept) corrupt("too many longest segments");
+  for (const json& r : jl) {
+    const SegmentRecord rec{u64(r, "orbit"), u64(r, "length"), segmentStart(field(r, "start"))};
+    if (rec.orbit < s.orbitBegin || rec.orbit >= s.orbitEnd || rec.length == 0) corrupt("a longest segment is out of range");
+    s.longest.insert(rec);
+  }
+
+  const json& jo = field(j, "orbits");
+  if (!jo.is_array() || jo.size() != s.orbitEnd - s.orbitBegin) corrupt("expected one state per orbit");
+  s.orbits.reserve(jo.size());
+  for (const json& o : jo) {
+    if (!o.is_array() || o.size() != 9) corrupt("an orbit state must have 9 integers");
+    for (const json& v : o)
+      if (!v.is_number_unsigned()) corrupt("an orbit state must have 9 non-negative integers");
+    OrbitState st;
+    st.z = unitState(json::array({o[0], o[1]}));
+    st.block = o[2].get<std::uint64_t>();
+    st.draws = o[3].get<std::uint64_t>();
+    st.length = o[4].get<std::uint64_t>();
+    st.start = {unitState(json::array({o[5], o[6]})), o[7].get<std::uint64_t>(), o[8].get<std::uint64_t>()};
+    if (st.block != s.blocksDone) corrupt("an orbit's block count differs from blocksDone");
+    s.orbits.push_back(st);
+  }
+  return s;
+}
+
+void saveRunFile(const std::filesystem::path& path, const TrappingState& state) {
+  const std::string text = runFileText(state);
+  const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+  std::string tmpl = (dir / ("." + path.filename().string() + ".XXXXXX")).string();
+  const int fd = ::mkstemp(tmpl.data());
+  if (fd < 0) throw std::runtime_error("cannot write " + path.string() + ": " + std::strerror(errno));
+  auto fail = [&](const char* what) {
+    const std::string reason = std::strerror(errno);
+    ::close(fd);
+    ::unlink(tmpl.c_str());
+    throw std::runtime_error(std::string("cannot write ") + path.string() + " (" + what + "): " + reason);
+  };
+  std::size_t written = 0;
+  while (written < text.size()) {
+    const ssize_t n = ::write(fd, text.data() + written, text.size() - written);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      fail("write");
+    }
+    written += static_cast<std::size_t>(n);
+  }
+  if (::fchmod(fd, 0644) != 0) fail("chmod");
+  if (::fsync(fd) != 0) fail("fsync");
+  if (::close(fd) != 0) {
+    ::unlink(tmpl.c_str());
+    throw std::runtime_error("cannot write " + path.string() + " (close): " + std::strerror(errno));
+  }
+  if (::rename(tmpl.c_str(), path.c_str()) != 0) {
+    const std::string reason = std::strerror(errno);
+    ::unlink(tmpl.c_str());
+    throw std::runtime_error("cannot write " + path.string() + " (rename): " + reason);
+  }
+  const int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY);
+  if (dfd >= 0) {  // make the rename itself durable
+    ::fsync(dfd);
+    ::close(dfd);
+  }
+}
+
+TrappingState loadRunFile(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot read " + path.string() + ": " + std::strerror(errno));
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw std::runtime_error("cannot read " + path.string());
+  try {
+    return parseRunFile(text.str());
+  } catch (const std::exception& e) {
+    throw std::runtime_error(path.string() + ": " + e.what());
+  }
+}
+
+}  // namespace archipelago

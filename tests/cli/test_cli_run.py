@@ -1,0 +1,112 @@
+#!/usr/bin/env python3
+"""archipelago-cli run / replay, end to end: SIGKILL at any moment + --resume gives exactly the uninterrupted
+result; replay reproduces a recorded segment; bad input gives one clear line and a non-zero exit."""
+import json, os, signal, subprocess, sys, tempfile, time
+
+cli = sys.argv[1]
+failures = 0
+tmp = tempfile.mkdtemp(prefix="archipelago-cli-run-")
+
+def check(cond, what):
+    global failures
+    print(("ok   " if cond else "FAIL ") + what, flush=True)
+    failures += 0 if cond else 1
+
+def run(*args, timeout=300):
+    return subprocess.run([cli, *args], capture_output=True, text=True, timeout=timeout)
+
+def result(path):
+    d = json.load(open(path))
+    return d["subsets"], d["longest"], d["orbits"], d["blocksDone"]
+
+params = ["--K", "0.1", "--xmin", "-0.8", "--xmax", "0.5", "--q", "16", "--T", "1500000", "--M", "16",
+          "--subsets", "4", "--seed", "7"]
+ref = os.path.join(tmp, "ref.json")
+r = run("run", *params, "--out", ref, "--quiet")
+check(r.returncode == 0 and os.path.exists(ref), f"uninterrupted run ({r.stderr.strip()})")
+
+# Killed with SIGKILL at several moments, resumed each time from the checkpoint.
+out = os.path.join(tmp, "killed.json")
+kills = 0
+for attempt, delay in enumerate([0.25, 0.4, 0.15, 0.5, 0.3, 0.6, 5.0, 60.0]):
+    args = ["run", "--out", out, "--checkpoint-interval", "0", "--max-chunk", "3000", "--quiet"]
+    args += ["--resume", out] if os.path.exists(out) else params
+    p = subprocess.Popen([cli, *args], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    try:
+        p.wait(timeout=delay)
+    except subprocess.TimeoutExpired:
+        p.send_signal(signal.SIGKILL)
+        p.wait()
+        kills += 1
+        continue
+    break
+check(kills >= 2, f"the run was killed {kills} times before it finished")
+check(p.returncode == 0, f"the last resume finished (exit {p.returncode})")
+check(result(out) == result(ref), "killed-and-resumed run equals the uninterrupted run (histograms, longest, orbits)")
+
+# SIGINT stops cleanly with a checkpoint that resumes to the same result.
+clean = tempfile.mkdtemp(prefix="archipelago-cli-int-")
+out2 = os.path.join(clean, "interrupted.json")
+p = subprocess.Popen([cli, "run", *params, "--out", out2, "--quiet"], stderr=subprocess.PIPE, text=True)
+time.sleep(0.4)
+p.send_signal(signal.SIGINT)
+_, err = p.communicate(timeout=60)
+check(p.returncode == 130 and "checkpoint written" in err, f"SIGINT writes a checkpoint (exit {p.returncode}: {err.strip()})")
+r = run("run", "--resume", out2, "--out", out2, "--quiet")
+check(r.returncode == 0 and result(out2) == result(ref), "resuming after SIGINT equals the uninterrupted run")
+check(os.listdir(clean) == ["interrupted.json"], f"clean stops leave no temporary files ({os.listdir(clean)})")
+
+# Replay the longest segment bit for bit.
+csv = os.path.join(tmp, "seg.csv")
+r = run("replay", ref, "--segment", "0", "--out", csv)
+longest = json.load(open(ref))["longest"][0]
+rows = open(csv).read().strip().splitlines()
+check(r.returncode == 0 and len(rows) == 1 + longest["length"] * 16 + 1,
+      f"replay writes every step of the longest segment ({len(rows) - 1} points, {r.stderr.strip()})")
+first = rows[1].split(",")
+check((int(first[3]), int(first[4])) == tuple(longest["start"]["z"]), "the replay starts at the recorded state")
+
+# stats: the summary and every series as CSV.
+csvdir = os.path.join(tmp, "csv")
+r = run("stats", ref, "--csv", csvdir)
+check(r.returncode == 0 and "alpha" in r.stdout and "sum t f_t" in r.stdout, f"stats prints a summary ({r.stderr.strip()})")
+names = sorted(os.listdir(csvdir)) if os.path.isdir(csvdir) else []
+check(names == sorted(["f.csv", "p.csv", "P.csv", "C.csv", "local_exponent.csv", "S.csv", "D_t.csv", "summary.csv"]),
+      f"stats --csv writes every series ({names})")
+if "C.csv" in names:
+    rows = [l.split(",") for l in open(os.path.join(csvdir, "C.csv")).read().strip().splitlines()]
+    check(rows[0] == ["tau", "C_tau", "error"] and abs(float(rows[1][1]) - 1) < 0.05,
+          f"C.csv starts at C_0 close to 1 ({rows[1]})")
+
+# Bad input: one line starting with ERROR:, non-zero exit, never a crash.
+bad = os.path.join(tmp, "bad.json")
+def write(path, text):
+    with open(path, "w") as f:
+        f.write(text)
+good = open(ref).read()
+cases = [
+    (["run", "--bogus"], "--bogus"),
+    (["run", "--K", "0.1", "--xmin", "-0.2", "--T", "10", "--quiet", "--out", os.path.join(tmp, "x.json")], "must be < -sqrt(K)"),
+    (["run", "--q", "0", "--T", "10", "--quiet", "--out", os.path.join(tmp, "x.json")], "q = 0 must be >= 1"),
+    (["run", "--resume", "/nonexistent/run.json"], "/nonexistent/run.json"),
+    (["run", "--resume", ref, "--K", "0.2"], "do not also give --K"),
+    (["run", "--resume", ref], "already finished"),
+    (["replay", "/nonexistent/run.json", "--out", csv], "cannot read"),
+    (["stats", "/nonexistent/run.json"], "cannot read"),
+    (["replay", ref, "--segment", "100000", "--out", csv], "out of range"),
+]
+for args, mention in cases:
+    r = run(*args)
+    lines = r.stderr.strip().splitlines()
+    check(r.returncode > 0 and len(lines) == 1 and lines[0].startswith("ERROR: ") and mention in lines[0],
+          f"{' '.join(args[:3])}... -> {r.returncode}: {r.stderr.strip()}")
+for text, mention in [(good[: len(good) // 3], "truncated"), ("{}", "not an Archipelago run file"),
+                      (good.replace('"version": 1', '"version": 2', 1), "version 2 is not supported"),
+                      ("\x00\x01garbage", "corrupt")]:
+    write(bad, text)
+    r = run("replay", bad, "--out", csv)
+    lines = r.stderr.strip().splitlines()
+    check(r.returncode > 0 and len(lines) == 1 and lines[0].startswith("ERROR: ") and mention in lines[0],
+          f"bad run file ({mention}) -> {r.returncode}: {r.stderr.strip()[:150]}")
+
+sys.exit(1 if failures else 0)
