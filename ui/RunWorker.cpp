@@ -6,6 +6,7 @@
 #include <exception>
 
 #include "TheoryOverlay.hpp"
+#include "stats/RunStatistics.hpp"
 
 namespace archipelago::ui {
 
@@ -49,12 +50,8 @@ RunSnapshotPtr makeSnapshot(std::uint64_t runId, const TrappingState& state, con
   snapshot->state = state;
   snapshot->progress = progress;
   snapshot->kernel = state.kernel;
-  // Orbit i feeds subset i mod subsets (core/trapping/BlockKernel.hpp).
-  const std::size_t subsets = state.subsets.size();
-  std::vector<std::uint64_t> orbitsPerSubset(subsets, 0);
-  for (std::uint64_t i = state.orbitBegin; i < state.orbitEnd && subsets > 0; ++i) orbitsPerSubset[i % subsets] += 1;
   if (state.blocksDone > 0 && state.total().segments() > 0) {
-    snapshot->statistics = computeStatistics(state.subsets, orbitsPerSubset, state.blocksDone, state.params.q);
+    snapshot->statistics = statisticsOf(state);
     snapshot->hasStatistics = true;
     snapshot->theory = theoryCurves(state.params, snapshot->statistics);
   }

@@ -20,7 +20,7 @@ const QEvent::Type kProbeEvent = static_cast<QEvent::Type>(QEvent::registerEvent
 
 class ProbeEvent : public QEvent {
  public:
-  explicit ProbeEvent(qint64 postedNs) : QEvent(kProbeEvent), postedNs(postedNs) {}
+  explicit ProbeEvent(qint64 atNs) : QEvent(kProbeEvent), postedNs(atNs) {}
   qint64 postedNs;
 };
 
