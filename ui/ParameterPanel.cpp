@@ -36,8 +36,14 @@ std::optional<std::uint64_t> parseCount(const QString& text) {
   return static_cast<std::uint64_t>(d);
 }
 
-QString shortest(double v) { return kNumbers.toString(v, 'g', 17).length() > 12 ? kNumbers.toString(v, 'g', 17)
-                                                                                 : kNumbers.toString(v, 'g', 12); }
+/// The shortest text that reads back as exactly v (0.1, not 0.10000000000000001).
+QString shortest(double v) {
+  for (int digits = 1; digits < 17; ++digits) {
+    const QString text = kNumbers.toString(v, 'g', digits);
+    if (kNumbers.toDouble(text) == v) return text;
+  }
+  return kNumbers.toString(v, 'g', 17);
+}
 
 QString groupedCount(double v) {
   return v < 1e6 ? kNumbers.toString(v, 'f', 0) : kNumbers.toString(v, 'g', 4).replace(QStringLiteral("e+"), QStringLiteral("e"));

@@ -25,6 +25,7 @@
 #include <cmath>
 
 #include "CrosshairPicker.hpp"
+#include "LogScaleDraw.hpp"
 #include "QwtCompat.hpp"
 
 namespace archipelago::ui {
@@ -103,7 +104,11 @@ StatisticsPlot::StatisticsPlot(PlotKind kind, QWidget* parent) : QwtPlot(parent)
   setAxisFont(kAxisX, axisFont);
   setAxisFont(kAxisY, axisFont);
   setAxisScaleEngine(kAxisX, new QwtLogScaleEngine);
-  if (logY()) setAxisScaleEngine(kAxisY, new QwtLogScaleEngine);
+  setAxisScaleDraw(kAxisX, new LogScaleDraw);
+  if (logY()) {
+    setAxisScaleEngine(kAxisY, new QwtLogScaleEngine);
+    setAxisScaleDraw(kAxisY, new LogScaleDraw);
+  }
 
   auto* grid = new QwtPlotGrid;
   grid->enableXMin(true);
@@ -127,11 +132,16 @@ StatisticsPlot::StatisticsPlot(PlotKind kind, QWidget* parent) : QwtPlot(parent)
   curve_->attach(this);
 
   auto* legend = new QwtPlotLegendItem;
+  // Where the curve leaves room: f, P, C fall (top right is empty), S and D_t rise (bottom right is).
+  const Qt::Alignment corner = kind == PlotKind::S || kind == PlotKind::Dt ? Qt::AlignBottom | Qt::AlignRight
+                               : kind == PlotKind::localExponent        ? Qt::AlignTop | Qt::AlignLeft
+                                                                        : Qt::AlignTop | Qt::AlignRight;
 #if QWT_VERSION >= 0x060200
-  legend->setAlignmentInCanvas(Qt::AlignTop | Qt::AlignRight);
+  legend->setAlignmentInCanvas(corner);
 #else
-  legend->setAlignment(Qt::AlignTop | Qt::AlignRight);
+  legend->setAlignment(corner);
 #endif
+  legend->setMaxColumns(1);
   legend->setBackgroundMode(QwtPlotLegendItem::LegendBackground);
   legend->setBackgroundBrush(QColor(255, 255, 255, 220));
   legend->setBorderPen(QPen(QColor(180, 180, 180)));
