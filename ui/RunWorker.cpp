@@ -2,6 +2,12 @@
 
 #include <QMutexLocker>
 
+#if defined(__linux__)
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+#endif
+
 #include <chrono>
 #include <exception>
 
@@ -13,6 +19,8 @@ namespace archipelago::ui {
 namespace {
 // At most this many snapshots travel to the GUI at once; more would only queue up stale copies.
 constexpr int kMaxSnapshotsInFlight = 2;
+// Nice value of the computing threads (0 = normal, 19 = lowest): low enough that the GUI thread wins.
+constexpr int kComputeNice = 10;
 
 TrappingRunOptions coreOptions(const RunSettings& settings) {
   TrappingRunOptions options;
@@ -56,6 +64,17 @@ RunSnapshotPtr makeSnapshot(std::uint64_t runId, const TrappingState& state, con
     snapshot->theory = theoryCurves(state.params, snapshot->statistics);
   }
   return snapshot;
+}
+
+void RunWorker::lowerComputePriority() {
+#if defined(__linux__)
+  // Linux gives every thread its own nice value and a new thread inherits its creator's: niced here, the
+  // OpenMP team that runTrapping() starts from this thread is niced too.  The GUI thread then keeps the
+  // upper hand over the kernel (and over nothing else), so it stays responsive while every core computes.
+  // (QThread::LowPriority has no effect under Linux's default scheduler.)
+  const auto tid = static_cast<id_t>(syscall(SYS_gettid));
+  setpriority(PRIO_PROCESS, tid, kComputeNice);
+#endif
 }
 
 QString RunWorker::kernelName() { return QStringLiteral("scalar"); }
@@ -102,6 +121,7 @@ void RunWorker::requestEnd(std::uint64_t runId, RunEnd how) {
 }
 
 void RunWorker::run() {
+  lowerComputePriority();
   for (;;) {
     Request request;
     {

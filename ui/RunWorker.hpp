@@ -71,6 +71,7 @@ class RunWorker : public QThread {
   };
 
   void execute(Request request);
+  static void lowerComputePriority();
 
   QMutex mutex_;
   QWaitCondition wake_;

@@ -1,5 +1,6 @@
 #include "StatisticsView.hpp"
 
+#include <QElapsedTimer>
 #include <QGridLayout>
 #include <QLabel>
 #include <QLocale>
@@ -44,12 +45,15 @@ void StatisticsView::showSnapshot(const RunSnapshot& snapshot) {
     clear();
     return;
   }
+  QElapsedTimer clock;
+  clock.start();
   const TrappingStatistics& s = snapshot.statistics;
   for (StatisticsPlot* plot : std::as_const(plots_)) {
     plot->setData(seriesOf(s, plot->kind()), snapshot.theory);
     plot->refresh();
   }
   ++refreshes_;
+  refreshSeconds_ += static_cast<double>(clock.nsecsElapsed()) * 1e-9;
   const QLocale c = QLocale::c();
   summary_->setText(tr("<b>α</b> (mean segment) = %1 steps &nbsp;&nbsp; <b>D</b> = %2 &nbsp;&nbsp; "
                        "Σ t f<sub>t</sub> = %3 &nbsp;&nbsp; segments: %4 &nbsp;&nbsp; longest: %5 steps")

@@ -27,12 +27,15 @@ class StatisticsView : public QWidget {
   [[nodiscard]] StatisticsPlot* plot(PlotKind kind) const { return plots_.at(static_cast<int>(kind)); }
   /// Number of times the plots were redrawn (the latency script reads it).
   [[nodiscard]] quint64 refreshCount() const noexcept { return refreshes_; }
+  /// Wall time spent redrawing, summed over every refresh (the latency script reads it).
+  [[nodiscard]] double refreshSeconds() const noexcept { return refreshSeconds_; }
   [[nodiscard]] QString summaryText() const;
 
  private:
   QList<StatisticsPlot*> plots_;
   QLabel* summary_ = nullptr;
   quint64 refreshes_ = 0;
+  double refreshSeconds_ = 0;
 };
 
 }  // namespace archipelago::ui

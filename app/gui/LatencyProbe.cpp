@@ -8,6 +8,7 @@
 #include <QThread>
 
 #include <algorithm>
+#include <chrono>
 #include <numeric>
 
 #include "MainWindow.hpp"
@@ -33,9 +34,11 @@ double percentile(std::vector<double> v, double p) {
 }  // namespace
 
 LatencyProbe::LatencyProbe(ui::MainWindow& window, double seconds, QObject* parent)
-    : QObject(parent), window_(window), seconds_(seconds) {
-  postTimer_.setInterval(20);
-  connect(&postTimer_, &QTimer::timeout, this, &LatencyProbe::post);
+    : QObject(parent), window_(window), seconds_(seconds) {}
+
+LatencyProbe::~LatencyProbe() {
+  posting_ = false;
+  if (poster_.joinable()) poster_.join();
 }
 
 void LatencyProbe::start() {
@@ -44,13 +47,18 @@ void LatencyProbe::start() {
   QTimer::singleShot(1500, this, [this] {
     measuring_ = true;
     refreshesAtStart_ = window_.statisticsView()->refreshCount();
+    refreshSecondsAtStart_ = window_.statisticsView()->refreshSeconds();
     measureStartNs_ = clock_.nsecsElapsed();
-    postTimer_.start();
+    posting_ = true;
+    poster_ = std::thread([this] {
+      while (posting_) {
+        QCoreApplication::postEvent(this, new ProbeEvent(clock_.nsecsElapsed()));  // thread-safe
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      }
+    });
     QTimer::singleShot(static_cast<int>(1000 * seconds_), this, &LatencyProbe::finish);
   });
 }
-
-void LatencyProbe::post() { QCoreApplication::postEvent(this, new ProbeEvent(clock_.nsecsElapsed())); }
 
 void LatencyProbe::customEvent(QEvent* event) {
   if (event->type() != kProbeEvent || !measuring_) return;
@@ -60,7 +68,8 @@ void LatencyProbe::customEvent(QEvent* event) {
 
 void LatencyProbe::finish() {
   measuring_ = false;
-  postTimer_.stop();
+  posting_ = false;
+  if (poster_.joinable()) poster_.join();
   const double elapsed = static_cast<double>(clock_.nsecsElapsed() - measureStartNs_) / 1e9;
   const quint64 refreshes = window_.statisticsView()->refreshCount() - refreshesAtStart_;
   QJsonObject o;
@@ -70,6 +79,8 @@ void LatencyProbe::finish() {
   o[QStringLiteral("latency_ms_p99")] = percentile(latenciesMs_, 0.99);
   o[QStringLiteral("latency_ms_max")] = latenciesMs_.empty() ? 0 : *std::max_element(latenciesMs_.begin(), latenciesMs_.end());
   o[QStringLiteral("refreshes")] = static_cast<double>(refreshes);
+  o[QStringLiteral("refresh_ms_mean")] =
+      refreshes ? 1e3 * (window_.statisticsView()->refreshSeconds() - refreshSecondsAtStart_) / static_cast<double>(refreshes) : 0;
   o[QStringLiteral("refresh_hz")] = elapsed > 0 ? static_cast<double>(refreshes) / elapsed : 0;
   o[QStringLiteral("skipped_snapshots")] = static_cast<double>(window_.worker().skippedSnapshots());
   o[QStringLiteral("cores")] = QThread::idealThreadCount();
