@@ -11,6 +11,8 @@
 #include <stdexcept>
 
 #include "CliCommon.hpp"
+#include "kernels/KernelDispatch.hpp"
+#include "periodic/IslandChain.hpp"
 #include "runfile/RunFile.hpp"
 #include "trapping/TrappingRun.hpp"
 
@@ -29,6 +31,7 @@ struct RunOptions {
   std::string resume;
   int threads = 0;
   std::uint64_t maxChunkBlocks = 0;
+  std::string kernel;  // empty: $ARCHIPELAGO_KERNEL, else the fastest the CPU supports
   bool quiet = false;
 };
 
@@ -68,7 +71,10 @@ void runCommand(const RunOptions& o, const std::vector<std::string>& explicitPar
   std::stop_source stopper;
   std::signal(SIGINT, onInterrupt);
   std::signal(SIGTERM, onInterrupt);
+  const KernelInfo& kernel = selectKernel(o.kernel);
   TrappingRunOptions options;
+  options.kernel = kernel.blocks;
+  options.kernelName = std::string(kernel.name);
   options.threads = o.threads;
   options.maxChunkBlocks = o.maxChunkBlocks;
   auto lastCheckpoint = std::chrono::steady_clock::now();
@@ -125,6 +131,8 @@ void addRunCommand(CLI::App& app) {
   cmd->add_option("--checkpoint-interval", o->checkpointSeconds, "seconds between checkpoints")->capture_default_str();
   cmd->add_option("--resume", o->resume, "continue the run in this checkpoint or run file");
   cmd->add_option("--max-chunk", o->maxChunkBlocks, "at most this many blocks between progress reports (0: adaptive)");
+  cmd->add_option("--kernel", o->kernel,
+                  "instruction-set path: auto, " + supportedKernelNames() + " (default: $ARCHIPELAGO_KERNEL or auto)");
   cmd->add_flag("--quiet", o->quiet, "no progress bar or summary");
   cmd->callback([o, cmd] {
     std::vector<std::string> given;
@@ -140,6 +148,7 @@ struct ReplayOptions {
   std::size_t segment = 0;
   std::string out;
   std::uint64_t stride = 1;
+  bool identify = false;
 };
 
 void replayCommand(const ReplayOptions& o) {
@@ -156,9 +165,12 @@ void replayCommand(const ReplayOptions& o) {
   out << "step,x,y,X,Y\n";
   out.precision(17);
   const std::uint64_t lastStep = rec.length * state.params.q;
+  std::vector<PhysicalPoint> points;  // for --identify: every step, in physical coordinates
+  constexpr std::uint64_t kMaxIdentifyPoints = 20'000'000;
   const std::uint64_t length = replaySegment(state.params, rec, [&](std::uint64_t step, const UnitState& z) {
-    if (step % o.stride != 0 && step != lastStep) return;
     const PhysicalPoint p = map.toPhysical(z);
+    if (o.identify && step < kMaxIdentifyPoints) points.push_back(p);
+    if (step % o.stride != 0 && step != lastStep) return;
     out << step << ',' << static_cast<double>(p.x) << ',' << static_cast<double>(p.y) << ',' << z.X << ',' << z.Y
         << '\n';
   });
@@ -170,6 +182,18 @@ void replayCommand(const ReplayOptions& o) {
   std::fprintf(stderr, "segment %zu: orbit %llu, %llu blocks (%llu steps), replayed bit for bit to %s\n", o.segment,
                static_cast<unsigned long long>(rec.orbit), static_cast<unsigned long long>(rec.length),
                static_cast<unsigned long long>(lastStep), o.out.c_str());
+  if (o.identify) {
+    // The segment iterates N⁻¹ (time reversed); the chain it sticks to is the same for Q.
+    const IslandChain chain = identifyIslandChain(state.params.map.K, points);
+    std::printf("# chain_period: %d\n# hierarchy:", chain.period);
+    for (int level : chain.hierarchy) std::printf(" %d", level);
+    std::printf("\n# member: %.12Lg,%.12Lg\n", chain.member.x, chain.member.y);
+    if (chain.centre) {
+      std::printf("# centre_orbit: period %d at %.12Lg,%.12Lg, residue %.9Lg (%s)\n", chain.centre->period,
+                  chain.centre->points.front().x, chain.centre->points.front().y, chain.centre->residue,
+                  chain.centre->stable() ? "stable" : "unstable");
+    }
+  }
 }
 }  // namespace
 
@@ -180,6 +204,7 @@ void addReplayCommand(CLI::App& app) {
   cmd->add_option("--segment", o->segment, "rank of the segment (0: the longest)")->capture_default_str();
   cmd->add_option("--out", o->out, "CSV file to write")->required();
   cmd->add_option("--stride", o->stride, "write every stride-th step")->capture_default_str();
+  cmd->add_flag("--identify", o->identify, "identify the island chain the segment sticks to (period, centre orbit)");
   cmd->callback([o] { replayCommand(*o); });
 }
 

@@ -11,6 +11,7 @@
 #include "OrbitCommand.hpp"
 #include "RunCommand.hpp"
 #include "StatsCommand.hpp"
+#include "PeriodicCommand.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"archipelago-cli " ARCHIPELAGO_VERSION
@@ -21,6 +22,7 @@ int main(int argc, char** argv) {
   archipelago::cli::addRunCommand(app);
   archipelago::cli::addStatsCommand(app);
   archipelago::cli::addReplayCommand(app);
+  archipelago::cli::addPeriodicCommand(app);
   if (argc > 1 && argv[1][0] != '-') {  // name an unknown command instead of CLI11's generic message
     std::string names;
     bool known = false;

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 
-#include "random/CounterRng.hpp"
 
 namespace archipelago {
 
@@ -16,15 +15,7 @@ inline void endSegment(std::uint64_t orbit, OrbitState& s, SegmentSink* sink) {
 }  // namespace
 
 bool advanceOneBlock(const KernelSettings& k, std::uint64_t orbit, OrbitState& s, SegmentSink* sink) {
-  s.length += 1;
-  bool ended = false;
-  if (s.z.X <= k.randomizingX) {  // appendix B, 6.1–6.2: randomize Y in the zone 0 ≤ X ≤ Xr
-    s.draws += 1;
-    s.z.Y = (s.z.Y + orbitDraw(orbitKey(k.seed, orbit), s.draws)) & fixedpoint::kMask;
-    ended = true;
-  }
-  for (std::uint32_t j = 0; j < k.q; ++j) ended |= backwardStep(k.coefficients, s.z);
-  s.block += 1;
+  const bool ended = advanceBlockVisiting(k, orbit, s, [](const UnitState&) {});
   if (ended) endSegment(orbit, s, sink);
   return ended;
 }

@@ -12,6 +12,7 @@
 #include <span>
 #include <vector>
 
+#include "random/CounterRng.hpp"
 #include "trapping/LongestSegments.hpp"
 #include "trapping/TrappingHistogram.hpp"
 #include "trapping/TrappingParameters.hpp"
@@ -57,8 +58,28 @@ using BlockKernel = void (*)(const KernelSettings& settings, std::span<OrbitStat
 void advanceBlocksScalar(const KernelSettings& settings, std::span<OrbitState> orbits, std::uint64_t firstOrbit,
                          std::uint64_t blocks, SegmentSink& sink);
 
-/// One block of one orbit, the definition every kernel must match.  Returns true when the segment ended.
-/// `orbit` is the orbit's index (it selects its random numbers).
+/// One block of one orbit, the definition every kernel must match: length + 1, the randomizing zone, q steps
+/// of N⁻¹ (calling afterStep(z) after each), block + 1.  Returns true when the segment ended; it does not
+/// close the segment (advanceOneBlock does).  `orbit` is the orbit's index (it selects its random numbers).
+template <class StepVisitor>
+inline bool advanceBlockVisiting(const KernelSettings& k, std::uint64_t orbit, OrbitState& s, StepVisitor&& afterStep) {
+  s.length += 1;
+  bool ended = false;
+  if (s.z.X <= k.randomizingX) {  // appendix B, 6.1–6.2: randomize Y in the zone 0 ≤ X ≤ Xr
+    s.draws += 1;
+    s.z.Y = (s.z.Y + orbitDraw(orbitKey(k.seed, orbit), s.draws)) & fixedpoint::kMask;
+    ended = true;
+  }
+  for (std::uint32_t j = 0; j < k.q; ++j) {
+    ended |= backwardStep(k.coefficients, s.z);
+    afterStep(s.z);
+  }
+  s.block += 1;
+  return ended;
+}
+
+/// advanceBlockVisiting() without a visitor, closing the segment when it ended: the sink (if any) records it
+/// and the next segment starts at the state after the block.  Returns true when the segment ended.
 bool advanceOneBlock(const KernelSettings& settings, std::uint64_t orbit, OrbitState& s, SegmentSink* sink);
 
 }  // namespace archipelago

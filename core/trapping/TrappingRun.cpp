@@ -7,7 +7,8 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "random/CounterRng.hpp"
+#include "kernels/KernelDispatch.hpp"
+
 
 namespace archipelago {
 
@@ -66,11 +67,21 @@ TrappingState runTrapping(TrappingState state, const TrappingRunOptions& options
   const KernelSettings settings = kernelSettings(state);
   const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
   const std::size_t orbitCount = state.orbits.size();
-  // Work is split into groups of orbits; a group is one task, so every thread gets several.
+  // Work is split into groups of orbits; a group is one task, so every thread gets several.  Groups of 32
+  // fill the vector kernels (4 vectors of 8 lanes in flight); with fewer orbits, smaller groups keep every
+  // thread busy.
   const std::size_t groupSize =
-      std::clamp<std::size_t>(orbitCount / (4 * static_cast<std::size_t>(threads)) / 8 * 8, 8, 64);
+      orbitCount >= 64 * static_cast<std::size_t>(threads)
+          ? 32
+          : std::clamp<std::size_t>(orbitCount / (4 * static_cast<std::size_t>(threads)) / 8 * 8, 8, 32);
   const std::size_t groups = (orbitCount + groupSize - 1) / groupSize;
+  BlockKernel kernel = options.kernel;
   state.kernel = options.kernelName;
+  if (kernel == nullptr) {
+    const KernelInfo& best = selectKernel();
+    kernel = best.blocks;
+    state.kernel = std::string(best.name);
+  }
 
   const auto sessionStart = Clock::now();
   const double stepsPerBlock = static_cast<double>(orbitCount) * state.params.q;
@@ -87,7 +98,7 @@ TrappingState runTrapping(TrappingState state, const TrappingRunOptions& options
     for (std::size_t g = 0; g < groups; ++g) {
       const std::size_t first = g * groupSize;
       const std::size_t n = std::min(groupSize, orbitCount - first);
-      options.kernel(settings, std::span<OrbitState>(state.orbits.data() + first, n), state.orbitBegin + first,
+      kernel(settings, std::span<OrbitState>(state.orbits.data() + first, n), state.orbitBegin + first,
                      blocks, sinks[static_cast<std::size_t>(omp_get_thread_num())]);
     }
     for (const auto& sink : sinks) {
@@ -136,19 +147,10 @@ std::uint64_t replaySegment(const TrappingParameters& params, const SegmentRecor
   std::uint64_t step = 0;
   if (visit) visit(step, s.z);
   for (;;) {
-    // The same block as advanceOneBlock(), with every intermediate point visited.
-    s.length += 1;
-    bool ended = false;
-    if (s.z.X <= k.randomizingX) {
-      s.draws += 1;
-      s.z.Y = (s.z.Y + orbitDraw(orbitKey(k.seed, record.orbit), s.draws)) & fixedpoint::kMask;
-      ended = true;
-    }
-    for (std::uint32_t j = 0; j < k.q; ++j) {
-      ended |= backwardStep(k.coefficients, s.z);
-      if (visit) visit(++step, s.z);
-    }
-    s.block += 1;
+    const bool ended = advanceBlockVisiting(k, record.orbit, s, [&](const UnitState& z) {
+      ++step;
+      if (visit) visit(step, z);
+    });
     if (ended || s.block >= params.T) return s.length;
   }
 }

@@ -63,8 +63,8 @@ struct TrappingRunOptions {
   int threads = 0;              ///< 0: OpenMP's default
   double chunkSeconds = 0.25;   ///< target wall time of a chunk (progress and stop granularity)
   std::uint64_t maxChunkBlocks = 0;  ///< 0: no limit; otherwise chunks have at most this many blocks
-  BlockKernel kernel = &advanceBlocksScalar;
-  std::string kernelName = "scalar";
+  BlockKernel kernel = nullptr;  ///< nullptr: selectKernel() (kernels/KernelDispatch.hpp): $ARCHIPELAGO_KERNEL or the fastest
+  std::string kernelName;        ///< shown in progress and stored in run files (set with `kernel`)
 };
 
 /// Advances `state` until it is finished or `stop` is requested (checked at chunk boundaries).

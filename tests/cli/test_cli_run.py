@@ -19,16 +19,19 @@ def result(path):
     d = json.load(open(path))
     return d["subsets"], d["longest"], d["orbits"], d["blocksDone"]
 
-params = ["--K", "0.1", "--xmin", "-0.8", "--xmax", "0.5", "--q", "16", "--T", "1500000", "--M", "16",
+params = ["--K", "0.1", "--xmin", "-0.8", "--xmax", "0.5", "--q", "16", "--T", "8000000", "--M", "16",
           "--subsets", "4", "--seed", "7"]
 ref = os.path.join(tmp, "ref.json")
+started = time.monotonic()
 r = run("run", *params, "--out", ref, "--quiet")
+duration = time.monotonic() - started  # kill at fractions of it, whatever the kernel's speed
 check(r.returncode == 0 and os.path.exists(ref), f"uninterrupted run ({r.stderr.strip()})")
 
 # Killed with SIGKILL at several moments, resumed each time from the checkpoint.
 out = os.path.join(tmp, "killed.json")
 kills = 0
-for attempt, delay in enumerate([0.25, 0.4, 0.15, 0.5, 0.3, 0.6, 5.0, 60.0]):
+for attempt, fraction in enumerate([0.15, 0.2, 0.1, 0.25, 0.15, 0.3, 5.0, 60.0]):
+    delay = fraction * duration
     args = ["run", "--out", out, "--checkpoint-interval", "0", "--max-chunk", "3000", "--quiet"]
     args += ["--resume", out] if os.path.exists(out) else params
     p = subprocess.Popen([cli, *args], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
@@ -48,7 +51,7 @@ check(result(out) == result(ref), "killed-and-resumed run equals the uninterrupt
 clean = tempfile.mkdtemp(prefix="archipelago-cli-int-")
 out2 = os.path.join(clean, "interrupted.json")
 p = subprocess.Popen([cli, "run", *params, "--out", out2, "--quiet"], stderr=subprocess.PIPE, text=True)
-time.sleep(0.4)
+time.sleep(0.4 * duration)
 p.send_signal(signal.SIGINT)
 _, err = p.communicate(timeout=60)
 check(p.returncode == 130 and "checkpoint written" in err, f"SIGINT writes a checkpoint (exit {p.returncode}: {err.strip()})")
@@ -66,6 +69,17 @@ check(r.returncode == 0 and len(rows) == 1 + longest["length"] * 16 + 1,
 first = rows[1].split(",")
 check((int(first[3]), int(first[4])) == tuple(longest["start"]["z"]), "the replay starts at the recorded state")
 
+# --identify names the island chain the segment sticks to, with a periodic orbit at its centre.
+r = run("replay", ref, "--segment", "0", "--out", csv, "--stride", "100", "--identify")
+lines = dict(l[2:].split(": ", 1) for l in r.stdout.splitlines() if l.startswith("# "))
+period = int(lines.get("chain_period", "0"))
+hierarchy = [int(v) for v in lines.get("hierarchy", "").split()]
+check(r.returncode == 0 and period >= 1 and hierarchy and hierarchy[0] == 1 and hierarchy[-1] == period
+      and all(b % a == 0 for a, b in zip(hierarchy, hierarchy[1:])),
+      f"replay --identify: chain period {period}, hierarchy {hierarchy} ({r.stderr.strip()[-80:]})")
+check("centre_orbit" in lines and f"period {period}" in lines.get("centre_orbit", ""),
+      f"the chain's centre orbit is found ({lines.get('centre_orbit')})")
+
 # stats: the summary and every series as CSV.
 csvdir = os.path.join(tmp, "csv")
 r = run("stats", ref, "--csv", csvdir)
@@ -77,6 +91,25 @@ if "C.csv" in names:
     rows = [l.split(",") for l in open(os.path.join(csvdir, "C.csv")).read().strip().splitlines()]
     check(rows[0] == ["tau", "C_tau", "error"] and abs(float(rows[1][1]) - 1) < 0.05,
           f"C.csv starts at C_0 close to 1 ({rows[1]})")
+
+# Every kernel the CPU supports (--kernel, or $ARCHIPELAGO_KERNEL) gives the same run file, bit for bit.
+short = ["--K", "0.1", "--q", "16", "--T", "20000", "--M", "21", "--subsets", "3", "--quiet"]
+names = [n.strip() for n in run("run", "--help").stdout.split("auto, ", 1)[1].split(" (default")[0].split(",")]
+results = {}
+for name in names:
+    path = os.path.join(tmp, f"kernel-{name}.json")
+    r = run("run", *short, "--kernel", name, "--out", path)
+    results[name] = result(path) if r.returncode == 0 else None
+    check(r.returncode == 0 and json.load(open(path))["kernel"] == name, f"--kernel {name} runs and is recorded")
+check(len(results) >= 1 and all(v == results["scalar"] for v in results.values()),
+      f"kernels {sorted(results)} agree bit for bit")
+env_path = os.path.join(tmp, "kernel-env.json")
+r = subprocess.run([cli, "run", *short, "--out", env_path], capture_output=True, text=True,
+                   env={**os.environ, "ARCHIPELAGO_KERNEL": "scalar"}, timeout=60)
+check(r.returncode == 0 and json.load(open(env_path))["kernel"] == "scalar", "ARCHIPELAGO_KERNEL=scalar is obeyed")
+r = subprocess.run([cli, "run", *short, "--out", env_path], capture_output=True, text=True,
+                   env={**os.environ, "ARCHIPELAGO_KERNEL": "vax"}, timeout=60)
+check(r.returncode > 0 and r.stderr.startswith("ERROR: ARCHIPELAGO_KERNEL"), f"a bad ARCHIPELAGO_KERNEL is an error ({r.stderr.strip()})")
 
 # Bad input: one line starting with ERROR:, non-zero exit, never a crash.
 bad = os.path.join(tmp, "bad.json")

@@ -1,0 +1,99 @@
+#include "kernels/KernelDispatch.hpp"
+
+#include <array>
+#include <cstdlib>
+#include <stdexcept>
+
+namespace archipelago {
+
+namespace {
+const std::array<KernelInfo, 3> kKernels = {{
+    {KernelKind::avx512ifma, "avx512ifma", "AVX-512 IFMA, 8 orbits per vector (vpmadd52huq)",
+     &advanceBlocksAvx512Ifma, &iterateOrbitsAvx512Ifma},
+    {KernelKind::avx2, "avx2", "AVX2, 4 orbits per vector (32-bit vpmuludq products)", &advanceBlocksAvx2,
+     &iterateOrbitsAvx2},
+    {KernelKind::scalar, "scalar", "portable C++ with 128-bit products (the reference)", &advanceBlocksScalar,
+     &iterateOrbitsScalar},
+}};
+
+std::string knownNames() {
+  std::string s = "auto";
+  for (const auto& k : kKernels) s += ", " + std::string(k.name);
+  return s;
+}
+}  // namespace
+
+CpuFeatures CpuFeatures::detect() noexcept {
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+  __builtin_cpu_init();
+  CpuFeatures f;
+  f.avx2 = __builtin_cpu_supports("avx2");
+  f.avx512ifma = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+                 __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512ifma");
+  return f;
+#else
+  return {};
+#endif
+}
+
+std::span<const KernelInfo> allKernels() noexcept { return kKernels; }
+
+bool supports(const CpuFeatures& cpu, KernelKind kind) noexcept {
+  switch (kind) {
+    case KernelKind::scalar: return true;
+    case KernelKind::avx2: return cpu.avx2;
+    case KernelKind::avx512ifma: return cpu.avx512ifma;
+  }
+  return false;
+}
+
+std::vector<KernelInfo> supportedKernels() {
+  const CpuFeatures cpu = CpuFeatures::detect();
+  std::vector<KernelInfo> result;
+  for (const auto& k : kKernels)
+    if (supports(cpu, k.kind)) result.push_back(k);
+  return result;
+}
+
+const KernelInfo& bestKernel() {
+  const CpuFeatures cpu = CpuFeatures::detect();
+  for (const auto& k : kKernels)
+    if (supports(cpu, k.kind)) return k;
+  return kKernels.back();
+}
+
+const KernelInfo& kernelByName(std::string_view name, const CpuFeatures& cpu) {
+  if (name == "auto") {
+    for (const auto& k : kKernels)
+      if (supports(cpu, k.kind)) return k;
+  }
+  for (const auto& k : kKernels) {
+    if (k.name != name) continue;
+    if (!supports(cpu, k.kind))
+      throw std::invalid_argument("kernel '" + std::string(name) + "' is not supported by this CPU (supported: " +
+                                  supportedKernelNames() + ")");
+    return k;
+  }
+  throw std::invalid_argument("unknown kernel '" + std::string(name) + "' (known: " + knownNames() + ")");
+}
+
+const KernelInfo& selectKernel(std::string_view requested) {
+  if (!requested.empty()) return kernelByName(requested);
+  const char* env = std::getenv("ARCHIPELAGO_KERNEL");
+  if (env && *env) {
+    try {
+      return kernelByName(env);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string("ARCHIPELAGO_KERNEL: ") + e.what());
+    }
+  }
+  return bestKernel();
+}
+
+std::string supportedKernelNames() {
+  std::string s;
+  for (const auto& k : supportedKernels()) s += (s.empty() ? "" : ", ") + std::string(k.name);
+  return s;
+}
+
+}  // namespace archipelago

@@ -1,0 +1,325 @@
+// SimdDriver.inl — the loops shared by the vector paths (KernelAvx2.cpp, KernelAvx512Ifma.cpp).
+//
+// Each of those files includes this one inside an anonymous namespace and inside its target-attribute region,
+// so every function here is compiled once per instruction set with internal linkage (no ODR merging of an
+// AVX-512 copy into the AVX2 path or into generic code).  It includes nothing itself.
+//
+// A SIMD policy `Simd` provides:
+//   Vec, kLanes                       the vector type and its number of 64-bit lanes;
+//   Constants(coefficients, Xr)       broadcast map coefficients, masks and the randomizing threshold;
+//   load/store/zero                   unaligned 64-bit lane moves;
+//   backward(c, X, Y, wrapBits)       one N⁻¹ step; ORs into wrapBits a word whose bits ≥ 52 are set on a wrap;
+//   forward(c, X, Y)                  one N step;
+//   atMost(c, X) -> unsigned          bit l set when lane l has X ≤ Xr (the randomizing zone);
+//   wrapped(c, wrapBits) -> unsigned  bit l set when lane l wrapped;
+//   refreshDraws(c, lanes, key, D, U) for the lanes in `lanes`: U ← orbitDraw(key, D + 1) (key, U: arrays);
+//   select(lanes, a, b)               a in the lanes in `lanes`, b elsewhere;
+//   addModMasked(c, Y, lanes, U)      Y + U mod 2^52 in the lanes in `lanes`, Y elsewhere;
+//   set1, add, sub                    64-bit lane arithmetic;
+//   atLeast(a, b) -> unsigned         bit l set when a ≥ b in lane l (values < 2^63);
+//   storeMasked(p, lanes, v)          stores the lanes in `lanes` only;
+//   compressStore(p, lanes, v)        stores the lanes in `lanes`, packed, at p (may write kLanes words).
+
+// Loops over the V vectors must be unrolled, so that X[v], Y[v] stay in registers (GCC does not unroll them
+// at -O2 by itself).
+#if defined(__clang__)
+#define ARCHIPELAGO_UNROLL_VECTORS _Pragma("clang loop unroll(full)")
+#else
+#define ARCHIPELAGO_UNROLL_VECTORS _Pragma("GCC unroll 16")
+#endif
+
+/// The lowest event tag (length << 6 | lane) whose length LongestSegments::mightKeep() accepts now;
+/// INT64_MAX when none (tags stay below 2^63).
+inline std::uint64_t keepTag(const LongestSegments& longest) {
+  constexpr auto kNone = static_cast<std::uint64_t>(INT64_MAX);
+  if (longest.capacity() == 0) return kNone;
+  if (longest.items().size() < longest.capacity()) return 0;
+  const std::uint64_t length = longest.items().back().length;
+  return length >= (std::uint64_t{1} << 56) ? kNone : length << 6;
+}
+
+/// Runs `blocks` trapping blocks on n ≤ V·kLanes orbits held in V vectors (appendix B, steps 5–9), with the
+/// same effect as advanceOneBlock() on each.
+///
+/// Only X, Y and a wrap accumulator per vector live in registers.  Everything else is per-lane arrays touched
+/// when a lane's segment ends, which in the chaotic sea is often (at q = 1 about a third of the blocks, at
+/// q = 16 most), so that path is vectorised too:
+///   - the open segment's length is (blocks done) − (block where it began), so nothing is counted per block;
+///   - the next segment's start (X, Y, block, draws) is written with masked stores;
+///   - ended segments go, compressed, into an event buffer as (length << 6) | lane, binned in a tight loop
+///     later: lengths ≤ kExactMax into per-lane counts (merged into the sink's subset histograms at the end),
+///     longer ones straight into the histogram;
+///   - only a segment long enough for the longest-segments list (rare once the list is full) takes the scalar
+///     path, at once, while its start state is still at hand.
+/// The histograms and the longest list do not depend on the order of insertion, so this equals the scalar
+/// kernel's sink bit for bit.
+template <class Simd, int V>
+void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, OrbitState* orbits, std::size_t n,
+                  std::uint64_t firstOrbit, std::uint64_t blocks, SegmentSink& sink) {
+  using Vec = typename Simd::Vec;
+  constexpr std::size_t W = Simd::kLanes;
+  constexpr std::size_t L = W * V;
+  static_assert(L <= 64, "an event tag holds the lane in 6 bits");
+  constexpr std::uint64_t kExact = TrappingHistogram::kExactMax;
+  alignas(64) std::uint64_t xs[L], ys[L], draws[L], keys[L], lanes[L];
+  // The open segment's start; its block is kept relative to firstBlock (modulo 2^64).
+  alignas(64) std::uint64_t startX[L], startY[L], startBlockLocal[L], startDraws[L];
+  // tagBase = segmentBegin·64 − lane, segmentBegin being the local block where the open segment began, so
+  // that the event tag (length << 6) | lane of a segment ending after local block a is a·64 − tagBase (all
+  // modulo 2^64; lane < 64 and lengths < 2^57).
+  alignas(64) std::uint64_t tagBase[L], firstBlock[L];
+  unsigned recordable[V] = {};  // lanes whose open segment will be recorded (it did not start at block 0)
+  for (std::size_t l = 0; l < L; ++l) {
+    const OrbitState s = l < n ? orbits[l] : OrbitState{};  // padding lanes: computed, never recorded or stored
+    xs[l] = s.z.X;
+    ys[l] = s.z.Y;
+    draws[l] = s.draws;
+    keys[l] = l < n ? orbitKey(k.seed, firstOrbit + l) : 0;
+    lanes[l] = l;
+    startX[l] = s.start.z.X;
+    startY[l] = s.start.z.Y;
+    startBlockLocal[l] = s.start.block - s.block;
+    startDraws[l] = s.start.draws;
+    tagBase[l] = ((std::uint64_t{0} - s.length) << 6) - l;  // segmentBegin = −length
+    firstBlock[l] = s.block;
+    if (l < n && s.start.block != 0) recordable[l / W] |= 1u << (l % W);
+  }
+  // Per-lane values read every block stay in registers: a load of words just written by a masked store
+  // cannot take them from the store buffer and would stall.
+  Vec X[V], Y[V], D[V], base[V];  // base: tagBase
+  unsigned active[V];
+  ARCHIPELAGO_UNROLL_VECTORS
+  for (std::size_t v = 0; v < V; ++v) {
+    X[v] = Simd::load(xs + v * W);
+    Y[v] = Simd::load(ys + v * W);
+    D[v] = Simd::load(draws + v * W);
+    base[v] = Simd::load(tagBase + v * W);
+    const std::size_t begin = v * W;
+    active[v] = (1u << (n > begin ? std::min(W, n - begin) : 0)) - 1u;
+  }
+
+  alignas(64) std::uint64_t nextDraw[L];  // orbitDraw(key, draws + 1): the draw each lane uses next
+  for (std::size_t l = 0; l < L; ++l) nextDraw[l] = orbitDraw(keys[l], draws[l] + 1);
+  unsigned stale[V] = {};  // lanes whose nextDraw was used and must be recomputed
+  const Vec one = Simd::set1(1);
+  constexpr std::uint64_t kRefreshBlocks = 8;
+  const auto refreshDraws = [&] {
+    ARCHIPELAGO_UNROLL_VECTORS
+    for (std::size_t v = 0; v < V; ++v) {
+      Simd::refreshDraws(c, stale[v], keys + v * W, D[v], nextDraw + v * W);
+      stale[v] = 0;
+    }
+  };
+
+  LongestSegments& longest = sink.longest();
+  Vec keepFrom = Simd::set1(keepTag(longest));
+  constexpr std::size_t kEventCapacity = 2048;
+  alignas(64) std::uint64_t events[kEventCapacity];
+  std::size_t eventCount = 0;
+  std::uint64_t exactCounts[(kExact + 1) * 64] = {};  // [length·64 + lane], lengths 1 … kExactMax
+  const auto binEvents = [&] {
+    for (std::size_t i = 0; i < eventCount; ++i) {
+      const std::uint64_t tag = events[i];
+      if (tag < ((kExact + 1) << 6)) [[likely]] {
+        exactCounts[tag] += 1;
+      } else {
+        const std::uint64_t orbit = firstOrbit + (tag & 63);
+        sink.subsets()[orbit % sink.subsets().size()].add(tag >> 6);
+      }
+    }
+    eventCount = 0;
+  };
+
+  const std::uint32_t q = k.q;
+  for (std::uint64_t b = 0; b < blocks; ++b) {
+    // Appendix B, 6.1–6.2: in the zone, Y ← Y + U (the orbit's next draw) and the segment ends.  The draw
+    // was computed ahead (nextDraw), so the zone costs a few branch-free masked operations here; the
+    // 64-bit multiplies of the next draws are batched every kRefreshBlocks blocks, or done at once in the
+    // rare case that a lane enters the zone again before its draw was refreshed.
+    unsigned zone[V];
+    unsigned reusedStale = 0;
+    ARCHIPELAGO_UNROLL_VECTORS
+    for (std::size_t v = 0; v < V; ++v) {
+      zone[v] = Simd::atMost(c, X[v]);  // padding lanes too: harmless, never recorded nor stored
+      reusedStale |= zone[v] & stale[v];
+    }
+    if (reusedStale) [[unlikely]] refreshDraws();
+    ARCHIPELAGO_UNROLL_VECTORS
+    for (std::size_t v = 0; v < V; ++v) {
+      const std::size_t o = v * W;
+      Y[v] = Simd::addModMasked(c, Y[v], zone[v], Simd::load(nextDraw + o));
+      D[v] = Simd::select(zone[v], Simd::add(D[v], one), D[v]);
+      stale[v] |= zone[v];
+    }
+    if (b % kRefreshBlocks == kRefreshBlocks - 1) refreshDraws();
+    Vec wrapBits[V];
+    ARCHIPELAGO_UNROLL_VECTORS
+    for (std::size_t v = 0; v < V; ++v) wrapBits[v] = Simd::zero();
+    for (std::uint32_t j = 0; j < q; ++j) {
+      ARCHIPELAGO_UNROLL_VECTORS
+      for (std::size_t v = 0; v < V; ++v) Simd::backward(c, X[v], Y[v], wrapBits[v]);
+    }
+    unsigned ended[V];
+    unsigned anyEnded = 0;
+    ARCHIPELAGO_UNROLL_VECTORS
+    for (std::size_t v = 0; v < V; ++v) {
+      ended[v] = Simd::wrapped(c, wrapBits[v]) | zone[v];
+      anyEnded |= ended[v];
+    }
+    if (!anyEnded) continue;
+    const std::uint64_t after = b + 1;  // local blocks done after this one
+    const Vec afterTag = Simd::set1(after << 6);
+    ARCHIPELAGO_UNROLL_VECTORS
+    for (std::size_t v = 0; v < V; ++v) {
+      const unsigned e = ended[v];  // usually nonzero at small q; with e = 0 the masked work below is void
+      const std::size_t o = v * W;
+      const Vec tag = Simd::sub(afterTag, base[v]);
+      const unsigned recorded = e & recordable[v];
+      Simd::compressStore(events + eventCount, recorded, tag);
+      eventCount += static_cast<std::size_t>(__builtin_popcount(recorded));
+      if (const unsigned keep = recorded & Simd::atLeast(tag, keepFrom)) [[unlikely]] {
+        alignas(64) std::uint64_t tags[W];
+        Simd::store(tags, tag);
+        for (unsigned bits = keep; bits; bits &= bits - 1) {
+          const std::size_t lane = static_cast<std::size_t>(__builtin_ctz(bits));
+          const std::size_t l = o + lane;
+          longest.insert({firstOrbit + l, tags[lane] >> 6,
+                          {{startX[l], startY[l]}, firstBlock[l] + startBlockLocal[l], startDraws[l]}});
+        }
+        keepFrom = Simd::set1(keepTag(longest));
+      }
+      Simd::storeMasked(startX + o, e, X[v]);
+      Simd::storeMasked(startY + o, e, Y[v]);
+      Simd::storeMasked(startDraws + o, e, D[v]);
+      Simd::storeMasked(startBlockLocal + o, e, Simd::set1(after));
+      base[v] = Simd::select(e, Simd::sub(afterTag, Simd::load(lanes + o)), base[v]);
+      recordable[v] |= e & active[v];
+    }
+    if (eventCount > kEventCapacity - L) binEvents();
+  }
+  binEvents();
+
+  ARCHIPELAGO_UNROLL_VECTORS
+
+  for (std::size_t v = 0; v < V; ++v) {
+    Simd::store(xs + v * W, X[v]);
+    Simd::store(ys + v * W, Y[v]);
+    Simd::store(draws + v * W, D[v]);
+    Simd::store(tagBase + v * W, base[v]);
+  }
+  for (std::size_t l = 0; l < n; ++l) {
+    OrbitState& s = orbits[l];
+    s.z = {xs[l], ys[l]};
+    s.draws = draws[l];
+    s.block = firstBlock[l] + blocks;
+    s.length = ((blocks << 6) - tagBase[l]) >> 6;
+    s.start = {{startX[l], startY[l]}, firstBlock[l] + startBlockLocal[l], startDraws[l]};
+    TrappingHistogram& h = sink.subsets()[(firstOrbit + l) % sink.subsets().size()];
+    for (std::uint64_t t = 1; t <= kExact; ++t) {
+      const std::uint64_t count = exactCounts[t * 64 + l];
+      const int bin = static_cast<int>(t);  // TrappingHistogram::binOf(t) = t for t ≤ kExactMax
+      if (count) h.setBin(bin, h.count(bin) + count, h.lengthSum(bin) + count * t);
+    }
+  }
+}
+
+/// Chooses the number of vectors (1 … V) that holds n orbits, so a small group computes no empty vectors.
+template <class Simd, int V>
+void advanceGroupOfSize(std::size_t vectors, const typename Simd::Constants& c, const KernelSettings& k,
+                        OrbitState* orbits, std::size_t n, std::uint64_t firstOrbit, std::uint64_t blocks,
+                        SegmentSink& sink) {
+  if constexpr (V > 1) {
+    if (vectors < static_cast<std::size_t>(V)) {
+      advanceGroupOfSize<Simd, V - 1>(vectors, c, k, orbits, n, firstOrbit, blocks, sink);
+      return;
+    }
+  }
+  advanceGroup<Simd, V>(c, k, orbits, n, firstOrbit, blocks, sink);
+}
+
+template <class Simd, int V>
+void advanceBlocksWith(const KernelSettings& k, std::span<OrbitState> orbits, std::uint64_t firstOrbit,
+                       std::uint64_t blocks, SegmentSink& sink) {
+  const typename Simd::Constants c(k.coefficients, k.randomizingX);
+  constexpr std::size_t group = Simd::kLanes * V;
+  for (std::size_t first = 0; first < orbits.size(); first += group) {
+    const std::size_t n = std::min(group, orbits.size() - first);
+    advanceGroupOfSize<Simd, V>((n + Simd::kLanes - 1) / Simd::kLanes, c, k, orbits.data() + first, n,
+                                firstOrbit + first, blocks, sink);
+  }
+}
+
+/// Plain iteration of n ≤ V·kLanes orbits; trace as in OrbitKernel, with row length `stride`.
+template <class Simd, int V>
+void iterateGroup(const typename Simd::Constants& c, MapDirection direction, UnitState* orbits, std::size_t n,
+                  std::uint64_t steps, UnitState* trace, std::size_t stride) {
+  using Vec = typename Simd::Vec;
+  constexpr std::size_t W = Simd::kLanes;
+  constexpr std::size_t L = W * V;
+  alignas(64) std::uint64_t xs[L], ys[L];
+  for (std::size_t l = 0; l < L; ++l) {
+    xs[l] = l < n ? orbits[l].X : 0;
+    ys[l] = l < n ? orbits[l].Y : 0;
+  }
+  Vec X[V], Y[V];
+  ARCHIPELAGO_UNROLL_VECTORS
+  for (int v = 0; v < V; ++v) {
+    X[v] = Simd::load(xs + v * W);
+    Y[v] = Simd::load(ys + v * W);
+  }
+  const auto record = [&](std::uint64_t j) {
+    ARCHIPELAGO_UNROLL_VECTORS
+    for (int v = 0; v < V; ++v) {
+      Simd::store(xs + v * W, X[v]);
+      Simd::store(ys + v * W, Y[v]);
+    }
+    UnitState* row = trace + j * stride;
+    for (std::size_t l = 0; l < n; ++l) row[l] = {xs[l], ys[l]};
+  };
+  if (direction == MapDirection::backward) {
+    Vec unused[V];
+    ARCHIPELAGO_UNROLL_VECTORS
+    for (int v = 0; v < V; ++v) unused[v] = Simd::zero();
+    for (std::uint64_t j = 0; j < steps; ++j) {
+      ARCHIPELAGO_UNROLL_VECTORS
+      for (int v = 0; v < V; ++v) Simd::backward(c, X[v], Y[v], unused[v]);
+      if (trace) record(j);
+    }
+  } else {
+    for (std::uint64_t j = 0; j < steps; ++j) {
+      ARCHIPELAGO_UNROLL_VECTORS
+      for (int v = 0; v < V; ++v) Simd::forward(c, X[v], Y[v]);
+      if (trace) record(j);
+    }
+  }
+  ARCHIPELAGO_UNROLL_VECTORS
+  for (int v = 0; v < V; ++v) {
+    Simd::store(xs + v * W, X[v]);
+    Simd::store(ys + v * W, Y[v]);
+  }
+  for (std::size_t l = 0; l < n; ++l) orbits[l] = {xs[l], ys[l]};
+}
+
+template <class Simd, int V>
+void iterateGroupOfSize(std::size_t vectors, const typename Simd::Constants& c, MapDirection direction,
+                        UnitState* orbits, std::size_t n, std::uint64_t steps, UnitState* trace, std::size_t stride) {
+  if constexpr (V > 1) {
+    if (vectors < static_cast<std::size_t>(V)) {
+      iterateGroupOfSize<Simd, V - 1>(vectors, c, direction, orbits, n, steps, trace, stride);
+      return;
+    }
+  }
+  iterateGroup<Simd, V>(c, direction, orbits, n, steps, trace, stride);
+}
+
+template <class Simd, int V>
+void iterateOrbitsWith(const MapCoefficients& coefficients, MapDirection direction, std::span<UnitState> orbits,
+                       std::uint64_t steps, UnitState* trace) {
+  const typename Simd::Constants c(coefficients, 0);
+  constexpr std::size_t group = Simd::kLanes * V;
+  for (std::size_t first = 0; first < orbits.size(); first += group) {
+    const std::size_t n = std::min(group, orbits.size() - first);
+    iterateGroupOfSize<Simd, V>((n + Simd::kLanes - 1) / Simd::kLanes, c, direction, orbits.data() + first, n,
+                                steps, trace ? trace + first : nullptr, orbits.size());
+  }
+}

@@ -1,0 +1,61 @@
+#pragma once
+/// \file PeriodicOrbitFinder.hpp
+/// \brief Finding periodic orbits of Q: symmetric ones by shooting between symmetry lines, any one by Newton.
+///
+/// Karney (1983), §6 (the chains of islands around islands); the method is the classical one for reversible
+/// maps (Greene 1979; for this map, Hénon 1969): write Q = I₂ ∘ I₁ with involutions whose fixed sets are the
+/// symmetry lines S₁: y = K − x² and S₂: y = 0 (SmoothQuadraticMap.hpp).  A symmetric orbit of period n has
+/// a point z = (s, y_line(s)) on one line whose image after m = ⌊n/2⌋ or ⌈n/2⌉ steps lies on a line again, so
+/// it is a root of the one-dimensional function F(s) = offset of Qᵐ(z(s)) from the target line.  Roots are
+/// bracketed by scanning F over short windows of the line, refined by bisection in long double, and polished
+/// by Newton's method along the line in __float128 (113 bits), so that even period 138 at K = 0.1 closes to
+/// ~1e-25.  Roots whose minimal period is a proper divisor of n (e.g. the period-6 orbit solves the
+/// period-138 problem) are discarded.
+///
+/// Where to scan: the guess `near` is iterated n times with Q; wherever an iterate passes within
+/// `searchRadius` of a symmetry line, the window |x − x_iterate| ≤ searchRadius·(1 + |slope|) of that line is
+/// scanned.  A guess inside an island of the chain, or anywhere within about searchRadius of an orbit point,
+/// finds the chain's symmetric orbits (both its elliptic and its hyperbolic one, usually).
+///
+/// The general method (refinePeriodicOrbit) is damped Newton on Qⁿ(z) − z in __float128 with the exact
+/// Jacobian DQⁿ − I; it needs a guess within the basin of the orbit (which shrinks as |DQⁿ| grows).
+
+#include <optional>
+#include <vector>
+
+#include "map/FixedPointMap.hpp"  // PhysicalPoint
+#include "periodic/PeriodicOrbit.hpp"
+
+namespace archipelago {
+
+/// What to look for.  Plain values; findSymmetricPeriodicOrbits() validates them.
+struct PeriodicOrbitSearch {
+  int period = 1;                    ///< n ≥ 1, at most kMaxPeriod
+  PhysicalPoint near;                ///< a guess for a point of the orbit (physical x, y)
+  long double searchRadius = 0.01L;  ///< > 0: how far (physical units) from the guess's iterates to scan
+  int samplesPerWindow = 400;        ///< ≥ 8: scan points per window of width 2·searchRadius
+  bool stableOnly = false;           ///< keep only elliptic orbits (0 < R < 1)
+
+  static constexpr int kMaxPeriod = 100000;
+};
+
+/// Throws std::invalid_argument naming the first invalid field (K must be finite too).
+void validate(long double K, const PeriodicOrbitSearch& search);
+
+/// All distinct symmetric orbits of minimal period `search.period` found from the guess, nearest first
+/// (distance from `near` to the orbit's nearest point); each is relabelled so that z_0 is that nearest point.
+/// Empty when none was found.  Accepted orbits close to |Qⁿ(z_0) − z_0| ≤ 1e-12.
+[[nodiscard]] std::vector<PeriodicOrbit> findSymmetricPeriodicOrbits(long double K, const PeriodicOrbitSearch& search);
+
+/// General (not necessarily symmetric) periodic orbit: damped Newton on Qⁿ(z) − z from `guess`, in __float128.
+/// Returns the orbit (z_0 = the converged point) when Newton converged to a point of minimal period n,
+/// nothing otherwise.
+[[nodiscard]] std::optional<PeriodicOrbit> refinePeriodicOrbit(long double K, int period, PhysicalPoint guess,
+                                                               int maxIterations = 100);
+
+/// The orbit nearest to the guess: the nearest symmetric one, else the general Newton result from the guess.
+/// Throws std::invalid_argument for invalid input and std::runtime_error ("no periodic orbit of period n found
+/// near (x, y) ...") when neither method succeeds.
+[[nodiscard]] PeriodicOrbit findPeriodicOrbit(long double K, const PeriodicOrbitSearch& search);
+
+}  // namespace archipelago

@@ -1,0 +1,75 @@
+#!/usr/bin/env python3
+"""archipelago-cli periodic, end to end (issue 7): the period-138 chain of Karney (1983) §6, and bad input."""
+import csv, io, math, subprocess, sys
+
+cli = sys.argv[1]
+failures = 0
+
+def check(cond, what):
+    global failures
+    print(("ok   " if cond else "FAIL ") + what)
+    failures += 0 if cond else 1
+
+def run(*args):
+    return subprocess.run([cli, *args], capture_output=True, text=True, timeout=60)
+
+def parse(stdout):
+    """'# key: value' header lines, then the CSV of points."""
+    header, body = {}, []
+    for line in stdout.splitlines():
+        if line.startswith("# ") and ": " in line:
+            key, value = line[2:].split(": ", 1)
+            header[key] = value
+        elif not line.startswith("#"):
+            body.append(line)
+    return header, list(csv.DictReader(io.StringIO("\n".join(body))))
+
+K = 0.1
+# §6: a chain of order 6 x 23 = 138, one member at x + sqrt K ~ 0.352, y ~ 0.034.
+r = run("periodic", "--K", "0.1", "--period", "138", "--near", "0.0358,0.034")
+check(r.returncode == 0, f"periodic 138 exits 0 ({r.stderr.strip()})")
+header, rows = parse(r.stdout)
+check(header.get("period") == "138", f"period 138 reported ({header.get('period')})")
+check(len(rows) == 138, f"138 points printed ({len(rows)})")
+residue = float(header.get("residue", "nan"))
+check(0 < residue < 1, f"residue {residue} in (0, 1)")
+check(header.get("stable", "").startswith("yes"), f"reported stable ({header.get('stable')})")
+check("23/138" in header.get("rotation_number", ""), f"rotation number 23/138 ({header.get('rotation_number')})")
+check(header.get("inside_box", "").startswith("yes"), "orbit inside the default box")
+if rows:
+    x0, y0 = float(rows[0]["x"]), float(rows[0]["y"])
+    check(abs(x0 + math.sqrt(K) - 0.352) < 1e-3 and abs(y0 - 0.034) < 1e-3,
+          f"first point ({x0:.6f}, {y0:.6f}) is the member near x + sqrt K = 0.352, y = 0.034")
+    # Consecutive points are images under Q (y' = y + 2(x^2 - K), x' = x + y'), cyclically.
+    worst = 0.0
+    for k, row in enumerate(rows):
+        x, y = float(row["x"]), float(row["y"])
+        yn = y + 2 * (x * x - K)
+        xn = x + yn
+        nxt = rows[(k + 1) % len(rows)]
+        worst = max(worst, abs(xn - float(nxt["x"])), abs(yn - float(nxt["y"])))
+    check(worst < 1e-13, f"points map to their successors under Q (max error {worst:.2g})")
+
+# The central fixed point: R = sqrt K.
+r = run("periodic", "--K", "0.1", "--period", "1", "--near=-0.32,0.001")
+header, rows = parse(r.stdout)
+check(r.returncode == 0 and abs(float(header.get("residue", "nan")) - math.sqrt(K)) < 1e-15,
+      f"central fixed point has residue sqrt K ({header.get('residue')})")
+
+# Bad input: one clear line, non-zero exit, no crash.
+for args, mention in [
+    (["periodic", "--period", "0", "--near", "0,0"], "period = 0 must be in [1, 100000]"),
+    (["periodic", "--period", "6", "--near", "0.05"], "--near '0.05' must be two finite numbers x,y"),
+    (["periodic", "--period", "6", "--near", "a,b"], "--near 'a,b'"),
+    (["periodic", "--period", "6"], "--near is required"),
+    (["periodic", "--period", "6", "--near", "0.05,0.1", "--radius", "-1"], "search radius"),
+    (["periodic", "--K", "nan", "--period", "6", "--near", "0.05,0.1"], "K = nan must be a finite number"),
+    (["periodic", "--xmin", "-0.2", "--period", "6", "--near", "0.05,0.1"], "must be < -sqrt(K)"),
+    (["periodic", "--period", "6", "--near", "5,5"], "no periodic orbit of period 6 found near (5, 5)"),
+]:
+    r = run(*args)
+    lines = r.stderr.strip().splitlines()
+    check(r.returncode > 0 and len(lines) == 1 and lines[0].startswith("ERROR: ") and mention in lines[0],
+          f"{' '.join(args)} -> {r.returncode}: {r.stderr.strip()}")
+
+sys.exit(1 if failures else 0)

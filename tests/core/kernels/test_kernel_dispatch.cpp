@@ -1,0 +1,99 @@
+// Run-time choice of the instruction-set path (core/kernels/KernelDispatch.hpp).
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <stdexcept>
+#include <string>
+
+#include "kernels/KernelDispatch.hpp"
+
+namespace archipelago {
+namespace {
+
+std::string errorOf(const auto& call) {
+  try {
+    call();
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// Sets an environment variable for one scope and restores the previous value.
+class ScopedEnv {
+ public:
+  ScopedEnv(const char* name, const char* value) : name_(name) {
+    if (const char* old = std::getenv(name)) old_ = old, hadOld_ = true;
+    value ? setenv(name, value, 1) : unsetenv(name);
+  }
+  ~ScopedEnv() { hadOld_ ? setenv(name_, old_.c_str(), 1) : unsetenv(name_); }
+
+ private:
+  const char* name_;
+  std::string old_;
+  bool hadOld_ = false;
+};
+
+TEST(KernelDispatch, ScalarIsAlwaysSupportedAndLast) {
+  const auto supported = supportedKernels();
+  ASSERT_FALSE(supported.empty());
+  EXPECT_EQ(supported.back().kind, KernelKind::scalar);
+  EXPECT_EQ(supported.front().kind, bestKernel().kind);
+  EXPECT_TRUE(supports(CpuFeatures{}, KernelKind::scalar));
+  EXPECT_EQ(kernelByName("scalar", CpuFeatures{}).blocks, &advanceBlocksScalar);
+  EXPECT_NE(supportedKernelNames().find("scalar"), std::string::npos);
+  RecordProperty("supported_kernels", supportedKernelNames());
+}
+
+TEST(KernelDispatch, PreferenceOrderFollowsTheCpuFeatures) {
+  EXPECT_EQ(kernelByName("auto", CpuFeatures{false, false}).kind, KernelKind::scalar);
+  EXPECT_EQ(kernelByName("auto", CpuFeatures{true, false}).kind, KernelKind::avx2);
+  EXPECT_EQ(kernelByName("auto", CpuFeatures{true, true}).kind, KernelKind::avx512ifma);
+  EXPECT_EQ(kernelByName("auto").kind, bestKernel().kind);
+  const CpuFeatures cpu = CpuFeatures::detect();
+  for (const auto& k : allKernels())  // by name: found exactly when this CPU supports it
+    EXPECT_EQ(supports(cpu, k.kind), errorOf([&] { (void)kernelByName(k.name, cpu); }).empty()) << k.name;
+}
+
+TEST(KernelDispatch, EveryKernelIsFoundByName) {
+  for (const auto& k : allKernels()) {
+    const auto& found = kernelByName(k.name, CpuFeatures{true, true});
+    EXPECT_EQ(found.kind, k.kind);
+    EXPECT_EQ(found.name, k.name);
+  }
+}
+
+TEST(KernelDispatch, UnknownOrUnsupportedKernelIsAClearError) {
+  const std::string unknown = errorOf([] { (void)kernelByName("avx1024"); });
+  EXPECT_NE(unknown.find("unknown kernel 'avx1024'"), std::string::npos) << unknown;
+  EXPECT_NE(unknown.find("avx512ifma"), std::string::npos) << unknown;  // lists the known names
+
+  const std::string noIfma = errorOf([] { (void)kernelByName("avx512ifma", CpuFeatures{true, false}); });
+  EXPECT_NE(noIfma.find("kernel 'avx512ifma' is not supported by this CPU"), std::string::npos) << noIfma;
+  const std::string noAvx2 = errorOf([] { (void)kernelByName("avx2", CpuFeatures{false, false}); });
+  EXPECT_NE(noAvx2.find("kernel 'avx2' is not supported by this CPU"), std::string::npos) << noAvx2;
+}
+
+TEST(KernelDispatch, EnvironmentVariableOverridesTheDefault) {
+  {
+    const ScopedEnv env("ARCHIPELAGO_KERNEL", nullptr);
+    EXPECT_EQ(selectKernel().kind, bestKernel().kind);
+  }
+  {
+    const ScopedEnv env("ARCHIPELAGO_KERNEL", "");
+    EXPECT_EQ(selectKernel().kind, bestKernel().kind);
+  }
+  for (const auto& k : supportedKernels()) {
+    const ScopedEnv env("ARCHIPELAGO_KERNEL", std::string(k.name).c_str());
+    EXPECT_EQ(selectKernel().kind, k.kind);
+    EXPECT_EQ(selectKernel("scalar").kind, KernelKind::scalar);  // an explicit request wins
+  }
+  {
+    const ScopedEnv env("ARCHIPELAGO_KERNEL", "fastest");
+    const std::string error = errorOf([] { (void)selectKernel(); });
+    EXPECT_NE(error.find("ARCHIPELAGO_KERNEL: unknown kernel 'fastest'"), std::string::npos) << error;
+  }
+}
+
+}  // namespace
+}  // namespace archipelago
