@@ -673,11 +673,12 @@ void MainWindow::showAbout() {
          "<table>"
          "<tr><td>Qt</td><td>%2 (built with %3)</td></tr>"
          "<tr><td>Qwt</td><td>%4</td></tr>"
-         "<tr><td>Kernel</td><td>%5</td></tr>"
+         "<tr><td>Kernel</td><td>%5 — %6</td></tr>"
          "</table>")
           .arg(QStringLiteral(ARCHIPELAGO_VERSION), QString::fromLatin1(qVersion()), QStringLiteral(QT_VERSION_STR),
                QStringLiteral(QWT_VERSION_STR),
-               latest_ && !latest_->kernel.empty() ? QString::fromStdString(latest_->kernel) : RunWorker::kernelName()));
+               latest_ && !latest_->kernel.empty() ? QString::fromStdString(latest_->kernel) : RunWorker::kernelName(),
+               RunWorker::kernelDescription()));
 }
 
 void MainWindow::message(const QString& text, int timeoutMs) { statusBar()->showMessage(text, timeoutMs); }

@@ -12,6 +12,7 @@
 #include <exception>
 
 #include "TheoryOverlay.hpp"
+#include "kernels/KernelDispatch.hpp"
 #include "stats/RunStatistics.hpp"
 
 namespace archipelago::ui {
@@ -26,8 +27,10 @@ TrappingRunOptions coreOptions(const RunSettings& settings) {
   TrappingRunOptions options;
   options.threads = settings.threads;
   options.chunkSeconds = settings.chunkSeconds;
-  options.kernel = &advanceBlocksScalar;
-  options.kernelName = RunWorker::kernelName().toStdString();
+  // The fastest path this CPU supports, or $ARCHIPELAGO_KERNEL; every path gives bit-identical results.
+  const KernelInfo& kernel = selectKernel();
+  options.kernel = kernel.blocks;
+  options.kernelName = std::string(kernel.name);
   return options;
 }
 
@@ -77,7 +80,22 @@ void RunWorker::lowerComputePriority() {
 #endif
 }
 
-QString RunWorker::kernelName() { return QStringLiteral("scalar"); }
+QString RunWorker::kernelName() {
+  try {
+    return QString::fromUtf8(selectKernel().name.data(), static_cast<int>(selectKernel().name.size()));
+  } catch (const std::exception& e) {
+    return QString::fromStdString(e.what());
+  }
+}
+
+QString RunWorker::kernelDescription() {
+  try {
+    const KernelInfo& k = selectKernel();
+    return QString::fromUtf8(k.description.data(), static_cast<int>(k.description.size()));
+  } catch (const std::exception& e) {
+    return QString::fromStdString(e.what());
+  }
+}
 
 RunWorker::RunWorker(QObject* parent) : QThread(parent) {
   qRegisterMetaType<RunSnapshotPtr>("archipelago::ui::RunSnapshotPtr");

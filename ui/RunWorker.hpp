@@ -49,8 +49,10 @@ class RunWorker : public QThread {
   /// Snapshots the worker skipped because the GUI had not taken the previous ones (diagnostics).
   [[nodiscard]] std::uint64_t skippedSnapshots() const noexcept { return skipped_.load(); }
 
-  /// The kernel the worker uses (the name core reports in TrappingState::kernel).
+  /// The kernel path the worker uses (core's selectKernel(): the fastest the CPU supports, or
+  /// $ARCHIPELAGO_KERNEL), as core names it in TrappingState::kernel; and its one-line description.
   [[nodiscard]] static QString kernelName();
+  [[nodiscard]] static QString kernelDescription();
 
  Q_SIGNALS:
   /// A chunk boundary of a running session (queued to the GUI thread).

@@ -36,11 +36,12 @@ inline void enter(ui::ParameterPanel& panel, const TrappingParameters& p, int th
   panel.setParameters(p, threads);
 }
 
-/// A K = 0.1 run of a few hundred million steps: long enough to pause mid-way, short enough for a test.
-inline TrappingParameters mediumRun() {
+/// A K = 0.1 run that never finishes within a test (10¹⁴ steps): pause, stop and close always catch it
+/// mid-way, whatever the speed of the kernel.
+inline TrappingParameters endlessRun() {
   TrappingParameters p;  // K = 0.1, xmin = −0.8, xmax = 0.5, Xr = 0.02 (paper §5)
   p.q = 4;
-  p.T = 3'000'000;
+  p.T = 1'000'000'000'000;
   p.M = 16;
   p.subsets = 8;
   p.seed = 7;
