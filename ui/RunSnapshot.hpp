@@ -27,7 +27,8 @@ inline constexpr int kPlotKinds = 6;
 /// A theory curve drawn over a plot (Karney 1983, §4): either sampled points or a vertical line at `at`.
 struct TheoryCurve {
   PlotKind plot = PlotKind::f;
-  std::string label;        ///< legend text, e.g. "t^-7"
+  std::string label;        ///< plain text for files, e.g. "t^-7"
+  std::string legend;       ///< rich text for the legend, e.g. "t<sup>−7</sup>" (label when empty)
   Series curve;             ///< abscissa and value; empty for a vertical line
   double verticalAt = 0;    ///< > 0: a vertical line at this abscissa (e.g. t_max for K < 0)
 };

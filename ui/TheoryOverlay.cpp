@@ -33,7 +33,8 @@ Series sampled(double a, double tLow, double tHigh, const std::function<double(d
 
 /// Fits the amplitude of `shape` to `data` over [tLow, tHigh] (core's log-space fit) and draws it over
 /// [drawLow, drawHigh].  Nothing when no data point lies in the window.
-void addFitted(std::vector<TheoryCurve>& out, PlotKind plot, const std::string& label, const Series& data,
+void addFitted(std::vector<TheoryCurve>& out, PlotKind plot, const std::string& label, const std::string& legend,
+               const Series& data,
                double tLow, double tHigh, double drawLow, double drawHigh,
                const std::function<double(double)>& shape) {
   if (data.x.empty()) return;
@@ -42,6 +43,7 @@ void addFitted(std::vector<TheoryCurve>& out, PlotKind plot, const std::string& 
   TheoryCurve c;
   c.plot = plot;
   c.label = label;
+  c.legend = legend;
   c.curve = sampled(fit.amplitude, drawLow, drawHigh, shape);
   if (!c.curve.x.empty()) out.push_back(std::move(c));
 }
@@ -66,26 +68,27 @@ std::vector<TheoryCurve> theoryCurves(const TrappingParameters& params, const Tr
       TheoryCurve line;
       line.plot = plot;
       line.label = "t_max = 5.1454 |K|^-1/4";
+      line.legend = "t<sub>max</sub> = 5.1454 |K|<sup>−1/4</sup>";
       line.verticalAt = tmax;
       out.push_back(line);
     }
-    addFitted(out, PlotKind::f, "F(|K|^1/4 t)", stats.f, 0.2 * tmax, 0.8 * tmax, tStart, tmax * (1 - 1e-6),
+    addFitted(out, PlotKind::f, "F(|K|^1/4 t)", "F(|K|<sup>1/4</sup> t), fitted", stats.f, 0.2 * tmax, 0.8 * tmax, tStart, tmax * (1 - 1e-6),
               [K](double t) { return smallk::negativeKSegmentShape(t, K); });
-    addFitted(out, PlotKind::C, "C(|K|^1/4 tau)", stats.C, 0.2 * tmax, 0.8 * tmax, tStart, tmax * (1 - 1e-6),
+    addFitted(out, PlotKind::C, "C(|K|^1/4 tau)", "C(|K|<sup>1/4</sup> τ), fitted", stats.C, 0.2 * tmax, 0.8 * tmax, tStart, tmax * (1 - 1e-6),
               [K](double t) { return smallk::negativeKCorrelationShape(t, K); });
   } else if (K == 0) {
     // f_t ∝ t^−7, reached from t ∼ 100 (§4); C_τ ∝ τ^−5.
     const double from = tEnd > 300 ? 100 : 20;
-    addFitted(out, PlotKind::f, "t^-7", stats.f, from, inf, from / 3, tEnd,
+    addFitted(out, PlotKind::f, "t^-7", "t<sup>−7</sup>, fitted", stats.f, from, inf, from / 3, tEnd,
               [](double t) { return smallk::zeroKSegmentShape(t); });
-    addFitted(out, PlotKind::C, "tau^-5", stats.C, from, inf, from / 3, tEnd,
+    addFitted(out, PlotKind::C, "tau^-5", "τ<sup>−5</sup>, fitted", stats.C, from, inf, from / 3, tEnd,
               [](double t) { return smallk::zeroKCorrelationShape(t); });
   } else {
     // f_t ∝ exp(−½ log λ t) ≈ exp(−K^¼ t) for t ≫ K^−1/4 (§4); C_τ decays at the same rate.
     const double scale = std::pow(K, -0.25);
-    addFitted(out, PlotKind::f, "exp(-K^1/4 t)", stats.f, 2 * scale, inf, scale, tEnd,
+    addFitted(out, PlotKind::f, "exp(-K^1/4 t)", "exp(−K<sup>1/4</sup> t), fitted", stats.f, 2 * scale, inf, scale, tEnd,
               [K](double t) { return smallk::positiveKSegmentShape(t, K); });
-    addFitted(out, PlotKind::C, "exp(-K^1/4 tau)", stats.C, 2 * scale, inf, scale, tEnd,
+    addFitted(out, PlotKind::C, "exp(-K^1/4 tau)", "exp(−K<sup>1/4</sup> τ), fitted", stats.C, 2 * scale, inf, scale, tEnd,
               [K](double t) { return smallk::positiveKSegmentShape(t, K); });
   }
   return out;

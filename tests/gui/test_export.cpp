@@ -1,5 +1,10 @@
 // Exports: every plot to PNG, SVG and PDF, every curve to CSV; run files round-trip (offscreen platform).
 #include <QDir>
+#include <QDragEnterEvent>
+#include <QDropEvent>
+#include <QFileInfo>
+#include <QMimeData>
+#include <QUrl>
 #include <QFile>
 #include <QImage>
 #include <QSvgRenderer>
@@ -107,6 +112,37 @@ class TestExport : public QObject {
 
     QVERIFY(!other.openRunFile(dir_.filePath(QStringLiteral("missing.json")), &error));
     QVERIFY(!error.isEmpty());
+
+    // Saved and opened files are remembered for File ▸ Open Recent.
+    const QStringList recent = QSettings().value(QStringLiteral("recentFiles")).toStringList();
+    QVERIFY(recent.contains(QFileInfo(path).absoluteFilePath()));
+  }
+
+  void droppingARunFileOpensIt() {
+    const QString path = dir_.filePath(QStringLiteral("dropped.json"));
+    QVERIFY(window_->saveRunFile(path));
+    MainWindow target;
+    target.setConfirmations(false);
+    target.show();
+    QMimeData mime;
+    mime.setUrls({QUrl::fromLocalFile(path)});
+    const QPoint centre = target.rect().center();
+    QDragEnterEvent enter(centre, Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
+    enter.setAccepted(false);
+    QApplication::sendEvent(&target, &enter);
+    QVERIFY(enter.isAccepted());
+    QDropEvent drop(QPointF(centre), Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
+    QApplication::sendEvent(&target, &drop);
+    QVERIFY(QTest::qWaitFor([&] { return target.runStatus() == RunStatus::finished; }, 10000));
+    QVERIFY(target.latestSnapshot()->state.subsets == window_->latestSnapshot()->state.subsets);
+
+    // Anything but a .json file is refused.
+    QMimeData other;
+    other.setUrls({QUrl::fromLocalFile(dir_.filePath(QStringLiteral("picture.png")))});
+    QDragEnterEvent refused(centre, Qt::CopyAction, &other, Qt::LeftButton, Qt::NoModifier);
+    refused.setAccepted(false);
+    QApplication::sendEvent(&target, &refused);
+    QVERIFY(!refused.isAccepted());
   }
 };
 

@@ -200,12 +200,13 @@ void StatisticsPlot::setData(const Series& data, const std::vector<TheoryCurve>&
   int colorIndex = 0;
   for (const TheoryCurve& t : theory_) {
     const QColor color = kTheoryColors[colorIndex++ % 3];
+    const QwtText legend(QString::fromStdString(t.legend.empty() ? t.label : t.legend), QwtText::RichText);
     if (t.verticalAt > 0) {
-      auto* marker = new QwtPlotMarker(QString::fromStdString(t.label));
+      auto* marker = new QwtPlotMarker(legend);
       marker->setLineStyle(QwtPlotMarker::VLine);
       marker->setLinePen(QPen(color, 1.4, Qt::DashDotLine));
       marker->setXValue(t.verticalAt);
-      QwtText label(QString::fromStdString(t.label));
+      QwtText label(legend);
       label.setColor(color);
       marker->setLabel(label);
       marker->setLabelAlignment(Qt::AlignLeft | Qt::AlignBottom);
@@ -218,7 +219,7 @@ void StatisticsPlot::setData(const Series& data, const std::vector<TheoryCurve>&
     QVector<QPointF> tp;
     for (std::size_t i = 0; i < t.curve.x.size() && i < t.curve.value.size(); ++i)
       if (usable(t.curve.x[i], t.curve.value[i], ly)) tp.append(QPointF(t.curve.x[i], t.curve.value[i]));
-    auto* c = new QwtPlotCurve(QString::fromStdString(t.label));
+    auto* c = new QwtPlotCurve(legend);
     c->setPen(QPen(color, 1.8, Qt::DashLine));
     c->setRenderHint(QwtPlotItem::RenderAntialiased);
     c->setItemAttribute(QwtPlotItem::AutoScale, false);  // theory never moves the ranges of the data
