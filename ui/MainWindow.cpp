@@ -120,7 +120,9 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   }
 }
 
-MainWindow::~MainWindow() = default;  // ~RunWorker aborts the session and waits for its thread
+MainWindow::~MainWindow() {
+  delete worker_;  // aborts the session and waits for its thread before anything it reports to goes away
+}
 
 // ---------------------------------------------------------------------------------------------- layout
 
@@ -229,7 +231,8 @@ void MainWindow::createStatusBar() {
   progress_->setRange(0, 1000);
   progress_->setValue(0);
   progress_->setFormat(QStringLiteral("%p%"));
-  progress_->setMaximumWidth(220);
+  progress_->setMinimumWidth(260);
+  progress_->setMaximumWidth(320);
   progress_->setToolTip(tr("Blocks done / T"));
   rateLabel_ = new QLabel(this);
   rateLabel_->setToolTip(tr("Steps of N⁻¹ per second over all orbits (this session)"));
@@ -388,6 +391,10 @@ void MainWindow::refreshView() {
 
 void MainWindow::showProgress(const RunSnapshot& s) {
   progress_->setValue(static_cast<int>(1000 * s.progress.fraction + 0.5));
+  const QLocale c = QLocale::c();
+  progress_->setFormat(tr("%p % · block %1 of %2")
+                           .arg(c.toString(static_cast<double>(s.state.blocksDone), 'g', 3),
+                                c.toString(static_cast<double>(s.state.params.T), 'g', 3)));
   const bool live = status_ == RunStatus::running || status_ == RunStatus::pausing || status_ == RunStatus::stopping;
   rateLabel_->setText(s.progress.stepsPerSecond > 0 ? formatRate(s.progress.stepsPerSecond) : QString());
   etaLabel_->setText(live && s.progress.stepsPerSecond > 0 ? tr("ETA %1").arg(formatDuration(s.progress.etaSeconds))
