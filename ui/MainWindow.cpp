@@ -575,7 +575,8 @@ void MainWindow::resumeCheckpoint() {
   // The worker answers the analysis first; resume as soon as the window knows the state.
   auto connection = std::make_shared<QMetaObject::Connection>();
   *connection = connect(this, &MainWindow::runStatusChanged, this, [this, connection](RunStatus s) {
-    if (s == RunStatus::paused) resumeRun();
+    // Once resumed, the window holds the run; closing again mid-run writes a fresh checkpoint.
+    if (s == RunStatus::paused && resumeRun()) QFile::remove(checkpointPath());
     if (s != RunStatus::running) disconnect(*connection);
   });
 }
