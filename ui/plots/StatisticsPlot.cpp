@@ -250,7 +250,10 @@ void StatisticsPlot::refresh() {
   const bool follow = followingData();
   if (follow && curve_->dataSize() > 0) {
     setAxisAutoScale(kAxisX, true);
-    setAxisAutoScale(kAxisY, true);
+    // The local exponent is noisy where C_τ has few segments left (its last points reach 10 or more); the
+    // paper's fig. 5d shows 0 … 2, so the default range is 0 … 3 (zoom out to see the tail).
+    if (kind_ == PlotKind::localExponent) setAxisScale(kAxisY, 0.0, 3.0);
+    else setAxisAutoScale(kAxisY, true);
   }
   replot();
   if (follow && curve_->dataSize() > 0) {
