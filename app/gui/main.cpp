@@ -1,14 +1,98 @@
-// archipelago: the desktop application (Qt Widgets + Qwt).
+// archipelago: the desktop application (Qt Widgets + Qwt).  A thin main(); the window lives in ui/.
+//
+// Options for scripts (README screenshots, scripts/gui-latency.py):
+//   --preset NAME        load a preset instead of the last parameters
+//   --run                start the run at once
+//   --screenshot PATH    after --after seconds of running, save the window as PATH and quit
+//   --measure SECONDS    run, measure event latency and plot refresh rate, print them as JSON and quit
+//   FILE.json            open a run file
 #include <QApplication>
+#include <QTabWidget>
+#include <QCommandLineParser>
+#include <QTimer>
 
+#include <cstdio>
+
+#include "LatencyProbe.hpp"
 #include "MainWindow.hpp"
+#include "ParameterPanel.hpp"
+#include <QLineEdit>
 
 int main(int argc, char** argv) {
   QApplication app(argc, argv);
   QApplication::setApplicationName(QStringLiteral("Archipelago"));
   QApplication::setOrganizationName(QStringLiteral("Archipelago"));
   QApplication::setApplicationVersion(QStringLiteral(ARCHIPELAGO_VERSION));
+
+  QCommandLineParser parser;
+  parser.setApplicationDescription(QStringLiteral("Long-time correlations in the stochastic regime (Karney 1983)"));
+  parser.addHelpOption();
+  parser.addVersionOption();
+  const QCommandLineOption preset(QStringLiteral("preset"), QStringLiteral("Load the preset NAME."), QStringLiteral("NAME"));
+  const QCommandLineOption run(QStringLiteral("run"), QStringLiteral("Start the run at once."));
+  const QCommandLineOption threads(QStringLiteral("threads"), QStringLiteral("Worker threads (0 = all)."), QStringLiteral("N"));
+  const QCommandLineOption screenshot(QStringLiteral("screenshot"), QStringLiteral("Save the window as PATH and quit."),
+                                      QStringLiteral("PATH"));
+  const QCommandLineOption after(QStringLiteral("after"), QStringLiteral("Seconds before the screenshot (default 20)."),
+                                 QStringLiteral("SECONDS"), QStringLiteral("20"));
+  const QCommandLineOption measure(QStringLiteral("measure"),
+                                   QStringLiteral("Measure event latency and refresh rate for SECONDS, print JSON."),
+                                   QStringLiteral("SECONDS"));
+  const QCommandLineOption tab(QStringLiteral("tab"), QStringLiteral("Show the tab whose title starts with NAME."),
+                               QStringLiteral("NAME"));
+  parser.addOptions({preset, run, threads, screenshot, after, measure, tab});
+  parser.addPositionalArgument(QStringLiteral("file"), QStringLiteral("A run file to open."), QStringLiteral("[file.json]"));
+  parser.process(app);
+
   archipelago::ui::MainWindow window;
+  const bool scripted = parser.isSet(screenshot) || parser.isSet(measure);
+  window.setConfirmations(!scripted);
+  auto* panel = window.parameterPanel();
+  if (parser.isSet(preset) && !panel->applyPreset(parser.value(preset))) {
+    std::fprintf(stderr, "ERROR: no preset named \"%s\"; presets: %s\n", qPrintable(parser.value(preset)),
+                 qPrintable(panel->presetNames().join(QStringLiteral(", "))));
+    return 1;
+  }
+  if (parser.isSet(threads)) {
+    if (auto* field = panel->field(QStringLiteral("threads"))) {
+      field->setText(parser.value(threads));
+      Q_EMIT field->textEdited(field->text());
+    }
+  }
   window.show();
+  if (parser.isSet(tab)) {
+    bool found = false;
+    for (int i = 0; i < window.tabs()->count() && !found; ++i)
+      if (window.tabs()->tabText(i).startsWith(parser.value(tab), Qt::CaseInsensitive)) {
+        window.tabs()->setCurrentIndex(i);
+        found = true;
+      }
+    if (!found) {
+      std::fprintf(stderr, "ERROR: no tab named \"%s\"\n", qPrintable(parser.value(tab)));
+      return 1;
+    }
+  }
+  if (!parser.positionalArguments().isEmpty()) window.openRunFile(parser.positionalArguments().front());
+  if (parser.isSet(run) || scripted) QTimer::singleShot(0, &window, [&window] { window.startRun(); });
+
+  if (parser.isSet(screenshot)) {
+    const int ms = static_cast<int>(1000 * parser.value(after).toDouble());
+    QTimer::singleShot(ms, &window, [&window, path = parser.value(screenshot)] {
+      const bool ok = window.grab().save(path);
+      std::printf("%s %s\n", ok ? "wrote" : "could not write", qPrintable(path));
+      window.stopRun();
+      QTimer::singleShot(0, [] { QApplication::exit(0); });
+    });
+  }
+  if (parser.isSet(measure)) {
+    auto* probe = new archipelago::app::LatencyProbe(window, parser.value(measure).toDouble(), &window);
+    QObject::connect(probe, &archipelago::app::LatencyProbe::done, &window, [&window](const QString& json) {
+      std::printf("%s\n", qPrintable(json));
+      std::fflush(stdout);
+      window.stopRun();
+      QTimer::singleShot(0, [] { QApplication::exit(0); });
+    });
+    probe->start();
+  }
   return QApplication::exec();
 }

@@ -1,0 +1,150 @@
+// Exports: every plot to PNG, SVG and PDF, every curve to CSV; run files round-trip (offscreen platform).
+#include <QDir>
+#include <QDragEnterEvent>
+#include <QDropEvent>
+#include <QFileInfo>
+#include <QMimeData>
+#include <QUrl>
+#include <QFile>
+#include <QImage>
+#include <QSvgRenderer>
+#include <QTemporaryDir>
+
+#include "GuiTestSupport.hpp"
+#include "StatisticsView.hpp"
+#include "plots/StatisticsPlot.hpp"
+#include "runfile/RunFile.hpp"
+
+using archipelago::ui::MainWindow;
+using archipelago::ui::RunStatus;
+
+class TestExport : public QObject {
+  Q_OBJECT
+ private:
+  MainWindow* window_ = nullptr;
+  QTemporaryDir dir_;
+
+ private Q_SLOTS:
+  void initTestCase() {
+    QVERIFY(dir_.isValid());
+    window_ = new MainWindow;
+    window_->setConfirmations(false);
+    window_->show();
+    window_->parameterPanel()->setParameters(archipelago::test::shortRun(), 2);
+    QVERIFY(window_->startRun());
+    QVERIFY(QTest::qWaitFor([this] { return window_->runStatus() == RunStatus::finished; }, 20000));
+  }
+  void cleanupTestCase() { delete window_; }
+
+  void exportAllWritesValidFiles() {
+    const QString folder = dir_.filePath(QStringLiteral("export"));
+    QString error;
+    QVERIFY2(window_->exportAllTo(folder, &error), qPrintable(error));
+    for (archipelago::ui::StatisticsPlot* plot : window_->statisticsView()->plots()) {
+      const QString base = QDir(folder).filePath(plot->fileName());
+
+      QImage png;
+      QVERIFY2(png.load(base + QStringLiteral(".png"), "PNG"), qPrintable(base));
+      QVERIFY(png.width() > 500 && png.height() > 300);
+      // Not blank: the data curve's colour is somewhere in the image.
+      bool hasCurveColour = false;
+      for (int y = 0; y < png.height() && !hasCurveColour; y += 1)
+        for (int x = 0; x < png.width() && !hasCurveColour; x += 1) {
+          const QColor c = png.pixelColor(x, y);
+          hasCurveColour = c.blue() > 120 && c.red() < 80 && c.green() < 120;
+        }
+      QVERIFY2(hasCurveColour, qPrintable(base));
+
+      QSvgRenderer svg(base + QStringLiteral(".svg"));
+      QVERIFY2(svg.isValid(), qPrintable(base));
+      QVERIFY(svg.defaultSize().width() > 0);
+
+      QFile pdf(base + QStringLiteral(".pdf"));
+      QVERIFY(pdf.open(QIODevice::ReadOnly));
+      const QByteArray bytes = pdf.readAll();
+      QVERIFY(bytes.startsWith("%PDF-"));
+      QVERIFY(bytes.contains("%%EOF"));
+
+      QFile csv(base + QStringLiteral(".csv"));
+      QVERIFY(csv.open(QIODevice::ReadOnly | QIODevice::Text));
+      const QStringList lines = QString::fromUtf8(csv.readAll()).split(QLatin1Char('\n'), Qt::SkipEmptyParts);
+      QCOMPARE(lines.front(), QStringLiteral("curve,x,value,error"));
+      int dataRows = 0;
+      for (int i = 1; i < lines.size(); ++i) {
+        const QStringList cells = lines.at(i).split(QLatin1Char(','));
+        QCOMPARE(cells.size(), 4);
+        if (cells.at(0) != QLatin1String("data")) continue;
+        bool okX = false, okV = false;
+        const double x = cells.at(1).toDouble(&okX);
+        const double v = cells.at(2).toDouble(&okV);
+        QVERIFY(okX && okV);
+        // Numbers round-trip exactly (17 digits).
+        QCOMPARE(x, plot->data().x.at(static_cast<std::size_t>(dataRows)));
+        QCOMPARE(v, plot->data().value.at(static_cast<std::size_t>(dataRows)));
+        ++dataRows;
+      }
+      QCOMPARE(static_cast<std::size_t>(dataRows), plot->data().x.size());
+      QVERIFY(dataRows > 0);
+    }
+  }
+
+  void unknownImageFormatIsRefused() {
+    QString error;
+    QVERIFY(!window_->statisticsView()->plots().front()->exportImage(dir_.filePath(QStringLiteral("x.bmpx")), &error));
+    QVERIFY(error.contains(QStringLiteral("format")));
+  }
+
+  void runFilesRoundTripThroughTheWindow() {
+    const QString path = dir_.filePath(QStringLiteral("run.json"));
+    QString error;
+    QVERIFY2(window_->saveRunFile(path, &error), qPrintable(error));
+    const archipelago::TrappingState saved = window_->latestSnapshot()->state;
+    QVERIFY(archipelago::loadRunFile(path.toStdString()).subsets == saved.subsets);
+
+    MainWindow other;
+    other.setConfirmations(false);
+    QVERIFY2(other.openRunFile(path, &error), qPrintable(error));
+    QVERIFY(QTest::qWaitFor([&] { return other.runStatus() == RunStatus::finished; }, 10000));
+    QVERIFY(other.latestSnapshot()->state.subsets == saved.subsets);
+    QTRY_COMPARE(other.statisticsView()->plots().front()->data().value,
+                 window_->statisticsView()->plots().front()->data().value);
+    QVERIFY(other.windowTitle().startsWith(QStringLiteral("run.json")));
+
+    QVERIFY(!other.openRunFile(dir_.filePath(QStringLiteral("missing.json")), &error));
+    QVERIFY(!error.isEmpty());
+
+    // Saved and opened files are remembered for File ▸ Open Recent.
+    const QStringList recent = QSettings().value(QStringLiteral("recentFiles")).toStringList();
+    QVERIFY(recent.contains(QFileInfo(path).absoluteFilePath()));
+  }
+
+  void droppingARunFileOpensIt() {
+    const QString path = dir_.filePath(QStringLiteral("dropped.json"));
+    QVERIFY(window_->saveRunFile(path));
+    MainWindow target;
+    target.setConfirmations(false);
+    target.show();
+    QMimeData mime;
+    mime.setUrls({QUrl::fromLocalFile(path)});
+    const QPoint centre = target.rect().center();
+    QDragEnterEvent enter(centre, Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
+    enter.setAccepted(false);
+    QApplication::sendEvent(&target, &enter);
+    QVERIFY(enter.isAccepted());
+    QDropEvent drop(QPointF(centre), Qt::CopyAction, &mime, Qt::LeftButton, Qt::NoModifier);
+    QApplication::sendEvent(&target, &drop);
+    QVERIFY(QTest::qWaitFor([&] { return target.runStatus() == RunStatus::finished; }, 10000));
+    QVERIFY(target.latestSnapshot()->state.subsets == window_->latestSnapshot()->state.subsets);
+
+    // Anything but a .json file is refused.
+    QMimeData other;
+    other.setUrls({QUrl::fromLocalFile(dir_.filePath(QStringLiteral("picture.png")))});
+    QDragEnterEvent refused(centre, Qt::CopyAction, &other, Qt::LeftButton, Qt::NoModifier);
+    refused.setAccepted(false);
+    QApplication::sendEvent(&target, &refused);
+    QVERIFY(!refused.isAccepted());
+  }
+};
+
+ARCHIPELAGO_GUI_TEST_MAIN(TestExport)
+#include "test_export.moc"

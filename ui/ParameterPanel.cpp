@@ -1,0 +1,282 @@
+#include "ParameterPanel.hpp"
+
+#include <QComboBox>
+#include <QFormLayout>
+#include <QGroupBox>
+#include <QLabel>
+#include <QLineEdit>
+#include <QLocale>
+#include <QSignalBlocker>
+#include <QThread>
+#include <QVBoxLayout>
+
+#include <cmath>
+#include <limits>
+
+namespace archipelago::ui {
+
+namespace {
+const QLocale kNumbers = QLocale::c();  // the paper's notation: a point and an exponent, never a comma
+
+std::optional<double> parseReal(const QString& text) {
+  bool ok = false;
+  const double v = kNumbers.toDouble(text.trimmed(), &ok);
+  if (!ok || !std::isfinite(v)) return std::nullopt;
+  return v;
+}
+
+/// Integers may be typed as 20000000 or as 2e7 (the paper writes qT = 2×10⁹).
+std::optional<std::uint64_t> parseCount(const QString& text) {
+  bool ok = false;
+  const QString t = text.trimmed();
+  const qulonglong v = kNumbers.toULongLong(t, &ok);
+  if (ok) return static_cast<std::uint64_t>(v);
+  const double d = kNumbers.toDouble(t, &ok);
+  if (!ok || !(d >= 0) || d != std::floor(d) || d >= 9.2e18) return std::nullopt;
+  return static_cast<std::uint64_t>(d);
+}
+
+/// The shortest text that reads back as exactly v (0.1, not 0.10000000000000001).
+QString shortest(double v) {
+  for (int digits = 1; digits < 17; ++digits) {
+    const QString text = kNumbers.toString(v, 'g', digits);
+    if (kNumbers.toDouble(text) == v) return text;
+  }
+  return kNumbers.toString(v, 'g', 17);
+}
+
+QString groupedCount(double v) {
+  return v < 1e6 ? kNumbers.toString(v, 'f', 0) : kNumbers.toString(v, 'g', 4).replace(QStringLiteral("e+"), QStringLiteral("e"));
+}
+}  // namespace
+
+ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
+  auto* layout = new QVBoxLayout(this);
+
+  presetBox_ = new QComboBox(this);
+  presetBox_->setObjectName(QStringLiteral("presets"));
+  presetBox_->setToolTip(tr("Parameter sets of the paper's figures; choosing one fills the fields below."));
+  presets_ = loadPresets();
+  presetBox_->addItem(tr("Custom"));
+  for (const Preset& p : presets_) presetBox_->addItem(p.name);
+  presetDescription_ = new QLabel(this);
+  presetDescription_->setWordWrap(true);
+  presetDescription_->setStyleSheet(QStringLiteral("color: palette(mid);"));
+  auto* presetForm = new QFormLayout;
+  presetForm->addRow(tr("Preset"), presetBox_);
+  layout->addLayout(presetForm);
+  layout->addWidget(presetDescription_);
+
+  auto* mapGroup = new QGroupBox(tr("Map Q*  (y' = y + 2(x² − K),  x' = x + y')"), this);
+  auto* mapForm = new QFormLayout(mapGroup);
+  addField(mapForm, QStringLiteral("K"), QStringLiteral("K"),
+           tr("The map parameter K of Q (eq. qu, §2). Small |K| is nearly integrable (§4); at K = 0.1 the "
+              "central island is ringed by a chain of six islands (§5)."));
+  addField(mapForm, QStringLiteral("xmin"), QStringLiteral("x<sub>min</sub>"),
+           tr("Left edge of the box of Q* (eq. gstar). Must be < −√K so that the elliptic fixed point "
+              "(−√K, 0) lies inside the box (appendix B)."));
+  addField(mapForm, QStringLiteral("xmax"), QStringLiteral("x<sub>max</sub>"),
+           tr("Right edge of the box. Q* is periodic with period L = xmax − xmin in x and y; an orbit that "
+              "leaves the box has escaped the islands and its trapped segment ends (§3)."));
+  layout->addWidget(mapGroup);
+
+  auto* runGroup = new QGroupBox(tr("Trapping run (appendix B)"), this);
+  auto* runForm = new QFormLayout(runGroup);
+  addField(runForm, QStringLiteral("Xr"), QStringLiteral("X<sub>r</sub>"),
+           tr("Width of the randomizing zone 0 ≤ X ≤ Xr on the left edge of the unit square (appendix B, "
+              "step 6): there Y gets a random kick, so successive segments are independent."));
+  addField(runForm, QStringLiteral("q"), QStringLiteral("q"),
+           tr("Steps of N⁻¹ per block: statistics are gathered for N^−q, so segment lengths t are multiples "
+              "of q (appendix B). Larger q is cheaper per step but blurs t < q."));
+  addField(runForm, QStringLiteral("T"), QStringLiteral("T"),
+           tr("Blocks per orbit: each orbit is qT steps long. The paper's K = 0.1 run has qT = 2×10⁹ (§5). "
+              "Scientific notation (2e7) is accepted."));
+  addField(runForm, QStringLiteral("M"), QStringLiteral("M"),
+           tr("Number of independent orbits; the paper's K = 0.1 run used M = 1600 (appendix B)."));
+  addField(runForm, QStringLiteral("seed"), tr("seed"),
+           tr("Seed of the counter-based random kicks: the same seed gives bit-identical results on any "
+              "number of threads, and after pause/resume."));
+  addField(runForm, QStringLiteral("subsets"), tr("subsets"),
+           tr("Orbits are split into this many independent subsets (orbit i → subset i mod subsets); the "
+              "spread between them gives the error bands, the paper's method for D = 6400 ± 800 (§5)."));
+  addField(runForm, QStringLiteral("threads"), tr("threads"),
+           tr("Worker threads for the run (0 = every core). Results do not depend on it."));
+  layout->addWidget(runGroup);
+
+  message_ = new QLabel(this);
+  message_->setObjectName(QStringLiteral("validationMessage"));
+  message_->setWordWrap(true);
+  message_->setStyleSheet(QStringLiteral("color: #b00020;"));
+  layout->addWidget(message_);
+
+  auto* derivedGroup = new QGroupBox(tr("Derived (read-only)"), this);
+  derivedGroup->setToolTip(tr("The integers that define the fixed-point map N exactly (appendix B, step 3): "
+                              "G(X) = 2^m (A X² − B X + C) in units of 2⁻⁵²."));
+  auto* derivedForm = new QFormLayout(derivedGroup);
+  const QList<QPair<QString, QString>> derivedRows = {
+      {QStringLiteral("A"), QStringLiteral("A = 2L·2<sup>52−m</sup>")},
+      {QStringLiteral("B"), QStringLiteral("B = −4x<sub>min</sub>·2<sup>52−m</sup>")},
+      {QStringLiteral("C"), QStringLiteral("C = c·2<sup>52−m</sup>")},
+      {QStringLiteral("m"), QStringLiteral("m")},
+      {QStringLiteral("L"), QStringLiteral("L")},
+      {QStringLiteral("steps"), tr("steps M·q·T")}};
+  for (const auto& [key, label] : derivedRows) {
+    auto* value = new QLabel(QStringLiteral("—"), derivedGroup);
+    value->setTextInteractionFlags(Qt::TextSelectableByMouse);
+    value->setObjectName(QStringLiteral("derived_") + key);
+    derivedForm->addRow(label, value);
+    derived_.insert(key, value);
+  }
+  layout->addWidget(derivedGroup);
+  layout->addStretch(1);
+
+  connect(presetBox_, qOverload<int>(&QComboBox::activated), this, [this](int index) {
+    if (index > 0) applyPreset(presets_.at(index - 1).name);
+  });
+
+  if (!presets_.isEmpty()) applyPreset(presets_.front().name);
+  else setParameters(TrappingParameters{}, 0);
+}
+
+void ParameterPanel::addField(QFormLayout* form, const QString& name, const QString& label, const QString& tooltip) {
+  auto* edit = new QLineEdit(this);
+  edit->setObjectName(name);
+  edit->setToolTip(tooltip);
+  edit->setClearButtonEnabled(false);
+  auto* caption = new QLabel(label, this);
+  caption->setToolTip(tooltip);
+  caption->setBuddy(edit);
+  form->addRow(caption, edit);
+  fields_.insert(name, edit);
+  connect(edit, &QLineEdit::textEdited, this, [this] {
+    const QSignalBlocker block(presetBox_);
+    presetBox_->setCurrentIndex(0);  // edited by hand: no longer a preset
+    presetDescription_->clear();
+    revalidate();
+  });
+}
+
+std::optional<TrappingParameters> ParameterPanel::parameters() const { return valid_ ? parsed_ : std::nullopt; }
+
+int ParameterPanel::threads() const {
+  const auto n = parseCount(fields_.value(QStringLiteral("threads"))->text());
+  return n ? static_cast<int>(*n) : 0;
+}
+
+QString ParameterPanel::validationMessage() const { return reason_; }
+
+void ParameterPanel::setParameters(const TrappingParameters& p, int threads) {
+  fields_[QStringLiteral("K")]->setText(shortest(p.map.K));
+  fields_[QStringLiteral("xmin")]->setText(shortest(p.map.xmin));
+  fields_[QStringLiteral("xmax")]->setText(shortest(p.map.xmax));
+  fields_[QStringLiteral("Xr")]->setText(shortest(p.Xr));
+  fields_[QStringLiteral("q")]->setText(QString::number(p.q));
+  fields_[QStringLiteral("T")]->setText(QString::number(p.T));
+  fields_[QStringLiteral("M")]->setText(QString::number(p.M));
+  fields_[QStringLiteral("seed")]->setText(QString::number(p.seed));
+  fields_[QStringLiteral("subsets")]->setText(QString::number(p.subsets));
+  fields_[QStringLiteral("threads")]->setText(QString::number(threads));
+  revalidate();
+}
+
+QStringList ParameterPanel::presetNames() const {
+  QStringList names;
+  for (const Preset& p : presets_) names << p.name;
+  return names;
+}
+
+bool ParameterPanel::applyPreset(const QString& name) {
+  for (int i = 0; i < presets_.size(); ++i) {
+    if (presets_.at(i).name != name) continue;
+    setParameters(presets_.at(i).parameters, threads());
+    const QSignalBlocker block(presetBox_);
+    presetBox_->setCurrentIndex(i + 1);
+    presetDescription_->setText(presets_.at(i).description);
+    return true;
+  }
+  return false;
+}
+
+void ParameterPanel::setEditable(bool editable) {
+  for (QLineEdit* edit : std::as_const(fields_)) edit->setReadOnly(!editable);
+  fields_.value(QStringLiteral("threads"))->setReadOnly(!editable);
+  presetBox_->setEnabled(editable);
+}
+
+void ParameterPanel::markField(const QString& name, bool invalid) {
+  QLineEdit* edit = fields_.value(name);
+  if (!edit) return;
+  edit->setProperty("invalid", invalid);
+  edit->setStyleSheet(invalid ? QStringLiteral("QLineEdit { background: #fde7e9; border: 1px solid #b00020; }")
+                              : QString());
+}
+
+void ParameterPanel::revalidate() {
+  for (auto it = fields_.cbegin(); it != fields_.cend(); ++it) markField(it.key(), false);
+  QString badField;
+  QString reason;
+  TrappingParameters p;
+  const auto real = [&](const char* key, double& out) {
+    if (!badField.isEmpty()) return;
+    if (const auto v = parseReal(fields_.value(QLatin1String(key))->text())) out = *v;
+    else { badField = QLatin1String(key); reason = tr("%1 is not a number").arg(badField); }
+  };
+  const auto count = [&](const char* key, auto& out) {
+    if (!badField.isEmpty()) return;
+    const auto v = parseCount(fields_.value(QLatin1String(key))->text());
+    using Out = std::remove_reference_t<decltype(out)>;
+    if (v && *v <= std::numeric_limits<Out>::max()) out = static_cast<Out>(*v);
+    else { badField = QLatin1String(key); reason = tr("%1 must be a whole number ≥ 0").arg(badField); }
+  };
+  real("K", p.map.K);
+  real("xmin", p.map.xmin);
+  real("xmax", p.map.xmax);
+  real("Xr", p.Xr);
+  count("q", p.q);
+  count("T", p.T);
+  count("M", p.M);
+  count("seed", p.seed);
+  count("subsets", p.subsets);
+  std::uint32_t threadCount = 0;
+  count("threads", threadCount);
+  if (badField.isEmpty() && threadCount > 1024) {
+    badField = QStringLiteral("threads");
+    reason = tr("threads = %1 must be ≤ 1024 (0 uses every core)").arg(threadCount);
+  }
+  if (badField.isEmpty()) {
+    if (const auto e = validationError(p)) {
+      reason = QString::fromStdString(*e);
+      // core's messages start with the parameter they are about ("xmin = −0.2 must be < …").
+      const QString first = reason.section(QLatin1Char(' '), 0, 0);
+      badField = fields_.contains(first) ? first : QStringLiteral("xmax");
+    }
+  }
+  const bool valid = badField.isEmpty();
+  parsed_ = valid ? std::optional<TrappingParameters>(p) : std::nullopt;
+  invalidField_ = badField;
+  reason_ = reason;
+  markField(badField, !valid);
+  message_->setText(valid ? QString() : reason);
+  showDerived(parsed_);
+  const bool changed = valid != valid_;
+  valid_ = valid;
+  if (changed) Q_EMIT validityChanged(valid_);
+  Q_EMIT parametersChanged();
+}
+
+void ParameterPanel::showDerived(const std::optional<TrappingParameters>& p) {
+  if (!p) {
+    for (QLabel* l : std::as_const(derived_)) l->setText(QStringLiteral("—"));
+    return;
+  }
+  const MapCoefficients k = computeCoefficients(p->map);
+  derived_[QStringLiteral("A")]->setText(QString::number(k.A));
+  derived_[QStringLiteral("B")]->setText(QString::number(k.B));
+  derived_[QStringLiteral("C")]->setText(QString::number(k.C));
+  derived_[QStringLiteral("m")]->setText(QString::number(k.m));
+  derived_[QStringLiteral("L")]->setText(shortest(p->map.width()));
+  derived_[QStringLiteral("steps")]->setText(
+      groupedCount(static_cast<double>(p->M) * static_cast<double>(p->q) * static_cast<double>(p->T)));
+}
+
+}  // namespace archipelago::ui

@@ -1,0 +1,72 @@
+#pragma once
+/// \file ParameterPanel.hpp
+/// \brief The settings of a trapping run (Karney 1983, appendix B, step 1), validated as they are typed.
+///
+/// Every field is a text field (T and M reach 10¹⁰ and beyond, more than a spin box holds).  After each
+/// keystroke the panel parses the fields, asks core's validationError() for the first broken rule, marks the
+/// field it names, shows the reason, and reports validity (the main window enables Run from it).  The integer
+/// map coefficients (A, B, C, m) that core derives from K, xmin, xmax are shown read-only: they, not K,
+/// define the map exactly.
+
+#include <QList>
+#include <QMap>
+#include <QWidget>
+
+#include <optional>
+
+#include "Presets.hpp"
+
+class QComboBox;
+class QFormLayout;
+class QLabel;
+class QLineEdit;
+
+namespace archipelago::ui {
+
+class ParameterPanel : public QWidget {
+  Q_OBJECT
+ public:
+  explicit ParameterPanel(QWidget* parent = nullptr);
+
+  /// The parameters when every field is valid.
+  [[nodiscard]] std::optional<TrappingParameters> parameters() const;
+  /// Worker threads (0 = every core).
+  [[nodiscard]] int threads() const;
+  [[nodiscard]] bool isValid() const noexcept { return valid_; }
+  /// The reason the parameters are invalid (empty when valid).
+  [[nodiscard]] QString validationMessage() const;
+  /// The name of the field the reason is about (empty when valid).
+  [[nodiscard]] QString invalidField() const { return invalidField_; }
+
+  void setParameters(const TrappingParameters& p, int threads);
+  [[nodiscard]] QStringList presetNames() const;
+  /// Loads the preset of that name; false when there is none.
+  bool applyPreset(const QString& name);
+  /// Fields are read-only while a run computes (its parameters cannot change under it).
+  void setEditable(bool editable);
+  /// The text field of a parameter ("K", "xmin", "xmax", "Xr", "q", "T", "M", "seed", "subsets", "threads").
+  [[nodiscard]] QLineEdit* field(const QString& name) const { return fields_.value(name); }
+
+ Q_SIGNALS:
+  void validityChanged(bool valid);
+  void parametersChanged();
+
+ private:
+  void addField(QFormLayout* form, const QString& name, const QString& label, const QString& tooltip);
+  void revalidate();
+  void markField(const QString& name, bool invalid);
+  void showDerived(const std::optional<TrappingParameters>& p);
+
+  QComboBox* presetBox_ = nullptr;
+  QLabel* presetDescription_ = nullptr;
+  QLabel* message_ = nullptr;
+  QMap<QString, QLineEdit*> fields_;
+  QMap<QString, QLabel*> derived_;
+  QList<Preset> presets_;
+  std::optional<TrappingParameters> parsed_;
+  QString invalidField_;
+  QString reason_;
+  bool valid_ = false;
+};
+
+}  // namespace archipelago::ui

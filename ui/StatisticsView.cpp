@@ -1,0 +1,75 @@
+#include "StatisticsView.hpp"
+
+#include <QElapsedTimer>
+#include <QGridLayout>
+#include <QLabel>
+#include <QLocale>
+#include <QVBoxLayout>
+
+#include "plots/StatisticsPlot.hpp"
+
+namespace archipelago::ui {
+
+namespace {
+QString withError(double v, double e) {
+  if (e > 0) return QStringLiteral("%1 ± %2").arg(v, 0, 'g', 4).arg(e, 0, 'g', 2);
+  return QString::number(v, 'g', 4);
+}
+}  // namespace
+
+StatisticsView::StatisticsView(QWidget* parent) : QWidget(parent) {
+  auto* layout = new QVBoxLayout(this);
+  layout->setContentsMargins(4, 4, 4, 4);
+  summary_ = new QLabel(this);
+  summary_->setObjectName(QStringLiteral("statisticsSummary"));
+  summary_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  summary_->setText(tr("No statistics yet: choose a preset and press Run (F5)."));
+  layout->addWidget(summary_);
+  auto* grid = new QGridLayout;
+  grid->setSpacing(6);
+  // Reading order of the paper's fig. 5: f, P, C, exponent; then the spreading S and D_t.
+  const PlotKind kinds[] = {PlotKind::f, PlotKind::P, PlotKind::C, PlotKind::localExponent, PlotKind::S,
+                            PlotKind::Dt};
+  int i = 0;
+  for (PlotKind kind : kinds) {
+    auto* plot = new StatisticsPlot(kind, this);
+    plots_.append(plot);
+    grid->addWidget(plot, i / 3, i % 3);
+    ++i;
+  }
+  layout->addLayout(grid, 1);
+}
+
+void StatisticsView::showSnapshot(const RunSnapshot& snapshot) {
+  if (!snapshot.hasStatistics) {
+    clear();
+    return;
+  }
+  QElapsedTimer clock;
+  clock.start();
+  const TrappingStatistics& s = snapshot.statistics;
+  for (StatisticsPlot* plot : std::as_const(plots_)) {
+    plot->setData(seriesOf(s, plot->kind()), snapshot.theory);
+    plot->refresh();
+  }
+  ++refreshes_;
+  refreshSeconds_ += static_cast<double>(clock.nsecsElapsed()) * 1e-9;
+  const QLocale c = QLocale::c();
+  summary_->setText(tr("<b>α</b> (mean segment) = %1 steps &nbsp;&nbsp; <b>D</b> = %2 &nbsp;&nbsp; "
+                       "Σ t f<sub>t</sub> = %3 &nbsp;&nbsp; segments: %4 &nbsp;&nbsp; longest: %5 steps")
+                        .arg(withError(s.alpha, s.alphaError), withError(s.D, s.DError),
+                             QString::number(s.sumTf, 'f', 4), c.toString(static_cast<qulonglong>(s.segments)),
+                             c.toString(static_cast<double>(s.longestBlocks) * snapshot.state.params.q, 'g', 4)));
+}
+
+void StatisticsView::clear() {
+  for (StatisticsPlot* plot : std::as_const(plots_)) {
+    plot->clearData();
+    plot->resetZoom();
+  }
+  summary_->setText(tr("No trapped segment has ended yet."));
+}
+
+QString StatisticsView::summaryText() const { return summary_->text(); }
+
+}  // namespace archipelago::ui

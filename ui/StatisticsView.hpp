@@ -1,0 +1,41 @@
+#pragma once
+/// \file StatisticsView.hpp
+/// \brief The "Statistics" tab: the six live plots of Karney (1983) figs. 3 and 5 and a one-line summary.
+///
+/// showSnapshot() copies a snapshot's series into the plots and replots them; the main window calls it from
+/// its refresh timer, never per chunk, so the event loop stays free.
+
+#include <QList>
+#include <QWidget>
+
+#include "RunSnapshot.hpp"
+
+class QLabel;
+
+namespace archipelago::ui {
+
+class StatisticsPlot;
+
+class StatisticsView : public QWidget {
+  Q_OBJECT
+ public:
+  explicit StatisticsView(QWidget* parent = nullptr);
+
+  void showSnapshot(const RunSnapshot& snapshot);
+  void clear();
+  [[nodiscard]] const QList<StatisticsPlot*>& plots() const noexcept { return plots_; }
+  [[nodiscard]] StatisticsPlot* plot(PlotKind kind) const { return plots_.at(static_cast<int>(kind)); }
+  /// Number of times the plots were redrawn (the latency script reads it).
+  [[nodiscard]] quint64 refreshCount() const noexcept { return refreshes_; }
+  /// Wall time spent redrawing, summed over every refresh (the latency script reads it).
+  [[nodiscard]] double refreshSeconds() const noexcept { return refreshSeconds_; }
+  [[nodiscard]] QString summaryText() const;
+
+ private:
+  QList<StatisticsPlot*> plots_;
+  QLabel* summary_ = nullptr;
+  quint64 refreshes_ = 0;
+  double refreshSeconds_ = 0;
+};
+
+}  // namespace archipelago::ui

@@ -1,0 +1,77 @@
+#pragma once
+/// \file StatisticsPlot.hpp
+/// \brief One live statistics plot (f_t, P_t, C_τ, S_t, D_t: log-log; local exponent: log-linear).
+///
+/// Follows Qwt's realtime examples: autoReplot is off and the owner decides when to replot (a GUI timer);
+/// setData() only copies the snapshot's series into the curves.  The plot draws the data, an error band
+/// (one sigma over the subsets of orbits, QwtPlotIntervalCurve) and the theory curves; on a log axis points
+/// ≤ 0 are left out and a band reaching ≤ 0 is clipped.  Ranges follow the data until the user zooms, pans
+/// or turns the wheel; "Reset zoom" (or a right click at the base of the zoom stack) follows the data again.
+/// A crosshair shows the coordinates under the mouse.
+
+#include <QString>
+#include <QVector>
+#include <qwt_interval.h>
+#include <qwt_plot.h>
+
+#include <vector>
+
+#include "RunSnapshot.hpp"
+
+class QwtPlotCurve;
+class QwtPlotIntervalCurve;
+class QwtPlotMarker;
+class QwtPlotZoomer;
+
+namespace archipelago::ui {
+
+class StatisticsPlot : public QwtPlot {
+  Q_OBJECT
+ public:
+  explicit StatisticsPlot(PlotKind kind, QWidget* parent = nullptr);
+  ~StatisticsPlot() override;
+
+  [[nodiscard]] PlotKind kind() const noexcept { return kind_; }
+  /// A file-name-safe name: "f", "P", "C", "local-exponent", "S", "D".
+  [[nodiscard]] QString fileName() const;
+  /// The title in words, for menus ("f_t: distribution of trapping times").
+  [[nodiscard]] QString displayName() const;
+
+  /// Copies the data and theory curves of a snapshot; call refresh() to show them.
+  void setData(const Series& data, const std::vector<TheoryCurve>& theory);
+  void clearData();
+  /// Replots, rescaling to the data unless the user has zoomed or panned.
+  void refresh();
+  /// Follows the data again.
+  void resetZoom();
+
+  /// The points drawn for the data curve (x, value), after dropping points a log axis cannot show.
+  [[nodiscard]] QVector<QPointF> plottedPoints() const;
+  [[nodiscard]] const Series& data() const noexcept { return data_; }
+  [[nodiscard]] int theoryCurveCount() const noexcept { return static_cast<int>(theory_.size()); }
+
+  /// Writes the plot as PNG, SVG or PDF (chosen by the suffix) with QwtPlotRenderer.
+  bool exportImage(const QString& path, QString* error = nullptr);
+  /// Writes every curve's points as CSV: curve,x,value,error (one row per point).
+  bool exportCsv(const QString& path, QString* error = nullptr) const;
+
+ protected:
+  void contextMenuEvent(QContextMenuEvent* event) override;
+
+ private:
+  [[nodiscard]] bool logY() const noexcept { return kind_ != PlotKind::localExponent; }
+  [[nodiscard]] bool followingData() const;
+
+  PlotKind kind_;
+  Series data_;
+  std::vector<TheoryCurve> theory_;
+  QwtPlotCurve* curve_ = nullptr;
+  QwtPlotIntervalCurve* band_ = nullptr;
+  std::vector<QwtPlotCurve*> theoryCurves_;
+  std::vector<QwtPlotMarker*> theoryMarkers_;
+  QwtPlotZoomer* zoomer_ = nullptr;
+  QwtInterval autoX_, autoY_;  // the ranges last chosen by autoscaling; anything else is the user's view
+  bool forceFollow_ = true;
+};
+
+}  // namespace archipelago::ui

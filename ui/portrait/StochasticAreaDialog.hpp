@@ -1,0 +1,35 @@
+#pragma once
+// The stochastic area b₂ (Karney 1983, §5): the fraction of the 1024 × 1024 boxes visited by the chaotic sea,
+// computed in the background (core/portrait/StochasticArea.hpp), with its convergence drawn as it grows.
+
+#include <QDialog>
+#include <QVector>
+#include <atomic>
+#include <memory>
+#include <thread>
+
+#include "portrait/StochasticArea.hpp"
+
+class QLabel;
+class QwtPlot;
+class QwtPlotCurve;
+
+namespace archipelago::ui {
+
+class StochasticAreaDialog : public QDialog {
+  Q_OBJECT
+ public:
+  StochasticAreaDialog(const StochasticAreaRequest& request, QWidget* parent = nullptr);
+  ~StochasticAreaDialog() override;  // stops the computation and waits for it
+
+ private:
+  void addPoint(double iterations, double b2, bool last);
+
+  QwtPlot* plot_ = nullptr;
+  QwtPlotCurve* curve_ = nullptr;
+  QLabel* summary_ = nullptr;
+  QVector<QPointF> points_;
+  std::jthread worker_;
+};
+
+}  // namespace archipelago::ui
