@@ -37,7 +37,9 @@
 #include "Presets.hpp"
 #include "ParameterPanel.hpp"
 #include "StatisticsView.hpp"
+#include "periodic/PeriodicOrbitDialog.hpp"
 #include "portrait/PortraitPanel.hpp"
+#include "segments/LongSegmentsPanel.hpp"
 #include "plots/StatisticsPlot.hpp"
 #include "runfile/RunFile.hpp"
 
@@ -102,6 +104,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   dock->setFeatures(QDockWidget::DockWidgetMovable | QDockWidget::DockWidgetFloatable);
   dock->setWidget(createParameterDock());
   addDockWidget(Qt::LeftDockWidgetArea, dock);
+  createLongSegmentsDock(dock);
 
   connect(panel_, &ParameterPanel::validityChanged, this, [this] { updateActions(); });
   connect(panel_, &ParameterPanel::parametersChanged, this, [this] {
@@ -213,6 +216,11 @@ void MainWindow::createMenus() {
 
   QMenu* view = menuBar()->addMenu(tr("&View"));
   view->addAction(resetZoomAction_);
+
+  QMenu* tools = menuBar()->addMenu(tr("&Tools"));
+  QAction* periodic = tools->addAction(tr("Find &Periodic Orbit…"), this, &MainWindow::showPeriodicOrbitDialog);
+  periodic->setShortcut(QKeySequence(QStringLiteral("Ctrl+Shift+P")));
+  periodic->setStatusTip(tr("Periodic orbits of Q with their residues; overlay them on the phase portrait"));
 
   QMenu* help = menuBar()->addMenu(tr("&Help"));
   help->addAction(tr("&About Archipelago"), this, &MainWindow::showAbout);
@@ -392,7 +400,60 @@ void MainWindow::refreshView() {
   if (!latest_ || latest_ == shown_) return;
   shown_ = latest_;
   statistics_->showSnapshot(*shown_);
+  segments_->updateSegments(shown_->state.params, shown_->state.longest);
+  if (pendingSegment_ >= 0 && pendingSegment_ < segments_->model()->rowCount()) {
+    segments_->selectRow(pendingSegment_);
+    pendingSegment_ = -1;
+  }
   showProgress(*shown_);
+}
+
+void MainWindow::createLongSegmentsDock(QDockWidget* parametersDock) {
+  segments_ = new LongSegmentsPanel(this);
+  segments_->setPortraitView(portrait_->view());
+  connect(segments_, &LongSegmentsPanel::statusMessage, this, [this](const QString& text) { message(text); });
+  // Before a segment is drawn: show the portrait with the run's map, so that the overlay's zoom sticks.
+  connect(segments_, &LongSegmentsPanel::aboutToDraw, this, [this](const TrappingParameters& p) {
+    tabs_->setCurrentWidget(portrait_);
+    portrait_->applyParametersNow(p.map, p.Xr);
+  });
+  connect(segments_, &LongSegmentsPanel::chainReady, this, [this](const ChainResultPtr&) {
+    if (!pendingIsland_) return;
+    pendingIsland_ = false;
+    segments_->zoomToIsland();
+  });
+  segmentsDock_ = new QDockWidget(tr("Long segments"), this);
+  segmentsDock_->setObjectName(QStringLiteral("longSegmentsDock"));
+  segmentsDock_->setFeatures(QDockWidget::DockWidgetMovable | QDockWidget::DockWidgetFloatable);
+  segmentsDock_->setWidget(segments_);
+  // A tab beside the parameters: the portrait keeps the width it needs.
+  addDockWidget(Qt::LeftDockWidgetArea, segmentsDock_);
+  tabifyDockWidget(parametersDock, segmentsDock_);
+  parametersDock->raise();
+}
+
+void MainWindow::showLongSegment(int rank, bool island) {
+  segmentsDock_->raise();
+  pendingSegment_ = rank;
+  pendingIsland_ = island;
+  if (shown_ && rank < segments_->model()->rowCount()) {
+    segments_->selectRow(rank);
+    pendingSegment_ = -1;
+  }
+}
+
+void MainWindow::showPeriodicOrbitDialog() {
+  if (periodicDialog_ == nullptr) {
+    periodicDialog_ = new PeriodicOrbitDialog(this);
+    connect(periodicDialog_, &PeriodicOrbitDialog::overlayRequested, this, [this](const PeriodicOrbit& orbit) {
+      tabs_->setCurrentWidget(portrait_);
+      segments_->showPeriodicOrbit(orbit);
+    });
+  }
+  if (const auto p = panel_->parameters()) periodicDialog_->setK(p->map.K);
+  periodicDialog_->show();
+  periodicDialog_->raise();
+  periodicDialog_->activateWindow();
 }
 
 void MainWindow::showProgress(const RunSnapshot& s) {

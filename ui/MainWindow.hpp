@@ -20,6 +20,7 @@
 #include "RunWorker.hpp"
 
 class QAction;
+class QDockWidget;
 class QFrame;
 class QLabel;
 class QMenu;
@@ -29,6 +30,8 @@ class QTimer;
 
 namespace archipelago::ui {
 
+class LongSegmentsPanel;
+class PeriodicOrbitDialog;
 class PortraitPanel;
 
 class ParameterPanel;
@@ -64,6 +67,13 @@ class MainWindow : public QMainWindow {
   [[nodiscard]] ParameterPanel* parameterPanel() const noexcept { return panel_; }
   [[nodiscard]] StatisticsView* statisticsView() const noexcept { return statistics_; }
   [[nodiscard]] PortraitPanel* portraitPanel() const noexcept { return portrait_; }
+  /// The "Long segments" dock: the run's longest trapped segments, replayed on the phase portrait.
+  [[nodiscard]] LongSegmentsPanel* longSegments() const noexcept { return segments_; }
+  /// Selects the segment of rank `rank` as soon as the table has it (e.g. after opening a run file) and, when
+  /// `island`, zooms to one island of its chain once the chain is known.  (Scripts and screenshots.)
+  void showLongSegment(int rank, bool island);
+  /// Tools ▸ Find Periodic Orbit: the dialog, with K from the current parameters.
+  void showPeriodicOrbitDialog();
   [[nodiscard]] QTabWidget* tabs() const noexcept { return tabs_; }
   [[nodiscard]] RunSnapshotPtr latestSnapshot() const { return latest_; }
   [[nodiscard]] QAction* runAction() const noexcept { return runAction_; }
@@ -92,6 +102,7 @@ class MainWindow : public QMainWindow {
   void onSnapshot(const RunSnapshotPtr& snapshot);
   void onRunEnded(quint64 runId, const RunSnapshotPtr& last, RunEnd how, const QString& message);
   void refreshView();
+  void createLongSegmentsDock(QDockWidget* parametersDock);
   void showProgress(const RunSnapshot& snapshot);
   void setStatus(RunStatus status);
   void updateActions();
@@ -112,6 +123,11 @@ class MainWindow : public QMainWindow {
   ParameterPanel* panel_ = nullptr;
   StatisticsView* statistics_ = nullptr;
   PortraitPanel* portrait_ = nullptr;
+  LongSegmentsPanel* segments_ = nullptr;
+  QDockWidget* segmentsDock_ = nullptr;
+  PeriodicOrbitDialog* periodicDialog_ = nullptr;
+  int pendingSegment_ = -1;       // showLongSegment(): the rank to select when the table has it
+  bool pendingIsland_ = false;
   QTabWidget* tabs_ = nullptr;
   RunWorker* worker_ = nullptr;
   QTimer* refreshTimer_ = nullptr;

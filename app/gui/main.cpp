@@ -5,6 +5,8 @@
 //   --run                start the run at once
 //   --screenshot PATH    after --after seconds of running, save the window as PATH and quit
 //   --measure SECONDS    run, measure event latency and plot refresh rate, print them as JSON and quit
+//   --segment N          select the long segment of rank N (0: the longest) of the opened run file
+//   --island             and zoom to one island of its chain once it is identified
 //   FILE.json            open a run file
 #include <QApplication>
 #include <QTabWidget>
@@ -40,7 +42,11 @@ int main(int argc, char** argv) {
                                    QStringLiteral("SECONDS"));
   const QCommandLineOption tab(QStringLiteral("tab"), QStringLiteral("Show the tab whose title starts with NAME."),
                                QStringLiteral("NAME"));
-  parser.addOptions({preset, run, threads, screenshot, after, measure, tab});
+  const QCommandLineOption segment(QStringLiteral("segment"),
+                                   QStringLiteral("Select the long segment of rank N of the run file (0: the longest)."),
+                                   QStringLiteral("N"));
+  const QCommandLineOption island(QStringLiteral("island"), QStringLiteral("Zoom to one island of its chain."));
+  parser.addOptions({preset, run, threads, screenshot, after, measure, tab, segment, island});
   parser.addPositionalArgument(QStringLiteral("file"), QStringLiteral("A run file to open."), QStringLiteral("[file.json]"));
   parser.process(app);
 
@@ -73,7 +79,9 @@ int main(int argc, char** argv) {
     }
   }
   if (!parser.positionalArguments().isEmpty()) window.openRunFile(parser.positionalArguments().front());
-  if (parser.isSet(run) || scripted) QTimer::singleShot(0, &window, [&window] { window.startRun(); });
+  if (parser.isSet(segment)) window.showLongSegment(parser.value(segment).toInt(), parser.isSet(island));
+  // A screenshot of a segment shows the opened run, so it does not start a new one.
+  if (parser.isSet(run) || (scripted && !parser.isSet(segment))) QTimer::singleShot(0, &window, [&window] { window.startRun(); });
 
   if (parser.isSet(screenshot)) {
     const int ms = static_cast<int>(1000 * parser.value(after).toDouble());

@@ -103,6 +103,11 @@ void PortraitPanel::setParameters(const MapParameters& parameters, double Xr) {
   if (isVisible()) applyPending();
 }
 
+void PortraitPanel::applyParametersNow(const MapParameters& parameters, double Xr) {
+  pending_ = std::make_pair(parameters, Xr);
+  applyPending();
+}
+
 void PortraitPanel::showEvent(QShowEvent* event) {
   QWidget::showEvent(event);
   applyPending();

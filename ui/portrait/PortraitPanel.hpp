@@ -24,6 +24,9 @@ class PortraitPanel : public QWidget {
   /// Shows the portrait of these parameters (ignored when invalid; the panel keeps the last valid map).
   /// While the panel is hidden the parameters wait, so no portrait is computed for nothing.
   void setParameters(const MapParameters& parameters, double Xr);
+  /// The same, applied at once even while hidden (a caller that zooms the view right after needs the map set
+  /// first, or the pending parameters would later reset its zoom).
+  void applyParametersNow(const MapParameters& parameters, double Xr);
 
  public Q_SLOTS:
   void exportPngDialog();

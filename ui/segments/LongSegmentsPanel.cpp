@@ -311,7 +311,7 @@ void LongSegmentsPanel::updateInfo() {
                      .arg(t.record.orbit)
                      .arg(locale.toString(static_cast<qulonglong>(t.record.start.block)))
                      .arg(locale.toString(static_cast<qulonglong>(t.steps)));
-  if (t.stride > 1) text += tr(" (stride %1 kept)").arg(locale.toString(static_cast<qulonglong>(t.stride)));
+  if (t.stride > 1) text += tr(" (one in %1 kept)").arg(locale.toString(static_cast<qulonglong>(t.stride)));
   text += tr("; %1 % of its time in x \u2208 [%2, %3], y \u2208 [%4, %5].")
               .arg(100 * replay_->region.fraction, 0, 'f', 0)
               .arg(static_cast<double>(replay_->region.x0), 0, 'f', 5)
@@ -412,6 +412,7 @@ void LongSegmentsPanel::setPortraitView(PortraitView* view) {
 
 void LongSegmentsPanel::showOnPortrait() {
   if (overlay_ == nullptr || !replay_ || !portrait_) return;
+  Q_EMIT aboutToDraw(replay_->params);
   // Draw over a portrait of the run's own map.
   if (!(portrait_->parameters() == replay_->params.map)) portrait_->setParameters(replay_->params.map);
   overlay_->showReplay(replay_);

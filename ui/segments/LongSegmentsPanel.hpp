@@ -87,6 +87,9 @@ class LongSegmentsPanel : public QWidget {
   [[nodiscard]] QTableView* table() const noexcept { return table_; }
 
  Q_SIGNALS:
+  /// A replay is about to be drawn on the portrait view (connect directly: the receiver can show the view
+  /// and set its map to params.map first).
+  void aboutToDraw(const archipelago::TrappingParameters& params);
   /// A replay arrived (after the stale ones were dropped).
   void replayReady(archipelago::ui::SegmentReplayPtr replay);
   /// The chain of the segment shown is known (or failed: then chain has an error).
