@@ -1,5 +1,6 @@
 // The long-segment table and the periodic-orbit dialog (ui/segments, ui/periodic), on Qt's offscreen platform.
 
+#include <QAction>
 #include <QApplication>
 #include <QPushButton>
 #include <QSignalSpy>
@@ -12,7 +13,10 @@
 #include <cmath>
 #include <vector>
 
+#include "GuiTestSupport.hpp"
 #include "periodic/PeriodicOrbitDialog.hpp"
+#include "portrait/PortraitPanel.hpp"
+#include "runfile/RunFile.hpp"
 #include "periodic/PeriodicOrbitFinder.hpp"
 #include "portrait/PortraitView.hpp"
 #include "segments/LongSegmentsPanel.hpp"
@@ -54,6 +58,7 @@ class TestSegments : public QObject {
   void exportsTheReplay();
   void drawsTheSegmentZoomedOnThePortrait();
   void periodicDialogFindsTheEllipticPeriodSixOrbit();
+  void mainWindowShowsTheSegmentsOfAnOpenedRun();
 };
 
 void TestSegments::tableFillsFromAFinishedRun() {
@@ -286,5 +291,42 @@ void TestSegments::periodicDialogFindsTheEllipticPeriodSixOrbit() {
   QVERIFY(!dialog.orbit().has_value());
 }
 
-QTEST_MAIN(TestSegments)
+void TestSegments::mainWindowShowsTheSegmentsOfAnOpenedRun() {
+  const TrappingState& state = shortRun();
+  QTemporaryDir dir;
+  const QString file = dir.filePath(QStringLiteral("short.json"));
+  saveRunFile(file.toStdString(), state);
+  MainWindow window;
+  window.setConfirmations(false);
+  window.show();
+  LongSegmentsPanel& panel = *window.longSegments();
+  panel.setAutoIdentifiedRows(0);
+  QSignalSpy replays(&panel, &LongSegmentsPanel::replayReady);
+  window.showLongSegment(1, false);
+  QVERIFY(window.openRunFile(file));
+  // The table fills from the analysed run file's snapshot; the pending selection replays segment 1.
+  QVERIFY(replays.wait(30000));
+  QCOMPARE(panel.model()->rowCount(), static_cast<int>(state.longest.items().size()));
+  QCOMPARE(panel.currentReplay()->trace.record, state.longest.items()[1]);
+  QCOMPARE(window.tabs()->currentWidget(), static_cast<QWidget*>(window.portraitPanel()));
+  PortraitView& view = *window.portraitPanel()->view();
+  QVERIFY(view.parameters() == state.params.map);
+  const PhysicalRect shown = view.viewport().physical(view.parameters());
+  QVERIFY(shown.x0 <= panel.currentReplay()->region.x0 + 1e-12L);
+  QVERIFY(shown.y0 <= panel.currentReplay()->region.y0 + 1e-12L);
+  const long double L = state.params.map.width();
+  QVERIFY((shown.x1 - shown.x0) * (shown.y1 - shown.y0) < 0.8L * L * L);  // zoomed in (not the whole box)
+  // Tools ▸ Find Periodic Orbit opens the dialog with K from the parameters.
+  QAction* find = nullptr;
+  for (QAction* a : window.findChildren<QAction*>())
+    if (a->text().remove('&').startsWith(QStringLiteral("Find Periodic Orbit"))) find = a;
+  QVERIFY(find);
+  find->trigger();
+  auto* dialog = window.findChild<PeriodicOrbitDialog*>();
+  QVERIFY(dialog && dialog->isVisible());
+  QCOMPARE(dialog->K(), state.params.map.K);
+  dialog->close();
+}
+
+ARCHIPELAGO_GUI_TEST_MAIN(TestSegments)
 #include "test_segments.moc"
