@@ -18,6 +18,7 @@ if(NOT _qt_major OR _qt_major STREQUAL "6")
     if(TARGET Qt6Qwt6::qwt AND NOT TARGET Qwt::Qwt)
       add_library(Qwt::Qwt ALIAS Qt6Qwt6::qwt)
     endif()
+    set(ARCHIPELAGO_QWT_INCLUDE_DIRS ${QWT_INCLUDE_DIRS})
   elseif(QWT_ROOT)
     find_path(_qwt6_include qwt_global.h PATHS "${QWT_ROOT}/include" "${QWT_ROOT}/include/qwt"
       "${QWT_ROOT}/include/qt6/qwt" NO_DEFAULT_PATH)
@@ -27,6 +28,7 @@ if(NOT _qt_major OR _qt_major STREQUAL "6")
       add_library(Qwt::Qwt UNKNOWN IMPORTED)
       set_target_properties(Qwt::Qwt PROPERTIES IMPORTED_LOCATION "${_qwt6_library}"
         INTERFACE_INCLUDE_DIRECTORIES "${_qwt6_include}")
+      set(ARCHIPELAGO_QWT_INCLUDE_DIRS ${_qwt6_include})
     elseif(_qt_major STREQUAL "6")
       message(FATAL_ERROR "Qt 6 was requested but no Qwt for Qt 6 was found under QWT_ROOT=${QWT_ROOT}")
     endif()
@@ -53,16 +55,20 @@ else()
     add_library(Qwt::Qwt UNKNOWN IMPORTED)
     set_target_properties(Qwt::Qwt PROPERTIES IMPORTED_LOCATION "${QWT_QT5_LIBRARY}"
       INTERFACE_INCLUDE_DIRECTORIES "${QWT_QT5_INCLUDE_DIR}")
+    set(ARCHIPELAGO_QWT_INCLUDE_DIRS ${QWT_QT5_INCLUDE_DIR})
   endif()
 endif()
 
 set(ARCHIPELAGO_QT_MAJOR_USED ${_qt_major})
 set(QT_LIB "Qt${_qt_major}")
 
-# Qwt's version, read from its header so that the configure log can print it.
-get_target_property(_qwt_inc Qwt::Qwt INTERFACE_INCLUDE_DIRECTORIES)
+# Qwt's headers (ARCHIPELAGO_QWT_INCLUDE_DIRS, set above for each way of finding Qwt) and its version, read
+# from its header so that the configure log can print it.
+if(NOT ARCHIPELAGO_QWT_INCLUDE_DIRS)
+  message(FATAL_ERROR "Qwt was found but its include directory was not")
+endif()
 set(_qwt_version "unknown")
-foreach(_dir IN LISTS _qwt_inc)
+foreach(_dir IN LISTS ARCHIPELAGO_QWT_INCLUDE_DIRS)
   if(EXISTS "${_dir}/qwt_global.h")
     file(STRINGS "${_dir}/qwt_global.h" _qwt_line REGEX "define[ \t]+QWT_VERSION_STR")
     string(REGEX MATCH "\"[0-9.]+\"" _qwt_version "${_qwt_line}")

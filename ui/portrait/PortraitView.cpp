@@ -76,7 +76,7 @@ class OrbitItem : public QwtPlotItem {
       const QPointF q(xMap.transform(p.x()), yMap.transform(p.y()));
       if (canvasRect.contains(q)) visible.append(q);
     }
-    painter->drawPoints(visible.constData(), visible.size());
+    painter->drawPoints(visible.constData(), static_cast<int>(visible.size()));
   }
   [[nodiscard]] std::size_t size() const noexcept { return points_.size(); }
 

@@ -52,7 +52,7 @@ class PointsItem : public QwtPlotItem {
           }
           const Rgb c = colours.at(0.15 + 0.85 * static_cast<double>(b) / (kBins - 1));
           painter->setPen(QPen(QColor(c.r, c.g, c.b), 1.2));
-          painter->drawPoints(visible.constData(), visible.size());
+          painter->drawPoints(visible.constData(), static_cast<int>(visible.size()));
         }
         break;
       }
