@@ -323,3 +323,78 @@ void iterateOrbitsWith(const MapCoefficients& coefficients, MapDirection directi
                                 steps, trace ? trace + first : nullptr, orbits.size());
   }
 }
+
+/// Density binning of n ≤ V·kLanes orbits (DensityKernel in VectorKernels.hpp).  Simd::pixels(g, X, Y, out)
+/// writes the pixel indices of the lanes to out and returns the mask of the lanes inside the grid.
+template <class Simd, int V>
+std::uint64_t densityGroup(const typename Simd::Constants& c, const typename Simd::Grid& g, UnitState* orbits,
+                           std::size_t n, std::uint64_t steps, std::uint8_t* counts,
+                           std::vector<std::uint32_t>& carries) {
+  using Vec = typename Simd::Vec;
+  constexpr std::size_t W = Simd::kLanes;
+  constexpr std::size_t L = W * V;
+  alignas(64) std::uint64_t xs[L], ys[L], pixels[L];
+  for (std::size_t l = 0; l < L; ++l) {
+    xs[l] = l < n ? orbits[l].X : 0;
+    ys[l] = l < n ? orbits[l].Y : 0;
+  }
+  Vec X[V], Y[V];
+  unsigned active[V];
+  ARCHIPELAGO_UNROLL_VECTORS
+  for (int v = 0; v < V; ++v) {
+    X[v] = Simd::load(xs + v * W);
+    Y[v] = Simd::load(ys + v * W);
+    const std::size_t begin = static_cast<std::size_t>(v) * W;
+    active[v] = (1u << (n > begin ? std::min(W, n - begin) : 0)) - 1u;
+  }
+  std::uint64_t binned = 0;
+  for (std::uint64_t j = 0; j < steps; ++j) {
+    unsigned inside[V];
+    ARCHIPELAGO_UNROLL_VECTORS
+    for (int v = 0; v < V; ++v) {
+      Simd::forward(c, X[v], Y[v]);
+      inside[v] = Simd::pixels(g, X[v], Y[v], pixels + v * W) & active[v];
+    }
+    ARCHIPELAGO_UNROLL_VECTORS
+    for (int v = 0; v < V; ++v) {
+      binned += static_cast<std::uint64_t>(__builtin_popcount(inside[v]));
+      for (unsigned bits = inside[v]; bits; bits &= bits - 1) {
+        const std::uint64_t p = pixels[static_cast<std::size_t>(v) * W + static_cast<std::size_t>(__builtin_ctz(bits))];
+        if (++counts[p] == 0) [[unlikely]] carries.push_back(static_cast<std::uint32_t>(p));
+      }
+    }
+  }
+  ARCHIPELAGO_UNROLL_VECTORS
+  for (int v = 0; v < V; ++v) {
+    Simd::store(xs + v * W, X[v]);
+    Simd::store(ys + v * W, Y[v]);
+  }
+  for (std::size_t l = 0; l < n; ++l) orbits[l] = {xs[l], ys[l]};
+  return binned;
+}
+
+template <class Simd, int V>
+std::uint64_t densityGroupOfSize(std::size_t vectors, const typename Simd::Constants& c, const typename Simd::Grid& g,
+                                 UnitState* orbits, std::size_t n, std::uint64_t steps, std::uint8_t* counts,
+                                 std::vector<std::uint32_t>& carries) {
+  if constexpr (V > 1) {
+    if (vectors < static_cast<std::size_t>(V))
+      return densityGroupOfSize<Simd, V - 1>(vectors, c, g, orbits, n, steps, counts, carries);
+  }
+  return densityGroup<Simd, V>(c, g, orbits, n, steps, counts, carries);
+}
+
+template <class Simd, int V>
+std::uint64_t binDensityWith(const MapCoefficients& coefficients, std::span<UnitState> orbits, std::uint64_t steps,
+                             const RasterGrid& grid, std::uint8_t* counts, std::vector<std::uint32_t>& carries) {
+  const typename Simd::Constants c(coefficients, 0);
+  const typename Simd::Grid g(grid);
+  constexpr std::size_t group = Simd::kLanes * V;
+  std::uint64_t binned = 0;
+  for (std::size_t first = 0; first < orbits.size(); first += group) {
+    const std::size_t n = std::min(group, orbits.size() - first);
+    binned += densityGroupOfSize<Simd, V>((n + Simd::kLanes - 1) / Simd::kLanes, c, g, orbits.data() + first, n,
+                                          steps, counts, carries);
+  }
+  return binned;
+}
