@@ -62,8 +62,13 @@ void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, Or
   static_assert(L <= 64, "an event tag holds the lane in 6 bits");
   constexpr std::uint64_t kExact = TrappingHistogram::kExactMax;
   alignas(64) std::uint64_t xs[L], ys[L], draws[L], keys[L], lanes[L];
-  // The open segment's start; its block is kept relative to firstBlock (modulo 2^64).
+  // The open segment's start.  X and Y are stored (masked) whenever a segment ends; the block and the draws
+  // need no stores: a segment that began in this call began at local block segmentBegin (from tagBase), and
+  // its draws are the lane's current draws, since entering the zone (the only place draws change) ends the
+  // segment.  startBlockLocal (relative to firstBlock, modulo 2^64) and startDraws keep the values of the
+  // segment open on entry, used for the lanes in everEnded[v] = 0.
   alignas(64) std::uint64_t startX[L], startY[L], startBlockLocal[L], startDraws[L];
+  unsigned everEnded[V] = {};
   // tagBase = segmentBegin·64 − lane, segmentBegin being the local block where the open segment began, so
   // that the event tag (length << 6) | lane of a segment ending after local block a is a·64 − tagBase (all
   // modulo 2^64; lane < 64 and lengths < 2^57).
@@ -178,20 +183,24 @@ void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, Or
       Simd::compressStore(events + eventCount, recorded, tag);
       eventCount += static_cast<std::size_t>(__builtin_popcount(recorded));
       if (const unsigned keep = recorded & Simd::atLeast(tag, keepFrom)) [[unlikely]] {
-        alignas(64) std::uint64_t tags[W];
+        alignas(64) std::uint64_t tags[W], bases[W], drawsNow[W];
         Simd::store(tags, tag);
+        Simd::store(bases, base[v]);
+        Simd::store(drawsNow, D[v]);
         for (unsigned bits = keep; bits; bits &= bits - 1) {
           const std::size_t lane = static_cast<std::size_t>(__builtin_ctz(bits));
           const std::size_t l = o + lane;
-          longest.insert({firstOrbit + l, tags[lane] >> 6,
-                          {{startX[l], startY[l]}, firstBlock[l] + startBlockLocal[l], startDraws[l]}});
+          const bool begunHere = (everEnded[v] >> lane) & 1u;
+          // Its block from tagBase (before this block's update); its draws before this block's zone step.
+          const std::uint64_t began = begunHere ? (bases[lane] + l) >> 6 : startBlockLocal[l];
+          const std::uint64_t startDrawsNow = begunHere ? drawsNow[lane] - ((zone[v] >> lane) & 1u) : startDraws[l];
+          longest.insert({firstOrbit + l, tags[lane] >> 6, {{startX[l], startY[l]}, firstBlock[l] + began, startDrawsNow}});
         }
         keepFrom = Simd::set1(keepTag(longest));
       }
       Simd::storeMasked(startX + o, e, X[v]);
       Simd::storeMasked(startY + o, e, Y[v]);
-      Simd::storeMasked(startDraws + o, e, D[v]);
-      Simd::storeMasked(startBlockLocal + o, e, Simd::set1(after));
+      everEnded[v] |= e;
       base[v] = Simd::select(e, Simd::sub(afterTag, Simd::load(lanes + o)), base[v]);
       recordable[v] |= e & active[v];
     }
@@ -213,7 +222,9 @@ void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, Or
     s.draws = draws[l];
     s.block = firstBlock[l] + blocks;
     s.length = ((blocks << 6) - tagBase[l]) >> 6;
-    s.start = {{startX[l], startY[l]}, firstBlock[l] + startBlockLocal[l], startDraws[l]};
+    const bool begunHere = (everEnded[l / W] >> (l % W)) & 1u;
+    const std::uint64_t began = begunHere ? (tagBase[l] + l) >> 6 : startBlockLocal[l];
+    s.start = {{startX[l], startY[l]}, firstBlock[l] + began, begunHere ? draws[l] : startDraws[l]};
     TrappingHistogram& h = sink.subsets()[(firstOrbit + l) % sink.subsets().size()];
     for (std::uint64_t t = 1; t <= kExact; ++t) {
       const std::uint64_t count = exactCounts[t * 64 + l];
