@@ -119,18 +119,22 @@ void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, Or
   LongestSegments& longest = sink.longest();
   Vec keepFrom = Simd::set1(keepTag(longest));
   constexpr std::size_t kEventCapacity = 2048;
-  alignas(64) std::uint64_t events[kEventCapacity];
+  alignas(64) std::uint64_t events[kEventCapacity + 1];
   std::size_t eventCount = 0;
-  std::uint64_t exactCounts[(kExact + 1) * 64] = {};  // [length·64 + lane], lengths 1 … kExactMax
+  // [length·64 + lane], lengths 1 … kExactMax, in two copies: even and odd events count into different
+  // copies, which halves the chains of increments of one counter (each waits for the previous store).
+  constexpr std::size_t kExactTags = (kExact + 1) * 64;
+  std::uint64_t exactCounts[2 * kExactTags] = {};
+  const auto binLong = [&](std::uint64_t tag) {
+    const std::uint64_t orbit = firstOrbit + (tag & 63);
+    sink.subsets()[orbit % sink.subsets().size()].add(tag >> 6);
+  };
   const auto binEvents = [&] {
-    for (std::size_t i = 0; i < eventCount; ++i) {
-      const std::uint64_t tag = events[i];
-      if (tag < ((kExact + 1) << 6)) [[likely]] {
-        exactCounts[tag] += 1;
-      } else {
-        const std::uint64_t orbit = firstOrbit + (tag & 63);
-        sink.subsets()[orbit % sink.subsets().size()].add(tag >> 6);
-      }
+    events[eventCount] = 0;  // an even count: the padding tag 0 (length 0) is counted and ignored
+    for (std::size_t i = 0; i < eventCount; i += 2) {
+      const std::uint64_t even = events[i], odd = events[i + 1];
+      if (even < kExactTags) [[likely]] exactCounts[even] += 1; else binLong(even);
+      if (odd < kExactTags) [[likely]] exactCounts[kExactTags + odd] += 1; else binLong(odd);
     }
     eventCount = 0;
   };
@@ -227,7 +231,7 @@ void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, Or
     s.start = {{startX[l], startY[l]}, firstBlock[l] + began, begunHere ? draws[l] : startDraws[l]};
     TrappingHistogram& h = sink.subsets()[(firstOrbit + l) % sink.subsets().size()];
     for (std::uint64_t t = 1; t <= kExact; ++t) {
-      const std::uint64_t count = exactCounts[t * 64 + l];
+      const std::uint64_t count = exactCounts[t * 64 + l] + exactCounts[kExactTags + t * 64 + l];
       const int bin = static_cast<int>(t);  // TrappingHistogram::binOf(t) = t for t ≤ kExactMax
       if (count) h.setBin(bin, h.count(bin) + count, h.lengthSum(bin) + count * t);
     }
