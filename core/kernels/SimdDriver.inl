@@ -111,6 +111,7 @@ void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, Or
   const auto refreshDraws = [&] {
     ARCHIPELAGO_UNROLL_VECTORS
     for (std::size_t v = 0; v < V; ++v) {
+      if (stale[v] == 0) continue;  // common at q ≥ 16 between zone visits
       Simd::refreshDraws(c, stale[v], keys + v * W, D[v], nextDraw + v * W);
       stale[v] = 0;
     }
