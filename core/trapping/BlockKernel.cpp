@@ -63,16 +63,27 @@ void advanceBlocksScalar(const KernelSettings& k, std::span<OrbitState> orbits, 
         for (std::uint64_t b = 0; b < blocks; ++b) advanceOneBlock(k, firstOrbit + i, orbits[i], &sink);
       break;
     }
-    std::uint64_t X[kLanes], Y[kLanes];
+    // Per-lane counters and the lane's subset histogram live here, not in OrbitState: a block touches only
+    // these, and an ended segment goes straight to its histogram (SegmentSink::record without the division).
+    std::uint64_t X[kLanes], Y[kLanes], length[kLanes], block0[kLanes];
+    TrappingHistogram* subset[kLanes];
     for (std::size_t l = 0; l < kLanes; ++l) {
-      X[l] = orbits[first + l].z.X;
-      Y[l] = orbits[first + l].z.Y;
+      const OrbitState& s = orbits[first + l];
+      X[l] = s.z.X;
+      Y[l] = s.z.Y;
+      length[l] = s.length;
+      block0[l] = s.block;
+      subset[l] = &sink.subsets()[(firstOrbit + first + l) % sink.subsets().size()];
     }
+    LongestSegments& longest = sink.longest();
     for (std::uint64_t b = 0; b < blocks; ++b) {
       std::uint64_t wrap[kLanes] = {};
       unsigned zone = 0;
 #pragma GCC unroll 8
-      for (std::size_t l = 0; l < kLanes; ++l) zone |= (X[l] <= k.randomizingX ? 1u : 0u) << l;
+      for (std::size_t l = 0; l < kLanes; ++l) {
+        length[l] += 1;
+        zone |= (X[l] <= k.randomizingX ? 1u : 0u) << l;
+      }
       for (unsigned bits = zone; bits; bits &= bits - 1) {  // appendix B, 6.1–6.2
         const auto l = static_cast<std::size_t>(__builtin_ctz(bits));
         OrbitState& s = orbits[first + l];
@@ -86,17 +97,21 @@ void advanceBlocksScalar(const KernelSettings& k, std::span<OrbitState> orbits, 
       unsigned ended = zone;
 #pragma GCC unroll 8
       for (std::size_t l = 0; l < kLanes; ++l) ended |= (wrap[l] >= fixedpoint::kOne ? 1u : 0u) << l;
-      for (std::size_t l = 0; l < kLanes; ++l) {
-        OrbitState& s = orbits[first + l];
-        s.length += 1;
-        s.block += 1;
-      }
-      for (unsigned bits = ended; bits; bits &= bits - 1) {
+      for (unsigned bits = ended; bits; bits &= bits - 1) {  // endSegment(), with SegmentSink::record inlined
         const auto l = static_cast<std::size_t>(__builtin_ctz(bits));
         OrbitState& s = orbits[first + l];
-        s.z = {X[l], Y[l]};
-        endSegment(firstOrbit + first + l, s, &sink);
+        if (s.start.block != 0) {
+          subset[l]->add(length[l]);
+          if (longest.mightKeep(length[l])) longest.insert({firstOrbit + first + l, length[l], s.start});
+        }
+        length[l] = 0;
+        s.start = {{X[l], Y[l]}, block0[l] + b + 1, s.draws};
       }
+    }
+    for (std::size_t l = 0; l < kLanes; ++l) {
+      OrbitState& s = orbits[first + l];
+      s.length = length[l];
+      s.block = block0[l] + blocks;
     }
     for (std::size_t l = 0; l < kLanes; ++l) orbits[first + l].z = {X[l], Y[l]};
   }
