@@ -91,13 +91,14 @@ void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, Or
   }
   // Per-lane values read every block stay in registers: a load of words just written by a masked store
   // cannot take them from the store buffer and would stall.
-  Vec X[V], Y[V], D[V], base[V];  // base: tagBase
+  // The draws stay in memory (draws[], full-vector loads and stores, which forward): they change only in the
+  // zone, and keeping them out of registers leaves room for the bookkeeping at small q.
+  Vec X[V], Y[V], base[V];  // base: tagBase
   unsigned active[V];
   ARCHIPELAGO_UNROLL_VECTORS
   for (std::size_t v = 0; v < V; ++v) {
     X[v] = Simd::load(xs + v * W);
     Y[v] = Simd::load(ys + v * W);
-    D[v] = Simd::load(draws + v * W);
     base[v] = Simd::load(tagBase + v * W);
     const std::size_t begin = v * W;
     active[v] = (1u << (n > begin ? std::min(W, n - begin) : 0)) - 1u;
@@ -112,7 +113,7 @@ void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, Or
     ARCHIPELAGO_UNROLL_VECTORS
     for (std::size_t v = 0; v < V; ++v) {
       if (stale[v] == 0) continue;  // common at q ≥ 16 between zone visits
-      Simd::refreshDraws(c, stale[v], keys + v * W, D[v], nextDraw + v * W);
+      Simd::refreshDraws(c, stale[v], keys + v * W, Simd::load(draws + v * W), nextDraw + v * W);
       stale[v] = 0;
     }
   };
@@ -158,7 +159,8 @@ void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, Or
     for (std::size_t v = 0; v < V; ++v) {
       const std::size_t o = v * W;
       Y[v] = Simd::addModMasked(c, Y[v], zone[v], Simd::load(nextDraw + o));
-      D[v] = Simd::select(zone[v], Simd::add(D[v], one), D[v]);
+      const Vec D = Simd::load(draws + o);
+      Simd::store(draws + o, Simd::select(zone[v], Simd::add(D, one), D));
       stale[v] |= zone[v];
     }
     if (b % kRefreshBlocks == kRefreshBlocks - 1) refreshDraws();
@@ -191,7 +193,7 @@ void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, Or
         alignas(64) std::uint64_t tags[W], bases[W], drawsNow[W];
         Simd::store(tags, tag);
         Simd::store(bases, base[v]);
-        Simd::store(drawsNow, D[v]);
+        Simd::store(drawsNow, Simd::load(draws + o));
         for (unsigned bits = keep; bits; bits &= bits - 1) {
           const std::size_t lane = static_cast<std::size_t>(__builtin_ctz(bits));
           const std::size_t l = o + lane;
@@ -218,7 +220,6 @@ void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, Or
   for (std::size_t v = 0; v < V; ++v) {
     Simd::store(xs + v * W, X[v]);
     Simd::store(ys + v * W, Y[v]);
-    Simd::store(draws + v * W, D[v]);
     Simd::store(tagBase + v * W, base[v]);
   }
   for (std::size_t l = 0; l < n; ++l) {
