@@ -20,6 +20,13 @@ bool advanceOneBlock(const KernelSettings& k, std::uint64_t orbit, OrbitState& s
   return ended;
 }
 
+// The lane loops must be unrolled so that the lanes' products interleave (GCC does not at -O2 by itself).
+#if defined(__clang__)
+#define ARCHIPELAGO_UNROLL_LANES _Pragma("clang loop unroll(full)")
+#else
+#define ARCHIPELAGO_UNROLL_LANES _Pragma("GCC unroll 8")
+#endif
+
 namespace {
 // N⁻¹ in the form the scalar kernel computes it: for a, b < 2^52, ⌊a·b/2^52⌋ = ⌊(a·2^12)·b/2^64⌋ is the high
 // word of one 64×64-bit product (mul/mulx, no double-word shift), with A·2^12 and B·2^12 precomputed.  The
@@ -79,7 +86,7 @@ void advanceBlocksScalar(const KernelSettings& k, std::span<OrbitState> orbits, 
     for (std::uint64_t b = 0; b < blocks; ++b) {
       std::uint64_t wrap[kLanes] = {};
       unsigned zone = 0;
-#pragma GCC unroll 8
+ARCHIPELAGO_UNROLL_LANES
       for (std::size_t l = 0; l < kLanes; ++l) {
         length[l] += 1;
         zone |= (X[l] <= k.randomizingX ? 1u : 0u) << l;
@@ -91,11 +98,11 @@ void advanceBlocksScalar(const KernelSettings& k, std::span<OrbitState> orbits, 
         Y[l] = (Y[l] + orbitDraw(orbitKey(k.seed, firstOrbit + first + l), s.draws)) & fixedpoint::kMask;
       }
       for (std::uint32_t j = 0; j < k.q; ++j) {
-#pragma GCC unroll 8
+ARCHIPELAGO_UNROLL_LANES
         for (std::size_t l = 0; l < kLanes; ++l) backwardScalar(c, X[l], Y[l], wrap[l]);
       }
       unsigned ended = zone;
-#pragma GCC unroll 8
+ARCHIPELAGO_UNROLL_LANES
       for (std::size_t l = 0; l < kLanes; ++l) ended |= (wrap[l] >= fixedpoint::kOne ? 1u : 0u) << l;
       for (unsigned bits = ended; bits; bits &= bits - 1) {  // endSegment(), with SegmentSink::record inlined
         const auto l = static_cast<std::size_t>(__builtin_ctz(bits));
