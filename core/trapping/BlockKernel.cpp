@@ -86,7 +86,7 @@ void advanceBlocksScalar(const KernelSettings& k, std::span<OrbitState> orbits, 
     for (std::uint64_t b = 0; b < blocks; ++b) {
       std::uint64_t wrap[kLanes] = {};
       unsigned zone = 0;
-ARCHIPELAGO_UNROLL_LANES
+      ARCHIPELAGO_UNROLL_LANES
       for (std::size_t l = 0; l < kLanes; ++l) {
         length[l] += 1;
         zone |= (X[l] <= k.randomizingX ? 1u : 0u) << l;
@@ -98,11 +98,11 @@ ARCHIPELAGO_UNROLL_LANES
         Y[l] = (Y[l] + orbitDraw(orbitKey(k.seed, firstOrbit + first + l), s.draws)) & fixedpoint::kMask;
       }
       for (std::uint32_t j = 0; j < k.q; ++j) {
-ARCHIPELAGO_UNROLL_LANES
+        ARCHIPELAGO_UNROLL_LANES
         for (std::size_t l = 0; l < kLanes; ++l) backwardScalar(c, X[l], Y[l], wrap[l]);
       }
       unsigned ended = zone;
-ARCHIPELAGO_UNROLL_LANES
+      ARCHIPELAGO_UNROLL_LANES
       for (std::size_t l = 0; l < kLanes; ++l) ended |= (wrap[l] >= fixedpoint::kOne ? 1u : 0u) << l;
       for (unsigned bits = ended; bits; bits &= bits - 1) {  // endSegment(), with SegmentSink::record inlined
         const auto l = static_cast<std::size_t>(__builtin_ctz(bits));
