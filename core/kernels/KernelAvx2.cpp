@@ -92,6 +92,24 @@ struct Avx2 {
     X = _mm256_and_si256(_mm256_sub_epi64(_mm256_add_epi64(X, Y), c.half), c.mask);
   }
 
+  /// AVX2 has no 64-bit integer to double conversion: the pixels are found lane by lane.
+  struct Grid {
+    RasterGrid grid;
+    explicit Grid(const RasterGrid& g) : grid(g) {}
+  };
+  static unsigned pixels(const Grid& g, Vec X, Vec Y, std::uint64_t* out) {
+    alignas(32) std::uint64_t xs[kLanes], ys[kLanes];
+    store(xs, X);
+    store(ys, Y);
+    unsigned inside = 0;
+    for (std::size_t l = 0; l < kLanes; ++l) {
+      const std::int64_t p = g.grid.pixelOf({xs[l], ys[l]});
+      out[l] = static_cast<std::uint64_t>(p);
+      inside |= p >= 0 ? 1u << l : 0u;
+    }
+    return inside;
+  }
+
   static unsigned laneBits(Vec allOnesWhere) {
     return static_cast<unsigned>(_mm256_movemask_pd(_mm256_castsi256_pd(allOnesWhere)));
   }
@@ -163,6 +181,11 @@ void advanceBlocksAvx2(const KernelSettings& settings, std::span<OrbitState> orb
 void iterateOrbitsAvx2(const MapCoefficients& coefficients, MapDirection direction, std::span<UnitState> orbits,
                        std::uint64_t steps, UnitState* trace) {
   iterateOrbitsWith<Avx2, kOrbitVectors>(coefficients, direction, orbits, steps, trace);
+}
+
+std::uint64_t binDensityAvx2(const MapCoefficients& coefficients, std::span<UnitState> orbits, std::uint64_t steps,
+                             const RasterGrid& grid, std::uint8_t* counts, std::vector<std::uint32_t>& carries) {
+  return binDensityWith<Avx2, kOrbitVectors>(coefficients, orbits, steps, grid, counts, carries);
 }
 
 }  // namespace archipelago

@@ -77,6 +77,42 @@ struct Avx512Ifma {
     X = _mm512_and_si512(_mm512_sub_epi64(_mm512_add_epi64(X, Y), c.half), c.mask);
   }
 
+  /// RasterGrid broadcast; the products and sums use explicit rounding (never fused into an FMA), as the
+  /// scalar RasterGrid::pixelOf rounds them.
+  struct Grid {
+    Vec cx, cy, iwLast, ihLast, iw;
+    __m512d sx, sy, hw, hh, w, h, zero;
+    explicit Grid(const RasterGrid& g)
+        : cx(_mm512_set1_epi64(static_cast<long long>(g.cx))),
+          cy(_mm512_set1_epi64(static_cast<long long>(g.cy))),
+          iwLast(_mm512_set1_epi64(g.iw - 1)),
+          ihLast(_mm512_set1_epi64(g.ih - 1)),
+          iw(_mm512_set1_epi64(g.iw)),
+          sx(_mm512_set1_pd(g.sx)),
+          sy(_mm512_set1_pd(g.sy)),
+          hw(_mm512_set1_pd(g.hw)),
+          hh(_mm512_set1_pd(g.hh)),
+          w(_mm512_set1_pd(g.w)),
+          h(_mm512_set1_pd(g.h)),
+          zero(_mm512_setzero_pd()) {}
+  };
+  static unsigned pixels(const Grid& g, Vec X, Vec Y, std::uint64_t* out) {
+    constexpr int kRound = _MM_FROUND_TO_NEAREST_INT | _MM_FROUND_NO_EXC;
+    const __m512d dx = _mm512_cvtepi64_pd(_mm512_sub_epi64(X, g.cx));  // exact: |X − cx| < 2^53
+    const __m512d dy = _mm512_cvtepi64_pd(_mm512_sub_epi64(Y, g.cy));
+    const __m512d fx = _mm512_add_round_pd(_mm512_mul_round_pd(dx, g.sx, kRound), g.hw, kRound);
+    const __m512d fy = _mm512_sub_round_pd(g.hh, _mm512_mul_round_pd(dy, g.sy, kRound), kRound);
+    __mmask8 inside = _mm512_cmp_pd_mask(fx, g.zero, _CMP_GE_OQ);
+    inside = _mm512_mask_cmp_pd_mask(inside, fx, g.w, _CMP_LT_OQ);
+    inside = _mm512_mask_cmp_pd_mask(inside, fy, g.zero, _CMP_GE_OQ);
+    inside = _mm512_mask_cmp_pd_mask(inside, fy, g.h, _CMP_LT_OQ);
+    const Vec col = _mm512_min_epi64(_mm512_cvttpd_epi64(fx), g.iwLast);
+    const Vec row = _mm512_min_epi64(_mm512_cvttpd_epi64(fy), g.ihLast);
+    // Inside, 0 ≤ row < 2^14 and iw ≤ 2^14: the 32×32-bit product is exact.
+    store(out, _mm512_add_epi64(_mm512_mul_epu32(row, g.iw), col));
+    return inside;
+  }
+
   static unsigned atMost(const Constants& c, Vec X) { return _mm512_cmple_epu64_mask(X, c.randomizingX); }
   static unsigned wrapped(const Constants& c, Vec wrapBits) { return _mm512_test_epi64_mask(wrapBits, c.notMask); }
 
@@ -118,6 +154,7 @@ struct Avx512Ifma {
 // latency chain of ~13 cycles, so three or more independent vectors keep the ports busy.
 constexpr int kBlockVectors = 4;
 constexpr int kOrbitVectors = 6;
+constexpr int kDensityVectors = 4;
 
 }  // namespace
 
@@ -129,6 +166,12 @@ void advanceBlocksAvx512Ifma(const KernelSettings& settings, std::span<OrbitStat
 void iterateOrbitsAvx512Ifma(const MapCoefficients& coefficients, MapDirection direction,
                              std::span<UnitState> orbits, std::uint64_t steps, UnitState* trace) {
   iterateOrbitsWith<Avx512Ifma, kOrbitVectors>(coefficients, direction, orbits, steps, trace);
+}
+
+std::uint64_t binDensityAvx512Ifma(const MapCoefficients& coefficients, std::span<UnitState> orbits,
+                                   std::uint64_t steps, const RasterGrid& grid, std::uint8_t* counts,
+                                   std::vector<std::uint32_t>& carries) {
+  return binDensityWith<Avx512Ifma, kDensityVectors>(coefficients, orbits, steps, grid, counts, carries);
 }
 
 }  // namespace archipelago

@@ -9,11 +9,11 @@ namespace archipelago {
 namespace {
 const std::array<KernelInfo, 3> kKernels = {{
     {KernelKind::avx512ifma, "avx512ifma", "AVX-512 IFMA, 8 orbits per vector (vpmadd52huq)",
-     &advanceBlocksAvx512Ifma, &iterateOrbitsAvx512Ifma},
+     &advanceBlocksAvx512Ifma, &iterateOrbitsAvx512Ifma, &binDensityAvx512Ifma},
     {KernelKind::avx2, "avx2", "AVX2, 4 orbits per vector (32-bit vpmuludq products)", &advanceBlocksAvx2,
-     &iterateOrbitsAvx2},
+     &iterateOrbitsAvx2, &binDensityAvx2},
     {KernelKind::scalar, "scalar", "portable C++ with 128-bit products (the reference)", &advanceBlocksScalar,
-     &iterateOrbitsScalar},
+     &iterateOrbitsScalar, &binDensityScalar},
 }};
 
 std::string knownNames() {

@@ -28,6 +28,7 @@ struct KernelInfo {
   std::string_view description;  ///< one line for --help and the About box
   BlockKernel blocks;            ///< the trapping block kernel (BlockKernel.hpp)
   OrbitKernel orbits;            ///< plain orbit iteration (portraits)
+  DensityKernel density;         ///< orbit iteration with density binning (portraits, mode (a))
 };
 
 /// The CPU features the vector paths need (cpuid, including the operating system's support of the

@@ -19,4 +19,19 @@ void iterateOrbitsScalar(const MapCoefficients& coefficients, MapDirection direc
   }
 }
 
+std::uint64_t binDensityScalar(const MapCoefficients& coefficients, std::span<UnitState> orbits, std::uint64_t steps,
+                               const RasterGrid& grid, std::uint8_t* counts, std::vector<std::uint32_t>& carries) {
+  std::uint64_t binned = 0;
+  for (std::uint64_t j = 0; j < steps; ++j) {
+    for (auto& z : orbits) forwardStep(coefficients, z);
+    for (const auto& z : orbits) {
+      const std::int64_t p = grid.pixelOf(z);
+      if (p < 0) continue;
+      binned += 1;
+      if (++counts[p] == 0) carries.push_back(static_cast<std::uint32_t>(p));
+    }
+  }
+  return binned;
+}
+
 }  // namespace archipelago

@@ -62,8 +62,13 @@ void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, Or
   static_assert(L <= 64, "an event tag holds the lane in 6 bits");
   constexpr std::uint64_t kExact = TrappingHistogram::kExactMax;
   alignas(64) std::uint64_t xs[L], ys[L], draws[L], keys[L], lanes[L];
-  // The open segment's start; its block is kept relative to firstBlock (modulo 2^64).
+  // The open segment's start.  X and Y are stored (masked) whenever a segment ends; the block and the draws
+  // need no stores: a segment that began in this call began at local block segmentBegin (from tagBase), and
+  // its draws are the lane's current draws, since entering the zone (the only place draws change) ends the
+  // segment.  startBlockLocal (relative to firstBlock, modulo 2^64) and startDraws keep the values of the
+  // segment open on entry, used for the lanes in everEnded[v] = 0.
   alignas(64) std::uint64_t startX[L], startY[L], startBlockLocal[L], startDraws[L];
+  unsigned everEnded[V] = {};
   // tagBase = segmentBegin·64 − lane, segmentBegin being the local block where the open segment began, so
   // that the event tag (length << 6) | lane of a segment ending after local block a is a·64 − tagBase (all
   // modulo 2^64; lane < 64 and lengths < 2^57).
@@ -86,13 +91,14 @@ void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, Or
   }
   // Per-lane values read every block stay in registers: a load of words just written by a masked store
   // cannot take them from the store buffer and would stall.
-  Vec X[V], Y[V], D[V], base[V];  // base: tagBase
+  // The draws stay in memory (draws[], full-vector loads and stores, which forward): they change only in the
+  // zone, and keeping them out of registers leaves room for the bookkeeping at small q.
+  Vec X[V], Y[V], base[V];  // base: tagBase
   unsigned active[V];
   ARCHIPELAGO_UNROLL_VECTORS
   for (std::size_t v = 0; v < V; ++v) {
     X[v] = Simd::load(xs + v * W);
     Y[v] = Simd::load(ys + v * W);
-    D[v] = Simd::load(draws + v * W);
     base[v] = Simd::load(tagBase + v * W);
     const std::size_t begin = v * W;
     active[v] = (1u << (n > begin ? std::min(W, n - begin) : 0)) - 1u;
@@ -106,7 +112,8 @@ void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, Or
   const auto refreshDraws = [&] {
     ARCHIPELAGO_UNROLL_VECTORS
     for (std::size_t v = 0; v < V; ++v) {
-      Simd::refreshDraws(c, stale[v], keys + v * W, D[v], nextDraw + v * W);
+      if (stale[v] == 0) continue;  // common at q ≥ 16 between zone visits
+      Simd::refreshDraws(c, stale[v], keys + v * W, Simd::load(draws + v * W), nextDraw + v * W);
       stale[v] = 0;
     }
   };
@@ -114,18 +121,22 @@ void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, Or
   LongestSegments& longest = sink.longest();
   Vec keepFrom = Simd::set1(keepTag(longest));
   constexpr std::size_t kEventCapacity = 2048;
-  alignas(64) std::uint64_t events[kEventCapacity];
+  alignas(64) std::uint64_t events[kEventCapacity + 1];
   std::size_t eventCount = 0;
-  std::uint64_t exactCounts[(kExact + 1) * 64] = {};  // [length·64 + lane], lengths 1 … kExactMax
+  // [length·64 + lane], lengths 1 … kExactMax, in two copies: even and odd events count into different
+  // copies, which halves the chains of increments of one counter (each waits for the previous store).
+  constexpr std::size_t kExactTags = (kExact + 1) * 64;
+  std::uint64_t exactCounts[2 * kExactTags] = {};
+  const auto binLong = [&](std::uint64_t tag) {
+    const std::uint64_t orbit = firstOrbit + (tag & 63);
+    sink.subsets()[orbit % sink.subsets().size()].add(tag >> 6);
+  };
   const auto binEvents = [&] {
-    for (std::size_t i = 0; i < eventCount; ++i) {
-      const std::uint64_t tag = events[i];
-      if (tag < ((kExact + 1) << 6)) [[likely]] {
-        exactCounts[tag] += 1;
-      } else {
-        const std::uint64_t orbit = firstOrbit + (tag & 63);
-        sink.subsets()[orbit % sink.subsets().size()].add(tag >> 6);
-      }
+    events[eventCount] = 0;  // an even count: the padding tag 0 (length 0) is counted and ignored
+    for (std::size_t i = 0; i < eventCount; i += 2) {
+      const std::uint64_t even = events[i], odd = events[i + 1];
+      if (even < kExactTags) [[likely]] exactCounts[even] += 1; else binLong(even);
+      if (odd < kExactTags) [[likely]] exactCounts[kExactTags + odd] += 1; else binLong(odd);
     }
     eventCount = 0;
   };
@@ -148,7 +159,8 @@ void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, Or
     for (std::size_t v = 0; v < V; ++v) {
       const std::size_t o = v * W;
       Y[v] = Simd::addModMasked(c, Y[v], zone[v], Simd::load(nextDraw + o));
-      D[v] = Simd::select(zone[v], Simd::add(D[v], one), D[v]);
+      const Vec D = Simd::load(draws + o);
+      Simd::store(draws + o, Simd::select(zone[v], Simd::add(D, one), D));
       stale[v] |= zone[v];
     }
     if (b % kRefreshBlocks == kRefreshBlocks - 1) refreshDraws();
@@ -178,20 +190,24 @@ void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, Or
       Simd::compressStore(events + eventCount, recorded, tag);
       eventCount += static_cast<std::size_t>(__builtin_popcount(recorded));
       if (const unsigned keep = recorded & Simd::atLeast(tag, keepFrom)) [[unlikely]] {
-        alignas(64) std::uint64_t tags[W];
+        alignas(64) std::uint64_t tags[W], bases[W], drawsNow[W];
         Simd::store(tags, tag);
+        Simd::store(bases, base[v]);
+        Simd::store(drawsNow, Simd::load(draws + o));
         for (unsigned bits = keep; bits; bits &= bits - 1) {
           const std::size_t lane = static_cast<std::size_t>(__builtin_ctz(bits));
           const std::size_t l = o + lane;
-          longest.insert({firstOrbit + l, tags[lane] >> 6,
-                          {{startX[l], startY[l]}, firstBlock[l] + startBlockLocal[l], startDraws[l]}});
+          const bool begunHere = (everEnded[v] >> lane) & 1u;
+          // Its block from tagBase (before this block's update); its draws before this block's zone step.
+          const std::uint64_t began = begunHere ? (bases[lane] + l) >> 6 : startBlockLocal[l];
+          const std::uint64_t startDrawsNow = begunHere ? drawsNow[lane] - ((zone[v] >> lane) & 1u) : startDraws[l];
+          longest.insert({firstOrbit + l, tags[lane] >> 6, {{startX[l], startY[l]}, firstBlock[l] + began, startDrawsNow}});
         }
         keepFrom = Simd::set1(keepTag(longest));
       }
       Simd::storeMasked(startX + o, e, X[v]);
       Simd::storeMasked(startY + o, e, Y[v]);
-      Simd::storeMasked(startDraws + o, e, D[v]);
-      Simd::storeMasked(startBlockLocal + o, e, Simd::set1(after));
+      everEnded[v] |= e;
       base[v] = Simd::select(e, Simd::sub(afterTag, Simd::load(lanes + o)), base[v]);
       recordable[v] |= e & active[v];
     }
@@ -204,7 +220,6 @@ void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, Or
   for (std::size_t v = 0; v < V; ++v) {
     Simd::store(xs + v * W, X[v]);
     Simd::store(ys + v * W, Y[v]);
-    Simd::store(draws + v * W, D[v]);
     Simd::store(tagBase + v * W, base[v]);
   }
   for (std::size_t l = 0; l < n; ++l) {
@@ -213,10 +228,12 @@ void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, Or
     s.draws = draws[l];
     s.block = firstBlock[l] + blocks;
     s.length = ((blocks << 6) - tagBase[l]) >> 6;
-    s.start = {{startX[l], startY[l]}, firstBlock[l] + startBlockLocal[l], startDraws[l]};
+    const bool begunHere = (everEnded[l / W] >> (l % W)) & 1u;
+    const std::uint64_t began = begunHere ? (tagBase[l] + l) >> 6 : startBlockLocal[l];
+    s.start = {{startX[l], startY[l]}, firstBlock[l] + began, begunHere ? draws[l] : startDraws[l]};
     TrappingHistogram& h = sink.subsets()[(firstOrbit + l) % sink.subsets().size()];
     for (std::uint64_t t = 1; t <= kExact; ++t) {
-      const std::uint64_t count = exactCounts[t * 64 + l];
+      const std::uint64_t count = exactCounts[t * 64 + l] + exactCounts[kExactTags + t * 64 + l];
       const int bin = static_cast<int>(t);  // TrappingHistogram::binOf(t) = t for t ≤ kExactMax
       if (count) h.setBin(bin, h.count(bin) + count, h.lengthSum(bin) + count * t);
     }
@@ -322,4 +339,79 @@ void iterateOrbitsWith(const MapCoefficients& coefficients, MapDirection directi
     iterateGroupOfSize<Simd, V>((n + Simd::kLanes - 1) / Simd::kLanes, c, direction, orbits.data() + first, n,
                                 steps, trace ? trace + first : nullptr, orbits.size());
   }
+}
+
+/// Density binning of n ≤ V·kLanes orbits (DensityKernel in VectorKernels.hpp).  Simd::pixels(g, X, Y, out)
+/// writes the pixel indices of the lanes to out and returns the mask of the lanes inside the grid.
+template <class Simd, int V>
+std::uint64_t densityGroup(const typename Simd::Constants& c, const typename Simd::Grid& g, UnitState* orbits,
+                           std::size_t n, std::uint64_t steps, std::uint8_t* counts,
+                           std::vector<std::uint32_t>& carries) {
+  using Vec = typename Simd::Vec;
+  constexpr std::size_t W = Simd::kLanes;
+  constexpr std::size_t L = W * V;
+  alignas(64) std::uint64_t xs[L], ys[L], pixels[L];
+  for (std::size_t l = 0; l < L; ++l) {
+    xs[l] = l < n ? orbits[l].X : 0;
+    ys[l] = l < n ? orbits[l].Y : 0;
+  }
+  Vec X[V], Y[V];
+  unsigned active[V];
+  ARCHIPELAGO_UNROLL_VECTORS
+  for (int v = 0; v < V; ++v) {
+    X[v] = Simd::load(xs + v * W);
+    Y[v] = Simd::load(ys + v * W);
+    const std::size_t begin = static_cast<std::size_t>(v) * W;
+    active[v] = (1u << (n > begin ? std::min(W, n - begin) : 0)) - 1u;
+  }
+  std::uint64_t binned = 0;
+  for (std::uint64_t j = 0; j < steps; ++j) {
+    unsigned inside[V];
+    ARCHIPELAGO_UNROLL_VECTORS
+    for (int v = 0; v < V; ++v) {
+      Simd::forward(c, X[v], Y[v]);
+      inside[v] = Simd::pixels(g, X[v], Y[v], pixels + v * W) & active[v];
+    }
+    ARCHIPELAGO_UNROLL_VECTORS
+    for (int v = 0; v < V; ++v) {
+      binned += static_cast<std::uint64_t>(__builtin_popcount(inside[v]));
+      for (unsigned bits = inside[v]; bits; bits &= bits - 1) {
+        const std::uint64_t p = pixels[static_cast<std::size_t>(v) * W + static_cast<std::size_t>(__builtin_ctz(bits))];
+        if (++counts[p] == 0) [[unlikely]] carries.push_back(static_cast<std::uint32_t>(p));
+      }
+    }
+  }
+  ARCHIPELAGO_UNROLL_VECTORS
+  for (int v = 0; v < V; ++v) {
+    Simd::store(xs + v * W, X[v]);
+    Simd::store(ys + v * W, Y[v]);
+  }
+  for (std::size_t l = 0; l < n; ++l) orbits[l] = {xs[l], ys[l]};
+  return binned;
+}
+
+template <class Simd, int V>
+std::uint64_t densityGroupOfSize(std::size_t vectors, const typename Simd::Constants& c, const typename Simd::Grid& g,
+                                 UnitState* orbits, std::size_t n, std::uint64_t steps, std::uint8_t* counts,
+                                 std::vector<std::uint32_t>& carries) {
+  if constexpr (V > 1) {
+    if (vectors < static_cast<std::size_t>(V))
+      return densityGroupOfSize<Simd, V - 1>(vectors, c, g, orbits, n, steps, counts, carries);
+  }
+  return densityGroup<Simd, V>(c, g, orbits, n, steps, counts, carries);
+}
+
+template <class Simd, int V>
+std::uint64_t binDensityWith(const MapCoefficients& coefficients, std::span<UnitState> orbits, std::uint64_t steps,
+                             const RasterGrid& grid, std::uint8_t* counts, std::vector<std::uint32_t>& carries) {
+  const typename Simd::Constants c(coefficients, 0);
+  const typename Simd::Grid g(grid);
+  constexpr std::size_t group = Simd::kLanes * V;
+  std::uint64_t binned = 0;
+  for (std::size_t first = 0; first < orbits.size(); first += group) {
+    const std::size_t n = std::min(group, orbits.size() - first);
+    binned += densityGroupOfSize<Simd, V>((n + Simd::kLanes - 1) / Simd::kLanes, c, g, orbits.data() + first, n,
+                                          steps, counts, carries);
+  }
+  return binned;
 }

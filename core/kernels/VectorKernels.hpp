@@ -21,6 +21,7 @@
 
 #include <cstdint>
 #include <span>
+#include <vector>
 
 #include "map/FixedPointMap.hpp"
 #include "trapping/BlockKernel.hpp"
@@ -34,6 +35,46 @@ enum class MapDirection { forward, backward };  ///< N (Q*) or N⁻¹
 /// (0-based), the state of orbit i at trace[j·orbits.size() + i]; it must hold steps·orbits.size() states.
 using OrbitKernel = void (*)(const MapCoefficients& coefficients, MapDirection direction,
                              std::span<UnitState> orbits, std::uint64_t steps, UnitState* trace);
+
+/// Where a point falls in a raster of iw × ih pixels over a view (portrait/PortraitRenderer.hpp's PixelMapping
+/// holds one): the offsets from the view's exact centre (cx, cy), exact integers below 2^53 and so exact in
+/// double, are scaled by sx, sy pixels per unit, each product and sum rounded on its own (never fused):
+///   fx = double(int64(X − cx))·sx + hw,   fy = hh − double(int64(Y − cy))·sy;
+/// the point is inside when 0 ≤ fx < w and 0 ≤ fy < h, in pixel (min(⌊fx⌋, iw − 1), min(⌊fy⌋, ih − 1)).
+/// Every kernel bins with exactly this arithmetic, so rasters do not depend on the path.
+struct RasterGrid {
+  std::uint64_t cx = 0, cy = 0;
+  double sx = 0, sy = 0, hw = 0, hh = 0, w = 0, h = 0;
+  std::int64_t iw = 0, ih = 0;
+
+  /// The pixel index row·iw + col of z, or −1 when z lies outside.
+  [[nodiscard]] std::int64_t pixelOf(const UnitState& z) const noexcept {
+    const double fx = static_cast<double>(static_cast<std::int64_t>(z.X - cx)) * sx + hw;
+    const double fy = hh - static_cast<double>(static_cast<std::int64_t>(z.Y - cy)) * sy;
+    if (!(fx >= 0 && fx < w && fy >= 0 && fy < h)) return -1;
+    auto col = static_cast<std::int64_t>(fx), row = static_cast<std::int64_t>(fy);
+    col = col < iw ? col : iw - 1;  // guard against fx rounding up to exactly w in the product
+    row = row < ih ? row : ih - 1;
+    return row * iw + col;
+  }
+};
+
+/// Density binning (portraits, mode (a)): advances every orbit by `steps` steps of N and, after each step,
+/// counts the point in `counts[grid.pixelOf(z)]` when it is inside.  The counts are 8-bit, so that a
+/// megapixel raster stays in cache; whenever a count wraps to 0 the pixel index is appended to `carries`
+/// (each entry is worth 256).  Returns the number of points counted.  The same orbit states as an
+/// OrbitKernel with MapDirection::forward.
+using DensityKernel = std::uint64_t (*)(const MapCoefficients& coefficients, std::span<UnitState> orbits,
+                                        std::uint64_t steps, const RasterGrid& grid, std::uint8_t* counts,
+                                        std::vector<std::uint32_t>& carries);
+
+std::uint64_t binDensityScalar(const MapCoefficients& coefficients, std::span<UnitState> orbits, std::uint64_t steps,
+                               const RasterGrid& grid, std::uint8_t* counts, std::vector<std::uint32_t>& carries);
+std::uint64_t binDensityAvx2(const MapCoefficients& coefficients, std::span<UnitState> orbits, std::uint64_t steps,
+                             const RasterGrid& grid, std::uint8_t* counts, std::vector<std::uint32_t>& carries);
+std::uint64_t binDensityAvx512Ifma(const MapCoefficients& coefficients, std::span<UnitState> orbits,
+                                   std::uint64_t steps, const RasterGrid& grid, std::uint8_t* counts,
+                                   std::vector<std::uint32_t>& carries);
 
 void iterateOrbitsScalar(const MapCoefficients& coefficients, MapDirection direction, std::span<UnitState> orbits,
                          std::uint64_t steps, UnitState* trace);

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "kernels/KernelDispatch.hpp"
 #include "random/CounterRng.hpp"
 #include "trapping/TrappingParameters.hpp"
 
@@ -102,16 +103,16 @@ std::optional<std::string> validationError(const PortraitRequest& r) {
 }
 
 PixelMapping::PixelMapping(const Viewport& view, int width, int height) noexcept
-    : cx_(view.centre().X),
-      cy_(view.centre().Y),
-      sx_(static_cast<double>(width / view.widthUnits())),
-      sy_(static_cast<double>(height / view.heightUnits())),
-      hw_(width / 2.0),
-      hh_(height / 2.0),
-      w_(width),
-      h_(height),
-      iw_(width),
-      ih_(height) {}
+    : grid_{view.centre().X,
+            view.centre().Y,
+            static_cast<double>(width / view.widthUnits()),
+            static_cast<double>(height / view.heightUnits()),
+            width / 2.0,
+            height / 2.0,
+            static_cast<double>(width),
+            static_cast<double>(height),
+            width,
+            height} {}
 
 UnitState orbitSeed(const Viewport& view, std::uint32_t columns, std::uint32_t rows, std::uint32_t i,
                     std::uint32_t j) noexcept {
@@ -125,14 +126,24 @@ UnitState orbitSeed(const Viewport& view, std::uint32_t columns, std::uint32_t r
 namespace {
 
 constexpr std::size_t kLanes = 8;  // orbits in lockstep: overlaps the latency of the 128-bit products
+// Density mode iterates and bins groups of kDensityGroup orbits with the selected vector kernel
+// (KernelDispatch.hpp, DensityKernel): 32 orbits are four AVX-512 vectors, enough to hide the multiply
+// latency, and 256 orbits still make 8 groups to share between threads.
+constexpr std::size_t kDensityGroup = 32;
 constexpr std::uint32_t kNoLabel = std::numeric_limits<std::uint32_t>::max();
 // Per-thread counts are 32-bit; they are flushed into the 64-bit raster before they could overflow.
 constexpr std::uint64_t kFlushThreshold = std::uint64_t{1} << 31;
 constexpr std::size_t kOpenSegmentBuffer = std::size_t{1} << 16;
+constexpr std::size_t kCarriesFlush = std::size_t{1} << 20;
 
 /// A thread's private accumulators.
 struct ThreadRaster {
   std::vector<std::uint32_t> counts;
+  // Density: 8-bit counts, so that a megapixel raster (1 MB) stays in the core's L2 cache while the points
+  // land at random pixels (32-bit counts, 4 MB, made every increment a cache miss); each wrap to 0 appends
+  // the pixel to `carries`, worth 256 counts.
+  std::vector<std::uint8_t> density;
+  std::vector<std::uint32_t> carries;
   std::vector<std::uint32_t> labels;      // Orbits: smallest seed index, kNoLabel when none
   std::vector<std::uint64_t> lengthSums;  // Stickiness
   std::uint64_t binned = 0;               // since the last flush
@@ -213,7 +224,8 @@ class Renderer {
         mapping_(r.view, r.width, r.height),
         orbitCount_(r.orbitCount()),
         steps_(r.stepsPerOrbit()),
-        randomizingX_(randomizingThreshold(r.Xr)) {}
+        randomizingX_(randomizingThreshold(r.Xr)),
+        densityKernel_(selectKernel().density) {}
 
   PortraitResult run() {
     PortraitResult result;
@@ -230,7 +242,11 @@ class Renderer {
     if (r_.mode == PortraitMode::Orbits) wrapped_.assign(orbitCount_, 0);
     threads_.resize(static_cast<std::size_t>(std::max(1, omp_get_max_threads())));
     for (ThreadRaster& t : threads_) {
-      t.counts.assign(pixels, 0);
+      if (r_.mode == PortraitMode::Density) {
+        t.density.assign(pixels, 0);
+      } else {
+        t.counts.assign(pixels, 0);
+      }
       if (r_.mode == PortraitMode::Orbits) t.labels.assign(pixels, kNoLabel);
       if (r_.mode == PortraitMode::Stickiness) t.lengthSums.assign(pixels, 0);
     }
@@ -291,8 +307,11 @@ class Renderer {
     if (r_.mode == PortraitMode::Stickiness) trapping_.assign(orbitCount_, TrappingOrbit{});
   }
 
+  std::size_t groupSize() const noexcept { return r_.mode == PortraitMode::Density ? kDensityGroup : kLanes; }
+
   void runRound(std::uint64_t done, std::uint64_t chunk) {
-    const auto groups = static_cast<std::int64_t>((orbitCount_ + kLanes - 1) / kLanes);
+    const std::size_t lanes = groupSize();
+    const auto groups = static_cast<std::int64_t>((orbitCount_ + lanes - 1) / lanes);
     std::exception_ptr error;
     std::mutex errorMutex;
 #pragma omp parallel for schedule(dynamic, 1)
@@ -300,10 +319,10 @@ class Renderer {
       if (stop_.stop_requested()) continue;  // checked before every chunk
       try {
         ThreadRaster& out = threads_[static_cast<std::size_t>(omp_get_thread_num())];
-        const std::uint64_t first = static_cast<std::uint64_t>(g) * kLanes;
-        const std::uint64_t n = std::min<std::uint64_t>(kLanes, orbitCount_ - first);
+        const std::uint64_t first = static_cast<std::uint64_t>(g) * lanes;
+        const std::uint64_t n = std::min<std::uint64_t>(lanes, orbitCount_ - first);
         switch (r_.mode) {
-          case PortraitMode::Density: advanceMapOrbits<false>(first, n, chunk, out); break;
+          case PortraitMode::Density: advanceDensityOrbits(first, n, chunk, out); break;
           case PortraitMode::Orbits: advanceMapOrbits<true>(first, n, chunk, out); break;
           case PortraitMode::Stickiness: advanceTrappingOrbits(first, n, done, chunk, out); break;
         }
@@ -341,6 +360,13 @@ class Renderer {
         if constexpr (kLabels) wrapped_[o] |= wrapped ? 1 : 0;
       }
     }
+  }
+
+  // Density (a): the vector orbit kernel writes kTraceSteps states of every orbit into a small trace, which
+  // is then binned; the same states and pixels as advanceMapOrbits<false>, only computed faster.
+  void advanceDensityOrbits(std::uint64_t first, std::uint64_t n, std::uint64_t chunk, ThreadRaster& out) {
+    out.binned += densityKernel_(coef_, std::span<UnitState>(states_.data() + first, n), chunk, mapping_.grid(),
+                                 out.density.data(), out.carries);
   }
 
   template <bool kLabels>
@@ -388,12 +414,21 @@ class Renderer {
   /// Adds the threads' rasters into `raster` when forced or when a 32-bit count could overflow next round.
   void flushIfNeeded(PortraitRaster& raster, bool force) {
     bool needed = force;
-    for (const ThreadRaster& t : threads_) needed = needed || t.binned >= kFlushThreshold;
+    for (const ThreadRaster& t : threads_)
+      needed = needed || t.binned >= kFlushThreshold || t.carries.size() >= kCarriesFlush;
     if (!needed) return;
     const std::size_t pixels = raster.pixelCount();
     for (ThreadRaster& t : threads_) {
-      for (std::size_t i = 0; i < pixels; ++i) raster.counts[i] += t.counts[i];
-      std::fill(t.counts.begin(), t.counts.end(), 0);
+      if (!t.counts.empty()) {
+        for (std::size_t i = 0; i < pixels; ++i) raster.counts[i] += t.counts[i];
+        std::fill(t.counts.begin(), t.counts.end(), 0);
+      }
+      if (!t.density.empty()) {
+        for (std::size_t i = 0; i < pixels; ++i) raster.counts[i] += t.density[i];
+        std::fill(t.density.begin(), t.density.end(), 0);
+        for (std::uint32_t p : t.carries) raster.counts[p] += 256;
+        t.carries.clear();
+      }
       if (!t.labels.empty()) {
         for (std::size_t i = 0; i < pixels; ++i)
           if (t.labels[i] != kNoLabel && (raster.labels[i] == 0 || t.labels[i] + 1 < raster.labels[i]))
@@ -431,6 +466,7 @@ class Renderer {
   std::uint64_t orbitCount_;
   std::uint64_t steps_;
   std::uint64_t randomizingX_;
+  DensityKernel densityKernel_;
   std::vector<UnitState> states_;
   std::vector<TrappingOrbit> trapping_;
   std::vector<std::uint8_t> wrapped_;  // Orbits mode, per seed (each written by the one thread owning its group)

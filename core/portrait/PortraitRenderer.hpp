@@ -40,6 +40,7 @@
 #include <string>
 #include <vector>
 
+#include "kernels/VectorKernels.hpp"
 #include "map/FixedPointMap.hpp"
 #include "portrait/PortraitRaster.hpp"
 #include "portrait/Viewport.hpp"
@@ -99,22 +100,14 @@ struct PortraitResult {
 class PixelMapping {
  public:
   PixelMapping(const Viewport& view, int width, int height) noexcept;
-  /// The pixel index row·width + col of z, or −1 when z lies outside the view.
-  [[nodiscard]] std::int64_t pixelOf(const UnitState& z) const noexcept {
-    // Offsets from the exact centre are exact integers below 2^53, hence exact in double.
-    const double fx = static_cast<double>(static_cast<std::int64_t>(z.X - cx_)) * sx_ + hw_;
-    const double fy = hh_ - static_cast<double>(static_cast<std::int64_t>(z.Y - cy_)) * sy_;
-    if (!(fx >= 0 && fx < w_ && fy >= 0 && fy < h_)) return -1;
-    auto col = static_cast<std::int64_t>(fx), row = static_cast<std::int64_t>(fy);
-    col = col < iw_ ? col : iw_ - 1;  // guard against fx rounding up to exactly w_ in the product
-    row = row < ih_ ? row : ih_ - 1;
-    return row * iw_ + col;
-  }
+  /// The pixel index row·width + col of z, or −1 when z lies outside the view (RasterGrid::pixelOf: offsets
+  /// from the exact centre are exact integers below 2^53, hence exact in double).
+  [[nodiscard]] std::int64_t pixelOf(const UnitState& z) const noexcept { return grid_.pixelOf(z); }
+  /// The same mapping as plain numbers, for the vector kernels (kernels/VectorKernels.hpp).
+  [[nodiscard]] const RasterGrid& grid() const noexcept { return grid_; }
 
  private:
-  std::uint64_t cx_, cy_;
-  double sx_, sy_, hw_, hh_, w_, h_;
-  std::int64_t iw_, ih_;
+  RasterGrid grid_;
 };
 
 /// The unit state of the centre of seed cell (i, j) (i across, j up from the bottom) in Orbits mode.
