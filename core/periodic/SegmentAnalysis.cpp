@@ -9,41 +9,13 @@
 #include <tuple>
 #include <utility>
 
-#include "trapping/BlockKernel.hpp"
+#include "trapping/TrappingRun.hpp"
 
 #include "portrait/PortraitExport.hpp"  // writeNpy
 
 namespace archipelago {
 
 namespace {
-
-/// How many blocks run between two looks at the stop token (a few ms of work at q = 16).
-constexpr std::uint64_t kBlocksBetweenStopChecks = 4096;
-
-/// The replay loop of replaySegment() (TrappingRun.cpp) with a stop token: visit(step, z) for step 0 and
-/// after every step; visit returns false to end early.  Returns the blocks replayed, or nothing when stopped.
-template <class Visitor>
-std::optional<std::uint64_t> replayStoppable(const TrappingParameters& params, const SegmentRecord& record,
-                                             std::stop_token stop, Visitor&& visit) {
-  validate(params);
-  const KernelSettings k{computeCoefficients(params.map), randomizingThreshold(params.Xr), params.q, params.seed};
-  OrbitState s;
-  s.z = record.start.z;
-  s.block = record.start.block;
-  s.draws = record.start.draws;
-  s.start = record.start;
-  std::uint64_t step = 0;
-  bool more = visit(step, s.z);
-  while (more) {
-    if (s.length % kBlocksBetweenStopChecks == 0 && stop.stop_requested()) return std::nullopt;
-    const bool ended = advanceBlockVisiting(k, record.orbit, s, [&](const UnitState& z) {
-      ++step;
-      if (more) more = visit(step, z);
-    });
-    if (ended || s.block >= params.T) break;
-  }
-  return s.length;
-}
 
 }  // namespace
 
@@ -65,13 +37,13 @@ std::optional<SegmentTrace> traceSegment(const TrappingParameters& params, const
   trace.states.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(expectedSteps / trace.stride + 2, maxPoints)));
   UnitState last;
   std::uint64_t lastStep = 0;
-  const auto blocks = replayStoppable(params, record, stop, [&](std::uint64_t step, const UnitState& z) {
+  const auto blocks = replaySegmentUntil(params, record, [&](std::uint64_t step, const UnitState& z) {
     last = z;
     lastStep = step;
     // A record of other parameters could run longer than announced: never keep more than maxPoints states.
     if (step % trace.stride == 0 && trace.states.size() + 1 < maxPoints) trace.states.push_back(z);
     return true;
-  });
+  }, stop);
   if (!blocks) return std::nullopt;
   trace.blocks = *blocks;
   trace.steps = lastStep;
@@ -89,11 +61,11 @@ std::optional<std::vector<PhysicalPoint>> segmentPrefix(const TrappingParameters
   const FixedPointMap map(params.map);
   std::vector<PhysicalPoint> points;
   points.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(count, record.length * params.q + 1)));
-  const auto blocks = replayStoppable(params, record, stop, [&](std::uint64_t, const UnitState& z) {
+  const auto blocks = replaySegmentUntil(params, record, [&](std::uint64_t, const UnitState& z) {
     if (points.size() >= count) return false;
     points.push_back(map.toPhysical(z));
     return true;
-  });
+  }, stop);
   if (!blocks) return std::nullopt;
   return points;
 }

@@ -135,8 +135,10 @@ TrappingState runTrapping(TrappingState state, const TrappingRunOptions& options
   return state;
 }
 
-std::uint64_t replaySegment(const TrappingParameters& params, const SegmentRecord& record,
-                            const std::function<void(std::uint64_t, const UnitState&)>& visit) {
+std::optional<std::uint64_t> replaySegmentUntil(const TrappingParameters& params, const SegmentRecord& record,
+                                                const std::function<bool(std::uint64_t, const UnitState&)>& visit,
+                                                std::stop_token stop) {
+  constexpr std::uint64_t kBlocksBetweenStopChecks = 4096;  // a few ms of work at q = 16
   validate(params);
   const KernelSettings k{computeCoefficients(params.map), randomizingThreshold(params.Xr), params.q, params.seed};
   OrbitState s;
@@ -145,14 +147,24 @@ std::uint64_t replaySegment(const TrappingParameters& params, const SegmentRecor
   s.draws = record.start.draws;
   s.start = record.start;
   std::uint64_t step = 0;
-  if (visit) visit(step, s.z);
-  for (;;) {
+  bool more = visit(step, s.z);
+  while (more) {
+    if (s.length % kBlocksBetweenStopChecks == 0 && stop.stop_requested()) return std::nullopt;
     const bool ended = advanceBlockVisiting(k, record.orbit, s, [&](const UnitState& z) {
       ++step;
-      if (visit) visit(step, z);
+      if (more) more = visit(step, z);
     });
-    if (ended || s.block >= params.T) return s.length;
+    if (ended || s.block >= params.T) break;
   }
+  return s.length;
+}
+
+std::uint64_t replaySegment(const TrappingParameters& params, const SegmentRecord& record,
+                            const std::function<void(std::uint64_t, const UnitState&)>& visit) {
+  return *replaySegmentUntil(params, record, [&](std::uint64_t step, const UnitState& z) {
+    if (visit) visit(step, z);
+    return true;
+  });
 }
 
 }  // namespace archipelago

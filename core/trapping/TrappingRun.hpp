@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <stop_token>
 #include <string>
 #include <vector>
@@ -76,5 +77,11 @@ struct TrappingRunOptions {
 /// replayed (equal to record.length when the record belongs to these parameters).
 std::uint64_t replaySegment(const TrappingParameters& params, const SegmentRecord& record,
                             const std::function<void(std::uint64_t step, const UnitState& z)>& visit);
+
+/// The general replay: as replaySegment(), but visit returns false to end the replay early (after the current
+/// block), and `stop` is checked every 4096 blocks.  Returns the blocks replayed, or nothing when stopped.
+[[nodiscard]] std::optional<std::uint64_t> replaySegmentUntil(
+    const TrappingParameters& params, const SegmentRecord& record,
+    const std::function<bool(std::uint64_t step, const UnitState& z)>& visit, std::stop_token stop = {});
 
 }  // namespace archipelago
