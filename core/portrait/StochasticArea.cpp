@@ -25,10 +25,7 @@ std::optional<std::string> validationError(const StochasticAreaRequest& r) {
   }
   std::ostringstream s;
   s.precision(17);
-  if (!(std::isfinite(r.Xr) && r.Xr >= 0 && r.Xr < 1)) {
-    s << "Xr = " << r.Xr << " must lie in [0, 1) (width of the randomizing zone in unit X)";
-    return s.str();
-  }
+  if (auto e = randomizingZoneError(r.Xr)) return e;
   if (r.q < 1 || r.q > 4096) {
     s << "q = " << r.q << " must be 1 ... 4096";
     return s.str();

@@ -10,10 +10,7 @@ std::optional<std::string> validationError(const TrappingParameters& p) {
   if (auto e = validationError(p.map)) return e;
   std::ostringstream s;
   s.precision(17);
-  if (!(std::isfinite(p.Xr) && p.Xr >= 0 && p.Xr < 1)) {
-    s << "Xr = " << p.Xr << " must lie in [0, 1) (width of the randomizing zone in unit X)";
-    return s.str();
-  }
+  if (auto e = randomizingZoneError(p.Xr)) return e;
   if (p.q < 1) return "q = 0 must be >= 1 (steps of N^-1 per block)";
   if (p.T < 1) return "T = 0 must be >= 1 (blocks per orbit)";
   if (p.T > (std::uint64_t{1} << 62)) return "T must be < 2^62 blocks";
@@ -33,6 +30,14 @@ std::optional<std::string> validationError(const TrappingParameters& p) {
 
 void validate(const TrappingParameters& p) {
   if (auto e = validationError(p)) throw std::invalid_argument(*e);
+}
+
+std::optional<std::string> randomizingZoneError(double Xr) {
+  if (std::isfinite(Xr) && Xr >= 0 && Xr < 1) return std::nullopt;
+  std::ostringstream s;
+  s.precision(17);
+  s << "Xr = " << Xr << " must lie in [0, 1) (width of the randomizing zone in unit X)";
+  return s.str();
 }
 
 std::uint64_t randomizingThreshold(double Xr) noexcept {

@@ -28,6 +28,9 @@ struct TrappingParameters {
 [[nodiscard]] std::optional<std::string> validationError(const TrappingParameters& p);
 void validate(const TrappingParameters& p);
 
+/// The rule for the randomizing zone's width: Xr finite and in [0, 1).  The message names Xr, or nothing.
+[[nodiscard]] std::optional<std::string> randomizingZoneError(double Xr);
+
 /// ⌊Xr·2^52⌋, the largest X inside the randomizing zone.
 [[nodiscard]] std::uint64_t randomizingThreshold(double Xr) noexcept;
 
