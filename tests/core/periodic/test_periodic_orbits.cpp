@@ -10,16 +10,10 @@
 
 #include "periodic/PeriodicOrbitFinder.hpp"
 #include "periodic/SmoothQuadraticMap.hpp"
+#include "LongDoubleNear.hpp"
 
 namespace archipelago {
 namespace {
-
-/// |a − b| ≤ tolerance in long double (EXPECT_NEAR would round both to double).
-::testing::AssertionResult Near(long double a, long double b, long double tolerance) {
-  if (std::fabs(a - b) <= tolerance) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << static_cast<double>(a) << " vs " << static_cast<double>(b) << " differ by "
-                                       << static_cast<double>(std::fabs(a - b)) << " > " << static_cast<double>(tolerance);
-}
 
 using P = smooth::Point<long double>;
 
