@@ -52,6 +52,11 @@ struct Avx2 {
   static Vec load(const std::uint64_t* p) { return _mm256_loadu_si256(reinterpret_cast<const __m256i*>(p)); }
   static void store(std::uint64_t* p, Vec v) { _mm256_storeu_si256(reinterpret_cast<__m256i*>(p), v); }
   static Vec zero() { return _mm256_setzero_si256(); }
+  // X and Y are iterated as the integers themselves.
+  using State = Vec;
+  static State loadState(const std::uint64_t* p) { return load(p); }
+  static void storeState(std::uint64_t* p, State s) { store(p, s); }
+  static State noWraps() { return zero(); }
 
   /// ⌊a·b/2^52⌋ for a, b < 2^52, given a1 = a >> 32 and b1 = b >> 32.
   static Vec mulHigh52(Vec a, Vec a1, Vec b, Vec b1) {
@@ -149,6 +154,7 @@ struct Avx2 {
   static void storeMasked(std::uint64_t* p, unsigned lanes, Vec v) {
     _mm256_maskstore_epi64(reinterpret_cast<long long*>(p), laneMask(lanes), v);
   }
+  static void storeStateMasked(std::uint64_t* p, unsigned lanes, State s) { storeMasked(p, lanes, s); }
   /// Packs the selected lanes to the front (a permutation from a 16-entry table) and stores all four.
   static void compressStore(std::uint64_t* p, unsigned lanes, Vec v) {
     store(p, _mm256_permutevar8x32_epi32(v, load(kCompress[lanes].data())));

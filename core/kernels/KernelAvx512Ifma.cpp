@@ -56,6 +56,11 @@ struct Avx512Ifma {
   static Vec load(const std::uint64_t* p) { return _mm512_loadu_si512(p); }
   static void store(std::uint64_t* p, Vec v) { _mm512_storeu_si512(p, v); }
   static Vec zero() { return _mm512_setzero_si512(); }
+  // X and Y are iterated as the integers themselves.
+  using State = Vec;
+  static State loadState(const std::uint64_t* p) { return load(p); }
+  static void storeState(std::uint64_t* p, State s) { store(p, s); }
+  static State noWraps() { return zero(); }
 
   static void backward(const Constants& c, Vec& X, Vec& Y, Vec& wrapBits) {
     const Vec s = _mm512_add_epi64(_mm512_sub_epi64(X, Y), c.half);
@@ -141,6 +146,7 @@ struct Avx512Ifma {
   static void storeMasked(std::uint64_t* p, unsigned lanes, Vec v) {
     _mm512_mask_storeu_epi64(p, static_cast<__mmask8>(lanes), v);
   }
+  static void storeStateMasked(std::uint64_t* p, unsigned lanes, State s) { storeMasked(p, lanes, s); }
   /// Packs the selected lanes to the front and stores all eight words.
   static void compressStore(std::uint64_t* p, unsigned lanes, Vec v) {
     // The register form and a full store: the memory form of vpcompressq is slow on Intel cores.

@@ -5,16 +5,21 @@
 // AVX-512 copy into the AVX2 path or into generic code).  It includes nothing itself.
 //
 // A SIMD policy `Simd` provides:
-//   Vec, kLanes                       the vector type and its number of 64-bit lanes;
+//   Vec, kLanes                       the vector type of 64-bit integer lanes and its number of lanes;
+//   State                             the type that holds X or Y of kLanes orbits while they are iterated
+//                                     (Vec itself, or another encoding of the same integers);
 //   Constants(coefficients, Xr)       broadcast map coefficients, masks and the randomizing threshold;
 //   load/store/zero                   unaligned 64-bit lane moves;
-//   backward(c, X, Y, wrapBits)       one N⁻¹ step; ORs into wrapBits a word whose bits ≥ 52 are set on a wrap;
+//   loadState/storeState              unit coordinates (uint64 arrays) to State and back;
+//   storeStateMasked(p, lanes, S)     storeState for the lanes in `lanes` only;
+//   noWraps() -> State                an empty wrap accumulator;
+//   backward(c, X, Y, wraps)          one N⁻¹ step; records in the accumulator `wraps` whether a lane wrapped;
 //   forward(c, X, Y)                  one N step;
 //   atMost(c, X) -> unsigned          bit l set when lane l has X ≤ Xr (the randomizing zone);
-//   wrapped(c, wrapBits) -> unsigned  bit l set when lane l wrapped;
+//   wrapped(c, wraps) -> unsigned     bit l set when lane l wrapped;
 //   refreshDraws(c, lanes, key, D, U) for the lanes in `lanes`: U ← orbitDraw(key, D + 1) (key, U: arrays);
 //   select(lanes, a, b)               a in the lanes in `lanes`, b elsewhere;
-//   addModMasked(c, Y, lanes, U)      Y + U mod 2^52 in the lanes in `lanes`, Y elsewhere;
+//   addModMasked(c, Y, lanes, U)      Y + U mod 2^52 in the lanes in `lanes`, Y elsewhere (Y a State, U a Vec);
 //   set1, add, sub                    64-bit lane arithmetic;
 //   atLeast(a, b) -> unsigned         bit l set when a ≥ b in lane l (values < 2^63);
 //   storeMasked(p, lanes, v)          stores the lanes in `lanes` only;
@@ -93,12 +98,13 @@ void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, Or
   // cannot take them from the store buffer and would stall.
   // The draws stay in memory (draws[], full-vector loads and stores, which forward): they change only in the
   // zone, and keeping them out of registers leaves room for the bookkeeping at small q.
-  Vec X[V], Y[V], base[V];  // base: tagBase
+  typename Simd::State X[V], Y[V];
+  Vec base[V];  // base: tagBase
   unsigned active[V];
   ARCHIPELAGO_UNROLL_VECTORS
   for (std::size_t v = 0; v < V; ++v) {
-    X[v] = Simd::load(xs + v * W);
-    Y[v] = Simd::load(ys + v * W);
+    X[v] = Simd::loadState(xs + v * W);
+    Y[v] = Simd::loadState(ys + v * W);
     base[v] = Simd::load(tagBase + v * W);
     const std::size_t begin = v * W;
     active[v] = (1u << (n > begin ? std::min(W, n - begin) : 0)) - 1u;
@@ -164,9 +170,9 @@ void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, Or
       stale[v] |= zone[v];
     }
     if (b % kRefreshBlocks == kRefreshBlocks - 1) refreshDraws();
-    Vec wrapBits[V];
+    typename Simd::State wrapBits[V];
     ARCHIPELAGO_UNROLL_VECTORS
-    for (std::size_t v = 0; v < V; ++v) wrapBits[v] = Simd::zero();
+    for (std::size_t v = 0; v < V; ++v) wrapBits[v] = Simd::noWraps();
     for (std::uint32_t j = 0; j < q; ++j) {
       ARCHIPELAGO_UNROLL_VECTORS
       for (std::size_t v = 0; v < V; ++v) Simd::backward(c, X[v], Y[v], wrapBits[v]);
@@ -205,8 +211,8 @@ void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, Or
         }
         keepFrom = Simd::set1(keepTag(longest));
       }
-      Simd::storeMasked(startX + o, e, X[v]);
-      Simd::storeMasked(startY + o, e, Y[v]);
+      Simd::storeStateMasked(startX + o, e, X[v]);
+      Simd::storeStateMasked(startY + o, e, Y[v]);
       everEnded[v] |= e;
       base[v] = Simd::select(e, Simd::sub(afterTag, Simd::load(lanes + o)), base[v]);
       recordable[v] |= e & active[v];
@@ -218,8 +224,8 @@ void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, Or
   ARCHIPELAGO_UNROLL_VECTORS
 
   for (std::size_t v = 0; v < V; ++v) {
-    Simd::store(xs + v * W, X[v]);
-    Simd::store(ys + v * W, Y[v]);
+    Simd::storeState(xs + v * W, X[v]);
+    Simd::storeState(ys + v * W, Y[v]);
     Simd::store(tagBase + v * W, base[v]);
   }
   for (std::size_t l = 0; l < n; ++l) {
@@ -278,25 +284,25 @@ void iterateGroup(const typename Simd::Constants& c, MapDirection direction, Uni
     xs[l] = l < n ? orbits[l].X : 0;
     ys[l] = l < n ? orbits[l].Y : 0;
   }
-  Vec X[V], Y[V];
+  typename Simd::State X[V], Y[V];
   ARCHIPELAGO_UNROLL_VECTORS
   for (int v = 0; v < V; ++v) {
-    X[v] = Simd::load(xs + v * W);
-    Y[v] = Simd::load(ys + v * W);
+    X[v] = Simd::loadState(xs + v * W);
+    Y[v] = Simd::loadState(ys + v * W);
   }
   const auto record = [&](std::uint64_t j) {
     ARCHIPELAGO_UNROLL_VECTORS
     for (int v = 0; v < V; ++v) {
-      Simd::store(xs + v * W, X[v]);
-      Simd::store(ys + v * W, Y[v]);
+      Simd::storeState(xs + v * W, X[v]);
+      Simd::storeState(ys + v * W, Y[v]);
     }
     UnitState* row = trace + j * stride;
     for (std::size_t l = 0; l < n; ++l) row[l] = {xs[l], ys[l]};
   };
   if (direction == MapDirection::backward) {
-    Vec unused[V];
+    typename Simd::State unused[V];
     ARCHIPELAGO_UNROLL_VECTORS
-    for (int v = 0; v < V; ++v) unused[v] = Simd::zero();
+    for (int v = 0; v < V; ++v) unused[v] = Simd::noWraps();
     for (std::uint64_t j = 0; j < steps; ++j) {
       ARCHIPELAGO_UNROLL_VECTORS
       for (int v = 0; v < V; ++v) Simd::backward(c, X[v], Y[v], unused[v]);
@@ -311,8 +317,8 @@ void iterateGroup(const typename Simd::Constants& c, MapDirection direction, Uni
   }
   ARCHIPELAGO_UNROLL_VECTORS
   for (int v = 0; v < V; ++v) {
-    Simd::store(xs + v * W, X[v]);
-    Simd::store(ys + v * W, Y[v]);
+    Simd::storeState(xs + v * W, X[v]);
+    Simd::storeState(ys + v * W, Y[v]);
   }
   for (std::size_t l = 0; l < n; ++l) orbits[l] = {xs[l], ys[l]};
 }
@@ -355,12 +361,12 @@ std::uint64_t densityGroup(const typename Simd::Constants& c, const typename Sim
     xs[l] = l < n ? orbits[l].X : 0;
     ys[l] = l < n ? orbits[l].Y : 0;
   }
-  Vec X[V], Y[V];
+  typename Simd::State X[V], Y[V];
   unsigned active[V];
   ARCHIPELAGO_UNROLL_VECTORS
   for (int v = 0; v < V; ++v) {
-    X[v] = Simd::load(xs + v * W);
-    Y[v] = Simd::load(ys + v * W);
+    X[v] = Simd::loadState(xs + v * W);
+    Y[v] = Simd::loadState(ys + v * W);
     const std::size_t begin = static_cast<std::size_t>(v) * W;
     active[v] = (1u << (n > begin ? std::min(W, n - begin) : 0)) - 1u;
   }
@@ -383,8 +389,8 @@ std::uint64_t densityGroup(const typename Simd::Constants& c, const typename Sim
   }
   ARCHIPELAGO_UNROLL_VECTORS
   for (int v = 0; v < V; ++v) {
-    Simd::store(xs + v * W, X[v]);
-    Simd::store(ys + v * W, Y[v]);
+    Simd::storeState(xs + v * W, X[v]);
+    Simd::storeState(ys + v * W, Y[v]);
   }
   for (std::size_t l = 0; l < n; ++l) orbits[l] = {xs[l], ys[l]};
   return binned;
