@@ -135,14 +135,17 @@ struct Avx512Ifma {
     store(next, _mm512_mask_mov_epi64(load(next), static_cast<__mmask8>(lanes), U));  // a full store forwards
   }
   static Vec select(unsigned lanes, Vec a, Vec b) { return _mm512_mask_mov_epi64(b, static_cast<__mmask8>(lanes), a); }
-  static Vec addModMasked(const Constants& c, Vec Y, unsigned lanes, Vec U) {
-    return _mm512_and_si512(_mm512_mask_add_epi64(Y, static_cast<__mmask8>(lanes), Y, U), c.mask);
+  /// Left unreduced (SimdDriver.inl): backward() uses only the low 52 bits of X − Y + 2^51 and of Y − G.
+  static Vec addModMasked(const Constants&, Vec Y, unsigned lanes, Vec U) {
+    return _mm512_mask_add_epi64(Y, static_cast<__mmask8>(lanes), Y, U);
   }
 
   static Vec set1(std::uint64_t x) { return _mm512_set1_epi64(static_cast<long long>(x)); }
   static Vec add(Vec a, Vec b) { return _mm512_add_epi64(a, b); }
   static Vec sub(Vec a, Vec b) { return _mm512_sub_epi64(a, b); }
-  static unsigned atLeast(Vec a, Vec b) { return _mm512_cmpge_epu64_mask(a, b); }
+  static unsigned atLeast(unsigned lanes, Vec a, Vec b) {
+    return _mm512_mask_cmpge_epu64_mask(static_cast<__mmask8>(lanes), a, b);
+  }
   static void storeMasked(std::uint64_t* p, unsigned lanes, Vec v) {
     _mm512_mask_storeu_epi64(p, static_cast<__mmask8>(lanes), v);
   }

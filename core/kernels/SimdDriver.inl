@@ -19,9 +19,11 @@
 //   wrapped(c, wraps) -> unsigned     bit l set when lane l wrapped;
 //   refreshDraws(c, lanes, key, D, U) for the lanes in `lanes`: U ← orbitDraw(key, D + 1) (key, U: arrays);
 //   select(lanes, a, b)               a in the lanes in `lanes`, b elsewhere;
-//   addModMasked(c, Y, lanes, U)      Y + U mod 2^52 in the lanes in `lanes`, Y elsewhere (Y a State, U a Vec);
+//   addModMasked(c, Y, lanes, U)      Y + U in the lanes in `lanes`, Y elsewhere (Y a State, U a Vec); the sum
+//                                     may be left unreduced (< 2^53): the block's first step reduces it and
+//                                     the lane's segment ends in this block whatever its wrap flag says;
 //   set1, add, sub                    64-bit lane arithmetic;
-//   atLeast(a, b) -> unsigned         bit l set when a ≥ b in lane l (values < 2^63);
+//   atLeast(lanes, a, b) -> unsigned  bit l set when l is in `lanes` and a ≥ b in lane l (values < 2^63);
 //   storeMasked(p, lanes, v)          stores the lanes in `lanes` only;
 //   compressStore(p, lanes, v)        stores the lanes in `lanes`, packed, at p (may write kLanes words).
 
@@ -55,7 +57,9 @@ inline std::uint64_t keepTag(const LongestSegments& longest) {
 ///     later: lengths ≤ kExactMax into per-lane counts (merged into the sink's subset histograms at the end),
 ///     longer ones straight into the histogram;
 ///   - only a segment long enough for the longest-segments list (rare once the list is full) takes the scalar
-///     path, at once, while its start state is still at hand.
+///     path, at once, while its start state is still at hand; its length is compared with the list's
+///     threshold only in lanes found, every 64 blocks, to be able to reach it (`candidates`);
+///   - a lane's draw counter is brought up to date when its next draw is computed, not in the zone step.
 /// The histograms and the longest list do not depend on the order of insertion, so this equals the scalar
 /// kernel's sink bit for bit.
 template <class Simd, int V>
@@ -96,8 +100,8 @@ void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, Or
   }
   // Per-lane values read every block stay in registers: a load of words just written by a masked store
   // cannot take them from the store buffer and would stall.
-  // The draws stay in memory (draws[], full-vector loads and stores, which forward): they change only in the
-  // zone, and keeping them out of registers leaves room for the bookkeeping at small q.
+  // The draws stay in memory (draws[]) and lag: a lane in `stale` has used one more draw than draws[] says,
+  // and the increment is made when its next draw is computed (refreshDraws), so the zone costs no store.
   typename Simd::State X[V], Y[V];
   Vec base[V];  // base: tagBase
   unsigned active[V];
@@ -112,20 +116,37 @@ void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, Or
 
   alignas(64) std::uint64_t nextDraw[L];  // orbitDraw(key, draws + 1): the draw each lane uses next
   for (std::size_t l = 0; l < L; ++l) nextDraw[l] = orbitDraw(keys[l], draws[l] + 1);
-  unsigned stale[V] = {};  // lanes whose nextDraw was used and must be recomputed
+  unsigned stale[V] = {};  // lanes whose nextDraw was used: draws[] is one short, nextDraw must be recomputed
   const Vec one = Simd::set1(1);
   constexpr std::uint64_t kRefreshBlocks = 8;
   const auto refreshDraws = [&] {
     ARCHIPELAGO_UNROLL_VECTORS
     for (std::size_t v = 0; v < V; ++v) {
       if (stale[v] == 0) continue;  // common at q ≥ 16 between zone visits
-      Simd::refreshDraws(c, stale[v], keys + v * W, Simd::load(draws + v * W), nextDraw + v * W);
+      const Vec D = Simd::load(draws + v * W);
+      const Vec used = Simd::select(stale[v], Simd::add(D, one), D);
+      Simd::store(draws + v * W, used);
+      Simd::refreshDraws(c, stale[v], keys + v * W, used, nextDraw + v * W);
       stale[v] = 0;
     }
   };
 
   LongestSegments& longest = sink.longest();
   Vec keepFrom = Simd::set1(keepTag(longest));
+  // Lanes whose open segment may become long enough for the longest list before the next recomputation
+  // (every kCandidateBlocks blocks); only an ended segment of theirs is compared with keepFrom, so the
+  // comparison leaves the per-block path once the list is full.  A superset is harmless: keepFrom only grows.
+  constexpr std::uint64_t kCandidateBlocks = 64;
+  unsigned candidates[V] = {};
+  const auto findCandidates = [&](std::uint64_t b) {
+    // A segment that begins at or after block b ends by block b + kCandidateBlocks with a tag below
+    // kCandidateBlocks·64; below that threshold every lane is a candidate.
+    const bool everyLane = keepTag(longest) < (kCandidateBlocks << 6);
+    const Vec horizon = Simd::set1((b + kCandidateBlocks) << 6);  // the largest tag of an older segment
+    ARCHIPELAGO_UNROLL_VECTORS
+    for (std::size_t v = 0; v < V; ++v)
+      candidates[v] = everyLane ? (1u << W) - 1u : Simd::atLeast((1u << W) - 1u, Simd::sub(horizon, base[v]), keepFrom);
+  };
   constexpr std::size_t kEventCapacity = 2048;
   alignas(64) std::uint64_t events[kEventCapacity + 1];
   std::size_t eventCount = 0;
@@ -149,6 +170,7 @@ void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, Or
 
   const std::uint32_t q = k.q;
   for (std::uint64_t b = 0; b < blocks; ++b) {
+    if (b % kCandidateBlocks == 0) findCandidates(b);
     // Appendix B, 6.1–6.2: in the zone, Y ← Y + U (the orbit's next draw) and the segment ends.  The draw
     // was computed ahead (nextDraw), so the zone costs a few branch-free masked operations here; the
     // 64-bit multiplies of the next draws are batched every kRefreshBlocks blocks, or done at once in the
@@ -165,8 +187,6 @@ void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, Or
     for (std::size_t v = 0; v < V; ++v) {
       const std::size_t o = v * W;
       Y[v] = Simd::addModMasked(c, Y[v], zone[v], Simd::load(nextDraw + o));
-      const Vec D = Simd::load(draws + o);
-      Simd::store(draws + o, Simd::select(zone[v], Simd::add(D, one), D));
       stale[v] |= zone[v];
     }
     if (b % kRefreshBlocks == kRefreshBlocks - 1) refreshDraws();
@@ -195,11 +215,12 @@ void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, Or
       const unsigned recorded = e & recordable[v];
       Simd::compressStore(events + eventCount, recorded, tag);
       eventCount += static_cast<std::size_t>(__builtin_popcount(recorded));
-      if (const unsigned keep = recorded & Simd::atLeast(tag, keepFrom)) [[unlikely]] {
+      const unsigned keep = (recorded & candidates[v]) ? Simd::atLeast(recorded, tag, keepFrom) : 0u;
+      if (keep) [[unlikely]] {
         alignas(64) std::uint64_t tags[W], bases[W], drawsNow[W];
         Simd::store(tags, tag);
         Simd::store(bases, base[v]);
-        Simd::store(drawsNow, Simd::load(draws + o));
+        Simd::store(drawsNow, Simd::select(stale[v], Simd::add(Simd::load(draws + o), one), Simd::load(draws + o)));
         for (unsigned bits = keep; bits; bits &= bits - 1) {
           const std::size_t lane = static_cast<std::size_t>(__builtin_ctz(bits));
           const std::size_t l = o + lane;
@@ -220,6 +241,7 @@ void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, Or
     if (eventCount > kEventCapacity - L) binEvents();
   }
   binEvents();
+  refreshDraws();  // brings draws[] up to date
 
   ARCHIPELAGO_UNROLL_VECTORS
 
@@ -276,7 +298,6 @@ void advanceBlocksWith(const KernelSettings& k, std::span<OrbitState> orbits, st
 template <class Simd, int V>
 void iterateGroup(const typename Simd::Constants& c, MapDirection direction, UnitState* orbits, std::size_t n,
                   std::uint64_t steps, UnitState* trace, std::size_t stride) {
-  using Vec = typename Simd::Vec;
   constexpr std::size_t W = Simd::kLanes;
   constexpr std::size_t L = W * V;
   alignas(64) std::uint64_t xs[L], ys[L];
@@ -353,7 +374,6 @@ template <class Simd, int V>
 std::uint64_t densityGroup(const typename Simd::Constants& c, const typename Simd::Grid& g, UnitState* orbits,
                            std::size_t n, std::uint64_t steps, std::uint8_t* counts,
                            std::vector<std::uint32_t>& carries) {
-  using Vec = typename Simd::Vec;
   constexpr std::size_t W = Simd::kLanes;
   constexpr std::size_t L = W * V;
   alignas(64) std::uint64_t xs[L], ys[L], pixels[L];

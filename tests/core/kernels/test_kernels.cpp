@@ -110,6 +110,28 @@ TEST(VectorKernels, BlockKernelsMatchScalarFromFreshOrbits) {
   }
 }
 
+// A short longest list over a long call: its threshold soon exceeds the 64 blocks over which the vector
+// paths look ahead for candidate lanes (SimdDriver.inl), so segments born during the call must still be
+// found when they grow past it.
+TEST(VectorKernels, LongestSegmentsBornDuringALongCallAreKept) {
+  const auto kernels = vectorKernels();
+  if (kernels.empty()) GTEST_SKIP() << "this CPU has no vector path";
+  const KernelSettings k{computeCoefficients({0.1, -0.8, 0.5}), randomizingThreshold(0.02), 1, 11};
+  const std::vector<OrbitState> orbits(64);
+  const auto run = [&](BlockKernel kernel) {
+    Outcome out{orbits, SegmentSink(3, 300)};
+    kernel(k, out.orbits, 0, 60'000, out.sink);
+    return out;
+  };
+  const Outcome expected = run(&advanceBlocksScalar);
+  ASSERT_EQ(expected.sink.longest().items().size(), 300u);
+  EXPECT_GT(expected.sink.longest().items().back().length, 2u * 64);  // well past the look-ahead
+  for (const auto& kernel : kernels) {
+    SCOPED_TRACE(kernel.name);
+    expectSame(expected, run(kernel.blocks));
+  }
+}
+
 TEST(VectorKernels, OrbitIterationMatchesScalarWithTrace) {
   for (const auto& kernel : supportedKernels()) {
     for (std::size_t set = 0; set < kParameterSets.size(); ++set) {
