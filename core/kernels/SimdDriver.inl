@@ -70,34 +70,39 @@ void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, Or
   constexpr std::size_t L = W * V;
   static_assert(L <= 64, "an event tag holds the lane in 6 bits");
   constexpr std::uint64_t kExact = TrappingHistogram::kExactMax;
-  alignas(64) std::uint64_t xs[L], ys[L], draws[L], keys[L], lanes[L];
+  // Segments that are not recorded — an orbit's first one (it began at block 0) and every one of a padding
+  // lane — carry kUnrecorded in their tag; such tags are dropped when binned or kept.
+  constexpr std::uint64_t kUnrecorded = std::uint64_t{1} << 62;
+  alignas(64) std::uint64_t xs[L], ys[L], draws[L], keys[L], laneTags[L];
   // The open segment's start.  X and Y are stored (masked) whenever a segment ends; the block and the draws
-  // need no stores: a segment that began in this call began at local block segmentBegin (from tagBase), and
-  // its draws are the lane's current draws, since entering the zone (the only place draws change) ends the
-  // segment.  startBlockLocal (relative to firstBlock, modulo 2^64) and startDraws keep the values of the
-  // segment open on entry, used for the lanes in everEnded[v] = 0.
+  // need no stores: a segment that began in this call began at local block segmentBegin ≥ 1 (from tagBase),
+  // and its draws are the lane's current draws, since entering the zone (the only place draws change) ends
+  // the segment.  startBlockLocal (relative to firstBlock, modulo 2^64) and startDraws keep the values of the
+  // segment open on entry (segmentBegin ≤ 0).
   alignas(64) std::uint64_t startX[L], startY[L], startBlockLocal[L], startDraws[L];
-  unsigned everEnded[V] = {};
-  // tagBase = segmentBegin·64 − lane, segmentBegin being the local block where the open segment began, so
-  // that the event tag (length << 6) | lane of a segment ending after local block a is a·64 − tagBase (all
-  // modulo 2^64; lane < 64 and lengths < 2^57).
+  // tagBase = segmentBegin·64 − laneTag, segmentBegin being the local block where the open segment began, so
+  // that the event tag (length << 6) | lane (+ kUnrecorded) of a segment ending after local block a is
+  // a·64 − tagBase (all modulo 2^64; lane < 64 and lengths < 2^56).
   alignas(64) std::uint64_t tagBase[L], firstBlock[L];
-  unsigned recordable[V] = {};  // lanes whose open segment will be recorded (it did not start at block 0)
   for (std::size_t l = 0; l < L; ++l) {
     const OrbitState s = l < n ? orbits[l] : OrbitState{};  // padding lanes: computed, never recorded or stored
     xs[l] = s.z.X;
     ys[l] = s.z.Y;
     draws[l] = s.draws;
     keys[l] = l < n ? orbitKey(k.seed, firstOrbit + l) : 0;
-    lanes[l] = l;
+    laneTags[l] = l < n ? l : l + kUnrecorded;
     startX[l] = s.start.z.X;
     startY[l] = s.start.z.Y;
     startBlockLocal[l] = s.start.block - s.block;
     startDraws[l] = s.start.draws;
-    tagBase[l] = ((std::uint64_t{0} - s.length) << 6) - l;  // segmentBegin = −length
+    // segmentBegin = −length; an orbit's first segment is not recorded (SegmentSink::record).
+    tagBase[l] = ((std::uint64_t{0} - s.length) << 6) - laneTags[l] - (l < n && s.start.block == 0 ? kUnrecorded : 0);
     firstBlock[l] = s.block;
-    if (l < n && s.start.block != 0) recordable[l / W] |= 1u << (l % W);
   }
+  // The local block where lane l's open segment began, from its tagBase (negative: before this call).
+  const auto segmentBegin = [&](std::uint64_t base, std::size_t l) {
+    return static_cast<std::int64_t>(base + l) >> 6;  // l < n: laneTags[l] = l
+  };
   // Per-lane values read every block stay in registers: a load of words just written by a masked store
   // cannot take them from the store buffer and would stall.
   // The draws stay in memory (draws[]) and lag: a lane in `stale` has used one more draw than draws[] says,
@@ -145,7 +150,7 @@ void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, Or
     const Vec horizon = Simd::set1((b + kCandidateBlocks) << 6);  // the largest tag of an older segment
     ARCHIPELAGO_UNROLL_VECTORS
     for (std::size_t v = 0; v < V; ++v)
-      candidates[v] = everyLane ? (1u << W) - 1u : Simd::atLeast((1u << W) - 1u, Simd::sub(horizon, base[v]), keepFrom);
+      candidates[v] = everyLane ? active[v] : Simd::atLeast(active[v], Simd::sub(horizon, base[v]), keepFrom);
   };
   constexpr std::size_t kEventCapacity = 2048;
   alignas(64) std::uint64_t events[kEventCapacity + 1];
@@ -155,6 +160,7 @@ void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, Or
   constexpr std::size_t kExactTags = (kExact + 1) * 64;
   std::uint64_t exactCounts[2 * kExactTags] = {};
   const auto binLong = [&](std::uint64_t tag) {
+    if (tag >= kUnrecorded) return;
     const std::uint64_t orbit = firstOrbit + (tag & 63);
     sink.subsets()[orbit % sink.subsets().size()].add(tag >> 6);
   };
@@ -212,10 +218,9 @@ void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, Or
       const unsigned e = ended[v];  // usually nonzero at small q; with e = 0 the masked work below is void
       const std::size_t o = v * W;
       const Vec tag = Simd::sub(afterTag, base[v]);
-      const unsigned recorded = e & recordable[v];
-      Simd::compressStore(events + eventCount, recorded, tag);
-      eventCount += static_cast<std::size_t>(__builtin_popcount(recorded));
-      const unsigned keep = (recorded & candidates[v]) ? Simd::atLeast(recorded, tag, keepFrom) : 0u;
+      Simd::compressStore(events + eventCount, e, tag);
+      eventCount += static_cast<std::size_t>(__builtin_popcount(e));
+      const unsigned keep = (e & candidates[v]) ? Simd::atLeast(e, tag, keepFrom) : 0u;
       if (keep) [[unlikely]] {
         alignas(64) std::uint64_t tags[W], bases[W], drawsNow[W];
         Simd::store(tags, tag);
@@ -224,9 +229,11 @@ void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, Or
         for (unsigned bits = keep; bits; bits &= bits - 1) {
           const std::size_t lane = static_cast<std::size_t>(__builtin_ctz(bits));
           const std::size_t l = o + lane;
-          const bool begunHere = (everEnded[v] >> lane) & 1u;
+          if (tags[lane] >= kUnrecorded) continue;
           // Its block from tagBase (before this block's update); its draws before this block's zone step.
-          const std::uint64_t began = begunHere ? (bases[lane] + l) >> 6 : startBlockLocal[l];
+          const std::int64_t begin = segmentBegin(bases[lane], l);
+          const bool begunHere = begin > 0;
+          const std::uint64_t began = begunHere ? static_cast<std::uint64_t>(begin) : startBlockLocal[l];
           const std::uint64_t startDrawsNow = begunHere ? drawsNow[lane] - ((zone[v] >> lane) & 1u) : startDraws[l];
           longest.insert({firstOrbit + l, tags[lane] >> 6, {{startX[l], startY[l]}, firstBlock[l] + began, startDrawsNow}});
         }
@@ -234,9 +241,7 @@ void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, Or
       }
       Simd::storeStateMasked(startX + o, e, X[v]);
       Simd::storeStateMasked(startY + o, e, Y[v]);
-      everEnded[v] |= e;
-      base[v] = Simd::select(e, Simd::sub(afterTag, Simd::load(lanes + o)), base[v]);
-      recordable[v] |= e & active[v];
+      base[v] = Simd::select(e, Simd::sub(afterTag, Simd::load(laneTags + o)), base[v]);
     }
     if (eventCount > kEventCapacity - L) binEvents();
   }
@@ -255,9 +260,10 @@ void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, Or
     s.z = {xs[l], ys[l]};
     s.draws = draws[l];
     s.block = firstBlock[l] + blocks;
-    s.length = ((blocks << 6) - tagBase[l]) >> 6;
-    const bool begunHere = (everEnded[l / W] >> (l % W)) & 1u;
-    const std::uint64_t began = begunHere ? (tagBase[l] + l) >> 6 : startBlockLocal[l];
+    s.length = (((blocks << 6) - tagBase[l]) & (kUnrecorded - 1)) >> 6;
+    const std::int64_t begin = segmentBegin(tagBase[l], l);
+    const bool begunHere = begin > 0;
+    const std::uint64_t began = begunHere ? static_cast<std::uint64_t>(begin) : startBlockLocal[l];
     s.start = {{startX[l], startY[l]}, firstBlock[l] + began, begunHere ? draws[l] : startDraws[l]};
     TrappingHistogram& h = sink.subsets()[(firstOrbit + l) % sink.subsets().size()];
     for (std::uint64_t t = 1; t <= kExact; ++t) {
