@@ -33,8 +33,8 @@ void reportSteps(benchmark::State& state, double steps) {
 // each OpenMP thread iterates its own 48 orbits (in its own cache lines) with the same kernel, and the rate
 // is the total over the threads: what the hardware itself allows, for the pipeline's 2-thread scaling.  An
 // iteration is one parallel region of 2^20 steps per orbit (≈ 13 ms with AVX-512 IFMA), long enough that the
-// fork and the closing barrier cost little even when a co-tenant delays one of the threads; one thread does
-// the same calls without the region.
+// fork and the barriers cost little; when a co-tenant holds the other vCPU the region waits for the delayed
+// thread (run-benchmarks.sh prints the CPUs the process got).  One thread does the same calls without a region.
 void bareStep(benchmark::State& state, OrbitKernel kernel, int threads) {
   struct alignas(64) OrbitSet {
     std::array<UnitState, 48> orbits;
