@@ -10,7 +10,7 @@ namespace {
 const std::array<KernelInfo, 3> kKernels = {{
     {KernelKind::avx512ifma, "avx512ifma", "AVX-512 IFMA, 8 orbits per vector (vpmadd52huq)",
      &advanceBlocksAvx512Ifma, &iterateOrbitsAvx512Ifma, &binDensityAvx512Ifma},
-    {KernelKind::avx2, "avx2", "AVX2, 4 orbits per vector (32-bit vpmuludq products)", &advanceBlocksAvx2,
+    {KernelKind::avx2, "avx2", "AVX2 + FMA, 4 orbits per vector (exact integer-valued doubles, rounding down)", &advanceBlocksAvx2,
      &iterateOrbitsAvx2, &binDensityAvx2},
     {KernelKind::scalar, "scalar", "portable C++ with 128-bit products (the reference)", &advanceBlocksScalar,
      &iterateOrbitsScalar, &binDensityScalar},
@@ -27,7 +27,7 @@ CpuFeatures CpuFeatures::detect() noexcept {
 #if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
   __builtin_cpu_init();
   CpuFeatures f;
-  f.avx2 = __builtin_cpu_supports("avx2");
+  f.avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");  // the AVX2 path needs both
   f.avx512ifma = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
                  __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512ifma");
   return f;

@@ -2,6 +2,7 @@
 // arithmetic contract): orbit states, wrap-ended segments, histograms and longest segments.
 #include <gtest/gtest.h>
 
+#include <cfenv>
 #include <random>
 #include <string>
 #include <vector>
@@ -163,6 +164,79 @@ TEST(VectorKernels, OrbitIterationMatchesScalarWithTrace) {
       }
     }
   }
+}
+
+// States at the edges of the arithmetic, where the AVX2 path's floors (doubles rounded down) and reductions
+// are closest to going wrong: X − Y + 2^51 at 0 and 2^52 exactly, G(X) at multiples of 2^52, X and Y at 0
+// (which the double path may hold as −0.0) and at 2^52 − 1, in boxes with m from 0 to 9.  Each step is
+// compared with FixedPointMap.hpp's, and the block kernels at q = 1 with the scalar one (wraps end segments).
+TEST(VectorKernels, EdgeStatesMatchScalarStepByStep) {
+  using fixedpoint::kHalf;
+  using fixedpoint::kMask;
+  const std::vector<std::uint64_t> special = {0, 1, 2, kHalf - 1, kHalf, kHalf + 1, kMask - 1, kMask,
+                                              0x000FFFFF00000000ull, 0x0008000000000001ull};
+  std::vector<MapParameters> boxes = kParameterSets;
+  boxes.push_back({1.0, -100.0, 100.0});  // m = 9, the largest shift FixedPointMap allows
+  for (const auto& box : boxes) {
+    const MapCoefficients c = computeCoefficients(box);
+    std::vector<UnitState> start;
+    for (const std::uint64_t X : special)
+      for (const std::uint64_t Y : special) start.push_back({X, Y});
+    // Y chosen so that X − Y + 2^51 is exactly 0 or 2^52, and Y = G(X) mod 2^52 (u = 0 after the step).
+    for (const std::uint64_t X : special) {
+      start.push_back({X, (X + kHalf) & kMask});
+      const std::uint64_t Xn = (X - X + kHalf) & kMask;  // the X after a step from (X, X)
+      start.push_back({X, static_cast<std::uint64_t>(fixedPointG(c, Xn)) & kMask});
+    }
+    for (const auto direction : {MapDirection::forward, MapDirection::backward}) {
+      constexpr std::uint64_t kSteps = 40;
+      std::vector<UnitState> expectedTrace(kSteps * start.size());
+      for (std::size_t i = 0; i < start.size(); ++i) {
+        UnitState z = start[i];
+        for (std::uint64_t j = 0; j < kSteps; ++j) {
+          direction == MapDirection::forward ? forwardStep(c, z) : backwardStep(c, z);
+          expectedTrace[j * start.size() + i] = z;
+        }
+      }
+      for (const auto& kernel : vectorKernels()) {
+        std::vector<UnitState> orbits = start;
+        std::vector<UnitState> trace(kSteps * start.size());
+        kernel.orbits(c, direction, orbits, kSteps, trace.data());
+        SCOPED_TRACE(testing::Message() << kernel.name << " m=" << c.m);
+        EXPECT_EQ(trace, expectedTrace);
+      }
+    }
+    const KernelSettings k{c, randomizingThreshold(0.02), 1, 9};
+    std::vector<OrbitState> orbits(start.size());
+    for (std::size_t i = 0; i < start.size(); ++i) {
+      orbits[i].z = start[i];
+      orbits[i].start = {start[i], 1, 0};
+      orbits[i].block = 1;
+    }
+    const Outcome expected = runKernel(&advanceBlocksScalar, k, orbits, 0, 30, 1);
+    EXPECT_GT(expected.sink.longest().items().size(), 0u);
+    for (const auto& kernel : vectorKernels()) {
+      SCOPED_TRACE(testing::Message() << kernel.name << " blocks, m=" << c.m);
+      expectSame(expected, runKernel(kernel.blocks, k, orbits, 0, 30, 1));
+    }
+  }
+}
+
+// The paths that change the floating-point environment (AVX2: rounding down) restore the caller's.
+TEST(VectorKernels, KernelsLeaveTheRoundingModeAsTheyFoundIt) {
+  const MapCoefficients c = computeCoefficients({0.1, -0.8, 0.5});
+  for (const int mode : {FE_TONEAREST, FE_UPWARD}) {
+    ASSERT_EQ(std::fesetround(mode), 0);
+    for (const auto& kernel : supportedKernels()) {
+      std::vector<UnitState> orbits = {{123, 456}, {fixedpoint::kMask, 0}};
+      kernel.orbits(c, MapDirection::backward, orbits, 10, nullptr);
+      SegmentSink sink(1, 1);
+      std::vector<OrbitState> states(3);
+      kernel.blocks({c, randomizingThreshold(0.02), 1, 1}, states, 0, 10, sink);
+      EXPECT_EQ(std::fegetround(), mode) << kernel.name;
+    }
+  }
+  std::fesetround(FE_TONEAREST);
 }
 
 // The whole engine: chunks, threads and groups, with each path.
