@@ -259,6 +259,7 @@ struct Avx2 {
 // the spilled X, Y and wraps cost less than a shorter queue (measured: 4 vectors ~20% slower, 8 or 12 no
 // faster).
 constexpr int kBlockVectors = 6;
+static_assert(kBlockVectors * Avx2::kLanes == kAvx2BlockOrbits);
 constexpr int kOrbitVectors = 6;
 
 // The loops, called from the exported functions only after the rounding mode is set (never inlined into

@@ -162,6 +162,7 @@ struct Avx512Ifma {
 // Four vectors (32 orbits) per group: a step is 11 vector operations on two 512-bit ports against a
 // latency chain of ~13 cycles, so three or more independent vectors keep the ports busy.
 constexpr int kBlockVectors = 4;
+static_assert(kBlockVectors * Avx512Ifma::kLanes == kAvx512IfmaBlockOrbits);
 constexpr int kOrbitVectors = 6;
 constexpr int kDensityVectors = 4;
 

@@ -9,11 +9,11 @@ namespace archipelago {
 namespace {
 const std::array<KernelInfo, 3> kKernels = {{
     {KernelKind::avx512ifma, "avx512ifma", "AVX-512 IFMA, 8 orbits per vector (vpmadd52huq)",
-     &advanceBlocksAvx512Ifma, &iterateOrbitsAvx512Ifma, &binDensityAvx512Ifma},
+     &advanceBlocksAvx512Ifma, &iterateOrbitsAvx512Ifma, &binDensityAvx512Ifma, kAvx512IfmaBlockOrbits},
     {KernelKind::avx2, "avx2", "AVX2 + FMA, 4 orbits per vector (exact integer-valued doubles, rounding down)", &advanceBlocksAvx2,
-     &iterateOrbitsAvx2, &binDensityAvx2},
+     &iterateOrbitsAvx2, &binDensityAvx2, kAvx2BlockOrbits},
     {KernelKind::scalar, "scalar", "portable C++ with 128-bit products (the reference)", &advanceBlocksScalar,
-     &iterateOrbitsScalar, &binDensityScalar},
+     &iterateOrbitsScalar, &binDensityScalar, kScalarBlockOrbits},
 }};
 
 std::string knownNames() {
@@ -94,6 +94,12 @@ std::string supportedKernelNames() {
   std::string s;
   for (const auto& k : supportedKernels()) s += (s.empty() ? "" : ", ") + std::string(k.name);
   return s;
+}
+
+std::size_t blockOrbitsOf(BlockKernel kernel) noexcept {
+  for (const auto& k : kKernels)
+    if (k.blocks == kernel) return k.blockOrbits;
+  return kScalarBlockOrbits;
 }
 
 }  // namespace archipelago

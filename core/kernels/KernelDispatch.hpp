@@ -29,12 +29,13 @@ struct KernelInfo {
   BlockKernel blocks;            ///< the trapping block kernel (BlockKernel.hpp)
   OrbitKernel orbits;            ///< plain orbit iteration (portraits)
   DensityKernel density;         ///< orbit iteration with density binning (portraits, mode (a))
+  std::size_t blockOrbits;       ///< orbits `blocks` advances at full speed together: give it multiples
 };
 
 /// The CPU features the vector paths need (cpuid, including the operating system's support of the
 /// registers, as reported by __builtin_cpu_supports).
 struct CpuFeatures {
-  bool avx2 = false;
+  bool avx2 = false;        ///< AVX2 and FMA together
   bool avx512ifma = false;  ///< AVX-512 F, VL, DQ and IFMA together
   /// The features of the CPU this program runs on.
   [[nodiscard]] static CpuFeatures detect() noexcept;
@@ -59,6 +60,9 @@ struct CpuFeatures {
 /// The path to use: `requested` when non-empty, else $ARCHIPELAGO_KERNEL when set and non-empty, else
 /// bestKernel().  Throws like kernelByName() (naming the environment variable when it was the source).
 [[nodiscard]] const KernelInfo& selectKernel(std::string_view requested = {});
+
+/// KernelInfo::blockOrbits of the path whose block kernel is `kernel`; kScalarBlockOrbits for another.
+[[nodiscard]] std::size_t blockOrbitsOf(BlockKernel kernel) noexcept;
 
 /// "avx512ifma, avx2, scalar": the supported names, for help texts and error messages.
 [[nodiscard]] std::string supportedKernelNames();

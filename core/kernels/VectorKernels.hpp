@@ -6,10 +6,12 @@
 /// phase portrait iterates N or N⁻¹ (fig. 1–3).  The map is defined on 52-bit integers (FixedPointMap.hpp), so
 /// every path computes exactly the same numbers:
 ///   - scalar     : portable C++ with 128-bit products (the reference, advanceBlocksScalar in trapping/);
-///   - avx2       : 4 orbits per 256-bit vector; 52×52-bit products from four 32×32-bit vpmuludq;
+///   - avx2       : 4 orbits per 256-bit vector; X and Y as integer-valued doubles, every floor division one
+///                  FMA rounded toward −∞ (KernelAvx2.cpp);
 ///   - avx512ifma : 8 orbits per 512-bit vector; ⌊a·b/2^52⌋ is one vpmadd52huq, exact for a, b < 2^52.
-/// Each vector path advances several vectors of orbits in lockstep (the chain of two dependent products per
-/// step has ~13 cycles of latency, so independent vectors fill the pipeline).
+/// Each vector path advances several vectors of orbits in lockstep (a step's chain of dependent operations is
+/// long, so independent vectors fill the pipeline): a block kernel keeps k…BlockOrbits orbits in flight, and
+/// a call with fewer runs at a fraction of the speed, so callers hand it multiples of that (TrappingRun).
 ///
 /// The avx2 and avx512ifma functions are compiled for those instruction sets only (function target
 /// attributes; the rest of the program stays generic), so they may be called only when the CPU has them:
@@ -79,7 +81,11 @@ std::uint64_t binDensityAvx512Ifma(const MapCoefficients& coefficients, std::spa
 void iterateOrbitsScalar(const MapCoefficients& coefficients, MapDirection direction, std::span<UnitState> orbits,
                          std::uint64_t steps, UnitState* trace);
 
-/// AVX2 path (requires AVX2).
+/// Orbits the block kernels of the vector paths keep in flight (KernelInfo::blockOrbits).
+inline constexpr std::size_t kAvx2BlockOrbits = 24;        ///< 6 vectors of 4
+inline constexpr std::size_t kAvx512IfmaBlockOrbits = 32;  ///< 4 vectors of 8
+
+/// AVX2 path (requires AVX2 and FMA).
 void advanceBlocksAvx2(const KernelSettings& settings, std::span<OrbitState> orbits, std::uint64_t firstOrbit,
                        std::uint64_t blocks, SegmentSink& sink);
 void iterateOrbitsAvx2(const MapCoefficients& coefficients, MapDirection direction, std::span<UnitState> orbits,

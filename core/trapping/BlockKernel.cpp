@@ -61,7 +61,7 @@ void advanceBlocksScalar(const KernelSettings& k, std::span<OrbitState> orbits, 
                          std::uint64_t blocks, SegmentSink& sink) {
   // Lanes of independent orbits advanced in lockstep: the three products of a step form a long dependency
   // chain, and interleaving several orbits lets the CPU overlap them.
-  constexpr std::size_t kLanes = 8;
+  constexpr std::size_t kLanes = kScalarBlockOrbits;
   const ScalarStep c(k.coefficients);
   for (std::size_t first = 0; first < orbits.size(); first += kLanes) {
     const std::size_t n = std::min(kLanes, orbits.size() - first);

@@ -8,6 +8,7 @@
 /// block.  Kernels (scalar here; vector ones in core/kernels) must produce bit-identical orbit states and
 /// identical sink calls, in any order.
 
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -54,7 +55,9 @@ class SegmentSink {
 using BlockKernel = void (*)(const KernelSettings& settings, std::span<OrbitState> orbits,
                              std::uint64_t firstOrbit, std::uint64_t blocks, SegmentSink& sink);
 
-/// The portable scalar reference kernel (interleaves orbits to hide multiply latency).
+/// The portable scalar reference kernel (interleaves kScalarBlockOrbits orbits to hide multiply latency;
+/// a remainder of fewer is advanced one orbit at a time).
+inline constexpr std::size_t kScalarBlockOrbits = 8;
 void advanceBlocksScalar(const KernelSettings& settings, std::span<OrbitState> orbits, std::uint64_t firstOrbit,
                          std::uint64_t blocks, SegmentSink& sink);
 

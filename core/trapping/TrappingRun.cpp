@@ -67,14 +67,6 @@ TrappingState runTrapping(TrappingState state, const TrappingRunOptions& options
   const KernelSettings settings = kernelSettings(state);
   const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
   const std::size_t orbitCount = state.orbits.size();
-  // Work is split into groups of orbits; a group is one task, so every thread gets several.  Groups of 32
-  // fill the vector kernels (4 vectors of 8 lanes in flight); with fewer orbits, smaller groups keep every
-  // thread busy.
-  const std::size_t groupSize =
-      orbitCount >= 64 * static_cast<std::size_t>(threads)
-          ? 32
-          : std::clamp<std::size_t>(orbitCount / (4 * static_cast<std::size_t>(threads)) / 8 * 8, 8, 32);
-  const std::size_t groups = (orbitCount + groupSize - 1) / groupSize;
   BlockKernel kernel = options.kernel;
   state.kernel = options.kernelName;
   if (kernel == nullptr) {
@@ -82,6 +74,16 @@ TrappingState runTrapping(TrappingState state, const TrappingRunOptions& options
     kernel = best.blocks;
     state.kernel = std::string(best.name);
   }
+  // Work is split into groups of orbits; a group is one task, so every thread gets several.  A group is what
+  // the kernel keeps in flight (fewer orbits leave its pipeline half empty); with few orbits, smaller groups
+  // (multiples of 8) keep every thread busy.
+  const std::size_t fullGroup = blockOrbitsOf(kernel);
+  const auto perThread = static_cast<std::size_t>(threads);
+  const std::size_t groupSize =
+      orbitCount >= 2 * fullGroup * perThread
+          ? fullGroup
+          : std::clamp<std::size_t>(orbitCount / (4 * perThread) / 8 * 8, std::min<std::size_t>(8, fullGroup), fullGroup);
+  const std::size_t groups = (orbitCount + groupSize - 1) / groupSize;
 
   const auto sessionStart = Clock::now();
   const double stepsPerBlock = static_cast<double>(orbitCount) * state.params.q;
