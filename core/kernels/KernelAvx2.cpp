@@ -227,6 +227,7 @@ struct Avx2 {
   static Vec set1(std::uint64_t x) { return _mm256_set1_epi64x(static_cast<long long>(x)); }
   static Vec add(Vec a, Vec b) { return _mm256_add_epi64(a, b); }
   static Vec sub(Vec a, Vec b) { return _mm256_sub_epi64(a, b); }
+  static unsigned below(unsigned lanes, Vec a, Vec b) { return lanes & laneBits(_mm256_cmpgt_epi64(b, a)); }
   static unsigned atLeast(unsigned lanes, Vec a, Vec b) { return lanes & ~laneBits(_mm256_cmpgt_epi64(b, a)); }
   /// All-ones in the 64-bit lanes whose bit is set in `lanes`.
   static Vec laneMask(unsigned lanes) {

@@ -143,6 +143,9 @@ struct Avx512Ifma {
   static Vec set1(std::uint64_t x) { return _mm512_set1_epi64(static_cast<long long>(x)); }
   static Vec add(Vec a, Vec b) { return _mm512_add_epi64(a, b); }
   static Vec sub(Vec a, Vec b) { return _mm512_sub_epi64(a, b); }
+  static unsigned below(unsigned lanes, Vec a, Vec b) {
+    return _mm512_mask_cmplt_epu64_mask(static_cast<__mmask8>(lanes), a, b);
+  }
   static unsigned atLeast(unsigned lanes, Vec a, Vec b) {
     return _mm512_mask_cmpge_epu64_mask(static_cast<__mmask8>(lanes), a, b);
   }
