@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "map/ScalarStep.hpp"
+
 
 namespace archipelago {
 
@@ -20,42 +22,7 @@ bool advanceOneBlock(const KernelSettings& k, std::uint64_t orbit, OrbitState& s
   return ended;
 }
 
-// The lane loops must be unrolled so that the lanes' products interleave (GCC does not at -O2 by itself).
-#if defined(__clang__)
-#define ARCHIPELAGO_UNROLL_LANES _Pragma("clang loop unroll(full)")
-#else
-#define ARCHIPELAGO_UNROLL_LANES _Pragma("GCC unroll 8")
-#endif
 
-namespace {
-// N⁻¹ in the form the scalar kernel computes it: for a, b < 2^52, ⌊a·b/2^52⌋ = ⌊(a·2^12)·b/2^64⌋ is the high
-// word of one 64×64-bit product (mul/mulx, no double-word shift), with A·2^12 and B·2^12 precomputed.  The
-// same integers as backwardStep() in FixedPointMap.hpp (exact floor divisions of the same products).
-struct ScalarStep {
-  std::uint64_t A12, B12, C;
-  int m;
-  explicit ScalarStep(const MapCoefficients& c)
-      : A12(static_cast<std::uint64_t>(c.A) << 12), B12(static_cast<std::uint64_t>(c.B) << 12),
-        C(static_cast<std::uint64_t>(c.C)), m(c.m) {}
-};
-
-inline std::uint64_t mulHigh(std::uint64_t a, std::uint64_t b) noexcept {
-  return static_cast<std::uint64_t>((uint128{a} * b) >> 64);
-}
-
-/// One step of N⁻¹; ORs into `wrap` a word with a bit ≥ 52 set when the step wrapped.
-inline void backwardScalar(const ScalarStep& c, std::uint64_t& X, std::uint64_t& Y, std::uint64_t& wrap) noexcept {
-  using namespace fixedpoint;
-  const std::uint64_t s = X - Y + kHalf;
-  const std::uint64_t x = s & kMask;
-  const std::uint64_t x2 = mulHigh(x << 12, x);                          // ⌊x²/2^52⌋
-  const std::uint64_t G = (mulHigh(c.A12, x2) - mulHigh(c.B12, x) + c.C) << c.m;  // fixedPointG(x)
-  const std::uint64_t u = Y - G;
-  X = x;
-  Y = u & kMask;
-  wrap |= s | u;
-}
-}  // namespace
 
 void advanceBlocksScalar(const KernelSettings& k, std::span<OrbitState> orbits, std::uint64_t firstOrbit,
                          std::uint64_t blocks, SegmentSink& sink) {
@@ -99,7 +66,7 @@ void advanceBlocksScalar(const KernelSettings& k, std::span<OrbitState> orbits, 
       }
       for (std::uint32_t j = 0; j < k.q; ++j) {
         ARCHIPELAGO_UNROLL_LANES
-        for (std::size_t l = 0; l < kLanes; ++l) backwardScalar(c, X[l], Y[l], wrap[l]);
+        for (std::size_t l = 0; l < kLanes; ++l) c.backward(X[l], Y[l], wrap[l]);
       }
       unsigned ended = zone;
       ARCHIPELAGO_UNROLL_LANES

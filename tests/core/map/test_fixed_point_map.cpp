@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "map/FixedPointMap.hpp"
+#include "map/ScalarStep.hpp"
 
 namespace archipelago {
 namespace {
@@ -112,6 +113,42 @@ TEST(FixedPointMap, BackwardStepAndWrapFlagAgreeWithInt128Reference) {
     }
     EXPECT_GT(wraps, 0u);       // both outcomes are exercised
     EXPECT_LT(wraps, kCount + 0u);
+  }
+}
+
+// The scalar kernels' form of the map (ScalarStep.hpp: one high word per product) computes the same integers
+// and the same wraps as fixedPointG/backwardStep/forwardStep, including an m = 9 box.
+TEST(FixedPointMap, ScalarStepFormEqualsTheDefinition) {
+  std::vector<MapParameters> sets = kParameterSets;
+  sets.push_back({1.0, -100.0, 100.0});  // m = 9
+  for (const auto& p : sets) {
+    const FixedPointMap map(p);
+    if (p.xmax == 100.0) {
+      ASSERT_EQ(map.coefficients().m, 9);
+    }
+    const ScalarStep step(map.coefficients());
+    std::mt19937_64 rng(11);
+    std::uint64_t wraps = 0;
+    for (int i = 0; i < 200'000; ++i) {
+      UnitState z = randomState(rng);
+      if (i % 4 == 0) z.X = rng() % 1024;
+      if (i % 4 == 1) z.Y = kOne - 1 - rng() % 1024;
+      ASSERT_EQ(step.G(z.X), static_cast<std::uint64_t>(map.G(z.X)));
+      UnitState expected = z;
+      const bool expectedWrap = map.backward(expected);
+      std::uint64_t X = z.X, Y = z.Y, wrap = 0;
+      step.backward(X, Y, wrap);
+      ASSERT_EQ((UnitState{X, Y}), expected);
+      ASSERT_EQ(wrap >= kOne, expectedWrap);
+      wraps += expectedWrap;
+      UnitState forward = z;
+      map.forward(forward);
+      X = z.X;
+      Y = z.Y;
+      step.forward(X, Y);
+      ASSERT_EQ((UnitState{X, Y}), forward);
+    }
+    EXPECT_GT(wraps, 0u);
   }
 }
 
