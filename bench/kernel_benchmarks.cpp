@@ -2,7 +2,8 @@
 // "steps_per_second" (steps of N or N⁻¹ per second of wall time) and "steps_per_iteration"; bench/run-benchmarks.sh
 // runs each several times (--benchmark_repetitions, randomly interleaved) and turns the medians into ratios.
 // Multi-threaded CPU times are of the whole process (all threads).  Names: bare_step/<kernel>,
-// bare_step/<kernel>/threads:2, naive_double, pipeline/<kernel>/q:<q>/threads:<t>.
+// bare_step/<kernel>/threads:2, naive_double, pipeline/<kernel>/q:<q>/threads:<t>, and the paired ratios
+// paired/<what>, which report a counter "ratio" (see pairedRatio).
 //
 // Each repetition is kept short (a few tenths of a second): on a shared machine the speed changes over
 // minutes, and many short interleaved repetitions let slow periods hit every benchmark alike.
@@ -10,7 +11,13 @@
 
 #include <omp.h>
 
+#include <time.h>
+
+#include <algorithm>
 #include <array>
+#include <chrono>
+#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -117,6 +124,125 @@ void pipeline(benchmark::State& state, BlockKernel kernel, std::uint32_t q, int 
       static_cast<double>(segments) / (steps / q);  // how often the bookkeeping runs
 }
 
+// --- Paired ratios -------------------------------------------------------------------------------------------
+// A ratio of two rates measured minutes apart carries the machine's drift; here the two sides run alternately,
+// a few tens of milliseconds each, A B B A A B …, and every iteration yields one ratio of rates: the counter
+// "ratio" is the median over the iterations.  One-thread work is timed by the thread's CPU clock (time the
+// guest took the vCPU away does not count), two-thread work by the wall clock.
+
+/// Steps done and the seconds they took.
+struct Timed {
+  double steps = 0;
+  double seconds = 0;
+};
+using Work = std::function<Timed()>;
+
+double threadSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
+double wallSeconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+/// Work on one thread: the bare step of `kernel` on 48 orbits for `steps` steps each.
+Work bareWork(OrbitKernel kernel, std::uint64_t steps) {
+  auto orbits = std::make_shared<std::vector<UnitState>>(48);
+  for (std::size_t i = 0; i < orbits->size(); ++i) (*orbits)[i] = {(i + 1) * 0x123456789ABull % fixedpoint::kOne, i};
+  const MapCoefficients coefficients = computeCoefficients(kPaperBox);
+  return [=] {
+    const double t0 = threadSeconds();
+    kernel(coefficients, MapDirection::backward, *orbits, steps, nullptr);
+    benchmark::DoNotOptimize(orbits->data());
+    return Timed{static_cast<double>(steps) * 48.0, threadSeconds() - t0};
+  };
+}
+
+/// Work: runTrapping() on the K = 0.1 box, M = 256 orbits, T blocks of q steps, on `threads` threads, timed by
+/// the wall clock when `wall` (always with more than one thread), else by the thread's CPU clock.
+Work pipelineWork(BlockKernel kernel, std::uint32_t q, int threads, std::uint64_t T, bool wall = false) {
+  TrappingParameters p;
+  p.map = kPaperBox;
+  p.q = q;
+  p.M = 256;
+  p.T = T;
+  TrappingRunOptions options;
+  options.threads = threads;
+  options.kernel = kernel;
+  options.chunkSeconds = 1.0;
+  return [=] {
+    const TrappingState start = startTrapping(p);
+    const bool byWall = wall || threads > 1;
+    const double t0 = byWall ? wallSeconds() : threadSeconds();
+    const TrappingState done = runTrapping(start, options);
+    const double t1 = byWall ? wallSeconds() : threadSeconds();
+    return Timed{done.stepsDone(), t1 - t0};
+  };
+}
+
+/// Rate of `numerator` / rate of `denominator`, alternated; the counter "ratio" is the median of the
+/// iterations' ratios.  (Two-thread work is wall-timed, and so is the one-thread side it is compared with.)
+void pairedRatio(benchmark::State& state, const Work& numerator, const Work& denominator) {
+  std::vector<double> ratios;
+  bool numeratorFirst = true;
+  for (auto _ : state) {
+    Timed a, b;
+    if (numeratorFirst) {
+      a = numerator();
+      b = denominator();
+    } else {
+      b = denominator();
+      a = numerator();
+    }
+    numeratorFirst = !numeratorFirst;
+    ratios.push_back((a.steps / a.seconds) / (b.steps / b.seconds));
+  }
+  std::sort(ratios.begin(), ratios.end());
+  state.counters["ratio"] = ratios.empty() ? 0.0 : ratios[ratios.size() / 2];
+}
+
+void registerPaired() {
+  const auto kernels = supportedKernels();
+  const auto find = [&](KernelKind kind) -> const KernelInfo* {
+    for (const auto& k : kernels)
+      if (k.kind == kind) return &k;
+    return nullptr;
+  };
+  const auto add = [](const std::string& name, Work numerator, Work denominator) {
+    benchmark::RegisterBenchmark(("paired/" + name).c_str(),
+                                 [=](benchmark::State& s) { pairedRatio(s, numerator, denominator); })
+        ->UseRealTime()
+        ->Unit(benchmark::kMillisecond)
+        ->MinTime(0.5);
+  };
+  // Each side ≈ 20–60 ms.  Blocks per pipeline call for ~3·10^7 (scalar), 6·10^7 (avx2), 2·10^8 (avx512ifma)
+  // steps on one thread.
+  const auto T = [](const KernelInfo& k, std::uint32_t q, int threads) {
+    const double steps = k.kind == KernelKind::scalar ? 1.5e7 : k.kind == KernelKind::avx2 ? 4e7 : 1.5e8;
+    return static_cast<std::uint64_t>(steps * threads / (256.0 * q)) + 1;
+  };
+  const auto bareSteps = [](const KernelInfo& k) -> std::uint64_t {
+    return k.kind == KernelKind::scalar ? 1u << 18 : k.kind == KernelKind::avx2 ? 1u << 19 : 1u << 21;
+  };
+  if (const KernelInfo* ifma = find(KernelKind::avx512ifma)) {
+    for (const std::uint32_t q : {1u, 16u, 100u}) {
+      add("pipeline_vs_bare/avx512ifma/q:" + std::to_string(q), pipelineWork(ifma->blocks, q, 1, T(*ifma, q, 1)),
+          bareWork(ifma->orbits, bareSteps(*ifma)));
+      add("two_threads_vs_one/avx512ifma/q:" + std::to_string(q), pipelineWork(ifma->blocks, q, 2, T(*ifma, q, 2)),
+          pipelineWork(ifma->blocks, q, 1, T(*ifma, q, 1), true));
+    }
+  }
+  const KernelInfo* avx2 = find(KernelKind::avx2);
+  const KernelInfo* scalar = find(KernelKind::scalar);
+  if (avx2 && scalar) {
+    add("avx2_vs_scalar/bare", bareWork(avx2->orbits, bareSteps(*avx2)), bareWork(scalar->orbits, bareSteps(*scalar)));
+    for (const std::uint32_t q : {1u, 16u, 100u})
+      add("avx2_vs_scalar/q:" + std::to_string(q), pipelineWork(avx2->blocks, q, 1, T(*avx2, q, 1)),
+          pipelineWork(scalar->blocks, q, 1, T(*scalar, q, 1)));
+  }
+}
+
 void registerAll() {
   // Bare steps: ≈ 13–130 ms per iteration (avx512ifma–scalar), ≈ 0.25–0.4 s per repetition.
   for (const auto& k : supportedKernels())
@@ -149,6 +275,7 @@ void registerAll() {
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
   archipelago::registerAll();
+  archipelago::registerPaired();
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   return 0;

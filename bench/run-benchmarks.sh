@@ -41,10 +41,14 @@ import json, re, statistics, sys
 scale = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}
 # Rates of every repetition, per benchmark: steps per wall second and per CPU second of the process.
 runs = {}
+paired = {}  # paired/<what>: the ratio of each repetition (kernel_benchmarks.cpp, pairedRatio)
 for b in json.load(open(sys.argv[1]))["benchmarks"]:
     if b.get("run_type") != "iteration" or b.get("error_occurred"):
         continue
     name = re.sub(r"/(min_time|real_time|process_time).*$", "", b["run_name"])
+    if name.startswith("paired/"):
+        paired.setdefault(name[len("paired/"):], []).append(b["ratio"])
+        continue
     steps = b["steps_per_iteration"]
     r = runs.setdefault(name, {"wall": [], "cpu": [], "cpus": []})
     r["wall"].append(steps / (b["real_time"] * scale[b["time_unit"]]))
@@ -67,7 +71,7 @@ def spread(name, kind="wall"):
     v = runs[name][kind]
     return (max(v) - min(v)) / statistics.median(v)
 
-reps = sorted({len(r["wall"]) for r in runs.values()})
+reps = sorted({len(r["wall"]) for r in runs.values()} | {len(v) for v in paired.values()})
 print(f"\nMedians of {'/'.join(map(str, reps))} repetitions per benchmark, randomly interleaved; "
       "[min–max] of the repetitions; G = 10^9 steps of N^-1 per second.")
 
@@ -115,7 +119,12 @@ for q in (1, 16, 100):
         if na in runs and nb in runs:
             print(f"  q={q:3d}  {a:10s} / {b:10s}: {ratio(na, nb):6.2f}x wall, {ratio(na, nb, 'cpu'):6.2f}x CPU")
 
-if reps and reps[-1] > 1:
+if paired:
+    print("\n== Paired ratios (the two sides alternate every few tens of ms; 1-thread sides timed by the thread's CPU clock) ==")
+    for n, v in paired.items():
+        print(f"  {n:40s} {statistics.median(v):6.3f}  [{min(v):.3f}–{max(v):.3f}]")
+
+if reps and reps[-1] > 1 and runs:
     s = sorted((spread(n), n) for n in runs)
     print(f"\nNoise: (max - min) / median of the repetitions' wall rates: median {100 * statistics.median([x for x, _ in s]):.0f} %"
           f" over {len(s)} benchmarks, worst {100 * s[-1][0]:.0f} % ({s[-1][1]}).")
@@ -124,6 +133,22 @@ if reps and reps[-1] > 1:
 # the wall value, shown too, agrees on a quiet machine); scaling needs wall time.
 def verdict(ok): return "met" if ok else "NOT met"
 print("\n== Targets (issue 4), medians ==")
+def pm(n): return statistics.median(paired[n]) if n in paired else NAN
+if paired:
+    print("  paired (robust to the machine's drift):")
+    for q, target in ((100, 85), (16, 70), (1, 25)):
+        f = 100 * pm(f"pipeline_vs_bare/avx512ifma/q:{q}")
+        if f == f:
+            print(f"    avx512ifma pipeline, q = {q:3d}, >= {target} % of bare step:  {f:5.1f} %   {verdict(f >= target)}")
+    sc = [pm(f"two_threads_vs_one/avx512ifma/q:{q}") for q in (1, 16, 100)]
+    if all(x == x for x in sc):
+        print(f"    avx512ifma pipeline, 2 threads >= 1.85x one (wall), q = 1 / 16 / 100:  "
+              f"{' / '.join(f'{x:.2f}x' for x in sc)}   {verdict(min(sc) >= 1.85)}")
+    av = [pm("avx2_vs_scalar/bare")] + [pm(f"avx2_vs_scalar/q:{q}") for q in (1, 16, 100)]
+    if all(x == x for x in av):
+        print(f"    avx2 >= 3x scalar (1 thread), bare step / pipeline q = 1 / 16 / 100:  "
+              f"{' / '.join(f'{x:.2f}x' for x in av)}   bare {verdict(av[0] >= 3)}, pipeline {verdict(min(av[1:]) >= 3)}")
+    print("  unpaired (each side's median over its own repetitions):")
 for q, target in ((100, 85), (16, 70), (1, 25)):
     n = f"pipeline/avx512ifma/q:{q}/threads:1"
     if n in runs and "bare_step/avx512ifma" in runs:

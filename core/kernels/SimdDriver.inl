@@ -53,10 +53,11 @@ inline std::uint64_t keepTag(const LongestSegments& longest) {
 /// when a lane's segment ends, which in the chaotic sea is often (at q = 1 about a third of the blocks, at
 /// q = 16 most), so that path is vectorised too:
 ///   - the open segment's length is (blocks done) − (block where it began), so nothing is counted per block;
-///   - the next segment's start (X, Y, block, draws) is written with masked stores;
-///   - ended segments go, compressed, into an event buffer as (length << 6) | lane, binned in a tight loop
-///     later: lengths ≤ kExactMax into per-lane counts (merged into the sink's subset histograms at the end),
-///     longer ones straight into the histogram;
+///   - the next segment's start X, Y is written with masked stores (its block and draws follow from the tag
+///     base and the draw counter);
+///   - segments of one block are counted per lane in vectors; longer ones go, compressed, into an event
+///     buffer as (length << 6) | lane, binned in a tight loop later: lengths ≤ kExactMax into per-lane counts
+///     (merged into the sink's subset histograms at the end), longer ones straight into the histogram;
 ///   - only a segment long enough for the longest-segments list (rare once the list is full) takes the scalar
 ///     path, at once, while its start state is still at hand; its length is compared with the list's
 ///     threshold only in lanes found, every 64 blocks, to be able to reach it (`candidates`);
