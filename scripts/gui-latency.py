@@ -23,7 +23,7 @@ def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--app", default="build/app/gui/archipelago")
     parser.add_argument("--seconds", type=float, default=15.0)
-    parser.add_argument("--preset", default="K = 0.1, about a minute")
+    parser.add_argument("--preset", default="K = 0.1, under a minute")
     parser.add_argument("--offscreen", action="store_true", help="use Qt's offscreen platform, not Xvfb")
     args = parser.parse_args()
 
