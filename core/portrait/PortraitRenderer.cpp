@@ -13,6 +13,7 @@
 
 #include "kernels/KernelDispatch.hpp"
 #include "random/CounterRng.hpp"
+#include "portrait/RangeCheck.hpp"
 #include "trapping/TrappingParameters.hpp"
 
 // Glossary: an "orbit" is one trajectory of N (Density, Orbits) or of trapping blocks of N⁻¹ (Stickiness);
@@ -72,10 +73,8 @@ std::optional<std::string> validationError(const PortraitRequest& r) {
   }
   if (r.points < 1) return "points = 0 must be >= 1";
   if (r.points > (std::uint64_t{1} << 50)) return "points must be < 2^50";
-  if (r.mode != PortraitMode::Orbits && (r.orbits < 1 || r.orbits > 65536)) {
-    s << "orbits = " << r.orbits << " must be 1 ... 65536";
-    return s.str();
-  }
+  if (r.mode != PortraitMode::Orbits)
+    if (auto e = outsideRange("orbits", r.orbits, 1, 65536)) return e;
   if (r.mode == PortraitMode::Orbits &&
       (r.seedColumns < 1 || r.seedColumns > 4096 || r.seedRows < 1 || r.seedRows > 4096)) {
     s << "seed grid " << r.seedColumns << "x" << r.seedRows << " must be 1 ... 4096 each way";
@@ -83,19 +82,11 @@ std::optional<std::string> validationError(const PortraitRequest& r) {
   }
   if (r.mode == PortraitMode::Stickiness) {
     if (auto e = randomizingZoneError(r.Xr)) return e;
-    if (r.q < 1 || r.q > 4096) {
-      s << "q = " << r.q << " must be 1 ... 4096";
-      return s.str();
-    }
+    if (auto e = outsideRange("q", r.q, 1, 4096)) return e;
   }
-  if (r.passes < 1 || r.passes > 30) {
-    s << "passes = " << r.passes << " must be 1 ... 30";
-    return s.str();
-  }
-  if (r.chunkSteps < 1 || r.chunkSteps > (1u << 20)) {
-    s << "chunkSteps = " << r.chunkSteps << " must be 1 ... 2^20";
-    return s.str();
-  }
+  if (auto e = outsideRange("passes", r.passes, 1, 30)) return e;
+  if (auto e = outsideRange("chunkSteps", r.chunkSteps, 1, 1u << 20, "2^20"))
+    return e;
   return std::nullopt;
 }
 

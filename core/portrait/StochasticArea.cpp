@@ -7,11 +7,11 @@
 #include <cmath>
 #include <exception>
 #include <mutex>
-#include <sstream>
 #include <stdexcept>
 
 #include "map/FixedPointMap.hpp"
 #include "random/CounterRng.hpp"
+#include "portrait/RangeCheck.hpp"
 #include "trapping/TrappingParameters.hpp"
 
 namespace archipelago {
@@ -23,22 +23,11 @@ std::optional<std::string> validationError(const StochasticAreaRequest& r) {
   } catch (const std::invalid_argument& e) {
     return std::string(e.what());
   }
-  std::ostringstream s;
-  s.precision(17);
   if (auto e = randomizingZoneError(r.Xr)) return e;
-  if (r.q < 1 || r.q > 4096) {
-    s << "q = " << r.q << " must be 1 ... 4096";
-    return s.str();
-  }
-  if (r.orbits < 1 || r.orbits > 65536) {
-    s << "orbits = " << r.orbits << " must be 1 ... 65536";
-    return s.str();
-  }
-  if (r.gridBits < 1 || r.gridBits > 12) {
-    s << "gridBits = " << r.gridBits << " must be 1 ... 12";
-    return s.str();
-  }
-  if (r.iterations < 1 || r.iterations > (std::uint64_t{1} << 50)) return "iterations must be 1 ... 2^50";
+  if (auto e = outsideRange("q", r.q, 1, 4096)) return e;
+  if (auto e = outsideRange("orbits", r.orbits, 1, 65536)) return e;
+  if (auto e = outsideRange("gridBits", r.gridBits, 1, 12)) return e;
+  if (auto e = outsideRange("iterations", r.iterations, 1, 1LL << 50, "2^50")) return e;
   if (r.firstCheckpoint < 1) return "firstCheckpoint = 0 must be >= 1";
   return std::nullopt;
 }

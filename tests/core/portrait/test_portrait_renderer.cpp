@@ -286,6 +286,10 @@ TEST(PortraitRenderer, BadRequestsGiveClearErrors) {
   req = {};
   req.chunkSteps = 0;
   EXPECT_THROW((void)renderPortrait(req), std::invalid_argument);
+  EXPECT_EQ(*validationError(req), "chunkSteps = 0 must be 1 ... 2^20");
+  req = {};
+  req.passes = 31;
+  EXPECT_EQ(*validationError(req), "passes = 31 must be 1 ... 30");
   EXPECT_FALSE(validationError(PortraitRequest{}));
 }
 
