@@ -57,10 +57,11 @@
 namespace archipelago {
 namespace {
 
-/// Sets MXCSR to round toward −∞ for its lifetime (the floors of the double-valued map need it).
+/// Sets MXCSR to round toward −∞ for its lifetime (the floors of the double-valued map need it), with every
+/// floating-point exception masked (almost every step is inexact); the caller's MXCSR, flags included, comes back.
 class RoundingDown {
  public:
-  RoundingDown() : saved_(_mm_getcsr()) { _mm_setcsr((saved_ & ~_MM_ROUND_MASK) | _MM_ROUND_DOWN); }
+  RoundingDown() : saved_(_mm_getcsr()) { _mm_setcsr((saved_ & ~_MM_ROUND_MASK) | _MM_ROUND_DOWN | _MM_MASK_MASK); }
   ~RoundingDown() { _mm_setcsr(saved_); }
   RoundingDown(const RoundingDown&) = delete;
   RoundingDown& operator=(const RoundingDown&) = delete;
