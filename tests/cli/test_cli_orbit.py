@@ -1,17 +1,8 @@
 #!/usr/bin/env python3
 """archipelago-cli orbit, end to end (issue 2's acceptance check, plus bad input)."""
-import csv, io, math, subprocess, sys
+import csv, io, math
 
-cli = sys.argv[1]
-failures = 0
-
-def check(cond, what):
-    global failures
-    print(("ok   " if cond else "FAIL ") + what)
-    failures += 0 if cond else 1
-
-def run(*args):
-    return subprocess.run([cli, *args], capture_output=True, text=True, timeout=60)
+from clitest import check, finish, run
 
 # The orbit started on the elliptic fixed point (-sqrt K, 0) stays within 1e-12 of it for 1000 steps.
 x0 = -0.31622776601683794
@@ -46,4 +37,4 @@ for args, mention in [
     check(r.returncode not in (0,) and r.returncode > 0 and len(lines) == 1 and lines[0].startswith("ERROR: ")
           and mention in lines[0], f"{' '.join(args)} -> {r.returncode}: {r.stderr.strip()}")
 
-sys.exit(1 if failures else 0)
+finish()

@@ -1,17 +1,8 @@
 #!/usr/bin/env python3
 """archipelago-cli periodic, end to end (issue 7): the period-138 chain of Karney (1983) §6, and bad input."""
-import csv, io, math, subprocess, sys
+import csv, io, math
 
-cli = sys.argv[1]
-failures = 0
-
-def check(cond, what):
-    global failures
-    print(("ok   " if cond else "FAIL ") + what)
-    failures += 0 if cond else 1
-
-def run(*args):
-    return subprocess.run([cli, *args], capture_output=True, text=True, timeout=60)
+from clitest import check, finish, run
 
 def parse(stdout):
     """'# key: value' header lines, then the CSV of points."""
@@ -72,4 +63,4 @@ for args, mention in [
     check(r.returncode > 0 and len(lines) == 1 and lines[0].startswith("ERROR: ") and mention in lines[0],
           f"{' '.join(args)} -> {r.returncode}: {r.stderr.strip()}")
 
-sys.exit(1 if failures else 0)
+finish()

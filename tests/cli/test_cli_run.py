@@ -1,19 +1,11 @@
 #!/usr/bin/env python3
 """archipelago-cli run / replay, end to end: SIGKILL at any moment + --resume gives exactly the uninterrupted
 result; replay reproduces a recorded segment; bad input gives one clear line and a non-zero exit."""
-import json, os, signal, subprocess, sys, tempfile, time
+import json, os, signal, subprocess, tempfile, time
 
-cli = sys.argv[1]
-failures = 0
+from clitest import check, cli, finish, run
+
 tmp = tempfile.mkdtemp(prefix="archipelago-cli-run-")
-
-def check(cond, what):
-    global failures
-    print(("ok   " if cond else "FAIL ") + what, flush=True)
-    failures += 0 if cond else 1
-
-def run(*args, timeout=300):
-    return subprocess.run([cli, *args], capture_output=True, text=True, timeout=timeout)
 
 def result(path):
     d = json.load(open(path))
@@ -146,4 +138,4 @@ for text, mention in [(good[: len(good) // 3], "truncated"), ("{}", "not an Arch
     check(r.returncode > 0 and len(lines) == 1 and lines[0].startswith("ERROR: ") and mention in lines[0],
           f"bad run file ({mention}) -> {r.returncode}: {r.stderr.strip()[:150]}")
 
-sys.exit(1 if failures else 0)
+finish()
