@@ -34,7 +34,7 @@
 #include <exception>
 
 #include "ExportActions.hpp"
-#include "Presets.hpp"
+#include "Resources.hpp"
 #include "ParameterPanel.hpp"
 #include "StatisticsView.hpp"
 #include "periodic/PeriodicOrbitDialog.hpp"
@@ -699,41 +699,22 @@ void MainWindow::restoreSettings() {
   QSettings settings;
   restoreGeometry(settings.value(QStringLiteral("window/geometry")).toByteArray());
   restoreState(settings.value(QStringLiteral("window/state")).toByteArray());
-  if (!settings.contains(QStringLiteral("parameters/K"))) return;  // first start: the panel's default preset
-  TrappingParameters p;
-  settings.beginGroup(QStringLiteral("parameters"));
-  p.map.K = settings.value(QStringLiteral("K"), p.map.K).toDouble();
-  p.map.xmin = settings.value(QStringLiteral("xmin"), p.map.xmin).toDouble();
-  p.map.xmax = settings.value(QStringLiteral("xmax"), p.map.xmax).toDouble();
-  p.Xr = settings.value(QStringLiteral("Xr"), p.Xr).toDouble();
-  p.q = settings.value(QStringLiteral("q"), p.q).toUInt();
-  p.T = settings.value(QStringLiteral("T"), static_cast<qulonglong>(p.T)).toULongLong();
-  p.M = settings.value(QStringLiteral("M"), static_cast<qulonglong>(p.M)).toULongLong();
-  p.seed = settings.value(QStringLiteral("seed"), static_cast<qulonglong>(p.seed)).toULongLong();
-  p.subsets = settings.value(QStringLiteral("subsets"), p.subsets).toUInt();
-  const int threads = settings.value(QStringLiteral("threads"), 0).toInt();
-  settings.endGroup();
-  panel_->setParameters(p, threads);
+  // The last parameters, as a run spec through core's codec; absent on the first start (the panel then keeps
+  // the default preset), ignored with a note when a hand edit or another version made it unreadable.
+  const QString text = settings.value(QStringLiteral("run/spec")).toString();
+  if (text.isEmpty()) return;
+  try {
+    panel_->setSpec(parseRunSpec(text.toStdString()));
+  } catch (const std::invalid_argument& e) {
+    message(tr("The saved parameters were not restored: %1").arg(QString::fromStdString(e.what())), 10000);
+  }
 }
 
 void MainWindow::saveSettings() const {
   QSettings settings;
   settings.setValue(QStringLiteral("window/geometry"), saveGeometry());
   settings.setValue(QStringLiteral("window/state"), saveState());
-  const auto p = panel_->parameters();
-  if (!p) return;
-  settings.beginGroup(QStringLiteral("parameters"));
-  settings.setValue(QStringLiteral("K"), p->map.K);
-  settings.setValue(QStringLiteral("xmin"), p->map.xmin);
-  settings.setValue(QStringLiteral("xmax"), p->map.xmax);
-  settings.setValue(QStringLiteral("Xr"), p->Xr);
-  settings.setValue(QStringLiteral("q"), p->q);
-  settings.setValue(QStringLiteral("T"), static_cast<qulonglong>(p->T));
-  settings.setValue(QStringLiteral("M"), static_cast<qulonglong>(p->M));
-  settings.setValue(QStringLiteral("seed"), static_cast<qulonglong>(p->seed));
-  settings.setValue(QStringLiteral("subsets"), p->subsets);
-  settings.setValue(QStringLiteral("threads"), panel_->threads());
-  settings.endGroup();
+  if (const auto spec = panel_->spec()) settings.setValue(QStringLiteral("run/spec"), QString::fromStdString(runSpecJson(*spec)));
 }
 
 void MainWindow::showAbout() {

@@ -56,9 +56,8 @@ ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
   presetBox_ = new QComboBox(this);
   presetBox_->setObjectName(QStringLiteral("presets"));
   presetBox_->setToolTip(tr("Parameter sets of the paper's figures; choosing one fills the fields below."));
-  presets_ = loadPresets();
   presetBox_->addItem(tr("Custom"));
-  for (const Preset& p : presets_) presetBox_->addItem(p.name);
+  for (const Preset& p : presets()) presetBox_->addItem(QString::fromStdString(p.spec.name));
   presetDescription_ = new QLabel(this);
   presetDescription_->setWordWrap(true);
   presetDescription_->setStyleSheet(QStringLiteral("color: palette(mid);"));
@@ -131,10 +130,10 @@ ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
   layout->addStretch(1);
 
   connect(presetBox_, qOverload<int>(&QComboBox::activated), this, [this](int index) {
-    if (index > 0) applyPreset(presets_.at(index - 1).name);
+    if (index > 0) applyPreset(QString::fromStdString(presets()[static_cast<std::size_t>(index - 1)].id));
   });
 
-  if (!presets_.isEmpty()) applyPreset(presets_.front().name);
+  if (!presets().empty()) applyPreset(QString::fromStdString(presets().front().id));
   else setParameters(TrappingParameters{}, 0);
 }
 
@@ -149,9 +148,7 @@ void ParameterPanel::addField(QFormLayout* form, const QString& name, const QStr
   form->addRow(caption, edit);
   fields_.insert(name, edit);
   connect(edit, &QLineEdit::textEdited, this, [this] {
-    const QSignalBlocker block(presetBox_);
-    presetBox_->setCurrentIndex(0);  // edited by hand: no longer a preset
-    presetDescription_->clear();
+    showPreset(nullptr);  // edited by hand: no longer a preset
     revalidate();
   });
 }
@@ -179,22 +176,47 @@ void ParameterPanel::setParameters(const TrappingParameters& p, int threads) {
   revalidate();
 }
 
+std::optional<RunSpec> ParameterPanel::spec() const {
+  const auto p = parameters();
+  if (!p) return std::nullopt;
+  RunSpec s;
+  s.parameters = *p;
+  s.threads = threads();
+  if (const int i = presetBox_->currentIndex(); i > 0) {
+    const Preset& preset = presets()[static_cast<std::size_t>(i - 1)];
+    s.name = preset.spec.name;
+    s.description = preset.spec.description;
+  }
+  return s;
+}
+
+void ParameterPanel::setSpec(const RunSpec& spec) {
+  setParameters(spec.parameters, spec.threads);
+  const Preset* match = nullptr;
+  for (const Preset& p : presets())
+    if (p.spec.parameters == spec.parameters) match = &p;
+  showPreset(match);
+}
+
+void ParameterPanel::showPreset(const Preset* preset) {
+  const QSignalBlocker block(presetBox_);
+  const auto all = presets();
+  presetBox_->setCurrentIndex(preset ? static_cast<int>(preset - all.data()) + 1 : 0);
+  presetDescription_->setText(preset ? QString::fromStdString(preset->spec.description) : QString());
+}
+
 QStringList ParameterPanel::presetNames() const {
   QStringList names;
-  for (const Preset& p : presets_) names << p.name;
+  for (const Preset& p : presets()) names << QString::fromStdString(p.spec.name);
   return names;
 }
 
-bool ParameterPanel::applyPreset(const QString& name) {
-  for (int i = 0; i < presets_.size(); ++i) {
-    if (presets_.at(i).name != name) continue;
-    setParameters(presets_.at(i).parameters, threads());
-    const QSignalBlocker block(presetBox_);
-    presetBox_->setCurrentIndex(i + 1);
-    presetDescription_->setText(presets_.at(i).description);
-    return true;
-  }
-  return false;
+bool ParameterPanel::applyPreset(const QString& nameOrId) {
+  const Preset* preset = findPreset(nameOrId.toStdString());
+  if (!preset) return false;
+  setParameters(preset->spec.parameters, threads());
+  showPreset(preset);
+  return true;
 }
 
 void ParameterPanel::setEditable(bool editable) {

@@ -14,7 +14,7 @@
 
 #include <optional>
 
-#include "Presets.hpp"
+#include "spec/RunSpec.hpp"
 
 class QComboBox;
 class QFormLayout;
@@ -39,9 +39,14 @@ class ParameterPanel : public QWidget {
   [[nodiscard]] QString invalidField() const { return invalidField_; }
 
   void setParameters(const TrappingParameters& p, int threads);
+  /// The run specification of the fields (parameters, threads, and the preset's name when one is chosen),
+  /// when every field is valid: what the window saves and restores through core's codec.
+  [[nodiscard]] std::optional<RunSpec> spec() const;
+  /// Fills the fields from a spec; the preset box shows the preset whose parameters these are, else Custom.
+  void setSpec(const RunSpec& spec);
   [[nodiscard]] QStringList presetNames() const;
-  /// Loads the preset of that name; false when there is none.
-  bool applyPreset(const QString& name);
+  /// Loads the preset of that name or id (core's findPreset); false when there is none.
+  bool applyPreset(const QString& nameOrId);
   /// Fields are read-only while a run computes (its parameters cannot change under it).
   void setEditable(bool editable);
   /// The text field of a parameter ("K", "xmin", "xmax", "Xr", "q", "T", "M", "seed", "subsets", "threads").
@@ -56,13 +61,13 @@ class ParameterPanel : public QWidget {
   void revalidate();
   void markField(const QString& name, bool invalid);
   void showDerived(const std::optional<TrappingParameters>& p);
+  void showPreset(const Preset* preset);
 
   QComboBox* presetBox_ = nullptr;
   QLabel* presetDescription_ = nullptr;
   QLabel* message_ = nullptr;
   QMap<QString, QLineEdit*> fields_;
   QMap<QString, QLabel*> derived_;
-  QList<Preset> presets_;
   std::optional<TrappingParameters> parsed_;
   QString invalidField_;
   QString reason_;

@@ -11,7 +11,7 @@
 
 #include "trapping/TrappingRun.hpp"
 
-#include "portrait/PortraitExport.hpp"  // writeNpy
+#include "io/Npy.hpp"
 
 namespace archipelago {
 

@@ -2,39 +2,16 @@
 
 #include <nlohmann/json.hpp>
 
-#include <bit>
-#include <cstring>
-#include <fstream>
 #include <sstream>
 #include <stdexcept>
 
+#include "io/AtomicFile.hpp"
 #include "map/FixedPointMap.hpp"
+#include "spec/RunSpecJson.hpp"
 
 namespace archipelago {
 
 namespace {
-template <class T>
-void writeArray(const std::string& path, const std::string& descr, const std::vector<T>& data, std::size_t rows,
-                std::size_t cols) {
-  if (data.size() != rows * cols) {
-    std::ostringstream s;
-    s << "writeNpy: " << data.size() << " values do not make a " << rows << " x " << cols << " array";
-    throw std::invalid_argument(s.str());
-  }
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw std::runtime_error("cannot open '" + path + "' for writing");
-  const std::string header = npyHeader(descr, rows, cols);
-  out.write(header.data(), static_cast<std::streamsize>(header.size()));
-  std::vector<char> bytes(data.size() * sizeof(T));
-  for (std::size_t i = 0; i < data.size(); ++i) {
-    std::uint64_t bits = 0;
-    std::memcpy(&bits, &data[i], sizeof(T));
-    for (std::size_t b = 0; b < sizeof(T); ++b) bytes[i * sizeof(T) + b] = static_cast<char>((bits >> (8 * b)) & 0xff);
-  }
-  out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-  if (!out) throw std::runtime_error("error while writing '" + path + "'");
-}
-
 std::string longDouble(long double v) {
   std::ostringstream s;
   s.precision(19);
@@ -42,40 +19,8 @@ std::string longDouble(long double v) {
   return s.str();
 }
 
-void writeText(const std::string& path, const std::string& text) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error("cannot open '" + path + "' for writing");
-  out << text << '\n';
-  if (!out) throw std::runtime_error("error while writing '" + path + "'");
-}
+void writeText(const std::string& path, const std::string& text) { io::writeFileAtomically(path, text + '\n'); }
 }  // namespace
-
-std::string npyHeader(const std::string& descr, std::size_t rows, std::size_t cols) {
-  std::ostringstream dict;
-  dict << "{'descr': '" << descr << "', 'fortran_order': False, 'shape': (" << rows << ", " << cols << "), }";
-  std::string text = dict.str();
-  const std::size_t preamble = 10;  // magic (6) + version (2) + header length (2)
-  const std::size_t total = (preamble + text.size() + 1 + 63) / 64 * 64;
-  text.append(total - preamble - text.size() - 1, ' ');
-  text.push_back('\n');
-  std::string header = "\x93NUMPY";
-  header.push_back('\x01');
-  header.push_back('\x00');
-  header.push_back(static_cast<char>(text.size() & 0xff));
-  header.push_back(static_cast<char>((text.size() >> 8) & 0xff));
-  return header + text;
-}
-
-void writeNpy(const std::string& path, const std::vector<std::uint32_t>& d, std::size_t rows, std::size_t cols) {
-  writeArray(path, "<u4", d, rows, cols);
-}
-void writeNpy(const std::string& path, const std::vector<std::uint64_t>& d, std::size_t rows, std::size_t cols) {
-  writeArray(path, "<u8", d, rows, cols);
-}
-void writeNpy(const std::string& path, const std::vector<double>& d, std::size_t rows, std::size_t cols) {
-  static_assert(std::numeric_limits<double>::is_iec559, "the .npy '<f8' type is IEEE 754 binary64");
-  writeArray(path, "<f8", d, rows, cols);
-}
 
 std::string sidecarPath(const std::string& npyPath) {
   const std::string ext = ".npy";
@@ -97,8 +42,8 @@ std::string portraitMetadataJson(const PortraitRequest& r, const PortraitRaster&
   j["rows"] = "row 0 is the top of the view (largest y); column 0 its left edge (smallest x)";
   j["shape"] = {raster.height, raster.width};
   j["mode"] = std::string(toString(r.mode));
-  j["map"] = {{"K", r.map.K}, {"xmin", r.map.xmin}, {"xmax", r.map.xmax},
-              {"coefficients", {{"A", k.A}, {"B", k.B}, {"C", k.C}, {"m", k.m}}}};
+  j["map"] = spec::mapJson(r.map);
+  j["map"]["coefficients"] = {{"A", k.A}, {"B", k.B}, {"C", k.C}, {"m", k.m}};
   j["viewport"] = {
       {"centre_unit", {{"X", r.view.centre().X}, {"Y", r.view.centre().Y}}},
       {"width_units", longDouble(r.view.widthUnits())},
@@ -142,7 +87,7 @@ std::string stochasticAreaJson(const StochasticAreaRequest& r, const StochasticA
     curve.push_back({{"iterations", p.iterations}, {"boxes_visited", p.boxesVisited}, {"b2", p.b2}});
   json j;
   j["quantity"] = "b2: fraction of the boxes of the unit square visited by the chaotic sea (Karney 1983, sec. 5)";
-  j["map"] = {{"K", r.map.K}, {"xmin", r.map.xmin}, {"xmax", r.map.xmax}};
+  j["map"] = spec::mapJson(r.map);
   j["Xr"] = r.Xr;
   j["q"] = r.q;
   j["orbits"] = r.orbits;

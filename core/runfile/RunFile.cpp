@@ -1,15 +1,10 @@
 #include "runfile/RunFile.hpp"
 
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
-#include <cerrno>
-#include <cstring>
-#include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
 #include <stdexcept>
+
+#include "io/AtomicFile.hpp"
+#include "spec/RunSpecJson.hpp"
 
 namespace archipelago {
 
@@ -97,9 +92,7 @@ std::string runFileText(const TrappingState& s) {
   j["format"] = kRunFileFormatName;
   j["version"] = kRunFileFormatVersion;
   j["program"] = std::string("archipelago ") + ARCHIPELAGO_VERSION;
-  j["parameters"] = {{"K", p.map.K}, {"xmin", p.map.xmin}, {"xmax", p.map.xmax}, {"Xr", p.Xr},
-                     {"q", p.q},     {"T", p.T},           {"M", p.M},           {"seed", p.seed},
-                     {"subsets", p.subsets}, {"longestKept", p.longestKept}};
+  j["parameters"] = spec::parametersJson(p);
   j["coefficients"] = {{"A", s.coefficients.A}, {"B", s.coefficients.B}, {"C", s.coefficients.C},
                        {"m", s.coefficients.m}};
   j["orbitBegin"] = s.orbitBegin;
@@ -132,8 +125,8 @@ std::string runFileText(const TrappingState& s) {
 TrappingState parseRunFile(const std::string& text) {
   json j;
   try {
-    j = json::parse(text);
-  } catch (const json::parse_error& e) {
+    j = spec::parseStrictJson(text);
+  } catch (const std::invalid_argument& e) {
     throw std::runtime_error(std::string("corrupt or truncated run file: ") + e.what());
   }
   if (!j.is_object() || !j.contains("format") || j["format"] != kRunFileFormatName)
@@ -144,16 +137,11 @@ TrappingState parseRunFile(const std::string& text) {
                              std::to_string(kRunFileFormatVersion) + ")");
   const json& jp = field(j, "parameters");
   TrappingParameters p;
-  p.map = {f64(jp, "K"), f64(jp, "xmin"), f64(jp, "xmax")};
-  p.Xr = f64(jp, "Xr");
-  const std::uint64_t q = u64(jp, "q"), subsets = u64(jp, "subsets"), kept = u64(jp, "longestKept");
-  if (q > UINT32_MAX || subsets > UINT32_MAX || kept > UINT32_MAX) corrupt("q, subsets or longestKept too large");
-  p.q = static_cast<std::uint32_t>(q);
-  p.T = u64(jp, "T");
-  p.M = u64(jp, "M");
-  p.seed = u64(jp, "seed");
-  p.subsets = static_cast<std::uint32_t>(subsets);
-  p.longestKept = static_cast<std::uint32_t>(kept);
+  try {
+    p = spec::parametersFromJson(jp, /*complete=*/true);
+  } catch (const std::invalid_argument& e) {
+    corrupt(std::string("parameters: ") + e.what());
+  }
   if (auto e = validationError(p)) corrupt("invalid parameters: " + *e);
 
   TrappingState s;
@@ -217,52 +205,13 @@ TrappingState parseRunFile(const std::string& text) {
 }
 
 void saveRunFile(const std::filesystem::path& path, const TrappingState& state) {
-  const std::string text = runFileText(state);
-  const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
-  std::string tmpl = (dir / ("." + path.filename().string() + ".XXXXXX")).string();
-  const int fd = ::mkstemp(tmpl.data());
-  if (fd < 0) throw std::runtime_error("cannot write " + path.string() + ": " + std::strerror(errno));
-  auto fail = [&](const char* what) {
-    const std::string reason = std::strerror(errno);
-    ::close(fd);
-    ::unlink(tmpl.c_str());
-    throw std::runtime_error(std::string("cannot write ") + path.string() + " (" + what + "): " + reason);
-  };
-  std::size_t written = 0;
-  while (written < text.size()) {
-    const ssize_t n = ::write(fd, text.data() + written, text.size() - written);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      fail("write");
-    }
-    written += static_cast<std::size_t>(n);
-  }
-  if (::fchmod(fd, 0644) != 0) fail("chmod");
-  if (::fsync(fd) != 0) fail("fsync");
-  if (::close(fd) != 0) {
-    ::unlink(tmpl.c_str());
-    throw std::runtime_error("cannot write " + path.string() + " (close): " + std::strerror(errno));
-  }
-  if (::rename(tmpl.c_str(), path.c_str()) != 0) {
-    const std::string reason = std::strerror(errno);
-    ::unlink(tmpl.c_str());
-    throw std::runtime_error("cannot write " + path.string() + " (rename): " + reason);
-  }
-  const int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY);
-  if (dfd >= 0) {  // make the rename itself durable
-    ::fsync(dfd);
-    ::close(dfd);
-  }
+  io::writeFileAtomically(path, runFileText(state));
 }
 
 TrappingState loadRunFile(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot read " + path.string() + ": " + std::strerror(errno));
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw std::runtime_error("cannot read " + path.string());
+  const std::string text = io::readRegularFile(path, kMaxRunFileBytes);
   try {
-    return parseRunFile(text.str());
+    return parseRunFile(text);
   } catch (const std::exception& e) {
     throw std::runtime_error(path.string() + ": " + e.what());
   }

@@ -20,6 +20,9 @@ namespace archipelago {
 
 inline constexpr int kRunFileFormatVersion = 1;
 inline constexpr const char* kRunFileFormatName = "archipelago-run";
+/// The largest run file read (a run of 10⁶ orbits takes about 250 MB): a bound checked before reading, so
+/// that a wrong path (a disk image, /dev/zero) fails at once instead of exhausting memory.
+inline constexpr std::uintmax_t kMaxRunFileBytes = std::uintmax_t{2} << 30;
 
 /// The JSON text of a run file.
 [[nodiscard]] std::string runFileText(const TrappingState& state);
@@ -29,7 +32,8 @@ inline constexpr const char* kRunFileFormatName = "archipelago-run";
 
 /// Writes atomically (temp file + fsync + rename).  Throws std::runtime_error naming the path on failure.
 void saveRunFile(const std::filesystem::path& path, const TrappingState& state);
-/// Reads and validates a run file.  Throws std::runtime_error naming the path on failure.
+/// Reads and validates a run file (a regular file of at most kMaxRunFileBytes).  Throws std::runtime_error
+/// naming the path on failure.
 [[nodiscard]] TrappingState loadRunFile(const std::filesystem::path& path);
 
 }  // namespace archipelago

@@ -1,4 +1,5 @@
 // The main window: menus, presets, validation as you type, derived coefficients (offscreen platform).
+#include <QComboBox>
 #include <QAction>
 #include <QLabel>
 #include <QMenuBar>
@@ -47,7 +48,7 @@ class TestMainWindow : public QObject {
     MainWindow window;
     auto& panel = *window.parameterPanel();
     QVERIFY(panel.presetNames().size() >= 5);
-    QVERIFY(panel.applyPreset(QStringLiteral("K = 0.1, paper's fig. 5 (long)")));
+    QVERIFY(panel.applyPreset(QStringLiteral("K = 0.1, paper's fig. 6 (long)")));
     auto p = panel.parameters();
     QVERIFY(p.has_value());
     QCOMPARE(p->M, std::uint64_t{1600});
@@ -62,6 +63,43 @@ class TestMainWindow : public QObject {
     }
     QCOMPARE(panel.parameters()->map.K, 1e-4);
     QVERIFY(!panel.applyPreset(QStringLiteral("no such preset")));
+  }
+
+  // Issue 13, finding 5: after a restart the preset box named the K = 0.1 preset while the fields held the
+  // last session's K = 0 values.  The window now saves a run spec through core's codec and restores it whole.
+  void restartRestoresTheLastSpecAndItsPreset() {
+    {
+      MainWindow window;
+      window.show();
+      QVERIFY(window.parameterPanel()->applyPreset(QStringLiteral("small-k-zero")));  // by the CLI's id
+      window.close();  // saves the settings
+    }
+    {
+      MainWindow window;
+      const auto spec = window.parameterPanel()->spec();
+      QVERIFY(spec.has_value());
+      QCOMPARE(spec->parameters.map.K, 0.0);
+      QCOMPARE(spec->parameters, archipelago::findPreset("small-k-zero")->spec.parameters);
+      QCOMPARE(QString::fromStdString(spec->name), QStringLiteral("K = 0 (fig. 3b)"));
+      auto* box = window.parameterPanel()->findChild<QComboBox*>(QStringLiteral("presets"));
+      QCOMPARE(box->currentText(), QStringLiteral("K = 0 (fig. 3b)"));
+      window.show();
+      archipelago::test::typeInto(*window.parameterPanel(), QStringLiteral("M"), QStringLiteral("80"));
+      window.close();
+    }
+    {
+      MainWindow window;  // hand-edited parameters come back as Custom, with the edit kept
+      const auto spec = window.parameterPanel()->spec();
+      QVERIFY(spec.has_value());
+      QCOMPARE(spec->parameters.M, std::uint64_t{80});
+      QCOMPARE(spec->parameters.map.K, 0.0);
+      QVERIFY(spec->name.empty());
+      QCOMPARE(window.parameterPanel()->findChild<QComboBox*>(QStringLiteral("presets"))->currentIndex(), 0);
+    }
+    QSettings().setValue(QStringLiteral("run/spec"), QStringLiteral("{\"format\": \"archipelago-spec\", \"version\": 1, \"Kk\": 3}"));
+    MainWindow window;  // an unreadable saved spec is ignored: the default preset, and a note
+    QCOMPARE(window.parameterPanel()->spec()->parameters, archipelago::presets().front().spec.parameters);
+    QSettings().remove(QStringLiteral("run/spec"));
   }
 
   void invalidInputDisablesRun() {

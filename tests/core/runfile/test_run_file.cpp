@@ -95,7 +95,7 @@ TEST(RunFile, BadFilesGiveClearErrors) {
   expectRejected("[1, 2, 3]", "not an Archipelago run file");
   expectRejected(R"({"format": "something-else"})", "not an Archipelago run file");
   expectRejected(replaced(good, "\"version\": 1", "\"version\": 99"), "version 99 is not supported");
-  expectRejected(replaced(good, "\"T\": 5000", "\"T\": -5"), "'T' must be a non-negative integer");
+  expectRejected(replaced(good, "\"T\": 5000", "\"T\": -5"), "T = -5 must be a whole number");  // one codec: run spec
   expectRejected(replaced(good, "\"K\": 0.1", "\"K\": 0.9"), "invalid parameters: xmin");
   expectRejected(replaced(good, "\"subsets\": 5", "\"subsets\": 4"), "one histogram per subset");
   expectRejected(replaced(good, "\"A\": ", "\"A\": 1"), "coefficients (A, B, C, m) differ");

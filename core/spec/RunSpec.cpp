@@ -1,0 +1,231 @@
+#include "spec/RunSpec.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <set>
+#include <stdexcept>
+#include <vector>
+
+#include "io/AtomicFile.hpp"
+#include "kernels/KernelDispatch.hpp"
+#include "spec/RunSpecJson.hpp"
+
+namespace archipelago {
+
+namespace {
+
+using nlohmann::json;
+
+/// How one parameter is stored in TrappingParameters: a double, or an unsigned integer with its largest value.
+struct FieldAccess {
+  SpecParameter info;
+  double MapParameters::*mapReal = nullptr;  ///< K, xmin, xmax
+  double TrappingParameters::*real = nullptr;
+  std::uint32_t TrappingParameters::*u32 = nullptr;
+  std::uint64_t TrappingParameters::*u64 = nullptr;
+};
+
+// The one list of parameter keys: JSON keys, CLI options (--key), help texts.
+const std::array<FieldAccess, 10>& fieldTable() {
+  static const std::array<FieldAccess, 10> table{{
+      {{"K", "map parameter K of Q: y' = y + 2(x^2 - K), x' = x + y' (eq. qu)"}, &MapParameters::K},
+      {{"xmin", "left edge of the box in x; must be < -sqrt(K) (appendix B)"}, &MapParameters::xmin},
+      {{"xmax", "right edge of the box in x; must be > xmin"}, &MapParameters::xmax},
+      {{"Xr", "randomizing zone 0 <= X <= Xr in unit coordinates, in [0, 1) (appendix B)"}, nullptr,
+       &TrappingParameters::Xr},
+      {{"q", "steps of N^-1 per block: statistics of N^-q (appendix B)"}, nullptr, nullptr, &TrappingParameters::q},
+      {{"T", "blocks per orbit (each orbit is qT steps)"}, nullptr, nullptr, nullptr, &TrappingParameters::T},
+      {{"M", "number of orbits"}, nullptr, nullptr, nullptr, &TrappingParameters::M},
+      {{"seed", "seed of the counter-based random numbers"}, nullptr, nullptr, nullptr, &TrappingParameters::seed},
+      {{"subsets", "orbit subsets for error estimates (orbit i goes to subset i mod subsets)"}, nullptr, nullptr,
+       &TrappingParameters::subsets},
+      {{"longestKept", "longest segments kept with their start state, for replay"}, nullptr, nullptr,
+       &TrappingParameters::longestKept},
+  }};
+  return table;
+}
+
+[[noreturn]] void bad(const std::string& what) { throw std::invalid_argument(what); }
+
+/// A JSON value that is a whole number in [0, max]: an integer, or a real that is exactly such a number
+/// (hand-written specs may say 2e7).
+std::uint64_t wholeNumber(const json& v, std::string_view key, std::uint64_t max) {
+  std::uint64_t n = 0;
+  if (v.is_number_unsigned()) {
+    n = v.get<std::uint64_t>();
+  } else if (v.is_number_integer()) {
+    bad(std::string(key) + " = " + v.dump() + " must be a whole number in [0, " + std::to_string(max) + "]");
+  } else if (v.is_number_float()) {
+    const double d = v.get<double>();
+    // 2^64 is the first double past the range of std::uint64_t.
+    if (!(d >= 0 && d < 18446744073709551616.0) || std::floor(d) != d)
+      bad(std::string(key) + " = " + v.dump() + " must be a whole number in [0, " + std::to_string(max) + "]");
+    n = static_cast<std::uint64_t>(d);
+  } else {
+    bad(std::string(key) + " must be a number, not " + v.dump());
+  }
+  if (n > max) bad(std::string(key) + " = " + std::to_string(n) + " must be <= " + std::to_string(max));
+  return n;
+}
+
+double realNumber(const json& v, std::string_view key) {
+  if (!v.is_number()) bad(std::string(key) + " must be a number, not " + v.dump());
+  return v.get<double>();
+}
+
+std::string text(const json& j, const char* key) {
+  const auto it = j.find(key);
+  if (it == j.end()) return {};
+  if (!it->is_string()) bad(std::string(key) + " must be a string");
+  return it->get<std::string>();
+}
+
+}  // namespace
+
+std::span<const SpecParameter> runSpecParameters() noexcept {
+  static const std::vector<SpecParameter> list = [] {
+    std::vector<SpecParameter> v;
+    for (const FieldAccess& f : fieldTable()) v.push_back(f.info);
+    return v;
+  }();
+  return list;
+}
+
+namespace spec {
+
+json mapJson(const MapParameters& map) { return {{"K", map.K}, {"xmin", map.xmin}, {"xmax", map.xmax}}; }
+
+json parametersJson(const TrappingParameters& p) {
+  json j = json::object();
+  for (const FieldAccess& f : fieldTable()) {
+    const std::string key(f.info.key);
+    if (f.mapReal) j[key] = p.map.*f.mapReal;
+    else if (f.real) j[key] = p.*f.real;
+    else if (f.u32) j[key] = p.*f.u32;
+    else j[key] = p.*f.u64;
+  }
+  return j;
+}
+
+TrappingParameters parametersFromJson(const json& j, bool complete, const TrappingParameters& defaults) {
+  if (!j.is_object()) bad("parameters must be a JSON object");
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    const auto& table = fieldTable();
+    const bool known = std::any_of(table.begin(), table.end(), [&](const FieldAccess& f) { return f.info.key == it.key(); });
+    if (!known) bad("unknown parameter '" + it.key() + "'");
+  }
+  TrappingParameters p = defaults;
+  for (const FieldAccess& f : fieldTable()) {
+    const std::string key(f.info.key);
+    const auto it = j.find(key);
+    if (it == j.end()) {
+      if (complete) bad("missing parameter '" + key + "'");
+      continue;
+    }
+    if (f.mapReal) p.map.*f.mapReal = realNumber(*it, key);
+    else if (f.real) p.*f.real = realNumber(*it, key);
+    else if (f.u32) p.*f.u32 = static_cast<std::uint32_t>(wholeNumber(*it, key, std::numeric_limits<std::uint32_t>::max()));
+    else p.*f.u64 = wholeNumber(*it, key, std::numeric_limits<std::uint64_t>::max());
+  }
+  return p;
+}
+
+json parseStrictJson(std::string_view text) {
+  std::vector<std::set<std::string>> keys;  // the keys seen in each open object
+  std::string repeated;
+  const json::parser_callback_t check = [&](int, json::parse_event_t event, json& parsed) {
+    if (event == json::parse_event_t::object_start) keys.emplace_back();
+    else if (event == json::parse_event_t::object_end && !keys.empty()) keys.pop_back();
+    else if (event == json::parse_event_t::key && !keys.empty() && !keys.back().insert(parsed.get<std::string>()).second &&
+             repeated.empty())
+      repeated = parsed.get<std::string>();
+    return true;
+  };
+  json j;
+  try {
+    j = json::parse(text.begin(), text.end(), check);
+  } catch (const json::parse_error& e) {
+    // nlohmann's message: "[json.exception.parse_error.101] parse error at line 1, column 2: …"
+    std::string what = e.what();
+    if (const auto at = what.find("parse error"); at != std::string::npos) what = what.substr(at);
+    bad("not valid JSON: " + what);
+  }
+  if (!repeated.empty()) bad("the key '" + repeated + "' appears twice in one object");
+  return j;
+}
+
+}  // namespace spec
+
+std::optional<std::string> validationError(const RunSpec& s) {
+  if (auto e = validationError(s.parameters)) return e;
+  if (s.kernel != "auto") {
+    const auto kernels = allKernels();
+    const bool known =
+        std::any_of(kernels.begin(), kernels.end(), [&](const KernelInfo& k) { return k.name == s.kernel; });
+    if (!known) {
+      std::string names = "auto";
+      for (const KernelInfo& k : kernels) names += ", " + std::string(k.name);
+      return "kernel = '" + s.kernel + "' is not a kernel (" + names + ")";
+    }
+  }
+  if (s.threads < 0 || s.threads > kMaxThreads)
+    return "threads = " + std::to_string(s.threads) + " must lie in [0, " + std::to_string(kMaxThreads) +
+           "] (0: one per core)";
+  return std::nullopt;
+}
+
+std::string runSpecJson(const RunSpec& s) {
+  json j = json::object();
+  j["format"] = kRunSpecFormatName;
+  j["version"] = kRunSpecFormatVersion;
+  if (!s.name.empty()) j["name"] = s.name;
+  if (!s.description.empty()) j["description"] = s.description;
+  j["parameters"] = spec::parametersJson(s.parameters);
+  j["kernel"] = s.kernel;
+  j["threads"] = s.threads;
+  return j.dump(2) + "\n";
+}
+
+RunSpec parseRunSpec(std::string_view textIn) {
+  const json j = spec::parseStrictJson(textIn);
+  if (!j.is_object()) bad("a run spec must be a JSON object");
+  const auto format = j.find("format");
+  if (format == j.end() || *format != kRunSpecFormatName)
+    bad(std::string("not a run spec (missing \"format\": \"") + kRunSpecFormatName + "\")");
+  const auto version = j.find("version");
+  if (version == j.end() || !version->is_number_unsigned() || version->get<std::uint64_t>() != kRunSpecFormatVersion)
+    bad("run spec version " + (version == j.end() ? std::string("(missing)") : version->dump()) +
+        " is not supported (this program reads version " + std::to_string(kRunSpecFormatVersion) + ")");
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    static const std::set<std::string> known{"format", "version", "name", "description", "parameters", "kernel", "threads"};
+    if (!known.count(it.key())) bad("unknown key '" + it.key() + "'");
+  }
+  RunSpec s;
+  s.name = text(j, "name");
+  s.description = text(j, "description");
+  if (const auto p = j.find("parameters"); p != j.end()) s.parameters = spec::parametersFromJson(*p, false);
+  if (j.contains("kernel")) s.kernel = text(j, "kernel");
+  if (const auto t = j.find("threads"); t != j.end())
+    s.threads = static_cast<int>(wholeNumber(*t, "threads", kMaxThreads));
+  if (auto e = validationError(s)) bad(*e);
+  return s;
+}
+
+RunSpec loadRunSpec(const std::filesystem::path& path) {
+  constexpr std::uintmax_t kMaxSpecBytes = 1 << 20;  // a spec is a few hundred bytes
+  std::string content;
+  try {
+    content = io::readRegularFile(path, kMaxSpecBytes);
+  } catch (const std::runtime_error& e) {
+    bad(e.what());
+  }
+  try {
+    return parseRunSpec(content);
+  } catch (const std::invalid_argument& e) {
+    bad(path.string() + ": " + e.what());
+  }
+}
+
+}  // namespace archipelago

@@ -1,0 +1,30 @@
+#pragma once
+/// \file RunSpecJson.hpp
+/// \brief Core-internal: the run specification's JSON codec at the level of nlohmann::json values, for the
+/// files that embed parameters in a larger document (run files, portrait and b₂ sidecars).  Everything
+/// outside core uses the text-level functions of RunSpec.hpp.
+
+#include <nlohmann/json.hpp>
+#include <string_view>
+
+#include "spec/RunSpec.hpp"
+
+namespace archipelago::spec {
+
+/// {"K", "xmin", "xmax"}.
+[[nodiscard]] nlohmann::json mapJson(const MapParameters& map);
+
+/// Every field of TrappingParameters, keys as in runSpecParameters(), in that order.
+[[nodiscard]] nlohmann::json parametersJson(const TrappingParameters& p);
+
+/// Reads a "parameters" object.  Missing keys keep the value in `defaults` unless `complete` is true, when
+/// they are errors.  Throws std::invalid_argument naming the key (unknown key, wrong type, fractional or
+/// out-of-range integer, missing key).  Does not check the parameters' rules (validationError does).
+[[nodiscard]] TrappingParameters parametersFromJson(const nlohmann::json& j, bool complete,
+                                                    const TrappingParameters& defaults = {});
+
+/// Parses JSON text, rejecting a key repeated within one object (nlohmann would keep the last silently).
+/// Throws std::invalid_argument with nlohmann's position for malformed text.
+[[nodiscard]] nlohmann::json parseStrictJson(std::string_view text);
+
+}  // namespace archipelago::spec
