@@ -16,8 +16,10 @@ MapCoefficients computeCoefficients(const MapParameters& p) {
   const double a = 2 * L;
   const double b = -4 * p.xmin;
   const double c = 2 * (p.xmin * p.xmin - p.K) / L;
+  // Bounded: once 2L or 2(xmin² − K)/L overflows to infinity no m fits, and the loop below says so.
   int m = 0;
-  while (!(a < std::ldexp(1.0, m) && b < std::ldexp(1.0, m) && c < std::ldexp(1.0, m))) ++m;
+  while (m <= FixedPointMap::kMaxShift && !(a < std::ldexp(1.0, m) && b < std::ldexp(1.0, m) && c < std::ldexp(1.0, m)))
+    ++m;
   for (;; ++m) {
     if (m > FixedPointMap::kMaxShift) {
       std::ostringstream s;

@@ -213,5 +213,21 @@ TEST(FixedPointMap, EveryInvalidParameterGivesItsError) {
   EXPECT_FALSE(validationError({-1e-4, -0.05, 0.05}).has_value());
 }
 
+// Issue 12, finding 1: computeCoefficients looped ++m forever (signed overflow, undefined behaviour) once 2L or
+// 2(xmin² − K)/L overflowed to infinity: `orbit --K 0.1 --xmin=-1e300 --xmax 0.5`, `--K=-1e308`, `--xmax=1e308`.
+TEST(FixedPointMap, HugeBoxOrKIsAnErrorNotAnEndlessLoop) {
+  for (const MapParameters p : {MapParameters{0.1, -1e300, 0.5}, MapParameters{-1e308, -0.8, 0.5},
+                                MapParameters{0.1, -0.8, 1e308}, MapParameters{0.1, -1.7e308, 1.7e308},
+                                MapParameters{1e300, -1e151, 0.5}}) {
+    try {
+      (void)computeCoefficients(p);
+      ADD_FAILURE() << "accepted K = " << p.K << ", xmin = " << p.xmin << ", xmax = " << p.xmax;
+    } catch (const std::invalid_argument& e) {
+      const std::string what = e.what();
+      EXPECT_TRUE(what.find("too large") != std::string::npos || what.find("finite") != std::string::npos) << what;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace archipelago
