@@ -1,9 +1,12 @@
 #include "runfile/RunFile.hpp"
 
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <stdexcept>
 
 #include "io/AtomicFile.hpp"
+#include "io/Sha256.hpp"
+#include "trapping/StateValidation.hpp"
 #include "spec/RunSpecJson.hpp"
 
 namespace archipelago {
@@ -66,12 +69,15 @@ SegmentStart segmentStart(const json& j) { return {unitState(field(j, "z")), u64
 TrappingHistogram histogram(const json& j) {
   if (!j.is_array()) corrupt("a histogram must be an array of [bin, count, lengthSum]");
   TrappingHistogram h;
+  std::uint64_t previousBin = 0;
   for (const json& b : j) {
     if (!b.is_array() || b.size() != 3 || !b[0].is_number_unsigned() || !b[1].is_number_unsigned() ||
         !b[2].is_number_unsigned())
       corrupt("a histogram bin must be [bin, count, lengthSum] with non-negative integers");
     const auto i = b[0].get<std::uint64_t>();
     if (i < 1 || i >= static_cast<std::uint64_t>(TrappingHistogram::kBins)) corrupt("histogram bin out of range");
+    if (i <= previousBin) corrupt("histogram bins must be listed once each, in increasing order");
+    previousBin = i;
     const auto count = b[1].get<std::uint64_t>();
     const auto sum = b[2].get<std::uint64_t>();
     const int bin = static_cast<int>(i);
@@ -119,10 +125,13 @@ std::string runFileText(const TrappingState& s) {
     orbits.push_back(json::array({o.z.X, o.z.Y, o.block, o.draws, o.length, o.start.z.X, o.start.z.Y,
                                   o.start.block, o.start.draws}));
   j["orbits"] = orbits;
+  // The checksum covers the document without itself, as dumped here: parse + dump reproduces those bytes
+  // (sorted keys, exact integers, shortest round-trip reals), so any edit of a value is detected on reading.
+  j["checksum"] = "sha256:" + io::sha256Hex(j.dump(1));
   return j.dump(1) + "\n";
 }
 
-TrappingState parseRunFile(const std::string& text) {
+TrappingState parseRunFile(const std::string& text, const RunFileReadOptions& options) {
   json j;
   try {
     j = spec::parseStrictJson(text);
@@ -132,9 +141,19 @@ TrappingState parseRunFile(const std::string& text) {
   if (!j.is_object() || !j.contains("format") || j["format"] != kRunFileFormatName)
     throw std::runtime_error("not an Archipelago run file (missing \"format\": \"archipelago-run\")");
   const std::int64_t version = i64(j, "version");
-  if (version != kRunFileFormatVersion)
-    throw std::runtime_error("run file format version " + std::to_string(version) + " is not supported (this program reads version " +
+  if (version != kRunFileFormatVersion && version != 1)
+    throw std::runtime_error("run file format version " + std::to_string(version) +
+                             " is not supported (this program reads versions 1 and " +
                              std::to_string(kRunFileFormatVersion) + ")");
+  if (version >= 2) {  // version 1 files carry no checksum: they are read and validated as they are
+    const json& sum = field(j, "checksum");
+    if (!sum.is_string()) corrupt("field 'checksum' must be a string");
+    const std::string stored = sum.get<std::string>();
+    j.erase("checksum");
+    if (stored != "sha256:" + io::sha256Hex(j.dump(1)) && !options.allowModified)
+      throw std::runtime_error("run file was modified after it was written (its checksum does not match its content);"
+                               " --allow-modified reads it anyway, still checking its consistency");
+  }
   const json& jp = field(j, "parameters");
   TrappingParameters p;
   try {
@@ -166,7 +185,6 @@ TrappingState parseRunFile(const std::string& text) {
   s.orbitEnd = u64(j, "orbitEnd");
   if (s.orbitBegin >= s.orbitEnd || s.orbitEnd > p.M) corrupt("orbit range outside [0, M)");
   s.blocksDone = u64(j, "blocksDone");
-  if (s.blocksDone > p.T) corrupt("blocksDone exceeds T");
   s.elapsedSeconds = f64(j, "elapsedSeconds");
   const json& kernel = field(j, "kernel");
   if (!kernel.is_string()) corrupt("field 'kernel' must be a string");
@@ -179,10 +197,12 @@ TrappingState parseRunFile(const std::string& text) {
   s.longest = LongestSegments(p.longestKept);
   const json& jl = field(j, "longest");
   if (!jl.is_array() || jl.size() > p.longestKept) corrupt("too many longest segments");
+  std::optional<SegmentRecord> previous;
   for (const json& r : jl) {
     const SegmentRecord rec{u64(r, "orbit"), u64(r, "length"), segmentStart(field(r, "start"))};
-    if (rec.orbit < s.orbitBegin || rec.orbit >= s.orbitEnd || rec.length == 0) corrupt("a longest segment is out of range");
+    if (previous && !LongestSegments::ranksBefore(*previous, rec)) corrupt("the longest segments are not ranked");
     s.longest.insert(rec);
+    previous = rec;
   }
 
   const json& jo = field(j, "orbits");
@@ -198,9 +218,9 @@ TrappingState parseRunFile(const std::string& text) {
     st.draws = o[3].get<std::uint64_t>();
     st.length = o[4].get<std::uint64_t>();
     st.start = {unitState(json::array({o[5], o[6]})), o[7].get<std::uint64_t>(), o[8].get<std::uint64_t>()};
-    if (st.block != s.blocksDone) corrupt("an orbit's block count differs from blocksDone");
     s.orbits.push_back(st);
   }
+  if (auto e = consistencyError(s)) corrupt(*e);
   return s;
 }
 
@@ -208,10 +228,10 @@ void saveRunFile(const std::filesystem::path& path, const TrappingState& state) 
   io::writeFileAtomically(path, runFileText(state));
 }
 
-TrappingState loadRunFile(const std::filesystem::path& path) {
+TrappingState loadRunFile(const std::filesystem::path& path, const RunFileReadOptions& options) {
   const std::string text = io::readRegularFile(path, kMaxRunFileBytes);
   try {
-    return parseRunFile(text);
+    return parseRunFile(text, options);
   } catch (const std::exception& e) {
     throw std::runtime_error(path.string() + ": " + e.what());
   }

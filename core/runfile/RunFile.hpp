@@ -5,7 +5,7 @@
 /// A run file holds the parameters, the integer map coefficients (A, B, C, m) that define the map exactly,
 /// the run settings and seed, the subset histograms (integer counts and length sums per bin, with the bin
 /// edges), the longest segments with their exact start states, every orbit's state (so that the run can be
-/// resumed), timing, the kernel and the program version.  Integers are written as JSON integers (exact up
+/// resumed), timing, the kernel, the program version, and a SHA-256 checksum of all of that.  Integers are written as JSON integers (exact up
 /// to 2^64); doubles with 17 significant digits (round-trip exact).
 ///
 /// Writing is atomic: a temporary file in the same folder, fsync, rename over the target, fsync of the
@@ -18,7 +18,7 @@
 
 namespace archipelago {
 
-inline constexpr int kRunFileFormatVersion = 1;
+inline constexpr int kRunFileFormatVersion = 2;  ///< 2: with a checksum; version 1 files are still read
 inline constexpr const char* kRunFileFormatName = "archipelago-run";
 /// The largest run file read (a run of 10⁶ orbits takes about 250 MB): a bound checked before reading, so
 /// that a wrong path (a disk image, /dev/zero) fails at once instead of exhausting memory.
@@ -26,14 +26,22 @@ inline constexpr std::uintmax_t kMaxRunFileBytes = std::uintmax_t{2} << 30;
 
 /// The JSON text of a run file.
 [[nodiscard]] std::string runFileText(const TrappingState& state);
-/// Parses run-file text.  Throws std::runtime_error with a one-line message for corrupt, truncated or
-/// inconsistent content, a different format or an unsupported version.
-[[nodiscard]] TrappingState parseRunFile(const std::string& text);
+struct RunFileReadOptions {
+  /// Read a file whose checksum does not match its content (an edited file), for forensic use.  The
+  /// content is still validated whole.
+  bool allowModified = false;
+};
+
+/// Parses run-file text and validates it whole: structure, parameters, the checksum (format version 2), and
+/// the state's consistency (trapping/StateValidation.hpp).  Throws std::runtime_error with a one-line
+/// message for corrupt, truncated, edited or inconsistent content, a different format or an unsupported
+/// version.
+[[nodiscard]] TrappingState parseRunFile(const std::string& text, const RunFileReadOptions& options = {});
 
 /// Writes atomically (temp file + fsync + rename).  Throws std::runtime_error naming the path on failure.
 void saveRunFile(const std::filesystem::path& path, const TrappingState& state);
 /// Reads and validates a run file (a regular file of at most kMaxRunFileBytes).  Throws std::runtime_error
 /// naming the path on failure.
-[[nodiscard]] TrappingState loadRunFile(const std::filesystem::path& path);
+[[nodiscard]] TrappingState loadRunFile(const std::filesystem::path& path, const RunFileReadOptions& options = {});
 
 }  // namespace archipelago

@@ -3,6 +3,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <nlohmann/json.hpp>
 
 #include "runfile/RunFile.hpp"
 
@@ -71,9 +73,11 @@ TEST(RunFile, SaveIsAtomicAndLeavesNoTemporaryFiles) {
   std::filesystem::remove_all(dir);
 }
 
+// Content errors are checked with allowModified: an edited file is first of all a modified one (its checksum
+// says so), and these tests are about what the whole-file validation finds behind that.
 void expectRejected(const std::string& text, const std::string& mention) {
   try {
-    (void)parseRunFile(text);
+    (void)parseRunFile(text, {.allowModified = true});
     ADD_FAILURE() << "accepted: " << mention;
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find(mention), std::string::npos) << e.what();
@@ -94,13 +98,98 @@ TEST(RunFile, BadFilesGiveClearErrors) {
   expectRejected(good.substr(0, good.size() / 2), "corrupt or truncated");
   expectRejected("[1, 2, 3]", "not an Archipelago run file");
   expectRejected(R"({"format": "something-else"})", "not an Archipelago run file");
-  expectRejected(replaced(good, "\"version\": 1", "\"version\": 99"), "version 99 is not supported");
+  expectRejected(replaced(good, "\"version\": 2", "\"version\": 99"), "version 99 is not supported");
   expectRejected(replaced(good, "\"T\": 5000", "\"T\": -5"), "T = -5 must be a whole number");  // one codec: run spec
   expectRejected(replaced(good, "\"K\": 0.1", "\"K\": 0.9"), "invalid parameters: xmin");
   expectRejected(replaced(good, "\"subsets\": 5", "\"subsets\": 4"), "one histogram per subset");
   expectRejected(replaced(good, "\"A\": ", "\"A\": 1"), "coefficients (A, B, C, m) differ");
   expectRejected(replaced(good, "\"blocksDone\": 5000", "\"blocksDone\": 4999"), "block count differs");
   expectRejected(replaced(good, "\"orbits\"", "\"orbitz\""), "missing field 'orbits'");
+}
+
+// --- issue 12, finding 4: run files that were accepted with wrong results ----------------------------------
+
+using nlohmann::json;
+
+/// The sample run's JSON with an edit applied (the checksum is left as it was).
+std::string edited(const std::function<void(json&)>& edit) {
+  json j = json::parse(runFileText(sampleRun()));
+  edit(j);
+  return j.dump(1);
+}
+
+TEST(RunFile, AnyEditIsDetectedByTheChecksum) {
+  const std::string good = runFileText(sampleRun());
+  EXPECT_NO_THROW((void)parseRunFile(good));
+  // Change one digit of a count deep inside the histograms: a plausible file, silently wrong before.
+  json j = json::parse(good);
+  j["subsets"][0][0][1] = j["subsets"][0][0][1].get<std::uint64_t>() + 1;
+  const std::string text = j.dump(1);
+  try {
+    (void)parseRunFile(text);
+    ADD_FAILURE() << "an edited file was accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("modified after it was written"), std::string::npos) << e.what();
+  }
+  // Forensic reading: allowed on request, still validated (this edit breaks the bin's length sum).
+  EXPECT_THROW((void)parseRunFile(text, {.allowModified = true}), std::runtime_error);
+  // Re-indenting is not an edit of the content.
+  EXPECT_NO_THROW((void)parseRunFile(json::parse(good).dump(4)));
+}
+
+TEST(RunFile, Version1FilesWithoutChecksumAreStillRead) {
+  json j = json::parse(runFileText(sampleRun()));
+  j.erase("checksum");
+  j["version"] = 1;
+  EXPECT_TRUE(parseRunFile(j.dump(1)).params == sampleRun().params);
+}
+
+TEST(RunFile, CountsWhoseSumPassesTwoToTheSixtyFourAreRejected) {
+  // 2^63 segments of length 1 in two subsets: Σ counts wraps to 0 in 64 bits (gave Σ t f_t = 0.94).
+  expectRejected(edited([](json& j) {
+                   j["subsets"][0] = json::array({json::array({1, 1ull << 63, 1ull << 63})});
+                   j["subsets"][1] = json::array({json::array({1, 1ull << 63, 1ull << 63})});
+                 }),
+                 "add up to more blocks than its orbits have done");
+}
+
+TEST(RunFile, ExactBinWithInconsistentLengthSumIsRejected) {
+  expectRejected(edited([](json& j) { j["subsets"][0] = json::array({json::array({3, 2, 7})}); }),  // 2 × 3 ≠ 7
+                 "do not fit the bin");
+}
+
+TEST(RunFile, DuplicateBinsOrKeysAreRejected) {
+  expectRejected(edited([](json& j) {
+                   j["subsets"][0] = json::array({json::array({3, 1, 3}), json::array({3, 2, 6})});
+                 }),
+                 "listed once each");
+  std::string text = runFileText(sampleRun());
+  text.insert(text.find("\"blocksDone\""), "\"blocksDone\": 0, ");
+  expectRejected(text, "appears twice");
+}
+
+TEST(RunFile, LongestSegmentOutsideTheBlocksDoneIsRejected) {
+  // Length 2^63 (shown as 0 steps: length × q overflowed), start block 0 (never recorded), start past T.
+  expectRejected(edited([](json& j) { j["longest"][0]["length"] = 1ull << 63; }), "longest segment 0");
+  expectRejected(edited([](json& j) { j["longest"][0]["start"]["block"] = 0; }), "inside the blocks done");
+  expectRejected(edited([](json& j) { j["longest"][0]["start"]["block"] = 6000; }), "inside the blocks done");
+  expectRejected(edited([](json& j) { j["longest"][1]["length"] = j["longest"][0]["length"].get<std::uint64_t>() + 1; }),
+                 "not ranked");
+}
+
+TEST(RunFile, OpenSegmentLongerThanTheBlocksDoneIsRejected) {
+  expectRejected(edited([](json& j) { j["orbits"][0][4] = 6000; }), "does not end at blocksDone");
+  expectRejected(edited([](json& j) { j["orbits"][0][3] = 6000; }), "more random draws than blocks");
+}
+
+TEST(RunFile, NoBlocksDoneWithNonEmptyHistogramsIsRejected) {
+  // blocksDone = 0 with the histograms of a finished run: resuming it counted every segment twice.
+  expectRejected(edited([](json& j) {
+                   j["blocksDone"] = 0;
+                   j["finished"] = false;
+                   for (auto& o : j["orbits"]) o[2] = o[3] = o[4] = o[7] = o[8] = 0;  // orbits at their start
+                 }),
+                 "segments longer than the 0 blocks done");
 }
 
 TEST(RunFile, UnreadableFileNamesThePath) {

@@ -1,0 +1,67 @@
+// core/io: SHA-256 against the FIPS 180-4 / NIST test vectors; atomic writes; bounded reads that say what a
+// path is instead of hanging on it.
+#include <gtest/gtest.h>
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "io/AtomicFile.hpp"
+#include "io/Sha256.hpp"
+
+namespace archipelago::io {
+namespace {
+
+TEST(Sha256, MatchesTheNistVectors) {
+  EXPECT_EQ(sha256Hex(""), "e3b0c44298fc1c149afbf4c8996fb92427ae41e4649b934ca495991b7852b855");
+  EXPECT_EQ(sha256Hex("abc"), "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");
+  EXPECT_EQ(sha256Hex("abcdbcdecdefdefgefghfghighijhijkijkljklmklmnlmnomnopnopq"),
+            "248d6a61d20638b8e5c026930c3e6039a33ce45964ff2167f6ecedd419db06c1");
+  EXPECT_EQ(sha256Hex(std::string(1'000'000, 'a')), "cdc76e5c9914fb9281a1c7e284d73e67f1809a48a497200e046d39ccc7112cd0");
+  // 55, 56 and 64 bytes: the padding's edge cases (one or two final blocks).
+  EXPECT_EQ(sha256Hex(std::string(55, 'a')), "9f4390f8d30c2dd92ec9f095b65e2b9ae9b0a925a5258e241c9f1e910f734318");
+  EXPECT_EQ(sha256Hex(std::string(56, 'a')), "b35439a4ac6f0948b6d6f9e3c6af0f5f590ce20f1bde7090ef7970686ec6738a");
+  EXPECT_EQ(sha256Hex(std::string(64, 'a')), "ffe054fe7ae0cb6dc65c3af9b61d5209f439851db43d0ba5997337df154668eb");
+}
+
+class IoFiles : public ::testing::Test {
+ protected:
+  std::filesystem::path dir = std::filesystem::temp_directory_path() / ("archipelago-io-" + std::to_string(::getpid()));
+  void SetUp() override { std::filesystem::create_directories(dir); }
+  void TearDown() override { std::filesystem::remove_all(dir); }
+};
+
+TEST_F(IoFiles, AtomicWriteReplacesAndLeavesNoTemporaryFile) {
+  writeFileAtomically(dir / "a.txt", "first");
+  writeFileAtomically(dir / "a.txt", "second");
+  EXPECT_EQ(readRegularFile(dir / "a.txt", 100), "second");
+  int files = 0;
+  for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir)) ++files;
+  EXPECT_EQ(files, 1);
+  EXPECT_THROW(writeFileAtomically(dir / "missing" / "a.txt", "x"), std::runtime_error);
+}
+
+TEST_F(IoFiles, BoundedReadNamesWhatThePathIs) {
+  const auto expectError = [](const std::filesystem::path& p, std::uintmax_t max, const std::string& mention) {
+    try {
+      (void)readRegularFile(p, max);
+      ADD_FAILURE() << p;
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find(mention), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(p.string()), std::string::npos) << e.what();
+    }
+  };
+  expectError(dir, 100, "it is a folder");              // issue 12, finding 8: not "unexpected end of input"
+  expectError(dir / "none", 100, "No such file");
+  const auto fifo = dir / "fifo";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  expectError(fifo, 100, "it is a FIFO");               // issue 12, finding 6: a FIFO used to hang the reader
+  expectError("/dev/zero", 100, "it is a device");      // /dev/zero used to grow until memory ran out
+  std::ofstream(dir / "big") << std::string(101, 'x');
+  expectError(dir / "big", 100, "101 bytes, more than the 100");
+}
+
+}  // namespace
+}  // namespace archipelago::io
