@@ -1,6 +1,7 @@
 #include "io/AtomicFile.hpp"
 
 #include <fcntl.h>
+#include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -10,8 +11,19 @@
 
 namespace archipelago::io {
 
+namespace {
+bool isReadOnly(const std::filesystem::file_status& status) {
+  using std::filesystem::perms;
+  return std::filesystem::exists(status) &&
+         (status.permissions() & (perms::owner_write | perms::group_write | perms::others_write)) == perms::none;
+}
+}  // namespace
+
 void writeFileAtomically(const std::filesystem::path& path, std::string_view content) {
   const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+  std::error_code ec;
+  if (isReadOnly(std::filesystem::status(path, ec)))  // protected on purpose: a rename would replace it
+    throw std::runtime_error("cannot write " + path.string() + ": the file is read-only");
   std::string tmpl = (dir / ("." + path.filename().string() + ".XXXXXX")).string();
   const int fd = ::mkstemp(tmpl.data());
   if (fd < 0) throw std::runtime_error("cannot write " + path.string() + ": " + std::strerror(errno));
@@ -47,6 +59,86 @@ void writeFileAtomically(const std::filesystem::path& path, std::string_view con
     ::fsync(dfd);
     ::close(dfd);
   }
+}
+
+void checkWritableTarget(const std::filesystem::path& path) {
+  const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+  std::error_code ec;
+  const auto dirStatus = std::filesystem::status(dir, ec);
+  if (!std::filesystem::exists(dirStatus))
+    throw std::runtime_error("cannot write " + path.string() + ": the folder " + dir.string() + " does not exist");
+  if (!std::filesystem::is_directory(dirStatus))
+    throw std::runtime_error("cannot write " + path.string() + ": " + dir.string() + " is not a folder");
+  if (::access(dir.c_str(), W_OK | X_OK) != 0)
+    throw std::runtime_error("cannot write " + path.string() + ": the folder " + dir.string() + " is not writable (" +
+                             std::strerror(errno) + ")");
+  const auto status = std::filesystem::status(path, ec);
+  if (std::filesystem::is_directory(status))
+    throw std::runtime_error("cannot write " + path.string() + ": it is a folder");
+  // A file nobody may write (mode 0444) was protected on purpose: refuse it even where the rename would
+  // succeed (the folder is writable, or we are root).
+  if (isReadOnly(status) || (std::filesystem::exists(status) && ::access(path.c_str(), W_OK) != 0))
+    throw std::runtime_error("cannot write " + path.string() + ": the file is read-only");
+}
+
+std::size_t removeStaleTemporaries(const std::filesystem::path& path) {
+  const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+  const std::string prefix = "." + path.filename().string() + ".";
+  std::size_t removed = 0;
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    // mkstemp's suffix: exactly six characters after the prefix (".lock" is the lock, not a temporary).
+    if (name.size() != prefix.size() + 6 || name.compare(0, prefix.size(), prefix) != 0 || !entry.is_regular_file(ec))
+      continue;
+    if (std::filesystem::remove(entry.path(), ec)) ++removed;
+  }
+  return removed;
+}
+
+FileLock FileLock::acquire(const std::filesystem::path& path) {
+  const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+  const std::filesystem::path lockPath = dir / ("." + path.filename().string() + ".lock");
+  for (;;) {
+    const int fd = ::open(lockPath.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd < 0) throw std::runtime_error("cannot lock " + path.string() + ": " + std::strerror(errno));
+    if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+      const int error = errno;
+      ::close(fd);
+      if (error == EWOULDBLOCK)
+        throw std::runtime_error(path.string() + " is in use by another process (its lock " + lockPath.string() +
+                                 " is held); two runs must not write the same file");
+      throw std::runtime_error("cannot lock " + path.string() + ": " + std::strerror(error));
+    }
+    // The holder before us may have removed the lock file between our open and our flock: then we hold a
+    // lock on a file nobody else can find, and must try again on the current one.
+    struct stat held {}, current {};
+    if (::fstat(fd, &held) == 0 && ::stat(lockPath.c_str(), &current) == 0 && held.st_ino == current.st_ino &&
+        held.st_dev == current.st_dev)
+      return FileLock(fd, lockPath);
+    ::close(fd);
+  }
+}
+
+FileLock::FileLock(FileLock&& other) noexcept : fd_(other.fd_), lockPath_(std::move(other.lockPath_)) { other.fd_ = -1; }
+
+FileLock& FileLock::operator=(FileLock&& other) noexcept {
+  if (this != &other) {
+    release();
+    fd_ = other.fd_;
+    lockPath_ = std::move(other.lockPath_);
+    other.fd_ = -1;
+  }
+  return *this;
+}
+
+FileLock::~FileLock() { release(); }
+
+void FileLock::release() noexcept {
+  if (fd_ < 0) return;
+  ::unlink(lockPath_.c_str());  // while still held: a process that opened it before retries (see acquire)
+  ::close(fd_);
+  fd_ = -1;
 }
 
 std::string readRegularFile(const std::filesystem::path& path, std::uintmax_t maxBytes) {

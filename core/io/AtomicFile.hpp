@@ -12,12 +12,43 @@
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <utility>
 
 namespace archipelago::io {
 
 /// Replaces `path` by `content` atomically (mode 0644).  Throws std::runtime_error naming the path and the
 /// failing step (open, write, fsync, rename) with the system's reason; the temporary file is removed then.
 void writeFileAtomically(const std::filesystem::path& path, std::string_view content);
+
+/// Checks, before any work starts, that writeFileAtomically(path, …) can succeed: the folder exists and is
+/// writable, and the target is neither a folder nor a read-only file (which a rename would silently
+/// replace).  Throws std::runtime_error naming the path and the reason.
+void checkWritableTarget(const std::filesystem::path& path);
+
+/// Removes the temporary files writeFileAtomically(path, …) leaves when its process is killed mid-write
+/// (".NAME.XXXXXX" beside NAME).  Call it only while holding the FileLock of `path`: no other writer can
+/// then be using one.  Returns how many were removed.
+std::size_t removeStaleTemporaries(const std::filesystem::path& path);
+
+/// An advisory lock (flock) that keeps two processes from writing the same file: held on ".NAME.lock" beside
+/// NAME from acquire() until destruction; the lock file is removed then.  Released by the kernel when the
+/// process dies, even by SIGKILL, so a killed run never blocks the next one.
+class FileLock {
+ public:
+  /// Takes the lock of `path` or throws std::runtime_error naming the path ("in use by another process").
+  [[nodiscard]] static FileLock acquire(const std::filesystem::path& path);
+  FileLock(FileLock&& other) noexcept;
+  FileLock& operator=(FileLock&& other) noexcept;
+  FileLock(const FileLock&) = delete;
+  FileLock& operator=(const FileLock&) = delete;
+  ~FileLock();
+
+ private:
+  FileLock(int fd, std::filesystem::path lockPath) noexcept : fd_(fd), lockPath_(std::move(lockPath)) {}
+  void release() noexcept;
+  int fd_ = -1;
+  std::filesystem::path lockPath_;
+};
 
 /// The whole content of the regular file `path`, of at most maxBytes bytes.  Throws std::runtime_error
 /// naming the path: missing or unreadable, not a regular file (saying what it is), or larger than maxBytes.

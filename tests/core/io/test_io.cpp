@@ -63,5 +63,60 @@ TEST_F(IoFiles, BoundedReadNamesWhatThePathIs) {
   expectError(dir / "big", 100, "101 bytes, more than the 100");
 }
 
+// Issue 12, finding 7: output folders were checked only after the whole computation, and a 0444 target was
+// silently replaced.
+TEST_F(IoFiles, OutputPathsAreCheckedBeforeWork) {
+  const auto expectError = [](const std::filesystem::path& p, const std::string& mention) {
+    try {
+      checkWritableTarget(p);
+      ADD_FAILURE() << p;
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find(mention), std::string::npos) << e.what();
+    }
+  };
+  EXPECT_NO_THROW(checkWritableTarget(dir / "new.json"));
+  expectError(dir / "typo" / "run.json", "does not exist");
+  expectError(dir, "it is a folder");
+  std::ofstream(dir / "file") << "x";
+  expectError(dir / "file" / "run.json", "is not a folder");
+  std::ofstream(dir / "protected.json") << "{}";
+  std::filesystem::permissions(dir / "protected.json", std::filesystem::perms::owner_read | std::filesystem::perms::group_read |
+                                                          std::filesystem::perms::others_read);
+  expectError(dir / "protected.json", "read-only");
+}
+
+// Issue 12, finding 7: two runs on the same --out both exited 0, and a killed run resumed from the shared
+// checkpoint silently continued the other one.
+TEST_F(IoFiles, OneWriterPerFile) {
+  const auto target = dir / "run.json";
+  {
+    FileLock first = FileLock::acquire(target);
+    try {
+      FileLock second = FileLock::acquire(target);  // another open file description: as another process
+      ADD_FAILURE() << "two locks on one file";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("in use by another process"), std::string::npos) << e.what();
+    }
+    FileLock other = FileLock::acquire(dir / "other.json");  // another file: no conflict
+    FileLock moved = std::move(first);                        // still held after a move
+    EXPECT_THROW((void)FileLock::acquire(target), std::runtime_error);
+  }
+  EXPECT_NO_THROW((void)FileLock::acquire(target));  // released with its holder
+  EXPECT_FALSE(std::filesystem::exists(dir / ".run.json.lock"));
+}
+
+// Issue 12, finding 7: SIGKILL left ".ck.json.XXXXXX" temporaries that were never cleaned.
+TEST_F(IoFiles, StaleTemporariesOfTheSameFileAreRemoved) {
+  std::ofstream(dir / ".run.json.a1B2c3") << "partial";
+  std::ofstream(dir / ".run.json.Zz9Yy8") << "partial";
+  std::ofstream(dir / ".run.json.lock") << "";        // not a temporary
+  std::ofstream(dir / ".other.json.a1B2c3") << "x";   // another file's
+  std::ofstream(dir / "run.json") << "{}";
+  EXPECT_EQ(removeStaleTemporaries(dir / "run.json"), 2u);
+  EXPECT_TRUE(std::filesystem::exists(dir / ".run.json.lock"));
+  EXPECT_TRUE(std::filesystem::exists(dir / ".other.json.a1B2c3"));
+  EXPECT_TRUE(std::filesystem::exists(dir / "run.json"));
+}
+
 }  // namespace
 }  // namespace archipelago::io
