@@ -1,10 +1,15 @@
 #pragma once
 /// \file ExportActions.hpp
 /// \brief Writing plots and their numbers to files: PNG, SVG, PDF (QwtPlotRenderer) and CSV.
+///
+/// Numbers are written by core's one CSV writer (export/StatisticsCsv.hpp) from the snapshot's state,
+/// statistics and theory curves, so the GUI writes exactly the files `archipelago-cli stats --csv` writes.
 
 #include <QList>
 #include <QString>
 #include <QStringList>
+
+#include "RunSnapshot.hpp"
 
 namespace archipelago::ui {
 
@@ -17,10 +22,13 @@ struct ExportResult {
   [[nodiscard]] bool ok() const noexcept { return error.isEmpty(); }
 };
 
-/// Writes one plot to `path`: an image when the suffix is png, svg or pdf; its curves when it is csv.
-[[nodiscard]] ExportResult exportPlot(StatisticsPlot& plot, const QString& path);
+/// Writes one plot to `path`: an image when the suffix is png, svg or pdf; when it is csv, the numbers of its
+/// statistic in `snapshot` (and, next to them, <name>.theory.csv when theory curves belong to it).
+[[nodiscard]] ExportResult exportPlot(StatisticsPlot& plot, const RunSnapshotPtr& snapshot, const QString& path);
 
-/// Writes every plot as <name>.png, .svg, .pdf and .csv into `folder` (created when missing).
-[[nodiscard]] ExportResult exportAll(const QList<StatisticsPlot*>& plots, const QString& folder);
+/// Writes every plot as <stem>.png, .svg and .pdf into `folder` (created when missing), and every CSV file of
+/// `snapshot` (each statistic, its theory curves, summary.csv) as core's writer names them.
+[[nodiscard]] ExportResult exportAll(const QList<StatisticsPlot*>& plots, const RunSnapshotPtr& snapshot,
+                                     const QString& folder);
 
 }  // namespace archipelago::ui

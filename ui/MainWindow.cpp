@@ -542,7 +542,7 @@ bool MainWindow::saveRunFile(const QString& path, QString* error) {
 
 bool MainWindow::exportAllTo(const QString& folder, QString* error) {
   refreshView();  // export what the newest snapshot holds
-  const ExportResult r = exportAll(statistics_->plots(), folder);
+  const ExportResult r = exportAll(statistics_->plots(), shown_, folder);
   if (!r.ok()) {
     if (error) *error = r.error;
     message(tr("Export failed: %1").arg(r.error), 0);
@@ -592,7 +592,7 @@ void MainWindow::exportPlotDialog(int plotIndex) {
   if (path.isEmpty()) return;
   settings.setValue(QStringLiteral("exportDir"), QFileInfo(path).absolutePath());
   refreshView();
-  const ExportResult r = exportPlot(*plot, path);
+  const ExportResult r = exportPlot(*plot, shown_, path);
   message(r.ok() ? tr("Wrote %1").arg(path) : tr("Export failed: %1").arg(r.error));
 }
 

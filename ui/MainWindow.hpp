@@ -56,7 +56,7 @@ class MainWindow : public QMainWindow {
   // Files.  Errors go to the status bar and, when `error` is given, to it.
   bool openRunFile(const QString& path, QString* error = nullptr);
   bool saveRunFile(const QString& path, QString* error = nullptr);
-  /// Writes every plot (PNG, SVG, PDF, CSV) into `folder`.
+  /// Writes every plot (PNG, SVG, PDF) and every CSV file of the run on screen (as `stats --csv` does) into `folder`.
   bool exportAllTo(const QString& folder, QString* error = nullptr);
   /// Where a run interrupted by closing the window is kept.
   [[nodiscard]] static QString checkpointPath();

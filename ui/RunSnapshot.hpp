@@ -4,7 +4,7 @@
 ///
 /// A snapshot is made on the worker thread at a chunk boundary of core's runTrapping() (the state is then
 /// consistent: every orbit has done the same number of blocks).  It carries the state itself (so the GUI can
-/// save it or resume from it), the statistics core computed from it, the progress, and the theory curves.
+/// save it or resume from it), the statistics core computed from it, the progress, and core's theory curves for them.
 /// The GUI receives it through a queued signal as a shared pointer to const: nobody can change it after it
 /// has been emitted, so it may be read from any thread without locks.
 
@@ -16,22 +16,10 @@
 #include <vector>
 
 #include "stats/TrappingStatistics.hpp"
+#include "theory/TheoryCurves.hpp"
 #include "trapping/TrappingRun.hpp"
 
 namespace archipelago::ui {
-
-/// Which statistics plot a curve belongs to.
-enum class PlotKind { f, P, C, localExponent, S, Dt };
-inline constexpr int kPlotKinds = 6;
-
-/// A theory curve drawn over a plot (Karney 1983, §4): either sampled points or a vertical line at `at`.
-struct TheoryCurve {
-  PlotKind plot = PlotKind::f;
-  std::string label;        ///< plain text for files, e.g. "t^-7"
-  std::string legend;       ///< rich text for the legend, e.g. "t<sup>−7</sup>" (label when empty)
-  Series curve;             ///< abscissa and value; empty for a vertical line
-  double verticalAt = 0;    ///< > 0: a vertical line at this abscissa (e.g. t_max for K < 0)
-};
 
 /// Why a worker session ended.
 enum class RunEnd { finished, paused, stopped, failed };
@@ -42,14 +30,11 @@ struct RunSnapshot {
   TrappingProgress progress;
   bool hasStatistics = false;       ///< false until a segment has been recorded
   TrappingStatistics statistics;    ///< core's statistics of `state` (with errors from the subsets)
-  std::vector<TheoryCurve> theory;  ///< small-K theory where it applies
+  std::vector<TheoryCurve> theory;  ///< core's small-K theory curves for `statistics`, where they apply
   std::string kernel;               ///< the kernel that computed the last chunk
 };
 
 using RunSnapshotPtr = std::shared_ptr<const RunSnapshot>;
-
-/// The series of `statistics` shown in plot `kind`.
-[[nodiscard]] const Series& seriesOf(const TrappingStatistics& statistics, PlotKind kind);
 
 }  // namespace archipelago::ui
 

@@ -11,9 +11,9 @@
 #include <chrono>
 #include <exception>
 
-#include "TheoryOverlay.hpp"
 #include "kernels/KernelDispatch.hpp"
 #include "stats/RunStatistics.hpp"
+#include "theory/TheoryCurves.hpp"
 
 namespace archipelago::ui {
 
@@ -42,18 +42,6 @@ TrappingProgress progressOf(const TrappingState& state) {
   return p;
 }
 }  // namespace
-
-const Series& seriesOf(const TrappingStatistics& s, PlotKind kind) {
-  switch (kind) {
-    case PlotKind::f: return s.f;
-    case PlotKind::P: return s.P;
-    case PlotKind::C: return s.C;
-    case PlotKind::localExponent: return s.localExponent;
-    case PlotKind::S: return s.S;
-    case PlotKind::Dt: return s.Dt;
-  }
-  return s.f;
-}
 
 RunSnapshotPtr makeSnapshot(std::uint64_t runId, const TrappingState& state, const TrappingProgress& progress) {
   auto snapshot = std::make_shared<RunSnapshot>();

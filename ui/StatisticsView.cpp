@@ -27,17 +27,22 @@ StatisticsView::StatisticsView(QWidget* parent) : QWidget(parent) {
   layout->addWidget(summary_);
   auto* grid = new QGridLayout;
   grid->setSpacing(6);
-  // Reading order of the paper's fig. 5: f, P, C, exponent; then the spreading S and D_t.
-  const PlotKind kinds[] = {PlotKind::f, PlotKind::P, PlotKind::C, PlotKind::localExponent, PlotKind::S,
-                            PlotKind::Dt};
+  // The table's order is the paper's reading order: fig. 6 (f, P, C, exponent), then fig. 7 (S, D_t).
   int i = 0;
-  for (PlotKind kind : kinds) {
-    auto* plot = new StatisticsPlot(kind, this);
+  for (const StatisticInfo& info : statisticsTable()) {
+    if (!info.plotted) continue;
+    auto* plot = new StatisticsPlot(info.statistic, this);
     plots_.append(plot);
     grid->addWidget(plot, i / 3, i % 3);
     ++i;
   }
   layout->addLayout(grid, 1);
+}
+
+StatisticsPlot* StatisticsView::plot(Statistic statistic) const {
+  for (StatisticsPlot* p : plots_)
+    if (p->statistic() == statistic) return p;
+  return nullptr;
 }
 
 void StatisticsView::showSnapshot(const RunSnapshot& snapshot) {
@@ -49,7 +54,7 @@ void StatisticsView::showSnapshot(const RunSnapshot& snapshot) {
   clock.start();
   const TrappingStatistics& s = snapshot.statistics;
   for (StatisticsPlot* plot : std::as_const(plots_)) {
-    plot->setData(seriesOf(s, plot->kind()), snapshot.theory);
+    plot->setData(seriesOf(s, plot->statistic()), snapshot.theory);
     plot->refresh();
   }
   ++refreshes_;

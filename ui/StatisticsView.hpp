@@ -1,6 +1,7 @@
 #pragma once
 /// \file StatisticsView.hpp
-/// \brief The "Statistics" tab: the six live plots of Karney (1983) figs. 3 and 5 and a one-line summary.
+/// \brief The "Statistics" tab: a live plot of every statistic core's table marks as plotted (Karney 1983,
+/// figs. 3, 6 and 7: f_t, P_t, C_τ, the local exponent, S_t, D_t) and a one-line summary.
 ///
 /// showSnapshot() copies a snapshot's series into the plots and replots them; the main window calls it from
 /// its refresh timer, never per chunk, so the event loop stays free.
@@ -9,6 +10,7 @@
 #include <QWidget>
 
 #include "RunSnapshot.hpp"
+#include "stats/StatisticsTable.hpp"
 
 class QLabel;
 
@@ -24,7 +26,8 @@ class StatisticsView : public QWidget {
   void showSnapshot(const RunSnapshot& snapshot);
   void clear();
   [[nodiscard]] const QList<StatisticsPlot*>& plots() const noexcept { return plots_; }
-  [[nodiscard]] StatisticsPlot* plot(PlotKind kind) const { return plots_.at(static_cast<int>(kind)); }
+  /// The plot of a statistic the table marks as plotted; nullptr for any other (p_t).
+  [[nodiscard]] StatisticsPlot* plot(Statistic statistic) const;
   /// Number of times the plots were redrawn (the latency script reads it).
   [[nodiscard]] quint64 refreshCount() const noexcept { return refreshes_; }
   /// Wall time spent redrawing, summed over every refresh (the latency script reads it).

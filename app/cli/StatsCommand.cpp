@@ -3,8 +3,10 @@
 #include <cstdio>
 #include <memory>
 
+#include "export/StatisticsCsv.hpp"
 #include "runfile/RunFile.hpp"
 #include "stats/RunStatistics.hpp"
+#include "theory/TheoryCurves.hpp"
 
 namespace archipelago::cli {
 
@@ -36,8 +38,9 @@ void statsCommand(const StatsOptions& o) {
     std::printf("            %zu, %llu, %llu, %llu\n", i, static_cast<unsigned long long>(items[i].length * p.q),
                 static_cast<unsigned long long>(items[i].orbit), static_cast<unsigned long long>(items[i].start.block));
   if (!o.csvDir.empty()) {
-    writeStatisticsCsv(o.csvDir, s);
-    std::printf("wrote       %s/{f,p,P,C,local_exponent,S,D_t,summary}.csv\n", o.csvDir.c_str());
+    // The same files, byte for byte, as the GUI's "Export all" (export/StatisticsCsv.hpp).
+    for (const auto& path : writeStatisticsCsv(o.csvDir, state, s, theoryCurves(p, s)))
+      std::printf("wrote       %s\n", path.string().c_str());
   }
 }
 }  // namespace
@@ -46,7 +49,7 @@ void addStatsCommand(CLI::App& app) {
   auto o = std::make_shared<StatsOptions>();
   CLI::App* cmd = app.add_subcommand("stats", "statistics of a run file: f_t, P_t, C_tau, D, S_t, D_t with errors");
   cmd->add_option("run", o->runFile, "run file")->required();
-  cmd->add_option("--csv", o->csvDir, "write every series as CSV into this folder");
+  cmd->add_option("--csv", o->csvDir, "write every series, its small-K theory curves and a summary as CSV into this folder");
   cmd->callback([o] { statsCommand(*o); });
 }
 

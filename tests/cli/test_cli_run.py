@@ -81,12 +81,18 @@ csvdir = os.path.join(tmp, "csv")
 r = run("stats", ref, "--csv", csvdir)
 check(r.returncode == 0 and "alpha" in r.stdout and "sum t f_t" in r.stdout, f"stats prints a summary ({r.stderr.strip()})")
 names = sorted(os.listdir(csvdir)) if os.path.isdir(csvdir) else []
-check(names == sorted(["f.csv", "p.csv", "P.csv", "C.csv", "local_exponent.csv", "S.csv", "D_t.csv", "summary.csv"]),
-      f"stats --csv writes every series ({names})")
-if "C.csv" in names:
-    rows = [l.split(",") for l in open(os.path.join(csvdir, "C.csv")).read().strip().splitlines()]
-    check(rows[0] == ["tau", "C_tau", "error"] and abs(float(rows[1][1]) - 1) < 0.05,
-          f"C.csv starts at C_0 close to 1 ({rows[1]})")
+check(names == sorted(["f_t.csv", "p_t_probability.csv", "P_t.csv", "C_tau.csv", "local_exponent.csv", "S_t.csv",
+                       "D_t.csv", "summary.csv"]),
+      f"stats --csv writes every series, and no theory file for K = 0.1 ({names})")
+if "C_tau.csv" in names:
+    lines = open(os.path.join(csvdir, "C_tau.csv")).read().strip().splitlines()
+    meta = dict(l[2:].split(": ", 1) for l in lines if l.startswith("# "))
+    rows = [l.split(",") for l in lines if not l.startswith("#")]
+    check(meta.get("program", "").startswith("archipelago ") and meta.get("K") == "0.1"
+          and "A" in meta and "kernel" in meta,
+          f"C_tau.csv records the program, the parameters and the map ({sorted(meta)})")
+    check(rows[0] == ["tau", "C_tau", "C_tau_error"] and abs(float(rows[1][1]) - 1) < 0.05,
+          f"C_tau.csv starts at C_0 close to 1 ({rows[:2]})")
 
 # Every kernel the CPU supports (--kernel, or $ARCHIPELAGO_KERNEL) gives the same run file, bit for bit.
 short = ["--K", "0.1", "--q", "16", "--T", "20000", "--M", "21", "--subsets", "3", "--quiet"]
@@ -130,7 +136,7 @@ for args, mention in cases:
     check(r.returncode > 0 and len(lines) == 1 and lines[0].startswith("ERROR: ") and mention in lines[0],
           f"{' '.join(args[:3])}... -> {r.returncode}: {r.stderr.strip()}")
 for text, mention in [(good[: len(good) // 3], "truncated"), ("{}", "not an Archipelago run file"),
-                      (good.replace('"version": 1', '"version": 2', 1), "version 2 is not supported"),
+                      (good.replace('"version": 2', '"version": 3', 1), "version 3 is not supported"),
                       ("\x00\x01garbage", "corrupt")]:
     write(bad, text)
     r = run("replay", bad, "--out", csv)

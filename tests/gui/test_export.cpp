@@ -1,4 +1,4 @@
-// Exports: every plot to PNG, SVG and PDF, every curve to CSV; run files round-trip (offscreen platform).
+// Exports: every plot to PNG, SVG and PDF, every statistic to CSV; run files round-trip (offscreen platform).
 #include <QDir>
 #include <QDragEnterEvent>
 #include <QDropEvent>
@@ -6,6 +6,7 @@
 #include <QMimeData>
 #include <QUrl>
 #include <QFile>
+#include <QHash>
 #include <QImage>
 #include <QSvgRenderer>
 #include <QTemporaryDir>
@@ -17,6 +18,16 @@
 
 using archipelago::ui::MainWindow;
 using archipelago::ui::RunStatus;
+
+// The columns of each plot's CSV file, by file name (issue #11: descriptive names, never a generic "x").
+const QHash<QString, QString> kColumns = {
+    {QStringLiteral("f_t"), QStringLiteral("t,f_t,f_t_error")},
+    {QStringLiteral("P_t"), QStringLiteral("t,P_t,P_t_error")},
+    {QStringLiteral("C_tau"), QStringLiteral("tau,C_tau,C_tau_error")},
+    {QStringLiteral("local_exponent"), QStringLiteral("tau,local_exponent,local_exponent_error")},
+    {QStringLiteral("S_t"), QStringLiteral("t,S_t,S_t_error")},
+    {QStringLiteral("D_t"), QStringLiteral("t,D_t,D_t_error")},
+};
 
 class TestExport : public QObject {
   Q_OBJECT
@@ -65,27 +76,39 @@ class TestExport : public QObject {
       QVERIFY(bytes.startsWith("%PDF-"));
       QVERIFY(bytes.contains("%%EOF"));
 
+      // Numbers: core's CSV writer (the same files as `stats --csv`; tests/gui/test_csv_export.cpp compares them
+      // byte for byte): comment lines, then descriptive columns, then 17-digit rows.
       QFile csv(base + QStringLiteral(".csv"));
-      QVERIFY(csv.open(QIODevice::ReadOnly | QIODevice::Text));
-      const QStringList lines = QString::fromUtf8(csv.readAll()).split(QLatin1Char('\n'), Qt::SkipEmptyParts);
-      QCOMPARE(lines.front(), QStringLiteral("curve,x,value,error"));
+      QVERIFY2(csv.open(QIODevice::ReadOnly | QIODevice::Text), qPrintable(base));
+      QStringList lines = QString::fromUtf8(csv.readAll()).split(QLatin1Char('\n'), Qt::SkipEmptyParts);
+      QVERIFY(lines.front().startsWith(QStringLiteral("# program: archipelago ")));
+      while (!lines.isEmpty() && lines.front().startsWith(QStringLiteral("# "))) lines.removeFirst();
+      QVERIFY(!lines.isEmpty());
+      QCOMPARE(lines.front(), kColumns.value(plot->fileName()));
       int dataRows = 0;
       for (int i = 1; i < lines.size(); ++i) {
         const QStringList cells = lines.at(i).split(QLatin1Char(','));
-        QCOMPARE(cells.size(), 4);
-        if (cells.at(0) != QLatin1String("data")) continue;
-        bool okX = false, okV = false;
-        const double x = cells.at(1).toDouble(&okX);
-        const double v = cells.at(2).toDouble(&okV);
-        QVERIFY(okX && okV);
+        QCOMPARE(cells.size(), 3);
+        bool okX = false, okV = false, okE = false;
+        const double x = cells.at(0).toDouble(&okX);
+        const double v = cells.at(1).toDouble(&okV);
+        const double e = cells.at(2).toDouble(&okE);
+        QVERIFY(okX && okV && okE);
         // Numbers round-trip exactly (17 digits).
-        QCOMPARE(x, plot->data().x.at(static_cast<std::size_t>(dataRows)));
-        QCOMPARE(v, plot->data().value.at(static_cast<std::size_t>(dataRows)));
+        const auto row = static_cast<std::size_t>(dataRows);
+        QCOMPARE(x, plot->data().x.at(row));
+        QCOMPARE(v, plot->data().value.at(row));
+        QCOMPARE(e, plot->data().error.at(row));
         ++dataRows;
       }
       QCOMPARE(static_cast<std::size_t>(dataRows), plot->data().x.size());
       QVERIFY(dataRows > 0);
     }
+    // Beyond the plots: p_t (no plot of its own) and the summary.
+    for (const char* name : {"p_t_probability.csv", "summary.csv"})
+      QVERIFY2(QFileInfo::exists(QDir(folder).filePath(QLatin1String(name))), name);
+    // K = 0.1: no small-K theory (§4), so no theory file.
+    QVERIFY(QDir(folder).entryList({QStringLiteral("*.theory.csv")}).isEmpty());
   }
 
   void unknownImageFormatIsRefused() {

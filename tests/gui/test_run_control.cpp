@@ -12,11 +12,12 @@
 #include "plots/StatisticsPlot.hpp"
 #include "runfile/RunFile.hpp"
 #include "stats/RunStatistics.hpp"
+#include "stats/StatisticsTable.hpp"
 
 using archipelago::TrappingParameters;
 using archipelago::TrappingState;
 using archipelago::ui::MainWindow;
-using archipelago::ui::PlotKind;
+using archipelago::Statistic;
 using archipelago::ui::RunStatus;
 
 namespace {
@@ -69,20 +70,20 @@ class TestRunControl : public QObject {
     const auto expected = archipelago::statisticsOf(expectedState);
     QVERIFY(expected.f.x.size() > 10);
     for (archipelago::ui::StatisticsPlot* plot : window.statisticsView()->plots()) {
-      const archipelago::Series& want = archipelago::ui::seriesOf(expected, plot->kind());
+      const archipelago::Series& want = archipelago::seriesOf(expected, plot->statistic());
       const archipelago::Series& got = plot->data();
       QCOMPARE(got.x, want.x);
       QCOMPARE(got.value, want.value);
       QCOMPARE(got.error, want.error);
       // What is drawn: every point a log axis can show, and nothing else.
-      const bool logY = plot->kind() != PlotKind::localExponent;
+      const bool logY = plot->statistic() != Statistic::localExponent;
       QVector<QPointF> drawable;
       for (std::size_t i = 0; i < want.x.size(); ++i)
         if (std::isfinite(want.x[i]) && std::isfinite(want.value[i]) && want.x[i] > 0 && (!logY || want.value[i] > 0))
           drawable.append(QPointF(want.x[i], want.value[i]));
       QCOMPARE(plot->plottedPoints(), drawable);
     }
-    QVERIFY(!window.statisticsView()->plot(PlotKind::f)->plottedPoints().isEmpty());
+    QVERIFY(!window.statisticsView()->plot(Statistic::f)->plottedPoints().isEmpty());
     QVERIFY(window.statisticsView()->summaryText().contains(QStringLiteral("segments")));
   }
 
@@ -97,8 +98,8 @@ class TestRunControl : public QObject {
     QVERIFY(waitForStatus(window, RunStatus::finished));
     QTRY_VERIFY(window.statisticsView()->refreshCount() > 0);
     // t^-7 over f_t (§4); nothing over P_t; nothing at all for K = 0.1 (the first test).
-    QVERIFY(window.statisticsView()->plot(PlotKind::f)->theoryCurveCount() >= 1);
-    QCOMPARE(window.statisticsView()->plot(PlotKind::P)->theoryCurveCount(), 0);
+    QVERIFY(window.statisticsView()->plot(Statistic::f)->theoryCurveCount() >= 1);
+    QCOMPARE(window.statisticsView()->plot(Statistic::P)->theoryCurveCount(), 0);
   }
 
   void pauseResumeAndStopKeepTheExactState() {

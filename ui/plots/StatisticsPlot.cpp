@@ -6,7 +6,6 @@
 #include <QFileInfo>
 #include <QMenu>
 #include <QPen>
-#include <QTextStream>
 #include <qwt_interval_symbol.h>
 #include <qwt_plot_canvas.h>
 #include <qwt_plot_curve.h>
@@ -23,6 +22,7 @@
 #include <qwt_text.h>
 
 #include <cmath>
+#include <string_view>
 
 #include "CrosshairPicker.hpp"
 #include "LogScaleDraw.hpp"
@@ -35,33 +35,8 @@ const QColor kDataColor(31, 78, 154);
 const QColor kBandColor(31, 78, 154, 55);
 const QColor kTheoryColors[] = {QColor(214, 96, 18), QColor(160, 30, 60), QColor(40, 130, 60)};
 
-struct PlotText {
-  const char* file;
-  const char* title;      // rich text
-  const char* words;
-  const char* xTitle;
-  const char* yTitle;
-};
-
-PlotText textOf(PlotKind kind) {
-  switch (kind) {
-    case PlotKind::f:
-      return {"f", "f<sub>t</sub>", "f_t: distribution of trapping times", "t (steps)", "f<sub>t</sub>"};
-    case PlotKind::P:
-      return {"P", "P<sub>t</sub>", "P_t: probability a segment lasts longer than t", "t (steps)",
-              "P<sub>t</sub>"};
-    case PlotKind::C:
-      return {"C", "C<sub>τ</sub>", "C_tau: velocity correlation", "τ (steps)", "C<sub>τ</sub>"};
-    case PlotKind::localExponent:
-      return {"local-exponent", "−d log C<sub>τ</sub> / d log τ", "local exponent of C_tau", "τ (steps)",
-              "exponent"};
-    case PlotKind::S:
-      return {"S", "S<sub>t</sub>", "S_t: spreading", "t (steps)", "S<sub>t</sub>"};
-    case PlotKind::Dt:
-      return {"D", "D<sub>t</sub> = S<sub>t</sub>/2t", "D_t: running diffusion coefficient", "t (steps)",
-              "D<sub>t</sub>"};
-  }
-  return {"plot", "", "", "", ""};
+QString fromTable(std::string_view text) {
+  return QString::fromUtf8(text.data(), static_cast<int>(text.size()));
 }
 
 bool usable(double x, double y, bool logY) {
@@ -80,11 +55,11 @@ class Zoomer : public QwtPlotZoomer {
 };
 }  // namespace
 
-StatisticsPlot::StatisticsPlot(PlotKind kind, QWidget* parent) : QwtPlot(parent), kind_(kind) {
-  const PlotText text = textOf(kind);
-  setObjectName(QStringLiteral("plot_") + QLatin1String(text.file));
+StatisticsPlot::StatisticsPlot(Statistic statistic, QWidget* parent) : QwtPlot(parent), statistic_(statistic) {
+  const StatisticInfo& info = statisticInfo(statistic);
+  setObjectName(QStringLiteral("plot_") + fromTable(info.fileStem));
   setAutoReplot(false);
-  QwtText title(QString::fromUtf8(text.title));
+  QwtText title(fromTable(info.symbolRich), QwtText::RichText);
   QFont titleFont = font();
   titleFont.setPointSizeF(titleFont.pointSizeF() * 1.1);
   titleFont.setBold(true);
@@ -95,16 +70,18 @@ StatisticsPlot::StatisticsPlot(PlotKind kind, QWidget* parent) : QwtPlot(parent)
 
   QFont axisFont = font();
   axisFont.setPointSizeF(axisFont.pointSizeF() * 0.9);
-  QwtText xTitle(QString::fromUtf8(text.xTitle));
+  QwtText xTitle(fromTable(info.abscissaLabelRich), QwtText::RichText);
   xTitle.setFont(axisFont);
-  QwtText yTitle(QString::fromUtf8(text.yTitle));
+  QwtText yTitle(fromTable(info.valueLabelRich), QwtText::RichText);
   yTitle.setFont(axisFont);
   setAxisTitle(kAxisX, xTitle);
   setAxisTitle(kAxisY, yTitle);
   setAxisFont(kAxisX, axisFont);
   setAxisFont(kAxisY, axisFont);
-  setAxisScaleEngine(kAxisX, new QwtLogScaleEngine);
-  setAxisScaleDraw(kAxisX, new LogScaleDraw);
+  if (info.abscissaScale == AxisScale::logarithmic) {
+    setAxisScaleEngine(kAxisX, new QwtLogScaleEngine);
+    setAxisScaleDraw(kAxisX, new LogScaleDraw);
+  }
   if (logY()) {
     setAxisScaleEngine(kAxisY, new QwtLogScaleEngine);
     setAxisScaleDraw(kAxisY, new LogScaleDraw);
@@ -133,9 +110,9 @@ StatisticsPlot::StatisticsPlot(PlotKind kind, QWidget* parent) : QwtPlot(parent)
 
   auto* legend = new QwtPlotLegendItem;
   // Where the curve leaves room: f, P, C fall (top right is empty), S and D_t rise (bottom right is).
-  const Qt::Alignment corner = kind == PlotKind::S || kind == PlotKind::Dt ? Qt::AlignBottom | Qt::AlignRight
-                               : kind == PlotKind::localExponent        ? Qt::AlignTop | Qt::AlignLeft
-                                                                        : Qt::AlignTop | Qt::AlignRight;
+  const Qt::Alignment corner = statistic == Statistic::S || statistic == Statistic::Dt ? Qt::AlignBottom | Qt::AlignRight
+                               : statistic == Statistic::localExponent ? Qt::AlignTop | Qt::AlignLeft
+                                                                       : Qt::AlignTop | Qt::AlignRight;
 #if QWT_VERSION >= 0x060200
   legend->setAlignmentInCanvas(corner);
 #else
@@ -166,14 +143,21 @@ StatisticsPlot::StatisticsPlot(PlotKind kind, QWidget* parent) : QwtPlot(parent)
 
 StatisticsPlot::~StatisticsPlot() = default;
 
-QString StatisticsPlot::fileName() const { return QLatin1String(textOf(kind_).file); }
-QString StatisticsPlot::displayName() const { return QString::fromUtf8(textOf(kind_).words); }
+QString StatisticsPlot::fileName() const { return fromTable(statisticInfo(statistic_).fileStem); }
+QString StatisticsPlot::displayName() const {
+  const StatisticInfo& info = statisticInfo(statistic_);
+  return fromTable(info.symbol) + QStringLiteral(": ") + fromTable(info.description);
+}
+
+bool StatisticsPlot::logY() const noexcept {
+  return statisticInfo(statistic_).valueScale == AxisScale::logarithmic;
+}
 
 void StatisticsPlot::setData(const Series& data, const std::vector<TheoryCurve>& theory) {
   data_ = data;
   theory_.clear();
   for (const TheoryCurve& t : theory)
-    if (t.plot == kind_) theory_.push_back(t);
+    if (t.statistic == statistic_) theory_.push_back(t);
 
   const bool ly = logY();
   QVector<QPointF> points;
@@ -200,12 +184,12 @@ void StatisticsPlot::setData(const Series& data, const std::vector<TheoryCurve>&
   int colorIndex = 0;
   for (const TheoryCurve& t : theory_) {
     const QColor color = kTheoryColors[colorIndex++ % 3];
-    const QwtText legend(QString::fromStdString(t.legend.empty() ? t.label : t.legend), QwtText::RichText);
-    if (t.verticalAt > 0) {
+    const QwtText legend(QString::fromStdString(t.labelRich.empty() ? t.label : t.labelRich), QwtText::RichText);
+    if (t.kind == TheoryCurve::Kind::verticalLine) {
       auto* marker = new QwtPlotMarker(legend);
       marker->setLineStyle(QwtPlotMarker::VLine);
       marker->setLinePen(QPen(color, 1.4, Qt::DashDotLine));
-      marker->setXValue(t.verticalAt);
+      marker->setXValue(t.at);
       QwtText label(legend);
       label.setColor(color);
       marker->setLabel(label);
@@ -252,7 +236,7 @@ void StatisticsPlot::refresh() {
     setAxisAutoScale(kAxisX, true);
     // The local exponent is noisy where C_τ has few segments left (its last points reach 10 or more); the
     // paper's fig. 5d shows 0 … 2, so the default range is 0 … 3 (zoom out to see the tail).
-    if (kind_ == PlotKind::localExponent) setAxisScale(kAxisY, 0.0, 3.0);
+    if (statistic_ == Statistic::localExponent) setAxisScale(kAxisY, 0.0, 3.0);
     else setAxisAutoScale(kAxisY, true);
   }
   replot();
@@ -283,33 +267,6 @@ bool StatisticsPlot::exportImage(const QString& path, QString* error) {
   renderer.renderDocument(this, path, format, QSizeF(160, 110), 150);
   if (!QFileInfo(path).exists() || QFileInfo(path).size() == 0) {
     if (error) *error = tr("could not write %1").arg(path);
-    return false;
-  }
-  return true;
-}
-
-bool StatisticsPlot::exportCsv(const QString& path, QString* error) const {
-  QFile file(path);
-  if (!file.open(QIODevice::WriteOnly | QIODevice::Truncate | QIODevice::Text)) {
-    if (error) *error = tr("could not write %1: %2").arg(path, file.errorString());
-    return false;
-  }
-  QTextStream out(&file);
-  const auto number = [](double v) { return QString::number(v, 'g', 17); };
-  out << "curve,x,value,error\n";
-  for (std::size_t i = 0; i < data_.x.size() && i < data_.value.size(); ++i)
-    out << "data," << number(data_.x[i]) << ',' << number(data_.value[i]) << ','
-        << (i < data_.error.size() ? number(data_.error[i]) : QStringLiteral("0")) << '\n';
-  for (const TheoryCurve& t : theory_) {
-    QString name = QString::fromStdString(t.label);
-    name.replace(QLatin1Char(','), QLatin1Char(';'));
-    if (t.verticalAt > 0) out << name << ',' << number(t.verticalAt) << ",,\n";
-    for (std::size_t i = 0; i < t.curve.x.size() && i < t.curve.value.size(); ++i)
-      out << name << ',' << number(t.curve.x[i]) << ',' << number(t.curve.value[i]) << ",\n";
-  }
-  out.flush();
-  if (file.error() != QFile::NoError) {
-    if (error) *error = tr("could not write %1: %2").arg(path, file.errorString());
     return false;
   }
   return true;

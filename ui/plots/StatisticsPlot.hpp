@@ -2,6 +2,9 @@
 /// \file StatisticsPlot.hpp
 /// \brief One live statistics plot (f_t, P_t, C_τ, S_t, D_t: log-log; local exponent: log-linear).
 ///
+/// Titles, axis labels, axis scales and file names come from core's statistics table
+/// (stats/StatisticsTable.hpp); this class only adds presentation: colours, legend placement, zoom.
+///
 /// Follows Qwt's realtime examples: autoReplot is off and the owner decides when to replot (a GUI timer);
 /// setData() only copies the snapshot's series into the curves.  The plot draws the data, an error band
 /// (one sigma over the subsets of orbits, QwtPlotIntervalCurve) and the theory curves; on a log axis points
@@ -17,6 +20,7 @@
 #include <vector>
 
 #include "RunSnapshot.hpp"
+#include "stats/StatisticsTable.hpp"
 
 class QwtPlotCurve;
 class QwtPlotIntervalCurve;
@@ -28,16 +32,16 @@ namespace archipelago::ui {
 class StatisticsPlot : public QwtPlot {
   Q_OBJECT
  public:
-  explicit StatisticsPlot(PlotKind kind, QWidget* parent = nullptr);
+  explicit StatisticsPlot(Statistic statistic, QWidget* parent = nullptr);
   ~StatisticsPlot() override;
 
-  [[nodiscard]] PlotKind kind() const noexcept { return kind_; }
-  /// A file-name-safe name: "f", "P", "C", "local-exponent", "S", "D".
+  [[nodiscard]] Statistic statistic() const noexcept { return statistic_; }
+  /// The table's file stem: "f_t", "P_t", "C_tau", "local_exponent", "S_t", "D_t".
   [[nodiscard]] QString fileName() const;
-  /// The title in words, for menus ("f_t: distribution of trapping times").
+  /// The symbol and the table's words, for menus ("f_t: distribution of trapping times").
   [[nodiscard]] QString displayName() const;
 
-  /// Copies the data and theory curves of a snapshot; call refresh() to show them.
+  /// Copies the data and the theory curves that belong to this statistic; call refresh() to show them.
   void setData(const Series& data, const std::vector<TheoryCurve>& theory);
   void clearData();
   /// Replots, rescaling to the data unless the user has zoomed or panned.
@@ -50,19 +54,18 @@ class StatisticsPlot : public QwtPlot {
   [[nodiscard]] const Series& data() const noexcept { return data_; }
   [[nodiscard]] int theoryCurveCount() const noexcept { return static_cast<int>(theory_.size()); }
 
-  /// Writes the plot as PNG, SVG or PDF (chosen by the suffix) with QwtPlotRenderer.
+  /// Writes the plot as PNG, SVG or PDF (chosen by the suffix) with QwtPlotRenderer.  (Its numbers are written
+  /// by core's CSV writer: see ExportActions.hpp.)
   bool exportImage(const QString& path, QString* error = nullptr);
-  /// Writes every curve's points as CSV: curve,x,value,error (one row per point).
-  bool exportCsv(const QString& path, QString* error = nullptr) const;
 
  protected:
   void contextMenuEvent(QContextMenuEvent* event) override;
 
  private:
-  [[nodiscard]] bool logY() const noexcept { return kind_ != PlotKind::localExponent; }
+  [[nodiscard]] bool logY() const noexcept;
   [[nodiscard]] bool followingData() const;
 
-  PlotKind kind_;
+  Statistic statistic_;
   Series data_;
   std::vector<TheoryCurve> theory_;
   QwtPlotCurve* curve_ = nullptr;

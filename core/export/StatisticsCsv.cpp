@@ -1,0 +1,175 @@
+#include "export/StatisticsCsv.hpp"
+
+#include <charconv>
+#include <cstdint>
+#include <stdexcept>
+#include <system_error>
+
+#include "io/AtomicFile.hpp"
+#include "spec/RunSpecJson.hpp"
+
+namespace archipelago {
+
+namespace {
+
+/// 17 significant digits, shortest form of %g, never the locale's decimal separator.
+std::string number(double v) {
+  char buffer[64];
+  const auto r = std::to_chars(buffer, buffer + sizeof buffer, v, std::chars_format::general, 17);
+  return std::string(buffer, r.ptr);
+}
+
+std::string number(std::uint64_t v) { return std::to_string(v); }
+std::string number(std::int64_t v) { return std::to_string(v); }
+
+/// A CSV field: quoted (RFC 4180) when it holds a comma, a quote or a line break.
+std::string field(const std::string& s) {
+  if (s.find_first_of(",\"\r\n") == std::string::npos) return s;
+  std::string quoted = "\"";
+  for (const char c : s) {
+    if (c == '"') quoted += '"';
+    quoted += c;
+  }
+  return quoted + '"';
+}
+
+void line(std::string& out, std::string_view name, const std::string& value) {
+  out += "# ";
+  out += name;
+  out += ": ";
+  out += value;
+  out += '\n';
+}
+
+std::string text(std::string_view s) { return std::string(s); }
+
+void writeFile(const std::filesystem::path& path, const std::string& content) { io::writeFileAtomically(path, content); }
+
+bool hasTheory(const std::vector<TheoryCurve>& theory, Statistic s) {
+  for (const TheoryCurve& c : theory)
+    if (c.statistic == s) return true;
+  return false;
+}
+
+}  // namespace
+
+std::string csvMetadataHeader(const TrappingState& state) {
+  const TrappingParameters& p = state.params;
+  const MapCoefficients& c = state.coefficients;
+  std::string out;
+  line(out, "program", std::string("archipelago ") + ARCHIPELAGO_VERSION);
+  // The parameters as the run-spec codec writes them (spec/RunSpec.hpp): same keys, same digits.
+  const nlohmann::json parameters = spec::parametersJson(p);
+  for (const SpecParameter& field : runSpecParameters()) line(out, field.key, parameters.at(std::string(field.key)).dump());
+  line(out, "blocks_done", number(state.blocksDone));
+  line(out, "orbits", number(state.orbitBegin) + " to " + number(state.orbitEnd) + " (exclusive)");
+  line(out, "A", number(std::int64_t{c.A}));
+  line(out, "B", number(std::int64_t{c.B}));
+  line(out, "C", number(std::int64_t{c.C}));
+  line(out, "m", std::to_string(c.m));
+  line(out, "kernel", state.kernel.empty() ? std::string("unknown") : state.kernel);
+  return out;
+}
+
+std::string statisticCsvFileName(Statistic s) { return text(statisticInfo(s).fileStem) + ".csv"; }
+std::string theoryCsvFileName(Statistic s) { return text(statisticInfo(s).fileStem) + ".theory.csv"; }
+
+std::string statisticCsv(const TrappingState& state, const TrappingStatistics& statistics, Statistic s) {
+  const StatisticInfo& info = statisticInfo(s);
+  const Series& series = seriesOf(statistics, s);
+  std::string out = csvMetadataHeader(state);
+  line(out, "statistic", text(info.key) + ": " + text(info.description) +
+                             (info.figure.empty() ? std::string() : " (Karney 1983, fig. " + text(info.figure) + ")"));
+  line(out, "columns", text(info.abscissaLabel) + "; " + text(info.valueLabel) + "; " + text(info.key) + "_error");
+  line(out, "error", text(info.error));
+  out += text(info.abscissa) + ',' + text(info.key) + ',' + text(info.key) + "_error\n";
+  for (std::size_t i = 0; i < series.x.size(); ++i)
+    out += number(series.x[i]) + ',' + number(series.value[i]) + ',' + number(series.error[i]) + '\n';
+  return out;
+}
+
+std::string theoryCsv(const TrappingState& state, const std::vector<TheoryCurve>& theory, Statistic s) {
+  if (!hasTheory(theory, s)) return {};
+  const StatisticInfo& info = statisticInfo(s);
+  std::string out = csvMetadataHeader(state);
+  line(out, "theory", "small-K theory of Karney 1983, section 4, over " + text(info.key));
+  for (const TheoryCurve& c : theory) {
+    if (c.statistic != s) continue;
+    if (c.kind == TheoryCurve::Kind::verticalLine) {
+      line(out, "vertical_line", c.label + "; " + text(info.abscissa) + " = " + number(c.at));
+    } else {
+      line(out, "curve", c.label + "; amplitude " + number(c.amplitude) + " fitted over " + number(c.fitFrom) +
+                             " <= " + text(info.abscissa) + " <= " + number(c.fitTo) + " (" +
+                             std::to_string(c.fitPoints) + " points, rms log residual " + number(c.rmsLogResidual) +
+                             ")");
+    }
+  }
+  out += "curve," + text(info.abscissa) + ',' + text(info.key) + '\n';
+  for (const TheoryCurve& c : theory) {
+    if (c.statistic != s || c.kind != TheoryCurve::Kind::series) continue;
+    const std::string name = field(c.label);
+    for (std::size_t i = 0; i < c.curve.x.size(); ++i)
+      out += name + ',' + number(c.curve.x[i]) + ',' + number(c.curve.value[i]) + '\n';
+  }
+  return out;
+}
+
+std::string summaryCsv(const TrappingState& state, const TrappingStatistics& statistics) {
+  const TrappingStatistics& s = statistics;
+  std::string out = csvMetadataHeader(state);
+  line(out, "summary", "alpha: mean segment length (steps); D: diffusion coefficient (eq. ddef); "
+                       "sum_t_f_t: C_0 (close to 1); segments: recorded; longest_blocks: longest length the "
+                       "highest non-empty bin can hold (blocks of q steps)");
+  line(out, "error", "one sigma: standard error of the mean over the subsets of orbits (0: none)");
+  out += "quantity,value,error\n";
+  out += "alpha," + number(s.alpha) + ',' + number(s.alphaError) + '\n';
+  out += "D," + number(s.D) + ',' + number(s.DError) + '\n';
+  out += "sum_t_f_t," + number(s.sumTf) + ",0\n";
+  out += "segments," + number(s.segments) + ",0\n";
+  out += "longest_blocks," + number(s.longestBlocks) + ",0\n";
+  return out;
+}
+
+std::vector<CsvFile> statisticsCsvFiles(const TrappingState& state, const TrappingStatistics& statistics,
+                                        const std::vector<TheoryCurve>& theory) {
+  std::vector<CsvFile> files;
+  for (const StatisticInfo& info : statisticsTable()) {
+    files.push_back({statisticCsvFileName(info.statistic), statisticCsv(state, statistics, info.statistic)});
+    if (hasTheory(theory, info.statistic))
+      files.push_back({theoryCsvFileName(info.statistic), theoryCsv(state, theory, info.statistic)});
+  }
+  files.push_back({summaryCsvFileName, summaryCsv(state, statistics)});
+  return files;
+}
+
+std::vector<std::filesystem::path> writeStatisticsCsv(const std::filesystem::path& dir, const TrappingState& state,
+                                                      const TrappingStatistics& statistics,
+                                                      const std::vector<TheoryCurve>& theory) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw std::runtime_error("cannot create folder " + dir.string() + ": " + ec.message());
+  std::vector<std::filesystem::path> written;
+  for (const CsvFile& f : statisticsCsvFiles(state, statistics, theory)) {
+    writeFile(dir / f.name, f.text);
+    written.push_back(dir / f.name);
+  }
+  return written;
+}
+
+std::vector<std::filesystem::path> writeStatisticCsv(const std::filesystem::path& path, const TrappingState& state,
+                                                     const TrappingStatistics& statistics,
+                                                     const std::vector<TheoryCurve>& theory, Statistic s) {
+  std::vector<std::filesystem::path> written;
+  writeFile(path, statisticCsv(state, statistics, s));
+  written.push_back(path);
+  if (hasTheory(theory, s)) {
+    std::filesystem::path theoryPath = path;
+    if (theoryPath.extension() == ".csv") theoryPath.replace_extension(".theory.csv");
+    else theoryPath += ".theory.csv";
+    writeFile(theoryPath, theoryCsv(state, theory, s));
+    written.push_back(theoryPath);
+  }
+  return written;
+}
+
+}  // namespace archipelago

@@ -1,0 +1,74 @@
+#pragma once
+/// \file StatisticsCsv.hpp
+/// \brief The one CSV writer of a run's statistics and theory curves: `stats --csv`, the GUI's per-plot CSV
+/// export and its "Export all" all write through it, so the same run gives the same bytes everywhere.
+///
+/// Files (names from the statistics table, stats/StatisticsTable.hpp):
+///   <stem>.csv         one per statistic: f_t, p_t, P_t, C_tau, local_exponent, S_t, D_t
+///   <stem>.theory.csv  the small-K theory curves over that statistic (theory/TheoryCurves.hpp), only when
+///                      some apply
+///   summary.csv        α, D, Σ t f_t, segments, longest segment
+/// Format: comment lines starting with "# " (csvMetadataHeader(): program, parameters, map coefficients,
+/// kernel; then lines about the file's content), one header row of descriptive column names, then rows.
+///   <stem>.csv:         <abscissa>,<key>,<key>_error        e.g. t,f_t,f_t_error  (tau for C_τ)
+///   <stem>.theory.csv:  curve,<abscissa>,<key>              one row per sampled point of each curve; a
+///                       vertical line (t_max) is a comment line "# vertical_line: <label>; <abscissa> = <v>"
+///   summary.csv:        quantity,value,error
+/// Numbers have 17 significant digits (round-trip exact for doubles) and are formatted without the locale
+/// (std::to_chars), so a GUI running in a locale with a decimal comma writes the same bytes as the CLI.
+/// Lines end with '\n'.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "stats/StatisticsTable.hpp"
+#include "stats/TrappingStatistics.hpp"
+#include "theory/TheoryCurves.hpp"
+#include "trapping/TrappingRun.hpp"
+
+namespace archipelago {
+
+/// The comment lines ("# name: value\n") that open every CSV file of a run: program and version, the
+/// parameters (K, xmin, xmax, Xr, q, T, blocks done, M, orbit range, seed, subsets), the integer map
+/// coefficients (A, B, C, m) that define the map exactly, and the kernel that computed the state last.
+[[nodiscard]] std::string csvMetadataHeader(const TrappingState& state);
+
+/// The file name of a statistic's CSV ("f_t.csv") and of its theory curves ("f_t.theory.csv").
+[[nodiscard]] std::string statisticCsvFileName(Statistic s);
+[[nodiscard]] std::string theoryCsvFileName(Statistic s);
+inline constexpr const char* summaryCsvFileName = "summary.csv";
+
+/// The text of <stem>.csv for one statistic of `statistics` (the statistics of `state`).
+[[nodiscard]] std::string statisticCsv(const TrappingState& state, const TrappingStatistics& statistics,
+                                       Statistic s);
+/// The text of <stem>.theory.csv: the curves of `theory` that belong to `s`; empty when none does.
+[[nodiscard]] std::string theoryCsv(const TrappingState& state, const std::vector<TheoryCurve>& theory, Statistic s);
+/// The text of summary.csv.
+[[nodiscard]] std::string summaryCsv(const TrappingState& state, const TrappingStatistics& statistics);
+
+/// One file to write: its name in the folder and its content.
+struct CsvFile {
+  std::string name;
+  std::string text;
+};
+/// Every file of a run, in table order: each statistic's CSV, then its theory CSV when it has one, then
+/// summary.csv.
+[[nodiscard]] std::vector<CsvFile> statisticsCsvFiles(const TrappingState& state,
+                                                      const TrappingStatistics& statistics,
+                                                      const std::vector<TheoryCurve>& theory);
+
+/// Writes statisticsCsvFiles() into `dir` (created when missing) and returns the paths written.
+/// Throws std::runtime_error naming the file or folder on failure.
+std::vector<std::filesystem::path> writeStatisticsCsv(const std::filesystem::path& dir, const TrappingState& state,
+                                                      const TrappingStatistics& statistics,
+                                                      const std::vector<TheoryCurve>& theory);
+
+/// Writes one statistic to `path` and, when theory curves belong to it, those to the same path with the
+/// suffix ".csv" replaced by ".theory.csv" (".theory.csv" appended when the path has another suffix).
+/// The contents are those of statisticsCsvFiles().  Returns the paths written; throws std::runtime_error.
+std::vector<std::filesystem::path> writeStatisticCsv(const std::filesystem::path& path, const TrappingState& state,
+                                                     const TrappingStatistics& statistics,
+                                                     const std::vector<TheoryCurve>& theory, Statistic s);
+
+}  // namespace archipelago
