@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "CliCommon.hpp"
 #include "periodic/IslandChain.hpp"
 #include "runfile/RunFile.hpp"
 #include "trapping/TrappingRun.hpp"
@@ -22,13 +23,13 @@ struct ReplayOptions {
   bool identify = false;
 };
 
-void replayCommand(const ReplayOptions& o) {
+int replayCommand(const ReplayOptions& o) {
   const TrappingState state = loadRunFile(o.runFile);
   const auto& items = state.longest.items();
   if (o.segment >= items.size())
     throw std::invalid_argument("--segment " + std::to_string(o.segment) + " is out of range: the run file keeps " +
                                 std::to_string(items.size()) + " segments (0 is the longest)");
-  if (o.stride == 0) throw std::invalid_argument("--stride must be >= 1");
+  if (o.stride == 0) throw std::invalid_argument("--stride = 0 must be >= 1");
   const SegmentRecord& rec = items[o.segment];
   std::ofstream out(o.out);
   if (!out) throw std::runtime_error("cannot write " + o.out);
@@ -65,18 +66,19 @@ void replayCommand(const ReplayOptions& o) {
                   chain.centre->stable() ? "stable" : "unstable");
     }
   }
+  return 0;
 }
 }  // namespace
 
-void addReplayCommand(CLI::App& app) {
+void addReplayCommand(CLI::App& app, int& status) {
   auto o = std::make_shared<ReplayOptions>();
   CLI::App* cmd = app.add_subcommand("replay", "replay a recorded long segment exactly; CSV of its points");
   cmd->add_option("run", o->runFile, "run file")->required();
-  cmd->add_option("--segment", o->segment, "rank of the segment (0: the longest)")->capture_default_str();
+  addNumberOption(*cmd, "--segment", o->segment, "rank of the segment (0: the longest)");
   cmd->add_option("--out", o->out, "CSV file to write")->required();
-  cmd->add_option("--stride", o->stride, "write every stride-th step")->capture_default_str();
+  addNumberOption(*cmd, "--stride", o->stride, "write every stride-th step");
   cmd->add_flag("--identify", o->identify, "identify the island chain the segment sticks to (period, centre orbit)");
-  cmd->callback([o] { replayCommand(*o); });
+  cmd->callback([o, &status] { status = replayCommand(*o); });
 }
 
 }  // namespace archipelago::cli

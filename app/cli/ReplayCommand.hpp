@@ -3,5 +3,5 @@
 
 namespace archipelago::cli {
 /// `archipelago-cli replay`: replay one of a run file's longest segments bit for bit, as CSV.
-void addReplayCommand(CLI::App& app);
+void addReplayCommand(CLI::App& app, int& status);
 }  // namespace archipelago::cli

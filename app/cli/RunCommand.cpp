@@ -51,7 +51,7 @@ void drawProgress(const TrappingProgress& p, const std::string& kernel) {
   std::fflush(stderr);
 }
 
-void runCommand(const RunOptions& o, const std::vector<std::string>& explicitParameters) {
+int runCommand(const RunOptions& o, const std::vector<std::string>& explicitParameters) {
   TrappingState state;
   if (!o.resume.empty()) {
     if (!explicitParameters.empty())
@@ -97,7 +97,7 @@ void runCommand(const RunOptions& o, const std::vector<std::string>& explicitPar
     saveRunFile(checkpoint, state);
     std::fprintf(stderr, "interrupted: checkpoint written to %s (resume with --resume %s)\n", checkpoint.c_str(),
                  checkpoint.c_str());
-    std::exit(130);
+    return 130;  // 128 + SIGINT, as a shell reports a process stopped by Ctrl-C
   }
   saveRunFile(o.out, state);
   if (!o.quiet) {
@@ -108,35 +108,36 @@ void runCommand(const RunOptions& o, const std::vector<std::string>& explicitPar
                  static_cast<unsigned long long>(longest * state.params.q), state.stepsDone(),
                  state.elapsedSeconds, state.kernel.c_str(), o.out.c_str());
   }
+  return 0;
 }
 
 }  // namespace
 
-void addRunCommand(CLI::App& app) {
+void addRunCommand(CLI::App& app, int& status) {
   auto o = std::make_shared<RunOptions>();
   CLI::App* cmd = app.add_subcommand("run", "trapping statistics: M orbits x T blocks of N^-q (paper section 3)");
   addMapOptions(*cmd, o->params.map);
-  cmd->add_option("--Xr", o->params.Xr, "randomizing zone 0 <= X <= Xr (unit coordinates)")->capture_default_str();
-  cmd->add_option("--q", o->params.q, "steps of N^-1 per block")->capture_default_str();
-  cmd->add_option("--T", o->params.T, "blocks per orbit")->capture_default_str();
-  cmd->add_option("--M", o->params.M, "number of orbits")->capture_default_str();
-  cmd->add_option("--seed", o->params.seed, "random seed")->capture_default_str();
-  cmd->add_option("--subsets", o->params.subsets, "orbit subsets for error estimates")->capture_default_str();
-  cmd->add_option("--longest", o->params.longestKept, "longest segments kept for replay")->capture_default_str();
-  cmd->add_option("--threads", o->threads, "OpenMP threads (0: all cores)")->capture_default_str();
+  addNumberOption(*cmd, "--Xr", o->params.Xr, "randomizing zone 0 <= X <= Xr (unit coordinates)");
+  addNumberOption(*cmd, "--q", o->params.q, "steps of N^-1 per block");
+  addNumberOption(*cmd, "--T", o->params.T, "blocks per orbit");
+  addNumberOption(*cmd, "--M", o->params.M, "number of orbits");
+  addNumberOption(*cmd, "--seed", o->params.seed, "random seed");
+  addNumberOption(*cmd, "--subsets", o->params.subsets, "orbit subsets for error estimates");
+  addNumberOption(*cmd, "--longest", o->params.longestKept, "longest segments kept for replay");
+  addNumberOption(*cmd, "--threads", o->threads, "OpenMP threads (0: all cores)");
   cmd->add_option("--out", o->out, "run file written at the end")->capture_default_str();
   cmd->add_option("--checkpoint", o->checkpoint, "checkpoint file (default: the --out file)");
-  cmd->add_option("--checkpoint-interval", o->checkpointSeconds, "seconds between checkpoints")->capture_default_str();
+  addNumberOption(*cmd, "--checkpoint-interval", o->checkpointSeconds, "seconds between checkpoints");
   cmd->add_option("--resume", o->resume, "continue the run in this checkpoint or run file");
-  cmd->add_option("--max-chunk", o->maxChunkBlocks, "at most this many blocks between progress reports (0: adaptive)");
+  addNumberOption(*cmd, "--max-chunk", o->maxChunkBlocks, "at most this many blocks between progress reports (0: adaptive)");
   cmd->add_option("--kernel", o->kernel,
                   "instruction-set path: auto, " + supportedKernelNames() + " (default: $ARCHIPELAGO_KERNEL or auto)");
   cmd->add_flag("--quiet", o->quiet, "no progress bar or summary");
-  cmd->callback([o, cmd] {
+  cmd->callback([o, cmd, &status] {
     std::vector<std::string> given;
     for (const char* name : {"--K", "--xmin", "--xmax", "--Xr", "--q", "--T", "--M", "--seed", "--subsets", "--longest"})
       if (cmd->count(name) > 0) given.emplace_back(name);
-    runCommand(*o, given);
+    status = runCommand(*o, given);
   });
 }
 

@@ -14,7 +14,7 @@ struct StatsOptions {
   std::string csvDir;
 };
 
-void statsCommand(const StatsOptions& o) {
+int statsCommand(const StatsOptions& o) {
   const TrappingState state = loadRunFile(o.runFile);
   const TrappingStatistics s = statisticsOf(state);
   const TrappingParameters& p = state.params;
@@ -39,15 +39,16 @@ void statsCommand(const StatsOptions& o) {
     writeStatisticsCsv(o.csvDir, s);
     std::printf("wrote       %s/{f,p,P,C,local_exponent,S,D_t,summary}.csv\n", o.csvDir.c_str());
   }
+  return 0;
 }
 }  // namespace
 
-void addStatsCommand(CLI::App& app) {
+void addStatsCommand(CLI::App& app, int& status) {
   auto o = std::make_shared<StatsOptions>();
   CLI::App* cmd = app.add_subcommand("stats", "statistics of a run file: f_t, P_t, C_tau, D, S_t, D_t with errors");
   cmd->add_option("run", o->runFile, "run file")->required();
   cmd->add_option("--csv", o->csvDir, "write every series as CSV into this folder");
-  cmd->callback([o] { statsCommand(*o); });
+  cmd->callback([o, &status] { status = statsCommand(*o); });
 }
 
 }  // namespace archipelago::cli

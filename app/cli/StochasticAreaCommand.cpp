@@ -18,7 +18,7 @@ struct AreaOptions {
   std::string json;
 };
 
-void runArea(const AreaOptions& o) {
+int runArea(const AreaOptions& o) {
   if (auto e = validationError(o.request)) throw std::invalid_argument(*e);
   std::printf("iterations,boxes_visited,b2\n");
   const StochasticAreaResult result = computeStochasticArea(o.request, [](const StochasticAreaPoint& p) {
@@ -31,20 +31,21 @@ void runArea(const AreaOptions& o) {
     out << stochasticAreaJson(o.request, result) << '\n';
     if (!out) throw std::runtime_error("cannot write '" + o.json + "'");
   }
+  return 0;
 }
 }  // namespace
 
-void addStochasticAreaCommand(CLI::App& app) {
+void addStochasticAreaCommand(CLI::App& app, int& status) {
   auto a = std::make_shared<AreaOptions>();
   CLI::App* area = app.add_subcommand("stochastic-area", "b2: fraction of 1024x1024 boxes visited by the sea (sec. 5); CSV");
   addMapOptions(*area, a->request.map);
-  area->add_option("--iterations", a->request.iterations, "total steps of N^-1")->capture_default_str();
-  area->add_option("--orbits", a->request.orbits, "orbits in parallel")->capture_default_str();
-  area->add_option("--Xr", a->request.Xr, "randomizing zone")->capture_default_str();
-  area->add_option("--q", a->request.q, "steps per block")->capture_default_str();
-  area->add_option("--seed", a->request.seed, "random seed")->capture_default_str();
+  addNumberOption(*area, "--iterations", a->request.iterations, "total steps of N^-1");
+  addNumberOption(*area, "--orbits", a->request.orbits, "orbits in parallel");
+  addNumberOption(*area, "--Xr", a->request.Xr, "randomizing zone");
+  addNumberOption(*area, "--q", a->request.q, "steps per block");
+  addNumberOption(*area, "--seed", a->request.seed, "random seed");
   area->add_option("--json", a->json, "also write the convergence curve as JSON");
-  area->callback([a] { runArea(*a); });
+  area->callback([a, &status] { status = runArea(*a); });
 }
 
 }  // namespace archipelago::cli
