@@ -1,9 +1,7 @@
 #include "PeriodicCommand.hpp"
 
-#include <cmath>
 #include <cstdio>
 #include <memory>
-#include <numeric>
 #include <stdexcept>
 #include <string>
 
@@ -37,21 +35,14 @@ int runPeriodic(const PeriodicOptions& o) {
   const long double K = o.map.K;
   const PeriodicOrbit orbit = findPeriodicOrbit(K, search);  // throws with a one-line reason
 
-  const long turns = orbit.windingTurns;
-  const long divisor = std::gcd(turns, static_cast<long>(orbit.period));
+  const OrbitClassification kind = orbit.classification();
   std::printf("# periodic orbit of Q (eq. qu), K = %.17g\n", o.map.K);
   std::printf("# period: %d\n", orbit.period);
   std::printf("# residue: %.18Lg\n", orbit.residue);
   std::printf("# trace: %.18Lg\n", orbit.trace);
-  std::printf("# stable: %s\n", orbit.stable() ? "yes (elliptic, 0 < R < 1)"
-                                               : (orbit.residue < 0 ? "no (hyperbolic, R < 0)"
-                                                                    : "no (hyperbolic with reflection, R >= 1)"));
-  if (orbit.period == 1 && turns == 0 && !std::isnan(orbit.rotationNumber))
-    std::printf("# rotation_number: %.18Lg (linear, at the central fixed point)\n", orbit.rotationNumber);
-  else
-    std::printf("# rotation_number: %.18Lg = %ld/%d = %ld/%ld (clockwise turns about (-sqrt K, 0) per step)\n",
-                orbit.rotationNumber, turns, orbit.period, divisor != 0 ? turns / divisor : turns,
-                divisor != 0 ? orbit.period / divisor : static_cast<long>(orbit.period));
+  std::printf("# class: %s\n", toString(kind.stability));
+  std::printf("# stable: %s (%s)\n", kind.stable() ? "yes" : "no", kind.description());
+  std::printf("# rotation_number: %s\n", rotationNumberText(orbit, 18).c_str());
   std::printf("# symmetry: %s\n", toString(orbit.symmetry));
   std::printf("# closure: %.3Lg\n", orbit.closure);
   std::printf("# inside_box: %s\n", orbit.insideBox(o.map) ? "yes (also an orbit of Q*)" : "no (Q* differs from Q there)");

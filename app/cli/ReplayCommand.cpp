@@ -1,14 +1,12 @@
 #include "ReplayCommand.hpp"
 
 #include <cstdio>
-#include <fstream>
 #include <memory>
 #include <stdexcept>
 #include <string>
-#include <vector>
 
 #include "CliCommon.hpp"
-#include "periodic/IslandChain.hpp"
+#include "periodic/SegmentAnalysis.hpp"
 #include "runfile/RunFile.hpp"
 #include "trapping/TrappingRun.hpp"
 
@@ -31,39 +29,27 @@ int replayCommand(const ReplayOptions& o) {
                                 std::to_string(items.size()) + " segments (0 is the longest)");
   if (o.stride == 0) throw std::invalid_argument("--stride = 0 must be >= 1");
   const SegmentRecord& rec = items[o.segment];
-  std::ofstream out(o.out);
-  if (!out) throw std::runtime_error("cannot write " + o.out);
-  const FixedPointMap map(state.params.map);
-  out << "step,x,y,X,Y\n";
-  out.precision(17);
-  const std::uint64_t lastStep = rec.length * state.params.q;
-  std::vector<PhysicalPoint> points;  // for --identify: every step, in physical coordinates
-  constexpr std::uint64_t kMaxIdentifyPoints = 20'000'000;
-  const std::uint64_t length = replaySegment(state.params, rec, [&](std::uint64_t step, const UnitState& z) {
-    const PhysicalPoint p = map.toPhysical(z);
-    if (o.identify && step < kMaxIdentifyPoints) points.push_back(p);
-    if (step % o.stride != 0 && step != lastStep) return;
-    out << step << ',' << static_cast<double>(p.x) << ',' << static_cast<double>(p.y) << ',' << z.X << ',' << z.Y
-        << '\n';
-  });
-  out.close();
-  if (!out) throw std::runtime_error("cannot write " + o.out);
+  const std::uint64_t length = writeSegmentCsv(o.out, state.params, rec, o.stride);  // streamed
   if (length != rec.length)
     throw std::runtime_error("replay mismatch: the segment ended after " + std::to_string(length) +
                              " blocks, the run recorded " + std::to_string(rec.length));
   std::fprintf(stderr, "segment %zu: orbit %llu, %llu blocks (%llu steps), replayed bit for bit to %s\n", o.segment,
                static_cast<unsigned long long>(rec.orbit), static_cast<unsigned long long>(rec.length),
-               static_cast<unsigned long long>(lastStep), o.out.c_str());
+               static_cast<unsigned long long>(rec.length * state.params.q), o.out.c_str());
   if (o.identify) {
-    // The segment iterates N⁻¹ (time reversed); the chain it sticks to is the same for Q.
-    const IslandChain chain = identifyIslandChain(state.params.map.K, points);
+    // The GUI's path (long-segment table): the first kChainIdentificationPoints consecutive points at most.  The
+    // segment iterates N⁻¹ (time reversed); the chain it sticks to is the same for Q.
+    const SegmentChain found = *identifySegmentChain(state.params, rec);
+    const IslandChain& chain = found.chain;
     std::printf("# chain_period: %d\n# hierarchy:", chain.period);
     for (int level : chain.hierarchy) std::printf(" %d", level);
     std::printf("\n# member: %.12Lg,%.12Lg\n", chain.member.x, chain.member.y);
+    std::printf("# points_used: %llu (the first consecutive points of the segment)\n",
+                static_cast<unsigned long long>(found.points));
     if (chain.centre) {
       std::printf("# centre_orbit: period %d at %.12Lg,%.12Lg, residue %.9Lg (%s)\n", chain.centre->period,
                   chain.centre->points.front().x, chain.centre->points.front().y, chain.centre->residue,
-                  chain.centre->stable() ? "stable" : "unstable");
+                  chain.centre->classification().description());
     }
   }
   return 0;
