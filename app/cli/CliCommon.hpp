@@ -35,8 +35,11 @@ namespace archipelago::cli {
 template <class T>
 [[nodiscard]] std::optional<T> toNumber(std::string_view text) {
   static_assert(std::is_arithmetic_v<T> && !std::is_same_v<T, bool>);
-  if (!text.empty() && text.front() == '+') text.remove_prefix(1);  // from_chars and strtod differ on '+'
-  if (text.empty() || text.front() == '+' || std::isspace(static_cast<unsigned char>(text.front()))) return {};
+  const bool plus = !text.empty() && text.front() == '+';  // from_chars and strtod differ on '+'
+  if (plus) text.remove_prefix(1);
+  if (text.empty() || text.front() == '+' || (plus && text.front() == '-') ||
+      std::isspace(static_cast<unsigned char>(text.front())))
+    return {};
   if constexpr (std::is_integral_v<T>) {
     T value{};
     const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value, 10);

@@ -26,6 +26,8 @@ cases = [
     (["orbit", "--K", "inf", "--x", "0", "--y", "0"], "--K = inf must be a finite number"),
     (["orbit", "--K", "1e999", "--x", "0", "--y", "0"], "--K = 1e999 must be a finite number"),
     (["orbit", "--x", "0.1x", "--y", "0"], "--x = 0.1x must be a finite number"),
+    (["orbit", "--x", "+-1", "--y", "0"], "--x = +-1 must be a finite number"),
+    (["orbit", "--x", "0", "--y", "0", "--steps", "1 "], f"--steps = 1  must be an integer in {U64}"),
     (["periodic", "--period", "1", "--near", "0,0", "--radius", "nan"], "--radius = nan must be a finite number"),
     (["run", "--checkpoint-interval", "", "--out", out], "--checkpoint-interval =  must be a finite number"),
     # Lists go through the same parser.
