@@ -3,9 +3,9 @@
 namespace archipelago::cli {
 
 void addMapOptions(CLI::App& command, MapParameters& params) {
-  command.add_option("--K", params.K, "map parameter K of Q (eq. qu)")->capture_default_str();
-  command.add_option("--xmin", params.xmin, "left edge of the box; must be < -sqrt(K)")->capture_default_str();
-  command.add_option("--xmax", params.xmax, "right edge of the box; must be > xmin")->capture_default_str();
+  addNumberOption(command, "--K", params.K, "map parameter K of Q (eq. qu)");
+  addNumberOption(command, "--xmin", params.xmin, "left edge of the box; must be < -sqrt(K)");
+  addNumberOption(command, "--xmax", params.xmax, "right edge of the box; must be > xmin");
 }
 
 }  // namespace archipelago::cli

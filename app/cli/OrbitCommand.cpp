@@ -17,7 +17,7 @@ struct OrbitOptions {
   bool backward = false;
 };
 
-void runOrbit(const OrbitOptions& o) {
+int runOrbit(const OrbitOptions& o) {
   const FixedPointMap map(o.map);  // throws std::invalid_argument with the rule that failed
   UnitState z = map.toUnit(o.x, o.y);
   std::printf("step,x,y,X,Y,wrapped\n");
@@ -31,18 +31,19 @@ void runOrbit(const OrbitOptions& o) {
     const bool wrapped = o.backward ? map.backward(z) : map.forward(z);
     print(i, wrapped);
   }
+  return 0;
 }
 }  // namespace
 
-void addOrbitCommand(CLI::App& app) {
+void addOrbitCommand(CLI::App& app, int& status) {
   auto options = std::make_shared<OrbitOptions>();
   CLI::App* cmd = app.add_subcommand("orbit", "iterate the exact map N (or N^-1) from a point; CSV on stdout");
   addMapOptions(*cmd, options->map);
-  cmd->add_option("--x", options->x, "initial x (physical)")->required();
-  cmd->add_option("--y", options->y, "initial y (physical)")->required();
-  cmd->add_option("--steps", options->steps, "number of steps")->capture_default_str();
+  addNumberOption(*cmd, "--x", options->x, "initial x (physical)")->required();
+  addNumberOption(*cmd, "--y", options->y, "initial y (physical)")->required();
+  addNumberOption(*cmd, "--steps", options->steps, "number of steps");
   cmd->add_flag("--backward", options->backward, "iterate N^-1 instead of N");
-  cmd->callback([options] { runOrbit(*options); });
+  cmd->callback([options, &status] { status = runOrbit(*options); });
 }
 
 }  // namespace archipelago::cli

@@ -3,5 +3,6 @@
 
 namespace archipelago::cli {
 /// `archipelago-cli orbit`: iterate N or N⁻¹ from a physical point and print the orbit as CSV.
-void addOrbitCommand(CLI::App& app);
+/// The command's exit status goes to `status`.
+void addOrbitCommand(CLI::App& app, int& status);
 }  // namespace archipelago::cli

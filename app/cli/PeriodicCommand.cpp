@@ -1,11 +1,7 @@
 #include "PeriodicCommand.hpp"
 
-#include <cerrno>
-#include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <memory>
-#include <numeric>
 #include <stdexcept>
 #include <string>
 
@@ -23,25 +19,13 @@ struct PeriodicOptions {
   bool stableOnly = false;
 };
 
-long double parseNumber(const std::string& text, const std::string& whole) {
-  const char* begin = text.c_str();
-  char* end = nullptr;
-  errno = 0;
-  const long double v = std::strtold(begin, &end);
-  if (text.empty() || end != begin + text.size() || errno == ERANGE || !std::isfinite(v))
-    throw std::invalid_argument("--near '" + whole + "' must be two finite numbers x,y");
-  return v;
-}
-
 /// "x,y" → the point; the one-line error names the option.
 PhysicalPoint parsePoint(const std::string& text) {
-  const std::size_t comma = text.find(',');
-  if (comma == std::string::npos || text.find(',', comma + 1) != std::string::npos)
-    throw std::invalid_argument("--near '" + text + "' must be two finite numbers x,y");
-  return {parseNumber(text.substr(0, comma), text), parseNumber(text.substr(comma + 1), text)};
+  const auto v = parseNumbers<long double>("--near", text, ',', 2, "two finite numbers x,y");
+  return {v[0], v[1]};
 }
 
-void runPeriodic(const PeriodicOptions& o) {
+int runPeriodic(const PeriodicOptions& o) {
   validate(o.map);  // the box of Q*: Q* = Q inside it (appendix B rules)
   PeriodicOrbitSearch search;
   search.period = o.period;
@@ -51,43 +35,36 @@ void runPeriodic(const PeriodicOptions& o) {
   const long double K = o.map.K;
   const PeriodicOrbit orbit = findPeriodicOrbit(K, search);  // throws with a one-line reason
 
-  const long turns = orbit.windingTurns;
-  const long divisor = std::gcd(turns, static_cast<long>(orbit.period));
+  const OrbitClassification kind = orbit.classification();
   std::printf("# periodic orbit of Q (eq. qu), K = %.17g\n", o.map.K);
   std::printf("# period: %d\n", orbit.period);
   std::printf("# residue: %.18Lg\n", orbit.residue);
   std::printf("# trace: %.18Lg\n", orbit.trace);
-  std::printf("# stable: %s\n", orbit.stable() ? "yes (elliptic, 0 < R < 1)"
-                                               : (orbit.residue < 0 ? "no (hyperbolic, R < 0)"
-                                                                    : "no (hyperbolic with reflection, R >= 1)"));
-  if (orbit.period == 1 && turns == 0 && !std::isnan(orbit.rotationNumber))
-    std::printf("# rotation_number: %.18Lg (linear, at the central fixed point)\n", orbit.rotationNumber);
-  else
-    std::printf("# rotation_number: %.18Lg = %ld/%d = %ld/%ld (clockwise turns about (-sqrt K, 0) per step)\n",
-                orbit.rotationNumber, turns, orbit.period, divisor != 0 ? turns / divisor : turns,
-                divisor != 0 ? orbit.period / divisor : static_cast<long>(orbit.period));
+  std::printf("# class: %s\n", toString(kind.stability));
+  std::printf("# stable: %s (%s)\n", kind.stable() ? "yes" : "no", kind.description());
+  std::printf("# rotation_number: %s\n", rotationNumberText(orbit, 18).c_str());
   std::printf("# symmetry: %s\n", toString(orbit.symmetry));
   std::printf("# closure: %.3Lg\n", orbit.closure);
   std::printf("# inside_box: %s\n", orbit.insideBox(o.map) ? "yes (also an orbit of Q*)" : "no (Q* differs from Q there)");
   std::printf("k,x,y\n");
   for (std::size_t k = 0; k < orbit.points.size(); ++k)
     std::printf("%zu,%.21Lg,%.21Lg\n", k, orbit.points[k].x, orbit.points[k].y);
+  return 0;
 }
 }  // namespace
 
-void addPeriodicCommand(CLI::App& app) {
+void addPeriodicCommand(CLI::App& app, int& status) {
   auto options = std::make_shared<PeriodicOptions>();
   CLI::App* cmd = app.add_subcommand(
       "periodic", "find a periodic orbit of Q near a point (Newton in quad precision); residue, stability, rotation "
                   "number and points (CSV after '#' header lines) on stdout");
   addMapOptions(*cmd, options->map);
-  cmd->add_option("--period", options->period, "the period n >= 1")->required();
+  addNumberOption(*cmd, "--period", options->period, "the period n >= 1")->required();
   cmd->add_option("--near", options->near, "x,y: a guess for one point of the orbit (use --near=-0.3,0 for x < 0)")
       ->required();
-  cmd->add_option("--radius", options->radius, "how far (physical units) from the guess's iterates to search")
-      ->capture_default_str();
+  addNumberOption(*cmd, "--radius", options->radius, "how far (physical units) from the guess's iterates to search");
   cmd->add_flag("--stable", options->stableOnly, "only elliptic orbits (0 < R < 1)");
-  cmd->callback([options] { runPeriodic(*options); });
+  cmd->callback([options, &status] { status = runPeriodic(*options); });
 }
 
 }  // namespace archipelago::cli

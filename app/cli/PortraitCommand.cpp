@@ -2,9 +2,7 @@
 
 #include <chrono>
 #include <cstdio>
-#include <fstream>
 #include <memory>
-#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -14,7 +12,6 @@
 #include "portrait/ColourMap.hpp"
 #include "portrait/PortraitExport.hpp"
 #include "portrait/PortraitRenderer.hpp"
-#include "portrait/StochasticArea.hpp"
 
 namespace archipelago::cli {
 
@@ -36,47 +33,21 @@ struct PortraitOptions {
   bool quiet = false;
 };
 
-long double parseNumber(const std::string& text, const char* what) {
-  std::size_t used = 0;
-  long double v = 0;
-  try {
-    v = std::stold(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != text.size())
-    throw std::invalid_argument(std::string(what) + ": '" + text + "' is not a number");
-  return v;
-}
-
-std::vector<std::string> split(const std::string& text, char separator) {
-  std::vector<std::string> parts;
-  std::stringstream s(text);
-  for (std::string part; std::getline(s, part, separator);) parts.push_back(part);
-  if (!text.empty() && text.back() == separator) parts.emplace_back();
-  return parts;
-}
-
 PhysicalRect parseView(const std::string& text) {
-  const auto parts = split(text, ',');
-  if (parts.size() != 4)
-    throw std::invalid_argument("--view '" + text + "' must be four numbers x0,x1,y0,y1 (physical coordinates)");
-  return {parseNumber(parts[0], "--view x0"), parseNumber(parts[1], "--view x1"), parseNumber(parts[2], "--view y0"),
-          parseNumber(parts[3], "--view y1")};
+  const auto v = parseNumbers<long double>("--view", text, ',', 4, "four finite numbers x0,x1,y0,y1 (physical coordinates)");
+  return {v[0], v[1], v[2], v[3]};
 }
 
-std::pair<int, int> parseSize(const std::string& text, const char* option, int limit) {
-  const auto parts = split(text, 'x');
-  if (parts.size() == 2) {
-    const long double w = parseNumber(parts[0], option), h = parseNumber(parts[1], option);
-    if (w >= 1 && h >= 1 && w <= limit && h <= limit && w == static_cast<int>(w) && h == static_cast<int>(h))
-      return {static_cast<int>(w), static_cast<int>(h)};
-  }
-  throw std::invalid_argument(std::string(option) + " '" + text + "' must be WxH with whole numbers 1 ... " +
-                              std::to_string(limit));
+/// "WxH" with whole numbers 1 … limit.
+std::pair<int, int> parseSize(const std::string& text, const std::string& option, int limit) {
+  const std::string rule = "WxH with whole numbers 1 ... " + std::to_string(limit);
+  const auto v = parseNumbers<int>(option, text, 'x', 2, rule);
+  if (v[0] < 1 || v[1] < 1 || v[0] > limit || v[1] > limit)
+    throw std::invalid_argument(option + " '" + text + "' must be " + rule);
+  return {v[0], v[1]};
 }
 
-void runPortrait(const PortraitOptions& o) {
+int runPortrait(const PortraitOptions& o) {
   validate(o.map);
   PortraitRequest req;
   req.map = o.map;
@@ -118,30 +89,12 @@ void runPortrait(const PortraitOptions& o) {
               static_cast<unsigned long long>(raster.pointsIterated),
               static_cast<unsigned long long>(raster.pointsBinned), raster.nonEmptyPixels(), seconds,
               static_cast<double>(raster.pointsIterated) / seconds);
+  return 0;
 }
 
-struct AreaOptions {
-  StochasticAreaRequest request;
-  std::string json;
-};
-
-void runArea(const AreaOptions& o) {
-  if (auto e = validationError(o.request)) throw std::invalid_argument(*e);
-  std::printf("iterations,boxes_visited,b2\n");
-  const StochasticAreaResult result = computeStochasticArea(o.request, [](const StochasticAreaPoint& p) {
-    std::printf("%llu,%llu,%.6f\n", static_cast<unsigned long long>(p.iterations),
-                static_cast<unsigned long long>(p.boxesVisited), p.b2);
-    std::fflush(stdout);
-  });
-  if (!o.json.empty()) {
-    std::ofstream out(o.json);
-    out << stochasticAreaJson(o.request, result) << '\n';
-    if (!out) throw std::runtime_error("cannot write '" + o.json + "'");
-  }
-}
 }  // namespace
 
-void addPortraitCommand(CLI::App& app) {
+void addPortraitCommand(CLI::App& app, int& status) {
   auto o = std::make_shared<PortraitOptions>();
   CLI::App* cmd = app.add_subcommand("portrait", "render a phase portrait of Q* (exact map) to PNG and/or .npy");
   addMapOptions(*cmd, o->map);
@@ -150,26 +103,15 @@ void addPortraitCommand(CLI::App& app) {
   cmd->add_option("--mode", o->mode, "density | orbits | stickiness")->capture_default_str();
   cmd->add_option("--out", o->out, "PNG file to write");
   cmd->add_option("--npy", o->npy, "NumPy .npy file to write (plus a .json sidecar)");
-  cmd->add_option("--points", o->points, "map steps in all")->capture_default_str();
-  cmd->add_option("--orbits", o->orbits, "orbits in parallel (density, stickiness)")->capture_default_str();
+  addNumberOption(*cmd, "--points", o->points, "map steps in all");
+  addNumberOption(*cmd, "--orbits", o->orbits, "orbits in parallel (density, stickiness)");
   cmd->add_option("--seeds", o->seeds, "seed grid CxR inside the view (orbits mode)")->capture_default_str();
   cmd->add_option("--colormap", o->colourMap, "inferno | viridis | grey")->capture_default_str();
-  cmd->add_option("--Xr", o->Xr, "randomizing zone (stickiness)")->capture_default_str();
-  cmd->add_option("--q", o->q, "steps of N^-1 per block (stickiness)")->capture_default_str();
-  cmd->add_option("--seed", o->seed, "random seed")->capture_default_str();
+  addNumberOption(*cmd, "--Xr", o->Xr, "randomizing zone (stickiness)");
+  addNumberOption(*cmd, "--q", o->q, "steps of N^-1 per block (stickiness)");
+  addNumberOption(*cmd, "--seed", o->seed, "random seed");
   cmd->add_flag("--quiet", o->quiet, "no progress on stderr");
-  cmd->callback([o] { runPortrait(*o); });
-
-  auto a = std::make_shared<AreaOptions>();
-  CLI::App* area = app.add_subcommand("stochastic-area", "b2: fraction of 1024x1024 boxes visited by the sea (sec. 5); CSV");
-  addMapOptions(*area, a->request.map);
-  area->add_option("--iterations", a->request.iterations, "total steps of N^-1")->capture_default_str();
-  area->add_option("--orbits", a->request.orbits, "orbits in parallel")->capture_default_str();
-  area->add_option("--Xr", a->request.Xr, "randomizing zone")->capture_default_str();
-  area->add_option("--q", a->request.q, "steps per block")->capture_default_str();
-  area->add_option("--seed", a->request.seed, "random seed")->capture_default_str();
-  area->add_option("--json", a->json, "also write the convergence curve as JSON");
-  area->callback([a] { runArea(*a); });
+  cmd->callback([o, &status] { status = runPortrait(*o); });
 }
 
 }  // namespace archipelago::cli

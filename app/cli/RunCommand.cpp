@@ -6,13 +6,11 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
-#include <fstream>
 #include <memory>
 #include <stdexcept>
 
 #include "CliCommon.hpp"
 #include "kernels/KernelDispatch.hpp"
-#include "periodic/IslandChain.hpp"
 #include "runfile/RunFile.hpp"
 #include "trapping/TrappingRun.hpp"
 
@@ -53,7 +51,7 @@ void drawProgress(const TrappingProgress& p, const std::string& kernel) {
   std::fflush(stderr);
 }
 
-void runCommand(const RunOptions& o, const std::vector<std::string>& explicitParameters) {
+int runCommand(const RunOptions& o, const std::vector<std::string>& explicitParameters) {
   TrappingState state;
   if (!o.resume.empty()) {
     if (!explicitParameters.empty())
@@ -99,7 +97,7 @@ void runCommand(const RunOptions& o, const std::vector<std::string>& explicitPar
     saveRunFile(checkpoint, state);
     std::fprintf(stderr, "interrupted: checkpoint written to %s (resume with --resume %s)\n", checkpoint.c_str(),
                  checkpoint.c_str());
-    std::exit(130);
+    return 130;  // 128 + SIGINT, as a shell reports a process stopped by Ctrl-C
   }
   saveRunFile(o.out, state);
   if (!o.quiet) {
@@ -110,102 +108,37 @@ void runCommand(const RunOptions& o, const std::vector<std::string>& explicitPar
                  static_cast<unsigned long long>(longest * state.params.q), state.stepsDone(),
                  state.elapsedSeconds, state.kernel.c_str(), o.out.c_str());
   }
+  return 0;
 }
 
 }  // namespace
 
-void addRunCommand(CLI::App& app) {
+void addRunCommand(CLI::App& app, int& status) {
   auto o = std::make_shared<RunOptions>();
   CLI::App* cmd = app.add_subcommand("run", "trapping statistics: M orbits x T blocks of N^-q (paper section 3)");
   addMapOptions(*cmd, o->params.map);
-  cmd->add_option("--Xr", o->params.Xr, "randomizing zone 0 <= X <= Xr (unit coordinates)")->capture_default_str();
-  cmd->add_option("--q", o->params.q, "steps of N^-1 per block")->capture_default_str();
-  cmd->add_option("--T", o->params.T, "blocks per orbit")->capture_default_str();
-  cmd->add_option("--M", o->params.M, "number of orbits")->capture_default_str();
-  cmd->add_option("--seed", o->params.seed, "random seed")->capture_default_str();
-  cmd->add_option("--subsets", o->params.subsets, "orbit subsets for error estimates")->capture_default_str();
-  cmd->add_option("--longest", o->params.longestKept, "longest segments kept for replay")->capture_default_str();
-  cmd->add_option("--threads", o->threads, "OpenMP threads (0: all cores)")->capture_default_str();
+  addNumberOption(*cmd, "--Xr", o->params.Xr, "randomizing zone 0 <= X <= Xr (unit coordinates)");
+  addNumberOption(*cmd, "--q", o->params.q, "steps of N^-1 per block");
+  addNumberOption(*cmd, "--T", o->params.T, "blocks per orbit");
+  addNumberOption(*cmd, "--M", o->params.M, "number of orbits");
+  addNumberOption(*cmd, "--seed", o->params.seed, "random seed");
+  addNumberOption(*cmd, "--subsets", o->params.subsets, "orbit subsets for error estimates");
+  addNumberOption(*cmd, "--longest", o->params.longestKept, "longest segments kept for replay");
+  addNumberOption(*cmd, "--threads", o->threads, "OpenMP threads (0: all cores)");
   cmd->add_option("--out", o->out, "run file written at the end")->capture_default_str();
   cmd->add_option("--checkpoint", o->checkpoint, "checkpoint file (default: the --out file)");
-  cmd->add_option("--checkpoint-interval", o->checkpointSeconds, "seconds between checkpoints")->capture_default_str();
+  addNumberOption(*cmd, "--checkpoint-interval", o->checkpointSeconds, "seconds between checkpoints");
   cmd->add_option("--resume", o->resume, "continue the run in this checkpoint or run file");
-  cmd->add_option("--max-chunk", o->maxChunkBlocks, "at most this many blocks between progress reports (0: adaptive)");
+  addNumberOption(*cmd, "--max-chunk", o->maxChunkBlocks, "at most this many blocks between progress reports (0: adaptive)");
   cmd->add_option("--kernel", o->kernel,
                   "instruction-set path: auto, " + supportedKernelNames() + " (default: $ARCHIPELAGO_KERNEL or auto)");
   cmd->add_flag("--quiet", o->quiet, "no progress bar or summary");
-  cmd->callback([o, cmd] {
+  cmd->callback([o, cmd, &status] {
     std::vector<std::string> given;
     for (const char* name : {"--K", "--xmin", "--xmax", "--Xr", "--q", "--T", "--M", "--seed", "--subsets", "--longest"})
       if (cmd->count(name) > 0) given.emplace_back(name);
-    runCommand(*o, given);
+    status = runCommand(*o, given);
   });
-}
-
-namespace {
-struct ReplayOptions {
-  std::string runFile;
-  std::size_t segment = 0;
-  std::string out;
-  std::uint64_t stride = 1;
-  bool identify = false;
-};
-
-void replayCommand(const ReplayOptions& o) {
-  const TrappingState state = loadRunFile(o.runFile);
-  const auto& items = state.longest.items();
-  if (o.segment >= items.size())
-    throw std::invalid_argument("--segment " + std::to_string(o.segment) + " is out of range: the run file keeps " +
-                                std::to_string(items.size()) + " segments (0 is the longest)");
-  if (o.stride == 0) throw std::invalid_argument("--stride must be >= 1");
-  const SegmentRecord& rec = items[o.segment];
-  std::ofstream out(o.out);
-  if (!out) throw std::runtime_error("cannot write " + o.out);
-  const FixedPointMap map(state.params.map);
-  out << "step,x,y,X,Y\n";
-  out.precision(17);
-  const std::uint64_t lastStep = rec.length * state.params.q;
-  std::vector<PhysicalPoint> points;  // for --identify: every step, in physical coordinates
-  constexpr std::uint64_t kMaxIdentifyPoints = 20'000'000;
-  const std::uint64_t length = replaySegment(state.params, rec, [&](std::uint64_t step, const UnitState& z) {
-    const PhysicalPoint p = map.toPhysical(z);
-    if (o.identify && step < kMaxIdentifyPoints) points.push_back(p);
-    if (step % o.stride != 0 && step != lastStep) return;
-    out << step << ',' << static_cast<double>(p.x) << ',' << static_cast<double>(p.y) << ',' << z.X << ',' << z.Y
-        << '\n';
-  });
-  out.close();
-  if (!out) throw std::runtime_error("cannot write " + o.out);
-  if (length != rec.length)
-    throw std::runtime_error("replay mismatch: the segment ended after " + std::to_string(length) +
-                             " blocks, the run recorded " + std::to_string(rec.length));
-  std::fprintf(stderr, "segment %zu: orbit %llu, %llu blocks (%llu steps), replayed bit for bit to %s\n", o.segment,
-               static_cast<unsigned long long>(rec.orbit), static_cast<unsigned long long>(rec.length),
-               static_cast<unsigned long long>(lastStep), o.out.c_str());
-  if (o.identify) {
-    // The segment iterates N⁻¹ (time reversed); the chain it sticks to is the same for Q.
-    const IslandChain chain = identifyIslandChain(state.params.map.K, points);
-    std::printf("# chain_period: %d\n# hierarchy:", chain.period);
-    for (int level : chain.hierarchy) std::printf(" %d", level);
-    std::printf("\n# member: %.12Lg,%.12Lg\n", chain.member.x, chain.member.y);
-    if (chain.centre) {
-      std::printf("# centre_orbit: period %d at %.12Lg,%.12Lg, residue %.9Lg (%s)\n", chain.centre->period,
-                  chain.centre->points.front().x, chain.centre->points.front().y, chain.centre->residue,
-                  chain.centre->stable() ? "stable" : "unstable");
-    }
-  }
-}
-}  // namespace
-
-void addReplayCommand(CLI::App& app) {
-  auto o = std::make_shared<ReplayOptions>();
-  CLI::App* cmd = app.add_subcommand("replay", "replay a recorded long segment exactly; CSV of its points");
-  cmd->add_option("run", o->runFile, "run file")->required();
-  cmd->add_option("--segment", o->segment, "rank of the segment (0: the longest)")->capture_default_str();
-  cmd->add_option("--out", o->out, "CSV file to write")->required();
-  cmd->add_option("--stride", o->stride, "write every stride-th step")->capture_default_str();
-  cmd->add_flag("--identify", o->identify, "identify the island chain the segment sticks to (period, centre orbit)");
-  cmd->callback([o] { replayCommand(*o); });
 }
 
 }  // namespace archipelago::cli

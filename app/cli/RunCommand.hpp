@@ -3,7 +3,6 @@
 
 namespace archipelago::cli {
 /// `archipelago-cli run`: a trapping-statistics run with checkpoints, resumable.
-void addRunCommand(CLI::App& app);
-/// `archipelago-cli replay`: replay one of a run file's longest segments bit for bit, as CSV.
-void addReplayCommand(CLI::App& app);
+/// Exit status to `status`: 0, or 130 when interrupted (SIGINT/SIGTERM) after writing a checkpoint.
+void addRunCommand(CLI::App& app, int& status);
 }  // namespace archipelago::cli

@@ -16,7 +16,7 @@ struct StatsOptions {
   std::string csvDir;
 };
 
-void statsCommand(const StatsOptions& o) {
+int statsCommand(const StatsOptions& o) {
   const TrappingState state = loadRunFile(o.runFile);
   const TrappingStatistics s = statisticsOf(state);
   const TrappingParameters& p = state.params;
@@ -42,15 +42,16 @@ void statsCommand(const StatsOptions& o) {
     for (const auto& path : writeStatisticsCsv(o.csvDir, state, s, theoryCurves(p, s)))
       std::printf("wrote       %s\n", path.string().c_str());
   }
+  return 0;
 }
 }  // namespace
 
-void addStatsCommand(CLI::App& app) {
+void addStatsCommand(CLI::App& app, int& status) {
   auto o = std::make_shared<StatsOptions>();
   CLI::App* cmd = app.add_subcommand("stats", "statistics of a run file: f_t, P_t, C_tau, D, S_t, D_t with errors");
   cmd->add_option("run", o->runFile, "run file")->required();
   cmd->add_option("--csv", o->csvDir, "write every series, its small-K theory curves and a summary as CSV into this folder");
-  cmd->callback([o] { statsCommand(*o); });
+  cmd->callback([o, &status] { status = statsCommand(*o); });
 }
 
 }  // namespace archipelago::cli

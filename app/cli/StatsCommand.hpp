@@ -3,5 +3,5 @@
 
 namespace archipelago::cli {
 /// `archipelago-cli stats RUN.json [--csv DIR]`: the derived statistics of a run file.
-void addStatsCommand(CLI::App& app);
+void addStatsCommand(CLI::App& app, int& status);
 }  // namespace archipelago::cli

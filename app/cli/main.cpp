@@ -13,18 +13,22 @@
 #include "StatsCommand.hpp"
 #include "PeriodicCommand.hpp"
 #include "PortraitCommand.hpp"
+#include "ReplayCommand.hpp"
+#include "StochasticAreaCommand.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"archipelago-cli " ARCHIPELAGO_VERSION
                " -- exact trapping statistics of the quadratic map Q* (Karney, Physica D 8, 1983)"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("archipelago-cli ") + ARCHIPELAGO_VERSION);
-  archipelago::cli::addOrbitCommand(app);
-  archipelago::cli::addRunCommand(app);
-  archipelago::cli::addStatsCommand(app);
-  archipelago::cli::addReplayCommand(app);
-  archipelago::cli::addPeriodicCommand(app);
-  archipelago::cli::addPortraitCommand(app);
+  int status = 0;  // the chosen command's exit status: it returns here, never calls std::exit
+  archipelago::cli::addOrbitCommand(app, status);
+  archipelago::cli::addRunCommand(app, status);
+  archipelago::cli::addStatsCommand(app, status);
+  archipelago::cli::addReplayCommand(app, status);
+  archipelago::cli::addPeriodicCommand(app, status);
+  archipelago::cli::addPortraitCommand(app, status);
+  archipelago::cli::addStochasticAreaCommand(app, status);
   if (argc > 1 && argv[1][0] != '-') {  // name an unknown command instead of CLI11's generic message
     std::string names;
     bool known = false;
@@ -52,5 +56,5 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "ERROR: %s\n", e.what());
     return 1;
   }
-  return 0;
+  return status;
 }

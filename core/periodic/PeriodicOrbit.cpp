@@ -1,7 +1,9 @@
 #include "periodic/PeriodicOrbit.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
+#include <numeric>
 #include <numbers>
 #include <stdexcept>
 
@@ -33,6 +35,26 @@ long double PeriodicOrbit::distanceTo(PhysicalPoint p) const noexcept {
   if (points.empty()) return std::numeric_limits<long double>::infinity();
   const PhysicalPoint& q = points[nearestIndex(p)];
   return std::hypot(q.x - p.x, q.y - p.y);
+}
+
+bool PeriodicOrbit::stable() const noexcept { return !std::isnan(residue) && classifyOrbit(residue).stable(); }
+
+std::string rotationNumberText(const PeriodicOrbit& orbit, int digits) {
+  char text[256];
+  if (orbit.linearRotation) {
+    if (std::isnan(orbit.rotationNumber)) return "none (hyperbolic fixed point: nearby orbits do not turn about it)";
+    const char* exact = orbit.rotationNumber == 0 ? " = 0/1" : (orbit.rotationNumber == 0.5L ? " = 1/2" : "");
+    std::snprintf(text, sizeof text, "%.*Lg%s (linear, at the central fixed point)", digits, orbit.rotationNumber,
+                  exact);
+    return text;
+  }
+  const long turns = orbit.windingTurns;
+  const long period = orbit.period;
+  const long divisor = std::gcd(turns, period);
+  std::snprintf(text, sizeof text, "%.*Lg = %ld/%ld = %ld/%ld (clockwise turns about (-sqrt K, 0) per step)", digits,
+                orbit.rotationNumber, turns, period, divisor != 0 ? turns / divisor : turns,
+                divisor != 0 ? period / divisor : period);
+  return text;
 }
 
 bool PeriodicOrbit::insideBox(const MapParameters& box) const noexcept {
@@ -92,8 +114,10 @@ PeriodicOrbit analysePeriodicOrbit(long double K, int period, quad x0, quad y0, 
   if (atCentre) {
     // No angle to follow: the linear rotation number, cos 2πω₀ = trace/2 = 1 − 2R (elliptic when 0 < R < 1).
     orbit.windingTurns = 0;
-    orbit.rotationNumber = orbit.stable() ? std::acos(1 - 2 * orbit.residue) / (2 * std::numbers::pi_v<long double>)
-                                          : std::numeric_limits<long double>::quiet_NaN();
+    orbit.linearRotation = true;
+    orbit.rotationNumber = std::numeric_limits<long double>::quiet_NaN();
+    if (!std::isnan(orbit.residue))
+      orbit.rotationNumber = orbit.classification().rotationNumber.value_or(orbit.rotationNumber);
   } else {
     orbit.windingTurns = clockwiseTurns(orbit.points, cx, 0);
     orbit.rotationNumber = static_cast<long double>(orbit.windingTurns) / period;

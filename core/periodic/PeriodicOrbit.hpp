@@ -5,8 +5,9 @@
 /// Karney (1983), §6: the islands around islands.  An island chain of order n is centred on an elliptic
 /// orbit of period n; between its islands lies a hyperbolic orbit of the same period.  Greene's residue
 ///   R = (2 − trace DQⁿ)/4
-/// classifies the orbit: 0 < R < 1 elliptic (linearly stable), R < 0 hyperbolic, R > 1 hyperbolic with
-/// reflection.  For an elliptic orbit R = sin²(πν), ν the rotation number of nearby orbits about it.
+/// classifies the orbit (classifyOrbit(), OrbitClassification.hpp: the one place that does): R < 0 hyperbolic,
+/// R = 0 parabolic, 0 < R < 1 elliptic (linearly stable), R = 1 parabolic, R > 1 hyperbolic with reflection.
+/// For 0 ≤ R ≤ 1, R = sin²(πν), ν the linear rotation number of nearby orbits about it.
 ///
 /// Rotation number about the centre: the angle θ_k of z_k − (−√K, 0) is followed over one period; the
 /// *clockwise* turns W (an integer for a periodic orbit) give ω = W/n.  Q turns points about the elliptic
@@ -14,7 +15,8 @@
 /// with this sign convention orbits around the central island have ω > 0: the chain of six islands at K = 0.1
 /// has ω = 1/6, a chain of order 138 = 6 × 23 around those six islands has W = 23, ω = 23/138 = 1/6.
 /// Each step's angle increment is taken in (−π, π]; the fixed point (−√K, 0) itself has no angle and is given
-/// its linear rotation number ω₀ = arccos(1 − 2R)/(2π) (R = √K, so ω₀ → √K/π for small K).
+/// its linear rotation number ω₀ = arccos(1 − 2R)/(2π) (R = √K, so ω₀ → √K/π for small K; at K = 0 the fixed
+/// point is parabolic, R = 0 and ω₀ = 0), which hyperbolic fixed points (K > 1) do not have.
 
 #include <cstdint>
 #include <span>
@@ -23,6 +25,7 @@
 
 #include "map/FixedPointMap.hpp"  // PhysicalPoint
 #include "map/MapParameters.hpp"
+#include "periodic/OrbitClassification.hpp"
 #include "periodic/SmoothQuadraticMap.hpp"  // quad
 
 namespace archipelago {
@@ -44,12 +47,16 @@ struct PeriodicOrbit {
   long double trace = 0;             ///< trace DQⁿ, accumulated in __float128
   long double residue = 0;           ///< Greene's residue R = (2 − trace)/4
   long windingTurns = 0;             ///< W: clockwise turns about (−√K, 0) over one period
-  long double rotationNumber = 0;    ///< ω = W/n (linear ω₀ for the central fixed point itself)
+  long double rotationNumber = 0;    ///< ω = W/n (linear ω₀ for the central fixed point itself; NaN there
+                                     ///< when it has none: use rotationNumberText() to show it)
+  bool linearRotation = false;       ///< the central fixed point: rotationNumber is its linear ω₀
   long double closure = 0;           ///< |Qⁿ(z_0) − z_0| evaluated in __float128 (Euclidean, physical)
   OrbitSymmetry symmetry = OrbitSymmetry::None;
 
-  /// Linearly stable (elliptic): 0 < R < 1.
-  [[nodiscard]] bool stable() const noexcept { return residue > 0 && residue < 1; }
+  /// classifyOrbit(residue).  Throws std::invalid_argument when the residue is NaN.
+  [[nodiscard]] OrbitClassification classification() const { return classifyOrbit(residue); }
+  /// Linearly stable (elliptic, 0 < R < 1, as classifyOrbit() says); false for a NaN residue.
+  [[nodiscard]] bool stable() const noexcept;
   /// Index of the point nearest to p.
   [[nodiscard]] std::size_t nearestIndex(PhysicalPoint p) const noexcept;
   /// Distance from p to the nearest point of the orbit.
@@ -66,6 +73,12 @@ struct PeriodicOrbit {
 /// Does not check that z_0 is periodic: look at `closure`.
 [[nodiscard]] PeriodicOrbit analysePeriodicOrbit(long double K, int period, quad x0, quad y0,
                                                  OrbitSymmetry symmetry);
+
+/// The orbit's rotation number as every surface shows it, with `digits` significant digits:
+///   "0.1666666667 = 23/138 = 1/6 (clockwise turns about (-sqrt K, 0) per step)", or for the central fixed
+///   point "0.1011 (linear, at the central fixed point)", "0 = 0/1 (linear, …)" at R = 0, or
+///   "none (hyperbolic fixed point: nearby orbits do not turn about it)".  Never "nan".
+[[nodiscard]] std::string rotationNumberText(const PeriodicOrbit& orbit, int digits = 18);
 
 /// Clockwise turns about (cx, cy) of the closed polygon z_0 → z_1 → … → z_{n−1} → z_0 (each step's angle
 /// increment in (−π, π]).  Used for orbits and, in IslandChain.hpp, for segments.

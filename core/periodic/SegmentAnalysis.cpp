@@ -17,6 +17,17 @@ namespace archipelago {
 
 namespace {
 
+/// One line of a segment's CSV: step, x, y (17 significant digits), X, Y (exact).
+void writeCsvLine(std::ofstream& out, std::uint64_t step, const PhysicalPoint& p, const UnitState& z) {
+  char line[160];
+  std::snprintf(line, sizeof line, "%llu,%.17g,%.17g,%llu,%llu\n", static_cast<unsigned long long>(step),
+                static_cast<double>(p.x), static_cast<double>(p.y), static_cast<unsigned long long>(z.X),
+                static_cast<unsigned long long>(z.Y));
+  out << line;
+}
+
+constexpr const char* kCsvHeader = "step,x,y,X,Y\n";
+
 }  // namespace
 
 std::size_t SegmentTrace::indexNear(std::uint64_t step) const noexcept {
@@ -160,7 +171,7 @@ std::optional<SegmentChain> identifySegmentChain(const TrappingParameters& param
     throw std::invalid_argument("segment of " + std::to_string(points->size()) +
                                 " points is too short to identify its island chain");
   if (stop.stop_requested()) return std::nullopt;
-  SegmentChain result{identifyIslandChain(params.map.K, *points, options), {}};
+  SegmentChain result{identifyIslandChain(params.map.K, *points, options), points->size(), {}};
   const int level = result.chain.hierarchy.size() > 1 ? result.chain.hierarchy[1] : 1;
   result.island = islandRegion(*points, level);
   return result;
@@ -177,17 +188,38 @@ SegmentRegion islandRegion(std::span<const PhysicalPoint> consecutive, int level
 void writeSegmentCsv(const std::string& path, const SegmentTrace& trace) {
   std::ofstream out(path);
   if (!out) throw std::runtime_error("cannot write " + path);
-  out << "step,x,y,X,Y\n";
-  char line[160];
-  for (std::size_t i = 0; i < trace.states.size(); ++i) {
-    std::snprintf(line, sizeof line, "%llu,%.17g,%.17g,%llu,%llu\n", static_cast<unsigned long long>(trace.stepAt(i)),
-                  static_cast<double>(trace.points[i].x), static_cast<double>(trace.points[i].y),
-                  static_cast<unsigned long long>(trace.states[i].X),
-                  static_cast<unsigned long long>(trace.states[i].Y));
-    out << line;
-  }
+  out << kCsvHeader;
+  for (std::size_t i = 0; i < trace.states.size(); ++i) writeCsvLine(out, trace.stepAt(i), trace.points[i], trace.states[i]);
   out.close();
   if (!out) throw std::runtime_error("cannot write " + path);
+}
+
+std::uint64_t writeSegmentCsv(const std::string& path, const TrappingParameters& params, const SegmentRecord& record,
+                              std::uint64_t stride) {
+  if (stride == 0) throw std::invalid_argument("stride = 0 must be >= 1");
+  validate(params);
+  const FixedPointMap map(params.map);
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error("cannot write " + path);
+  out << kCsvHeader;
+  // The last step is only known when the replay ends: keep the latest state not yet written.
+  UnitState pending;
+  std::uint64_t pendingStep = 0;
+  bool havePending = false;
+  const std::uint64_t blocks = replaySegment(params, record, [&](std::uint64_t step, const UnitState& z) {
+    if (step % stride == 0) {
+      writeCsvLine(out, step, map.toPhysical(z), z);
+      havePending = false;
+    } else {
+      pending = z;
+      pendingStep = step;
+      havePending = true;
+    }
+  });
+  if (havePending) writeCsvLine(out, pendingStep, map.toPhysical(pending), pending);
+  out.close();
+  if (!out) throw std::runtime_error("cannot write " + path);
+  return blocks;
 }
 
 void writeSegmentNpy(const std::string& path, const SegmentTrace& trace) {

@@ -85,9 +85,15 @@ struct SegmentRegion {
 [[nodiscard]] SegmentRegion framedInBox(const SegmentRegion& r, const MapParameters& map, double aspect,
                                         long double minSize);
 
+/// How many consecutive points of a segment identifySegmentChain() holds by default, whatever the segment's
+/// length (segments reach 10⁸ steps; 2·10⁶ points are 64 MB and enough to resolve a chain of period ≤ 1000 with
+/// 2000 points per phase).  The GUI's long-segment table and `archipelago-cli replay --identify` both use it.
+inline constexpr std::uint64_t kChainIdentificationPoints = 2'000'000;
+
 /// The chain of a recorded segment, and where it spent its time near one island of the chain.
 struct SegmentChain {
   IslandChain chain;
+  std::uint64_t points = 0;  ///< consecutive points z_0 … it was identified from: min(maxPoints, the segment's)
   /// dwellRegion() of the points z_{k·n₁} (k = 0, 1, …), n₁ = chain.hierarchy[1] the first level above the
   /// central island: they stay near the island of that level that z_0 is near, so this region frames one
   /// island with the satellites the segment winds around (e.g. one of the six islands and its 11 satellites
@@ -97,11 +103,12 @@ struct SegmentChain {
 };
 
 /// identifyIslandChain() over the first `maxPoints` consecutive points of a recorded segment, and the
-/// island region above.  Returns nothing when stopped.  Throws std::invalid_argument when the segment is too
+/// island region above.  Holds at most maxPoints points (physical, 2 long doubles each) however long the
+/// segment is.  Returns nothing when stopped.  Throws std::invalid_argument when the segment is too
 /// short to identify (fewer than 2·options.minPointsPerPhase points) and whatever identifyIslandChain() throws.
 [[nodiscard]] std::optional<SegmentChain> identifySegmentChain(const TrappingParameters& params,
                                                                const SegmentRecord& record,
-                                                               std::uint64_t maxPoints = 2'000'000,
+                                                               std::uint64_t maxPoints = kChainIdentificationPoints,
                                                                const IslandChainOptions& options = {},
                                                                std::stop_token stop = {});
 
@@ -113,6 +120,13 @@ struct SegmentChain {
 /// Writes the trace as CSV: a header line "step,x,y,X,Y", then one line per kept state (x, y with 17
 /// significant digits, X, Y the exact integers).  Throws std::runtime_error naming the file on failure.
 void writeSegmentCsv(const std::string& path, const SegmentTrace& trace);
+
+/// Replays `record` exactly and streams the same CSV as above for steps 0, stride, 2·stride, … and the last
+/// step, holding one state at a time (memory independent of the segment's length).  stride ≥ 1.  Returns
+/// the blocks replayed (record.length when the record belongs to these parameters).  Throws
+/// std::invalid_argument for invalid parameters or stride 0, std::runtime_error naming the file on failure.
+std::uint64_t writeSegmentCsv(const std::string& path, const TrappingParameters& params, const SegmentRecord& record,
+                              std::uint64_t stride);
 
 /// Writes the trace as a NumPy .npy array of shape (n, 3), little-endian float64, columns step, x, y (steps
 /// are exact below 2^53).  Throws std::runtime_error naming the file on failure.

@@ -47,6 +47,20 @@ header, rows = parse(r.stdout)
 check(r.returncode == 0 and abs(float(header.get("residue", "nan")) - math.sqrt(K)) < 1e-15,
       f"central fixed point has residue sqrt K ({header.get('residue')})")
 
+check(header.get("class") == "elliptic" and header.get("stable") == "yes (elliptic, 0 < R < 1)"
+      and "(linear, at the central fixed point)" in header.get("rotation_number", ""),
+      f"central fixed point is elliptic with its linear rotation number ({header.get('rotation_number')})")
+
+# Regression (issue #11 item 9): at K = 0 the fixed point x = y = 0 has R = 0 (the tangent bifurcation of §2).  It
+# was reported as "hyperbolic with reflection, R >= 1" with rotation number "nan = 0/1"; it is parabolic, 0 = 0/1.
+r = run("periodic", "--K", "0", "--period", "1", "--near=0,0")
+header, rows = parse(r.stdout)
+check(r.returncode == 0 and float(header.get("residue", "nan")) == 0, f"K = 0 fixed point has R = 0 ({r.stderr.strip()})")
+check(header.get("class") == "parabolic" and header.get("stable") == "no (parabolic, R = 0)",
+      f"R = 0 is reported as parabolic (class {header.get('class')}, stable {header.get('stable')})")
+check(header.get("rotation_number", "").startswith("0 = 0/1 ") and "nan" not in r.stdout.lower(),
+      f"its rotation number is 0 = 0/1, never nan ({header.get('rotation_number')})")
+
 # Bad input: one clear line, non-zero exit, no crash.
 for args, mention in [
     (["periodic", "--period", "0", "--near", "0,0"], "period = 0 must be in [1, 100000]"),

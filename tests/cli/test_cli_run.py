@@ -75,6 +75,9 @@ check(r.returncode == 0 and period >= 1 and hierarchy and hierarchy[0] == 1 and 
       f"replay --identify: chain period {period}, hierarchy {hierarchy} ({r.stderr.strip()[-80:]})")
 check("centre_orbit" in lines and f"period {period}" in lines.get("centre_orbit", ""),
       f"the chain's centre orbit is found ({lines.get('centre_orbit')})")
+# It takes the GUI's path (identifySegmentChain), which holds a bounded number of points, not the whole segment.
+used = int(lines.get("points_used", "0").split()[0])
+check(0 < used <= min(2_000_000, longest["length"] * 16 + 1), f"replay --identify holds {used} points at most")
 
 # stats: the summary and every series as CSV.
 csvdir = os.path.join(tmp, "csv")

@@ -2,6 +2,7 @@
 
 #include <QAction>
 #include <QApplication>
+#include <QLabel>
 #include <QPushButton>
 #include <QSignalSpy>
 #include <QTableWidget>
@@ -277,6 +278,19 @@ void TestSegments::periodicDialogFindsTheEllipticPeriodSixOrbit() {
   auto* table = dialog.findChild<QTableWidget*>();
   QVERIFY(table);
   QCOMPARE(table->rowCount(), 6);
+  // The summary shows core's words (classifyOrbit, rotationNumberText), the same as archipelago-cli periodic.
+  bool summaryShown = false;
+  for (QLabel* label : dialog.findChildren<QLabel*>()) {
+    const QString text = label->text();
+    if (!text.contains(QStringLiteral("residue R"))) continue;
+    summaryShown = true;
+    QVERIFY2(text.contains(QStringLiteral("stable, elliptic, 0 &lt; R &lt; 1")) ||
+                 text.contains(QStringLiteral("stable, elliptic, 0 < R < 1")),
+             qPrintable(text));
+    QVERIFY2(text.contains(QStringLiteral("= 1/6 = 1/6 (clockwise turns")), qPrintable(text));
+    QVERIFY2(!text.contains(QStringLiteral("nan")), qPrintable(text));
+  }
+  QVERIFY(summaryShown);
   // "Overlay" hands the orbit on.
   for (QPushButton* button : dialog.findChildren<QPushButton*>())
     if (button->text().remove('&') == QStringLiteral("Overlay")) button->click();

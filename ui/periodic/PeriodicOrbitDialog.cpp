@@ -162,15 +162,15 @@ void PeriodicOrbitDialog::onResult(quint64 requestId, const std::optional<Period
 
 void PeriodicOrbitDialog::showOrbit() {
   const PeriodicOrbit& o = *orbit_;
-  summary_->setText(tr("Period <b>%1</b>: residue R = <b>%2</b> (%3), rotation number %4 = %5/%1 about the "
-                       "centre, trace DQ<sup>n</sup> = %6, closure %7, symmetry %8")
+  // The class and the rotation number are core's words (classifyOrbit, rotationNumberText): the CLI prints the same.
+  const OrbitClassification kind = o.classification();
+  summary_->setText(tr("Period <b>%1</b>: residue R = <b>%2</b> (%3, %4), rotation number %5, "
+                       "trace DQ<sup>n</sup> = %6, closure %7, symmetry %8")
                         .arg(o.period)
                         .arg(static_cast<double>(o.residue), 0, 'g', 10)
-                        .arg(o.stable() ? tr("stable, elliptic")
-                                        : (o.residue > 1 ? tr("unstable, hyperbolic with reflection")
-                                                         : tr("unstable, hyperbolic")))
-                        .arg(static_cast<double>(o.rotationNumber), 0, 'g', 8)
-                        .arg(o.windingTurns)
+                        .arg(kind.stable() ? tr("stable") : tr("unstable"))
+                        .arg(QString::fromLatin1(kind.description()).toHtmlEscaped())
+                        .arg(QString::fromStdString(rotationNumberText(o, 8)).toHtmlEscaped())
                         .arg(static_cast<double>(o.trace), 0, 'g', 10)
                         .arg(static_cast<double>(o.closure), 0, 'g', 2)
                         .arg(QString::fromLatin1(toString(o.symmetry))));

@@ -330,8 +330,8 @@ void LongSegmentsPanel::updateInfo() {
     if (c.centre)
       text += tr("; centre orbit: residue %1, %2, rotation number %3")
                   .arg(static_cast<double>(c.centre->residue), 0, 'g', 6)
-                  .arg(c.centre->stable() ? tr("elliptic") : tr("hyperbolic"))
-                  .arg(static_cast<double>(c.centre->rotationNumber), 0, 'g', 6);
+                  .arg(QString::fromLatin1(toString(c.centre->classification().stability)))
+                  .arg(QString::fromStdString(rotationNumberText(*c.centre, 6)).toHtmlEscaped());
   }
   info_->setText(text);
 }

@@ -135,7 +135,7 @@ class LongSegmentsPanel : public QWidget {
   ChainResultPtr chain_;
   std::size_t index_ = 0;
   std::uint64_t maxReplayPoints_ = 1'000'000;
-  std::uint64_t chainPoints_ = 2'000'000;
+  std::uint64_t chainPoints_ = kChainIdentificationPoints;
   int autoRows_ = 10;
 };
 

@@ -98,7 +98,7 @@ QVariant LongestSegmentsModel::chainText(const SegmentRecord& r, int role) const
     if (chain.centre)
       tip += tr("; centre orbit R = %1 (%2)")
                  .arg(static_cast<double>(chain.centre->residue), 0, 'g', 6)
-                 .arg(chain.centre->stable() ? tr("stable") : tr("unstable"));
+                 .arg(QString::fromLatin1(chain.centre->classification().description()));
     return tip;
   }
   return {};

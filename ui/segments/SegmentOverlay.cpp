@@ -160,7 +160,7 @@ void SegmentOverlay::updateLegend() {
     lines << tr("<span style='color:#00e6ff'>⬤</span> centre of its chain: period %1, R = %2 (%3)")
                  .arg(o.period)
                  .arg(static_cast<double>(o.residue), 0, 'g', 4)
-                 .arg(o.stable() ? tr("elliptic") : tr("hyperbolic"));
+                 .arg(QString::fromLatin1(toString(o.classification().stability)));
   }
   if (periodicPeriod_ > 0)
     lines << tr("<span style='color:#ff3cdc'>◆</span> periodic orbit of period %1").arg(periodicPeriod_);

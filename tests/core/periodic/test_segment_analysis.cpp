@@ -2,9 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -213,6 +215,69 @@ TEST(SegmentAnalysis, CsvHasOneLinePerKeptState) {
   EXPECT_EQ(last.substr(last.rfind(',') + 1), std::to_string(trace->states.back().Y));
   std::filesystem::remove(path);
   EXPECT_THROW(writeSegmentCsv("/nonexistent-dir/x.csv", *trace), std::runtime_error);
+}
+
+// Issue #11 item 8: `archipelago-cli replay --identify` kept every point of the segment (up to 2·10⁷ long-double
+// points, ~640 MB) and took its own path.  It now takes the GUI's, identifySegmentChain(), which holds at most
+// maxPoints points however long the segment: here one that never ends (an orbit on a KAM curve of the central
+// island never reaches the randomizing zone; T allows 1.6·10¹³ steps).
+TEST(SegmentAnalysis, ChainIdentificationHoldsAtMostItsCapWhateverTheSegmentLength) {
+  TrappingParameters p;  // the paper's K = 0.1 box
+  p.T = 1'000'000'000'000;
+  const FixedPointMap map(p.map);
+  SegmentRecord endless;
+  endless.length = p.T;
+  endless.start.z = map.toUnit(-std::sqrt(0.1L) + 0.05L, 0);
+  for (std::uint64_t cap : {std::uint64_t{1000}, std::uint64_t{20'000}}) {
+    const auto prefix = segmentPrefix(p, endless, cap);
+    ASSERT_TRUE(prefix.has_value());
+    EXPECT_EQ(prefix->size(), cap);
+    EXPECT_LE(prefix->capacity(), cap);  // reserved for the cap, never for the segment's length
+    const auto found = identifySegmentChain(p, endless, cap);
+    ASSERT_TRUE(found.has_value());
+    EXPECT_EQ(found->points, cap);
+    EXPECT_EQ(found->chain.period, 1);  // it circles the central island
+  }
+  // A short segment is used whole, and the count says so.
+  const TrappingState& state = shortRun();
+  const SegmentRecord& record = state.longest.items().front();
+  const auto whole = identifySegmentChain(state.params, record, UINT64_MAX);
+  ASSERT_TRUE(whole.has_value());
+  EXPECT_EQ(whole->points, record.length * state.params.q + 1);
+  EXPECT_GE(kChainIdentificationPoints, 1'000'000u);  // the default the GUI and the CLI share
+}
+
+TEST(SegmentAnalysis, StreamedCsvEqualsTheTraceCsv) {
+  const TrappingState& state = shortRun();
+  const SegmentRecord& record = state.longest.items().front();
+  const auto dir = std::filesystem::temp_directory_path();
+  const std::string traced = (dir / "archipelago_segment_traced.csv").string();
+  const std::string streamed = (dir / "archipelago_segment_streamed.csv").string();
+  const auto trace = traceSegment(state.params, record, UINT64_MAX);
+  ASSERT_TRUE(trace.has_value());
+  writeSegmentCsv(traced, *trace);
+  EXPECT_EQ(writeSegmentCsv(streamed, state.params, record, 1), record.length);
+  auto text = [](const std::string& path) {
+    std::ifstream in(path);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  EXPECT_EQ(text(streamed), text(traced));
+  // Every 7th step, and always the last one.
+  const std::uint64_t last = record.length * state.params.q;
+  writeSegmentCsv(streamed, state.params, record, 7);
+  std::ifstream in(streamed);
+  std::string line, previous;
+  std::uint64_t lines = 0;
+  while (std::getline(in, line)) {
+    ++lines;
+    previous = line;
+  }
+  EXPECT_EQ(lines, 1 + last / 7 + 1 + (last % 7 != 0 ? 1 : 0));
+  EXPECT_EQ(previous.substr(0, previous.find(',')), std::to_string(last));
+  EXPECT_THROW((void)writeSegmentCsv(streamed, state.params, record, 0), std::invalid_argument);
+  EXPECT_THROW((void)writeSegmentCsv("/nonexistent-dir/x.csv", state.params, record, 1), std::runtime_error);
+  std::filesystem::remove(traced);
+  std::filesystem::remove(streamed);
 }
 
 }  // namespace
