@@ -60,7 +60,7 @@ std::string csvMetadataHeader(const TrappingState& state) {
   line(out, "program", std::string("archipelago ") + ARCHIPELAGO_VERSION);
   // The parameters as the run-spec codec writes them (spec/RunSpec.hpp): same keys, same digits.
   const nlohmann::json parameters = spec::parametersJson(p);
-  for (const SpecParameter& field : runSpecParameters()) line(out, field.key, parameters.at(std::string(field.key)).dump());
+  for (const ParameterRule& rule : parameterRules()) line(out, rule.key, parameters.at(std::string(rule.key)).dump());
   line(out, "blocks_done", number(state.blocksDone));
   line(out, "orbits", number(state.orbitBegin) + " to " + number(state.orbitEnd) + " (exclusive)");
   line(out, "A", number(std::int64_t{c.A}));

@@ -1,7 +1,6 @@
 #include "spec/RunSpec.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -17,35 +16,6 @@ namespace archipelago {
 namespace {
 
 using nlohmann::json;
-
-/// How one parameter is stored in TrappingParameters: a double, or an unsigned integer with its largest value.
-struct FieldAccess {
-  SpecParameter info;
-  double MapParameters::*mapReal = nullptr;  ///< K, xmin, xmax
-  double TrappingParameters::*real = nullptr;
-  std::uint32_t TrappingParameters::*u32 = nullptr;
-  std::uint64_t TrappingParameters::*u64 = nullptr;
-};
-
-// The one list of parameter keys: JSON keys, CLI options (--key), help texts.
-const std::array<FieldAccess, 10>& fieldTable() {
-  static const std::array<FieldAccess, 10> table{{
-      {{"K", "map parameter K of Q: y' = y + 2(x^2 - K), x' = x + y' (eq. qu)"}, &MapParameters::K},
-      {{"xmin", "left edge of the box in x; must be < -sqrt(K) (appendix B)"}, &MapParameters::xmin},
-      {{"xmax", "right edge of the box in x; must be > xmin"}, &MapParameters::xmax},
-      {{"Xr", "randomizing zone 0 <= X <= Xr in unit coordinates, in [0, 1) (appendix B)"}, nullptr,
-       &TrappingParameters::Xr},
-      {{"q", "steps of N^-1 per block: statistics of N^-q (appendix B)"}, nullptr, nullptr, &TrappingParameters::q},
-      {{"T", "blocks per orbit (each orbit is qT steps)"}, nullptr, nullptr, nullptr, &TrappingParameters::T},
-      {{"M", "number of orbits"}, nullptr, nullptr, nullptr, &TrappingParameters::M},
-      {{"seed", "seed of the counter-based random numbers"}, nullptr, nullptr, nullptr, &TrappingParameters::seed},
-      {{"subsets", "orbit subsets for error estimates (orbit i goes to subset i mod subsets)"}, nullptr, nullptr,
-       &TrappingParameters::subsets},
-      {{"longestKept", "longest segments kept with their start state, for replay"}, nullptr, nullptr,
-       &TrappingParameters::longestKept},
-  }};
-  return table;
-}
 
 [[noreturn]] void bad(const std::string& what) { throw std::invalid_argument(what); }
 
@@ -84,50 +54,38 @@ std::string text(const json& j, const char* key) {
 
 }  // namespace
 
-std::span<const SpecParameter> runSpecParameters() noexcept {
-  static const std::vector<SpecParameter> list = [] {
-    std::vector<SpecParameter> v;
-    for (const FieldAccess& f : fieldTable()) v.push_back(f.info);
-    return v;
-  }();
-  return list;
-}
-
 namespace spec {
 
 json mapJson(const MapParameters& map) { return {{"K", map.K}, {"xmin", map.xmin}, {"xmax", map.xmax}}; }
 
 json parametersJson(const TrappingParameters& p) {
   json j = json::object();
-  for (const FieldAccess& f : fieldTable()) {
-    const std::string key(f.info.key);
-    if (f.mapReal) j[key] = p.map.*f.mapReal;
-    else if (f.real) j[key] = p.*f.real;
-    else if (f.u32) j[key] = p.*f.u32;
-    else j[key] = p.*f.u64;
+  for (const ParameterRule& r : parameterRules()) {
+    const ParameterValue v = parameterValue(p, r.key);
+    if (const auto* real = std::get_if<double>(&v)) j[std::string(r.key)] = *real;
+    else j[std::string(r.key)] = std::get<std::uint64_t>(v);
   }
   return j;
 }
 
 TrappingParameters parametersFromJson(const json& j, bool complete, const TrappingParameters& defaults) {
   if (!j.is_object()) bad("parameters must be a JSON object");
-  for (auto it = j.begin(); it != j.end(); ++it) {
-    const auto& table = fieldTable();
-    const bool known = std::any_of(table.begin(), table.end(), [&](const FieldAccess& f) { return f.info.key == it.key(); });
-    if (!known) bad("unknown parameter '" + it.key() + "'");
-  }
+  for (auto it = j.begin(); it != j.end(); ++it)
+    if (!findParameterRule(it.key())) bad("unknown parameter '" + it.key() + "'");
   TrappingParameters p = defaults;
-  for (const FieldAccess& f : fieldTable()) {
-    const std::string key(f.info.key);
+  for (const ParameterRule& r : parameterRules()) {
+    const std::string key(r.key);
     const auto it = j.find(key);
     if (it == j.end()) {
       if (complete) bad("missing parameter '" + key + "'");
       continue;
     }
-    if (f.mapReal) p.map.*f.mapReal = realNumber(*it, key);
-    else if (f.real) p.*f.real = realNumber(*it, key);
-    else if (f.u32) p.*f.u32 = static_cast<std::uint32_t>(wholeNumber(*it, key, std::numeric_limits<std::uint32_t>::max()));
-    else p.*f.u64 = wholeNumber(*it, key, std::numeric_limits<std::uint64_t>::max());
+    if (r.integer) {
+      const std::uint64_t v = wholeNumber(*it, key, std::numeric_limits<std::uint64_t>::max());
+      setParameterValue(p, r.key, v);  // throws "<key> = v must lie in <range>" outside the documented range
+    } else {
+      setParameterValue(p, r.key, realNumber(*it, key));
+    }
   }
   return p;
 }

@@ -17,7 +17,8 @@
 ///      "kernel": "auto", "threads": 0}
 ///
 /// Reals are written with the shortest decimal form that reads back to the same double; integers as JSON
-/// integers (exact to 2^64).  When read, a spec may leave out any parameter: it then takes the default of
+/// integers (exact to 2^64).  The keys and the documented range of each parameter are TrappingParameters'
+/// one table (parameterRules()).  When read, a spec may leave out any parameter: it then takes the default of
 /// TrappingParameters (the paper's K = 0.1 box, §5), and runSpecJson() of the result shows every value.  A
 /// run file's parameters must be complete.  Unknown keys, a value of the wrong type, a fractional or
 /// out-of-range integer and a repeated key are errors that name the key: a typo never falls back silently
@@ -47,16 +48,8 @@ struct RunSpec {
   friend bool operator==(const RunSpec&, const RunSpec&) = default;
 };
 
-/// The largest thread count a spec accepts (more threads than this only cost memory).
-inline constexpr int kMaxThreads = 1024;
-
-/// One parameter of TrappingParameters: its key (the JSON key and the CLI option --key) and a one-line
-/// meaning for help texts.  runSpecParameterKeys() lists them in the order files and help texts use.
-struct SpecParameter {
-  std::string_view key;
-  std::string_view meaning;
-};
-[[nodiscard]] std::span<const SpecParameter> runSpecParameters() noexcept;
+/// The largest thread count a spec accepts (each thread holds its own histograms while a chunk runs).
+inline constexpr int kMaxThreads = 256;
 
 /// The first violated rule of the spec (the parameters' rules, the kernel's name, the thread count), naming
 /// the field, or nothing when valid.  The kernel is checked by name only: whether this CPU can run it is

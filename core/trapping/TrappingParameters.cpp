@@ -1,10 +1,123 @@
 #include "trapping/TrappingParameters.hpp"
 
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
+
+#include "trapping/TrappingHistogram.hpp"
 
 namespace archipelago {
+
+namespace {
+
+struct Access {
+  ParameterRule rule;
+  double MapParameters::*mapReal = nullptr;     // K, xmin, xmax
+  double TrappingParameters::*real = nullptr;   // Xr
+  std::uint32_t TrappingParameters::*u32 = nullptr;
+  std::uint64_t TrappingParameters::*u64 = nullptr;
+};
+
+constexpr std::uint64_t kU64Max = ~std::uint64_t{0};
+
+const std::array<Access, 10>& accessTable() {
+  static const std::array<Access, 10> table{{
+      {{"K", "map parameter K of Q: y' = y + 2(x^2 - K), x' = x + y' (eq. qu)", false, 0, 0, "finite"},
+       &MapParameters::K},
+      {{"xmin", "left edge of the box in x (appendix B)", false, 0, 0, "finite, < -sqrt(K) (K >= 0) or < 0 (K < 0)"},
+       &MapParameters::xmin},
+      {{"xmax", "right edge of the box in x", false, 0, 0, "finite, > xmin"}, &MapParameters::xmax},
+      {{"Xr", "randomizing zone 0 <= X <= Xr in unit coordinates (appendix B)", false, 0, 0, "[0, 1)"}, nullptr,
+       &TrappingParameters::Xr},
+      {{"q", "steps of N^-1 per block: statistics of N^-q (appendix B)", true, 1, kMaxQ, "[1, 65536]"}, nullptr,
+       nullptr, &TrappingParameters::q},
+      {{"T", "blocks per orbit (each orbit is qT steps)", true, 1, kMaxT, "[1, 2^62], q*T <= 2^62"}, nullptr, nullptr,
+       nullptr, &TrappingParameters::T},
+      {{"M", "number of orbits", true, 1, kMaxM, "[1, 2^32] (and the memory they need)"}, nullptr, nullptr, nullptr,
+       &TrappingParameters::M},
+      {{"seed", "seed of the counter-based random numbers", true, 0, kU64Max, "[0, 2^64 - 1]"}, nullptr, nullptr,
+       nullptr, &TrappingParameters::seed},
+      {{"subsets", "orbit subsets for error estimates (orbit i goes to subset i mod subsets)", true, 1, kMaxSubsets,
+        "[1, 1024], <= M"},
+       nullptr, nullptr, &TrappingParameters::subsets},
+      {{"longestKept", "longest segments kept with their start state, for replay", true, 0, kMaxLongestKept,
+        "[0, 100000]"},
+       nullptr, nullptr, &TrappingParameters::longestKept},
+  }};
+  return table;
+}
+
+const Access& access(std::string_view key) {
+  for (const Access& a : accessTable())
+    if (a.rule.key == key) return a;
+  throw std::invalid_argument("unknown parameter '" + std::string(key) + "'");
+}
+
+}  // namespace
+
+std::span<const ParameterRule> parameterRules() noexcept {
+  static const std::vector<ParameterRule> rules = [] {
+    std::vector<ParameterRule> v;
+    for (const Access& a : accessTable()) v.push_back(a.rule);
+    return v;
+  }();
+  return rules;
+}
+
+const ParameterRule* findParameterRule(std::string_view key) noexcept {
+  for (const ParameterRule& r : parameterRules())
+    if (r.key == key) return &r;
+  return nullptr;
+}
+
+ParameterValue parameterValue(const TrappingParameters& p, std::string_view key) {
+  const Access& a = access(key);
+  if (a.mapReal) return p.map.*a.mapReal;
+  if (a.real) return p.*a.real;
+  if (a.u32) return std::uint64_t{p.*a.u32};
+  return p.*a.u64;
+}
+
+void setParameterValue(TrappingParameters& p, std::string_view key, const ParameterValue& value) {
+  const Access& a = access(key);
+  if (a.rule.integer != std::holds_alternative<std::uint64_t>(value))
+    throw std::invalid_argument(std::string(key) + (a.rule.integer ? " must be a whole number" : " must be a real number"));
+  if (!a.rule.integer) {
+    (a.mapReal ? p.map.*a.mapReal : p.*a.real) = std::get<double>(value);
+    return;
+  }
+  const std::uint64_t v = std::get<std::uint64_t>(value);
+  if (v < a.rule.min || v > a.rule.max)
+    throw std::invalid_argument(std::string(key) + " = " + std::to_string(v) + " must lie in " + std::string(a.rule.range));
+  if (a.u32) p.*a.u32 = static_cast<std::uint32_t>(v);  // every u32 rule's max fits: checked just above
+  else p.*a.u64 = v;
+}
+
+std::uint64_t estimatedMemoryBytes(const TrappingParameters& p, int threads) noexcept {
+  const long cores = ::sysconf(_SC_NPROCESSORS_ONLN);
+  const double workers = static_cast<double>(threads > 0 ? threads : std::max(1L, cores));
+  const double orbits = static_cast<double>(p.M) * (sizeof(OrbitState) + 200.0);  // state + its run-file text
+  const double histograms = static_cast<double>(p.subsets) * (workers + 2) * sizeof(TrappingHistogram);
+  const double longest = static_cast<double>(p.longestKept) * (workers + 2) * (sizeof(SegmentRecord) + 200.0);
+  const double total = orbits + histograms + longest;
+  return total >= 1.8e19 ? ~std::uint64_t{0} : static_cast<std::uint64_t>(total);
+}
+
+std::optional<std::string> memoryError(const TrappingParameters& p, int threads) {
+  const double physical = static_cast<double>(::sysconf(_SC_PHYS_PAGES)) * static_cast<double>(::sysconf(_SC_PAGESIZE));
+  const double need = static_cast<double>(estimatedMemoryBytes(p, threads));
+  if (!(physical > 0) || need <= 0.8 * physical) return std::nullopt;
+  std::ostringstream s;
+  s.precision(3);
+  s << "the run needs about " << need / 1e9 << " GB of memory (M = " << p.M << " orbits, subsets = " << p.subsets
+    << ", longestKept = " << p.longestKept << "), more than this machine's " << physical / 1e9 << " GB";
+  return s.str();
+}
 
 std::optional<std::string> validationError(const TrappingParameters& p) {
   if (auto e = validationError(p.map)) return e;
@@ -13,9 +126,15 @@ std::optional<std::string> validationError(const TrappingParameters& p) {
   if (auto e = randomizingZoneError(p.Xr)) return e;
   if (p.q < 1) return "q = 0 must be >= 1 (steps of N^-1 per block)";
   if (p.T < 1) return "T = 0 must be >= 1 (blocks per orbit)";
-  if (p.T > (std::uint64_t{1} << 62)) return "T must be < 2^62 blocks";
   if (p.M < 1) return "M = 0 must be >= 1 (number of orbits)";
   if (p.subsets < 1) return "subsets = 0 must be >= 1";
+  for (const ParameterRule& r : parameterRules()) {  // the documented range of every integer
+    if (!r.integer) continue;
+    const std::uint64_t v = std::get<std::uint64_t>(parameterValue(p, r.key));
+    if (v < r.min || v > r.max) return std::string(r.key) + " = " + std::to_string(v) + " must lie in " + std::string(r.range);
+  }
+  if (p.T > kMaxStepsPerOrbit / p.q)
+    return "q*T = " + std::to_string(p.q) + "*" + std::to_string(p.T) + " must be <= 2^62 (steps per orbit)";
   if (p.subsets > p.M) {
     s << "subsets = " << p.subsets << " must be <= M = " << p.M << " (each subset needs an orbit)";
     return s.str();

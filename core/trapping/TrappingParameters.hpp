@@ -4,7 +4,10 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
+#include <string_view>
+#include <variant>
 
 #include "map/FixedPointMap.hpp"
 
@@ -24,12 +27,56 @@ struct TrappingParameters {
   friend bool operator==(const TrappingParameters&, const TrappingParameters&) = default;
 };
 
+/// The documented limits of the integer parameters (DESIGN.md, "no silent wrong answer": every input has a
+/// range checked before work starts).  Each bounds the time or memory one value can ask for: q a block's
+/// length (a chunk is at least one block, so q bounds the latency of a stop), T so that lengths in steps
+/// (blocks × q) fit 63 bits, M the orbit states held, subsets the histograms and the statistics' work,
+/// longestKept the records kept and written.
+inline constexpr std::uint64_t kMaxQ = 65536;
+inline constexpr std::uint64_t kMaxT = std::uint64_t{1} << 62;
+inline constexpr std::uint64_t kMaxStepsPerOrbit = std::uint64_t{1} << 62;  ///< q·T
+inline constexpr std::uint64_t kMaxM = std::uint64_t{1} << 32;
+inline constexpr std::uint64_t kMaxSubsets = 1024;
+inline constexpr std::uint64_t kMaxLongestKept = 100'000;
+
+/// One parameter of TrappingParameters as files, the CLI and the GUI name it: the one table of keys,
+/// meanings and ranges.  The JSON codec (spec/RunSpec.hpp), the CLI's options (--key) and help texts, and
+/// validationError() read it.
+struct ParameterRule {
+  std::string_view key;      ///< JSON key and CLI option --key
+  std::string_view meaning;  ///< one line for help texts
+  bool integer = false;      ///< a whole number; else a finite real
+  std::uint64_t min = 0;     ///< integers: the valid range [min, max]
+  std::uint64_t max = 0;
+  std::string_view range;    ///< the valid values in words, for help texts and messages
+};
+[[nodiscard]] std::span<const ParameterRule> parameterRules() noexcept;
+/// The rule of `key`, or nullptr.
+[[nodiscard]] const ParameterRule* findParameterRule(std::string_view key) noexcept;
+
+/// A parameter's value: a double for the reals (K, xmin, xmax, Xr), a std::uint64_t for the integers.
+using ParameterValue = std::variant<double, std::uint64_t>;
+/// The value of parameter `key` (one of parameterRules()).  Throws std::invalid_argument for another key.
+[[nodiscard]] ParameterValue parameterValue(const TrappingParameters& p, std::string_view key);
+/// Sets parameter `key`.  Throws std::invalid_argument naming the key for an unknown key, a value of the
+/// other kind, or an integer outside the rule's [min, max] (so that no value is ever narrowed silently).
+void setParameterValue(TrappingParameters& p, std::string_view key, const ParameterValue& value);
+
 /// The first violated rule, naming the parameter (map rules included), or nothing when valid.
 [[nodiscard]] std::optional<std::string> validationError(const TrappingParameters& p);
 void validate(const TrappingParameters& p);
 
 /// The rule for the randomizing zone's width: Xr finite and in [0, 1).  The message names Xr, or nothing.
 [[nodiscard]] std::optional<std::string> randomizingZoneError(double Xr);
+
+/// The memory a run of these parameters needs on `threads` threads (0: one per core), in bytes: the orbit
+/// states, the histograms (one set per thread while a chunk runs), the longest segments and the run file's
+/// text when it is written.  An estimate within a factor of about two.
+[[nodiscard]] std::uint64_t estimatedMemoryBytes(const TrappingParameters& p, int threads) noexcept;
+
+/// An error when estimatedMemoryBytes() exceeds this machine's physical memory, naming both; checked before
+/// a run starts.
+[[nodiscard]] std::optional<std::string> memoryError(const TrappingParameters& p, int threads);
 
 /// ⌊Xr·2^52⌋, the largest X inside the randomizing zone.
 [[nodiscard]] std::uint64_t randomizingThreshold(double Xr) noexcept;

@@ -40,7 +40,7 @@ TEST(RunSpec, RoundTripIsExactForRandomValues) {
     s.parameters.map.xmax = s.parameters.map.xmin + 0.5 + 3 * unit(rng);
     s.parameters.Xr = unit(rng) * 0.5;
     s.parameters.q = 1 + static_cast<std::uint32_t>(rng() % 1000);
-    s.parameters.T = 1 + rng() % (std::uint64_t{1} << 62);
+    s.parameters.T = 1 + rng() % (kMaxStepsPerOrbit / s.parameters.q);
     s.parameters.M = 64 + rng() % 100000;
     s.parameters.seed = rng();  // the whole 64-bit range, beyond a double's 53 bits
     s.parameters.subsets = 1 + static_cast<std::uint32_t>(rng() % 64);
@@ -56,7 +56,7 @@ TEST(RunSpec, RoundTripIsExactForRandomValues) {
 TEST(RunSpec, WritesShortestRealsAndEveryField) {
   const std::string text = runSpecJson(RunSpec{});
   EXPECT_NE(text.find("\"K\": 0.1,"), std::string::npos) << text;  // not 0.10000000000000001
-  for (const SpecParameter& p : runSpecParameters())
+  for (const ParameterRule& p : parameterRules())
     EXPECT_NE(text.find("\"" + std::string(p.key) + "\":"), std::string::npos) << p.key;
   EXPECT_NE(text.find("\"kernel\": \"auto\""), std::string::npos);
 }
@@ -89,8 +89,10 @@ TEST(RunSpec, EveryBadValueIsNamed) {
   expectRejected(specWith(R"("seed": -5)"), "seed = -5 must be a whole number");
   expectRejected(specWith(R"("seed": 18446744073709551616)"), "seed");      // 2^64: not silently 2^64 − 1
   expectRejected(specWith(R"("seed": 1e30)"), "seed");
-  expectRejected(specWith(R"("q": 4294967296)"), "q = 4294967296 must be <= 4294967295");
-  expectRejected(specWith(R"("M": 0)"), "M = 0 must be >= 1");
+  expectRejected(specWith(R"("q": 4294967296)"), "q = 4294967296 must lie in [1, 65536]");
+  expectRejected(specWith(R"("longestKept": 4294967295)"), "longestKept = 4294967295 must lie in [0, 100000]");
+  expectRejected(specWith(R"("q": 65536, "T": 4611686018427387904)"), "q*T");
+  expectRejected(specWith(R"("M": 0)"), "M = 0 must lie in [1, 2^32]");
   expectRejected(specWith(R"("xmin": -0.2)"), "must be < -sqrt(K)");
   expectRejected(specWith(R"("Xr": 1)"), "Xr = 1 must lie in [0, 1)");
   expectRejected(specWith("", R"(, "kernel": "avx9")"), "kernel = 'avx9' is not a kernel");
