@@ -73,8 +73,7 @@ void runCommand(const RunOptions& o, const std::vector<std::string>& explicitPar
   std::signal(SIGTERM, onInterrupt);
   const KernelInfo& kernel = selectKernel(o.kernel);
   TrappingRunOptions options;
-  options.kernel = kernel.blocks;
-  options.kernelName = std::string(kernel.name);
+  options.kernel = &kernel;
   options.threads = o.threads;
   options.maxChunkBlocks = o.maxChunkBlocks;
   auto lastCheckpoint = std::chrono::steady_clock::now();
@@ -88,7 +87,7 @@ void runCommand(const RunOptions& o, const std::vector<std::string>& explicitPar
     }
     // A progress bar on a terminal; on a pipe or file, a line every 10 s.
     if (!o.quiet && (tty || std::chrono::duration<double>(now - lastLine).count() >= 10)) {
-      drawProgress(p, options.kernelName);
+      drawProgress(p, std::string(kernel.name));
       if (!tty) std::fputc('\n', stderr);
       lastLine = now;
     }
@@ -131,8 +130,7 @@ void addRunCommand(CLI::App& app) {
   cmd->add_option("--checkpoint-interval", o->checkpointSeconds, "seconds between checkpoints")->capture_default_str();
   cmd->add_option("--resume", o->resume, "continue the run in this checkpoint or run file");
   cmd->add_option("--max-chunk", o->maxChunkBlocks, "at most this many blocks between progress reports (0: adaptive)");
-  cmd->add_option("--kernel", o->kernel,
-                  "instruction-set path: auto, " + supportedKernelNames() + " (default: $ARCHIPELAGO_KERNEL or auto)");
+  addKernelOption(*cmd, o->kernel);
   cmd->add_flag("--quiet", o->quiet, "no progress bar or summary");
   cmd->callback([o, cmd] {
     std::vector<std::string> given;

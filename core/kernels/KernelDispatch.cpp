@@ -96,10 +96,4 @@ std::string supportedKernelNames() {
   return s;
 }
 
-std::size_t blockOrbitsOf(BlockKernel kernel) noexcept {
-  for (const auto& k : kKernels)
-    if (k.blocks == kernel) return k.blockOrbits;
-  return kScalarBlockOrbits;
-}
-
 }  // namespace archipelago

@@ -21,7 +21,8 @@ namespace archipelago {
 
 enum class KernelKind { scalar, avx2, avx512ifma };
 
-/// One path: its name (as the CLI, run files and the GUI show it) and its entry points.
+/// One path: its name (as the CLI, run files and the GUI show it) and its entry points.  The table of paths
+/// (allKernels()) has static storage: a `const KernelInfo*` into it stays valid for the program's life.
 struct KernelInfo {
   KernelKind kind;
   std::string_view name;         ///< "scalar", "avx2", "avx512ifma"
@@ -59,10 +60,9 @@ struct CpuFeatures {
 
 /// The path to use: `requested` when non-empty, else $ARCHIPELAGO_KERNEL when set and non-empty, else
 /// bestKernel().  Throws like kernelByName() (naming the environment variable when it was the source).
+/// Called once, at the edge (CLI command, GUI worker); core takes the result as a value (TrappingRunOptions,
+/// PortraitRequest, StochasticAreaRequest) and never reads the environment itself.
 [[nodiscard]] const KernelInfo& selectKernel(std::string_view requested = {});
-
-/// KernelInfo::blockOrbits of the path whose block kernel is `kernel`; kScalarBlockOrbits for another.
-[[nodiscard]] std::size_t blockOrbitsOf(BlockKernel kernel) noexcept;
 
 /// "avx512ifma, avx2, scalar": the supported names, for help texts and error messages.
 [[nodiscard]] std::string supportedKernelNames();
