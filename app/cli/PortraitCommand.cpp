@@ -11,6 +11,7 @@
 
 #include "CliCommon.hpp"
 #include "PngWriter.hpp"
+#include "kernels/KernelDispatch.hpp"
 #include "portrait/ColourMap.hpp"
 #include "portrait/PortraitExport.hpp"
 #include "portrait/PortraitRenderer.hpp"
@@ -33,6 +34,7 @@ struct PortraitOptions {
   double Xr = 0.02;
   std::uint32_t q = 16;
   std::uint64_t seed = 1;
+  std::string kernel;
   bool quiet = false;
 };
 
@@ -95,6 +97,7 @@ void runPortrait(const PortraitOptions& o) {
   req.Xr = o.Xr;
   req.q = o.q;
   req.seed = o.seed;
+  req.kernel = &selectKernel(o.kernel);
   if (auto e = validationError(req)) throw std::invalid_argument(*e);
   if (o.out.empty() && o.npy.empty()) throw std::invalid_argument("give --out FILE.png and/or --npy FILE.npy");
 
@@ -157,6 +160,7 @@ void addPortraitCommand(CLI::App& app) {
   cmd->add_option("--Xr", o->Xr, "randomizing zone (stickiness)")->capture_default_str();
   cmd->add_option("--q", o->q, "steps of N^-1 per block (stickiness)")->capture_default_str();
   cmd->add_option("--seed", o->seed, "random seed")->capture_default_str();
+  addKernelOption(*cmd, o->kernel);
   cmd->add_flag("--quiet", o->quiet, "no progress on stderr");
   cmd->callback([o] { runPortrait(*o); });
 
