@@ -126,9 +126,11 @@ void runPortrait(const PortraitOptions& o) {
 struct AreaOptions {
   StochasticAreaRequest request;
   std::string json;
+  std::string kernel;
 };
 
-void runArea(const AreaOptions& o) {
+void runArea(AreaOptions o) {
+  o.request.kernel = &selectKernel(o.kernel);
   if (auto e = validationError(o.request)) throw std::invalid_argument(*e);
   std::printf("iterations,boxes_visited,b2\n");
   const StochasticAreaResult result = computeStochasticArea(o.request, [](const StochasticAreaPoint& p) {
@@ -173,6 +175,7 @@ void addPortraitCommand(CLI::App& app) {
   area->add_option("--q", a->request.q, "steps per block")->capture_default_str();
   area->add_option("--seed", a->request.seed, "random seed")->capture_default_str();
   area->add_option("--json", a->json, "also write the convergence curve as JSON");
+  addKernelOption(*area, a->kernel);
   area->callback([a] { runArea(*a); });
 }
 

@@ -8,7 +8,7 @@
 #include "map/FixedPointMap.hpp"
 #include "parallel/ParallelFor.hpp"
 #include "portrait/RangeCheck.hpp"
-#include "trapping/BlockKernel.hpp"
+#include "kernels/TracedBlocks.hpp"
 
 namespace archipelago {
 
@@ -43,6 +43,11 @@ StochasticAreaResult computeStochasticArea(const StochasticAreaRequest& r, const
   if (checkpoints.empty() || blocksFor(r.iterations) > checkpoints.back()) checkpoints.push_back(blocksFor(r.iterations));
 
   std::vector<OrbitState> orbits(r.orbits);  // from (0, 0), as trapping runs
+  // Groups of orbits as the path keeps them in flight; with few orbits, groups of 8 keep every thread busy.
+  const KernelInfo& kernel = r.kernel ? *r.kernel : bestKernel();
+  const std::size_t groupSize =
+      r.orbits >= 2 * kernel.blockOrbits * static_cast<std::size_t>(parallelThreads()) ? kernel.blockOrbits : 8;
+  const std::size_t groups = (r.orbits + groupSize - 1) / groupSize;
   std::vector<std::vector<std::uint64_t>> threadBits(static_cast<std::size_t>(parallelThreads()),
                                                      std::vector<std::uint64_t>(words, 0));
   std::vector<std::uint64_t> visited(words, 0);
@@ -54,16 +59,18 @@ StochasticAreaResult computeStochasticArea(const StochasticAreaRequest& r, const
     while (blocksDone < target && !stop.stop_requested()) {
       const std::uint64_t blocks = std::min(kChunkBlocks, target - blocksDone);
       const bool complete = parallelFor(
-          r.orbits,
-          [&](std::size_t i, int thread) {
+          groups,
+          [&](std::size_t g, int thread) {
             std::uint64_t* bits = threadBits[static_cast<std::size_t>(thread)].data();
-            OrbitState s = orbits[i];  // a local copy, so that the stores into `bits` cannot alias it
-            for (std::uint64_t b = 0; b < blocks; ++b)
-              (void)advanceBlockVisiting(settings, i, s, [&](const UnitState& z) {
-                const std::uint64_t box = ((z.Y >> shift) << r.gridBits) | (z.X >> shift);
-                bits[box >> 6] |= std::uint64_t{1} << (box & 63);
-              });
-            orbits[i] = s;
+            const std::size_t first = g * groupSize;
+            const std::size_t n = std::min<std::size_t>(groupSize, r.orbits - first);
+            advanceBlocksTraced(settings, kernel.orbits, std::span<OrbitState>(orbits.data() + first, n), first, blocks,
+                                [&](std::span<const UnitState> trace) {
+                                  for (const UnitState& z : trace) {
+                                    const std::uint64_t box = ((z.Y >> shift) << r.gridBits) | (z.X >> shift);
+                                    bits[box >> 6] |= std::uint64_t{1} << (box & 63);
+                                  }
+                                });
           },
           stop);
       if (!complete) break;  // orbits at different blocks: this checkpoint is not reached
