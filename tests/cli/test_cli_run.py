@@ -118,6 +118,9 @@ check(all(v is not None and v == rasters["scalar"] for v in rasters.values()),
 r = run("portrait", "--size", "8x8", "--points", "1000", "--kernel", "vax", "--npy", os.path.join(tmp, "vax.npy"))
 check(r.returncode > 0 and r.stderr.startswith("ERROR: unknown kernel 'vax'"),
       f"portrait --kernel vax is an error ({r.stderr.strip()})")
+curves = {name: run("stochastic-area", "--iterations", "200000", "--kernel", name).stdout for name in names}
+check(all(c.count("\n") > 1 and c == curves["scalar"] for c in curves.values()),
+      f"stochastic-area --kernel {sorted(curves)} agree bit for bit")
 
 # Bad input: one line starting with ERROR:, non-zero exit, never a crash.
 bad = os.path.join(tmp, "bad.json")
