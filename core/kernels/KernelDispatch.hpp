@@ -64,6 +64,14 @@ struct CpuFeatures {
 /// PortraitRequest, StochasticAreaRequest) and never reads the environment itself.
 [[nodiscard]] const KernelInfo& selectKernel(std::string_view requested = {});
 
+/// `chosen`, the path a caller passed in a request or options, or bestKernel() when it passed none (nullptr).
+[[nodiscard]] const KernelInfo& kernelOrBest(const KernelInfo* chosen);
+
+/// Orbits per parallel task when `orbits` orbits are shared by `threads` threads (runs, b₂): the path's
+/// blockOrbits, what it keeps in flight (fewer leave its pipeline half empty), or with few orbits smaller
+/// groups (multiples of 8, at least min(8, blockOrbits)) so that every thread gets several tasks.
+[[nodiscard]] std::size_t orbitsPerTask(const KernelInfo& kernel, std::size_t orbits, int threads) noexcept;
+
 /// "avx512ifma, avx2, scalar": the supported names, for help texts and error messages.
 [[nodiscard]] std::string supportedKernelNames();
 

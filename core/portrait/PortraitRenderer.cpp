@@ -205,7 +205,7 @@ class Renderer {
         orbitCount_(r.orbitCount()),
         steps_(r.stepsPerOrbit()),
         blocks_(blockSettings(coef_, r.Xr, r.q, r.seed)),
-        densityKernel_((r.kernel ? *r.kernel : bestKernel()).density) {}
+        densityKernel_(kernelOrBest(r.kernel).density) {}
 
   PortraitResult run() {
     PortraitResult result;

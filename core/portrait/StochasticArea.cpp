@@ -43,10 +43,8 @@ StochasticAreaResult computeStochasticArea(const StochasticAreaRequest& r, const
   if (checkpoints.empty() || blocksFor(r.iterations) > checkpoints.back()) checkpoints.push_back(blocksFor(r.iterations));
 
   std::vector<OrbitState> orbits(r.orbits);  // from (0, 0), as trapping runs
-  // Groups of orbits as the path keeps them in flight; with few orbits, groups of 8 keep every thread busy.
-  const KernelInfo& kernel = r.kernel ? *r.kernel : bestKernel();
-  const std::size_t groupSize =
-      r.orbits >= 2 * kernel.blockOrbits * static_cast<std::size_t>(parallelThreads()) ? kernel.blockOrbits : 8;
+  const KernelInfo& kernel = kernelOrBest(r.kernel);
+  const std::size_t groupSize = orbitsPerTask(kernel, r.orbits, parallelThreads());
   const std::size_t groups = (r.orbits + groupSize - 1) / groupSize;
   std::vector<std::vector<std::uint64_t>> threadBits(static_cast<std::size_t>(parallelThreads()),
                                                      std::vector<std::uint64_t>(words, 0));

@@ -66,17 +66,9 @@ TrappingState runTrapping(TrappingState state, const TrappingRunOptions& options
   const KernelSettings settings = kernelSettings(state);
   const int threads = parallelThreads(options.threads);
   const std::size_t orbitCount = state.orbits.size();
-  const KernelInfo& kernel = options.kernel ? *options.kernel : bestKernel();
+  const KernelInfo& kernel = kernelOrBest(options.kernel);
   state.kernel = std::string(kernel.name);
-  // Work is split into groups of orbits; a group is one task, so every thread gets several.  A group is what
-  // the kernel keeps in flight (fewer orbits leave its pipeline half empty); with few orbits, smaller groups
-  // (multiples of 8) keep every thread busy.
-  const std::size_t fullGroup = kernel.blockOrbits;
-  const auto perThread = static_cast<std::size_t>(threads);
-  const std::size_t groupSize =
-      orbitCount >= 2 * fullGroup * perThread
-          ? fullGroup
-          : std::clamp<std::size_t>(orbitCount / (4 * perThread) / 8 * 8, std::min<std::size_t>(8, fullGroup), fullGroup);
+  const std::size_t groupSize = orbitsPerTask(kernel, orbitCount, threads);
   const std::size_t groups = (orbitCount + groupSize - 1) / groupSize;
 
   const auto sessionStart = Clock::now();

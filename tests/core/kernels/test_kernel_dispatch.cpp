@@ -1,6 +1,7 @@
 // Run-time choice of the instruction-set path (core/kernels/KernelDispatch.hpp).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <stdexcept>
 #include <string>
@@ -103,7 +104,20 @@ TEST(KernelDispatch, EveryPathNamesTheOrbitsItKeepsInFlight) {
     const std::size_t width = k.kind == KernelKind::avx512ifma ? 8 : k.kind == KernelKind::avx2 ? 4 : 1;
     EXPECT_GE(k.blockOrbits, 2 * width);
     EXPECT_EQ(k.blockOrbits % width, 0u);
+    // Tasks are whole groups of what the path keeps in flight when there are enough orbits …
+    EXPECT_EQ(orbitsPerTask(k, 2 * k.blockOrbits * 4, 4), k.blockOrbits);
+    // … and smaller ones (never below a vector's worth, multiples of 8) so that few orbits still feed every thread.
+    for (const std::size_t orbits : {1u, 21u, 75u, 200u}) {
+      const std::size_t task = orbitsPerTask(k, orbits, 2);
+      EXPECT_GE(task, std::min<std::size_t>(8, k.blockOrbits)) << orbits;
+      EXPECT_LE(task, k.blockOrbits) << orbits;
+      if (task < k.blockOrbits) {
+        EXPECT_EQ(task % 8, 0u) << orbits;
+      }
+    }
   }
+  EXPECT_EQ(&kernelOrBest(nullptr), &bestKernel());
+  EXPECT_EQ(&kernelOrBest(&allKernels().back()), &allKernels().back());
 }
 
 }  // namespace
