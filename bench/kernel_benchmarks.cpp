@@ -102,7 +102,7 @@ void naiveDouble(benchmark::State& state) {
 
 // The whole engine, runTrapping(), on the paper's K = 0.1 box with Xr = 0.02: randomizing zone, q steps of
 // N⁻¹ per block, segment bookkeeping, histograms, longest segments, OpenMP over groups of orbits.
-void pipeline(benchmark::State& state, BlockKernel kernel, std::uint32_t q, int threads, double stepsPerIteration) {
+void pipeline(benchmark::State& state, const KernelInfo* kernel, std::uint32_t q, int threads, double stepsPerIteration) {
   TrappingParameters p;
   p.map = kPaperBox;
   p.q = q;
@@ -161,7 +161,7 @@ Work bareWork(OrbitKernel kernel, std::uint64_t steps) {
 
 /// Work: runTrapping() on the K = 0.1 box, M = 256 orbits, T blocks of q steps, on `threads` threads, timed by
 /// the wall clock when `wall` (always with more than one thread), else by the thread's CPU clock.
-Work pipelineWork(BlockKernel kernel, std::uint32_t q, int threads, std::uint64_t T, bool wall = false) {
+Work pipelineWork(const KernelInfo* kernel, std::uint32_t q, int threads, std::uint64_t T, bool wall = false) {
   TrappingParameters p;
   p.map = kPaperBox;
   p.q = q;
@@ -203,10 +203,11 @@ void pairedRatio(benchmark::State& state, const Work& numerator, const Work& den
 }
 
 void registerPaired() {
-  const auto kernels = supportedKernels();
+  // Pointers into the static table (allKernels()): the benchmarks run after this function returns.
+  const CpuFeatures cpu = CpuFeatures::detect();
   const auto find = [&](KernelKind kind) -> const KernelInfo* {
-    for (const auto& k : kernels)
-      if (k.kind == kind) return &k;
+    for (const auto& k : allKernels())
+      if (k.kind == kind && supports(cpu, kind)) return &k;
     return nullptr;
   };
   const auto add = [](const std::string& name, Work numerator, Work denominator) {
@@ -227,10 +228,10 @@ void registerPaired() {
   };
   if (const KernelInfo* ifma = find(KernelKind::avx512ifma)) {
     for (const std::uint32_t q : {1u, 16u, 100u}) {
-      add("pipeline_vs_bare/avx512ifma/q:" + std::to_string(q), pipelineWork(ifma->blocks, q, 1, T(*ifma, q, 1)),
+      add("pipeline_vs_bare/avx512ifma/q:" + std::to_string(q), pipelineWork(ifma, q, 1, T(*ifma, q, 1)),
           bareWork(ifma->orbits, bareSteps(*ifma)));
-      add("two_threads_vs_one/avx512ifma/q:" + std::to_string(q), pipelineWork(ifma->blocks, q, 2, T(*ifma, q, 2)),
-          pipelineWork(ifma->blocks, q, 1, T(*ifma, q, 1), true));
+      add("two_threads_vs_one/avx512ifma/q:" + std::to_string(q), pipelineWork(ifma, q, 2, T(*ifma, q, 2)),
+          pipelineWork(ifma, q, 1, T(*ifma, q, 1), true));
     }
   }
   const KernelInfo* avx2 = find(KernelKind::avx2);
@@ -238,8 +239,8 @@ void registerPaired() {
   if (avx2 && scalar) {
     add("avx2_vs_scalar/bare", bareWork(avx2->orbits, bareSteps(*avx2)), bareWork(scalar->orbits, bareSteps(*scalar)));
     for (const std::uint32_t q : {1u, 16u, 100u})
-      add("avx2_vs_scalar/q:" + std::to_string(q), pipelineWork(avx2->blocks, q, 1, T(*avx2, q, 1)),
-          pipelineWork(scalar->blocks, q, 1, T(*scalar, q, 1)));
+      add("avx2_vs_scalar/q:" + std::to_string(q), pipelineWork(avx2, q, 1, T(*avx2, q, 1)),
+          pipelineWork(scalar, q, 1, T(*scalar, q, 1)));
   }
 }
 
@@ -261,7 +262,7 @@ void registerAll() {
         benchmark::RegisterBenchmark(("pipeline/" + std::string(k.name) + "/q:" + std::to_string(q) +
                                       "/threads:" + std::to_string(threads))
                                          .c_str(),
-                                     pipeline, k.blocks, q, threads, steps * threads)
+                                     pipeline, &kernelByName(k.name), q, threads, steps * threads)
             ->UseRealTime()
             ->MeasureProcessCPUTime()
             ->Unit(benchmark::kMillisecond)

@@ -28,9 +28,7 @@ TrappingRunOptions coreOptions(const RunSettings& settings) {
   options.threads = settings.threads;
   options.chunkSeconds = settings.chunkSeconds;
   // The fastest path this CPU supports, or $ARCHIPELAGO_KERNEL; every path gives bit-identical results.
-  const KernelInfo& kernel = selectKernel();
-  options.kernel = kernel.blocks;
-  options.kernelName = std::string(kernel.name);
+  options.kernel = &selectKernel();
   return options;
 }
 

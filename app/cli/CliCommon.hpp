@@ -116,4 +116,8 @@ CLI::Option* addNumberOption(CLI::App& command, const std::string& name, T& valu
 /// Adds --K, --xmin and --xmax (defaults: the paper's K = 0.1 box, §5) to a subcommand.
 void addMapOptions(CLI::App& command, MapParameters& params);
 
+/// Adds --kernel NAME (the instruction-set path; empty: $ARCHIPELAGO_KERNEL, else the fastest the CPU supports).
+/// The command passes the name to selectKernel() (kernels/KernelDispatch.hpp), which validates it.
+void addKernelOption(CLI::App& command, std::string& name);
+
 }  // namespace archipelago::cli

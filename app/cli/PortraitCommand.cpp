@@ -9,6 +9,7 @@
 
 #include "CliCommon.hpp"
 #include "PngWriter.hpp"
+#include "kernels/KernelDispatch.hpp"
 #include "portrait/ColourMap.hpp"
 #include "portrait/PortraitExport.hpp"
 #include "portrait/PortraitRenderer.hpp"
@@ -30,6 +31,7 @@ struct PortraitOptions {
   double Xr = 0.02;
   std::uint32_t q = 16;
   std::uint64_t seed = 1;
+  std::string kernel;
   bool quiet = false;
 };
 
@@ -66,6 +68,7 @@ int runPortrait(const PortraitOptions& o) {
   req.Xr = o.Xr;
   req.q = o.q;
   req.seed = o.seed;
+  req.kernel = &selectKernel(o.kernel);
   if (auto e = validationError(req)) throw std::invalid_argument(*e);
   if (o.out.empty() && o.npy.empty()) throw std::invalid_argument("give --out FILE.png and/or --npy FILE.npy");
 
@@ -110,6 +113,7 @@ void addPortraitCommand(CLI::App& app, int& status) {
   addNumberOption(*cmd, "--Xr", o->Xr, "randomizing zone (stickiness)");
   addNumberOption(*cmd, "--q", o->q, "steps of N^-1 per block (stickiness)");
   addNumberOption(*cmd, "--seed", o->seed, "random seed");
+  addKernelOption(*cmd, o->kernel);
   cmd->add_flag("--quiet", o->quiet, "no progress on stderr");
   cmd->callback([o, &status] { status = runPortrait(*o); });
 }

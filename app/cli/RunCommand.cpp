@@ -71,8 +71,7 @@ int runCommand(const RunOptions& o, const std::vector<std::string>& explicitPara
   std::signal(SIGTERM, onInterrupt);
   const KernelInfo& kernel = selectKernel(o.kernel);
   TrappingRunOptions options;
-  options.kernel = kernel.blocks;
-  options.kernelName = std::string(kernel.name);
+  options.kernel = &kernel;
   options.threads = o.threads;
   options.maxChunkBlocks = o.maxChunkBlocks;
   auto lastCheckpoint = std::chrono::steady_clock::now();
@@ -86,7 +85,7 @@ int runCommand(const RunOptions& o, const std::vector<std::string>& explicitPara
     }
     // A progress bar on a terminal; on a pipe or file, a line every 10 s.
     if (!o.quiet && (tty || std::chrono::duration<double>(now - lastLine).count() >= 10)) {
-      drawProgress(p, options.kernelName);
+      drawProgress(p, std::string(kernel.name));
       if (!tty) std::fputc('\n', stderr);
       lastLine = now;
     }
@@ -130,8 +129,7 @@ void addRunCommand(CLI::App& app, int& status) {
   addNumberOption(*cmd, "--checkpoint-interval", o->checkpointSeconds, "seconds between checkpoints");
   cmd->add_option("--resume", o->resume, "continue the run in this checkpoint or run file");
   addNumberOption(*cmd, "--max-chunk", o->maxChunkBlocks, "at most this many blocks between progress reports (0: adaptive)");
-  cmd->add_option("--kernel", o->kernel,
-                  "instruction-set path: auto, " + supportedKernelNames() + " (default: $ARCHIPELAGO_KERNEL or auto)");
+  addKernelOption(*cmd, o->kernel);
   cmd->add_flag("--quiet", o->quiet, "no progress bar or summary");
   cmd->callback([o, cmd, &status] {
     std::vector<std::string> given;

@@ -1,12 +1,13 @@
 #include "StochasticAreaCommand.hpp"
 
 #include <cstdio>
-#include <fstream>
 #include <memory>
 #include <stdexcept>
 #include <string>
 
 #include "CliCommon.hpp"
+#include "io/AtomicFile.hpp"
+#include "kernels/KernelDispatch.hpp"
 #include "portrait/PortraitExport.hpp"  // stochasticAreaJson
 #include "portrait/StochasticArea.hpp"
 
@@ -16,21 +17,20 @@ namespace {
 struct AreaOptions {
   StochasticAreaRequest request;
   std::string json;
+  std::string kernel;  // empty: $ARCHIPELAGO_KERNEL, else the fastest the CPU supports
 };
 
-int runArea(const AreaOptions& o) {
+int runArea(AreaOptions o) {
+  o.request.kernel = &selectKernel(o.kernel);
   if (auto e = validationError(o.request)) throw std::invalid_argument(*e);
+  if (!o.json.empty()) io::checkWritableTarget(o.json);  // before the work, not after it
   std::printf("iterations,boxes_visited,b2\n");
   const StochasticAreaResult result = computeStochasticArea(o.request, [](const StochasticAreaPoint& p) {
     std::printf("%llu,%llu,%.6f\n", static_cast<unsigned long long>(p.iterations),
                 static_cast<unsigned long long>(p.boxesVisited), p.b2);
     std::fflush(stdout);
   });
-  if (!o.json.empty()) {
-    std::ofstream out(o.json);
-    out << stochasticAreaJson(o.request, result) << '\n';
-    if (!out) throw std::runtime_error("cannot write '" + o.json + "'");
-  }
+  if (!o.json.empty()) io::writeFileAtomically(o.json, stochasticAreaJson(o.request, result) + '\n');
   return 0;
 }
 }  // namespace
@@ -45,6 +45,7 @@ void addStochasticAreaCommand(CLI::App& app, int& status) {
   addNumberOption(*area, "--q", a->request.q, "steps per block");
   addNumberOption(*area, "--seed", a->request.seed, "random seed");
   area->add_option("--json", a->json, "also write the convergence curve as JSON");
+  addKernelOption(*area, a->kernel);
   area->callback([a, &status] { status = runArea(*a); });
 }
 

@@ -1,5 +1,6 @@
 #include "kernels/KernelDispatch.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cstdlib>
 #include <stdexcept>
@@ -90,16 +91,19 @@ const KernelInfo& selectKernel(std::string_view requested) {
   return bestKernel();
 }
 
+const KernelInfo& kernelOrBest(const KernelInfo* chosen) { return chosen ? *chosen : bestKernel(); }
+
+std::size_t orbitsPerTask(const KernelInfo& kernel, std::size_t orbits, int threads) noexcept {
+  const std::size_t full = kernel.blockOrbits;
+  const auto perThread = static_cast<std::size_t>(threads > 0 ? threads : 1);
+  if (orbits >= 2 * full * perThread) return full;
+  return std::clamp<std::size_t>(orbits / (4 * perThread) / 8 * 8, std::min<std::size_t>(8, full), full);
+}
+
 std::string supportedKernelNames() {
   std::string s;
   for (const auto& k : supportedKernels()) s += (s.empty() ? "" : ", ") + std::string(k.name);
   return s;
-}
-
-std::size_t blockOrbitsOf(BlockKernel kernel) noexcept {
-  for (const auto& k : kKernels)
-    if (k.blocks == kernel) return k.blockOrbits;
-  return kScalarBlockOrbits;
 }
 
 }  // namespace archipelago

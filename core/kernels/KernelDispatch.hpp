@@ -21,7 +21,8 @@ namespace archipelago {
 
 enum class KernelKind { scalar, avx2, avx512ifma };
 
-/// One path: its name (as the CLI, run files and the GUI show it) and its entry points.
+/// One path: its name (as the CLI, run files and the GUI show it) and its entry points.  The table of paths
+/// (allKernels()) has static storage: a `const KernelInfo*` into it stays valid for the program's life.
 struct KernelInfo {
   KernelKind kind;
   std::string_view name;         ///< "scalar", "avx2", "avx512ifma"
@@ -59,10 +60,17 @@ struct CpuFeatures {
 
 /// The path to use: `requested` when non-empty, else $ARCHIPELAGO_KERNEL when set and non-empty, else
 /// bestKernel().  Throws like kernelByName() (naming the environment variable when it was the source).
+/// Called once, at the edge (CLI command, GUI worker); core takes the result as a value (TrappingRunOptions,
+/// PortraitRequest, StochasticAreaRequest) and never reads the environment itself.
 [[nodiscard]] const KernelInfo& selectKernel(std::string_view requested = {});
 
-/// KernelInfo::blockOrbits of the path whose block kernel is `kernel`; kScalarBlockOrbits for another.
-[[nodiscard]] std::size_t blockOrbitsOf(BlockKernel kernel) noexcept;
+/// `chosen`, the path a caller passed in a request or options, or bestKernel() when it passed none (nullptr).
+[[nodiscard]] const KernelInfo& kernelOrBest(const KernelInfo* chosen);
+
+/// Orbits per parallel task when `orbits` orbits are shared by `threads` threads (runs, b₂): the path's
+/// blockOrbits, what it keeps in flight (fewer leave its pipeline half empty), or with few orbits smaller
+/// groups (multiples of 8, at least min(8, blockOrbits)) so that every thread gets several tasks.
+[[nodiscard]] std::size_t orbitsPerTask(const KernelInfo& kernel, std::size_t orbits, int threads) noexcept;
 
 /// "avx512ifma, avx2, scalar": the supported names, for help texts and error messages.
 [[nodiscard]] std::string supportedKernelNames();

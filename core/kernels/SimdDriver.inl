@@ -98,7 +98,7 @@ void advanceGroup(const typename Simd::Constants& c, const KernelSettings& k, Or
     startBlockLocal[l] = s.start.block - s.block;
     startDraws[l] = s.start.draws;
     // segmentBegin = −length; an orbit's first segment is not recorded (SegmentSink::record).
-    tagBase[l] = ((std::uint64_t{0} - s.length) << 6) - laneTags[l] - (l < n && s.start.block == 0 ? kUnrecorded : 0);
+    tagBase[l] = ((std::uint64_t{0} - s.length) << 6) - laneTags[l] - (l < n && !isRecorded(s.start) ? kUnrecorded : 0);
     firstBlock[l] = s.block;
   }
   // The local block where lane l's open segment began, from its tagBase (negative: before this call).

@@ -10,8 +10,10 @@
 
 namespace archipelago {
 
-MapCoefficients computeCoefficients(const MapParameters& p) {
-  validate(p);
+namespace {
+// computeCoefficients() without throwing: the coefficients, or why there are none.
+std::optional<std::string> coefficientsOf(const MapParameters& p, MapCoefficients& k) {
+  if (auto e = validationError(p)) return e;
   const double L = p.xmax - p.xmin;
   const double a = 2 * L;
   const double b = -4 * p.xmin;
@@ -26,14 +28,25 @@ MapCoefficients computeCoefficients(const MapParameters& p) {
       s.precision(17);
       s << "the box is too large: max(2L, -4 xmin, 2(xmin^2 - K)/L) = " << std::max({a, b, c})
         << " must be < 2^" << FixedPointMap::kMaxShift << " for the 64-bit fixed-point map";
-      throw std::invalid_argument(s.str());
+      return s.str();
     }
-    const MapCoefficients k{std::llround(std::ldexp(a, FixedPointMap::kBits - m)),
-                            std::llround(std::ldexp(b, FixedPointMap::kBits - m)),
-                            std::llround(std::ldexp(c, FixedPointMap::kBits - m)), m};
+    k = {std::llround(std::ldexp(a, FixedPointMap::kBits - m)), std::llround(std::ldexp(b, FixedPointMap::kBits - m)),
+         std::llround(std::ldexp(c, FixedPointMap::kBits - m)), m};
     const auto one = static_cast<std::int64_t>(FixedPointMap::kOne);
-    if (k.A < one && k.B < one && k.C < one) return k;
+    if (k.A < one && k.B < one && k.C < one) return std::nullopt;
   }
+}
+}  // namespace
+
+MapCoefficients computeCoefficients(const MapParameters& p) {
+  MapCoefficients k;
+  if (auto e = coefficientsOf(p, k)) throw std::invalid_argument(*e);
+  return k;
+}
+
+std::optional<std::string> mapError(const MapParameters& p) {
+  MapCoefficients unused;
+  return coefficientsOf(p, unused);
 }
 
 FixedPointMap::FixedPointMap(const MapParameters& p) : params_(p), coef_(computeCoefficients(p)) {}

@@ -59,6 +59,11 @@ struct MapCoefficients {
 /// (a box so large that 2^m·G no longer fits in 64 bits).
 [[nodiscard]] MapCoefficients computeCoefficients(const MapParameters& p);
 
+/// The one check of a map that every request building one starts with (trapping parameters, portraits, b₂, the
+/// GUI's portrait view): the first rule of validationError(p), or the box-size limit of computeCoefficients(),
+/// as a message naming the parameter; nothing when computeCoefficients(p) succeeds.
+[[nodiscard]] std::optional<std::string> mapError(const MapParameters& p);
+
 namespace fixedpoint {
 inline constexpr int kBits = 52;
 inline constexpr std::uint64_t kOne = std::uint64_t{1} << kBits;

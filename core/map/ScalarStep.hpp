@@ -52,6 +52,16 @@ class ScalarStep {
     X = (X + Y - kHalf) & kMask;
   }
 
+  /// One step of N (forwardStep); ORs into `wrap` a word with a bit ≥ 52 set when the step wrapped.
+  void forward(std::uint64_t& X, std::uint64_t& Y, std::uint64_t& wrap) const noexcept {
+    using namespace fixedpoint;
+    const std::uint64_t u = Y + G(X);
+    Y = u & kMask;
+    const std::uint64_t s = X + Y - kHalf;
+    X = s & kMask;
+    wrap |= s | u;
+  }
+
  private:
   static std::uint64_t mulHigh(std::uint64_t a, std::uint64_t b) noexcept {
     return static_cast<std::uint64_t>((uint128{a} * b) >> 64);

@@ -1,20 +1,17 @@
 #include "portrait/PortraitRenderer.hpp"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <exception>
 #include <limits>
-#include <mutex>
 #include <sstream>
 #include <stdexcept>
 
-#include "kernels/KernelDispatch.hpp"
-#include "random/CounterRng.hpp"
+#include "kernels/ScalarLanes.hpp"
+#include "parallel/ParallelFor.hpp"
 #include "portrait/RangeCheck.hpp"
-#include "trapping/TrappingParameters.hpp"
+#include "random/CounterRng.hpp"
+#include "trapping/BlockKernel.hpp"
 
 // Glossary: an "orbit" is one trajectory of N (Density, Orbits) or of trapping blocks of N⁻¹ (Stickiness);
 // a "group" is up to kLanes orbits advanced in lockstep by one thread; a "chunk" is at most chunkSteps points
@@ -60,12 +57,7 @@ std::uint64_t PortraitRequest::stepsPerOrbit() const noexcept {
 }
 
 std::optional<std::string> validationError(const PortraitRequest& r) {
-  if (auto e = validationError(r.map)) return e;
-  try {
-    (void)computeCoefficients(r.map);
-  } catch (const std::invalid_argument& e) {
-    return std::string(e.what());
-  }
+  if (auto e = mapError(r.map)) return e;
   std::ostringstream s;
   if (r.width < 1 || r.width > 16384 || r.height < 1 || r.height > 16384) {
     s << "raster size " << r.width << "x" << r.height << " must be 1 ... 16384 pixels each way";
@@ -113,7 +105,7 @@ UnitState orbitSeed(const Viewport& view, std::uint32_t columns, std::uint32_t r
 
 namespace {
 
-constexpr std::size_t kLanes = 8;  // orbits in lockstep: overlaps the latency of the 128-bit products
+constexpr std::size_t kLanes = kScalarLanes;  // Orbits, Stickiness: orbits per group (ScalarLanes.hpp)
 // Density mode iterates and bins groups of kDensityGroup orbits with the selected vector kernel
 // (KernelDispatch.hpp, DensityKernel): 32 orbits are four AVX-512 vectors, enough to hide the multiply
 // latency, and 256 orbits still make 8 groups to share between threads.
@@ -194,11 +186,10 @@ struct OpenSegment {
   }
 };
 
-/// State of one trapping orbit (Stickiness mode) between chunks.
+/// State of one trapping orbit (Stickiness mode) between chunks: the orbit as trapping runs keep it, and the
+/// pixels of its open segment.
 struct TrappingOrbit {
-  std::uint64_t draws = 0;
-  std::uint64_t blocks = 0;        // in the open segment
-  bool firstSegment = true;        // the segment starting on X = 0 is not recorded (BlockKernel.hpp)
+  OrbitState orbit;  // from (0, 0), appendix B step 2
   OpenSegment open;
 };
 
@@ -209,11 +200,12 @@ class Renderer {
         observer_(observer),
         stop_(std::move(stop)),
         coef_(computeCoefficients(r.map)),
+        step_(coef_),
         mapping_(r.view, r.width, r.height),
         orbitCount_(r.orbitCount()),
         steps_(r.stepsPerOrbit()),
-        randomizingX_(randomizingThreshold(r.Xr)),
-        densityKernel_(selectKernel().density) {}
+        blocks_(blockSettings(coef_, r.Xr, r.q, r.seed)),
+        densityKernel_(kernelOrBest(r.kernel).density) {}
 
   PortraitResult run() {
     PortraitResult result;
@@ -228,7 +220,7 @@ class Renderer {
 
     initOrbits();
     if (r_.mode == PortraitMode::Orbits) wrapped_.assign(orbitCount_, 0);
-    threads_.resize(static_cast<std::size_t>(std::max(1, omp_get_max_threads())));
+    threads_.resize(static_cast<std::size_t>(parallelThreads()));
     for (ThreadRaster& t : threads_) {
       if (r_.mode == PortraitMode::Density) {
         t.density.assign(pixels, 0);
@@ -287,8 +279,7 @@ class Renderer {
           states_[i] = orbitSeed(r_.view, r_.seedColumns, r_.seedRows, static_cast<std::uint32_t>(i % r_.seedColumns),
                                  static_cast<std::uint32_t>(i / r_.seedColumns));
           break;
-        case PortraitMode::Stickiness:
-          states_[i] = {0, 0};
+        case PortraitMode::Stickiness:  // trapping_ holds these orbits (from (0, 0))
           break;
       }
     }
@@ -299,55 +290,30 @@ class Renderer {
 
   void runRound(std::uint64_t done, std::uint64_t chunk) {
     const std::size_t lanes = groupSize();
-    const auto groups = static_cast<std::int64_t>((orbitCount_ + lanes - 1) / lanes);
-    std::exception_ptr error;
-    std::mutex errorMutex;
-#pragma omp parallel for schedule(dynamic, 1)
-    for (std::int64_t g = 0; g < groups; ++g) {
-      if (stop_.stop_requested()) continue;  // checked before every chunk
-      try {
-        ThreadRaster& out = threads_[static_cast<std::size_t>(omp_get_thread_num())];
-        const std::uint64_t first = static_cast<std::uint64_t>(g) * lanes;
-        const std::uint64_t n = std::min<std::uint64_t>(lanes, orbitCount_ - first);
-        switch (r_.mode) {
-          case PortraitMode::Density: advanceDensityOrbits(first, n, chunk, out); break;
-          case PortraitMode::Orbits: advanceMapOrbits<true>(first, n, chunk, out); break;
-          case PortraitMode::Stickiness: advanceTrappingOrbits(first, n, done, chunk, out); break;
-        }
-        pointsDone_.fetch_add(n * chunk, std::memory_order_relaxed);
-      } catch (...) {
-        std::lock_guard lock(errorMutex);
-        if (!error) error = std::current_exception();
-      }
-    }
-    if (error) std::rethrow_exception(error);
+    const std::size_t groups = (orbitCount_ + lanes - 1) / lanes;
+    parallelFor(
+        groups,
+        [&](std::size_t g, int thread) {
+          ThreadRaster& out = threads_[static_cast<std::size_t>(thread)];
+          const std::uint64_t first = std::uint64_t{g} * lanes;
+          const std::uint64_t n = std::min<std::uint64_t>(lanes, orbitCount_ - first);
+          switch (r_.mode) {
+            case PortraitMode::Density: advanceDensityOrbits(first, n, chunk, out); break;
+            case PortraitMode::Orbits: advanceMapOrbits(first, n, chunk, out); break;
+            case PortraitMode::Stickiness: advanceTrappingOrbits(first, n, done, chunk, out); break;
+          }
+          pointsDone_.fetch_add(n * chunk, std::memory_order_relaxed);
+        },
+        stop_);  // checked before every chunk
   }
 
-  template <bool kLabels>
+  // Orbits (b): the scalar lane loop (ScalarLanes.hpp) with every point binned and labelled.
   void advanceMapOrbits(std::uint64_t first, std::uint64_t n, std::uint64_t chunk, ThreadRaster& out) {
-    if (n == kLanes) {
-      UnitState z[kLanes];
-      for (std::size_t l = 0; l < kLanes; ++l) z[l] = states_[first + l];
-      bool wrapped[kLanes] = {};
-      for (std::uint64_t s = 0; s < chunk; ++s) {
-        for (std::size_t l = 0; l < kLanes; ++l) wrapped[l] |= forwardStep(coef_, z[l]);
-        for (std::size_t l = 0; l < kLanes; ++l) bin<kLabels>(z[l], first + l, out);
-      }
-      for (std::size_t l = 0; l < kLanes; ++l) states_[first + l] = z[l];
-      if constexpr (kLabels)
-        for (std::size_t l = 0; l < kLanes; ++l) wrapped_[first + l] |= wrapped[l] ? 1 : 0;
-    } else {
-      for (std::uint64_t o = first; o < first + n; ++o) {
-        UnitState z = states_[o];
-        bool wrapped = false;
-        for (std::uint64_t s = 0; s < chunk; ++s) {
-          wrapped |= forwardStep(coef_, z);
-          bin<kLabels>(z, o, out);
-        }
-        states_[o] = z;
-        if constexpr (kLabels) wrapped_[o] |= wrapped ? 1 : 0;
-      }
-    }
+    stepAllLanes(step_, MapDirection::forward, std::span<UnitState>(states_.data() + first, n), chunk,
+                 wrapped_.data() + first,
+                 [&](std::size_t lane0, std::size_t lanes, std::uint64_t, const std::uint64_t* X, const std::uint64_t* Y) {
+                   for (std::size_t l = 0; l < lanes; ++l) bin({X[l], Y[l]}, first + lane0 + l, out);
+                 });
   }
 
   // Density (a): the vector orbit kernel writes kTraceSteps states of every orbit into a small trace, which
@@ -357,45 +323,33 @@ class Renderer {
                                  out.density.data(), out.carries);
   }
 
-  template <bool kLabels>
   void bin(const UnitState& z, std::uint64_t orbit, ThreadRaster& out) const noexcept {
     const std::int64_t p = mapping_.pixelOf(z);
     if (p < 0) return;
     const auto i = static_cast<std::size_t>(p);
     out.counts[i] += 1;
     out.binned += 1;
-    if constexpr (kLabels) out.labels[i] = std::min(out.labels[i], static_cast<std::uint32_t>(orbit));
+    out.labels[i] = std::min(out.labels[i], static_cast<std::uint32_t>(orbit));
   }
 
-  // Trapping blocks (appendix B, steps 5–9; BlockKernel.hpp's advanceOneBlock), one orbit at a time:
-  // Stickiness is not the throughput mode, and the per-orbit bookkeeping dominates anyway.
+  // Trapping blocks (appendix B, steps 5–9), BlockKernel.hpp's definition, one orbit at a time: Stickiness
+  // is not the throughput mode, and the per-point bookkeeping dominates anyway.
   void advanceTrappingOrbits(std::uint64_t first, std::uint64_t n, std::uint64_t /*done*/, std::uint64_t chunk,
                              ThreadRaster& out) {
     const std::uint64_t blocks = chunk / r_.q;
     for (std::uint64_t o = first; o < first + n; ++o) {
-      UnitState z = states_[o];
       TrappingOrbit& t = trapping_[o];
-      const std::uint64_t key = orbitKey(r_.seed, o);
+      OrbitState s = t.orbit;  // a local copy, so that the pixel stores below cannot alias it
+      const auto visit = [&](const UnitState& z) {
+        const std::int64_t p = mapping_.pixelOf(z);
+        if (p >= 0) t.open.add(static_cast<std::uint32_t>(p));
+      };
       for (std::uint64_t b = 0; b < blocks; ++b) {
-        t.blocks += 1;
-        bool ended = false;
-        if (z.X <= randomizingX_) {
-          t.draws += 1;
-          z.Y = (z.Y + orbitDraw(key, t.draws)) & FixedPointMap::kMask;
-          ended = true;
-        }
-        for (std::uint32_t j = 0; j < r_.q; ++j) {
-          ended |= backwardStep(coef_, z);
-          const std::int64_t p = mapping_.pixelOf(z);
-          if (p >= 0) t.open.add(static_cast<std::uint32_t>(p));
-        }
-        if (ended) {
-          t.open.close(!t.firstSegment, t.blocks * r_.q, out);
-          t.firstSegment = false;
-          t.blocks = 0;
-        }
+        if (!advanceBlockVisiting(blocks_, o, s, visit)) continue;
+        t.open.close(isRecorded(s.start), s.length * r_.q, out);
+        restartSegment(s);
       }
-      states_[o] = z;
+      t.orbit = s;
     }
   }
 
@@ -450,10 +404,11 @@ class Renderer {
   const PortraitObserver& observer_;
   std::stop_token stop_;
   MapCoefficients coef_;
+  ScalarStep step_;
   PixelMapping mapping_;
   std::uint64_t orbitCount_;
   std::uint64_t steps_;
-  std::uint64_t randomizingX_;
+  KernelSettings blocks_;  // Stickiness
   DensityKernel densityKernel_;
   std::vector<UnitState> states_;
   std::vector<TrappingOrbit> trapping_;

@@ -29,9 +29,14 @@
 /// which every orbit advances by at most `chunkSteps` points; the stop token is checked before every chunk
 /// of every orbit, so after a stop request each thread finishes at most the chunk it is in.
 ///
-/// Parallel over orbits with OpenMP, each thread into its own raster, merged with integer sums (and the
-/// minimum for labels): the raster does not depend on the number of threads.  No exception leaves a
+/// Parallel over orbits (parallel/ParallelFor.hpp), each thread into its own raster, merged with integer sums
+/// (and the minimum for labels): the raster does not depend on the number of threads.  No exception leaves a
 /// parallel region: one raised inside (e.g. std::bad_alloc) is rethrown after it.
+///
+/// The instruction-set path is part of the request (the caller chooses it, selectKernel() at the CLI or GUI
+/// edge); Density mode iterates and bins with its DensityKernel.  Orbits and Stickiness modes visit every
+/// point with the scalar definitions (the lane loop of kernels/ScalarLanes.hpp; the trapping block of
+/// BlockKernel.hpp), since no vector path visits single steps.  Every path gives the same raster.
 
 #include <cstdint>
 #include <functional>
@@ -40,7 +45,7 @@
 #include <string>
 #include <vector>
 
-#include "kernels/VectorKernels.hpp"
+#include "kernels/KernelDispatch.hpp"
 #include "map/FixedPointMap.hpp"
 #include "portrait/PortraitRaster.hpp"
 #include "portrait/Viewport.hpp"
@@ -63,6 +68,7 @@ struct PortraitRequest {
   std::uint64_t seed = 1;               ///< random numbers (CounterRng.hpp): start points and randomization
   std::uint32_t passes = 6;             ///< progressive refinement, 1 … 30
   std::uint32_t chunkSteps = 8192;      ///< points per orbit per chunk, 1 … 2^20: the cancellation latency
+  const KernelInfo* kernel = nullptr;   ///< the instruction-set path (allKernels()); nullptr: bestKernel()
 
   /// Number of orbits in the chosen mode (seedColumns·seedRows in Orbits mode).
   [[nodiscard]] std::uint64_t orbitCount() const noexcept;

@@ -1,28 +1,19 @@
 #include "portrait/StochasticArea.hpp"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <bit>
 #include <cmath>
-#include <exception>
-#include <mutex>
 #include <stdexcept>
 
 #include "map/FixedPointMap.hpp"
-#include "random/CounterRng.hpp"
+#include "parallel/ParallelFor.hpp"
 #include "portrait/RangeCheck.hpp"
-#include "trapping/TrappingParameters.hpp"
+#include "kernels/TracedBlocks.hpp"
 
 namespace archipelago {
 
 std::optional<std::string> validationError(const StochasticAreaRequest& r) {
-  if (auto e = validationError(r.map)) return e;
-  try {
-    (void)computeCoefficients(r.map);
-  } catch (const std::invalid_argument& e) {
-    return std::string(e.what());
-  }
+  if (auto e = mapError(r.map)) return e;
   if (auto e = randomizingZoneError(r.Xr)) return e;
   if (auto e = outsideRange("q", r.q, 1, 4096)) return e;
   if (auto e = outsideRange("orbits", r.orbits, 1, 65536)) return e;
@@ -35,8 +26,7 @@ std::optional<std::string> validationError(const StochasticAreaRequest& r) {
 StochasticAreaResult computeStochasticArea(const StochasticAreaRequest& r, const StochasticAreaObserver& observer,
                                            std::stop_token stop) {
   if (auto e = validationError(r)) throw std::invalid_argument(*e);
-  const MapCoefficients coef = computeCoefficients(r.map);
-  const std::uint64_t zone = randomizingThreshold(r.Xr);
+  const KernelSettings settings = blockSettings(computeCoefficients(r.map), r.Xr, r.q, r.seed);
   const int shift = FixedPointMap::kBits - r.gridBits;
   const std::uint64_t boxes = std::uint64_t{1} << (2 * r.gridBits);
   const std::size_t words = static_cast<std::size_t>((boxes + 63) / 64);
@@ -52,14 +42,11 @@ StochasticAreaResult computeStochasticArea(const StochasticAreaRequest& r, const
     if (checkpoints.empty() || blocksFor(t) > checkpoints.back()) checkpoints.push_back(blocksFor(t));
   if (checkpoints.empty() || blocksFor(r.iterations) > checkpoints.back()) checkpoints.push_back(blocksFor(r.iterations));
 
-  struct Orbit {
-    UnitState z;
-    std::uint64_t key = 0;
-    std::uint64_t draws = 0;
-  };
-  std::vector<Orbit> orbits(r.orbits);
-  for (std::uint32_t i = 0; i < r.orbits; ++i) orbits[i].key = orbitKey(r.seed, i);
-  std::vector<std::vector<std::uint64_t>> threadBits(static_cast<std::size_t>(std::max(1, omp_get_max_threads())),
+  std::vector<OrbitState> orbits(r.orbits);  // from (0, 0), as trapping runs
+  const KernelInfo& kernel = kernelOrBest(r.kernel);
+  const std::size_t groupSize = orbitsPerTask(kernel, r.orbits, parallelThreads());
+  const std::size_t groups = (r.orbits + groupSize - 1) / groupSize;
+  std::vector<std::vector<std::uint64_t>> threadBits(static_cast<std::size_t>(parallelThreads()),
                                                      std::vector<std::uint64_t>(words, 0));
   std::vector<std::uint64_t> visited(words, 0);
 
@@ -69,32 +56,22 @@ StochasticAreaResult computeStochasticArea(const StochasticAreaRequest& r, const
   for (const std::uint64_t target : checkpoints) {
     while (blocksDone < target && !stop.stop_requested()) {
       const std::uint64_t blocks = std::min(kChunkBlocks, target - blocksDone);
-      std::exception_ptr error;
-      std::mutex errorMutex;
-#pragma omp parallel for schedule(dynamic, 1)
-      for (std::int64_t i = 0; i < static_cast<std::int64_t>(r.orbits); ++i) {
-        try {
-          std::uint64_t* bits = threadBits[static_cast<std::size_t>(omp_get_thread_num())].data();
-          Orbit& o = orbits[static_cast<std::size_t>(i)];
-          UnitState z = o.z;
-          for (std::uint64_t b = 0; b < blocks; ++b) {
-            if (z.X <= zone) {  // appendix B, 6.1–6.2, as in trapping runs
-              o.draws += 1;
-              z.Y = (z.Y + orbitDraw(o.key, o.draws)) & FixedPointMap::kMask;
-            }
-            for (std::uint32_t j = 0; j < r.q; ++j) {
-              backwardStep(coef, z);
-              const std::uint64_t box = ((z.Y >> shift) << r.gridBits) | (z.X >> shift);
-              bits[box >> 6] |= std::uint64_t{1} << (box & 63);
-            }
-          }
-          o.z = z;
-        } catch (...) {
-          std::lock_guard lock(errorMutex);
-          if (!error) error = std::current_exception();
-        }
-      }
-      if (error) std::rethrow_exception(error);
+      const bool complete = parallelFor(
+          groups,
+          [&](std::size_t g, int thread) {
+            std::uint64_t* bits = threadBits[static_cast<std::size_t>(thread)].data();
+            const std::size_t first = g * groupSize;
+            const std::size_t n = std::min<std::size_t>(groupSize, r.orbits - first);
+            advanceBlocksTraced(settings, kernel.orbits, std::span<OrbitState>(orbits.data() + first, n), first, blocks,
+                                [&](std::span<const UnitState> trace) {
+                                  for (const UnitState& z : trace) {
+                                    const std::uint64_t box = ((z.Y >> shift) << r.gridBits) | (z.X >> shift);
+                                    bits[box >> 6] |= std::uint64_t{1} << (box & 63);
+                                  }
+                                });
+          },
+          stop);
+      if (!complete) break;  // orbits at different blocks: this checkpoint is not reached
       blocksDone += blocks;
     }
     if (blocksDone < target) {

@@ -8,7 +8,8 @@
 /// area L²).  Here the orbits are exactly those of the trapping runs (appendix B, BlockKernel.hpp): orbit i
 /// starts at (0, 0) and iterates blocks of q steps of N⁻¹, its Y randomized (its own counter-based draws)
 /// whenever a block starts in the zone X ≤ ⌊Xr·2^52⌋.  Every point after every step marks its box
-/// (X >> 42, Y >> 42) — exact integer boxing of the unit square.
+/// (X >> 42, Y >> 42) — exact integer boxing of the unit square.  The steps are computed by the request's
+/// instruction-set path (kernels/TracedBlocks.hpp); every path visits the same boxes.
 ///
 /// Convergence: the visited fraction is recorded each time the total number of steps doubles, from
 /// firstCheckpoint up to `iterations`; each checkpoint has every orbit at the same number of steps, so the
@@ -22,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "kernels/KernelDispatch.hpp"
 #include "map/MapParameters.hpp"
 
 namespace archipelago {
@@ -35,6 +37,7 @@ struct StochasticAreaRequest {
   std::uint64_t iterations = 1ULL << 28;   ///< total steps, all orbits (rounded up to whole blocks per orbit)
   std::uint64_t firstCheckpoint = 1ULL << 20;  ///< total steps at the first point of the convergence curve
   int gridBits = 10;                       ///< boxes per side = 2^gridBits, 1 … 12 (paper: 1024)
+  const KernelInfo* kernel = nullptr;      ///< the instruction-set path (allKernels()); nullptr: bestKernel()
 };
 
 [[nodiscard]] std::optional<std::string> validationError(const StochasticAreaRequest& r);

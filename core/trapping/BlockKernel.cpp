@@ -11,8 +11,7 @@ namespace {
 // Ends the open segment of `s` after a block: hand it to the sink, start the next one at the current state.
 inline void endSegment(std::uint64_t orbit, OrbitState& s, SegmentSink* sink) {
   if (sink) sink->record(orbit, s.length, s.start);
-  s.length = 0;
-  s.start = {s.z, s.block, s.draws};
+  restartSegment(s);
 }
 }  // namespace
 
@@ -74,7 +73,7 @@ void advanceBlocksScalar(const KernelSettings& k, std::span<OrbitState> orbits, 
       for (unsigned bits = ended; bits; bits &= bits - 1) {  // endSegment(), with SegmentSink::record inlined
         const auto l = static_cast<std::size_t>(__builtin_ctz(bits));
         OrbitState& s = orbits[first + l];
-        if (s.start.block != 0) {
+        if (isRecorded(s.start)) {
           subset[l]->add(length[l]);
           if (longest.mightKeep(length[l])) longest.insert({firstOrbit + first + l, length[l], s.start});
         }

@@ -28,6 +28,23 @@ struct KernelSettings {
   std::uint64_t seed = 0;
 };
 
+/// The settings of blocks of q steps of N⁻¹ with the randomizing zone 0 ≤ X ≤ Xr (unit X) and random seed
+/// `seed`: what trapping runs, replays, Stickiness portraits and b₂ all iterate.
+[[nodiscard]] inline KernelSettings blockSettings(const MapCoefficients& coefficients, double Xr, std::uint32_t q,
+                                                  std::uint64_t seed) noexcept {
+  return {coefficients, randomizingThreshold(Xr), q, seed};
+}
+
+/// Whether an ended segment counts: not the one that ends in an orbit's first block (it started on X = 0,
+/// inside the randomizing zone), so that every recorded segment starts at a random point (DESIGN.md).
+[[nodiscard]] inline bool isRecorded(const SegmentStart& start) noexcept { return start.block != 0; }
+
+/// Starts the next segment of `s` at its current state, after a block in which the open one ended.
+inline void restartSegment(OrbitState& s) noexcept {
+  s.length = 0;
+  s.start = {s.z, s.block, s.draws};
+}
+
 /// Collects ended segments of one thread: the histogram of each subset and the longest segments.
 class SegmentSink {
  public:
@@ -36,7 +53,7 @@ class SegmentSink {
   /// Records a segment that ended.  The segment that ends in an orbit's first block (it started on X = 0,
   /// inside the randomizing zone) is not recorded, so every recorded segment starts at a random point.
   void record(std::uint64_t orbit, std::uint64_t length, const SegmentStart& start) {
-    if (start.block == 0) return;
+    if (!isRecorded(start)) return;
     subsets_[orbit % subsets_.size()].add(length);
     if (longest_.mightKeep(length)) longest_.insert({orbit, length, start});
   }
@@ -61,18 +78,26 @@ inline constexpr std::size_t kScalarBlockOrbits = 8;
 void advanceBlocksScalar(const KernelSettings& settings, std::span<OrbitState> orbits, std::uint64_t firstOrbit,
                          std::uint64_t blocks, SegmentSink& sink);
 
+/// The start of a block (appendix B, 6.1–6.2): length + 1, and when X ≤ ⌊Xr·2^52⌋ (the randomizing zone)
+/// Y ← Y + U, the orbit's next draw, which ends the segment.  Returns true when it did.  The q steps of N⁻¹
+/// and block + 1 follow (advanceBlockVisiting; kernels/TracedBlocks.hpp).
+inline bool enterBlock(const KernelSettings& k, std::uint64_t orbit, OrbitState& s) noexcept {
+  s.length += 1;
+  if (s.z.X > k.randomizingX) return false;
+  s.draws += 1;
+  s.z.Y = (s.z.Y + orbitDraw(orbitKey(k.seed, orbit), s.draws)) & fixedpoint::kMask;
+  return true;
+}
+
 /// One block of one orbit, the definition every kernel must match: length + 1, the randomizing zone, q steps
 /// of N⁻¹ (calling afterStep(z) after each), block + 1.  Returns true when the segment ended; it does not
-/// close the segment (advanceOneBlock does).  `orbit` is the orbit's index (it selects its random numbers).
+/// close the segment (advanceOneBlock does; other callers use isRecorded() and restartSegment()).  `orbit` is
+/// the orbit's index (it selects its random numbers).  Every visiting caller uses it: replays
+/// (replaySegmentUntil) and Stickiness portraits (PortraitRenderer.cpp); give it a local copy of the state, so
+/// that stores made by afterStep cannot alias it and it stays in registers.
 template <class StepVisitor>
 inline bool advanceBlockVisiting(const KernelSettings& k, std::uint64_t orbit, OrbitState& s, StepVisitor&& afterStep) {
-  s.length += 1;
-  bool ended = false;
-  if (s.z.X <= k.randomizingX) {  // appendix B, 6.1–6.2: randomize Y in the zone 0 ≤ X ≤ Xr
-    s.draws += 1;
-    s.z.Y = (s.z.Y + orbitDraw(orbitKey(k.seed, orbit), s.draws)) & fixedpoint::kMask;
-    ended = true;
-  }
+  bool ended = enterBlock(k, orbit, s);
   for (std::uint32_t j = 0; j < k.q; ++j) {
     ended |= backwardStep(k.coefficients, s.z);
     afterStep(s.z);

@@ -120,7 +120,7 @@ std::optional<std::string> memoryError(const TrappingParameters& p, int threads)
 }
 
 std::optional<std::string> validationError(const TrappingParameters& p) {
-  if (auto e = validationError(p.map)) return e;
+  if (auto e = mapError(p.map)) return e;
   std::ostringstream s;
   s.precision(17);
   if (auto e = randomizingZoneError(p.Xr)) return e;
@@ -138,11 +138,6 @@ std::optional<std::string> validationError(const TrappingParameters& p) {
   if (p.subsets > p.M) {
     s << "subsets = " << p.subsets << " must be <= M = " << p.M << " (each subset needs an orbit)";
     return s.str();
-  }
-  try {
-    (void)computeCoefficients(p.map);
-  } catch (const std::invalid_argument& e) {
-    return std::string(e.what());
   }
   return std::nullopt;
 }

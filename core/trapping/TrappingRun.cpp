@@ -1,13 +1,12 @@
 #include "trapping/TrappingRun.hpp"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
 
 #include "kernels/KernelDispatch.hpp"
+#include "parallel/ParallelFor.hpp"
 
 
 namespace archipelago {
@@ -58,31 +57,18 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 KernelSettings kernelSettings(const TrappingState& s) {
-  return {s.coefficients, randomizingThreshold(s.params.Xr), s.params.q, s.params.seed};
+  return blockSettings(s.coefficients, s.params.Xr, s.params.q, s.params.seed);
 }
 }  // namespace
 
 TrappingState runTrapping(TrappingState state, const TrappingRunOptions& options, const TrappingObserver& observer,
                           std::stop_token stop) {
   const KernelSettings settings = kernelSettings(state);
-  const int threads = options.threads > 0 ? options.threads : omp_get_max_threads();
+  const int threads = parallelThreads(options.threads);
   const std::size_t orbitCount = state.orbits.size();
-  BlockKernel kernel = options.kernel;
-  state.kernel = options.kernelName;
-  if (kernel == nullptr) {
-    const KernelInfo& best = selectKernel();
-    kernel = best.blocks;
-    state.kernel = std::string(best.name);
-  }
-  // Work is split into groups of orbits; a group is one task, so every thread gets several.  A group is what
-  // the kernel keeps in flight (fewer orbits leave its pipeline half empty); with few orbits, smaller groups
-  // (multiples of 8) keep every thread busy.
-  const std::size_t fullGroup = blockOrbitsOf(kernel);
-  const auto perThread = static_cast<std::size_t>(threads);
-  const std::size_t groupSize =
-      orbitCount >= 2 * fullGroup * perThread
-          ? fullGroup
-          : std::clamp<std::size_t>(orbitCount / (4 * perThread) / 8 * 8, std::min<std::size_t>(8, fullGroup), fullGroup);
+  const KernelInfo& kernel = kernelOrBest(options.kernel);
+  state.kernel = std::string(kernel.name);
+  const std::size_t groupSize = orbitsPerTask(kernel, orbitCount, threads);
   const std::size_t groups = (orbitCount + groupSize - 1) / groupSize;
 
   const auto sessionStart = Clock::now();
@@ -96,13 +82,16 @@ TrappingState runTrapping(TrappingState state, const TrappingRunOptions& options
     std::vector<SegmentSink> sinks(static_cast<std::size_t>(threads),
                                    SegmentSink(state.params.subsets, state.params.longestKept));
     const auto chunkStart = Clock::now();
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
-    for (std::size_t g = 0; g < groups; ++g) {
-      const std::size_t first = g * groupSize;
-      const std::size_t n = std::min(groupSize, orbitCount - first);
-      kernel(settings, std::span<OrbitState>(state.orbits.data() + first, n), state.orbitBegin + first,
-                     blocks, sinks[static_cast<std::size_t>(omp_get_thread_num())]);
-    }
+    // No stop token here: a chunk must complete, or orbits would stand at different blocks.
+    parallelFor(
+        groups,
+        [&](std::size_t g, int thread) {
+          const std::size_t first = g * groupSize;
+          const std::size_t n = std::min(groupSize, orbitCount - first);
+          kernel.blocks(settings, std::span<OrbitState>(state.orbits.data() + first, n), state.orbitBegin + first,
+                        blocks, sinks[static_cast<std::size_t>(thread)]);
+        },
+        {}, threads);
     for (const auto& sink : sinks) {
       for (std::size_t i = 0; i < state.subsets.size(); ++i) state.subsets[i].merge(sink.subsets()[i]);
       state.longest.merge(sink.longest());
@@ -142,7 +131,7 @@ std::optional<std::uint64_t> replaySegmentUntil(const TrappingParameters& params
                                                 std::stop_token stop) {
   constexpr std::uint64_t kBlocksBetweenStopChecks = 4096;  // a few ms of work at q = 16
   validate(params);
-  const KernelSettings k{computeCoefficients(params.map), randomizingThreshold(params.Xr), params.q, params.seed};
+  const KernelSettings k = blockSettings(computeCoefficients(params.map), params.Xr, params.q, params.seed);
   OrbitState s;
   s.z = record.start.z;
   s.block = record.start.block;

@@ -4,7 +4,7 @@
 ///
 /// A run is a value, TrappingState: parameters, the integer map coefficients, every orbit's state, the
 /// subset histograms and the longest segments.  runTrapping() advances it chunk by chunk, in parallel over
-/// orbits with OpenMP, calling an observer at each chunk boundary and honouring a stop token there.  Each
+/// orbits (parallel/ParallelFor.hpp), calling an observer at each chunk boundary and honouring a stop token there.  Each
 /// orbit depends only on (seed, orbit index), so the result does not depend on the number of threads, on the
 /// chunk sizes, or on being stopped and resumed; any range of orbit indices can run alone and the results be
 /// merged (mergeTrapping), which is how checkpoints and (later) MPI ranks share one mechanism.
@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "kernels/KernelDispatch.hpp"
 #include "trapping/BlockKernel.hpp"
 
 namespace archipelago {
@@ -64,11 +65,16 @@ struct TrappingRunOptions {
   int threads = 0;              ///< 0: OpenMP's default
   double chunkSeconds = 0.25;   ///< target wall time of a chunk (progress and stop granularity)
   std::uint64_t maxChunkBlocks = 0;  ///< 0: no limit; otherwise chunks have at most this many blocks
-  BlockKernel kernel = nullptr;  ///< nullptr: selectKernel() (kernels/KernelDispatch.hpp): $ARCHIPELAGO_KERNEL or the fastest
-  std::string kernelName;        ///< shown in progress and stored in run files (set with `kernel`)
+  /// The instruction-set path, chosen by the caller (selectKernel() at the CLI or GUI edge); its name goes into
+  /// TrappingState::kernel.  nullptr: bestKernel(), the fastest this CPU supports.  Every path gives
+  /// bit-identical results.
+  const KernelInfo* kernel = nullptr;
 };
 
-/// Advances `state` until it is finished or `stop` is requested (checked at chunk boundaries).
+/// Advances `state` until it is finished or `stop` is requested (checked at chunk boundaries: a chunk always
+/// completes, so that every orbit has done the same number of blocks).  An exception thrown while computing
+/// (e.g. std::bad_alloc from a thread's longest-segment list) is rethrown here after the parallel region; the
+/// state passed in is then lost.
 [[nodiscard]] TrappingState runTrapping(TrappingState state, const TrappingRunOptions& options,
                                         const TrappingObserver& observer = {}, std::stop_token stop = {});
 

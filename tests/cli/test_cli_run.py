@@ -116,6 +116,21 @@ r = subprocess.run([cli, "run", *short, "--out", env_path], capture_output=True,
                    env={**os.environ, "ARCHIPELAGO_KERNEL": "vax"}, timeout=60)
 check(r.returncode > 0 and r.stderr.startswith("ERROR: ARCHIPELAGO_KERNEL"), f"a bad ARCHIPELAGO_KERNEL is an error ({r.stderr.strip()})")
 
+# portrait takes --kernel like run (issue #11, item 6): every path writes the same raster; a bad name is an error.
+rasters = {}
+for name in names:
+    npy = os.path.join(tmp, f"portrait-{name}.npy")
+    r = run("portrait", "--size", "64x48", "--points", "300000", "--kernel", name, "--npy", npy, "--quiet")
+    rasters[name] = open(npy, "rb").read() if r.returncode == 0 else None
+check(all(v is not None and v == rasters["scalar"] for v in rasters.values()),
+      f"portrait --kernel {sorted(rasters)} agree bit for bit")
+r = run("portrait", "--size", "8x8", "--points", "1000", "--kernel", "vax", "--npy", os.path.join(tmp, "vax.npy"))
+check(r.returncode > 0 and r.stderr.startswith("ERROR: unknown kernel 'vax'"),
+      f"portrait --kernel vax is an error ({r.stderr.strip()})")
+curves = {name: run("stochastic-area", "--iterations", "200000", "--kernel", name).stdout for name in names}
+check(all(c.count("\n") > 1 and c == curves["scalar"] for c in curves.values()),
+      f"stochastic-area --kernel {sorted(curves)} agree bit for bit")
+
 # Bad input: one line starting with ERROR:, non-zero exit, never a crash.
 bad = os.path.join(tmp, "bad.json")
 def write(path, text):

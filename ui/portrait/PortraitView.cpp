@@ -203,14 +203,8 @@ PortraitView::~PortraitView() {
 }
 
 bool PortraitView::setParameters(const MapParameters& parameters) {
-  if (auto e = validationError(parameters)) {
+  if (auto e = mapError(parameters)) {
     Q_EMIT statusMessage(tr("Invalid parameters: %1").arg(QString::fromStdString(*e)));
-    return false;
-  }
-  try {
-    (void)computeCoefficients(parameters);
-  } catch (const std::exception& e) {
-    Q_EMIT statusMessage(tr("Invalid parameters: %1").arg(QString::fromUtf8(e.what())));
     return false;
   }
   parameters_ = parameters;

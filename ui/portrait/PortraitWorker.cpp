@@ -5,6 +5,8 @@
 
 #include <exception>
 
+#include "kernels/KernelDispatch.hpp"
+
 namespace archipelago::ui {
 
 PortraitWorker::PortraitWorker(QObject* parent) : QThread(parent) {
@@ -77,6 +79,7 @@ void PortraitWorker::run() {
       return frame;
     };
     try {
+      request.kernel = &selectKernel();  // the fastest path, or $ARCHIPELAGO_KERNEL (throws on a bad name)
       const PortraitResult result = renderPortrait(
           request,
           [&](const PortraitProgress& p) {

@@ -42,8 +42,10 @@ StochasticAreaDialog::StochasticAreaDialog(const StochasticAreaRequest& request,
   QPointer<StochasticAreaDialog> self(this);
   worker_ = std::jthread([self, request](std::stop_token stop) {
     try {
+      StochasticAreaRequest withKernel = request;
+      withKernel.kernel = &selectKernel();  // the fastest path, or $ARCHIPELAGO_KERNEL (throws on a bad name)
       const StochasticAreaResult result = computeStochasticArea(
-          request,
+          withKernel,
           [&](const StochasticAreaPoint& p) {
             QMetaObject::invokeMethod(qApp, [self, p] {
               if (self) self->addPoint(static_cast<double>(p.iterations), p.b2, false);

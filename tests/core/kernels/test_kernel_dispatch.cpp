@@ -1,6 +1,7 @@
 // Run-time choice of the instruction-set path (core/kernels/KernelDispatch.hpp).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <stdexcept>
 #include <string>
@@ -95,19 +96,28 @@ TEST(KernelDispatch, EnvironmentVariableOverridesTheDefault) {
   }
 }
 
-// runTrapping sizes its groups by the kernel (TrappingRun.cpp): every path names how many orbits it keeps in
-// flight, whole vectors of its width, and a kernel the table does not know gets the scalar kernel's count.
+// runTrapping sizes its groups by the kernel it is given (TrappingRun.cpp, KernelInfo::blockOrbits): every path
+// names how many orbits it keeps in flight, whole vectors of its width.
 TEST(KernelDispatch, EveryPathNamesTheOrbitsItKeepsInFlight) {
-  void (*const unknown)(const KernelSettings&, std::span<OrbitState>, std::uint64_t, std::uint64_t, SegmentSink&) =
-      [](const KernelSettings&, std::span<OrbitState>, std::uint64_t, std::uint64_t, SegmentSink&) {};
-  EXPECT_EQ(blockOrbitsOf(unknown), kScalarBlockOrbits);
   for (const auto& k : allKernels()) {
     SCOPED_TRACE(k.name);
-    EXPECT_EQ(blockOrbitsOf(k.blocks), k.blockOrbits);
     const std::size_t width = k.kind == KernelKind::avx512ifma ? 8 : k.kind == KernelKind::avx2 ? 4 : 1;
     EXPECT_GE(k.blockOrbits, 2 * width);
     EXPECT_EQ(k.blockOrbits % width, 0u);
+    // Tasks are whole groups of what the path keeps in flight when there are enough orbits …
+    EXPECT_EQ(orbitsPerTask(k, 2 * k.blockOrbits * 4, 4), k.blockOrbits);
+    // … and smaller ones (never below a vector's worth, multiples of 8) so that few orbits still feed every thread.
+    for (const std::size_t orbits : {1u, 21u, 75u, 200u}) {
+      const std::size_t task = orbitsPerTask(k, orbits, 2);
+      EXPECT_GE(task, std::min<std::size_t>(8, k.blockOrbits)) << orbits;
+      EXPECT_LE(task, k.blockOrbits) << orbits;
+      if (task < k.blockOrbits) {
+        EXPECT_EQ(task % 8, 0u) << orbits;
+      }
+    }
   }
+  EXPECT_EQ(&kernelOrBest(nullptr), &bestKernel());
+  EXPECT_EQ(&kernelOrBest(&allKernels().back()), &allKernels().back());
 }
 
 }  // namespace

@@ -271,6 +271,7 @@ TEST(VectorKernels, RunTrappingMatchesScalar) {
   p.subsets = 5;
   p.longestKept = 30;
   TrappingRunOptions scalar;
+  scalar.kernel = &kernelByName("scalar");
   scalar.threads = 2;
   scalar.maxChunkBlocks = 700;
   const TrappingState expected = runTrapping(startTrapping(p), scalar);
@@ -279,8 +280,7 @@ TEST(VectorKernels, RunTrappingMatchesScalar) {
     for (const int threads : {1, 2}) {
       TrappingRunOptions options = scalar;
       options.threads = threads;
-      options.kernel = kernel.blocks;
-      options.kernelName = std::string(kernel.name);
+      options.kernel = &kernel;
       const TrappingState actual = runTrapping(startTrapping(p), options);
       SCOPED_TRACE(testing::Message() << kernel.name << " threads=" << threads);
       EXPECT_EQ(actual.orbits, expected.orbits);

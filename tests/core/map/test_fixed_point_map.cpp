@@ -142,11 +142,17 @@ TEST(FixedPointMap, ScalarStepFormEqualsTheDefinition) {
       ASSERT_EQ(wrap >= kOne, expectedWrap);
       wraps += expectedWrap;
       UnitState forward = z;
-      map.forward(forward);
+      const bool forwardWrap = map.forward(forward);
       X = z.X;
       Y = z.Y;
       step.forward(X, Y);
       ASSERT_EQ((UnitState{X, Y}), forward);
+      X = z.X;
+      Y = z.Y;
+      wrap = 0;
+      step.forward(X, Y, wrap);  // the form with the wrap flag (ScalarLanes.hpp, portraits' Orbits mode)
+      ASSERT_EQ((UnitState{X, Y}), forward);
+      ASSERT_EQ(wrap >= kOne, forwardWrap);
     }
     EXPECT_GT(wraps, 0u);
   }
@@ -192,6 +198,7 @@ void expectInvalid(const MapParameters& p, const std::string& mention) {
     ADD_FAILURE() << "accepted invalid parameters K=" << p.K << " xmin=" << p.xmin << " xmax=" << p.xmax;
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find(mention), std::string::npos) << e.what();
+    EXPECT_EQ(mapError(p), std::optional<std::string>(e.what()));  // the one check requests start with
   }
   EXPECT_TRUE(validationError(p).has_value() || mention == "too large");
 }
@@ -211,6 +218,8 @@ TEST(FixedPointMap, EveryInvalidParameterGivesItsError) {
   expectInvalid({0.1, -1000.0, 0.5}, "too large");
   EXPECT_FALSE(validationError({0.1, -0.8, 0.5}).has_value());
   EXPECT_FALSE(validationError({-1e-4, -0.05, 0.05}).has_value());
+  EXPECT_FALSE(mapError({0.1, -0.8, 0.5}).has_value());
+  EXPECT_FALSE(mapError({1.0, -100.0, 100.0}).has_value());  // m = 9, the largest shift
 }
 
 // Issue 12, finding 1: computeCoefficients looped ++m forever (signed overflow, undefined behaviour) once 2L or

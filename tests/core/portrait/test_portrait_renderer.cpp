@@ -11,9 +11,12 @@
 #include <stdexcept>
 #include <vector>
 
+#include "kernels/KernelDispatch.hpp"
 #include "portrait/ColourMap.hpp"
 #include "portrait/MapOverlays.hpp"
 #include "portrait/PortraitRenderer.hpp"
+#include "random/CounterRng.hpp"
+#include "trapping/TrappingRun.hpp"
 
 namespace archipelago {
 namespace {
@@ -291,6 +294,96 @@ TEST(PortraitRenderer, BadRequestsGiveClearErrors) {
   req.passes = 31;
   EXPECT_EQ(*validationError(req), "passes = 31 must be 1 ... 30");
   EXPECT_FALSE(validationError(PortraitRequest{}));
+}
+
+// Issue #11, item 6: the kernel is part of the request (never read from $ARCHIPELAGO_KERNEL inside core), and
+// every path the CPU supports, passed explicitly, gives the scalar path's raster in every mode.
+TEST(PortraitRenderer, EveryKernelPassedInTheRequestGivesTheSameRaster) {
+  for (PortraitMode mode : {PortraitMode::Density, PortraitMode::Orbits, PortraitMode::Stickiness}) {
+    PortraitRequest req;
+    req.map = kPaper;
+    req.view = Viewport::fromPhysical(kPaper, {-0.6L, 0.1L, -0.4L, 0.3L});
+    req.width = 70;
+    req.height = 50;
+    req.mode = mode;
+    req.points = 400'000;
+    req.orbits = 45;  // a ragged last group in every vector width
+    req.seedColumns = 7;
+    req.seedRows = 5;
+    req.kernel = &kernelByName("scalar");
+    const PortraitRaster scalar = renderPortrait(req).raster;
+    ASSERT_GT(scalar.nonEmptyPixels(), 0u) << toString(mode);
+    for (const auto& kernel : supportedKernels()) {
+      req.kernel = &kernel;
+      const PortraitRaster raster = renderPortrait(req).raster;
+      SCOPED_TRACE(std::string(toString(mode)) + " " + std::string(kernel.name));
+      EXPECT_EQ(raster.counts, scalar.counts);
+      EXPECT_EQ(raster.labels, scalar.labels);
+      EXPECT_EQ(raster.lengthSums, scalar.lengthSums);
+      EXPECT_EQ(raster.orbitWrapped, scalar.orbitWrapped);
+      EXPECT_EQ(raster.pointsBinned, scalar.pointsBinned);
+    }
+  }
+}
+
+// Issue #11, item 4: Stickiness portraits iterate the trapping block of runs (BlockKernel.hpp), so with the
+// whole box in view the points binned are q times the summed lengths of the segments runTrapping() records
+// for the same orbits, seed, Xr, q and number of blocks (first and open segments dropped by both).
+TEST(PortraitRenderer, StickinessSegmentsAreThoseOfTrappingRuns) {
+  PortraitRequest req;
+  req.map = kPaper;
+  req.width = req.height = 32;
+  req.mode = PortraitMode::Stickiness;
+  req.orbits = 13;
+  req.q = 8;
+  req.Xr = 0.05;
+  req.seed = 7;
+  req.points = 13 * 8 * 5000;
+  const PortraitRaster raster = renderPortrait(req).raster;
+  TrappingParameters p;
+  p.map = kPaper;
+  p.M = req.orbits;
+  p.q = req.q;
+  p.Xr = req.Xr;
+  p.seed = req.seed;
+  p.T = req.stepsPerOrbit() / req.q;
+  p.subsets = 1;
+  TrappingRunOptions o;
+  o.kernel = &kernelByName("scalar");
+  const TrappingState run = runTrapping(startTrapping(p), o);
+  ASSERT_GT(run.total().segments(), 100u);
+  EXPECT_EQ(raster.pointsBinned, run.total().totalLength() * req.q);
+  std::uint64_t counted = 0;
+  for (std::uint64_t c : raster.counts) counted += c;
+  EXPECT_EQ(counted, raster.pointsBinned);
+}
+
+// The Orbits mode's lane loop (kernels/ScalarLanes.hpp) flags a seed's orbit as wrapped exactly when one of
+// its steps of N wraps, as forwardStep() reports it one step at a time.
+TEST(PortraitRenderer, OrbitsModeFlagsTheSeedsThatWrap) {
+  PortraitRequest req;
+  req.map = kPaper;
+  req.width = req.height = 40;
+  req.mode = PortraitMode::Orbits;
+  req.seedColumns = 9;  // one group of eight lanes and a remainder of one, per row
+  req.seedRows = 4;
+  req.points = 36 * 3000;
+  req.passes = 2;
+  req.chunkSteps = 700;
+  const PortraitRaster raster = renderPortrait(req).raster;
+  const MapCoefficients c = computeCoefficients(kPaper);
+  ASSERT_EQ(raster.orbitWrapped.size(), 36u);
+  int wrapped = 0;
+  for (std::uint32_t j = 0; j < req.seedRows; ++j)
+    for (std::uint32_t i = 0; i < req.seedColumns; ++i) {
+      UnitState z = orbitSeed(req.view, req.seedColumns, req.seedRows, i, j);
+      bool expected = false;
+      for (std::uint64_t s = 0; s < req.stepsPerOrbit(); ++s) expected |= forwardStep(c, z);
+      EXPECT_EQ(raster.orbitWrapped[j * req.seedColumns + i] != 0, expected) << i << ", " << j;
+      wrapped += expected ? 1 : 0;
+    }
+  EXPECT_GT(wrapped, 0);   // seeds in the sea wrap …
+  EXPECT_LT(wrapped, 36);  // … seeds on KAM curves around the islands do not
 }
 
 TEST(MapOverlays, FixedPointsOfThePaperBox) {

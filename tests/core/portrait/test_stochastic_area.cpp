@@ -5,8 +5,11 @@
 
 #include <cmath>
 #include <stop_token>
+#include <vector>
 
+#include "map/FixedPointMap.hpp"
 #include "portrait/StochasticArea.hpp"
+#include "random/CounterRng.hpp"
 
 namespace archipelago {
 namespace {
@@ -68,6 +71,43 @@ TEST(StochasticArea, DoesNotDependOnTheThreadCountAndStops) {
 
   req.gridBits = 13;
   EXPECT_NE(validationError(req)->find("gridBits = 13"), std::string::npos);
+}
+
+// Issue #11, items 4 and 6: b2's orbits are those of trapping runs (DESIGN.md, "Trapping statistics"): from
+// (0, 0), each block randomizes Y by the orbit's next draw when X <= floor(Xr 2^52), then takes q steps of N^-1.
+// Recomputed here from that rule with backwardStep() alone, box by box, and compared with b2 computed by every
+// path the CPU supports, passed in the request.
+TEST(StochasticArea, EveryKernelVisitsTheBoxesOfTheTrappingOrbits) {
+  StochasticAreaRequest req;
+  req.orbits = 37;  // a ragged last group for every path
+  req.q = 16;
+  req.Xr = 0.05;
+  req.seed = 11;
+  req.gridBits = 6;
+  req.iterations = 37 * 16 * 300;
+  req.firstCheckpoint = req.iterations;
+  const MapCoefficients c = computeCoefficients(req.map);
+  const auto zone = static_cast<std::uint64_t>(std::floor(std::ldexp(req.Xr, 52)));
+  std::vector<std::uint8_t> expected(std::size_t{1} << 12, 0);
+  for (std::uint64_t orbit = 0; orbit < req.orbits; ++orbit) {
+    UnitState z{0, 0};
+    std::uint64_t draws = 0;
+    for (int block = 0; block < 300; ++block) {
+      if (z.X <= zone) z.Y = (z.Y + orbitDraw(orbitKey(req.seed, orbit), ++draws)) & ((std::uint64_t{1} << 52) - 1);
+      for (std::uint32_t j = 0; j < req.q; ++j) {
+        (void)backwardStep(c, z);
+        expected[((z.Y >> 46) << 6) | (z.X >> 46)] = 1;
+      }
+    }
+  }
+  for (const auto& kernel : supportedKernels()) {
+    SCOPED_TRACE(kernel.name);
+    req.kernel = &kernel;
+    const StochasticAreaResult res = computeStochasticArea(req);
+    EXPECT_EQ(res.visited, expected);
+    EXPECT_GT(res.b2(), 0.1);
+    EXPECT_LT(res.b2(), 0.99);
+  }
 }
 
 }  // namespace
