@@ -22,7 +22,12 @@ set -euo pipefail
 
 log() { echo "build-qwt-qt6: $*" >&2; }
 step="start"
-fail() { log "FAILED at step '$step': $*"; exit 1; }
+# The failure is also written to $ARCHIPELAGO_QWT_FAILURE_FILE when set (install-deps.sh repeats it later).
+fail() {
+  log "FAILED at step '$step': $*"
+  [ -z "${ARCHIPELAGO_QWT_FAILURE_FILE:-}" ] || echo "build-qwt-qt6 failed at step '$step': $*" >"$ARCHIPELAGO_QWT_FAILURE_FILE"
+  exit 1
+}
 
 cache="${ARCHIPELAGO_CACHE:-${XDG_CACHE_HOME:-$HOME/.cache}/archipelago}"
 mkdir -p "$cache" || fail "cannot create the cache directory $cache"
