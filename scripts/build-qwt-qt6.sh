@@ -77,35 +77,41 @@ aptdir="$cache/apt"
 mkdir -p "$aptdir/lists/partial" "$aptdir/cache/archives/partial"
 keyring=/usr/share/keyrings/debian-archive-keyring.gpg
 signed=""; [ -f "$keyring" ] && signed=" signed-by=$keyring"
-suites="${ARCHIPELAGO_QWT_SUITES:-sid trixie}"
-: >"$aptdir/sources.list"
-for suite in $suites; do
-  echo "deb-src [check-valid-until=no$signed] $mirror $suite main" >>"$aptdir/sources.list"
-done
 apt_opts=(-q -o Dir::Etc::SourceList="$aptdir/sources.list" -o Dir::Etc::SourceParts=-
           -o Dir::State::Lists="$aptdir/lists" -o Dir::Cache="$aptdir/cache"
           -o Acquire::Check-Valid-Until=false -o APT::Get::List-Cleanup=false)
 [ "$(id -u)" -eq 0 ] && apt_opts+=(-o APT::Sandbox::User=root)
-log "reading the qwt source package from $mirror ($suites)"
-if ! out=$(apt-get "${apt_opts[@]}" update 2>&1); then
-  use_previous "apt-get update of the private deb-src list failed" || true
-  fail "apt-get update of $aptdir/sources.list failed: $(tail -n 3 <<<"$out" | tr '\n' ' ')"
+# One suite at a time: the first whose qwt is >= 6.2 and < 7 wins.
+url=""; why=""
+for suite in ${ARCHIPELAGO_QWT_SUITES:-sid trixie}; do
+  echo "deb-src [check-valid-until=no$signed] $mirror $suite main" >"$aptdir/sources.list"
+  log "reading the qwt source package of $suite from $mirror"
+  if ! out=$(apt-get "${apt_opts[@]}" update 2>&1); then
+    why="$why [$suite] apt-get update of the private deb-src list failed: $(grep -E '^(E|W):' <<<"$out" | head -n 2 | tr '\n' ' ')"
+    continue
+  fi
+  if ! uris=$(apt-get "${apt_opts[@]}" source --print-uris qwt 2>&1); then
+    why="$why [$suite] apt-get source --print-uris qwt failed: $(tail -n 2 <<<"$uris" | tr '\n' ' ')"
+    continue
+  fi
+  # A line of --print-uris: 'URL' FILE SIZE SHA256:HEX
+  read -r url file size hash < <(grep -E "^'[^']+/qwt_[0-9.]+\.orig\.tar\.[a-z0-9]+' " <<<"$uris" | head -n 1) || true
+  if [ -z "${url:-}" ]; then
+    why="$why [$suite] no qwt_*.orig.tar.* in the answer of apt-get source --print-uris qwt"; url=""; continue
+  fi
+  version="${file#qwt_}"; version="${version%%.orig.*}"
+  case "$version" in
+    6.[2-9]*|6.[1-9][0-9]*) break ;;
+    *) why="$why [$suite] holds Qwt $version; Qt 6 needs Qwt >= 6.2 and < 7"; url="" ;;
+  esac
+done
+if [ -z "$url" ]; then
+  use_previous "the qwt source package could not be read:$why" || true
+  fail "$why"
 fi
-if ! uris=$(apt-get "${apt_opts[@]}" source --print-uris qwt 2>&1); then
-  use_previous "apt-get source --print-uris qwt failed" || true
-  fail "apt-get source --print-uris qwt failed: $(tail -n 3 <<<"$uris" | tr '\n' ' ')"
-fi
-# A line of --print-uris: 'URL' FILE SIZE SHA256:HEX
-read -r url file size hash < <(grep -E "^'[^']+/qwt_[0-9.]+\.orig\.tar\.[a-z0-9]+' " <<<"$uris" | head -n 1) || true
-[ -n "${url:-}" ] || fail "no qwt_*.orig.tar.* in the answer of apt-get source --print-uris qwt"
 url="${url//\'/}"
 sha="${hash#SHA256:}"
 [[ "$hash" == SHA256:* && "$sha" =~ ^[0-9a-f]{64}$ ]] || fail "no SHA-256 for $file (got '$hash')"
-version="${file#qwt_}"; version="${version%%.orig.*}"
-case "$version" in
-  6.[2-9]*|6.[1-9][0-9]*) ;;
-  *) fail "the qwt source package holds Qwt $version; Qt 6 needs Qwt >= 6.2 and < 7" ;;
-esac
 
 prefix="$cache/qwt-${sha:0:16}"
 if v=$(verify_prefix "$prefix" 2>/dev/null); then
