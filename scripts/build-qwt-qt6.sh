@@ -44,7 +44,9 @@ verify_prefix() {
     6.[2-9]*|6.[1-9][0-9]*) ;;
     *) log "Qwt version '$version' in $header is not >= 6.2 and < 7"; return 1 ;;
   esac
-  readelf -d "$lib" | grep -q 'NEEDED.*\[libQt6Widgets\.so' || { log "$lib does not link libQt6Widgets"; return 1; }
+  local dynamic
+  dynamic=$(readelf -d "$lib") || { log "readelf -d $lib failed"; return 1; }
+  grep -q 'NEEDED.*\[libQt6Widgets\.so' <<<"$dynamic" || { log "$lib does not link libQt6Widgets"; return 1; }
   echo "$version"
 }
 

@@ -28,7 +28,7 @@ export DEBIAN_FRONTEND=noninteractive
 want_qt="${ARCHIPELAGO_QT_MAJOR:-6}"
 # A Qwt for Qt 6 packaged by the distribution (Debian 14, Ubuntu) is preferred to building one.
 packaged_qwt6=no
-if [ "$want_qt" = 6 ] && apt-cache policy libqwt-qt6-dev 2>/dev/null | grep -q 'Candidate: [0-9]'; then
+if [ "$want_qt" = 6 ] && grep -q 'Candidate: [0-9]' <<<"$(apt-cache policy libqwt-qt6-dev 2>/dev/null)"; then
   packages+=(libqwt-qt6-dev)
   packaged_qwt6=yes
 fi
