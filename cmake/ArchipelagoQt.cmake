@@ -4,7 +4,7 @@
 #  * Qt 6 when a Qwt >= 6.2 built for Qt 6 is found (its library must link libQt6Widgets), looking in order at
 #      1. -DQWT_ROOT=<prefix>: include/qwt_global.h (or include/qwt, include/qt6/qwt) and lib/libqwt*;
 #         a QWT_ROOT that holds no such Qwt is an error;
-#      2. a packaged one: libqwt-qt6 with headers in <include>/qwt (libqwt-qt6-dev, Debian 14 / Ubuntu);
+#      2. a packaged one: libqwt-qt6 with headers in <include>/qwt (libqwt-qt6-dev, in Debian sid);
 #      3. the prefix that scripts/build-qwt-qt6.sh built and checked last:
 #         ${ARCHIPELAGO_CACHE:-${XDG_CACHE_HOME:-$HOME/.cache}/archipelago}/qwt-qt6-current.
 #  * Otherwise Qt 5.15 with Debian's libqwt-qt5-dev (headers in /usr/include/qwt, library libqwt-qt5).

@@ -8,7 +8,8 @@
 # the tarball's SHA-256>: a second run finds it, checks it and takes seconds.  Steps:
 #   1. the mirror: the first Debian archive in the system's own apt configuration (apt-get indextargets),
 #      or ARCHIPELAGO_DEBIAN_MIRROR;
-#   2. a private deb-src list for suite sid (then trixie) and private apt state in the cache directory; the
+#   2. a private deb-src list for suite sid (trixie holds Qwt 6.1.4; ARCHIPELAGO_QWT_SUITES="s1 s2" tries others
+#      in order) and private apt state in the cache directory; the
 #      system's apt sources are never changed;
 #   3. `apt-get source --print-uris qwt` gives the tarball's URL and SHA-256; apt-helper downloads it and
 #      checks the hash (`apt-get source --download-only` fails because the .dsc answers 404);
@@ -85,7 +86,7 @@ apt_opts=(-q -o Dir::Etc::SourceList="$aptdir/sources.list" -o Dir::Etc::SourceP
 [ "$(id -u)" -eq 0 ] && apt_opts+=(-o APT::Sandbox::User=root)
 # One suite at a time: the first whose qwt is >= 6.2 and < 7 wins.
 url=""; why=""
-for suite in ${ARCHIPELAGO_QWT_SUITES:-sid trixie}; do
+for suite in ${ARCHIPELAGO_QWT_SUITES:-sid}; do
   echo "deb-src [check-valid-until=no$signed] $mirror $suite main" >"$aptdir/sources.list"
   log "reading the qwt source package of $suite from $mirror"
   if ! out=$(apt-get "${apt_opts[@]}" update 2>&1); then
