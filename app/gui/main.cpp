@@ -12,6 +12,7 @@
 #include <QTabWidget>
 #include <QCommandLineParser>
 #include <QTimer>
+#include <qwt_global.h>
 
 #include <cstdio>
 
@@ -29,7 +30,9 @@ int main(int argc, char** argv) {
   QCommandLineParser parser;
   parser.setApplicationDescription(QStringLiteral("Long-time correlations in the stochastic regime (Karney 1983)"));
   parser.addHelpOption();
-  parser.addVersionOption();
+  // --version names the Qt (at run time, and at build time when they differ) and the Qwt in use.
+  const QCommandLineOption version({QStringLiteral("v"), QStringLiteral("version")},
+                                   QStringLiteral("Displays version information (with Qt and Qwt)."));
   const QCommandLineOption preset(QStringLiteral("preset"), QStringLiteral("Load the preset NAME."), QStringLiteral("NAME"));
   const QCommandLineOption run(QStringLiteral("run"), QStringLiteral("Start the run at once."));
   const QCommandLineOption threads(QStringLiteral("threads"), QStringLiteral("Worker threads (0 = all)."), QStringLiteral("N"));
@@ -46,9 +49,16 @@ int main(int argc, char** argv) {
                                    QStringLiteral("Select the long segment of rank N of the run file (0: the longest)."),
                                    QStringLiteral("N"));
   const QCommandLineOption island(QStringLiteral("island"), QStringLiteral("Zoom to one island of its chain."));
-  parser.addOptions({preset, run, threads, screenshot, after, measure, tab, segment, island});
+  parser.addOptions({version, preset, run, threads, screenshot, after, measure, tab, segment, island});
   parser.addPositionalArgument(QStringLiteral("file"), QStringLiteral("A run file to open."), QStringLiteral("[file.json]"));
   parser.process(app);
+  if (parser.isSet(version)) {
+    const QString built = QStringLiteral(QT_VERSION_STR);
+    const QString qt = QString::fromLatin1(qVersion());
+    std::printf("Archipelago %s (Qt %s%s, Qwt %s)\n", ARCHIPELAGO_VERSION, qPrintable(qt),
+                qt == built ? "" : qPrintable(QStringLiteral(", built with ") + built), QWT_VERSION_STR);
+    return 0;
+  }
 
   archipelago::ui::MainWindow window;
   const bool scripted = parser.isSet(screenshot) || parser.isSet(measure);
