@@ -13,6 +13,7 @@
 #include "StatsCommand.hpp"
 #include "PeriodicCommand.hpp"
 #include "PortraitCommand.hpp"
+#include "MarkovCommand.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"archipelago-cli " ARCHIPELAGO_VERSION
@@ -25,6 +26,7 @@ int main(int argc, char** argv) {
   archipelago::cli::addReplayCommand(app);
   archipelago::cli::addPeriodicCommand(app);
   archipelago::cli::addPortraitCommand(app);
+  archipelago::cli::addMarkovCommand(app);
   if (argc > 1 && argv[1][0] != '-') {  // name an unknown command instead of CLI11's generic message
     std::string names;
     bool known = false;

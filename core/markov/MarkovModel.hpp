@@ -43,6 +43,11 @@
 /// The island term (§5 with A₁ = N, B₁ = m, f*_t = Σ_k δ_{t m_k}/m), for h = h₀ on T:
 ///   C_is(τ) = h₀² Σ_k max(m_k − τ, 0) / N   (one segment: (m − τ)/N for τ ≤ m, 0 beyond),
 ///   D_is = ½ h₀² Σ_k m_k² / N,    ε(τ) = (C(τ) − C_is(τ)) / C_is(0),  C_is(0) = h₀² m / N.
+/// The paper's statements for one segment, h = 1 on T, 0 on q (tests/core/markov): after a transient ε(τ)
+/// oscillates with half-period ≈ m and decays ≈ n^(−τ/m) (exactly: the root λ = r e^(iθ), θ ∈ (π/m, 2π/m), of
+/// λ^m (n(λ − 1) + 1) = 1 gives half-period π/θ and decay −log r); the most negative C(τ) is at τ = m; and
+/// Σ_{τ≥1} ε(τ) = 0.  The bound "|ε(τ)| ≤ m/N for τ > 0" holds only for N ≥ m²: the largest |ε| is
+/// ε(1) = (m − 1)/(N − m) exactly, which exceeds m/N (by < 11%) at N = 10m for m = 20, 50.
 /// Eq. (dmark) gives D = (1/2N)(Σ_S h² + h₀² Σ_k m_k²) (the paper's eq. after (dmark)), i.e. an island part
 /// D − Σ_S h²/2N equal to D_is, exactly when h = h₀ on T and Σ_k m_k h(q_k) = 0.
 ///
@@ -61,9 +66,9 @@ struct MarkovModel {
   std::vector<std::int64_t> segmentLengths;  ///< m_k ≥ 1, k = 1 … M
   std::int64_t points = 0;                   ///< N ≥ m + M + 1
 
-  static constexpr std::int64_t kMaxTrappedPoints = 10'000'000;        ///< bound on m = Σ m_k
+  static constexpr std::int64_t kMaxTrappedPoints = 1'000'000;         ///< bound on m = Σ m_k
   static constexpr std::int64_t kMaxPoints = std::int64_t{1} << 53;    ///< bound on N (exact in a double)
-  static constexpr std::int64_t kMaxWork = 2'000'000'000;              ///< bound on (m + 1)(τmax + 1)
+  static constexpr std::int64_t kMaxWork = 500'000'000;                ///< bound on (m + 1)(τmax + 1)
 
   [[nodiscard]] std::int64_t trappedPoints() const noexcept;     ///< m = Σ m_k
   [[nodiscard]] std::int64_t seaPoints() const noexcept;         ///< n = N − m (S, pre-images included)
