@@ -1,21 +1,9 @@
 #!/usr/bin/env python3
 """archipelago-cli markov, end to end (issue 14, item 4): the Markov model of Karney (1983) appendix C, and bad
 input.  Reference values: D_is = sum m_k^2 / 2N (appendix C) and C_is(tau) = (m - tau)/N."""
-import csv, io, os, tempfile
+import csv, os, tempfile
 
-from clitest import check, finish, run
-
-
-def parse(stdout):
-    header, body = {}, []
-    for line in stdout.splitlines():
-        if line.startswith("# ") and ": " in line:
-            key, value = line[2:].split(": ", 1)
-            header[key] = value
-        elif not line.startswith("#"):
-            body.append(line)
-    return header, list(csv.DictReader(io.StringIO("\n".join(body))))
-
+from clitest import check, finish, parse_report as parse, run
 
 r = run("markov", "--m", "10", "--N", "1000", "--tau-max", "40")
 check(r.returncode == 0, f"markov --m 10 --N 1000 exits 0 ({r.stderr.strip()})")
