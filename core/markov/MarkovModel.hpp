@@ -12,13 +12,13 @@
 /// The entry P_ji is the probability of going from point i to point j (column i says where i goes), as in
 /// the 7-point example, eq. (pex): N = 7, m = 3, points 1–3 trapped, 4–6 the points of S′, 7 the pre-image q
 /// (the paper's text says "points 4–8 … point 8", a slip for 4–7 and 7: the matrix is 7 × 7).  P is doubly
-/// stochastic (every row also sums to 1), so the uniform distribution is stationary and Pᵗ → C = [1/N];
+/// stochastic (every row also sums to 1), so the uniform distribution is stationary and P^τ → C = [1/N];
 /// with n′ ≥ 1 a point of S′ returns to itself with probability 1/n > 0, so the chain is aperiodic and
-/// Q = P − C has Qᵗ → 0.
+/// Q = P − C has Q^τ → 0.
 ///
 /// Observable h (a value per point) with Σ h = 0, so that h·C·h = 0 and P may be replaced by Q:
-///   C(τ) = h·Pᵗ·h / N                                        (eq. cmark)
-///   D    = h·(½I + Σ_{τ≥1} Qᵗ)·h / N = h·(½I + Q(I − Q)⁻¹)·h / N
+///   C(τ) = h·P^τ·h / N                                        (eq. cmark)
+///   D    = h·(½I + Σ_{τ≥1} Q^τ)·h / N = h·(½I + Q(I − Q)⁻¹)·h / N
 ///   D    = (1/2N) (Σ_{j∈S′} h_j² + Σ_k (Σ_{i∈T′_k} h_i)²),   T′_k = {q_k} ∪ T_k      (eq. dmark)
 ///
 /// The lumped (m + 1)-dimensional chain, derived here (the paper only says "the computational effort is the
@@ -30,8 +30,8 @@
 /// a shift along each segment plus one row: O(m) work per step.  Of h on S′ only two numbers matter: its sum
 /// (fixed by Σ h = 0) and its sum of squares (in C(0) and D only); hence LumpedObservable.
 ///   - C(τ), τ ≥ 1: F(1) = P h (F(1)(p_k⁽¹⁾) = h(q_k), F(1)(p_k⁽ⁱ⁺¹⁾) = h(p_k⁽ⁱ⁾), a(1) = (Σ_{S′} h +
-///     Σ_k h(p_k⁽ᵐᵏ⁾))/n), F(τ) = Rᵗ⁻¹ F(1), and N C(τ) = Σ_T h F(τ) + a(τ) Σ_S h.
-///   - D: y = Σ_{τ≥1} Pᵗ h = Q(I − Q)⁻¹ h is the solution of y = P h + P y with Σ y = 0 (the solutions of
+///     Σ_k h(p_k⁽ᵐᵏ⁾))/n), F(τ) = R^(τ−1) F(1), and N C(τ) = Σ_T h F(τ) + a(τ) Σ_S h.
+///   - D: y = Σ_{τ≥1} P^τ h = Q(I − Q)⁻¹ h is the solution of y = P h + P y with Σ y = 0 (the solutions of
 ///     the first equation differ by constants: the chain is irreducible).  y is constant (a_y) on S, and
 ///     along a segment y(p_k⁽ⁱ⁾) = a_y + s_k(i − 1), s_k(j) = h(q_k) + Σ_{l≤j} h(p_k⁽ˡ⁾) the partial sums
 ///     along T′_k; the equation for a_y holds identically (it is Σ h = 0) and Σ y = 0 gives
@@ -40,7 +40,7 @@
 ///     which is eq. (dmark): the paper's Macsyma result holds exactly, for any M and any h with Σ h = 0.
 ///     (diffusionCoefficient() evaluates the solve, a_y included; diffusionCoefficientDmark() the formula.)
 ///
-/// The island term (§5 with A₁ = N, B₁ = m, f*_t = Σ_k δ_{t m_k}/m), for h = h₀ on T:
+/// The island term (§6 with A₁ = N, B₁ = m, f*_t = Σ_k δ_{t m_k}/m), for h = h₀ on T:
 ///   C_is(τ) = h₀² Σ_k max(m_k − τ, 0) / N   (one segment: (m − τ)/N for τ ≤ m, 0 beyond),
 ///   D_is = ½ h₀² Σ_k m_k² / N,    ε(τ) = (C(τ) − C_is(τ)) / C_is(0),  C_is(0) = h₀² m / N.
 /// The paper's statements for one segment, h = 1 on T, 0 on q (tests/core/markov): after a transient ε(τ)
@@ -53,8 +53,9 @@
 ///
 /// Accuracy: all sums and the recursion in long double.  Tests: C(τ) and D agree with the dense N × N
 /// evaluation to 1e-13 absolute (|h| ≤ 2, N ≤ 200), the hand values of the 7-point example to 1 ulp, and ε(1)
-/// with its closed form to 1e-11 relative up to N = 5·10⁷; the recursion's rounding floor for ε is ~1e-40.  Sizes: 1 ≤ M, m_k ≥ 1, m ≤ kMaxTrappedPoints, m + M + 1 ≤ N ≤ kMaxPoints
-/// (N exact in a double), and (m + 1)(τmax + 1) ≤ kMaxWork for correlation().  Functions throw
+/// with its closed form to 1e-11 relative up to N = 5·10⁷; the recursion's rounding floor for ε is ~1e-40.
+/// Sizes: 1 ≤ M, m_k ≥ 1, m ≤ kMaxTrappedPoints, m + M + 1 ≤ N ≤ kMaxPoints (N exact in a double), and
+/// (m + 1)(τmax + 1) ≤ kMaxWork for correlation() (about a second of work).  Functions throw
 /// std::invalid_argument naming the first offending quantity.
 
 #include <cstdint>
@@ -98,11 +99,11 @@ void validate(const MarkovModel& model, const LumpedObservable& h);
 /// (the smallest Σ_{S′} h² with Σ h = 0).  Then Σ_k m_k h(q_k) = 0, so D's island part equals D_is.
 [[nodiscard]] LumpedObservable paperObservable(const MarkovModel& model, double h0 = 1);
 
-/// C(τ) = h·Pᵗ·h/N for τ = 0 … tauMax (eq. cmark), by the lumped chain: O(m) per τ.
+/// C(τ) = h·P^τ·h/N for τ = 0 … tauMax (eq. cmark), by the lumped chain: O(m) per τ.
 [[nodiscard]] std::vector<double> correlation(const MarkovModel& model, const LumpedObservable& h,
                                               std::int64_t tauMax);
 
-/// C_is(τ) = h₀² Σ_k max(m_k − τ, 0)/N for τ = 0 … tauMax (the island term, §5).
+/// C_is(τ) = h₀² Σ_k max(m_k − τ, 0)/N for τ = 0 … tauMax (the island term, §6).
 [[nodiscard]] std::vector<double> islandCorrelation(const MarkovModel& model, std::int64_t tauMax, double h0 = 1);
 
 /// ε(τ) = (C(τ) − C_is(τ))/C_is(0), τ = 0 … tauMax, with C_is for h = h0 on T; the difference is taken in
@@ -117,7 +118,7 @@ void validate(const MarkovModel& model, const LumpedObservable& h);
 /// D by eq. (dmark): (1/2N)(Σ_{S′} h² + Σ_k (Σ_{T′_k} h)²).
 [[nodiscard]] double diffusionCoefficientDmark(const MarkovModel& model, const LumpedObservable& h);
 
-/// D_is = ½ h₀² Σ_k m_k² / N (§5, appendix C).
+/// D_is = ½ h₀² Σ_k m_k² / N (§6, appendix C).
 [[nodiscard]] double islandDiffusionCoefficient(const MarkovModel& model, double h0 = 1);
 
 }  // namespace archipelago::markov

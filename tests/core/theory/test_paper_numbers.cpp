@@ -139,7 +139,7 @@ double zeroKTrappingTimeByQuadrature(double X0) {
 
 TEST(PaperNumbers, ZeroKTrappingTimeBranches) {
   // §4 prints T(X0) = {1 over √3} × 4.207 |X0|^(−1/2) for X ≷ 0.  Quadrature decides the branches: the factor
-  // 1 belongs to X0 > 0 and √3 to X0 < 0 (the orbit through X0 < 0 also crosses the slow region near X = 0).
+  // 1 belongs to X0 > 0 and √3 to X0 < 0 (by X = |X0|v: √3 ∫₁^∞ dv/√(v³ − 1) against √3 ∫₋₁^∞ dv/√(v³ + 1)).
   EXPECT_NEAR(zeroKTrappingTimeByQuadrature(1), 4.207, 5e-4);
   EXPECT_NEAR(zeroKTrappingTimeByQuadrature(-1), std::sqrt(3.0) * 4.207, 5e-4 * std::sqrt(3.0));
   for (double X0 : {0.25, 1.0, 4.0, 30.0}) {
