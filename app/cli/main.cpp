@@ -15,6 +15,7 @@
 #include "PortraitCommand.hpp"
 #include "ReplayCommand.hpp"
 #include "StochasticAreaCommand.hpp"
+#include "MarkovCommand.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"archipelago-cli " ARCHIPELAGO_VERSION
@@ -29,6 +30,7 @@ int main(int argc, char** argv) {
   archipelago::cli::addPeriodicCommand(app, status);
   archipelago::cli::addPortraitCommand(app, status);
   archipelago::cli::addStochasticAreaCommand(app, status);
+  archipelago::cli::addMarkovCommand(app, status);
   if (argc > 1 && argv[1][0] != '-') {  // name an unknown command instead of CLI11's generic message
     std::string names;
     bool known = false;

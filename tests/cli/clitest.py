@@ -1,6 +1,6 @@
 """What every archipelago-cli end-to-end test shares: the executable (argv[1]), checks that print ok/FAIL and
-are counted, running the tool, and the exit status."""
-import subprocess, sys
+are counted, running the tool, parsing its "# key: value" + CSV reports, and the exit status."""
+import csv, io, subprocess, sys
 
 cli = sys.argv[1]
 _failures = 0
@@ -16,6 +16,18 @@ def check(cond, what):
 def run(*args, timeout=300):
     """Runs archipelago-cli with `args`; stdout and stderr captured as text."""
     return subprocess.run([cli, *args], capture_output=True, text=True, timeout=timeout)
+
+
+def parse_report(stdout):
+    """A report on stdout: '# key: value' header lines, then CSV.  Returns (header dict, list of row dicts)."""
+    header, body = {}, []
+    for line in stdout.splitlines():
+        if line.startswith("# ") and ": " in line:
+            key, value = line[2:].split(": ", 1)
+            header[key] = value
+        elif not line.startswith("#"):
+            body.append(line)
+    return header, list(csv.DictReader(io.StringIO("\n".join(body))))
 
 
 def finish():

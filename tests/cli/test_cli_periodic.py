@@ -1,19 +1,8 @@
 #!/usr/bin/env python3
 """archipelago-cli periodic, end to end (issue 7): the period-138 chain of Karney (1983) §6, and bad input."""
-import csv, io, math
+import math
 
-from clitest import check, finish, run
-
-def parse(stdout):
-    """'# key: value' header lines, then the CSV of points."""
-    header, body = {}, []
-    for line in stdout.splitlines():
-        if line.startswith("# ") and ": " in line:
-            key, value = line[2:].split(": ", 1)
-            header[key] = value
-        elif not line.startswith("#"):
-            body.append(line)
-    return header, list(csv.DictReader(io.StringIO("\n".join(body))))
+from clitest import check, finish, parse_report as parse, run
 
 K = 0.1
 # §6: a chain of order 6 x 23 = 138, one member at x + sqrt K ~ 0.352, y ~ 0.034.
