@@ -34,7 +34,7 @@ bad = [
     (["--m", "10", "--N", "1e6"], "--N = 1e6 must be"),
     (["--m", "10", "--N", "100", "--tau-max", "-3"], "--tau-max = -3 must be"),
     (["--m", "10", "--N", "100", "--tau-max", "999999999999"], "--tau-max = 999999999999 must be"),
-    (["--m", "10", "--N", "100", "--csv", "/nonexistent-folder/x.csv"], "--csv = /nonexistent-folder/x.csv must be"),
+    (["--m", "10", "--N", "100", "--csv", "/nonexistent-folder/x.csv"], "cannot write /nonexistent-folder/x.csv: the folder"),
 ]
 for args, message in bad:
     r = run("markov", *args)
