@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include "kernels/KernelDispatch.hpp"
 #include "parallel/ParallelFor.hpp"
@@ -139,13 +140,21 @@ std::optional<std::uint64_t> replaySegmentUntil(const TrappingParameters& params
   s.start = record.start;
   std::uint64_t step = 0;
   bool more = visit(step, s.z);
+  // Bounded by the record, never by T: a record whose start lies in an island (an edited or foreign run file)
+  // would otherwise replay for up to q·T steps (issue #12, finding 5).
   while (more) {
     if (s.length % kBlocksBetweenStopChecks == 0 && stop.stop_requested()) return std::nullopt;
     const bool ended = advanceBlockVisiting(k, record.orbit, s, [&](const UnitState& z) {
       ++step;
       if (more) more = visit(step, z);
     });
-    if (ended || s.block >= params.T) break;
+    if (ended && s.length != record.length)
+      throw std::runtime_error("replay mismatch: the segment ended after " + std::to_string(s.length) +
+                               " blocks, the run recorded " + std::to_string(record.length));
+    if (ended) break;
+    if (s.length >= record.length)
+      throw std::runtime_error("replay mismatch: the segment did not end after the " + std::to_string(record.length) +
+                               " blocks the run recorded");
   }
   return s.length;
 }

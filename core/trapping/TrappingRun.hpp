@@ -79,13 +79,16 @@ struct TrappingRunOptions {
                                         const TrappingObserver& observer = {}, std::stop_token stop = {});
 
 /// Replays a recorded segment bit for bit from its start state, calling visit(step, z) for its first point
-/// (step 0) and after every step of N⁻¹ (steps 1 … q·length).  Returns the segment's length in blocks as
-/// replayed (equal to record.length when the record belongs to these parameters).
+/// (step 0) and after every step of N⁻¹ (steps 1 … q·length).  Returns record.length.  A replay never runs
+/// past the record: when the segment does not end exactly after record.length blocks (a record of other
+/// parameters, or an edited one), it throws std::runtime_error "replay mismatch: …" (at most record.length
+/// blocks replayed, never up to T).
 std::uint64_t replaySegment(const TrappingParameters& params, const SegmentRecord& record,
                             const std::function<void(std::uint64_t step, const UnitState& z)>& visit);
 
 /// The general replay: as replaySegment(), but visit returns false to end the replay early (after the current
 /// block), and `stop` is checked every 4096 blocks.  Returns the blocks replayed, or nothing when stopped.
+/// Throws "replay mismatch" as replaySegment() unless visit ended the replay before the record's end.
 [[nodiscard]] std::optional<std::uint64_t> replaySegmentUntil(
     const TrappingParameters& params, const SegmentRecord& record,
     const std::function<bool(std::uint64_t step, const UnitState& z)>& visit, std::stop_token stop = {});

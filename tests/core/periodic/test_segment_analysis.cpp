@@ -217,6 +217,36 @@ TEST(SegmentAnalysis, CsvHasOneLinePerKeptState) {
   EXPECT_THROW(writeSegmentCsv("/nonexistent-dir/x.csv", *trace), std::runtime_error);
 }
 
+// Issue #12, finding 5: a replay was bounded by T, not by the recorded length: a record whose start lies in an
+// island (it never reaches the randomizing zone) replayed for q·T steps (T = 2^58 here: forever).  Every replay
+// now stops after record.length blocks and reports the mismatch; a streamed CSV is then not written at all.
+TEST(SegmentAnalysis, ReplayNeverEndsWhenARecordsStartLiesInAnIsland) {
+  TrappingParameters p;  // the paper's K = 0.1 box
+  p.T = std::uint64_t{1} << 58;
+  const FixedPointMap map(p.map);
+  SegmentRecord stuck;
+  stuck.length = 5000;
+  stuck.start.z = map.toUnit(-std::sqrt(0.1L) + 0.05L, 0);
+  std::uint64_t visits = 0;
+  try {
+    (void)replaySegment(p, stuck, [&](std::uint64_t, const UnitState&) { ++visits; });
+    ADD_FAILURE() << "no replay mismatch";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("replay mismatch"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(visits, stuck.length * p.q + 1);  // stopped at the record's end, not at T
+  EXPECT_THROW((void)traceSegment(p, stuck, 1000), std::runtime_error);  // the GUI's replay
+  const auto path = (std::filesystem::temp_directory_path() / "archipelago-stuck-segment.csv").string();
+  std::filesystem::remove(path);
+  EXPECT_THROW((void)writeSegmentCsv(path, p, stuck, 1000), std::runtime_error);
+  EXPECT_FALSE(std::filesystem::exists(path));  // nothing half-written
+  // A record that ends before its recorded length is a mismatch too.
+  const TrappingState& state = shortRun();
+  SegmentRecord longer = state.longest.items().front();
+  longer.length += 1;
+  EXPECT_THROW((void)replaySegment(state.params, longer, {}), std::runtime_error);
+}
+
 // Issue #11 item 8: `archipelago-cli replay --identify` kept every point of the segment (up to 2·10⁷ long-double
 // points, ~640 MB) and took its own path.  It now takes the GUI's, identifySegmentChain(), which holds at most
 // maxPoints points however long the segment: here one that never ends (an orbit on a KAM curve of the central
