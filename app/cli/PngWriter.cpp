@@ -1,12 +1,13 @@
 #include "PngWriter.hpp"
 
 #include <array>
-#include <fstream>
 #include <stdexcept>
 
 #ifdef ARCHIPELAGO_HAVE_ZLIB
 #include <zlib.h>
 #endif
+
+#include "io/AtomicFile.hpp"
 
 namespace archipelago::cli {
 
@@ -102,10 +103,9 @@ std::vector<std::uint8_t> encodePng(int width, int height, const std::vector<std
 
 void writePng(const std::string& path, int width, int height, const std::vector<std::uint8_t>& rgb) {
   const std::vector<std::uint8_t> png = encodePng(width, height, rgb);
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw std::runtime_error("cannot open '" + path + "' for writing");
-  out.write(reinterpret_cast<const char*>(png.data()), static_cast<std::streamsize>(png.size()));
-  if (!out) throw std::runtime_error("error while writing '" + path + "'");
+  io::AtomicOutputFile file(path);  // a full disk or a kill leaves the old image, never a truncated one
+  file.stream().write(reinterpret_cast<const char*>(png.data()), static_cast<std::streamsize>(png.size()));
+  file.commit();
 }
 
 }  // namespace archipelago::cli

@@ -9,6 +9,7 @@
 
 #include "CliCommon.hpp"
 #include "PngWriter.hpp"
+#include "io/AtomicFile.hpp"
 #include "kernels/KernelDispatch.hpp"
 #include "portrait/ColourMap.hpp"
 #include "portrait/PortraitExport.hpp"
@@ -71,6 +72,12 @@ int runPortrait(const PortraitOptions& o) {
   req.kernel = &selectKernel(o.kernel);
   if (auto e = validationError(req)) throw std::invalid_argument(*e);
   if (o.out.empty() && o.npy.empty()) throw std::invalid_argument("give --out FILE.png and/or --npy FILE.npy");
+  // Every output path before the work, not after it (issue #12, finding 7).
+  if (!o.out.empty()) io::checkWritableTarget(o.out);
+  if (!o.npy.empty()) {
+    io::checkWritableTarget(o.npy);
+    io::checkWritableTarget(sidecarPath(o.npy));
+  }
 
   const auto start = std::chrono::steady_clock::now();
   const PortraitResult result = renderPortrait(req, [&](const PortraitProgress& p) {

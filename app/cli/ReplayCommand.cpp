@@ -6,6 +6,7 @@
 #include <string>
 
 #include "CliCommon.hpp"
+#include "io/AtomicFile.hpp"
 #include "periodic/SegmentAnalysis.hpp"
 #include "runfile/RunFile.hpp"
 #include "trapping/TrappingRun.hpp"
@@ -28,11 +29,11 @@ int replayCommand(const ReplayOptions& o) {
     throw std::invalid_argument("--segment " + std::to_string(o.segment) + " is out of range: the run file keeps " +
                                 std::to_string(items.size()) + " segments (0 is the longest)");
   if (o.stride == 0) throw std::invalid_argument("--stride = 0 must be >= 1");
+  io::checkWritableTarget(o.out);  // before the replay, not after it
   const SegmentRecord& rec = items[o.segment];
-  const std::uint64_t length = writeSegmentCsv(o.out, state.params, rec, o.stride);  // streamed
-  if (length != rec.length)
-    throw std::runtime_error("replay mismatch: the segment ended after " + std::to_string(length) +
-                             " blocks, the run recorded " + std::to_string(rec.length));
+  // Streamed and atomic; bounded by the record: a segment that does not end where the run recorded it is a
+  // "replay mismatch" error and --out is left untouched (issue #12, finding 5).
+  (void)writeSegmentCsv(o.out, state.params, rec, o.stride);
   std::fprintf(stderr, "segment %zu: orbit %llu, %llu blocks (%llu steps), replayed bit for bit to %s\n", o.segment,
                static_cast<unsigned long long>(rec.orbit), static_cast<unsigned long long>(rec.length),
                static_cast<unsigned long long>(rec.length * state.params.q), o.out.c_str());

@@ -1,9 +1,12 @@
 #include "StatsCommand.hpp"
 
 #include <cstdio>
+#include <filesystem>
+#include <stdexcept>
 #include <memory>
 
 #include "export/StatisticsCsv.hpp"
+#include "io/AtomicFile.hpp"
 #include "runfile/RunFile.hpp"
 #include "stats/RunStatistics.hpp"
 #include "theory/TheoryCurves.hpp"
@@ -16,7 +19,20 @@ struct StatsOptions {
   std::string csvDir;
 };
 
+/// --csv DIR before any work: an existing folder must take the files, a missing one must be creatable.
+void checkCsvFolder(const std::filesystem::path& dir) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(dir, ec);
+  if (std::filesystem::is_directory(status))
+    io::checkWritableTarget(dir / summaryCsvFileName);
+  else if (std::filesystem::exists(status))
+    throw std::runtime_error("cannot write into " + dir.string() + ": it is not a folder");
+  else
+    io::checkWritableTarget(dir);  // its parent folder exists and is writable
+}
+
 int statsCommand(const StatsOptions& o) {
+  if (!o.csvDir.empty()) checkCsvFolder(o.csvDir);
   const TrappingState state = loadRunFile(o.runFile);
   const TrappingStatistics s = statisticsOf(state);
   const TrappingParameters& p = state.params;

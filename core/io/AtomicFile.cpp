@@ -19,46 +19,65 @@ bool isReadOnly(const std::filesystem::file_status& status) {
 }
 }  // namespace
 
-void writeFileAtomically(const std::filesystem::path& path, std::string_view content) {
-  const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
+AtomicOutputFile::AtomicOutputFile(std::filesystem::path path) : path_(std::move(path)) {
+  const std::filesystem::path dir = path_.has_parent_path() ? path_.parent_path() : std::filesystem::path(".");
   std::error_code ec;
-  if (isReadOnly(std::filesystem::status(path, ec)))  // protected on purpose: a rename would replace it
-    throw std::runtime_error("cannot write " + path.string() + ": the file is read-only");
-  std::string tmpl = (dir / ("." + path.filename().string() + ".XXXXXX")).string();
-  const int fd = ::mkstemp(tmpl.data());
-  if (fd < 0) throw std::runtime_error("cannot write " + path.string() + ": " + std::strerror(errno));
-  auto fail = [&](const char* what) {
+  if (isReadOnly(std::filesystem::status(path_, ec)))  // protected on purpose: a rename would replace it
+    throw std::runtime_error("cannot write " + path_.string() + ": the file is read-only");
+  temporary_ = (dir / ("." + path_.filename().string() + ".XXXXXX")).string();
+  const int fd = ::mkstemp(temporary_.data());
+  if (fd < 0) throw std::runtime_error("cannot write " + path_.string() + ": " + std::strerror(errno));
+  ::close(fd);
+  out_.open(temporary_, std::ios::binary | std::ios::trunc);
+  if (!out_) {
     const std::string reason = std::strerror(errno);
-    ::close(fd);
-    ::unlink(tmpl.c_str());
-    throw std::runtime_error(std::string("cannot write ") + path.string() + " (" + what + "): " + reason);
+    ::unlink(temporary_.c_str());
+    throw std::runtime_error("cannot write " + path_.string() + ": " + reason);
+  }
+}
+
+AtomicOutputFile::~AtomicOutputFile() {
+  if (committed_) return;
+  out_.close();
+  ::unlink(temporary_.c_str());
+}
+
+void AtomicOutputFile::commit() {
+  if (committed_) throw std::logic_error("AtomicOutputFile::commit called twice for " + path_.string());
+  auto fail = [&](const char* what, int error) {
+    out_.close();
+    ::unlink(temporary_.c_str());
+    committed_ = true;  // nothing left for the destructor
+    throw std::runtime_error(std::string("cannot write ") + path_.string() + " (" + what + "): " +
+                             (error != 0 ? std::strerror(error) : "the stream failed"));
   };
-  std::size_t written = 0;
-  while (written < content.size()) {
-    const ssize_t n = ::write(fd, content.data() + written, content.size() - written);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      fail("write");
-    }
-    written += static_cast<std::size_t>(n);
+  errno = 0;
+  out_.flush();
+  if (!out_) fail("write", errno);
+  out_.close();
+  if (!out_) fail("write", errno);
+  const int fd = ::open(temporary_.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) fail("open", errno);
+  if (::fchmod(fd, 0644) != 0 || ::fsync(fd) != 0) {
+    const int error = errno;
+    ::close(fd);
+    fail("fsync", error);
   }
-  if (::fchmod(fd, 0644) != 0) fail("chmod");
-  if (::fsync(fd) != 0) fail("fsync");
-  if (::close(fd) != 0) {
-    const std::string reason = std::strerror(errno);
-    ::unlink(tmpl.c_str());
-    throw std::runtime_error("cannot write " + path.string() + " (close): " + reason);
-  }
-  if (::rename(tmpl.c_str(), path.c_str()) != 0) {
-    const std::string reason = std::strerror(errno);
-    ::unlink(tmpl.c_str());
-    throw std::runtime_error("cannot write " + path.string() + " (rename): " + reason);
-  }
+  ::close(fd);
+  if (::rename(temporary_.c_str(), path_.c_str()) != 0) fail("rename", errno);
+  committed_ = true;
+  const std::filesystem::path dir = path_.has_parent_path() ? path_.parent_path() : std::filesystem::path(".");
   const int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY);
   if (dfd >= 0) {  // make the rename itself durable
     ::fsync(dfd);
     ::close(dfd);
   }
+}
+
+void writeFileAtomically(const std::filesystem::path& path, std::string_view content) {
+  AtomicOutputFile file(path);
+  file.stream().write(content.data(), static_cast<std::streamsize>(content.size()));
+  file.commit();
 }
 
 void checkWritableTarget(const std::filesystem::path& path) {

@@ -10,6 +10,8 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <fstream>
+#include <ostream>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -19,6 +21,35 @@ namespace archipelago::io {
 /// Replaces `path` by `content` atomically (mode 0644).  Throws std::runtime_error naming the path and the
 /// failing step (open, write, fsync, rename) with the system's reason; the temporary file is removed then.
 void writeFileAtomically(const std::filesystem::path& path, std::string_view content);
+
+/// A file written as a stream and published atomically, for outputs too long to hold in memory (a replayed
+/// segment's CSV, a PNG): the stream writes a temporary file ".NAME.XXXXXX" in the target's folder; commit()
+/// flushes, fsyncs, renames it over the target and fsyncs the folder.  Until commit() readers see the old file
+/// (or none); an object destroyed without commit() (an exception, a full disk) removes its temporary, and a
+/// process killed before commit() leaves one that removeStaleTemporaries() cleans.  writeFileAtomically() is
+/// this class with one write.
+class AtomicOutputFile {
+ public:
+  /// Opens the temporary file.  Throws std::runtime_error naming `path` when it cannot, or when `path` is a
+  /// read-only file (a rename would silently replace it).
+  explicit AtomicOutputFile(std::filesystem::path path);
+  AtomicOutputFile(const AtomicOutputFile&) = delete;
+  AtomicOutputFile& operator=(const AtomicOutputFile&) = delete;
+  /// Without commit(): removes the temporary file; the target is untouched.
+  ~AtomicOutputFile();
+
+  /// The stream to write to (binary: bytes are written as given).
+  [[nodiscard]] std::ostream& stream() noexcept { return out_; }
+  /// Publishes what was written (mode 0644).  Throws std::runtime_error naming the path and the failing step
+  /// (write, fsync, rename) with the system's reason; the temporary file is removed then.
+  void commit();
+
+ private:
+  std::filesystem::path path_;
+  std::string temporary_;
+  std::ofstream out_;
+  bool committed_ = false;
+};
 
 /// Checks, before any work starts, that writeFileAtomically(path, …) can succeed: the folder exists and is
 /// writable, and the target is neither a folder nor a read-only file (which a rename would silently

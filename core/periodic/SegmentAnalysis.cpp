@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
+#include <ostream>
 #include <numeric>
 #include <stdexcept>
 #include <tuple>
@@ -11,6 +11,7 @@
 
 #include "trapping/TrappingRun.hpp"
 
+#include "io/AtomicFile.hpp"
 #include "io/Npy.hpp"
 
 namespace archipelago {
@@ -18,7 +19,7 @@ namespace archipelago {
 namespace {
 
 /// One line of a segment's CSV: step, x, y (17 significant digits), X, Y (exact).
-void writeCsvLine(std::ofstream& out, std::uint64_t step, const PhysicalPoint& p, const UnitState& z) {
+void writeCsvLine(std::ostream& out, std::uint64_t step, const PhysicalPoint& p, const UnitState& z) {
   char line[160];
   std::snprintf(line, sizeof line, "%llu,%.17g,%.17g,%llu,%llu\n", static_cast<unsigned long long>(step),
                 static_cast<double>(p.x), static_cast<double>(p.y), static_cast<unsigned long long>(z.X),
@@ -186,12 +187,11 @@ SegmentRegion islandRegion(std::span<const PhysicalPoint> consecutive, int level
 }
 
 void writeSegmentCsv(const std::string& path, const SegmentTrace& trace) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error("cannot write " + path);
+  io::AtomicOutputFile file(path);
+  std::ostream& out = file.stream();
   out << kCsvHeader;
   for (std::size_t i = 0; i < trace.states.size(); ++i) writeCsvLine(out, trace.stepAt(i), trace.points[i], trace.states[i]);
-  out.close();
-  if (!out) throw std::runtime_error("cannot write " + path);
+  file.commit();
 }
 
 std::uint64_t writeSegmentCsv(const std::string& path, const TrappingParameters& params, const SegmentRecord& record,
@@ -199,8 +199,10 @@ std::uint64_t writeSegmentCsv(const std::string& path, const TrappingParameters&
   if (stride == 0) throw std::invalid_argument("stride = 0 must be >= 1");
   validate(params);
   const FixedPointMap map(params.map);
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error("cannot write " + path);
+  // Streamed into a temporary beside `path`, published only when the replay ended where the record says: a
+  // replay mismatch, a full disk or a kill leaves the old file (or none), never a truncated one.
+  io::AtomicOutputFile file(path);
+  std::ostream& out = file.stream();
   out << kCsvHeader;
   // The last step is only known when the replay ends: keep the latest state not yet written.
   UnitState pending;
@@ -217,8 +219,7 @@ std::uint64_t writeSegmentCsv(const std::string& path, const TrappingParameters&
     }
   });
   if (havePending) writeCsvLine(out, pendingStep, map.toPhysical(pending), pending);
-  out.close();
-  if (!out) throw std::runtime_error("cannot write " + path);
+  file.commit();
   return blocks;
 }
 

@@ -118,13 +118,16 @@ struct SegmentChain {
                                          double margin = 0.05);
 
 /// Writes the trace as CSV: a header line "step,x,y,X,Y", then one line per kept state (x, y with 17
-/// significant digits, X, Y the exact integers).  Throws std::runtime_error naming the file on failure.
+/// significant digits, X, Y the exact integers), atomically (io::AtomicOutputFile).  Throws std::runtime_error
+/// naming the file on failure.
 void writeSegmentCsv(const std::string& path, const SegmentTrace& trace);
 
 /// Replays `record` exactly and streams the same CSV as above for steps 0, stride, 2·stride, … and the last
-/// step, holding one state at a time (memory independent of the segment's length).  stride ≥ 1.  Returns
-/// the blocks replayed (record.length when the record belongs to these parameters).  Throws
-/// std::invalid_argument for invalid parameters or stride 0, std::runtime_error naming the file on failure.
+/// step, holding one state at a time (memory independent of the segment's length), into a temporary file that
+/// is published only when the replay ended where the record says (io::AtomicOutputFile).  stride ≥ 1.
+/// Returns record.length.  Throws std::invalid_argument for invalid parameters or stride 0,
+/// std::runtime_error naming the file on failure and "replay mismatch: …" (replaySegment()) when the segment
+/// does not end after record.length blocks; `path` is untouched then.
 std::uint64_t writeSegmentCsv(const std::string& path, const TrappingParameters& params, const SegmentRecord& record,
                               std::uint64_t stride);
 

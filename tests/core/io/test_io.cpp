@@ -2,9 +2,11 @@
 // path is instead of hanging on it.
 #include <gtest/gtest.h>
 
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 
@@ -41,6 +43,67 @@ TEST_F(IoFiles, AtomicWriteReplacesAndLeavesNoTemporaryFile) {
   for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir)) ++files;
   EXPECT_EQ(files, 1);
   EXPECT_THROW(writeFileAtomically(dir / "missing" / "a.txt", "x"), std::runtime_error);
+}
+
+namespace {
+int filesIn(const std::filesystem::path& dir) {
+  int files = 0;
+  for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir)) ++files;
+  return files;
+}
+}  // namespace
+
+// Issue 12, finding 7: replay's CSV (and PNGs) were streamed straight into the target, which a full disk or a
+// kill left truncated.  A streamed file is invisible until commit(); without commit() the old one stays.
+TEST_F(IoFiles, StreamedAtomicOutputIsPublishedOnlyByCommit) {
+  const auto target = dir / "seg.csv";
+  writeFileAtomically(target, "old");
+  {
+    AtomicOutputFile file(target);
+    file.stream() << "step,x\n";
+    for (int i = 0; i < 1000; ++i) file.stream() << i << ",0.5\n";
+    EXPECT_EQ(readRegularFile(target, 100), "old");  // readers see the old file until commit
+    EXPECT_EQ(filesIn(dir), 2);                       // the target and one temporary beside it
+    file.commit();
+  }
+  EXPECT_EQ(filesIn(dir), 1);
+  EXPECT_EQ(readRegularFile(target, 1 << 20).substr(0, 9), "step,x\n0,");
+  {
+    AtomicOutputFile abandoned(target);  // e.g. an exception while replaying
+    abandoned.stream() << "half";
+  }
+  EXPECT_EQ(filesIn(dir), 1);
+  EXPECT_EQ(readRegularFile(target, 1 << 20).substr(0, 6), "step,x");
+  EXPECT_THROW(AtomicOutputFile(dir / "missing" / "a.csv"), std::runtime_error);
+  std::filesystem::permissions(target, std::filesystem::perms::owner_read | std::filesystem::perms::group_read |
+                                           std::filesystem::perms::others_read);
+  EXPECT_THROW(AtomicOutputFile{target}, std::runtime_error);  // a 0444 target is never replaced
+}
+
+// Issue 12, finding 7: a full disk left a truncated or 0-byte output.  RLIMIT_FSIZE makes writes fail as a full
+// disk does (EFBIG instead of ENOSPC): commit() throws naming the file, the old file stays, no temporary is left.
+TEST_F(IoFiles, StreamedAtomicOutputOnAFullDiskKeepsTheOldFile) {
+  const auto target = dir / "full.csv";
+  writeFileAtomically(target, "old");
+  rlimit saved{};
+  ASSERT_EQ(::getrlimit(RLIMIT_FSIZE, &saved), 0);
+  const auto previous = std::signal(SIGXFSZ, SIG_IGN);
+  rlimit small = saved;
+  small.rlim_cur = 4096;
+  ASSERT_EQ(::setrlimit(RLIMIT_FSIZE, &small), 0);
+  bool threw = false;
+  try {
+    AtomicOutputFile file(target);
+    for (int i = 0; i < 10000; ++i) file.stream() << "0123456789\n";
+    file.commit();
+  } catch (const std::runtime_error& e) {
+    threw = std::string(e.what()).find(target.string()) != std::string::npos;
+  }
+  ::setrlimit(RLIMIT_FSIZE, &saved);
+  std::signal(SIGXFSZ, previous);
+  EXPECT_TRUE(threw);
+  EXPECT_EQ(readRegularFile(target, 100), "old");
+  EXPECT_EQ(filesIn(dir), 1);
 }
 
 TEST_F(IoFiles, BoundedReadNamesWhatThePathIs) {
