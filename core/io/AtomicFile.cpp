@@ -49,7 +49,7 @@ void AtomicOutputFile::commit() {
     ::unlink(temporary_.c_str());
     committed_ = true;  // nothing left for the destructor
     throw std::runtime_error(std::string("cannot write ") + path_.string() + " (" + what + "): " +
-                             (error != 0 ? std::strerror(error) : "the stream failed"));
+                             (error != 0 ? std::strerror(error) : "the disk may be full"));
   };
   errno = 0;
   out_.flush();

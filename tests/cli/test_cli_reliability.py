@@ -1,0 +1,268 @@
+#!/usr/bin/env python3
+"""Issue #12 ("Reliability: no hang, no silent wrong answer, no lost work"), the CLI's findings 5 and 7: one
+regression check per finding, named after it.  A full disk is simulated with RLIMIT_FSIZE (writes then fail
+with EFBIG, as they fail with ENOSPC on a full disk); folders made unwritable by putting a folder where the
+file goes (chmod does not stop root)."""
+import hashlib, json, math, os, re, resource, shutil, signal, subprocess, tempfile, time
+
+from clitest import check, cli, finish, run
+
+tmp = tempfile.mkdtemp(prefix="archipelago-cli-reliability-")
+LONG_RUN = ["--T", "1000000000000", "--M", "8", "--subsets", "2", "--q", "4", "--threads", "1"]
+SMALL_RUN = ["--T", "3000", "--M", "8", "--subsets", "2", "--q", "4", "--longest", "5", "--seed", "3"]
+
+
+def folder(name):
+    d = os.path.join(tmp, name)
+    os.makedirs(d, exist_ok=True)
+    return d
+
+
+def attempt(*args, timeout=10):
+    """run(), but a timeout is an outcome (returncode None), not an exception: a test that checks for a hang."""
+    try:
+        return run(*args, timeout=timeout)
+    except subprocess.TimeoutExpired:
+        return subprocess.CompletedProcess(args, None, "", "(timed out)")
+
+
+def one_error_line(r):
+    lines = r.stderr.splitlines()
+    return r.returncode not in (0, None) and len(lines) == 1 and lines[0].startswith("ERROR: ")
+
+
+def debris(d):
+    """Temporaries (".NAME.XXXXXX") and locks (".NAME.lock") left in folder d."""
+    return [n for n in os.listdir(d) if re.fullmatch(r"\..+\.(lock|[A-Za-z0-9]{6})", n)]
+
+
+def full_disk():
+    """preexec_fn: files larger than 4 KiB cannot be written (EFBIG), as on a full disk."""
+    signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
+    resource.setrlimit(resource.RLIMIT_FSIZE, (4096, 4096))
+
+
+def run_on_full_disk(*args):
+    return subprocess.run([cli, *args], capture_output=True, text=True, timeout=120, preexec_fn=full_disk)
+
+
+def with_checksum(d):
+    """The run file `d` with its checksum recomputed (RunFile.cpp: SHA-256 of the document without it)."""
+    d = dict(d)
+    d.pop("checksum", None)
+    text = json.dumps(d, indent=1, sort_keys=True, ensure_ascii=False)
+    d["checksum"] = "sha256:" + hashlib.sha256(text.encode()).hexdigest()
+    return d
+
+
+def wait_for(path, p, seconds=60):
+    deadline = time.monotonic() + seconds
+    while not os.path.exists(path) and time.monotonic() < deadline and p.poll() is None:
+        time.sleep(0.02)
+    return os.path.exists(path)
+
+
+def interrupt(p):
+    if p.poll() is None:
+        p.send_signal(signal.SIGINT)
+    return p.communicate(timeout=60)
+
+
+base = folder("base")
+run_file = os.path.join(base, "run.json")
+r = run("run", *SMALL_RUN, "--out", run_file, "--quiet")
+check(r.returncode == 0, f"a small run file ({r.stderr.strip()})")
+
+
+def finding_5_replay_never_ends_when_a_records_start_lies_in_an_island():
+    # A run file (checksum recomputed, so it loads) whose longest record starts inside the central island, with
+    # T = 2^60: the replay used to run to T (forever) and --identify to hold 1 GB.  It now stops after the
+    # record's length and says "replay mismatch"; the CSV is not written.
+    d = folder("island")
+    doc = json.load(open(run_file))
+    p = doc["parameters"]
+    p["T"] = 2 ** 60
+    L = p["xmax"] - p["xmin"]
+    x, y = -math.sqrt(p["K"]) + 0.05, 0.0
+    doc["longest"][0]["start"]["z"] = [int((x - p["xmin"]) / L * 2 ** 52), int((y + L / 2) / L * 2 ** 52)]
+    stuck = os.path.join(d, "stuck.json")
+    json.dump(with_checksum(doc), open(stuck, "w"), indent=1)
+    out = os.path.join(d, "seg.csv")
+    for extra in ([], ["--identify"]):
+        start = time.monotonic()
+        r = subprocess.run([cli, "replay", stuck, "--stride", "1000000", "--out", out, *extra], capture_output=True,
+                           text=True, timeout=60)
+        seconds = time.monotonic() - start
+        check(one_error_line(r) and "replay mismatch" in r.stderr and seconds < 10,
+              f"finding 5: replay {' '.join(extra)} of a record stuck in an island ends with 'replay mismatch' "
+              f"({seconds:.2f} s: {r.stderr.strip()})")
+        check(os.listdir(d) == ["stuck.json"], f"finding 5: nothing written ({os.listdir(d)})")
+
+
+def finding_7_failed_checkpoint_write_aborts_the_run():
+    # The checkpoint target becomes a folder mid-run (the write then fails, as on a full or vanished disk): a
+    # WARNING, the run goes on, retries, and --out is written at the end.
+    d = folder("checkpoint-fails")
+    out, ck = os.path.join(d, "out.json"), os.path.join(d, "ck.json")
+    p = subprocess.Popen([cli, "run", "--T", "600000", "--M", "8", "--subsets", "2", "--q", "4", "--threads", "1",
+                          "--out", out, "--checkpoint", ck, "--checkpoint-interval", "0", "--max-chunk", "2000",
+                          "--quiet"], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    wait_for(ck, p)
+    os.remove(ck)
+    os.mkdir(ck)  # every checkpoint write fails now
+    time.sleep(0.3)
+    os.rmdir(ck)  # and succeeds again
+    _, err = p.communicate(timeout=120)
+    warnings = [l for l in err.splitlines() if l.startswith("WARNING: ")]
+    check(p.returncode == 0 and os.path.exists(out),
+          f"finding 7: a failed checkpoint write does not abort the run (exit {p.returncode}: {err.strip()[:300]})")
+    check(len(warnings) >= 1 and all(ck in w for w in warnings) and len(warnings) == len(err.splitlines()),
+          f"finding 7: each failed checkpoint is one WARNING line naming it ({len(warnings)} warnings)")
+
+
+def finding_7_failing_final_write_loses_the_run():
+    # --out becomes a folder mid-run: the final write fails; the ERROR says where the last checkpoint is, and
+    # resuming it gives the uninterrupted result.
+    d = folder("final-fails")
+    out, ck = os.path.join(d, "out.json"), os.path.join(d, "ck.json")
+    args = ["--T", "300000", "--M", "8", "--subsets", "2", "--q", "4", "--seed", "9", "--longest", "5"]
+    ref = os.path.join(d, "ref.json")
+    run("run", *args, "--out", ref, "--quiet")
+    p = subprocess.Popen([cli, "run", *args, "--threads", "1", "--out", out, "--checkpoint", ck,
+                          "--checkpoint-interval", "0", "--max-chunk", "2000", "--quiet"],
+                         stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    wait_for(ck, p)
+    os.mkdir(out)
+    _, err = p.communicate(timeout=120)
+    lines = err.splitlines()
+    check(p.returncode != 0 and len(lines) == 1 and lines[0].startswith("ERROR: ") and ck in err,
+          f"finding 7: a failing final write is one ERROR naming the last checkpoint ({err.strip()})")
+    os.rmdir(out)
+    r = run("run", "--resume", ck, "--out", out, "--quiet")
+    same = r.returncode == 0 and all(json.load(open(ref))[k] == json.load(open(out))[k]
+                                     for k in ("subsets", "longest", "orbits", "blocksDone"))
+    check(same, f"finding 7: the kept checkpoint resumes to the uninterrupted result ({r.stderr.strip()})")
+
+
+def finding_7_output_folders_are_checked_only_after_the_whole_computation():
+    d = folder("paths-first")
+    missing = os.path.join(d, "typo", "x")
+    a_file = os.path.join(d, "a-file")
+    open(a_file, "w").write("keep")
+    cases = [
+        ("run --out", ["run", *LONG_RUN, "--quiet", "--out", missing + ".json"]),
+        ("run --checkpoint", ["run", *LONG_RUN, "--quiet", "--out", os.path.join(d, "ok.json"),
+                              "--checkpoint", missing + ".json"]),
+        ("portrait --out", ["portrait", "--points", "4000000000", "--quiet", "--out", missing + ".png"]),
+        ("portrait --npy", ["portrait", "--points", "4000000000", "--quiet", "--npy", missing + ".npy"]),
+        ("stochastic-area --json", ["stochastic-area", "--iterations", "100000000000", "--json", missing + ".json"]),
+        ("stats --csv", ["stats", run_file, "--csv", a_file]),
+        ("replay --out", ["replay", run_file, "--out", missing + ".csv"]),
+    ]
+    for label, args in cases:
+        start = time.monotonic()
+        r = attempt(*args)
+        seconds = time.monotonic() - start
+        check(one_error_line(r) and seconds < 5,
+              f"finding 7: {label} on a bad path fails before any work ({seconds:.2f} s: {r.stderr.strip()})")
+    check(sorted(os.listdir(d)) == ["a-file"], f"finding 7: nothing written ({os.listdir(d)})")
+
+
+def finding_7_outputs_are_not_atomic_on_a_full_disk():
+    d = folder("full-disk")
+    seg = os.path.join(d, "seg.csv")
+    png = os.path.join(d, "p.png")
+    csvdir = folder("full-disk/csv")
+    for path in (seg, png, os.path.join(csvdir, "f_t.csv")):
+        open(path, "w").write("old")
+    cases = [
+        ("replay", ["replay", run_file, "--out", seg], [seg]),
+        ("portrait", ["portrait", "--size", "256x256", "--points", "200000", "--quiet", "--out", png], [png]),
+        ("stats --csv", ["stats", run_file, "--csv", csvdir], [os.path.join(csvdir, "f_t.csv")]),
+    ]
+    for label, args, kept in cases[:2]:
+        r = run_on_full_disk(*args)
+        err_lines = [l for l in r.stderr.splitlines()]
+        check(r.returncode != 0 and err_lines and err_lines[-1].startswith("ERROR: "),
+              f"finding 7: {label} on a full disk fails ({r.stderr.strip()[:200]})")
+        check(all(open(k).read() == "old" for k in kept), f"finding 7: {label} on a full disk keeps the old file")
+    # stats --csv writes several files, each atomically: every file is the old one or a complete new one.
+    healthy = folder("full-disk-healthy")
+    run("stats", run_file, "--csv", healthy)
+    r = run_on_full_disk(*cases[2][1])
+    check(r.returncode != 0 and r.stderr.splitlines()[-1].startswith("ERROR: "),
+          f"finding 7: stats --csv on a full disk fails ({r.stderr.strip()[:200]})")
+    whole = all(open(os.path.join(csvdir, n)).read() in ("old", open(os.path.join(healthy, n)).read())
+                for n in os.listdir(csvdir))
+    check(whole, "finding 7: stats --csv on a full disk leaves no truncated file")
+    check(not debris(d) and not debris(csvdir), f"finding 7: no truncated temporaries ({debris(d)}, {debris(csvdir)})")
+
+
+def finding_7_sigkill_leaves_temporaries_that_are_never_cleaned():
+    d = folder("stale")
+    out = os.path.join(d, "run.json")
+    for name in (".run.json.Ab12Cd", ".run.json.xY98zW"):
+        open(os.path.join(d, name), "w").write("partial")
+    r = run("run", *SMALL_RUN, "--out", out, "--quiet")
+    check(r.returncode == 0 and os.listdir(d) == ["run.json"],
+          f"finding 7: stale temporaries of --out are removed ({os.listdir(d)})")
+
+
+def finding_7_a_0444_target_is_silently_replaced():
+    d = folder("readonly")
+    targets = {
+        "run --out": (["run", *SMALL_RUN, "--quiet", "--out", "{}"], "r.json"),
+        "replay --out": (["replay", run_file, "--out", "{}"], "s.csv"),
+        "portrait --out": (["portrait", "--size", "16x16", "--points", "2000", "--quiet", "--out", "{}"], "p.png"),
+        "markov --csv": (["markov", "--m", "3", "--N", "100", "--csv", "{}"], "m.csv"),
+    }
+    for label, (args, name) in targets.items():
+        target = os.path.join(d, name)
+        open(target, "w").write("keep")
+        os.chmod(target, 0o444)
+        r = run(*[a.replace("{}", target) for a in args])
+        check(one_error_line(r) and "read-only" in r.stderr and open(target).read() == "keep",
+              f"finding 7: {label} refuses a 0444 file ({r.stderr.strip()})")
+
+
+def finding_7_two_runs_on_the_same_out_both_exit_0():
+    for shared in ("out", "checkpoint"):
+        d = folder(f"two-{shared}")
+        one, ck = os.path.join(d, "one.json"), os.path.join(d, "ck.json")
+        first = [cli, "run", *LONG_RUN, "--quiet", "--checkpoint-interval", "0", "--out", one]
+        second = ["run", *SMALL_RUN, "--quiet"]
+        if shared == "out":
+            second += ["--out", one]
+            lock = os.path.join(d, ".one.json.lock")
+        else:
+            first += ["--checkpoint", ck]
+            second += ["--out", os.path.join(d, "two.json"), "--checkpoint", ck]
+            lock = os.path.join(d, ".ck.json.lock")
+        p = subprocess.Popen(first, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        locked = wait_for(lock, p)
+        r = attempt(*second)
+        check(locked and one_error_line(r) and "in use by another process" in r.stderr and
+              not os.path.exists(os.path.join(d, "two.json")),
+              f"finding 7: a second run on the same --{shared} is refused ({r.stderr.strip()})")
+        interrupt(p)
+        check(p.returncode == 130 and not debris(d), f"finding 7: the first run stops cleanly ({debris(d)})")
+
+
+def finding_7_run_starts_without_checking_memory():
+    r = attempt("run", "--M", "4294967296", "--T", "10", "--longest", "100000", "--out",
+                os.path.join(tmp, "mem.json"), "--quiet", timeout=60)
+    check(one_error_line(r) and "memory" in r.stderr and "bad_alloc" not in r.stderr,
+          f"finding 7: a run larger than memory is refused before it starts ({r.stderr.strip()})")
+
+
+finding_5_replay_never_ends_when_a_records_start_lies_in_an_island()
+finding_7_output_folders_are_checked_only_after_the_whole_computation()
+finding_7_outputs_are_not_atomic_on_a_full_disk()
+finding_7_a_0444_target_is_silently_replaced()
+finding_7_sigkill_leaves_temporaries_that_are_never_cleaned()
+finding_7_two_runs_on_the_same_out_both_exit_0()
+finding_7_failed_checkpoint_write_aborts_the_run()
+finding_7_failing_final_write_loses_the_run()
+finding_7_run_starts_without_checking_memory()
+shutil.rmtree(tmp, ignore_errors=True)
+finish()
