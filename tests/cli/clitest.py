@@ -1,6 +1,6 @@
 """What every archipelago-cli end-to-end test shares: the executable (argv[1]), checks that print ok/FAIL and
 are counted, running the tool, parsing its "# key: value" + CSV reports, and the exit status."""
-import csv, io, subprocess, sys
+import csv, io, os, re, signal, subprocess, sys, time
 
 cli = sys.argv[1]
 _failures = 0
@@ -28,6 +28,31 @@ def parse_report(stdout):
         elif not line.startswith("#"):
             body.append(line)
     return header, list(csv.DictReader(io.StringIO("\n".join(body))))
+
+
+def wait_for_file(path, process, seconds=60):
+    """Waits until `path` exists (True), `process` has ended or `seconds` have passed (False)."""
+    deadline = time.monotonic() + seconds
+    while not os.path.exists(path) and time.monotonic() < deadline and process.poll() is None:
+        time.sleep(0.02)
+    return os.path.exists(path)
+
+
+def interrupt(process, timeout=60):
+    """SIGINT (a clean stop at a chunk boundary), then (stdout, stderr); killed and (None, None) after timeout."""
+    if process.poll() is None:
+        process.send_signal(signal.SIGINT)
+    try:
+        return process.communicate(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        process.kill()
+        process.communicate()
+        return None, None
+
+
+def leftovers(folder):
+    """What writers left in `folder`: temporaries ".NAME.XXXXXX" (io::AtomicOutputFile) and locks ".NAME.lock"."""
+    return sorted(n for n in os.listdir(folder) if re.fullmatch(r"\..+\.(lock|[A-Za-z0-9]{6})", n))
 
 
 def finish():

@@ -10,9 +10,9 @@ options, run files, output paths, concurrent writers, signals -- and each outcom
 
 The table categories x outcomes is printed at the end; the test fails unless every crash, hang and
 silent-wrong cell is 0.  Cases are tiny (T, M, points small) and random mutations use a fixed seed."""
-import concurrent.futures, json, os, random, re, shutil, signal, stat, subprocess, sys, tempfile, time
+import concurrent.futures, json, os, random, re, shutil, signal, subprocess, sys, tempfile, time
 
-from clitest import check, cli, finish
+from clitest import check, cli, finish, interrupt, leftovers, wait_for_file
 
 TIMEOUT = 20
 SEED = 20261123
@@ -71,11 +71,6 @@ def finite_text(text):
 
 def folder_files(path):
     return sorted(os.listdir(path))
-
-
-def temporaries(path):
-    """Files a writer left beside its targets: ".NAME.XXXXXX" temporaries and ".NAME.lock" locks."""
-    return [n for n in os.listdir(path) if re.fullmatch(r"\..+\.(lock|[A-Za-z0-9]{6})", n)]
 
 
 # ---------------------------------------------------------------------------------------------------- setup
@@ -185,10 +180,10 @@ def numeric_case(command, option, kind, value, index):
     def ok():
         produced = [os.path.join(d, n) for n in os.listdir(d)]
         texts = [out] + [open(p, errors="replace").read() for p in produced if p.endswith((".csv", ".json"))]
-        return all(finite_text(t) for t in texts) and not temporaries(d)
+        return all(finite_text(t) for t in texts) and not leftovers(d)
 
     outcome = classify(rc, err, expected, ok)
-    if rc not in (None, 0) and outcome == "clean error" and temporaries(d):
+    if rc not in (None, 0) and outcome == "clean error" and leftovers(d):
         outcome = "silent wrong"  # an error that leaves debris behind
     return "numeric options", f"{command} {option}={value!r}", outcome, err.strip()[:200]
 
@@ -301,31 +296,13 @@ def output_case(label, template, kind, attack, index):
     seconds = time.monotonic() - start
     outcome = classify(rc, err, True, lambda: False)
     after = {n: open(os.path.join(d, n), "rb").read() for n in os.listdir(d) if os.path.isfile(os.path.join(d, n))}
-    if outcome == "clean error" and (after != before or temporaries(d)):
+    if outcome == "clean error" and (after != before or leftovers(d)):
         outcome = "silent wrong"  # the protected file changed, or debris was left
     return "output paths", f"{label} <{attack}>", outcome, f"{err.strip()[:160]} ({seconds:.2f} s)"
 
 
 # ------------------------------------------------------------------------------------ concurrency, signals
 LONG_RUN = ["--T", "1000000000000", "--M", "8", "--subsets", "2", "--q", "4", "--threads", "1"]
-
-
-def wait_for(path, p, seconds=30):
-    deadline = time.monotonic() + seconds
-    while not os.path.exists(path) and time.monotonic() < deadline and p.poll() is None:
-        time.sleep(0.02)
-    return os.path.exists(path)
-
-
-def stop(p):
-    if p.poll() is None:
-        p.send_signal(signal.SIGINT)
-    try:
-        return p.communicate(timeout=TIMEOUT)
-    except subprocess.TimeoutExpired:
-        p.kill()
-        p.communicate()
-        return None, None
 
 
 def two_writers(shared):
@@ -342,15 +319,15 @@ def two_writers(shared):
         second = ["run", *RUN_PARAMS, "--quiet", "--out", os.path.join(d, "two.json"), "--checkpoint", ck]
         lock = os.path.join(d, ".ck.json.lock")
     p = subprocess.Popen(first, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-    if not wait_for(lock, p):
-        stop(p)
+    if not wait_for_file(lock, p):
+        interrupt(p, TIMEOUT)
         return "concurrent writers", f"run, shared --{shared}", "silent wrong", "the first run took no lock"
     time.sleep(0.1)
     rc, out, err = invoke(second)
     outcome = classify(rc, err, True, lambda: False)
     if outcome == "clean error" and ("in use by another process" not in err or os.path.exists(os.path.join(d, "two.json"))):
         outcome = "silent wrong"
-    stop(p)
+    interrupt(p, TIMEOUT)
     return "concurrent writers", f"run, shared --{shared}", outcome, err.strip()[:200]
 
 
@@ -365,7 +342,7 @@ def killed_and_resumed():
     out = os.path.join(d, "killed.json")
     p = subprocess.Popen([cli, "run", *params, "--out", out, "--quiet", "--checkpoint-interval", "0",
                           "--max-chunk", "2000", "--threads", "1"], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    wait_for(out, p)
+    wait_for_file(out, p)
     time.sleep(0.05)
     p.send_signal(signal.SIGKILL)
     p.wait()
@@ -376,17 +353,17 @@ def killed_and_resumed():
     def same():
         a, b = json.load(open(ref)), json.load(open(out))
         keys = ["subsets", "longest", "orbits", "blocksDone"]
-        return all(a[k] == b[k] for k in keys) and not temporaries(d)
+        return all(a[k] == b[k] for k in keys) and not leftovers(d)
 
     results.append(("signals", "run SIGKILL + resume (stale temporaries planted)",
-                    classify(rc, err, False, same), f"{err.strip()[:160]} left: {temporaries(d)}"))
+                    classify(rc, err, False, same), f"{err.strip()[:160]} left: {leftovers(d)}"))
     # SIGINT: a clean stop, a checkpoint that resumes, nothing left behind.
     d2 = make_dir("int")
     out2 = os.path.join(d2, "int.json")
     p = subprocess.Popen([cli, "run", *LONG_RUN, "--out", out2, "--quiet", "--checkpoint-interval", "0"],
                          stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-    wait_for(out2, p)
-    _, err = stop(p)
+    wait_for_file(out2, p)
+    _, err = interrupt(p, TIMEOUT)
     rc2, _, err2 = stats_output(out2)
     ok = p.returncode == 130 and rc2 == 0 and folder_files(d2) == ["int.json"]
     results.append(("signals", "run SIGINT", "valid" if ok else ("hang" if err is None else "silent wrong"),

@@ -3,9 +3,9 @@
 regression check per finding, named after it.  A full disk is simulated with RLIMIT_FSIZE (writes then fail
 with EFBIG, as they fail with ENOSPC on a full disk); folders made unwritable by putting a folder where the
 file goes (chmod does not stop root)."""
-import hashlib, json, math, os, re, resource, shutil, signal, subprocess, tempfile, time
+import hashlib, json, math, os, resource, shutil, signal, subprocess, tempfile, time
 
-from clitest import check, cli, finish, run
+from clitest import check, cli, finish, interrupt, leftovers, run, wait_for_file
 
 tmp = tempfile.mkdtemp(prefix="archipelago-cli-reliability-")
 LONG_RUN = ["--T", "1000000000000", "--M", "8", "--subsets", "2", "--q", "4", "--threads", "1"]
@@ -31,11 +31,6 @@ def one_error_line(r):
     return r.returncode not in (0, None) and len(lines) == 1 and lines[0].startswith("ERROR: ")
 
 
-def debris(d):
-    """Temporaries (".NAME.XXXXXX") and locks (".NAME.lock") left in folder d."""
-    return [n for n in os.listdir(d) if re.fullmatch(r"\..+\.(lock|[A-Za-z0-9]{6})", n)]
-
-
 def full_disk():
     """preexec_fn: files larger than 4 KiB cannot be written (EFBIG), as on a full disk."""
     signal.signal(signal.SIGXFSZ, signal.SIG_IGN)
@@ -53,19 +48,6 @@ def with_checksum(d):
     text = json.dumps(d, indent=1, sort_keys=True, ensure_ascii=False)
     d["checksum"] = "sha256:" + hashlib.sha256(text.encode()).hexdigest()
     return d
-
-
-def wait_for(path, p, seconds=60):
-    deadline = time.monotonic() + seconds
-    while not os.path.exists(path) and time.monotonic() < deadline and p.poll() is None:
-        time.sleep(0.02)
-    return os.path.exists(path)
-
-
-def interrupt(p):
-    if p.poll() is None:
-        p.send_signal(signal.SIGINT)
-    return p.communicate(timeout=60)
 
 
 base = folder("base")
@@ -107,7 +89,7 @@ def finding_7_failed_checkpoint_write_aborts_the_run():
     p = subprocess.Popen([cli, "run", "--T", "600000", "--M", "8", "--subsets", "2", "--q", "4", "--threads", "1",
                           "--out", out, "--checkpoint", ck, "--checkpoint-interval", "0", "--max-chunk", "2000",
                           "--quiet"], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-    wait_for(ck, p)
+    wait_for_file(ck, p)
     os.remove(ck)
     os.mkdir(ck)  # every checkpoint write fails now
     time.sleep(0.3)
@@ -131,7 +113,7 @@ def finding_7_failing_final_write_loses_the_run():
     p = subprocess.Popen([cli, "run", *args, "--threads", "1", "--out", out, "--checkpoint", ck,
                           "--checkpoint-interval", "0", "--max-chunk", "2000", "--quiet"],
                          stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-    wait_for(ck, p)
+    wait_for_file(ck, p)
     os.mkdir(out)
     _, err = p.communicate(timeout=120)
     lines = err.splitlines()
@@ -195,7 +177,7 @@ def finding_7_outputs_are_not_atomic_on_a_full_disk():
     whole = all(open(os.path.join(csvdir, n)).read() in ("old", open(os.path.join(healthy, n)).read())
                 for n in os.listdir(csvdir))
     check(whole, "finding 7: stats --csv on a full disk leaves no truncated file")
-    check(not debris(d) and not debris(csvdir), f"finding 7: no truncated temporaries ({debris(d)}, {debris(csvdir)})")
+    check(not leftovers(d) and not leftovers(csvdir), f"finding 7: no truncated temporaries ({leftovers(d)}, {leftovers(csvdir)})")
 
 
 def finding_7_sigkill_leaves_temporaries_that_are_never_cleaned():
@@ -239,13 +221,13 @@ def finding_7_two_runs_on_the_same_out_both_exit_0():
             second += ["--out", os.path.join(d, "two.json"), "--checkpoint", ck]
             lock = os.path.join(d, ".ck.json.lock")
         p = subprocess.Popen(first, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-        locked = wait_for(lock, p)
+        locked = wait_for_file(lock, p)
         r = attempt(*second)
         check(locked and one_error_line(r) and "in use by another process" in r.stderr and
               not os.path.exists(os.path.join(d, "two.json")),
               f"finding 7: a second run on the same --{shared} is refused ({r.stderr.strip()})")
         interrupt(p)
-        check(p.returncode == 130 and not debris(d), f"finding 7: the first run stops cleanly ({debris(d)})")
+        check(p.returncode == 130 and not leftovers(d), f"finding 7: the first run stops cleanly ({leftovers(d)})")
 
 
 def finding_7_run_starts_without_checking_memory():
