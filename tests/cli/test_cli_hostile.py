@@ -188,6 +188,25 @@ def numeric_case(command, option, kind, value, index):
     return "numeric options", f"{command} {option}={value!r}", outcome, err.strip()[:200]
 
 
+# ------------------------------------------------------------------------------------- presets and specs
+def preset_case(args, value, expected, index):
+    d = make_dir(f"preset-{index}")
+    args = [a.replace("{}", value).replace("{d}", d) for a in args]
+    rc, out, err = invoke(args)
+    outcome = classify(rc, err, expected, lambda: finite_text(out) and not leftovers(d))
+    return "presets and specs", f"{' '.join(args[:2])} {value!r}", outcome, err.strip()[:200]
+
+
+def spec_file_case(name, path, index):
+    """A run file's mutations (and folders, FIFOs, devices) given as a run spec: never a spec."""
+    d = make_dir(f"spec-{index}")
+    rc, out, err = invoke(["run", "--spec", path, "--out", os.path.join(d, "r.json"), "--quiet"])
+    outcome = classify(rc, err, True, lambda: False)
+    if outcome == "clean error" and os.listdir(d):
+        outcome = "silent wrong"
+    return "presets and specs", f"run --spec <{name}>", outcome, err.strip()[:200]
+
+
 # ---------------------------------------------------------------------------------------------- run files
 def run_file_variants():
     rng = random.Random(SEED)
@@ -391,6 +410,15 @@ with concurrent.futures.ThreadPoolExecutor(max_workers=4) as pool:
         for command in ("stats", "replay", "run"):
             index += 1
             jobs.append(pool.submit(run_file_case, command, name, path, same, index))
+        if "presets" in commands:
+            index += 1
+            jobs.append(pool.submit(spec_file_case, name, path, index))
+    if "presets" in commands:
+        for value in HOSTILE:
+            index += 2
+            jobs.append(pool.submit(preset_case, ["presets", "{}"], value, None if value == "" else True, index))
+            jobs.append(pool.submit(preset_case, ["run", "--preset={}", "--out", "{d}/r.json", "--quiet"], value, True,
+                                    index + 1))
     d = make_dir("targets")
     for label, template, kind in output_targets(d):
         for attack in ("missing folder", "a folder as target", "a 0444 file", "a file as folder"):
