@@ -1,7 +1,7 @@
 #include "CliCommon.hpp"
 
-#include "kernels/KernelDispatch.hpp"
-#include "trapping/TrappingParameters.hpp"
+#include "core/kernels/KernelDispatch.hpp"
+#include "core/trapping/TrappingParameters.hpp"
 
 namespace archipelago::cli {
 

@@ -27,7 +27,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "map/MapParameters.hpp"
+#include "core/map/MapParameters.hpp"
 
 namespace archipelago::cli {
 

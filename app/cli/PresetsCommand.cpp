@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "spec/RunSpec.hpp"
+#include "core/spec/RunSpec.hpp"
 
 namespace archipelago::cli {
 

@@ -6,9 +6,9 @@
 #include <string>
 
 #include "CliCommon.hpp"
-#include "periodic/SegmentAnalysis.hpp"
-#include "runfile/RunFile.hpp"
-#include "trapping/TrappingRun.hpp"
+#include "core/periodic/SegmentAnalysis.hpp"
+#include "core/runfile/RunFile.hpp"
+#include "core/run/TrappingRun.hpp"
 
 namespace archipelago::cli {
 

@@ -12,10 +12,10 @@
 #include <stdexcept>
 
 #include "CliCommon.hpp"
-#include "kernels/KernelDispatch.hpp"
-#include "runfile/RunFile.hpp"
-#include "spec/RunSpec.hpp"
-#include "trapping/TrappingRun.hpp"
+#include "core/kernels/KernelDispatch.hpp"
+#include "core/runfile/RunFile.hpp"
+#include "core/spec/RunSpec.hpp"
+#include "core/run/TrappingRun.hpp"
 
 namespace archipelago::cli {
 

@@ -3,10 +3,10 @@
 #include <cstdio>
 #include <memory>
 
-#include "export/StatisticsCsv.hpp"
-#include "runfile/RunFile.hpp"
-#include "stats/RunStatistics.hpp"
-#include "theory/TheoryCurves.hpp"
+#include "core/export/StatisticsCsv.hpp"
+#include "core/runfile/RunFile.hpp"
+#include "core/stats/RunStatistics.hpp"
+#include "core/theory/TheoryCurves.hpp"
 
 namespace archipelago::cli {
 

@@ -17,8 +17,8 @@
 #include <cstdio>
 
 #include "LatencyProbe.hpp"
-#include "MainWindow.hpp"
-#include "ParameterPanel.hpp"
+#include "ui/MainWindow.hpp"
+#include "ui/ParameterPanel.hpp"
 #include <QLineEdit>
 
 int main(int argc, char** argv) {

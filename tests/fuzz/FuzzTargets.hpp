@@ -9,8 +9,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "runfile/RunFile.hpp"
-#include "spec/RunSpec.hpp"
+#include "core/runfile/RunFile.hpp"
+#include "core/spec/RunSpec.hpp"
 
 namespace archipelago::fuzz {
 

@@ -1,12 +1,12 @@
-#include "trapping/TrappingRun.hpp"
+#include "core/run/TrappingRun.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
 
-#include "kernels/KernelDispatch.hpp"
-#include "parallel/ParallelFor.hpp"
+#include "core/kernels/KernelDispatch.hpp"
+#include "core/parallel/ParallelFor.hpp"
 
 
 namespace archipelago {
