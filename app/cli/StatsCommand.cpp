@@ -14,10 +14,12 @@ namespace {
 struct StatsOptions {
   std::string runFile;
   std::string csvDir;
+  bool allowModified = false;
 };
 
 int statsCommand(const StatsOptions& o) {
-  const TrappingState state = loadRunFile(o.runFile);
+  const TrappingState state = loadRunFile(o.runFile, {.allowModified = o.allowModified});
+  if (o.allowModified) std::fprintf(stderr, "warning: --allow-modified: a file edited after it was written is read\n");
   const TrappingStatistics s = statisticsOf(state);
   const TrappingParameters& p = state.params;
   std::printf("run         %s (%s)\n", o.runFile.c_str(), state.finished() ? "finished" : "in progress");
@@ -50,6 +52,8 @@ void addStatsCommand(CLI::App& app, int& status) {
   auto o = std::make_shared<StatsOptions>();
   CLI::App* cmd = app.add_subcommand("stats", "statistics of a run file: f_t, P_t, C_tau, D, S_t, D_t with errors");
   cmd->add_option("run", o->runFile, "run file")->required();
+  cmd->add_flag("--allow-modified", o->allowModified,
+                "read a run file whose checksum does not match (edited by hand; forensic use); it is still validated");
   cmd->add_option("--csv", o->csvDir, "write every series, its small-K theory curves and a summary as CSV into this folder");
   cmd->callback([o, &status] { status = statsCommand(*o); });
 }
