@@ -25,7 +25,8 @@ def rate(binary, name):
                         "--benchmark_out_format=json"], capture_output=True, check=True)
         b = json.load(open(f.name))["benchmarks"][0]
     # steps_per_iteration / cpu_time: steps of N^-1 per CPU second of the process (cpu_time is per iteration).
-    return b["steps_per_iteration"] / (b["cpu_time"] * 1e-9)
+    unit = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}[b.get("time_unit", "ns")]
+    return b["steps_per_iteration"] / (b["cpu_time"] * unit)
 
 common = [n for n in names(new) if n in set(names(old))]
 print(f"{len(common)} benchmarks, {rounds} rounds, ABBA order; rates in G steps of N^-1 per CPU second")
