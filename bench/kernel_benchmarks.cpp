@@ -21,8 +21,8 @@
 #include <string>
 #include <vector>
 
-#include "kernels/KernelDispatch.hpp"
-#include "trapping/TrappingRun.hpp"
+#include "core/kernels/KernelDispatch.hpp"
+#include "core/run/TrappingRun.hpp"
 
 namespace archipelago {
 namespace {

@@ -4,7 +4,7 @@
 
 #include <omp.h>
 
-#include "portrait/PortraitRenderer.hpp"
+#include "core/portrait/PortraitRenderer.hpp"
 
 namespace {
 

@@ -1,12 +1,12 @@
-#include "ExportActions.hpp"
+#include "ui/ExportActions.hpp"
 
 #include <QDir>
 #include <QFileInfo>
 
 #include <exception>
 
-#include "export/StatisticsCsv.hpp"
-#include "plots/StatisticsPlot.hpp"
+#include "core/export/StatisticsCsv.hpp"
+#include "ui/plots/StatisticsPlot.hpp"
 
 namespace archipelago::ui {
 

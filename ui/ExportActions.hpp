@@ -9,7 +9,7 @@
 #include <QString>
 #include <QStringList>
 
-#include "RunSnapshot.hpp"
+#include "ui/RunSnapshot.hpp"
 
 namespace archipelago::ui {
 

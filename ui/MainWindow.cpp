@@ -1,4 +1,4 @@
-#include "MainWindow.hpp"
+#include "ui/MainWindow.hpp"
 
 #include <QAction>
 #include <QApplication>
@@ -33,15 +33,15 @@
 
 #include <exception>
 
-#include "ExportActions.hpp"
-#include "Resources.hpp"
-#include "ParameterPanel.hpp"
-#include "StatisticsView.hpp"
-#include "periodic/PeriodicOrbitDialog.hpp"
-#include "portrait/PortraitPanel.hpp"
-#include "segments/LongSegmentsPanel.hpp"
-#include "plots/StatisticsPlot.hpp"
-#include "runfile/RunFile.hpp"
+#include "ui/ExportActions.hpp"
+#include "ui/Resources.hpp"
+#include "ui/ParameterPanel.hpp"
+#include "ui/StatisticsView.hpp"
+#include "ui/periodic/PeriodicOrbitDialog.hpp"
+#include "ui/portrait/PortraitPanel.hpp"
+#include "ui/segments/LongSegmentsPanel.hpp"
+#include "ui/plots/StatisticsPlot.hpp"
+#include "core/runfile/RunFile.hpp"
 
 namespace archipelago::ui {
 

@@ -16,8 +16,8 @@
 #include <QMainWindow>
 #include <QPointer>
 
-#include "RunSnapshot.hpp"
-#include "RunWorker.hpp"
+#include "ui/RunSnapshot.hpp"
+#include "ui/RunWorker.hpp"
 
 class QAction;
 class QDockWidget;

@@ -1,4 +1,4 @@
-#include "ParameterPanel.hpp"
+#include "ui/ParameterPanel.hpp"
 
 #include <QComboBox>
 #include <QFormLayout>

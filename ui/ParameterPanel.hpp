@@ -14,7 +14,7 @@
 
 #include <optional>
 
-#include "spec/RunSpec.hpp"
+#include "core/spec/RunSpec.hpp"
 
 class QComboBox;
 class QFormLayout;

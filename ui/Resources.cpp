@@ -1,4 +1,4 @@
-#include "Resources.hpp"
+#include "ui/Resources.hpp"
 
 #include <QtGlobal>
 

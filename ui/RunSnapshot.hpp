@@ -15,9 +15,9 @@
 #include <string>
 #include <vector>
 
-#include "stats/TrappingStatistics.hpp"
-#include "theory/TheoryCurves.hpp"
-#include "trapping/TrappingRun.hpp"
+#include "core/stats/TrappingStatistics.hpp"
+#include "core/theory/TheoryCurves.hpp"
+#include "core/run/TrappingRun.hpp"
 
 namespace archipelago::ui {
 

@@ -1,4 +1,4 @@
-#include "RunWorker.hpp"
+#include "ui/RunWorker.hpp"
 
 #include <QMutexLocker>
 
@@ -11,9 +11,9 @@
 #include <chrono>
 #include <exception>
 
-#include "kernels/KernelDispatch.hpp"
-#include "stats/RunStatistics.hpp"
-#include "theory/TheoryCurves.hpp"
+#include "core/kernels/KernelDispatch.hpp"
+#include "core/stats/RunStatistics.hpp"
+#include "core/theory/TheoryCurves.hpp"
 
 namespace archipelago::ui {
 

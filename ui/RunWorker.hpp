@@ -19,7 +19,7 @@
 #include <optional>
 #include <stop_token>
 
-#include "RunSnapshot.hpp"
+#include "ui/RunSnapshot.hpp"
 
 namespace archipelago::ui {
 

@@ -1,4 +1,4 @@
-#include "StatisticsView.hpp"
+#include "ui/StatisticsView.hpp"
 
 #include <QElapsedTimer>
 #include <QGridLayout>
@@ -6,7 +6,7 @@
 #include <QLocale>
 #include <QVBoxLayout>
 
-#include "plots/StatisticsPlot.hpp"
+#include "ui/plots/StatisticsPlot.hpp"
 
 namespace archipelago::ui {
 

@@ -9,8 +9,8 @@
 #include <QList>
 #include <QWidget>
 
-#include "RunSnapshot.hpp"
-#include "stats/StatisticsTable.hpp"
+#include "ui/RunSnapshot.hpp"
+#include "core/stats/StatisticsTable.hpp"
 
 class QLabel;
 

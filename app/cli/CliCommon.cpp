@@ -1,13 +1,19 @@
 #include "CliCommon.hpp"
 
-#include "kernels/KernelDispatch.hpp"
+#include "core/kernels/KernelDispatch.hpp"
+#include "core/trapping/TrappingParameters.hpp"
 
 namespace archipelago::cli {
 
 void addMapOptions(CLI::App& command, MapParameters& params) {
-  addNumberOption(command, "--K", params.K, "map parameter K of Q (eq. qu)");
-  addNumberOption(command, "--xmin", params.xmin, "left edge of the box; must be < -sqrt(K)");
-  addNumberOption(command, "--xmax", params.xmax, "right edge of the box; must be > xmin");
+  // Names, meanings and ranges from core's one table of parameters (trapping/TrappingParameters.hpp).
+  const auto help = [](const char* key) {
+    const ParameterRule* rule = findParameterRule(key);
+    return std::string(rule->meaning) + "; " + std::string(rule->range);
+  };
+  addNumberOption(command, "--K", params.K, help("K"));
+  addNumberOption(command, "--xmin", params.xmin, help("xmin"));
+  addNumberOption(command, "--xmax", params.xmax, help("xmax"));
 }
 
 void addKernelOption(CLI::App& command, std::string& name) {

@@ -27,7 +27,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "map/MapParameters.hpp"
+#include "core/map/MapParameters.hpp"
 
 namespace archipelago::cli {
 
@@ -102,12 +102,13 @@ template <class T>
   return std::string(text, result.ptr);
 }
 
-/// Adds a numeric option `name` that stores into `value` through parseNumber<T> (so every number of the CLI
+/// Adds a numeric option `name` (CLI11 names: "--a" or "--a,--b") that stores into `value` through parseNumber<T> (so every number of the CLI
 /// is read by the one parser); --help shows `value`'s current value as the default.
 template <class T>
 CLI::Option* addNumberOption(CLI::App& command, const std::string& name, T& value, const std::string& help) {
+  const std::string shown = name.substr(0, name.find(','));  // "--longestKept,--longest": errors name the first
   CLI::Option* option = command.add_option_function<std::string>(
-      name, [&value, name](const std::string& text) { value = parseNumber<T>(name, text); }, help);
+      name, [&value, shown](const std::string& text) { value = parseNumber<T>(shown, text); }, help);
   option->type_name(std::is_integral_v<T> ? "INT" : "FLOAT");
   option->default_str(formatNumber(value));
   return option;

@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "CliCommon.hpp"
-#include "io/AtomicFile.hpp"
-#include "markov/MarkovModel.hpp"
+#include "core/io/AtomicFile.hpp"
+#include "core/markov/MarkovModel.hpp"
 
 namespace archipelago::cli {
 

@@ -4,7 +4,7 @@
 #include <memory>
 
 #include "CliCommon.hpp"
-#include "map/FixedPointMap.hpp"
+#include "core/map/FixedPointMap.hpp"
 
 namespace archipelago::cli {
 

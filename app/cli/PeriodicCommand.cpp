@@ -6,7 +6,7 @@
 #include <string>
 
 #include "CliCommon.hpp"
-#include "periodic/PeriodicOrbitFinder.hpp"
+#include "core/periodic/PeriodicOrbitFinder.hpp"
 
 namespace archipelago::cli {
 

@@ -7,7 +7,7 @@
 #include <zlib.h>
 #endif
 
-#include "io/AtomicFile.hpp"
+#include "core/io/AtomicFile.hpp"
 
 namespace archipelago::cli {
 

@@ -9,11 +9,11 @@
 
 #include "CliCommon.hpp"
 #include "PngWriter.hpp"
-#include "io/AtomicFile.hpp"
-#include "kernels/KernelDispatch.hpp"
-#include "portrait/ColourMap.hpp"
-#include "portrait/PortraitExport.hpp"
-#include "portrait/PortraitRenderer.hpp"
+#include "core/io/AtomicFile.hpp"
+#include "core/kernels/KernelDispatch.hpp"
+#include "core/portrait/ColourMap.hpp"
+#include "core/portrait/PortraitExport.hpp"
+#include "core/portrait/PortraitRenderer.hpp"
 
 namespace archipelago::cli {
 

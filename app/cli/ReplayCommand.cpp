@@ -6,10 +6,10 @@
 #include <string>
 
 #include "CliCommon.hpp"
-#include "io/AtomicFile.hpp"
-#include "periodic/SegmentAnalysis.hpp"
-#include "runfile/RunFile.hpp"
-#include "trapping/TrappingRun.hpp"
+#include "core/io/AtomicFile.hpp"
+#include "core/periodic/SegmentAnalysis.hpp"
+#include "core/runfile/RunFile.hpp"
+#include "core/run/TrappingRun.hpp"
 
 namespace archipelago::cli {
 

@@ -6,13 +6,16 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <map>
 #include <memory>
+#include <variant>
 #include <stdexcept>
 
 #include "CliCommon.hpp"
-#include "kernels/KernelDispatch.hpp"
-#include "runfile/RunFile.hpp"
-#include "trapping/TrappingRun.hpp"
+#include "core/kernels/KernelDispatch.hpp"
+#include "core/runfile/RunFile.hpp"
+#include "core/spec/RunSpec.hpp"
+#include "core/run/TrappingRun.hpp"
 
 namespace archipelago::cli {
 
@@ -22,7 +25,12 @@ volatile std::sig_atomic_t gInterrupted = 0;
 extern "C" void onInterrupt(int) { gInterrupted = 1; }
 
 struct RunOptions {
-  TrappingParameters params;
+  TrappingParameters params;      // the run's parameters once resolved (resolveSpec)
+  std::map<std::string, double> reals;            // --K, --xmin, --xmax, --Xr as typed
+  std::map<std::string, std::uint64_t> integers;  // --q, --T, --M, --seed, --subsets, --longestKept as typed
+  std::string preset;             // --preset ID
+  std::string specFile;           // --spec FILE
+  bool printSpec = false;
   std::string out = "run.json";
   std::string checkpoint;  // empty: the output file
   double checkpointSeconds = 60;
@@ -110,31 +118,80 @@ int runCommand(const RunOptions& o, const std::vector<std::string>& explicitPara
   return 0;
 }
 
+/// The run spec of the command line: a preset or a spec file (or the defaults), then every parameter given
+/// explicitly on top; validated whole (spec/RunSpec.hpp), so a bad value is named before any work starts.
+RunSpec resolveSpec(const RunOptions& o, const CLI::App& cmd) {
+  if (!o.preset.empty() && !o.specFile.empty()) throw std::invalid_argument("give --preset or --spec, not both");
+  RunSpec spec;
+  if (!o.preset.empty()) {
+    const Preset* preset = findPreset(o.preset);
+    if (!preset) {
+      std::string ids;
+      for (const Preset& p : presets()) ids += (ids.empty() ? "" : ", ") + p.id;
+      throw std::invalid_argument("--preset " + o.preset + " is not a preset (presets: " + ids + ")");
+    }
+    spec = preset->spec;
+  } else if (!o.specFile.empty()) {
+    spec = loadRunSpec(o.specFile);
+  }
+  for (const ParameterRule& rule : parameterRules()) {
+    const std::string key(rule.key);
+    if (cmd.count("--" + key) == 0) continue;
+    if (rule.integer) setParameterValue(spec.parameters, key, o.integers.at(key));
+    else setParameterValue(spec.parameters, key, o.reals.at(key));
+  }
+  if (cmd.count("--threads") > 0) spec.threads = o.threads;
+  if (cmd.count("--kernel") > 0) spec.kernel = o.kernel.empty() ? "auto" : o.kernel;
+  if (auto e = validationError(spec)) throw std::invalid_argument(*e);
+  return spec;
+}
+
 }  // namespace
 
 void addRunCommand(CLI::App& app, int& status) {
   auto o = std::make_shared<RunOptions>();
   CLI::App* cmd = app.add_subcommand("run", "trapping statistics: M orbits x T blocks of N^-q (paper section 3)");
-  addMapOptions(*cmd, o->params.map);
-  addNumberOption(*cmd, "--Xr", o->params.Xr, "randomizing zone 0 <= X <= Xr (unit coordinates)");
-  addNumberOption(*cmd, "--q", o->params.q, "steps of N^-1 per block");
-  addNumberOption(*cmd, "--T", o->params.T, "blocks per orbit");
-  addNumberOption(*cmd, "--M", o->params.M, "number of orbits");
-  addNumberOption(*cmd, "--seed", o->params.seed, "random seed");
-  addNumberOption(*cmd, "--subsets", o->params.subsets, "orbit subsets for error estimates");
-  addNumberOption(*cmd, "--longest", o->params.longestKept, "longest segments kept for replay");
-  addNumberOption(*cmd, "--threads", o->threads, "OpenMP threads (0: all cores)");
+  cmd->add_option("--preset", o->preset, "start from a preset of the paper (archipelago-cli presets lists them)");
+  cmd->add_option("--spec", o->specFile, "start from a run spec file (JSON; --print-spec writes one)");
+  // One option per parameter of the run, from core's table (TrappingParameters.hpp): name, meaning, range.
+  // Given explicitly, a parameter overrides the preset's or the spec file's.
+  const RunSpec defaults;
+  for (const ParameterRule& rule : parameterRules()) {
+    const std::string key(rule.key);
+    const std::string help = std::string(rule.meaning) + "; " + std::string(rule.range);
+    const ParameterValue value = parameterValue(defaults.parameters, key);
+    const std::string names = "--" + key + (key == "longestKept" ? ",--longest" : "");  // --longest: the old name
+    if (rule.integer) addNumberOption(*cmd, names, o->integers[key] = std::get<std::uint64_t>(value), help);
+    else addNumberOption(*cmd, names, o->reals[key] = std::get<double>(value), help);
+  }
+  addNumberOption(*cmd, "--threads", o->threads, "OpenMP threads (0: all cores; at most " + std::to_string(kMaxThreads) + ")");
   cmd->add_option("--out", o->out, "run file written at the end")->capture_default_str();
   cmd->add_option("--checkpoint", o->checkpoint, "checkpoint file (default: the --out file)");
   addNumberOption(*cmd, "--checkpoint-interval", o->checkpointSeconds, "seconds between checkpoints");
   cmd->add_option("--resume", o->resume, "continue the run in this checkpoint or run file");
   addNumberOption(*cmd, "--max-chunk", o->maxChunkBlocks, "at most this many blocks between progress reports (0: adaptive)");
   addKernelOption(*cmd, o->kernel);
+  cmd->add_flag("--print-spec", o->printSpec, "print the run spec (JSON) these options make, and run nothing");
   cmd->add_flag("--quiet", o->quiet, "no progress bar or summary");
   cmd->callback([o, cmd, &status] {
     std::vector<std::string> given;
-    for (const char* name : {"--K", "--xmin", "--xmax", "--Xr", "--q", "--T", "--M", "--seed", "--subsets", "--longest"})
+    for (const ParameterRule& rule : parameterRules())
+      if (cmd->count("--" + std::string(rule.key)) > 0) given.push_back("--" + std::string(rule.key));
+    for (const char* name : {"--preset", "--spec"})
       if (cmd->count(name) > 0) given.emplace_back(name);
+    if (!o->resume.empty()) {
+      status = runCommand(*o, given);
+      return;
+    }
+    const RunSpec spec = resolveSpec(*o, *cmd);
+    if (o->printSpec) {
+      std::fputs(runSpecJson(spec).c_str(), stdout);
+      status = 0;
+      return;
+    }
+    o->params = spec.parameters;
+    o->threads = spec.threads;
+    o->kernel = spec.kernel == "auto" ? std::string() : spec.kernel;  // "auto": $ARCHIPELAGO_KERNEL or the fastest
     status = runCommand(*o, given);
   });
 }

@@ -5,11 +5,11 @@
 #include <stdexcept>
 #include <memory>
 
-#include "export/StatisticsCsv.hpp"
-#include "io/AtomicFile.hpp"
-#include "runfile/RunFile.hpp"
-#include "stats/RunStatistics.hpp"
-#include "theory/TheoryCurves.hpp"
+#include "core/export/StatisticsCsv.hpp"
+#include "core/io/AtomicFile.hpp"
+#include "core/runfile/RunFile.hpp"
+#include "core/stats/RunStatistics.hpp"
+#include "core/theory/TheoryCurves.hpp"
 
 namespace archipelago::cli {
 
@@ -17,6 +17,7 @@ namespace {
 struct StatsOptions {
   std::string runFile;
   std::string csvDir;
+  bool allowModified = false;
 };
 
 /// --csv DIR before any work: an existing folder must take the files, a missing one must be creatable.
@@ -33,7 +34,8 @@ void checkCsvFolder(const std::filesystem::path& dir) {
 
 int statsCommand(const StatsOptions& o) {
   if (!o.csvDir.empty()) checkCsvFolder(o.csvDir);
-  const TrappingState state = loadRunFile(o.runFile);
+  const TrappingState state = loadRunFile(o.runFile, {.allowModified = o.allowModified});
+  if (o.allowModified) std::fprintf(stderr, "warning: --allow-modified: a file edited after it was written is read\n");
   const TrappingStatistics s = statisticsOf(state);
   const TrappingParameters& p = state.params;
   std::printf("run         %s (%s)\n", o.runFile.c_str(), state.finished() ? "finished" : "in progress");
@@ -66,6 +68,8 @@ void addStatsCommand(CLI::App& app, int& status) {
   auto o = std::make_shared<StatsOptions>();
   CLI::App* cmd = app.add_subcommand("stats", "statistics of a run file: f_t, P_t, C_tau, D, S_t, D_t with errors");
   cmd->add_option("run", o->runFile, "run file")->required();
+  cmd->add_flag("--allow-modified", o->allowModified,
+                "read a run file whose checksum does not match (edited by hand; forensic use); it is still validated");
   cmd->add_option("--csv", o->csvDir, "write every series, its small-K theory curves and a summary as CSV into this folder");
   cmd->callback([o, &status] { status = statsCommand(*o); });
 }

@@ -6,10 +6,10 @@
 #include <string>
 
 #include "CliCommon.hpp"
-#include "io/AtomicFile.hpp"
-#include "kernels/KernelDispatch.hpp"
-#include "portrait/PortraitExport.hpp"  // stochasticAreaJson
-#include "portrait/StochasticArea.hpp"
+#include "core/io/AtomicFile.hpp"
+#include "core/kernels/KernelDispatch.hpp"
+#include "core/portrait/PortraitExport.hpp"  // stochasticAreaJson
+#include "core/portrait/StochasticArea.hpp"
 
 namespace archipelago::cli {
 

@@ -16,6 +16,7 @@
 #include "ReplayCommand.hpp"
 #include "StochasticAreaCommand.hpp"
 #include "MarkovCommand.hpp"
+#include "PresetsCommand.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"archipelago-cli " ARCHIPELAGO_VERSION
@@ -31,6 +32,7 @@ int main(int argc, char** argv) {
   archipelago::cli::addPortraitCommand(app, status);
   archipelago::cli::addStochasticAreaCommand(app, status);
   archipelago::cli::addMarkovCommand(app, status);
+  archipelago::cli::addPresetsCommand(app, status);
   if (argc > 1 && argv[1][0] != '-') {  // name an unknown command instead of CLI11's generic message
     std::string names;
     bool known = false;

@@ -11,8 +11,8 @@
 #include <chrono>
 #include <numeric>
 
-#include "MainWindow.hpp"
-#include "StatisticsView.hpp"
+#include "ui/MainWindow.hpp"
+#include "ui/StatisticsView.hpp"
 
 namespace archipelago::app {
 

@@ -17,8 +17,8 @@
 #include <cstdio>
 
 #include "LatencyProbe.hpp"
-#include "MainWindow.hpp"
-#include "ParameterPanel.hpp"
+#include "ui/MainWindow.hpp"
+#include "ui/ParameterPanel.hpp"
 #include <QLineEdit>
 
 int main(int argc, char** argv) {
@@ -33,7 +33,7 @@ int main(int argc, char** argv) {
   // --version names the Qt (at run time, and at build time when they differ) and the Qwt in use.
   const QCommandLineOption version({QStringLiteral("v"), QStringLiteral("version")},
                                    QStringLiteral("Displays version information (with Qt and Qwt)."));
-  const QCommandLineOption preset(QStringLiteral("preset"), QStringLiteral("Load the preset NAME."), QStringLiteral("NAME"));
+  const QCommandLineOption preset(QStringLiteral("preset"), QStringLiteral("Load the preset NAME: its name or id (archipelago-cli presets lists them)."), QStringLiteral("NAME"));
   const QCommandLineOption run(QStringLiteral("run"), QStringLiteral("Start the run at once."));
   const QCommandLineOption threads(QStringLiteral("threads"), QStringLiteral("Worker threads (0 = all)."), QStringLiteral("N"));
   const QCommandLineOption screenshot(QStringLiteral("screenshot"), QStringLiteral("Save the window as PATH and quit."),

@@ -1,12 +1,12 @@
-#include "export/StatisticsCsv.hpp"
+#include "core/export/StatisticsCsv.hpp"
 
 #include <charconv>
 #include <cstdint>
 #include <stdexcept>
 #include <system_error>
 
-#include "io/AtomicFile.hpp"
-#include "spec/RunSpecJson.hpp"
+#include "core/io/AtomicFile.hpp"
+#include "core/spec/RunSpecJson.hpp"
 
 namespace archipelago {
 

@@ -22,10 +22,10 @@
 #include <string>
 #include <vector>
 
-#include "stats/StatisticsTable.hpp"
-#include "stats/TrappingStatistics.hpp"
-#include "theory/TheoryCurves.hpp"
-#include "trapping/TrappingRun.hpp"
+#include "core/stats/StatisticsTable.hpp"
+#include "core/stats/TrappingStatistics.hpp"
+#include "core/theory/TheoryCurves.hpp"
+#include "core/run/TrappingRun.hpp"
 
 namespace archipelago {
 

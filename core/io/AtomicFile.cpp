@@ -1,4 +1,4 @@
-#include "io/AtomicFile.hpp"
+#include "core/io/AtomicFile.hpp"
 
 #include <fcntl.h>
 #include <sys/file.h>

@@ -1,11 +1,11 @@
-#include "io/Npy.hpp"
+#include "core/io/Npy.hpp"
 
 #include <cstring>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
 
-#include "io/AtomicFile.hpp"
+#include "core/io/AtomicFile.hpp"
 
 namespace archipelago {
 

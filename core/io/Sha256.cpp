@@ -1,4 +1,4 @@
-#include "io/Sha256.hpp"
+#include "core/io/Sha256.hpp"
 
 #include <array>
 #include <cstdint>

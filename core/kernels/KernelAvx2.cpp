@@ -43,9 +43,9 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "kernels/VectorKernels.hpp"
-#include "random/CounterRng.hpp"
-#include "trapping/TrappingHistogram.hpp"
+#include "core/kernels/VectorKernels.hpp"
+#include "core/random/CounterRng.hpp"
+#include "core/trapping/TrappingHistogram.hpp"
 
 #if defined(__clang__)
 #pragma clang attribute push(__attribute__((target("avx2,fma"))), apply_to = function)
@@ -254,7 +254,7 @@ struct Avx2 {
   }();
 };
 
-#include "kernels/SimdDriver.inl"
+#include "core/kernels/SimdDriver.inl"
 
 // Vectors in flight: a step is 20 operations on three 256-bit ports against a latency chain of ~35 cycles,
 // so six vectors (24 orbits) keep the ports busy; they do not fit the 16 ymm registers with the constants, but

@@ -14,8 +14,8 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "kernels/VectorKernels.hpp"
-#include "random/CounterRng.hpp"
+#include "core/kernels/VectorKernels.hpp"
+#include "core/random/CounterRng.hpp"
 
 #if defined(__clang__)
 #pragma clang attribute push(__attribute__((target("avx512f,avx512ifma,avx512vl,avx512dq"))), apply_to = function)
@@ -160,7 +160,7 @@ struct Avx512Ifma {
   }
 };
 
-#include "kernels/SimdDriver.inl"
+#include "core/kernels/SimdDriver.inl"
 
 // Four vectors (32 orbits) per group: a step is 11 vector operations on two 512-bit ports against a
 // latency chain of ~13 cycles, so three or more independent vectors keep the ports busy.

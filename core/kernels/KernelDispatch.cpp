@@ -1,4 +1,4 @@
-#include "kernels/KernelDispatch.hpp"
+#include "core/kernels/KernelDispatch.hpp"
 
 #include <algorithm>
 #include <array>

@@ -15,7 +15,7 @@
 #include <string_view>
 #include <vector>
 
-#include "kernels/VectorKernels.hpp"
+#include "core/kernels/VectorKernels.hpp"
 
 namespace archipelago {
 

@@ -1,7 +1,7 @@
 // The portable scalar orbit iteration (VectorKernels.hpp): the reference the vector paths are tested against.
 // Orbits are stepped kScalarLanes at a time in lockstep (ScalarLanes.hpp), so that their products overlap.
 
-#include "kernels/ScalarLanes.hpp"
+#include "core/kernels/ScalarLanes.hpp"
 
 namespace archipelago {
 

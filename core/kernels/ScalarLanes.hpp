@@ -10,8 +10,8 @@
 #include <cstdint>
 #include <span>
 
-#include "kernels/VectorKernels.hpp"
-#include "map/ScalarStep.hpp"
+#include "core/kernels/VectorKernels.hpp"
+#include "core/map/ScalarStep.hpp"
 
 namespace archipelago {
 

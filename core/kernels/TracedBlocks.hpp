@@ -13,8 +13,8 @@
 #include <span>
 #include <vector>
 
-#include "kernels/VectorKernels.hpp"
-#include "trapping/BlockKernel.hpp"
+#include "core/kernels/VectorKernels.hpp"
+#include "core/trapping/BlockKernel.hpp"
 
 namespace archipelago {
 

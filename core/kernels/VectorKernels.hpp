@@ -25,8 +25,8 @@
 #include <span>
 #include <vector>
 
-#include "map/FixedPointMap.hpp"
-#include "trapping/BlockKernel.hpp"
+#include "core/map/FixedPointMap.hpp"
+#include "core/trapping/BlockKernel.hpp"
 
 namespace archipelago {
 

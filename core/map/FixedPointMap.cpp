@@ -1,4 +1,4 @@
-#include "map/FixedPointMap.hpp"
+#include "core/map/FixedPointMap.hpp"
 
 #include <algorithm>
 #include <cmath>

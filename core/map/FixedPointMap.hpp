@@ -21,7 +21,7 @@
 
 #include <cstdint>
 
-#include "map/MapParameters.hpp"
+#include "core/map/MapParameters.hpp"
 
 namespace archipelago {
 

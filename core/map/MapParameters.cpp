@@ -1,4 +1,4 @@
-#include "map/MapParameters.hpp"
+#include "core/map/MapParameters.hpp"
 
 #include <cmath>
 #include <sstream>

@@ -10,7 +10,7 @@
 
 #include <cstdint>
 
-#include "map/FixedPointMap.hpp"
+#include "core/map/FixedPointMap.hpp"
 
 // Loops over interleaved orbits must be unrolled so that their products overlap (GCC does not unroll them at
 // -O2 by itself).

@@ -1,4 +1,4 @@
-#include "markov/MarkovModel.hpp"
+#include "core/markov/MarkovModel.hpp"
 
 #include <cmath>
 #include <cstddef>

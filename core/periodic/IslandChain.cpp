@@ -1,4 +1,4 @@
-#include "periodic/IslandChain.hpp"
+#include "core/periodic/IslandChain.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "periodic/PeriodicOrbitFinder.hpp"
+#include "core/periodic/PeriodicOrbitFinder.hpp"
 
 namespace archipelago {
 

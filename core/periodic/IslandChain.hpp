@@ -33,8 +33,8 @@
 #include <span>
 #include <vector>
 
-#include "map/FixedPointMap.hpp"  // PhysicalPoint
-#include "periodic/PeriodicOrbit.hpp"
+#include "core/map/FixedPointMap.hpp"  // PhysicalPoint
+#include "core/periodic/PeriodicOrbit.hpp"
 
 namespace archipelago {
 

@@ -1,4 +1,4 @@
-#include "periodic/OrbitClassification.hpp"
+#include "core/periodic/OrbitClassification.hpp"
 
 #include <cmath>
 #include <numbers>

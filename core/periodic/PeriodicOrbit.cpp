@@ -1,4 +1,4 @@
-#include "periodic/PeriodicOrbit.hpp"
+#include "core/periodic/PeriodicOrbit.hpp"
 
 #include <cmath>
 #include <cstdio>

@@ -23,10 +23,10 @@
 #include <string>
 #include <vector>
 
-#include "map/FixedPointMap.hpp"  // PhysicalPoint
-#include "map/MapParameters.hpp"
-#include "periodic/OrbitClassification.hpp"
-#include "periodic/SmoothQuadraticMap.hpp"  // quad
+#include "core/map/FixedPointMap.hpp"  // PhysicalPoint
+#include "core/map/MapParameters.hpp"
+#include "core/periodic/OrbitClassification.hpp"
+#include "core/periodic/SmoothQuadraticMap.hpp"  // quad
 
 namespace archipelago {
 

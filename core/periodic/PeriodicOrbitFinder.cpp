@@ -1,4 +1,4 @@
-#include "periodic/PeriodicOrbitFinder.hpp"
+#include "core/periodic/PeriodicOrbitFinder.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,7 +8,7 @@
 #include <string>
 #include <utility>
 
-#include "periodic/SmoothQuadraticMap.hpp"
+#include "core/periodic/SmoothQuadraticMap.hpp"
 
 namespace archipelago {
 

@@ -23,8 +23,8 @@
 #include <optional>
 #include <vector>
 
-#include "map/FixedPointMap.hpp"  // PhysicalPoint
-#include "periodic/PeriodicOrbit.hpp"
+#include "core/map/FixedPointMap.hpp"  // PhysicalPoint
+#include "core/periodic/PeriodicOrbit.hpp"
 
 namespace archipelago {
 

@@ -1,4 +1,4 @@
-#include "periodic/SegmentAnalysis.hpp"
+#include "core/periodic/SegmentAnalysis.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,10 +9,10 @@
 #include <tuple>
 #include <utility>
 
-#include "trapping/TrappingRun.hpp"
+#include "core/run/TrappingRun.hpp"
 
-#include "io/AtomicFile.hpp"
-#include "io/Npy.hpp"
+#include "core/io/AtomicFile.hpp"
+#include "core/io/Npy.hpp"
 
 namespace archipelago {
 

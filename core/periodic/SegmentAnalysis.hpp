@@ -24,9 +24,9 @@
 #include <string>
 #include <vector>
 
-#include "map/FixedPointMap.hpp"
-#include "periodic/IslandChain.hpp"
-#include "trapping/TrappingParameters.hpp"
+#include "core/map/FixedPointMap.hpp"
+#include "core/periodic/IslandChain.hpp"
+#include "core/trapping/TrappingParameters.hpp"
 
 namespace archipelago {
 

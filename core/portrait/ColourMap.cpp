@@ -1,4 +1,4 @@
-#include "portrait/ColourMap.hpp"
+#include "core/portrait/ColourMap.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -19,7 +19,7 @@
 #include <string_view>
 #include <vector>
 
-#include "portrait/PortraitRaster.hpp"
+#include "core/portrait/PortraitRaster.hpp"
 
 namespace archipelago {
 

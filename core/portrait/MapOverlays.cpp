@@ -1,4 +1,4 @@
-#include "portrait/MapOverlays.hpp"
+#include "core/portrait/MapOverlays.hpp"
 
 #include <algorithm>
 #include <cmath>

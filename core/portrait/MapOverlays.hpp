@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "map/FixedPointMap.hpp"
+#include "core/map/FixedPointMap.hpp"
 
 namespace archipelago {
 

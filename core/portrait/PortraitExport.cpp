@@ -1,13 +1,13 @@
-#include "portrait/PortraitExport.hpp"
+#include "core/portrait/PortraitExport.hpp"
 
 #include <nlohmann/json.hpp>
 
 #include <sstream>
 #include <stdexcept>
 
-#include "io/AtomicFile.hpp"
-#include "map/FixedPointMap.hpp"
-#include "spec/RunSpecJson.hpp"
+#include "core/io/AtomicFile.hpp"
+#include "core/map/FixedPointMap.hpp"
+#include "core/spec/RunSpecJson.hpp"
 
 namespace archipelago {
 

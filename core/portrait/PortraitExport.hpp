@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "io/Npy.hpp"
-#include "portrait/PortraitRenderer.hpp"
-#include "portrait/StochasticArea.hpp"
+#include "core/io/Npy.hpp"
+#include "core/portrait/PortraitRenderer.hpp"
+#include "core/portrait/StochasticArea.hpp"
 
 namespace archipelago {
 

@@ -1,4 +1,4 @@
-#include "portrait/PortraitRenderer.hpp"
+#include "core/portrait/PortraitRenderer.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -7,11 +7,11 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "kernels/ScalarLanes.hpp"
-#include "parallel/ParallelFor.hpp"
-#include "portrait/RangeCheck.hpp"
-#include "random/CounterRng.hpp"
-#include "trapping/BlockKernel.hpp"
+#include "core/kernels/ScalarLanes.hpp"
+#include "core/parallel/ParallelFor.hpp"
+#include "core/portrait/RangeCheck.hpp"
+#include "core/random/CounterRng.hpp"
+#include "core/trapping/BlockKernel.hpp"
 
 // Glossary: an "orbit" is one trajectory of N (Density, Orbits) or of trapping blocks of N⁻¹ (Stickiness);
 // a "group" is up to kLanes orbits advanced in lockstep by one thread; a "chunk" is at most chunkSteps points

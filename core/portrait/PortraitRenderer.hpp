@@ -45,10 +45,10 @@
 #include <string>
 #include <vector>
 
-#include "kernels/KernelDispatch.hpp"
-#include "map/FixedPointMap.hpp"
-#include "portrait/PortraitRaster.hpp"
-#include "portrait/Viewport.hpp"
+#include "core/kernels/KernelDispatch.hpp"
+#include "core/map/FixedPointMap.hpp"
+#include "core/portrait/PortraitRaster.hpp"
+#include "core/portrait/Viewport.hpp"
 
 namespace archipelago {
 

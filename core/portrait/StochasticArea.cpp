@@ -1,14 +1,14 @@
-#include "portrait/StochasticArea.hpp"
+#include "core/portrait/StochasticArea.hpp"
 
 #include <algorithm>
 #include <bit>
 #include <cmath>
 #include <stdexcept>
 
-#include "map/FixedPointMap.hpp"
-#include "parallel/ParallelFor.hpp"
-#include "portrait/RangeCheck.hpp"
-#include "kernels/TracedBlocks.hpp"
+#include "core/map/FixedPointMap.hpp"
+#include "core/parallel/ParallelFor.hpp"
+#include "core/portrait/RangeCheck.hpp"
+#include "core/kernels/TracedBlocks.hpp"
 
 namespace archipelago {
 

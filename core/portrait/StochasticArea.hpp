@@ -23,8 +23,8 @@
 #include <string>
 #include <vector>
 
-#include "kernels/KernelDispatch.hpp"
-#include "map/MapParameters.hpp"
+#include "core/kernels/KernelDispatch.hpp"
+#include "core/map/MapParameters.hpp"
 
 namespace archipelago {
 

@@ -1,4 +1,4 @@
-#include "portrait/Viewport.hpp"
+#include "core/portrait/Viewport.hpp"
 
 #include <algorithm>
 #include <cmath>

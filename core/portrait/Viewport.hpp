@@ -17,7 +17,7 @@
 #include <optional>
 #include <string>
 
-#include "map/FixedPointMap.hpp"
+#include "core/map/FixedPointMap.hpp"
 
 namespace archipelago {
 

@@ -1,13 +1,13 @@
-#include "runfile/RunFile.hpp"
+#include "core/runfile/RunFile.hpp"
 
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
 
-#include "io/AtomicFile.hpp"
-#include "io/Sha256.hpp"
-#include "trapping/StateValidation.hpp"
-#include "spec/RunSpecJson.hpp"
+#include "core/io/AtomicFile.hpp"
+#include "core/io/Sha256.hpp"
+#include "core/run/StateValidation.hpp"
+#include "core/spec/RunSpecJson.hpp"
 
 namespace archipelago {
 

@@ -14,7 +14,7 @@
 #include <filesystem>
 #include <string>
 
-#include "trapping/TrappingRun.hpp"
+#include "core/run/TrappingRun.hpp"
 
 namespace archipelago {
 

@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "spec/RunSpec.hpp"
+#include "core/spec/RunSpec.hpp"
 
 namespace archipelago {
 

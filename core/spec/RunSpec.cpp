@@ -1,4 +1,4 @@
-#include "spec/RunSpec.hpp"
+#include "core/spec/RunSpec.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,9 +7,9 @@
 #include <stdexcept>
 #include <vector>
 
-#include "io/AtomicFile.hpp"
-#include "kernels/KernelDispatch.hpp"
-#include "spec/RunSpecJson.hpp"
+#include "core/io/AtomicFile.hpp"
+#include "core/kernels/KernelDispatch.hpp"
+#include "core/spec/RunSpecJson.hpp"
 
 namespace archipelago {
 

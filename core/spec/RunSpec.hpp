@@ -30,7 +30,7 @@
 #include <string>
 #include <string_view>
 
-#include "trapping/TrappingParameters.hpp"
+#include "core/trapping/TrappingParameters.hpp"
 
 namespace archipelago {
 

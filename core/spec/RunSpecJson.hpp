@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <string_view>
 
-#include "spec/RunSpec.hpp"
+#include "core/spec/RunSpec.hpp"
 
 namespace archipelago::spec {
 

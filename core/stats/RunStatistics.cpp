@@ -1,4 +1,4 @@
-#include "stats/RunStatistics.hpp"
+#include "core/stats/RunStatistics.hpp"
 
 namespace archipelago {
 

@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "stats/TrappingStatistics.hpp"
-#include "trapping/TrappingRun.hpp"
+#include "core/stats/TrappingStatistics.hpp"
+#include "core/run/TrappingRun.hpp"
 
 namespace archipelago {
 

@@ -1,4 +1,4 @@
-#include "stats/StatisticsTable.hpp"
+#include "core/stats/StatisticsTable.hpp"
 
 #include <array>
 

@@ -20,7 +20,7 @@
 #include <span>
 #include <string_view>
 
-#include "stats/TrappingStatistics.hpp"
+#include "core/stats/TrappingStatistics.hpp"
 
 namespace archipelago {
 

@@ -9,7 +9,7 @@
 /// Sums run over non-empty bins only, in long double, each term non-negative (see the header).  The masses
 /// come out sorted by s (bins are disjoint ranges), which the sweep over the grid relies on.
 
-#include "stats/TrappingStatistics.hpp"
+#include "core/stats/TrappingStatistics.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -17,7 +17,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "map/FixedPointMap.hpp"  // uint128
+#include "core/map/FixedPointMap.hpp"  // uint128
 
 namespace archipelago {
 

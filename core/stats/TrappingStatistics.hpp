@@ -53,7 +53,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "trapping/TrappingHistogram.hpp"
+#include "core/trapping/TrappingHistogram.hpp"
 
 namespace archipelago {
 

@@ -1,4 +1,4 @@
-#include "theory/PaperNumbers.hpp"
+#include "core/theory/PaperNumbers.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "periodic/PeriodicOrbitFinder.hpp"
+#include "core/periodic/PeriodicOrbitFinder.hpp"
 
 namespace archipelago::paper {
 

@@ -1,4 +1,4 @@
-#include "theory/SmallKTheory.hpp"
+#include "core/theory/SmallKTheory.hpp"
 
 // Notation (Karney 1983, §4):
 //   X0      the trajectory's intercept with Y = 0, in scaled units (x = X0 √|K|)

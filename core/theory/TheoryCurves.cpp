@@ -1,10 +1,10 @@
-#include "theory/TheoryCurves.hpp"
+#include "core/theory/TheoryCurves.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <functional>
 
-#include "theory/SmallKTheory.hpp"
+#include "core/theory/SmallKTheory.hpp"
 
 namespace archipelago {
 

@@ -21,9 +21,9 @@
 #include <string>
 #include <vector>
 
-#include "stats/StatisticsTable.hpp"
-#include "stats/TrappingStatistics.hpp"
-#include "trapping/TrappingParameters.hpp"
+#include "core/stats/StatisticsTable.hpp"
+#include "core/stats/TrappingStatistics.hpp"
+#include "core/trapping/TrappingParameters.hpp"
 
 namespace archipelago {
 

@@ -1,8 +1,8 @@
-#include "trapping/BlockKernel.hpp"
+#include "core/trapping/BlockKernel.hpp"
 
 #include <algorithm>
 
-#include "map/ScalarStep.hpp"
+#include "core/map/ScalarStep.hpp"
 
 
 namespace archipelago {

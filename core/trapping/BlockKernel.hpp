@@ -13,10 +13,10 @@
 #include <span>
 #include <vector>
 
-#include "random/CounterRng.hpp"
-#include "trapping/LongestSegments.hpp"
-#include "trapping/TrappingHistogram.hpp"
-#include "trapping/TrappingParameters.hpp"
+#include "core/random/CounterRng.hpp"
+#include "core/trapping/LongestSegments.hpp"
+#include "core/trapping/TrappingHistogram.hpp"
+#include "core/trapping/TrappingParameters.hpp"
 
 namespace archipelago {
 

@@ -1,4 +1,4 @@
-#include "trapping/LongestSegments.hpp"
+#include "core/trapping/LongestSegments.hpp"
 
 #include <algorithm>
 

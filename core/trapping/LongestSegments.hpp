@@ -8,7 +8,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "trapping/TrappingParameters.hpp"
+#include "core/trapping/TrappingParameters.hpp"
 
 namespace archipelago {
 

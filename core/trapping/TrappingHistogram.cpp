@@ -1,4 +1,4 @@
-#include "trapping/TrappingHistogram.hpp"
+#include "core/trapping/TrappingHistogram.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "trapping/TrappingParameters.hpp"
+#include "core/trapping/TrappingParameters.hpp"
 
 #include <unistd.h>
 
@@ -9,7 +9,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "trapping/TrappingHistogram.hpp"
+#include "core/trapping/TrappingHistogram.hpp"
 
 namespace archipelago {
 
@@ -91,10 +91,12 @@ void setParameterValue(TrappingParameters& p, std::string_view key, const Parame
     (a.mapReal ? p.map.*a.mapReal : p.*a.real) = std::get<double>(value);
     return;
   }
+  // A value the member cannot hold is refused here, never narrowed; the rest of the range (q >= 1, M <= 2^32,
+  // …) is validationError()'s, so that each rule has one message.
   const std::uint64_t v = std::get<std::uint64_t>(value);
-  if (v < a.rule.min || v > a.rule.max)
+  if (a.u32 && v > a.rule.max)
     throw std::invalid_argument(std::string(key) + " = " + std::to_string(v) + " must lie in " + std::string(a.rule.range));
-  if (a.u32) p.*a.u32 = static_cast<std::uint32_t>(v);  // every u32 rule's max fits: checked just above
+  if (a.u32) p.*a.u32 = static_cast<std::uint32_t>(v);
   else p.*a.u64 = v;
 }
 

@@ -9,7 +9,7 @@
 #include <string_view>
 #include <variant>
 
-#include "map/FixedPointMap.hpp"
+#include "core/map/FixedPointMap.hpp"
 
 namespace archipelago {
 
@@ -59,7 +59,8 @@ using ParameterValue = std::variant<double, std::uint64_t>;
 /// The value of parameter `key` (one of parameterRules()).  Throws std::invalid_argument for another key.
 [[nodiscard]] ParameterValue parameterValue(const TrappingParameters& p, std::string_view key);
 /// Sets parameter `key`.  Throws std::invalid_argument naming the key for an unknown key, a value of the
-/// other kind, or an integer outside the rule's [min, max] (so that no value is ever narrowed silently).
+/// other kind, or an integer the member cannot hold (so that no value is ever narrowed silently); the
+/// other rules are validationError()'s.
 void setParameterValue(TrappingParameters& p, std::string_view key, const ParameterValue& value);
 
 /// The first violated rule, naming the parameter (map rules included), or nothing when valid.

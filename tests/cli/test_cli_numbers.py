@@ -18,7 +18,7 @@ cases = [
     (["replay", out, "--out", os.path.join(tmp, "seg.csv"), "--stride=-1"], f"--stride = -1 must be an integer in {U64}"),
     (["run", "--M=-1", "--out", out], f"--M = -1 must be an integer in {U64}"),
     # Narrower integer types, and integers written as reals.
-    (["run", "--q=4294967296", "--out", out], "--q = 4294967296 must be an integer in [0, 4294967295]"),
+    (["run", "--q=4294967296", "--out", out], "q = 4294967296 must lie in [1, 65536]"),  # the documented range
     (["periodic", "--period", "1e3", "--near", "0,0"], "--period = 1e3 must be an integer in [-2147483648, 2147483647]"),
     (["portrait", "--points", "10.0", "--out", os.path.join(tmp, "p.png")], f"--points = 10.0 must be an integer in {U64}"),
     (["stochastic-area", "--iterations=-1"], f"--iterations = -1 must be an integer in {U64}"),

@@ -153,6 +153,15 @@ for args, mention in cases:
     lines = r.stderr.strip().splitlines()
     check(r.returncode > 0 and len(lines) == 1 and lines[0].startswith("ERROR: ") and mention in lines[0],
           f"{' '.join(args[:3])}... -> {r.returncode}: {r.stderr.strip()}")
+# Issue 12: a run file edited by hand is detected by its checksum; --allow-modified reads it for forensic use.
+edited = good.replace('"elapsedSeconds": ', '"elapsedSeconds": 1', 1)
+epath = os.path.join(tmp, "edited.json")
+open(epath, "w").write(edited)
+r = run("stats", epath)
+check(r.returncode > 0 and "modified after it was written" in r.stderr, f"an edited run file is refused ({r.stderr.strip()})")
+r = run("stats", epath, "--allow-modified")
+check(r.returncode == 0 and "segments" in r.stdout and "--allow-modified" in r.stderr,
+      f"--allow-modified reads it, with a warning ({r.stderr.strip()})")
 for text, mention in [(good[: len(good) // 3], "truncated"), ("{}", "not an Archipelago run file"),
                       (good.replace('"version": 2', '"version": 3', 1), "version 3 is not supported"),
                       ("\x00\x01garbage", "corrupt")]:

@@ -4,13 +4,15 @@
 // same functions are called by the libFuzzer targets (clang, `cmake --preset fuzz`) and by the corpus
 // replayer of the ordinary test suite (any compiler).
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
 
-#include "runfile/RunFile.hpp"
-#include "spec/RunSpec.hpp"
+#include "core/runfile/RunFile.hpp"
+#include "app/cli/CliCommon.hpp"
+#include "core/spec/RunSpec.hpp"
 
 namespace archipelago::fuzz {
 
@@ -35,6 +37,29 @@ inline void runSpec(const std::uint8_t* data, std::size_t size) {
   try {
     const RunSpec s = parseRunSpec(text);
     if (!(parseRunSpec(runSpecJson(s)) == s)) throw std::logic_error("run spec round trip changed it");
+  } catch (const std::invalid_argument&) {
+  }
+}
+
+/// The CLI's one number parser (app/cli/CliCommon.hpp): any text is either refused (nothing / an
+/// std::invalid_argument naming the option) or read as a value that prints back to a text read as the same
+/// value — never a wrapped, saturated or non-finite number.
+inline void numbers(const std::uint8_t* data, std::size_t size) {
+  const std::string text(reinterpret_cast<const char*>(data), size);
+  if (const auto v = cli::toNumber<std::uint64_t>(text)) {
+    if (cli::toNumber<std::uint64_t>(cli::formatNumber(*v)) != v) throw std::logic_error("uint64 round trip");
+    if (text.find('-') != std::string::npos && *v != 0) throw std::logic_error("a negative text read as unsigned");
+  }
+  if (const auto v = cli::toNumber<std::int32_t>(text)) {
+    if (cli::toNumber<std::int32_t>(cli::formatNumber(*v)) != v) throw std::logic_error("int32 round trip");
+  }
+  if (const auto v = cli::toNumber<double>(text)) {
+    if (!std::isfinite(*v)) throw std::logic_error("a non-finite double was accepted");
+    if (cli::toNumber<double>(cli::formatNumber(*v)) != v) throw std::logic_error("double round trip");
+  }
+  try {
+    (void)cli::parseNumbers<double>("--view", text, ',', 4, "four numbers");
+    (void)cli::parseNumbers<std::uint32_t>("--size", text, 'x', 2, "WxH");
   } catch (const std::invalid_argument&) {
   }
 }

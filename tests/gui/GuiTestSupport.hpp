@@ -8,8 +8,8 @@
 #include <QTemporaryDir>
 #include <QtTest>
 
-#include "MainWindow.hpp"
-#include "ParameterPanel.hpp"
+#include "ui/MainWindow.hpp"
+#include "ui/ParameterPanel.hpp"
 
 namespace archipelago::test {
 

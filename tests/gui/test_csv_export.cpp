@@ -8,12 +8,12 @@
 #include <QProcess>
 #include <QTemporaryDir>
 
-#include "ExportActions.hpp"
+#include "ui/ExportActions.hpp"
 #include "GuiTestSupport.hpp"
-#include "StatisticsView.hpp"
-#include "plots/StatisticsPlot.hpp"
-#include "runfile/RunFile.hpp"
-#include "trapping/TrappingRun.hpp"
+#include "ui/StatisticsView.hpp"
+#include "ui/plots/StatisticsPlot.hpp"
+#include "core/runfile/RunFile.hpp"
+#include "core/run/TrappingRun.hpp"
 
 #ifndef ARCHIPELAGO_CLI
 #error "ARCHIPELAGO_CLI must name the archipelago-cli executable (tests/gui/CMakeLists.txt)"

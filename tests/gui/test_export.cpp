@@ -12,9 +12,9 @@
 #include <QTemporaryDir>
 
 #include "GuiTestSupport.hpp"
-#include "StatisticsView.hpp"
-#include "plots/StatisticsPlot.hpp"
-#include "runfile/RunFile.hpp"
+#include "ui/StatisticsView.hpp"
+#include "ui/plots/StatisticsPlot.hpp"
+#include "core/runfile/RunFile.hpp"
 
 using archipelago::ui::MainWindow;
 using archipelago::ui::RunStatus;

@@ -6,8 +6,8 @@
 #include <QTabWidget>
 
 #include "GuiTestSupport.hpp"
-#include "StatisticsView.hpp"
-#include "plots/StatisticsPlot.hpp"
+#include "ui/StatisticsView.hpp"
+#include "ui/plots/StatisticsPlot.hpp"
 
 using archipelago::ui::MainWindow;
 

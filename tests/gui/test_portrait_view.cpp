@@ -8,8 +8,8 @@
 #include <qwt_plot.h>
 #include <qwt_scale_div.h>
 
-#include "portrait/PortraitView.hpp"
-#include "portrait/PortraitWorker.hpp"
+#include "ui/portrait/PortraitView.hpp"
+#include "ui/portrait/PortraitWorker.hpp"
 
 using archipelago::PortraitMode;
 using archipelago::Viewport;

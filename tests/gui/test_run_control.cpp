@@ -8,11 +8,11 @@
 #include <cmath>
 
 #include "GuiTestSupport.hpp"
-#include "StatisticsView.hpp"
-#include "plots/StatisticsPlot.hpp"
-#include "runfile/RunFile.hpp"
-#include "stats/RunStatistics.hpp"
-#include "stats/StatisticsTable.hpp"
+#include "ui/StatisticsView.hpp"
+#include "ui/plots/StatisticsPlot.hpp"
+#include "core/runfile/RunFile.hpp"
+#include "core/stats/RunStatistics.hpp"
+#include "core/stats/StatisticsTable.hpp"
 
 using archipelago::TrappingParameters;
 using archipelago::TrappingState;

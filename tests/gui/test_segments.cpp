@@ -15,13 +15,13 @@
 #include <vector>
 
 #include "GuiTestSupport.hpp"
-#include "periodic/PeriodicOrbitDialog.hpp"
-#include "portrait/PortraitPanel.hpp"
-#include "runfile/RunFile.hpp"
-#include "periodic/PeriodicOrbitFinder.hpp"
-#include "portrait/PortraitView.hpp"
-#include "segments/LongSegmentsPanel.hpp"
-#include "trapping/TrappingRun.hpp"
+#include "ui/periodic/PeriodicOrbitDialog.hpp"
+#include "ui/portrait/PortraitPanel.hpp"
+#include "core/runfile/RunFile.hpp"
+#include "core/periodic/PeriodicOrbitFinder.hpp"
+#include "ui/portrait/PortraitView.hpp"
+#include "ui/segments/LongSegmentsPanel.hpp"
+#include "core/run/TrappingRun.hpp"
 
 using namespace archipelago;
 using namespace archipelago::ui;

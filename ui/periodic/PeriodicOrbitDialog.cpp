@@ -1,4 +1,4 @@
-#include "periodic/PeriodicOrbitDialog.hpp"
+#include "ui/periodic/PeriodicOrbitDialog.hpp"
 
 #include <QCheckBox>
 #include <QDialogButtonBox>
@@ -16,8 +16,8 @@
 
 #include <exception>
 
-#include "periodic/PeriodicOrbitFinder.hpp"
-#include "segments/JobThread.hpp"
+#include "core/periodic/PeriodicOrbitFinder.hpp"
+#include "ui/segments/JobThread.hpp"
 
 namespace archipelago::ui {
 

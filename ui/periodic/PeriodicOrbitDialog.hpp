@@ -11,7 +11,7 @@
 
 #include <optional>
 
-#include "periodic/PeriodicOrbit.hpp"
+#include "core/periodic/PeriodicOrbit.hpp"
 
 class QCheckBox;
 class QDialogButtonBox;

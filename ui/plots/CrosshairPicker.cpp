@@ -1,11 +1,11 @@
-#include "CrosshairPicker.hpp"
+#include "ui/plots/CrosshairPicker.hpp"
 
 #include <QColor>
 #include <QPen>
 #include <qwt_picker_machine.h>
 #include <qwt_text.h>
 
-#include "QwtCompat.hpp"
+#include "ui/plots/QwtCompat.hpp"
 
 namespace archipelago::ui {
 

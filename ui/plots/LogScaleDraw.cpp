@@ -1,4 +1,4 @@
-#include "LogScaleDraw.hpp"
+#include "ui/plots/LogScaleDraw.hpp"
 
 #include <qwt_text.h>
 

@@ -1,4 +1,4 @@
-#include "StatisticsPlot.hpp"
+#include "ui/plots/StatisticsPlot.hpp"
 
 #include <QBrush>
 #include <QContextMenuEvent>
@@ -24,9 +24,9 @@
 #include <cmath>
 #include <string_view>
 
-#include "CrosshairPicker.hpp"
-#include "LogScaleDraw.hpp"
-#include "QwtCompat.hpp"
+#include "ui/plots/CrosshairPicker.hpp"
+#include "ui/plots/LogScaleDraw.hpp"
+#include "ui/plots/QwtCompat.hpp"
 
 namespace archipelago::ui {
 

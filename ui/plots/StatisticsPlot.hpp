@@ -19,8 +19,8 @@
 
 #include <vector>
 
-#include "RunSnapshot.hpp"
-#include "stats/StatisticsTable.hpp"
+#include "ui/RunSnapshot.hpp"
+#include "core/stats/StatisticsTable.hpp"
 
 class QwtPlotCurve;
 class QwtPlotIntervalCurve;

@@ -1,4 +1,4 @@
-#include "portrait/PortraitPanel.hpp"
+#include "ui/portrait/PortraitPanel.hpp"
 
 #include <QComboBox>
 #include <QFileDialog>
@@ -7,9 +7,9 @@
 #include <QToolButton>
 #include <QVBoxLayout>
 
-#include "portrait/ColourMap.hpp"
-#include "portrait/PortraitView.hpp"
-#include "portrait/StochasticAreaDialog.hpp"
+#include "core/portrait/ColourMap.hpp"
+#include "ui/portrait/PortraitView.hpp"
+#include "ui/portrait/StochasticAreaDialog.hpp"
 
 namespace archipelago::ui {
 

@@ -6,7 +6,7 @@
 #include <optional>
 #include <utility>
 
-#include "map/MapParameters.hpp"
+#include "core/map/MapParameters.hpp"
 
 class QComboBox;
 class QLabel;

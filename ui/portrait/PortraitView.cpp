@@ -1,4 +1,4 @@
-#include "portrait/PortraitView.hpp"
+#include "ui/portrait/PortraitView.hpp"
 
 #include <QKeyEvent>
 #include <QMouseEvent>
@@ -26,9 +26,9 @@
 #include <cmath>
 #include <exception>
 
-#include "portrait/MapOverlays.hpp"
-#include "portrait/PortraitExport.hpp"
-#include "portrait/PortraitWorker.hpp"
+#include "core/portrait/MapOverlays.hpp"
+#include "core/portrait/PortraitExport.hpp"
+#include "ui/portrait/PortraitWorker.hpp"
 
 namespace archipelago::ui {
 

@@ -15,10 +15,10 @@
 #include <memory>
 #include <vector>
 
-#include "map/MapParameters.hpp"
-#include "portrait/ColourMap.hpp"
-#include "portrait/PortraitRenderer.hpp"
-#include "portrait/Viewport.hpp"
+#include "core/map/MapParameters.hpp"
+#include "core/portrait/ColourMap.hpp"
+#include "core/portrait/PortraitRenderer.hpp"
+#include "core/portrait/Viewport.hpp"
 
 class QwtPlot;
 class QwtPlotMarker;

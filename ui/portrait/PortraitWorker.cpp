@@ -1,11 +1,11 @@
-#include "portrait/PortraitWorker.hpp"
+#include "ui/portrait/PortraitWorker.hpp"
 
 #include <QElapsedTimer>
 #include <QMutexLocker>
 
 #include <exception>
 
-#include "kernels/KernelDispatch.hpp"
+#include "core/kernels/KernelDispatch.hpp"
 
 namespace archipelago::ui {
 

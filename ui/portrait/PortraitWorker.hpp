@@ -18,8 +18,8 @@
 #include <optional>
 #include <stop_token>
 
-#include "portrait/ColourMap.hpp"
-#include "portrait/PortraitRenderer.hpp"
+#include "core/portrait/ColourMap.hpp"
+#include "core/portrait/PortraitRenderer.hpp"
 
 namespace archipelago::ui {
 

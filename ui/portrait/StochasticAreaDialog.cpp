@@ -1,4 +1,4 @@
-#include "portrait/StochasticAreaDialog.hpp"
+#include "ui/portrait/StochasticAreaDialog.hpp"
 
 #include <QApplication>
 #include <QLabel>
@@ -11,7 +11,7 @@
 #include <qwt_scale_engine.h>
 #include <qwt_symbol.h>
 
-#include "plots/QwtCompat.hpp"
+#include "ui/plots/QwtCompat.hpp"
 
 namespace archipelago::ui {
 

@@ -8,7 +8,7 @@
 #include <memory>
 #include <thread>
 
-#include "portrait/StochasticArea.hpp"
+#include "core/portrait/StochasticArea.hpp"
 
 class QLabel;
 class QwtPlot;

@@ -1,4 +1,4 @@
-#include "segments/JobThread.hpp"
+#include "ui/segments/JobThread.hpp"
 
 #include <QMutexLocker>
 

@@ -1,4 +1,4 @@
-#include "segments/LongSegmentsPanel.hpp"
+#include "ui/segments/LongSegmentsPanel.hpp"
 
 #include <QElapsedTimer>
 #include <QFileDialog>
@@ -15,8 +15,8 @@
 #include <QToolButton>
 #include <QVBoxLayout>
 
-#include "portrait/PortraitView.hpp"
-#include "segments/SegmentOverlay.hpp"
+#include "ui/portrait/PortraitView.hpp"
+#include "ui/segments/SegmentOverlay.hpp"
 
 #include <algorithm>
 #include <exception>

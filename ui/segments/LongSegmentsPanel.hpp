@@ -17,11 +17,11 @@
 
 #include <cstdint>
 
-#include "segments/JobThread.hpp"
-#include "segments/LongestSegmentsModel.hpp"
-#include "segments/SegmentResults.hpp"
-#include "periodic/PeriodicOrbit.hpp"
-#include "trapping/LongestSegments.hpp"
+#include "ui/segments/JobThread.hpp"
+#include "ui/segments/LongestSegmentsModel.hpp"
+#include "ui/segments/SegmentResults.hpp"
+#include "core/periodic/PeriodicOrbit.hpp"
+#include "core/trapping/LongestSegments.hpp"
 
 class QLabel;
 class QPushButton;

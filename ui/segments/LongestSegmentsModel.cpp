@@ -1,8 +1,8 @@
-#include "segments/LongestSegmentsModel.hpp"
+#include "ui/segments/LongestSegmentsModel.hpp"
 
 #include <QLocale>
 
-#include "map/FixedPointMap.hpp"
+#include "core/map/FixedPointMap.hpp"
 
 namespace archipelago::ui {
 

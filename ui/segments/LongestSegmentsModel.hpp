@@ -13,7 +13,7 @@
 #include <map>
 #include <vector>
 
-#include "segments/SegmentResults.hpp"
+#include "ui/segments/SegmentResults.hpp"
 
 namespace archipelago::ui {
 

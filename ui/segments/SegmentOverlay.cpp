@@ -1,4 +1,4 @@
-#include "segments/SegmentOverlay.hpp"
+#include "ui/segments/SegmentOverlay.hpp"
 
 #include <QLocale>
 #include <QPainter>
@@ -10,9 +10,9 @@
 
 #include <algorithm>
 
-#include "portrait/ColourMap.hpp"
-#include "portrait/PortraitView.hpp"
-#include "portrait/Viewport.hpp"
+#include "core/portrait/ColourMap.hpp"
+#include "ui/portrait/PortraitView.hpp"
+#include "core/portrait/Viewport.hpp"
 
 namespace archipelago::ui {
 

@@ -15,8 +15,8 @@
 #include <memory>
 #include <vector>
 
-#include "periodic/PeriodicOrbit.hpp"
-#include "segments/SegmentResults.hpp"
+#include "core/periodic/PeriodicOrbit.hpp"
+#include "ui/segments/SegmentResults.hpp"
 
 class QwtPlot;
 class QwtPlotTextLabel;

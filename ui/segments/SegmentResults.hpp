@@ -11,8 +11,8 @@
 #include <memory>
 #include <optional>
 
-#include "periodic/SegmentAnalysis.hpp"
-#include "trapping/TrappingParameters.hpp"
+#include "core/periodic/SegmentAnalysis.hpp"
+#include "core/trapping/TrappingParameters.hpp"
 
 namespace archipelago::ui {
 

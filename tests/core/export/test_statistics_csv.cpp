@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "export/StatisticsCsv.hpp"
-#include "stats/RunStatistics.hpp"
-#include "trapping/TrappingRun.hpp"
+#include "core/export/StatisticsCsv.hpp"
+#include "core/stats/RunStatistics.hpp"
+#include "core/run/TrappingRun.hpp"
 
 namespace archipelago {
 namespace {

@@ -10,8 +10,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "io/AtomicFile.hpp"
-#include "io/Sha256.hpp"
+#include "core/io/AtomicFile.hpp"
+#include "core/io/Sha256.hpp"
 
 namespace archipelago::io {
 namespace {

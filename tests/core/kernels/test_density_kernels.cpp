@@ -5,7 +5,7 @@
 #include <random>
 #include <vector>
 
-#include "kernels/KernelDispatch.hpp"
+#include "core/kernels/KernelDispatch.hpp"
 
 namespace archipelago {
 namespace {

@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "kernels/KernelDispatch.hpp"
+#include "core/kernels/KernelDispatch.hpp"
 
 namespace archipelago {
 namespace {

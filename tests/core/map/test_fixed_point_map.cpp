@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "map/FixedPointMap.hpp"
-#include "map/ScalarStep.hpp"
+#include "core/map/FixedPointMap.hpp"
+#include "core/map/ScalarStep.hpp"
 
 namespace archipelago {
 namespace {

@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "markov/MarkovModel.hpp"
+#include "core/markov/MarkovModel.hpp"
 
 namespace archipelago::markov::dense {
 

@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "DenseMarkovReference.hpp"
-#include "markov/MarkovModel.hpp"
+#include "core/markov/MarkovModel.hpp"
 
 namespace archipelago::markov {
 namespace {

@@ -11,7 +11,7 @@
 #include <thread>
 #include <vector>
 
-#include "parallel/ParallelFor.hpp"
+#include "core/parallel/ParallelFor.hpp"
 
 namespace archipelago {
 namespace {

@@ -7,8 +7,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "periodic/IslandChain.hpp"
-#include "periodic/SmoothQuadraticMap.hpp"
+#include "core/periodic/IslandChain.hpp"
+#include "core/periodic/SmoothQuadraticMap.hpp"
 #include "LongDoubleNear.hpp"
 
 namespace archipelago {

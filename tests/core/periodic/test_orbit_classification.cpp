@@ -10,8 +10,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "periodic/OrbitClassification.hpp"
-#include "periodic/PeriodicOrbitFinder.hpp"
+#include "core/periodic/OrbitClassification.hpp"
+#include "core/periodic/PeriodicOrbitFinder.hpp"
 #include "LongDoubleNear.hpp"
 
 namespace archipelago {

@@ -8,8 +8,8 @@
 #include <random>
 #include <stdexcept>
 
-#include "periodic/PeriodicOrbitFinder.hpp"
-#include "periodic/SmoothQuadraticMap.hpp"
+#include "core/periodic/PeriodicOrbitFinder.hpp"
+#include "core/periodic/SmoothQuadraticMap.hpp"
 #include "LongDoubleNear.hpp"
 
 namespace archipelago {

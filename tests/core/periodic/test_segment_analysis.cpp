@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "periodic/SegmentAnalysis.hpp"
-#include "trapping/TrappingRun.hpp"
+#include "core/periodic/SegmentAnalysis.hpp"
+#include "core/run/TrappingRun.hpp"
 
 namespace archipelago {
 namespace {

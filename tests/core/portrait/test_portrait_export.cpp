@@ -9,7 +9,7 @@
 #include <iterator>
 #include <string>
 
-#include "portrait/PortraitExport.hpp"
+#include "core/portrait/PortraitExport.hpp"
 
 namespace archipelago {
 namespace {

@@ -11,12 +11,12 @@
 #include <stdexcept>
 #include <vector>
 
-#include "kernels/KernelDispatch.hpp"
-#include "portrait/ColourMap.hpp"
-#include "portrait/MapOverlays.hpp"
-#include "portrait/PortraitRenderer.hpp"
-#include "random/CounterRng.hpp"
-#include "trapping/TrappingRun.hpp"
+#include "core/kernels/KernelDispatch.hpp"
+#include "core/portrait/ColourMap.hpp"
+#include "core/portrait/MapOverlays.hpp"
+#include "core/portrait/PortraitRenderer.hpp"
+#include "core/random/CounterRng.hpp"
+#include "core/run/TrappingRun.hpp"
 
 namespace archipelago {
 namespace {

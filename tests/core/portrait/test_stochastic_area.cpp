@@ -7,9 +7,9 @@
 #include <stop_token>
 #include <vector>
 
-#include "map/FixedPointMap.hpp"
-#include "portrait/StochasticArea.hpp"
-#include "random/CounterRng.hpp"
+#include "core/map/FixedPointMap.hpp"
+#include "core/portrait/StochasticArea.hpp"
+#include "core/random/CounterRng.hpp"
 
 namespace archipelago {
 namespace {

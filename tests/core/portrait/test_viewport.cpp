@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "portrait/Viewport.hpp"
+#include "core/portrait/Viewport.hpp"
 
 namespace archipelago {
 namespace {

@@ -1,7 +1,7 @@
 // Counter-based random numbers (DESIGN.md): reference values computed independently in Python.
 #include <gtest/gtest.h>
 
-#include "random/CounterRng.hpp"
+#include "core/random/CounterRng.hpp"
 
 namespace archipelago {
 

@@ -6,7 +6,7 @@
 #include <functional>
 #include <nlohmann/json.hpp>
 
-#include "runfile/RunFile.hpp"
+#include "core/runfile/RunFile.hpp"
 
 namespace archipelago {
 namespace {

@@ -9,7 +9,7 @@
 #include <string>
 #include <string_view>
 
-#include "stats/StatisticsTable.hpp"
+#include "core/stats/StatisticsTable.hpp"
 
 namespace archipelago {
 namespace {

@@ -10,7 +10,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "stats/TrappingStatistics.hpp"
+#include "core/stats/TrappingStatistics.hpp"
 
 namespace archipelago {
 namespace {

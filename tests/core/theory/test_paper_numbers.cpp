@@ -9,9 +9,9 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "periodic/PeriodicOrbitFinder.hpp"
-#include "theory/PaperNumbers.hpp"
-#include "theory/SmallKTheory.hpp"
+#include "core/periodic/PeriodicOrbitFinder.hpp"
+#include "core/theory/PaperNumbers.hpp"
+#include "core/theory/SmallKTheory.hpp"
 
 namespace archipelago::paper {
 namespace {

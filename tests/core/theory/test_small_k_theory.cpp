@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "theory/SmallKTheory.hpp"
+#include "core/theory/SmallKTheory.hpp"
 
 namespace archipelago::smallk {
 namespace {

@@ -7,8 +7,8 @@
 #include <functional>
 #include <vector>
 
-#include "theory/SmallKTheory.hpp"
-#include "theory/TheoryCurves.hpp"
+#include "core/theory/SmallKTheory.hpp"
+#include "core/theory/TheoryCurves.hpp"
 
 namespace archipelago {
 namespace {

@@ -14,8 +14,8 @@
 #include <cstdlib>
 #include <new>
 
-#include "kernels/KernelDispatch.hpp"
-#include "trapping/TrappingRun.hpp"
+#include "core/kernels/KernelDispatch.hpp"
+#include "core/run/TrappingRun.hpp"
 
 namespace {
 std::atomic<bool> gFailNextAllocationInParallel{false};

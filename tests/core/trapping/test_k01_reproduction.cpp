@@ -3,7 +3,7 @@
 // paper's box (xmin = −0.8, xmax = 0.5, Xr = 0.02, q = 16) resolves the τ^(−1/4) range.
 #include <gtest/gtest.h>
 
-#include "stats/RunStatistics.hpp"
+#include "core/stats/RunStatistics.hpp"
 
 namespace archipelago {
 namespace {

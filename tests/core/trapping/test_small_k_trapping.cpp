@@ -6,7 +6,7 @@
 #include <cmath>
 #include <vector>
 
-#include "trapping/TrappingRun.hpp"
+#include "core/run/TrappingRun.hpp"
 
 namespace archipelago {
 namespace {

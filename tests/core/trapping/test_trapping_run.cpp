@@ -5,7 +5,7 @@
 #include <map>
 #include <stop_token>
 
-#include "trapping/TrappingRun.hpp"
+#include "core/run/TrappingRun.hpp"
 
 namespace archipelago {
 namespace {

@@ -1,4 +1,4 @@
-#include "trapping/StateValidation.hpp"
+#include "core/run/StateValidation.hpp"
 
 #include <map>
 #include <string>

@@ -1,4 +1,4 @@
-#include "trapping/TrappingRun.hpp"
+#include "core/run/TrappingRun.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -6,8 +6,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "kernels/KernelDispatch.hpp"
-#include "parallel/ParallelFor.hpp"
+#include "core/kernels/KernelDispatch.hpp"
+#include "core/parallel/ParallelFor.hpp"
 
 
 namespace archipelago {

@@ -16,8 +16,8 @@
 #include <string>
 #include <vector>
 
-#include "kernels/KernelDispatch.hpp"
-#include "trapping/BlockKernel.hpp"
+#include "core/kernels/KernelDispatch.hpp"
+#include "core/trapping/BlockKernel.hpp"
 
 namespace archipelago {
 

@@ -18,7 +18,7 @@
 #include <optional>
 #include <string>
 
-#include "trapping/TrappingRun.hpp"
+#include "core/run/TrappingRun.hpp"
 
 namespace archipelago {
 
