@@ -2,16 +2,21 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <filesystem>
 #include <map>
 #include <memory>
+#include <string>
 #include <variant>
 #include <stdexcept>
+#include <vector>
 
 #include "CliCommon.hpp"
+#include "core/io/AtomicFile.hpp"
 #include "core/kernels/KernelDispatch.hpp"
 #include "core/runfile/RunFile.hpp"
 #include "core/spec/RunSpec.hpp"
@@ -59,19 +64,49 @@ void drawProgress(const TrappingProgress& p, const std::string& kernel) {
   std::fflush(stderr);
 }
 
+/// The run's files, locked for the whole run (issue #12, finding 7): a second process on the same --out,
+/// checkpoint or resumed file is refused before it reads or writes anything, and the temporaries a killed
+/// writer left beside them are removed once the lock is held.
+/// The resumed file is locked too (resuming the checkpoint of a live run would fork it), unless its folder
+/// is read-only: nobody can be writing it then, and a run may start from a file it cannot lock.
+std::vector<io::FileLock> lockRunFiles(const std::string& out, const std::string& checkpoint, const std::string& resume) {
+  std::vector<io::FileLock> locks;
+  std::vector<std::filesystem::path> held;
+  const std::filesystem::path resumeFolder = std::filesystem::path(resume).parent_path();
+  const bool lockResume = !resume.empty() && ::access(resumeFolder.empty() ? "." : resumeFolder.c_str(), W_OK) == 0;
+  for (const std::string& path : {out, checkpoint, lockResume ? resume : std::string()}) {
+    if (path.empty()) continue;
+    const std::filesystem::path same = std::filesystem::weakly_canonical(path);  // one lock per file, however named
+    if (std::find(held.begin(), held.end(), same) != held.end()) continue;
+    locks.push_back(io::FileLock::acquire(path));
+    held.push_back(same);
+    io::removeStaleTemporaries(path);
+  }
+  return locks;
+}
+
 int runCommand(const RunOptions& o, const std::vector<std::string>& explicitParameters) {
+  if (!o.resume.empty() && !explicitParameters.empty())
+    throw std::invalid_argument("--resume takes the parameters from the run file; do not also give " +
+                                explicitParameters.front());
+  if (o.threads < 0 || o.threads > kMaxThreads)  // --resume skips the spec's validation
+    throw std::invalid_argument("--threads = " + std::to_string(o.threads) + " must lie in [0, " +
+                                std::to_string(kMaxThreads) + "] (0: one per core)");
+  const std::string checkpoint = o.checkpoint.empty() ? o.out : o.checkpoint;
+  // Every output path before any work (issue #12, finding 7): a typo fails now, not after the computation.
+  io::checkWritableTarget(o.out);
+  io::checkWritableTarget(checkpoint);
+  const std::vector<io::FileLock> locks = lockRunFiles(o.out, checkpoint, o.resume);
+
   TrappingState state;
   if (!o.resume.empty()) {
-    if (!explicitParameters.empty())
-      throw std::invalid_argument("--resume takes the parameters from the run file; do not also give " +
-                                  explicitParameters.front());
     state = loadRunFile(o.resume);
     if (state.finished()) throw std::invalid_argument(o.resume + " is already finished (" +
                                                       std::to_string(state.blocksDone) + " of T blocks)");
-  } else {
-    state = startTrapping(o.params);
   }
-  const std::string checkpoint = o.checkpoint.empty() ? o.out : o.checkpoint;
+  const TrappingParameters& params = o.resume.empty() ? o.params : state.params;
+  if (auto e = memoryError(params, o.threads)) throw std::runtime_error(*e);  // before allocating the orbits
+  if (o.resume.empty()) state = startTrapping(o.params);
   const bool tty = ::isatty(STDERR_FILENO) != 0;
 
   std::stop_source stopper;
@@ -82,14 +117,26 @@ int runCommand(const RunOptions& o, const std::vector<std::string>& explicitPara
   options.kernel = &kernel;
   options.threads = o.threads;
   options.maxChunkBlocks = o.maxChunkBlocks;
-  auto lastCheckpoint = std::chrono::steady_clock::now();
-  auto lastLine = lastCheckpoint;
+  // Where the last good checkpoint is (the resumed file until one is written): what a failing write reports.
+  std::string lastCheckpoint = o.resume;
+  std::uint64_t lastCheckpointBlocks = state.blocksDone;
+  auto lastCheckpointTime = std::chrono::steady_clock::now();
+  auto lastLine = lastCheckpointTime;
   auto observer = [&](const TrappingState& s, const TrappingProgress& p) {
     const auto now = std::chrono::steady_clock::now();
     if (gInterrupted) stopper.request_stop();
-    if (std::chrono::duration<double>(now - lastCheckpoint).count() >= o.checkpointSeconds && !s.finished()) {
-      saveRunFile(checkpoint, s);
-      lastCheckpoint = now;
+    if (std::chrono::duration<double>(now - lastCheckpointTime).count() >= o.checkpointSeconds && !s.finished()) {
+      lastCheckpointTime = now;  // a failed write is retried at the next interval, not at every chunk
+      // A checkpoint that cannot be written (full disk, vanished folder) must not cost the run: warn, go on.
+      try {
+        saveRunFile(checkpoint, s);
+        lastCheckpoint = checkpoint;
+        lastCheckpointBlocks = s.blocksDone;
+      } catch (const std::exception& e) {
+        if (tty && !o.quiet) std::fputc('\n', stderr);
+        std::fprintf(stderr, "WARNING: checkpoint not written: %s; the run goes on and retries in %g s\n", e.what(),
+                     o.checkpointSeconds);
+      }
     }
     // A progress bar on a terminal; on a pipe or file, a line every 10 s.
     if (!o.quiet && (tty || std::chrono::duration<double>(now - lastLine).count() >= 10)) {
@@ -98,15 +145,27 @@ int runCommand(const RunOptions& o, const std::vector<std::string>& explicitPara
       lastLine = now;
     }
   };
+  // The final write: when it fails, the ERROR says where the work done so far is kept.
+  auto save = [&](const std::string& path) {
+    try {
+      saveRunFile(path, state);
+    } catch (const std::exception& e) {
+      const std::string kept = lastCheckpoint.empty()
+          ? std::string("no checkpoint was written")
+          : "the last checkpoint (" + std::to_string(lastCheckpointBlocks) + " of " + std::to_string(state.params.T) +
+                " blocks) is in " + lastCheckpoint + ": resume with --resume " + lastCheckpoint;
+      throw std::runtime_error(std::string(e.what()) + "; " + kept);
+    }
+  };
   state = runTrapping(std::move(state), options, observer, stopper.get_token());
   if (!o.quiet && tty) std::fputc('\n', stderr);
   if (!state.finished()) {
-    saveRunFile(checkpoint, state);
+    save(checkpoint);
     std::fprintf(stderr, "interrupted: checkpoint written to %s (resume with --resume %s)\n", checkpoint.c_str(),
                  checkpoint.c_str());
     return 130;  // 128 + SIGINT, as a shell reports a process stopped by Ctrl-C
   }
-  saveRunFile(o.out, state);
+  save(o.out);
   if (!o.quiet) {
     const TrappingHistogram total = state.total();
     const std::uint64_t longest = state.longest.items().empty() ? 0 : state.longest.items().front().length;
@@ -122,6 +181,10 @@ int runCommand(const RunOptions& o, const std::vector<std::string>& explicitPara
 /// explicitly on top; validated whole (spec/RunSpec.hpp), so a bad value is named before any work starts.
 RunSpec resolveSpec(const RunOptions& o, const CLI::App& cmd) {
   if (!o.preset.empty() && !o.specFile.empty()) throw std::invalid_argument("give --preset or --spec, not both");
+  // An empty --preset= or --spec= is a mistake, never a silent fall back to the defaults.
+  if (cmd.count("--preset") > 0 && o.preset.empty())
+    throw std::invalid_argument("--preset is empty (archipelago-cli presets lists the presets)");
+  if (cmd.count("--spec") > 0 && o.specFile.empty()) throw std::invalid_argument("--spec is empty: give a spec file");
   RunSpec spec;
   if (!o.preset.empty()) {
     const Preset* preset = findPreset(o.preset);
