@@ -19,6 +19,7 @@ packages=(
   libgomp1 nlohmann-json3-dev libcli11-dev zlib1g-dev
   libgtest-dev libgmock-dev googletest libbenchmark-dev
   xvfb xauth python3
+  clang libclang-rt-14-dev libomp-dev
 )
 
 SUDO=""
