@@ -152,9 +152,14 @@ std::optional<std::uint64_t> replaySegmentUntil(const TrappingParameters& params
       throw std::runtime_error("replay mismatch: the segment ended after " + std::to_string(s.length) +
                                " blocks, the run recorded " + std::to_string(record.length));
     if (ended) break;
-    if (s.length >= record.length)
+    if (s.length >= record.length) {
+      if (s.block >= params.T) break;  // cut by the run's last block, where the record says
       throw std::runtime_error("replay mismatch: the segment did not end after the " + std::to_string(record.length) +
                                " blocks the run recorded");
+    }
+    if (s.block >= params.T)
+      throw std::runtime_error("replay mismatch: the run's last block came after " + std::to_string(s.length) +
+                               " blocks, the run recorded " + std::to_string(record.length));
   }
   return s.length;
 }

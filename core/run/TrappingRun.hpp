@@ -82,7 +82,8 @@ struct TrappingRunOptions {
 /// (step 0) and after every step of N⁻¹ (steps 1 … q·length).  Returns record.length.  A replay never runs
 /// past the record: when the segment does not end exactly after record.length blocks (a record of other
 /// parameters, or an edited one), it throws std::runtime_error "replay mismatch: …" (at most record.length
-/// blocks replayed, never up to T).
+/// blocks replayed, never up to T).  A segment cut by the run's last block (start.block + length = T) ends
+/// there.
 std::uint64_t replaySegment(const TrappingParameters& params, const SegmentRecord& record,
                             const std::function<void(std::uint64_t step, const UnitState& z)>& visit);
 

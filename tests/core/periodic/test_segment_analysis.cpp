@@ -240,6 +240,12 @@ TEST(SegmentAnalysis, ReplayNeverEndsWhenARecordsStartLiesInAnIsland) {
   std::filesystem::remove(path);
   EXPECT_THROW((void)writeSegmentCsv(path, p, stuck, 1000), std::runtime_error);
   EXPECT_FALSE(std::filesystem::exists(path));  // nothing half-written
+  // Where the record says the run's last block cut it, the replay ends there (the GUI's test of an island
+  // segment relies on it); one block earlier in the run it is a mismatch again.
+  stuck.start.block = p.T - stuck.length;
+  EXPECT_EQ(replaySegment(p, stuck, {}), stuck.length);
+  stuck.start.block -= 1;
+  EXPECT_THROW((void)replaySegment(p, stuck, {}), std::runtime_error);
   // A record that ends before its recorded length is a mismatch too.
   const TrappingState& state = shortRun();
   SegmentRecord longer = state.longest.items().front();
