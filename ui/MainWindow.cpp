@@ -81,6 +81,9 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
     setWindowTitle(path.isEmpty() ? tr("Archipelago") : tr("%1 — Archipelago").arg(QFileInfo(path).fileName()));
     if (!path.isEmpty() && path != checkpointPath()) SettingsController::addRecentFile(path);
   });
+  connect(run_, &RunController::runOpened, this, [this](const TrappingParameters& p) {
+    panel_->setParameters(p, panel_->threads());
+  });
   connect(run_, &RunController::runReplaced, this, [this] {
     shown_.reset();
     statistics_->clear();
@@ -264,7 +267,7 @@ void MainWindow::createStatusBar() {
   progress_->setRange(0, 1000);
   progress_->setValue(0);
   progress_->setFormat(QStringLiteral("%p%"));
-  progress_->setMinimumWidth(260);
+  progress_->setMinimumWidth(150);
   progress_->setMaximumWidth(320);
   progress_->setToolTip(tr("Blocks done / T"));
   rateLabel_ = new QLabel(this);
@@ -299,7 +302,7 @@ QWidget* MainWindow::createParameterDock() {
     buttons->addWidget(b);
   }
   layout->addLayout(buttons);
-  box->setMinimumWidth(330);
+  box->setMinimumWidth(300);
   return box;
 }
 

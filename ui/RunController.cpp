@@ -210,19 +210,38 @@ bool RunController::open(const QString& path, QString* error, bool resumeWhenRea
     if (error) *error = tr("Cancelled");
     return false;
   }
+  resumeWhenReady_.reset();
+  if (resumeWhenReady) resumeWhenReady_ = settings;
+  analyse(std::move(state), path);
+  Q_EMIT message(tr("Opened %1").arg(path), false);
+  return true;
+}
+
+bool RunController::adopt(TrappingState state, QString* error) {
+  if (isLive(status_)) {
+    if (error) *error = tr("Stop or pause the run first");
+    return false;
+  }
+  if (!confirmDiscard()) {
+    if (error) *error = tr("Cancelled");
+    return false;
+  }
+  resumeWhenReady_.reset();
+  analyse(std::move(state), QString());
+  return true;
+}
+
+void RunController::analyse(TrappingState state, const QString& path) {
   Q_EMIT runReplaced();
+  Q_EMIT runOpened(state.params);
   runId_ += 1;
   latest_.reset();
   unsaved_ = false;
-  resumeWhenReady_.reset();
-  if (resumeWhenReady) resumeWhenReady_ = settings;
   currentFile_ = path;
   Q_EMIT currentFileChanged(currentFile_);
   // The analysis is a short worker session: the run is live (nothing else may start) until it answers.
   apply(RunEvent::start);
   worker_->analyse(runId_, std::move(state));
-  Q_EMIT message(tr("Opened %1").arg(path), false);
-  return true;
 }
 
 bool RunController::save(const QString& path, QString* error) {

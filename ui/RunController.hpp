@@ -102,6 +102,9 @@ class RunController : public QObject {
   /// GUI thread; ends in paused or finished.  With `resumeWhenReady`, it continues as soon as it is analysed.
   bool open(const QString& path, QString* error = nullptr, bool resumeWhenReady = false,
             const RunSettings& settings = {});
+  /// Shows a run that is already in memory (a session's embedded run): analysed like an opened file; no current
+  /// file, nothing unsaved (it is in the session).  Asks before unsaved work is lost.
+  bool adopt(TrappingState state, QString* error = nullptr);
   /// Writes the newest state (atomically, through core) and makes it the current file.
   bool save(const QString& path, QString* error = nullptr);
   /// Called when the window is asked to close.  True: close now.  False: not yet — either the user cancelled,
@@ -124,6 +127,8 @@ class RunController : public QObject {
   void runReplaced();
   /// The current file changed (opened or saved), or was cleared by a new run.
   void currentFileChanged(const QString& path);
+  /// A run from a file or a session is about to be shown: the window shows its parameters.
+  void runOpened(const archipelago::TrappingParameters& parameters);
   /// A close requested while the run was live can now go ahead (the checkpoint is written or failed).
   void closeReady();
 
@@ -134,6 +139,7 @@ class RunController : public QObject {
   void onRunEnded(quint64 runId, const RunSnapshotPtr& last, RunEnd how, const QString& text);
   RunAnswer ask(RunQuestion::Kind kind);
   void finishClose();
+  void analyse(TrappingState state, const QString& path);
 
   RunWorker* worker_ = nullptr;
   RunStatus status_ = RunStatus::idle;
