@@ -1,6 +1,9 @@
 #include "core/session/SessionFile.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <set>
 #include <stdexcept>
 
@@ -64,6 +67,36 @@ std::array<double, 2> point(const json& v, const std::string& key) {
   return {finite(v[0], key + "[0]"), finite(v[1], key + "[1]")};
 }
 
+json viewJson(const Viewport& v) {
+  char w[64], h[64];
+  std::snprintf(w, sizeof w, "%.21Lg", v.widthUnits());
+  std::snprintf(h, sizeof h, "%.21Lg", v.heightUnits());
+  return {{"centre", json::array({v.centre().X, v.centre().Y})}, {"size", json::array({w, h})}};
+}
+
+Viewport view(const json& v, const std::string& key) {
+  onlyKeys(v, key, {"centre", "size"});
+  const auto c = v.find("centre"), z = v.find("size");
+  if (c == v.end() || z == v.end()) bad(key + " needs 'centre' and 'size'");
+  if (!c->is_array() || c->size() != 2) bad(key + ".centre must be [X, Y] in grid units");
+  if (!z->is_array() || z->size() != 2) bad(key + ".size must be [\"width\", \"height\"] in grid units");
+  const UnitState centre{whole((*c)[0], key + ".centre[0]", FixedPointMap::kOne - 1),
+                         whole((*c)[1], key + ".centre[1]", FixedPointMap::kOne - 1)};
+  long double size[2];
+  for (int i = 0; i < 2; ++i) {
+    const std::string k = key + ".size[" + std::to_string(i) + "]";
+    const std::string t = string((*z)[i], k, 64);
+    char* end = nullptr;
+    size[i] = std::strtold(t.c_str(), &end);
+    if (t.empty() || end != t.c_str() + t.size()) bad(k + " = \"" + t + "\" is not a number");
+  }
+  try {
+    return Viewport::fromUnits(centre, size[0], size[1]);
+  } catch (const std::invalid_argument& e) {
+    bad(key + ": " + e.what());
+  }
+}
+
 json pointsJson(const std::vector<std::array<double, 2>>& points) {
   json a = json::array();
   for (const auto& p : points) a.push_back(json::array({p[0], p[1]}));
@@ -82,9 +115,9 @@ std::string sessionText(const Session& s) {
   else j["run"] = nullptr;
   j["tab"] = s.tab;
   json portrait = json::object();
-  portrait["view"] = s.portrait.view ? rectJson(*s.portrait.view) : json(nullptr);
   portrait["history"] = json::array();
-  for (const SessionRect& r : s.portrait.history) portrait["history"].push_back(rectJson(r));
+  for (const Viewport& v : s.portrait.history) portrait["history"].push_back(viewJson(v));
+  portrait["current"] = s.portrait.current;
   portrait["mode"] = std::string(toString(s.portrait.mode));
   portrait["colours"] = std::string(toString(s.portrait.colours));
   portrait["budget"] = s.portrait.budget;
@@ -141,12 +174,16 @@ Session parseSession(std::string_view text) {
   if (const auto tab = j.find("tab"); tab != j.end()) s.tab = string(*tab, "tab");
 
   if (const auto p = j.find("portrait"); p != j.end()) {
-    onlyKeys(*p, "portrait", {"view", "history", "mode", "colours", "budget", "orbits", "periodic"});
-    if (const auto v = p->find("view"); v != p->end() && !v->is_null()) s.portrait.view = rect(*v, "portrait.view");
+    onlyKeys(*p, "portrait", {"history", "current", "mode", "colours", "budget", "orbits", "periodic"});
     if (const auto h = p->find("history"); h != p->end()) {
       array(*h, "portrait.history", kMaxSessionHistory);
       for (std::size_t i = 0; i < h->size(); ++i)
-        s.portrait.history.push_back(rect((*h)[i], "portrait.history[" + std::to_string(i) + "]"));
+        s.portrait.history.push_back(view((*h)[i], "portrait.history[" + std::to_string(i) + "]"));
+    }
+    if (const auto c = p->find("current"); c != p->end()) {
+      s.portrait.current = whole(*c, "portrait.current", kMaxSessionHistory);
+      if (s.portrait.current >= std::max<std::size_t>(s.portrait.history.size(), 1))
+        bad("portrait.current = " + std::to_string(s.portrait.current) + " is not an entry of portrait.history");
     }
     if (const auto m = p->find("mode"); m != p->end()) {
       const std::string name = string(*m, "portrait.mode");

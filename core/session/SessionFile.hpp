@@ -15,8 +15,8 @@
 ///    "spec": {…run spec…},
 ///    "run": null | {"file": "run.json"} | {"embedded": {…run file…}},
 ///    "tab": "Phase portrait",
-///    "portrait": {"view": [xmin, xmax, ymin, ymax], "history": [[…], …], "mode": "density", "colours": "inferno",
-///                 "budget": 100000000, "orbits": [[x, y], …],
+///    "portrait": {"history": [{"centre": [X, Y], "size": ["w", "h"]}, …], "current": 0, "mode": "density",
+///                 "colours": "inferno", "budget": 100000000, "orbits": [[x, y], …],
 ///                 "periodic": [{"label": "7/20", "points": [[x, y], …]}, …]},
 ///    "segment": {"rank": 0, "position": 1234},
 ///    "plots": [{"name": "f_t", "zoom": [xmin, xmax, ymin, ymax]}, …]}
@@ -31,6 +31,7 @@
 
 #include "core/portrait/ColourMap.hpp"
 #include "core/portrait/PortraitRaster.hpp"
+#include "core/portrait/Viewport.hpp"
 #include "core/run/TrappingRun.hpp"
 #include "core/spec/RunSpec.hpp"
 
@@ -46,6 +47,10 @@ inline constexpr std::size_t kMaxSessionOrbits = 10000;
 inline constexpr std::size_t kMaxSessionPeriodicPoints = 1'000'000;  ///< over all periodic overlays
 inline constexpr std::size_t kMaxSessionPlots = 64;
 
+/// Portrait views are exact (core/portrait/Viewport): the centre as integer grid units, the size in grid units as
+/// a decimal string of 21 significant digits (a long double's 64-bit mantissa round-trips), so a view 10⁻¹⁰ wide is
+/// restored to the bit.  Each is checked by Viewport::fromUnits (inside the box, not below the resolution).
+///
 /// A rectangle of a plane: [xmin, xmax] × [ymin, ymax], finite, xmin < xmax, ymin < ymax.
 struct SessionRect {
   double xmin = 0, xmax = 1, ymin = 0, ymax = 1;
@@ -59,8 +64,8 @@ struct SessionPeriodicOverlay {
 };
 
 struct SessionPortrait {
-  std::optional<SessionRect> view;              ///< nothing: the map's whole box
-  std::vector<SessionRect> history;             ///< zoom history, oldest first (Back returns through it)
+  std::vector<Viewport> history;                ///< zoom history, oldest first (empty: the whole box)
+  std::size_t current = 0;                      ///< the view shown: history[current]
   PortraitMode mode = PortraitMode::Density;
   ColourMapName colours = ColourMapName::Inferno;
   std::uint64_t budget = 0;                     ///< points budget of deep zoom (0: the panel's default)

@@ -44,9 +44,14 @@ Session fullSession(std::mt19937_64& rng) {
   s.spec.name = "Custom";
   s.spec.threads = 2;
   s.tab = "Phase portrait";
-  s.portrait.view = SessionRect{-0.3 + unit(rng) * 1e-9, -0.3 + 7e-4, 0.1 * unit(rng), 0.1 + 7e-4};
-  for (int i = 0; i < 5; ++i)
-    s.portrait.history.push_back({-0.8 + i * unit(rng) * 0.01, 0.5, -0.8, 0.5 - unit(rng) * 0.01});
+  // Views down to the resolution limit, with sizes whose long double digits a double would lose.
+  Viewport v = Viewport::wholeBox();
+  s.portrait.history.push_back(v);
+  for (int i = 0; i < 5; ++i) {
+    v = v.zoomedAboutFraction(unit(rng), unit(rng), 1.0L + 1000.0L * static_cast<long double>(unit(rng)));
+    s.portrait.history.push_back(v);
+  }
+  s.portrait.current = 4;
   s.portrait.mode = PortraitMode::Orbits;
   s.portrait.colours = ColourMapName::Viridis;
   s.portrait.budget = 123'456'789'012;
@@ -154,12 +159,23 @@ TEST(SessionFile, BadAndForeignDocumentsAreRefusedWithTheKeyNamed) {
   expectRejected(edited("spec", ""), "no 'spec'");
   expectRejected(edited("extra", "1"), "unknown key 'extra'");
   expectRejected(edited("spec.parameters", R"({"K": -1e300})"), "spec:");
-  expectRejected(edited("portrait.view", "[0, 1, 0]"), "portrait.view");
-  expectRejected(edited("portrait.view", "[1, 0, 0, 1]"), "xmin < xmax");
-  std::string huge = edited("portrait.view", "[0, 12345.5, 0, 1]");
+  expectRejected(edited("portrait.history", R"([{"centre": [0, 0]}])"), "needs 'centre' and 'size'");
+  expectRejected(edited("portrait.history", R"([{"centre": [1, 2, 3], "size": ["1e6", "1e6"]}])"), ".centre must be");
+  expectRejected(edited("portrait.history", R"([{"centre": [4503599627370496, 0], "size": ["1e6", "1e6"]}])"),
+                 "portrait.history[0].centre[0]");                                  // X = 2^52 is off the grid
+  expectRejected(edited("portrait.history", R"([{"centre": [1000, 1000], "size": ["1e6", "1e6"]}])"),
+                 "not inside the box");
+  expectRejected(edited("portrait.history", R"([{"centre": [2251799813685248, 2251799813685248], "size": ["10", "1e6"]}])"),
+                 "grid units must lie in");                                        // below the resolution
+  expectRejected(edited("portrait.history", R"([{"centre": [2251799813685248, 2251799813685248], "size": ["nan", "1e6"]}])"),
+                 "grid units must lie in");
+  expectRejected(edited("portrait.history", R"([{"centre": [2251799813685248, 2251799813685248], "size": ["1e6x", "1e6"]}])"),
+                 "is not a number");
+  expectRejected(edited("portrait.current", "6"), "not an entry of portrait.history");
+  std::string huge = edited("plots", R"([{"name": "f_t", "zoom": [0, 12345.5, 0, 1]}])");
   huge.replace(huge.find("12345.5"), 7, "1e999");  // past the largest double
   expectRejected(huge, "");
-  expectRejected(edited("portrait.view", R"([0, "1", 0, 1])"), "portrait.view[1]");
+  expectRejected(edited("plots", R"([{"name": "f_t", "zoom": [1, 0, 0, 1]}])"), "xmin < xmax");
   expectRejected(edited("portrait.mode", R"("sketch")"), "not a portrait mode");
   expectRejected(edited("portrait.colours", R"("jet")"), "not a colour map");
   expectRejected(edited("portrait.budget", "-1"), "portrait.budget");
