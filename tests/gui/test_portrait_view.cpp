@@ -14,6 +14,7 @@
 #include <cmath>
 #include <memory>
 
+#include "GuiTestSupport.hpp"
 #include "core/portrait/MapOverlays.hpp"
 #include "ui/portrait/PortraitController.hpp"
 #include "ui/portrait/PortraitPanel.hpp"
@@ -200,6 +201,26 @@ class TestPortraitView : public QObject {
     QVERIFY(frame->request.map == other);
   }
 
+  // The same in the main window: the portrait tab is not the first one, so nothing renders until it is shown.
+  void theMainWindowsPortraitRendersWhenItsTabIsShown() {
+    archipelago::ui::MainWindow window;
+    window.setConfirmations(false);
+    window.resize(1500, 920);
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    PortraitPanel& panel = *window.portraitPanel();
+    panel.controller()->setPointBudget(1'000'000);
+    QTest::qWait(300);
+    QVERIFY(panel.view()->currentFrame() == nullptr);
+    QVERIFY(!panel.isVisible());
+    window.tabs()->setCurrentWidget(&panel);
+    QVERIFY(waitFinished(panel.view()));
+    const QWidget* canvas = panel.view()->canvas();
+    QCOMPARE(panel.view()->currentFrame()->request.width, static_cast<int>(canvas->width() * canvas->devicePixelRatioF()));
+    QVERIFY(panel.view()->currentFrame()->request.width > 500);
+    QVERIFY(panel.view()->currentFrame()->request.map == window.parameterPanel()->parameters()->map);
+  }
+
   void resizeAndResetRenderAgain() {
     Portrait p;
     p.host.resize(300, 260);
@@ -331,5 +352,5 @@ class TestPortraitView : public QObject {
   }
 };
 
-QTEST_MAIN(TestPortraitView)
+ARCHIPELAGO_GUI_TEST_MAIN(TestPortraitView)
 #include "test_portrait_view.moc"

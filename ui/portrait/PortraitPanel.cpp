@@ -67,6 +67,9 @@ PortraitPanel::PortraitPanel(QWidget* parent) : QWidget(parent) {
                        "is shaded by its visits.\n"
                        "Density: where long orbits of the chaotic sea go (the islands stay dark).\n"
                        "Stickiness: each pixel coloured by the mean length of the trapped segments through it (§3)."));
+  // The longest item need not set the toolbar's (and so the window's) minimum width.
+  mode_->setSizeAdjustPolicy(QComboBox::AdjustToMinimumContentsLengthWithIcon);
+  mode_->setMinimumContentsLength(14);
   connect(mode_, qOverload<int>(&QComboBox::currentIndexChanged), this, [this] {
     controller_->setMode(static_cast<PortraitMode>(mode_->currentData().toInt()));
     updateColourControl();
