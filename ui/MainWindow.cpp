@@ -38,6 +38,7 @@
 #include "ui/ParameterPanel.hpp"
 #include "ui/StatisticsView.hpp"
 #include "ui/periodic/PeriodicOrbitDialog.hpp"
+#include "ui/portrait/PortraitController.hpp"
 #include "ui/portrait/PortraitPanel.hpp"
 #include "ui/segments/LongSegmentsPanel.hpp"
 #include "ui/plots/StatisticsPlot.hpp"
@@ -131,7 +132,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
 
   connect(panel_, &ParameterPanel::validityChanged, this, [this] { updateActions(); });
   connect(panel_, &ParameterPanel::parametersChanged, this, [this] {
-    if (const auto p = panel_->parameters()) portrait_->setParameters(p->map, p->Xr);
+    if (const auto p = panel_->parameters()) portrait_->controller()->setMap(p->map, p->Xr);
     if (!panel_->isValid()) statusBar()->showMessage(panel_->validationMessage());
     else statusBar()->clearMessage();
     updateStaleNote();
@@ -144,7 +145,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
 
   resize(1200, 760);
   restoreSettings();
-  if (const auto p = panel_->parameters()) portrait_->setParameters(p->map, p->Xr);
+  if (const auto p = panel_->parameters()) portrait_->controller()->setMap(p->map, p->Xr);
   onStatusChanged(run_->status());
   if (QFileInfo::exists(checkpointPath())) {
     checkpointLabel_->setText(tr("An unfinished run was kept when the window closed: %1").arg(checkpointPath()));
@@ -420,12 +421,11 @@ void MainWindow::updateStaleNote() {
 
 void MainWindow::createLongSegmentsDock(QDockWidget* parametersDock) {
   segments_ = new LongSegmentsPanel(this);
-  segments_->setPortraitView(portrait_->view());
+  segments_->setPortraitController(portrait_->controller());
   connect(segments_, &LongSegmentsPanel::statusMessage, this, [this](const QString& text) { message(text); });
-  // Before a segment is drawn: show the portrait with the run's map, so that the overlay's zoom sticks.
-  connect(segments_, &LongSegmentsPanel::aboutToDraw, this, [this](const TrappingParameters& p) {
+  // Before a segment is drawn: show the portrait (the panel sets the run's map through the controller).
+  connect(segments_, &LongSegmentsPanel::aboutToDraw, this, [this](const TrappingParameters&) {
     tabs_->setCurrentWidget(portrait_);
-    portrait_->applyParametersNow(p.map, p.Xr);
   });
   connect(segments_, &LongSegmentsPanel::chainReady, this, [this](const ChainResultPtr&) {
     if (!pendingIsland_) return;
@@ -457,7 +457,7 @@ void MainWindow::showPeriodicOrbitDialog() {
     periodicDialog_ = new PeriodicOrbitDialog(this);
     connect(periodicDialog_, &PeriodicOrbitDialog::overlayRequested, this, [this](const PeriodicOrbit& orbit) {
       tabs_->setCurrentWidget(portrait_);
-      segments_->showPeriodicOrbit(orbit);
+      portrait_->controller()->showPeriodicOrbit(orbit);
     });
   }
   if (const auto p = panel_->parameters()) periodicDialog_->setK(p->map.K);

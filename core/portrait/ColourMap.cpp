@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace archipelago {
 
@@ -96,6 +97,21 @@ Rgb orbitColour(std::uint32_t label) noexcept {
   return {toByte(r), toByte(g), toByte(b)};
 }
 
+namespace {
+/// log10 of robust extremes of the visit counts (0.5% and 99.9% quantiles): a few pixels grazed once at the
+/// islands' edges would otherwise flatten the whole sea into one colour.  (0, 0) when there are none.
+std::pair<double, double> logRange(std::vector<std::uint64_t>& visited) {
+  if (visited.empty()) return {0.0, 0.0};
+  auto quantile = [&](double f) {
+    auto it = visited.begin() + static_cast<std::ptrdiff_t>(f * static_cast<double>(visited.size() - 1));
+    std::nth_element(visited.begin(), it, visited.end());
+    return std::log10(static_cast<double>(*it));
+  };
+  const double lo = quantile(0.005);
+  return {lo, quantile(0.999)};
+}
+}  // namespace
+
 RasterImage colourize(const PortraitRaster& raster, ColourMapName name) {
   const ColourMap map(name);
   RasterImage image;
@@ -116,16 +132,7 @@ RasterImage colourize(const PortraitRaster& raster, ColourMapName name) {
       std::vector<std::uint64_t> visited;
       for (std::size_t i = 0; i < n; ++i)
         if (raster.counts[i] > 0) visited.push_back(raster.counts[i]);
-      double lo = 0, hi = 0;
-      if (!visited.empty()) {
-        auto quantile = [&](double f) {
-          auto it = visited.begin() + static_cast<std::ptrdiff_t>(f * static_cast<double>(visited.size() - 1));
-          std::nth_element(visited.begin(), it, visited.end());
-          return std::log10(static_cast<double>(*it));
-        };
-        lo = quantile(0.005);
-        hi = quantile(0.999);
-      }
+      const auto [lo, hi] = logRange(visited);
       image.quantity = "log10(visits)";
       image.scaleMin = lo;
       image.scaleMax = hi;
@@ -157,12 +164,32 @@ RasterImage colourize(const PortraitRaster& raster, ColourMapName name) {
       break;
     }
     case PortraitMode::Orbits: {
+      // Island orbits get their own hues; the sea (orbits that wrapped) is shaded by its visits on a log
+      // scale through the dim part of the colour map, so that it stays behind the islands' hues and still
+      // shows where orbits linger.  At K = 0 every seed wraps (no island of Q, fig. 3b): one flat sea colour
+      // made that portrait look blank; the shading shows the sticky region about the parabolic point.
       image.quantity = "orbit";
-      const Rgb background{16, 16, 24}, sea{96, 96, 104};
+      const Rgb background{16, 16, 24};
+      auto wrappedAt = [&](std::uint32_t label) {
+        return label > 0 && label <= raster.orbitWrapped.size() && raster.orbitWrapped[label - 1] != 0;
+      };
+      std::vector<std::uint64_t> visited;
       for (std::size_t i = 0; i < n; ++i) {
         const std::uint32_t label = i < raster.labels.size() ? raster.labels[i] : 0;
-        const bool wrapped = label > 0 && label <= raster.orbitWrapped.size() && raster.orbitWrapped[label - 1];
-        put(i, label == 0 ? background : wrapped ? sea : orbitColour(label));
+        if (wrappedAt(label) && raster.counts[i] > 0) visited.push_back(raster.counts[i]);
+      }
+      const auto [lo, hi] = logRange(visited);
+      for (std::size_t i = 0; i < n; ++i) {
+        const std::uint32_t label = i < raster.labels.size() ? raster.labels[i] : 0;
+        if (label == 0) {
+          put(i, background);
+        } else if (wrappedAt(label)) {
+          const double c = static_cast<double>(std::max<std::uint64_t>(raster.counts[i], 1));
+          const double t = hi > lo ? std::clamp((std::log10(c) - lo) / (hi - lo), 0.0, 1.0) : 0.5;
+          put(i, map.at(kSeaLowest + (kSeaHighest - kSeaLowest) * t));
+        } else {
+          put(i, orbitColour(label));
+        }
       }
       break;
     }

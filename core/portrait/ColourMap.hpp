@@ -8,7 +8,8 @@
 ///     uniform, so a log scale between its extremes shows where sticky orbits linger);
 ///   - Stickiness: t = (log10 L − log10 Lmin) / (log10 Lmax − log10 Lmin), L the mean segment length (§3);
 ///   - Orbits: each label gets its own hue (golden-ratio steps around the colour wheel), not a scale;
-///     orbits that wrapped around the torus (the sea and accelerator modes) share one grey.
+///     orbits that wrapped around the torus (the sea and accelerator modes) are shaded by log visits (the
+///     same robust range as Density) through the dim part [kSeaLowest, kSeaHighest] of the colour map.
 /// Non-empty pixels use t in [kLowest, 1] so that the faintest visit stays distinguishable from an empty
 /// pixel, which gets the map's colour at 0 (black for inferno) or the background of the Orbits mode.
 
@@ -64,6 +65,9 @@ struct RasterImage {
 
 /// The lowest t given to a non-empty pixel.
 inline constexpr double kLowest = 0.12;
+/// Orbits mode: the range of t that shades the sea, below the bright hues of the island orbits.
+inline constexpr double kSeaLowest = 0.15;
+inline constexpr double kSeaHighest = 0.55;
 
 /// Colours a raster as described above.
 [[nodiscard]] RasterImage colourize(const PortraitRaster& raster, ColourMapName map);

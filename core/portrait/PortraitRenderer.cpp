@@ -56,6 +56,37 @@ std::uint64_t PortraitRequest::stepsPerOrbit() const noexcept {
   return steps;
 }
 
+namespace {
+constexpr std::uint64_t kMaxPasses = std::uint64_t{1} << 16;
+
+/// Calls f(end) for every pass end of passSchedule(r), in order; stops early (returning false) once more
+/// than `limit` ends were produced.
+template <class F>
+bool forEachPassEnd(const PortraitRequest& r, std::uint64_t limit, F&& f) {
+  const std::uint64_t steps = r.stepsPerOrbit();
+  const std::uint64_t unit = r.mode == PortraitMode::Stickiness && r.q > 0 ? r.q : 1;
+  const std::uint64_t orbits = std::max<std::uint64_t>(r.orbitCount(), 1);
+  const std::uint64_t cap = r.passPoints > 0 ? std::max<std::uint64_t>(r.passPoints / orbits / unit, 1) * unit : 0;
+  std::uint64_t prev = 0, count = 0;
+  for (std::uint32_t pass = 0; pass < r.passes; ++pass) {
+    std::uint64_t end = pass + 1 == r.passes ? steps : (steps >> (r.passes - 1 - pass)) / unit * unit;
+    end = std::max(end, prev);
+    if (cap > 0 && end - prev > cap) {
+      const std::uint64_t units = (end - prev) / unit, parts = (end - prev + cap - 1) / cap;
+      if (parts > limit) return false;
+      for (std::uint64_t j = 1; j < parts; ++j) {
+        if (++count > limit) return false;
+        f(prev + ((units / parts) * j + (units % parts) * j / parts) * unit);
+      }
+    }
+    if (++count > limit) return false;
+    f(end);
+    prev = end;
+  }
+  return true;
+}
+}  // namespace
+
 std::optional<std::string> validationError(const PortraitRequest& r) {
   if (auto e = mapError(r.map)) return e;
   std::ostringstream s;
@@ -79,7 +110,38 @@ std::optional<std::string> validationError(const PortraitRequest& r) {
   if (auto e = outsideRange("passes", r.passes, 1, 30)) return e;
   if (auto e = outsideRange("chunkSteps", r.chunkSteps, 1, 1u << 20, "2^20"))
     return e;
+  if (!forEachPassEnd(r, kMaxPasses, [](std::uint64_t) {})) {
+    s << "passPoints = " << r.passPoints << " splits the " << r.points << " points into more than 2^16 passes";
+    return s.str();
+  }
   return std::nullopt;
+}
+
+std::vector<std::uint64_t> passSchedule(const PortraitRequest& r) {
+  std::vector<std::uint64_t> ends;
+  forEachPassEnd(r, kMaxPasses, [&](std::uint64_t end) { ends.push_back(end); });
+  return ends;
+}
+
+void setProgressiveSchedule(PortraitRequest& r, std::uint64_t firstPassPoints, std::uint64_t passPoints) {
+  firstPassPoints = std::max<std::uint64_t>(firstPassPoints, 1);
+  std::uint32_t passes = 1;
+  while (passes < 30 && (r.points >> passes) >= firstPassPoints) ++passes;
+  r.passes = passes;
+  // Splitting adds at most points / passPoints + 1 passes per level; keep well inside kMaxPasses.
+  const std::uint64_t most = kMaxPasses / 2;
+  if (passPoints > 0 && r.points / passPoints > most) passPoints = r.points / most + 1;
+  r.passPoints = passPoints;
+}
+
+double seaPointsExpectedIfAllSea(const PortraitRequest& r, std::uint64_t points) noexcept {
+  const long double box = static_cast<long double>(FixedPointMap::kOne) * static_cast<long double>(FixedPointMap::kOne);
+  return static_cast<double>(static_cast<long double>(points) * (r.view.widthUnits() * r.view.heightUnits() / box));
+}
+
+bool viewHoldsNoSea(const PortraitRequest& r, const PortraitRaster& raster) noexcept {
+  return r.mode == PortraitMode::Density && raster.pointsBinned == 0 &&
+         seaPointsExpectedIfAllSea(r, raster.pointsIterated) >= kNoSeaExpectedPoints;
 }
 
 PixelMapping::PixelMapping(const Viewport& view, int width, int height) noexcept
@@ -232,10 +294,10 @@ class Renderer {
     }
 
     std::uint64_t done = 0;  // steps per orbit done by every orbit
-    for (std::uint32_t pass = 0; pass < r_.passes; ++pass) {
-      std::uint64_t passEnd = steps_ >> (r_.passes - 1 - pass);
-      if (r_.mode == PortraitMode::Stickiness) passEnd = passEnd / r_.q * r_.q;  // whole blocks
-      if (pass + 1 == r_.passes) passEnd = steps_;
+    const std::vector<std::uint64_t> ends = passSchedule(r_);
+    passes_ = static_cast<std::uint32_t>(ends.size());
+    for (std::uint32_t pass = 0; pass < passes_; ++pass) {
+      const std::uint64_t passEnd = ends[pass];
       while (done < passEnd) {
         const std::uint64_t chunk = std::min<std::uint64_t>(passEnd - done, chunkSteps());
         runRound(done, chunk);
@@ -250,7 +312,7 @@ class Renderer {
       }
       flushIfNeeded(raster, true);
       result.passesDone = pass + 1;
-      notify(pass, &raster, pass + 1 == r_.passes);
+      notify(pass, &raster, pass + 1 == passes_);
     }
     flushIfNeeded(raster, true);
     raster.pointsIterated = pointsDone_.load();
@@ -394,7 +456,7 @@ class Renderer {
     p.pointsDone = pointsDone_.load();
     p.pointsTotal = orbitCount_ * steps_;
     p.pass = pass;
-    p.passes = r_.passes;
+    p.passes = passes_;
     p.snapshot = snapshot;
     p.final = final;
     observer_(p);
@@ -415,6 +477,7 @@ class Renderer {
   std::vector<std::uint8_t> wrapped_;  // Orbits mode, per seed (each written by the one thread owning its group)
   std::vector<ThreadRaster> threads_;
   std::atomic<std::uint64_t> pointsDone_{0};
+  std::uint32_t passes_ = 0;  // of passSchedule()
 };
 
 }  // namespace

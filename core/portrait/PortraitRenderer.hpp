@@ -25,7 +25,10 @@
 ///
 /// Progressive refinement: the work is split into `passes` passes ending at 2^−(passes−1), 2^−(passes−2),
 /// …, 1 of the points per orbit; each pass continues the same orbits, so nothing is recomputed, and the
-/// observer receives a snapshot of the raster after each pass.  Within a pass the work goes in rounds in
+/// observer receives a snapshot of the raster after each pass.  With `passPoints` set, a doubling pass longer
+/// than that is split into passes of at most passPoints points (all orbits), so that a large budget (the
+/// explorer accumulates up to 10¹⁰ points into one raster while the view stays put) still shows a snapshot
+/// every passPoints points: passSchedule() lists where the passes end.  Within a pass the work goes in rounds in
 /// which every orbit advances by at most `chunkSteps` points; the stop token is checked before every chunk
 /// of every orbit, so after a stop request each thread finishes at most the chunk it is in.
 ///
@@ -68,6 +71,8 @@ struct PortraitRequest {
   std::uint64_t seed = 1;               ///< random numbers (CounterRng.hpp): start points and randomization
   std::uint32_t passes = 6;             ///< progressive refinement, 1 … 30
   std::uint32_t chunkSteps = 8192;      ///< points per orbit per chunk, 1 … 2^20: the cancellation latency
+  std::uint64_t passPoints = 0;         ///< most points (all orbits) in one pass after splitting, 0: no limit;
+                                        ///< at most 2^16 passes in all (see passSchedule)
   const KernelInfo* kernel = nullptr;   ///< the instruction-set path (allKernels()); nullptr: bestKernel()
 
   /// Number of orbits in the chosen mode (seedColumns·seedRows in Orbits mode).
@@ -78,6 +83,33 @@ struct PortraitRequest {
 
 /// The first violated rule, naming the field, or nothing when the request is valid.
 [[nodiscard]] std::optional<std::string> validationError(const PortraitRequest& r);
+
+/// Steps per orbit done at the end of each pass, increasing, the last one stepsPerOrbit(): the doubling
+/// levels of `passes` (whole blocks of q in Stickiness mode), each split into equal parts of at most
+/// passPoints points when passPoints is set.  (Valid requests only.)
+[[nodiscard]] std::vector<std::uint64_t> passSchedule(const PortraitRequest& r);
+
+/// Sets `passes` and `passPoints` of r for a budget of r.points accumulated progressively: the first pass
+/// does about `firstPassPoints` points (the doubling levels from there up to the budget, at most 30), and
+/// no pass does more than `passPoints` (0: no limit).  Raises passPoints if needed so that the schedule
+/// stays within 2^16 passes.
+void setProgressiveSchedule(PortraitRequest& r, std::uint64_t firstPassPoints, std::uint64_t passPoints);
+
+/// The number of sea points expected in the view of `r` after `points` steps of the Density mode's orbits,
+/// if the whole view were chaotic sea: the orbits of the sea are equidistributed over its area b₂L² (an
+/// area-preserving map, ergodic on the sea; §5), so a view of area A gets the fraction A / (b₂L²) ≥ A / L²
+/// of them; this returns the lower bound points · A / L².
+[[nodiscard]] double seaPointsExpectedIfAllSea(const PortraitRequest& r, std::uint64_t points) noexcept;
+
+/// How many sea points seaPointsExpectedIfAllSea() must promise before an empty Density view is declared
+/// free of chaotic points: an all-sea view then stays empty with probability e^−64, a view whose sea
+/// covers a fraction f with probability e^−64f.
+inline constexpr double kNoSeaExpectedPoints = 64;
+
+/// True when the Density portrait `raster` of request `r` has no point in its view although
+/// seaPointsExpectedIfAllSea(r, raster.pointsIterated) ≥ kNoSeaExpectedPoints: the view lies inside
+/// islands (or has a chaotic part smaller than about 1/64 of its area).  False in the other modes.
+[[nodiscard]] bool viewHoldsNoSea(const PortraitRequest& r, const PortraitRaster& raster) noexcept;
 
 /// Progress, reported on the calling thread after every round (never inside a parallel region).
 struct PortraitProgress {

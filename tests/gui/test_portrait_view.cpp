@@ -1,105 +1,356 @@
-// PortraitView on the offscreen platform: a render completes with content, zoom and history change the
-// viewport, a click launches an orbit, and both exports write files.
+// The phase portrait on the offscreen platform: its controller (the one owner of map, view and layers), the
+// render that accumulates until the budget or a stop, the hidden-then-shown render at the real size, and the
+// panel's readout (issue 13, findings 3, 4 and 10).
+#include <QComboBox>
 #include <QDir>
 #include <QFileInfo>
 #include <QSignalSpy>
+#include <QTabWidget>
 #include <QTemporaryDir>
+#include <QToolButton>
+#include <QVBoxLayout>
 #include <QtTest>
-#include <qwt_plot.h>
-#include <qwt_scale_div.h>
 
+#include <cmath>
+#include <memory>
+
+#include "GuiTestSupport.hpp"
+#include "core/portrait/MapOverlays.hpp"
+#include "ui/portrait/PortraitController.hpp"
+#include "ui/portrait/PortraitPanel.hpp"
 #include "ui/portrait/PortraitView.hpp"
 #include "ui/portrait/PortraitWorker.hpp"
 
+using archipelago::MapParameters;
+using archipelago::PhysicalRect;
 using archipelago::PortraitMode;
 using archipelago::Viewport;
+using archipelago::ui::PortraitController;
+using archipelago::ui::PortraitLayer;
+using archipelago::ui::PortraitPanel;
 using archipelago::ui::PortraitView;
+using archipelago::ui::RenderState;
+
+namespace {
+const MapParameters kPaper{0.1, -0.8, 0.5};  // §5
+
+/// A controller and its view in a plain host widget.
+struct Portrait {
+  QWidget host;
+  PortraitController* controller = nullptr;
+  PortraitView* view = nullptr;
+  Portrait() {
+    auto* layout = new QVBoxLayout(&host);
+    layout->setContentsMargins(0, 0, 0, 0);
+    controller = new PortraitController(&host);
+    view = controller->view();
+    layout->addWidget(view);
+  }
+};
+
+/// Waits until the view's render ends by itself (budget or no sea).
+bool waitFinished(PortraitView* view, int ms = 60000) {
+  QSignalSpy finished(view, &PortraitView::renderFinished);
+  return finished.wait(ms);
+}
+}  // namespace
 
 class TestPortraitView : public QObject {
   Q_OBJECT
  private Q_SLOTS:
   void rendersNonEmptyImage() {
-    PortraitView view;
-    view.resize(420, 360);
-    view.setPointBudget(2'000'000);
-    view.setMode(PortraitMode::Density);
-    QSignalSpy finished(&view, &PortraitView::renderFinished);
-    view.show();
-    QVERIFY(QTest::qWaitForWindowExposed(&view));
+    Portrait p;
+    p.host.resize(420, 360);
+    p.controller->setPointBudget(2'000'000);
+    p.controller->setMode(PortraitMode::Density);
+    QSignalSpy finished(p.view, &PortraitView::renderFinished);
+    p.host.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&p.host));
     QVERIFY(finished.wait(60000));
-    const auto* frame = view.currentFrame();
+    const auto* frame = p.view->currentFrame();
     QVERIFY(frame != nullptr);
     QVERIFY(frame->final);
+    QCOMPARE(p.view->renderState(), RenderState::done);
+    QVERIFY(p.view->pointsSoFar() >= 2'000'000);
     QVERIFY(!frame->image.isNull());
     QVERIFY(frame->raster->nonEmptyPixels() > frame->raster->pixelCount() / 2);  // the sea fills most of the box
     QVERIFY(frame->raster->nonEmptyPixels() < frame->raster->pixelCount());      // the islands stay empty
-    // The image has both the sea's colours and the empty islands' colour.
     const QImage& image = frame->image;
     QSet<QRgb> colours;
     for (int y = 0; y < image.height(); y += 7)
       for (int x = 0; x < image.width(); x += 7) colours.insert(image.pixel(x, y));
     QVERIFY(colours.size() > 5);
-    QVERIFY(!view.isRendering());
+    QVERIFY(!p.view->isRendering());
   }
 
   void zoomChangesTheViewportAndHistoryRestoresIt() {
-    PortraitView view;
-    view.resize(300, 300);
-    view.setPointBudget(200'000);
-    const Viewport whole = view.viewport();
-    QSignalSpy changed(&view, &PortraitView::viewportChanged);
-    view.zoomAt(0.25, 0.75, 4.0);
+    Portrait p;
+    p.host.resize(300, 300);
+    p.controller->setPointBudget(200'000);
+    PortraitController& c = *p.controller;
+    const Viewport whole = c.viewport();
+    QSignalSpy changed(&c, &PortraitController::viewportChanged);
+    c.zoomAt(0.25, 0.75, 4.0);
     QCOMPARE(changed.count(), 1);
-    QCOMPARE(static_cast<double>(view.viewport().widthUnits()), static_cast<double>(whole.widthUnits() / 4));
-    QVERIFY(!(view.viewport() == whole));
-    const double x0 = view.plot()->axisScaleDiv(QwtPlot::xBottom).lowerBound();
-    QVERIFY(x0 > -0.8 + 1e-9);  // the axes follow the viewport
-    view.back();
-    QVERIFY(view.viewport() == whole);
-    QVERIFY(view.canGoForward());
-    view.forward();
-    QCOMPARE(static_cast<double>(view.viewport().widthUnits()), static_cast<double>(whole.widthUnits() / 4));
-    view.resetView();
-    QVERIFY(view.viewport() == whole);
-    // The wheel zooms about the cursor.
-    view.show();
-    QVERIFY(QTest::qWaitForWindowExposed(&view));
-    QWidget* canvas = view.plot()->canvas();
+    QCOMPARE(static_cast<double>(c.viewport().widthUnits()), static_cast<double>(whole.widthUnits() / 4));
+    QVERIFY(c.viewport() == p.view->viewport());  // the view shows what the controller holds
+    QVERIFY(p.view->xAxisRange().first > -0.8 + 1e-9);  // the axes follow the viewport
+    c.back();
+    QVERIFY(c.viewport() == whole);
+    QVERIFY(c.canGoForward());
+    c.forward();
+    QCOMPARE(static_cast<double>(c.viewport().widthUnits()), static_cast<double>(whole.widthUnits() / 4));
+    c.resetView();
+    QVERIFY(c.viewport() == whole);
+    // The wheel zooms about the cursor: the view asks, the controller decides.
+    p.host.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&p.host));
+    QWidget* canvas = p.view->canvas();
     const QPoint centre = canvas->rect().center();
     QWheelEvent wheel(QPointF(centre), QPointF(canvas->mapToGlobal(centre)), QPoint(), QPoint(0, 120), Qt::NoButton,
                       Qt::NoModifier, Qt::NoScrollPhase, false);
     QApplication::sendEvent(canvas, &wheel);
-    QCOMPARE(static_cast<double>(view.viewport().widthUnits()), static_cast<double>(whole.widthUnits() / 1.25L));
+    QCOMPARE(static_cast<double>(c.viewport().widthUnits()), static_cast<double>(whole.widthUnits() / 1.25L));
+    QVERIFY(c.viewport() == p.view->viewport());
+  }
+
+  void theSameMapKeepsTheZoomAndANewMapResetsIt() {
+    Portrait p;
+    PortraitController& c = *p.controller;
+    QSignalSpy maps(&c, &PortraitController::mapChanged);
+    QVERIFY(c.setMap(kPaper, 0.02));
+    QCOMPARE(maps.count(), 0);  // already shown
+    c.zoomAt(0.5, 0.5, 8);
+    QVERIFY(c.setMap(kPaper, 0.03));  // e.g. another T or Xr in the parameter panel
+    QCOMPARE(maps.count(), 0);
+    QVERIFY(!(c.viewport() == Viewport()));
+    QCOMPARE(c.Xr(), 0.03);
+    MapParameters other = kPaper;
+    other.K = 0.2;
+    QVERIFY(c.setMap(other, 0.02));
+    QCOMPARE(maps.count(), 1);
+    QVERIFY(c.viewport() == Viewport());
+    QVERIFY(p.view->parameters() == other);
+    QVERIFY(!c.canGoBack());
+    // The fixed points layer follows the map; invalid parameters are refused and change nothing.
+    QCOMPARE(p.view->layerItems(PortraitLayer::fixedPoints).size(), archipelago::fixedPoints(other).size());
+    QSignalSpy messages(&c, &PortraitController::statusMessage);
+    QVERIFY(!c.setMap(MapParameters{0.1, -0.2, 0.5}, 0.02));  // xmin > −√K
+    QCOMPARE(messages.count(), 1);
+    QVERIFY(c.map() == other);
   }
 
   void clickLaunchesAnOrbitAndExportsWrite() {
-    PortraitView view;
-    view.resize(400, 400);
-    view.setPointBudget(300'000);
-    QSignalSpy finished(&view, &PortraitView::renderFinished);
-    view.show();
-    QVERIFY(QTest::qWaitForWindowExposed(&view));
-    QWidget* canvas = view.plot()->canvas();
-    QCOMPARE(view.orbitCount(), 0);
+    Portrait p;
+    p.host.resize(400, 400);
+    p.controller->setPointBudget(300'000);
+    QSignalSpy finished(p.view, &PortraitView::renderFinished);
+    p.host.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&p.host));
+    QWidget* canvas = p.view->canvas();
+    QCOMPARE(p.controller->orbitCount(), 0);
     QTest::mouseClick(canvas, Qt::LeftButton, Qt::NoModifier, canvas->rect().center());
-    QCOMPARE(view.orbitCount(), 1);
-    QVERIFY(view.viewport() == Viewport());  // a click is not a zoom
-    view.launchOrbit(-0.3, 0.05, 1000);
-    QCOMPARE(view.orbitCount(), 2);
-    view.clearOrbits();
-    QCOMPARE(view.orbitCount(), 0);
+    QCOMPARE(p.controller->orbitCount(), 1);
+    QCOMPARE(p.view->layerItems(PortraitLayer::launchedOrbits).size(), std::size_t{1});
+    QVERIFY(p.controller->viewport() == Viewport());  // a click is not a zoom
+    p.controller->launchOrbit(-0.3, 0.05, 1000);
+    QCOMPARE(p.controller->orbitCount(), 2);
+    p.controller->clearOrbits();
+    QCOMPARE(p.controller->orbitCount(), 0);
+    QVERIFY(p.view->layerItems(PortraitLayer::launchedOrbits).empty());
 
     QVERIFY(finished.wait(60000));
     QTemporaryDir dir;
     const QString png = dir.filePath(QStringLiteral("portrait.png")), npy = dir.filePath(QStringLiteral("portrait.npy"));
-    QVERIFY(view.exportPng(png, QSize(500, 400)));
+    QVERIFY(p.view->exportPng(png, QSize(500, 400)));
     QImage written(png);
     QCOMPARE(written.size(), QSize(500, 400));
-    QVERIFY(view.exportNpy(npy));
+    QVERIFY(p.view->exportNpy(npy));
     QVERIFY(QFileInfo(npy).size() > 128);
     QVERIFY(QFileInfo::exists(dir.filePath(QStringLiteral("portrait.json"))));
   }
+
+  // Finding 4: the first portrait was rendered while its tab was hidden, at a tiny size, and stayed blocky.
+  void aHiddenPortraitRendersAtItsRealSizeWhenShown() {
+    QTabWidget tabs;
+    tabs.resize(900, 700);
+    tabs.addTab(new QWidget, QStringLiteral("Statistics"));
+    auto* panel = new PortraitPanel;
+    tabs.addTab(panel, QStringLiteral("Phase portrait"));
+    PortraitController& c = *panel->controller();
+    c.setPointBudget(1'000'000);
+    QSignalSpy frames(panel->view(), &PortraitView::frameShown);
+    tabs.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&tabs));
+    MapParameters other = kPaper;
+    other.K = 0.2;
+    QVERIFY(c.setMap(other, 0.02));
+    QTest::qWait(400);  // longer than the debounce: a render would have started
+    QCOMPARE(frames.count(), 0);
+    QVERIFY(panel->view()->currentFrame() == nullptr);
+    QCOMPARE(panel->view()->renderState(), RenderState::pending);
+    tabs.setCurrentWidget(panel);
+    QVERIFY(waitFinished(panel->view()));
+    const auto* frame = panel->view()->currentFrame();
+    QVERIFY(frame != nullptr);
+    const QWidget* canvas = panel->view()->canvas();
+    const qreal ratio = canvas->devicePixelRatioF();
+    QCOMPARE(frame->request.width, static_cast<int>(canvas->width() * ratio));
+    QCOMPARE(frame->request.height, static_cast<int>(canvas->height() * ratio));
+    QVERIFY(frame->request.width > 400);  // the tab's size, not a hidden widget's default
+    QVERIFY(frame->request.map == other);
+  }
+
+  // The same in the main window: the portrait tab is not the first one, so nothing renders until it is shown.
+  void theMainWindowsPortraitRendersWhenItsTabIsShown() {
+    archipelago::ui::MainWindow window;
+    window.setConfirmations(false);
+    window.resize(1500, 920);
+    window.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&window));
+    PortraitPanel& panel = *window.portraitPanel();
+    panel.controller()->setPointBudget(1'000'000);
+    QTest::qWait(300);
+    QVERIFY(panel.view()->currentFrame() == nullptr);
+    QVERIFY(!panel.isVisible());
+    window.tabs()->setCurrentWidget(&panel);
+    QVERIFY(waitFinished(panel.view()));
+    const QWidget* canvas = panel.view()->canvas();
+    QCOMPARE(panel.view()->currentFrame()->request.width, static_cast<int>(canvas->width() * canvas->devicePixelRatioF()));
+    QVERIFY(panel.view()->currentFrame()->request.width > 500);
+    QVERIFY(panel.view()->currentFrame()->request.map == window.parameterPanel()->parameters()->map);
+  }
+
+  void resizeAndResetRenderAgain() {
+    Portrait p;
+    p.host.resize(300, 260);
+    p.controller->setPointBudget(500'000);
+    p.host.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&p.host));
+    QVERIFY(waitFinished(p.view));
+    const int before = p.view->currentFrame()->request.width;
+    p.host.resize(520, 420);
+    QVERIFY(waitFinished(p.view));
+    QVERIFY(p.view->currentFrame()->request.width > before);
+    QCOMPARE(p.view->currentFrame()->request.width, p.view->rasterSize().width());
+    // Reset on the whole box draws anew.
+    QSignalSpy frames(p.view, &PortraitView::frameShown);
+    p.controller->resetView();
+    QVERIFY(p.view->isRendering());
+    QVERIFY(waitFinished(p.view));
+    QVERIFY(frames.count() >= 1);
+  }
+
+  // Finding 10: a 7·10⁻⁴-wide view in the sea was solid black after a fixed 1.2·10⁷ points.  Now the render
+  // accumulates until its budget: the points so far grow from pass to pass, and the view gets points.
+  void deepZoomAccumulatesUntilTheBudget() {
+    PortraitPanel panel;
+    panel.resize(700, 560);
+    PortraitController& c = *panel.controller();
+    c.setMode(PortraitMode::Density);
+    const int index = panel.budgetBox()->findData(QVariant::fromValue<qulonglong>(100'000'000));
+    QVERIFY(index >= 0);
+    panel.budgetBox()->setCurrentIndex(index);
+    QCOMPARE(c.pointBudget(), std::uint64_t{100'000'000});
+    c.setViewport(Viewport::fromPhysical(kPaper, {0.44965L, 0.45035L, 0.29965L, 0.30035L}));
+    std::vector<std::uint64_t> points;
+    connect(panel.view(), &PortraitView::frameShown, &panel, [&] { points.push_back(panel.view()->pointsSoFar()); });
+    panel.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&panel));
+    QTRY_VERIFY_WITH_TIMEOUT(panel.readoutText().contains(QStringLiteral("accumulating")) ||
+                                 panel.view()->renderState() == RenderState::done,
+                             20000);
+    QVERIFY(waitFinished(panel.view()));
+    QCOMPARE(panel.view()->renderState(), RenderState::done);
+    QVERIFY2(points.size() >= 3, qPrintable(QString::number(points.size())));
+    for (std::size_t i = 1; i < points.size(); ++i) QVERIFY(points[i] > points[i - 1]);
+    QVERIFY(points.back() >= 100'000'000);
+    QVERIFY(panel.view()->currentFrame()->raster->nonEmptyPixels() > 0);
+    QVERIFY(panel.readoutText().contains(QStringLiteral("done")));
+  }
+
+  void aViewInsideAnIslandSaysItHoldsNoChaoticPoints() {
+    PortraitPanel panel;
+    panel.resize(600, 500);
+    PortraitController& c = *panel.controller();
+    c.setMode(PortraitMode::Density);
+    c.setPointBudget(100'000'000'000);  // 10^11: the verdict must come long before
+    // A 0.01-wide view about the elliptic fixed point (−√K, 0): the central island.
+    const long double x = -std::sqrt(0.1L);
+    c.setViewport(Viewport::fromPhysical(kPaper, {x - 0.005L, x + 0.005L, -0.005L, 0.005L}));
+    panel.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&panel));
+    QVERIFY(waitFinished(panel.view()));
+    QCOMPARE(panel.view()->renderState(), RenderState::noSea);
+    QVERIFY(panel.view()->pointsSoFar() < 1'000'000'000);
+    QVERIFY2(panel.readoutText().contains(QStringLiteral("No chaotic points in this view")),
+             qPrintable(panel.readoutText()));
+    QVERIFY(!panel.stopButton()->isEnabled());
+  }
+
+  void stopEndsTheRenderAndChangingTheViewRestartsIt() {
+    PortraitPanel panel;
+    panel.resize(600, 500);
+    PortraitController& c = *panel.controller();
+    c.setMode(PortraitMode::Orbits);  // the slow mode: 10^11 points take hours
+    c.setPointBudget(100'000'000'000);
+    QSignalSpy frames(panel.view(), &PortraitView::frameShown);
+    panel.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&panel));
+    QVERIFY(frames.wait(30000));
+    QVERIFY(panel.view()->isRendering());
+    QVERIFY(panel.stopButton()->isEnabled());
+    panel.stopButton()->click();
+    QCOMPARE(panel.view()->renderState(), RenderState::stopped);
+    const std::uint64_t stoppedAt = panel.view()->pointsSoFar();
+    const auto shown = frames.count();
+    QTest::qWait(500);
+    QCOMPARE(frames.count(), shown);  // nothing more arrives
+    QCOMPARE(panel.view()->pointsSoFar(), stoppedAt);
+    QVERIFY(panel.readoutText().contains(QStringLiteral("stopped")));
+    QVERIFY(!panel.stopButton()->isEnabled());
+    // A new view starts again from nothing, and its frames are of the new view.
+    c.zoomIn();
+    QVERIFY(panel.view()->isRendering());
+    QVERIFY(frames.wait(30000));
+    QVERIFY(panel.view()->currentFrame()->request.view == c.viewport());
+    QVERIFY(panel.view()->pointsSoFar() < stoppedAt || frames.count() == shown + 1);
+    c.stopRendering();
+  }
+
+  // Finding 3: each zoom widened the window (the coordinate readout grew the minimum width).
+  void zoomingDoesNotGrowTheMinimumWidth() {
+    PortraitPanel panel;
+    panel.resize(800, 600);
+    panel.controller()->setPointBudget(10'000'000);
+    panel.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&panel));
+    const int minimum = panel.minimumSizeHint().width();
+    QWidget* canvas = panel.view()->canvas();
+    for (int i = 0; i < 12; ++i) {
+      panel.controller()->zoomAt(0.37, 0.61, 16);  // down to widths of ~10⁻¹⁴ of the box
+      QTest::mouseMove(canvas, QPoint(canvas->width() / 3 + i, canvas->height() / 2));
+      QCoreApplication::processEvents();
+      QCOMPARE(panel.minimumSizeHint().width(), minimum);
+    }
+    panel.controller()->stopRendering();
+  }
+
+  // In Orbits mode the colour map shades the sea: changing it changes the picture.
+  void colourMapChangesTheOrbitsPortrait() {
+    Portrait p;
+    p.host.resize(300, 300);
+    p.controller->setPointBudget(400'000);
+    p.controller->setMode(PortraitMode::Orbits);
+    p.host.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&p.host));
+    QVERIFY(waitFinished(p.view));
+    const QImage inferno = p.view->currentFrame()->image;
+    p.controller->setColourMap(archipelago::ColourMapName::Viridis);
+    QVERIFY(waitFinished(p.view));
+    QVERIFY(p.view->currentFrame()->image != inferno);
+  }
 };
 
-QTEST_MAIN(TestPortraitView)
+ARCHIPELAGO_GUI_TEST_MAIN(TestPortraitView)
 #include "test_portrait_view.moc"

@@ -3,7 +3,11 @@
 #include <QAction>
 #include <QApplication>
 #include <QLabel>
+#include <QHeaderView>
 #include <QPushButton>
+#include <QScrollBar>
+#include <QToolButton>
+#include <QDockWidget>
 #include <QSignalSpy>
 #include <QTableWidget>
 #include <QTableView>
@@ -16,6 +20,7 @@
 
 #include "GuiTestSupport.hpp"
 #include "ui/periodic/PeriodicOrbitDialog.hpp"
+#include "ui/portrait/PortraitController.hpp"
 #include "ui/portrait/PortraitPanel.hpp"
 #include "core/runfile/RunFile.hpp"
 #include "core/periodic/PeriodicOrbitFinder.hpp"
@@ -58,6 +63,8 @@ class TestSegments : public QObject {
   void onlyTheLatestSelectionIsShown();
   void exportsTheReplay();
   void drawsTheSegmentZoomedOnThePortrait();
+  void playKeepsTheStepShownInView();
+  void columnsFitTheDockAndTheHintHides();
   void periodicDialogFindsTheEllipticPeriodSixOrbit();
   void mainWindowShowsTheSegmentsOfAnOpenedRun();
 };
@@ -81,7 +88,7 @@ void TestSegments::tableFillsFromAFinishedRun() {
              locale.toString(static_cast<qulonglong>(r.start.block)));
     const FixedPointMap map(state.params.map);
     QCOMPARE(model.index(row, LongestSegmentsModel::StartX).data().toString().toDouble(),
-             std::round(static_cast<double>(map.toPhysical(r.start.z).x) * 1e8) / 1e8);
+             std::round(static_cast<double>(map.toPhysical(r.start.z).x) * 1e6) / 1e6);
   }
   // Longest first.
   QVERIFY(items[0].length >= items[1].length);
@@ -200,60 +207,156 @@ void TestSegments::exportsTheReplay() {
   QVERIFY(!panel.exportCsv(QStringLiteral("/nonexistent-folder/x.csv"), &error));
 }
 
-void TestSegments::drawsTheSegmentZoomedOnThePortrait() {
-  const TrappingState& state = shortRun();
-  PortraitView view;
-  view.resize(600, 500);
-  view.setPointBudget(20000);  // the portrait beneath is not what is tested
-  MapParameters other;
-  other.K = 0.2;
-  view.setParameters(other);
-  // A segment that starts 0.01 from the centre of one of the six islands around the central one: it never
-  // reaches the randomizing zone, so it lasts until the run's last block.
+namespace {
+/// The island segment of drawsTheSegmentZoomedOnThePortrait(): it starts 0.01 from the centre of one of the
+/// six islands around the central one, never reaches the randomizing zone, so lasts until the run's last block.
+SegmentRecord islandSegment(const TrappingState& state) {
   const FixedPointMap map(state.params.map);
   SegmentRecord inside;
   inside.orbit = 3;
   inside.length = 2000;
   inside.start = {map.toUnit(0.0609L, 0.0974L), state.params.T - inside.length, 0};
+  return inside;
+}
+}  // namespace
+
+// The segment panel changes the portrait only through its controller: the controller sets the run's map
+// (one mapChanged), the segment layer and the zoom; the view shows what the controller holds.
+void TestSegments::drawsTheSegmentZoomedOnThePortrait() {
+  const TrappingState& state = shortRun();
+  PortraitPanel portrait;
+  portrait.resize(600, 500);
+  PortraitController& controller = *portrait.controller();
+  PortraitView& view = *portrait.view();
+  controller.setPointBudget(20000);  // the portrait beneath is not what is tested
+  MapParameters other;
+  other.K = 0.2;
+  QVERIFY(controller.setMap(other, 0.02));
+  const SegmentRecord inside = islandSegment(state);
   LongestSegments longest = state.longest;
   longest.insert(inside);
   LongSegmentsPanel panel;
   panel.setAutoIdentifiedRows(0);
-  panel.setPortraitView(&view);
+  panel.setPortraitController(&controller);
   panel.updateSegments(state.params, longest);
   const int row = panel.model()->rowOf(SegmentKey::of(inside));
   QVERIFY(row >= 0);
   QSignalSpy replays(&panel, &LongSegmentsPanel::replayReady);
+  QSignalSpy maps(&controller, &PortraitController::mapChanged);
+  QSignalSpy views(&controller, &PortraitController::viewportChanged);
   panel.selectRow(row);
   QVERIFY(replays.wait(20000));
   QCOMPARE(panel.currentReplay()->trace.blocks, inside.length);
   // The portrait switched to the run's map and zoomed to where the segment spent its time.
+  QCOMPARE(maps.count(), 1);
+  QVERIFY(views.count() >= 2);  // the new map's whole box, then the zoom
+  QVERIFY(controller.map() == state.params.map);
   QVERIFY(view.parameters() == state.params.map);
+  QVERIFY(view.viewport() == controller.viewport());
   const SegmentRegion& region = panel.currentReplay()->region;
-  const PhysicalRect shown = view.viewport().physical(view.parameters());
+  const PhysicalRect shown = controller.viewport().physical(controller.map());
   QVERIFY(shown.x0 <= region.x0 + 1e-12L && shown.x1 >= region.x1 - 1e-12L);
   QVERIFY(shown.y0 <= region.y0 + 1e-12L && shown.y1 >= region.y1 - 1e-12L);
   QVERIFY(shown.x1 - shown.x0 < 0.8L * state.params.map.width());
-  int overlays = 0;
-  for (const QwtPlotItem* item : view.plot()->itemList()) overlays += item->rtti() == QwtPlotItem::Rtti_PlotUserItem + 40;
-  QCOMPARE(overlays, 4);  // segment, trail, centre orbit, dialog orbit
+  QCOMPARE(view.layerItems(PortraitLayer::segment).size(), std::size_t{1});
+  QCOMPARE(view.layerItems(PortraitLayer::segmentStep).size(), std::size_t{1});
   // Once the chain is known the view can zoom to one island of it, which lies inside the segment's region.
   QTRY_VERIFY_WITH_TIMEOUT(panel.currentChain() != nullptr, 20000);
   QVERIFY(panel.currentChain()->chain.has_value());
   QCOMPARE(panel.currentChain()->chain->period, 6);
+  QCOMPARE(view.layerItems(PortraitLayer::segmentChain).size(), std::size_t{1});
   panel.zoomToIsland();
-  const PhysicalRect island = view.viewport().physical(view.parameters());
+  const PhysicalRect island = controller.viewport().physical(controller.map());
   QVERIFY(island.x1 - island.x0 < 0.5L * (shown.x1 - shown.x0));
   panel.zoomToSegment();
-  QVERIFY(view.viewport().physical(view.parameters()).x0 == shown.x0);
-  // Stepping and an orbit from the dialog draw without trouble; destroying the view first is safe.
+  QVERIFY(controller.viewport().physical(controller.map()).x0 == shown.x0);
+  QVERIFY(view.viewport() == controller.viewport());
+  // The same segment again keeps the map (no second mapChanged).
+  QCOMPARE(maps.count(), 1);
+  // Stepping and an orbit from the dialog draw as layers of the controller.
   panel.setCurrentIndex(panel.currentReplay()->trace.states.size() / 2);
   PeriodicOrbitSearch search;
   search.period = 6;
   search.near = {0.0509L, 0.0974L};
-  panel.showPeriodicOrbit(findPeriodicOrbit(0.1L, search));
+  controller.showPeriodicOrbit(findPeriodicOrbit(0.1L, search));
+  QCOMPARE(view.layerItems(PortraitLayer::periodicOrbits).size(), std::size_t{1});
   QImage image = view.grab().toImage();
   QVERIFY(!image.isNull());
+  // Clearing the panel clears its layers.
+  panel.clear();
+  QVERIFY(view.layerItems(PortraitLayer::segment).empty());
+  QVERIFY(view.layerItems(PortraitLayer::segmentStep).empty());
+}
+
+// Finding 14: during Play the step shown left the zoomed island (the segment hops around its chain of six).
+void TestSegments::playKeepsTheStepShownInView() {
+  const TrappingState& state = shortRun();
+  PortraitPanel portrait;
+  portrait.resize(600, 500);
+  PortraitController& controller = *portrait.controller();
+  controller.setPointBudget(20000);
+  const SegmentRecord inside = islandSegment(state);
+  LongestSegments longest = state.longest;
+  longest.insert(inside);
+  LongSegmentsPanel panel;
+  panel.setAutoIdentifiedRows(0);
+  panel.setPortraitController(&controller);
+  panel.updateSegments(state.params, longest);
+  QSignalSpy replays(&panel, &LongSegmentsPanel::replayReady);
+  panel.selectRow(panel.model()->rowOf(SegmentKey::of(inside)));
+  QVERIFY(replays.wait(20000));
+  QTRY_VERIFY_WITH_TIMEOUT(panel.currentChain() != nullptr && panel.currentChain()->chain.has_value(), 20000);
+  panel.zoomToIsland();
+  QToolButton* play = nullptr;
+  for (QToolButton* b : panel.findChildren<QToolButton*>())
+    if (b->text() == QStringLiteral("Play")) play = b;
+  QVERIFY(play);
+  int checked = 0, outside = 0;
+  const auto& points = panel.currentReplay()->trace.points;
+  connect(&panel, &LongSegmentsPanel::currentIndexChanged, &panel, [&](std::size_t index) {
+    ++checked;
+    if (!controller.shows(points[index].x, points[index].y)) ++outside;
+  });
+  play->click();
+  QTRY_VERIFY_WITH_TIMEOUT(checked >= 12, 10000);
+  play->click();  // pause
+  QCOMPARE(outside, 0);
+  QVERIFY(controller.viewport() == portrait.view()->viewport());
+}
+
+// Finding 14: the Start y and Chain period columns needed horizontal scrolling, and the hint stayed.
+void TestSegments::columnsFitTheDockAndTheHintHides() {
+  const TrappingState& state = shortRun();
+  QTemporaryDir dir;
+  const QString file = dir.filePath(QStringLiteral("short.json"));
+  saveRunFile(file.toStdString(), state);
+  MainWindow window;
+  window.setConfirmations(false);
+  window.show();
+  QVERIFY(QTest::qWaitForWindowExposed(&window));
+  LongSegmentsPanel& panel = *window.longSegments();
+  panel.setAutoIdentifiedRows(0);
+  auto* dock = qobject_cast<QDockWidget*>(panel.parentWidget());
+  QVERIFY(dock);
+  dock->raise();
+  QLabel* hint = nullptr;
+  for (QLabel* label : panel.findChildren<QLabel*>())
+    if (label->text().startsWith(QStringLiteral("Run or open a run file"))) hint = label;
+  QVERIFY(hint);
+  QTRY_VERIFY(panel.isVisible());
+  QVERIFY(hint->isVisible());
+  QVERIFY(window.openRunFile(file));
+  QTRY_VERIFY_WITH_TIMEOUT(panel.model()->rowCount() > 0, 20000);
+  QTRY_VERIFY(!hint->isVisible());
+  QTableView* table = panel.table();
+  QCoreApplication::processEvents();
+  QVERIFY2(!table->horizontalScrollBar()->isVisible(),
+           qPrintable(QStringLiteral("table %1 wide, columns %2").arg(table->viewport()->width())
+                          .arg(table->horizontalHeader()->length())));
+  for (int column = 0; column < panel.model()->columnCount(); ++column)
+    QVERIFY2(table->columnWidth(column) >= table->horizontalHeader()->sectionSizeHint(column) &&
+                 table->columnWidth(column) >= static_cast<QAbstractItemView*>(table)->sizeHintForColumn(column),
+             qPrintable(QString::number(column)));  // every column shows its text whole
 }
 
 void TestSegments::periodicDialogFindsTheEllipticPeriodSixOrbit() {
@@ -323,9 +426,10 @@ void TestSegments::mainWindowShowsTheSegmentsOfAnOpenedRun() {
   QCOMPARE(panel.model()->rowCount(), static_cast<int>(state.longest.items().size()));
   QCOMPARE(panel.currentReplay()->trace.record, state.longest.items()[1]);
   QCOMPARE(window.tabs()->currentWidget(), static_cast<QWidget*>(window.portraitPanel()));
-  PortraitView& view = *window.portraitPanel()->view();
-  QVERIFY(view.parameters() == state.params.map);
-  const PhysicalRect shown = view.viewport().physical(view.parameters());
+  PortraitController& controller = *window.portraitPanel()->controller();
+  QVERIFY(controller.map() == state.params.map);
+  QVERIFY(window.portraitPanel()->view()->parameters() == state.params.map);
+  const PhysicalRect shown = controller.viewport().physical(controller.map());
   QVERIFY(shown.x0 <= panel.currentReplay()->region.x0 + 1e-12L);
   QVERIFY(shown.y0 <= panel.currentReplay()->region.y0 + 1e-12L);
   const long double L = state.params.map.width();
@@ -339,6 +443,16 @@ void TestSegments::mainWindowShowsTheSegmentsOfAnOpenedRun() {
   auto* dialog = window.findChild<PeriodicOrbitDialog*>();
   QVERIFY(dialog && dialog->isVisible());
   QCOMPARE(dialog->K(), state.params.map.K);
+  // The dialog's "Overlay" reaches the portrait through its controller: the periodic-orbit layer.
+  PeriodicOrbitSearch search;
+  search.period = 6;
+  search.near = {0.0509L, 0.0974L};
+  const PeriodicOrbit orbit = findPeriodicOrbit(0.1L, search);
+  const auto views = controller.viewport();
+  Q_EMIT dialog->overlayRequested(orbit);
+  QCOMPARE(window.portraitPanel()->view()->layerItems(PortraitLayer::periodicOrbits).size(), std::size_t{1});
+  QVERIFY(controller.viewport() == views);
+  QVERIFY(controller.map() == state.params.map);
   dialog->close();
 }
 

@@ -2,12 +2,16 @@
 
 #include <QComboBox>
 #include <QFileDialog>
+#include <QFontMetrics>
 #include <QHBoxLayout>
 #include <QLabel>
+#include <QResizeEvent>
 #include <QToolButton>
 #include <QVBoxLayout>
 
 #include "core/portrait/ColourMap.hpp"
+#include "core/portrait/StochasticArea.hpp"
+#include "ui/portrait/PortraitController.hpp"
 #include "ui/portrait/PortraitView.hpp"
 #include "ui/portrait/StochasticAreaDialog.hpp"
 
@@ -21,128 +25,179 @@ QToolButton* toolButton(QWidget* parent, const QString& text, const QString& tip
   b->setAutoRaise(true);
   return b;
 }
+
+/// A one-line label that shows its text elided to the width it is given and never asks for more: a longer
+/// text does not grow the window's minimum width.
+class ElidedLabel : public QLabel {
+ public:
+  explicit ElidedLabel(QWidget* parent) : QLabel(parent) {
+    setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Fixed);
+    setMinimumWidth(0);
+  }
+  void setFullText(const QString& text) {
+    full_ = text;
+    setToolTip(text);
+    refresh();
+  }
+  [[nodiscard]] const QString& fullText() const noexcept { return full_; }
+  QSize minimumSizeHint() const override { return {0, QLabel::minimumSizeHint().height()}; }
+  QSize sizeHint() const override { return {0, QLabel::sizeHint().height()}; }
+
+ protected:
+  void resizeEvent(QResizeEvent* event) override {
+    QLabel::resizeEvent(event);
+    refresh();
+  }
+
+ private:
+  void refresh() { setText(fontMetrics().elidedText(full_, Qt::ElideRight, std::max(width(), 0))); }
+  QString full_;
+};
 }  // namespace
 
 PortraitPanel::PortraitPanel(QWidget* parent) : QWidget(parent) {
-  view_ = new PortraitView(this);
+  controller_ = new PortraitController(this);
+  PortraitController* c = controller_;
 
   mode_ = new QComboBox(this);
   mode_->addItem(tr("Island orbits"), static_cast<int>(PortraitMode::Orbits));
   mode_->addItem(tr("Density of the sea"), static_cast<int>(PortraitMode::Density));
   mode_->addItem(tr("Stickiness (mean trapped length)"), static_cast<int>(PortraitMode::Stickiness));
-  mode_->setToolTip(tr("Island orbits: orbits from seeds in the view (KAM curves, islands around islands).\n"
+  mode_->setToolTip(tr("Island orbits: orbits from seeds in the view (KAM curves, islands around islands); the sea "
+                       "is shaded by its visits.\n"
                        "Density: where long orbits of the chaotic sea go (the islands stay dark).\n"
                        "Stickiness: each pixel coloured by the mean length of the trapped segments through it (§3)."));
-  connect(mode_, qOverload<int>(&QComboBox::currentIndexChanged), this,
-          [this] { view_->setMode(static_cast<PortraitMode>(mode_->currentData().toInt())); });
+  // The longest item need not set the toolbar's (and so the window's) minimum width.
+  mode_->setSizeAdjustPolicy(QComboBox::AdjustToMinimumContentsLengthWithIcon);
+  mode_->setMinimumContentsLength(14);
+  connect(mode_, qOverload<int>(&QComboBox::currentIndexChanged), this, [this] {
+    controller_->setMode(static_cast<PortraitMode>(mode_->currentData().toInt()));
+    updateColourControl();
+  });
 
   colours_ = new QComboBox(this);
   for (ColourMapName name : allColourMaps())
     colours_->addItem(QString::fromLatin1(toString(name).data(), static_cast<int>(toString(name).size())),
                       static_cast<int>(name));
-  colours_->setToolTip(tr("Colour map of the raster"));
   connect(colours_, qOverload<int>(&QComboBox::currentIndexChanged), this,
-          [this] { view_->setColourMap(static_cast<ColourMapName>(colours_->currentData().toInt())); });
+          [this] { controller_->setColourMap(static_cast<ColourMapName>(colours_->currentData().toInt())); });
+
+  budget_ = new QComboBox(this);
+  qulonglong points = 1'000'000;
+  for (const char* exponent : {"⁷", "⁸", "⁹", "¹⁰", "¹¹"}) {
+    points *= 10;
+    budget_->addItem(QStringLiteral("10%1").arg(QString::fromUtf8(exponent)), QVariant::fromValue(points));
+  }
+  budget_->setToolTip(tr("Points budget: the portrait of a view keeps accumulating map steps until it has done "
+                         "this many (or the view changes, or Stop)"));
+  budget_->setCurrentIndex(budget_->findData(QVariant::fromValue<qulonglong>(c->pointBudget())));
+  connect(budget_, qOverload<int>(&QComboBox::currentIndexChanged), this,
+          [this] { controller_->setPointBudget(budget_->currentData().toULongLong()); });
+
+  stop_ = toolButton(this, tr("Stop"), tr("Stop accumulating points; the portrait so far stays"));
+  connect(stop_, &QToolButton::clicked, c, &PortraitController::stopRendering);
 
   auto* back = toolButton(this, tr("◀ Back"), tr("Previous view"), QKeySequence(Qt::Key_Backspace));
   auto* forward = toolButton(this, tr("Forward ▶"), tr("Next view"));
-  auto* reset = toolButton(this, tr("Reset"), tr("The whole box"), QKeySequence(Qt::Key_Home));
+  auto* reset = toolButton(this, tr("Reset"), tr("The whole box, drawn anew"), QKeySequence(Qt::Key_Home));
   auto* zoomIn = toolButton(this, tr("+"), tr("Zoom in about the centre"), QKeySequence(Qt::Key_Plus));
   auto* zoomOut = toolButton(this, tr("−"), tr("Zoom out"), QKeySequence(Qt::Key_Minus));
   auto* clear = toolButton(this, tr("Clear orbits"), tr("Remove the orbits launched by clicks"));
   auto* png = toolButton(this, tr("Export PNG…"), tr("The view with its axes, as PNG"));
   auto* npy = toolButton(this, tr("Export .npy…"), tr("The raw raster as NumPy .npy with a JSON sidecar"));
   auto* b2 = toolButton(this, tr("b₂…"), tr("Stochastic area b₂ of the sea (§5), with its convergence"));
-  connect(back, &QToolButton::clicked, view_, &PortraitView::back);
-  connect(forward, &QToolButton::clicked, view_, &PortraitView::forward);
-  connect(reset, &QToolButton::clicked, view_, &PortraitView::resetView);
-  connect(zoomIn, &QToolButton::clicked, view_, &PortraitView::zoomIn);
-  connect(zoomOut, &QToolButton::clicked, view_, &PortraitView::zoomOut);
-  connect(clear, &QToolButton::clicked, view_, &PortraitView::clearOrbits);
+  connect(back, &QToolButton::clicked, c, &PortraitController::back);
+  connect(forward, &QToolButton::clicked, c, &PortraitController::forward);
+  connect(reset, &QToolButton::clicked, c, &PortraitController::resetView);
+  connect(zoomIn, &QToolButton::clicked, c, &PortraitController::zoomIn);
+  connect(zoomOut, &QToolButton::clicked, c, &PortraitController::zoomOut);
+  connect(clear, &QToolButton::clicked, c, &PortraitController::clearOrbits);
   connect(png, &QToolButton::clicked, this, &PortraitPanel::exportPngDialog);
   connect(npy, &QToolButton::clicked, this, &PortraitPanel::exportNpyDialog);
   connect(b2, &QToolButton::clicked, this, &PortraitPanel::showStochasticArea);
-  connect(view_, &PortraitView::viewportChanged, this, [this, back, forward] {
-    back->setEnabled(view_->canGoBack());
-    forward->setEnabled(view_->canGoForward());
-  });
+  auto updateHistory = [c, back, forward] {
+    back->setEnabled(c->canGoBack());
+    forward->setEnabled(c->canGoForward());
+  };
+  connect(c, &PortraitController::viewportChanged, this, updateHistory);
+  updateHistory();
 
-  cursor_ = new QLabel(this);
-  cursor_->setTextInteractionFlags(Qt::TextSelectableByMouse);
-  connect(view_, &PortraitView::cursorMoved, cursor_, &QLabel::setText);
-  connect(view_, &PortraitView::statusMessage, this, &PortraitPanel::statusMessage);
+  auto* readout = new ElidedLabel(this);
+  readout_ = readout;
+  auto* cursor = new ElidedLabel(this);
+  cursor_ = cursor;
+  cursor->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  connect(view(), &PortraitView::cursorMoved, this, [cursor](const QString& text) { cursor->setFullText(text); });
+  connect(view(), &PortraitView::renderStateChanged, this, &PortraitPanel::updateReadout);
+  connect(c, &PortraitController::statusMessage, this, &PortraitPanel::statusMessage);
 
   auto* bar = new QHBoxLayout;
   bar->addWidget(new QLabel(tr("Mode:"), this));
   bar->addWidget(mode_);
   bar->addWidget(new QLabel(tr("Colours:"), this));
   bar->addWidget(colours_);
-  for (QWidget* w : {static_cast<QWidget*>(back), static_cast<QWidget*>(forward), static_cast<QWidget*>(reset),
-                     static_cast<QWidget*>(zoomIn), static_cast<QWidget*>(zoomOut), static_cast<QWidget*>(clear),
-                     static_cast<QWidget*>(png), static_cast<QWidget*>(npy), static_cast<QWidget*>(b2)})
+  bar->addWidget(new QLabel(tr("Points:"), this));
+  bar->addWidget(budget_);
+  for (QWidget* w : {static_cast<QWidget*>(stop_), static_cast<QWidget*>(back), static_cast<QWidget*>(forward),
+                     static_cast<QWidget*>(reset), static_cast<QWidget*>(zoomIn), static_cast<QWidget*>(zoomOut),
+                     static_cast<QWidget*>(clear), static_cast<QWidget*>(png), static_cast<QWidget*>(npy),
+                     static_cast<QWidget*>(b2)})
     bar->addWidget(w);
   bar->addStretch(1);
 
-  auto* hint = new QLabel(tr("Drag: zoom to a rectangle · wheel: zoom about the cursor · middle-drag or arrows: pan · "
-                             "click: launch an orbit"),
-                          this);
+  auto* hint = new ElidedLabel(this);
+  hint->setFullText(tr("Drag: zoom to a rectangle · wheel: zoom about the cursor · middle-drag or arrows: pan · "
+                       "click: launch an orbit"));
   hint->setStyleSheet(QStringLiteral("color: palette(mid);"));
   auto* footer = new QHBoxLayout;
-  footer->addWidget(cursor_, 1);
-  footer->addWidget(hint);
+  footer->addWidget(readout_, 3);
+  footer->addWidget(cursor_, 3);
+  footer->addWidget(hint, 2);
 
   auto* layout = new QVBoxLayout(this);
   layout->setContentsMargins(4, 4, 4, 4);
   layout->addLayout(bar);
-  layout->addWidget(view_, 1);
+  layout->addWidget(view(), 1);
   layout->addLayout(footer);
+  updateColourControl();
+  updateReadout();
 }
 
-void PortraitPanel::setParameters(const MapParameters& parameters, double Xr) {
-  pending_ = std::make_pair(parameters, Xr);
-  if (isVisible()) applyPending();
+PortraitView* PortraitPanel::view() const noexcept { return controller_->view(); }
+
+QString PortraitPanel::readoutText() const { return static_cast<ElidedLabel*>(readout_)->fullText(); }
+
+void PortraitPanel::updateReadout() {
+  static_cast<ElidedLabel*>(readout_)->setFullText(view()->readout());
+  stop_->setEnabled(view()->isRendering());
 }
 
-void PortraitPanel::applyParametersNow(const MapParameters& parameters, double Xr) {
-  pending_ = std::make_pair(parameters, Xr);
-  applyPending();
-}
-
-void PortraitPanel::showEvent(QShowEvent* event) {
-  QWidget::showEvent(event);
-  applyPending();
-}
-
-void PortraitPanel::applyPending() {
-  if (!pending_) return;
-  const auto [parameters, Xr] = *pending_;
-  pending_.reset();
-  if (parameters == parameters_ && Xr == Xr_ && view_->currentFrame()) return;
-  if (view_->setParameters(parameters)) {
-    parameters_ = parameters;
-    Xr_ = Xr;
-  }
+void PortraitPanel::updateColourControl() {
+  // In Orbits mode the colour map shades the sea (the island orbits keep their own hues).
+  colours_->setToolTip(controller_->mode() == PortraitMode::Orbits
+                           ? tr("Colour map of the sea's shading (island orbits keep their own hues)")
+                           : tr("Colour map of the raster"));
 }
 
 void PortraitPanel::exportPngDialog() {
   const QString path = QFileDialog::getSaveFileName(this, tr("Export portrait as PNG"), QStringLiteral("portrait.png"),
                                                     tr("PNG images (*.png)"));
   if (path.isEmpty()) return;
-  Q_EMIT statusMessage(view_->exportPng(path) ? tr("Wrote %1").arg(path) : tr("Could not write %1").arg(path));
+  Q_EMIT statusMessage(view()->exportPng(path) ? tr("Wrote %1").arg(path) : tr("Could not write %1").arg(path));
 }
 
 void PortraitPanel::exportNpyDialog() {
   const QString path = QFileDialog::getSaveFileName(this, tr("Export raster as NumPy .npy"),
                                                     QStringLiteral("portrait.npy"), tr("NumPy arrays (*.npy)"));
   if (path.isEmpty()) return;
-  Q_EMIT statusMessage(view_->exportNpy(path) ? tr("Wrote %1 and its JSON sidecar").arg(path)
-                                              : tr("Could not write %1").arg(path));
+  Q_EMIT statusMessage(view()->exportNpy(path) ? tr("Wrote %1 and its JSON sidecar").arg(path)
+                                               : tr("Could not write %1").arg(path));
 }
 
 void PortraitPanel::showStochasticArea() {
   StochasticAreaRequest request;
-  request.map = parameters_;
-  request.Xr = Xr_;
+  request.map = controller_->map();
+  request.Xr = controller_->Xr();
   (new StochasticAreaDialog(request, this))->show();
 }
 

@@ -1,18 +1,22 @@
 #pragma once
-// The "Phase portrait" tab: the PortraitView with its controls (mode, colour map, history, exports) and the
-// stochastic-area (b₂) dialog.  The map parameters follow the main window's parameter panel.
+// The "Phase portrait" tab: the portrait (its PortraitController and view) with its controls — mode, colour
+// map, points budget, Stop, history, exports — the readout of the render (points so far, accumulating /
+// done / stopped / no sea here), the cursor position and the stochastic-area (b₂) dialog.
+//
+// The readout and the cursor position are elided to the width they get: a longer text (more digits at a deep
+// zoom) never widens the window.
 
 #include <QWidget>
-#include <optional>
-#include <utility>
 
 #include "core/map/MapParameters.hpp"
 
 class QComboBox;
 class QLabel;
+class QToolButton;
 
 namespace archipelago::ui {
 
+class PortraitController;
 class PortraitView;
 
 class PortraitPanel : public QWidget {
@@ -20,13 +24,15 @@ class PortraitPanel : public QWidget {
  public:
   explicit PortraitPanel(QWidget* parent = nullptr);
 
-  [[nodiscard]] PortraitView* view() const noexcept { return view_; }
-  /// Shows the portrait of these parameters (ignored when invalid; the panel keeps the last valid map).
-  /// While the panel is hidden the parameters wait, so no portrait is computed for nothing.
-  void setParameters(const MapParameters& parameters, double Xr);
-  /// The same, applied at once even while hidden (a caller that zooms the view right after needs the map set
-  /// first, or the pending parameters would later reset its zoom).
-  void applyParametersNow(const MapParameters& parameters, double Xr);
+  /// The owner of the portrait: set its map, view and layers through it.
+  [[nodiscard]] PortraitController* controller() const noexcept { return controller_; }
+  [[nodiscard]] PortraitView* view() const noexcept;
+  /// The points budget choices, in points (tests).
+  [[nodiscard]] QComboBox* budgetBox() const noexcept { return budget_; }
+  [[nodiscard]] QToolButton* stopButton() const noexcept { return stop_; }
+  [[nodiscard]] QComboBox* colourBox() const noexcept { return colours_; }
+  /// The readout's full text (the label may show it elided).
+  [[nodiscard]] QString readoutText() const;
 
  public Q_SLOTS:
   void exportPngDialog();
@@ -36,19 +42,17 @@ class PortraitPanel : public QWidget {
  Q_SIGNALS:
   void statusMessage(const QString& text);
 
- protected:
-  void showEvent(QShowEvent* event) override;
-
  private:
-  void applyPending();
+  void updateReadout();
+  void updateColourControl();
 
-  PortraitView* view_ = nullptr;
+  PortraitController* controller_ = nullptr;
   QComboBox* mode_ = nullptr;
   QComboBox* colours_ = nullptr;
+  QComboBox* budget_ = nullptr;
+  QToolButton* stop_ = nullptr;
+  QLabel* readout_ = nullptr;
   QLabel* cursor_ = nullptr;
-  MapParameters parameters_;
-  double Xr_ = 0.02;
-  std::optional<std::pair<MapParameters, double>> pending_;
 };
 
 }  // namespace archipelago::ui

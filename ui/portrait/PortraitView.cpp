@@ -1,6 +1,9 @@
 #include "ui/portrait/PortraitView.hpp"
 
 #include <QKeyEvent>
+#include <QLocale>
+#include <QResizeEvent>
+#include <QShowEvent>
 #include <QMouseEvent>
 #include <QPainter>
 #include <QTimer>
@@ -12,21 +15,19 @@
 #include <qwt_plot.h>
 #include <qwt_plot_canvas.h>
 #include <qwt_plot_item.h>
-#include <qwt_plot_marker.h>
+#include <qwt_plot_textlabel.h>
 #include <qwt_plot_panner.h>
 #include <qwt_plot_picker.h>
 #include <qwt_plot_renderer.h>
 #include <qwt_scale_draw.h>
 #include <qwt_scale_map.h>
 #include <qwt_scale_widget.h>
-#include <qwt_symbol.h>
 #include <qwt_text.h>
 
 #include <algorithm>
 #include <cmath>
 #include <exception>
 
-#include "core/portrait/MapOverlays.hpp"
 #include "core/portrait/PortraitExport.hpp"
 #include "ui/portrait/PortraitWorker.hpp"
 
@@ -60,29 +61,6 @@ class PortraitImageItem : public QwtPlotItem {
  private:
   QImage image_;
   QRectF rect_;  // physical: x0..x1, y0..y1 (top() = y0)
-};
-
-/// One orbit launched by a click, drawn as dots in its own colour.  (A plain QwtPlotItem: Qwt 6.1's
-/// QwtPlotCurve headers do not compile as C++20, and only the points inside the canvas need drawing.)
-class OrbitItem : public QwtPlotItem {
- public:
-  OrbitItem(std::vector<QPointF> points, QColor colour) : points_(std::move(points)), colour_(colour) { setZ(20); }
-  int rtti() const override { return QwtPlotItem::Rtti_PlotUserItem + 2; }
-  void draw(QPainter* painter, const QwtScaleMap& xMap, const QwtScaleMap& yMap,
-            const QRectF& canvasRect) const override {
-    painter->setPen(QPen(colour_, 2));
-    QVector<QPointF> visible;
-    for (const QPointF& p : points_) {
-      const QPointF q(xMap.transform(p.x()), yMap.transform(p.y()));
-      if (canvasRect.contains(q)) visible.append(q);
-    }
-    painter->drawPoints(visible.constData(), static_cast<int>(visible.size()));
-  }
-  [[nodiscard]] std::size_t size() const noexcept { return points_.size(); }
-
- private:
-  std::vector<QPointF> points_;
-  QColor colour_;
 };
 
 /// Axis labels with as many digits as the view's width needs (the default 6 run out below ~10^-5).
@@ -154,9 +132,15 @@ PortraitView::PortraitView(QWidget* parent) : QWidget(parent) {
   QwtScaleWidget* bar = plot_->axisWidget(QwtPlot::yRight);
   bar->setColorBarEnabled(true);
   bar->setColorBarWidth(16);
+  // The axes' labels get longer digits as the view narrows: they must not grow the window's minimum width.
+  plot_->setMinimumSize(200, 160);
+  plot_->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Ignored);
 
   image_ = new PortraitImageItem;
   image_->attach(plot_);
+  legend_ = new QwtPlotTextLabel;
+  legend_->setZ(40);
+  legend_->attach(plot_);
 
   picker_ = new QwtPlotPicker(QwtPlot::xBottom, QwtPlot::yLeft, QwtPicker::RectRubberBand,
                               QwtPicker::AlwaysOff, plot_->canvas());
@@ -168,7 +152,8 @@ PortraitView::PortraitView(QWidget* parent) : QWidget(parent) {
   panner_->setMouseButton(Qt::MiddleButton);
   connect(panner_, &QwtPanner::panned, this, [this](int dx, int dy) {
     const QWidget* canvas = plot_->canvas();
-    panBy(-static_cast<double>(dx) / std::max(1, canvas->width()), static_cast<double>(dy) / std::max(1, canvas->height()));
+    Q_EMIT panRequested(-static_cast<double>(dx) / std::max(1, canvas->width()),
+                        static_cast<double>(dy) / std::max(1, canvas->height()));
   });
 
   auto* layout = new QVBoxLayout(this);
@@ -177,45 +162,42 @@ PortraitView::PortraitView(QWidget* parent) : QWidget(parent) {
 
   renderTimer_ = new QTimer(this);
   renderTimer_->setSingleShot(true);
-  renderTimer_->setInterval(40);  // coalesce a burst of wheel steps or resizes into one request
+  renderTimer_->setInterval(60);  // coalesce a burst of wheel steps or resizes into one request
   connect(renderTimer_, &QTimer::timeout, this, &PortraitView::startRender);
 
   worker_ = new PortraitWorker(this);
   connect(worker_, &PortraitWorker::frameReady, this, &PortraitView::onFrame, Qt::QueuedConnection);
-  connect(worker_, &PortraitWorker::progress, this, [this](quint64 id, quint64 done, quint64 total) {
-    if (id == currentRequest_ && total > 0)
-      Q_EMIT statusMessage(tr("Rendering %1: %2%").arg(QString::fromLatin1(toString(mode_).data())).arg(100.0 * static_cast<double>(done) / static_cast<double>(total), 0, 'f', 0));
+  connect(worker_, &PortraitWorker::progress, this, [this](quint64 id, quint64 done, quint64) {
+    if (id != currentRequest_ || state_ != RenderState::accumulating) return;
+    pointsSoFar_ = std::max<std::uint64_t>(pointsSoFar_, done);
+    Q_EMIT renderStateChanged();
   }, Qt::QueuedConnection);
   connect(worker_, &PortraitWorker::failed, this, [this](quint64 id, const QString& message) {
     if (id != currentRequest_) return;
-    rendering_ = false;
+    setState(RenderState::failed);
     Q_EMIT statusMessage(tr("Portrait failed: %1").arg(message));
   }, Qt::QueuedConnection);
 
-  updateFixedPoints();
   updateAxes();
-  scheduleRender();
 }
 
 PortraitView::~PortraitView() {
   delete worker_;  // stops the render in progress and waits for the thread before the plot goes away
   worker_ = nullptr;
+  for (auto& [layer, items] : layers_)
+    for (QwtPlotItem* item : items) {
+      item->detach();
+      delete item;
+    }
 }
 
-bool PortraitView::setParameters(const MapParameters& parameters) {
-  if (auto e = mapError(parameters)) {
-    Q_EMIT statusMessage(tr("Invalid parameters: %1").arg(QString::fromStdString(*e)));
-    return false;
-  }
-  parameters_ = parameters;
-  history_.assign(1, Viewport());
-  historyIndex_ = 0;
-  clearOrbits();
-  updateFixedPoints();
+void PortraitView::display(const MapParameters& map, const Viewport& view) {
+  if (!(map == map_)) frame_.reset();  // an image of another map must not stay under the new axes
+  if (!(map == map_)) image_->setImage(QImage(), QRectF());
+  map_ = map;
+  view_ = view;
   updateAxes();
-  Q_EMIT viewportChanged();
   scheduleRender();
-  return true;
 }
 
 void PortraitView::setMode(PortraitMode mode) {
@@ -231,46 +213,70 @@ void PortraitView::setColourMap(ColourMapName colours) {
 }
 
 void PortraitView::setPointBudget(std::uint64_t points) {
-  points_ = std::max<std::uint64_t>(points, 1);
+  points = std::max<std::uint64_t>(points, 1);
+  if (points == points_) return;
+  points_ = points;
   scheduleRender();
 }
 
-void PortraitView::setViewport(const Viewport& view) { showViewport(true, view); }
+void PortraitView::rerender() { scheduleRender(); }
 
-void PortraitView::zoomAt(double fx, double fy, double factor) {
-  showViewport(true, viewport().zoomedAboutFraction(fx, fy, factor));
+void PortraitView::stopRender() {
+  renderTimer_->stop();
+  renderWanted_ = false;
+  worker_->cancel();
+  if (isRendering()) setState(RenderState::stopped);
 }
 
-void PortraitView::panBy(double fx, double fy) { showViewport(true, viewport().panned(fx, fy)); }
-
-void PortraitView::back() {
-  if (!canGoBack()) return;
-  --historyIndex_;
-  showViewport(false, viewport());
-}
-
-void PortraitView::forward() {
-  if (!canGoForward()) return;
-  ++historyIndex_;
-  showViewport(false, viewport());
-}
-
-void PortraitView::resetView() { showViewport(true, Viewport()); }
-
-void PortraitView::showViewport(bool record, const Viewport& view) {
-  if (record) {
-    if (view == viewport()) return;
-    history_.resize(historyIndex_ + 1);  // a new view drops the forward history, as in a browser
-    history_.push_back(view);
-    historyIndex_ = history_.size() - 1;
+void PortraitView::setLayer(PortraitLayer layer, std::vector<QwtPlotItem*> items) {
+  std::vector<QwtPlotItem*>& slot = layers_[layer];
+  for (QwtPlotItem* item : slot) {
+    item->detach();
+    delete item;
   }
-  updateAxes();
-  Q_EMIT viewportChanged();
-  scheduleRender();
+  slot = std::move(items);
+  for (QwtPlotItem* item : slot) item->attach(plot_);
+  plot_->replot();
+}
+
+const std::vector<QwtPlotItem*>& PortraitView::layerItems(PortraitLayer layer) const {
+  static const std::vector<QwtPlotItem*> none;
+  const auto it = layers_.find(layer);
+  return it == layers_.end() ? none : it->second;
+}
+
+void PortraitView::setLegend(const QString& html) {
+  if (html.isEmpty()) {
+    legend_->setText(QwtText());
+  } else {
+    QwtText text(html, QwtText::RichText);
+    text.setRenderFlags(Qt::AlignTop | Qt::AlignLeft);
+    text.setBackgroundBrush(QColor(255, 255, 255, 215));
+    text.setBorderRadius(4);
+    text.setBorderPen(QPen(QColor(0, 0, 0, 120)));
+    QFont font = text.font();
+    font.setPointSizeF(font.pointSizeF() * 1.05);
+    text.setFont(font);
+    legend_->setText(text);
+    legend_->setMargin(10);
+  }
+  plot_->replot();
+}
+
+QWidget* PortraitView::canvas() const { return plot_->canvas(); }
+
+std::pair<double, double> PortraitView::xAxisRange() const {
+  const QwtScaleDiv& d = plot_->axisScaleDiv(QwtPlot::xBottom);
+  return {d.lowerBound(), d.upperBound()};
+}
+
+double PortraitView::canvasAspect() const {
+  const QWidget* c = plot_->canvas();
+  return c->height() > 0 && c->width() > 0 ? static_cast<double>(c->width()) / c->height() : 1.0;
 }
 
 void PortraitView::updateAxes() {
-  const QRectF r = physicalRect(viewport(), parameters_);
+  const QRectF r = physicalRect(view_, map_);
   xScale_->setDigits(digitsFor(r.left(), r.right()));
   yScale_->setDigits(digitsFor(r.top(), r.bottom()));
   plot_->setAxisScale(QwtPlot::xBottom, r.left(), r.right());
@@ -280,7 +286,6 @@ void PortraitView::updateAxes() {
 
 void PortraitView::updateColourBar() {
   const bool scale = frame_ && frame_->request.mode != PortraitMode::Orbits;
-  plot_->enableAxis(QwtPlot::yRight, scale);
   if (!scale) return;
   const QwtInterval interval(frame_->scaleMin, std::max(frame_->scaleMax, frame_->scaleMin + 1e-9));
   plot_->axisWidget(QwtPlot::yRight)->setColorMap(interval, new CoreColourMap(colours_));
@@ -288,111 +293,132 @@ void PortraitView::updateColourBar() {
   plot_->setAxisTitle(QwtPlot::yRight, frame_->quantity);
 }
 
-void PortraitView::updateFixedPoints() {
-  for (QwtPlotMarker* m : fixedPointMarkers_) {
-    m->detach();
-    delete m;
-  }
-  fixedPointMarkers_.clear();
-  for (const FixedPoint& p : fixedPoints(parameters_)) {
-    auto* marker = new QwtPlotMarker;
-    marker->setValue(static_cast<double>(p.position.x), static_cast<double>(p.position.y));
-    marker->setSymbol(new QwtSymbol(p.elliptic ? QwtSymbol::Ellipse : QwtSymbol::XCross, QBrush(Qt::NoBrush),
-                                    QPen(Qt::white, 1.5), QSize(9, 9)));
-    marker->setZ(30);
-    marker->setTitle(p.elliptic ? tr("elliptic fixed point") : tr("hyperbolic fixed point"));
-    marker->attach(plot_);
-    fixedPointMarkers_.push_back(marker);
-  }
+void PortraitView::setState(RenderState state) {
+  state_ = state;
+  Q_EMIT renderStateChanged();
 }
 
-void PortraitView::scheduleRender() { renderTimer_->start(); }
+void PortraitView::scheduleRender() {
+  renderWanted_ = true;
+  worker_->cancel();  // the render in progress is of a view, mode or budget already left: its frames
+                      // still queued are dropped (the state is no longer `accumulating`, then a new id)
+  pointsSoFar_ = 0;
+  setState(RenderState::pending);
+  if (isVisible()) renderTimer_->start();  // else showEvent() starts it, at the size the view is shown at
+}
 
-void PortraitView::startRender() {
+void PortraitView::resizeEvent(QResizeEvent* event) {
+  QWidget::resizeEvent(event);
+  // A new size of the view renders again at the canvas's new size (debounced by the render timer; the old
+  // image stays, scaled, meanwhile).  Only the view's own resizes count: the plot's axes changing width
+  // (longer labels, the colour bar) must not restart an accumulation.
+  QTimer::singleShot(0, this, [this] {
+    if (isVisible() && !renderWanted_ && state_ != RenderState::idle && rasterSize() != renderedSize_)
+      scheduleRender();
+  });
+}
+
+void PortraitView::showEvent(QShowEvent* event) {
+  QWidget::showEvent(event);
+  if (renderWanted_) renderTimer_->start();
+}
+
+QSize PortraitView::rasterSize() const {
   const QWidget* canvas = plot_->canvas();
   const qreal ratio = canvas->devicePixelRatioF();
+  return {std::clamp(static_cast<int>(canvas->width() * ratio), 16, 4096),
+          std::clamp(static_cast<int>(canvas->height() * ratio), 16, 4096)};
+}
+
+void PortraitView::startRender() {
+  if (!isVisible()) return;  // showEvent() comes back here
+  renderWanted_ = false;
+  // The colour bar takes its room before the raster size is chosen (Orbits mode has none).
+  const bool bar = mode_ != PortraitMode::Orbits;
+  if (plot_->axisEnabled(QwtPlot::yRight) != bar) {
+    plot_->enableAxis(QwtPlot::yRight, bar);
+    plot_->updateLayout();
+  }
   PortraitRequest request;
-  request.map = parameters_;
-  request.view = viewport();
+  request.map = map_;
+  request.view = view_;
   request.mode = mode_;
-  request.width = std::clamp(static_cast<int>(canvas->width() * ratio), 16, 4096);
-  request.height = std::clamp(static_cast<int>(canvas->height() * ratio), 16, 4096);
+  renderedSize_ = rasterSize();
+  request.width = renderedSize_.width();
+  request.height = renderedSize_.height();
   request.points = points_;
+  // A first snapshot after ~2^20 points (2^18 in the slower scalar modes), then one at least every 2^28
+  // (Density, ~0.3 s with the vector kernels) or 2^22 points, until the budget is reached.
+  const bool density = mode_ == PortraitMode::Density;
+  setProgressiveSchedule(request, density ? std::uint64_t{1} << 20 : std::uint64_t{1} << 18,
+                         density ? std::uint64_t{1} << 28 : std::uint64_t{1} << 22);
   if (auto e = validationError(request)) {
+    setState(RenderState::failed);
     Q_EMIT statusMessage(tr("Portrait: %1").arg(QString::fromStdString(*e)));
     return;
   }
-  rendering_ = true;
+  pointsSoFar_ = 0;
   currentRequest_ = worker_->render(request, colours_);
+  setState(RenderState::accumulating);
 }
 
 void PortraitView::onFrame(const PortraitFrame& frame) {
-  if (frame.requestId != currentRequest_) return;  // a view already left
+  if (frame.requestId != currentRequest_ || state_ != RenderState::accumulating) return;  // stale or stopped
   frame_ = std::make_unique<PortraitFrame>(frame);
   image_->setImage(frame.image, physicalRect(frame.request.view, frame.request.map));
   updateColourBar();
   plot_->replot();
-  const double rate = frame.seconds > 0 ? static_cast<double>(frame.pointsDone) / frame.seconds : 0;
-  const PhysicalRect r = frame.request.view.physical(frame.request.map);
-  Q_EMIT statusMessage(tr("%1: %2 of %3 points in %4 s (%5 points/s), %6 pixels visited, view width %7")
-                           .arg(QString::fromLatin1(toString(frame.request.mode).data()))
-                           .arg(static_cast<double>(frame.pointsDone), 0, 'g', 3)
-                           .arg(static_cast<double>(frame.pointsTotal), 0, 'g', 3)
-                           .arg(frame.seconds, 0, 'f', 2)
-                           .arg(rate, 0, 'g', 3)
-                           .arg(static_cast<qulonglong>(frame.raster->nonEmptyPixels()))
-                           .arg(static_cast<double>(r.x1 - r.x0), 0, 'g', 3));
-  if (frame.final) {
-    rendering_ = false;
+  pointsSoFar_ = frame.pointsDone;
+  Q_EMIT frameShown();
+  if (frame.noSea) {
+    setState(RenderState::noSea);
     Q_EMIT renderFinished();
+  } else if (frame.final) {
+    setState(RenderState::done);
+    Q_EMIT renderFinished();
+  } else {
+    Q_EMIT renderStateChanged();
   }
 }
 
+QString PortraitView::readout() const {
+  const QLocale locale;
+  const QString points = locale.toString(static_cast<double>(pointsSoFar_), 'g', 3);
+  const QString pixels =
+      frame_ ? locale.toString(static_cast<qulonglong>(frame_->raster->nonEmptyPixels())) : QStringLiteral("0");
+  switch (state_) {
+    case RenderState::idle: return tr("No portrait yet");
+    case RenderState::pending: return tr("Waiting to render…");
+    case RenderState::accumulating:
+      return tr("%1 points so far, %2 pixels visited — accumulating…").arg(points, pixels);
+    case RenderState::done:
+      return tr("%1 points, %2 pixels visited — done (budget reached)").arg(points, pixels);
+    case RenderState::stopped: return tr("%1 points, %2 pixels visited — stopped").arg(points, pixels);
+    case RenderState::noSea:
+      return tr("No chaotic points in this view after %1 points (an all-sea view would have had %2): it lies "
+                "inside an island — try Island orbits")
+          .arg(points)
+          .arg(kNoSeaExpectedPoints, 0, 'f', 0);
+    case RenderState::failed: return tr("The portrait could not be rendered");
+  }
+  return {};
+}
+
 void PortraitView::onRectangleSelected(const QRectF& rect) {
-  const QRectF r = physicalRect(viewport(), parameters_);
+  const QRectF r = physicalRect(view_, map_);
   const QWidget* canvas = plot_->canvas();
   const double fx0 = (rect.left() - r.left()) / r.width(), fx1 = (rect.right() - r.left()) / r.width();
   const double fy0 = (rect.top() - r.top()) / r.height(), fy1 = (rect.bottom() - r.top()) / r.height();
   const bool click = std::fabs(fx1 - fx0) * canvas->width() < 4 && std::fabs(fy1 - fy0) * canvas->height() < 4;
   if (click) {
     // Launch from the exact position: the view's centre plus the click's offset, in long double.
-    const Viewport& v = viewport();
-    const PhysicalRect b = v.physical(parameters_);
+    const PhysicalRect b = view_.physical(map_);
     const long double fx = (fx0 + fx1) / 2, fy = (fy0 + fy1) / 2;
     const long double x = b.x0 + fx * (b.x1 - b.x0), y = b.y0 + fy * (b.y1 - b.y0);
-    launchOrbit(static_cast<double>(x), static_cast<double>(y));
+    Q_EMIT clicked(static_cast<double>(x), static_cast<double>(y));
     return;
   }
-  showViewport(true, viewport().cropped(std::min(fx0, fx1), std::max(fx0, fx1), std::min(fy0, fy1), std::max(fy0, fy1)));
-}
-
-void PortraitView::launchOrbit(double x, double y, int steps) {
-  std::vector<PhysicalPoint> points;
-  try {
-    points = traceOrbit(parameters_, x, y, static_cast<std::uint64_t>(std::max(steps, 0)));
-  } catch (const std::exception& e) {
-    Q_EMIT statusMessage(tr("Orbit: %1").arg(QString::fromUtf8(e.what())));
-    return;
-  }
-  std::vector<QPointF> samples;
-  samples.reserve(points.size());
-  for (const PhysicalPoint& p : points) samples.emplace_back(static_cast<double>(p.x), static_cast<double>(p.y));
-  const Rgb c = orbitColour(static_cast<std::uint32_t>(orbits_.size() + 1));
-  auto* curve = new OrbitItem(std::move(samples), QColor(c.r, c.g, c.b));
-  curve->setTitle(tr("orbit %1").arg(orbits_.size() + 1));
-  curve->attach(plot_);
-  orbits_.push_back(curve);
-  plot_->replot();
-  Q_EMIT statusMessage(tr("Orbit %1 from (%2, %3): %4 steps").arg(orbits_.size()).arg(x, 0, 'g', 17).arg(y, 0, 'g', 17).arg(steps));
-}
-
-void PortraitView::clearOrbits() {
-  for (OrbitItem* c : orbits_) {
-    c->detach();
-    delete c;
-  }
-  orbits_.clear();
-  plot_->replot();
+  Q_EMIT cropRequested(std::min(fx0, fx1), std::max(fx0, fx1), std::min(fy0, fy1), std::max(fy0, fy1));
 }
 
 bool PortraitView::exportPng(const QString& path, const QSize& size) {
@@ -427,11 +453,10 @@ QString PortraitView::cursorText(const QPointF& pos) const {
   const QwtScaleMap xMap = plot_->canvasMap(QwtPlot::xBottom), yMap = plot_->canvasMap(QwtPlot::yLeft);
   const double fx = (pos.x() - xMap.p1()) / (xMap.p2() - xMap.p1());
   const double fy = (pos.y() - yMap.p1()) / (yMap.p2() - yMap.p1());  // p1 is y0 (bottom)
-  const Viewport& v = viewport();
-  const PhysicalRect b = v.physical(parameters_);
+  const PhysicalRect b = view_.physical(map_);
   const long double x = b.x0 + fx * (b.x1 - b.x0), y = b.y0 + fy * (b.y1 - b.y0);
-  const long double X = static_cast<long double>(v.centre().X) + (fx - 0.5) * v.widthUnits();
-  const long double Y = static_cast<long double>(v.centre().Y) + (fy - 0.5) * v.heightUnits();
+  const long double X = static_cast<long double>(view_.centre().X) + (fx - 0.5) * view_.widthUnits();
+  const long double Y = static_cast<long double>(view_.centre().Y) + (fy - 0.5) * view_.heightUnits();
   const int digits = digitsFor(static_cast<double>(b.x0), static_cast<double>(b.x1)) + 2;
   return tr("x = %1, y = %2   X = %3, Y = %4 (unit)")
       .arg(static_cast<double>(x), 0, 'g', digits)
@@ -450,7 +475,7 @@ bool PortraitView::eventFilter(QObject* watched, QEvent* event) {
         const QwtScaleMap xMap = plot_->canvasMap(QwtPlot::xBottom), yMap = plot_->canvasMap(QwtPlot::yLeft);
         const double fx = (pos.x() - xMap.p1()) / (xMap.p2() - xMap.p1());
         const double fy = (pos.y() - yMap.p1()) / (yMap.p2() - yMap.p1());
-        zoomAt(fx, fy, std::pow(1.25, steps));
+        Q_EMIT zoomRequested(fx, fy, std::pow(1.25, steps));
       }
       return true;
     }
@@ -461,14 +486,14 @@ bool PortraitView::eventFilter(QObject* watched, QEvent* event) {
 
 void PortraitView::keyPressEvent(QKeyEvent* event) {
   switch (event->key()) {
-    case Qt::Key_Left: panBy(-0.1, 0); break;
-    case Qt::Key_Right: panBy(0.1, 0); break;
-    case Qt::Key_Up: panBy(0, 0.1); break;
-    case Qt::Key_Down: panBy(0, -0.1); break;
-    case Qt::Key_Plus: zoomIn(); break;
-    case Qt::Key_Minus: zoomOut(); break;
-    case Qt::Key_Home: resetView(); break;
-    case Qt::Key_Backspace: back(); break;
+    case Qt::Key_Left: Q_EMIT panRequested(-0.1, 0); break;
+    case Qt::Key_Right: Q_EMIT panRequested(0.1, 0); break;
+    case Qt::Key_Up: Q_EMIT panRequested(0, 0.1); break;
+    case Qt::Key_Down: Q_EMIT panRequested(0, -0.1); break;
+    case Qt::Key_Plus: Q_EMIT zoomRequested(0.5, 0.5, 2.0); break;
+    case Qt::Key_Minus: Q_EMIT zoomRequested(0.5, 0.5, 0.5); break;
+    case Qt::Key_Home: Q_EMIT resetRequested(); break;
+    case Qt::Key_Backspace: Q_EMIT backRequested(); break;
     default: QWidget::keyPressEvent(event); return;
   }
 }

@@ -1,17 +1,22 @@
 #pragma once
-// PortraitView: the phase-portrait explorer widget (Qwt plot of a raster rendered by core on a worker thread).
+// PortraitView: the phase-portrait widget (Qwt plot of a raster rendered by core on a worker thread).
 //
-// Interaction: drag with the left button to zoom into a rectangle; click to launch an orbit (drawn in its own
-// colour); wheel to zoom about the cursor; drag with the middle button (or the arrow keys) to pan;
-// Back/Forward walk the zoom history; Home resets to the whole box.  The cursor is reported in physical and
-// unit coordinates.  Every zoom and pan is core's Viewport maths (exact centre); this widget only maps mouse
-// positions to fractions of the view.  Stale frames (of a view already left) are dropped by request id.
+// The view draws; the PortraitController decides.  The map, the view rectangle, the render settings and the
+// overlay layers are set only by the controller (the setters are private, the controller is a friend).
+// Mouse and keys become requests (zoomRequested, …) that the controller turns into views.
+//
+// Rendering: the render of the current view accumulates passes into one raster until the points budget is
+// reached, the view/mode/map changes, or stopRender(); the render state and the points so far are readable
+// (renderState(), pointsSoFar()) and announced by renderStateChanged().  A Density view with no sea ends as
+// RenderState::noSea.  While the widget is hidden a render request stays pending and starts at the real size
+// when it is shown; a resize of the canvas renders again (debounced).  Stale frames (of a request already
+// replaced) are dropped by request id.
 
 #include <QImage>
-#include <QPointer>
 #include <QWidget>
 
 #include <cstdint>
+#include <map>
 #include <memory>
 #include <vector>
 
@@ -19,20 +24,33 @@
 #include "core/portrait/ColourMap.hpp"
 #include "core/portrait/PortraitRenderer.hpp"
 #include "core/portrait/Viewport.hpp"
+#include "ui/portrait/PortraitLayers.hpp"
 
 class QwtPlot;
-class QwtPlotMarker;
+class QwtPlotItem;
 class QwtPlotPicker;
 class QwtPlotPanner;
+class QwtPlotTextLabel;
 class QTimer;
 
 namespace archipelago::ui {
 
+class PortraitController;
 class PortraitWorker;
 class PortraitImageItem;
-class OrbitItem;
 class PrecisionScaleDraw;
 struct PortraitFrame;
+
+/// Where the render of the current view stands.
+enum class RenderState {
+  idle,          ///< nothing requested yet
+  pending,       ///< requested, waiting to be shown (hidden) or for the debounce timer
+  accumulating,  ///< passes are being added
+  done,          ///< the points budget was reached
+  stopped,       ///< stopped by the user
+  noSea,         ///< Density: no chaotic point entered the view although an all-sea view would have had 64
+  failed,        ///< the request was refused (statusMessage says why)
+};
 
 class PortraitView : public QWidget {
   Q_OBJECT
@@ -40,84 +58,96 @@ class PortraitView : public QWidget {
   explicit PortraitView(QWidget* parent = nullptr);
   ~PortraitView() override;
 
-  /// The map; resets the view to the whole box, clears the orbits and the history.  Invalid parameters are
-  /// refused (returns false, statusMessage explains).
-  bool setParameters(const MapParameters& parameters);
-  [[nodiscard]] const MapParameters& parameters() const noexcept { return parameters_; }
-
-  void setMode(PortraitMode mode);
+  [[nodiscard]] const MapParameters& parameters() const noexcept { return map_; }
+  [[nodiscard]] const Viewport& viewport() const noexcept { return view_; }
   [[nodiscard]] PortraitMode mode() const noexcept { return mode_; }
-  void setColourMap(ColourMapName colours);
   [[nodiscard]] ColourMapName colourMap() const noexcept { return colours_; }
-  /// Map steps per render (all orbits together).
-  void setPointBudget(std::uint64_t points);
   [[nodiscard]] std::uint64_t pointBudget() const noexcept { return points_; }
 
-  /// Shows `view` and records it in the history.
-  void setViewport(const Viewport& view);
-  [[nodiscard]] const Viewport& viewport() const noexcept { return history_[historyIndex_]; }
-
-  /// Zoom by `factor` (> 1 in) about the point at fractions (fx, fy) of the view (0,0 bottom-left).
-  void zoomAt(double fx, double fy, double factor);
-  /// Move by fractions of the view.
-  void panBy(double fx, double fy);
-  [[nodiscard]] bool canGoBack() const noexcept { return historyIndex_ > 0; }
-  [[nodiscard]] bool canGoForward() const noexcept { return historyIndex_ + 1 < history_.size(); }
-
-  /// Launch an orbit of N from the physical point (x, y), `steps` long, drawn in its own colour.
-  void launchOrbit(double x, double y, int steps = 20000);
-  [[nodiscard]] int orbitCount() const noexcept { return static_cast<int>(orbits_.size()); }
+  [[nodiscard]] RenderState renderState() const noexcept { return state_; }
+  /// True while the worker still adds passes to the current view (or is about to).
+  [[nodiscard]] bool isRendering() const noexcept {
+    return state_ == RenderState::accumulating || state_ == RenderState::pending;
+  }
+  /// Map steps done so far for the current view (all orbits).
+  [[nodiscard]] std::uint64_t pointsSoFar() const noexcept { return pointsSoFar_; }
+  /// One line for the panel's readout: points so far, pixels visited, and the state in words.
+  [[nodiscard]] QString readout() const;
+  /// The raster size a render of the current canvas asks for (canvas size × device pixel ratio, clamped).
+  [[nodiscard]] QSize rasterSize() const;
 
   /// The plot with axes, title and colour bar, rendered to PNG by QwtPlotRenderer.  False on failure.
   bool exportPng(const QString& path, const QSize& size = QSize(1200, 1000));
   /// The current raster as .npy plus its JSON sidecar.  False when there is none yet or writing failed.
   bool exportNpy(const QString& path);
 
-  /// The last frame shown (null before the first one).
+  /// The last frame shown (null before the first one of the current map).
   [[nodiscard]] const PortraitFrame* currentFrame() const noexcept { return frame_.get(); }
-  /// True while the worker still refines the current view.
-  [[nodiscard]] bool isRendering() const noexcept { return rendering_; }
-  [[nodiscard]] QwtPlot* plot() const noexcept { return plot_; }
-
- public Q_SLOTS:
-  void back();
-  void forward();
-  void resetView();
-  void clearOrbits();
-  void zoomIn() { zoomAt(0.5, 0.5, 2.0); }
-  void zoomOut() { zoomAt(0.5, 0.5, 0.5); }
+  /// The items of a layer (tests).
+  [[nodiscard]] const std::vector<QwtPlotItem*>& layerItems(PortraitLayer layer) const;
+  /// The canvas (tests send it mouse events); the plot itself stays private to the view.
+  [[nodiscard]] QWidget* canvas() const;
+  /// The x axis range shown (tests).
+  [[nodiscard]] std::pair<double, double> xAxisRange() const;
 
  Q_SIGNALS:
-  /// One line for a status bar: render progress, errors, what was exported.
+  /// One line for a status bar: errors, what was exported.
   void statusMessage(const QString& text);
   /// The cursor in physical and unit coordinates.
   void cursorMoved(const QString& text);
-  /// The view changed (zoom, pan, history, reset, parameters).
-  void viewportChanged();
-  /// The final frame of the current view arrived.
+  /// The render state or the points so far changed (readout()).
+  void renderStateChanged();
+  /// The render of the current view ended by itself: budget reached, or no sea in the view.
   void renderFinished();
+  /// A frame of the current view arrived.
+  void frameShown();
+
+  // Requests from the mouse and keys, for the controller.
+  void zoomRequested(double fx, double fy, double factor);
+  void cropRequested(double fx0, double fx1, double fy0, double fy1);
+  void panRequested(double fx, double fy);
+  void clicked(double x, double y);
+  void backRequested();
+  void resetRequested();
 
  protected:
   bool eventFilter(QObject* watched, QEvent* event) override;
   void keyPressEvent(QKeyEvent* event) override;
+  void showEvent(QShowEvent* event) override;
+  void resizeEvent(QResizeEvent* event) override;
 
  private:
-  void showViewport(bool record, const Viewport& view);
+  friend class PortraitController;
+
+  /// Shows this map and view (axes at once) and renders it.
+  void display(const MapParameters& map, const Viewport& view);
+  void setMode(PortraitMode mode);
+  void setColourMap(ColourMapName colours);
+  void setPointBudget(std::uint64_t points);
+  /// Renders the current view again from nothing.
+  void rerender();
+  /// Stops the render in progress; the raster so far stays.
+  void stopRender();
+  /// Replaces the items of `layer` (the view takes ownership) and replots.
+  void setLayer(PortraitLayer layer, std::vector<QwtPlotItem*> items);
+  /// Rich text shown at the top left of the canvas (empty: none).
+  void setLegend(const QString& html);
+  [[nodiscard]] double canvasAspect() const;
+
   void scheduleRender();
   void startRender();
+  void setState(RenderState state);
   void onFrame(const PortraitFrame& frame);
   void onRectangleSelected(const QRectF& rect);
   void updateAxes();
   void updateColourBar();
-  void updateFixedPoints();
   [[nodiscard]] QString cursorText(const QPointF& canvasPos) const;
 
-  MapParameters parameters_;
+  MapParameters map_;
+  Viewport view_;
   PortraitMode mode_ = PortraitMode::Orbits;
   ColourMapName colours_ = ColourMapName::Inferno;
-  std::uint64_t points_ = 12'000'000;
-  std::vector<Viewport> history_{Viewport()};
-  std::size_t historyIndex_ = 0;
+  std::uint64_t points_ = 1'000'000'000;
 
   QwtPlot* plot_ = nullptr;
   PortraitImageItem* image_ = nullptr;
@@ -125,12 +155,15 @@ class PortraitView : public QWidget {
   PrecisionScaleDraw* yScale_ = nullptr;
   QwtPlotPicker* picker_ = nullptr;
   QwtPlotPanner* panner_ = nullptr;
+  QwtPlotTextLabel* legend_ = nullptr;
   QTimer* renderTimer_ = nullptr;
-  std::vector<OrbitItem*> orbits_;
-  std::vector<QwtPlotMarker*> fixedPointMarkers_;
+  std::map<PortraitLayer, std::vector<QwtPlotItem*>> layers_;
   PortraitWorker* worker_ = nullptr;
   quint64 currentRequest_ = 0;
-  bool rendering_ = false;
+  RenderState state_ = RenderState::idle;
+  bool renderWanted_ = false;   // a render of the current view is due (waits while hidden)
+  std::uint64_t pointsSoFar_ = 0;
+  QSize renderedSize_;          // raster size of the current request
   std::unique_ptr<PortraitFrame> frame_;
 };
 

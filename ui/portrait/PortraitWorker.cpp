@@ -62,7 +62,10 @@ void PortraitWorker::run() {
     QElapsedTimer clock;
     clock.start();
     qint64 lastProgress = -1000;
-    auto makeFrame = [&](const PortraitRaster& raster, std::uint64_t done, std::uint64_t total, bool final) {
+    // The render stops on a new request or cancel() (stop), or by itself once core says the view holds no sea.
+    std::stop_source local;
+    const std::stop_callback forward(stop, [&local] { local.request_stop(); });
+    auto makeFrame = [&](const PortraitRaster& raster, const PortraitProgress& p) {
       const RasterImage rgb = colourize(raster, colours);
       PortraitFrame frame;
       frame.requestId = id;
@@ -72,9 +75,12 @@ void PortraitWorker::run() {
       frame.scaleMin = rgb.scaleMin;
       frame.scaleMax = rgb.scaleMax;
       frame.quantity = QString::fromStdString(rgb.quantity);
-      frame.pointsDone = done;
-      frame.pointsTotal = total;
-      frame.final = final;
+      frame.pointsDone = p.pointsDone;
+      frame.pointsTotal = p.pointsTotal;
+      frame.passesDone = p.pass + 1;
+      frame.passes = p.passes;
+      frame.final = p.final;
+      frame.noSea = viewHoldsNoSea(request, raster);
       frame.seconds = static_cast<double>(clock.elapsed()) / 1000.0;
       return frame;
     };
@@ -84,13 +90,17 @@ void PortraitWorker::run() {
           request,
           [&](const PortraitProgress& p) {
             if (stop.stop_requested()) return;
-            if (p.snapshot) Q_EMIT frameReady(makeFrame(*p.snapshot, p.pointsDone, p.pointsTotal, p.final));
+            if (p.snapshot) {
+              PortraitFrame frame = makeFrame(*p.snapshot, p);
+              if (frame.noSea) local.request_stop();
+              Q_EMIT frameReady(frame);
+            }
             if (clock.elapsed() - lastProgress >= 100) {
               lastProgress = clock.elapsed();
               Q_EMIT progress(id, p.pointsDone, p.pointsTotal);
             }
           },
-          stop);
+          local.get_token());
       (void)result;  // a cancelled render emits nothing more: a newer request replaces it
     } catch (const std::exception& e) {
       Q_EMIT failed(id, QString::fromUtf8(e.what()));

@@ -6,6 +6,11 @@
 // the request and calls archipelago::renderPortrait() without holding the lock; each refinement pass comes
 // back as an immutable PortraitFrame through a queued signal, tagged with the id of its request, so that the
 // view can drop stale frames.  The destructor stops the render and waits for the thread.  No maths here.
+//
+// Accumulation: a request with a large budget (passPoints set, core's setProgressiveSchedule) keeps adding
+// passes into the same raster until its budget is reached, a new request replaces it or cancel() stops it;
+// every pass is a frame with the points so far.  A Density frame whose view core declares free of sea
+// (viewHoldsNoSea) is the last one: the worker stops that render itself.
 
 #include <QImage>
 #include <QMutex>
@@ -34,7 +39,10 @@ struct PortraitFrame {
   QString quantity;
   std::uint64_t pointsDone = 0;
   std::uint64_t pointsTotal = 0;
-  bool final = false;
+  std::uint32_t passesDone = 0;
+  std::uint32_t passes = 0;
+  bool final = false;           ///< the budget is reached: nothing more will come
+  bool noSea = false;           ///< core's viewHoldsNoSea(): the render stopped here, nothing more will come
   bool cancelled = false;
   double seconds = 0;           ///< wall time since the request started
 };

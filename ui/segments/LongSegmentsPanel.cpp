@@ -1,6 +1,7 @@
 #include "ui/segments/LongSegmentsPanel.hpp"
 
 #include <QElapsedTimer>
+#include <QScrollBar>
 #include <QFileDialog>
 #include <QHBoxLayout>
 #include <QHeaderView>
@@ -15,8 +16,7 @@
 #include <QToolButton>
 #include <QVBoxLayout>
 
-#include "ui/portrait/PortraitView.hpp"
-#include "ui/segments/SegmentOverlay.hpp"
+#include "ui/portrait/PortraitController.hpp"
 
 #include <algorithm>
 #include <exception>
@@ -41,14 +41,20 @@ LongSegmentsPanel::LongSegmentsPanel(QWidget* parent) : QWidget(parent) {
   table_->setSelectionMode(QAbstractItemView::SingleSelection);
   table_->setAlternatingRowColors(true);
   table_->verticalHeader()->hide();
+  // Compact columns that fit the dock (issue 13, finding 14): every column is sized to its contents, and
+  // the spare width goes to the length; the table never needs a horizontal scroll bar at the dock's width.
   table_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
-  table_->horizontalHeader()->setStretchLastSection(true);
+  table_->horizontalHeader()->setStretchLastSection(false);
+  table_->horizontalHeader()->setMinimumSectionSize(24);
   table_->setToolTip(tr("Select a segment to replay it exactly from its recorded start state"));
   connect(table_->selectionModel(), &QItemSelectionModel::selectionChanged, this,
           &LongSegmentsPanel::onSelectionChanged);
 
-  info_ = new QLabel(tr("Run or open a run file; the longest trapped segments appear here."), this);
+  hint_ = new QLabel(tr("Run or open a run file; the longest trapped segments appear here."), this);
+  hint_->setWordWrap(true);
+  info_ = new QLabel(this);
   info_->setWordWrap(true);
+  info_->hide();
   info_->setTextInteractionFlags(Qt::TextSelectableByMouse);
 
   playButton_ = new QToolButton(this);
@@ -90,6 +96,7 @@ LongSegmentsPanel::LongSegmentsPanel(QWidget* parent) : QWidget(parent) {
   exports->addWidget(npyButton_);
   auto* layout = new QVBoxLayout(this);
   layout->addWidget(table_, 1);
+  layout->addWidget(hint_);
   layout->addWidget(info_);
   layout->addLayout(steps);
   layout->addLayout(exports);
@@ -111,7 +118,9 @@ LongSegmentsPanel::~LongSegmentsPanel() {
 
 void LongSegmentsPanel::updateSegments(const TrappingParameters& params, const LongestSegments& longest) {
   const quint64 generation = model_->generation();
-  if (!model_->setSegments(params, longest.items())) return;
+  const bool changed = model_->setSegments(params, longest.items());
+  hint_->setVisible(model_->rowCount() == 0);
+  if (!changed) return;
   if (model_->generation() != generation) chainThread_->cancelAll();  // chains of another run are useless now
   // Keep the selection on the segment, wherever it moved.
   const int row = model_->rowOf(wantedKey_);
@@ -133,7 +142,7 @@ void LongSegmentsPanel::clear() {
   chain_.reset();
   index_ = 0;
   playTimer_->stop();
-  if (overlay_ != nullptr) overlay_->clear();
+  if (portrait_) portrait_->clearSegment();
   updateStepControls();
   updateInfo();
 }
@@ -231,10 +240,6 @@ void LongSegmentsPanel::onReplay(quint64 requestId, const SegmentReplayPtr& repl
   updateStepControls();
   updateInfo();
   showOnPortrait();
-  if (overlay_ != nullptr) {
-    overlay_->showChain(chain_);
-    overlay_->showStep(index_);
-  }
   Q_EMIT replayReady(replay_);
   if (chain_) Q_EMIT chainReady(chain_);
   Q_EMIT currentIndexChanged(index_);
@@ -250,7 +255,7 @@ void LongSegmentsPanel::onChain(quint64 generation, SegmentKey key, const ChainR
     chain_ = chain;
     updateInfo();
     if (replay_ && SegmentKey::of(replay_->trace.record) == key) {
-      if (overlay_ != nullptr) overlay_->showChain(chain_);
+      if (portrait_) portrait_->showSegmentChain(chain_);
       updateStepControls();
       Q_EMIT chainReady(chain_);
     }
@@ -270,7 +275,17 @@ void LongSegmentsPanel::setCurrentIndex(std::size_t index) {
   }
   const PhysicalPoint& p = replay_->trace.points[index_];
   stepLabel_->setText(tr("(%1, %2)").arg(static_cast<double>(p.x), 0, 'f', 9).arg(static_cast<double>(p.y), 0, 'f', 9));
-  if (overlay_ != nullptr) overlay_->showStep(index_);
+  if (portrait_) {
+    portrait_->showSegmentStep(index_);
+    // During Play the step shown leaves a zoomed island at once (the segment hops around its chain): the
+    // view widens to where the segment spent its time, or follows the point when it is outside that too.
+    if (playTimer_->isActive() && !portrait_->shows(p.x, p.y)) {
+      const SegmentRegion& region = replay_->region;
+      if (p.x >= region.x0 && p.x <= region.x1 && p.y >= region.y0 && p.y <= region.y1)
+        portrait_->zoomToRegion(region);
+      if (!portrait_->shows(p.x, p.y)) portrait_->ensureVisible(p.x, p.y);
+    }
+  }
   Q_EMIT currentIndexChanged(index_);
 }
 
@@ -278,8 +293,8 @@ void LongSegmentsPanel::updateStepControls() {
   const bool have = replay_ != nullptr;
   for (QWidget* w : std::initializer_list<QWidget*>{slider_, stepBox_, playButton_, csvButton_, npyButton_})
     w->setEnabled(have);
-  zoomSegmentButton_->setEnabled(have && overlay_ != nullptr);
-  zoomIslandButton_->setEnabled(have && overlay_ != nullptr && chain_ && chain_->chain);
+  zoomSegmentButton_->setEnabled(have && portrait_);
+  zoomIslandButton_->setEnabled(have && portrait_ && chain_ && chain_->chain);
   const QSignalBlocker b1(slider_);
   const QSignalBlocker b2(stepBox_);
   if (!have) {
@@ -300,11 +315,17 @@ void LongSegmentsPanel::updateStepControls() {
 
 void LongSegmentsPanel::updateInfo() {
   const SegmentRecord* shown = replay_ ? &replay_->trace.record : nullptr;
+  hint_->setVisible(model_->rowCount() == 0);
   if (replayPending_) {
     info_->setText(tr("Replaying\u2026"));
+    info_->show();
     return;
   }
-  if (shown == nullptr) return;
+  if (shown == nullptr) {
+    info_->hide();
+    return;
+  }
+  info_->show();
   const QLocale locale;
   const SegmentTrace& t = replay_->trace;
   QString text = tr("Orbit %1, block %2: %3 steps replayed exactly")
@@ -398,36 +419,33 @@ void LongSegmentsPanel::exportDialog(bool npy) {
   Q_EMIT statusMessage(ok ? tr("Wrote %1").arg(path) : tr("Export failed: %1").arg(error));
 }
 
-void LongSegmentsPanel::setPortraitView(PortraitView* view) {
-  delete overlay_;
-  overlay_ = view != nullptr ? new SegmentOverlay(view, this) : nullptr;
-  portrait_ = view;
-  if (overlay_ != nullptr && replay_) {
-    showOnPortrait();
-    overlay_->showChain(chain_);
-    overlay_->showStep(index_);
-  }
+void LongSegmentsPanel::setPortraitController(PortraitController* portrait) {
+  portrait_ = portrait;
+  if (portrait_ && replay_) showOnPortrait();
   updateStepControls();
 }
 
 void LongSegmentsPanel::showOnPortrait() {
-  if (overlay_ == nullptr || !replay_ || !portrait_) return;
+  if (!portrait_ || !replay_) return;
   Q_EMIT aboutToDraw(replay_->params);
-  // Draw over a portrait of the run's own map.
-  if (!(portrait_->parameters() == replay_->params.map)) portrait_->setParameters(replay_->params.map);
-  overlay_->showReplay(replay_);
-}
-
-void LongSegmentsPanel::showPeriodicOrbit(const PeriodicOrbit& orbit) {
-  if (overlay_ != nullptr) overlay_->showPeriodicOrbit(orbit);
+  // Draw over a portrait of the run's own map (the controller keeps the zoom when it is already shown).
+  portrait_->setMap(replay_->params.map, replay_->params.Xr);
+  portrait_->showSegment(replay_);
+  portrait_->zoomToRegion(replay_->region);
+  portrait_->showSegmentChain(chain_);
+  portrait_->showSegmentStep(index_);
 }
 
 void LongSegmentsPanel::zoomToSegment() {
-  if (overlay_ != nullptr) overlay_->zoomToSegment();
+  if (portrait_ && replay_) portrait_->zoomToRegion(replay_->region);
 }
 
 void LongSegmentsPanel::zoomToIsland() {
-  if (overlay_ != nullptr) overlay_->zoomToIsland();
+  if (!portrait_ || !replay_) return;
+  if (chain_ && chain_->chain)
+    portrait_->zoomToRegion(chain_->island);
+  else
+    portrait_->zoomToRegion(replay_->region);
 }
 
 }  // namespace archipelago::ui

@@ -1,7 +1,7 @@
 #pragma once
 /// \file LongSegmentsPanel.hpp
 /// \brief The "Long segments" panel: the live table of the longest trapped segments, exact replay, stepping,
-/// export, and (through PortraitView) drawing the segment zoomed in with its chain's centre orbit.
+/// export, and (through the PortraitController) drawing the segment zoomed in with its chain's centre orbit.
 ///
 /// Karney (1983), §6 and fig. 6: the longest segment at K = 0.1 sticks to a chain of 6 × 23 = 138 islands.
 ///
@@ -33,8 +33,7 @@ class QToolButton;
 
 namespace archipelago::ui {
 
-class PortraitView;
-class SegmentOverlay;
+class PortraitController;
 
 class LongSegmentsPanel : public QWidget {
   Q_OBJECT
@@ -47,11 +46,10 @@ class LongSegmentsPanel : public QWidget {
   /// Forgets the run (a new run with other parameters starts from an empty table).
   void clear();
 
-  /// Draw replayed segments and their chains' centre orbits in this portrait view (may be null).
-  void setPortraitView(PortraitView* view);
+  /// Draw replayed segments and their chains' centre orbits on this portrait (may be null): the panel asks
+  /// the controller to show the run's map, the segment layer, and to zoom.
+  void setPortraitController(PortraitController* portrait);
 
-  /// Draws a periodic orbit (from the dialog) on the portrait view.
-  void showPeriodicOrbit(const PeriodicOrbit& orbit);
   /// Zoom the portrait to where the segment spent its time / to one island of its chain.
   void zoomToSegment();
   void zoomToIsland();
@@ -87,8 +85,8 @@ class LongSegmentsPanel : public QWidget {
   [[nodiscard]] QTableView* table() const noexcept { return table_; }
 
  Q_SIGNALS:
-  /// A replay is about to be drawn on the portrait view (connect directly: the receiver can show the view
-  /// and set its map to params.map first).
+  /// A replay is about to be drawn on the portrait (connect directly: the receiver can show the portrait's
+  /// tab first; the panel then sets the run's map through the controller).
   void aboutToDraw(const archipelago::TrappingParameters& params);
   /// A replay arrived (after the stale ones were dropped).
   void replayReady(archipelago::ui::SegmentReplayPtr replay);
@@ -110,9 +108,11 @@ class LongSegmentsPanel : public QWidget {
   void advancePlay();
   void exportDialog(bool npy);
   void showOnPortrait();
+  void updateColumns();
 
   LongestSegmentsModel* model_ = nullptr;
   QTableView* table_ = nullptr;
+  QLabel* hint_ = nullptr;   // what to do while the table is empty
   QLabel* info_ = nullptr;
   QSlider* slider_ = nullptr;
   QSpinBox* stepBox_ = nullptr;
@@ -125,8 +125,7 @@ class LongSegmentsPanel : public QWidget {
   QTimer* playTimer_ = nullptr;
   JobThread* replayThread_ = nullptr;
   JobThread* chainThread_ = nullptr;
-  SegmentOverlay* overlay_ = nullptr;
-  QPointer<PortraitView> portrait_;
+  QPointer<PortraitController> portrait_;
 
   quint64 replayRequest_ = 0;   // the request whose result is wanted; others are stale
   bool replayPending_ = false;

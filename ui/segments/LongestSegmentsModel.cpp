@@ -19,12 +19,12 @@ QVariant LongestSegmentsModel::headerData(int section, Qt::Orientation orientati
   if (role == Qt::DisplayRole) {
     switch (section) {
       case Rank: return tr("#");
-      case Length: return tr("Length (steps)");
+      case Length: return tr("Steps");
       case Orbit: return tr("Orbit");
-      case StartBlock: return tr("Start block");
-      case StartX: return tr("Start x");
-      case StartY: return tr("Start y");
-      case Chain: return tr("Chain period");
+      case StartBlock: return tr("Block");
+      case StartX: return tr("x\u2080");
+      case StartY: return tr("y\u2080");
+      case Chain: return tr("Chain");
       default: return {};
     }
   }
@@ -33,8 +33,11 @@ QVariant LongestSegmentsModel::headerData(int section, Qt::Orientation orientati
       case Length: return tr("Steps of N\u207B\u00B9 the orbit stayed trapped: q \u00D7 blocks");
       case StartBlock: return tr("Block of its orbit where the segment started");
       case StartX:
-      case StartY: return tr("Physical coordinates of the exact start state");
-      case Chain: return tr("Period of the island chain the segment sticks to (identified in the background)");
+      case StartY: return tr("Physical coordinates of the exact start state (6 decimals; the tooltip of a cell "
+                             "has the exact unit coordinates)");
+      case Chain:
+        return tr("Chain period: the period of the island chain the segment sticks to (identified in the "
+                  "background)");
       default: return {};
     }
   }
@@ -54,8 +57,8 @@ QVariant LongestSegmentsModel::data(const QModelIndex& index, int role) const {
       case Length: return locale.toString(static_cast<qulonglong>(r->length * params_.q));
       case Orbit: return static_cast<qulonglong>(r->orbit);
       case StartBlock: return locale.toString(static_cast<qulonglong>(r->start.block));
-      case StartX: return QString::number(static_cast<double>(starts_[row].x), 'f', 8);
-      case StartY: return QString::number(static_cast<double>(starts_[row].y), 'f', 8);
+      case StartX: return QString::number(static_cast<double>(starts_[row].x), 'f', 6);
+      case StartY: return QString::number(static_cast<double>(starts_[row].y), 'f', 6);
       default: return {};
     }
   }

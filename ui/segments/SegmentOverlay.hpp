@@ -1,67 +1,39 @@
 #pragma once
 /// \file SegmentOverlay.hpp
-/// \brief Draws a replayed segment, the step shown, and periodic orbits on a PortraitView, and zooms it.
+/// \brief What the portrait's "selected long segment" and "periodic orbits" layers draw.
 ///
-/// The segment is drawn as dots coloured by time (core's viridis map: early dark blue → late yellow), the
-/// steps just before the one shown as a white trail ending in a ring, the chain's centre orbit as cyan discs
-/// and orbits from the "Find periodic orbit" dialog as magenta diamonds.  The items are plain QwtPlotItems
-/// attached to the view's plot (physical coordinates); the view keeps rendering the portrait beneath them.
-/// Zooming uses the view's own Viewport (core): the region is first framed to the canvas's aspect ratio and
-/// the box by core's framedInBox().
+/// The PortraitController owns these layers (PortraitLayer): it keeps the replay, its chain and the step
+/// shown, and asks these functions for fresh plot items whenever one of them changes.  The segment is drawn
+/// as dots coloured by time (core's viridis map: early dark blue → late yellow), the steps just before the
+/// one shown as a white trail ending in a ring, the chain's centre orbit as cyan discs and orbits from the
+/// "Find periodic orbit" dialog as magenta diamonds.  All in physical coordinates.
 
-#include <QObject>
-#include <QPointer>
+#include <QStringList>
 
-#include <memory>
 #include <vector>
 
 #include "core/periodic/PeriodicOrbit.hpp"
 #include "ui/segments/SegmentResults.hpp"
 
-class QwtPlot;
-class QwtPlotTextLabel;
+class QwtPlotItem;
 
 namespace archipelago::ui {
 
-class PortraitView;
-class PointsItem;
+struct SegmentOverlay {
+  /// Steps of the trail drawn behind the step shown (kept states).
+  static constexpr std::size_t kTrailStates = 200;
 
-class SegmentOverlay : public QObject {
-  Q_OBJECT
- public:
-  explicit SegmentOverlay(PortraitView* view, QObject* parent = nullptr);
-  ~SegmentOverlay() override;
-
-  /// Draws the segment (replacing the previous one) and zooms to where it spent its time.
-  void showReplay(const SegmentReplayPtr& replay);
-  /// Draws the chain's centre orbit (or removes it when `chain` has none).
-  void showChain(const ChainResultPtr& chain);
-  /// Marks the kept state `index` of the segment shown, with a trail of the states before it.
-  void showStep(std::size_t index);
-  /// Draws a periodic orbit found in the dialog (replacing the previous one).
-  void showPeriodicOrbit(const PeriodicOrbit& orbit);
-  /// Removes everything drawn.
-  void clear();
-
-  /// Zoom to the whole segment's region / to one island of its chain (when known).
-  void zoomToSegment();
-  void zoomToIsland();
-
- private:
-  void zoomTo(const SegmentRegion& region);
-  void replot();
-  void updateLegend();
-  [[nodiscard]] QwtPlot* plot() const;
-
-  QPointer<PortraitView> view_;
-  SegmentReplayPtr replay_;
-  ChainResultPtr chain_;
-  PointsItem* segment_ = nullptr;
-  PointsItem* trail_ = nullptr;
-  PointsItem* centre_ = nullptr;
-  PointsItem* periodic_ = nullptr;
-  QwtPlotTextLabel* legend_ = nullptr;   // what is drawn, top left of the canvas
-  int periodicPeriod_ = 0;               // of the dialog's orbit shown (0: none)
+  /// The segment's dots (none without a replay).
+  [[nodiscard]] static std::vector<QwtPlotItem*> segmentItems(const SegmentReplayPtr& replay);
+  /// The chain's centre orbit (none when unknown).
+  [[nodiscard]] static std::vector<QwtPlotItem*> chainItems(const ChainResultPtr& chain);
+  /// The kept state `index` of the segment with the trail before it (none without a replay).
+  [[nodiscard]] static std::vector<QwtPlotItem*> stepItems(const SegmentReplayPtr& replay, std::size_t index);
+  /// A periodic orbit's points.
+  [[nodiscard]] static std::vector<QwtPlotItem*> periodicItems(const PeriodicOrbit& orbit);
+  /// The legend's lines (rich text) for what is drawn; periodicPeriod 0: no periodic orbit.
+  [[nodiscard]] static QStringList legendLines(const SegmentReplayPtr& replay, const ChainResultPtr& chain,
+                                               int periodicPeriod);
 };
 
 }  // namespace archipelago::ui

@@ -5,6 +5,8 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <array>
+#include <set>
 #include <atomic>
 #include <thread>
 #include <cmath>
@@ -199,6 +201,124 @@ TEST(PortraitRenderer, RefinementDeliversOneSnapshotPerPass) {
   EXPECT_EQ(snapshotPoints, (std::vector<std::uint64_t>{1 << 16, 1 << 17, 1 << 18, 1 << 19, 1 << 20}));
   EXPECT_EQ(snapshotBinned, snapshotPoints);  // whole box in view
   EXPECT_EQ(res.raster.pointsIterated, std::uint64_t{1} << 20);
+}
+
+// The explorer accumulates a large budget in passes of bounded size: splitting the doubling levels gives a
+// snapshot every passPoints points and does not change the raster (the same orbits, continued).
+TEST(PortraitRenderer, SplitPassesAccumulateTheSameRaster) {
+  PortraitRequest req;
+  req.map = kPaper;
+  req.view = Viewport::fromPhysical(kPaper, {-0.5L, 0.1L, -0.3L, 0.3L});
+  req.width = req.height = 48;
+  req.points = 1 << 20;
+  req.orbits = 16;  // 2^16 steps per orbit
+  req.passes = 3;   // levels end at 2^14, 2^15, 2^16 steps per orbit
+  req.passPoints = 1 << 17;  // 2^13 steps per orbit per pass
+  req.chunkSteps = 3000;
+  std::vector<std::uint64_t> expectedEnds;
+  for (std::uint64_t k = 1; k <= 8; ++k) expectedEnds.push_back(k << 13);
+  EXPECT_EQ(passSchedule(req), expectedEnds);
+  std::vector<std::uint64_t> snapshotPoints;
+  std::uint32_t reportedPasses = 0;
+  const PortraitResult split = renderPortrait(req, [&](const PortraitProgress& p) {
+    reportedPasses = p.passes;
+    if (p.snapshot) snapshotPoints.push_back(p.snapshot->pointsIterated);
+  });
+  EXPECT_EQ(reportedPasses, 8u);
+  EXPECT_EQ(split.passesDone, 8u);
+  std::vector<std::uint64_t> expectedPoints;
+  for (std::uint64_t k = 1; k <= 8; ++k) expectedPoints.push_back(k << 17);
+  EXPECT_EQ(snapshotPoints, expectedPoints);  // points so far grow by passPoints every pass
+  PortraitRequest once = req;
+  once.passes = 1;
+  once.passPoints = 0;
+  const PortraitResult whole = renderPortrait(once);
+  EXPECT_EQ(split.raster.counts, whole.raster.counts);
+  EXPECT_EQ(split.raster.pointsBinned, whole.raster.pointsBinned);
+  EXPECT_GT(whole.raster.pointsBinned, 0u);
+
+  // Stickiness splits whole blocks of q.
+  req.mode = PortraitMode::Stickiness;
+  req.q = 16;
+  req.passPoints = 100'000;  // 6250 steps per orbit: 390 blocks
+  const auto ends = passSchedule(req);
+  std::uint64_t prev = 0;
+  for (std::uint64_t e : ends) {
+    EXPECT_EQ(e % 16, 0u);
+    EXPECT_GT(e, prev);
+    EXPECT_LE(e - prev, 6240u);
+    prev = e;
+  }
+  EXPECT_EQ(ends.back(), req.stepsPerOrbit());
+}
+
+TEST(PortraitRenderer, ProgressiveScheduleStartsSmallAndCapsEveryPass) {
+  PortraitRequest req;
+  req.points = 10'000'000'000;  // 10^10: the explorer's largest budget
+  setProgressiveSchedule(req, 1 << 20, 1 << 26);
+  ASSERT_FALSE(validationError(req)) << *validationError(req);
+  const auto ends = passSchedule(req);
+  const std::uint64_t n = req.orbitCount();
+  EXPECT_GE(ends.front() * n, std::uint64_t{1} << 20);  // the first snapshot comes after about 2^20 points
+  EXPECT_LT(ends.front() * n, std::uint64_t{1} << 22);
+  std::uint64_t prev = 0;
+  for (std::uint64_t e : ends) {
+    EXPECT_LE((e - prev) * n, std::uint64_t{1} << 26);
+    prev = e;
+  }
+  EXPECT_EQ(ends.back(), req.stepsPerOrbit());
+  EXPECT_GE(ends.back() * n, req.points);
+  // A pass size too small for the budget is raised so that the schedule stays within 2^16 passes …
+  req.points = std::uint64_t{1} << 45;
+  setProgressiveSchedule(req, 1 << 20, 1000);
+  EXPECT_FALSE(validationError(req));
+  EXPECT_LE(passSchedule(req).size(), std::size_t{1} << 16);
+  // … and a request that asks for more passes is refused with a clear message.
+  req.passPoints = 1000;
+  ASSERT_TRUE(validationError(req));
+  EXPECT_NE(validationError(req)->find("more than 2^16 passes"), std::string::npos) << *validationError(req);
+}
+
+// An empty Density view is declared free of sea only once an all-sea view would have had 64 points:
+// inside the central island (about the elliptic fixed point) that verdict comes; a view of the same size in
+// the sea next to xmax gets points; and a 7·10⁻⁴-wide view in the sea is not empty after 10^8 points.
+TEST(PortraitRenderer, SaysWhenAViewHoldsNoChaoticPoints) {
+  PortraitRequest req;
+  req.map = kPaper;
+  // Expected points of an all-sea view: points · (view area / L²), computed here from the physical sizes.
+  req.view = Viewport::fromPhysical(kPaper, {-0.3212L, -0.3112L, -0.005L, 0.005L});
+  const double fraction = 0.01 * 0.01 / (1.3 * 1.3);
+  EXPECT_NEAR(seaPointsExpectedIfAllSea(req, 1'000'000), 1e6 * fraction, 1e-6 * 1e6 * fraction);
+  EXPECT_DOUBLE_EQ(seaPointsExpectedIfAllSea(PortraitRequest{}, 12345), 12345.0);  // the whole box
+
+  req.width = req.height = 40;
+  req.points = static_cast<std::uint64_t>(2 * kNoSeaExpectedPoints / fraction);
+  const PortraitRaster island = renderPortrait(req).raster;
+  EXPECT_EQ(island.pointsBinned, 0u);
+  EXPECT_TRUE(viewHoldsNoSea(req, island));
+  // Too few points for a verdict: an empty view says nothing yet.
+  PortraitRequest early = req;
+  early.points = static_cast<std::uint64_t>(kNoSeaExpectedPoints / fraction / 4);
+  const PortraitRaster few = renderPortrait(early).raster;
+  EXPECT_EQ(few.pointsBinned, 0u);
+  EXPECT_FALSE(viewHoldsNoSea(early, few));
+  // Other modes never give the verdict.
+  PortraitRequest orbits = early;
+  orbits.mode = PortraitMode::Orbits;
+  EXPECT_FALSE(viewHoldsNoSea(orbits, few));
+
+  PortraitRequest sea = req;
+  sea.view = Viewport::fromPhysical(kPaper, {0.44L, 0.45L, 0.295L, 0.305L});
+  const PortraitRaster seaRaster = renderPortrait(sea).raster;
+  EXPECT_GT(seaRaster.pointsBinned, 0u);
+  EXPECT_FALSE(viewHoldsNoSea(sea, seaRaster));
+
+  PortraitRequest deep = sea;
+  deep.view = Viewport::fromPhysical(kPaper, {0.44965L, 0.45035L, 0.29965L, 0.30035L});
+  deep.points = 100'000'000;
+  const PortraitRaster deepRaster = renderPortrait(deep).raster;
+  EXPECT_GT(deepRaster.nonEmptyPixels(), 0u);
+  EXPECT_FALSE(viewHoldsNoSea(deep, deepRaster));
 }
 
 TEST(PortraitRenderer, CancellationStopsWithinOneChunk) {
@@ -412,6 +532,47 @@ TEST(ColourMap, EndsAndOrbitColours) {
   ASSERT_EQ(image.rgb.size(), 6u);
   EXPECT_EQ(image.rgb[0], 255);  // empty: white, as the paper's figures
   EXPECT_EQ(image.rgb[3], 0);    // the most visited pixel: black
+}
+
+// K = 0 (fig. 3b): Q has no island, every seed of the Orbits mode wraps around the torus.  The sea used to be
+// painted one grey, so the portrait was blank; it is now shaded by its visits through the colour map, and
+// the colour map changes the picture.
+TEST(ColourMap, OrbitsModeShadesTheSeaThroughTheColourMap) {
+  PortraitRequest req;
+  req.map = MapParameters{0.0, -0.05, 0.05};
+  req.width = req.height = 100;
+  req.mode = PortraitMode::Orbits;
+  req.points = 1'000'000;
+  const PortraitRaster raster = renderPortrait(req).raster;
+  std::size_t wrapped = 0;
+  for (std::uint8_t w : raster.orbitWrapped) wrapped += w;
+  EXPECT_EQ(wrapped, raster.orbitWrapped.size());  // every seed is in the sea
+  const RasterImage inferno = colourize(raster, ColourMapName::Inferno);
+  const RasterImage viridis = colourize(raster, ColourMapName::Viridis);
+  std::set<std::array<std::uint8_t, 3>> colours;
+  for (std::size_t i = 0; i < raster.pixelCount(); ++i)
+    colours.insert({inferno.rgb[3 * i], inferno.rgb[3 * i + 1], inferno.rgb[3 * i + 2]});
+  EXPECT_GT(colours.size(), 20u);  // not one flat grey
+  EXPECT_NE(inferno.rgb, viridis.rgb);
+  // Every sea colour comes from the dim part of the map; island orbits keep their hues.
+  const ColourMap map(ColourMapName::Inferno);
+  std::set<std::array<std::uint8_t, 3>> allowed;
+  for (int k = 0; k <= 255; ++k) {
+    const double t = k / 255.0;
+    if (t < kSeaLowest - 1.0 / 255 || t > kSeaHighest + 1.0 / 255) continue;
+    const Rgb c = map.at(t);
+    allowed.insert({c.r, c.g, c.b});
+  }
+  for (const auto& c : colours) EXPECT_TRUE(allowed.count(c) || c == (std::array<std::uint8_t, 3>{16, 16, 24}));
+
+  PortraitRaster islands;
+  islands.width = 2, islands.height = 1, islands.mode = PortraitMode::Orbits;
+  islands.counts = {3, 3};
+  islands.labels = {1, 2};
+  islands.orbitWrapped = {0, 1};
+  const RasterImage image = colourize(islands, ColourMapName::Viridis);
+  EXPECT_EQ((Rgb{image.rgb[0], image.rgb[1], image.rgb[2]}), orbitColour(1));
+  EXPECT_EQ((Rgb{image.rgb[3], image.rgb[4], image.rgb[5]}), ColourMap(ColourMapName::Viridis).at(0.5 * (kSeaLowest + kSeaHighest)));
 }
 
 }  // namespace

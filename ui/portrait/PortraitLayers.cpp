@@ -1,0 +1,103 @@
+#include "ui/portrait/PortraitLayers.hpp"
+
+#include <QPainter>
+#include <QPen>
+#include <QVector>
+#include <qwt_scale_map.h>
+
+#include <algorithm>
+
+#include "core/portrait/ColourMap.hpp"
+
+namespace archipelago::ui {
+
+PointsItem::PointsItem(Style style, std::vector<QPointF> points, QColor colour)
+    : style_(style), points_(std::move(points)), colour_(colour) {
+  switch (style_) {
+    case Style::dots: setZ(20); break;
+    case Style::timeDots: setZ(30); break;
+    case Style::trail: setZ(32); break;
+    case Style::discs: setZ(34); break;
+    case Style::diamonds: setZ(35); break;
+  }
+  setItemAttribute(QwtPlotItem::AutoScale, false);
+}
+
+void PointsItem::draw(QPainter* painter, const QwtScaleMap& xMap, const QwtScaleMap& yMap,
+                      const QRectF& canvasRect) const {
+  if (points_.empty()) return;
+  const QRectF clip = canvasRect.adjusted(-8, -8, 8, 8);
+  auto toCanvas = [&](const QPointF& p) { return QPointF(xMap.transform(p.x()), yMap.transform(p.y())); };
+  painter->save();
+  painter->setRenderHint(QPainter::Antialiasing, style_ != Style::timeDots && style_ != Style::dots);
+  switch (style_) {
+    case Style::dots: {
+      painter->setPen(QPen(colour_, 2));
+      QVector<QPointF> visible;
+      for (const QPointF& p : points_) {
+        const QPointF q = toCanvas(p);
+        if (canvasRect.contains(q)) visible.append(q);
+      }
+      painter->drawPoints(visible.constData(), static_cast<int>(visible.size()));
+      break;
+    }
+    case Style::timeDots: {
+      // Time runs from dark blue to yellow in kBins groups, so each group is one drawPoints call.
+      constexpr std::size_t kBins = 48;
+      const ColourMap colours(ColourMapName::Viridis);
+      QVector<QPointF> visible;
+      for (std::size_t b = 0; b < kBins; ++b) {
+        const std::size_t begin = points_.size() * b / kBins, end = points_.size() * (b + 1) / kBins;
+        visible.clear();
+        for (std::size_t i = begin; i < end; ++i) {
+          const QPointF q = toCanvas(points_[i]);
+          if (clip.contains(q)) visible.append(q);
+        }
+        const Rgb c = colours.at(0.15 + 0.85 * static_cast<double>(b) / (kBins - 1));
+        painter->setPen(QPen(QColor(c.r, c.g, c.b), 1.2));
+        painter->drawPoints(visible.constData(), static_cast<int>(visible.size()));
+      }
+      break;
+    }
+    case Style::trail: {
+      // Consecutive steps jump across the island, so the trail is dots (a line would zigzag), growing
+      // towards the step shown, which gets a ring.
+      painter->setPen(Qt::NoPen);
+      const std::size_t n = points_.size();
+      for (std::size_t i = 0; i < n; ++i) {
+        const QPointF q = toCanvas(points_[i]);
+        if (!clip.contains(q)) continue;
+        const double age = static_cast<double>(n - 1 - i) / static_cast<double>(std::max<std::size_t>(n, 2) - 1);
+        painter->setBrush(QColor(255, 255, 255, static_cast<int>(255 - 175 * age)));
+        const double r = 3.2 - 1.6 * age;
+        painter->drawEllipse(q, r, r);
+      }
+      painter->setBrush(Qt::NoBrush);
+      painter->setPen(QPen(QColor(0, 0, 0, 200), 4.5));
+      painter->drawEllipse(toCanvas(points_.back()), 8, 8);
+      painter->setPen(QPen(QColor(255, 70, 70), 2.5));
+      painter->drawEllipse(toCanvas(points_.back()), 8, 8);
+      break;
+    }
+    case Style::discs:
+    case Style::diamonds: {
+      const bool discs = style_ == Style::discs;
+      painter->setPen(QPen(Qt::black, 1.5));
+      painter->setBrush(colour_);
+      for (const QPointF& p : points_) {
+        const QPointF q = toCanvas(p);
+        if (!clip.contains(q)) continue;
+        if (discs) {
+          painter->drawEllipse(q, 5.5, 5.5);
+        } else {
+          const QPointF d[4] = {q + QPointF(0, -7), q + QPointF(7, 0), q + QPointF(0, 7), q + QPointF(-7, 0)};
+          painter->drawPolygon(d, 4);
+        }
+      }
+      break;
+    }
+  }
+  painter->restore();
+}
+
+}  // namespace archipelago::ui

@@ -1,0 +1,48 @@
+#pragma once
+/// \file PortraitLayers.hpp
+/// \brief The overlay layers drawn over a phase portrait, and the plot item that draws points for them.
+///
+/// The PortraitController owns what each layer shows and hands the PortraitView fresh items for a layer
+/// (PortraitView::setLayer); the view attaches them to its plot and deletes them when the layer is replaced
+/// or the view goes.  Nothing else touches the view's plot.
+
+#include <QColor>
+#include <QPointF>
+#include <qwt_plot_item.h>
+
+#include <vector>
+
+namespace archipelago::ui {
+
+/// The layers, bottom to top.
+enum class PortraitLayer {
+  fixedPoints,     ///< the fixed points of Q* (elliptic: ring, hyperbolic: cross)
+  launchedOrbits,  ///< orbits launched by clicks, one colour each
+  segment,         ///< the selected long segment (dots coloured by time)
+  segmentChain,    ///< the centre orbit of its island chain
+  segmentStep,     ///< the step of the segment shown, with a trail of the steps before it
+  periodicOrbits,  ///< orbits from the "Find periodic orbit" dialog
+};
+
+/// Points in physical coordinates: dots in one colour, dots coloured by their position in the list (time),
+/// a trail of growing dots ending in a ring, discs or diamonds.  (A plain QwtPlotItem: Qwt 6.1's curve
+/// headers are not C++20, and only the points inside the canvas need drawing.)
+class PointsItem : public QwtPlotItem {
+ public:
+  enum class Style { dots, timeDots, trail, discs, diamonds };
+  static constexpr int kRtti = QwtPlotItem::Rtti_PlotUserItem + 40;
+
+  PointsItem(Style style, std::vector<QPointF> points, QColor colour = Qt::white);
+  int rtti() const override { return kRtti; }
+  [[nodiscard]] std::size_t size() const noexcept { return points_.size(); }
+  [[nodiscard]] const std::vector<QPointF>& points() const noexcept { return points_; }
+  void draw(QPainter* painter, const QwtScaleMap& xMap, const QwtScaleMap& yMap,
+            const QRectF& canvasRect) const override;
+
+ private:
+  Style style_;
+  std::vector<QPointF> points_;
+  QColor colour_;
+};
+
+}  // namespace archipelago::ui
