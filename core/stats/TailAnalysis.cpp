@@ -18,6 +18,12 @@ namespace {
 
 using Real = long double;
 
+// A non-negative whole number as a count, clamped to [0, 2⁶⁴ − 2¹¹] (no undefined conversion for huge values).
+std::uint64_t toCount(long double v) {
+  constexpr long double kMax = 18446744073709549568.0L;  // the largest double below 2⁶⁴
+  return v <= 0 ? 0 : v >= kMax ? static_cast<std::uint64_t>(kMax) : static_cast<std::uint64_t>(v);
+}
+
 double uniform(std::uint64_t key, std::uint64_t& counter) {
   return (static_cast<double>(orbitDraw(key, ++counter)) + 0.5) * 0x1p-52;  // in (0, 1)
 }
@@ -124,7 +130,7 @@ std::uint64_t poissonVariate(double mean, std::uint64_t key, std::uint64_t& coun
   if (mean > 1e7) {  // normal limit (relative skewness 1/√mean < 3·10⁻⁴), Box–Muller
     const double u1 = uniform(key, counter), u2 = uniform(key, counter);
     const double z = std::sqrt(-2 * std::log(u1)) * std::cos(2 * M_PI * u2);
-    return static_cast<std::uint64_t>(std::max(0.0, std::round(mean + std::sqrt(mean) * z)));
+    return toCount(std::round(mean + std::sqrt(mean) * z));
   }
   // PTRS, transformed rejection with squeeze (W. Hörmann, Insurance: Math. Econ. 12, 39, 1993), mean ≥ 10.
   const double slam = std::sqrt(mean), loglam = std::log(mean);
@@ -150,7 +156,7 @@ TrappingHistogram resampleHistogram(const TrappingHistogram& h, std::uint64_t se
     if (n == 0) continue;
     const std::uint64_t drawn = poissonVariate(static_cast<double>(n), key, counter);
     const Real lengths = static_cast<Real>(drawn) * static_cast<Real>(h.lengthSum(i)) / static_cast<Real>(n);
-    out.setBin(i, drawn, static_cast<std::uint64_t>(std::llround(lengths)));
+    out.setBin(i, drawn, toCount(std::round(lengths)));
   }
   return out;
 }

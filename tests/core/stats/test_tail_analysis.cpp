@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <random>
 #include <stdexcept>
 #include <vector>
@@ -163,6 +164,8 @@ TEST(TailAnalysis, PowerLawFitCoversTheTrueExponent) {
     }
     ASSERT_GE(fits, 190) << "gamma " << gamma;
     const double coverage = static_cast<double>(hits) / fits;
+    std::printf("gamma %.2f: coverage %.3f over %d samples, mean interval width %.3f\n", gamma, coverage, fits,
+                width / fits);
     EXPECT_GE(coverage, 0.85) << "gamma " << gamma;
     EXPECT_LE(coverage, 0.995) << "gamma " << gamma;
     EXPECT_LT(width / fits, 0.6 * gamma) << "gamma " << gamma;  // and the interval says something
