@@ -24,6 +24,7 @@ namespace {
 struct StatsOptions {
   std::vector<std::string> runFiles;  // one run, or a seed ensemble (same parameters but the seed)
   std::string csvDir;
+  std::string tailCsvDir;             // --tail-csv: D's errors and the tail (export/TailCsv.hpp)
   bool allowModified = false;
   BootstrapOptions bootstrap;         // --bootstrap, --bootstrap-seed
 };
@@ -38,6 +39,17 @@ void checkCsvFolder(const std::filesystem::path& dir) {
     throw std::runtime_error("cannot write into " + dir.string() + ": it is not a folder");
   else
     io::checkWritableTarget(dir);  // its parent folder exists and is writable
+}
+
+void writeCsvFiles(const std::string& dir, const std::vector<CsvFile>& files) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw std::runtime_error("cannot create folder " + dir + ": " + ec.message());
+  for (const CsvFile& f : files) {
+    const std::filesystem::path path = std::filesystem::path(dir) / f.name;
+    io::writeFileAtomically(path, f.text);
+    std::printf("wrote       %s\n", path.string().c_str());
+  }
 }
 
 // ---- D's honest error and the tail (issue #14, items 2 and 7): stats/TailAnalysis.hpp -------------------
@@ -135,6 +147,7 @@ void printVerdict(const TailAnalysis& a) {
 
 int statsCommand(const StatsOptions& o) {
   if (!o.csvDir.empty()) checkCsvFolder(o.csvDir);
+  if (!o.tailCsvDir.empty()) checkCsvFolder(o.tailCsvDir);
   std::vector<TrappingState> states;
   for (const std::string& file : o.runFiles) states.push_back(loadRunFile(file, {.allowModified = o.allowModified}));
   if (o.allowModified) std::fprintf(stderr, "warning: --allow-modified: a file edited after it was written is read\n");
@@ -181,20 +194,12 @@ int statsCommand(const StatsOptions& o) {
     if (states.size() > 1) std::printf(", %llu", static_cast<unsigned long long>(longest[i].second));
     std::printf("\n");
   }
-  if (!o.csvDir.empty()) {
-    // The same files, byte for byte, as the GUI's "Export all" (export/StatisticsCsv.hpp) for one run; an
-    // ensemble's carry a note naming its seeds.  Then the tail's files (export/TailCsv.hpp).
-    std::vector<CsvFile> files = withNote(statisticsCsvFiles(state, s, theoryCurves(p, s)), state, ensembleNote(tail));
-    for (CsvFile& f : tailCsvFiles(state, tail, s.P)) files.push_back(std::move(f));
-    std::error_code ec;
-    std::filesystem::create_directories(o.csvDir, ec);
-    if (ec) throw std::runtime_error("cannot create folder " + o.csvDir + ": " + ec.message());
-    for (const CsvFile& f : files) {
-      const std::filesystem::path path = std::filesystem::path(o.csvDir) / f.name;
-      io::writeFileAtomically(path, f.text);
-      std::printf("wrote       %s\n", path.string().c_str());
-    }
-  }
+  // --csv: the same files, byte for byte, as the GUI's "Export all" (export/StatisticsCsv.hpp) for one run; an
+  // ensemble's carry a note naming its seeds.  --tail-csv: the tail's files (export/TailCsv.hpp), in a folder
+  // of their own so that --csv stays the GUI's set.
+  if (!o.csvDir.empty())
+    writeCsvFiles(o.csvDir, withNote(statisticsCsvFiles(state, s, theoryCurves(p, s)), state, ensembleNote(tail)));
+  if (!o.tailCsvDir.empty()) writeCsvFiles(o.tailCsvDir, tailCsvFiles(state, tail, s.P));
   return 0;
 }
 }  // namespace
@@ -208,6 +213,9 @@ void addStatsCommand(CLI::App& app, int& status) {
   cmd->add_flag("--allow-modified", o->allowModified,
                 "read a run file whose checksum does not match (edited by hand; forensic use); it is still validated");
   cmd->add_option("--csv", o->csvDir, "write every series, its small-K theory curves and a summary as CSV into this folder");
+  cmd->add_option("--tail-csv", o->tailCsvDir,
+                  "write D's errors and the tail (tail_summary, D_vs_steps, tail_fit, segments_beyond, "
+                  "P_t.reference) as CSV into this folder");
   addNumberOption(*cmd, "--bootstrap", o->bootstrap.replicates,
                   "replicates of the bootstrap over segments for D's error and the tail fits (at least 20)");
   addNumberOption(*cmd, "--bootstrap-seed", o->bootstrap.seed, "seed of the bootstrap (printed with its results)");

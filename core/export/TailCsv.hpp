@@ -1,8 +1,8 @@
 #pragma once
 /// \file TailCsv.hpp
 /// \brief CSV files of D's honest error and of the tail (stats/TailAnalysis.hpp; issue #14, items 2 and 7), and
-/// the note that marks every CSV file of a seed ensemble.  Written by `stats --csv` beside the files of
-/// StatisticsCsv.hpp, in the same format (csvMetadataHeader(), then "# " lines on the content, a header row,
+/// the note that marks every CSV file of a seed ensemble.  Written by `stats --tail-csv DIR` (a folder of their own, so
+/// that `stats --csv` stays the GUI's "Export all" set), in the format of StatisticsCsv.hpp (csvMetadataHeader(), then "# " lines on the content, a header row,
 /// rows; 17 significant digits, no locale):
 ///   D_vs_steps.csv        steps,orbits,segments,D,gamma_P_tail,longest   D of the first k subsets (then the
 ///                         next seed's), γ_P over the tail fit's window, the longest segment so far (steps)

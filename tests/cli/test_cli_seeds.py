@@ -50,8 +50,8 @@ for k, f in zip((1, 2, 5), files):
     os.remove(plain)
 
 # --- stats pools them ---------------------------------------------------------------------------------------
-csvdir = os.path.join(tmp, "csv")
-r = run("stats", *files, "--csv", csvdir, "--bootstrap", "200")
+csvdir, taildir = os.path.join(tmp, "csv"), os.path.join(tmp, "tail")
+r = run("stats", *files, "--csv", csvdir, "--tail-csv", taildir, "--bootstrap", "200")
 check(r.returncode == 0, f"stats over three seeds ({r.stderr.strip()})")
 pooled = {}
 for f in files:
@@ -72,9 +72,9 @@ line = next((l for l in r.stdout.splitlines() if l.startswith("D per seed")), ""
 per_seed = [float(part.split(" (seed")[0]) for part in line[len("D per seed"):].split(", ")] if line else []
 check(len(per_seed) == 3 and all(abs(a - b) <= 1e-3 * abs(a) for a, b in zip(per_seed, alone)),
       f"D per seed {per_seed} = stats of each file alone {alone}")
-summary = {row["quantity"]: row for row in csv.DictReader(l for l in open(os.path.join(csvdir, "tail_summary.csv"))
+summary = {row["quantity"]: row for row in csv.DictReader(l for l in open(os.path.join(taildir, "tail_summary.csv"))
                                                           if not l.startswith("#"))}
-steps = list(csv.DictReader(l for l in open(os.path.join(csvdir, "D_vs_steps.csv")) if not l.startswith("#")))
+steps = list(csv.DictReader(l for l in open(os.path.join(taildir, "D_vs_steps.csv")) if not l.startswith("#")))
 check(len(steps) == 12 and float(steps[-1]["D"]) == float(summary["D"]["value"])
       and float(steps[-1]["steps"]) == M * T * q, "D against steps: 12 subsets, ending at the pooled D over M T q steps")
 # The report never prints a ± for D when it says the tail dominates.
@@ -84,8 +84,10 @@ check(("+-" not in dline and "cannot be estimated" in dline) if dominated else "
       f"D's line agrees with the verdict (dominated = {dominated}): {dline[:90]}")
 for key in ("tail end", "gamma_P", "reference", "to decide", "verdict"):
     check(any(l.startswith(key) for l in r.stdout.splitlines()), f"stats prints '{key}'")
-for name in ("tail_fit.csv", "segments_beyond.csv", "P_t.reference.csv"):
-    check(os.path.getsize(os.path.join(csvdir, name)) > 0, f"stats --csv writes {name}")
+check(sorted(os.listdir(taildir)) == sorted(["tail_summary.csv", "D_vs_steps.csv", "tail_fit.csv",
+                                              "segments_beyond.csv", "P_t.reference.csv"]),
+      f"stats --tail-csv writes the tail's five files ({sorted(os.listdir(taildir))})")
+check("tail_summary.csv" not in os.listdir(csvdir), "and --csv only the GUI's set")
 
 # --- refusals -------------------------------------------------------------------------------------------------
 other = os.path.join(tmp, "other.json")
