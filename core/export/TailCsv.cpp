@@ -97,7 +97,9 @@ std::vector<CsvFile> tailCsvFiles(const TrappingState& state, const TailAnalysis
     const std::string message = dominanceMessage(a);
     comment(out, "verdict", message.empty() ? "the tail does not dominate D: the bootstrap error stands" : message);
     out += "quantity,value,lo,hi\n";
-    row(out, "D", a.D, a.DInterval.lo, a.DInterval.hi);
+    // No interval, and no error, for a D its longest segments dominate (the verdict line says why).
+    if (a.dominated()) row(out, "D", a.D);
+    else row(out, "D", a.D, a.DInterval.lo, a.DInterval.hi);
     row(out, "D_bootstrap_error", a.dominated() ? kTailUndefined : a.DBootstrapError);
     row(out, "D_subset_error", a.dominated() ? kTailUndefined : a.DSubsetError);
     for (std::size_t i = 0; i < a.seedD.size(); ++i) row(out, "D_seed_" + std::to_string(a.seeds[i]), a.seedD[i]);

@@ -12,7 +12,8 @@
 ///   P_t.reference.csv     curve,t,P_t                                the reference slopes (referenceSlopes())
 ///   tail_summary.csv      quantity,value,lo,hi                       D and its errors, the shares, the seeds,
 ///                         the verdict (0/1 flags), the steps-to-decide estimate; undefined values are "nan"
-/// An interval's lo and hi are the bootstrap's percentile interval at the confidence written in the file.
+/// An interval's lo and hi are the bootstrap's percentile interval at the confidence written in the file; D's
+/// interval and errors are "nan" when the verdict says its longest segments dominate it.
 
 #include <string>
 #include <vector>
