@@ -4,11 +4,15 @@
 #include <filesystem>
 #include <stdexcept>
 #include <memory>
+#include <optional>
 
+#include "CliCommon.hpp"
+#include "core/export/ScanCsv.hpp"
 #include "core/export/StatisticsCsv.hpp"
 #include "core/io/AtomicFile.hpp"
 #include "core/runfile/RunFile.hpp"
 #include "core/stats/RunStatistics.hpp"
+#include "core/stats/StochasticAreaQuantities.hpp"
 #include "core/theory/TheoryCurves.hpp"
 
 namespace archipelago::cli {
@@ -18,7 +22,27 @@ struct StatsOptions {
   std::string runFile;
   std::string csvDir;
   bool allowModified = false;
+  double b2 = -1;  // --b2 AREA; negative: not given
 };
+
+/// --b2 AREA: b₂ as an area in the run's box (appendix A), its fraction of L², the box-invariant b₂·D (eq. A3)
+/// and the §6 figures; box_invariant.csv beside the other files with --csv.
+StochasticAreaValue checkedStochasticArea(const MapParameters& map, double area) {
+  const double boxArea = map.width() * map.width();
+  if (!(area > 0 && area <= boxArea))
+    throw std::invalid_argument("--b2 = " + formatNumber(area) + " must be an area in (0, L^2 = " +
+                                formatNumber(boxArea) + "] of the run's box (stochastic-area prints it)");
+  return stochasticAreaOf(map, area / boxArea);
+}
+
+void printBoxInvariant(const MapParameters& map, const StochasticAreaValue& b2, const TrappingStatistics& s) {
+  const BoxInvariantQuantities q = boxInvariantQuantities(b2, s.D, s.DError);
+  std::printf("b2          %s\n", stochasticAreaText(map, b2).c_str());
+  std::printf("b2*D        %.6g +- %.2g   (box-invariant, eq. A3; the paper: 0.693 x 6400 = %.3g)\n", q.b2D, q.b2DError,
+              kPaperStochasticArea * kPaperDiffusion);
+  std::printf("sec. 6      (8/pi^2) b2 = %.4g (paper: 0.56); D_island/D_ql = %.4g/n^2 (paper: at least 360/n^2)\n",
+              q.acceleratorFactor, q.enhancementN1);
+}
 
 /// --csv DIR before any work: an existing folder must take the files, a missing one must be creatable.
 void checkCsvFolder(const std::filesystem::path& dir) {
@@ -35,6 +59,8 @@ void checkCsvFolder(const std::filesystem::path& dir) {
 int statsCommand(const StatsOptions& o) {
   if (!o.csvDir.empty()) checkCsvFolder(o.csvDir);
   const TrappingState state = loadRunFile(o.runFile, {.allowModified = o.allowModified});
+  std::optional<StochasticAreaValue> b2;
+  if (o.b2 >= 0) b2 = checkedStochasticArea(state.params.map, o.b2);
   if (o.allowModified) std::fprintf(stderr, "warning: --allow-modified: a file edited after it was written is read\n");
   const TrappingStatistics s = statisticsOf(state);
   const TrappingParameters& p = state.params;
@@ -50,6 +76,7 @@ int statsCommand(const StatsOptions& o) {
   std::printf("alpha       %.6g +- %.2g   (mean segment length, steps)\n", s.alpha, s.alphaError);
   std::printf("D           %.6g +- %.2g   (eq. ddef)\n", s.D, s.DError);
   std::printf("sum t f_t   %.9f           (should be close to 1)\n", s.sumTf);
+  if (b2) printBoxInvariant(p.map, *b2, s);
   std::printf("longest:    rank, length (steps), orbit, start block\n");
   const auto& items = state.longest.items();
   for (std::size_t i = 0; i < items.size() && i < 10; ++i)
@@ -59,6 +86,11 @@ int statsCommand(const StatsOptions& o) {
     // The same files, byte for byte, as the GUI's "Export all" (export/StatisticsCsv.hpp).
     for (const auto& path : writeStatisticsCsv(o.csvDir, state, s, theoryCurves(p, s)))
       std::printf("wrote       %s\n", path.string().c_str());
+    if (b2) {
+      const std::filesystem::path path = std::filesystem::path(o.csvDir) / boxInvariantCsvFileName;
+      io::writeFileAtomically(path, boxInvariantCsv(state, s, *b2));
+      std::printf("wrote       %s\n", path.string().c_str());
+    }
   }
   return 0;
 }
@@ -71,7 +103,13 @@ void addStatsCommand(CLI::App& app, int& status) {
   cmd->add_flag("--allow-modified", o->allowModified,
                 "read a run file whose checksum does not match (edited by hand; forensic use); it is still validated");
   cmd->add_option("--csv", o->csvDir, "write every series, its small-K theory curves and a summary as CSV into this folder");
-  cmd->callback([o, &status] { status = statsCommand(*o); });
+  addNumberOption(*cmd, "--b2", o->b2,
+                  "b2 as an AREA in the run's box (appendix A; stochastic-area prints it): adds b2*D (eq. A3) and "
+                  "the sec. 6 figures, and box_invariant.csv with --csv")->default_str("");
+  cmd->callback([o, cmd, &status] {
+    if (cmd->count("--b2") > 0 && o->b2 < 0) throw std::invalid_argument("--b2 must be a positive area");
+    status = statsCommand(*o);
+  });
 }
 
 }  // namespace archipelago::cli
