@@ -259,7 +259,7 @@ void addScanCommand(CLI::App& app, int& status) {
   cmd->add_flag("--quiet", o->quiet, "no progress");
   cmd->callback([o, cmd, &status] {
     const std::vector<double> Ks = parseKList(o->K);
-    if (!(o->checkpointSeconds > 0)) throw std::invalid_argument("--checkpoint-interval must be positive");
+    if (!(o->checkpointSeconds >= 0)) throw std::invalid_argument("--checkpoint-interval must not be negative");
     if (cmd->count("--dir") > 0 && o->dir.empty()) throw std::invalid_argument("--dir is empty: give a folder");
     RunSpec base = resolveSpec(*o, *cmd);
     if (!o->kernel.empty() || base.kernel != "auto") o->kernel = base.kernel == "auto" ? std::string() : base.kernel;
