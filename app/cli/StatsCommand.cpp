@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <memory>
 #include <optional>
+#include <utility>
 
 #include "CliCommon.hpp"
 #include "core/export/ScanCsv.hpp"
@@ -87,9 +88,12 @@ int statsCommand(const StatsOptions& o) {
     for (const auto& path : writeStatisticsCsv(o.csvDir, state, s, theoryCurves(p, s)))
       std::printf("wrote       %s\n", path.string().c_str());
     if (b2) {
-      const std::filesystem::path path = std::filesystem::path(o.csvDir) / boxInvariantCsvFileName;
-      io::writeFileAtomically(path, boxInvariantCsv(state, s, *b2));
-      std::printf("wrote       %s\n", path.string().c_str());
+      for (const auto& [name, text] : {std::pair{boxInvariantCsvFileName, boxInvariantCsv(state, s, *b2)},
+                                       std::pair{boxInvariantFtCsvFileName, boxInvariantFtCsv(state, s, *b2)}}) {
+        const std::filesystem::path path = std::filesystem::path(o.csvDir) / name;
+        io::writeFileAtomically(path, text);
+        std::printf("wrote       %s\n", path.string().c_str());
+      }
     }
   }
   return 0;
@@ -105,7 +109,7 @@ void addStatsCommand(CLI::App& app, int& status) {
   cmd->add_option("--csv", o->csvDir, "write every series, its small-K theory curves and a summary as CSV into this folder");
   addNumberOption(*cmd, "--b2", o->b2,
                   "b2 as an AREA in the run's box (appendix A; stochastic-area prints it): adds b2*D (eq. A3) and "
-                  "the sec. 6 figures, and box_invariant.csv with --csv")->default_str("");
+                  "the sec. 6 figures, and box_invariant.csv, b2_f_t.csv with --csv")->default_str("");
   cmd->callback([o, cmd, &status] {
     if (cmd->count("--b2") > 0 && o->b2 < 0) throw std::invalid_argument("--b2 must be a positive area");
     status = statsCommand(*o);

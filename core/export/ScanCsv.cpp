@@ -150,4 +150,17 @@ std::string boxInvariantCsv(const TrappingState& state, const TrappingStatistics
   return out;
 }
 
+std::string boxInvariantFtCsv(const TrappingState& state, const TrappingStatistics& statistics,
+                              const StochasticAreaValue& b2) {
+  std::string out = csvMetadataHeader(state);
+  line(out, "statistic", "b2_f_t: b2 (an area, appendix A) times f_t; does not depend on the box for large t (eq. A3)");
+  line(out, "b2", number(b2.area) + " (fraction " + number(b2.fraction) + " of L^2 = " + number(b2.boxArea) + ")");
+  line(out, "columns", "t (steps); b2 f_t (area per step); b2_f_t_error (one sigma over the subsets)");
+  out += "t,b2_f_t,b2_f_t_error\n";
+  const Series& f = statistics.f;
+  for (std::size_t i = 0; i < f.x.size(); ++i)
+    out += number(f.x[i]) + ',' + number(b2.area * f.value[i]) + ',' + number(b2.area * f.error[i]) + '\n';
+  return out;
+}
+
 }  // namespace archipelago

@@ -12,6 +12,7 @@
 ///                             time_fraction_ge_1e4,b2_area,b2_fraction,b2_D,b2_D_error
 ///                             (the b₂ cells empty for a K whose b₂ was not computed)
 ///   box_invariant.csv         quantity,value,error            b₂ (area, fraction, L²), b₂·D and the §6 figures
+///   b2_f_t.csv                t,b2_f_t,b2_f_t_error           b₂·f_t, the same in every box for large t (eq. A3)
 
 #include <cmath>
 #include <string>
@@ -28,6 +29,7 @@ inline constexpr const char* scanFtCsvFileName = "scan_f_t.csv";
 inline constexpr const char* scanLocalExponentCsvFileName = "scan_local_exponent.csv";
 inline constexpr const char* scanSummaryCsvFileName = "scan_summary.csv";
 inline constexpr const char* boxInvariantCsvFileName = "box_invariant.csv";
+inline constexpr const char* boxInvariantFtCsvFileName = "b2_f_t.csv";
 
 /// One K of a scan: its parameters (the box of scanBox(K) and the scan's common settings), the scan point and
 /// the statistics.
@@ -53,5 +55,8 @@ struct ScanHeatMap {
 /// box_invariant.csv of a run (its statistics) whose box has stochastic area `b2`.
 [[nodiscard]] std::string boxInvariantCsv(const TrappingState& state, const TrappingStatistics& statistics,
                                           const StochasticAreaValue& b2);
+/// b2_f_t.csv: b₂ (the area) times f_t and its error, at the abscissae of f_t.
+[[nodiscard]] std::string boxInvariantFtCsv(const TrappingState& state, const TrappingStatistics& statistics,
+                                            const StochasticAreaValue& b2);
 
 }  // namespace archipelago

@@ -47,6 +47,11 @@ check(abs(float(rows["b2_D"]["value"]) - 1.371 * float(rows["D"]["value"])) < 1e
       abs(float(rows["accelerator_factor_8_over_pi2_b2"]["value"]) - factor) < 1e-12 and
       abs(float(rows["enhancement_over_quasilinear_n1"]["value"]) - factor * float(rows["D"]["value"]) / math.pi ** 2) < 1e-9 * D,
       "box_invariant.csv: b2_D, the factor and the enhancement over quasi-linear diffusion")
+ft = list(csv.DictReader(l for l in open(os.path.join(tmp, "csv", "f_t.csv")) if not l.startswith("#")))
+b2ft = list(csv.DictReader(l for l in open(os.path.join(tmp, "csv", "b2_f_t.csv")) if not l.startswith("#")))
+check(len(ft) == len(b2ft) > 10 and all(a["t"] == b["t"] and abs(float(b["b2_f_t"]) - 1.371 * float(a["f_t"])) <=
+                                        1e-12 * float(b["b2_f_t"]) for a, b in zip(ft, b2ft)),
+      "b2_f_t.csv: b2 * f_t at every t of f_t.csv")
 for bad, word in (("0", "(0, L^2"), ("1.7", "(0, L^2"), ("-1", "positive"), ("nan", "finite"), ("x", "finite")):
     r = run("stats", rf, f"--b2={bad}")
     lines = r.stderr.strip().splitlines()
