@@ -72,15 +72,22 @@ double stepsOf(const TrappingParameters& p, std::uint64_t blocks) {
   return static_cast<double>(p.M) * static_cast<double>(blocks) * p.q;
 }
 
-/// The heat map of the local exponent as an image: a column of cells per K (left to right), τ upwards on its
-/// log grid; white (0) through orange to dark red (2 and more); grey where undefined.
+/// The heat map of the local exponent as an image: a column of cells per K (left to right), log τ upwards at 30
+/// rows per decade (each row the grid τ nearest in log τ); white (0) through orange to dark red (2 and more);
+/// grey where undefined.
 void writeHeatMapPng(const std::filesystem::path& path, const ScanHeatMap& map) {
-  if (map.K.empty() || map.tau.empty()) return;
-  const int cellW = std::max(4, 480 / static_cast<int>(map.K.size())), cellH = 3;
-  const int width = cellW * static_cast<int>(map.K.size()), height = cellH * static_cast<int>(map.tau.size());
+  if (map.K.empty() || map.tau.empty() || !(map.tau.front() > 0)) return;
+  constexpr int kRowsPerDecade = 30, cellH = 4;
+  const double lo = std::log10(map.tau.front()), hi = std::log10(map.tau.back());
+  const int rows = static_cast<int>(std::ceil((hi - lo) * kRowsPerDecade)) + 1;
+  const int cellW = std::max(4, 480 / static_cast<int>(map.K.size()));
+  const int width = cellW * static_cast<int>(map.K.size()), height = cellH * rows;
   std::vector<std::uint8_t> rgb(static_cast<std::size_t>(width) * height * 3);
   for (int y = 0; y < height; ++y) {
-    const std::size_t row = map.tau.size() - 1 - static_cast<std::size_t>(y / cellH);  // large τ on top
+    const double logTau = hi - static_cast<double>(y / cellH) / kRowsPerDecade;  // large τ on top
+    auto it = std::lower_bound(map.tau.begin(), map.tau.end(), std::pow(10.0, logTau));
+    if (it == map.tau.end() || (it != map.tau.begin() && logTau - std::log10(*(it - 1)) < std::log10(*it) - logTau)) --it;
+    const auto row = static_cast<std::size_t>(it - map.tau.begin());
     for (int x = 0; x < width; ++x) {
       const double v = map.value[row * map.K.size() + static_cast<std::size_t>(x / cellW)];
       std::uint8_t* px = &rgb[(static_cast<std::size_t>(y) * width + x) * 3];
