@@ -5,16 +5,20 @@
 #include <filesystem>
 #include <stdexcept>
 #include <memory>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "CliCommon.hpp"
+#include "core/export/ScanCsv.hpp"
 #include "core/export/StatisticsCsv.hpp"
 #include "core/export/TailCsv.hpp"
 #include "core/io/AtomicFile.hpp"
 #include "core/runfile/RunFile.hpp"
 #include "core/stats/RunEnsemble.hpp"
 #include "core/stats/RunStatistics.hpp"
+#include "core/stats/StochasticAreaQuantities.hpp"
 #include "core/stats/TailAnalysis.hpp"
 #include "core/theory/TheoryCurves.hpp"
 
@@ -27,7 +31,27 @@ struct StatsOptions {
   std::string tailCsvDir;             // --tail-csv: D's errors and the tail (export/TailCsv.hpp)
   bool allowModified = false;
   BootstrapOptions bootstrap;         // --bootstrap, --bootstrap-seed
+  double b2 = -1;                     // --b2 AREA; negative: not given
 };
+
+/// --b2 AREA: b₂ as an area in the run's box (appendix A), its fraction of L², the box-invariant b₂·D (eq. A3)
+/// and the §6 figures; box_invariant.csv beside the other files with --csv.
+StochasticAreaValue checkedStochasticArea(const MapParameters& map, double area) {
+  const double boxArea = map.width() * map.width();
+  if (!(area > 0 && area <= boxArea))
+    throw std::invalid_argument("--b2 = " + formatNumber(area) + " must be an area in (0, L^2 = " +
+                                formatNumber(boxArea) + "] of the run's box (stochastic-area prints it)");
+  return stochasticAreaOf(map, area / boxArea);
+}
+
+void printBoxInvariant(const MapParameters& map, const StochasticAreaValue& b2, const TrappingStatistics& s) {
+  const BoxInvariantQuantities q = boxInvariantQuantities(b2, s.D, s.DError);
+  std::printf("b2          %s\n", stochasticAreaText(map, b2).c_str());
+  std::printf("b2*D        %.6g +- %.2g   (box-invariant, eq. A3; the paper: 0.693 x 6400 = %.3g)\n", q.b2D, q.b2DError,
+              kPaperStochasticArea * kPaperDiffusion);
+  std::printf("sec. 6      (8/pi^2) b2 = %.4g (paper: 0.56); D_island/D_ql = %.4g/n^2 (paper: at least 360/n^2)\n",
+              q.acceleratorFactor, q.enhancementN1);
+}
 
 /// --csv DIR before any work: an existing folder must take the files, a missing one must be creatable.
 void checkCsvFolder(const std::filesystem::path& dir) {
@@ -150,6 +174,8 @@ int statsCommand(const StatsOptions& o) {
   if (!o.tailCsvDir.empty()) checkCsvFolder(o.tailCsvDir);
   std::vector<TrappingState> states;
   for (const std::string& file : o.runFiles) states.push_back(loadRunFile(file, {.allowModified = o.allowModified}));
+  std::optional<StochasticAreaValue> b2;
+  if (o.b2 >= 0) b2 = checkedStochasticArea(states.front().params.map, o.b2);
   if (o.allowModified) std::fprintf(stderr, "warning: --allow-modified: a file edited after it was written is read\n");
   const Ensemble ensemble = ensembleOf(states, o.runFiles);  // one run, or seeds checked to differ only in the seed
   const TrappingState& state = states.front();
@@ -178,6 +204,7 @@ int statsCommand(const StatsOptions& o) {
   if (s.segments > 0) printD(tail, s);
   else std::printf("D           0   (no segment yet)\n");
   std::printf("sum t f_t   %.9f           (should be close to 1)\n", s.sumTf);
+  if (b2) printBoxInvariant(p.map, *b2, s);
   if (s.segments > 0) {
     printTail(tail);
     printVerdict(tail);
@@ -199,6 +226,14 @@ int statsCommand(const StatsOptions& o) {
   // of their own so that --csv stays the GUI's set.
   if (!o.csvDir.empty())
     writeCsvFiles(o.csvDir, withNote(statisticsCsvFiles(state, s, theoryCurves(p, s)), state, ensembleNote(tail)));
+  if (!o.csvDir.empty() && b2) {
+    for (const auto& [name, text] : {std::pair{boxInvariantCsvFileName, boxInvariantCsv(state, s, *b2)},
+                                     std::pair{boxInvariantFtCsvFileName, boxInvariantFtCsv(state, s, *b2)}}) {
+      const std::filesystem::path path = std::filesystem::path(o.csvDir) / name;
+      io::writeFileAtomically(path, text);
+      std::printf("wrote       %s\n", path.string().c_str());
+    }
+  }
   if (!o.tailCsvDir.empty()) writeCsvFiles(o.tailCsvDir, tailCsvFiles(state, tail, s.P));
   return 0;
 }
@@ -219,7 +254,13 @@ void addStatsCommand(CLI::App& app, int& status) {
   addNumberOption(*cmd, "--bootstrap", o->bootstrap.replicates,
                   "replicates of the bootstrap over segments for D's error and the tail fits (at least 20)");
   addNumberOption(*cmd, "--bootstrap-seed", o->bootstrap.seed, "seed of the bootstrap (printed with its results)");
-  cmd->callback([o, &status] { status = statsCommand(*o); });
+  addNumberOption(*cmd, "--b2", o->b2,
+                  "b2 as an AREA in the run's box (appendix A; stochastic-area prints it): adds b2*D (eq. A3) and "
+                  "the sec. 6 figures, and box_invariant.csv, b2_f_t.csv with --csv")->default_str("");
+  cmd->callback([o, cmd, &status] {
+    if (cmd->count("--b2") > 0 && o->b2 < 0) throw std::invalid_argument("--b2 must be a positive area");
+    status = statsCommand(*o);
+  });
 }
 
 }  // namespace archipelago::cli

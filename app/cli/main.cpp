@@ -10,6 +10,7 @@
 
 #include "OrbitCommand.hpp"
 #include "RunCommand.hpp"
+#include "ScanCommand.hpp"
 #include "StatsCommand.hpp"
 #include "PeriodicCommand.hpp"
 #include "PortraitCommand.hpp"
@@ -26,6 +27,7 @@ int main(int argc, char** argv) {
   int status = 0;  // the chosen command's exit status: it returns here, never calls std::exit
   archipelago::cli::addOrbitCommand(app, status);
   archipelago::cli::addRunCommand(app, status);
+  archipelago::cli::addScanCommand(app, status);
   archipelago::cli::addStatsCommand(app, status);
   archipelago::cli::addReplayCommand(app, status);
   archipelago::cli::addPeriodicCommand(app, status);

@@ -3,7 +3,7 @@
 /// \brief The kernels of every instruction-set path: trapping blocks and plain orbit iteration.
 ///
 /// Karney (1983), appendix B: a trapping run iterates N⁻¹ on many independent orbits (steps 5–9), and a
-/// phase portrait iterates N or N⁻¹ (fig. 1–3).  The map is defined on 52-bit integers (FixedPointMap.hpp), so
+/// phase portrait iterates N or N⁻¹ (figs. 1 and 2).  The map is defined on 52-bit integers (FixedPointMap.hpp), so
 /// every path computes exactly the same numbers:
 ///   - scalar     : portable C++ with 128-bit products (the reference, advanceBlocksScalar in trapping/);
 ///   - avx2       : 4 orbits per 256-bit vector; X and Y as integer-valued doubles, every floor division one

@@ -2,7 +2,7 @@
 /// \file SegmentAnalysis.hpp
 /// \brief A recorded long segment, replayed into buffers: its points, where it spent its time, its chain.
 ///
-/// Karney (1983), §6 and fig. 6: the longest trapped segments stick to chains of islands around islands; to
+/// Karney (1983), §7 and fig. 8: the longest trapped segments stick to chains of islands around islands; to
 /// look at one, replay it exactly from its recorded start state (TrappingRun.hpp), draw it zoomed to where it
 /// spent its time, and identify the chain it sticks to (IslandChain.hpp).  This file is the computational half
 /// of the GUI's long-segment table; the GUI only calls it from worker threads and draws the results.

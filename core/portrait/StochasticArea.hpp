@@ -4,8 +4,11 @@
 ///
 /// §5: "the area b₂ occupied by the stochastic trajectories … was calculated by dividing the phase space into
 /// 1024 × 1024 little boxes, iterating the mapping many times, and counting the number of occupied boxes";
-/// with xmin = −0.8, xmax = 0.5, Xr = 0.02 at K = 0.1 the paper finds b₂ = 0.693 (as a fraction of the box
-/// area L²).  Here the orbits are exactly those of the trapping runs (appendix B, BlockKernel.hpp): orbit i
+/// the paper's b₂ = 0.693 at K = 0.1 is an area in the (x, y) plane (appendix A: b₀ = L² is the whole box, b₂
+/// its stochastic part), in the box of its fig. 6 caption, which our copy lacks.  What the box counting
+/// measures is the visited fraction of the box; stats/StochasticAreaQuantities.hpp turns it into the area
+/// (fraction · L²) and the box-invariant products of eq. (A3).  (With xmin = −0.8, xmax = 0.5 the fraction is
+/// 0.811, an area of 1.371.)  Here the orbits are exactly those of the trapping runs (appendix B, BlockKernel.hpp): orbit i
 /// starts at (0, 0) and iterates blocks of q steps of N⁻¹, its Y randomized (its own counter-based draws)
 /// whenever a block starts in the zone X ≤ ⌊Xr·2^52⌋.  Every point after every step marks its box
 /// (X >> 42, Y >> 42) — exact integer boxing of the unit square.  The steps are computed by the request's
@@ -46,7 +49,7 @@ struct StochasticAreaRequest {
 struct StochasticAreaPoint {
   std::uint64_t iterations = 0;     ///< total steps of N⁻¹ so far, all orbits
   std::uint64_t boxesVisited = 0;
-  double b2 = 0;                    ///< boxesVisited / boxes
+  double b2 = 0;                    ///< boxesVisited / boxes: the fraction of the box (the area: stochasticAreaOf)
 };
 
 struct StochasticAreaResult {
@@ -60,7 +63,7 @@ struct StochasticAreaResult {
 /// Called on the calling thread at every checkpoint of the convergence curve.
 using StochasticAreaObserver = std::function<void(const StochasticAreaPoint&)>;
 
-/// Computes b₂ and its convergence curve; throws std::invalid_argument on an invalid request.  On a stop
+/// Computes b₂ (as the visited fraction) and its convergence curve; throws std::invalid_argument on an invalid request.  On a stop
 /// request (checked between chunks of at most 2^16 steps per orbit) returns the curve so far, cancelled set.
 [[nodiscard]] StochasticAreaResult computeStochasticArea(const StochasticAreaRequest& request,
                                                          const StochasticAreaObserver& observer = {},

@@ -11,7 +11,7 @@
 ///   C_τ  = Σ_{t≥τ} (t − τ) f_t                  (eq. cdef), C_0 = Σ t f_t ≈ 1
 ///   D    = Σ ½ t² f_t                           (eq. ddef)
 ///   S_t  = t C_0 + 2 Σ_{τ=1}^{t} (t − τ) C_τ    (eq. spreaddef),  D_t = S_t / 2t
-///   local exponent = −d log C_τ / d log τ        (fig. 5d)
+///   local exponent = −d log C_τ / d log τ        (fig. 6d)
 ///
 /// How a histogram becomes f (see TrappingHistogram.hpp for the bins).  Bin i holds n_i segments whose
 /// lengths sum to Σ_i blocks; its mean length is t̄_i = Σ_i/n_i blocks (exact for t ≤ 50 blocks, where a bin

@@ -255,7 +255,7 @@ void StatisticsPlot::refresh() {
   if (follow && curve_->dataSize() > 0) {
     setAxisAutoScale(kAxisX, true);
     // The local exponent is noisy where C_τ has few segments left (its last points reach 10 or more); the
-    // paper's fig. 5d shows 0 … 2, so the default range is 0 … 3 (zoom out to see the tail).
+    // paper's fig. 6d shows 0 … 2, so the default range is 0 … 3 (zoom out to see the tail).
     if (statistic_ == Statistic::localExponent) setAxisScale(kAxisY, 0.0, 3.0);
     else setAxisAutoScale(kAxisY, true);
   }

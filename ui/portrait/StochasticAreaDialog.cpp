@@ -11,12 +11,14 @@
 #include <qwt_scale_engine.h>
 #include <qwt_symbol.h>
 
+#include "core/stats/StochasticAreaQuantities.hpp"
 #include "ui/plots/QwtCompat.hpp"
 
 namespace archipelago::ui {
 
 StochasticAreaDialog::StochasticAreaDialog(const StochasticAreaRequest& request, QWidget* parent) : QDialog(parent) {
   setWindowTitle(tr("Stochastic area b₂"));
+  map_ = request.map;
   setAttribute(Qt::WA_DeleteOnClose);
   auto* layout = new QVBoxLayout(this);
   summary_ = new QLabel(tr("Iterating the sea of Q* and counting the visited boxes of a %1 × %1 grid…")
@@ -26,7 +28,7 @@ StochasticAreaDialog::StochasticAreaDialog(const StochasticAreaRequest& request,
   layout->addWidget(summary_);
   plot_ = new QwtPlot(this);
   plot_->setAxisTitle(kAxisX, tr("iterations of N⁻¹"));
-  plot_->setAxisTitle(kAxisY, tr("b₂ (fraction of boxes visited)"));
+  plot_->setAxisTitle(kAxisY, tr("b₂ / L² (fraction of the box visited)"));
   plot_->setAxisScaleEngine(kAxisX, new QwtLogScaleEngine);
   plot_->setCanvasBackground(Qt::white);
   auto* grid = new QwtPlotGrid;
@@ -71,14 +73,21 @@ StochasticAreaDialog::~StochasticAreaDialog() {
 
 void StochasticAreaDialog::addPoint(double iterations, double b2, bool last) {
   if (last) {
-    summary_->setText(tr("b₂ = %1 after %2 iterations (the paper reports b₂ ≈ 0.693 for its fig. 5 box).")
-                          .arg(b2, 0, 'f', 4)
-                          .arg(points_.isEmpty() ? 0.0 : points_.back().x(), 0, 'g', 3));
+    // b₂ is an area (appendix A); the paper's value is compared only at its K = 0.1 (core says which box).
+    const StochasticAreaValue value = stochasticAreaOf(map_, b2);
+    QString text = tr("%1, after %2 iterations.")
+                       .arg(QString::fromStdString(stochasticAreaText(map_, value)))
+                       .arg(points_.isEmpty() ? 0.0 : points_.back().x(), 0, 'g', 3);
+    if (const auto paper = paperStochasticAreaComparison(map_, value)) text += u' ' + QString::fromStdString(*paper);
+    summary_->setText(text);
     return;
   }
   points_.append(QPointF(iterations, b2));
   curve_->setSamples(points_);
-  summary_->setText(tr("b₂ = %1 after %2 iterations…").arg(b2, 0, 'f', 4).arg(iterations, 0, 'g', 3));
+  summary_->setText(tr("b₂ = %1 (area; fraction %2 of the box) after %3 iterations…")
+                        .arg(stochasticAreaOf(map_, b2).area, 0, 'f', 4)
+                        .arg(b2, 0, 'f', 4)
+                        .arg(iterations, 0, 'g', 3));
   plot_->replot();
 }
 

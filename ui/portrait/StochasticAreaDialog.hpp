@@ -1,5 +1,6 @@
 #pragma once
-// The stochastic area b₂ (Karney 1983, §5): the fraction of the 1024 × 1024 boxes visited by the chaotic sea,
+// The stochastic area b₂ (Karney 1983, §5, appendix A: an area, shown with the fraction of the 1024 × 1024 boxes
+// of the box visited by the chaotic sea),
 // computed in the background (core/portrait/StochasticArea.hpp), with its convergence drawn as it grows.
 
 #include <QDialog>
@@ -29,6 +30,7 @@ class StochasticAreaDialog : public QDialog {
   QwtPlotCurve* curve_ = nullptr;
   QLabel* summary_ = nullptr;
   QVector<QPointF> points_;
+  MapParameters map_;  // the box whose area b₂ is
   std::jthread worker_;
 };
 

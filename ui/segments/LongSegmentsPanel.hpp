@@ -3,7 +3,7 @@
 /// \brief The "Long segments" panel: the live table of the longest trapped segments, exact replay, stepping,
 /// export, and (through the PortraitController) drawing the segment zoomed in with its chain's centre orbit.
 ///
-/// Karney (1983), §6 and fig. 6: the longest segment at K = 0.1 sticks to a chain of 6 × 23 = 138 islands.
+/// Karney (1983), §7 and fig. 8: the longest segment at K = 0.1 sticks to a chain of 6 × 23 = 138 islands.
 ///
 /// Threads (Qt's threaded-Mandelbrot pattern, STYLE.md): two JobThreads do all the work, calling core
 /// (periodic/SegmentAnalysis.hpp).  Selecting a row submits a replay tagged with a new request id and cancels

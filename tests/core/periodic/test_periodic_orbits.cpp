@@ -72,7 +72,7 @@ TEST(PeriodicOrbit, CentralFixedPointHasResidueRootK) {
 }
 
 TEST(PeriodicOrbit, SixIslandChainAtKPointOne) {
-  // The elliptic period-6 orbit at the centres of the six islands around the central island (§5, fig. exa).
+  // The elliptic period-6 orbit at the centres of the six islands around the central island (§5, fig. 2).
   const long double K = 0.1L;
   PeriodicOrbitSearch search;
   search.period = 6;

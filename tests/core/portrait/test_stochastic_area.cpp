@@ -1,4 +1,4 @@
-// The stochastic area b2 (Karney 1983, §5): fraction of the 1024 × 1024 boxes visited by the chaotic sea.
+// The stochastic area b2 (Karney 1983, §5), counted as the fraction of the 1024 × 1024 boxes visited by the sea.
 #include <gtest/gtest.h>
 
 #include <omp.h>
@@ -19,9 +19,10 @@ namespace {
 //   2^24 0.80458   2^25 0.80682   2^26 0.80973   2^27 0.81068   2^28 0.81087   2^29 0.81105
 // The curve flattens: each doubling adds less than the last (the orbits reach the last "nooks and
 // crannies" of the sea near the island chain), and the change from 2^26 to 2^27 steps is below 0.002.
-// NOTE: the paper quotes b2 = 0.693 "with xmin, xmax and Xr as in the caption of fig. 4"; that caption is not in
-// our copy of the text, and with xmin = −0.8, xmax = 0.5 the exact map gives 0.811 (the islands of fig. 2
-// cover 19% of that box, not 31%), so the caption's box was probably different.  This test pins our value.
+// NOTE: the paper quotes b2 = 0.693 "with xmin, xmax and Xr as given in the caption to fig. 6"; that caption is
+// not in our copy of the text.  The paper's b2 is an area (appendix A; stats/StochasticAreaQuantities.hpp),
+// while this count is the visited fraction of the box: 0.811 of L² = 1.69, an area of 1.371, so the caption's
+// box was a different one (eq. A3 makes b2·D comparable across boxes).  This test pins our fraction.
 TEST(StochasticArea, ConvergesForThePaperCase) {
   StochasticAreaRequest req;
   req.iterations = std::uint64_t{1} << 27;

@@ -1,4 +1,4 @@
-// Karney (1983) §5, fig. 5d and fig. 6: at K = 0.1 the correlation decays as C_τ ~ τ^(−1/4) for τ ≲ 10^4, and
+// Karney (1983) §5, fig. 6d and fig. 7: at K = 0.1 the correlation decays as C_τ ~ τ^(−1/4) for τ ≲ 10^4, and
 // the spread S_t grows faster than linearly (D_t = S_t/2t increases).  A short run (5·10^8 steps) of the
 // paper's box (xmin = −0.8, xmax = 0.5, Xr = 0.02, q = 16) resolves the τ^(−1/4) range.
 #include <gtest/gtest.h>

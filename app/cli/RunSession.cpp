@@ -1,0 +1,151 @@
+#include "RunSession.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+#include <variant>
+
+#include "CliCommon.hpp"
+#include "core/runfile/RunFile.hpp"
+
+namespace archipelago::cli {
+
+namespace {
+volatile std::sig_atomic_t gInterrupted = 0;
+extern "C" void onInterrupt(int) { gInterrupted = 1; }
+}  // namespace
+
+void addSpecOptions(CLI::App& cmd, SpecOptions& o, std::initializer_list<std::string_view> without) {
+  cmd.add_option("--preset", o.preset, "start from a preset of the paper (archipelago-cli presets lists them)");
+  cmd.add_option("--spec", o.specFile, "start from a run spec file (JSON; run --print-spec writes one)");
+  // One option per parameter of the run, from core's table (TrappingParameters.hpp): name, meaning, range.
+  // Given explicitly, a parameter overrides the preset's or the spec file's.
+  const RunSpec defaults;
+  for (const ParameterRule& rule : parameterRules()) {
+    if (std::find(without.begin(), without.end(), rule.key) != without.end()) continue;
+    const std::string key(rule.key);
+    const std::string help = std::string(rule.meaning) + "; " + std::string(rule.range);
+    const ParameterValue value = parameterValue(defaults.parameters, key);
+    const std::string names = "--" + key + (key == "longestKept" ? ",--longest" : "");  // --longest: the old name
+    if (rule.integer) addNumberOption(cmd, names, o.integers[key] = std::get<std::uint64_t>(value), help);
+    else addNumberOption(cmd, names, o.reals[key] = std::get<double>(value), help);
+  }
+}
+
+std::vector<std::string> givenSpecOptions(const CLI::App& cmd) {
+  std::vector<std::string> given;
+  for (const ParameterRule& rule : parameterRules()) {
+    const std::string name = "--" + std::string(rule.key);
+    const CLI::Option* option = cmd.get_option_no_throw(name);
+    if (option != nullptr && option->count() > 0) given.push_back(name);
+  }
+  for (const char* name : {"--preset", "--spec"})
+    if (cmd.count(name) > 0) given.emplace_back(name);
+  return given;
+}
+
+RunSpec resolveSpec(const SpecOptions& o, const CLI::App& cmd) {
+  if (!o.preset.empty() && !o.specFile.empty()) throw std::invalid_argument("give --preset or --spec, not both");
+  // An empty --preset= or --spec= is a mistake, never a silent fall back to the defaults.
+  if (cmd.count("--preset") > 0 && o.preset.empty())
+    throw std::invalid_argument("--preset is empty (archipelago-cli presets lists the presets)");
+  if (cmd.count("--spec") > 0 && o.specFile.empty()) throw std::invalid_argument("--spec is empty: give a spec file");
+  RunSpec spec;
+  if (!o.preset.empty()) {
+    const Preset* preset = findPreset(o.preset);
+    if (!preset) {
+      std::string ids;
+      for (const Preset& p : presets()) ids += (ids.empty() ? "" : ", ") + p.id;
+      throw std::invalid_argument("--preset " + o.preset + " is not a preset (presets: " + ids + ")");
+    }
+    spec = preset->spec;
+  } else if (!o.specFile.empty()) {
+    spec = loadRunSpec(o.specFile);
+  }
+  for (const ParameterRule& rule : parameterRules()) {
+    const std::string key(rule.key);
+    const bool known = rule.integer ? o.integers.count(key) > 0 : o.reals.count(key) > 0;
+    if (!known || cmd.count("--" + key) == 0) continue;
+    if (rule.integer) setParameterValue(spec.parameters, key, o.integers.at(key));
+    else setParameterValue(spec.parameters, key, o.reals.at(key));
+  }
+  if (cmd.count("--threads") > 0) spec.threads = o.threads;
+  if (cmd.count("--kernel") > 0) spec.kernel = o.kernel.empty() ? "auto" : o.kernel;
+  if (auto e = validationError(spec)) throw std::invalid_argument(*e);
+  return spec;
+}
+
+std::vector<io::FileLock> lockRunFiles(const std::string& out, const std::string& checkpoint, const std::string& resume) {
+  std::vector<io::FileLock> locks;
+  std::vector<std::filesystem::path> held;
+  const std::filesystem::path resumeFolder = std::filesystem::path(resume).parent_path();
+  const bool lockResume = !resume.empty() && ::access(resumeFolder.empty() ? "." : resumeFolder.c_str(), W_OK) == 0;
+  for (const std::string& path : {out, checkpoint, lockResume ? resume : std::string()}) {
+    if (path.empty()) continue;
+    const std::filesystem::path same = std::filesystem::weakly_canonical(path);  // one lock per file, however named
+    if (std::find(held.begin(), held.end(), same) != held.end()) continue;
+    locks.push_back(io::FileLock::acquire(path));
+    held.push_back(same);
+    io::removeStaleTemporaries(path);
+  }
+  return locks;
+}
+
+void installInterruptHandlers() {
+  std::signal(SIGINT, onInterrupt);
+  std::signal(SIGTERM, onInterrupt);
+}
+
+bool interruptRequested() noexcept { return gInterrupted != 0; }
+
+std::string clockText(double seconds) {
+  if (!(seconds >= 0) || seconds > 1e8) return "--:--:--";
+  const auto s = static_cast<long long>(seconds + 0.5);
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%02lld:%02lld:%02lld", s / 3600, s / 60 % 60, s % 60);
+  return buf;
+}
+
+TrappingState runWithCheckpoints(TrappingState state, const CheckpointedRunOptions& options, LastCheckpoint& last,
+                                 const std::function<void(const TrappingState&, const TrappingProgress&)>& progress) {
+  std::stop_source stopper;
+  auto lastCheckpointTime = std::chrono::steady_clock::now();
+  auto observer = [&](const TrappingState& s, const TrappingProgress& p) {
+    const auto now = std::chrono::steady_clock::now();
+    if (interruptRequested()) stopper.request_stop();
+    if (std::chrono::duration<double>(now - lastCheckpointTime).count() >= options.checkpointSeconds && !s.finished()) {
+      lastCheckpointTime = now;  // a failed write is retried at the next interval, not at every chunk
+      // A checkpoint that cannot be written (full disk, vanished folder) must not cost the run: warn, go on.
+      try {
+        saveRunFile(options.checkpoint, s);
+        last = {options.checkpoint, s.blocksDone};
+      } catch (const std::exception& e) {
+        if (options.breakLineBeforeWarning) std::fputc('\n', stderr);
+        std::fprintf(stderr, "WARNING: checkpoint not written: %s; the run goes on and retries in %g s\n", e.what(),
+                     options.checkpointSeconds);
+      }
+    }
+    if (progress) progress(s, p);
+  };
+  return runTrapping(std::move(state), options.run, observer, stopper.get_token());
+}
+
+void saveRunFileOrSayWhere(const std::string& path, const TrappingState& state, const LastCheckpoint& last) {
+  try {
+    saveRunFile(path, state);
+  } catch (const std::exception& e) {
+    const std::string kept = last.path.empty()
+        ? std::string("no checkpoint was written")
+        : "the last checkpoint (" + std::to_string(last.blocks) + " of " + std::to_string(state.params.T) +
+              " blocks) is in " + last.path + ": resume with --resume " + last.path;
+    throw std::runtime_error(std::string(e.what()) + "; " + kept);
+  }
+}
+
+}  // namespace archipelago::cli

@@ -1,0 +1,166 @@
+#include "core/export/ScanCsv.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cstdint>
+#include <limits>
+#include <numbers>
+
+#include "core/export/StatisticsCsv.hpp"
+
+namespace archipelago {
+
+namespace {
+
+/// 17 significant digits, shortest form of %g, never the locale's decimal separator (as StatisticsCsv.cpp);
+/// empty for NaN (an undefined cell).
+std::string number(double v) {
+  if (std::isnan(v)) return {};
+  char buffer[64];
+  const auto r = std::to_chars(buffer, buffer + sizeof buffer, v, std::chars_format::general, 17);
+  return std::string(buffer, r.ptr);
+}
+
+std::string number(std::uint64_t v) { return std::to_string(v); }
+
+/// The shortest text that reads back as v (K and the box: 0.05, not 0.050000000000000003).
+std::string shortest(double v) {
+  char buffer[64];
+  const auto r = std::to_chars(buffer, buffer + sizeof buffer, v);
+  return std::string(buffer, r.ptr);
+}
+
+void line(std::string& out, std::string_view name, const std::string& value) {
+  out += "# ";
+  out += name;
+  out += ": ";
+  out += value;
+  out += '\n';
+}
+
+/// What every scan file opens with: the program, the box rule and the settings the K share.
+std::string scanHeader(const std::vector<ScanRunSummary>& runs) {
+  std::string out;
+  line(out, "program", std::string("archipelago ") + ARCHIPELAGO_VERSION);
+  line(out, "scan", "trapping statistics over K (Karney 1983, sec. 5); box of each K: xmin = -2 sqrt(K) - " +
+                        shortest(kScanBoxMargin) + ", xmax = sqrt(K) + " + shortest(kScanBoxMargin));
+  if (!runs.empty()) {
+    const TrappingParameters& p = runs.front().params;
+    line(out, "settings", "Xr = " + shortest(p.Xr) + ", q = " + std::to_string(p.q) + ", T = " + number(p.T) +
+                              ", M = " + number(p.M) + ", seed = " + number(p.seed) +
+                              ", subsets = " + std::to_string(p.subsets));
+  }
+  return out;
+}
+
+}  // namespace
+
+ScanHeatMap localExponentHeatMap(const std::vector<ScanRunSummary>& runs) {
+  ScanHeatMap map;
+  std::vector<double> taus;
+  for (const ScanRunSummary& r : runs) {
+    map.K.push_back(r.point.K);
+    taus.insert(taus.end(), r.statistics.localExponent.x.begin(), r.statistics.localExponent.x.end());
+  }
+  std::sort(taus.begin(), taus.end());
+  taus.erase(std::unique(taus.begin(), taus.end()), taus.end());
+  map.tau = taus;
+  map.value.assign(map.tau.size() * map.K.size(), std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t c = 0; c < runs.size(); ++c) {
+    const Series& e = runs[c].statistics.localExponent;
+    for (std::size_t i = 0; i < e.x.size(); ++i) {
+      const auto row = static_cast<std::size_t>(std::lower_bound(taus.begin(), taus.end(), e.x[i]) - taus.begin());
+      map.value[row * map.K.size() + c] = e.value[i];
+    }
+  }
+  return map;
+}
+
+std::string scanFtCsv(const std::vector<ScanRunSummary>& runs) {
+  std::string out = scanHeader(runs);
+  line(out, "statistic", "f_t: distribution of trapping times (Karney 1983, figs. 3, 6(a)), every K");
+  line(out, "columns", "K; t (steps); f_t (per step); f_t_error (one sigma over the subsets)");
+  out += "K,t,f_t,f_t_error\n";
+  for (const ScanRunSummary& r : runs) {
+    const Series& f = r.statistics.f;
+    for (std::size_t i = 0; i < f.x.size(); ++i)
+      out += shortest(r.point.K) + ',' + number(f.x[i]) + ',' + number(f.value[i]) + ',' + number(f.error[i]) + '\n';
+  }
+  return out;
+}
+
+std::string scanLocalExponentCsv(const std::vector<ScanRunSummary>& runs) {
+  const ScanHeatMap map = localExponentHeatMap(runs);
+  std::string out = scanHeader(runs);
+  line(out, "statistic", "local exponent -dlog C_tau/dlog tau (Karney 1983, fig. 6(d)): rows tau (steps), columns K; "
+                         "empty where C_tau = 0");
+  out += "tau";
+  for (const double K : map.K) out += ',' + shortest(K);
+  out += '\n';
+  for (std::size_t row = 0; row < map.tau.size(); ++row) {
+    out += number(map.tau[row]);
+    for (std::size_t c = 0; c < map.K.size(); ++c) out += ',' + number(map.value[row * map.K.size() + c]);
+    out += '\n';
+  }
+  return out;
+}
+
+std::string scanSummaryCsv(const std::vector<ScanRunSummary>& runs) {
+  std::string out = scanHeader(runs);
+  line(out, "columns", "K; box xmin, xmax; blocks done of T; segments; D (eq. ddef) and its one-sigma error over the "
+                       "subsets; longest segment (steps); fraction of the time in segments >= 1e4 steps; b2 as an "
+                       "area and as a fraction of the box (appendix A), b2*D and its error (eq. A3; empty when b2 "
+                       "was not computed)");
+  out += "K,xmin,xmax,blocks_done,T,segments,D,D_error,longest_steps,time_fraction_ge_1e4,b2_area,b2_fraction,b2_D,"
+         "b2_D_error\n";
+  for (const ScanRunSummary& r : runs) {
+    const ScanPoint& p = r.point;
+    out += shortest(p.K) + ',' + shortest(p.box.xmin) + ',' + shortest(p.box.xmax) + ',' + number(p.blocksDone) + ',' +
+           number(p.blocksTotal) + ',' + number(p.segments) + ',' + number(p.D) + ',' + number(p.DError) + ',' +
+           number(p.longestSteps) + ',' + number(p.longFraction) + ',';
+    if (p.boxInvariant) {
+      const BoxInvariantQuantities& b = *p.boxInvariant;
+      out += number(b.b2.area) + ',' + number(b.b2.fraction) + ',' + number(b.b2D) + ',' + number(b.b2DError);
+    } else {
+      out += ",,,";
+    }
+    out += '\n';
+  }
+  return out;
+}
+
+std::string boxInvariantCsv(const TrappingState& state, const TrappingStatistics& statistics,
+                            const StochasticAreaValue& b2) {
+  const BoxInvariantQuantities q = boxInvariantQuantities(b2, statistics.D, statistics.DError);
+  std::string out = csvMetadataHeader(state);
+  line(out, "content", "b2 as an area (appendix A: b0 = L^2, b2 its stochastic part), the box-invariant b2*D "
+                       "(eq. A3) and the application figures of sec. 6 (first-order accelerator modes of the "
+                       "standard map); errors: D's one-sigma error over the subsets, b2's own error not included");
+  out += "quantity,value,error\n";
+  const auto row = [&](const char* name, double value, double error) {
+    out += std::string(name) + ',' + number(value) + ',' + number(error) + '\n';
+  };
+  row("b2_area", q.b2.area, 0);
+  row("b2_fraction", q.b2.fraction, 0);
+  row("box_area_L2", q.b2.boxArea, 0);
+  row("D", statistics.D, statistics.DError);
+  row("b2_D", q.b2D, q.b2DError);
+  row("accelerator_factor_8_over_pi2_b2", q.acceleratorFactor, 0);
+  row("enhancement_over_quasilinear_n1", q.enhancementN1, q.acceleratorFactor * statistics.DError / (std::numbers::pi * std::numbers::pi));
+  return out;
+}
+
+std::string boxInvariantFtCsv(const TrappingState& state, const TrappingStatistics& statistics,
+                              const StochasticAreaValue& b2) {
+  std::string out = csvMetadataHeader(state);
+  line(out, "statistic", "b2_f_t: b2 (an area, appendix A) times f_t; does not depend on the box for large t (eq. A3)");
+  line(out, "b2", number(b2.area) + " (fraction " + number(b2.fraction) + " of L^2 = " + number(b2.boxArea) + ")");
+  line(out, "columns", "t (steps); b2 f_t (area per step); b2_f_t_error (one sigma over the subsets)");
+  out += "t,b2_f_t,b2_f_t_error\n";
+  const Series& f = statistics.f;
+  for (std::size_t i = 0; i < f.x.size(); ++i)
+    out += number(f.x[i]) + ',' + number(b2.area * f.value[i]) + ',' + number(b2.area * f.error[i]) + '\n';
+  return out;
+}
+
+}  // namespace archipelago
