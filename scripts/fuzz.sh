@@ -10,7 +10,7 @@ bash scripts/install-deps.sh
 cmake --preset fuzz
 cmake --build --preset fuzz --parallel "$(nproc)"
 status=0
-for target in runfile runspec numbers; do
+for target in runfile runspec numbers session; do
   work="build/fuzz/findings/$target"
   mkdir -p "$work/corpus" "$work/artifacts"
   cp -n tests/fuzz/corpus/"$target"/* "$work/corpus/" 2>/dev/null || true

@@ -20,7 +20,6 @@
 #include <QProgressBar>
 #include <QPushButton>
 #include <QScrollArea>
-#include <QSettings>
 #include <QStandardPaths>
 #include <QStatusBar>
 #include <QTabWidget>
@@ -35,6 +34,7 @@
 
 #include "ui/ExportActions.hpp"
 #include "ui/Resources.hpp"
+#include "ui/SettingsController.hpp"
 #include "ui/ParameterPanel.hpp"
 #include "ui/StatisticsView.hpp"
 #include "ui/periodic/PeriodicOrbitDialog.hpp"
@@ -48,7 +48,6 @@ namespace archipelago::ui {
 
 namespace {
 constexpr int kRefreshIntervalMs = 66;  // 15 Hz: live, yet far from saturating the GUI thread
-constexpr int kMaxRecentFiles = 8;
 
 QString formatRate(double stepsPerSecond) {
   if (stepsPerSecond >= 1e9) return QObject::tr("%1 G steps/s").arg(stepsPerSecond / 1e9, 0, 'f', 2);
@@ -69,14 +68,28 @@ bool isRunFile(const QString& path) { return path.endsWith(QLatin1String(".json"
 
 MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   initResources();
-  qRegisterMetaType<RunStatus>("archipelago::ui::RunStatus");
   setWindowTitle(tr("Archipelago"));
   setWindowIcon(QIcon(QStringLiteral(":/icons/archipelago.svg")));
   setAcceptDrops(true);
 
-  worker_ = new RunWorker(this);
-  connect(worker_, &RunWorker::snapshotReady, this, &MainWindow::onSnapshot, Qt::QueuedConnection);
-  connect(worker_, &RunWorker::runEnded, this, &MainWindow::onRunEnded, Qt::QueuedConnection);
+  run_ = new RunController(this);
+  run_->setAsk([this](const RunQuestion& q) { return askUser(q); });
+  run_->setSaveHandler([this] { return run_->currentFile().isEmpty() ? saveDialog() : saveRunFile(run_->currentFile()); });
+  connect(run_, &RunController::statusChanged, this, &MainWindow::onStatusChanged);
+  connect(run_, &RunController::message, this, [this](const QString& text, bool sticky) { message(text, sticky ? 0 : 6000); });
+  connect(run_, &RunController::closeReady, this, &QWidget::close, Qt::QueuedConnection);
+  connect(run_, &RunController::currentFileChanged, this, [this](const QString& path) {
+    setWindowTitle(path.isEmpty() ? tr("Archipelago") : tr("%1 — Archipelago").arg(QFileInfo(path).fileName()));
+    if (!path.isEmpty() && path != checkpointPath()) SettingsController::addRecentFile(path);
+  });
+  connect(run_, &RunController::runOpened, this, [this](const TrappingParameters& p) {
+    panel_->setParameters(p, panel_->threads());
+  });
+  connect(run_, &RunController::runReplaced, this, [this] {
+    shown_.reset();
+    statistics_->clear();
+    segments_->clear();
+  });
 
   tabs_ = new QTabWidget(this);
   tabs_->setDocumentMode(true);
@@ -84,7 +97,10 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   tabs_->addTab(statistics_, tr("Statistics"));
   portrait_ = new PortraitPanel(tabs_);
   tabs_->addTab(portrait_, tr("Phase portrait"));
-  connect(portrait_, &PortraitPanel::statusMessage, this, [this](const QString& text) { statusBar()->showMessage(text, 5000); });
+  // The portrait's progress belongs to the portrait: shown only while its tab is.
+  connect(portrait_, &PortraitPanel::statusMessage, this, [this](const QString& text) {
+    if (tabs_->currentWidget() == portrait_) statusBar()->showMessage(text, 5000);
+  });
 
   auto* central = new QWidget(this);
   auto* centralLayout = new QVBoxLayout(central);
@@ -92,6 +108,13 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   centralLayout->setSpacing(0);
   createCheckpointBanner();
   centralLayout->addWidget(checkpointBanner_);
+  staleNote_ = new QLabel(central);
+  staleNote_->setObjectName(QStringLiteral("staleRunNote"));
+  staleNote_->setWordWrap(true);
+  staleNote_->setContentsMargins(8, 4, 8, 4);
+  staleNote_->setStyleSheet(QStringLiteral("#staleRunNote { background: #eef3fb; border-bottom: 1px solid #b8c8e0; }"));
+  staleNote_->hide();
+  centralLayout->addWidget(staleNote_);
   centralLayout->addWidget(tabs_, 1);
   setCentralWidget(central);
 
@@ -112,6 +135,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
     if (const auto p = panel_->parameters()) portrait_->controller()->setMap(p->map, p->Xr);
     if (!panel_->isValid()) statusBar()->showMessage(panel_->validationMessage());
     else statusBar()->clearMessage();
+    updateStaleNote();
   });
 
   refreshTimer_ = new QTimer(this);
@@ -119,10 +143,10 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   connect(refreshTimer_, &QTimer::timeout, this, &MainWindow::refreshView);
   refreshTimer_->start();
 
-  resize(1500, 920);
+  resize(1200, 760);
   restoreSettings();
   if (const auto p = panel_->parameters()) portrait_->controller()->setMap(p->map, p->Xr);
-  updateActions();
+  onStatusChanged(run_->status());
   if (QFileInfo::exists(checkpointPath())) {
     checkpointLabel_->setText(tr("An unfinished run was kept when the window closed: %1").arg(checkpointPath()));
     checkpointBanner_->show();
@@ -130,9 +154,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   }
 }
 
-MainWindow::~MainWindow() {
-  delete worker_;  // aborts the session and waits for its thread before anything it reports to goes away
-}
+MainWindow::~MainWindow() = default;  // the controller (a child) stops its worker before the views go
 
 // ---------------------------------------------------------------------------------------------- layout
 
@@ -146,8 +168,8 @@ void MainWindow::createActions() {
   saveAction_->setShortcut(QKeySequence::Save);
   saveAction_->setStatusTip(tr("Save the run (parameters, histograms, orbit states) so it can be resumed"));
   connect(saveAction_, &QAction::triggered, this, [this] {
-    if (currentFile_.isEmpty()) saveDialog();
-    else saveRunFile(currentFile_);
+    if (run_->currentFile().isEmpty() || run_->currentFile() == checkpointPath()) saveDialog();
+    else saveRunFile(run_->currentFile());
   });
   saveAsAction_ = new QAction(tr("Save Run File &As…"), this);
   saveAsAction_->setShortcut(QKeySequence::SaveAs);
@@ -246,10 +268,11 @@ void MainWindow::createStatusBar() {
   progress_->setRange(0, 1000);
   progress_->setValue(0);
   progress_->setFormat(QStringLiteral("%p%"));
-  progress_->setMinimumWidth(260);
+  progress_->setMinimumWidth(150);
   progress_->setMaximumWidth(320);
   progress_->setToolTip(tr("Blocks done / T"));
   rateLabel_ = new QLabel(this);
+  rateLabel_->setObjectName(QStringLiteral("rateLabel"));
   rateLabel_->setToolTip(tr("Steps of N⁻¹ per second over all orbits (this session)"));
   etaLabel_ = new QLabel(this);
   etaLabel_->setToolTip(tr("Time left at the current rate"));
@@ -280,7 +303,7 @@ QWidget* MainWindow::createParameterDock() {
     buttons->addWidget(b);
   }
   layout->addLayout(buttons);
-  box->setMinimumWidth(330);
+  box->setMinimumWidth(300);
   return box;
 }
 
@@ -304,102 +327,71 @@ void MainWindow::createCheckpointBanner() {
 
 // ----------------------------------------------------------------------------------------- run control
 
-void MainWindow::launch(TrappingState state) {
-  runId_ += 1;
-  latest_.reset();
-  shown_.reset();
+RunSettings MainWindow::runSettings() const {
   RunSettings settings;
   settings.threads = panel_->threads();
-  worker_->startRun(runId_, std::move(state), settings);
-  setStatus(RunStatus::running);
+  return settings;
+}
+
+void MainWindow::setThreads(int threads) {
+  auto spec = panel_->spec();
+  if (!spec) return;
+  spec->threads = threads;
+  panel_->setSpec(*spec);
 }
 
 bool MainWindow::startRun() {
-  if (status_ == RunStatus::running || status_ == RunStatus::pausing || status_ == RunStatus::stopping) return false;
   const auto params = panel_->parameters();
   if (!params) {
     message(panel_->validationMessage());
     return false;
   }
-  try {
-    TrappingState state = startTrapping(*params);
-    statistics_->clear();
-    currentFile_.clear();
-    setWindowTitle(tr("Archipelago"));
-    launch(std::move(state));
-  } catch (const std::exception& e) {
-    message(tr("Cannot start: %1").arg(QString::fromStdString(e.what())));
-    return false;
-  }
+  if (!run_->start(*params, runSettings())) return false;
   saveSettings();
-  message(tr("Running…"));
   return true;
 }
 
-bool MainWindow::pauseRun() {
-  if (status_ != RunStatus::running) return false;
-  worker_->requestEnd(runId_, RunEnd::paused);
-  setStatus(RunStatus::pausing);
-  message(tr("Pausing at the next chunk boundary…"));
-  return true;
-}
+bool MainWindow::pauseRun() { return run_->pause(); }
+bool MainWindow::stopRun() { return run_->stop(); }
+bool MainWindow::resumeRun() { return run_->resume(runSettings()); }
 
-bool MainWindow::stopRun() {
-  if (status_ != RunStatus::running && status_ != RunStatus::pausing) return false;
-  worker_->requestEnd(runId_, RunEnd::stopped);
-  setStatus(RunStatus::stopping);
-  message(tr("Stopping at the next chunk boundary…"));
-  return true;
-}
-
-bool MainWindow::resumeRun() {
-  if (status_ != RunStatus::paused && status_ != RunStatus::stopped) return false;
-  if (!latest_ || latest_->state.finished()) return false;
-  const std::uint64_t at = latest_->state.blocksDone, total = latest_->state.params.T;
-  launch(latest_->state);
-  message(tr("Resumed at block %1 of %2").arg(at).arg(total));
-  return true;
-}
-
-void MainWindow::onSnapshot(const RunSnapshotPtr& snapshot) {
-  worker_->snapshotConsumed();
-  if (!snapshot || snapshot->runId != runId_) return;  // a stale run: drop it
-  latest_ = snapshot;
-}
-
-void MainWindow::onRunEnded(quint64 runId, const RunSnapshotPtr& last, RunEnd how, const QString& text) {
-  if (runId != runId_) return;
-  if (how == RunEnd::failed || !last) {
-    setStatus(RunStatus::failed);
-    message(tr("The run failed: %1").arg(text), 0);
-    return;
+RunAnswer MainWindow::askUser(const RunQuestion& q) {
+  if (!confirmations_) return RunAnswer::discard;
+  if (q.kind == RunQuestion::Kind::quitWhileLive) {
+    const auto answer = QMessageBox::question(this, q.title, q.text, QMessageBox::Yes | QMessageBox::Cancel,
+                                              QMessageBox::Cancel);
+    return answer == QMessageBox::Yes ? RunAnswer::discard : RunAnswer::cancel;
   }
-  latest_ = last;
+  const auto answer = QMessageBox::warning(this, q.title, q.text,
+                                           QMessageBox::Save | QMessageBox::Discard | QMessageBox::Cancel,
+                                           QMessageBox::Save);
+  if (answer == QMessageBox::Save) return RunAnswer::save;
+  if (answer == QMessageBox::Discard) return RunAnswer::discard;
+  return RunAnswer::cancel;
+}
+
+void MainWindow::onStatusChanged(RunStatus status) {
+  // The panel shows the parameters of the run on screen, and is read-only while that run computes or can be
+  // resumed: an edit could not apply to it.
+  const bool locked = isLive(status) || status == RunStatus::paused;
+  if (locked) {
+    if (const auto& latest = run_->latest()) panel_->setParameters(latest->state.params, panel_->threads());
+  }
+  panel_->setEditable(!locked);
+  if (!isLive(status)) {
+    etaLabel_->clear();
+    rateLabel_->clear();  // a rate belongs to a computing run
+  }
   refreshView();
-  const TrappingState& s = last->state;
-  if (how == RunEnd::finished && s.finished()) {
-    setStatus(RunStatus::finished);
-    message(tr("Finished: %1 blocks × %2 orbits in %3").arg(s.params.T).arg(s.params.M)
-                .arg(formatDuration(s.elapsedSeconds)), 0);
-  } else if (how == RunEnd::stopped) {
-    setStatus(RunStatus::stopped);
-    message(tr("Stopped at block %1 of %2; save it to resume later").arg(s.blocksDone).arg(s.params.T), 0);
-  } else {
-    setStatus(RunStatus::paused);  // paused, or an opened run file that is not finished
-    message(tr("Paused at block %1 of %2 (%3 %)").arg(s.blocksDone).arg(s.params.T)
-                .arg(100.0 * last->progress.fraction, 0, 'f', 1), 0);
-  }
-  if (closeAfterStop_) {
-    QString error;
-    if (!writeCheckpoint(&error)) message(error, 0);
-    closeAfterStop_ = false;
-    close();
-  }
+  updateActions();
+  updateStaleNote();
+  Q_EMIT runStatusChanged(status);
 }
 
 void MainWindow::refreshView() {
-  if (!latest_ || latest_ == shown_) return;
-  shown_ = latest_;
+  const RunSnapshotPtr& latest = run_->latest();
+  if (!latest || latest == shown_) return;
+  shown_ = latest;
   statistics_->showSnapshot(*shown_);
   segments_->updateSegments(shown_->state.params, shown_->state.longest);
   if (pendingSegment_ >= 0 && pendingSegment_ < segments_->model()->rowCount()) {
@@ -407,6 +399,24 @@ void MainWindow::refreshView() {
     pendingSegment_ = -1;
   }
   showProgress(*shown_);
+  updateStaleNote();
+}
+
+QString MainWindow::staleRunNote() const { return staleNote_->isHidden() ? QString() : staleNote_->text(); }
+
+void MainWindow::updateStaleNote() {
+  const RunSnapshotPtr& latest = run_->latest();
+  const auto params = panel_->parameters();
+  const bool stale = latest && !isLive(run_->status()) && run_->status() != RunStatus::paused &&
+                     (!params || !(*params == latest->state.params));
+  if (stale) {
+    const TrappingParameters& p = latest->state.params;
+    staleNote_->setText(tr("The plots show the %1 run of K = %2 (T = %3, M = %4); the parameters have changed since. "
+                           "Run (F5) starts a run with the new ones.")
+                            .arg(statusName(run_->status()), QString::number(p.map.K, 'g', 6))
+                            .arg(p.T).arg(p.M));
+  }
+  staleNote_->setVisible(stale);
 }
 
 void MainWindow::createLongSegmentsDock(QDockWidget* parametersDock) {
@@ -462,83 +472,39 @@ void MainWindow::showProgress(const RunSnapshot& s) {
   progress_->setFormat(tr("%p % · block %1 of %2")
                            .arg(c.toString(static_cast<double>(s.state.blocksDone), 'g', 3),
                                 c.toString(static_cast<double>(s.state.params.T), 'g', 3)));
-  const bool live = status_ == RunStatus::running || status_ == RunStatus::pausing || status_ == RunStatus::stopping;
-  rateLabel_->setText(s.progress.stepsPerSecond > 0 ? formatRate(s.progress.stepsPerSecond) : QString());
+  const bool live = isLive(run_->status());
+  rateLabel_->setText(live && s.progress.stepsPerSecond > 0 ? formatRate(s.progress.stepsPerSecond) : QString());
   etaLabel_->setText(live && s.progress.stepsPerSecond > 0 ? tr("ETA %1").arg(formatDuration(s.progress.etaSeconds))
                                                            : QString());
   if (!s.kernel.empty()) kernelLabel_->setText(tr("kernel: %1").arg(QString::fromStdString(s.kernel)));
 }
 
-void MainWindow::setStatus(RunStatus status) {
-  status_ = status;
-  const bool busy = status == RunStatus::running || status == RunStatus::pausing || status == RunStatus::stopping;
-  panel_->setEditable(!busy);
-  updateActions();
-  if (!busy) etaLabel_->clear();
-  Q_EMIT runStatusChanged(status);
-}
-
 void MainWindow::updateActions() {
-  const bool busy = status_ == RunStatus::running || status_ == RunStatus::pausing || status_ == RunStatus::stopping;
-  runAction_->setEnabled(!busy && panel_->isValid());
-  pauseAction_->setEnabled(status_ == RunStatus::running);
-  stopAction_->setEnabled(status_ == RunStatus::running || status_ == RunStatus::pausing);
-  resumeAction_->setEnabled((status_ == RunStatus::paused || status_ == RunStatus::stopped) && latest_ &&
-                            !latest_->state.finished());
-  saveAction_->setEnabled(latest_ != nullptr);
-  saveAsAction_->setEnabled(latest_ != nullptr);
-  openAction_->setEnabled(!busy);
+  const RunStatus status = run_->status();
+  const bool live = isLive(status);
+  runAction_->setEnabled(!live && panel_->isValid());
+  pauseAction_->setEnabled(status == RunStatus::running);
+  stopAction_->setEnabled(status == RunStatus::running || status == RunStatus::pausing || status == RunStatus::paused);
+  resumeAction_->setEnabled(run_->canResume());
+  const bool haveRun = run_->latest() != nullptr;
+  saveAction_->setEnabled(haveRun);
+  saveAsAction_->setEnabled(haveRun);
+  exportAllAction_->setEnabled(haveRun);
+  openAction_->setEnabled(!live);
 }
 
 // ----------------------------------------------------------------------------------------------- files
 
 bool MainWindow::openRunFile(const QString& path, QString* error) {
-  if (status_ == RunStatus::running || status_ == RunStatus::pausing || status_ == RunStatus::stopping) {
-    const QString e = tr("Stop or pause the run before opening another");
-    if (error) *error = e;
-    message(e);
+  QString why;
+  if (!run_->open(path, &why, false, runSettings())) {
+    if (error) *error = why;
     return false;
   }
-  try {
-    TrappingState state = loadRunFile(path.toStdString());
-    panel_->setParameters(state.params, panel_->threads());
-    statistics_->clear();
-    runId_ += 1;
-    latest_.reset();
-    shown_.reset();
-    worker_->analyse(runId_, std::move(state));  // statistics are computed off the GUI thread
-    currentFile_ = path;
-    setWindowTitle(tr("%1 — Archipelago").arg(QFileInfo(path).fileName()));
-    addRecentFile(path);
-    message(tr("Opened %1").arg(path));
-    return true;
-  } catch (const std::exception& e) {
-    const QString text = QString::fromStdString(e.what());
-    if (error) *error = text;
-    message(tr("Cannot open: %1").arg(text), 0);
-    return false;
-  }
-}
-
-bool MainWindow::saveRunFile(const QString& path, QString* error) {
-  if (!latest_) {
-    if (error) *error = tr("There is no run to save");
-    return false;
-  }
-  try {
-    archipelago::saveRunFile(path.toStdString(), latest_->state);
-  } catch (const std::exception& e) {
-    const QString text = QString::fromStdString(e.what());
-    if (error) *error = text;
-    message(tr("Cannot save: %1").arg(text), 0);
-    return false;
-  }
-  currentFile_ = path;
-  setWindowTitle(tr("%1 — Archipelago").arg(QFileInfo(path).fileName()));
-  addRecentFile(path);
-  message(tr("Saved %1 (block %2 of %3)").arg(path).arg(latest_->state.blocksDone).arg(latest_->state.params.T));
   return true;
 }
+
+bool MainWindow::saveRunFile(const QString& path, QString* error) { return run_->save(path, error); }
 
 bool MainWindow::exportAllTo(const QString& folder, QString* error) {
   refreshView();  // export what the newest snapshot holds
@@ -553,83 +519,59 @@ bool MainWindow::exportAllTo(const QString& folder, QString* error) {
 }
 
 void MainWindow::openDialog() {
-  QSettings settings;
-  const QString path = QFileDialog::getOpenFileName(this, tr("Open Run File"), settings.value(QStringLiteral("lastDir")).toString(),
+  const QString path = QFileDialog::getOpenFileName(this, tr("Open Run File"), SettingsController::lastFolder(QStringLiteral("runs")),
                                                     tr("Run files (*.json);;All files (*)"));
   if (path.isEmpty()) return;
-  settings.setValue(QStringLiteral("lastDir"), QFileInfo(path).absolutePath());
-  openRunFile(path);
+  SettingsController::rememberFolder(QStringLiteral("runs"), path);
+  openInteractively(path);
+}
+
+void MainWindow::openInteractively(const QString& path) {
+  QString error;
+  if (!openRunFile(path, &error) && error != tr("Cancelled"))
+    QMessageBox::warning(this, tr("Cannot open the run file"), tr("%1\n\n%2").arg(path, error));
 }
 
 bool MainWindow::saveDialog() {
-  QSettings settings;
-  const QString start = QDir(settings.value(QStringLiteral("lastDir"), QDir::homePath()).toString())
-                            .filePath(QStringLiteral("run.json"));
+  const QString start = QDir(SettingsController::lastFolder(QStringLiteral("runs"))).filePath(QStringLiteral("run.json"));
   QString path = QFileDialog::getSaveFileName(this, tr("Save Run File"), start, tr("Run files (*.json)"));
   if (path.isEmpty()) return false;
   if (!isRunFile(path)) path += QStringLiteral(".json");
-  settings.setValue(QStringLiteral("lastDir"), QFileInfo(path).absolutePath());
-  return saveRunFile(path);
+  SettingsController::rememberFolder(QStringLiteral("runs"), path);
+  QString error;
+  if (saveRunFile(path, &error)) return true;
+  QMessageBox::warning(this, tr("Cannot save the run file"), tr("%1\n\n%2").arg(path, error));
+  return false;
 }
 
 void MainWindow::exportAllDialog() {
-  QSettings settings;
-  const QString folder = QFileDialog::getExistingDirectory(this, tr("Export All Plots To"),
-                                                           settings.value(QStringLiteral("exportDir")).toString());
+  const QString folder = QFileDialog::getExistingDirectory(this, tr("Export All To"),
+                                                           SettingsController::lastFolder(QStringLiteral("exports")));
   if (folder.isEmpty()) return;
-  settings.setValue(QStringLiteral("exportDir"), folder);
+  SettingsController::rememberFolder(QStringLiteral("exports"), folder);
   exportAllTo(folder);
 }
 
 void MainWindow::exportPlotDialog(int plotIndex) {
   StatisticsPlot* plot = statistics_->plots().at(plotIndex);
-  QSettings settings;
-  const QString start = QDir(settings.value(QStringLiteral("exportDir"), QDir::homePath()).toString())
+  const QString start = QDir(SettingsController::lastFolder(QStringLiteral("exports")))
                             .filePath(plot->fileName() + QStringLiteral(".png"));
   const QString path = QFileDialog::getSaveFileName(
       this, tr("Export %1").arg(plot->displayName()), start,
       tr("PNG image (*.png);;SVG drawing (*.svg);;PDF document (*.pdf);;CSV data (*.csv)"));
   if (path.isEmpty()) return;
-  settings.setValue(QStringLiteral("exportDir"), QFileInfo(path).absolutePath());
+  SettingsController::rememberFolder(QStringLiteral("exports"), path);
   refreshView();
   const ExportResult r = exportPlot(*plot, shown_, path);
   message(r.ok() ? tr("Wrote %1").arg(path) : tr("Export failed: %1").arg(r.error));
 }
 
-void MainWindow::addRecentFile(const QString& path) {
-  QSettings settings;
-  QStringList files = settings.value(QStringLiteral("recentFiles")).toStringList();
-  const QString absolute = QFileInfo(path).absoluteFilePath();
-  files.removeAll(absolute);
-  files.prepend(absolute);
-  while (files.size() > kMaxRecentFiles) files.removeLast();
-  settings.setValue(QStringLiteral("recentFiles"), files);
-}
-
 void MainWindow::fillRecentMenu() {
   recentMenu_->clear();
-  const QStringList files = QSettings().value(QStringLiteral("recentFiles")).toStringList();
-  for (const QString& f : files) recentMenu_->addAction(QFileInfo(f).fileName(), this, [this, f] { openRunFile(f); })
+  const QStringList files = SettingsController::recentFiles();
+  for (const QString& f : files) recentMenu_->addAction(QFileInfo(f).fileName(), this, [this, f] { openInteractively(f); })
                                      ->setToolTip(f);
   if (files.isEmpty()) recentMenu_->addAction(tr("(none)"))->setEnabled(false);
-}
-
-QString MainWindow::checkpointPath() {
-  return QDir(QStandardPaths::writableLocation(QStandardPaths::AppDataLocation))
-      .filePath(QStringLiteral("checkpoint.json"));
-}
-
-bool MainWindow::writeCheckpoint(QString* error) {
-  if (!latest_) return false;
-  try {
-    QDir().mkpath(QFileInfo(checkpointPath()).absolutePath());
-    archipelago::saveRunFile(checkpointPath().toStdString(), latest_->state);
-  } catch (const std::exception& e) {
-    if (error) *error = tr("Could not keep a checkpoint: %1").arg(QString::fromStdString(e.what()));
-    return false;
-  }
-  message(tr("Checkpoint kept in %1").arg(checkpointPath()), 0);
-  return true;
 }
 
 void MainWindow::resumeCheckpoint() {
@@ -637,15 +579,14 @@ void MainWindow::resumeCheckpoint() {
     message(tr("There is no checkpoint"));
     return;
   }
+  QString error;
+  if (!run_->open(checkpointPath(), &error, /*resumeWhenReady=*/true, runSettings())) {
+    if (error != tr("Cancelled")) QMessageBox::warning(this, tr("Cannot resume the checkpoint"), error);
+    return;
+  }
+  // Once resumed, the window holds the run; closing again mid-run writes a fresh checkpoint.
   checkpointBanner_->hide();
-  if (!openRunFile(checkpointPath())) return;
-  // The worker answers the analysis first; resume as soon as the window knows the state.
-  auto connection = std::make_shared<QMetaObject::Connection>();
-  *connection = connect(this, &MainWindow::runStatusChanged, this, [this, connection](RunStatus s) {
-    // Once resumed, the window holds the run; closing again mid-run writes a fresh checkpoint.
-    if (s == RunStatus::paused && resumeRun()) QFile::remove(checkpointPath());
-    if (s != RunStatus::running) disconnect(*connection);
-  });
+  QFile::remove(checkpointPath());
 }
 
 void MainWindow::discardCheckpoint() {
@@ -657,25 +598,9 @@ void MainWindow::discardCheckpoint() {
 // ------------------------------------------------------------------------------------ window behaviour
 
 void MainWindow::closeEvent(QCloseEvent* event) {
-  const bool busy = status_ == RunStatus::running || status_ == RunStatus::pausing || status_ == RunStatus::stopping;
-  if (busy) {
-    if (confirmations_ && !closeAfterStop_) {
-      const auto answer = QMessageBox::question(
-          this, tr("A run is in progress"),
-          tr("Stop the run and quit? Its state is kept as a checkpoint that the next start offers to resume."),
-          QMessageBox::Yes | QMessageBox::Cancel, QMessageBox::Cancel);
-      if (answer != QMessageBox::Yes) {
-        event->ignore();
-        return;
-      }
-    }
-    // Stop at the next chunk boundary; onRunEnded() writes the checkpoint and closes again.
-    closeAfterStop_ = true;
-    if (status_ != RunStatus::stopping) {
-      worker_->requestEnd(runId_, RunEnd::stopped);
-      setStatus(RunStatus::stopping);
-    }
-    message(tr("Stopping the run to keep a checkpoint…"), 0);
+  // The controller asks what to do with a live or unsaved run; when it must first stop the run, it calls close()
+  // again (closeReady) once the checkpoint is kept.
+  if (!run_->requestClose()) {
     event->ignore();
     return;
   }
@@ -692,29 +617,23 @@ void MainWindow::dragEnterEvent(QDragEnterEvent* event) {
 void MainWindow::dropEvent(QDropEvent* event) {
   const QList<QUrl> urls = event->mimeData()->urls();
   if (urls.isEmpty()) return;
-  if (openRunFile(urls.front().toLocalFile())) event->acceptProposedAction();
+  event->acceptProposedAction();
+  const QString path = urls.front().toLocalFile();
+  QTimer::singleShot(0, this, [this, path] { openInteractively(path); });  // no modal dialog inside a drop
 }
 
 void MainWindow::restoreSettings() {
-  QSettings settings;
-  restoreGeometry(settings.value(QStringLiteral("window/geometry")).toByteArray());
-  restoreState(settings.value(QStringLiteral("window/state")).toByteArray());
+  SettingsController::restoreWindow(*this);
   // The last parameters, as a run spec through core's codec; absent on the first start (the panel then keeps
   // the default preset), ignored with a note when a hand edit or another version made it unreadable.
-  const QString text = settings.value(QStringLiteral("run/spec")).toString();
-  if (text.isEmpty()) return;
-  try {
-    panel_->setSpec(parseRunSpec(text.toStdString()));
-  } catch (const std::invalid_argument& e) {
-    message(tr("The saved parameters were not restored: %1").arg(QString::fromStdString(e.what())), 10000);
-  }
+  QString error;
+  if (const auto spec = SettingsController::lastSpec(&error)) panel_->setSpec(*spec);
+  else if (!error.isEmpty()) message(tr("The saved parameters were not restored: %1").arg(error), 10000);
 }
 
 void MainWindow::saveSettings() const {
-  QSettings settings;
-  settings.setValue(QStringLiteral("window/geometry"), saveGeometry());
-  settings.setValue(QStringLiteral("window/state"), saveState());
-  if (const auto spec = panel_->spec()) settings.setValue(QStringLiteral("run/spec"), QString::fromStdString(runSpecJson(*spec)));
+  SettingsController::saveWindow(*this);
+  if (const auto spec = panel_->spec()) SettingsController::setLastSpec(*spec);
 }
 
 void MainWindow::showAbout() {
@@ -733,7 +652,7 @@ void MainWindow::showAbout() {
          "</table>")
           .arg(QStringLiteral(ARCHIPELAGO_VERSION), QString::fromLatin1(qVersion()), QStringLiteral(QT_VERSION_STR),
                QStringLiteral(QWT_VERSION_STR),
-               latest_ && !latest_->kernel.empty() ? QString::fromStdString(latest_->kernel) : RunWorker::kernelName(),
+               run_->latest() && !run_->latest()->kernel.empty() ? QString::fromStdString(run_->latest()->kernel) : RunWorker::kernelName(),
                RunWorker::kernelDescription()));
 }
 

@@ -1,21 +1,18 @@
 #pragma once
 /// \file MainWindow.hpp
-/// \brief The main window of `archipelago`: parameters, run control, live statistics plots, files.
+/// \brief The main window of `archipelago`: layout and wiring only.
 ///
-/// Threads: a RunWorker owns every computation.  The window hands it a TrappingState and receives
-/// immutable RunSnapshots through queued signals; snapshots of any other run id are dropped.  Only the
-/// refresh timer (15 Hz) draws: a snapshot that arrives is stored, and the timer shows the newest one, so the
-/// event loop stays free however fast chunks end.  Pause ends the worker's session at a chunk boundary and
-/// keeps the state it returns; resume hands that state back.  Closing during a run asks, stops at the next
-/// chunk boundary, writes a checkpoint run file in the application's data folder and then closes; the next
-/// start offers to resume it.
-///
-/// The central area is a tab widget: "Statistics" is the first tab; tabs() lets the application add more
-/// (phase portrait, longest segments).
+/// The run on screen — its state machine, worker, files and checkpoint — belongs to the RunController; what the
+/// window remembers between starts to the SettingsController.  The window lays out the parameter panel, the
+/// tabs (statistics, phase portrait), the long-segments dock, menus, toolbar and status bar, and connects them:
+/// the refresh timer (15 Hz) shows the controller's newest snapshot, so the event loop stays free however fast
+/// chunks end.  Closing during a run asks, stops at the next chunk boundary, keeps a checkpoint and then closes;
+/// the next start offers to resume it.
 
 #include <QMainWindow>
 #include <QPointer>
 
+#include "ui/RunController.hpp"
 #include "ui/RunSnapshot.hpp"
 #include "ui/RunWorker.hpp"
 
@@ -37,9 +34,6 @@ class PortraitPanel;
 class ParameterPanel;
 class StatisticsView;
 
-/// Where the run shown in the window stands.
-enum class RunStatus { idle, running, pausing, paused, stopping, stopped, finished, failed };
-
 class MainWindow : public QMainWindow {
   Q_OBJECT
  public:
@@ -51,7 +45,8 @@ class MainWindow : public QMainWindow {
   bool pauseRun();
   bool resumeRun();
   bool stopRun();
-  [[nodiscard]] RunStatus runStatus() const noexcept { return status_; }
+  [[nodiscard]] RunStatus runStatus() const noexcept { return run_->status(); }
+  [[nodiscard]] RunController* runController() const noexcept { return run_; }
 
   // Files.  Errors go to the status bar and, when `error` is given, to it.
   bool openRunFile(const QString& path, QString* error = nullptr);
@@ -59,10 +54,13 @@ class MainWindow : public QMainWindow {
   /// Writes every plot (PNG, SVG, PDF) and every CSV file of the run on screen (as `stats --csv` does) into `folder`.
   bool exportAllTo(const QString& folder, QString* error = nullptr);
   /// Where a run interrupted by closing the window is kept.
-  [[nodiscard]] static QString checkpointPath();
+  [[nodiscard]] static QString checkpointPath() { return RunController::checkpointPath(); }
 
-  /// Dialogs that ask the user (closing during a run, overwriting) are skipped when false (tests, scripts).
+  /// Dialogs that ask the user (closing during a run, discarding unsaved work, overwriting) are skipped when
+  /// false (tests, scripts): unsaved work is then discarded, a live run is stopped and checkpointed on close.
   void setConfirmations(bool on) noexcept { confirmations_ = on; }
+  /// Worker threads for runs (0 = every core); the parameter panel's field.
+  void setThreads(int threads);
 
   [[nodiscard]] ParameterPanel* parameterPanel() const noexcept { return panel_; }
   [[nodiscard]] StatisticsView* statisticsView() const noexcept { return statistics_; }
@@ -75,12 +73,15 @@ class MainWindow : public QMainWindow {
   /// Tools ▸ Find Periodic Orbit: the dialog, with K from the current parameters.
   void showPeriodicOrbitDialog();
   [[nodiscard]] QTabWidget* tabs() const noexcept { return tabs_; }
-  [[nodiscard]] RunSnapshotPtr latestSnapshot() const { return latest_; }
+  [[nodiscard]] RunSnapshotPtr latestSnapshot() const { return run_->latest(); }
   [[nodiscard]] QAction* runAction() const noexcept { return runAction_; }
   [[nodiscard]] QAction* pauseAction() const noexcept { return pauseAction_; }
   [[nodiscard]] QAction* resumeAction() const noexcept { return resumeAction_; }
   [[nodiscard]] QAction* stopAction() const noexcept { return stopAction_; }
-  [[nodiscard]] const RunWorker& worker() const noexcept { return *worker_; }
+  [[nodiscard]] QAction* saveAction() const noexcept { return saveAction_; }
+  [[nodiscard]] const RunWorker& worker() const noexcept { return run_->worker(); }
+  /// The note over the plots when they show a run whose parameters differ from the panel's (empty otherwise).
+  [[nodiscard]] QString staleRunNote() const;
 
  Q_SIGNALS:
   void runStatusChanged(archipelago::ui::RunStatus status);
@@ -96,30 +97,31 @@ class MainWindow : public QMainWindow {
   void createStatusBar();
   QWidget* createParameterDock();
   void createCheckpointBanner();
+  void createLongSegmentsDock(QDockWidget* parametersDock);
   void restoreSettings();
   void saveSettings() const;
 
-  void onSnapshot(const RunSnapshotPtr& snapshot);
-  void onRunEnded(quint64 runId, const RunSnapshotPtr& last, RunEnd how, const QString& message);
   void refreshView();
-  void createLongSegmentsDock(QDockWidget* parametersDock);
   void showProgress(const RunSnapshot& snapshot);
-  void setStatus(RunStatus status);
+  void onStatusChanged(RunStatus status);
   void updateActions();
-  void launch(TrappingState state);
+  void updateStaleNote();
+  [[nodiscard]] RunSettings runSettings() const;
+  RunAnswer askUser(const RunQuestion& question);
 
   void openDialog();
+  /// Opens a file the user chose; a failure is a dialog with the whole reason.
+  void openInteractively(const QString& path);
   bool saveDialog();
   void exportAllDialog();
   void exportPlotDialog(int plotIndex);
-  void addRecentFile(const QString& path);
   void fillRecentMenu();
-  bool writeCheckpoint(QString* error = nullptr);
   void resumeCheckpoint();
   void discardCheckpoint();
   void showAbout();
   void message(const QString& text, int timeoutMs = 6000);
 
+  RunController* run_ = nullptr;
   ParameterPanel* panel_ = nullptr;
   StatisticsView* statistics_ = nullptr;
   PortraitPanel* portrait_ = nullptr;
@@ -129,10 +131,10 @@ class MainWindow : public QMainWindow {
   int pendingSegment_ = -1;       // showLongSegment(): the rank to select when the table has it
   bool pendingIsland_ = false;
   QTabWidget* tabs_ = nullptr;
-  RunWorker* worker_ = nullptr;
   QTimer* refreshTimer_ = nullptr;
   QFrame* checkpointBanner_ = nullptr;
   QLabel* checkpointLabel_ = nullptr;
+  QLabel* staleNote_ = nullptr;
 
   QProgressBar* progress_ = nullptr;
   QLabel* rateLabel_ = nullptr;
@@ -151,15 +153,8 @@ class MainWindow : public QMainWindow {
   QAction* resetZoomAction_ = nullptr;
   QMenu* recentMenu_ = nullptr;
 
-  RunStatus status_ = RunStatus::idle;
-  quint64 runId_ = 0;          // the run whose snapshots are shown; others are stale
-  RunSnapshotPtr latest_;      // newest snapshot of runId_
-  RunSnapshotPtr shown_;       // the one on screen
-  QString currentFile_;
-  bool closeAfterStop_ = false;
+  RunSnapshotPtr shown_;       // the snapshot on screen
   bool confirmations_ = true;
 };
 
 }  // namespace archipelago::ui
-
-Q_DECLARE_METATYPE(archipelago::ui::RunStatus)

@@ -19,7 +19,6 @@
 #include "LatencyProbe.hpp"
 #include "ui/MainWindow.hpp"
 #include "ui/ParameterPanel.hpp"
-#include <QLineEdit>
 
 int main(int argc, char** argv) {
   QApplication app(argc, argv);
@@ -70,10 +69,14 @@ int main(int argc, char** argv) {
     return 1;
   }
   if (parser.isSet(threads)) {
-    if (auto* field = panel->field(QStringLiteral("threads"))) {
-      field->setText(parser.value(threads));
-      Q_EMIT field->textEdited(field->text());
+    bool ok = false;
+    const int n = parser.value(threads).toInt(&ok);
+    if (!ok || n < 0) {
+      std::fprintf(stderr, "ERROR: --threads must be a whole number ≥ 0 (0 = every core), not \"%s\"\n",
+                   qPrintable(parser.value(threads)));
+      return 1;
     }
+    window.setThreads(n);
   }
   window.show();
   if (parser.isSet(tab)) {

@@ -12,6 +12,7 @@
 
 #include "core/runfile/RunFile.hpp"
 #include "app/cli/CliCommon.hpp"
+#include "core/session/SessionFile.hpp"
 #include "core/spec/RunSpec.hpp"
 
 namespace archipelago::fuzz {
@@ -60,6 +61,18 @@ inline void numbers(const std::uint8_t* data, std::size_t size) {
   try {
     (void)cli::parseNumbers<double>("--view", text, ',', 4, "four numbers");
     (void)cli::parseNumbers<std::uint32_t>("--size", text, 'x', 2, "WxH");
+  } catch (const std::invalid_argument&) {
+  }
+}
+
+/// Session files (.archipelago): parseSession() throws std::invalid_argument.  An accepted session is written
+/// back to the same text (the codec is exact) and parsed again.
+inline void session(const std::uint8_t* data, std::size_t size) {
+  const std::string text(reinterpret_cast<const char*>(data), size);
+  try {
+    const Session s = parseSession(text);
+    const std::string again = sessionText(s);
+    if (sessionText(parseSession(again)) != again) throw std::logic_error("session round trip changed it");
   } catch (const std::invalid_argument&) {
   }
 }

@@ -12,13 +12,14 @@
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(stderr, "usage: replay_corpus runfile|runspec|numbers PATH…\n");
+    std::fprintf(stderr, "usage: replay_corpus runfile|runspec|numbers|session PATH…\n");
     return 2;
   }
   const std::string target = argv[1];
   void (*entry)(const std::uint8_t*, std::size_t) = target == "runfile"   ? archipelago::fuzz::runFile
                                                     : target == "runspec" ? archipelago::fuzz::runSpec
                                                     : target == "numbers" ? archipelago::fuzz::numbers
+                                                    : target == "session" ? archipelago::fuzz::session
                                                                           : nullptr;
   if (!entry) {
     std::fprintf(stderr, "unknown target %s\n", target.c_str());

@@ -122,7 +122,7 @@ class TestRunControl : public QObject {
     QVERIFY(window.resumeAction()->isEnabled());
     QVERIFY(window.runAction()->isEnabled());
     QVERIFY(!window.pauseAction()->isEnabled());
-    QVERIFY(!window.parameterPanel()->field(QStringLiteral("K"))->isReadOnly());
+    QVERIFY(window.parameterPanel()->field(QStringLiteral("K"))->isReadOnly());  // the paused run's parameters
 
     QVERIFY(window.resumeRun());
     QCOMPARE(window.runStatus(), RunStatus::running);
@@ -133,7 +133,7 @@ class TestRunControl : public QObject {
     const auto stopped = window.latestSnapshot();
     QVERIFY(stopped->state.blocksDone > paused->state.blocksDone);
     QVERIFY(sameAsHeadless(stopped->state));  // resumed where it paused, bit for bit
-    QVERIFY(window.resumeAction()->isEnabled());
+    QVERIFY(!window.resumeAction()->isEnabled());  // Stop is final; Pause is the way to continue later
     QVERIFY(!window.stopAction()->isEnabled());
   }
 

@@ -253,6 +253,22 @@ void StatisticsPlot::resetZoom() {
   refresh();
 }
 
+std::optional<QRectF> StatisticsPlot::userView() const {
+  if (followingData()) return std::nullopt;
+  const QwtInterval x = axisInterval(kAxisX), y = axisInterval(kAxisY);
+  return QRectF(x.minValue(), y.minValue(), x.width(), y.width());
+}
+
+void StatisticsPlot::setUserView(const QRectF& view) {
+  forceFollow_ = false;
+  setAxisAutoScale(kAxisX, false);
+  setAxisAutoScale(kAxisY, false);
+  setAxisScale(kAxisX, view.left(), view.right());
+  setAxisScale(kAxisY, view.top(), view.bottom());
+  replot();
+  zoomer_->setZoomBase(false);
+}
+
 bool StatisticsPlot::exportImage(const QString& path, QString* error) {
   const QString format = QFileInfo(path).suffix().toLower();
   if (format != QLatin1String("png") && format != QLatin1String("svg") && format != QLatin1String("pdf")) {

@@ -17,6 +17,7 @@
 #include <qwt_interval.h>
 #include <qwt_plot.h>
 
+#include <optional>
 #include <vector>
 
 #include "ui/RunSnapshot.hpp"
@@ -48,6 +49,10 @@ class StatisticsPlot : public QwtPlot {
   void refresh();
   /// Follows the data again.
   void resetZoom();
+  /// The range the user chose (zoom, pan, wheel) as (x, y, width, height) in plot units, or nothing while the
+  /// plot follows its data.  setUserView() shows such a range (a session being restored).
+  [[nodiscard]] std::optional<QRectF> userView() const;
+  void setUserView(const QRectF& view);
 
   /// The points drawn for the data curve (x, value), after dropping points a log axis cannot show.
   [[nodiscard]] QVector<QPointF> plottedPoints() const;

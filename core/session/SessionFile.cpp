@@ -1,0 +1,276 @@
+#include "core/session/SessionFile.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <set>
+#include <stdexcept>
+
+#include "core/io/AtomicFile.hpp"
+#include "core/runfile/RunFile.hpp"
+#include "core/spec/RunSpecJson.hpp"
+
+namespace archipelago {
+
+namespace {
+
+using nlohmann::json;
+
+[[noreturn]] void bad(const std::string& what) { throw std::invalid_argument(what); }
+
+void onlyKeys(const json& j, const std::string& where, std::initializer_list<const char*> keys) {
+  if (!j.is_object()) bad(where + " must be a JSON object");
+  const std::set<std::string> known(keys.begin(), keys.end());
+  for (auto it = j.begin(); it != j.end(); ++it)
+    if (!known.count(it.key())) bad("unknown key '" + it.key() + "' in " + where);
+}
+
+double finite(const json& v, const std::string& key) {
+  if (!v.is_number()) bad(key + " must be a number, not " + v.dump());
+  const double d = v.get<double>();
+  if (!std::isfinite(d)) bad(key + " must be finite");
+  return d;
+}
+
+std::uint64_t whole(const json& v, const std::string& key, std::uint64_t max) {
+  if (!v.is_number_unsigned() || v.get<std::uint64_t>() > max)
+    bad(key + " = " + v.dump() + " must be a whole number in [0, " + std::to_string(max) + "]");
+  return v.get<std::uint64_t>();
+}
+
+std::string string(const json& v, const std::string& key, std::size_t maxLength = 256) {
+  if (!v.is_string()) bad(key + " must be a string");
+  std::string s = v.get<std::string>();
+  if (s.size() > maxLength) bad(key + " is longer than " + std::to_string(maxLength) + " characters");
+  return s;
+}
+
+const json& array(const json& v, const std::string& key, std::size_t maxSize) {
+  if (!v.is_array()) bad(key + " must be an array");
+  if (v.size() > maxSize) bad(key + " has " + std::to_string(v.size()) + " entries; at most " + std::to_string(maxSize));
+  return v;
+}
+
+json rectJson(const SessionRect& r) { return json::array({r.xmin, r.xmax, r.ymin, r.ymax}); }
+
+SessionRect rect(const json& v, const std::string& key) {
+  array(v, key, 4);
+  if (v.size() != 4) bad(key + " must be [xmin, xmax, ymin, ymax]");
+  SessionRect r{finite(v[0], key + "[0]"), finite(v[1], key + "[1]"), finite(v[2], key + "[2]"), finite(v[3], key + "[3]")};
+  if (!(r.xmin < r.xmax) || !(r.ymin < r.ymax)) bad(key + " must have xmin < xmax and ymin < ymax");
+  return r;
+}
+
+std::array<double, 2> point(const json& v, const std::string& key) {
+  if (!v.is_array() || v.size() != 2) bad(key + " must be [x, y]");
+  return {finite(v[0], key + "[0]"), finite(v[1], key + "[1]")};
+}
+
+json viewJson(const Viewport& v) {
+  char w[64], h[64];
+  std::snprintf(w, sizeof w, "%.21Lg", v.widthUnits());
+  std::snprintf(h, sizeof h, "%.21Lg", v.heightUnits());
+  return {{"centre", json::array({v.centre().X, v.centre().Y})}, {"size", json::array({w, h})}};
+}
+
+Viewport view(const json& v, const std::string& key) {
+  onlyKeys(v, key, {"centre", "size"});
+  const auto c = v.find("centre"), z = v.find("size");
+  if (c == v.end() || z == v.end()) bad(key + " needs 'centre' and 'size'");
+  if (!c->is_array() || c->size() != 2) bad(key + ".centre must be [X, Y] in grid units");
+  if (!z->is_array() || z->size() != 2) bad(key + ".size must be [\"width\", \"height\"] in grid units");
+  const UnitState centre{whole((*c)[0], key + ".centre[0]", FixedPointMap::kOne - 1),
+                         whole((*c)[1], key + ".centre[1]", FixedPointMap::kOne - 1)};
+  long double size[2];
+  for (int i = 0; i < 2; ++i) {
+    const std::string k = key + ".size[" + std::to_string(i) + "]";
+    const std::string t = string((*z)[i], k, 64);
+    char* end = nullptr;
+    size[i] = std::strtold(t.c_str(), &end);
+    if (t.empty() || end != t.c_str() + t.size()) bad(k + " = \"" + t + "\" is not a number");
+  }
+  try {
+    return Viewport::fromUnits(centre, size[0], size[1]);
+  } catch (const std::invalid_argument& e) {
+    bad(key + ": " + e.what());
+  }
+}
+
+json pointsJson(const std::vector<std::array<double, 2>>& points) {
+  json a = json::array();
+  for (const auto& p : points) a.push_back(json::array({p[0], p[1]}));
+  return a;
+}
+
+}  // namespace
+
+std::string sessionText(const Session& s) {
+  json j = json::object();
+  j["format"] = kSessionFormatName;
+  j["version"] = kSessionFormatVersion;
+  j["spec"] = json::parse(runSpecJson(s.spec));
+  if (s.embeddedRun) j["run"] = {{"embedded", json::parse(runFileText(*s.embeddedRun))}};
+  else if (s.runFile) j["run"] = {{"file", s.runFile->generic_string()}};
+  else j["run"] = nullptr;
+  j["tab"] = s.tab;
+  json portrait = json::object();
+  portrait["history"] = json::array();
+  for (const Viewport& v : s.portrait.history) portrait["history"].push_back(viewJson(v));
+  portrait["current"] = s.portrait.current;
+  portrait["mode"] = std::string(toString(s.portrait.mode));
+  portrait["colours"] = std::string(toString(s.portrait.colours));
+  portrait["budget"] = s.portrait.budget;
+  portrait["orbits"] = pointsJson(s.portrait.orbits);
+  portrait["periodic"] = json::array();
+  for (const SessionPeriodicOverlay& o : s.portrait.periodic)
+    portrait["periodic"].push_back({{"label", o.label}, {"points", pointsJson(o.points)}});
+  j["portrait"] = portrait;
+  j["segment"] = s.segmentRank < 0 ? json(nullptr) : json{{"rank", s.segmentRank}, {"position", s.segmentPosition}};
+  j["plots"] = json::array();
+  for (const SessionPlotZoom& z : s.plots) j["plots"].push_back({{"name", z.name}, {"zoom", rectJson(z.zoom)}});
+  return j.dump(1) + "\n";
+}
+
+Session parseSession(std::string_view text) {
+  const json j = spec::parseStrictJson(text);
+  if (!j.is_object()) bad("a session file must be a JSON object");
+  const auto format = j.find("format");
+  if (format == j.end() || *format != kSessionFormatName)
+    bad(std::string("not an Archipelago session (missing \"format\": \"") + kSessionFormatName + "\")");
+  const auto version = j.find("version");
+  if (version == j.end() || !version->is_number_unsigned() || version->get<std::uint64_t>() != kSessionFormatVersion)
+    bad("session version " + (version == j.end() ? std::string("(missing)") : version->dump()) +
+        " is not supported (this program reads version " + std::to_string(kSessionFormatVersion) + ")");
+  onlyKeys(j, "the session", {"format", "version", "spec", "run", "tab", "portrait", "segment", "plots"});
+
+  Session s;
+  const auto spec = j.find("spec");
+  if (spec == j.end()) bad("the session has no 'spec'");
+  try {
+    s.spec = parseRunSpec(spec->dump());
+  } catch (const std::invalid_argument& e) {
+    bad(std::string("spec: ") + e.what());
+  }
+
+  if (const auto run = j.find("run"); run != j.end() && !run->is_null()) {
+    onlyKeys(*run, "run", {"file", "embedded"});
+    if (run->size() != 1) bad("run must hold exactly one of 'file' and 'embedded'");
+    if (const auto f = run->find("file"); f != run->end()) {
+      const std::string path = string(*f, "run.file", 4096);
+      if (path.empty()) bad("run.file must not be empty");
+      s.runFile = std::filesystem::path(path);
+    } else {
+      try {
+        s.embeddedRun = parseRunFile(run->at("embedded").dump(1));
+      } catch (const std::exception& e) {
+        bad(std::string("run.embedded: ") + e.what());
+      }
+      if (!(s.embeddedRun->params == s.spec.parameters))
+        bad("run.embedded: its parameters differ from the session's spec");
+    }
+  }
+
+  if (const auto tab = j.find("tab"); tab != j.end()) s.tab = string(*tab, "tab");
+
+  if (const auto p = j.find("portrait"); p != j.end()) {
+    onlyKeys(*p, "portrait", {"history", "current", "mode", "colours", "budget", "orbits", "periodic"});
+    if (const auto h = p->find("history"); h != p->end()) {
+      array(*h, "portrait.history", kMaxSessionHistory);
+      for (std::size_t i = 0; i < h->size(); ++i)
+        s.portrait.history.push_back(view((*h)[i], "portrait.history[" + std::to_string(i) + "]"));
+    }
+    if (const auto c = p->find("current"); c != p->end()) {
+      s.portrait.current = whole(*c, "portrait.current", kMaxSessionHistory);
+      if (s.portrait.current >= std::max<std::size_t>(s.portrait.history.size(), 1))
+        bad("portrait.current = " + std::to_string(s.portrait.current) + " is not an entry of portrait.history");
+    }
+    if (const auto m = p->find("mode"); m != p->end()) {
+      const std::string name = string(*m, "portrait.mode");
+      const auto mode = parsePortraitMode(name);
+      if (!mode) bad("portrait.mode '" + name + "' is not a portrait mode");
+      s.portrait.mode = *mode;
+    }
+    if (const auto c = p->find("colours"); c != p->end()) {
+      const std::string name = string(*c, "portrait.colours");
+      const auto colours = parseColourMap(name);
+      if (!colours) bad("portrait.colours '" + name + "' is not a colour map");
+      s.portrait.colours = *colours;
+    }
+    if (const auto b = p->find("budget"); b != p->end()) s.portrait.budget = whole(*b, "portrait.budget", std::uint64_t{1} << 50);
+    if (const auto o = p->find("orbits"); o != p->end()) {
+      array(*o, "portrait.orbits", kMaxSessionOrbits);
+      for (std::size_t i = 0; i < o->size(); ++i)
+        s.portrait.orbits.push_back(point((*o)[i], "portrait.orbits[" + std::to_string(i) + "]"));
+    }
+    if (const auto per = p->find("periodic"); per != p->end()) {
+      array(*per, "portrait.periodic", kMaxSessionPeriodicPoints);
+      std::size_t total = 0;
+      for (std::size_t i = 0; i < per->size(); ++i) {
+        const std::string key = "portrait.periodic[" + std::to_string(i) + "]";
+        const json& e = (*per)[i];
+        onlyKeys(e, key, {"label", "points"});
+        SessionPeriodicOverlay overlay;
+        if (const auto l = e.find("label"); l != e.end()) overlay.label = string(*l, key + ".label");
+        const auto pts = e.find("points");
+        if (pts == e.end()) bad(key + " has no 'points'");
+        array(*pts, key + ".points", kMaxSessionPeriodicPoints);
+        total += pts->size();
+        if (total > kMaxSessionPeriodicPoints)
+          bad("portrait.periodic holds more than " + std::to_string(kMaxSessionPeriodicPoints) + " points");
+        for (std::size_t k = 0; k < pts->size(); ++k)
+          overlay.points.push_back(point((*pts)[k], key + ".points[" + std::to_string(k) + "]"));
+        s.portrait.periodic.push_back(std::move(overlay));
+      }
+    }
+  }
+
+  if (const auto seg = j.find("segment"); seg != j.end() && !seg->is_null()) {
+    onlyKeys(*seg, "segment", {"rank", "position"});
+    const auto rank = seg->find("rank");
+    if (rank == seg->end()) bad("segment has no 'rank'");
+    s.segmentRank = static_cast<int>(whole(*rank, "segment.rank", kMaxLongestKept - 1));
+    if (const auto pos = seg->find("position"); pos != seg->end())
+      s.segmentPosition = whole(*pos, "segment.position", std::uint64_t{1} << 62);
+  }
+
+  if (const auto plots = j.find("plots"); plots != j.end()) {
+    array(*plots, "plots", kMaxSessionPlots);
+    std::set<std::string> seen;
+    for (std::size_t i = 0; i < plots->size(); ++i) {
+      const std::string key = "plots[" + std::to_string(i) + "]";
+      const json& e = (*plots)[i];
+      onlyKeys(e, key, {"name", "zoom"});
+      if (!e.contains("name") || !e.contains("zoom")) bad(key + " needs 'name' and 'zoom'");
+      SessionPlotZoom z{string(e["name"], key + ".name"), rect(e["zoom"], key + ".zoom")};
+      if (!seen.insert(z.name).second) bad("plot '" + z.name + "' is zoomed twice");
+      s.plots.push_back(std::move(z));
+    }
+  }
+  return s;
+}
+
+void saveSession(const std::filesystem::path& path, const Session& session) {
+  io::writeFileAtomically(path, sessionText(session));
+}
+
+Session loadSession(const std::filesystem::path& path) {
+  std::string content;
+  try {
+    content = io::readRegularFile(path, kMaxSessionFileBytes);
+  } catch (const std::runtime_error& e) {
+    bad(e.what());
+  }
+  Session s;
+  try {
+    s = parseSession(content);
+  } catch (const std::invalid_argument& e) {
+    bad(path.string() + ": " + e.what());
+  }
+  if (s.runFile && s.runFile->is_relative()) s.runFile = path.parent_path() / *s.runFile;
+  if (s.runFile && !std::filesystem::is_regular_file(*s.runFile))
+    bad(path.string() + ": its run file " + s.runFile->string() + " does not exist");
+  return s;
+}
+
+}  // namespace archipelago

@@ -1,0 +1,105 @@
+#pragma once
+/// \file SessionFile.hpp
+/// \brief A session file (`.archipelago`): everything the window shows, as one JSON document, so that opening it
+/// restores the window as it was.
+///
+/// One codec, strict like the run spec's (core/spec): unknown or repeated keys, wrong types, non-finite numbers,
+/// empty or inverted rectangles, unknown portrait modes or colour maps and oversized lists are errors naming the
+/// key; a file is parsed and validated whole before anything is applied, so a bad or foreign file changes
+/// nothing.  The parameters are a run spec (core/spec's codec); the run is either referenced (a run file's path,
+/// relative to the session file when it was saved beside it) or embedded (the run file's own document, with its
+/// checksum, read back through core/runfile's validation).  Reading is bounded (io::readRegularFile) and writing
+/// atomic (io::writeFileAtomically).
+///
+///   {"format": "archipelago-session", "version": 1,
+///    "spec": {…run spec…},
+///    "run": null | {"file": "run.json"} | {"embedded": {…run file…}},
+///    "tab": "Phase portrait",
+///    "portrait": {"history": [{"centre": [X, Y], "size": ["w", "h"]}, …], "current": 0, "mode": "density",
+///                 "colours": "inferno", "budget": 100000000, "orbits": [[x, y], …],
+///                 "periodic": [{"label": "7/20", "points": [[x, y], …]}, …]},
+///    "segment": {"rank": 0, "position": 1234},
+///    "plots": [{"name": "f_t", "zoom": [xmin, xmax, ymin, ymax]}, …]}
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/portrait/ColourMap.hpp"
+#include "core/portrait/PortraitRaster.hpp"
+#include "core/portrait/Viewport.hpp"
+#include "core/run/TrappingRun.hpp"
+#include "core/spec/RunSpec.hpp"
+
+namespace archipelago {
+
+inline constexpr const char* kSessionFormatName = "archipelago-session";
+inline constexpr int kSessionFormatVersion = 1;
+inline constexpr const char* kSessionFileSuffix = ".archipelago";
+/// Bounds of what a session may hold (a bigger file is refused before it is read, a longer list is an error).
+inline constexpr std::uintmax_t kMaxSessionFileBytes = std::uintmax_t{2} << 30;  ///< an embedded run may be large
+inline constexpr std::size_t kMaxSessionHistory = 1000;
+inline constexpr std::size_t kMaxSessionOrbits = 10000;
+inline constexpr std::size_t kMaxSessionPeriodicPoints = 1'000'000;  ///< over all periodic overlays
+inline constexpr std::size_t kMaxSessionPlots = 64;
+
+/// Portrait views are exact (core/portrait/Viewport): the centre as integer grid units, the size in grid units as
+/// a decimal string of 21 significant digits (a long double's 64-bit mantissa round-trips), so a view 10⁻¹⁰ wide is
+/// restored to the bit.  Each is checked by Viewport::fromUnits (inside the box, not below the resolution).
+///
+/// A rectangle of a plane: [xmin, xmax] × [ymin, ymax], finite, xmin < xmax, ymin < ymax.
+struct SessionRect {
+  double xmin = 0, xmax = 1, ymin = 0, ymax = 1;
+  friend bool operator==(const SessionRect&, const SessionRect&) = default;
+};
+
+struct SessionPeriodicOverlay {
+  std::string label;
+  std::vector<std::array<double, 2>> points;
+  friend bool operator==(const SessionPeriodicOverlay&, const SessionPeriodicOverlay&) = default;
+};
+
+struct SessionPortrait {
+  std::vector<Viewport> history;                ///< zoom history, oldest first (empty: the whole box)
+  std::size_t current = 0;                      ///< the view shown: history[current]
+  PortraitMode mode = PortraitMode::Density;
+  ColourMapName colours = ColourMapName::Inferno;
+  std::uint64_t budget = 0;                     ///< points budget of deep zoom (0: the panel's default)
+  std::vector<std::array<double, 2>> orbits;    ///< orbits the user launched, by start point
+  std::vector<SessionPeriodicOverlay> periodic;
+  friend bool operator==(const SessionPortrait&, const SessionPortrait&) = default;
+};
+
+struct SessionPlotZoom {
+  std::string name;                             ///< the plot's file name ("f_t", "P_t", …)
+  SessionRect zoom;
+  friend bool operator==(const SessionPlotZoom&, const SessionPlotZoom&) = default;
+};
+
+struct Session {
+  RunSpec spec;
+  std::optional<std::filesystem::path> runFile;  ///< a referenced run file (as written: relative or absolute)
+  std::optional<TrappingState> embeddedRun;      ///< or the run itself
+  std::string tab;                               ///< the active tab's title ("" = the first)
+  SessionPortrait portrait;
+  int segmentRank = -1;                          ///< the selected long segment (−1: none)
+  std::uint64_t segmentPosition = 0;             ///< its replay position (index of the current point)
+  std::vector<SessionPlotZoom> plots;            ///< plots the user zoomed (others follow their data)
+};
+
+/// The document's text (embedding the run when `embeddedRun` is set).
+[[nodiscard]] std::string sessionText(const Session& session);
+/// Parses and validates a whole document.  Throws std::invalid_argument naming the first problem.
+[[nodiscard]] Session parseSession(std::string_view text);
+/// Writes atomically.  Throws std::runtime_error (with the path) when it cannot.
+void saveSession(const std::filesystem::path& path, const Session& session);
+/// Reads (bounded, regular files only), parses and validates; a referenced run file's relative path is
+/// resolved against the session file's folder and must exist.  Throws std::invalid_argument or
+/// std::runtime_error naming the file and the problem.
+[[nodiscard]] Session loadSession(const std::filesystem::path& path);
+
+}  // namespace archipelago

@@ -1,0 +1,209 @@
+// Session files (.archipelago, issue #13): an exact round trip of everything the window shows, the run referenced
+// or embedded (with its checksum), and every bad or foreign document refused with the key named, before anything
+// is applied.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <random>
+
+#include <nlohmann/json.hpp>
+#include <unistd.h>
+
+#include "core/runfile/RunFile.hpp"
+#include "core/session/SessionFile.hpp"
+
+namespace archipelago {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct TempDir {
+  fs::path path = fs::temp_directory_path() / ("archipelago-session-" + std::to_string(::getpid()));
+  TempDir() { fs::create_directories(path); }
+  ~TempDir() { fs::remove_all(path); }
+};
+
+TrappingParameters smallRun() {
+  TrappingParameters p;
+  p.q = 4;
+  p.T = 2000;
+  p.M = 8;
+  p.subsets = 4;
+  p.seed = 5;
+  return p;
+}
+
+Session fullSession(std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> unit(0, 1);
+  Session s;
+  s.spec.parameters = smallRun();
+  s.spec.parameters.map.K = 0.05 + unit(rng) / 10;  // digits that a short decimal would lose
+  s.spec.name = "Custom";
+  s.spec.threads = 2;
+  s.tab = "Phase portrait";
+  // Views down to the resolution limit, with sizes whose long double digits a double would lose.
+  Viewport v = Viewport::wholeBox();
+  s.portrait.history.push_back(v);
+  for (int i = 0; i < 5; ++i) {
+    v = v.zoomedAboutFraction(unit(rng), unit(rng), 1.0L + 1000.0L * static_cast<long double>(unit(rng)));
+    s.portrait.history.push_back(v);
+  }
+  s.portrait.current = 4;
+  s.portrait.mode = PortraitMode::Orbits;
+  s.portrait.colours = ColourMapName::Viridis;
+  s.portrait.budget = 123'456'789'012;
+  s.portrait.orbits = {{unit(rng), -unit(rng)}, {1e-300, -0.0}};
+  s.portrait.periodic = {{"7/20", {{0.1 * unit(rng), 0.2}, {0.3, 0.4}}}, {"", {{0, 0}}}};
+  s.segmentRank = 3;
+  s.segmentPosition = 987654321;
+  s.plots = {{"f_t", {1, 1e6, 1e-12, 1}}, {"C_tau", {1, 1e4, 1e-5, 0.5 * unit(rng) + 0.6}}};
+  return s;
+}
+
+void expectSame(const Session& a, const Session& b) {
+  EXPECT_TRUE(a.spec == b.spec);
+  EXPECT_EQ(a.runFile, b.runFile);
+  EXPECT_EQ(a.embeddedRun.has_value(), b.embeddedRun.has_value());
+  EXPECT_EQ(a.tab, b.tab);
+  EXPECT_TRUE(a.portrait == b.portrait);
+  EXPECT_EQ(a.segmentRank, b.segmentRank);
+  EXPECT_EQ(a.segmentPosition, b.segmentPosition);
+  EXPECT_TRUE(a.plots == b.plots);
+}
+
+void expectRejected(const std::string& text, const std::string& mention) {
+  try {
+    (void)parseSession(text);
+    ADD_FAILURE() << "accepted: " << text;
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find(mention), std::string::npos) << e.what() << "\n  expected: " << mention;
+  }
+}
+
+/// A valid document with `key` replaced by `value` (value "" removes the key), edited as JSON text.
+std::string edited(const std::string& path, const std::string& value) {
+  std::mt19937_64 rng(1);
+  nlohmann::json j = nlohmann::json::parse(sessionText(fullSession(rng)));
+  nlohmann::json* at = &j;
+  std::string rest = path;
+  for (std::size_t dot; (dot = rest.find('.')) != std::string::npos; rest = rest.substr(dot + 1))
+    at = &(*at)[rest.substr(0, dot)];
+  if (value.empty()) at->erase(rest);
+  else (*at)[rest] = nlohmann::json::parse(value);
+  return j.dump();
+}
+
+TEST(SessionFile, RoundTripIsExact) {
+  std::mt19937_64 rng(2026);
+  for (int i = 0; i < 200; ++i) {
+    const Session s = fullSession(rng);
+    const Session back = parseSession(sessionText(s));
+    expectSame(s, back);
+    EXPECT_EQ(sessionText(back), sessionText(s));
+  }
+}
+
+TEST(SessionFile, EmbeddedRunKeepsItsStateAndChecksum) {
+  std::mt19937_64 rng(7);
+  Session s = fullSession(rng);
+  s.spec.parameters = smallRun();
+  s.embeddedRun = runTrapping(startTrapping(s.spec.parameters), TrappingRunOptions{});
+  const std::string text = sessionText(s);
+  const Session back = parseSession(text);
+  ASSERT_TRUE(back.embeddedRun);
+  EXPECT_EQ(back.embeddedRun->blocksDone, s.embeddedRun->blocksDone);
+  EXPECT_TRUE(back.embeddedRun->subsets == s.embeddedRun->subsets);
+  EXPECT_TRUE(back.embeddedRun->orbits == s.embeddedRun->orbits);
+  EXPECT_TRUE(back.embeddedRun->longest == s.embeddedRun->longest);
+
+  // An edit inside the embedded run is caught by the run file's own checksum.
+  nlohmann::json j = nlohmann::json::parse(text);
+  j["run"]["embedded"]["blocksDone"] = s.embeddedRun->blocksDone - 1;
+  expectRejected(j.dump(), "run.embedded");
+  // A run of other parameters than the session's spec is refused.
+  Session other = s;
+  other.spec.parameters.seed += 1;
+  expectRejected(sessionText(other), "differ from the session's spec");
+}
+
+TEST(SessionFile, ReferencedRunResolvesBesideTheSession) {
+  TempDir dir;
+  std::mt19937_64 rng(3);
+  Session s = fullSession(rng);
+  s.spec.parameters = smallRun();
+  saveRunFile(dir.path / "run.json", runTrapping(startTrapping(s.spec.parameters), TrappingRunOptions{}));
+  s.runFile = "run.json";
+  saveSession(dir.path / "a.archipelago", s);
+  const Session back = loadSession(dir.path / "a.archipelago");
+  ASSERT_TRUE(back.runFile);
+  EXPECT_EQ(fs::weakly_canonical(*back.runFile), fs::weakly_canonical(dir.path / "run.json"));
+
+  fs::remove(dir.path / "run.json");
+  try {
+    (void)loadSession(dir.path / "a.archipelago");
+    ADD_FAILURE() << "a missing run file was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("does not exist"), std::string::npos) << e.what();
+  }
+}
+
+TEST(SessionFile, BadAndForeignDocumentsAreRefusedWithTheKeyNamed) {
+  expectRejected("", "");
+  expectRejected("[]", "JSON object");
+  expectRejected(R"({"format": "archipelago-spec", "version": 1})", "not an Archipelago session");
+  expectRejected(R"({"format": "archipelago-session", "version": 2, "spec": {}})", "version 2");
+  expectRejected(R"({"format": "archipelago-session", "version": 1, "version": 1})", "");  // repeated key
+  expectRejected(edited("spec", ""), "no 'spec'");
+  expectRejected(edited("extra", "1"), "unknown key 'extra'");
+  expectRejected(edited("spec.parameters", R"({"K": -1e300})"), "spec:");
+  expectRejected(edited("portrait.history", R"([{"centre": [0, 0]}])"), "needs 'centre' and 'size'");
+  expectRejected(edited("portrait.history", R"([{"centre": [1, 2, 3], "size": ["1e6", "1e6"]}])"), ".centre must be");
+  expectRejected(edited("portrait.history", R"([{"centre": [4503599627370496, 0], "size": ["1e6", "1e6"]}])"),
+                 "portrait.history[0].centre[0]");                                  // X = 2^52 is off the grid
+  expectRejected(edited("portrait.history", R"([{"centre": [1000, 1000], "size": ["1e6", "1e6"]}])"),
+                 "not inside the box");
+  expectRejected(edited("portrait.history", R"([{"centre": [2251799813685248, 2251799813685248], "size": ["10", "1e6"]}])"),
+                 "grid units must lie in");                                        // below the resolution
+  expectRejected(edited("portrait.history", R"([{"centre": [2251799813685248, 2251799813685248], "size": ["nan", "1e6"]}])"),
+                 "grid units must lie in");
+  expectRejected(edited("portrait.history", R"([{"centre": [2251799813685248, 2251799813685248], "size": ["1e6x", "1e6"]}])"),
+                 "is not a number");
+  expectRejected(edited("portrait.current", "6"), "not an entry of portrait.history");
+  std::string huge = edited("plots", R"([{"name": "f_t", "zoom": [0, 12345.5, 0, 1]}])");
+  huge.replace(huge.find("12345.5"), 7, "1e999");  // past the largest double
+  expectRejected(huge, "");
+  expectRejected(edited("plots", R"([{"name": "f_t", "zoom": [1, 0, 0, 1]}])"), "xmin < xmax");
+  expectRejected(edited("portrait.mode", R"("sketch")"), "not a portrait mode");
+  expectRejected(edited("portrait.colours", R"("jet")"), "not a colour map");
+  expectRejected(edited("portrait.budget", "-1"), "portrait.budget");
+  expectRejected(edited("portrait.budget", "1e300"), "portrait.budget");
+  expectRejected(edited("portrait.orbits", "[[0]]"), "portrait.orbits[0]");
+  expectRejected(edited("portrait.periodic", R"([{"label": "x"}])"), "no 'points'");
+  expectRejected(edited("segment.rank", "-1"), "segment.rank");
+  expectRejected(edited("segment.rank", "100000"), "segment.rank");
+  expectRejected(edited("plots", R"([{"name": "f_t", "zoom": [1, 2, 1, 2]}, {"name": "f_t", "zoom": [1, 2, 1, 2]}])"),
+                 "zoomed twice");
+  expectRejected(edited("run", R"({"file": "a.json", "embedded": {}})"), "exactly one");
+  expectRejected(edited("run", R"({"file": ""})"), "must not be empty");
+  expectRejected(edited("tab", "3"), "tab must be a string");
+
+  // Oversized lists are refused before they are held.
+  nlohmann::json orbits = nlohmann::json::array();
+  for (std::size_t i = 0; i <= kMaxSessionOrbits; ++i) orbits.push_back({0.1, 0.2});
+  expectRejected(edited("portrait.orbits", orbits.dump()), "at most");
+}
+
+TEST(SessionFile, FilesAreBoundedAndRegular) {
+  TempDir dir;
+  EXPECT_THROW((void)loadSession(dir.path), std::invalid_argument);             // a folder
+  EXPECT_THROW((void)loadSession(dir.path / "none.archipelago"), std::invalid_argument);
+  EXPECT_THROW((void)loadSession("/dev/zero"), std::invalid_argument);          // not a regular file
+  std::ofstream(dir.path / "truncated.archipelago") << R"({"format": "archipelago-session", "vers)";
+  EXPECT_THROW((void)loadSession(dir.path / "truncated.archipelago"), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace archipelago

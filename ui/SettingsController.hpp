@@ -1,0 +1,45 @@
+#pragma once
+/// \file SettingsController.hpp
+/// \brief Everything the window remembers between starts (QSettings), in one place: geometry, dock layout,
+/// the last parameters (a run spec through core's codec), recent files and the last folder of each dialog.
+///
+/// A restored geometry is clamped to the screen the window opens on: a size saved on a large monitor never
+/// leaves the window bigger than a 1280×800 laptop screen, nor its title bar off-screen.
+
+#include <QByteArray>
+#include <QRect>
+#include <QString>
+#include <QStringList>
+
+#include <optional>
+
+#include "core/spec/RunSpec.hpp"
+
+class QMainWindow;
+
+namespace archipelago::ui {
+
+class SettingsController {
+ public:
+  static constexpr int kMaxRecentFiles = 8;
+
+  /// Restores size, position and dock layout, clamped to the available area of the window's screen.
+  static void restoreWindow(QMainWindow& window);
+  static void saveWindow(const QMainWindow& window);
+  /// `wanted` moved and shrunk to fit inside `available` (both in global screen coordinates).
+  [[nodiscard]] static QRect clampToScreen(const QRect& wanted, const QRect& available);
+
+  /// The parameters of the last session; nothing on a first start.  `error` says why a stored spec was unreadable.
+  [[nodiscard]] static std::optional<RunSpec> lastSpec(QString* error = nullptr);
+  static void setLastSpec(const RunSpec& spec);
+
+  [[nodiscard]] static QStringList recentFiles();
+  static void addRecentFile(const QString& path);
+
+  /// The folder a file dialog of this `kind` ("runs", "exports", "sessions", "portraits") last used; home at first.
+  [[nodiscard]] static QString lastFolder(const QString& kind);
+  /// Remembers the folder of `path` (a file, or a folder itself) for dialogs of this kind.
+  static void rememberFolder(const QString& kind, const QString& path);
+};
+
+}  // namespace archipelago::ui
