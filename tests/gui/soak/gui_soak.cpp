@@ -38,6 +38,7 @@
 #include "ui/MainWindow.hpp"
 #include "ui/ParameterPanel.hpp"
 #include "ui/RunController.hpp"
+#include "ui/portrait/PortraitController.hpp"
 #include "ui/portrait/PortraitPanel.hpp"
 #include "ui/portrait/PortraitView.hpp"
 #include "ui/segments/LongSegmentsPanel.hpp"
@@ -159,7 +160,7 @@ int main(int argc, char** argv) {
     if (QApplication::activeModalWidget()) return;  // the answer timer handles it
     ++actions;
     const int kind = pick(20);
-    auto* portrait = window.portraitPanel()->view();
+    auto* portrait = window.portraitPanel()->controller();
     switch (kind) {
       case 0: {
         setAction("new short run");
@@ -179,7 +180,7 @@ int main(int argc, char** argv) {
       case 6: {
         setAction("wheel on portrait");
         window.tabs()->setCurrentWidget(window.portraitPanel());
-        QWidget* canvas = portrait->plot() ? portrait->plot()->canvas() : portrait;
+        QWidget* canvas = portrait->view()->canvas();
         const QPointF at(unit() * canvas->width(), unit() * canvas->height());
         QWheelEvent wheel(at, canvas->mapToGlobal(at), QPoint(), QPoint(0, pick(2) ? 120 : -120), Qt::NoButton,
                           Qt::NoModifier, Qt::NoScrollPhase, false);
@@ -188,7 +189,7 @@ int main(int argc, char** argv) {
       }
       case 7: {
         setAction("drag on portrait");
-        QWidget* canvas = portrait->plot() ? portrait->plot()->canvas() : portrait;
+        QWidget* canvas = portrait->view()->canvas();
         const QPoint a(pick(std::max(1, canvas->width())), pick(std::max(1, canvas->height())));
         const QPoint b(pick(std::max(1, canvas->width())), pick(std::max(1, canvas->height())));
         QTest::mousePress(canvas, Qt::LeftButton, Qt::NoModifier, a);
