@@ -34,6 +34,7 @@
 
 #include "ui/ExportActions.hpp"
 #include "ui/Resources.hpp"
+#include "ui/SessionController.hpp"
 #include "ui/SettingsController.hpp"
 #include "ui/ParameterPanel.hpp"
 #include "ui/StatisticsView.hpp"
@@ -73,6 +74,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   setAcceptDrops(true);
 
   run_ = new RunController(this);
+  sessions_ = new SessionController(*this);
   run_->setAsk([this](const RunQuestion& q) { return askUser(q); });
   run_->setSaveHandler([this] { return run_->currentFile().isEmpty() ? saveDialog() : saveRunFile(run_->currentFile()); });
   connect(run_, &RunController::statusChanged, this, &MainWindow::onStatusChanged);
@@ -220,6 +222,13 @@ void MainWindow::createMenus() {
   connect(recentMenu_, &QMenu::aboutToShow, this, &MainWindow::fillRecentMenu);
   file->addAction(saveAction_);
   file->addAction(saveAsAction_);
+  file->addSeparator();
+  QAction* openSession = file->addAction(tr("Open Sess&ion…"), this, &MainWindow::openSessionDialog);
+  openSession->setShortcut(QKeySequence(QStringLiteral("Ctrl+Shift+O")));
+  openSession->setStatusTip(tr("Restore a saved window: parameters, run, portrait view, segment, plot zooms"));
+  QAction* saveSession = file->addAction(tr("Save Sessio&n…"), this, &MainWindow::saveSessionDialog);
+  saveSession->setShortcut(QKeySequence(QStringLiteral("Ctrl+Alt+S")));
+  saveSession->setStatusTip(tr("Save the window as it is (an .archipelago file) to open it again later"));
   file->addSeparator();
   file->addAction(exportAllAction_);
   QMenu* exportMenu = file->addMenu(tr("Export &Plot"));
@@ -427,6 +436,11 @@ void MainWindow::createLongSegmentsDock(QDockWidget* parametersDock) {
   connect(segments_, &LongSegmentsPanel::aboutToDraw, this, [this](const TrappingParameters&) {
     tabs_->setCurrentWidget(portrait_);
   });
+  connect(segments_, &LongSegmentsPanel::replayReady, this, [this](const SegmentReplayPtr& replay) {
+    if (!pendingPosition_ || !replay) return;
+    segments_->setCurrentIndex(*pendingPosition_);
+    pendingPosition_.reset();
+  });
   connect(segments_, &LongSegmentsPanel::chainReady, this, [this](const ChainResultPtr&) {
     if (!pendingIsland_) return;
     pendingIsland_ = false;
@@ -442,10 +456,12 @@ void MainWindow::createLongSegmentsDock(QDockWidget* parametersDock) {
   parametersDock->raise();
 }
 
-void MainWindow::showLongSegment(int rank, bool island) {
+void MainWindow::showLongSegment(int rank, bool island, std::uint64_t position) {
   segmentsDock_->raise();
   pendingSegment_ = rank;
   pendingIsland_ = island;
+  pendingPosition_.reset();
+  if (position > 0) pendingPosition_ = position;
   if (shown_ && rank < segments_->model()->rowCount()) {
     segments_->selectRow(rank);
     pendingSegment_ = -1;
@@ -506,6 +522,49 @@ bool MainWindow::openRunFile(const QString& path, QString* error) {
 
 bool MainWindow::saveRunFile(const QString& path, QString* error) { return run_->save(path, error); }
 
+bool MainWindow::saveSession(const QString& path, QString* error) {
+  QString why;
+  if (!sessions_->save(path, &why)) {
+    if (error) *error = why;
+    message(tr("Cannot save the session: %1").arg(why), 0);
+    return false;
+  }
+  message(tr("Session saved to %1").arg(path));
+  return true;
+}
+
+bool MainWindow::openSession(const QString& path, QString* error) {
+  QString why;
+  if (!sessions_->open(path, &why)) {
+    if (error) *error = why;
+    return false;
+  }
+  message(tr("Session %1 opened").arg(path));
+  return true;
+}
+
+void MainWindow::openSessionDialog() {
+  const QString path = QFileDialog::getOpenFileName(this, tr("Open Session"), SettingsController::lastFolder(QStringLiteral("sessions")),
+                                                    tr("Archipelago sessions (*.archipelago);;All files (*)"));
+  if (path.isEmpty()) return;
+  SettingsController::rememberFolder(QStringLiteral("sessions"), path);
+  QString error;
+  if (!openSession(path, &error) && error != tr("Cancelled"))
+    QMessageBox::warning(this, tr("Cannot open the session"), tr("%1\n\n%2\n\nNothing was changed.").arg(path, error));
+}
+
+bool MainWindow::saveSessionDialog() {
+  const QString start = QDir(SettingsController::lastFolder(QStringLiteral("sessions"))).filePath(QStringLiteral("session.archipelago"));
+  QString path = QFileDialog::getSaveFileName(this, tr("Save Session"), start, tr("Archipelago sessions (*.archipelago)"));
+  if (path.isEmpty()) return false;
+  if (!path.endsWith(QLatin1String(".archipelago"))) path += QStringLiteral(".archipelago");
+  SettingsController::rememberFolder(QStringLiteral("sessions"), path);
+  QString error;
+  if (saveSession(path, &error)) return true;
+  QMessageBox::warning(this, tr("Cannot save the session"), tr("%1\n\n%2").arg(path, error));
+  return false;
+}
+
 bool MainWindow::exportAllTo(const QString& folder, QString* error) {
   refreshView();  // export what the newest snapshot holds
   const ExportResult r = exportAll(statistics_->plots(), shown_, folder);
@@ -527,6 +586,12 @@ void MainWindow::openDialog() {
 }
 
 void MainWindow::openInteractively(const QString& path) {
+  if (path.endsWith(QLatin1String(".archipelago"), Qt::CaseInsensitive)) {
+    QString error;
+    if (!openSession(path, &error) && error != tr("Cancelled"))
+      QMessageBox::warning(this, tr("Cannot open the session"), tr("%1\n\n%2\n\nNothing was changed.").arg(path, error));
+    return;
+  }
   QString error;
   if (!openRunFile(path, &error) && error != tr("Cancelled"))
     QMessageBox::warning(this, tr("Cannot open the run file"), tr("%1\n\n%2").arg(path, error));
@@ -610,7 +675,8 @@ void MainWindow::closeEvent(QCloseEvent* event) {
 
 void MainWindow::dragEnterEvent(QDragEnterEvent* event) {
   const QList<QUrl> urls = event->mimeData()->urls();
-  if (urls.size() == 1 && urls.front().isLocalFile() && isRunFile(urls.front().toLocalFile()))
+  if (urls.size() == 1 && urls.front().isLocalFile() &&
+      (isRunFile(urls.front().toLocalFile()) || urls.front().toLocalFile().endsWith(QLatin1String(".archipelago"))))
     event->acceptProposedAction();
 }
 

@@ -12,6 +12,9 @@
 #include <QMainWindow>
 #include <QPointer>
 
+#include <cstdint>
+#include <optional>
+
 #include "ui/RunController.hpp"
 #include "ui/RunSnapshot.hpp"
 #include "ui/RunWorker.hpp"
@@ -32,6 +35,7 @@ class PeriodicOrbitDialog;
 class PortraitPanel;
 
 class ParameterPanel;
+class SessionController;
 class StatisticsView;
 
 class MainWindow : public QMainWindow {
@@ -69,7 +73,7 @@ class MainWindow : public QMainWindow {
   [[nodiscard]] LongSegmentsPanel* longSegments() const noexcept { return segments_; }
   /// Selects the segment of rank `rank` as soon as the table has it (e.g. after opening a run file) and, when
   /// `island`, zooms to one island of its chain once the chain is known.  (Scripts and screenshots.)
-  void showLongSegment(int rank, bool island);
+  void showLongSegment(int rank, bool island, std::uint64_t position = 0);
   /// Tools ▸ Find Periodic Orbit: the dialog, with K from the current parameters.
   void showPeriodicOrbitDialog();
   [[nodiscard]] QTabWidget* tabs() const noexcept { return tabs_; }
@@ -80,6 +84,17 @@ class MainWindow : public QMainWindow {
   [[nodiscard]] QAction* stopAction() const noexcept { return stopAction_; }
   [[nodiscard]] QAction* saveAction() const noexcept { return saveAction_; }
   [[nodiscard]] const RunWorker& worker() const noexcept { return run_->worker(); }
+  /// Shows the newest snapshot now (instead of at the next refresh tick).
+  void refreshNow() { refreshView(); }
+
+  // Sessions (File ▸ Save Session / Open Session, `.archipelago`).  A failure returns false with the reason.
+  bool saveSession(const QString& path, QString* error = nullptr);
+  bool openSession(const QString& path, QString* error = nullptr);
+  /// Opens a file the user chose (a run file, or a session by its .archipelago suffix); a failure is a dialog with
+  /// the whole reason.  (Open dialogs, recent files, drops, and `archipelago FILE`.)
+  void openInteractively(const QString& path);
+  [[nodiscard]] SessionController* sessions() const noexcept { return sessions_; }
+
   /// The note over the plots when they show a run whose parameters differ from the panel's (empty otherwise).
   [[nodiscard]] QString staleRunNote() const;
 
@@ -110,8 +125,8 @@ class MainWindow : public QMainWindow {
   RunAnswer askUser(const RunQuestion& question);
 
   void openDialog();
-  /// Opens a file the user chose; a failure is a dialog with the whole reason.
-  void openInteractively(const QString& path);
+  void openSessionDialog();
+  bool saveSessionDialog();
   bool saveDialog();
   void exportAllDialog();
   void exportPlotDialog(int plotIndex);
@@ -130,6 +145,8 @@ class MainWindow : public QMainWindow {
   PeriodicOrbitDialog* periodicDialog_ = nullptr;
   int pendingSegment_ = -1;       // showLongSegment(): the rank to select when the table has it
   bool pendingIsland_ = false;
+  std::optional<std::uint64_t> pendingPosition_;  // and the replay position to show once it is replayed
+  SessionController* sessions_ = nullptr;
   QTabWidget* tabs_ = nullptr;
   QTimer* refreshTimer_ = nullptr;
   QFrame* checkpointBanner_ = nullptr;

@@ -174,6 +174,11 @@ void ParameterPanel::setParameters(const TrappingParameters& p, int threads) {
   fields_[QStringLiteral("subsets")]->setText(QString::number(p.subsets));
   fields_[QStringLiteral("threads")]->setText(QString::number(threads));
   revalidate();
+  // The preset box names the preset these parameters are, or Custom: never a preset the fields have left.
+  const Preset* match = nullptr;
+  for (const Preset& preset : presets())
+    if (preset.spec.parameters == p) match = &preset;
+  showPreset(match);
 }
 
 std::optional<RunSpec> ParameterPanel::spec() const {
@@ -190,13 +195,7 @@ std::optional<RunSpec> ParameterPanel::spec() const {
   return s;
 }
 
-void ParameterPanel::setSpec(const RunSpec& spec) {
-  setParameters(spec.parameters, spec.threads);
-  const Preset* match = nullptr;
-  for (const Preset& p : presets())
-    if (p.spec.parameters == spec.parameters) match = &p;
-  showPreset(match);
-}
+void ParameterPanel::setSpec(const RunSpec& spec) { setParameters(spec.parameters, spec.threads); }
 
 void ParameterPanel::showPreset(const Preset* preset) {
   const QSignalBlocker block(presetBox_);

@@ -50,6 +50,9 @@ std::optional<RunStatus> runTransition(RunStatus from, RunEvent event) noexcept 
     case E::workerFailed:
       if (isLive(from)) return S::failed;
       return std::nullopt;
+    case E::clear:
+      if (isLive(from)) return std::nullopt;
+      return S::idle;
   }
   return std::nullopt;
 }
@@ -228,6 +231,19 @@ bool RunController::adopt(TrappingState state, QString* error) {
   }
   resumeWhenReady_.reset();
   analyse(std::move(state), QString());
+  return true;
+}
+
+bool RunController::clear() {
+  if (isLive(status_) || !confirmDiscard()) return false;
+  Q_EMIT runReplaced();
+  runId_ += 1;
+  latest_.reset();
+  unsaved_ = false;
+  resumeWhenReady_.reset();
+  currentFile_.clear();
+  Q_EMIT currentFileChanged(currentFile_);
+  apply(RunEvent::clear);
   return true;
 }
 

@@ -47,6 +47,7 @@ enum class RunEvent {
   workerStopped,   ///< the session ended at a chunk boundary after a stop request
   workerFinished,  ///< the last block is done
   workerFailed,
+  clear,           ///< nothing on screen any more (a session without a run)
 };
 
 /// The state machine: the status after `event` in `from`, or nothing when the event does not apply there.
@@ -105,6 +106,8 @@ class RunController : public QObject {
   /// Shows a run that is already in memory (a session's embedded run): analysed like an opened file; no current
   /// file, nothing unsaved (it is in the session).  Asks before unsaved work is lost.
   bool adopt(TrappingState state, QString* error = nullptr);
+  /// Nothing on screen any more (idle).  Asks before unsaved work is lost; false when it is live or cancelled.
+  bool clear();
   /// Writes the newest state (atomically, through core) and makes it the current file.
   bool save(const QString& path, QString* error = nullptr);
   /// Called when the window is asked to close.  True: close now.  False: not yet — either the user cancelled,

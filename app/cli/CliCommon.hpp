@@ -114,6 +114,18 @@ CLI::Option* addNumberOption(CLI::App& command, const std::string& name, T& valu
   return option;
 }
 
+/// The most seeds one `run --seeds` makes (each is a whole run).
+inline constexpr std::size_t kMaxSeeds = 1000;
+
+/// The seeds of `--seeds TEXT`: comma-separated items, each a seed "K" or a range "A..B" (A ≤ B), every
+/// number read by toNumber<std::uint64_t> and within the seed parameter's range (parameterRules()).  Throws
+/// std::invalid_argument with one line naming `option` for anything else: an empty item, a sign, a fraction,
+/// nan or inf, a number too large, a reversed range, more than kMaxSeeds seeds, a seed given twice.
+[[nodiscard]] std::vector<std::uint64_t> parseSeedList(const std::string& option, const std::string& text);
+
+/// The run file of one seed of an ensemble: "run.json" → "run.seed-3.json", "out/x" → "out/x.seed-3".
+[[nodiscard]] std::string seededPath(const std::string& path, std::uint64_t seed);
+
 /// Adds --K, --xmin and --xmax (defaults: the paper's K = 0.1 box, §5) to a subcommand.
 void addMapOptions(CLI::App& command, MapParameters& params);
 

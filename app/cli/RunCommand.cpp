@@ -44,6 +44,7 @@ struct RunOptions {
   std::uint64_t maxChunkBlocks = 0;
   std::string kernel;  // empty: $ARCHIPELAGO_KERNEL, else the fastest the CPU supports
   bool quiet = false;
+  std::string seeds;   // --seeds LIST: a seed ensemble, one run file per seed (issue #14, item 2)
 };
 
 std::string clock(double seconds) {
@@ -209,6 +210,29 @@ RunSpec resolveSpec(const RunOptions& o, const CLI::App& cmd) {
   return spec;
 }
 
+/// A seed ensemble (`--seeds 1..8`): runCommand() once per seed, each an ordinary run of its own seed written
+/// to seededPath(--out, seed) (and its checkpoint to seededPath(--checkpoint, seed) when one is given), so each
+/// file equals what `run --seed K --out that-file` writes.  An interrupted seed stops the ensemble (the seeds
+/// before it are finished; it is resumed alone with --resume).
+int runSeeds(const RunOptions& o, const std::vector<std::string>& given) {
+  const std::vector<std::uint64_t> seeds = parseSeedList("--seeds", o.seeds);
+  for (const std::uint64_t seed : seeds) {
+    RunOptions one = o;
+    one.params.seed = seed;
+    one.out = seededPath(o.out, seed);
+    if (!o.checkpoint.empty()) one.checkpoint = seededPath(o.checkpoint, seed);
+    if (!o.quiet) std::fprintf(stderr, "seed %llu -> %s\n", static_cast<unsigned long long>(seed), one.out.c_str());
+    const int status = runCommand(one, given);
+    if (status != 0) {
+      std::fprintf(stderr, "the ensemble stopped at seed %llu (%zu of %zu seeds finished)\n",
+                   static_cast<unsigned long long>(seed),
+                   static_cast<std::size_t>(&seed - seeds.data()), seeds.size());
+      return status;
+    }
+  }
+  return 0;
+}
+
 }  // namespace
 
 void addRunCommand(CLI::App& app, int& status) {
@@ -236,12 +260,24 @@ void addRunCommand(CLI::App& app, int& status) {
   addKernelOption(*cmd, o->kernel);
   cmd->add_flag("--print-spec", o->printSpec, "print the run spec (JSON) these options make, and run nothing");
   cmd->add_flag("--quiet", o->quiet, "no progress bar or summary");
+  cmd->add_option("--seeds", o->seeds,
+                  "a seed ensemble: one independent run per seed (e.g. 1..8 or 1,2,5..7, at most " +
+                      std::to_string(kMaxSeeds) + "), written to NAME.seed-K.json for --out NAME.json; "
+                      "`stats` combines the files");
   cmd->callback([o, cmd, &status] {
     std::vector<std::string> given;
     for (const ParameterRule& rule : parameterRules())
       if (cmd->count("--" + std::string(rule.key)) > 0) given.push_back("--" + std::string(rule.key));
     for (const char* name : {"--preset", "--spec"})
       if (cmd->count(name) > 0) given.emplace_back(name);
+    const bool ensemble = cmd->count("--seeds") > 0;
+    if (ensemble) {  // refused before any work: which file would hold what must be clear
+      if (!o->resume.empty())
+        throw std::invalid_argument("--seeds cannot resume: resume each seed's file with --resume NAME.seed-K.json");
+      if (cmd->count("--seed") > 0) throw std::invalid_argument("give --seed or --seeds, not both");
+      if (o->printSpec) throw std::invalid_argument("--print-spec prints one run's spec: give --seed, not --seeds");
+      (void)parseSeedList("--seeds", o->seeds);
+    }
     if (!o->resume.empty()) {
       status = runCommand(*o, given);
       return;
@@ -255,7 +291,7 @@ void addRunCommand(CLI::App& app, int& status) {
     o->params = spec.parameters;
     o->threads = spec.threads;
     o->kernel = spec.kernel == "auto" ? std::string() : spec.kernel;  // "auto": $ARCHIPELAGO_KERNEL or the fastest
-    status = runCommand(*o, given);
+    status = ensemble ? runSeeds(*o, given) : runCommand(*o, given);
   });
 }
 

@@ -1,23 +1,32 @@
 #include "StatsCommand.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <stdexcept>
 #include <memory>
+#include <string>
+#include <vector>
 
+#include "CliCommon.hpp"
 #include "core/export/StatisticsCsv.hpp"
+#include "core/export/TailCsv.hpp"
 #include "core/io/AtomicFile.hpp"
 #include "core/runfile/RunFile.hpp"
+#include "core/stats/RunEnsemble.hpp"
 #include "core/stats/RunStatistics.hpp"
+#include "core/stats/TailAnalysis.hpp"
 #include "core/theory/TheoryCurves.hpp"
 
 namespace archipelago::cli {
 
 namespace {
 struct StatsOptions {
-  std::string runFile;
+  std::vector<std::string> runFiles;  // one run, or a seed ensemble (same parameters but the seed)
   std::string csvDir;
+  std::string tailCsvDir;             // --tail-csv: D's errors and the tail (export/TailCsv.hpp)
   bool allowModified = false;
+  BootstrapOptions bootstrap;         // --bootstrap, --bootstrap-seed
 };
 
 /// --csv DIR before any work: an existing folder must take the files, a missing one must be creatable.
@@ -32,13 +41,125 @@ void checkCsvFolder(const std::filesystem::path& dir) {
     io::checkWritableTarget(dir);  // its parent folder exists and is writable
 }
 
+void writeCsvFiles(const std::string& dir, const std::vector<CsvFile>& files) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) throw std::runtime_error("cannot create folder " + dir + ": " + ec.message());
+  for (const CsvFile& f : files) {
+    const std::filesystem::path path = std::filesystem::path(dir) / f.name;
+    io::writeFileAtomically(path, f.text);
+    std::printf("wrote       %s\n", path.string().c_str());
+  }
+}
+
+// ---- D's honest error and the tail (issue #14, items 2 and 7): stats/TailAnalysis.hpp -------------------
+
+std::string g(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.4g", v);
+  return buffer;
+}
+std::string interval(const ConfidenceInterval& i) { return "[" + g(i.lo) + ", " + g(i.hi) + "]"; }
+
+/// The D line: with the bootstrap error when the tail does not dominate, with no error (and why) when it does.
+void printD(const TailAnalysis& a, const TrappingStatistics& s) {
+  const std::string replicates = std::to_string(a.bootstrap.replicates) + " replicates, seed " +
+                                 std::to_string(a.bootstrap.seed);
+  const int percent = static_cast<int>(std::lround(100 * a.bootstrap.confidence));
+  if (!a.dominated())
+    std::printf("D           %.6g +- %.2g   (eq. ddef; one sigma of a bootstrap over segments, %s; %d%% interval %s; "
+                "the subsets give +- %.2g)\n", a.D, a.DBootstrapError, replicates.c_str(), percent,
+                interval(a.DInterval).c_str(), s.DError);
+  else
+    std::printf("D           %.6g   (eq. ddef; no error: %s)\n", a.D, dominanceMessage(a).c_str());
+  if (!a.seedD.empty()) {
+    std::string values;
+    for (std::size_t i = 0; i < a.seedD.size(); ++i)
+      values += (i ? ", " : "") + g(a.seedD[i]) + " (seed " + std::to_string(a.seeds[i]) + ")";
+    std::printf("D per seed  %s\n", values.c_str());
+    std::printf("            median %s, range [%s, %s], mean %s", g(a.seedMedian).c_str(), g(a.seedMin).c_str(),
+                g(a.seedMax).c_str(), g(a.seedMean).c_str());
+    if (!a.dominated())
+      std::printf(" +- %s (standard error over %zu seeds)\n", g(a.seedError).c_str(), a.seedD.size());
+    else
+      std::printf(" (no error: the tail dominates)\n");
+  }
+  std::string shares;
+  for (const LongestShare& l : a.shares)
+    shares += (shares.empty() ? "" : ", ") + std::to_string(l.k) + ": " + g(100 * l.share) + "%";
+  if (!a.shares.empty())
+    std::printf("D share     of the longest k segments: %s (the longest is %s steps)\n", shares.c_str(),
+                g(a.shares.front().shortestOfThem).c_str());
+  // D against the steps sampled, at most 8 lines (every point is in D_vs_steps.csv).
+  const std::size_t n = a.DvsSteps.size(), stride = n > 8 ? (n + 7) / 8 : 1;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (i % stride != 0 && i + 1 != n) continue;
+    const DPoint& p = a.DvsSteps[i];
+    std::printf("%s %.3g steps (%llu orbits): D = %s, longest %s steps\n", i == 0 ? "D vs steps " : "           ",
+                p.steps, static_cast<unsigned long long>(p.orbits), g(p.D).c_str(), g(p.longestSteps).c_str());
+  }
+}
+
+/// The tail: its end, the fitted exponents with intervals, the reference exponents, what cannot be decided,
+/// and the steps that would decide.
+void printTail(const TailAnalysis& a) {
+  const int percent = static_cast<int>(std::lround(100 * a.bootstrap.confidence));
+  if (a.windows.empty()) {
+    std::printf("tail        too few long segments for a tail fit (fewer than 10 beyond 3 max(10, 2q) steps): the "
+                "data cannot decide the tail's exponent\n");
+    return;
+  }
+  const TailWindow& f = a.tailFit;
+  std::printf("tail end    t_end = %s steps: %llu segments are longer; beyond it the data decide nothing\n",
+              g(a.tailEnd).c_str(), static_cast<unsigned long long>(f.segmentsBeyondTo));
+  std::printf("gamma_P     %s %s over %s <= t <= %s (P_t ~ t^-gamma; %d%% bootstrap interval, %llu segments beyond "
+              "%s)\n", g(f.gammaP).c_str(), interval(f.gammaPInterval).c_str(), g(f.from).c_str(), g(f.to).c_str(),
+              percent, static_cast<unsigned long long>(f.segmentsBeyondFrom), g(f.from).c_str());
+  std::printf("exponent_C  %s %s over the same window (-dlog C/dlog tau; gamma_P - 1 for a power law)\n",
+              g(f.exponentC).c_str(), interval(f.exponentCInterval).c_str());
+  std::printf("windows:    from, to, gamma_P [interval], exponent_C [interval], segments beyond from, beyond to\n");
+  for (const TailWindow& w : a.windows)
+    std::printf("            %s, %s, %s %s, %s %s, %llu, %llu\n", g(w.from).c_str(), g(w.to).c_str(),
+                g(w.gammaP).c_str(), interval(w.gammaPInterval).c_str(), g(w.exponentC).c_str(),
+                interval(w.exponentCInterval).c_str(), static_cast<unsigned long long>(w.segmentsBeyondFrom),
+                static_cast<unsigned long long>(w.segmentsBeyondTo));
+  std::string verdicts;
+  for (const ReferenceExponent& r : referenceExponents()) {
+    const bool defined = std::isfinite(f.gammaPInterval.lo);
+    const bool inside = defined && f.gammaPInterval.lo <= r.gamma && r.gamma <= f.gammaPInterval.hi;
+    verdicts += (verdicts.empty() ? "" : "; ") + g(r.gamma) + " (" + r.source + ") " +
+                (!defined ? "undecided" : inside ? "consistent" : "excluded");
+  }
+  std::printf("reference   over the tail fit's window, at %d%%: %s\n", percent, verdicts.c_str());
+  const StepsToDecide& d = a.decide;
+  std::printf("to decide   gamma = %s against %s beyond t_end at %s sigma: %s segments longer than t_end, about %.2g "
+              "steps (%.2g times this sample's %.3g); a lower bound: it assumes a pure power law beyond t_end%s\n",
+              g(d.gammaSlow).c_str(), g(d.gammaFast).c_str(), g(d.sigmas).c_str(), g(d.segmentsNeeded).c_str(),
+              d.stepsNeeded, d.stepsNeeded / d.stepsDone, d.stepsDone,
+              d.recordTooShort ? ", and longer orbits (q T < 10 t_end)" : "");
+}
+
+void printVerdict(const TailAnalysis& a) {
+  const std::string message = dominanceMessage(a);
+  std::printf("verdict     %s\n", message.empty() ? "the tail does not dominate D: its bootstrap error stands"
+                                                   : message.c_str());
+}
+
 int statsCommand(const StatsOptions& o) {
   if (!o.csvDir.empty()) checkCsvFolder(o.csvDir);
-  const TrappingState state = loadRunFile(o.runFile, {.allowModified = o.allowModified});
+  if (!o.tailCsvDir.empty()) checkCsvFolder(o.tailCsvDir);
+  std::vector<TrappingState> states;
+  for (const std::string& file : o.runFiles) states.push_back(loadRunFile(file, {.allowModified = o.allowModified}));
   if (o.allowModified) std::fprintf(stderr, "warning: --allow-modified: a file edited after it was written is read\n");
-  const TrappingStatistics s = statisticsOf(state);
+  const Ensemble ensemble = ensembleOf(states, o.runFiles);  // one run, or seeds checked to differ only in the seed
+  const TrappingState& state = states.front();
+  const TrappingStatistics s = ensembleStatistics(ensemble);
+  TailOptions tailOptions;
+  tailOptions.bootstrap = o.bootstrap;
+  const TailAnalysis tail = analyseTail(ensemble, tailOptions);
   const TrappingParameters& p = state.params;
-  std::printf("run         %s (%s)\n", o.runFile.c_str(), state.finished() ? "finished" : "in progress");
+  for (std::size_t i = 0; i < states.size(); ++i)
+    std::printf("run         %s (%s)\n", o.runFiles[i].c_str(), states[i].finished() ? "finished" : "in progress");
   std::printf("map         K = %.17g, xmin = %.17g, xmax = %.17g;  A = %lld, B = %lld, C = %lld, m = %d\n", p.map.K,
               p.map.xmin, p.map.xmax, static_cast<long long>(state.coefficients.A),
               static_cast<long long>(state.coefficients.B), static_cast<long long>(state.coefficients.C),
@@ -46,20 +167,39 @@ int statsCommand(const StatsOptions& o) {
   std::printf("run        Xr = %.17g, q = %u, T = %llu (done %llu), M = %llu, seed = %llu, subsets = %u\n", p.Xr, p.q,
               static_cast<unsigned long long>(p.T), static_cast<unsigned long long>(state.blocksDone),
               static_cast<unsigned long long>(p.M), static_cast<unsigned long long>(p.seed), p.subsets);
+  if (states.size() > 1) {
+    std::string seeds;
+    for (const TrappingState& r : states) seeds += (seeds.empty() ? "" : " ") + std::to_string(r.params.seed);
+    std::printf("ensemble    %zu runs pooled (seeds %s): %llu orbits\n", states.size(), seeds.c_str(),
+                static_cast<unsigned long long>(p.M * states.size()));
+  }
   std::printf("segments    %llu\n", static_cast<unsigned long long>(s.segments));
   std::printf("alpha       %.6g +- %.2g   (mean segment length, steps)\n", s.alpha, s.alphaError);
-  std::printf("D           %.6g +- %.2g   (eq. ddef)\n", s.D, s.DError);
+  if (s.segments > 0) printD(tail, s);
+  else std::printf("D           0   (no segment yet)\n");
   std::printf("sum t f_t   %.9f           (should be close to 1)\n", s.sumTf);
-  std::printf("longest:    rank, length (steps), orbit, start block\n");
-  const auto& items = state.longest.items();
-  for (std::size_t i = 0; i < items.size() && i < 10; ++i)
-    std::printf("            %zu, %llu, %llu, %llu\n", i, static_cast<unsigned long long>(items[i].length * p.q),
-                static_cast<unsigned long long>(items[i].orbit), static_cast<unsigned long long>(items[i].start.block));
-  if (!o.csvDir.empty()) {
-    // The same files, byte for byte, as the GUI's "Export all" (export/StatisticsCsv.hpp).
-    for (const auto& path : writeStatisticsCsv(o.csvDir, state, s, theoryCurves(p, s)))
-      std::printf("wrote       %s\n", path.string().c_str());
+  if (s.segments > 0) {
+    printTail(tail);
+    printVerdict(tail);
   }
+  std::printf("longest:    rank, length (steps), orbit, start block%s\n", states.size() > 1 ? ", seed" : "");
+  std::vector<std::pair<SegmentRecord, std::uint64_t>> longest;  // with its run's seed
+  for (const TrappingState& r : states)
+    for (const SegmentRecord& item : r.longest.items()) longest.emplace_back(item, r.params.seed);
+  std::stable_sort(longest.begin(), longest.end(), [](const auto& a, const auto& b) { return a.first.length > b.first.length; });
+  for (std::size_t i = 0; i < longest.size() && i < 10; ++i) {
+    const SegmentRecord& item = longest[i].first;
+    std::printf("            %zu, %llu, %llu, %llu", i, static_cast<unsigned long long>(item.length * p.q),
+                static_cast<unsigned long long>(item.orbit), static_cast<unsigned long long>(item.start.block));
+    if (states.size() > 1) std::printf(", %llu", static_cast<unsigned long long>(longest[i].second));
+    std::printf("\n");
+  }
+  // --csv: the same files, byte for byte, as the GUI's "Export all" (export/StatisticsCsv.hpp) for one run; an
+  // ensemble's carry a note naming its seeds.  --tail-csv: the tail's files (export/TailCsv.hpp), in a folder
+  // of their own so that --csv stays the GUI's set.
+  if (!o.csvDir.empty())
+    writeCsvFiles(o.csvDir, withNote(statisticsCsvFiles(state, s, theoryCurves(p, s)), state, ensembleNote(tail)));
+  if (!o.tailCsvDir.empty()) writeCsvFiles(o.tailCsvDir, tailCsvFiles(state, tail, s.P));
   return 0;
 }
 }  // namespace
@@ -67,10 +207,18 @@ int statsCommand(const StatsOptions& o) {
 void addStatsCommand(CLI::App& app, int& status) {
   auto o = std::make_shared<StatsOptions>();
   CLI::App* cmd = app.add_subcommand("stats", "statistics of a run file: f_t, P_t, C_tau, D, S_t, D_t with errors");
-  cmd->add_option("run", o->runFile, "run file")->required();
+  cmd->add_option("run", o->runFiles,
+                  "run file; several: a seed ensemble (same parameters but the seed), pooled, with D's spread over "
+                  "seeds")->required();
   cmd->add_flag("--allow-modified", o->allowModified,
                 "read a run file whose checksum does not match (edited by hand; forensic use); it is still validated");
   cmd->add_option("--csv", o->csvDir, "write every series, its small-K theory curves and a summary as CSV into this folder");
+  cmd->add_option("--tail-csv", o->tailCsvDir,
+                  "write D's errors and the tail (tail_summary, D_vs_steps, tail_fit, segments_beyond, "
+                  "P_t.reference) as CSV into this folder");
+  addNumberOption(*cmd, "--bootstrap", o->bootstrap.replicates,
+                  "replicates of the bootstrap over segments for D's error and the tail fits (at least 20)");
+  addNumberOption(*cmd, "--bootstrap-seed", o->bootstrap.seed, "seed of the bootstrap (printed with its results)");
   cmd->callback([o, &status] { status = statsCommand(*o); });
 }
 

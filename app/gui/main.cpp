@@ -8,6 +8,7 @@
 //   --segment N          select the long segment of rank N (0: the longest) of the opened run file
 //   --island             and zoom to one island of its chain once it is identified
 //   FILE.json            open a run file
+//   FILE.archipelago     open a session (the window as it was saved)
 #include <QApplication>
 #include <QTabWidget>
 #include <QCommandLineParser>
@@ -49,7 +50,8 @@ int main(int argc, char** argv) {
                                    QStringLiteral("N"));
   const QCommandLineOption island(QStringLiteral("island"), QStringLiteral("Zoom to one island of its chain."));
   parser.addOptions({version, preset, run, threads, screenshot, after, measure, tab, segment, island});
-  parser.addPositionalArgument(QStringLiteral("file"), QStringLiteral("A run file to open."), QStringLiteral("[file.json]"));
+  parser.addPositionalArgument(QStringLiteral("file"), QStringLiteral("A run file (.json) or a session (.archipelago) to open."),
+                               QStringLiteral("[file.json|file.archipelago]"));
   parser.process(app);
   if (parser.isSet(version)) {
     const QString built = QStringLiteral(QT_VERSION_STR);
@@ -91,7 +93,7 @@ int main(int argc, char** argv) {
       return 1;
     }
   }
-  if (!parser.positionalArguments().isEmpty()) window.openRunFile(parser.positionalArguments().front());
+  if (!parser.positionalArguments().isEmpty()) window.openInteractively(parser.positionalArguments().front());
   if (parser.isSet(segment)) window.showLongSegment(parser.value(segment).toInt(), parser.isSet(island));
   // A screenshot of a segment shows the opened run, so it does not start a new one.
   if (parser.isSet(run) || (scripted && !parser.isSet(segment))) QTimer::singleShot(0, &window, [&window] { window.startRun(); });

@@ -71,6 +71,8 @@ std::string csvMetadataHeader(const TrappingState& state) {
   return out;
 }
 
+std::string csvNumber(double v) { return number(v); }
+
 std::string statisticCsvFileName(Statistic s) { return text(statisticInfo(s).fileStem) + ".csv"; }
 std::string theoryCsvFileName(Statistic s) { return text(statisticInfo(s).fileStem) + ".theory.csv"; }
 

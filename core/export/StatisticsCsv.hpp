@@ -34,6 +34,9 @@ namespace archipelago {
 /// coefficients (A, B, C, m) that define the map exactly, and the kernel that computed the state last.
 [[nodiscard]] std::string csvMetadataHeader(const TrappingState& state);
 
+/// A number as every CSV file writes it: 17 significant digits, shortest form, never the locale's separator.
+[[nodiscard]] std::string csvNumber(double v);
+
 /// The file name of a statistic's CSV ("f_t.csv") and of its theory curves ("f_t.theory.csv").
 [[nodiscard]] std::string statisticCsvFileName(Statistic s);
 [[nodiscard]] std::string theoryCsvFileName(Statistic s);

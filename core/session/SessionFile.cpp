@@ -166,8 +166,6 @@ Session parseSession(std::string_view text) {
       } catch (const std::exception& e) {
         bad(std::string("run.embedded: ") + e.what());
       }
-      if (!(s.embeddedRun->params == s.spec.parameters))
-        bad("run.embedded: its parameters differ from the session's spec");
     }
   }
 

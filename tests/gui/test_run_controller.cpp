@@ -72,10 +72,13 @@ class TestRunController : public QObject {
         {S::stopping, E::workerFinished, S::finished},
         {S::running, E::workerFailed, S::failed},  {S::pausing, E::workerFailed, S::failed},
         {S::stopping, E::workerFailed, S::failed},
+        {S::idle, E::clear, S::idle},           {S::paused, E::clear, S::idle},
+        {S::stopped, E::clear, S::idle},        {S::finished, E::clear, S::idle},
+        {S::failed, E::clear, S::idle},
     };
     const std::vector<S> states = {S::idle, S::running, S::pausing, S::paused, S::stopping, S::stopped, S::finished, S::failed};
     const std::vector<E> events = {E::start, E::pause, E::resume, E::stop, E::workerPaused, E::workerStopped,
-                                   E::workerFinished, E::workerFailed};
+                                   E::workerFinished, E::workerFailed, E::clear};
     int checked = 0;
     for (S s : states)
       for (E e : events) {
@@ -87,7 +90,7 @@ class TestRunController : public QObject {
                                              .arg(archipelago::ui::statusName(s)).arg(static_cast<int>(e))));
         ++checked;
       }
-    QCOMPARE(checked, 64);
+    QCOMPARE(checked, 72);
   }
 
   /// Finding 1: the run finishes while "A run is in progress" is open; Yes must close the window (it used to
@@ -217,6 +220,27 @@ class TestRunController : public QObject {
     QVERIFY(window.staleRunNote().contains(QStringLiteral("K = 0.1")));
     archipelago::test::typeInto(*window.parameterPanel(), QStringLiteral("K"), QStringLiteral("0.1"));
     QVERIFY(window.staleRunNote().isEmpty());
+  }
+
+  /// Finding 5: after a restart the preset box names the preset the restored fields hold, and parameters set
+  /// from anywhere (a run file, a session) never keep a preset's name they have left.
+  void presetBoxNamesOnlyWhatTheFieldsHold() {
+    const archipelago::Preset* zero = archipelago::findPreset("small-k-zero");
+    QVERIFY(zero);
+    {
+      MainWindow w;
+      w.setConfirmations(false);
+      QVERIFY(w.parameterPanel()->applyPreset(QStringLiteral("small-k-zero")));
+      QVERIFY(w.close());
+    }
+    MainWindow next;
+    next.setConfirmations(false);
+    QVERIFY(next.parameterPanel()->parameters() == zero->spec.parameters);
+    QCOMPARE(next.parameterPanel()->spec()->name, zero->spec.name);
+    next.parameterPanel()->setParameters(archipelago::test::shortRun(), 2);
+    QVERIFY(next.parameterPanel()->spec()->name.empty());
+    next.parameterPanel()->setParameters(zero->spec.parameters, 2);
+    QCOMPARE(next.parameterPanel()->spec()->name, zero->spec.name);
   }
 
   /// Finding 6: a new run clears the previous run's long segments (and with them its overlay).

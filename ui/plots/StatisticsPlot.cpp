@@ -24,6 +24,7 @@
 #include <cmath>
 #include <string_view>
 
+#include "core/stats/TailAnalysis.hpp"
 #include "ui/plots/CrosshairPicker.hpp"
 #include "ui/plots/LogScaleDraw.hpp"
 #include "ui/plots/QwtCompat.hpp"
@@ -53,6 +54,24 @@ class Zoomer : public QwtPlotZoomer {
     setMousePattern(QwtEventPattern::MouseSelect3, Qt::RightButton);
   }
 };
+// The literature's tail slopes t^−γ on the P_t plot (issue #14, item 7): the lines, their anchor and labels
+// are core's (stats/TailAnalysis.hpp, referenceSlopes()); this draws them, thin and grey, into `items`.
+void addReferenceSlopes(QwtPlot& plot, const Series& P, bool logY, std::vector<QwtPlotCurve*>& items) {
+  static const Qt::PenStyle kStyles[] = {Qt::DotLine, Qt::DashDotLine, Qt::DashDotDotLine, Qt::DashLine};
+  int index = 0;
+  for (const ReferenceSlope& r : referenceSlopes(P)) {
+    QVector<QPointF> points;
+    for (std::size_t i = 0; i < r.line.x.size(); ++i)
+      if (usable(r.line.x[i], r.line.value[i], logY)) points.append(QPointF(r.line.x[i], r.line.value[i]));
+    auto* c = new QwtPlotCurve(QwtText(QString::fromStdString(r.labelRich), QwtText::RichText));
+    c->setPen(QPen(QColor(110, 110, 110), 1.2, kStyles[index++ % 4]));
+    c->setRenderHint(QwtPlotItem::RenderAntialiased);
+    c->setItemAttribute(QwtPlotItem::AutoScale, false);  // references never move the ranges of the data
+    c->setSamples(points);
+    c->attach(&plot);
+    items.push_back(c);
+  }
+}
 }  // namespace
 
 StatisticsPlot::StatisticsPlot(Statistic statistic, QWidget* parent) : QwtPlot(parent), statistic_(statistic) {
@@ -211,6 +230,7 @@ void StatisticsPlot::setData(const Series& data, const std::vector<TheoryCurve>&
     c->attach(this);
     theoryCurves_.push_back(c);
   }
+  if (statistic_ == Statistic::P) addReferenceSlopes(*this, data, ly, theoryCurves_);  // rebuilt with the theory
 }
 
 void StatisticsPlot::clearData() { setData(Series{}, {}); }

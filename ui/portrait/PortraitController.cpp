@@ -223,6 +223,7 @@ void PortraitController::showSegmentStep(std::size_t index) {
 
 void PortraitController::showPeriodicOrbit(const PeriodicOrbit& orbit) {
   periodicPeriod_ = orbit.period;
+  periodic_ = orbit;
   if (!view_) return;
   view_->setLayer(PortraitLayer::periodicOrbits, SegmentOverlay::periodicItems(orbit));
   updateLegend();
@@ -232,6 +233,7 @@ void PortraitController::clearSegment() {
   replay_.reset();
   chain_.reset();
   periodicPeriod_ = 0;
+  periodic_.reset();
   if (!view_) return;
   for (PortraitLayer layer : {PortraitLayer::segment, PortraitLayer::segmentChain, PortraitLayer::segmentStep,
                               PortraitLayer::periodicOrbits})
@@ -256,6 +258,47 @@ void PortraitController::updateFixedPoints() {
     markers.push_back(marker);
   }
   view_->setLayer(PortraitLayer::fixedPoints, std::move(markers));
+}
+
+SessionPortrait PortraitController::sessionState() const {
+  SessionPortrait state;
+  state.history = history_;
+  state.current = historyIndex_;
+  state.mode = mode();
+  state.colours = view_ ? view_->colourMap() : ColourMapName::Inferno;
+  state.budget = pointBudget();
+  for (const auto& orbit : orbits_)
+    if (!orbit.empty()) state.orbits.push_back({static_cast<double>(orbit.front().x), static_cast<double>(orbit.front().y)});
+  if (periodic_ && periodicPeriod_ > 0) {
+    SessionPeriodicOverlay overlay;
+    overlay.label = "period " + std::to_string(periodic_->period);
+    for (const PhysicalPoint& p : periodic_->points)
+      overlay.points.push_back({static_cast<double>(p.x), static_cast<double>(p.y)});
+    state.periodic.push_back(std::move(overlay));
+  }
+  return state;
+}
+
+void PortraitController::restoreSession(const SessionPortrait& state, const MapParameters& map, double Xr) {
+  setMap(map, Xr);
+  clearOrbits();
+  clearSegment();
+  setMode(state.mode);
+  setColourMap(state.colours);
+  if (state.budget > 0) setPointBudget(state.budget);
+  if (!state.history.empty()) {
+    history_ = state.history;
+    historyIndex_ = std::min(state.current, history_.size() - 1);
+    show(false, history_[historyIndex_]);
+  }
+  for (const auto& start : state.orbits) launchOrbit(start[0], start[1]);
+  for (const SessionPeriodicOverlay& overlay : state.periodic) {
+    PeriodicOrbit orbit;
+    orbit.K = map.K;
+    orbit.period = static_cast<int>(overlay.points.size());
+    for (const auto& p : overlay.points) orbit.points.push_back({p[0], p[1]});
+    showPeriodicOrbit(orbit);
+  }
 }
 
 }  // namespace archipelago::ui

@@ -14,6 +14,7 @@
 #include <QPointer>
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "core/map/MapParameters.hpp"
@@ -21,6 +22,7 @@
 #include "core/portrait/ColourMap.hpp"
 #include "core/portrait/PortraitRaster.hpp"
 #include "core/portrait/Viewport.hpp"
+#include "core/session/SessionFile.hpp"
 #include "ui/portrait/PortraitView.hpp"
 #include "ui/segments/SegmentResults.hpp"
 
@@ -99,6 +101,13 @@ class PortraitController : public QObject {
   /// Removes the segment, its chain, its step and the periodic orbit.
   void clearSegment();
 
+  // --- Sessions (core/session) -------------------------------------------------------------------------
+  /// The portrait's part of a session: the view history and its current entry, mode, colour map, points
+  /// budget, the start points of launched orbits and the periodic-orbit overlay.
+  [[nodiscard]] SessionPortrait sessionState() const;
+  /// Shows `state` for this map: the map first (a new map clears), then the views, orbits and overlay.
+  void restoreSession(const SessionPortrait& state, const MapParameters& map, double Xr);
+
  public Q_SLOTS:
   void back();
   void forward();
@@ -131,6 +140,7 @@ class PortraitController : public QObject {
   SegmentReplayPtr replay_;
   ChainResultPtr chain_;
   int periodicPeriod_ = 0;
+  std::optional<PeriodicOrbit> periodic_;           // the overlay from the periodic-orbit dialog
 };
 
 }  // namespace archipelago::ui

@@ -1,6 +1,7 @@
 #include "ui/portrait/PortraitPanel.hpp"
 
 #include <QComboBox>
+#include <QLocale>
 #include <QFileDialog>
 #include <QFontMetrics>
 #include <QHBoxLayout>
@@ -217,6 +218,24 @@ void PortraitPanel::showStochasticArea() {
   request.map = controller_->map();
   request.Xr = controller_->Xr();
   (new StochasticAreaDialog(request, this))->show();
+}
+
+SessionPortrait PortraitPanel::sessionState() const { return controller_->sessionState(); }
+
+void PortraitPanel::restoreSessionState(const SessionPortrait& state, const MapParameters& map, double Xr) {
+  const auto select = [](QComboBox* box, const QVariant& value, const QString& label) {
+    int i = box->findData(value);
+    if (i < 0) {
+      box->addItem(label, value);
+      i = box->count() - 1;
+    }
+    box->setCurrentIndex(i);
+  };
+  select(mode_, static_cast<int>(state.mode), QString::fromLatin1(toString(state.mode).data()));
+  select(colours_, static_cast<int>(state.colours), QString::fromLatin1(toString(state.colours).data()));
+  if (state.budget > 0)
+    select(budget_, QVariant::fromValue<qulonglong>(state.budget), QLocale().toString(static_cast<qulonglong>(state.budget)));
+  controller_->restoreSession(state, map, Xr);
 }
 
 }  // namespace archipelago::ui

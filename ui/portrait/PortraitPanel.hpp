@@ -8,6 +8,8 @@
 
 #include <QWidget>
 
+#include "core/session/SessionFile.hpp"
+
 #include "core/map/MapParameters.hpp"
 
 class QComboBox;
@@ -33,6 +35,9 @@ class PortraitPanel : public QWidget {
   [[nodiscard]] QComboBox* colourBox() const noexcept { return colours_; }
   /// The readout's full text (the label may show it elided).
   [[nodiscard]] QString readoutText() const;
+  /// The portrait's part of a session; restoring it sets the mode, colour and budget boxes too.
+  [[nodiscard]] SessionPortrait sessionState() const;
+  void restoreSessionState(const SessionPortrait& state, const MapParameters& map, double Xr);
 
  public Q_SLOTS:
   void exportPngDialog();

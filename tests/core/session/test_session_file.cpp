@@ -123,10 +123,12 @@ TEST(SessionFile, EmbeddedRunKeepsItsStateAndChecksum) {
   nlohmann::json j = nlohmann::json::parse(text);
   j["run"]["embedded"]["blocksDone"] = s.embeddedRun->blocksDone - 1;
   expectRejected(j.dump(), "run.embedded");
-  // A run of other parameters than the session's spec is refused.
+  // The panel's parameters may differ from the run's (edited after the run ended): both are kept.
   Session other = s;
   other.spec.parameters.seed += 1;
-  expectRejected(sessionText(other), "differ from the session's spec");
+  const Session otherBack = parseSession(sessionText(other));
+  EXPECT_EQ(otherBack.spec.parameters.seed, s.spec.parameters.seed + 1);
+  EXPECT_EQ(otherBack.embeddedRun->params.seed, s.spec.parameters.seed);
 }
 
 TEST(SessionFile, ReferencedRunResolvesBesideTheSession) {

@@ -23,8 +23,6 @@
 #include <QTimer>
 #include <QWheelEvent>
 #include <QtTest>
-#include <qwt_plot.h>
-#include <qwt_plot_canvas.h>
 
 #include <atomic>
 #include <chrono>
@@ -38,8 +36,8 @@
 #include "ui/MainWindow.hpp"
 #include "ui/ParameterPanel.hpp"
 #include "ui/RunController.hpp"
-#include "ui/portrait/PortraitController.hpp"
 #include "ui/portrait/PortraitPanel.hpp"
+#include "ui/portrait/PortraitController.hpp"
 #include "ui/portrait/PortraitView.hpp"
 #include "ui/segments/LongSegmentsPanel.hpp"
 
@@ -159,8 +157,9 @@ int main(int argc, char** argv) {
   QObject::connect(&step, &QTimer::timeout, [&] {
     if (QApplication::activeModalWidget()) return;  // the answer timer handles it
     ++actions;
-    const int kind = pick(20);
+    const int kind = pick(22);
     auto* portrait = window.portraitPanel()->controller();
+    auto* view = window.portraitPanel()->view();
     switch (kind) {
       case 0: {
         setAction("new short run");
@@ -180,7 +179,7 @@ int main(int argc, char** argv) {
       case 6: {
         setAction("wheel on portrait");
         window.tabs()->setCurrentWidget(window.portraitPanel());
-        QWidget* canvas = portrait->view()->canvas();
+        QWidget* canvas = view->canvas() ? view->canvas() : view;
         const QPointF at(unit() * canvas->width(), unit() * canvas->height());
         QWheelEvent wheel(at, canvas->mapToGlobal(at), QPoint(), QPoint(0, pick(2) ? 120 : -120), Qt::NoButton,
                           Qt::NoModifier, Qt::NoScrollPhase, false);
@@ -189,7 +188,7 @@ int main(int argc, char** argv) {
       }
       case 7: {
         setAction("drag on portrait");
-        QWidget* canvas = portrait->view()->canvas();
+        QWidget* canvas = view->canvas() ? view->canvas() : view;
         const QPoint a(pick(std::max(1, canvas->width())), pick(std::max(1, canvas->height())));
         const QPoint b(pick(std::max(1, canvas->width())), pick(std::max(1, canvas->height())));
         QTest::mousePress(canvas, Qt::LeftButton, Qt::NoModifier, a);
@@ -264,6 +263,16 @@ int main(int argc, char** argv) {
         window.resize(900 + pick(1100), 600 + pick(500));
         break;
       }
+      case 20: {
+        setAction("save session");
+        window.saveSession(work.filePath(QStringLiteral("session-%1.archipelago").arg(pick(3))));
+        break;
+      }
+      case 21: {
+        setAction("open session");
+        window.openSession(work.filePath(QStringLiteral("session-%1.archipelago").arg(pick(3))));
+        break;
+      }
     }
     const int minute = static_cast<int>(clock.elapsed() / 60000);
     if (minute > lastReport) {
@@ -275,7 +284,7 @@ int main(int argc, char** argv) {
                   qPrintable(archipelago::ui::statusName(window.runStatus())));
       std::fflush(stdout);
     }
-    if (clock.elapsed() > minutes * 60000) {
+    if (static_cast<double>(clock.elapsed()) > minutes * 60000) {
       setAction("finish");
       step.stop();
       window.setConfirmations(false);

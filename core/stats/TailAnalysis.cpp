@@ -1,0 +1,386 @@
+/// \file TailAnalysis.cpp
+/// \brief Bootstrap over segments, D's shares and D against steps, tail fits, what can be decided (see the
+/// header for the definitions and the derivation of the steps needed).
+
+#include "core/stats/TailAnalysis.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+
+#include "core/random/CounterRng.hpp"
+
+namespace archipelago {
+
+namespace {
+
+using Real = long double;
+
+// A non-negative whole number as a count, clamped to [0, 2⁶⁴ − 2¹¹] (no undefined conversion for huge values).
+std::uint64_t toCount(long double v) {
+  constexpr long double kMax = 18446744073709549568.0L;  // the largest double below 2⁶⁴
+  return v <= 0 ? 0 : v >= kMax ? static_cast<std::uint64_t>(kMax) : static_cast<std::uint64_t>(v);
+}
+
+double uniform(std::uint64_t key, std::uint64_t& counter) {
+  return (static_cast<double>(orbitDraw(key, ++counter)) + 0.5) * 0x1p-52;  // in (0, 1)
+}
+
+// The percentile of sorted finite values, linearly interpolated (NaN for none).
+double percentile(const std::vector<double>& sorted, double p) {
+  if (sorted.empty()) return kTailUndefined;
+  const double at = p * static_cast<double>(sorted.size() - 1);
+  const auto i = static_cast<std::size_t>(std::floor(at));
+  if (i + 1 >= sorted.size()) return sorted.back();
+  return sorted[i] + (at - static_cast<double>(i)) * (sorted[i + 1] - sorted[i]);
+}
+
+// The percentile interval of the finite values; undefined when fewer than 90 % of them are finite (the
+// statistic then has no value in too many replicates to be trusted).
+ConfidenceInterval percentileInterval(std::vector<double> values, double confidence) {
+  const std::size_t all = values.size();
+  values.erase(std::remove_if(values.begin(), values.end(), [](double v) { return !std::isfinite(v); }), values.end());
+  if (values.empty() || static_cast<double>(values.size()) < 0.9 * static_cast<double>(all)) return {};
+  std::sort(values.begin(), values.end());
+  return {percentile(values, (1 - confidence) / 2), percentile(values, (1 + confidence) / 2)};
+}
+
+double standardDeviation(const std::vector<double>& values) {
+  Real sum = 0, squares = 0;
+  std::size_t n = 0;
+  for (const double v : values)
+    if (std::isfinite(v)) {
+      sum += v;
+      ++n;
+    }
+  if (n < 2) return kTailUndefined;
+  const Real mean = sum / static_cast<Real>(n);
+  for (const double v : values)
+    if (std::isfinite(v)) squares += (v - mean) * (v - mean);
+  return static_cast<double>(std::sqrt(squares / static_cast<Real>(n - 1)));
+}
+
+// One bin's segments as the statistics see them (TrappingStatistics.hpp): at s = q t̄ steps, each carrying
+// ½ s² w/n of D, w = n/(M(T + 1 − t̄))/q.
+struct Mass {
+  double s;
+  std::uint64_t n;
+  Real perSegmentD;
+};
+std::vector<Mass> massesOf(const TrappingHistogram& h, std::uint64_t orbits, std::uint64_t blocks, std::uint32_t q) {
+  std::vector<Mass> out;
+  for (int i = 1; i < TrappingHistogram::kBins; ++i) {
+    const std::uint64_t n = h.count(i);
+    if (n == 0) continue;
+    const Real mean = static_cast<Real>(h.lengthSum(i)) / static_cast<Real>(n);
+    const Real s = q * mean;
+    const Real wPerSegment = 1 / (static_cast<Real>(orbits) * (static_cast<Real>(blocks) + 1 - mean)) / q;
+    out.push_back({static_cast<double>(s), n, s * s * wPerSegment / 2});
+  }
+  return out;  // sorted by s: bins are disjoint ranges
+}
+
+std::uint64_t segmentsBeyond(const std::vector<Mass>& masses, double t) {
+  std::uint64_t n = 0;
+  for (auto it = masses.rbegin(); it != masses.rend() && it->s > t; ++it) n += it->n;
+  return n;
+}
+
+std::uint64_t sum(const std::vector<std::uint64_t>& v) {
+  std::uint64_t n = 0;
+  for (const auto x : v) n += x;
+  return n;
+}
+
+std::string format(const char* f, double v) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, f, v);
+  return buffer;
+}
+
+}  // namespace
+
+std::vector<TrappingHistogram> pooledSubsets(const Ensemble& e) {
+  std::vector<TrappingHistogram> out;
+  for (const EnsembleMember& m : e.members) out.insert(out.end(), m.subsets.begin(), m.subsets.end());
+  return out;
+}
+
+std::vector<std::uint64_t> pooledOrbitsPerSubset(const Ensemble& e) {
+  std::vector<std::uint64_t> out;
+  for (const EnsembleMember& m : e.members) out.insert(out.end(), m.orbitsPerSubset.begin(), m.orbitsPerSubset.end());
+  return out;
+}
+
+TrappingStatistics ensembleStatistics(const Ensemble& e) {
+  if (e.members.empty()) throw std::invalid_argument("an ensemble needs at least one run");
+  return computeStatistics(pooledSubsets(e), pooledOrbitsPerSubset(e), e.blocks, e.q);
+}
+
+std::uint64_t poissonVariate(double mean, std::uint64_t key, std::uint64_t& counter) {
+  if (!(mean > 0)) return 0;
+  if (mean < 10) {  // multiplication (Knuth): the number of uniforms whose product stays above e^−mean
+    const double limit = std::exp(-mean);
+    std::uint64_t k = 0;
+    for (double product = uniform(key, counter); product > limit; product *= uniform(key, counter)) ++k;
+    return k;
+  }
+  if (mean > 1e7) {  // normal limit (relative skewness 1/√mean < 3·10⁻⁴), Box–Muller
+    const double u1 = uniform(key, counter), u2 = uniform(key, counter);
+    const double z = std::sqrt(-2 * std::log(u1)) * std::cos(2 * M_PI * u2);
+    return toCount(std::round(mean + std::sqrt(mean) * z));
+  }
+  // PTRS, transformed rejection with squeeze (W. Hörmann, Insurance: Math. Econ. 12, 39, 1993), mean ≥ 10.
+  const double slam = std::sqrt(mean), loglam = std::log(mean);
+  const double b = 0.931 + 2.53 * slam, a = -0.059 + 0.02483 * b;
+  const double invalpha = 1.1239 + 1.1328 / (b - 3.4), vr = 0.9277 - 3.6224 / (b - 2);
+  for (;;) {
+    const double U = uniform(key, counter) - 0.5, V = uniform(key, counter);
+    const double us = 0.5 - std::fabs(U);
+    const double k = std::floor((2 * a / us + b) * U + mean + 0.43);
+    if (us >= 0.07 && V <= vr) return static_cast<std::uint64_t>(k);
+    if (k < 0 || (us < 0.013 && V > us)) continue;
+    if (std::log(V) + std::log(invalpha) - std::log(a / (us * us) + b) <= -mean + k * loglam - std::lgamma(k + 1))
+      return static_cast<std::uint64_t>(k);
+  }
+}
+
+TrappingHistogram resampleHistogram(const TrappingHistogram& h, std::uint64_t seed, std::uint64_t replicate) {
+  TrappingHistogram out;
+  const std::uint64_t key = orbitKey(seed, replicate);
+  std::uint64_t counter = 0;
+  for (int i = 1; i < TrappingHistogram::kBins; ++i) {
+    const std::uint64_t n = h.count(i);
+    if (n == 0) continue;
+    const std::uint64_t drawn = poissonVariate(static_cast<double>(n), key, counter);
+    const Real lengths = static_cast<Real>(drawn) * static_cast<Real>(h.lengthSum(i)) / static_cast<Real>(n);
+    out.setBin(i, drawn, toCount(std::round(lengths)));
+  }
+  return out;
+}
+
+double fitLogSlope(const Series& s, double from, double to, std::size_t* points) {
+  Real sx = 0, sy = 0, sxx = 0, sxy = 0;
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < s.x.size(); ++i) {
+    if (!(s.x[i] >= from && s.x[i] <= to && s.x[i] > 0 && s.value[i] > 0)) continue;
+    const Real x = std::log(static_cast<Real>(s.x[i])), y = std::log(static_cast<Real>(s.value[i]));
+    sx += x;
+    sy += y;
+    sxx += x * x;
+    sxy += x * y;
+    ++n;
+  }
+  if (points) *points = n;
+  if (n < 3) return kTailUndefined;
+  const Real N = static_cast<Real>(n);
+  const Real denominator = N * sxx - sx * sx;
+  if (!(denominator > 0)) return kTailUndefined;
+  return static_cast<double>(-(N * sxy - sx * sy) / denominator);
+}
+
+TailAnalysis analyseTail(const Ensemble& e, const TailOptions& options) {
+  if (e.members.empty()) throw std::invalid_argument("an ensemble needs at least one run");
+  const BootstrapOptions& bo = options.bootstrap;
+  if (bo.replicates < 20 || bo.replicates > 100000)
+    throw std::invalid_argument("a bootstrap needs 20 to 100000 replicates, not " + std::to_string(bo.replicates));
+  if (!(bo.confidence > 0 && bo.confidence < 1)) throw std::invalid_argument("a confidence must lie in (0, 1)");
+
+  TailAnalysis a;
+  a.bootstrap = bo;
+  const std::vector<TrappingHistogram> subsets = pooledSubsets(e);
+  const std::vector<std::uint64_t> orbitsPerSubset = pooledOrbitsPerSubset(e);
+  const TrappingStatistics stats = computeStatistics(subsets, orbitsPerSubset, e.blocks, e.q);
+  TrappingHistogram total;
+  for (const auto& h : subsets) total.merge(h);
+  const std::uint64_t orbits = sum(orbitsPerSubset);
+  const RecordShape shape{orbits, e.blocks, e.q};
+  a.D = stats.D;
+  a.DSubsetError = stats.DError;
+  if (stats.segments == 0) return a;
+
+  // Over seeds.
+  if (e.members.size() > 1) {
+    for (const EnsembleMember& m : e.members) {
+      a.seeds.push_back(m.seed);
+      a.seedD.push_back(computeStatistics(m.subsets, m.orbitsPerSubset, e.blocks, e.q).D);
+    }
+    std::vector<double> sorted = a.seedD;
+    std::sort(sorted.begin(), sorted.end());
+    Real mean = 0;
+    for (const double d : sorted) mean += d;
+    a.seedMean = static_cast<double>(mean / static_cast<Real>(sorted.size()));
+    a.seedMedian = percentile(sorted, 0.5);
+    a.seedMin = sorted.front();
+    a.seedMax = sorted.back();
+    a.seedError = standardDeviation(sorted) / std::sqrt(static_cast<double>(sorted.size()));
+  }
+
+  // The longest segments' share of D.
+  const std::vector<Mass> masses = massesOf(total, orbits, e.blocks, e.q);
+  Real DofMasses = 0;
+  for (const Mass& m : masses) DofMasses += m.perSegmentD * static_cast<Real>(m.n);
+  {
+    std::vector<const Mass*> top;  // the ten longest segments, longest first (a bin's segments at its mean)
+    for (auto it = masses.rbegin(); it != masses.rend() && top.size() < 10; ++it)
+      for (std::uint64_t j = 0; j < it->n && top.size() < 10; ++j) top.push_back(&*it);
+    Real carried = 0;
+    for (std::size_t k = 1; k <= top.size(); ++k) {
+      carried += top[k - 1]->perSegmentD;
+      if (k == 1 || k == 2 || k == 3 || k == 5 || k == 10)
+        a.shares.push_back({k, static_cast<double>(std::min<Real>(1, carried / DofMasses)), top[k - 1]->s});
+    }
+  }
+
+  // Segments beyond each t, and the tail's end.
+  for (std::size_t g = 0; g < stats.P.x.size(); ++g) {
+    const std::uint64_t n = segmentsBeyond(masses, stats.P.x[g]);
+    a.beyond.push_back({stats.P.x[g], stats.P.value[g], n});
+    if (n >= options.minTailSegments) a.tailEnd = stats.P.x[g];
+  }
+  const double lowest = std::max(10.0, 2.0 * e.q);
+  if (std::isfinite(a.tailEnd) && a.tailEnd >= 3 * lowest) {  // at least half a decade to fit
+    for (int k = 0; k < 16; ++k) {
+      TailWindow w;
+      w.to = a.tailEnd * std::pow(10.0, -k / 2.0);
+      w.from = w.to / 10;
+      if (w.from < lowest) {
+        if (k > 0) break;
+        w.from = lowest;  // the tail fit alone may be shorter than a decade
+      }
+      w.gammaP = fitLogSlope(stats.P, w.from, w.to, &w.points);
+      w.exponentC = fitLogSlope(stats.C, w.from, w.to);
+      w.segmentsBeyondFrom = segmentsBeyond(masses, w.from);
+      w.segmentsBeyondTo = segmentsBeyond(masses, w.to);
+      a.windows.push_back(w);
+    }
+  }
+
+  // The bootstrap: D and every window's exponents in each replicate.
+  std::vector<double> Ds(bo.replicates);
+  std::vector<std::vector<double>> gP(a.windows.size(), std::vector<double>(bo.replicates)), gC = gP;
+  for (std::uint32_t r = 0; r < bo.replicates; ++r) {
+    const TrappingStatistics s = computeStatistics(resampleHistogram(total, bo.seed, r), shape);
+    Ds[r] = s.D;
+    for (std::size_t w = 0; w < a.windows.size(); ++w) {
+      gP[w][r] = fitLogSlope(s.P, a.windows[w].from, a.windows[w].to);
+      gC[w][r] = fitLogSlope(s.C, a.windows[w].from, a.windows[w].to);
+    }
+  }
+  a.DBootstrapError = standardDeviation(Ds);
+  a.DInterval = percentileInterval(Ds, bo.confidence);
+  for (std::size_t w = 0; w < a.windows.size(); ++w) {
+    a.windows[w].gammaPInterval = percentileInterval(gP[w], bo.confidence);
+    a.windows[w].exponentCInterval = percentileInterval(gC[w], bo.confidence);
+  }
+  if (!a.windows.empty()) a.tailFit = a.windows.front();
+
+  // D against the steps sampled: the union of the first k subsets (seed after seed).
+  {
+    TrappingHistogram prefix;
+    std::uint64_t prefixOrbits = 0;
+    for (std::size_t i = 0; i < subsets.size(); ++i) {
+      prefix.merge(subsets[i]);
+      prefixOrbits += orbitsPerSubset[i];
+      if (prefix.segments() == 0) continue;
+      const TrappingStatistics s = computeStatistics(prefix, {prefixOrbits, e.blocks, e.q});
+      DPoint p;
+      p.orbits = prefixOrbits;
+      p.steps = static_cast<double>(prefixOrbits) * static_cast<double>(e.blocks) * e.q;
+      p.segments = s.segments;
+      p.D = s.D;
+      if (!a.windows.empty()) p.gammaTail = fitLogSlope(s.P, a.tailFit.from, a.tailFit.to);
+      p.longestSteps = s.f.x.empty() ? 0 : s.f.x.back();
+      a.DvsSteps.push_back(p);
+    }
+  }
+
+  // What can be decided: the steps that would separate gammaSlow from gammaFast beyond the tail's end.
+  StepsToDecide& d = a.decide;
+  d.gammaSlow = options.gammaSlow;
+  d.gammaFast = options.gammaFast;
+  d.sigmas = options.sigmas;
+  d.stepsDone = static_cast<double>(orbits) * static_cast<double>(e.blocks) * e.q;
+  if (std::isfinite(a.tailEnd)) {
+    d.anchor = a.tailEnd;
+    for (const SegmentsBeyond& b : a.beyond)
+      if (b.t == a.tailEnd) {
+        d.P = b.P;
+        d.segmentsBeyond = b.segments;
+      }
+    const double z = options.sigmas * (d.gammaSlow + d.gammaFast) / (d.gammaFast - d.gammaSlow);
+    d.segmentsNeeded = std::ceil(z * z);
+    d.stepsNeeded = d.P > 0 ? d.segmentsNeeded * stats.alpha / d.P : kTailUndefined;
+    d.recordTooShort = static_cast<double>(e.q) * static_cast<double>(e.blocks) < 10 * d.anchor;
+  }
+
+  // The verdict.
+  a.shareDominates = !a.shares.empty() && a.shares.front().share > options.dominanceShare;
+  a.intervalTooWide = std::isfinite(a.DInterval.lo) && a.DInterval.hi - a.DInterval.lo > a.D;
+  a.tailDiverges = std::isfinite(a.tailFit.gammaPInterval.hi) && a.tailFit.gammaPInterval.hi < 2;
+  return a;
+}
+
+std::string dominanceMessage(const TailAnalysis& a) {
+  if (!a.dominated()) return {};
+  std::string why;
+  const auto add = [&why](const std::string& reason) { why += (why.empty() ? "" : "; ") + reason; };
+  if (a.shareDominates)
+    add("the longest segment alone carries " + format("%.0f", 100 * a.shares.front().share) + "% of D");
+  if (a.intervalTooWide) add("the bootstrap interval of D is wider than D");
+  if (a.tailDiverges)
+    add("P_t decays as t^-" + format("%.2f", a.tailFit.gammaP) + " < t^-2 at the tail's end, so D = sum t^2 f_t / 2 "
+        "grows with the steps sampled if the tail goes on");
+  return "D is dominated by its longest segments; its error cannot be estimated from this run (" + why + ")";
+}
+
+const std::vector<ReferenceExponent>& referenceExponents() {
+  static const std::vector<ReferenceExponent> table = {
+      {1.57, "Cristadoro & Ketzmerick 2008"},
+      {1.5, "Venegeroles 2009"},
+      {1.3, "Shepelyansky 2010"},
+      {3.0, "Chirikov & Shepelyansky 1999"},
+  };
+  return table;
+}
+
+std::vector<ReferenceSlope> referenceSlopes(const Series& P) {
+  double minimum = 0;
+  for (std::size_t i = 0; i < P.x.size(); ++i)
+    if (P.value[i] > 0 && P.x[i] > 0 && (minimum == 0 || P.value[i] < minimum)) minimum = P.value[i];
+  if (!(minimum > 0)) return {};
+  double anchor = 0, anchorP = 0, last = 0;
+  for (std::size_t i = 0; i < P.x.size(); ++i) {
+    if (!(P.x[i] > 0)) continue;
+    last = std::max(last, P.x[i]);
+    if (P.value[i] >= 100 * minimum) {
+      anchor = P.x[i];
+      anchorP = P.value[i];
+    }
+  }
+  if (!(anchor > 0)) return {};
+  const double from = anchor / 10, to = std::max(last, 10 * anchor);
+  constexpr int kSamples = 40;
+  std::vector<ReferenceSlope> out;
+  for (const ReferenceExponent& r : referenceExponents()) {
+    ReferenceSlope slope;
+    slope.gamma = r.gamma;
+    const std::string g = format("%g", r.gamma);
+    slope.label = "t^-" + g + " (" + r.source + ")";
+    std::string source = r.source;
+    if (const auto amp = source.find('&'); amp != std::string::npos) source.replace(amp, 1, "&amp;");
+    slope.labelRich = "t<sup>\u2212" + g + "</sup> (" + source + ")";
+    for (int k = 0; k < kSamples; ++k) {
+      const double t = from * std::pow(to / from, static_cast<double>(k) / (kSamples - 1));
+      slope.line.x.push_back(t);
+      slope.line.value.push_back(anchorP * std::pow(t / anchor, -r.gamma));
+      slope.line.error.push_back(0);
+    }
+    out.push_back(std::move(slope));
+  }
+  return out;
+}
+
+}  // namespace archipelago

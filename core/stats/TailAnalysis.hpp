@@ -1,0 +1,230 @@
+#pragma once
+/// \file TailAnalysis.hpp
+/// \brief Honest errors for D and the tail of P_t and C_τ (Karney 1983, §5; issue #14, items 2 and 7).
+///
+/// The paper's D = 6400 ± 800 comes from the spread over subsets of orbits, and the paper warns that a few
+/// very long segments make that error "severely underestimated".  Eight independent runs of 5·10¹⁰ steps at
+/// K = 0.1 gave D from 1047 to 9000, each quoting ±120–330.  This file gives what the data can support:
+///
+///  - A bootstrap over segments.  Replicate r of a histogram draws every bin's count from a Poisson law of
+///    mean n_i (independently per bin: the number of segments of a run is random too) and keeps the bin's
+///    mean length, Σ*_i = round(n*_i Σ_i/n_i); the statistics of a replicate are computeStatistics() of it,
+///    the one definition of f, P, C and D.  The random numbers are core/random's counter generator:
+///    key = orbitKey(seed, r), the k-th uniform of a replicate (orbitDraw(key, k) + ½)/2⁵²; Poisson variates
+///    by multiplication below a mean of 10 and by Hörmann's transformed rejection (PTRS, 1993) above.  So a
+///    bootstrap is reproducible from its seed (BootstrapOptions::seed, printed with every result).  The
+///    interval is the percentile interval of the replicates.  A bootstrap cannot draw a segment longer than
+///    the longest seen: when the longest few segments carry D, no resampling of this run measures D's error,
+///    and the verdict below says so.
+///  - The share of D carried by the longest k segments: D = Σ ½ s_i² w_i (TrappingStatistics.hpp), each
+///    segment of bin i carrying ½ s_i² w_i/n_i; segments taken from the top bin down.
+///  - D as a function of the steps sampled: the run keeps no time-resolved record, only subset histograms of
+///    the whole length T, so the honest "steps sampled" is orbits × T × q over the first k subsets (and then
+///    over the next seed's subsets): D of the union of subsets 1..k.  Every point uses whole orbits of the
+///    full record, so each point is an unbiased D of fewer orbits, not of shorter orbits.
+///  - Tail fits.  γ_P = −d log P/d log t and γ_C = −d log C/d log τ over a window [from, to]: the least-squares
+///    slope of log value on log t over the grid points of P (or C) in the window where the value is > 0.  The
+///    tail end t_end is the largest grid t with at least minTailSegments segments beyond it (counted in the
+///    histogram as segments whose bin mean is > t, the masses P_t counts); the tail fit is the last decade
+///    [t_end/10, t_end]; the windows are decades ending at t_end·10^(−k/2), k = 0, 1, …, while their lower end
+///    is at least max(10, 2q) steps (the tail fit alone may start there, when t_end < 100 steps; none when
+///    t_end < 3 max(10, 2q)).  Each has a bootstrap interval.
+///  - The verdict.  D is "dominated by its longest segments" when any of:
+///      (a) the longest segment carries more than dominanceShare (20 %) of D;
+///      (b) the bootstrap interval of D is wider than D itself;
+///      (c) the tail fit's upper bound on γ_P is below 2: if P_t ~ t^−γ goes on, f_t ~ t^−γ−1 and
+///          D = Σ ½ t² f_t diverges for γ ≤ 2 (the paper's argument, §5, with α_C = γ − 1 ≤ 1), so every
+///          finite run's D is a lower bound of a quantity that grows with the steps sampled.
+///    Then no error is printed for D (the message says why); otherwise the bootstrap error.  With several
+///    seeds the spread over seeds (standard error of the mean of the per-seed D) is given too, and it is the
+///    error of choice when the tail does not dominate the pooled run.
+///  - What can be decided.  The number of segments beyond each t.  And how many steps would decide between
+///    two tail exponents γ₁ < γ₂ (1.57, Cristadoro & Ketzmerick 2008, and 3, Chirikov & Shepelyansky 1999):
+///
+///    Derivation.  Both laws are anchored at the data's end t_a = t_end, where P_t is still measured (with
+///    minTailSegments segments beyond).  Beyond t_a the question is the slope alone: if P_t ∝ t^−γ for
+///    t > t_a, the lengths t of the segments longer than t_a follow the Pareto law Pr(t > x | t > t_a) =
+///    (x/t_a)^−γ.  For n such segments the log-likelihood is n log γ − (γ + 1) Σ log(t_j/t_a) + const, the
+///    maximum-likelihood γ̂ = n / Σ log(t_j/t_a) has Fisher information n/γ², so γ̂ is normal with standard
+///    deviation γ/√n for large n.  A threshold c between γ₁ and γ₂ decides at z standard deviations under
+///    either hypothesis when c − γ₁ ≥ zγ₁/√n and γ₂ − c ≥ zγ₂/√n, i.e. when
+///        n ≥ n* = ⌈(z (γ₁ + γ₂)/(γ₂ − γ₁))²⌉        (z = 3, γ₁ = 1.57, γ₂ = 3: n* = 92).
+///    Segments longer than t_a start at the rate Σ_{s_i > t_a} w_i = P(t_a)/α per step of record (the
+///    estimator of TrappingStatistics.hpp, truncation corrected), so the steps needed are
+///        steps* = n* α / P(t_a),
+///    in the run's box and at its K (α and P come from this run).  This is a lower bound: it assumes P_t is
+///    a pure power law beyond t_a, while the paper's fig. 6(d) shows the local exponent stepping; and the
+///    record must be long enough to hold the tail (q T ≫ t_a; flagged when q T < 10 t_a).
+///
+/// Reference slopes for the P_t plot: t^−1.57 (Cristadoro & Ketzmerick, PRL 100, 184101, 2008), t^−3/2
+/// (Venegeroles, PRL 102, 064101, 2009), t^−1.3 (Shepelyansky 2010, few degrees of freedom) and t^−3
+/// (Chirikov & Shepelyansky, PRL 82, 528, 1999), anchored at the data (referenceSlopes()).
+///
+/// Everything here is a pure function of its arguments (thread-safe, no Qt).
+
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "core/stats/TrappingStatistics.hpp"
+#include "core/trapping/TrappingHistogram.hpp"
+
+namespace archipelago {
+
+inline constexpr double kTailUndefined = std::numeric_limits<double>::quiet_NaN();
+
+/// One independent run of an ensemble: its subset histograms, the orbits behind each, and its seed.
+struct EnsembleMember {
+  std::vector<TrappingHistogram> subsets;
+  std::vector<std::uint64_t> orbitsPerSubset;
+  std::uint64_t seed = 0;
+};
+
+/// Independent runs of the same parameters but the seed (one run: one member), all over `blocks` blocks.
+struct Ensemble {
+  std::vector<EnsembleMember> members;
+  std::uint64_t blocks = 0;  ///< T (blocks done) of every member
+  std::uint32_t q = 1;
+};
+
+/// The pooled subsets of an ensemble (every member's subsets, in member order) and their orbit counts.
+[[nodiscard]] std::vector<TrappingHistogram> pooledSubsets(const Ensemble& e);
+[[nodiscard]] std::vector<std::uint64_t> pooledOrbitsPerSubset(const Ensemble& e);
+/// The statistics of the pooled histograms, errors from the spread over all subsets of all members.
+/// Throws std::invalid_argument as computeStatistics() does, or for an ensemble without members.
+[[nodiscard]] TrappingStatistics ensembleStatistics(const Ensemble& e);
+
+struct BootstrapOptions {
+  std::uint32_t replicates = 1000;  ///< 20 to 100000
+  std::uint64_t seed = 14;          ///< of the resampling (printed with the results)
+  double confidence = 0.95;         ///< of the percentile intervals, in (0, 1)
+};
+
+/// A Poisson variate of mean `mean` ≥ 0 (finite), drawn from the counter stream `key`, whose draw counter
+/// `counter` is advanced (the k-th uniform is (orbitDraw(key, k) + ½)/2⁵²).
+[[nodiscard]] std::uint64_t poissonVariate(double mean, std::uint64_t key, std::uint64_t& counter);
+
+/// Replicate `replicate` of the Poisson bootstrap of `h` (see the file comment).
+[[nodiscard]] TrappingHistogram resampleHistogram(const TrappingHistogram& h, std::uint64_t seed,
+                                                  std::uint64_t replicate);
+
+/// −d log y / d log x: the least-squares slope of log y on log x over the points of `s` with
+/// from ≤ x ≤ to, x > 0 and y > 0 (NaN with fewer than 3 such points).
+[[nodiscard]] double fitLogSlope(const Series& s, double from, double to, std::size_t* points = nullptr);
+
+struct ConfidenceInterval {
+  double lo = kTailUndefined, hi = kTailUndefined;
+};
+
+/// A window of the tail with its exponents and their bootstrap intervals.
+struct TailWindow {
+  double from = 0, to = 0;                ///< steps
+  double gammaP = kTailUndefined;                   ///< −d log P_t/d log t
+  ConfidenceInterval gammaPInterval;
+  double exponentC = kTailUndefined;                ///< −d log C_τ/d log τ
+  ConfidenceInterval exponentCInterval;
+  std::size_t points = 0;                 ///< grid points of P in the window
+  std::uint64_t segmentsBeyondFrom = 0;   ///< segments longer than `from`
+  std::uint64_t segmentsBeyondTo = 0;     ///< segments longer than `to`
+};
+
+/// One point of D as a function of the steps sampled.
+struct DPoint {
+  double steps = 0;            ///< orbits × T × q
+  std::uint64_t orbits = 0;
+  std::uint64_t segments = 0;
+  double D = 0;
+  double gammaTail = kTailUndefined;     ///< γ_P over the tail fit's window (of the whole sample)
+  double longestSteps = 0;     ///< the longest segment so far (its bin's mean length), steps
+};
+
+/// The share of D carried by the k longest segments.
+struct LongestShare {
+  std::size_t k = 0;
+  double share = 0;            ///< in [0, 1]
+  double shortestOfThem = 0;   ///< length of the k-th longest (its bin's mean), steps
+};
+
+/// The estimate of the steps that would decide between two tail exponents (see the file comment).
+struct StepsToDecide {
+  double gammaSlow = 1.57, gammaFast = 3, sigmas = 3;
+  double anchor = kTailUndefined;             ///< t_a, steps
+  double P = kTailUndefined;                  ///< P(t_a)
+  std::uint64_t segmentsBeyond = 0; ///< segments longer than t_a in the data
+  double segmentsNeeded = kTailUndefined;     ///< n*
+  double stepsNeeded = kTailUndefined;        ///< n* α / P(t_a)
+  double stepsDone = 0;             ///< M T q summed over members
+  bool recordTooShort = false;      ///< q T < 10 t_a
+};
+
+/// Segments longer than t, on P's grid.
+struct SegmentsBeyond {
+  double t = 0;
+  double P = 0;
+  std::uint64_t segments = 0;
+};
+
+struct TailOptions {
+  BootstrapOptions bootstrap;
+  std::uint64_t minTailSegments = 10;   ///< segments beyond t_end
+  double dominanceShare = 0.2;          ///< criterion (a)
+  double sigmas = 3;                    ///< z of the steps-to-decide estimate
+  double gammaSlow = 1.57, gammaFast = 3;
+};
+
+struct TailAnalysis {
+  BootstrapOptions bootstrap;           ///< as used
+  double D = kTailUndefined;                      ///< of the pooled sample (eq. ddef)
+  double DSubsetError = 0;              ///< the paper's error: standard error over the subsets
+  double DBootstrapError = kTailUndefined;        ///< standard deviation of the replicates
+  ConfidenceInterval DInterval;                   ///< percentile interval of the replicates
+  // Over seeds (members); empty / NaN for one member.
+  std::vector<std::uint64_t> seeds;
+  std::vector<double> seedD;
+  double seedMean = kTailUndefined, seedMedian = kTailUndefined, seedError = kTailUndefined, seedMin = kTailUndefined, seedMax = kTailUndefined;
+
+  std::vector<LongestShare> shares;     ///< k = 1, 2, 3, 5, 10 (those the sample has)
+  std::vector<DPoint> DvsSteps;
+  double tailEnd = kTailUndefined;                ///< t_end, steps (NaN: no tail with minTailSegments beyond)
+  TailWindow tailFit;                   ///< [t_end/10, t_end]
+  std::vector<TailWindow> windows;      ///< decades ending at t_end, t_end/√10, …
+  std::vector<SegmentsBeyond> beyond;
+  StepsToDecide decide;
+
+  bool shareDominates = false;          ///< (a)
+  bool intervalTooWide = false;         ///< (b)
+  bool tailDiverges = false;            ///< (c)
+  [[nodiscard]] bool dominated() const noexcept { return shareDominates || intervalTooWide || tailDiverges; }
+};
+
+/// Everything above for an ensemble (one member: one run).  Throws std::invalid_argument for an empty
+/// ensemble, replicates outside [20, 100000], a confidence outside (0, 1), or as computeStatistics().
+[[nodiscard]] TailAnalysis analyseTail(const Ensemble& e, const TailOptions& options = {});
+
+/// The verdict on D in words, one line: "D is dominated by its longest segments; its error cannot be estimated
+/// from this run (...)" with the reasons, or an empty string when the bootstrap error stands.
+[[nodiscard]] std::string dominanceMessage(const TailAnalysis& a);
+
+/// A reference slope t^−γ for the P_t plot.
+struct ReferenceSlope {
+  double gamma = 0;
+  std::string label;      ///< plain: "t^-1.57 (Cristadoro & Ketzmerick 2008)"
+  std::string labelRich;  ///< rich text: "t<sup>−1.57</sup> (Cristadoro &amp; Ketzmerick 2008)"
+  Series line;            ///< P(t_a)(t/t_a)^−γ sampled on a logarithmic grid (error 0)
+};
+
+/// The reference exponents, once: 1.57, 1.5, 1.3, 3 with their sources.
+struct ReferenceExponent {
+  double gamma;
+  const char* source;
+};
+[[nodiscard]] const std::vector<ReferenceExponent>& referenceExponents();
+
+/// Reference slopes anchored at the data: at t_a, the largest t of `P` where P_t ≥ 100 P_min, P_min being P's
+/// smallest positive value (about one segment's share, so some 100 segments lie beyond t_a; the series alone
+/// decides it, so the GUI and the CLI agree), each line drawn from t_a/10 to P's largest abscissa.  Empty when
+/// P has no such point.
+[[nodiscard]] std::vector<ReferenceSlope> referenceSlopes(const Series& P);
+
+}  // namespace archipelago

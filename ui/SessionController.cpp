@@ -1,0 +1,159 @@
+#include "ui/SessionController.hpp"
+
+#include <QDir>
+#include <QFileInfo>
+#include <QTabWidget>
+
+#include <exception>
+
+#include "ui/MainWindow.hpp"
+#include "ui/ParameterPanel.hpp"
+#include "ui/RunController.hpp"
+#include "ui/StatisticsView.hpp"
+#include "ui/plots/StatisticsPlot.hpp"
+#include "ui/portrait/PortraitPanel.hpp"
+#include "ui/segments/LongSegmentsPanel.hpp"
+
+namespace archipelago::ui {
+
+SessionController::SessionController(MainWindow& window) : QObject(&window), window_(window) {}
+
+Session SessionController::capture(const QString& sessionPath) const {
+  Session s;
+  const ParameterPanel& panel = *window_.parameterPanel();
+  if (const auto spec = panel.spec()) s.spec = *spec;
+  else if (const auto& latest = window_.latestSnapshot()) s.spec.parameters = latest->state.params;
+
+  const RunController& run = *window_.runController();
+  if (const auto& latest = run.latest()) {
+    const QString file = run.currentFile();
+    if (!file.isEmpty() && !run.unsaved() && file != RunController::checkpointPath() && QFileInfo::exists(file)) {
+      const QDir folder = QFileInfo(sessionPath).absoluteDir();
+      const QString relative = folder.relativeFilePath(QFileInfo(file).absoluteFilePath());
+      s.runFile = (relative.startsWith(QLatin1String("..")) ? QFileInfo(file).absoluteFilePath() : relative).toStdString();
+    } else {
+      s.embeddedRun = latest->state;
+    }
+  }
+
+  s.tab = window_.tabs()->tabText(window_.tabs()->currentIndex()).remove(QLatin1Char('&')).toStdString();
+  s.portrait = window_.portraitPanel()->sessionState();
+
+  const LongSegmentsPanel& segments = *window_.longSegments();
+  if (run.latest() && segments.selectedRow() >= 0) {
+    s.segmentRank = segments.selectedRow();
+    s.segmentPosition = segments.currentIndex();
+  }
+  for (const StatisticsPlot* plot : window_.statisticsView()->plots())
+    if (const auto view = plot->userView())
+      s.plots.push_back({plot->fileName().toStdString(), {view->left(), view->right(), view->top(), view->bottom()}});
+  return s;
+}
+
+bool SessionController::save(const QString& path, QString* error) {
+  try {
+    saveSession(path.toStdString(), capture(path));
+  } catch (const std::exception& e) {
+    if (error) *error = QString::fromStdString(e.what());
+    return false;
+  }
+  return true;
+}
+
+std::optional<QString> SessionController::windowError(const Session& s) const {
+  if (!s.tab.empty()) {
+    bool found = false;
+    for (int i = 0; i < window_.tabs()->count(); ++i)
+      found = found || window_.tabs()->tabText(i).remove(QLatin1Char('&')).toStdString() == s.tab;
+    if (!found) return tr("tab \"%1\" is not a tab of this window").arg(QString::fromStdString(s.tab));
+  }
+  for (const SessionPlotZoom& z : s.plots) {
+    bool found = false;
+    for (const StatisticsPlot* plot : window_.statisticsView()->plots())
+      found = found || plot->fileName().toStdString() == z.name;
+    if (!found) return tr("plot \"%1\" is not a plot of this window").arg(QString::fromStdString(z.name));
+    if (const StatisticsPlot* plot = [&]() -> const StatisticsPlot* {
+          for (const StatisticsPlot* p : window_.statisticsView()->plots())
+            if (p->fileName().toStdString() == z.name) return p;
+          return nullptr;
+        }();
+        plot && plot->statistic() != Statistic::localExponent && (z.zoom.ymin <= 0 || z.zoom.xmin <= 0))
+      return tr("plot \"%1\": a log axis cannot show a range reaching 0 or below").arg(QString::fromStdString(z.name));
+  }
+  return std::nullopt;
+}
+
+bool SessionController::open(const QString& path, QString* error) {
+  Session s;
+  try {
+    s = loadSession(path.toStdString());
+  } catch (const std::exception& e) {
+    if (error) *error = QString::fromStdString(e.what());
+    return false;
+  }
+  return apply(s, error);
+}
+
+bool SessionController::apply(const Session& s, QString* error) {
+  if (const auto e = windowError(s)) {
+    if (error) *error = *e;
+    return false;
+  }
+  RunController& run = *window_.runController();
+  if (isLive(run.status())) {
+    if (error) *error = tr("Stop or pause the run before opening a session");
+    return false;
+  }
+  // The run first: it asks before unsaved work is lost, and a refusal changes nothing.
+  QString why;
+  bool ok = true;
+  if (s.runFile) ok = run.open(QString::fromStdString(s.runFile->string()), &why);
+  else if (s.embeddedRun) ok = run.adopt(*s.embeddedRun, &why);
+  else ok = run.clear() || (why = tr("Cancelled"), false);
+  if (!ok) {
+    if (error) *error = why;
+    return false;
+  }
+  applyViews(s);
+  if (isLive(run.status())) {
+    // The analysis of the run comes back through the worker: the rest waits for it.
+    pending_ = s;
+    auto connection = std::make_shared<QMetaObject::Connection>();
+    *connection = connect(&run, &RunController::statusChanged, this, [this, connection](RunStatus status) {
+      if (isLive(status)) return;
+      disconnect(*connection);
+      if (!pending_) return;
+      const Session session = std::move(*pending_);
+      pending_.reset();
+      if (status != RunStatus::failed) applyRunDependent(session);
+      Q_EMIT restored();
+    });
+  } else {
+    applyRunDependent(s);
+    Q_EMIT restored();
+  }
+  return true;
+}
+
+void SessionController::applyViews(const Session& s) {
+  for (int i = 0; i < window_.tabs()->count(); ++i)
+    if (window_.tabs()->tabText(i).remove(QLatin1Char('&')).toStdString() == s.tab) window_.tabs()->setCurrentIndex(i);
+  const TrappingParameters& p =
+      s.embeddedRun ? s.embeddedRun->params : s.spec.parameters;
+  window_.portraitPanel()->restoreSessionState(s.portrait, p.map, p.Xr);
+}
+
+void SessionController::applyRunDependent(const Session& s) {
+  // A resumable run shows its own parameters (read-only); otherwise the panel holds the session's.
+  if (window_.runStatus() != RunStatus::paused) window_.parameterPanel()->setSpec(s.spec);
+  window_.refreshNow();
+  for (StatisticsPlot* plot : window_.statisticsView()->plots()) {
+    plot->resetZoom();
+    for (const SessionPlotZoom& z : s.plots)
+      if (plot->fileName().toStdString() == z.name)
+        plot->setUserView(QRectF(z.zoom.xmin, z.zoom.ymin, z.zoom.xmax - z.zoom.xmin, z.zoom.ymax - z.zoom.ymin));
+  }
+  if (s.segmentRank >= 0) window_.showLongSegment(s.segmentRank, false, s.segmentPosition);
+}
+
+}  // namespace archipelago::ui

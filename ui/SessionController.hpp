@@ -1,0 +1,54 @@
+#pragma once
+/// \file SessionController.hpp
+/// \brief File ▸ Save Session / Open Session: the window as it is, in a `.archipelago` file (core/session's codec).
+///
+/// A session holds the parameters, the run (referenced when it is saved in a file and unchanged since, else
+/// embedded), the portrait's exact view with its history, mode, colour map, points budget, launched orbits and
+/// periodic-orbit overlays, the selected long segment with its replay position, the plots the user zoomed, and
+/// the active tab.  Opening reads and validates the whole file first (core), then checks what only the window
+/// knows (plot and tab names): a bad or foreign file changes nothing and the reason is returned.  Discarding
+/// unsaved work asks (the run controller).  What depends on the run (the segment table, plot ranges) is applied
+/// when its analysis has come back.
+
+#include <QObject>
+#include <QString>
+
+#include <optional>
+
+#include "core/session/SessionFile.hpp"
+
+namespace archipelago::ui {
+
+class MainWindow;
+
+class SessionController : public QObject {
+  Q_OBJECT
+ public:
+  explicit SessionController(MainWindow& window);
+
+  /// The window as it is now.  The run is embedded unless it is in `currentFile` unchanged; a referenced run's
+  /// path is written relative to `sessionPath`'s folder when it lies inside it.
+  [[nodiscard]] Session capture(const QString& sessionPath) const;
+  bool save(const QString& path, QString* error = nullptr);
+  /// Opens a session file.  False with the reason in `error` when it cannot (nothing changed), or when the user
+  /// cancelled (error "Cancelled").
+  bool open(const QString& path, QString* error = nullptr);
+  /// Restores `session` (already validated by core).
+  bool apply(const Session& session, QString* error = nullptr);
+  /// True while parts of an opened session wait for its run's analysis.
+  [[nodiscard]] bool restoring() const noexcept { return pending_.has_value(); }
+
+ Q_SIGNALS:
+  /// Everything of an opened session is on screen.
+  void restored();
+
+ private:
+  [[nodiscard]] std::optional<QString> windowError(const Session& session) const;
+  void applyViews(const Session& session);
+  void applyRunDependent(const Session& session);
+
+  MainWindow& window_;
+  std::optional<Session> pending_;
+};
+
+}  // namespace archipelago::ui
