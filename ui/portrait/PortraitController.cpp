@@ -286,11 +286,7 @@ void PortraitController::restoreSession(const SessionPortrait& state, const MapP
   setMode(state.mode);
   setColourMap(state.colours);
   if (state.budget > 0) setPointBudget(state.budget);
-  if (!state.history.empty()) {
-    history_ = state.history;
-    historyIndex_ = std::min(state.current, history_.size() - 1);
-    show(false, history_[historyIndex_]);
-  }
+  if (!state.history.empty()) restoreHistory(state.history, std::min(state.current, state.history.size() - 1));
   for (const auto& start : state.orbits) launchOrbit(start[0], start[1]);
   for (const SessionPeriodicOverlay& overlay : state.periodic) {
     PeriodicOrbit orbit;
