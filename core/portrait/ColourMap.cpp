@@ -178,7 +178,18 @@ RasterImage colourize(const PortraitRaster& raster, ColourMapName name) {
         const std::uint32_t label = i < raster.labels.size() ? raster.labels[i] : 0;
         if (wrappedAt(label) && raster.counts[i] > 0) visited.push_back(raster.counts[i]);
       }
-      const auto [lo, hi] = logRange(visited);
+      // The scale spans at least a decade below the median and half a decade above it, so that the
+      // counting noise of a young raster (±20 % at 25 visits a pixel) stays a small part of it while the
+      // regions where orbits linger (several times the median) stand out.
+      double lo = 0, hi = 0;
+      if (!visited.empty()) {
+        auto middle = visited.begin() + static_cast<std::ptrdiff_t>(visited.size() / 2);
+        std::nth_element(visited.begin(), middle, visited.end());
+        const double median = std::log10(static_cast<double>(*middle));
+        const auto [qlo, qhi] = logRange(visited);
+        lo = std::min(qlo, median - 1.0);
+        hi = std::max(qhi, median + 0.5);
+      }
       for (std::size_t i = 0; i < n; ++i) {
         const std::uint32_t label = i < raster.labels.size() ? raster.labels[i] : 0;
         if (label == 0) {

@@ -8,8 +8,9 @@
 ///     uniform, so a log scale between its extremes shows where sticky orbits linger);
 ///   - Stickiness: t = (log10 L − log10 Lmin) / (log10 Lmax − log10 Lmin), L the mean segment length (§3);
 ///   - Orbits: each label gets its own hue (golden-ratio steps around the colour wheel), not a scale;
-///     orbits that wrapped around the torus (the sea and accelerator modes) are shaded by log visits (the
-///     same robust range as Density) through the dim part [kSeaLowest, kSeaHighest] of the colour map.
+///     orbits that wrapped around the torus (the sea and accelerator modes) are shaded by log visits through
+///     the dim part [kSeaLowest, kSeaHighest] of the colour map, over the robust range of Density widened to
+///     at least [median/10, median·√10] (so that counting noise does not fill the scale).
 /// Non-empty pixels use t in [kLowest, 1] so that the faintest visit stays distinguishable from an empty
 /// pixel, which gets the map's colour at 0 (black for inferno) or the background of the Orbits mode.
 

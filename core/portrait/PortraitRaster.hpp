@@ -60,6 +60,14 @@ struct PortraitRaster {
   [[nodiscard]] std::vector<double> meanSegmentLengths() const;
   /// Pixels with at least one visit.
   [[nodiscard]] std::size_t nonEmptyPixels() const noexcept;
+  /// Orbits mode: every seed's orbit wrapped around the torus, i.e. the view's seeds all lie in the sea (or in
+  /// accelerator modes) and no island orbit was drawn (e.g. K = 0, where Q has no island; fig. 3b).
+  [[nodiscard]] bool allOrbitsWrapped() const noexcept {
+    if (orbitWrapped.empty()) return false;
+    for (std::uint8_t w : orbitWrapped)
+      if (w == 0) return false;
+    return true;
+  }
 };
 
 }  // namespace archipelago

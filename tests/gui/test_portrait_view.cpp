@@ -140,6 +140,36 @@ class TestPortraitView : public QObject {
     QVERIFY(c.map() == other);
   }
 
+  // What a session file keeps: the history and the settings, restored through the controller; the panel's
+  // boxes follow the controller.
+  void historyAndSettingsRestoreThroughTheController() {
+    PortraitPanel panel;
+    PortraitController& c = *panel.controller();
+    const Viewport whole;
+    const Viewport a = whole.zoomedAboutFraction(0.3L, 0.6L, 4);
+    const Viewport b = a.zoomedAboutFraction(0.5L, 0.5L, 8);
+    QVERIFY(!c.restoreHistory({}, 0));
+    QVERIFY(!c.restoreHistory({whole, a}, 2));
+    QVERIFY(c.viewport() == whole);
+    QVERIFY(c.restoreHistory({whole, a, b}, 1));
+    QVERIFY(c.viewport() == a);
+    QVERIFY(panel.view()->viewport() == a);
+    QVERIFY(c.canGoBack() && c.canGoForward());
+    QCOMPARE(c.history().size(), std::size_t{3});
+    QCOMPARE(c.historyIndex(), std::size_t{1});
+    c.forward();
+    QVERIFY(c.viewport() == b);
+    c.setMode(PortraitMode::Stickiness);
+    c.setColourMap(archipelago::ColourMapName::Grey);
+    c.setPointBudget(123'000'000);
+    QCOMPARE(panel.findChildren<QComboBox*>().front()->currentData().toInt(), static_cast<int>(PortraitMode::Stickiness));
+    QCOMPARE(panel.colourBox()->currentData().toInt(), static_cast<int>(archipelago::ColourMapName::Grey));
+    QCOMPARE(panel.budgetBox()->currentData().toULongLong(), 123'000'000ULL);
+    c.launchOrbit(-0.3, 0.05, 100);
+    QCOMPARE(c.launchedOrbitStarts().size(), std::size_t{1});
+    QVERIFY(std::fabs(static_cast<double>(c.launchedOrbitStarts()[0].x) + 0.3) < 1e-12);
+  }
+
   void clickLaunchesAnOrbitAndExportsWrite() {
     Portrait p;
     p.host.resize(400, 400);

@@ -95,6 +95,14 @@ void PortraitController::ensureVisible(long double x, long double y) {
   show(false, viewport());
 }
 
+bool PortraitController::restoreHistory(std::vector<Viewport> views, std::size_t current) {
+  if (views.empty() || current >= views.size()) return false;
+  history_ = std::move(views);
+  historyIndex_ = current;
+  show(false, viewport());
+  return true;
+}
+
 void PortraitController::back() {
   if (!canGoBack()) return;
   --historyIndex_;
@@ -127,17 +135,34 @@ void PortraitController::show(bool record, const Viewport& view) {
 }
 
 void PortraitController::setMode(PortraitMode mode) {
-  if (view_) view_->setMode(mode);
+  if (!view_ || view_->mode() == mode) return;
+  view_->setMode(mode);
+  Q_EMIT settingsChanged();
 }
 
 PortraitMode PortraitController::mode() const noexcept { return view_ ? view_->mode() : PortraitMode::Orbits; }
 
 void PortraitController::setColourMap(ColourMapName colours) {
-  if (view_) view_->setColourMap(colours);
+  if (!view_ || view_->colourMap() == colours) return;
+  view_->setColourMap(colours);
+  Q_EMIT settingsChanged();
+}
+
+ColourMapName PortraitController::colourMap() const noexcept {
+  return view_ ? view_->colourMap() : ColourMapName::Inferno;
 }
 
 void PortraitController::setPointBudget(std::uint64_t points) {
-  if (view_) view_->setPointBudget(points);
+  if (!view_ || view_->pointBudget() == points) return;
+  view_->setPointBudget(points);
+  Q_EMIT settingsChanged();
+}
+
+std::vector<PhysicalPoint> PortraitController::launchedOrbitStarts() const {
+  std::vector<PhysicalPoint> starts;
+  for (const auto& orbit : orbits_)
+    if (!orbit.empty()) starts.push_back(orbit.front());
+  return starts;
 }
 
 std::uint64_t PortraitController::pointBudget() const noexcept { return view_ ? view_->pointBudget() : 0; }
@@ -261,11 +286,7 @@ void PortraitController::restoreSession(const SessionPortrait& state, const MapP
   setMode(state.mode);
   setColourMap(state.colours);
   if (state.budget > 0) setPointBudget(state.budget);
-  if (!state.history.empty()) {
-    history_ = state.history;
-    historyIndex_ = std::min(state.current, history_.size() - 1);
-    show(false, history_[historyIndex_]);
-  }
+  if (!state.history.empty()) restoreHistory(state.history, std::min(state.current, state.history.size() - 1));
   for (const auto& start : state.orbits) launchOrbit(start[0], start[1]);
   for (const SessionPeriodicOverlay& overlay : state.periodic) {
     PeriodicOrbit orbit;

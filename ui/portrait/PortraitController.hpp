@@ -66,6 +66,12 @@ class PortraitController : public QObject {
   void ensureVisible(long double x, long double y);
   /// True when the physical point (x, y) lies inside the view.
   [[nodiscard]] bool shows(long double x, long double y) const noexcept;
+  /// The view history, oldest first, and the index of the view shown (session files keep them).
+  [[nodiscard]] const std::vector<Viewport>& history() const noexcept { return history_; }
+  [[nodiscard]] std::size_t historyIndex() const noexcept { return historyIndex_; }
+  /// Restores a history (e.g. from a session file) and shows views[current].  An empty list or an index past
+  /// its end is refused (returns false, nothing changes).
+  bool restoreHistory(std::vector<Viewport> views, std::size_t current);
   [[nodiscard]] bool canGoBack() const noexcept { return historyIndex_ > 0; }
   [[nodiscard]] bool canGoForward() const noexcept { return historyIndex_ + 1 < history_.size(); }
 
@@ -73,6 +79,7 @@ class PortraitController : public QObject {
   void setMode(PortraitMode mode);
   [[nodiscard]] PortraitMode mode() const noexcept;
   void setColourMap(ColourMapName colours);
+  [[nodiscard]] ColourMapName colourMap() const noexcept;
   /// The points budget of a view: the render accumulates until it has done this many map steps.
   void setPointBudget(std::uint64_t points);
   [[nodiscard]] std::uint64_t pointBudget() const noexcept;
@@ -83,6 +90,8 @@ class PortraitController : public QObject {
   /// Launch an orbit of N from the physical point (x, y), `steps` long, drawn in its own colour.
   void launchOrbit(double x, double y, int steps = 20000);
   [[nodiscard]] int orbitCount() const noexcept { return static_cast<int>(orbits_.size()); }
+  /// The physical start points of the launched orbits, in launch order.
+  [[nodiscard]] std::vector<PhysicalPoint> launchedOrbitStarts() const;
   /// The selected long segment (null: none); its chain's centre orbit; the kept state shown.
   void showSegment(const SegmentReplayPtr& replay);
   void showSegmentChain(const ChainResultPtr& chain);
@@ -113,6 +122,8 @@ class PortraitController : public QObject {
   void mapChanged();
   /// The view changed (zoom, pan, history, reset, map).
   void viewportChanged();
+  /// The mode, colour map or points budget changed (the panel's controls follow).
+  void settingsChanged();
   void statusMessage(const QString& text);
 
  private:

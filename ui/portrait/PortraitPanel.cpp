@@ -6,6 +6,8 @@
 #include <QFontMetrics>
 #include <QHBoxLayout>
 #include <QLabel>
+#include <QLocale>
+#include <QSignalBlocker>
 #include <QResizeEvent>
 #include <QToolButton>
 #include <QVBoxLayout>
@@ -131,6 +133,7 @@ PortraitPanel::PortraitPanel(QWidget* parent) : QWidget(parent) {
   connect(view(), &PortraitView::cursorMoved, this, [cursor](const QString& text) { cursor->setFullText(text); });
   connect(view(), &PortraitView::renderStateChanged, this, &PortraitPanel::updateReadout);
   connect(c, &PortraitController::statusMessage, this, &PortraitPanel::statusMessage);
+  connect(c, &PortraitController::settingsChanged, this, &PortraitPanel::syncControls);
 
   auto* bar = new QHBoxLayout;
   bar->addWidget(new QLabel(tr("Mode:"), this));
@@ -171,6 +174,21 @@ QString PortraitPanel::readoutText() const { return static_cast<ElidedLabel*>(re
 void PortraitPanel::updateReadout() {
   static_cast<ElidedLabel*>(readout_)->setFullText(view()->readout());
   stop_->setEnabled(view()->isRendering());
+}
+
+void PortraitPanel::syncControls() {
+  const QSignalBlocker b1(mode_), b2(colours_), b3(budget_);
+  mode_->setCurrentIndex(mode_->findData(static_cast<int>(controller_->mode())));
+  colours_->setCurrentIndex(colours_->findData(static_cast<int>(controller_->colourMap())));
+  const int budget = budget_->findData(QVariant::fromValue<qulonglong>(controller_->pointBudget()));
+  if (budget < 0) {  // a budget set by a script or a session: shown as itself
+    budget_->addItem(QLocale().toString(static_cast<double>(controller_->pointBudget()), 'g', 3),
+                     QVariant::fromValue<qulonglong>(controller_->pointBudget()));
+    budget_->setCurrentIndex(budget_->count() - 1);
+  } else {
+    budget_->setCurrentIndex(budget);
+  }
+  updateColourControl();
 }
 
 void PortraitPanel::updateColourControl() {

@@ -50,6 +50,8 @@ class PortraitPanel : public QWidget {
  private:
   void updateReadout();
   void updateColourControl();
+  /// The mode, colour and budget boxes show the controller's settings.
+  void syncControls();
 
   PortraitController* controller_ = nullptr;
   QComboBox* mode_ = nullptr;

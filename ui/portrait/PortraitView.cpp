@@ -386,14 +386,20 @@ QString PortraitView::readout() const {
   const QString points = locale.toString(static_cast<double>(pointsSoFar_), 'g', 3);
   const QString pixels =
       frame_ ? locale.toString(static_cast<qulonglong>(frame_->raster->nonEmptyPixels())) : QStringLiteral("0");
+  // Orbits mode with no island orbit: say so, rather than leave a plain sea unexplained.
+  const auto allSea = [this] {
+    return frame_ && frame_->request.mode == PortraitMode::Orbits && frame_->raster->allOrbitsWrapped()
+               ? tr(" · every seed here is in the chaotic sea (no island orbit; shaded by visits)")
+               : QString();
+  };
   switch (state_) {
     case RenderState::idle: return tr("No portrait yet");
     case RenderState::pending: return tr("Waiting to render…");
     case RenderState::accumulating:
-      return tr("%1 points so far, %2 pixels visited — accumulating…").arg(points, pixels);
+      return tr("%1 points so far, %2 pixels visited — accumulating…").arg(points, pixels) + allSea();
     case RenderState::done:
-      return tr("%1 points, %2 pixels visited — done (budget reached)").arg(points, pixels);
-    case RenderState::stopped: return tr("%1 points, %2 pixels visited — stopped").arg(points, pixels);
+      return tr("%1 points, %2 pixels visited — done (budget reached)").arg(points, pixels) + allSea();
+    case RenderState::stopped: return tr("%1 points, %2 pixels visited — stopped").arg(points, pixels) + allSea();
     case RenderState::noSea:
       return tr("No chaotic points in this view after %1 points (an all-sea view would have had %2): it lies "
                 "inside an island — try Island orbits")

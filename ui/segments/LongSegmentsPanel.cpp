@@ -1,7 +1,6 @@
 #include "ui/segments/LongSegmentsPanel.hpp"
 
 #include <QElapsedTimer>
-#include <QScrollBar>
 #include <QFileDialog>
 #include <QHBoxLayout>
 #include <QHeaderView>
@@ -41,8 +40,8 @@ LongSegmentsPanel::LongSegmentsPanel(QWidget* parent) : QWidget(parent) {
   table_->setSelectionMode(QAbstractItemView::SingleSelection);
   table_->setAlternatingRowColors(true);
   table_->verticalHeader()->hide();
-  // Compact columns that fit the dock (issue 13, finding 14): every column is sized to its contents, and
-  // the spare width goes to the length; the table never needs a horizontal scroll bar at the dock's width.
+  // Compact columns that fit the dock (issue 13, finding 14): short headers and 6-decimal coordinates, every
+  // column sized to its contents, so the table needs no horizontal scroll bar at the dock's default width.
   table_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
   table_->horizontalHeader()->setStretchLastSection(false);
   table_->horizontalHeader()->setMinimumSectionSize(24);

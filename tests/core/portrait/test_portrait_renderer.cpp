@@ -502,6 +502,7 @@ TEST(PortraitRenderer, OrbitsModeFlagsTheSeedsThatWrap) {
       EXPECT_EQ(raster.orbitWrapped[j * req.seedColumns + i] != 0, expected) << i << ", " << j;
       wrapped += expected ? 1 : 0;
     }
+  EXPECT_FALSE(raster.allOrbitsWrapped());
   EXPECT_GT(wrapped, 0);   // seeds in the sea wrap …
   EXPECT_LT(wrapped, 36);  // … seeds on KAM curves around the islands do not
 }
@@ -547,6 +548,7 @@ TEST(ColourMap, OrbitsModeShadesTheSeaThroughTheColourMap) {
   std::size_t wrapped = 0;
   for (std::uint8_t w : raster.orbitWrapped) wrapped += w;
   EXPECT_EQ(wrapped, raster.orbitWrapped.size());  // every seed is in the sea
+  EXPECT_TRUE(raster.allOrbitsWrapped());
   const RasterImage inferno = colourize(raster, ColourMapName::Inferno);
   const RasterImage viridis = colourize(raster, ColourMapName::Viridis);
   std::set<std::array<std::uint8_t, 3>> colours;
@@ -572,7 +574,10 @@ TEST(ColourMap, OrbitsModeShadesTheSeaThroughTheColourMap) {
   islands.orbitWrapped = {0, 1};
   const RasterImage image = colourize(islands, ColourMapName::Viridis);
   EXPECT_EQ((Rgb{image.rgb[0], image.rgb[1], image.rgb[2]}), orbitColour(1));
-  EXPECT_EQ((Rgb{image.rgb[3], image.rgb[4], image.rgb[5]}), ColourMap(ColourMapName::Viridis).at(0.5 * (kSeaLowest + kSeaHighest)));
+  // A lone sea pixel is its own median: the scale runs from a decade below it to half a decade above, so
+  // it sits at t = 1/1.5 of the sea's part of the map.
+  EXPECT_EQ((Rgb{image.rgb[3], image.rgb[4], image.rgb[5]}),
+            ColourMap(ColourMapName::Viridis).at(kSeaLowest + (kSeaHighest - kSeaLowest) / 1.5));
 }
 
 }  // namespace
