@@ -139,8 +139,8 @@ def write(path, text):
 good = open(ref).read()
 cases = [
     (["run", "--bogus"], "--bogus"),
-    (["run", "--K", "0.1", "--xmin", "-0.2", "--T", "10", "--quiet", "--out", os.path.join(tmp, "x.json")], "must be < -sqrt(K)"),
-    (["run", "--q", "0", "--T", "10", "--quiet", "--out", os.path.join(tmp, "x.json")], "q = 0 must be >= 1"),
+    (["run", "--K", "0.1", "--xmin", "-0.2", "--T", "10", "--quiet", "--out", os.path.join(tmp, "x.json")], "must be < −√K"),
+    (["run", "--q", "0", "--T", "10", "--quiet", "--out", os.path.join(tmp, "x.json")], "q = 0 must lie in [1, 65536]"),
     (["run", "--resume", "/nonexistent/run.json"], "/nonexistent/run.json"),
     (["run", "--resume", ref, "--K", "0.2"], "do not also give --K"),
     (["run", "--resume", ref], "already finished"),

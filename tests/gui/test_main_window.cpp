@@ -114,7 +114,7 @@ class TestMainWindow : public QObject {
     QVERIFY(!window.runAction()->isEnabled());
     QCOMPARE(panel.invalidField(), QStringLiteral("xmin"));
     QVERIFY(panel.field(QStringLiteral("xmin"))->property("invalid").toBool());
-    QVERIFY2(panel.validationMessage().contains(QStringLiteral("sqrt(K)")), qPrintable(panel.validationMessage()));
+    QVERIFY2(panel.validationMessage().contains(QStringLiteral("−√K")), qPrintable(panel.validationMessage()));
     auto* shown = panel.findChild<QLabel*>(QStringLiteral("validationMessage"));
     QVERIFY(shown);
     QCOMPARE(shown->text(), panel.validationMessage());
