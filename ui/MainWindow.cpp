@@ -154,7 +154,8 @@ void MainWindow::createActions() {
 
   exportAllAction_ = new QAction(tr("&Export All Plots…"), this);
   exportAllAction_->setShortcut(QKeySequence(QStringLiteral("Ctrl+E")));
-  exportAllAction_->setStatusTip(tr("Write every plot as PNG, SVG and PDF and its curves as CSV into a folder"));
+  exportAllAction_->setStatusTip(tr("Write every plot (PNG, SVG, PDF), its numbers (CSV), the phase portrait, the longest "
+                                    "segments and the run's parameters into a folder"));
   connect(exportAllAction_, &QAction::triggered, this, &MainWindow::exportAllDialog);
 
   quitAction_ = new QAction(tr("&Quit"), this);
@@ -516,6 +517,13 @@ bool MainWindow::openRunFile(const QString& path, QString* error) {
     const QString text = QString::fromStdString(e.what());
     if (error) *error = text;
     message(tr("Cannot open: %1").arg(text), 0);
+    // The status bar cut long reasons off: the whole reason in a dialog (window-modal, not blocking).
+    auto* box = new QMessageBox(QMessageBox::Warning, tr("Cannot open run file"),
+                                tr("Cannot open %1").arg(QFileInfo(path).fileName()), QMessageBox::Ok, this);
+    box->setObjectName(QStringLiteral("openErrorDialog"));
+    box->setInformativeText(text);
+    box->setAttribute(Qt::WA_DeleteOnClose);
+    box->open();
     return false;
   }
 }
@@ -542,7 +550,7 @@ bool MainWindow::saveRunFile(const QString& path, QString* error) {
 
 bool MainWindow::exportAllTo(const QString& folder, QString* error) {
   refreshView();  // export what the newest snapshot holds
-  const ExportResult r = exportAll(statistics_->plots(), shown_, folder);
+  const ExportResult r = exportAll(statistics_->plots(), shown_, folder, portrait_->view());
   if (!r.ok()) {
     if (error) *error = r.error;
     message(tr("Export failed: %1").arg(r.error), 0);
@@ -553,44 +561,37 @@ bool MainWindow::exportAllTo(const QString& folder, QString* error) {
 }
 
 void MainWindow::openDialog() {
-  QSettings settings;
-  const QString path = QFileDialog::getOpenFileName(this, tr("Open Run File"), settings.value(QStringLiteral("lastDir")).toString(),
+  const QString path = QFileDialog::getOpenFileName(this, tr("Open Run File"), lastFolder(),
                                                     tr("Run files (*.json);;All files (*)"));
   if (path.isEmpty()) return;
-  settings.setValue(QStringLiteral("lastDir"), QFileInfo(path).absolutePath());
+  rememberFolder(path);
   openRunFile(path);
 }
 
 bool MainWindow::saveDialog() {
-  QSettings settings;
-  const QString start = QDir(settings.value(QStringLiteral("lastDir"), QDir::homePath()).toString())
-                            .filePath(QStringLiteral("run.json"));
+  const QString start = QDir(lastFolder()).filePath(QStringLiteral("run.json"));
   QString path = QFileDialog::getSaveFileName(this, tr("Save Run File"), start, tr("Run files (*.json)"));
   if (path.isEmpty()) return false;
   if (!isRunFile(path)) path += QStringLiteral(".json");
-  settings.setValue(QStringLiteral("lastDir"), QFileInfo(path).absolutePath());
+  rememberFolder(path);
   return saveRunFile(path);
 }
 
 void MainWindow::exportAllDialog() {
-  QSettings settings;
-  const QString folder = QFileDialog::getExistingDirectory(this, tr("Export All Plots To"),
-                                                           settings.value(QStringLiteral("exportDir")).toString());
+  const QString folder = QFileDialog::getExistingDirectory(this, tr("Export All Plots To"), lastFolder());
   if (folder.isEmpty()) return;
-  settings.setValue(QStringLiteral("exportDir"), folder);
+  rememberFolder(folder);
   exportAllTo(folder);
 }
 
 void MainWindow::exportPlotDialog(int plotIndex) {
   StatisticsPlot* plot = statistics_->plots().at(plotIndex);
-  QSettings settings;
-  const QString start = QDir(settings.value(QStringLiteral("exportDir"), QDir::homePath()).toString())
-                            .filePath(plot->fileName() + QStringLiteral(".png"));
+  const QString start = QDir(lastFolder()).filePath(plot->fileName() + QStringLiteral(".png"));
   const QString path = QFileDialog::getSaveFileName(
       this, tr("Export %1").arg(plot->displayName()), start,
       tr("PNG image (*.png);;SVG drawing (*.svg);;PDF document (*.pdf);;CSV data (*.csv)"));
   if (path.isEmpty()) return;
-  settings.setValue(QStringLiteral("exportDir"), QFileInfo(path).absolutePath());
+  rememberFolder(path);
   refreshView();
   const ExportResult r = exportPlot(*plot, shown_, path);
   message(r.ok() ? tr("Wrote %1").arg(path) : tr("Export failed: %1").arg(r.error));

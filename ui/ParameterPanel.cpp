@@ -265,7 +265,9 @@ void ParameterPanel::revalidate() {
   QMap<QString, QStringList> errors;  // field → its messages
   QStringList messages;               // in the order of the form
   QStringList badFields;
+  QStringList primaryFields;  // the first field of each rule: the one it is mainly about
   const auto addError = [&](const QStringList& fields, const QString& message) {
+    if (!fields.isEmpty()) primaryFields << fields.front();
     for (const QString& f : fields)
       if (!errors.contains(f)) badFields << f;
     for (const QString& f : fields) errors[f] << message;
@@ -331,8 +333,11 @@ void ParameterPanel::revalidate() {
   const bool valid = messages.isEmpty();
   parsed_ = valid ? std::optional<TrappingParameters>(p) : std::nullopt;
   invalidFields_.clear();
-  for (const QString& name : kFieldOrder)
+  invalidField_.clear();
+  for (const QString& name : kFieldOrder) {
     if (badFields.contains(name)) invalidFields_ << name;
+    if (invalidField_.isEmpty() && primaryFields.contains(name)) invalidField_ = name;
+  }
   reason_ = ordered.join(QLatin1Char('\n'));
   for (auto it = fields_.cbegin(); it != fields_.cend(); ++it)
     markField(it.key(), errors.value(it.key()).join(QLatin1Char('\n')));

@@ -37,8 +37,9 @@ class ParameterPanel : public QWidget {
   [[nodiscard]] bool isValid() const noexcept { return valid_; }
   /// Every reason the parameters are invalid, one a line in the order of the form (empty when valid).
   [[nodiscard]] QString validationMessage() const;
-  /// The first invalid field in the order of the form (empty when valid).
-  [[nodiscard]] QString invalidField() const { return invalidFields_.value(0); }
+  /// The first field in the order of the form that a broken rule is mainly about (subsets, not M, for
+  /// subsets > M; empty when valid).
+  [[nodiscard]] QString invalidField() const { return invalidField_; }
   /// Every invalid field, in the order of the form.
   [[nodiscard]] QStringList invalidFields() const { return invalidFields_; }
   /// The reasons about one field, one a line (empty when the field is valid).
@@ -76,6 +77,7 @@ class ParameterPanel : public QWidget {
   QMap<QString, QLabel*> derived_;
   std::optional<TrappingParameters> parsed_;
   QStringList invalidFields_;
+  QString invalidField_;
   QString reason_;
   bool valid_ = false;
 };

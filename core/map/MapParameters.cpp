@@ -20,13 +20,6 @@ std::vector<ParameterError> validationErrors(const MapParameters& p) {
   if (!std::isfinite(p.K)) add({"K"}, "K = " + shortestDecimal(p.K) + " must be a finite number");
   if (!std::isfinite(p.xmin)) add({"xmin"}, "xmin = " + shortestDecimal(p.xmin) + " must be a finite number");
   if (!std::isfinite(p.xmax)) add({"xmax"}, "xmax = " + shortestDecimal(p.xmax) + " must be a finite number");
-  if (std::isfinite(p.xmin) && std::isfinite(p.xmax)) {
-    if (!(p.xmax > p.xmin))
-      add({"xmax", "xmin"}, "xmax = " + shortestDecimal(p.xmax) + " must be > xmin = " + shortestDecimal(p.xmin) +
-                                " (the box width L = xmax − xmin must be > 0)");
-    else if (!std::isfinite(p.width()))
-      add({"xmax", "xmin"}, "xmax − xmin = " + shortestDecimal(p.width()) + " must be a finite number");
-  }
   if (std::isfinite(p.K) && std::isfinite(p.xmin)) {
     if (p.K >= 0) {
       const double edge = -std::sqrt(p.K);
@@ -36,6 +29,14 @@ std::vector<ParameterError> validationErrors(const MapParameters& p) {
     } else if (!(p.xmin < 0)) {
       add({"xmin"}, "xmin = " + shortestDecimal(p.xmin) + " must be < 0 when K < 0 (so that b = −4 xmin > 0; appendix B)");
     }
+  }
+  // After xmin's own rule: xmin = 0.6 > xmax = 0.5 is first xmin's error (it must be < −√K), then both edges'.
+  if (std::isfinite(p.xmin) && std::isfinite(p.xmax)) {
+    if (!(p.xmax > p.xmin))
+      add({"xmax", "xmin"}, "xmax = " + shortestDecimal(p.xmax) + " must be > xmin = " + shortestDecimal(p.xmin) +
+                                " (the box width L = xmax − xmin must be > 0)");
+    else if (!std::isfinite(p.width()))
+      add({"xmax", "xmin"}, "xmax − xmin = " + shortestDecimal(p.width()) + " must be a finite number");
   }
   return errors;
 }

@@ -38,8 +38,8 @@ struct ParameterError {
   friend bool operator==(const ParameterError&, const ParameterError&) = default;
 };
 
-/// Every violated rule of appendix B, in a fixed order (K, xmin, xmax finite; xmax > xmin; L finite;
-/// xmin < −√K for K ≥ 0 or xmin < 0 for K < 0), so that a form can mark every wrong field at once.
+/// Every violated rule of appendix B, in a fixed order (K, xmin, xmax finite; xmin < −√K for K ≥ 0 or
+/// xmin < 0 for K < 0; xmax > xmin; L finite), so that a form can mark every wrong field at once.
 [[nodiscard]] std::vector<ParameterError> validationErrors(const MapParameters& p);
 
 /// The first of validationErrors(p) (e.g. "xmin = -0.2 must be < −√K = -0.31622776601683794 …"), or nothing

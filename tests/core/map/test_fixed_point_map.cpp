@@ -264,8 +264,9 @@ TEST(FixedPointMap, EveryViolatedRuleIsReportedWithItsFields) {
   // xmin = 0.6 > xmax = 0.5 at K = 0.1: xmin breaks its own rule too, so it is marked with its reason.
   const std::vector<ParameterError> box = validationErrors(MapParameters{0.1, 0.6, 0.5});
   ASSERT_EQ(box.size(), 2u);
-  EXPECT_EQ(box[1].fields, std::vector<std::string>{"xmin"});
-  EXPECT_NE(box[1].message.find("xmin = 0.6 must be < −√K"), std::string::npos) << box[1].message;
+  EXPECT_EQ(box[0].fields, std::vector<std::string>{"xmin"});  // first: the rule about xmin alone
+  EXPECT_NE(box[0].message.find("xmin = 0.6 must be < −√K"), std::string::npos) << box[0].message;
+  EXPECT_EQ(box[1].fields, (std::vector<std::string>{"xmax", "xmin"}));
   EXPECT_TRUE(mapErrors({0.1, -0.8, 0.5}).empty());
   EXPECT_EQ(mapErrors({0.1, -1000.0, 0.5}).size(), 1u);  // the box-size limit, once the rules hold
 }
