@@ -6,6 +6,7 @@
 
 #include "GuiTestSupport.hpp"
 #include "core/spec/RunSpec.hpp"
+#include "ui/periodic/PeriodicOrbitDialog.hpp"
 
 using archipelago::ui::ParameterPanel;
 using archipelago::test::typeInto;
@@ -100,6 +101,21 @@ class TestParameterPanel : public QObject {
     QVERIFY(panel_->applyPreset(QStringLiteral("small-k-negative")));  // a longer description
     QApplication::processEvents();
     QCOMPARE(panel_->field(QStringLiteral("K"))->mapTo(panel_, QPoint(0, 0)).y(), before);
+  }
+
+  // Issue 13, finding 12: Find Periodic Orbit showed a literal "&Near (x, y):" and K = 0.10000000000000001.
+  void periodicOrbitDialogText() {
+    archipelago::ui::PeriodicOrbitDialog dialog;
+    dialog.setK(0.1);
+    dialog.setNear(0.0509, 0.0974);
+    QStringList texts;
+    for (const QLineEdit* edit : dialog.findChildren<QLineEdit*>()) texts << edit->text();
+    QVERIFY2(texts.contains(QStringLiteral("0.1")) && texts.contains(QStringLiteral("0.0509")), qPrintable(texts.join(u' ')));
+    for (const QString& t : std::as_const(texts)) QVERIFY2(!t.contains(QStringLiteral("0000000")), qPrintable(t));
+    bool nearHasBuddy = false;
+    for (const QLabel* label : dialog.findChildren<QLabel*>())
+      if (label->text().contains(QStringLiteral("Near"))) nearHasBuddy = label->buddy() != nullptr;  // "&" is a mnemonic
+    QVERIFY(nearHasBuddy);
   }
 
  private:
