@@ -146,10 +146,11 @@ StatisticsPlot::StatisticsPlot(Statistic statistic, QWidget* parent) : QwtPlot(p
 
   legend_ = new QwtPlotLegendItem;
   auto* legend = legend_;
-  // Where the curve leaves room: f, P, C fall (top right is empty), S and D_t rise (bottom right is).
+  // Where the curve leaves room: f, P, C fall from the top left (the bottom left is empty; the top right
+  // holds the t_max label of K < 0), S and D_t rise (bottom right is empty).
   const Qt::Alignment corner = statistic == Statistic::S || statistic == Statistic::Dt ? Qt::AlignBottom | Qt::AlignRight
                                : statistic == Statistic::localExponent ? Qt::AlignTop | Qt::AlignLeft
-                                                                       : Qt::AlignTop | Qt::AlignRight;
+                                                                       : Qt::AlignBottom | Qt::AlignLeft;
 #if QWT_VERSION >= 0x060200
   legend->setAlignmentInCanvas(corner);
 #else
