@@ -263,7 +263,7 @@ void ParameterPanel::revalidate() {
   // left out of the cross-field rules (core's validationErrors() on the other fields), so that every wrong
   // field is marked at once, each with its own reason.
   QMap<QString, QStringList> errors;  // field → its messages
-  QStringList messages;               // in the order of the form
+  QStringList messages;               // in the order they were found
   QStringList badFields;
   QStringList primaryFields;  // the first field of each rule: the one it is mainly about
   const auto addError = [&](const QStringList& fields, const QString& message) {
