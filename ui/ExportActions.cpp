@@ -2,11 +2,15 @@
 
 #include <QDir>
 #include <QFileInfo>
+#include <QSettings>
 
 #include <exception>
 
 #include "core/export/StatisticsCsv.hpp"
+#include "core/io/AtomicFile.hpp"
+#include "core/spec/RunSpec.hpp"
 #include "ui/plots/StatisticsPlot.hpp"
+#include "ui/portrait/PortraitView.hpp"
 
 namespace archipelago::ui {
 
@@ -39,7 +43,8 @@ ExportResult exportPlot(StatisticsPlot& plot, const RunSnapshotPtr& snapshot, co
   return result;
 }
 
-ExportResult exportAll(const QList<StatisticsPlot*>& plots, const RunSnapshotPtr& snapshot, const QString& folder) {
+ExportResult exportAll(const QList<StatisticsPlot*>& plots, const RunSnapshotPtr& snapshot, const QString& folder,
+                       PortraitView* portrait) {
   ExportResult result;
   if (!QDir().mkpath(folder)) {
     result.error = QObject::tr("could not create the folder %1").arg(folder);
@@ -54,16 +59,34 @@ ExportResult exportAll(const QList<StatisticsPlot*>& plots, const RunSnapshotPtr
       if (!one.ok() && result.ok()) result.error = one.error;
     }
   }
+  const auto fail = [&result](const QString& error) {
+    if (result.ok()) result.error = error;
+  };
+  if (portrait) {
+    const QString png = dir.filePath(QLatin1String(kPortraitPngName));
+    if (portrait->exportPng(png)) result.written << png;
+    else fail(QObject::tr("could not write the phase portrait to %1").arg(png));
+    if (portrait->currentFrame()) {
+      const QString npy = dir.filePath(QLatin1String(kPortraitNpyName));
+      if (portrait->exportNpy(npy)) result.written << npy;
+      else fail(QObject::tr("could not write the portrait's raster to %1").arg(npy));
+    }
+  }
   if (!snapshot) {
-    if (result.ok()) result.error = noNumbers();
+    fail(noNumbers());
     return result;
   }
   try {
     for (const auto& p : writeStatisticsCsv(folder.toStdString(), snapshot->state, snapshot->statistics,
                                             snapshot->theory))
       result.written << fromPath(p);
+    RunSpec spec;
+    spec.parameters = snapshot->state.params;
+    const std::filesystem::path specPath = dir.filePath(QLatin1String(kRunSpecJsonName)).toStdString();
+    io::writeFileAtomically(specPath, runSpecJson(spec));
+    result.written << fromPath(specPath);
   } catch (const std::exception& e) {
-    if (result.ok()) result.error = QString::fromStdString(e.what());
+    fail(QString::fromStdString(e.what()));
   }
   return result;
 }

@@ -179,7 +179,8 @@ void MainWindow::createActions() {
 
   exportAllAction_ = new QAction(tr("&Export All Plots…"), this);
   exportAllAction_->setShortcut(QKeySequence(QStringLiteral("Ctrl+E")));
-  exportAllAction_->setStatusTip(tr("Write every plot as PNG, SVG and PDF and its curves as CSV into a folder"));
+  exportAllAction_->setStatusTip(tr("Write every plot (PNG, SVG, PDF), its numbers (CSV), the phase portrait, the longest "
+                                    "segments and the run's parameters into a folder"));
   connect(exportAllAction_, &QAction::triggered, this, &MainWindow::exportAllDialog);
 
   quitAction_ = new QAction(tr("&Quit"), this);
@@ -515,6 +516,7 @@ bool MainWindow::openRunFile(const QString& path, QString* error) {
   QString why;
   if (!run_->open(path, &why, false, runSettings())) {
     if (error) *error = why;
+    if (why != tr("Cancelled")) showOpenError(tr("Cannot open run file"), path, why);
     return false;
   }
   return true;
@@ -544,21 +546,19 @@ bool MainWindow::openSession(const QString& path, QString* error) {
 }
 
 void MainWindow::openSessionDialog() {
-  const QString path = QFileDialog::getOpenFileName(this, tr("Open Session"), SettingsController::lastFolder(QStringLiteral("sessions")),
+  const QString path = QFileDialog::getOpenFileName(this, tr("Open Session"), SettingsController::lastFolder(),
                                                     tr("Archipelago sessions (*.archipelago);;All files (*)"));
   if (path.isEmpty()) return;
-  SettingsController::rememberFolder(QStringLiteral("sessions"), path);
-  QString error;
-  if (!openSession(path, &error) && error != tr("Cancelled"))
-    QMessageBox::warning(this, tr("Cannot open the session"), tr("%1\n\n%2\n\nNothing was changed.").arg(path, error));
+  SettingsController::rememberFolder(path);
+  openInteractively(path);
 }
 
 bool MainWindow::saveSessionDialog() {
-  const QString start = QDir(SettingsController::lastFolder(QStringLiteral("sessions"))).filePath(QStringLiteral("session.archipelago"));
+  const QString start = QDir(SettingsController::lastFolder()).filePath(QStringLiteral("session.archipelago"));
   QString path = QFileDialog::getSaveFileName(this, tr("Save Session"), start, tr("Archipelago sessions (*.archipelago)"));
   if (path.isEmpty()) return false;
   if (!path.endsWith(QLatin1String(".archipelago"))) path += QStringLiteral(".archipelago");
-  SettingsController::rememberFolder(QStringLiteral("sessions"), path);
+  SettingsController::rememberFolder(path);
   QString error;
   if (saveSession(path, &error)) return true;
   QMessageBox::warning(this, tr("Cannot save the session"), tr("%1\n\n%2").arg(path, error));
@@ -567,7 +567,7 @@ bool MainWindow::saveSessionDialog() {
 
 bool MainWindow::exportAllTo(const QString& folder, QString* error) {
   refreshView();  // export what the newest snapshot holds
-  const ExportResult r = exportAll(statistics_->plots(), shown_, folder);
+  const ExportResult r = exportAll(statistics_->plots(), shown_, folder, portrait_->view());
   if (!r.ok()) {
     if (error) *error = r.error;
     message(tr("Export failed: %1").arg(r.error), 0);
@@ -578,10 +578,10 @@ bool MainWindow::exportAllTo(const QString& folder, QString* error) {
 }
 
 void MainWindow::openDialog() {
-  const QString path = QFileDialog::getOpenFileName(this, tr("Open Run File"), SettingsController::lastFolder(QStringLiteral("runs")),
+  const QString path = QFileDialog::getOpenFileName(this, tr("Open Run File"), SettingsController::lastFolder(),
                                                     tr("Run files (*.json);;All files (*)"));
   if (path.isEmpty()) return;
-  SettingsController::rememberFolder(QStringLiteral("runs"), path);
+  SettingsController::rememberFolder(path);
   openInteractively(path);
 }
 
@@ -589,20 +589,29 @@ void MainWindow::openInteractively(const QString& path) {
   if (path.endsWith(QLatin1String(".archipelago"), Qt::CaseInsensitive)) {
     QString error;
     if (!openSession(path, &error) && error != tr("Cancelled"))
-      QMessageBox::warning(this, tr("Cannot open the session"), tr("%1\n\n%2\n\nNothing was changed.").arg(path, error));
+      showOpenError(tr("Cannot open session"), path, tr("%1\n\nNothing was changed.").arg(error));
     return;
   }
-  QString error;
-  if (!openRunFile(path, &error) && error != tr("Cancelled"))
-    QMessageBox::warning(this, tr("Cannot open the run file"), tr("%1\n\n%2").arg(path, error));
+  openRunFile(path);  // a failure shows its reason
+}
+
+void MainWindow::showOpenError(const QString& title, const QString& path, const QString& reason) {
+  // The status bar cuts long reasons off: the whole reason in a dialog (window-modal, not blocking).
+  message(tr("%1: %2").arg(title, reason), 0);
+  auto* box = new QMessageBox(QMessageBox::Warning, title, tr("Cannot open %1").arg(QFileInfo(path).fileName()),
+                              QMessageBox::Ok, this);
+  box->setObjectName(QStringLiteral("openErrorDialog"));
+  box->setInformativeText(reason);
+  box->setAttribute(Qt::WA_DeleteOnClose);
+  box->open();
 }
 
 bool MainWindow::saveDialog() {
-  const QString start = QDir(SettingsController::lastFolder(QStringLiteral("runs"))).filePath(QStringLiteral("run.json"));
+  const QString start = QDir(SettingsController::lastFolder()).filePath(QStringLiteral("run.json"));
   QString path = QFileDialog::getSaveFileName(this, tr("Save Run File"), start, tr("Run files (*.json)"));
   if (path.isEmpty()) return false;
   if (!isRunFile(path)) path += QStringLiteral(".json");
-  SettingsController::rememberFolder(QStringLiteral("runs"), path);
+  SettingsController::rememberFolder(path);
   QString error;
   if (saveRunFile(path, &error)) return true;
   QMessageBox::warning(this, tr("Cannot save the run file"), tr("%1\n\n%2").arg(path, error));
@@ -611,21 +620,21 @@ bool MainWindow::saveDialog() {
 
 void MainWindow::exportAllDialog() {
   const QString folder = QFileDialog::getExistingDirectory(this, tr("Export All To"),
-                                                           SettingsController::lastFolder(QStringLiteral("exports")));
+                                                           SettingsController::lastFolder());
   if (folder.isEmpty()) return;
-  SettingsController::rememberFolder(QStringLiteral("exports"), folder);
+  SettingsController::rememberFolder(folder);
   exportAllTo(folder);
 }
 
 void MainWindow::exportPlotDialog(int plotIndex) {
   StatisticsPlot* plot = statistics_->plots().at(plotIndex);
-  const QString start = QDir(SettingsController::lastFolder(QStringLiteral("exports")))
+  const QString start = QDir(SettingsController::lastFolder())
                             .filePath(plot->fileName() + QStringLiteral(".png"));
   const QString path = QFileDialog::getSaveFileName(
       this, tr("Export %1").arg(plot->displayName()), start,
       tr("PNG image (*.png);;SVG drawing (*.svg);;PDF document (*.pdf);;CSV data (*.csv)"));
   if (path.isEmpty()) return;
-  SettingsController::rememberFolder(QStringLiteral("exports"), path);
+  SettingsController::rememberFolder(path);
   refreshView();
   const ExportResult r = exportPlot(*plot, shown_, path);
   message(r.ok() ? tr("Wrote %1").arg(path) : tr("Export failed: %1").arg(r.error));

@@ -126,6 +126,7 @@ class MainWindow : public QMainWindow {
 
   void openDialog();
   void openSessionDialog();
+  void showOpenError(const QString& title, const QString& path, const QString& reason);
   bool saveSessionDialog();
   bool saveDialog();
   void exportAllDialog();

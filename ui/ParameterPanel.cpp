@@ -16,6 +16,12 @@
 namespace archipelago::ui {
 
 namespace {
+/// The fields in the order of the form.
+const QStringList kFieldOrder = {QStringLiteral("K"),    QStringLiteral("xmin"), QStringLiteral("xmax"),
+                                 QStringLiteral("Xr"),   QStringLiteral("q"),    QStringLiteral("T"),
+                                 QStringLiteral("M"),    QStringLiteral("seed"), QStringLiteral("subsets"),
+                                 QStringLiteral("threads")};
+
 const QLocale kNumbers = QLocale::c();  // the paper's notation: a point and an exponent, never a comma
 
 std::optional<double> parseReal(const QString& text) {
@@ -59,20 +65,25 @@ ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
   presetBox_->addItem(tr("Custom"));
   for (const Preset& p : presets()) presetBox_->addItem(QString::fromStdString(p.spec.name));
   presetDescription_ = new QLabel(this);
+  presetDescription_->setObjectName(QStringLiteral("presetDescription"));
   presetDescription_->setWordWrap(true);
-  presetDescription_->setStyleSheet(QStringLiteral("color: palette(mid);"));
+  presetDescription_->setAlignment(Qt::AlignLeft | Qt::AlignTop);
+  presetDescription_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  // Ordinary text (a grey caption read as disabled), and a fixed height of five lines whether a preset is
+  // chosen or not, so that the fields below never move (the whole text is in the tooltip).
+  presetDescription_->setFixedHeight(presetDescription_->fontMetrics().lineSpacing() * 5 + 4);
   auto* presetForm = new QFormLayout;
   presetForm->addRow(tr("Preset"), presetBox_);
   layout->addLayout(presetForm);
   layout->addWidget(presetDescription_);
 
-  auto* mapGroup = new QGroupBox(tr("Map Q*  (y' = y + 2(x² − K),  x' = x + y')"), this);
+  auto* mapGroup = new QGroupBox(tr("Map Q*  (y′ = y + 2(x² − K),  x′ = x + y′)"), this);
   auto* mapForm = new QFormLayout(mapGroup);
   addField(mapForm, QStringLiteral("K"), QStringLiteral("K"),
-           tr("The map parameter K of Q (eq. qu, §2). Small |K| is nearly integrable (§4); at K = 0.1 the "
+           tr("The map parameter K of Q (§2). Small |K| is nearly integrable (§4); at K = 0.1 the "
               "central island is ringed by a chain of six islands (§5)."));
   addField(mapForm, QStringLiteral("xmin"), QStringLiteral("x<sub>min</sub>"),
-           tr("Left edge of the box of Q* (eq. gstar). Must be < −√K so that the elliptic fixed point "
+           tr("Left edge of the box of Q* (§2). Must be < −√K so that the elliptic fixed point "
               "(−√K, 0) lies inside the box (appendix B)."));
   addField(mapForm, QStringLiteral("xmax"), QStringLiteral("x<sub>max</sub>"),
            tr("Right edge of the box. Q* is periodic with period L = xmax − xmin in x and y; an orbit that "
@@ -85,7 +96,7 @@ ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
            tr("Width of the randomizing zone 0 ≤ X ≤ Xr on the left edge of the unit square (appendix B, "
               "step 6): there Y gets a random kick, so successive segments are independent."));
   addField(runForm, QStringLiteral("q"), QStringLiteral("q"),
-           tr("Steps of N⁻¹ per block: statistics are gathered for N^−q, so segment lengths t are multiples "
+           tr("Steps of N⁻¹ per block: statistics are gathered for the q-th power of N⁻¹, so segment lengths t are multiples "
               "of q (appendix B). Larger q is cheaper per step but blurs t < q."));
   addField(runForm, QStringLiteral("T"), QStringLiteral("T"),
            tr("Blocks per orbit: each orbit is qT steps long. The paper's K = 0.1 run has qT = 2×10⁹ (§5). "
@@ -99,7 +110,7 @@ ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
            tr("Orbits are split into this many independent subsets (orbit i → subset i mod subsets); the "
               "spread between them gives the error bands, the paper's method for D = 6400 ± 800 (§5)."));
   addField(runForm, QStringLiteral("threads"), tr("threads"),
-           tr("Worker threads for the run (0 = every core). Results do not depend on it."));
+           tr("Worker threads for the run (0 = every core, at most %1). Results do not depend on it.").arg(kMaxThreads));
   layout->addWidget(runGroup);
 
   message_ = new QLabel(this);
@@ -110,7 +121,7 @@ ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
 
   auto* derivedGroup = new QGroupBox(tr("Derived (read-only)"), this);
   derivedGroup->setToolTip(tr("The integers that define the fixed-point map N exactly (appendix B, step 3): "
-                              "G(X) = 2^m (A X² − B X + C) in units of 2⁻⁵²."));
+                              "G(X) = 2ᵐ(A X² − B X + C) in units of 2⁻⁵²."));
   auto* derivedForm = new QFormLayout(derivedGroup);
   const QList<QPair<QString, QString>> derivedRows = {
       {QStringLiteral("A"), QStringLiteral("A = 2L·2<sup>52−m</sup>")},
@@ -140,6 +151,7 @@ ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
 void ParameterPanel::addField(QFormLayout* form, const QString& name, const QString& label, const QString& tooltip) {
   auto* edit = new QLineEdit(this);
   edit->setObjectName(name);
+  edit->setProperty("help", tooltip);
   edit->setToolTip(tooltip);
   edit->setClearButtonEnabled(false);
   auto* caption = new QLabel(label, this);
@@ -161,6 +173,11 @@ int ParameterPanel::threads() const {
 }
 
 QString ParameterPanel::validationMessage() const { return reason_; }
+
+QString ParameterPanel::fieldError(const QString& name) const {
+  const QLineEdit* edit = fields_.value(name);
+  return edit ? edit->property("error").toString() : QString();
+}
 
 void ParameterPanel::setParameters(const TrappingParameters& p, int threads) {
   fields_[QStringLiteral("K")]->setText(shortest(p.map.K));
@@ -201,7 +218,9 @@ void ParameterPanel::showPreset(const Preset* preset) {
   const QSignalBlocker block(presetBox_);
   const auto all = presets();
   presetBox_->setCurrentIndex(preset ? static_cast<int>(preset - all.data()) + 1 : 0);
-  presetDescription_->setText(preset ? QString::fromStdString(preset->spec.description) : QString());
+  const QString description = preset ? QString::fromStdString(preset->spec.description) : QString();
+  presetDescription_->setText(preset ? description : tr("Custom parameters."));
+  presetDescription_->setToolTip(description);
 }
 
 QStringList ParameterPanel::presetNames() const {
@@ -224,30 +243,60 @@ void ParameterPanel::setEditable(bool editable) {
   presetBox_->setEnabled(editable);
 }
 
-void ParameterPanel::markField(const QString& name, bool invalid) {
+void ParameterPanel::markField(const QString& name, const QString& error) {
   QLineEdit* edit = fields_.value(name);
   if (!edit) return;
+  const bool invalid = !error.isEmpty();
   edit->setProperty("invalid", invalid);
+  edit->setProperty("error", error);
+  // The field's own reason first, then what the field means.
+  const QString help = edit->property("help").toString();
+  edit->setToolTip(invalid ? QStringLiteral("<p><b>%1</b></p><p>%2</p>").arg(error.toHtmlEscaped().replace(QLatin1Char('\n'), QStringLiteral("<br>")), help)
+                           : help);
   edit->setStyleSheet(invalid ? QStringLiteral("QLineEdit { background: #fde7e9; border: 1px solid #b00020; }")
                               : QString());
 }
 
 void ParameterPanel::revalidate() {
-  for (auto it = fields_.cbegin(); it != fields_.cend(); ++it) markField(it.key(), false);
-  QString badField;
-  QString reason;
-  TrappingParameters p;
+  // Each field is parsed on its own; a field that does not parse is reported with the range of its rule and
+  // left out of the cross-field rules (core's validationErrors() on the other fields), so that every wrong
+  // field is marked at once, each with its own reason.
+  QMap<QString, QStringList> errors;  // field → its messages
+  QStringList messages;               // in the order they were found
+  QStringList badFields;
+  QStringList primaryFields;  // the first field of each rule: the one it is mainly about
+  const auto addError = [&](const QStringList& fields, const QString& message) {
+    if (!fields.isEmpty()) primaryFields << fields.front();
+    for (const QString& f : fields)
+      if (!errors.contains(f)) badFields << f;
+    for (const QString& f : fields) errors[f] << message;
+    messages << message;
+  };
+  const auto typed = [this](const char* key) {
+    const QString text = fields_.value(QLatin1String(key))->text().trimmed();
+    return text.isEmpty() ? tr("(empty)") : text;
+  };
+  QStringList unparsed;
+  TrappingParameters p;  // fields that do not parse keep their default value, and their rules are skipped
   const auto real = [&](const char* key, double& out) {
-    if (!badField.isEmpty()) return;
-    if (const auto v = parseReal(fields_.value(QLatin1String(key))->text())) out = *v;
-    else { badField = QLatin1String(key); reason = tr("%1 is not a number").arg(badField); }
+    if (const auto v = parseReal(fields_.value(QLatin1String(key))->text())) {
+      out = *v;
+      return;
+    }
+    unparsed << QLatin1String(key);
+    addError({QLatin1String(key)}, tr("%1 = %2 must be a finite number").arg(QLatin1String(key), typed(key)));
   };
   const auto count = [&](const char* key, auto& out) {
-    if (!badField.isEmpty()) return;
     const auto v = parseCount(fields_.value(QLatin1String(key))->text());
     using Out = std::remove_reference_t<decltype(out)>;
-    if (v && *v <= std::numeric_limits<Out>::max()) out = static_cast<Out>(*v);
-    else { badField = QLatin1String(key); reason = tr("%1 must be a whole number ≥ 0").arg(badField); }
+    if (v && *v <= std::numeric_limits<Out>::max()) {
+      out = static_cast<Out>(*v);
+      return;
+    }
+    unparsed << QLatin1String(key);
+    const ParameterRule* rule = findParameterRule(key);
+    const QString range = rule ? QString::fromUtf8(rule->range.data(), static_cast<int>(rule->range.size())) : QString();
+    addError({QLatin1String(key)}, tr("%1 = %2 must be a whole number in %3").arg(QLatin1String(key), typed(key), range));
   };
   real("K", p.map.K);
   real("xmin", p.map.xmin);
@@ -258,26 +307,40 @@ void ParameterPanel::revalidate() {
   count("M", p.M);
   count("seed", p.seed);
   count("subsets", p.subsets);
-  std::uint32_t threadCount = 0;
-  count("threads", threadCount);
-  if (badField.isEmpty() && threadCount > 1024) {
-    badField = QStringLiteral("threads");
-    reason = tr("threads = %1 must be ≤ 1024 (0 uses every core)").arg(threadCount);
-  }
-  if (badField.isEmpty()) {
-    if (const auto e = validationError(p)) {
-      reason = QString::fromStdString(*e);
-      // core's messages start with the parameter they are about ("xmin = −0.2 must be < …").
-      const QString first = reason.section(QLatin1Char(' '), 0, 0);
-      badField = fields_.contains(first) ? first : QStringLiteral("xmax");
+  const auto threads = parseCount(fields_.value(QStringLiteral("threads"))->text());
+  if (!threads || *threads > static_cast<std::uint64_t>(kMaxThreads))
+    addError({QStringLiteral("threads")}, tr("threads = %1 must be a whole number in [0, %2] (0: one per core)")
+                                              .arg(typed("threads"))
+                                              .arg(kMaxThreads));
+  for (const ParameterError& e : validationErrors(p)) {
+    QStringList fields;
+    bool aboutUnparsed = false;
+    for (const std::string& f : e.fields) {
+      fields << QString::fromStdString(f);
+      aboutUnparsed = aboutUnparsed || unparsed.contains(fields.back());
     }
+    if (!aboutUnparsed) addError(fields, QString::fromStdString(e.message));
   }
-  const bool valid = badField.isEmpty();
+  // Messages in the order of the form, so the list reads like the fields.
+  QStringList ordered;
+  for (const QString& name : kFieldOrder)
+    for (const QString& m : errors.value(name))
+      if (!ordered.contains(m)) ordered << m;
+  for (const QString& m : std::as_const(messages))
+    if (!ordered.contains(m)) ordered << m;
+
+  const bool valid = messages.isEmpty();
   parsed_ = valid ? std::optional<TrappingParameters>(p) : std::nullopt;
-  invalidField_ = badField;
-  reason_ = reason;
-  markField(badField, !valid);
-  message_->setText(valid ? QString() : reason);
+  invalidFields_.clear();
+  invalidField_.clear();
+  for (const QString& name : kFieldOrder) {
+    if (badFields.contains(name)) invalidFields_ << name;
+    if (invalidField_.isEmpty() && primaryFields.contains(name)) invalidField_ = name;
+  }
+  reason_ = ordered.join(QLatin1Char('\n'));
+  for (auto it = fields_.cbegin(); it != fields_.cend(); ++it)
+    markField(it.key(), errors.value(it.key()).join(QLatin1Char('\n')));
+  message_->setText(reason_);
   showDerived(parsed_);
   const bool changed = valid != valid_;
   valid_ = valid;

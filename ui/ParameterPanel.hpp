@@ -3,8 +3,10 @@
 /// \brief The settings of a trapping run (Karney 1983, appendix B, step 1), validated as they are typed.
 ///
 /// Every field is a text field (T and M reach 10¹⁰ and beyond, more than a spin box holds).  After each
-/// keystroke the panel parses the fields, asks core's validationError() for the first broken rule, marks the
-/// field it names, shows the reason, and reports validity (the main window enables Run from it).  The integer
+/// keystroke the panel parses each field, asks core's validationErrors() for every broken rule, marks every
+/// field they name (its tooltip gives its own reason), lists the reasons in the order of the form with the
+/// ranges of core's parameterRules() and kMaxThreads, and reports validity (the main window enables Run from
+/// it).  The preset's description keeps a fixed height, so the fields below it never move.  The integer
 /// map coefficients (A, B, C, m) that core derives from K, xmin, xmax are shown read-only: they, not K,
 /// define the map exactly.
 
@@ -33,10 +35,15 @@ class ParameterPanel : public QWidget {
   /// Worker threads (0 = every core).
   [[nodiscard]] int threads() const;
   [[nodiscard]] bool isValid() const noexcept { return valid_; }
-  /// The reason the parameters are invalid (empty when valid).
+  /// Every reason the parameters are invalid, one a line in the order of the form (empty when valid).
   [[nodiscard]] QString validationMessage() const;
-  /// The name of the field the reason is about (empty when valid).
+  /// The first field in the order of the form that a broken rule is mainly about (subsets, not M, for
+  /// subsets > M; empty when valid).
   [[nodiscard]] QString invalidField() const { return invalidField_; }
+  /// Every invalid field, in the order of the form.
+  [[nodiscard]] QStringList invalidFields() const { return invalidFields_; }
+  /// The reasons about one field, one a line (empty when the field is valid).
+  [[nodiscard]] QString fieldError(const QString& name) const;
 
   void setParameters(const TrappingParameters& p, int threads);
   /// The run specification of the fields (parameters, threads, and the preset's name when one is chosen),
@@ -59,7 +66,7 @@ class ParameterPanel : public QWidget {
  private:
   void addField(QFormLayout* form, const QString& name, const QString& label, const QString& tooltip);
   void revalidate();
-  void markField(const QString& name, bool invalid);
+  void markField(const QString& name, const QString& error);
   void showDerived(const std::optional<TrappingParameters>& p);
   void showPreset(const Preset* preset);
 
@@ -69,6 +76,7 @@ class ParameterPanel : public QWidget {
   QMap<QString, QLineEdit*> fields_;
   QMap<QString, QLabel*> derived_;
   std::optional<TrappingParameters> parsed_;
+  QStringList invalidFields_;
   QString invalidField_;
   QString reason_;
   bool valid_ = false;

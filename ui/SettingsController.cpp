@@ -71,15 +71,15 @@ void SettingsController::addRecentFile(const QString& path) {
   settings.setValue(QStringLiteral("recentFiles"), files);
 }
 
-QString SettingsController::lastFolder(const QString& kind) {
-  const QString folder = QSettings().value(QStringLiteral("folders/") + kind).toString();
+QString SettingsController::lastFolder() {
+  const QString folder = QSettings().value(QStringLiteral("files/lastFolder")).toString();
   return !folder.isEmpty() && QFileInfo(folder).isDir() ? folder : QDir::homePath();
 }
 
-void SettingsController::rememberFolder(const QString& kind, const QString& path) {
+void SettingsController::rememberFolder(const QString& path) {
   if (path.isEmpty()) return;
   const QFileInfo info(path);
-  QSettings().setValue(QStringLiteral("folders/") + kind, info.isDir() ? info.absoluteFilePath() : info.absolutePath());
+  QSettings().setValue(QStringLiteral("files/lastFolder"), info.isDir() ? info.absoluteFilePath() : info.absolutePath());
 }
 
 }  // namespace archipelago::ui

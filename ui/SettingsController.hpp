@@ -36,10 +36,11 @@ class SettingsController {
   [[nodiscard]] static QStringList recentFiles();
   static void addRecentFile(const QString& path);
 
-  /// The folder a file dialog of this `kind` ("runs", "exports", "sessions", "portraits") last used; home at first.
-  [[nodiscard]] static QString lastFolder(const QString& kind);
-  /// Remembers the folder of `path` (a file, or a folder itself) for dialogs of this kind.
-  static void rememberFolder(const QString& kind, const QString& path);
+  /// The folder the last file dialog used (every dialog: runs, sessions, exports, portraits); home at first or
+  /// when it no longer exists.
+  [[nodiscard]] static QString lastFolder();
+  /// Remembers the folder of `path` (a file, or a folder itself when it is one) for lastFolder().
+  static void rememberFolder(const QString& path);
 };
 
 }  // namespace archipelago::ui

@@ -119,7 +119,7 @@ std::string theoryCsv(const TrappingState& state, const std::vector<TheoryCurve>
 std::string summaryCsv(const TrappingState& state, const TrappingStatistics& statistics) {
   const TrappingStatistics& s = statistics;
   std::string out = csvMetadataHeader(state);
-  line(out, "summary", "alpha: mean segment length (steps); D: diffusion coefficient (eq. ddef); "
+  line(out, "summary", "alpha: mean segment length (steps); D: diffusion coefficient (section 3); "
                        "sum_t_f_t: C_0 (close to 1); segments: recorded; longest_blocks: longest length the "
                        "highest non-empty bin can hold (blocks of q steps)");
   line(out, "error", "one sigma: standard error of the mean over the subsets of orbits (0: none)");
@@ -132,6 +132,24 @@ std::string summaryCsv(const TrappingState& state, const TrappingStatistics& sta
   return out;
 }
 
+std::string longestSegmentsCsv(const TrappingState& state) {
+  std::string out = csvMetadataHeader(state);
+  line(out, "table", "longest trapped segments, longest first (Karney 1983, section 6)");
+  line(out, "columns", "rank; length in steps (q blocks); length in blocks; orbit; first block; random draws "
+                       "before it; start state X, Y (units of 2^-52); start point x, y");
+  out += "rank,length_steps,length_blocks,orbit,start_block,start_draws,start_X,start_Y,start_x,start_y\n";
+  const FixedPointMap map(state.params.map);
+  std::uint64_t rank = 0;
+  for (const SegmentRecord& r : state.longest.items()) {
+    const PhysicalPoint start = map.toPhysical(r.start.z);
+    out += number(++rank) + ',' + number(r.length * state.params.q) + ',' + number(r.length) + ',' + number(r.orbit) +
+           ',' + number(r.start.block) + ',' + number(r.start.draws) + ',' + number(r.start.z.X) + ',' +
+           number(r.start.z.Y) + ',' + number(static_cast<double>(start.x)) + ',' +
+           number(static_cast<double>(start.y)) + '\n';
+  }
+  return out;
+}
+
 std::vector<CsvFile> statisticsCsvFiles(const TrappingState& state, const TrappingStatistics& statistics,
                                         const std::vector<TheoryCurve>& theory) {
   std::vector<CsvFile> files;
@@ -141,6 +159,7 @@ std::vector<CsvFile> statisticsCsvFiles(const TrappingState& state, const Trappi
       files.push_back({theoryCsvFileName(info.statistic), theoryCsv(state, theory, info.statistic)});
   }
   files.push_back({summaryCsvFileName, summaryCsv(state, statistics)});
+  files.push_back({longestSegmentsCsvFileName, longestSegmentsCsv(state)});
   return files;
 }
 

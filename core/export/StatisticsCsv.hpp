@@ -8,6 +8,7 @@
 ///   <stem>.theory.csv  the small-K theory curves over that statistic (theory/TheoryCurves.hpp), only when
 ///                      some apply
 ///   summary.csv        α, D, Σ t f_t, segments, longest segment
+///   longest_segments.csv  the longest trapped segments with their start states (longestSegmentsCsv())
 /// Format: comment lines starting with "# " (csvMetadataHeader(): program, parameters, map coefficients,
 /// kernel; then lines about the file's content), one header row of descriptive column names, then rows.
 ///   <stem>.csv:         <abscissa>,<key>,<key>_error        e.g. t,f_t,f_t_error  (tau for C_τ)
@@ -41,6 +42,7 @@ namespace archipelago {
 [[nodiscard]] std::string statisticCsvFileName(Statistic s);
 [[nodiscard]] std::string theoryCsvFileName(Statistic s);
 inline constexpr const char* summaryCsvFileName = "summary.csv";
+inline constexpr const char* longestSegmentsCsvFileName = "longest_segments.csv";
 
 /// The text of <stem>.csv for one statistic of `statistics` (the statistics of `state`).
 [[nodiscard]] std::string statisticCsv(const TrappingState& state, const TrappingStatistics& statistics,
@@ -50,13 +52,19 @@ inline constexpr const char* summaryCsvFileName = "summary.csv";
 /// The text of summary.csv.
 [[nodiscard]] std::string summaryCsv(const TrappingState& state, const TrappingStatistics& statistics);
 
+/// The text of longest_segments.csv: the run's longest trapped segments (§6), longest first, with the
+/// metadata header and the columns rank, length_steps (q · blocks), length_blocks, orbit, start_block,
+/// start_draws, start_X, start_Y (the exact unit state, integers in units of 2⁻⁵²) and start_x, start_y
+/// (physical coordinates), enough to replay each segment bit for bit.
+[[nodiscard]] std::string longestSegmentsCsv(const TrappingState& state);
+
 /// One file to write: its name in the folder and its content.
 struct CsvFile {
   std::string name;
   std::string text;
 };
 /// Every file of a run, in table order: each statistic's CSV, then its theory CSV when it has one, then
-/// summary.csv.
+/// summary.csv and longest_segments.csv.
 [[nodiscard]] std::vector<CsvFile> statisticsCsvFiles(const TrappingState& state,
                                                       const TrappingStatistics& statistics,
                                                       const std::vector<TheoryCurve>& theory);

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
+#include <string>
 #include <stdexcept>
 
 // The coefficients must be computed exactly as DESIGN.md orders them; core is compiled with
@@ -12,8 +12,8 @@ namespace archipelago {
 
 namespace {
 // computeCoefficients() without throwing: the coefficients, or why there are none.
-std::optional<std::string> coefficientsOf(const MapParameters& p, MapCoefficients& k) {
-  if (auto e = validationError(p)) return e;
+std::optional<ParameterError> coefficientsOf(const MapParameters& p, MapCoefficients& k) {
+  if (auto errors = validationErrors(p); !errors.empty()) return std::move(errors.front());
   const double L = p.xmax - p.xmin;
   const double a = 2 * L;
   const double b = -4 * p.xmin;
@@ -24,11 +24,11 @@ std::optional<std::string> coefficientsOf(const MapParameters& p, MapCoefficient
     ++m;
   for (;; ++m) {
     if (m > FixedPointMap::kMaxShift) {
-      std::ostringstream s;
-      s.precision(17);
-      s << "the box is too large: max(2L, -4 xmin, 2(xmin^2 - K)/L) = " << std::max({a, b, c})
-        << " must be < 2^" << FixedPointMap::kMaxShift << " for the 64-bit fixed-point map";
-      return s.str();
+      return ParameterError{{"xmin", "xmax"},
+                            "the box is too large: max(2L, −4 xmin, 2(xmin² − K)/L) = " +
+                                shortestDecimal(std::max({a, b, c})) + " must be < " +
+                                shortestDecimal(std::ldexp(1.0, FixedPointMap::kMaxShift)) +
+                                " for the 64-bit fixed-point map"};
     }
     k = {std::llround(std::ldexp(a, FixedPointMap::kBits - m)), std::llround(std::ldexp(b, FixedPointMap::kBits - m)),
          std::llround(std::ldexp(c, FixedPointMap::kBits - m)), m};
@@ -40,13 +40,22 @@ std::optional<std::string> coefficientsOf(const MapParameters& p, MapCoefficient
 
 MapCoefficients computeCoefficients(const MapParameters& p) {
   MapCoefficients k;
-  if (auto e = coefficientsOf(p, k)) throw std::invalid_argument(*e);
+  if (auto e = coefficientsOf(p, k)) throw std::invalid_argument(e->message);
   return k;
 }
 
 std::optional<std::string> mapError(const MapParameters& p) {
   MapCoefficients unused;
-  return coefficientsOf(p, unused);
+  if (auto e = coefficientsOf(p, unused)) return std::move(e->message);
+  return std::nullopt;
+}
+
+std::vector<ParameterError> mapErrors(const MapParameters& p) {
+  std::vector<ParameterError> errors = validationErrors(p);
+  MapCoefficients unused;
+  if (errors.empty())
+    if (auto e = coefficientsOf(p, unused)) errors.push_back(std::move(*e));
+  return errors;
 }
 
 FixedPointMap::FixedPointMap(const MapParameters& p) : params_(p), coef_(computeCoefficients(p)) {}

@@ -63,6 +63,8 @@ struct MapCoefficients {
 /// GUI's portrait view): the first rule of validationError(p), or the box-size limit of computeCoefficients(),
 /// as a message naming the parameter; nothing when computeCoefficients(p) succeeds.
 [[nodiscard]] std::optional<std::string> mapError(const MapParameters& p);
+/// Every violated rule: validationErrors(p), or, when there is none, the box-size limit (about xmin and xmax).
+[[nodiscard]] std::vector<ParameterError> mapErrors(const MapParameters& p);
 
 namespace fixedpoint {
 inline constexpr int kBits = 52;

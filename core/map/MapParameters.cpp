@@ -1,44 +1,50 @@
 #include "core/map/MapParameters.hpp"
 
 #include <cmath>
-#include <sstream>
+#include <charconv>
 #include <stdexcept>
 
 namespace archipelago {
 
-namespace {
-std::string describe(const char* name, double value, const char* rule) {
-  std::ostringstream s;
-  s.precision(17);
-  s << name << " = " << value << ' ' << rule;
-  return s.str();
+std::string shortestDecimal(double v) {
+  char text[32];
+  const auto result = std::to_chars(text, text + sizeof text, v);  // shortest round trip (C++17)
+  return std::string(text, result.ptr);
 }
-}  // namespace
+
+std::vector<ParameterError> validationErrors(const MapParameters& p) {
+  std::vector<ParameterError> errors;
+  const auto add = [&](std::vector<std::string> fields, std::string message) {
+    errors.push_back({std::move(fields), std::move(message)});
+  };
+  if (!std::isfinite(p.K)) add({"K"}, "K = " + shortestDecimal(p.K) + " must be a finite number");
+  if (!std::isfinite(p.xmin)) add({"xmin"}, "xmin = " + shortestDecimal(p.xmin) + " must be a finite number");
+  if (!std::isfinite(p.xmax)) add({"xmax"}, "xmax = " + shortestDecimal(p.xmax) + " must be a finite number");
+  if (std::isfinite(p.K) && std::isfinite(p.xmin)) {
+    if (p.K >= 0) {
+      const double edge = -std::sqrt(p.K);
+      if (!(p.xmin < edge))
+        add({"xmin"}, "xmin = " + shortestDecimal(p.xmin) + " must be < −√K = " + shortestDecimal(edge) +
+                          " (the elliptic fixed point must lie inside the box; appendix B)");
+    } else if (!(p.xmin < 0)) {
+      add({"xmin"}, "xmin = " + shortestDecimal(p.xmin) + " must be < 0 when K < 0 (so that b = −4 xmin > 0; appendix B)");
+    }
+  }
+  // After xmin's own rule: xmin = 0.6 > xmax = 0.5 is first xmin's error (it must be < −√K), then both edges'.
+  if (std::isfinite(p.xmin) && std::isfinite(p.xmax)) {
+    if (!(p.xmax > p.xmin))
+      add({"xmax", "xmin"}, "xmax = " + shortestDecimal(p.xmax) + " must be > xmin = " + shortestDecimal(p.xmin) +
+                                " (the box width L = xmax − xmin must be > 0)");
+    else if (!std::isfinite(p.width()))
+      add({"xmax", "xmin"}, "xmax − xmin = " + shortestDecimal(p.width()) + " must be a finite number");
+  }
+  return errors;
+}
 
 std::optional<std::string> validationError(const MapParameters& p) {
-  if (!std::isfinite(p.K)) return describe("K", p.K, "must be a finite number");
-  if (!std::isfinite(p.xmin)) return describe("xmin", p.xmin, "must be a finite number");
-  if (!std::isfinite(p.xmax)) return describe("xmax", p.xmax, "must be a finite number");
-  if (!(p.xmax > p.xmin)) {
-    std::ostringstream s;
-    s.precision(17);
-    s << "xmax = " << p.xmax << " must be > xmin = " << p.xmin << " (the box width L = xmax - xmin must be > 0)";
-    return s.str();
-  }
-  if (!std::isfinite(p.width())) return describe("xmax - xmin", p.width(), "must be a finite number");
-  if (p.K >= 0) {
-    const double edge = -std::sqrt(p.K);
-    if (!(p.xmin < edge)) {
-      std::ostringstream s;
-      s.precision(17);
-      s << "xmin = " << p.xmin << " must be < -sqrt(K) = " << edge
-        << " (the elliptic fixed point must lie inside the box; appendix B)";
-      return s.str();
-    }
-  } else if (!(p.xmin < 0)) {
-    return describe("xmin", p.xmin, "must be < 0 when K < 0 (so that b = -4 xmin > 0; appendix B)");
-  }
-  return std::nullopt;
+  auto errors = validationErrors(p);
+  if (errors.empty()) return std::nullopt;
+  return std::move(errors.front().message);
 }
 
 void validate(const MapParameters& p) {

@@ -9,6 +9,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace archipelago {
 
@@ -24,8 +25,25 @@ struct MapParameters {
   friend bool operator==(const MapParameters&, const MapParameters&) = default;
 };
 
-/// Checks the rules of appendix B.  Returns the first violated rule as a message naming the parameter and the
-/// rule (e.g. "xmin = -0.2 must be < -sqrt(K) = -0.316228"), or nothing when the parameters are valid.
+/// The shortest decimal text that reads back as exactly `v` ("0.1", "-0.8", "1e+30", "inf", "nan"): how core's
+/// messages print a number, so that −0.8 never shows as "-0.80000000000000004" (std::to_chars, no locale).
+[[nodiscard]] std::string shortestDecimal(double v);
+
+/// One violated rule: the parameters it is about (the first is the one to mark) and a one-line message that
+/// names them and states the rule in the paper's notation (Unicode: −, √, ≤), numbers printed by
+/// shortestDecimal().
+struct ParameterError {
+  std::vector<std::string> fields;
+  std::string message;
+  friend bool operator==(const ParameterError&, const ParameterError&) = default;
+};
+
+/// Every violated rule of appendix B, in a fixed order (K, xmin, xmax finite; xmin < −√K for K ≥ 0 or
+/// xmin < 0 for K < 0; xmax > xmin; L finite), so that a form can mark every wrong field at once.
+[[nodiscard]] std::vector<ParameterError> validationErrors(const MapParameters& p);
+
+/// The first of validationErrors(p) (e.g. "xmin = -0.2 must be < −√K = -0.31622776601683794 …"), or nothing
+/// when the parameters are valid.
 [[nodiscard]] std::optional<std::string> validationError(const MapParameters& p);
 
 /// Throws std::invalid_argument with validationError(p) when p is invalid.

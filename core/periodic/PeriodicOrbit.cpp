@@ -51,7 +51,7 @@ std::string rotationNumberText(const PeriodicOrbit& orbit, int digits) {
   const long turns = orbit.windingTurns;
   const long period = orbit.period;
   const long divisor = std::gcd(turns, period);
-  std::snprintf(text, sizeof text, "%.*Lg = %ld/%ld = %ld/%ld (clockwise turns about (-sqrt K, 0) per step)", digits,
+  std::snprintf(text, sizeof text, "%.*Lg = %ld/%ld = %ld/%ld (clockwise turns about (−√K, 0) per step)", digits,
                 orbit.rotationNumber, turns, period, divisor != 0 ? turns / divisor : turns,
                 divisor != 0 ? period / divisor : period);
   return text;

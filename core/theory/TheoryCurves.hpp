@@ -5,8 +5,9 @@
 /// The shapes come from SmallKTheory.hpp; this file decides which apply and where, and fits their amplitudes
 /// (the theory gives f_t and C_τ only up to a constant):
 ///  - K < 0:       the cutoff t_max = 5.1454 |K|^−1/4 as a vertical line on f_t, P_t and C_τ; F(|K|^¼ t)
-///                 (eq. fneg) on f_t and C(|K|^¼ τ) on C_τ, fitted over 0.2 t_max … 0.8 t_max (near t_max the
-///                 measured singularity sits slightly off, §4);
+///                 (eq. fneg) on f_t and C(|K|^¼ τ) on C_τ, fitted over 0.4 t_max … 0.85 t_max (near t_max the
+///                 measured singularity sits slightly off, and at shorter times f_t decays as t^−6 rather
+///                 than t^−7, §4);
 ///  - K = 0:       t^−7 on f_t and τ^−5 on C_τ, fitted from t = 100 (where fig. 3b reaches the law; from
 ///                 t = 20 when the data end before t = 300);
 ///  - 0 < K:       exp(−½ log λ t) ≈ exp(−K^¼ t) on f_t and C_τ, fitted from t = 2 K^−1/4;
@@ -34,6 +35,10 @@ enum class SmallKRegime {
   zero,      ///< K = 0: eq. (ham)
   positive,  ///< 0 < K ≤ smallKLimit: eq. (hamb), the hyperbolic fixed point
 };
+
+/// The fit window of the K < 0 shapes, as fractions of t_max.
+inline constexpr double kNegativeFitFrom = 0.4;
+inline constexpr double kNegativeFitTo = 0.85;
 
 /// |K| up to which theory curves are drawn.
 inline constexpr double smallKLimit = 0.02;

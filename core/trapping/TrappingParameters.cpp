@@ -27,23 +27,23 @@ constexpr std::uint64_t kU64Max = ~std::uint64_t{0};
 
 const std::array<Access, 10>& accessTable() {
   static const std::array<Access, 10> table{{
-      {{"K", "map parameter K of Q: y' = y + 2(x^2 - K), x' = x + y' (eq. qu)", false, 0, 0, "finite"},
+      {{"K", "map parameter K of Q: y′ = y + 2(x² − K), x′ = x + y′ (§2)", false, 0, 0, "finite"},
        &MapParameters::K},
-      {{"xmin", "left edge of the box in x (appendix B)", false, 0, 0, "finite, < -sqrt(K) (K >= 0) or < 0 (K < 0)"},
+      {{"xmin", "left edge of the box in x (appendix B)", false, 0, 0, "finite, < −√K (K ≥ 0) or < 0 (K < 0)"},
        &MapParameters::xmin},
       {{"xmax", "right edge of the box in x", false, 0, 0, "finite, > xmin"}, &MapParameters::xmax},
-      {{"Xr", "randomizing zone 0 <= X <= Xr in unit coordinates (appendix B)", false, 0, 0, "[0, 1)"}, nullptr,
+      {{"Xr", "randomizing zone 0 ≤ X ≤ Xr in unit coordinates (appendix B)", false, 0, 0, "[0, 1)"}, nullptr,
        &TrappingParameters::Xr},
-      {{"q", "steps of N^-1 per block: statistics of N^-q (appendix B)", true, 1, kMaxQ, "[1, 65536]"}, nullptr,
+      {{"q", "steps of N⁻¹ per block: statistics of the q-th power of N⁻¹ (appendix B)", true, 1, kMaxQ, "[1, 65536]"}, nullptr,
        nullptr, &TrappingParameters::q},
-      {{"T", "blocks per orbit (each orbit is qT steps)", true, 1, kMaxT, "[1, 2^62], q*T <= 2^62"}, nullptr, nullptr,
+      {{"T", "blocks per orbit (each orbit is q·T steps)", true, 1, kMaxT, "[1, 2⁶²], q·T ≤ 2⁶²"}, nullptr, nullptr,
        nullptr, &TrappingParameters::T},
-      {{"M", "number of orbits", true, 1, kMaxM, "[1, 2^32] (and the memory they need)"}, nullptr, nullptr, nullptr,
+      {{"M", "number of orbits", true, 1, kMaxM, "[1, 2³²] (and the memory they need)"}, nullptr, nullptr, nullptr,
        &TrappingParameters::M},
-      {{"seed", "seed of the counter-based random numbers", true, 0, kU64Max, "[0, 2^64 - 1]"}, nullptr, nullptr,
+      {{"seed", "seed of the counter-based random numbers", true, 0, kU64Max, "[0, 2⁶⁴ − 1]"}, nullptr, nullptr,
        nullptr, &TrappingParameters::seed},
       {{"subsets", "orbit subsets for error estimates (orbit i goes to subset i mod subsets)", true, 1, kMaxSubsets,
-        "[1, 1024], <= M"},
+        "[1, 1024], ≤ M"},
        nullptr, nullptr, &TrappingParameters::subsets},
       {{"longestKept", "longest segments kept with their start state, for replay", true, 0, kMaxLongestKept,
         "[0, 100000]"},
@@ -121,27 +121,30 @@ std::optional<std::string> memoryError(const TrappingParameters& p, int threads)
   return s.str();
 }
 
-std::optional<std::string> validationError(const TrappingParameters& p) {
-  if (auto e = mapError(p.map)) return e;
-  std::ostringstream s;
-  s.precision(17);
-  if (auto e = randomizingZoneError(p.Xr)) return e;
-  if (p.q < 1) return "q = 0 must be >= 1 (steps of N^-1 per block)";
-  if (p.T < 1) return "T = 0 must be >= 1 (blocks per orbit)";
-  if (p.M < 1) return "M = 0 must be >= 1 (number of orbits)";
-  if (p.subsets < 1) return "subsets = 0 must be >= 1";
+std::vector<ParameterError> validationErrors(const TrappingParameters& p) {
+  std::vector<ParameterError> errors = mapErrors(p.map);
+  if (auto e = randomizingZoneError(p.Xr)) errors.push_back({{"Xr"}, std::move(*e)});
+  bool integersInRange = true;
   for (const ParameterRule& r : parameterRules()) {  // the documented range of every integer
     if (!r.integer) continue;
     const std::uint64_t v = std::get<std::uint64_t>(parameterValue(p, r.key));
-    if (v < r.min || v > r.max) return std::string(r.key) + " = " + std::to_string(v) + " must lie in " + std::string(r.range);
+    if (v < r.min || v > r.max) {
+      errors.push_back({{std::string(r.key)}, std::string(r.key) + " = " + std::to_string(v) + " must lie in " + std::string(r.range)});
+      integersInRange = false;
+    }
   }
-  if (p.T > kMaxStepsPerOrbit / p.q)
-    return "q*T = " + std::to_string(p.q) + "*" + std::to_string(p.T) + " must be <= 2^62 (steps per orbit)";
-  if (p.subsets > p.M) {
-    s << "subsets = " << p.subsets << " must be <= M = " << p.M << " (each subset needs an orbit)";
-    return s.str();
-  }
-  return std::nullopt;
+  if (p.q >= 1 && p.q <= kMaxQ && p.T >= 1 && p.T <= kMaxT && p.T > kMaxStepsPerOrbit / p.q)
+    errors.push_back({{"T", "q"}, "q·T = " + std::to_string(p.q) + "·" + std::to_string(p.T) + " must be ≤ 2⁶² (steps per orbit)"});
+  if (integersInRange && p.subsets > p.M)
+    errors.push_back({{"subsets", "M"}, "subsets = " + std::to_string(p.subsets) + " must be ≤ M = " + std::to_string(p.M) +
+                                            " (each subset needs an orbit)"});
+  return errors;
+}
+
+std::optional<std::string> validationError(const TrappingParameters& p) {
+  auto errors = validationErrors(p);
+  if (errors.empty()) return std::nullopt;
+  return std::move(errors.front().message);
 }
 
 void validate(const TrappingParameters& p) {
@@ -150,10 +153,7 @@ void validate(const TrappingParameters& p) {
 
 std::optional<std::string> randomizingZoneError(double Xr) {
   if (std::isfinite(Xr) && Xr >= 0 && Xr < 1) return std::nullopt;
-  std::ostringstream s;
-  s.precision(17);
-  s << "Xr = " << Xr << " must lie in [0, 1) (width of the randomizing zone in unit X)";
-  return s.str();
+  return "Xr = " + shortestDecimal(Xr) + " must lie in [0, 1) (width of the randomizing zone in unit X)";
 }
 
 std::uint64_t randomizingThreshold(double Xr) noexcept {

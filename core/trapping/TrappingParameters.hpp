@@ -8,6 +8,7 @@
 #include <string>
 #include <string_view>
 #include <variant>
+#include <vector>
 
 #include "core/map/FixedPointMap.hpp"
 
@@ -63,7 +64,10 @@ using ParameterValue = std::variant<double, std::uint64_t>;
 /// other rules are validationError()'s.
 void setParameterValue(TrappingParameters& p, std::string_view key, const ParameterValue& value);
 
-/// The first violated rule, naming the parameter (map rules included), or nothing when valid.
+/// Every violated rule (map rules first, then Xr, each integer's range from parameterRules(), q·T, subsets ≤ M),
+/// each naming the parameters it is about, so that a form marks every wrong field at once.
+[[nodiscard]] std::vector<ParameterError> validationErrors(const TrappingParameters& p);
+/// The first of validationErrors(p), or nothing when valid.
 [[nodiscard]] std::optional<std::string> validationError(const TrappingParameters& p);
 void validate(const TrappingParameters& p);
 

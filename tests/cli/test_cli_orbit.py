@@ -25,7 +25,7 @@ check((back["X"], back["Y"]) == (first["X"], first["Y"]), "500 steps of N then N
 
 # Bad input: one clear line, non-zero exit, no crash.
 for args, mention in [
-    (["orbit", "--K", "0.1", "--xmin", "-0.2", "--x", "0", "--y", "0"], "must be < -sqrt(K)"),
+    (["orbit", "--K", "0.1", "--xmin", "-0.2", "--x", "0", "--y", "0"], "must be < −√K"),
     (["orbit", "--K", "nan", "--x", "0", "--y", "0"], "K = nan must be a finite number"),
     (["orbit", "--x", "0"], "--y is required"),
     (["orbit", "--x", "zero", "--y", "0"], "--x"),

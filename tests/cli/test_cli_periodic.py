@@ -58,7 +58,7 @@ for args, mention in [
     (["periodic", "--period", "6"], "--near is required"),
     (["periodic", "--period", "6", "--near", "0.05,0.1", "--radius", "-1"], "search radius"),
     (["periodic", "--K", "nan", "--period", "6", "--near", "0.05,0.1"], "K = nan must be a finite number"),
-    (["periodic", "--xmin", "-0.2", "--period", "6", "--near", "0.05,0.1"], "must be < -sqrt(K)"),
+    (["periodic", "--xmin", "-0.2", "--period", "6", "--near", "0.05,0.1"], "must be < −√K"),
     (["periodic", "--period", "6", "--near", "5,5"], "no periodic orbit of period 6 found near (5, 5)"),
 ]:
     r = run(*args)

@@ -85,7 +85,7 @@ r = run("stats", ref, "--csv", csvdir)
 check(r.returncode == 0 and "alpha" in r.stdout and "sum t f_t" in r.stdout, f"stats prints a summary ({r.stderr.strip()})")
 names = sorted(os.listdir(csvdir)) if os.path.isdir(csvdir) else []
 check(names == sorted(["f_t.csv", "p_t_probability.csv", "P_t.csv", "C_tau.csv", "local_exponent.csv", "S_t.csv",
-                       "D_t.csv", "summary.csv"]),
+                       "D_t.csv", "summary.csv", "longest_segments.csv"]),
       f"stats --csv writes every series, and no theory file for K = 0.1 ({names})")
 if "C_tau.csv" in names:
     lines = open(os.path.join(csvdir, "C_tau.csv")).read().strip().splitlines()
@@ -139,8 +139,8 @@ def write(path, text):
 good = open(ref).read()
 cases = [
     (["run", "--bogus"], "--bogus"),
-    (["run", "--K", "0.1", "--xmin", "-0.2", "--T", "10", "--quiet", "--out", os.path.join(tmp, "x.json")], "must be < -sqrt(K)"),
-    (["run", "--q", "0", "--T", "10", "--quiet", "--out", os.path.join(tmp, "x.json")], "q = 0 must be >= 1"),
+    (["run", "--K", "0.1", "--xmin", "-0.2", "--T", "10", "--quiet", "--out", os.path.join(tmp, "x.json")], "must be < −√K"),
+    (["run", "--q", "0", "--T", "10", "--quiet", "--out", os.path.join(tmp, "x.json")], "q = 0 must lie in [1, 65536]"),
     (["run", "--resume", "/nonexistent/run.json"], "/nonexistent/run.json"),
     (["run", "--resume", ref, "--K", "0.2"], "do not also give --K"),
     (["run", "--resume", ref], "already finished"),

@@ -50,7 +50,7 @@ cases = [
     (["run", "--spec", typo], "unknown parameter 'Kk'"),
     (["run", "--spec", tmp], "it is a folder"),
     (["run", "--spec", os.path.join(tmp, "missing.json")], "missing.json"),
-    (["run", "--preset", "small-k-zero", "--q", "0"], "q = 0 must be >= 1"),
+    (["run", "--preset", "small-k-zero", "--q", "0"], "q = 0 must lie in [1, 65536]"),
     (["run", "--preset", "small-k-zero", "--q", "70000"], "q = 70000 must lie in [1, 65536]"),
     (["run", "--longest", "4294967295", "--print-spec"], "longestKept = 4294967295 must lie in [0, 100000]"),
     (["run", "--resume", out, "--preset", "small-k-zero"], "do not also give --preset"),

@@ -12,9 +12,14 @@
 #include <QTemporaryDir>
 
 #include "GuiTestSupport.hpp"
+#include "ui/SettingsController.hpp"
 #include "ui/StatisticsView.hpp"
 #include "ui/plots/StatisticsPlot.hpp"
 #include "core/runfile/RunFile.hpp"
+#include "core/spec/RunSpec.hpp"
+#include "ui/ExportActions.hpp"
+
+#include <QMessageBox>
 
 using archipelago::ui::MainWindow;
 using archipelago::ui::RunStatus;
@@ -109,6 +114,70 @@ class TestExport : public QObject {
       QVERIFY2(QFileInfo::exists(QDir(folder).filePath(QLatin1String(name))), name);
     // K = 0.1: no small-K theory (§4), so no theory file.
     QVERIFY(QDir(folder).entryList({QStringLiteral("*.theory.csv")}).isEmpty());
+  }
+
+  // Issue 13, finding 13: "Export all" left out the portrait, the segments table and the parameters.
+  void exportAllWritesThePortraitTheSegmentsAndTheSpec() {
+    const QString folder = dir_.filePath(QStringLiteral("export-extras"));
+    QString error;
+    QVERIFY2(window_->exportAllTo(folder, &error), qPrintable(error));
+    const QDir dir(folder);
+    QImage portrait;
+    QVERIFY(portrait.load(dir.filePath(QStringLiteral("portrait.png")), "PNG"));
+    QVERIFY(portrait.width() > 500);
+
+    // The longest segments, longest first, with the metadata header of every CSV file.
+    QFile csv(dir.filePath(QStringLiteral("longest_segments.csv")));
+    QVERIFY(csv.open(QIODevice::ReadOnly | QIODevice::Text));
+    QStringList lines = QString::fromUtf8(csv.readAll()).split(QLatin1Char('\n'), Qt::SkipEmptyParts);
+    QVERIFY(lines.front().startsWith(QStringLiteral("# program: archipelago ")));
+    QVERIFY(lines.contains(QStringLiteral("# K: 0.1")));
+    while (!lines.isEmpty() && lines.front().startsWith(QStringLiteral("# "))) lines.removeFirst();
+    QCOMPARE(lines.front(), QStringLiteral("rank,length_steps,length_blocks,orbit,start_block,start_draws,start_X,"
+                                          "start_Y,start_x,start_y"));
+    const archipelago::TrappingState& state = window_->latestSnapshot()->state;
+    const auto& items = state.longest.items();
+    QVERIFY(!items.empty());
+    QCOMPARE(lines.size() - 1, static_cast<int>(items.size()));
+    const QStringList first = lines.at(1).split(QLatin1Char(','));
+    QCOMPARE(first.at(0), QStringLiteral("1"));
+    QCOMPARE(first.at(1).toULongLong(), static_cast<qulonglong>(items.front().length * state.params.q));
+    QCOMPARE(first.at(3).toULongLong(), static_cast<qulonglong>(items.front().orbit));
+    QCOMPARE(first.at(6).toULongLong(), static_cast<qulonglong>(items.front().start.z.X));
+
+    // The parameters through core's spec codec: `archipelago-cli run --spec` reads them back.
+    const archipelago::RunSpec spec = archipelago::loadRunSpec(dir.filePath(QStringLiteral("run_spec.json")).toStdString());
+    QVERIFY(spec.parameters == state.params);
+  }
+
+  // Issue 13, finding 13: file dialogs did not reopen in the last folder.
+  void dialogsStartInTheLastFolder() {
+    const QString folder = dir_.filePath(QStringLiteral("somewhere"));
+    QVERIFY(QDir().mkpath(folder));
+    archipelago::ui::SettingsController::rememberFolder(QDir(folder).filePath(QStringLiteral("run.json")));
+    QCOMPARE(archipelago::ui::SettingsController::lastFolder(), QFileInfo(folder).absoluteFilePath());
+    archipelago::ui::SettingsController::rememberFolder(dir_.path());  // a folder itself
+    QCOMPARE(archipelago::ui::SettingsController::lastFolder(), QFileInfo(dir_.path()).absoluteFilePath());
+  }
+
+  // Issue 13, finding 13: a run file that failed to open was reported only in the status bar, cut off.
+  void aCorruptRunFileShowsTheWholeReason() {
+    const QString path = dir_.filePath(QStringLiteral("corrupt.json"));
+    QFile file(path);
+    QVERIFY(file.open(QIODevice::WriteOnly));
+    file.write("{\"format\": \"archipelago-run\", \"version\": 1, \"this is\": \"not a run file\"}");
+    file.close();
+    MainWindow other;
+    other.setConfirmations(false);
+    other.show();
+    QString error;
+    QVERIFY(!other.openRunFile(path, &error));
+    QVERIFY(!error.isEmpty());
+    auto* box = other.findChild<QMessageBox*>(QStringLiteral("openErrorDialog"));
+    QVERIFY(box);
+    QCOMPARE(box->informativeText(), error);  // the whole reason, not a status-bar line
+    QVERIFY(box->text().contains(QStringLiteral("corrupt.json")));
+    box->close();
   }
 
   void unknownImageFormatIsRefused() {

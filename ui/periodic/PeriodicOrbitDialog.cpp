@@ -22,8 +22,11 @@
 namespace archipelago::ui {
 
 namespace {
+/// The shortest text that reads back as `value` (0.1, not 0.10000000000000001).
+QString shortest(double value) { return QLocale::c().toString(value, 'g', QLocale::FloatingPointShortest); }
+
 QLineEdit* numberEdit(QWidget* parent, double value) {
-  auto* edit = new QLineEdit(QString::number(value, 'g', 17), parent);
+  auto* edit = new QLineEdit(shortest(value), parent);
   auto* validator = new QDoubleValidator(edit);
   validator->setLocale(QLocale::c());
   edit->setValidator(validator);
@@ -60,7 +63,11 @@ PeriodicOrbitDialog::PeriodicOrbitDialog(QWidget* parent) : QDialog(parent) {
   auto* form = new QFormLayout;
   form->addRow(tr("&K:"), kEdit_);
   form->addRow(tr("&Period n:"), periodBox_);
-  form->addRow(tr("&Near (x, y):"), nearRow);
+  // A row whose field is a layout gets no buddy from QFormLayout, and its "&" showed literally: the label
+  // names the x field as its buddy.
+  auto* nearLabel = new QLabel(tr("&Near (x, y):"), this);
+  nearLabel->setBuddy(xEdit_);
+  form->addRow(nearLabel, nearRow);
   form->addRow(tr("Search &radius:"), radiusBox_);
   form->addRow(QString(), stableBox_);
 
@@ -100,11 +107,11 @@ PeriodicOrbitDialog::~PeriodicOrbitDialog() {
   thread_ = nullptr;
 }
 
-void PeriodicOrbitDialog::setK(double K) { kEdit_->setText(QString::number(K, 'g', 17)); }
+void PeriodicOrbitDialog::setK(double K) { kEdit_->setText(shortest(K)); }
 void PeriodicOrbitDialog::setPeriod(int period) { periodBox_->setValue(period); }
 void PeriodicOrbitDialog::setNear(double x, double y) {
-  xEdit_->setText(QString::number(x, 'g', 17));
-  yEdit_->setText(QString::number(y, 'g', 17));
+  xEdit_->setText(shortest(x));
+  yEdit_->setText(shortest(y));
 }
 void PeriodicOrbitDialog::setStableOnly(bool on) { stableBox_->setChecked(on); }
 double PeriodicOrbitDialog::K() const {

@@ -5,7 +5,12 @@
 #include <QFile>
 #include <QFileInfo>
 #include <QMenu>
+#include <QImage>
+#include <QPainter>
+#include <QPdfWriter>
 #include <QPen>
+#include <QSvgGenerator>
+#include <QTextDocument>
 #include <qwt_interval_symbol.h>
 #include <qwt_plot_canvas.h>
 #include <qwt_plot_curve.h>
@@ -16,11 +21,13 @@
 #include <qwt_plot_marker.h>
 #include <qwt_plot_panner.h>
 #include <qwt_plot_renderer.h>
+#include <qwt_plot_textlabel.h>
 #include <qwt_plot_zoomer.h>
 #include <qwt_scale_engine.h>
 #include <qwt_symbol.h>
 #include <qwt_text.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string_view>
 
@@ -38,6 +45,35 @@ const QColor kTheoryColors[] = {QColor(214, 96, 18), QColor(160, 30, 60), QColor
 
 QString fromTable(std::string_view text) {
   return QString::fromUtf8(text.data(), static_cast<int>(text.size()));
+}
+
+/// Rich text as plain Unicode text: <sub>t</sub> → ₜ where Unicode has the subscript (else "_τ"), <sup>−1</sup>
+/// → ⁻¹, then the tags dropped (QTextDocument).  For file metadata (SVG and PDF titles), which hold no markup.
+QString plainText(const QString& rich) {
+  static const QString normal = QStringLiteral("0123456789+−-=()aehijklmnoprstuvx");
+  static const QString sub = QStringLiteral("₀₁₂₃₄₅₆₇₈₉₊₋₋₌₍₎ₐₑₕᵢⱼₖₗₘₙₒₚᵣₛₜᵤᵥₓ");
+  static const QString sup = QStringLiteral("⁰¹²³⁴⁵⁶⁷⁸⁹⁺⁻⁻⁼⁽⁾ᵃᵉʰⁱʲᵏˡᵐⁿᵒᵖʳˢᵗᵘᵛˣ");
+  QString text = rich;
+  for (const auto& [tag, table] : {std::pair{QStringLiteral("sub"), &sub}, std::pair{QStringLiteral("sup"), &sup}}) {
+    const QString open = QLatin1Char('<') + tag + QLatin1Char('>'), close = QStringLiteral("</") + tag + QLatin1Char('>');
+    for (qsizetype at = text.indexOf(open); at >= 0; at = text.indexOf(open, at)) {
+      const qsizetype end = text.indexOf(close, at);
+      if (end < 0) break;
+      const QString inner = text.mid(at + open.size(), end - at - open.size());
+      QString converted;
+      bool all = true;
+      for (const QChar c : inner) {
+        const qsizetype i = normal.indexOf(c);
+        if (i < 0) { all = false; break; }
+        converted += table->at(i);
+      }
+      if (!all) converted = (tag == QLatin1String("sub") ? QStringLiteral("_") : QStringLiteral("^")) + inner;
+      text.replace(at, end + close.size() - at, converted);
+    }
+  }
+  QTextDocument document;
+  document.setHtml(text);
+  return document.toPlainText();
 }
 
 bool usable(double x, double y, bool logY) {
@@ -127,11 +163,13 @@ StatisticsPlot::StatisticsPlot(Statistic statistic, QWidget* parent) : QwtPlot(p
   curve_->setItemAttribute(QwtPlotItem::AutoScale, true);
   curve_->attach(this);
 
-  auto* legend = new QwtPlotLegendItem;
-  // Where the curve leaves room: f, P, C fall (top right is empty), S and D_t rise (bottom right is).
+  legend_ = new QwtPlotLegendItem;
+  auto* legend = legend_;
+  // Where the curve leaves room: f, P, C fall from the top left (the bottom left is empty; the top right
+  // holds the t_max label of K < 0), S and D_t rise (bottom right is empty).
   const Qt::Alignment corner = statistic == Statistic::S || statistic == Statistic::Dt ? Qt::AlignBottom | Qt::AlignRight
                                : statistic == Statistic::localExponent ? Qt::AlignTop | Qt::AlignLeft
-                                                                       : Qt::AlignTop | Qt::AlignRight;
+                                                                       : Qt::AlignBottom | Qt::AlignLeft;
 #if QWT_VERSION >= 0x060200
   legend->setAlignmentInCanvas(corner);
 #else
@@ -155,7 +193,20 @@ StatisticsPlot::StatisticsPlot(Statistic statistic, QWidget* parent) : QwtPlot(p
   panner->setMouseButton(Qt::MiddleButton);
   auto* magnifier = new QwtPlotMagnifier(canvas());
   magnifier->setMouseButton(Qt::NoButton);  // the wheel only; the right button belongs to the zoomer
-  new CrosshairPicker(canvas());
+  crosshair_ = new CrosshairPicker(canvas());
+
+  // Before a run: a placeholder in the canvas, fixed sensible axes, no legend and no crosshair (an empty plot
+  // with a legend and a readout looked like a broken one).
+  QwtText hint(tr("No run yet — press Run (F5)"));
+  QFont hintFont = font();
+  hintFont.setPointSizeF(hintFont.pointSizeF() * 1.05);
+  hint.setFont(hintFont);
+  hint.setColor(QColor(110, 110, 110));
+  hint.setRenderFlags(Qt::AlignCenter);
+  placeholder_ = new QwtPlotTextLabel;
+  placeholder_->setText(hint);
+  placeholder_->attach(this);
+  showPlaceholder(true);
 
   setMinimumSize(260, 200);
 }
@@ -209,10 +260,15 @@ void StatisticsPlot::setData(const Series& data, const std::vector<TheoryCurve>&
       marker->setLineStyle(QwtPlotMarker::VLine);
       marker->setLinePen(QPen(color, 1.4, Qt::DashDotLine));
       marker->setXValue(t.at);
+      // The label stands left of its line, at the top where the falling curves leave room, on a white
+      // ground so that neither the line nor the grid cuts through it.
       QwtText label(legend);
       label.setColor(color);
+      label.setBackgroundBrush(QColor(255, 255, 255, 225));
+      label.setBorderRadius(2);
       marker->setLabel(label);
-      marker->setLabelAlignment(Qt::AlignLeft | Qt::AlignBottom);
+      marker->setLabelAlignment(Qt::AlignLeft | Qt::AlignTop);
+      marker->setSpacing(6);
       marker->setItemAttribute(QwtPlotItem::Legend, true);
       marker->setItemAttribute(QwtPlotItem::AutoScale, false);
       marker->attach(this);
@@ -235,6 +291,47 @@ void StatisticsPlot::setData(const Series& data, const std::vector<TheoryCurve>&
 
 void StatisticsPlot::clearData() { setData(Series{}, {}); }
 
+bool StatisticsPlot::isEmpty() const { return curve_->dataSize() == 0; }
+
+bool StatisticsPlot::placeholderShown() const { return placeholder_->isVisible(); }
+
+bool StatisticsPlot::legendShown() const { return legend_->isVisible(); }
+
+bool StatisticsPlot::crosshairEnabled() const { return crosshair_->isEnabled(); }
+
+void StatisticsPlot::showPlaceholder(bool empty) {
+  placeholder_->setVisible(empty);
+  legend_->setVisible(!empty);
+  crosshair_->setEnabled(!empty);
+  if (!empty) return;
+  // Axes of a typical run: t from 1 to 10⁴ steps; falling statistics from 10⁻⁶ to 1, rising ones (S_t, D_t)
+  // from 1 to 10⁶; the local exponent from 0 to 3.
+  setAxisScale(kAxisX, statisticInfo(statistic_).abscissaScale == AxisScale::logarithmic ? 1.0 : 0.0, 1e4);
+  if (statistic_ == Statistic::localExponent) setAxisScale(kAxisY, 0.0, 3.0);
+  else if (statistic_ == Statistic::S || statistic_ == Statistic::Dt) setAxisScale(kAxisY, 1.0, 1e6);
+  else if (logY()) setAxisScale(kAxisY, 1e-6, 1.0);
+  else setAxisScale(kAxisY, 0.0, 1.0);
+}
+
+QwtInterval StatisticsPlot::exponentRange() const {
+  // The local exponent's tail (few segments left in C_τ) is noise that reaches 10 and more: the range follows
+  // the points known to better than ±0.5, so K = 0's τ⁻⁵ regime (exponent 5) is on scale as well as the
+  // paper's fig. 5d (0 … 2).  Never less than 0 … 1.
+  double lo = 0, hi = 1;
+  bool any = false;
+  for (std::size_t i = 0; i < data_.x.size() && i < data_.value.size(); ++i) {
+    const double v = data_.value[i];
+    const double e = i < data_.error.size() ? std::abs(data_.error[i]) : 0;
+    if (!std::isfinite(v) || !(data_.x[i] > 0) || !(e <= 0.5)) continue;
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+    any = true;
+  }
+  if (!any) return QwtInterval(0, 3);
+  const double pad = 0.08 * (hi - lo);
+  return QwtInterval(lo < 0 ? lo - pad : 0, hi + pad);
+}
+
 QVector<QPointF> StatisticsPlot::plottedPoints() const {
   QVector<QPointF> points;
   const QwtSeriesData<QPointF>* d = curve_->data();
@@ -251,16 +348,26 @@ bool StatisticsPlot::followingData() const {
 }
 
 void StatisticsPlot::refresh() {
+  const bool empty = isEmpty();
+  if (empty != placeholderShown()) showPlaceholder(empty);
   const bool follow = followingData();
-  if (follow && curve_->dataSize() > 0) {
-    setAxisAutoScale(kAxisX, true);
-    // The local exponent is noisy where C_τ has few segments left (its last points reach 10 or more); the
-    // paper's fig. 6d shows 0 … 2, so the default range is 0 … 3 (zoom out to see the tail).
-    if (statistic_ == Statistic::localExponent) setAxisScale(kAxisY, 0.0, 3.0);
-    else setAxisAutoScale(kAxisY, true);
+  if (follow && !empty) {
+    // x: the data and every vertical theory line (t_max may lie beyond the last data point: its line and
+    // label stay on the canvas).
+    const QRectF box = curve_->boundingRect();
+    double xHigh = box.right();
+    for (const QwtPlotMarker* m : theoryMarkers_) xHigh = std::max(xHigh, m->xValue() * 1.25);
+    if (xHigh > box.right()) setAxisScale(kAxisX, box.left(), xHigh);
+    else setAxisAutoScale(kAxisX, true);
+    if (statistic_ == Statistic::localExponent) {
+      const QwtInterval y = exponentRange();
+      setAxisScale(kAxisY, y.minValue(), y.maxValue());
+    } else {
+      setAxisAutoScale(kAxisY, true);
+    }
   }
   replot();
-  if (follow && curve_->dataSize() > 0) {
+  if (follow && !empty) {
     zoomer_->setZoomBase(false);
     autoX_ = axisInterval(kAxisX);
     autoY_ = axisInterval(kAxisY);
@@ -289,6 +396,11 @@ void StatisticsPlot::setUserView(const QRectF& view) {
   zoomer_->setZoomBase(false);
 }
 
+QString StatisticsPlot::plainTitle() const {
+  const StatisticInfo& info = statisticInfo(statistic_);
+  return plainText(fromTable(info.symbolRich)) + QStringLiteral(" — ") + fromTable(info.description);
+}
+
 bool StatisticsPlot::exportImage(const QString& path, QString* error) {
   const QString format = QFileInfo(path).suffix().toLower();
   if (format != QLatin1String("png") && format != QLatin1String("svg") && format != QLatin1String("pdf")) {
@@ -299,9 +411,50 @@ bool StatisticsPlot::exportImage(const QString& path, QString* error) {
   QwtPlotRenderer renderer;
   renderer.setDiscardFlag(QwtPlotRenderer::DiscardBackground, false);
   renderer.setDiscardFlag(QwtPlotRenderer::DiscardCanvasFrame, false);
-  // 160 × 110 mm at 150 dpi: a journal column, and about 950 × 650 pixels for PNG.
-  renderer.renderDocument(this, path, format, QSizeF(160, 110), 150);
-  if (!QFileInfo(path).exists() || QFileInfo(path).size() == 0) {
+  // 160 × 110 mm at 150 dpi: a journal column, and about 950 × 650 pixels for PNG.  QwtPlotRenderer's
+  // renderDocument() would put the title's markup ("f<sub>t</sub>") into the SVG and PDF metadata, so the
+  // documents are set up here with a plain Unicode title and the plot is rendered into them.
+  const QSizeF sizeMm(160, 110);
+  constexpr int dpi = 150;
+  const double mmToInch = 1.0 / 25.4;
+  const QRectF rect(0, 0, sizeMm.width() * mmToInch * dpi, sizeMm.height() * mmToInch * dpi);
+  const QString title = plainTitle();
+  bool ok = true;
+  if (format == QLatin1String("svg")) {
+    QSvgGenerator generator;
+    generator.setTitle(title);
+    generator.setDescription(tr("Archipelago: %1").arg(title));
+    generator.setFileName(path);
+    generator.setResolution(dpi);
+    generator.setSize(rect.size().toSize());
+    generator.setViewBox(rect);
+    QPainter painter(&generator);
+    renderer.render(this, &painter, rect);
+    ok = painter.end();
+  } else if (format == QLatin1String("pdf")) {
+    QPdfWriter writer(path);
+    writer.setTitle(title);
+    writer.setCreator(QStringLiteral("Archipelago"));
+    writer.setPageSize(QPageSize(sizeMm, QPageSize::Millimeter));
+    writer.setPageMargins(QMarginsF(0, 0, 0, 0));
+    writer.setResolution(dpi);
+    QPainter painter(&writer);
+    renderer.render(this, &painter, rect);
+    ok = painter.end();
+  } else {
+    QImage image(rect.size().toSize(), QImage::Format_ARGB32);
+    image.setDotsPerMeterX(qRound(dpi / 0.0254));
+    image.setDotsPerMeterY(qRound(dpi / 0.0254));
+    image.fill(Qt::white);
+    image.setText(QStringLiteral("Title"), title);
+    image.setText(QStringLiteral("Software"), QStringLiteral("Archipelago"));
+    {
+      QPainter painter(&image);
+      renderer.render(this, &painter, rect);
+    }
+    ok = image.save(path, "PNG");
+  }
+  if (!ok || !QFileInfo(path).exists() || QFileInfo(path).size() == 0) {
     if (error) *error = tr("could not write %1").arg(path);
     return false;
   }

@@ -10,7 +10,10 @@
 /// (one sigma over the subsets of orbits, QwtPlotIntervalCurve) and the theory curves; on a log axis points
 /// ≤ 0 are left out and a band reaching ≤ 0 is clipped.  Ranges follow the data until the user zooms, pans
 /// or turns the wheel; "Reset zoom" (or a right click at the base of the zoom stack) follows the data again.
-/// A crosshair shows the coordinates under the mouse.
+/// A crosshair shows the coordinates under the mouse.  Before any data arrives the plot shows a placeholder
+/// ("No run yet — press Run (F5)") over fixed typical axes, without legend or crosshair.  The local exponent's
+/// y range follows its well-measured points (error ≤ 0.5), so K = 0's exponent 5 is on scale; vertical
+/// theory lines (t_max) widen the x range so that they and their labels stay on the canvas.
 
 #include <QString>
 #include <QVector>
@@ -26,7 +29,10 @@
 class QwtPlotCurve;
 class QwtPlotIntervalCurve;
 class QwtPlotMarker;
+class QwtPlotLegendItem;
+class QwtPlotTextLabel;
 class QwtPlotZoomer;
+class QwtPlotPicker;
 
 namespace archipelago::ui {
 
@@ -59,7 +65,16 @@ class StatisticsPlot : public QwtPlot {
   [[nodiscard]] const Series& data() const noexcept { return data_; }
   [[nodiscard]] int theoryCurveCount() const noexcept { return static_cast<int>(theory_.size()); }
 
-  /// Writes the plot as PNG, SVG or PDF (chosen by the suffix) with QwtPlotRenderer.  (Its numbers are written
+  /// True before any data point: the placeholder shows, the legend and the crosshair are off.
+  [[nodiscard]] bool isEmpty() const;
+  [[nodiscard]] bool placeholderShown() const;
+  [[nodiscard]] bool legendShown() const;
+  [[nodiscard]] bool crosshairEnabled() const;
+  /// The title as plain Unicode text for file metadata: "fₜ — distribution of trapping times".
+  [[nodiscard]] QString plainTitle() const;
+
+  /// Writes the plot as PNG, SVG or PDF (chosen by the suffix) with QwtPlotRenderer; the document's title
+  /// (SVG <title>, PDF and PNG metadata) is plainTitle().  (Its numbers are written
   /// by core's CSV writer: see ExportActions.hpp.)
   bool exportImage(const QString& path, QString* error = nullptr);
 
@@ -69,6 +84,8 @@ class StatisticsPlot : public QwtPlot {
  private:
   [[nodiscard]] bool logY() const noexcept;
   [[nodiscard]] bool followingData() const;
+  void showPlaceholder(bool empty);
+  [[nodiscard]] QwtInterval exponentRange() const;
 
   Statistic statistic_;
   Series data_;
@@ -78,6 +95,9 @@ class StatisticsPlot : public QwtPlot {
   std::vector<QwtPlotCurve*> theoryCurves_;
   std::vector<QwtPlotMarker*> theoryMarkers_;
   QwtPlotZoomer* zoomer_ = nullptr;
+  QwtPlotLegendItem* legend_ = nullptr;
+  QwtPlotTextLabel* placeholder_ = nullptr;
+  QwtPlotPicker* crosshair_ = nullptr;
   QwtInterval autoX_, autoY_;  // the ranges last chosen by autoscaling; anything else is the user's view
   bool forceFollow_ = true;
 };

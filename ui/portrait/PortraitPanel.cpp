@@ -1,6 +1,7 @@
 #include "ui/portrait/PortraitPanel.hpp"
 
 #include <QComboBox>
+#include <QDir>
 #include <QLocale>
 #include <QFileDialog>
 #include <QFontMetrics>
@@ -14,6 +15,7 @@
 
 #include "core/portrait/ColourMap.hpp"
 #include "core/portrait/StochasticArea.hpp"
+#include "ui/SettingsController.hpp"
 #include "ui/portrait/PortraitController.hpp"
 #include "ui/portrait/PortraitView.hpp"
 #include "ui/portrait/StochasticAreaDialog.hpp"
@@ -199,16 +201,20 @@ void PortraitPanel::updateColourControl() {
 }
 
 void PortraitPanel::exportPngDialog() {
-  const QString path = QFileDialog::getSaveFileName(this, tr("Export portrait as PNG"), QStringLiteral("portrait.png"),
+  const QString path = QFileDialog::getSaveFileName(this, tr("Export portrait as PNG"),
+                                                    QDir(SettingsController::lastFolder()).filePath(QStringLiteral("portrait.png")),
                                                     tr("PNG images (*.png)"));
   if (path.isEmpty()) return;
+  SettingsController::rememberFolder(path);
   Q_EMIT statusMessage(view()->exportPng(path) ? tr("Wrote %1").arg(path) : tr("Could not write %1").arg(path));
 }
 
 void PortraitPanel::exportNpyDialog() {
   const QString path = QFileDialog::getSaveFileName(this, tr("Export raster as NumPy .npy"),
-                                                    QStringLiteral("portrait.npy"), tr("NumPy arrays (*.npy)"));
+                                                    QDir(SettingsController::lastFolder()).filePath(QStringLiteral("portrait.npy")),
+                                                    tr("NumPy arrays (*.npy)"));
   if (path.isEmpty()) return;
+  SettingsController::rememberFolder(path);
   Q_EMIT statusMessage(view()->exportNpy(path) ? tr("Wrote %1 and its JSON sidecar").arg(path)
                                                : tr("Could not write %1").arg(path));
 }

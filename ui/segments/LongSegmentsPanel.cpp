@@ -1,5 +1,9 @@
 #include "ui/segments/LongSegmentsPanel.hpp"
 
+#include <QDir>
+
+#include "ui/SettingsController.hpp"
+
 #include <QElapsedTimer>
 #include <QFileDialog>
 #include <QHBoxLayout>
@@ -411,8 +415,10 @@ void LongSegmentsPanel::exportDialog(bool npy) {
   const QString suggested =
       QStringLiteral("segment-orbit%1-block%2.%3").arg(r.orbit).arg(r.start.block).arg(npy ? "npy" : "csv");
   const QString path = QFileDialog::getSaveFileName(this, npy ? tr("Export segment as .npy") : tr("Export segment as CSV"),
-                                                    suggested, npy ? tr("NumPy arrays (*.npy)") : tr("CSV files (*.csv)"));
+                                                    QDir(SettingsController::lastFolder()).filePath(suggested),
+                                                    npy ? tr("NumPy arrays (*.npy)") : tr("CSV files (*.csv)"));
   if (path.isEmpty()) return;
+  SettingsController::rememberFolder(path);
   QString error;
   const bool ok = npy ? exportNpy(path, &error) : exportCsv(path, &error);
   Q_EMIT statusMessage(ok ? tr("Wrote %1").arg(path) : tr("Export failed: %1").arg(error));

@@ -210,10 +210,10 @@ TEST(FixedPointMap, EveryInvalidParameterGivesItsError) {
   expectInvalid({inf, -0.8, 0.5}, "K = inf must be a finite number");
   expectInvalid({0.1, nan, 0.5}, "xmin = nan must be a finite number");
   expectInvalid({0.1, -0.8, -inf}, "xmax = -inf must be a finite number");
-  expectInvalid({0.1, -0.8, -0.8}, "xmax = -0.80000000000000004 must be > xmin");
-  expectInvalid({0.1, -0.8, -0.9}, "L = xmax - xmin must be > 0");
-  expectInvalid({0.1, -0.2, 0.5}, "xmin = -0.20000000000000001 must be < -sqrt(K)");
-  expectInvalid({0.1, -0.31622776601683794, 0.5}, "must be < -sqrt(K)");
+  expectInvalid({0.1, -0.8, -0.8}, "xmax = -0.8 must be > xmin = -0.8");
+  expectInvalid({0.1, -0.8, -0.9}, "L = xmax − xmin must be > 0");
+  expectInvalid({0.1, -0.2, 0.5}, "xmin = -0.2 must be < −√K = -0.31622776601683794");
+  expectInvalid({0.1, -0.31622776601683794, 0.5}, "must be < −√K");
   expectInvalid({-1e-4, 0.0, 0.5}, "xmin = 0 must be < 0 when K < 0");
   expectInvalid({0.1, -1000.0, 0.5}, "too large");
   EXPECT_FALSE(validationError({0.1, -0.8, 0.5}).has_value());
@@ -238,5 +238,37 @@ TEST(FixedPointMap, HugeBoxOrKIsAnErrorNotAnEndlessLoop) {
   }
 }
 
+
+// Issue 13, finding 11: messages printed numbers with precision(17), so −0.8 showed as "-0.80000000000000004";
+// they now print the shortest text that reads back as the same double.
+TEST(FixedPointMap, MessagesPrintShortestRoundTripNumbers) {
+  EXPECT_EQ(shortestDecimal(-0.8), "-0.8");
+  EXPECT_EQ(shortestDecimal(0.1), "0.1");
+  EXPECT_EQ(shortestDecimal(1e30), "1e+30");
+  EXPECT_EQ(shortestDecimal(0.30000000000000004), "0.30000000000000004");  // 0.1 + 0.2 is not 0.3
+  EXPECT_EQ(std::stod(shortestDecimal(-0.31622776601683794)), -0.31622776601683794);
+  EXPECT_EQ(shortestDecimal(std::numeric_limits<double>::infinity()), "inf");
+  const auto e = validationError(MapParameters{0.1, -0.8, -0.8});
+  ASSERT_TRUE(e.has_value());
+  EXPECT_EQ(e->find("0000"), std::string::npos) << *e;
+}
+
+// Issue 13, finding 11: a form showed one error at a time because core reported only the first.  Every rule
+// is reported, each naming the fields it is about.
+TEST(FixedPointMap, EveryViolatedRuleIsReportedWithItsFields) {
+  const double inf = std::numeric_limits<double>::infinity();
+  const std::vector<ParameterError> errors = mapErrors({inf, 0.6, 0.5});
+  ASSERT_EQ(errors.size(), 2u);
+  EXPECT_EQ(errors[0].fields, std::vector<std::string>{"K"});
+  EXPECT_EQ(errors[1].fields, (std::vector<std::string>{"xmax", "xmin"}));
+  // xmin = 0.6 > xmax = 0.5 at K = 0.1: xmin breaks its own rule too, so it is marked with its reason.
+  const std::vector<ParameterError> box = validationErrors(MapParameters{0.1, 0.6, 0.5});
+  ASSERT_EQ(box.size(), 2u);
+  EXPECT_EQ(box[0].fields, std::vector<std::string>{"xmin"});  // first: the rule about xmin alone
+  EXPECT_NE(box[0].message.find("xmin = 0.6 must be < −√K"), std::string::npos) << box[0].message;
+  EXPECT_EQ(box[1].fields, (std::vector<std::string>{"xmax", "xmin"}));
+  EXPECT_TRUE(mapErrors({0.1, -0.8, 0.5}).empty());
+  EXPECT_EQ(mapErrors({0.1, -1000.0, 0.5}).size(), 1u);  // the box-size limit, once the rules hold
+}
 }  // namespace
 }  // namespace archipelago

@@ -111,7 +111,7 @@ TEST(OrbitClassification, CentralFixedPointRotationText) {
   six.near = {0.0509L, 0.0974L};
   six.stableOnly = true;
   const std::string sixText = rotationNumberText(findPeriodicOrbit(K, six), 6);
-  EXPECT_EQ(sixText, "0.166667 = 1/6 = 1/6 (clockwise turns about (-sqrt K, 0) per step)");
+  EXPECT_EQ(sixText, "0.166667 = 1/6 = 1/6 (clockwise turns about (−√K, 0) per step)");
 }
 
 }  // namespace

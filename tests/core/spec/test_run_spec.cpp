@@ -93,10 +93,10 @@ TEST(RunSpec, EveryBadValueIsNamed) {
   expectRejected(specWith(R"("seed": 1e30)"), "seed");
   expectRejected(specWith(R"("q": 4294967296)"), "q = 4294967296 must lie in [1, 65536]");
   expectRejected(specWith(R"("longestKept": 4294967295)"), "longestKept = 4294967295 must lie in [0, 100000]");
-  expectRejected(specWith(R"("q": 65536, "T": 4611686018427387904)"), "q*T");
-  expectRejected(specWith(R"("M": 0)"), "M = 0 must be >= 1");
-  expectRejected(specWith(R"("M": 4294967297)"), "M = 4294967297 must lie in [1, 2^32]");
-  expectRejected(specWith(R"("xmin": -0.2)"), "must be < -sqrt(K)");
+  expectRejected(specWith(R"("q": 65536, "T": 4611686018427387904)"), "q·T");
+  expectRejected(specWith(R"("M": 0)"), "M = 0 must lie in [1, 2³²]");
+  expectRejected(specWith(R"("M": 4294967297)"), "M = 4294967297 must lie in [1, 2³²]");
+  expectRejected(specWith(R"("xmin": -0.2)"), "must be < −√K");
   expectRejected(specWith(R"("Xr": 1)"), "Xr = 1 must lie in [0, 1)");
   expectRejected(specWith("", R"(, "kernel": "avx9")"), "kernel = 'avx9' is not a kernel");
   expectRejected(specWith("", R"(, "threads": 100000)"), "threads");

@@ -7,6 +7,8 @@
 #include <functional>
 #include <vector>
 
+#include "core/spec/RunSpec.hpp"
+#include "core/stats/RunStatistics.hpp"
 #include "core/theory/SmallKTheory.hpp"
 #include "core/theory/TheoryCurves.hpp"
 
@@ -63,7 +65,7 @@ TEST(TheoryCurves, NoneForKPointOneOrWithoutData) {
 }
 
 // K < 0: the cutoff at t_max = 5.1454 |K|^−1/4 on f_t, P_t and C_τ (paper: t_max ≈ 51.454 at K = −10⁻⁴),
-// F(|K|^¼ t) fitted to f_t and C(|K|^¼ τ) to C_τ over 0.2 … 0.8 t_max.
+// F(|K|^¼ t) fitted to f_t and C(|K|^¼ τ) to C_τ over 0.4 … 0.85 t_max.
 TEST(TheoryCurves, NegativeKHasTheCutoffAndTheFittedShapes) {
   const double K = -1e-4;
   const double a = 7.25e-3;
@@ -91,9 +93,9 @@ TEST(TheoryCurves, NegativeKHasTheCutoffAndTheFittedShapes) {
   ASSERT_EQ(f.size(), 1u);
   EXPECT_EQ(f[0]->label, "F(|K|^1/4 t)");
   EXPECT_NEAR(f[0]->amplitude, a, 1e-12 * a);  // data are exactly a·F: the fit returns a
-  EXPECT_NEAR(f[0]->fitFrom, 0.2 * paperTmax, 1e-5 * paperTmax);
-  EXPECT_NEAR(f[0]->fitTo, 0.8 * paperTmax, 1e-5 * paperTmax);
-  EXPECT_EQ(f[0]->fitPoints, 31u);  // t = 11 … 41 lie in [10.29, 41.16]
+  EXPECT_NEAR(f[0]->fitFrom, 0.4 * paperTmax, 1e-5 * paperTmax);
+  EXPECT_NEAR(f[0]->fitTo, 0.85 * paperTmax, 1e-5 * paperTmax);
+  EXPECT_EQ(f[0]->fitPoints, 23u);  // t = 21 … 43 lie in [20.58, 43.74]
   ASSERT_GE(f[0]->curve.x.size(), 10u);
   // Near the cutoff the paper gives F(T) ≈ 3.024 (Tmax − T)^−1/2 (T = |K|^¼ t): the last drawn point is
   // within 10⁻⁶ t_max of it.
@@ -168,6 +170,30 @@ TEST(TheoryCurves, NoCurveWithoutDataInTheFitWindow) {
   s.f = sampled(1, 15, 1, [](double t) { return std::pow(t, -7); });
   s.C = sampled(0, 15, 1, [](double t) { return std::pow(1 + t, -5); });
   EXPECT_TRUE(theoryCurves(withK(0), s).empty());
+}
+
+// Issue 13, finding 9: over the fig. 3a preset the fitted F(|K|^¼ t) did not pass through the data.  F is the
+// paper's (the tests above), but the preset's box |x| < 0.05 cut every trapped segment short (an orbit leaving
+// x = 0.05 still needs about six steps to escape), so f_t ended at t = 37 instead of near t_max = 51.45 (the
+// paper's fig. 3a: "a cutoff distribution f_t = 0 for t > t_max ≈ 50"), and the fit window from 0.2 t_max
+// took in the t^−6 decay that §4 says differs from F.  A shorter run of the preset (T = 2·10⁶ instead of 2·10⁷).
+TEST(TheoryCurves, SmallKNegativePresetReachesTheCutoffAndFollowsF) {
+  const Preset* preset = findPreset("small-k-negative");
+  ASSERT_NE(preset, nullptr);
+  TrappingParameters p = preset->spec.parameters;
+  p.T = 2'000'000;
+  const TrappingStatistics s = statisticsOf(runTrapping(startTrapping(p), TrappingRunOptions{}));
+  const double tmax = 5.1454 * std::pow(-p.map.K, -0.25);
+  double last = 0;
+  for (std::size_t i = 0; i < s.f.x.size(); ++i)
+    if (s.f.value[i] > 0) last = s.f.x[i];
+  EXPECT_GT(last, 0.85 * tmax);  // the paper's cutoff "≈ 50"
+  EXPECT_LT(last, 1.05 * tmax);  // no segment is much longer than the longest trapping
+  const auto all = theoryCurves(p, s);
+  const auto f = curvesOf(all, Statistic::f, TheoryCurve::Kind::series);
+  ASSERT_EQ(f.size(), 1u);
+  EXPECT_GE(f[0]->fitPoints, 15u);
+  EXPECT_LT(f[0]->rmsLogResidual, 0.3);  // within ~30 % of the data over the window (it was 2.4 in log)
 }
 
 }  // namespace

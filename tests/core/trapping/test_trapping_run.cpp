@@ -142,7 +142,7 @@ TEST(TrappingRun, InvalidParametersAreRejectedWithTheirRule) {
     (void)startTrapping(p);
     ADD_FAILURE();
   } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("subsets = 100 must be <= M = 37"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("subsets = 100 must be ≤ M = 37"), std::string::npos);
   }
   p = smallRun();
   p.Xr = 1.5;
@@ -188,5 +188,29 @@ TEST(LongestSegments, KeptSetDoesNotDependOnInsertionOrder) {
   EXPECT_EQ(forward.items().front().length, 23u);
 }
 
+
+// Issue 13, finding 11: every violated rule of a run's parameters is reported at once, each naming its field and
+// stating the range of parameterRules(); a broken map does not hide a broken integer.
+TEST(TrappingRun, EveryViolatedParameterRuleIsReported) {
+  TrappingParameters p;
+  p.map.xmin = -0.2;  // > −√0.1
+  p.Xr = 2;
+  p.q = 0;
+  p.M = 0;
+  const std::vector<ParameterError> errors = validationErrors(p);
+  std::vector<std::string> first;
+  for (const ParameterError& e : errors) first.push_back(e.fields.front());
+  EXPECT_EQ(first, (std::vector<std::string>{"xmin", "Xr", "q", "M"}));
+  EXPECT_EQ(errors[3].message, "M = 0 must lie in [1, 2³²] (and the memory they need)");
+  EXPECT_EQ(errors[1].message.substr(0, 9), "Xr = 2 mu");
+  EXPECT_EQ(validationError(p), errors.front().message);
+  p = TrappingParameters{};
+  p.q = 4;
+  p.T = std::uint64_t{1} << 61;
+  const std::vector<ParameterError> steps = validationErrors(p);
+  ASSERT_EQ(steps.size(), 1u);
+  EXPECT_EQ(steps[0].fields, (std::vector<std::string>{"T", "q"}));
+  EXPECT_NE(steps[0].message.find("≤ 2⁶²"), std::string::npos) << steps[0].message;
+}
 }  // namespace
 }  // namespace archipelago
