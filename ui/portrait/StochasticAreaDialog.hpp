@@ -1,14 +1,13 @@
 #pragma once
 // The stochastic area b₂ (Karney 1983, §5): the fraction of the 1024 × 1024 boxes visited by the chaotic sea,
-// computed in the background (core/portrait/StochasticArea.hpp), with its convergence drawn as it grows.
+// computed in the background (core/portrait/StochasticArea.hpp) as a job of ui/jobs, with its convergence drawn
+// as it grows.  Closing the dialog stops the computation.
 
 #include <QDialog>
 #include <QVector>
-#include <atomic>
-#include <memory>
-#include <thread>
 
 #include "core/portrait/StochasticArea.hpp"
+#include "ui/jobs/BackgroundJobs.hpp"
 
 class QLabel;
 class QwtPlot;
@@ -29,7 +28,7 @@ class StochasticAreaDialog : public QDialog {
   QwtPlotCurve* curve_ = nullptr;
   QLabel* summary_ = nullptr;
   QVector<QPointF> points_;
-  std::jthread worker_;
+  BackgroundJobs jobs_{this};  // last: destroyed first, it stops the computation and joins
 };
 
 }  // namespace archipelago::ui
