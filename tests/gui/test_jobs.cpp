@@ -212,7 +212,7 @@ void TestJobs::queuedAndUrgentKeepEveryJob() {
 void TestJobs::postedValuesAllArriveInOrder() {
   QObject receiver;
   BackgroundJobs jobs(&receiver);
-  constexpr int kValues = 1000;
+  static constexpr int kValues = 1000;
   std::vector<int> progress;
   std::vector<quint64> progressIds;
   int result = -1;
