@@ -17,6 +17,9 @@
 #include <thread>
 #include <vector>
 
+#include "GuiTestSupport.hpp"
+#include "core/run/TrappingRun.hpp"
+#include "ui/RunWorker.hpp"
 #include "ui/jobs/BackgroundJobs.hpp"
 
 using namespace archipelago::ui;
@@ -85,6 +88,7 @@ class TestJobs : public QObject {
   void destroyingTheReceiverMidJob();
   void destroyingTheMechanismMidJob();
   void channelsRunIndependently();
+  void runWorkerLatestRunWinsAndPauseKeepsTheState();
 };
 
 void TestJobs::resultIsTaggedAndArrivesOnTheReceiversThread() {
@@ -413,6 +417,73 @@ void TestJobs::channelsRunIndependently() {
     threw = true;
   }
   QVERIFY(threw);
+}
+
+void TestJobs::runWorkerLatestRunWinsAndPauseKeepsTheState() {
+  // The run's worker on the mechanism, without a window: a replaced run reports nothing, a paused one comes
+  // back with the state where it stopped, which then continues exactly as an uninterrupted run (core's rule).
+  RunWorker worker;
+  struct Ended {
+    quint64 runId;
+    RunSnapshotPtr last;
+    RunEnd how;
+  };
+  std::vector<Ended> ended;
+  std::vector<quint64> snapshotRuns;
+  QObject::connect(&worker, &RunWorker::runEnded, [&](quint64 id, RunSnapshotPtr last, RunEnd how, const QString&) {
+    ended.push_back({id, std::move(last), how});
+  });
+  QObject::connect(&worker, &RunWorker::snapshotReady, [&](const RunSnapshotPtr& s) {
+    snapshotRuns.push_back(s->runId);
+    worker.snapshotConsumed();
+  });
+  RunSettings settings;
+  settings.threads = 2;
+  settings.chunkSeconds = 0.02;
+  const archipelago::TrappingParameters endless = archipelago::test::endlessRun();
+  worker.startRun(1, archipelago::startTrapping(endless), settings);
+  worker.startRun(2, archipelago::startTrapping(endless), settings);  // replaces run 1 before or while it runs
+  QTRY_VERIFY_WITH_TIMEOUT(!snapshotRuns.empty(), 60000);
+  QVERIFY(worker.busy());
+  worker.requestEnd(1, RunEnd::paused);  // not the session's run: ignored
+  worker.requestEnd(2, RunEnd::paused);
+  QTRY_VERIFY_WITH_TIMEOUT(!ended.empty(), 60000);
+  QTRY_VERIFY(!worker.busy());
+  QCOMPARE(ended.size(), std::size_t{1});
+  QCOMPARE(ended[0].runId, quint64{2});
+  QCOMPARE(ended[0].how, RunEnd::paused);
+  QVERIFY(ended[0].last);
+  for (quint64 id : snapshotRuns) QCOMPARE(id, quint64{2});
+  const archipelago::TrappingState paused = ended[0].last->state;
+  QVERIFY(paused.blocksDone > 0);
+  // A short run resumed from a pause ends as the same run never paused.
+  archipelago::TrappingParameters shortParams = archipelago::test::shortRun();
+  archipelago::TrappingRunOptions one;
+  one.threads = 1;
+  const archipelago::TrappingState reference = archipelago::runTrapping(archipelago::startTrapping(shortParams), one);
+  ended.clear();
+  worker.startRun(3, archipelago::startTrapping(shortParams), settings);
+  worker.requestEnd(3, RunEnd::paused);  // before or during its first chunk
+  QTRY_VERIFY_WITH_TIMEOUT(!ended.empty(), 60000);
+  QCOMPARE(ended[0].runId, quint64{3});
+  QVERIFY(ended[0].how == RunEnd::paused || ended[0].how == RunEnd::finished);
+  const archipelago::TrappingState midway = ended[0].last->state;
+  ended.clear();
+  worker.startRun(4, midway, settings);
+  QTRY_VERIFY_WITH_TIMEOUT(!ended.empty(), 60000);
+  QCOMPARE(ended[0].runId, quint64{4});
+  QCOMPARE(ended[0].how, RunEnd::finished);
+  const archipelago::TrappingState& resumed = ended[0].last->state;
+  QVERIFY(resumed.finished());
+  QVERIFY(resumed.subsets == reference.subsets);
+  QVERIFY(resumed.longest == reference.longest);
+  // Analysing a state answers with its snapshot and does not advance it.
+  ended.clear();
+  worker.analyse(5, paused);
+  QTRY_VERIFY_WITH_TIMEOUT(!ended.empty(), 60000);
+  QCOMPARE(ended[0].runId, quint64{5});
+  QCOMPARE(ended[0].how, RunEnd::finished);
+  QCOMPARE(ended[0].last->state.blocksDone, paused.blocksDone);
 }
 
 QTEST_GUILESS_MAIN(TestJobs)
