@@ -73,7 +73,9 @@ void RunWorker::startRun(std::uint64_t runId, TrappingState state, const RunSett
   submit(runId, std::move(state), settings, true);
 }
 
-void RunWorker::analyse(std::uint64_t runId, TrappingState state) { submit(runId, std::move(state), RunSettings{}, false); }
+void RunWorker::analyse(std::uint64_t runId, TrappingState state) {
+  submit(runId, std::move(state), RunSettings{}, false);
+}
 
 void RunWorker::requestEnd(std::uint64_t runId, RunEnd how) {
   if (runId != sessionRunId_ || !endReason_) return;

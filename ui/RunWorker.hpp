@@ -70,7 +70,8 @@ class RunWorker : public QObject {
   std::atomic<bool> busy_{false};
   std::atomic<int> inFlight_{0};
   std::atomic<std::uint64_t> skipped_{0};
-  BackgroundJobs jobs_{this};  // last: destroyed first, it stops the session and joins before the rest goes
+  // Last: destroyed first, it stops the session and joins before the rest goes.  Niced: a run uses every core.
+  BackgroundJobs jobs_{this, 1, JobPriority::background};
 };
 
 /// The snapshot of `state` (statistics and theory from core); used by the worker, and by tests to compare.

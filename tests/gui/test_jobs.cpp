@@ -7,7 +7,9 @@
 #include <QThread>
 #include <QtTest>
 
+#include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <chrono>
 #include <condition_variable>
 #include <memory>
@@ -16,6 +18,12 @@
 #include <stdexcept>
 #include <thread>
 #include <vector>
+
+#if defined(__linux__)
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+#endif
 
 #include "GuiTestSupport.hpp"
 #include "core/run/TrappingRun.hpp"
@@ -88,6 +96,7 @@ class TestJobs : public QObject {
   void destroyingTheReceiverMidJob();
   void destroyingTheMechanismMidJob();
   void channelsRunIndependently();
+  void backgroundPriorityNicesTheThreads();
   void runWorkerLatestRunWinsAndPauseKeepsTheState();
 };
 
@@ -417,6 +426,34 @@ void TestJobs::channelsRunIndependently() {
     threw = true;
   }
   QVERIFY(threw);
+}
+
+void TestJobs::backgroundPriorityNicesTheThreads() {
+#if defined(__linux__)
+  const auto niceOfThisThread = []() -> std::optional<int> {
+    errno = 0;
+    const int nice = getpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)));
+    if (errno != 0) return std::nullopt;
+    return nice;
+  };
+  const int ours = *niceOfThisThread();
+  QObject receiver;
+  for (JobPriority priority : {JobPriority::normal, JobPriority::background}) {
+    BackgroundJobs jobs(&receiver, 1, priority);
+    std::optional<int> seen;
+    Job<int> job;
+    job.work = [niceOfThisThread](JobContext<NoProgress>&) { return niceOfThisThread(); };
+    job.done = [&](const JobResult<int>& r) { seen = r.value; };
+    jobs.submit(std::move(job));
+    QTRY_VERIFY(seen.has_value());
+    if (priority == JobPriority::normal)
+      QCOMPARE(*seen, ours);
+    else
+      QCOMPARE(*seen, std::min(ours + 10, 19));  // RunWorker's runs, which use every core
+  }
+#else
+  QSKIP("thread nice values are Linux's");
+#endif
 }
 
 void TestJobs::runWorkerLatestRunWinsAndPauseKeepsTheState() {

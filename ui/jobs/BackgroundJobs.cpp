@@ -60,7 +60,8 @@ QString jobFailureMessage(const std::exception_ptr& failure) {
   }
 }
 
-BackgroundJobs::BackgroundJobs(QObject* receiver, int channels) : receiver_(receiver) {
+BackgroundJobs::BackgroundJobs(QObject* receiver, int channels, JobPriority priority)
+    : receiver_(receiver), priority_(priority) {
   if (channels < 1) throw std::invalid_argument("BackgroundJobs: at least one channel");
   (void)Mailbox::wakeType();  // registered once, on the receiver's thread
   mailbox_ = std::make_unique<Mailbox>(this);
@@ -159,7 +160,7 @@ bool BackgroundJobs::idle() const {
 }
 
 void BackgroundJobs::workerLoop(int channel) {
-  lowerComputePriority();
+  if (priority_ == JobPriority::background) lowerComputePriority();
   Channel& ch = channelAt(channel);
   for (;;) {
     std::shared_ptr<Task> task;

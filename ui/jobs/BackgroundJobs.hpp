@@ -5,8 +5,9 @@
 ///
 /// Threads (Qt's threaded-Mandelbrot pattern, STYLE.md).  A BackgroundJobs object serves one receiver, a
 /// QObject of the thread that creates it (the GUI thread), and owns one worker thread per *channel*, started
-/// at the channel's first job and niced so that the GUI thread keeps the upper hand (the OpenMP team a job
-/// starts inherits the nice value).  Only the receiver's thread calls submit(), cancel() and requestStop().
+/// at the channel's first job; with JobPriority::background the threads are niced so that the GUI thread keeps
+/// the upper hand over long computations (the OpenMP team a job starts inherits the nice value).  Only the
+/// receiver's thread calls submit(), cancel() and requestStop().
 ///
 /// A job is a callable that computes from the values it captured (calling core; it never touches a GUI
 /// object) and returns its result as a value.  Every submit() gets a new request id, unique in this object:
@@ -58,6 +59,12 @@ enum class JobOrder {
   latest,   ///< replaces the queued jobs and stops the running one; older results are dropped
   queued,   ///< after the queued jobs
   urgent,   ///< before the queued jobs (the running one goes on)
+};
+
+/// The CPU priority of a BackgroundJobs' threads.
+enum class JobPriority {
+  normal,       ///< as the GUI thread: short interactive jobs (a replay, an orbit search) finish soonest
+  background,   ///< niced (Linux): long computations using every core (a run) leave the GUI thread responsive
 };
 
 /// The progress type of a job that reports none.
@@ -126,7 +133,7 @@ struct Job {
 class BackgroundJobs {
  public:
   /// Jobs for `receiver` (which lives on the calling thread), on `channels` worker threads.
-  explicit BackgroundJobs(QObject* receiver, int channels = 1);
+  explicit BackgroundJobs(QObject* receiver, int channels = 1, JobPriority priority = JobPriority::normal);
   ~BackgroundJobs();
   BackgroundJobs(const BackgroundJobs&) = delete;
   BackgroundJobs& operator=(const BackgroundJobs&) = delete;
@@ -177,6 +184,7 @@ class BackgroundJobs {
   std::unique_ptr<Mailbox> mailbox_;
   mutable std::mutex mutex_;
   std::vector<std::unique_ptr<Channel>> channels_;
+  JobPriority priority_;
   bool quitting_ = false;                   // guarded by mutex_
   quint64 nextId_ = 0;                      // receiver's thread only
   std::mutex outboxMutex_;
@@ -197,7 +205,9 @@ quint64 BackgroundJobs::submit(Job<Result, Progress> job) {
     typename JobContext<Progress>::Send send;
     if (handlers->progress)
       send = [this, channel, id, handlers](Progress&& value) {
-        post(channel, id, [handlers, id, value = std::move(value)]() mutable { handlers->progress(id, std::move(value)); });
+        post(channel, id, [handlers, id, value = std::move(value)]() mutable {
+          handlers->progress(id, std::move(value));
+        });
       };
     JobContext<Progress> context(id, std::move(stop), std::move(send), interval);
     JobResult<Result> result;

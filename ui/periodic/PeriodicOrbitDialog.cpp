@@ -131,7 +131,9 @@ void PeriodicOrbitDialog::find() {
   findButton_->setEnabled(false);
   summary_->setText(tr("Searching for an orbit of period %1 near (%2, %3)\u2026").arg(search.period).arg(x).arg(y));
   Job<PeriodicOrbit> job;  // JobOrder::latest: the answer of an older search is dropped
-  job.work = [K, search](JobContext<NoProgress>&) -> std::optional<PeriodicOrbit> { return findPeriodicOrbit(K, search); };
+  job.work = [K, search](JobContext<NoProgress>&) -> std::optional<PeriodicOrbit> {
+    return findPeriodicOrbit(K, search);
+  };
   job.done = [this](const JobResult<PeriodicOrbit>& r) { onResult(r.id, r.value, r.error); };
   request_ = jobs_->submit(std::move(job));
 }

@@ -7,9 +7,9 @@
 ///
 /// Threads (Qt's threaded-Mandelbrot pattern, STYLE.md): two channels of a BackgroundJobs (ui/jobs) do all
 /// the work, calling core (periodic/SegmentAnalysis.hpp).  Selecting a row submits a replay tagged with a new
-/// request id on the replay channel, where the latest request wins; results of any other id are dropped.  Chains are identified on the other thread, lazily:
-/// for the top `autoIdentifiedRows()` rows and, first of all, the selected one.  The GUI thread only stores the
-/// values they return and draws.  The panel is fed by updateSegments() from the run's snapshots (the GUI's
+/// request id on the replay channel, where the latest request wins; results of any other id are dropped.
+/// Chains are identified on the other channel (a queue), lazily: for the top `autoIdentifiedRows()` rows and,
+/// first of all (urgent), the selected one.  The GUI thread only stores the values they return and draws.  The panel is fed by updateSegments() from the run's snapshots (the GUI's
 /// refresh timer), so the table follows the run live; the selection is kept by segment, not by row.
 
 #include <QPointer>
