@@ -1,15 +1,7 @@
 #include "ui/RunWorker.hpp"
 
-#include <QMutexLocker>
-
-#if defined(__linux__)
-#include <sys/resource.h>
-#include <sys/syscall.h>
-#include <unistd.h>
-#endif
-
-#include <chrono>
 #include <exception>
+#include <utility>
 
 #include "core/kernels/KernelDispatch.hpp"
 #include "core/stats/RunStatistics.hpp"
@@ -20,8 +12,6 @@ namespace archipelago::ui {
 namespace {
 // At most this many snapshots travel to the GUI at once; more would only queue up stale copies.
 constexpr int kMaxSnapshotsInFlight = 2;
-// Nice value of the computing threads (0 = normal, 19 = lowest): low enough that the GUI thread wins.
-constexpr int kComputeNice = 10;
 
 TrappingRunOptions coreOptions(const RunSettings& settings) {
   TrappingRunOptions options;
@@ -55,17 +45,6 @@ RunSnapshotPtr makeSnapshot(std::uint64_t runId, const TrappingState& state, con
   return snapshot;
 }
 
-void RunWorker::lowerComputePriority() {
-#if defined(__linux__)
-  // Linux gives every thread its own nice value and a new thread inherits its creator's: niced here, the
-  // OpenMP team that runTrapping() starts from this thread is niced too.  The GUI thread then keeps the
-  // upper hand over the kernel (and over nothing else), so it stays responsive while every core computes.
-  // (QThread::LowPriority has no effect under Linux's default scheduler.)
-  const auto tid = static_cast<id_t>(syscall(SYS_gettid));
-  setpriority(PRIO_PROCESS, tid, kComputeNice);
-#endif
-}
-
 QString RunWorker::kernelName() {
   try {
     return QString::fromUtf8(selectKernel().name.data(), static_cast<int>(selectKernel().name.size()));
@@ -83,102 +62,79 @@ QString RunWorker::kernelDescription() {
   }
 }
 
-RunWorker::RunWorker(QObject* parent) : QThread(parent) {
+RunWorker::RunWorker(QObject* parent) : QObject(parent) {
   qRegisterMetaType<RunSnapshotPtr>("archipelago::ui::RunSnapshotPtr");
   qRegisterMetaType<RunEnd>("archipelago::ui::RunEnd");
 }
 
-RunWorker::~RunWorker() {
-  {
-    QMutexLocker lock(&mutex_);
-    abort_ = true;
-    pending_.reset();
-    session_.request_stop();
-    wake_.wakeOne();
-  }
-  wait();
-}
+RunWorker::~RunWorker() = default;  // jobs_ goes first: it stops the session and waits for its thread
 
 void RunWorker::startRun(std::uint64_t runId, TrappingState state, const RunSettings& settings) {
-  QMutexLocker lock(&mutex_);
-  session_.request_stop();  // a session still going yields to the new request at its next chunk boundary
-  endReason_ = static_cast<int>(RunEnd::stopped);
-  pending_ = Request{runId, std::move(state), settings, true};
-  if (!isRunning()) start(QThread::LowPriority);  // the GUI thread keeps the upper hand for the CPU
-  else wake_.wakeOne();
+  submit(runId, std::move(state), settings, true);
 }
 
 void RunWorker::analyse(std::uint64_t runId, TrappingState state) {
-  QMutexLocker lock(&mutex_);
-  session_.request_stop();
-  endReason_ = static_cast<int>(RunEnd::stopped);
-  pending_ = Request{runId, std::move(state), RunSettings{}, false};
-  if (!isRunning()) start(QThread::LowPriority);
-  else wake_.wakeOne();
+  submit(runId, std::move(state), RunSettings{}, false);
 }
 
 void RunWorker::requestEnd(std::uint64_t runId, RunEnd how) {
-  QMutexLocker lock(&mutex_);
-  if (runId != sessionRunId_) return;
-  endReason_ = static_cast<int>(how);
-  session_.request_stop();
+  if (runId != sessionRunId_ || !endReason_) return;
+  endReason_->store(static_cast<int>(how));
+  jobs_.requestStop(sessionJob_);  // its result still comes back, with `how`
 }
 
-void RunWorker::run() {
-  lowerComputePriority();
-  for (;;) {
-    Request request;
-    {
-      QMutexLocker lock(&mutex_);
-      while (!pending_ && !abort_) wake_.wait(&mutex_);
-      if (abort_) return;
-      request = std::move(*pending_);
-      pending_.reset();
-      session_ = std::stop_source();
-      sessionRunId_ = request.runId;
-      endReason_ = static_cast<int>(RunEnd::finished);
-      busy_ = request.advance;
-    }
-    execute(std::move(request));
-    busy_ = false;
+void RunWorker::snapshotConsumed() noexcept {
+  // Never below zero: a session's start forgets the snapshots of the one it replaced (dropped, never consumed).
+  int n = inFlight_.load();
+  while (n > 0 && !inFlight_.compare_exchange_weak(n, n - 1)) {
   }
 }
 
-void RunWorker::execute(Request request) {
-  std::stop_token stop;
-  {
-    QMutexLocker lock(&mutex_);
-    stop = session_.get_token();
-  }
-  const std::uint64_t runId = request.runId;
-  if (!request.advance) {
-    try {
-      Q_EMIT runEnded(runId, makeSnapshot(runId, request.state, progressOf(request.state)), RunEnd::finished, QString());
-    } catch (const std::exception& e) {
-      Q_EMIT runEnded(runId, nullptr, RunEnd::failed, QString::fromStdString(e.what()));
-    }
-    return;
-  }
-  TrappingProgress lastProgress = progressOf(request.state);
-  const auto observer = [&](const TrappingState& state, const TrappingProgress& progress) {
-    lastProgress = progress;
-    if (inFlight_.load() >= kMaxSnapshotsInFlight) {
-      skipped_.fetch_add(1);
-      return;
-    }
-    inFlight_.fetch_add(1);
-    Q_EMIT snapshotReady(makeSnapshot(runId, state, progress));
+void RunWorker::submit(std::uint64_t runId, TrappingState state, const RunSettings& settings, bool advance) {
+  auto endReason = std::make_shared<std::atomic<int>>(static_cast<int>(RunEnd::finished));
+  struct Ended {
+    RunSnapshotPtr last;
+    RunEnd how = RunEnd::finished;
   };
-  try {
-    TrappingState state = runTrapping(std::move(request.state), coreOptions(request.settings), observer, stop);
-    const auto how = state.finished() ? RunEnd::finished : static_cast<RunEnd>(endReason_.load());
-    lastProgress.blocksDone = state.blocksDone;
-    lastProgress.fraction = progressOf(state).fraction;
+  Job<Ended, RunSnapshotPtr> job;
+  job.work = [this, runId, state = std::move(state), settings, advance,
+              endReason](JobContext<RunSnapshotPtr>& context) mutable -> std::optional<Ended> {
+    if (!advance) return Ended{makeSnapshot(runId, state, progressOf(state)), RunEnd::finished};
+    busy_ = true;
+    inFlight_ = 0;  // the snapshots of a replaced session were dropped
+    struct NotBusy {
+      std::atomic<bool>& busy;
+      ~NotBusy() { busy = false; }
+    } notBusy{busy_};
+    TrappingProgress lastProgress = progressOf(state);
+    const auto observer = [&](const TrappingState& now, const TrappingProgress& progress) {
+      lastProgress = progress;
+      if (inFlight_.load() >= kMaxSnapshotsInFlight) {
+        skipped_.fetch_add(1);
+        return;
+      }
+      inFlight_.fetch_add(1);
+      context.post(makeSnapshot(runId, now, progress));
+    };
+    TrappingState ended = runTrapping(std::move(state), coreOptions(settings), observer, context.stopToken());
+    const auto how = ended.finished() ? RunEnd::finished : static_cast<RunEnd>(endReason->load());
+    lastProgress.blocksDone = ended.blocksDone;
+    lastProgress.fraction = progressOf(ended).fraction;
     if (how == RunEnd::finished) lastProgress.etaSeconds = 0;
-    Q_EMIT runEnded(runId, makeSnapshot(runId, state, lastProgress), how, QString());
-  } catch (const std::exception& e) {
-    Q_EMIT runEnded(runId, nullptr, RunEnd::failed, QString::fromStdString(e.what()));
-  }
+    return Ended{makeSnapshot(runId, ended, lastProgress), how};
+  };
+  job.progress = [this](quint64, RunSnapshotPtr snapshot) { Q_EMIT snapshotReady(std::move(snapshot)); };
+  job.done = [this, runId](JobResult<Ended> result) {
+    if (result.ok())
+      Q_EMIT runEnded(runId, std::move(result.value->last), result.value->how, QString());
+    else
+      Q_EMIT runEnded(runId, nullptr, RunEnd::failed, result.error);
+  };
+  // A replaced session stops at its next chunk boundary (RunEnd::stopped), its reports dropped: latest wins.
+  if (endReason_) endReason_->store(static_cast<int>(RunEnd::stopped));
+  sessionRunId_ = runId;
+  endReason_ = std::move(endReason);
+  sessionJob_ = jobs_.submit(std::move(job));
 }
 
 }  // namespace archipelago::ui

@@ -1,25 +1,25 @@
 #pragma once
 /// \file RunWorker.hpp
-/// \brief The thread that owns a trapping run (Qt's threaded-Mandelbrot pattern, STYLE.md).
+/// \brief The trapping run of the GUI: one session at a time, computed on a background job (ui/jobs).
 ///
-/// The GUI hands the worker a request (a state to advance, or one to analyse only) under a mutex and wakes
-/// it; the worker copies the request and computes without the lock, calling core's runTrapping().  At every
-/// chunk boundary it turns the state into a RunSnapshot (statistics and theory computed here, off the GUI
-/// thread) and emits it through a queued signal; it never waits for the GUI.  When the GUI is slower than
-/// the run, snapshots that would pile up are skipped (the next one supersedes them), so memory stays
-/// bounded.  Pause and stop are requests through a std::stop_source, honoured at the next chunk boundary;
-/// the state at that boundary comes back with runEnded(), so pause = keep it, resume = run it again.
-/// The destructor aborts any session and waits for the thread.
+/// Threads: the window hands the worker a request (a state to advance, or one to analyse only); it becomes a
+/// job on the worker's BackgroundJobs channel, where the latest request wins: a session still going is
+/// stopped at its next chunk boundary and whatever it would still report is dropped.  The job calls core's
+/// runTrapping() and, at every chunk boundary, turns the state into a RunSnapshot (statistics and theory
+/// computed there, off the GUI thread) and posts it; it never waits for the GUI.  When the GUI is slower than
+/// the run, snapshots that would pile up are skipped (the next one supersedes them), so memory stays bounded.
+/// Pause and stop are requestEnd(), which stops the session through its std::stop_source at the next chunk
+/// boundary without dropping its result: the state at that boundary comes back with runEnded(), so pause =
+/// keep it, resume = run it again.  Both signals are emitted on the GUI thread.  The destructor stops any
+/// session and waits for its thread.
 
-#include <QMutex>
-#include <QThread>
-#include <QWaitCondition>
+#include <QObject>
 
 #include <atomic>
-#include <optional>
-#include <stop_token>
+#include <memory>
 
 #include "ui/RunSnapshot.hpp"
+#include "ui/jobs/BackgroundJobs.hpp"
 
 namespace archipelago::ui {
 
@@ -29,7 +29,7 @@ struct RunSettings {
   double chunkSeconds = 0.1;   ///< chunk wall time, hence the snapshot period (≥ 5 Hz refresh)
 };
 
-class RunWorker : public QThread {
+class RunWorker : public QObject {
   Q_OBJECT
  public:
   explicit RunWorker(QObject* parent = nullptr);
@@ -45,7 +45,7 @@ class RunWorker : public QThread {
   /// True while a session is computing.
   [[nodiscard]] bool busy() const noexcept { return busy_.load(); }
   /// The GUI calls this when it has taken a snapshot, so the worker may emit the next one.
-  void snapshotConsumed() noexcept { inFlight_.fetch_sub(1); }
+  void snapshotConsumed() noexcept;
   /// Snapshots the worker skipped because the GUI had not taken the previous ones (diagnostics).
   [[nodiscard]] std::uint64_t skippedSnapshots() const noexcept { return skipped_.load(); }
 
@@ -55,36 +55,23 @@ class RunWorker : public QThread {
   [[nodiscard]] static QString kernelDescription();
 
  Q_SIGNALS:
-  /// A chunk boundary of a running session (queued to the GUI thread).
+  /// A chunk boundary of a running session (emitted on the GUI thread).
   void snapshotReady(archipelago::ui::RunSnapshotPtr snapshot);
   /// The session ended; `last` is the state where it ended (finished, paused, stopped) or the analysed state
   /// (null when it failed, with the reason in `message`).
   void runEnded(quint64 runId, archipelago::ui::RunSnapshotPtr last, archipelago::ui::RunEnd how, QString message);
 
- protected:
-  void run() override;
-
  private:
-  struct Request {
-    std::uint64_t runId = 0;
-    TrappingState state;
-    RunSettings settings;
-    bool advance = true;
-  };
+  void submit(std::uint64_t runId, TrappingState state, const RunSettings& settings, bool advance);
 
-  void execute(Request request);
-  static void lowerComputePriority();
-
-  QMutex mutex_;
-  QWaitCondition wake_;
-  std::optional<Request> pending_;      // guarded by mutex_
-  std::stop_source session_;            // guarded by mutex_: stops the running session
-  std::uint64_t sessionRunId_ = 0;      // guarded by mutex_
-  std::atomic<int> endReason_{0};       // RunEnd requested for the running session
-  std::atomic<bool> abort_{false};
+  std::uint64_t sessionRunId_ = 0;             // GUI thread: the run of the latest request
+  quint64 sessionJob_ = 0;                     // GUI thread: its job
+  std::shared_ptr<std::atomic<int>> endReason_; // GUI thread: the RunEnd requested for that session
   std::atomic<bool> busy_{false};
   std::atomic<int> inFlight_{0};
   std::atomic<std::uint64_t> skipped_{0};
+  // Last: destroyed first, it stops the session and joins before the rest goes.  Niced: a run uses every core.
+  BackgroundJobs jobs_{this, 1, JobPriority::background};
 };
 
 /// The snapshot of `state` (statistics and theory from core); used by the worker, and by tests to compare.

@@ -17,7 +17,7 @@
 #include <exception>
 
 #include "core/periodic/PeriodicOrbitFinder.hpp"
-#include "ui/segments/JobThread.hpp"
+#include "ui/jobs/BackgroundJobs.hpp"
 
 namespace archipelago::ui {
 
@@ -38,7 +38,7 @@ double numberOf(const QLineEdit* edit, bool* ok) { return QLocale::c().toDouble(
 PeriodicOrbitDialog::PeriodicOrbitDialog(QWidget* parent) : QDialog(parent) {
   qRegisterMetaType<PeriodicOrbit>();
   setWindowTitle(tr("Find periodic orbit"));
-  thread_ = new JobThread(this);
+  jobs_ = std::make_unique<BackgroundJobs>(this);
 
   kEdit_ = numberEdit(this, 0.1);
   kEdit_->setToolTip(tr("The map parameter K of Q (from the current run parameters)"));
@@ -103,8 +103,7 @@ PeriodicOrbitDialog::PeriodicOrbitDialog(QWidget* parent) : QDialog(parent) {
 }
 
 PeriodicOrbitDialog::~PeriodicOrbitDialog() {
-  delete thread_;  // waits for a running search before the widgets it reports to go away
-  thread_ = nullptr;
+  jobs_.reset();  // waits for a running search before the widgets it reports to go away
 }
 
 void PeriodicOrbitDialog::setK(double K) { kEdit_->setText(shortest(K)); }
@@ -135,21 +134,15 @@ void PeriodicOrbitDialog::find() {
   search.near = {x, y};
   search.searchRadius = radiusBox_->value();
   search.stableOnly = stableBox_->isChecked();
-  const quint64 id = ++request_;
   searching_ = true;
   findButton_->setEnabled(false);
   summary_->setText(tr("Searching for an orbit of period %1 near (%2, %3)\u2026").arg(search.period).arg(x).arg(y));
-  thread_->cancelAll();
-  thread_->submit([this, id, K, search](std::stop_token) {
-    std::optional<PeriodicOrbit> orbit;
-    QString error;
-    try {
-      orbit = findPeriodicOrbit(K, search);
-    } catch (const std::exception& e) {
-      error = QString::fromStdString(e.what());
-    }
-    JobThread::postTo(this, [this, id, orbit, error] { onResult(id, orbit, error); });
-  });
+  Job<PeriodicOrbit> job;  // JobOrder::latest: the answer of an older search is dropped
+  job.work = [K, search](JobContext<NoProgress>&) -> std::optional<PeriodicOrbit> {
+    return findPeriodicOrbit(K, search);
+  };
+  job.done = [this](const JobResult<PeriodicOrbit>& r) { onResult(r.id, r.value, r.error); };
+  request_ = jobs_->submit(std::move(job));
 }
 
 void PeriodicOrbitDialog::onResult(quint64 requestId, const std::optional<PeriodicOrbit>& orbit, const QString& error) {

@@ -3,12 +3,13 @@
 /// \brief "Find periodic orbit": K, period n, a point near the orbit, stable only → the orbit's points, its
 /// residue, stability and rotation number (Karney 1983, §6; Greene's residue R = (2 − trace DQⁿ)/4).
 ///
-/// The search is core's findPeriodicOrbit() (periodic/PeriodicOrbitFinder.hpp), run on a JobThread and tagged
-/// with a request id: a newer search drops the answer of an older one.  "Overlay" hands the orbit to whoever
+/// The search is core's findPeriodicOrbit() (periodic/PeriodicOrbitFinder.hpp), run as a job of ui/jobs (BackgroundJobs) and
+/// tagged with a request id: the latest search wins, a newer search drops the answer of an older one.  "Overlay" hands the orbit to whoever
 /// listens (the main window draws it on the phase portrait).
 
 #include <QDialog>
 
+#include <memory>
 #include <optional>
 
 #include "core/periodic/PeriodicOrbit.hpp"
@@ -24,7 +25,7 @@ class QTableWidget;
 
 namespace archipelago::ui {
 
-class JobThread;
+class BackgroundJobs;
 
 class PeriodicOrbitDialog : public QDialog {
   Q_OBJECT
@@ -65,7 +66,7 @@ class PeriodicOrbitDialog : public QDialog {
   QPushButton* overlayButton_ = nullptr;
   QLabel* summary_ = nullptr;
   QTableWidget* points_ = nullptr;
-  JobThread* thread_ = nullptr;
+  std::unique_ptr<BackgroundJobs> jobs_;
   quint64 request_ = 0;
   bool searching_ = false;
   std::optional<PeriodicOrbit> orbit_;

@@ -1,9 +1,6 @@
 #include "ui/portrait/StochasticAreaDialog.hpp"
 
-#include <QApplication>
 #include <QLabel>
-#include <QMetaObject>
-#include <QPointer>
 #include <QVBoxLayout>
 #include <qwt_plot.h>
 #include <qwt_plot_curve.h>
@@ -11,6 +8,7 @@
 #include <qwt_scale_engine.h>
 #include <qwt_symbol.h>
 
+#include "core/kernels/KernelDispatch.hpp"
 #include "core/stats/StochasticAreaQuantities.hpp"
 #include "ui/plots/QwtCompat.hpp"
 
@@ -41,35 +39,28 @@ StochasticAreaDialog::StochasticAreaDialog(const StochasticAreaRequest& request,
   layout->addWidget(plot_, 1);
   resize(640, 440);
 
-  QPointer<StochasticAreaDialog> self(this);
-  worker_ = std::jthread([self, request](std::stop_token stop) {
-    try {
-      StochasticAreaRequest withKernel = request;
-      withKernel.kernel = &selectKernel();  // the fastest path, or $ARCHIPELAGO_KERNEL (throws on a bad name)
-      const StochasticAreaResult result = computeStochasticArea(
-          withKernel,
-          [&](const StochasticAreaPoint& p) {
-            QMetaObject::invokeMethod(qApp, [self, p] {
-              if (self) self->addPoint(static_cast<double>(p.iterations), p.b2, false);
-            }, Qt::QueuedConnection);
-          },
-          stop);
-      if (!result.cancelled)
-        QMetaObject::invokeMethod(qApp, [self, b2 = result.b2()] {
-          if (self) self->addPoint(0, b2, true);
-        }, Qt::QueuedConnection);
-    } catch (const std::exception& e) {
-      QMetaObject::invokeMethod(qApp, [self, text = QString::fromStdString(e.what())] {
-        if (self) self->summary_->setText(tr("Error: %1").arg(text));
-      }, Qt::QueuedConnection);
-    }
-  });
+  Job<double, StochasticAreaPoint> job;
+  job.work = [request](JobContext<StochasticAreaPoint>& context) -> std::optional<double> {
+    StochasticAreaRequest withKernel = request;
+    withKernel.kernel = &selectKernel();  // the fastest path, or $ARCHIPELAGO_KERNEL (throws on a bad name)
+    const StochasticAreaResult result = computeStochasticArea(
+        withKernel, [&](const StochasticAreaPoint& p) { context.post(p); }, context.stopToken());
+    if (result.cancelled) return std::nullopt;
+    return result.b2();
+  };
+  job.progress = [this](quint64, const StochasticAreaPoint& p) {
+    addPoint(static_cast<double>(p.iterations), p.b2, false);
+  };
+  job.done = [this](const JobResult<double>& result) {
+    if (result.ok())
+      addPoint(0, *result.value, true);
+    else
+      summary_->setText(tr("Error: %1").arg(result.error));
+  };
+  jobs_.submit(std::move(job));
 }
 
-StochasticAreaDialog::~StochasticAreaDialog() {
-  worker_.request_stop();
-  if (worker_.joinable()) worker_.join();
-}
+StochasticAreaDialog::~StochasticAreaDialog() = default;  // jobs_ stops the computation and waits for it
 
 void StochasticAreaDialog::addPoint(double iterations, double b2, bool last) {
   if (last) {

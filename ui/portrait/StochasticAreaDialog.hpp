@@ -1,15 +1,13 @@
 #pragma once
 // The stochastic area b₂ (Karney 1983, §5, appendix A: an area, shown with the fraction of the 1024 × 1024 boxes
-// of the box visited by the chaotic sea),
-// computed in the background (core/portrait/StochasticArea.hpp), with its convergence drawn as it grows.
+// of the box visited by the chaotic sea), computed in the background (core/portrait/StochasticArea.hpp) as a job
+// of ui/jobs, with its convergence drawn as it grows.  Closing the dialog stops the computation.
 
 #include <QDialog>
 #include <QVector>
-#include <atomic>
-#include <memory>
-#include <thread>
 
 #include "core/portrait/StochasticArea.hpp"
+#include "ui/jobs/BackgroundJobs.hpp"
 
 class QLabel;
 class QwtPlot;
@@ -30,8 +28,8 @@ class StochasticAreaDialog : public QDialog {
   QwtPlotCurve* curve_ = nullptr;
   QLabel* summary_ = nullptr;
   QVector<QPointF> points_;
-  MapParameters map_;  // the box whose area b₂ is
-  std::jthread worker_;
+  MapParameters map_;          // the box whose area b₂ is
+  BackgroundJobs jobs_{this};  // last: destroyed first, it stops the computation and joins
 };
 
 }  // namespace archipelago::ui

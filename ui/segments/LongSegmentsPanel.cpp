@@ -29,14 +29,16 @@ namespace archipelago::ui {
 namespace {
 /// Play through a segment in about this many timer ticks (30 Hz: ~15 s), whatever its length.
 constexpr std::size_t kPlayTicks = 450;
+/// The job channels: replays (the latest selection wins) and chain identifications (a queue, urgent first).
+constexpr int kReplayChannel = 0;
+constexpr int kChainChannel = 1;
 }  // namespace
 
 LongSegmentsPanel::LongSegmentsPanel(QWidget* parent) : QWidget(parent) {
   qRegisterMetaType<SegmentReplayPtr>();
   qRegisterMetaType<ChainResultPtr>();
   model_ = new LongestSegmentsModel(this);
-  replayThread_ = new JobThread(this);
-  chainThread_ = new JobThread(this);
+  jobs_ = std::make_unique<BackgroundJobs>(this, 2);
 
   table_ = new QTableView(this);
   table_->setModel(model_);
@@ -111,12 +113,8 @@ LongSegmentsPanel::LongSegmentsPanel(QWidget* parent) : QWidget(parent) {
 }
 
 LongSegmentsPanel::~LongSegmentsPanel() {
-  // The threads are children and would be destroyed after this object's members; stop them first so that no
-  // job can post to a half-destroyed panel.
-  delete replayThread_;
-  delete chainThread_;
-  replayThread_ = nullptr;
-  chainThread_ = nullptr;
+  // Stop the jobs and join their threads first, while everything they report to is still there.
+  jobs_.reset();
 }
 
 void LongSegmentsPanel::updateSegments(const TrappingParameters& params, const LongestSegments& longest) {
@@ -124,7 +122,7 @@ void LongSegmentsPanel::updateSegments(const TrappingParameters& params, const L
   const bool changed = model_->setSegments(params, longest.items());
   hint_->setVisible(model_->rowCount() == 0);
   if (!changed) return;
-  if (model_->generation() != generation) chainThread_->cancelAll();  // chains of another run are useless now
+  if (model_->generation() != generation) jobs_->cancel(kChainChannel);  // chains of another run are useless now
   // Keep the selection on the segment, wherever it moved.
   const int row = model_->rowOf(wantedKey_);
   if (row >= 0) {
@@ -135,9 +133,8 @@ void LongSegmentsPanel::updateSegments(const TrappingParameters& params, const L
 }
 
 void LongSegmentsPanel::clear() {
-  replayThread_->cancelAll();
-  chainThread_->cancelAll();
-  ++replayRequest_;
+  jobs_->cancelAll();
+  replayRequest_ = 0;
   replayPending_ = false;
   model_->clear();
   wantedKey_ = {UINT64_MAX, UINT64_MAX};
@@ -166,31 +163,26 @@ void LongSegmentsPanel::onSelectionChanged() {
 
 void LongSegmentsPanel::requestReplay(const SegmentRecord& record) {
   wantedKey_ = SegmentKey::of(record);
-  const quint64 id = ++replayRequest_;
   replayPending_ = true;
   chain_ = model_->chain(wantedKey_);
-  replayThread_->cancelAll();
   const TrappingParameters params = model_->parameters();
   const std::uint64_t maxPoints = maxReplayPoints_;
-  replayThread_->submit([this, id, params, record, maxPoints](std::stop_token stop) {
-    SegmentReplayPtr result;
-    QString error;
-    try {
-      QElapsedTimer clock;
-      clock.start();
-      auto trace = traceSegment(params, record, maxPoints, stop);
-      if (!trace) return;  // cancelled: a newer request is coming
-      auto replay = std::make_shared<SegmentReplay>();
-      replay->params = params;
-      replay->region = dwellRegion(trace->points, 0.9);
-      replay->trace = std::move(*trace);
-      replay->seconds = static_cast<double>(clock.nsecsElapsed()) * 1e-9;
-      result = std::move(replay);
-    } catch (const std::exception& e) {
-      error = QString::fromStdString(e.what());
-    }
-    JobThread::postTo(this, [this, id, result, error] { onReplay(id, result, error); });
-  });
+  Job<SegmentReplayPtr> job;
+  job.channel = kReplayChannel;  // JobOrder::latest: the replay running is stopped, its result dropped
+  job.work = [params, record, maxPoints](JobContext<NoProgress>& context) -> std::optional<SegmentReplayPtr> {
+    QElapsedTimer clock;
+    clock.start();
+    auto trace = traceSegment(params, record, maxPoints, context.stopToken());
+    if (!trace) return std::nullopt;  // cancelled: a newer request is coming
+    auto replay = std::make_shared<SegmentReplay>();
+    replay->params = params;
+    replay->region = dwellRegion(trace->points, 0.9);
+    replay->trace = std::move(*trace);
+    replay->seconds = static_cast<double>(clock.nsecsElapsed()) * 1e-9;
+    return replay;
+  };
+  job.done = [this](const JobResult<SegmentReplayPtr>& r) { onReplay(r.id, r.value.value_or(nullptr), r.error); };
+  replayRequest_ = jobs_->submit(std::move(job));
   requestChain(record, true);
   updateInfo();
 }
@@ -204,24 +196,30 @@ void LongSegmentsPanel::requestChain(const SegmentRecord& record, bool urgent) {
   const quint64 generation = model_->generation();
   const TrappingParameters params = model_->parameters();
   const std::uint64_t points = chainPoints_;
-  chainThread_->submit(
-      [this, generation, key, params, record, points](std::stop_token stop) {
-        auto result = std::make_shared<ChainResult>();
-        try {
-          QElapsedTimer clock;
-          clock.start();
-          auto found = identifySegmentChain(params, record, points, {}, stop);
-          if (!found) return;  // cancelled with its run
-          result->chain = std::move(found->chain);
-          result->island = found->island;
-          result->seconds = static_cast<double>(clock.nsecsElapsed()) * 1e-9;
-        } catch (const std::exception& e) {
-          result->error = QString::fromStdString(e.what());
-        }
-        ChainResultPtr done = std::move(result);
-        JobThread::postTo(this, [this, generation, key, done] { onChain(generation, key, done); });
-      },
-      urgent);
+  Job<ChainResultPtr> job;
+  job.channel = kChainChannel;
+  job.order = urgent ? JobOrder::urgent : JobOrder::queued;
+  job.work = [params, record, points](JobContext<NoProgress>& context) -> std::optional<ChainResultPtr> {
+    QElapsedTimer clock;
+    clock.start();
+    auto found = identifySegmentChain(params, record, points, {}, context.stopToken());
+    if (!found) return std::nullopt;  // cancelled with its run
+    auto result = std::make_shared<ChainResult>();
+    result->chain = std::move(found->chain);
+    result->island = found->island;
+    result->seconds = static_cast<double>(clock.nsecsElapsed()) * 1e-9;
+    return result;
+  };
+  job.done = [this, generation, key](const JobResult<ChainResultPtr>& r) {
+    ChainResultPtr done = r.value.value_or(nullptr);
+    if (!done) {  // it failed: the chain stays unknown, with the reason
+      auto failed = std::make_shared<ChainResult>();
+      failed->error = r.error;
+      done = std::move(failed);
+    }
+    onChain(generation, key, done);
+  };
+  jobs_->submit(std::move(job));
 }
 
 void LongSegmentsPanel::requestTopChains() {

@@ -5,19 +5,20 @@
 ///
 /// Karney (1983), §7 and fig. 8: the longest segment at K = 0.1 sticks to a chain of 6 × 23 = 138 islands.
 ///
-/// Threads (Qt's threaded-Mandelbrot pattern, STYLE.md): two JobThreads do all the work, calling core
-/// (periodic/SegmentAnalysis.hpp).  Selecting a row submits a replay tagged with a new request id and cancels
-/// the one running; results of any other id are dropped.  Chains are identified on the other thread, lazily:
-/// for the top `autoIdentifiedRows()` rows and, first of all, the selected one.  The GUI thread only stores the
-/// values they return and draws.  The panel is fed by updateSegments() from the run's snapshots (the GUI's
+/// Threads (Qt's threaded-Mandelbrot pattern, STYLE.md): two channels of a BackgroundJobs (ui/jobs) do all
+/// the work, calling core (periodic/SegmentAnalysis.hpp).  Selecting a row submits a replay tagged with a new
+/// request id on the replay channel, where the latest request wins; results of any other id are dropped.
+/// Chains are identified on the other channel (a queue), lazily: for the top `autoIdentifiedRows()` rows and,
+/// first of all (urgent), the selected one.  The GUI thread only stores the values they return and draws.  The panel is fed by updateSegments() from the run's snapshots (the GUI's
 /// refresh timer), so the table follows the run live; the selection is kept by segment, not by row.
 
 #include <QPointer>
 #include <QWidget>
 
 #include <cstdint>
+#include <memory>
 
-#include "ui/segments/JobThread.hpp"
+#include "ui/jobs/BackgroundJobs.hpp"
 #include "ui/segments/LongestSegmentsModel.hpp"
 #include "ui/segments/SegmentResults.hpp"
 #include "core/periodic/PeriodicOrbit.hpp"
@@ -79,7 +80,7 @@ class LongSegmentsPanel : public QWidget {
   bool exportNpy(const QString& path, QString* error = nullptr);
 
   /// Nothing queued or running on either worker (tests).
-  [[nodiscard]] bool idle() const noexcept { return replayThread_->idle() && chainThread_->idle(); }
+  [[nodiscard]] bool idle() const { return jobs_->idle(); }
 
   [[nodiscard]] LongestSegmentsModel* model() const noexcept { return model_; }
   [[nodiscard]] QTableView* table() const noexcept { return table_; }
@@ -123,8 +124,7 @@ class LongSegmentsPanel : public QWidget {
   QPushButton* zoomSegmentButton_ = nullptr;
   QPushButton* zoomIslandButton_ = nullptr;
   QTimer* playTimer_ = nullptr;
-  JobThread* replayThread_ = nullptr;
-  JobThread* chainThread_ = nullptr;
+  std::unique_ptr<BackgroundJobs> jobs_;  // channels: kReplayChannel (latest wins), kChainChannel (a queue)
   QPointer<PortraitController> portrait_;
 
   quint64 replayRequest_ = 0;   // the request whose result is wanted; others are stale

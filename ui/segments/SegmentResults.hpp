@@ -2,8 +2,8 @@
 /// \file SegmentResults.hpp
 /// \brief What the background jobs of the long-segment table hand to the GUI: immutable values.
 ///
-/// Both are computed by core (periodic/SegmentAnalysis.hpp) on a JobThread and passed as shared pointers to
-/// const, so the GUI can keep and read them without locks.
+/// Both are computed by core (periodic/SegmentAnalysis.hpp) as background jobs (ui/jobs) and passed as shared
+/// pointers to const, so the GUI can keep and read them without locks.
 
 #include <QMetaType>
 #include <QString>

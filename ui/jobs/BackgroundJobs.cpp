@@ -1,0 +1,209 @@
+#include "ui/jobs/BackgroundJobs.hpp"
+
+#include <QCoreApplication>
+#include <QEvent>
+
+#if defined(__linux__)
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+#endif
+
+#include <new>
+#include <stdexcept>
+
+namespace archipelago::ui {
+
+namespace {
+// Nice value of the worker threads (0 = normal, 19 = lowest): low enough that the GUI thread wins.
+constexpr int kComputeNice = 10;
+
+void lowerComputePriority() {
+#if defined(__linux__)
+  // Linux gives every thread its own nice value and a new thread inherits its creator's: niced here, the
+  // OpenMP team that a job starts from this thread is niced too.  The GUI thread then keeps the upper hand
+  // over the computation (and over nothing else), so it stays responsive while every core computes.
+  const auto tid = static_cast<id_t>(syscall(SYS_gettid));
+  setpriority(PRIO_PROCESS, tid, kComputeNice);
+#endif
+}
+}  // namespace
+
+/// The receiver-thread end of the outbox: a wake-up event makes it run drain().
+class BackgroundJobs::Mailbox : public QObject {
+ public:
+  explicit Mailbox(BackgroundJobs* owner) : owner_(owner) {}
+  static QEvent::Type wakeType() {
+    static const auto type = static_cast<QEvent::Type>(QEvent::registerEventType());
+    return type;
+  }
+  bool event(QEvent* e) override {
+    if (e->type() != wakeType()) return QObject::event(e);
+    owner_->drain();
+    return true;
+  }
+
+ private:
+  BackgroundJobs* owner_;
+};
+
+QString jobFailureMessage(const std::exception_ptr& failure) {
+  try {
+    std::rethrow_exception(failure);
+  } catch (const std::bad_alloc&) {
+    return QStringLiteral("out of memory (std::bad_alloc)");
+  } catch (const std::exception& e) {
+    const QString what = QString::fromUtf8(e.what());
+    return what.isEmpty() ? QStringLiteral("unknown error") : what;
+  } catch (...) {
+    return QStringLiteral("unknown error");
+  }
+}
+
+BackgroundJobs::BackgroundJobs(QObject* receiver, int channels, JobPriority priority)
+    : receiver_(receiver), priority_(priority) {
+  if (channels < 1) throw std::invalid_argument("BackgroundJobs: at least one channel");
+  (void)Mailbox::wakeType();  // registered once, on the receiver's thread
+  mailbox_ = std::make_unique<Mailbox>(this);
+  for (int c = 0; c < channels; ++c) channels_.push_back(std::make_unique<Channel>());
+}
+
+BackgroundJobs::~BackgroundJobs() {
+  std::vector<std::shared_ptr<Task>> dropped;  // destroyed outside the lock
+  {
+    std::lock_guard lock(mutex_);
+    quitting_ = true;
+    for (auto& ch : channels_) {
+      dropped.insert(dropped.end(), ch->queue.begin(), ch->queue.end());
+      ch->queue.clear();
+      if (ch->running) ch->running->stop.request_stop();
+    }
+  }
+  for (auto& ch : channels_) {
+    ch->wake.notify_all();
+    if (ch->thread.joinable()) ch->thread.join();
+  }
+  // No worker is left to post; the wake-up events still queued die with the mailbox.
+  mailbox_.reset();
+  std::lock_guard lock(outboxMutex_);
+  outbox_.clear();
+}
+
+BackgroundJobs::Channel& BackgroundJobs::channelAt(int channel) const {
+  if (channel < 0 || channel >= static_cast<int>(channels_.size()))
+    throw std::out_of_range("BackgroundJobs: no channel " + std::to_string(channel));
+  return *channels_[static_cast<std::size_t>(channel)];
+}
+
+quint64 BackgroundJobs::enqueue(int channel, JobOrder order, std::function<void(quint64, std::stop_token)> run) {
+  Channel& ch = channelAt(channel);
+  auto task = std::make_shared<Task>();
+  task->id = ++nextId_;
+  task->run = std::move(run);
+  std::deque<std::shared_ptr<Task>> dropped;  // destroyed outside the lock
+  {
+    std::lock_guard lock(mutex_);
+    switch (order) {
+      case JobOrder::latest:
+        dropped.swap(ch.queue);
+        if (ch.running) ch.running->stop.request_stop();
+        ch.queue.push_back(task);
+        break;
+      case JobOrder::queued:
+        ch.queue.push_back(task);
+        break;
+      case JobOrder::urgent:
+        ch.queue.push_front(task);
+        break;
+    }
+    if (!ch.thread.joinable()) ch.thread = std::thread([this, channel] { workerLoop(channel); });
+  }
+  ch.wake.notify_one();
+  if (order == JobOrder::latest) ch.validFrom = task->id;
+  return task->id;
+}
+
+void BackgroundJobs::cancel(int channel) {
+  Channel& ch = channelAt(channel);
+  std::deque<std::shared_ptr<Task>> dropped;
+  {
+    std::lock_guard lock(mutex_);
+    dropped.swap(ch.queue);
+    if (ch.running) ch.running->stop.request_stop();
+  }
+  ch.validFrom = nextId_ + 1;
+}
+
+void BackgroundJobs::cancelAll() {
+  for (int c = 0; c < static_cast<int>(channels_.size()); ++c) cancel(c);
+}
+
+void BackgroundJobs::requestStop(quint64 id) {
+  std::lock_guard lock(mutex_);
+  for (auto& ch : channels_) {
+    if (ch->running && ch->running->id == id) ch->running->stop.request_stop();
+    for (auto& task : ch->queue)
+      if (task->id == id) task->stop.request_stop();
+  }
+}
+
+bool BackgroundJobs::idle(int channel) const {
+  const Channel& ch = channelAt(channel);
+  std::lock_guard lock(mutex_);
+  return ch.queue.empty() && !ch.running;
+}
+
+bool BackgroundJobs::idle() const {
+  for (int c = 0; c < static_cast<int>(channels_.size()); ++c)
+    if (!idle(c)) return false;
+  return true;
+}
+
+void BackgroundJobs::workerLoop(int channel) {
+  if (priority_ == JobPriority::background) lowerComputePriority();
+  Channel& ch = channelAt(channel);
+  for (;;) {
+    std::shared_ptr<Task> task;
+    {
+      std::unique_lock lock(mutex_);
+      ch.wake.wait(lock, [&] { return quitting_ || !ch.queue.empty(); });
+      if (quitting_) return;
+      task = std::move(ch.queue.front());
+      ch.queue.pop_front();
+      ch.running = task;
+    }
+    try {
+      task->run(task->id, task->stop.get_token());
+    } catch (...) {
+      // Only posting the outcome can throw here (out of memory): nothing is left to tell the receiver.
+    }
+    std::lock_guard lock(mutex_);
+    ch.running.reset();
+    task.reset();  // the job's captures die on this thread, before the channel reports idle
+  }
+}
+
+void BackgroundJobs::post(int channel, quint64 id, std::function<void()> deliver) {
+  std::lock_guard lock(outboxMutex_);
+  outbox_.push_back(Delivery{channel, id, std::move(deliver)});
+  if (wakePosted_) return;
+  wakePosted_ = true;
+  QCoreApplication::postEvent(mailbox_.get(), new QEvent(Mailbox::wakeType()));
+}
+
+void BackgroundJobs::drain() {
+  std::vector<Delivery> ready;
+  {
+    std::lock_guard lock(outboxMutex_);
+    ready.swap(outbox_);
+    wakePosted_ = false;
+  }
+  for (Delivery& d : ready) {
+    if (receiver_.isNull()) return;
+    // Checked one by one: a handler may submit or cancel, which makes the deliveries after it stale.
+    if (d.id < channelAt(d.channel).validFrom) continue;
+    d.deliver();
+  }
+}
+
+}  // namespace archipelago::ui
