@@ -23,6 +23,7 @@ StatisticsView::StatisticsView(QWidget* parent) : QWidget(parent) {
   summary_ = new QLabel(this);
   summary_->setObjectName(QStringLiteral("statisticsSummary"));
   summary_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  summary_->setWordWrap(true);  // a long summary wraps instead of widening the window
   summary_->setText(tr("No statistics yet: choose a preset and press Run (F5)."));
   layout->addWidget(summary_);
   auto* grid = new QGridLayout;

@@ -208,7 +208,7 @@ StatisticsPlot::StatisticsPlot(Statistic statistic, QWidget* parent) : QwtPlot(p
   placeholder_->attach(this);
   showPlaceholder(true);
 
-  setMinimumSize(260, 200);
+  setMinimumSize(200, 160);  // three columns and the parameter dock fit a 1024-pixel-wide window
 }
 
 StatisticsPlot::~StatisticsPlot() = default;

@@ -26,6 +26,7 @@ PortraitController::PortraitController(QWidget* viewParent) : QObject(viewParent
   connect(v, &PortraitView::cropRequested, this, &PortraitController::crop);
   connect(v, &PortraitView::clicked, this, [this](double x, double y) { launchOrbit(x, y); });
   connect(v, &PortraitView::backRequested, this, &PortraitController::back);
+  connect(v, &PortraitView::forwardRequested, this, &PortraitController::forward);
   connect(v, &PortraitView::resetRequested, this, &PortraitController::resetView);
   connect(v, &PortraitView::statusMessage, this, &PortraitController::statusMessage);
   updateFixedPoints();

@@ -10,6 +10,7 @@
 #include <QLocale>
 #include <QSignalBlocker>
 #include <QResizeEvent>
+#include <QToolBar>
 #include <QToolButton>
 #include <QVBoxLayout>
 
@@ -137,19 +138,22 @@ PortraitPanel::PortraitPanel(QWidget* parent) : QWidget(parent) {
   connect(c, &PortraitController::statusMessage, this, &PortraitPanel::statusMessage);
   connect(c, &PortraitController::settingsChanged, this, &PortraitPanel::syncControls);
 
-  auto* bar = new QHBoxLayout;
-  bar->addWidget(new QLabel(tr("Mode:"), this));
+  // A tool bar: what does not fit the width goes behind its » button, so the controls never set the
+  // window's minimum width (a 1280 × 800 screen, or a narrow window beside another).
+  auto* bar = new QToolBar(this);
+  bar->setObjectName(QStringLiteral("portraitToolBar"));
+  bar->setIconSize(QSize(16, 16));
+  bar->addWidget(new QLabel(tr("Mode: "), this));
   bar->addWidget(mode_);
-  bar->addWidget(new QLabel(tr("Colours:"), this));
+  bar->addWidget(new QLabel(tr(" Colours: "), this));
   bar->addWidget(colours_);
-  bar->addWidget(new QLabel(tr("Points:"), this));
+  bar->addWidget(new QLabel(tr(" Points: "), this));
   bar->addWidget(budget_);
-  for (QWidget* w : {static_cast<QWidget*>(stop_), static_cast<QWidget*>(back), static_cast<QWidget*>(forward),
-                     static_cast<QWidget*>(reset), static_cast<QWidget*>(zoomIn), static_cast<QWidget*>(zoomOut),
-                     static_cast<QWidget*>(clear), static_cast<QWidget*>(png), static_cast<QWidget*>(npy),
-                     static_cast<QWidget*>(b2)})
+  bar->addSeparator();
+  for (QToolButton* w : {stop_, back, forward, reset, zoomIn, zoomOut, clear, png, npy, b2}) {
+    w->setAutoRaise(true);
     bar->addWidget(w);
-  bar->addStretch(1);
+  }
 
   auto* hint = new ElidedLabel(this);
   hint->setFullText(tr("Drag: zoom to a rectangle · wheel: zoom about the cursor · middle-drag or arrows: pan · "
@@ -162,7 +166,7 @@ PortraitPanel::PortraitPanel(QWidget* parent) : QWidget(parent) {
 
   auto* layout = new QVBoxLayout(this);
   layout->setContentsMargins(4, 4, 4, 4);
-  layout->addLayout(bar);
+  layout->addWidget(bar);
   layout->addWidget(view(), 1);
   layout->addLayout(footer);
   updateColourControl();

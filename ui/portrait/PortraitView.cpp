@@ -491,6 +491,16 @@ bool PortraitView::eventFilter(QObject* watched, QEvent* event) {
 }
 
 void PortraitView::keyPressEvent(QKeyEvent* event) {
+  // Alt+Left / Alt+Right (and the Back/Forward mouse and keyboard keys) go through the history, as in a browser;
+  // plain arrows pan.
+  if (event->matches(QKeySequence::Back) || event->key() == Qt::Key_Back) {
+    Q_EMIT backRequested();
+    return;
+  }
+  if (event->matches(QKeySequence::Forward) || event->key() == Qt::Key_Forward) {
+    Q_EMIT forwardRequested();
+    return;
+  }
   switch (event->key()) {
     case Qt::Key_Left: Q_EMIT panRequested(-0.1, 0); break;
     case Qt::Key_Right: Q_EMIT panRequested(0.1, 0); break;

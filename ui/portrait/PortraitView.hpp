@@ -108,6 +108,7 @@ class PortraitView : public QWidget {
   void panRequested(double fx, double fy);
   void clicked(double x, double y);
   void backRequested();
+  void forwardRequested();
   void resetRequested();
 
  protected:

@@ -6,6 +6,7 @@
 
 #include <QElapsedTimer>
 #include <QFileDialog>
+#include <QGridLayout>
 #include <QHBoxLayout>
 #include <QHeaderView>
 #include <QItemSelectionModel>
@@ -93,12 +94,12 @@ LongSegmentsPanel::LongSegmentsPanel(QWidget* parent) : QWidget(parent) {
   zoomIslandButton_->setToolTip(tr("Show one island of its chain with the satellites the segment winds around"));
   connect(zoomSegmentButton_, &QPushButton::clicked, this, &LongSegmentsPanel::zoomToSegment);
   connect(zoomIslandButton_, &QPushButton::clicked, this, &LongSegmentsPanel::zoomToIsland);
-  auto* exports = new QHBoxLayout;
-  exports->addWidget(zoomSegmentButton_);
-  exports->addWidget(zoomIslandButton_);
-  exports->addStretch(1);
-  exports->addWidget(csvButton_);
-  exports->addWidget(npyButton_);
+  // Two rows of two: the dock (and so the window) stays narrow enough for a 1280 × 800 screen.
+  auto* exports = new QGridLayout;
+  exports->addWidget(zoomSegmentButton_, 0, 0);
+  exports->addWidget(zoomIslandButton_, 0, 1);
+  exports->addWidget(csvButton_, 1, 0);
+  exports->addWidget(npyButton_, 1, 1);
   auto* layout = new QVBoxLayout(this);
   layout->addWidget(table_, 1);
   layout->addWidget(hint_);
