@@ -437,11 +437,6 @@ void MainWindow::createLongSegmentsDock(QDockWidget* parametersDock) {
   connect(segments_, &LongSegmentsPanel::aboutToDraw, this, [this](const TrappingParameters&) {
     tabs_->setCurrentWidget(portrait_);
   });
-  connect(segments_, &LongSegmentsPanel::replayReady, this, [this](const SegmentReplayPtr& replay) {
-    if (!pendingPosition_ || !replay) return;
-    segments_->setCurrentIndex(*pendingPosition_);
-    pendingPosition_.reset();
-  });
   connect(segments_, &LongSegmentsPanel::chainReady, this, [this](const ChainResultPtr&) {
     if (!pendingIsland_) return;
     pendingIsland_ = false;
@@ -457,12 +452,10 @@ void MainWindow::createLongSegmentsDock(QDockWidget* parametersDock) {
   parametersDock->raise();
 }
 
-void MainWindow::showLongSegment(int rank, bool island, std::uint64_t position) {
+void MainWindow::showLongSegment(int rank, bool island) {
   segmentsDock_->raise();
   pendingSegment_ = rank;
   pendingIsland_ = island;
-  pendingPosition_.reset();
-  if (position > 0) pendingPosition_ = position;
   if (shown_ && rank < segments_->model()->rowCount()) {
     segments_->selectRow(rank);
     pendingSegment_ = -1;

@@ -73,7 +73,7 @@ class MainWindow : public QMainWindow {
   [[nodiscard]] LongSegmentsPanel* longSegments() const noexcept { return segments_; }
   /// Selects the segment of rank `rank` as soon as the table has it (e.g. after opening a run file) and, when
   /// `island`, zooms to one island of its chain once the chain is known.  (Scripts and screenshots.)
-  void showLongSegment(int rank, bool island, std::uint64_t position = 0);
+  void showLongSegment(int rank, bool island);
   /// Tools ▸ Find Periodic Orbit: the dialog, with K from the current parameters.
   void showPeriodicOrbitDialog();
   [[nodiscard]] QTabWidget* tabs() const noexcept { return tabs_; }
@@ -146,7 +146,6 @@ class MainWindow : public QMainWindow {
   PeriodicOrbitDialog* periodicDialog_ = nullptr;
   int pendingSegment_ = -1;       // showLongSegment(): the rank to select when the table has it
   bool pendingIsland_ = false;
-  std::optional<std::uint64_t> pendingPosition_;  // and the replay position to show once it is replayed
   SessionController* sessions_ = nullptr;
   QTabWidget* tabs_ = nullptr;
   QTimer* refreshTimer_ = nullptr;

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "core/stats/TailAnalysis.hpp"
 #include "core/stats/TrappingStatistics.hpp"
 #include "core/theory/TheoryCurves.hpp"
 #include "core/run/TrappingRun.hpp"
@@ -32,6 +33,9 @@ struct RunSnapshot {
   TrappingStatistics statistics;    ///< core's statistics of `state` (with errors from the subsets)
   std::vector<TheoryCurve> theory;  ///< core's small-K theory curves for `statistics`, where they apply
   std::string kernel;               ///< the kernel that computed the last chunk
+  /// D's honest error and the tail's verdict (core/stats/TailAnalysis: a bootstrap over segments), computed
+  /// when a session ends (finished, paused, stopped, an opened file) — not at every chunk: it takes a second.
+  std::shared_ptr<const TailAnalysis> tail;
 };
 
 using RunSnapshotPtr = std::shared_ptr<const RunSnapshot>;

@@ -1,5 +1,7 @@
 #include "ui/RunWorker.hpp"
 
+#include "core/stats/RunEnsemble.hpp"
+
 #include <exception>
 #include <utility>
 
@@ -31,7 +33,8 @@ TrappingProgress progressOf(const TrappingState& state) {
 }
 }  // namespace
 
-RunSnapshotPtr makeSnapshot(std::uint64_t runId, const TrappingState& state, const TrappingProgress& progress) {
+RunSnapshotPtr makeSnapshot(std::uint64_t runId, const TrappingState& state, const TrappingProgress& progress,
+                            bool judgeTail) {
   auto snapshot = std::make_shared<RunSnapshot>();
   snapshot->runId = runId;
   snapshot->state = state;
@@ -41,6 +44,15 @@ RunSnapshotPtr makeSnapshot(std::uint64_t runId, const TrappingState& state, con
     snapshot->statistics = statisticsOf(state);
     snapshot->hasStatistics = true;
     snapshot->theory = theoryCurves(state.params, snapshot->statistics);
+    if (judgeTail) {
+      try {
+        TailOptions options;
+        options.bootstrap.replicates = 200;  // a fraction of a second; `stats --bootstrap` does more
+        snapshot->tail = std::make_shared<const TailAnalysis>(analyseTail(ensembleOf({state}), options));
+      } catch (const std::exception&) {
+        // Too few segments to judge: the view says the error is not known.
+      }
+    }
   }
   return snapshot;
 }
@@ -99,7 +111,7 @@ void RunWorker::submit(std::uint64_t runId, TrappingState state, const RunSettin
   Job<Ended, RunSnapshotPtr> job;
   job.work = [this, runId, state = std::move(state), settings, advance,
               endReason](JobContext<RunSnapshotPtr>& context) mutable -> std::optional<Ended> {
-    if (!advance) return Ended{makeSnapshot(runId, state, progressOf(state)), RunEnd::finished};
+    if (!advance) return Ended{makeSnapshot(runId, state, progressOf(state), true), RunEnd::finished};
     busy_ = true;
     inFlight_ = 0;  // the snapshots of a replaced session were dropped
     struct NotBusy {
@@ -121,7 +133,7 @@ void RunWorker::submit(std::uint64_t runId, TrappingState state, const RunSettin
     lastProgress.blocksDone = ended.blocksDone;
     lastProgress.fraction = progressOf(ended).fraction;
     if (how == RunEnd::finished) lastProgress.etaSeconds = 0;
-    return Ended{makeSnapshot(runId, ended, lastProgress), how};
+    return Ended{makeSnapshot(runId, ended, lastProgress, true), how};
   };
   job.progress = [this](quint64, RunSnapshotPtr snapshot) { Q_EMIT snapshotReady(std::move(snapshot)); };
   job.done = [this, runId](JobResult<Ended> result) {

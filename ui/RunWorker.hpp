@@ -75,7 +75,8 @@ class RunWorker : public QObject {
 };
 
 /// The snapshot of `state` (statistics and theory from core); used by the worker, and by tests to compare.
+/// With `judgeTail`, also D's honest error and the tail's verdict (the end of a session).
 [[nodiscard]] RunSnapshotPtr makeSnapshot(std::uint64_t runId, const TrappingState& state,
-                                          const TrappingProgress& progress);
+                                          const TrappingProgress& progress, bool judgeTail = false);
 
 }  // namespace archipelago::ui

@@ -3,6 +3,7 @@
 #include <QDir>
 #include <QFileInfo>
 #include <QTabWidget>
+#include <QTimer>
 
 #include <exception>
 
@@ -11,6 +12,7 @@
 #include "ui/RunController.hpp"
 #include "ui/StatisticsView.hpp"
 #include "ui/plots/StatisticsPlot.hpp"
+#include "ui/portrait/PortraitController.hpp"
 #include "ui/portrait/PortraitPanel.hpp"
 #include "ui/segments/LongSegmentsPanel.hpp"
 
@@ -126,18 +128,16 @@ bool SessionController::apply(const Session& s, QString* error) {
       const Session session = std::move(*pending_);
       pending_.reset();
       if (status != RunStatus::failed) applyRunDependent(session);
-      Q_EMIT restored();
+      else Q_EMIT restored();
     });
   } else {
     applyRunDependent(s);
-    Q_EMIT restored();
   }
   return true;
 }
 
 void SessionController::applyViews(const Session& s) {
-  for (int i = 0; i < window_.tabs()->count(); ++i)
-    if (window_.tabs()->tabText(i).remove(QLatin1Char('&')).toStdString() == s.tab) window_.tabs()->setCurrentIndex(i);
+  selectTab(s.tab);
   const TrappingParameters& p =
       s.embeddedRun ? s.embeddedRun->params : s.spec.parameters;
   window_.portraitPanel()->restoreSessionState(s.portrait, p.map, p.Xr);
@@ -153,7 +153,31 @@ void SessionController::applyRunDependent(const Session& s) {
       if (plot->fileName().toStdString() == z.name)
         plot->setUserView(QRectF(z.zoom.xmin, z.zoom.ymin, z.zoom.xmax - z.zoom.xmin, z.zoom.ymax - z.zoom.ymin));
   }
-  if (s.segmentRank >= 0) window_.showLongSegment(s.segmentRank, false, s.segmentPosition);
+  if (s.segmentRank < 0) {
+    Q_EMIT restored();
+    return;
+  }
+  // The segment is replayed in the background; drawing it switches to the portrait and frames it.  Once it is
+  // drawn, its replay position, the session's tab and its exact views are put back.
+  auto connection = std::make_shared<QMetaObject::Connection>();
+  *connection = connect(window_.longSegments(), &LongSegmentsPanel::replayReady, this,
+                        [this, connection, s](const SegmentReplayPtr& replay) {
+                          if (!replay) return;
+                          disconnect(*connection);
+                          QTimer::singleShot(0, this, [this, s] {
+                            window_.longSegments()->setCurrentIndex(static_cast<std::size_t>(s.segmentPosition));
+                            selectTab(s.tab);
+                            if (!s.portrait.history.empty())
+                              window_.portraitPanel()->controller()->restoreHistory(s.portrait.history, s.portrait.current);
+                            Q_EMIT restored();
+                          });
+                        });
+  window_.showLongSegment(s.segmentRank, false);
+}
+
+void SessionController::selectTab(const std::string& tab) {
+  for (int i = 0; i < window_.tabs()->count(); ++i)
+    if (window_.tabs()->tabText(i).remove(QLatin1Char('&')).toStdString() == tab) window_.tabs()->setCurrentIndex(i);
 }
 
 }  // namespace archipelago::ui

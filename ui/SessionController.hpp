@@ -46,6 +46,7 @@ class SessionController : public QObject {
   [[nodiscard]] std::optional<QString> windowError(const Session& session) const;
   void applyViews(const Session& session);
   void applyRunDependent(const Session& session);
+  void selectTab(const std::string& tab);
 
   MainWindow& window_;
   std::optional<Session> pending_;

@@ -63,9 +63,36 @@ void StatisticsView::showSnapshot(const RunSnapshot& snapshot) {
   const QLocale c = QLocale::c();
   summary_->setText(tr("<b>α</b> (mean segment) = %1 steps &nbsp;&nbsp; <b>D</b> = %2 &nbsp;&nbsp; "
                        "Σ t f<sub>t</sub> = %3 &nbsp;&nbsp; segments: %4 &nbsp;&nbsp; longest: %5 steps")
-                        .arg(withError(s.alpha, s.alphaError), withError(s.D, s.DError),
+                        .arg(withError(s.alpha, s.alphaError), dText(snapshot),
                              QString::number(s.sumTf, 'f', 4), c.toString(static_cast<qulonglong>(s.segments)),
-                             c.toString(static_cast<double>(s.longestBlocks) * snapshot.state.params.q, 'g', 4)));
+                             longestText(snapshot)));
+}
+
+QString StatisticsView::longestText(const RunSnapshot& snapshot) {
+  // The exact longest segment is the first of the kept records (the Long segments table's first row); without
+  // records (longestKept = 0) only its histogram bin is known, an upper bound.
+  const QLocale c = QLocale::c();
+  const auto& items = snapshot.state.longest.items();
+  if (!items.empty())
+    return c.toString(static_cast<qulonglong>(items.front().length * snapshot.state.params.q));
+  return tr("≤ %1").arg(c.toString(static_cast<double>(snapshot.statistics.longestBlocks) * snapshot.state.params.q, 'g', 4));
+}
+
+QString StatisticsView::dText(const RunSnapshot& snapshot) {
+  const TrappingStatistics& s = snapshot.statistics;
+  const TailAnalysis* tail = snapshot.tail.get();
+  // The 16-subset error understates D's error when a few long segments carry it (§5; core/stats/TailAnalysis):
+  // it is shown only when the bootstrap over segments agrees that the tail does not dominate.
+  if (!tail) return tr("%1 <i>(its error is judged when the run pauses or ends)</i>").arg(QString::number(s.D, 'g', 4));
+  if (tail->dominated()) {
+    QString share;
+    if (!tail->shares.empty())
+      share = tr("; the longest segment carries %1 % of it").arg(100 * tail->shares.front().share, 0, 'f', 0);
+    return tr("%1 <i>(dominated by its longest segments%2: no error can be estimated from this run)</i>")
+        .arg(QString::number(s.D, 'g', 4), share);
+  }
+  return tr("%1 ± %2 <i>(bootstrap over segments)</i>")
+      .arg(QString::number(s.D, 'g', 4), QString::number(tail->DBootstrapError, 'g', 2));
 }
 
 void StatisticsView::clear() {

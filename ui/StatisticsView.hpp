@@ -35,6 +35,11 @@ class StatisticsView : public QWidget {
   [[nodiscard]] QString summaryText() const;
 
  private:
+  /// The exact longest segment (the first kept record), in steps.
+  [[nodiscard]] static QString longestText(const RunSnapshot& snapshot);
+  /// D with the error the data supports (core's tail analysis of a finished or paused run).
+  [[nodiscard]] static QString dText(const RunSnapshot& snapshot);
+
   QList<StatisticsPlot*> plots_;
   QLabel* summary_ = nullptr;
   quint64 refreshes_ = 0;

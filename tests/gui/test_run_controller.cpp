@@ -15,6 +15,7 @@
 #include "GuiTestSupport.hpp"
 #include "core/runfile/RunFile.hpp"
 #include "ui/RunController.hpp"
+#include "ui/StatisticsView.hpp"
 #include "ui/segments/LongSegmentsPanel.hpp"
 #include "ui/segments/LongestSegmentsModel.hpp"
 
@@ -241,6 +242,25 @@ class TestRunController : public QObject {
     QVERIFY(next.parameterPanel()->spec()->name.empty());
     next.parameterPanel()->setParameters(zero->spec.parameters, 2);
     QCOMPARE(next.parameterPanel()->spec()->name, zero->spec.name);
+  }
+
+  /// Finding 7: the header's longest segment is the Long segments table's first row, exactly; D carries the
+  /// error the data supports once the run has ended (issue #14: the subset error understates it).
+  void headerLongestIsTheTablesFirstRowAndDIsJudged() {
+    MainWindow window;
+    window.show();
+    window.parameterPanel()->setParameters(archipelago::test::shortRun(), 2);
+    QVERIFY(window.startRun());
+    QVERIFY(waitForStatus(window, RunStatus::finished));
+    window.refreshNow();
+    const auto& longest = window.latestSnapshot()->state.longest.items();
+    QVERIFY(!longest.empty());
+    const QString exact = QLocale::c().toString(static_cast<qulonglong>(longest.front().length * 4));
+    const QString summary = window.statisticsView()->summaryText();
+    QVERIFY2(summary.contains(QStringLiteral("longest: ") + exact + QStringLiteral(" steps")), qPrintable(summary));
+    QVERIFY(window.latestSnapshot()->tail != nullptr);
+    QVERIFY2(summary.contains(QStringLiteral("bootstrap")) || summary.contains(QStringLiteral("dominated")),
+             qPrintable(summary));
   }
 
   /// Finding 6: a new run clears the previous run's long segments (and with them its overlay).

@@ -332,6 +332,7 @@ void TestSegments::columnsFitTheDockAndTheHintHides() {
   saveRunFile(file.toStdString(), state);
   MainWindow window;
   window.setConfirmations(false);
+  window.resize(1280, 760);  // a laptop screen (the offscreen platform's own screen is 800 × 600)
   window.show();
   QVERIFY(QTest::qWaitForWindowExposed(&window));
   LongSegmentsPanel& panel = *window.longSegments();

@@ -9,6 +9,7 @@
 #include <QGridLayout>
 #include <QHBoxLayout>
 #include <QHeaderView>
+#include <QScrollBar>
 #include <QItemSelectionModel>
 #include <QLabel>
 #include <QLocale>
@@ -111,6 +112,17 @@ LongSegmentsPanel::LongSegmentsPanel(QWidget* parent) : QWidget(parent) {
   playTimer_->setInterval(33);
   connect(playTimer_, &QTimer::timeout, this, &LongSegmentsPanel::advancePlay);
   updateStepControls();
+}
+
+QSize LongSegmentsPanel::sizeHint() const {
+  QSize hint = QWidget::sizeHint();
+  int columns = table_->verticalHeader()->isVisible() ? table_->verticalHeader()->width() : 0;
+  for (int c = 0; c < table_->horizontalHeader()->count(); ++c)
+    columns += std::max(table_->horizontalHeader()->sectionSizeHint(c), table_->horizontalHeader()->sectionSize(c));
+  const QMargins m = contentsMargins();
+  hint.setWidth(std::max(hint.width(), columns + 2 * table_->frameWidth() + m.left() + m.right() +
+                                           table_->verticalScrollBar()->sizeHint().width() + 12));
+  return hint;
 }
 
 LongSegmentsPanel::~LongSegmentsPanel() {

@@ -41,6 +41,8 @@ class LongSegmentsPanel : public QWidget {
  public:
   explicit LongSegmentsPanel(QWidget* parent = nullptr);
   ~LongSegmentsPanel() override;
+  /// Wide enough for every column of the table (the dock opens so); the minimum stays narrow (a scroll bar).
+  [[nodiscard]] QSize sizeHint() const override;
 
   /// The segments of the run shown (from a snapshot or an opened run file).
   void updateSegments(const TrappingParameters& params, const LongestSegments& longest);
