@@ -28,6 +28,19 @@ namespace archipelago::cli {
 
 namespace {
 
+/// The b₂ computation of one K of the scan (--b2-iterations): the run's map, randomizing zone, q and seed.
+StochasticAreaRequest b2Request(const TrappingParameters& p, std::uint64_t iterations, const KernelInfo& kernel) {
+  StochasticAreaRequest r;
+  r.map = p.map;
+  r.Xr = p.Xr;
+  r.q = p.q;
+  r.seed = p.seed;
+  r.iterations = iterations;
+  r.firstCheckpoint = std::min<std::uint64_t>(r.firstCheckpoint, iterations);
+  r.kernel = &kernel;
+  return r;
+}
+
 struct ScanOptions : SpecOptions {  // --preset, --spec, the parameters but K, xmin, xmax; --threads, --kernel
   std::string K;                    // --K FROM:TO:STEP or K1,K2,…
   std::string dir = "scan";
@@ -138,14 +151,7 @@ int scanCommand(const ScanOptions& o, const RunSpec& base, const std::vector<dou
       item.finished = state.finished();
     }
     if (o.b2Iterations > 0) {
-      StochasticAreaRequest r;
-      r.map = item.params.map;
-      r.Xr = item.params.Xr;
-      r.q = item.params.q;
-      r.seed = item.params.seed;
-      r.iterations = o.b2Iterations;
-      r.firstCheckpoint = std::min<std::uint64_t>(r.firstCheckpoint, o.b2Iterations);
-      r.kernel = &kernel;
+      const StochasticAreaRequest r = b2Request(item.params, o.b2Iterations, kernel);
       if (auto e = validationError(r)) throw std::invalid_argument("--b2-iterations at K = " + formatNumber(K) + ": " + *e);
     }
     items.push_back(item);
@@ -213,14 +219,7 @@ int scanCommand(const ScanOptions& o, const RunSpec& base, const std::vector<dou
     const TrappingStatistics statistics = statisticsOf(state);
     std::optional<StochasticAreaValue> b2;
     if (o.b2Iterations > 0) {
-      StochasticAreaRequest r;
-      r.map = item.params.map;
-      r.Xr = item.params.Xr;
-      r.q = item.params.q;
-      r.seed = item.params.seed;
-      r.iterations = o.b2Iterations;
-      r.firstCheckpoint = std::min<std::uint64_t>(r.firstCheckpoint, o.b2Iterations);
-      r.kernel = &kernel;
+      const StochasticAreaRequest r = b2Request(item.params, o.b2Iterations, kernel);
       b2 = stochasticAreaOf(r.map, computeStochasticArea(r).b2());
     }
     runs.push_back({state.params, scanPointOf(state, statistics, b2), statistics});

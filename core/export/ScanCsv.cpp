@@ -12,31 +12,15 @@ namespace archipelago {
 
 namespace {
 
-/// 17 significant digits, shortest form of %g, never the locale's decimal separator (as StatisticsCsv.cpp);
-/// empty for NaN (an undefined cell).
-std::string number(double v) {
-  if (std::isnan(v)) return {};
-  char buffer[64];
-  const auto r = std::to_chars(buffer, buffer + sizeof buffer, v, std::chars_format::general, 17);
-  return std::string(buffer, r.ptr);
-}
+/// As every CSV file writes numbers (csvNumber); empty for NaN (an undefined cell).
+std::string number(double v) { return std::isnan(v) ? std::string() : csvNumber(v); }
 
 std::string number(std::uint64_t v) { return std::to_string(v); }
 
 /// The shortest text that reads back as v (K and the box: 0.05, not 0.050000000000000003).
-std::string shortest(double v) {
-  char buffer[64];
-  const auto r = std::to_chars(buffer, buffer + sizeof buffer, v);
-  return std::string(buffer, r.ptr);
-}
+std::string shortest(double v) { return shortestDecimal(v); }
 
-void line(std::string& out, std::string_view name, const std::string& value) {
-  out += "# ";
-  out += name;
-  out += ": ";
-  out += value;
-  out += '\n';
-}
+void line(std::string& out, std::string_view name, const std::string& value) { csvMetadataLine(out, name, value); }
 
 /// What every scan file opens with: the program, the box rule and the settings the K share.
 std::string scanHeader(const std::vector<ScanRunSummary>& runs) {

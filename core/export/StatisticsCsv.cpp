@@ -33,13 +33,7 @@ std::string field(const std::string& s) {
   return quoted + '"';
 }
 
-void line(std::string& out, std::string_view name, const std::string& value) {
-  out += "# ";
-  out += name;
-  out += ": ";
-  out += value;
-  out += '\n';
-}
+void line(std::string& out, std::string_view name, const std::string& value) { csvMetadataLine(out, name, value); }
 
 std::string text(std::string_view s) { return std::string(s); }
 
@@ -72,6 +66,14 @@ std::string csvMetadataHeader(const TrappingState& state) {
 }
 
 std::string csvNumber(double v) { return number(v); }
+
+void csvMetadataLine(std::string& out, std::string_view name, const std::string& value) {
+  out += "# ";
+  out += name;
+  out += ": ";
+  out += value;
+  out += '\n';
+}
 
 std::string statisticCsvFileName(Statistic s) { return text(statisticInfo(s).fileStem) + ".csv"; }
 std::string theoryCsvFileName(Statistic s) { return text(statisticInfo(s).fileStem) + ".theory.csv"; }

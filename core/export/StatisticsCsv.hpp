@@ -21,6 +21,7 @@
 
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/stats/StatisticsTable.hpp"
@@ -37,6 +38,8 @@ namespace archipelago {
 
 /// A number as every CSV file writes it: 17 significant digits, shortest form, never the locale's separator.
 [[nodiscard]] std::string csvNumber(double v);
+/// Appends one metadata line of a CSV header, "# name: value".
+void csvMetadataLine(std::string& out, std::string_view name, const std::string& value);
 
 /// The file name of a statistic's CSV ("f_t.csv") and of its theory curves ("f_t.theory.csv").
 [[nodiscard]] std::string statisticCsvFileName(Statistic s);
