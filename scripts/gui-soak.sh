@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # GUI soak (issue #13): the real window under Xvfb at 1280×800, driven at random for MINUTES (default 30):
 # keys, clicks, wheel zooms, drags, runs, pauses, stops, exports, run files, presets, bad field values, the
-# periodic-orbit dialog; dialogs answered at random.  Fails on a crash or a hang (a watchdog inside sees the GUI
-# thread stop for 20 s); prints resident memory every minute and its growth after the first minute.
+# periodic-orbit dialog; dialogs answered at random.  Fails on a crash, a hang (a watchdog inside sees the GUI
+# thread stop for 20 s) or a run stuck in pausing/stopping for a minute; prints resident memory every minute and its growth after the first minute.
 #   bash scripts/gui-soak.sh [MINUTES] [SEED]
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -304,7 +304,8 @@ void RunController::onRunEnded(quint64 runId, const RunSnapshotPtr& last, RunEnd
     resumeWhenReady_.reset();
     Q_EMIT message(tr("Finished: %1 blocks × %2 orbits in %3").arg(s.params.T).arg(s.params.M)
                        .arg(formatDuration(s.elapsedSeconds)), true);
-  } else if (how == RunEnd::stopped) {
+  } else if (how == RunEnd::stopped || status_ == RunStatus::stopping) {
+    // Stopped — also an opened file whose analysis (which cannot be cut short) ends after Stop was pressed.
     apply(RunEvent::workerStopped);
     resumeWhenReady_.reset();
     Q_EMIT message(tr("Stopped at block %1 of %2; the run can be saved").arg(s.blocksDone).arg(s.params.T), true);

@@ -14,6 +14,7 @@
 
 #include "GuiTestSupport.hpp"
 #include "core/runfile/RunFile.hpp"
+#include "core/run/TrappingRun.hpp"
 #include "ui/RunController.hpp"
 #include "ui/StatisticsView.hpp"
 #include "ui/segments/LongSegmentsPanel.hpp"
@@ -207,6 +208,27 @@ class TestRunController : public QObject {
     QVERIFY(!window.resumeRun());
     QVERIFY(!window.parameterPanel()->field(QStringLiteral("K"))->isReadOnly());
     QVERIFY(window.saveAction()->isEnabled());
+  }
+
+  /// Found by the soak: Stop (or Pause) pressed while an opened run file is being analysed used to leave the
+  /// window in "stopping" for ever (the analysis ends as a pause, which the table does not take in stopping).
+  void stopWhileAnOpenedFileIsAnalysedStops() {
+    QTemporaryDir dir;
+    const QString path = dir.filePath(QStringLiteral("unfinished.json"));
+    TrappingParameters p = archipelago::test::endlessRun();
+    p.T = 2000;
+    // Orbits do not depend on T: a finished run of 2000 blocks is the run of 10⁶ blocks stopped at 2000.
+    archipelago::TrappingState state = archipelago::runTrapping(archipelago::startTrapping(p), {});
+    state.params.T = 1'000'000;
+    archipelago::saveRunFile(path.toStdString(), state);
+    for (const bool stop : {true, false}) {
+      MainWindow window;
+      window.setConfirmations(false);
+      QVERIFY(window.openRunFile(path));
+      QCOMPARE(window.runStatus(), RunStatus::running);  // the analysis is a worker session
+      QVERIFY(stop ? window.stopRun() : window.pauseRun());
+      QVERIFY(waitForStatus(window, stop ? RunStatus::stopped : RunStatus::paused, 20000));
+    }
   }
 
   /// Finding 5: plots of a finished run whose parameters were then edited say so.

@@ -3,7 +3,7 @@
 // come up are answered at random.  Not a timed test: scripts/gui-soak.sh runs it (under Xvfb) and reports.
 //
 // It fails (exit 1) on a hang — a watchdog thread sees the GUI thread's heartbeat stop for 20 s, prints the last
-// action and aborts — and reports resident memory every minute and at the end (growth after the first minute is
+// action and aborts —, on a run stuck in pausing or stopping for a minute (its first run found one), and reports resident memory every minute and at the end (growth after the first minute is
 // the number that matters: the first minute loads fonts, Qwt, caches).  A crash ends the process: the script
 // sees its exit status.
 //
@@ -149,6 +149,7 @@ int main(int argc, char** argv) {
   double minuteOneMiB = -1;
   QElapsedTimer clock;
   clock.start();
+  QElapsedTimer transitional;  // since the run entered pausing or stopping
   std::printf("soak: %.1f min, seed %s, RSS at start %.1f MiB\n", minutes, qPrintable(parser.value(seedOpt)), startMiB);
   std::fflush(stdout);
   int lastReport = 0;
@@ -273,6 +274,19 @@ int main(int argc, char** argv) {
         window.openSession(work.filePath(QStringLiteral("session-%1.archipelago").arg(pick(3))));
         break;
       }
+    }
+    // A pause or stop ends at the next chunk boundary (0.1 s): one that lasts a minute is a stuck state machine.
+    const auto status = window.runStatus();
+    if (status == archipelago::ui::RunStatus::pausing || status == archipelago::ui::RunStatus::stopping) {
+      if (!transitional.isValid()) transitional.start();
+      if (transitional.elapsed() > 60000) {
+        std::fprintf(stderr, "SOAK STUCK: the run has been %s for 60 s; last action: %s\n",
+                     qPrintable(archipelago::ui::statusName(status)), lastAction.c_str());
+        std::fflush(stderr);
+        std::abort();
+      }
+    } else {
+      transitional.invalidate();
     }
     const int minute = static_cast<int>(clock.elapsed() / 60000);
     if (minute > lastReport) {
