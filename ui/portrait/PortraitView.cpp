@@ -166,6 +166,8 @@ PortraitView::PortraitView(QWidget* parent) : QWidget(parent) {
   connect(renderTimer_, &QTimer::timeout, this, &PortraitView::startRender);
 
   worker_ = new PortraitWorker(this);
+  // Queued although the worker emits on this thread: a slot of frameShown() or renderFinished() may close the
+  // view, which must not happen inside the worker's delivery (BackgroundJobs: a handler must not destroy it).
   connect(worker_, &PortraitWorker::frameReady, this, &PortraitView::onFrame, Qt::QueuedConnection);
   connect(worker_, &PortraitWorker::progress, this, [this](quint64 id, quint64 done, quint64) {
     if (id != currentRequest_ || state_ != RenderState::accumulating) return;

@@ -1,30 +1,28 @@
 #pragma once
-// The thread that renders portraits for a PortraitView (Qt's threaded-Mandelbrot pattern).
+// Renders portraits for a PortraitView in the background, through the GUI's one background-job mechanism
+// (ui/jobs/BackgroundJobs: latest request wins, cancellable, values tagged with their request).
 //
-// One worker owns the computation.  The GUI hands it a request under a mutex and wakes it; a new request
-// stops the render in progress at once (std::stop_source, checked by core at every chunk).  The worker copies
-// the request and calls archipelago::renderPortrait() without holding the lock; each refinement pass comes
-// back as an immutable PortraitFrame through a queued signal, tagged with the id of its request, so that the
-// view can drop stale frames.  The destructor stops the render and waits for the thread.  No maths here.
+// Each render() is one job: a new request stops the render in progress at once (its stop token, checked by
+// core at every chunk) and whatever the old one would still deliver is dropped.  The job copies the request
+// and calls archipelago::renderPortrait(); each refinement pass comes back as an immutable PortraitFrame,
+// tagged with the id of its request, so that the view can also drop frames it has itself left behind.  The
+// destructor stops the render and waits for the thread.  No maths here.
 //
 // Accumulation: a request with a large budget (passPoints set, core's setProgressiveSchedule) keeps adding
 // passes into the same raster until its budget is reached, a new request replaces it or cancel() stops it;
 // every pass is a frame with the points so far.  A Density frame whose view core declares free of sea
-// (viewHoldsNoSea) is the last one: the worker stops that render itself.
+// (viewHoldsNoSea) is the last one: the job stops that render itself.
 
 #include <QImage>
-#include <QMutex>
+#include <QObject>
 #include <QString>
-#include <QThread>
-#include <QWaitCondition>
 
 #include <cstdint>
 #include <memory>
-#include <optional>
-#include <stop_token>
 
 #include "core/portrait/ColourMap.hpp"
 #include "core/portrait/PortraitRenderer.hpp"
+#include "ui/jobs/BackgroundJobs.hpp"
 
 namespace archipelago::ui {
 
@@ -47,7 +45,7 @@ struct PortraitFrame {
   double seconds = 0;           ///< wall time since the request started
 };
 
-class PortraitWorker : public QThread {
+class PortraitWorker : public QObject {
   Q_OBJECT
  public:
   explicit PortraitWorker(QObject* parent = nullptr);
@@ -59,25 +57,17 @@ class PortraitWorker : public QThread {
   void cancel();
 
  Q_SIGNALS:
-  /// A refinement pass finished (queued to the receiver's thread).
+  /// A refinement pass finished (emitted on the thread that owns this object).
   void frameReady(const archipelago::ui::PortraitFrame& frame);
   /// Progress of the render `requestId`, at most every 100 ms.
   void progress(quint64 requestId, quint64 pointsDone, quint64 pointsTotal);
   /// The request failed (e.g. an invalid request): a one-line message.
   void failed(quint64 requestId, const QString& message);
 
- protected:
-  void run() override;
-
  private:
-  QMutex mutex_;
-  QWaitCondition wake_;
-  std::optional<PortraitRequest> pending_;   // guarded by mutex_
-  ColourMapName pendingColours_ = ColourMapName::Inferno;
-  quint64 pendingId_ = 0;
-  quint64 nextId_ = 0;
-  std::stop_source current_;                 // guarded by mutex_: stops the render in progress
-  bool quitting_ = false;                    // guarded by mutex_
+  // Last member: destroyed first, it stops the render and joins its thread.  Normal priority, as before:
+  // a portrait is interactive (the view waits for its first frame).
+  BackgroundJobs jobs_{this};
 };
 
 }  // namespace archipelago::ui
