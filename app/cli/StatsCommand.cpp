@@ -44,11 +44,18 @@ StochasticAreaValue checkedStochasticArea(const MapParameters& map, double area)
   return stochasticAreaOf(map, area / boxArea);
 }
 
-void printBoxInvariant(const MapParameters& map, const StochasticAreaValue& b2, const TrappingStatistics& s) {
-  const BoxInvariantQuantities q = boxInvariantQuantities(b2, s.D, s.DError);
+void printBoxInvariant(const MapParameters& map, const StochasticAreaValue& b2, const TrappingStatistics& s,
+                       const TailAnalysis& tail) {
+  // b₂·D carries D's honest error (the bootstrap over segments), and none when the tail dominates D.
+  const bool errorKnown = s.segments > 0 && !tail.dominated() && std::isfinite(tail.DBootstrapError);
+  const BoxInvariantQuantities q = boxInvariantQuantities(b2, s.D, errorKnown ? tail.DBootstrapError : 0);
   std::printf("b2          %s\n", stochasticAreaText(map, b2).c_str());
-  std::printf("b2*D        %.6g +- %.2g   (box-invariant, eq. A3; the paper: 0.693 x 6400 = %.3g)\n", q.b2D, q.b2DError,
-              kPaperStochasticArea * kPaperDiffusion);
+  if (errorKnown)
+    std::printf("b2*D        %.6g +- %.2g   (box-invariant, eq. A3; the paper: 0.693 x 6400 = %.3g)\n", q.b2D,
+                q.b2DError, kPaperStochasticArea * kPaperDiffusion);
+  else
+    std::printf("b2*D        %.6g   (box-invariant, eq. A3; no error: see D above; the paper: 0.693 x 6400 = %.3g)\n",
+                q.b2D, kPaperStochasticArea * kPaperDiffusion);
   std::printf("sec. 6      (8/pi^2) b2 = %.4g (paper: 0.56); D_island/D_ql = %.4g/n^2 (paper: at least 360/n^2)\n",
               q.acceleratorFactor, q.enhancementN1);
 }
@@ -204,7 +211,7 @@ int statsCommand(const StatsOptions& o) {
   if (s.segments > 0) printD(tail, s);
   else std::printf("D           0   (no segment yet)\n");
   std::printf("sum t f_t   %.9f           (should be close to 1)\n", s.sumTf);
-  if (b2) printBoxInvariant(p.map, *b2, s);
+  if (b2) printBoxInvariant(p.map, *b2, s, tail);
   if (s.segments > 0) {
     printTail(tail);
     printVerdict(tail);
