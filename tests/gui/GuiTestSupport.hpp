@@ -59,6 +59,16 @@ inline TrappingParameters shortRun() {
   return p;
 }
 
+/// Waits (processing events) until the window's run reaches `status`.
+inline bool waitForStatus(const ui::MainWindow& w, ui::RunStatus status, int ms = 30000) {
+  return QTest::qWaitFor([&] { return w.runStatus() == status; }, ms);
+}
+
+/// Waits for a snapshot beyond `blocks` blocks.
+inline bool waitForProgress(const ui::MainWindow& w, std::uint64_t blocks = 0) {
+  return QTest::qWaitFor([&] { return w.latestSnapshot() && w.latestSnapshot()->state.blocksDone > blocks; }, 20000);
+}
+
 }  // namespace archipelago::test
 
 /// main() for a GUI test: isolated settings and data folders, then Qt Test.

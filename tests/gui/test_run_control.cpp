@@ -20,6 +20,9 @@ using archipelago::ui::MainWindow;
 using archipelago::Statistic;
 using archipelago::ui::RunStatus;
 
+using archipelago::test::waitForProgress;
+using archipelago::test::waitForStatus;
+
 namespace {
 
 /// The same run, headless, straight through core, for its first `blocks` blocks (all of them by default).
@@ -36,14 +39,7 @@ bool sameAsHeadless(const TrappingState& got) {
          got.longest == want.longest;
 }
 
-bool waitForStatus(const MainWindow& w, RunStatus s, int ms = 20000) {
-  return QTest::qWaitFor([&] { return w.runStatus() == s; }, ms);
-}
 
-/// Waits for a snapshot beyond `blocks` blocks.
-bool waitForProgress(const MainWindow& w, std::uint64_t blocks) {
-  return QTest::qWaitFor([&] { return w.latestSnapshot() && w.latestSnapshot()->state.blocksDone > blocks; }, 20000);
-}
 
 }  // namespace
 

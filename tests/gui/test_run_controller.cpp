@@ -27,15 +27,12 @@ using archipelago::ui::RunEvent;
 using archipelago::ui::RunQuestion;
 using archipelago::ui::RunStatus;
 
+using archipelago::test::waitForProgress;
+using archipelago::test::waitForStatus;
+
 namespace {
 
-bool waitForStatus(const MainWindow& w, RunStatus s, int ms = 30000) {
-  return QTest::qWaitFor([&] { return w.runStatus() == s; }, ms);
-}
 
-bool waitForProgress(const MainWindow& w, std::uint64_t blocks = 0) {
-  return QTest::qWaitFor([&] { return w.latestSnapshot() && w.latestSnapshot()->state.blocksDone > blocks; }, 20000);
-}
 
 /// Answers the controller's questions from a script and records them.
 struct ScriptedAnswers {

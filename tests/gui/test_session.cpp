@@ -25,11 +25,11 @@ using archipelago::ui::RunAnswer;
 using archipelago::ui::RunQuestion;
 using archipelago::ui::RunStatus;
 
+using archipelago::test::waitForProgress;
+using archipelago::test::waitForStatus;
+
 namespace {
 
-bool waitForStatus(const MainWindow& w, RunStatus s, int ms = 30000) {
-  return QTest::qWaitFor([&] { return w.runStatus() == s; }, ms);
-}
 
 /// A finished short run with a zoomed portrait, an orbit, a periodic overlay, a segment at a replay position,
 /// a zoomed plot and the portrait tab on top.
