@@ -11,7 +11,6 @@
 
 namespace archipelago::ui {
 
-namespace {
 QString formatDuration(double seconds) {
   if (!(seconds >= 0) || seconds > 1e9) return QStringLiteral("—");
   const auto s = static_cast<qint64>(seconds + 0.5);
@@ -19,7 +18,6 @@ QString formatDuration(double seconds) {
                                                    .arg(s % 60, 2, 10, QLatin1Char('0'));
   return QStringLiteral("%1:%2").arg(s / 60).arg(s % 60, 2, 10, QLatin1Char('0'));
 }
-}  // namespace
 
 std::optional<RunStatus> runTransition(RunStatus from, RunEvent event) noexcept {
   using S = RunStatus;

@@ -56,6 +56,8 @@ enum class RunEvent {
 [[nodiscard]] bool isLive(RunStatus status) noexcept;
 /// A user-facing name ("running", "paused", …).
 [[nodiscard]] QString statusName(RunStatus status);
+/// A duration as h:mm:ss or m:ss ("—" when unknown).
+[[nodiscard]] QString formatDuration(double seconds);
 
 /// A question the controller needs answered before it throws work away.
 struct RunQuestion {

@@ -307,7 +307,7 @@ int main(int argc, char** argv) {
         const double endMiB = residentMiB();
         std::printf("soak: done: %llu actions in %.1f min; RSS start %.1f MiB, after minute 1 %.1f MiB, end %.1f MiB, "
                     "growth after minute 1 %.1f MiB\n",
-                    static_cast<unsigned long long>(actions), clock.elapsed() / 60000.0, startMiB, minuteOneMiB, endMiB,
+                    static_cast<unsigned long long>(actions), static_cast<double>(clock.elapsed()) / 60000.0, startMiB, minuteOneMiB, endMiB,
                     minuteOneMiB > 0 ? endMiB - minuteOneMiB : endMiB - startMiB);
         std::fflush(stdout);
         QApplication::exit(0);
