@@ -133,15 +133,8 @@ std::string sessionText(const Session& s) {
 }
 
 Session parseSession(std::string_view text) {
-  const json j = spec::parseStrictJson(text);
-  if (!j.is_object()) bad("a session file must be a JSON object");
-  const auto format = j.find("format");
-  if (format == j.end() || *format != kSessionFormatName)
-    bad(std::string("not an Archipelago session (missing \"format\": \"") + kSessionFormatName + "\")");
-  const auto version = j.find("version");
-  if (version == j.end() || !version->is_number_unsigned() || version->get<std::uint64_t>() != kSessionFormatVersion)
-    bad("session version " + (version == j.end() ? std::string("(missing)") : version->dump()) +
-        " is not supported (this program reads version " + std::to_string(kSessionFormatVersion) + ")");
+  const json j = spec::parseVersionedDocument(text, kSessionFormatName, kSessionFormatVersion, "an",
+                                                "Archipelago session");
   onlyKeys(j, "the session", {"format", "version", "spec", "run", "tab", "portrait", "segment", "plots"});
 
   Session s;

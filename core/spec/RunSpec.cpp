@@ -90,6 +90,19 @@ TrappingParameters parametersFromJson(const json& j, bool complete, const Trappi
   return p;
 }
 
+json parseVersionedDocument(std::string_view text, const char* format, int version, const std::string& article,
+                            const std::string& what) {
+  const json j = parseStrictJson(text);
+  if (!j.is_object()) bad(article + " " + what + " must be a JSON object");
+  const auto f = j.find("format");
+  if (f == j.end() || *f != format) bad("not " + article + " " + what + " (missing \"format\": \"" + format + "\")");
+  const auto v = j.find("version");
+  if (v == j.end() || !v->is_number_unsigned() || v->get<std::uint64_t>() != static_cast<std::uint64_t>(version))
+    bad(what + " version " + (v == j.end() ? std::string("(missing)") : v->dump()) +
+        " is not supported (this program reads version " + std::to_string(version) + ")");
+  return j;
+}
+
 json parseStrictJson(std::string_view text) {
   std::vector<std::set<std::string>> keys;  // the keys seen in each open object
   std::string repeated;
@@ -149,15 +162,7 @@ std::string runSpecJson(const RunSpec& s) {
 }
 
 RunSpec parseRunSpec(std::string_view textIn) {
-  const json j = spec::parseStrictJson(textIn);
-  if (!j.is_object()) bad("a run spec must be a JSON object");
-  const auto format = j.find("format");
-  if (format == j.end() || *format != kRunSpecFormatName)
-    bad(std::string("not a run spec (missing \"format\": \"") + kRunSpecFormatName + "\")");
-  const auto version = j.find("version");
-  if (version == j.end() || !version->is_number_unsigned() || version->get<std::uint64_t>() != kRunSpecFormatVersion)
-    bad("run spec version " + (version == j.end() ? std::string("(missing)") : version->dump()) +
-        " is not supported (this program reads version " + std::to_string(kRunSpecFormatVersion) + ")");
+  const json j = spec::parseVersionedDocument(textIn, kRunSpecFormatName, kRunSpecFormatVersion, "a", "run spec");
   for (auto it = j.begin(); it != j.end(); ++it) {
     static const std::set<std::string> known{"format", "version", "name", "description", "parameters", "kernel", "threads"};
     if (!known.count(it.key())) bad("unknown key '" + it.key() + "'");

@@ -27,4 +27,9 @@ namespace archipelago::spec {
 /// Throws std::invalid_argument with nlohmann's position for malformed text.
 [[nodiscard]] nlohmann::json parseStrictJson(std::string_view text);
 
+/// Parses a versioned document: a JSON object whose "format" is `format` and whose "version" is `version`.
+/// Throws std::invalid_argument naming the document ("a" + " run spec", "an" + " Archipelago session") otherwise.
+[[nodiscard]] nlohmann::json parseVersionedDocument(std::string_view text, const char* format, int version,
+                                                    const std::string& article, const std::string& noun);
+
 }  // namespace archipelago::spec
