@@ -92,8 +92,18 @@ def finding_7_failed_checkpoint_write_aborts_the_run():
                           "--max-chunk", "2000", "--quiet"], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
                          text=True)
     wait_for_file(ck, p)
-    os.remove(ck)
-    os.mkdir(ck)  # every checkpoint write fails now
+    # The run rewrites ck.json after every chunk, so it may reappear between the remove and the mkdir: retry.
+    for _ in range(1000):
+        try:
+            os.remove(ck)
+        except FileNotFoundError:
+            pass
+        try:
+            os.mkdir(ck)  # every checkpoint write fails now
+            break
+        except FileExistsError:
+            continue
+    check(os.path.isdir(ck), "finding 7: the checkpoint target became a folder")
     time.sleep(0.3)
     os.rmdir(ck)  # and succeeds again
     rewritten = wait_for_file(ck, p)
@@ -121,7 +131,10 @@ def finding_7_failing_final_write_loses_the_run():
         wait_for_file(ck, p)
         spoiled = p.poll() is None
         if spoiled:
-            os.mkdir(out)
+            try:
+                os.mkdir(out)
+            except FileExistsError:  # the run ended between the poll and the mkdir
+                spoiled = False
         _, err = p.communicate(timeout=300)
         if spoiled:
             break
