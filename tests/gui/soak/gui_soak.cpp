@@ -28,6 +28,7 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <malloc.h>
 #include <mutex>
 #include <random>
 #include <string>
@@ -64,6 +65,13 @@ double residentMiB() {
     std::getline(status, key);
   }
   return -1;
+}
+
+/// Bytes malloc has handed out and not got back, over every arena (glibc's mallinfo2): the live heap.  RSS also
+/// counts pages that free() kept in the per-thread arenas for reuse, which is not a leak; the live heap is.
+double heapInUseMiB() {
+  const struct mallinfo2 m = mallinfo2();
+  return static_cast<double>(m.uordblks + m.hblkhd) / (1024.0 * 1024.0);
 }
 
 std::int64_t nowMs() {
@@ -147,6 +155,7 @@ int main(int argc, char** argv) {
   std::uint64_t actions = 0;
   const double startMiB = residentMiB();
   double minuteOneMiB = -1;
+  double minuteOneHeapMiB = -1;
   QElapsedTimer clock;
   clock.start();
   QElapsedTimer transitional;  // since the run entered pausing or stopping
@@ -292,9 +301,11 @@ int main(int argc, char** argv) {
     if (minute > lastReport) {
       lastReport = minute;
       const double mib = residentMiB();
-      if (minute == 1) minuteOneMiB = mib;
-      std::printf("soak: minute %d, %llu actions, RSS %.1f MiB, status %s\n", minute,
-                  static_cast<unsigned long long>(actions), mib,
+      const double heap = heapInUseMiB();
+      if (minute == 1) minuteOneMiB = mib, minuteOneHeapMiB = heap;
+      std::printf("soak: minute %d, %llu actions, RSS %.1f MiB, heap in use %.1f MiB, launched orbits %d, status %s\n",
+                  minute, static_cast<unsigned long long>(actions), mib, heap,
+                  window.portraitPanel()->controller()->orbitCount(),
                   qPrintable(archipelago::ui::statusName(window.runStatus())));
       std::fflush(stdout);
     }
@@ -305,10 +316,13 @@ int main(int argc, char** argv) {
       window.stopRun();
       QTimer::singleShot(2000, [&] {
         const double endMiB = residentMiB();
+        const double endHeapMiB = heapInUseMiB();
         std::printf("soak: done: %llu actions in %.1f min; RSS start %.1f MiB, after minute 1 %.1f MiB, end %.1f MiB, "
-                    "growth after minute 1 %.1f MiB\n",
-                    static_cast<unsigned long long>(actions), static_cast<double>(clock.elapsed()) / 60000.0, startMiB, minuteOneMiB, endMiB,
-                    minuteOneMiB > 0 ? endMiB - minuteOneMiB : endMiB - startMiB);
+                    "growth after minute 1 %.1f MiB; heap in use after minute 1 %.1f MiB, end %.1f MiB, "
+                    "heap growth after minute 1 %.1f MiB\n",
+                    static_cast<unsigned long long>(actions), static_cast<double>(clock.elapsed()) / 60000.0, startMiB,
+                    minuteOneMiB, endMiB, minuteOneMiB > 0 ? endMiB - minuteOneMiB : endMiB - startMiB,
+                    minuteOneHeapMiB, endHeapMiB, endHeapMiB - minuteOneHeapMiB);
         std::fflush(stdout);
         QApplication::exit(0);
       });
