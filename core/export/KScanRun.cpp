@@ -65,6 +65,40 @@ void checkScanValues(const std::vector<double>& K) {
   }
 }
 
+std::vector<double> parseScanValues(std::string_view text) {
+  const auto trim = [](std::string_view t) {
+    while (!t.empty() && (t.front() == ' ' || t.front() == '\t')) t.remove_prefix(1);
+    while (!t.empty() && (t.back() == ' ' || t.back() == '\t')) t.remove_suffix(1);
+    return t;
+  };
+  const auto split = [&](std::string_view t, char sep) {
+    std::vector<double> values;
+    while (true) {
+      const std::size_t end = t.find(sep);
+      const std::string_view word = trim(t.substr(0, end));
+      double v = 0;
+      const auto result = std::from_chars(word.data(), word.data() + word.size(), v);
+      if (word.empty() || result.ec != std::errc() || result.ptr != word.data() + word.size() || !std::isfinite(v))
+        throw std::invalid_argument("'" + std::string(word) + "' in the K list is not a finite number");
+      values.push_back(v);
+      if (end == std::string_view::npos) return values;
+      t.remove_prefix(end + 1);
+    }
+  };
+  text = trim(text);
+  if (text.empty()) throw std::invalid_argument("the K list is empty: give at least one K");
+  std::vector<double> values;
+  if (text.find(':') != std::string_view::npos) {
+    const std::vector<double> r = split(text, ':');
+    if (r.size() != 3) throw std::invalid_argument("a K range is FROM:TO:STEP, e.g. 0.05:1.3:0.05");
+    values = scanValues(r[0], r[1], r[2]);
+  } else {
+    values = split(text, ',');
+  }
+  checkScanValues(values);
+  return values;
+}
+
 std::string scanKText(double K) {
   char text[64];
   const auto result = std::to_chars(text, text + sizeof text, K);
@@ -101,6 +135,22 @@ std::optional<std::string> kScanValidationError(const KScanRequest& r) {
   return std::nullopt;
 }
 
+std::optional<std::string> scanFolderError(const std::filesystem::path& dir) {
+  if (dir.empty()) return "the scan folder is empty: give a folder";
+  std::error_code ec;
+  try {
+    if (std::filesystem::exists(dir, ec) && !std::filesystem::is_directory(dir, ec))
+      return "cannot scan into " + dir.string() + ": it is not a folder";
+    if (std::filesystem::exists(dir, ec))
+      io::checkWritableTarget(dir / scanSummaryCsvFileName);
+    else
+      io::checkWritableTarget(dir);  // its parent exists and is writable
+  } catch (const std::exception& e) {
+    return std::string(e.what());
+  }
+  return std::nullopt;
+}
+
 void writeScanSummaries(const std::filesystem::path& dir, const std::vector<ScanRunSummary>& runs) {
   io::writeFileAtomically(dir / scanFtCsvFileName, scanFtCsv(runs));
   io::writeFileAtomically(dir / scanLocalExponentCsvFileName, scanLocalExponentCsv(runs));
@@ -111,12 +161,8 @@ KScanOutcome runKScan(const KScanRequest& r, const KScanObserver& observer, std:
   if (auto e = kScanValidationError(r)) throw std::invalid_argument(*e);
   const std::filesystem::path& dir = r.dir;
   std::error_code ec;
-  if (std::filesystem::exists(dir, ec) && !std::filesystem::is_directory(dir, ec))
-    throw std::runtime_error("cannot scan into " + dir.string() + ": it is not a folder");
-  if (!std::filesystem::exists(dir, ec)) {
-    io::checkWritableTarget(dir);  // its parent exists and is writable
-    std::filesystem::create_directory(dir);
-  }
+  if (auto e = scanFolderError(dir)) throw std::runtime_error(*e);
+  if (!std::filesystem::exists(dir, ec)) std::filesystem::create_directory(dir);
   io::checkWritableTarget(dir / scanSummaryCsvFileName);
   const io::FileLock scanLock = io::FileLock::acquire(dir / scanSummaryCsvFileName);
 

@@ -16,6 +16,7 @@
 #include <optional>
 #include <stop_token>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/export/ScanCsv.hpp"
@@ -27,6 +28,15 @@ namespace archipelago {
 /// Every K checked: each in the box rule's range [0, kScanMaxK] (scanBox), none twice, at least one.  Throws
 /// std::invalid_argument naming the offending K.
 void checkScanValues(const std::vector<double>& K);
+
+/// The K list of a text: "FROM:TO:STEP" (scanValues) or "K1, K2, …" (commas, blanks allowed around them), each K
+/// a finite decimal number; then checkScanValues.  Throws std::invalid_argument saying what is wrong (an empty
+/// list, a word that is not a number, NaN, a K outside the range, a K twice).  The GUI's reader (the CLI keeps
+/// its own option syntax, CliCommon.hpp, with the same range and uniqueness rules).
+[[nodiscard]] std::vector<double> parseScanValues(std::string_view text);
+
+/// The paper's list (§5: "K between 0 and 1.3 at intervals of 0.05"), as a text parseScanValues reads.
+inline constexpr const char* kPaperScanValuesText = "0.05:1.3:0.05";
 
 /// The shortest text that reads back as K ("0.05"): the run file's name and the messages.
 [[nodiscard]] std::string scanKText(double K);
@@ -52,6 +62,10 @@ struct KScanRequest {
 /// (spec/RunSpec.hpp rules), their memory, the b₂ request, the checkpoint interval.  The first problem as one
 /// line, or nothing.
 [[nodiscard]] std::optional<std::string> kScanValidationError(const KScanRequest& r);
+
+/// Whether `dir` can hold a scan, without changing anything: an existing writable folder, or a missing one whose
+/// parent is a writable folder.  The reason as one line naming the path, or nothing.
+[[nodiscard]] std::optional<std::string> scanFolderError(const std::filesystem::path& dir);
 
 /// Where a scan is, at every chunk of the K running (and once for each K at its start).
 struct KScanProgress {
