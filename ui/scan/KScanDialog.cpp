@@ -26,7 +26,9 @@
 #include <qwt_scale_engine.h>
 #include <qwt_symbol.h>
 
+#include <array>
 #include <cmath>
+#include <initializer_list>
 #include <utility>
 
 #include "core/kernels/KernelDispatch.hpp"
@@ -112,7 +114,9 @@ KScanDialog::KScanDialog(const RunSpec& base, QWidget* parent) : QDialog(parent)
   connect(browseButton, &QPushButton::clicked, this, &KScanDialog::browse);
   folderRow->addWidget(folder_, 1);
   folderRow->addWidget(browseButton);
-  form->addRow(tr("&Folder"), folderRow);
+  auto* folderLabel = new QLabel(tr("&Folder"), settings);
+  folderLabel->setBuddy(folder_);
+  form->addRow(folderLabel, folderRow);
   auto* rule = new QLabel(tr("Box of each K: xmin = −2√K − %1, xmax = √K + %1. Xr, subsets and longest kept are "
                              "the main window's.")
                               .arg(kScanBoxMargin),
@@ -156,7 +160,8 @@ KScanDialog::KScanDialog(const RunSpec& base, QWidget* parent) : QDialog(parent)
   // The results: f_t per K, D(K) and the local exponent per K, and the table.
   ftPlot_ = makePlot(this, tr("t (steps)"), tr("f_t"), true, true);
   ftPlot_->setTitle(tr("f_t, one curve per K"));
-  dPlot_ = makePlot(this, tr("K"), tr("D (± one sigma over subsets)"), false, true);
+  ftPlot_->insertLegend(new QwtLegend, QwtPlot::RightLegend);
+  dPlot_ = makePlot(this, tr("K"), tr("D ± 1σ (subsets)"), false, true);
   dPlot_->setTitle(tr("D against K"));
   exponentPlot_ = makePlot(this, tr("τ (steps)"), tr("−d log C_τ / d log τ"), true, false);
   exponentPlot_->setTitle(tr("local exponent of C_τ, one curve per K"));
@@ -166,6 +171,9 @@ KScanDialog::KScanDialog(const RunSpec& base, QWidget* parent) : QDialog(parent)
   table_->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
   table_->verticalHeader()->setVisible(false);
   table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
+  // Small minimum sizes: the dialog fits a 1280 × 800 screen whatever the plots' size hints.
+  ftPlot_->setMinimumSize(320, 220);
+  for (QWidget* w : std::initializer_list<QWidget*>{dPlot_, exponentPlot_, table_}) w->setMinimumSize(320, 180);
 
   auto* lower = new QTabWidget(this);
   lower->addTab(dPlot_, tr("D(K)"));
@@ -278,7 +286,11 @@ bool KScanDialog::start() {
     }
     finishedRuns_ = std::move(result.value->runs);
     kProgress_->setValue(1000);
+    kProgress_->setFormat(tr("every K finished"));
     scanProgress_->setValue(1000);
+    scanProgress_->setFormat(tr("100%"));
+    kEta_->clear();
+    scanEta_->clear();
     exportButton_->setEnabled(true);
     showMessage(tr("Finished: %1 K; the summaries (%2, %3, %4) are in %5.")
                     .arg(finishedRuns_.size())
@@ -398,7 +410,20 @@ void KScanDialog::replot() {
   dCurve->setSymbol(new QwtSymbol(QwtSymbol::Ellipse, QColor(31, 119, 180), QColor(31, 119, 180), QSize(6, 6)));
   dCurve->setSamples(dPoints);
   dCurve->attach(dPlot_);
-  for (QwtPlot* plot : {ftPlot_, dPlot_, exponentPlot_}) plot->replot();
+  // Before any result, fixed ranges (an empty log axis would span hundreds of decades); then autoscale.
+  const bool empty = dPoints.isEmpty() && table_->rowCount() == 0;
+  const std::pair<QwtPlot*, std::array<double, 4>> ranges[] = {
+      {ftPlot_, {1, 1e6, 1e-8, 1}}, {dPlot_, {0, 1.3, 1, 1e4}}, {exponentPlot_, {1, 1e6, 0, 3}}};
+  for (const auto& [plot, r] : ranges) {
+    if (empty) {
+      plot->setAxisScale(kAxisX, r[0], r[1]);
+      plot->setAxisScale(kAxisY, r[2], r[3]);
+    } else {
+      plot->setAxisAutoScale(kAxisX, true);
+      plot->setAxisAutoScale(kAxisY, true);
+    }
+    plot->replot();
+  }
 }
 
 void KScanDialog::browse() {
