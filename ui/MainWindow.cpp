@@ -39,6 +39,7 @@
 #include "ui/ParameterPanel.hpp"
 #include "ui/StatisticsView.hpp"
 #include "ui/periodic/PeriodicOrbitDialog.hpp"
+#include "ui/scan/KScanDialog.hpp"
 #include "ui/portrait/PortraitController.hpp"
 #include "ui/portrait/PortraitPanel.hpp"
 #include "ui/segments/LongSegmentsPanel.hpp"
@@ -247,6 +248,8 @@ void MainWindow::createMenus() {
   QAction* periodic = tools->addAction(tr("Find &Periodic Orbit…"), this, &MainWindow::showPeriodicOrbitDialog);
   periodic->setShortcut(QKeySequence(QStringLiteral("Ctrl+Shift+P")));
   periodic->setStatusTip(tr("Periodic orbits of Q with their residues; overlay them on the phase portrait"));
+  QAction* kScan = tools->addAction(tr("&K Scan…"), this, &MainWindow::showKScanDialog);
+  kScan->setStatusTip(tr("The K scan of sec. 5: a resumable run per K, f_t and D over K"));
 
   QMenu* help = menuBar()->addMenu(tr("&Help"));
   help->addAction(tr("&About Archipelago"), this, &MainWindow::showAbout);
@@ -467,6 +470,13 @@ void MainWindow::showPeriodicOrbitDialog() {
   periodicDialog_->show();
   periodicDialog_->raise();
   periodicDialog_->activateWindow();
+}
+
+void MainWindow::showKScanDialog() {
+  if (kScanDialog_ == nullptr) kScanDialog_ = new KScanDialog(panel_->spec().value_or(RunSpec{}), this);
+  kScanDialog_->show();
+  kScanDialog_->raise();
+  kScanDialog_->activateWindow();
 }
 
 void MainWindow::showProgress(const RunSnapshot& s) {

@@ -32,6 +32,7 @@ namespace archipelago::ui {
 
 class LongSegmentsPanel;
 class PeriodicOrbitDialog;
+class KScanDialog;
 class PortraitPanel;
 
 class ParameterPanel;
@@ -76,6 +77,7 @@ class MainWindow : public QMainWindow {
   void showLongSegment(int rank, bool island);
   /// Tools ▸ Find Periodic Orbit: the dialog, with K from the current parameters.
   void showPeriodicOrbitDialog();
+  void showKScanDialog();
   [[nodiscard]] QTabWidget* tabs() const noexcept { return tabs_; }
   [[nodiscard]] RunSnapshotPtr latestSnapshot() const { return run_->latest(); }
   [[nodiscard]] QAction* runAction() const noexcept { return runAction_; }
@@ -144,6 +146,7 @@ class MainWindow : public QMainWindow {
   LongSegmentsPanel* segments_ = nullptr;
   QDockWidget* segmentsDock_ = nullptr;
   PeriodicOrbitDialog* periodicDialog_ = nullptr;
+  KScanDialog* kScanDialog_ = nullptr;
   int pendingSegment_ = -1;       // showLongSegment(): the rank to select when the table has it
   bool pendingIsland_ = false;
   SessionController* sessions_ = nullptr;

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <memory>
 #include <optional>
+#include <stop_token>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -16,30 +17,14 @@
 #include "CliCommon.hpp"
 #include "PngWriter.hpp"
 #include "RunSession.hpp"
+#include "core/export/KScanRun.hpp"
 #include "core/export/ScanCsv.hpp"
-#include "core/io/AtomicFile.hpp"
 #include "core/kernels/KernelDispatch.hpp"
-#include "core/portrait/StochasticArea.hpp"
-#include "core/runfile/RunFile.hpp"
-#include "core/stats/RunStatistics.hpp"
 #include "core/theory/KScan.hpp"
 
 namespace archipelago::cli {
 
 namespace {
-
-/// The b₂ computation of one K of the scan (--b2-iterations): the run's map, randomizing zone, q and seed.
-StochasticAreaRequest b2Request(const TrappingParameters& p, std::uint64_t iterations, const KernelInfo& kernel) {
-  StochasticAreaRequest r;
-  r.map = p.map;
-  r.Xr = p.Xr;
-  r.q = p.q;
-  r.seed = p.seed;
-  r.iterations = iterations;
-  r.firstCheckpoint = std::min<std::uint64_t>(r.firstCheckpoint, iterations);
-  r.kernel = &kernel;
-  return r;
-}
 
 struct ScanOptions : SpecOptions {  // --preset, --spec, the parameters but K, xmin, xmax; --threads, --kernel
   std::string K;                    // --K FROM:TO:STEP or K1,K2,…
@@ -60,29 +45,12 @@ std::vector<double> parseKList(const std::string& text) {
     const std::size_t count = static_cast<std::size_t>(std::count(text.begin(), text.end(), ',')) + 1;
     values = parseNumbers<double>("--K", text, ',', count, "a list K1,K2,... or a range FROM:TO:STEP");
   }
-  for (std::size_t i = 0; i < values.size(); ++i) {
-    (void)scanBox(values[i]);  // the range of the box rule
-    for (std::size_t j = 0; j < i; ++j)
-      if (values[j] == values[i]) throw std::invalid_argument("--K lists K = " + formatNumber(values[i]) + " twice");
+  try {
+    checkScanValues(values);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(std::string("--K: ") + e.what());
   }
   return values;
-}
-
-/// The run file of one K in the scan's folder: K0.05.json (the shortest text that reads back as K).
-std::filesystem::path runFileOf(const std::filesystem::path& dir, double K) {
-  return dir / ("K" + formatNumber(K) + ".json");
-}
-
-/// One K of the scan: its parameters, its file, and what is known of it before this session.
-struct ScanItem {
-  TrappingParameters params;
-  std::filesystem::path file;
-  std::uint64_t blocksDone = 0;
-  bool finished = false;
-};
-
-double stepsOf(const TrappingParameters& p, std::uint64_t blocks) {
-  return static_cast<double>(p.M) * static_cast<double>(blocks) * p.q;
 }
 
 /// The heat map of the local exponent as an image: a column of cells per K (left to right), log τ upwards at 30
@@ -118,121 +86,58 @@ void writeHeatMapPng(const std::filesystem::path& path, const ScanHeatMap& map) 
 }
 
 int scanCommand(const ScanOptions& o, const RunSpec& base, const std::vector<double>& Ks) {
+  KScanRequest request;
+  request.base = base;
+  request.K = Ks;
+  request.dir = o.dir;
+  request.kernel = &selectKernel(o.kernel);
+  request.checkpointSeconds = o.checkpointSeconds;
+  request.maxChunkBlocks = o.maxChunkBlocks;
+  request.b2Iterations = o.b2Iterations;
   const std::filesystem::path dir = o.dir;
-  std::error_code ec;
-  if (std::filesystem::exists(dir, ec) && !std::filesystem::is_directory(dir, ec))
-    throw std::runtime_error("cannot scan into " + dir.string() + ": it is not a folder");
-  if (!std::filesystem::exists(dir, ec)) {
-    io::checkWritableTarget(dir);  // its parent exists and is writable
-    std::filesystem::create_directory(dir);
-  }
-  io::checkWritableTarget(dir / scanSummaryCsvFileName);
-  // One scan per folder at a time: the summary's lock for the whole scan, each K's file while it runs.
-  const io::FileLock scanLock = io::FileLock::acquire(dir / scanSummaryCsvFileName);
-  const KernelInfo& kernel = selectKernel(o.kernel);
 
-  // Every K checked before any work: its parameters, its b₂ request, and any run file already there.
-  std::vector<ScanItem> items;
-  for (const double K : Ks) {
-    ScanItem item;
-    item.params = base.parameters;
-    item.params.map = scanBox(K);
-    RunSpec spec = base;
-    spec.parameters = item.params;
-    if (auto e = validationError(spec)) throw std::invalid_argument("K = " + formatNumber(K) + ": " + *e);
-    if (auto e = memoryError(item.params, base.threads)) throw std::runtime_error(*e);
-    item.file = runFileOf(dir, K);
-    if (std::filesystem::exists(item.file, ec)) {
-      const TrappingState state = loadRunFile(item.file);
-      if (!(state.params == item.params))
-        throw std::runtime_error(item.file.string() + " holds a run of other parameters than this scan's K = " +
-                                 formatNumber(K) + " (another --dir, or remove the file)");
-      item.blocksDone = state.blocksDone;
-      item.finished = state.finished();
-    }
-    if (o.b2Iterations > 0) {
-      const StochasticAreaRequest r = b2Request(item.params, o.b2Iterations, kernel);
-      if (auto e = validationError(r)) throw std::invalid_argument("--b2-iterations at K = " + formatNumber(K) + ": " + *e);
-    }
-    items.push_back(item);
-  }
-
-  // Progress of the whole scan: steps over every K, the rate of this session, its ETA.
-  double totalSteps = 0, stepsBefore = 0;
-  for (const ScanItem& item : items) {
-    totalSteps += stepsOf(item.params, item.params.T);
-    stepsBefore += stepsOf(item.params, item.blocksDone);
-  }
+  // The scan itself is core's (export/KScanRun.hpp), shared with the GUI; here only its progress line.
   const bool tty = ::isatty(STDERR_FILENO) != 0;
-  const auto sessionStart = std::chrono::steady_clock::now();
-  auto lastLine = sessionStart - std::chrono::seconds(60);
-  double stepsFinishedThisSession = 0;  // whole K finished in this session (beyond what they had before)
-
+  auto lastLine = std::chrono::steady_clock::now() - std::chrono::seconds(60);
+  std::stop_source stopper;
+  bool lineOpen = false;
+  KScanObserver observer;
+  observer.progress = [&](const KScanProgress& p) {
+    if (interruptRequested()) stopper.request_stop();
+    const auto now = std::chrono::steady_clock::now();
+    if (o.quiet || (!tty && std::chrono::duration<double>(now - lastLine).count() < 10)) return;
+    lastLine = now;
+    std::fprintf(stderr, "%sscan: K = %s (%zu of %zu) %5.1f%%, whole scan %5.1f%%  %.3g steps/s  ETA %s   %s",
+                 tty ? "\r" : "", scanKText(p.K).c_str(), p.index + 1, p.count, 100 * p.fractionK(),
+                 100 * p.fractionScan(), p.stepsPerSecond, clockText(p.etaScan).c_str(), tty ? "" : "\n");
+    std::fflush(stderr);
+    lineOpen = tty;
+  };
+  observer.finished = [&](std::size_t, const ScanRunSummary&) {
+    if (lineOpen) std::fputc('\n', stderr);
+    lineOpen = false;
+  };
+  observer.warning = [&](const std::string& text) {
+    if (lineOpen) std::fputc('\n', stderr);
+    lineOpen = false;
+    std::fprintf(stderr, "WARNING: %s\n", text.c_str());
+  };
   installInterruptHandlers();
-  for (std::size_t k = 0; k < items.size(); ++k) {
-    ScanItem& item = items[k];
-    if (item.finished) continue;
-    const std::string path = item.file.string();
-    const std::vector<io::FileLock> locks = lockRunFiles(path, path, std::string());
-    TrappingState state = item.blocksDone > 0 || std::filesystem::exists(item.file, ec) ? loadRunFile(item.file)
-                                                                                     : startTrapping(item.params);
-    if (!(state.params == item.params)) throw std::runtime_error(path + " changed during the scan");
-    const std::uint64_t blocksAtStart = state.blocksDone;
-    CheckpointedRunOptions options;
-    options.run.kernel = &kernel;
-    options.run.threads = base.threads;
-    options.run.maxChunkBlocks = o.maxChunkBlocks;
-    options.checkpoint = path;
-    options.checkpointSeconds = o.checkpointSeconds;
-    options.breakLineBeforeWarning = tty && !o.quiet;
-    LastCheckpoint last{blocksAtStart > 0 ? path : std::string(), blocksAtStart};
-    auto progress = [&](const TrappingState& s, const TrappingProgress&) {
-      const auto now = std::chrono::steady_clock::now();
-      if (o.quiet || (!tty && std::chrono::duration<double>(now - lastLine).count() < 10)) return;
-      lastLine = now;
-      const double thisSession = stepsFinishedThisSession + stepsOf(s.params, s.blocksDone - blocksAtStart);
-      const double done = stepsBefore + thisSession;
-      const double seconds = std::chrono::duration<double>(now - sessionStart).count();
-      const double rate = seconds > 0 ? thisSession / seconds : 0;
-      std::fprintf(stderr, "%sscan: K = %s (%zu of %zu) %5.1f%%, whole scan %5.1f%%  %.3g steps/s  ETA %s   %s",
-                   tty ? "\r" : "", formatNumber(s.params.map.K).c_str(), k + 1, items.size(),
-                   100.0 * static_cast<double>(s.blocksDone) / static_cast<double>(s.params.T), 100 * done / totalSteps,
-                   rate, clockText(rate > 0 ? (totalSteps - done) / rate : -1).c_str(), tty ? "" : "\n");
-      std::fflush(stderr);
-    };
-    state = runWithCheckpoints(std::move(state), options, last, progress);
-    if (!o.quiet && tty) std::fputc('\n', stderr);
-    saveRunFileOrSayWhere(path, state, last);
-    if (!state.finished()) {
-      std::fprintf(stderr, "interrupted: K = %s checkpointed in %s; run the same scan again to resume\n",
-                   formatNumber(item.params.map.K).c_str(), path.c_str());
-      return 130;  // 128 + SIGINT
-    }
-    stepsFinishedThisSession += stepsOf(item.params, state.blocksDone - blocksAtStart);
-    item.finished = true;
+  const KScanOutcome outcome = runKScan(request, observer, stopper.get_token());
+  if (lineOpen) std::fputc('\n', stderr);
+  if (!outcome.finished) {
+    std::fprintf(stderr, "interrupted: K = %s checkpointed in %s; run the same scan again to resume\n",
+                 scanKText(Ks[outcome.stoppedIndex]).c_str(), outcome.stoppedFile.string().c_str());
+    return 130;  // 128 + SIGINT
   }
-
+  const std::vector<ScanRunSummary>& runs = outcome.runs;
   // The summaries, from the run files (all finished now) and, when asked, b₂ of every box.
-  std::vector<ScanRunSummary> runs;
-  for (const ScanItem& item : items) {
-    const TrappingState state = loadRunFile(item.file);
-    const TrappingStatistics statistics = statisticsOf(state);
-    std::optional<StochasticAreaValue> b2;
-    if (o.b2Iterations > 0) {
-      const StochasticAreaRequest r = b2Request(item.params, o.b2Iterations, kernel);
-      b2 = stochasticAreaOf(r.map, computeStochasticArea(r).b2());
-    }
-    runs.push_back({state.params, scanPointOf(state, statistics, b2), statistics});
-  }
-  io::writeFileAtomically(dir / scanFtCsvFileName, scanFtCsv(runs));
-  io::writeFileAtomically(dir / scanLocalExponentCsvFileName, scanLocalExponentCsv(runs));
-  io::writeFileAtomically(dir / scanSummaryCsvFileName, scanSummaryCsv(runs));
   writeHeatMapPng(dir / "scan_local_exponent.png", localExponentHeatMap(runs));
   std::printf("K, box xmin..xmax, D +- error, longest (steps), time in segments >= 1e4 steps%s\n",
               o.b2Iterations > 0 ? ", b2 (area), b2*D" : "");
   for (const ScanRunSummary& r : runs) {
     const ScanPoint& p = r.point;
-    std::printf("%-6s %.4g..%.4g  %.4g +- %.2g  %llu  %.3f", formatNumber(p.K).c_str(), p.box.xmin, p.box.xmax, p.D,
+    std::printf("%-6s %.4g..%.4g  %.4g +- %.2g  %llu  %.3f", scanKText(p.K).c_str(), p.box.xmin, p.box.xmax, p.D,
                 p.DError, static_cast<unsigned long long>(p.longestSteps), p.longFraction);
     if (p.boxInvariant) std::printf("  %.4f  %.4g", p.boxInvariant->b2.area, p.boxInvariant->b2D);
     std::printf("\n");

@@ -1,0 +1,460 @@
+#include "ui/scan/KScanDialog.hpp"
+
+#include <QDialogButtonBox>
+#include <QFileDialog>
+#include <QFormLayout>
+#include <QGridLayout>
+#include <QHBoxLayout>
+#include <QHeaderView>
+#include <QLabel>
+#include <QLineEdit>
+#include <QLocale>
+#include <QMessageBox>
+#include <QProgressBar>
+#include <QPushButton>
+#include <QSplitter>
+#include <QTabWidget>
+#include <QTableWidget>
+#include <QVBoxLayout>
+#include <qwt_interval.h>
+#include <qwt_interval_symbol.h>
+#include <qwt_legend.h>
+#include <qwt_plot.h>
+#include <qwt_plot_curve.h>
+#include <qwt_plot_grid.h>
+#include <qwt_plot_intervalcurve.h>
+#include <qwt_scale_engine.h>
+#include <qwt_symbol.h>
+
+#include <array>
+#include <cmath>
+#include <initializer_list>
+#include <utility>
+
+#include "core/kernels/KernelDispatch.hpp"
+#include "ui/RunController.hpp"
+#include "ui/plots/LogScaleDraw.hpp"
+#include "ui/plots/QwtCompat.hpp"
+
+namespace archipelago::ui {
+
+namespace {
+
+const QLocale kNumbers = QLocale::c();
+
+/// A whole number ≥ 0 as typed (digits only: no sign, no NaN), or nothing.
+std::optional<std::uint64_t> parseCount(const QString& text) {
+  const QString t = text.trimmed();
+  bool ok = false;
+  const qulonglong v = kNumbers.toULongLong(t, &ok);
+  if (!ok || t.isEmpty() || t.startsWith(u'+')) return std::nullopt;
+  return static_cast<std::uint64_t>(v);
+}
+
+QwtPlot* makePlot(QWidget* parent, const QString& x, const QString& y, bool logX, bool logY) {
+  auto* plot = new QwtPlot(parent);
+  plot->setCanvasBackground(Qt::white);
+  plot->setAxisTitle(kAxisX, x);
+  plot->setAxisTitle(kAxisY, y);
+  if (logX) {
+    plot->setAxisScaleEngine(kAxisX, new QwtLogScaleEngine);
+    plot->setAxisScaleDraw(kAxisX, new LogScaleDraw);
+  }
+  if (logY) {
+    plot->setAxisScaleEngine(kAxisY, new QwtLogScaleEngine);
+    plot->setAxisScaleDraw(kAxisY, new LogScaleDraw);
+  }
+  auto* grid = new QwtPlotGrid;
+  grid->setMajorPen(QColor(0, 0, 0, 40), 0, Qt::DotLine);
+  grid->attach(plot);
+  return plot;
+}
+
+/// The colour of K number `i` of `n`: blue (small K) through red (large K).
+QColor colourOf(std::size_t i, std::size_t n) {
+  const float s = n > 1 ? static_cast<float>(i) / static_cast<float>(n - 1) : 0.0f;
+  return QColor::fromHsvF(0.66f * (1 - s), 0.85f, 0.8f);
+}
+
+QString kText(double K) { return QString::fromStdString(scanKText(K)); }
+
+}  // namespace
+
+KScanDialog::KScanDialog(const RunSpec& base, QWidget* parent) : QDialog(parent), base_(base) {
+  setWindowTitle(tr("K scan (§5)"));
+  setObjectName(QStringLiteral("kScanDialog"));
+
+  // The settings.
+  auto* settings = new QWidget(this);
+  auto* form = new QFormLayout(settings);
+  kValues_ = new QLineEdit(QString::fromLatin1(kPaperScanValuesText), settings);
+  kValues_->setToolTip(tr("FROM:TO:STEP or K1, K2, …; each K in [0, %1]. The paper's list: 0.05 to 1.3 by 0.05.")
+                           .arg(kScanMaxK));
+  form->addRow(tr("&K values"), kValues_);
+  const TrappingParameters& p = base.parameters;
+  auto addField = [&](const QString& label, const QString& name, const QString& value, const QString& tip) {
+    auto* edit = new QLineEdit(value, settings);
+    edit->setObjectName(name);
+    edit->setToolTip(tip);
+    form->addRow(label, edit);
+    return edit;
+  };
+  M_ = addField(tr("&M (orbits)"), QStringLiteral("M"), QString::number(p.M), tr("orbits per K"));
+  T_ = addField(tr("&T (blocks)"), QStringLiteral("T"), QString::number(p.T), tr("blocks of q steps per orbit"));
+  q_ = addField(tr("&q"), QStringLiteral("q"), QString::number(p.q), tr("steps of N⁻¹ per block"));
+  seed_ = addField(tr("See&d"), QStringLiteral("seed"), QString::number(p.seed), tr("seed of the random numbers"));
+  threads_ = addField(tr("T&hreads"), QStringLiteral("threads"), QString::number(base.threads),
+                      tr("OpenMP threads (0: one per core)"));
+  auto* folderRow = new QHBoxLayout;
+  folder_ = new QLineEdit(QStringLiteral("scan"), settings);
+  folder_->setToolTip(tr("a run file per K (K0.05.json, …) and the summaries; a folder already holding a scan of "
+                         "the same settings is resumed"));
+  auto* browseButton = new QPushButton(tr("&Browse…"), settings);
+  browseButton->setAutoDefault(false);
+  connect(browseButton, &QPushButton::clicked, this, &KScanDialog::browse);
+  folderRow->addWidget(folder_, 1);
+  folderRow->addWidget(browseButton);
+  auto* folderLabel = new QLabel(tr("&Folder"), settings);
+  folderLabel->setBuddy(folder_);
+  form->addRow(folderLabel, folderRow);
+  auto* rule = new QLabel(tr("Box of each K: xmin = −2√K − %1, xmax = √K + %1. Xr, subsets and longest kept are "
+                             "the main window's.")
+                              .arg(kScanBoxMargin),
+                          settings);
+  rule->setWordWrap(true);
+  form->addRow(rule);
+
+  // Progress.
+  kProgress_ = new QProgressBar(settings);
+  kProgress_->setRange(0, 1000);
+  kProgress_->setFormat(tr("this K"));
+  scanProgress_ = new QProgressBar(settings);
+  scanProgress_->setRange(0, 1000);
+  scanProgress_->setFormat(tr("whole scan"));
+  kEta_ = new QLabel(settings);
+  scanEta_ = new QLabel(settings);
+  form->addRow(tr("This K"), kProgress_);
+  form->addRow(QString(), kEta_);
+  form->addRow(tr("Whole scan"), scanProgress_);
+  form->addRow(QString(), scanEta_);
+  message_ = new QLabel(settings);
+  message_->setWordWrap(true);
+  message_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  form->addRow(message_);
+
+  // Buttons: Enter starts, Esc closes.
+  auto* buttons = new QDialogButtonBox(this);
+  startButton_ = buttons->addButton(tr("&Start"), QDialogButtonBox::ActionRole);
+  startButton_->setDefault(true);
+  stopButton_ = buttons->addButton(tr("S&top"), QDialogButtonBox::ActionRole);
+  stopButton_->setAutoDefault(false);
+  exportButton_ = buttons->addButton(tr("&Export CSV…"), QDialogButtonBox::ActionRole);
+  exportButton_->setAutoDefault(false);
+  QPushButton* closeButton = buttons->addButton(QDialogButtonBox::Close);
+  closeButton->setAutoDefault(false);
+  connect(startButton_, &QPushButton::clicked, this, [this] { start(); });
+  connect(stopButton_, &QPushButton::clicked, this, &KScanDialog::stop);
+  connect(exportButton_, &QPushButton::clicked, this, &KScanDialog::exportInteractively);
+  connect(closeButton, &QPushButton::clicked, this, &KScanDialog::reject);
+
+  // The results: f_t per K, D(K) and the local exponent per K, and the table.
+  ftPlot_ = makePlot(this, tr("t (steps)"), tr("f_t"), true, true);
+  ftPlot_->setTitle(tr("f_t, one curve per K"));
+  ftPlot_->insertLegend(new QwtLegend, QwtPlot::RightLegend);
+  dPlot_ = makePlot(this, tr("K"), tr("D ± 1σ (subsets)"), false, true);
+  dPlot_->setTitle(tr("D against K"));
+  exponentPlot_ = makePlot(this, tr("τ (steps)"), tr("−d log C_τ / d log τ"), true, false);
+  exponentPlot_->setTitle(tr("local exponent of C_τ, one curve per K"));
+  table_ = new QTableWidget(0, 8, this);
+  table_->setHorizontalHeaderLabels({tr("K"), tr("xmin"), tr("xmax"), tr("blocks"), tr("segments"), tr("D ± error"),
+                                     tr("longest (steps)"), tr("time in ≥10⁴")});
+  table_->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
+  table_->verticalHeader()->setVisible(false);
+  table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
+  // Small minimum sizes: the dialog fits a 1280 × 800 screen whatever the plots' size hints.
+  ftPlot_->setMinimumSize(320, 220);
+  for (QWidget* w : std::initializer_list<QWidget*>{dPlot_, exponentPlot_, table_}) w->setMinimumSize(320, 180);
+
+  auto* lower = new QTabWidget(this);
+  lower->addTab(dPlot_, tr("D(K)"));
+  lower->addTab(exponentPlot_, tr("Local exponent"));
+  lower->addTab(table_, tr("Table"));
+  auto* right = new QSplitter(Qt::Vertical, this);
+  right->addWidget(ftPlot_);
+  right->addWidget(lower);
+  auto* left = new QVBoxLayout;
+  left->addWidget(settings);
+  left->addStretch(1);
+  auto* top = new QHBoxLayout;
+  settings->setMaximumWidth(420);
+  top->addLayout(left);
+  top->addWidget(right, 1);
+  auto* layout = new QVBoxLayout(this);
+  layout->addLayout(top, 1);
+  layout->addWidget(buttons);
+  resize(1200, 740);  // fits 1280 × 800 with the window frame
+  setRunning(false);
+  exportButton_->setEnabled(false);
+}
+
+KScanDialog::~KScanDialog() = default;  // jobs_ stops the scan (its K saved) and waits for it
+
+QLineEdit* KScanDialog::field(const QString& name) const {
+  return findChild<QLineEdit*>(name);
+}
+
+QString KScanDialog::message() const { return message_->text(); }
+
+std::optional<KScanRequest> KScanDialog::request(QString* error) const {
+  auto fail = [&](const QString& text) -> std::optional<KScanRequest> {
+    if (error) *error = text;
+    return std::nullopt;
+  };
+  KScanRequest r;
+  r.base = base_;
+  try {
+    r.K = parseScanValues(kValues_->text().toStdString());
+  } catch (const std::exception& e) {
+    return fail(QString::fromStdString(e.what()));
+  }
+  const std::pair<QLineEdit*, const char*> counts[] = {{M_, "M"}, {T_, "T"}, {q_, "q"}, {seed_, "seed"}};
+  for (const auto& [edit, key] : counts) {
+    const auto v = parseCount(edit->text());
+    if (!v) return fail(tr("%1 = '%2' is not a whole number ≥ 0").arg(QLatin1String(key), edit->text()));
+    try {
+      setParameterValue(r.base.parameters, key, *v);
+    } catch (const std::exception& e) {
+      return fail(QString::fromStdString(e.what()));
+    }
+  }
+  const auto threads = parseCount(threads_->text());
+  if (!threads || *threads > static_cast<std::uint64_t>(kMaxThreads))
+    return fail(tr("threads = '%1' must be a whole number from 0 to %2").arg(threads_->text()).arg(kMaxThreads));
+  r.base.threads = static_cast<int>(*threads);
+  r.dir = folder_->text().trimmed().toStdString();
+  if (auto e = kScanValidationError(r)) return fail(QString::fromStdString(*e));
+  if (auto e = scanFolderError(r.dir)) return fail(QString::fromStdString(*e));
+  return r;
+}
+
+bool KScanDialog::start() {
+  if (running_) return false;
+  QString error;
+  std::optional<KScanRequest> r = request(&error);
+  if (!r) {
+    showMessage(error, true);
+    return false;
+  }
+  try {
+    r->kernel = &selectKernel(base_.kernel == "auto" ? std::string() : base_.kernel);
+  } catch (const std::exception& e) {
+    showMessage(QString::fromStdString(e.what()), true);
+    return false;
+  }
+  clearResults();
+  shown_.assign(r->K.size(), std::nullopt);
+  Job<KScanOutcome, Update> job;
+  job.work = [request = *r](JobContext<Update>& context) -> std::optional<KScanOutcome> {
+    KScanObserver observer;
+    observer.progress = [&](const KScanProgress& p) { context.progress(Update{p, std::nullopt, {}}); };
+    observer.finished = [&](std::size_t index, const ScanRunSummary& run) {
+      context.post(Update{std::nullopt, std::make_pair(index, run), {}});
+    };
+    observer.warning = [&](const std::string& text) {
+      context.post(Update{std::nullopt, std::nullopt, QString::fromStdString(text)});
+    };
+    return runKScan(request, observer, context.stopToken());
+  };
+  job.progress = [this](quint64, Update u) {
+    if (u.progress) showProgress(*u.progress);
+    if (u.finished) addResult(u.finished->first, u.finished->second);
+    if (!u.warning.isEmpty()) showMessage(tr("Warning: %1").arg(u.warning), true);
+  };
+  job.done = [this, dir = QString::fromStdString(r->dir.string())](JobResult<KScanOutcome> result) {
+    setRunning(false);
+    if (!result.ok()) {
+      showMessage(tr("Error: %1").arg(result.error), true);
+      Q_EMIT scanEnded(false);
+      return;
+    }
+    if (!result.value->finished) {
+      showMessage(tr("Stopped: %1 holds the checkpoint; Start resumes the scan.")
+                      .arg(QString::fromStdString(result.value->stoppedFile.string())),
+                  false);
+      Q_EMIT scanEnded(false);
+      return;
+    }
+    finishedRuns_ = std::move(result.value->runs);
+    kProgress_->setValue(1000);
+    kProgress_->setFormat(tr("every K finished"));
+    scanProgress_->setValue(1000);
+    scanProgress_->setFormat(tr("100%"));
+    kEta_->clear();
+    scanEta_->clear();
+    exportButton_->setEnabled(true);
+    showMessage(tr("Finished: %1 K; the summaries (%2, %3, %4) are in %5.")
+                    .arg(finishedRuns_.size())
+                    .arg(QLatin1String(scanSummaryCsvFileName), QLatin1String(scanFtCsvFileName),
+                         QLatin1String(scanLocalExponentCsvFileName), dir),
+                false);
+    Q_EMIT scanEnded(true);
+  };
+  jobId_ = jobs_.submit(std::move(job));
+  setRunning(true);
+  showMessage(tr("Scanning %1 K into %2…").arg(r->K.size()).arg(QString::fromStdString(r->dir.string())), false);
+  return true;
+}
+
+void KScanDialog::stop() {
+  if (!running_) return;
+  jobs_.requestStop(jobId_);
+  showMessage(tr("Stopping at the end of the current chunk…"), false);
+}
+
+void KScanDialog::reject() {
+  if (running_) {
+    const auto answer = QMessageBox::question(
+        this, tr("K scan running"),
+        tr("A K scan is running. Stop it and close? The K running is saved in its run file; Start resumes it."),
+        QMessageBox::Yes | QMessageBox::No, QMessageBox::No);
+    if (answer != QMessageBox::Yes) return;
+    stop();
+  }
+  QDialog::reject();
+}
+
+void KScanDialog::setRunning(bool running) {
+  running_ = running;
+  startButton_->setEnabled(!running);
+  stopButton_->setEnabled(running);
+  for (QLineEdit* edit : {kValues_, M_, T_, q_, seed_, threads_, folder_}) edit->setEnabled(!running);
+}
+
+void KScanDialog::showMessage(const QString& text, bool error) {
+  message_->setText(text);
+  message_->setStyleSheet(error ? QStringLiteral("color: #b00020;") : QString());
+}
+
+void KScanDialog::showProgress(const KScanProgress& p) {
+  kProgress_->setValue(static_cast<int>(std::lround(1000 * p.fractionK())));
+  scanProgress_->setValue(static_cast<int>(std::lround(1000 * p.fractionScan())));
+  kProgress_->setFormat(tr("K = %1 (%2 of %3): %4%").arg(kText(p.K)).arg(p.index + 1).arg(p.count)
+                            .arg(100 * p.fractionK(), 0, 'f', 1));
+  scanProgress_->setFormat(tr("%1%").arg(100 * p.fractionScan(), 0, 'f', 1));
+  kEta_->setText(tr("ETA this K %1").arg(formatDuration(p.etaK)));
+  scanEta_->setText(tr("ETA whole scan %1  (%2 steps/s)").arg(formatDuration(p.etaScan))
+                        .arg(p.stepsPerSecond, 0, 'g', 3));
+  Q_EMIT progressed(p.fractionScan());
+}
+
+void KScanDialog::clearResults() {
+  shown_.clear();
+  finishedRuns_.clear();
+  exportButton_->setEnabled(false);
+  table_->setRowCount(0);
+  kProgress_->setValue(0);
+  scanProgress_->setValue(0);
+  replot();
+}
+
+void KScanDialog::addResult(std::size_t index, const ScanRunSummary& run) {
+  if (index >= shown_.size()) return;
+  shown_[index] = run;
+  replot();
+}
+
+void KScanDialog::replot() {
+  for (QwtPlot* plot : {ftPlot_, dPlot_, exponentPlot_}) plot->detachItems(QwtPlotItem::Rtti_PlotCurve, true);
+  dPlot_->detachItems(QwtPlotItem::Rtti_PlotIntervalCurve, true);
+  table_->setRowCount(0);
+  QVector<QPointF> dPoints;
+  QVector<QwtIntervalSample> dErrors;
+  for (std::size_t i = 0; i < shown_.size(); ++i) {
+    if (!shown_[i]) continue;
+    const ScanRunSummary& run = *shown_[i];
+    const QColor colour = colourOf(i, shown_.size());
+    auto addCurve = [&](QwtPlot* plot, const Series& s) {
+      QVector<QPointF> points;
+      for (std::size_t j = 0; j < s.x.size(); ++j)
+        if (s.x[j] > 0 && std::isfinite(s.value[j]) && (plot != ftPlot_ || s.value[j] > 0))
+          points.append(QPointF(s.x[j], s.value[j]));
+      auto* curve = new QwtPlotCurve(QStringLiteral("K = %1").arg(kText(run.point.K)));
+      curve->setPen(colour, 1.5);
+      curve->setSamples(points);
+      curve->attach(plot);
+    };
+    addCurve(ftPlot_, run.statistics.f);
+    addCurve(exponentPlot_, run.statistics.localExponent);
+    const ScanPoint& p = run.point;
+    if (p.D > 0) {
+      dPoints.append(QPointF(p.K, p.D));
+      dErrors.append(QwtIntervalSample(p.K, std::max(p.D - p.DError, p.D * 1e-3), p.D + p.DError));
+    }
+    const int row = table_->rowCount();
+    table_->insertRow(row);
+    const QStringList cells = {kText(p.K), QString::number(p.box.xmin, 'g', 4), QString::number(p.box.xmax, 'g', 4),
+                               QStringLiteral("%1 / %2").arg(p.blocksDone).arg(p.blocksTotal),
+                               QString::number(p.segments),
+                               QStringLiteral("%1 ± %2").arg(p.D, 0, 'g', 4).arg(p.DError, 0, 'g', 2),
+                               p.longestSteps > 0 ? QString::number(p.longestSteps) : QStringLiteral("—"),
+                               QString::number(p.longFraction, 'f', 3)};
+    for (int c = 0; c < cells.size(); ++c) table_->setItem(row, c, new QTableWidgetItem(cells[c]));
+  }
+  auto* bars = new QwtPlotIntervalCurve(tr("one sigma"));
+  bars->setStyle(QwtPlotIntervalCurve::NoCurve);
+  bars->setSymbol(new QwtIntervalSymbol(QwtIntervalSymbol::Bar));
+  bars->setSamples(dErrors);
+  bars->attach(dPlot_);
+  auto* dCurve = new QwtPlotCurve(tr("D"));
+  dCurve->setPen(QColor(31, 119, 180), 1.5);
+  dCurve->setSymbol(new QwtSymbol(QwtSymbol::Ellipse, QColor(31, 119, 180), QColor(31, 119, 180), QSize(6, 6)));
+  dCurve->setSamples(dPoints);
+  dCurve->attach(dPlot_);
+  // Before any result, fixed ranges (an empty log axis would span hundreds of decades); then autoscale.
+  const bool empty = dPoints.isEmpty() && table_->rowCount() == 0;
+  const std::pair<QwtPlot*, std::array<double, 4>> ranges[] = {
+      {ftPlot_, {1, 1e6, 1e-8, 1}}, {dPlot_, {0, 1.3, 1, 1e4}}, {exponentPlot_, {1, 1e6, 0, 3}}};
+  for (const auto& [plot, r] : ranges) {
+    if (empty) {
+      plot->setAxisScale(kAxisX, r[0], r[1]);
+      plot->setAxisScale(kAxisY, r[2], r[3]);
+    } else {
+      plot->setAxisAutoScale(kAxisX, true);
+      plot->setAxisAutoScale(kAxisY, true);
+    }
+    plot->replot();
+  }
+}
+
+void KScanDialog::browse() {
+  const QString dir = QFileDialog::getExistingDirectory(this, tr("Scan folder"), folder_->text());
+  if (!dir.isEmpty()) folder_->setText(dir);
+}
+
+bool KScanDialog::exportCsv(const QString& dir) {
+  if (finishedRuns_.empty()) {
+    showMessage(tr("Nothing to export: no scan has finished yet."), true);
+    return false;
+  }
+  const std::filesystem::path path = dir.toStdString();
+  std::error_code ec;
+  if (!std::filesystem::is_directory(path, ec)) {
+    showMessage(tr("Cannot export into %1: it is not a folder").arg(dir), true);
+    return false;
+  }
+  try {
+    writeScanSummaries(path, finishedRuns_);
+  } catch (const std::exception& e) {
+    showMessage(tr("Export failed: %1").arg(QString::fromStdString(e.what())), true);
+    return false;
+  }
+  showMessage(tr("Exported the scan CSVs into %1.").arg(dir), false);
+  return true;
+}
+
+void KScanDialog::exportInteractively() {
+  const QString dir = QFileDialog::getExistingDirectory(this, tr("Export the scan CSVs into"), folder_->text());
+  if (!dir.isEmpty()) exportCsv(dir);
+}
+
+}  // namespace archipelago::ui

@@ -1,0 +1,111 @@
+#pragma once
+/// \file KScanDialog.hpp
+/// \brief The K scan of §5 in the GUI: the K values (the paper's list by default), the sizes (M, T, q, seed,
+/// threads) and a folder; the scan runs in the background (ui/jobs, latest wins) through core's runKScan
+/// (export/KScanRun.hpp), the very loop of `archipelago-cli scan`, so a folder is resumed the same way by
+/// either: Stop leaves the K running checkpointed in its run file, Start again resumes it and reuses the
+/// finished K.  Progress and ETA per K and for the whole scan; each K's f_t, D ± error and local exponent are
+/// drawn (log-log) and tabulated as it finishes; the summaries (export/ScanCsv.hpp) are written into the
+/// folder at the end and can be exported elsewhere.  No maths here: every number comes from core.
+///
+/// Keys: Enter starts (the default button), Esc closes (asking first while a scan runs; closing stops it,
+/// resumably).
+
+#include <QDialog>
+#include <QString>
+
+#include <optional>
+#include <vector>
+
+#include "core/export/KScanRun.hpp"
+#include "ui/jobs/BackgroundJobs.hpp"
+
+class QLabel;
+class QLineEdit;
+class QProgressBar;
+class QPushButton;
+class QTableWidget;
+class QwtPlot;
+
+namespace archipelago::ui {
+
+class KScanDialog : public QDialog {
+  Q_OBJECT
+ public:
+  /// `base`: the run settings the K share (Xr, subsets, longestKept, kernel; M, T, q, seed, threads as the
+  /// fields' defaults).
+  explicit KScanDialog(const RunSpec& base, QWidget* parent = nullptr);
+  ~KScanDialog() override;  // stops the scan (resumably) and waits for it
+
+  /// The request of the fields, or the first problem as one line (also shown in the dialog).
+  [[nodiscard]] std::optional<KScanRequest> request(QString* error = nullptr) const;
+
+  /// Starts (or resumes) the scan of the fields; false, with the reason shown, when an input is bad.
+  bool start();
+  /// Asks the running scan to stop at its next chunk (its K is saved in its run file).
+  void stop();
+  [[nodiscard]] bool running() const noexcept { return running_; }
+  /// The summaries of the last scan that finished (empty before).
+  [[nodiscard]] const std::vector<ScanRunSummary>& results() const noexcept { return finishedRuns_; }
+  /// Writes the scan CSVs of the last finished scan into `dir`; false, with the reason shown, when it cannot.
+  bool exportCsv(const QString& dir);
+  /// The last message shown (an error, or where the scan is).
+  [[nodiscard]] QString message() const;
+
+  // The fields, for tests.
+  [[nodiscard]] QLineEdit* kField() const noexcept { return kValues_; }
+  [[nodiscard]] QLineEdit* field(const QString& name) const;
+  [[nodiscard]] QLineEdit* folderField() const noexcept { return folder_; }
+
+ Q_SIGNALS:
+  /// The scan ended: finished (every K and the summaries written), stopped, or failed.
+  void scanEnded(bool finished);
+  /// The fraction of the whole scan done (steps), at each progress report.
+  void progressed(double fractionScan);
+
+ public Q_SLOTS:
+  void reject() override;  // Esc / Close: asks first while a scan runs
+
+ private:
+  struct Update {
+    std::optional<KScanProgress> progress;
+    std::optional<std::pair<std::size_t, ScanRunSummary>> finished;
+    QString warning;
+  };
+  void setRunning(bool running);
+  void showMessage(const QString& text, bool error);
+  void showProgress(const KScanProgress& p);
+  void addResult(std::size_t index, const ScanRunSummary& run);
+  void clearResults();
+  void replot();
+  void browse();
+  void exportInteractively();
+
+  RunSpec base_;
+  QLineEdit* kValues_ = nullptr;
+  QLineEdit* M_ = nullptr;
+  QLineEdit* T_ = nullptr;
+  QLineEdit* q_ = nullptr;
+  QLineEdit* seed_ = nullptr;
+  QLineEdit* threads_ = nullptr;
+  QLineEdit* folder_ = nullptr;
+  QPushButton* startButton_ = nullptr;
+  QPushButton* stopButton_ = nullptr;
+  QPushButton* exportButton_ = nullptr;
+  QProgressBar* kProgress_ = nullptr;
+  QProgressBar* scanProgress_ = nullptr;
+  QLabel* kEta_ = nullptr;
+  QLabel* scanEta_ = nullptr;
+  QLabel* message_ = nullptr;
+  QwtPlot* ftPlot_ = nullptr;
+  QwtPlot* dPlot_ = nullptr;
+  QwtPlot* exponentPlot_ = nullptr;
+  QTableWidget* table_ = nullptr;
+  std::vector<std::optional<ScanRunSummary>> shown_;  // per K of the running scan, as they finish
+  std::vector<ScanRunSummary> finishedRuns_;
+  bool running_ = false;
+  quint64 jobId_ = 0;
+  BackgroundJobs jobs_{this, 1, JobPriority::background};  // last: destroyed first, it stops the scan and joins
+};
+
+}  // namespace archipelago::ui
