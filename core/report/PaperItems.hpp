@@ -1,0 +1,73 @@
+#pragma once
+/// \file PaperItems.hpp
+/// \brief The quantitative statements of Karney (1983) that the reproduction report (app/reproduce) lists,
+/// each with the paper's value, ours (from the existing core functions: theory, periodic, markov, stats), an
+/// honest error, the tolerance, a mark and the one CLI command that reproduces the item alone.
+///
+/// No maths lives here: every value is asked of the module that defines it (smallk::, paper::, periodic,
+/// markov, stats).  An item this build cannot compute is listed with mark notReproduced and no value, never a
+/// made-up one.
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/run/TrappingRun.hpp"
+#include "core/stats/TrappingStatistics.hpp"
+
+namespace archipelago::report {
+
+enum class Mark {
+  agrees,            ///< |ours − paper| ≤ tolerance (and ≤ 3 × error where an error is known)
+  differsExplained,  ///< outside the tolerance, for a reason stated in `note`
+  differs,           ///< outside the tolerance, unexplained: a failure of the report
+  notAtThisSize,     ///< the quantity needs a larger run than this one (the --full report computes it)
+  notReproduced      ///< not yet computed by the report (listed, no value)
+};
+
+[[nodiscard]] const char* markText(Mark m) noexcept;
+
+struct PaperItem {
+  std::string id;          ///< stable identifier, e.g. "tmax"
+  std::string section;     ///< "§4", "App. C"
+  std::string statement;   ///< the paper's statement in words
+  std::string paperValue;  ///< as the paper prints it
+  std::optional<double> paper;  ///< the paper's number, when it is one
+  std::optional<double> ours;   ///< our value, when computed
+  double error = 0;             ///< our one-sigma error (0: exact to rounding)
+  double tolerance = 0;         ///< allowed |ours − paper|
+  Mark mark = Mark::notReproduced;
+  std::string command;     ///< one archipelago-cli command that reproduces the item alone
+  std::string note;        ///< how it is computed, or why it differs
+};
+
+/// Marks an item from its values: agrees when |ours − paper| ≤ tolerance + 3·error, else differs (the caller
+/// turns that into differsExplained when it has a reason); notReproduced without a value.
+void markByTolerance(PaperItem& item);
+
+/// The statements that need no trapping run (§2, §4, §6, §7, appendix C): closed forms, the period-doubling
+/// cascade, the period-138 orbit, the Markov model.  Takes a few seconds.
+[[nodiscard]] std::vector<PaperItem> theoryItems();
+
+/// The run of the report at K = 0.1 in the default box: quick (seconds, CI) or the paper's fig. 6 size.
+[[nodiscard]] TrappingParameters k01Parameters(bool full);
+
+/// The statements measured on the K = 0.1 run (§5, figs. 6–7): α ≈ ¼, D, the longest segment.
+/// `full` says whether the run has the paper's size (otherwise the heavy-tail items are notAtThisSize).
+[[nodiscard]] std::vector<PaperItem> k01Items(const TrappingState& run, const TrappingStatistics& stats, bool full);
+
+/// The statements not yet reproduced by the report, listed honestly without a value.
+[[nodiscard]] std::vector<PaperItem> pendingItems();
+
+}  // namespace archipelago::report
+
+namespace archipelago::report {
+
+/// The small-K runs of fig. 3 (K = −10⁻⁴, 0, 10⁻⁴: the presets small-k-negative, -zero, -positive), quick or
+/// at the presets' size.
+[[nodiscard]] TrappingParameters smallKParameters(double K, bool full);
+
+/// §4, fig. 3a, measured: at K = −10⁻⁴ no segment is longer than t_max = 5.1454 |K|^−¼ ≈ 51.5 steps.
+[[nodiscard]] PaperItem negativeKCutoffItem(const TrappingState& run);
+
+}  // namespace archipelago::report

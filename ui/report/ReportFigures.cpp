@@ -1,0 +1,145 @@
+#include "ui/report/ReportFigures.hpp"
+
+#include <QDir>
+#include <QFile>
+#include <QImage>
+#include <QPageSize>
+#include <QPainter>
+#include <QPdfWriter>
+#include <QSvgGenerator>
+#include <QTextDocument>
+#include <QUrl>
+#include <qwt_legend.h>
+#include <qwt_text.h>
+#include <qwt_plot_curve.h>
+#include <qwt_plot_renderer.h>
+#include <qwt_scale_engine.h>
+
+#include <cmath>
+
+#include "core/theory/SmallKTheory.hpp"
+#include "ui/plots/StatisticsPlot.hpp"
+
+namespace archipelago::ui::report {
+
+bool writeStatisticFigure(Statistic statistic, const TrappingStatistics& stats, const std::vector<TheoryCurve>& theory,
+                          const QString& base, QString* error) {
+  StatisticsPlot plot(statistic);
+  plot.resize(800, 550);
+  plot.setData(seriesOf(stats, statistic), theory);
+  plot.refresh();
+  return plot.exportImage(base + QStringLiteral(".png"), error) && plot.exportImage(base + QStringLiteral(".svg"), error);
+}
+
+namespace {
+
+bool renderPlot(QwtPlot& plot, const QString& base, QString* error) {
+  plot.resize(800, 550);
+  plot.replot();
+  QwtPlotRenderer renderer;
+  renderer.setDiscardFlag(QwtPlotRenderer::DiscardBackground, false);
+  const QRectF rect(0, 0, 945, 650);
+  QImage image(rect.size().toSize(), QImage::Format_ARGB32);
+  image.fill(Qt::white);
+  {
+    QPainter painter(&image);
+    renderer.render(&plot, &painter, rect);
+  }
+  if (!image.save(base + QStringLiteral(".png"))) {
+    if (error) *error = QStringLiteral("cannot write %1.png").arg(base);
+    return false;
+  }
+  QSvgGenerator generator;
+  generator.setFileName(base + QStringLiteral(".svg"));
+  generator.setSize(rect.size().toSize());
+  generator.setViewBox(rect);
+  generator.setTitle(plot.title().text());
+  QPainter painter(&generator);
+  renderer.render(&plot, &painter, rect);
+  if (!painter.end()) {
+    if (error) *error = QStringLiteral("cannot write %1.svg").arg(base);
+    return false;
+  }
+  return true;
+}
+
+QwtPlotCurve* addCurve(QwtPlot& plot, const QVector<QPointF>& points, const QString& title, const QColor& colour) {
+  auto* curve = new QwtPlotCurve(title);
+  curve->setPen(colour, 2);
+  curve->setRenderHint(QwtPlotItem::RenderAntialiased);
+  curve->setSamples(points);
+  curve->attach(&plot);
+  return curve;
+}
+
+}  // namespace
+
+bool writeTrappingTimeFigures(const QString& base, QString* error) {
+  const auto& mx = smallk::negativeKMaximum();
+  {  // (a) T(X0)
+    QwtPlot plot;
+    plot.setCanvasBackground(Qt::white);
+    plot.setTitle(QStringLiteral("Fig. 5a — T(X₀) for K < 0 (T_max = %1 at X₀ = %2)")
+                      .arg(mx.T, 0, 'f', 4).arg(mx.X0, 0, 'f', 4));
+    plot.setAxisTitle(QwtPlot::xBottom, QStringLiteral("X₀"));
+    plot.setAxisTitle(QwtPlot::yLeft, QStringLiteral("T"));
+    QVector<QPointF> pts;
+    for (int i = 0; i <= 400; ++i) {
+      const double X0 = -4 + 8.0 * i / 400;
+      pts.append({X0, smallk::negativeKTrappingTime(X0)});
+    }
+    addCurve(plot, pts, QStringLiteral("T(X₀)"), QColor(0, 90, 180));
+    plot.setAxisScale(QwtPlot::yLeft, 0, 6);
+    if (!renderPlot(plot, base + QStringLiteral("a"), error)) return false;
+  }
+  {  // (b) F(T) with its two limits
+    QwtPlot plot;
+    plot.setCanvasBackground(Qt::white);
+    plot.setTitle(QStringLiteral("Fig. 5b — F(T) for K < 0, with 6.205·10⁵ T⁻⁷ and 3.024 (T_max − T)^−½"));
+    plot.setAxisTitle(QwtPlot::xBottom, QStringLiteral("T"));
+    plot.setAxisTitle(QwtPlot::yLeft, QStringLiteral("F(T)"));
+    plot.setAxisScaleEngine(QwtPlot::yLeft, new QwtLogScaleEngine);
+    plot.insertLegend(new QwtLegend, QwtPlot::BottomLegend);
+    const double c0 = smallk::negativeKSmallTCoefficient(), c1 = smallk::negativeKCutoffCoefficient();
+    QVector<QPointF> f, small, cut;
+    for (int i = 1; i < 500; ++i) {
+      const double T = 1.5 + (mx.T - 1.5) * i / 500.0;
+      f.append({T, smallk::negativeKSegmentDensity(T)});
+      small.append({T, c0 * std::pow(T, -7.0)});
+      cut.append({T, c1 / std::sqrt(mx.T - T)});
+    }
+    addCurve(plot, f, QStringLiteral("F(T)"), QColor(0, 90, 180));
+    addCurve(plot, small, QStringLiteral("6.205·10⁵ T⁻⁷"), QColor(200, 60, 40))->setPen(QColor(200, 60, 40), 1, Qt::DashLine);
+    addCurve(plot, cut, QStringLiteral("3.024 (T_max − T)^−½"), QColor(40, 150, 60))->setPen(QColor(40, 150, 60), 1, Qt::DashLine);
+    plot.setAxisScale(QwtPlot::yLeft, 0.5, 1e4);
+    if (!renderPlot(plot, base + QStringLiteral("b"), error)) return false;
+  }
+  return true;
+}
+
+bool writePdf(const QString& html, const QString& dir, const QStringList& images, const QString& pdfPath,
+              QString* error) {
+  QTextDocument doc;
+  for (const QString& name : images) {
+    QImage image(QDir(dir).filePath(name));
+    if (image.isNull()) {
+      if (error) *error = QStringLiteral("cannot read %1").arg(name);
+      return false;
+    }
+    doc.addResource(QTextDocument::ImageResource, QUrl(name), image);
+  }
+  doc.setHtml(html);
+  QPdfWriter writer(pdfPath);
+  writer.setPageSize(QPageSize(QPageSize::A4));
+  writer.setResolution(150);
+  writer.setTitle(QStringLiteral("Karney (1983) reproduced by Archipelago"));
+  doc.setPageSize(QSizeF(writer.width(), writer.height()));
+  doc.print(&writer);
+  if (!QFile::exists(pdfPath) || QFile(pdfPath).size() < 1000) {
+    if (error) *error = QStringLiteral("cannot write %1").arg(pdfPath);
+    return false;
+  }
+  return true;
+}
+
+}  // namespace archipelago::ui::report

@@ -1,0 +1,29 @@
+#pragma once
+/// \file ReportFigures.hpp
+/// \brief The figures of the reproduction report (app/reproduce), drawn with the GUI's own plot code
+/// (StatisticsPlot, Qwt) offscreen, and the report's PDF.  No maths: the values come from core.
+
+#include <QString>
+#include <QStringList>
+
+#include <vector>
+
+#include "core/stats/StatisticsTable.hpp"
+#include "core/theory/TheoryCurves.hpp"
+
+namespace archipelago::ui::report {
+
+/// Draws one statistic of a run as the GUI does and writes `base`.png and `base`.svg.  Returns false (with
+/// `error`) when a file cannot be written.
+bool writeStatisticFigure(Statistic statistic, const TrappingStatistics& stats, const std::vector<TheoryCurve>& theory,
+                          const QString& base, QString* error);
+
+/// Fig. 5: T(X0) (a) and F(T) (b) of the small-K theory for K < 0 (core's smallk functions sampled), written as
+/// `base`a.png/.svg and `base`b.png/.svg.
+bool writeTrappingTimeFigures(const QString& base, QString* error);
+
+/// Writes `html` (with its images, given as file names relative to `dir`) as a PDF at `pdfPath`.
+bool writePdf(const QString& html, const QString& dir, const QStringList& images, const QString& pdfPath,
+              QString* error);
+
+}  // namespace archipelago::ui::report
