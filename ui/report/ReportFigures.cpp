@@ -131,7 +131,7 @@ bool writePdf(const QString& html, const QString& dir, const QStringList& images
   doc.setHtml(html);
   QPdfWriter writer(pdfPath);
   writer.setPageSize(QPageSize(QPageSize::A4));
-  writer.setResolution(150);
+  writer.setResolution(96);  // the offscreen screen's logical dpi: fonts and the 600-pixel figures keep their size
   writer.setTitle(QStringLiteral("Karney (1983) reproduced by Archipelago"));
   doc.setPageSize(QSizeF(writer.width(), writer.height()));
   doc.print(&writer);
