@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "core/io/AtomicFile.hpp"
+#include "core/portrait/ColourMap.hpp"
 #include "core/report/PaperItems.hpp"
 #include "core/run/TrappingRun.hpp"
 #include "core/runfile/RunFile.hpp"
@@ -121,6 +122,19 @@ int main(int argc, char** argv) {
       figures.push_back({num, caption, stem});
     };
 
+    // Fig. 1: the islands at K = 0.1 (core's portrait and colouring, drawn on the GUI's Qwt axes).
+    {
+      const PortraitRequest r = report::figureOneRequest(full);
+      const PortraitResult portrait = renderPortrait(r);
+      const PhysicalRect v = r.view.physical(r.map);
+      if (!ui::report::writePortraitFigure(colourize(portrait.raster, ColourMapName::Inferno), double(v.x0),
+                                           double(v.x1), double(v.y0), double(v.y1),
+                                           QStringLiteral("Fig. 1 — the islands of Q at K = 0.1"),
+                                           QString::fromStdString((out / "figures" / "fig1").string()), &error))
+        throw std::runtime_error(error.toStdString());
+      figures.push_back({"1", "the islands at K = 0.1 (orbits from a grid of seeds; <code>" +
+                                  html(report::figureOneCommand(full)) + "</code>)", "fig1"});
+    }
     // Fig. 3: f_t for small K with the theory of §4.
     const char* letters[] = {"a", "b", "c"};
     int i = 0;
@@ -155,6 +169,16 @@ int main(int argc, char** argv) {
     figure(Statistic::localExponent, k01, st, "fig6d", "6d", std::string("−d log C/d log τ") + steps);
     figure(Statistic::S, k01, st, "fig7a", "7a", std::string("S<sub>t</sub>") + steps);
     figure(Statistic::Dt, k01, st, "fig7b", "7b", std::string("D<sub>t</sub> = S<sub>t</sub>/2t") + steps);
+    // Appendix C, not drawn by the paper: the Markov model's ε(τ).
+    {
+      const auto c = report::markovEpsilon();
+      if (!ui::report::writeCurveFigure(c.tau, c.epsilon, QStringLiteral("Markov model (appendix C): ε(τ), m = 20, N = 1000"),
+                                        QStringLiteral("τ"), QStringLiteral("ε(τ)"),
+                                        QString::fromStdString((out / "figures" / "markov-epsilon").string()), &error))
+        throw std::runtime_error(error.toStdString());
+      figures.push_back({"C", "the Markov model's ε(τ) = (C(τ) − C<sub>is</sub>(τ))/C<sub>is</sub>(0) for one segment of "
+                              "m = 20 among N = 1000 (<code>" + html(c.command) + "</code>)", "markov-epsilon"});
+    }
     for (auto& it : report::pendingItems()) items.push_back(std::move(it));
 
     // items.csv, index.html, report.pdf.
@@ -183,8 +207,9 @@ int main(int argc, char** argv) {
          "Figures are numbered by first citation (README, \"Figures of the paper\") and drawn by the GUI's plot "
          "code; each links to its SVG. Differences: our map is 52-bit fixed point (the Cray's was 48-bit); D and "
          "the longest segment vary strongly from run to run (a heavy tail); b₂ depends on the box, b₂·D does not.</p>\n"
-      << "<h2>Statements</h2>\n<table><tr><th>id</th><th>§</th><th>statement</th><th>paper</th><th>ours</th>"
-         "<th>tol.</th><th>mark</th><th>command</th></tr>\n";
+      << "<h2>Statements</h2>\n<table width=\"100%\"><tr><th width=\"8%\">id</th><th width=\"4%\">§</th>"
+         "<th width=\"34%\">statement</th><th width=\"9%\">paper</th><th width=\"11%\">ours</th>"
+         "<th width=\"5%\">tol.</th><th width=\"9%\">mark</th><th width=\"20%\">command</th></tr>\n";
     for (const auto& it : items) {
       const char* cls = it.mark == report::Mark::agrees ? "agrees"
                         : it.mark == report::Mark::differs ? "differs" : "other";
@@ -202,9 +227,9 @@ int main(int argc, char** argv) {
         << ".svg\">SVG</a>)<br><img src=\"figures/" << f.file << ".png\" width=\"600\"></p>\n";
       images << QString::fromStdString("figures/" + f.file + ".png");
     }
-    h << "<h2>Not yet drawn</h2><p>Fig. 1 (the islands at K = 0.1), fig. 2 (orbits of the sea and the 138-chain "
+    h << "<h2>Not yet drawn</h2><p>Fig. 2 (orbits of the sea and the 138-chain "
          "enlargement), fig. 4 (level curves of eqs. ham, hama, hamb), fig. 8 (the long orbit at the 138-chain), "
-         "the K scan summary, the Markov model's ε(τ) and the tail exponent against the literature are not yet "
+         "the K scan summary and the tail exponent against the literature are not yet "
          "in this report; <code>archipelago-cli portrait</code>, <code>replay --identify</code>, <code>scan</code> "
          "and <code>markov</code> produce their data.</p>\n</body></html>\n";
     io::writeFileAtomically(out / "index.html", h.str());

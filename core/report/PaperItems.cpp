@@ -244,4 +244,29 @@ PaperItem negativeKCutoffItem(const TrappingState& run) {
   return it;
 }
 
+PortraitRequest figureOneRequest(bool full) {
+  PortraitRequest r;  // the default map: the paper's K = 0.1 box
+  r.view = Viewport::fromPhysical(r.map, PhysicalRect{-0.8L, 0.5L, -0.65L, 0.65L});
+  r.mode = PortraitMode::Orbits;
+  r.width = r.height = full ? 1200 : 600;
+  r.points = full ? 200'000'000 : 20'000'000;
+  r.passes = 1;
+  return r;
+}
+
+std::string figureOneCommand(bool full) {
+  return full ? cmd("portrait --view=-0.8,0.5,-0.65,0.65 --size 1200x1200 --mode orbits --points 200000000 --out fig1.png")
+              : cmd("portrait --view=-0.8,0.5,-0.65,0.65 --size 600x600 --mode orbits --points 20000000 --out fig1.png");
+}
+
+MarkovCurve markovEpsilon() {
+  const markov::MarkovModel model{{20}, 1000};
+  const auto h = markov::paperObservable(model);
+  MarkovCurve c;
+  c.epsilon = markov::correlationDeviation(model, h, 200);
+  for (std::size_t i = 0; i < c.epsilon.size(); ++i) c.tau.push_back(static_cast<double>(i));
+  c.command = cmd("markov --m 20 --N 1000");
+  return c;
+}
+
 }  // namespace archipelago::report

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "core/portrait/PortraitRenderer.hpp"
 #include "core/run/TrappingRun.hpp"
 #include "core/stats/TrappingStatistics.hpp"
 
@@ -69,5 +70,18 @@ namespace archipelago::report {
 
 /// §4, fig. 3a, measured: at K = −10⁻⁴ no segment is longer than t_max = 5.1454 |K|^−¼ ≈ 51.5 steps.
 [[nodiscard]] PaperItem negativeKCutoffItem(const TrappingState& run);
+
+/// Fig. 1: the islands of Q at K = 0.1 (the central island, its chain of six, the islands around those): an
+/// Orbits-mode portrait of the default box, view x ∈ [−0.8, 0.5], y ∈ [−0.65, 0.65] (quick: 600², 2·10⁷
+/// points; full: 1200², 2·10⁸).  The command that draws it alone is figureOneCommand().
+[[nodiscard]] PortraitRequest figureOneRequest(bool full);
+[[nodiscard]] std::string figureOneCommand(bool full);
+
+/// Appendix C: the Markov model's ε(τ) for one segment of m = 20 points among N = 1000, τ = 0 … 200.
+struct MarkovCurve {
+  std::vector<double> tau, epsilon;
+  std::string command;
+};
+[[nodiscard]] MarkovCurve markovEpsilon();
 
 }  // namespace archipelago::report

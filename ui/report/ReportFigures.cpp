@@ -12,6 +12,8 @@
 #include <qwt_legend.h>
 #include <qwt_text.h>
 #include <qwt_plot_curve.h>
+#include <qwt_plot_item.h>
+#include <qwt_scale_map.h>
 #include <qwt_plot_renderer.h>
 #include <qwt_scale_engine.h>
 
@@ -62,6 +64,21 @@ bool renderPlot(QwtPlot& plot, const QString& base, QString* error) {
   }
   return true;
 }
+
+/// A raster on the canvas, mapped from its physical rectangle by the plot's scales (row 0 at the top, y1).
+class RasterItem : public QwtPlotItem {
+ public:
+  RasterItem(QImage image, QRectF physical) : image_(std::move(image)), physical_(physical) {}
+  void draw(QPainter* painter, const QwtScaleMap& xMap, const QwtScaleMap& yMap, const QRectF&) const override {
+    const QRectF target(QPointF(xMap.transform(physical_.left()), yMap.transform(physical_.bottom())),
+                        QPointF(xMap.transform(physical_.right()), yMap.transform(physical_.top())));
+    painter->drawImage(target.normalized(), image_);
+  }
+
+ private:
+  QImage image_;
+  QRectF physical_;
+};
 
 QwtPlotCurve* addCurve(QwtPlot& plot, const QVector<QPointF>& points, const QString& title, const QColor& colour) {
   auto* curve = new QwtPlotCurve(title);
@@ -115,6 +132,60 @@ bool writeTrappingTimeFigures(const QString& base, QString* error) {
     if (!renderPlot(plot, base + QStringLiteral("b"), error)) return false;
   }
   return true;
+}
+
+bool writePortraitFigure(const RasterImage& image, double x0, double x1, double y0, double y1, const QString& title,
+                         const QString& base, QString* error) {
+  // A deep copy: the item outlives nothing, but QImage must not borrow the vector past this scope's end.
+  const QImage raster = QImage(image.rgb.data(), image.width, image.height, 3 * image.width, QImage::Format_RGB888).copy();
+  QwtPlot plot;
+  plot.setTitle(title);
+  (new RasterItem(raster, QRectF(QPointF(x0, y0), QPointF(x1, y1))))->attach(&plot);
+  plot.setAxisTitle(QwtPlot::xBottom, QStringLiteral("x"));
+  plot.setAxisTitle(QwtPlot::yLeft, QStringLiteral("y"));
+  plot.setAxisScale(QwtPlot::xBottom, x0, x1);
+  plot.setAxisScale(QwtPlot::yLeft, y0, y1);
+  plot.resize(800, 800);
+  plot.replot();
+  QwtPlotRenderer renderer;
+  renderer.setDiscardFlag(QwtPlotRenderer::DiscardBackground, false);
+  const QRectF rect(0, 0, 800, 800);
+  auto draw = [&](QPainter& painter) { renderer.render(&plot, &painter, rect); };
+  QImage png(rect.size().toSize(), QImage::Format_ARGB32);
+  png.fill(Qt::white);
+  {
+    QPainter painter(&png);
+    draw(painter);
+  }
+  if (!png.save(base + QStringLiteral(".png"))) {
+    if (error) *error = QStringLiteral("cannot write %1.png").arg(base);
+    return false;
+  }
+  QSvgGenerator generator;
+  generator.setFileName(base + QStringLiteral(".svg"));
+  generator.setSize(rect.size().toSize());
+  generator.setViewBox(rect);
+  generator.setTitle(title);
+  QPainter painter(&generator);
+  draw(painter);
+  if (!painter.end()) {
+    if (error) *error = QStringLiteral("cannot write %1.svg").arg(base);
+    return false;
+  }
+  return true;
+}
+
+bool writeCurveFigure(const std::vector<double>& x, const std::vector<double>& y, const QString& title,
+                      const QString& xLabel, const QString& yLabel, const QString& base, QString* error) {
+  QwtPlot plot;
+  plot.setCanvasBackground(Qt::white);
+  plot.setTitle(title);
+  plot.setAxisTitle(QwtPlot::xBottom, xLabel);
+  plot.setAxisTitle(QwtPlot::yLeft, yLabel);
+  QVector<QPointF> pts;
+  for (std::size_t i = 0; i < x.size() && i < y.size(); ++i) pts.append({x[i], y[i]});
+  addCurve(plot, pts, yLabel, QColor(0, 90, 180));
+  return renderPlot(plot, base, error);
 }
 
 bool writePdf(const QString& html, const QString& dir, const QStringList& images, const QString& pdfPath,

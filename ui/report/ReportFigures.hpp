@@ -8,6 +8,7 @@
 
 #include <vector>
 
+#include "core/portrait/ColourMap.hpp"
 #include "core/stats/StatisticsTable.hpp"
 #include "core/theory/TheoryCurves.hpp"
 
@@ -21,6 +22,14 @@ bool writeStatisticFigure(Statistic statistic, const TrappingStatistics& stats, 
 /// Fig. 5: T(X0) (a) and F(T) (b) of the small-K theory for K < 0 (core's smallk functions sampled), written as
 /// `base`a.png/.svg and `base`b.png/.svg.
 bool writeTrappingTimeFigures(const QString& base, QString* error);
+
+/// A portrait (core's colourized raster, as the GUI colours it) with its physical axes, as `base`.png/.svg.
+bool writePortraitFigure(const RasterImage& image, double x0, double x1, double y0, double y1, const QString& title,
+                         const QString& base, QString* error);
+
+/// A plain curve y(x) on linear axes (the Markov model's ε(τ)), as `base`.png/.svg.
+bool writeCurveFigure(const std::vector<double>& x, const std::vector<double>& y, const QString& title,
+                      const QString& xLabel, const QString& yLabel, const QString& base, QString* error);
 
 /// Writes `html` (with its images, given as file names relative to `dir`) as a PDF at `pdfPath`.
 bool writePdf(const QString& html, const QString& dir, const QStringList& images, const QString& pdfPath,
