@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 #include "core/io/AtomicFile.hpp"
@@ -94,9 +95,11 @@ int main(int argc, char** argv) {
   std::string outdir;
   bool quick = false, full = false;
   int threads = 0;
+  std::string only;
   app.add_option("OUTDIR", outdir, "the report folder (created; runs are kept in OUTDIR/runs and reused)")->required();
   auto* q = app.add_flag("--quick", quick, "CI size: a few minutes on two cores (the default)");
   app.add_flag("--full", full, "the paper's sizes (3.2·10¹² steps: days; resumable, reuses finished runs)")->excludes(q);
+  app.add_option("--only", only, "compute and print this one statement (its id in items.csv), no figures");
   app.add_option("--threads", threads, "OpenMP threads (0: one per core)")->check(CLI::Range(0, 1024));
   try {
     app.parse(argc, argv);
@@ -112,10 +115,24 @@ int main(int argc, char** argv) {
     const std::string size = full ? "full" : "quick";
 
     std::vector<report::PaperItem> items = report::theoryItems();
+    const bool drawing = only.empty();
+    auto printOnly = [&]() -> std::optional<int> {
+      for (const auto& it : items)
+        if (it.id == only) {
+          std::printf("%s (%s): %s\npaper: %s\nours: %s\ntolerance: %g\nmark: %s\nnote: %s\n", it.id.c_str(),
+                      it.section.c_str(), it.statement.c_str(), it.paperValue.c_str(), number(it.ours, it.error).c_str(),
+                      it.tolerance, report::markText(it.mark), it.note.c_str());
+          return it.mark == report::Mark::differs ? 2 : 0;
+        }
+      return std::nullopt;
+    };
+    if (!drawing)
+      if (auto rc = printOnly()) return *rc;
     std::vector<Figure> figures;
     QString error;
     auto figure = [&](Statistic s, const TrappingState& run, const TrappingStatistics& st, const std::string& stem,
                       const std::string& num, const std::string& caption) {
+      if (!drawing) return;
       const QString base = QString::fromStdString((out / "figures" / stem).string());
       if (!ui::report::writeStatisticFigure(s, st, theoryCurves(run.params, st), base, &error))
         throw std::runtime_error(error.toStdString());
@@ -123,7 +140,7 @@ int main(int argc, char** argv) {
     };
 
     // Fig. 1: the islands at K = 0.1 (core's portrait and colouring, drawn on the GUI's Qwt axes).
-    {
+    if (drawing) {
       const PortraitRequest r = report::figureOneRequest(full);
       const PortraitResult portrait = renderPortrait(r);
       const PhysicalRect v = r.view.physical(r.map);
@@ -152,10 +169,10 @@ int main(int argc, char** argv) {
       ++i;
     }
     // Fig. 5: T(X0) and F(T).
-    if (!ui::report::writeTrappingTimeFigures(QString::fromStdString((out / "figures" / "fig5").string()), &error))
+    if (drawing && !ui::report::writeTrappingTimeFigures(QString::fromStdString((out / "figures" / "fig5").string()), &error))
       throw std::runtime_error(error.toStdString());
-    figures.push_back({"5a", "T(X<sub>0</sub>) for K &lt; 0 (eq. tneg)", "fig5a"});
-    figures.push_back({"5b", "F(T) for K &lt; 0 with its two limits (eq. fneg)", "fig5b"});
+    if (drawing) figures.push_back({"5a", "T(X<sub>0</sub>) for K &lt; 0 (eq. tneg)", "fig5a"});
+    if (drawing) figures.push_back({"5b", "F(T) for K &lt; 0 with its two limits (eq. fneg)", "fig5b"});
 
     // Figs. 6 and 7: the K = 0.1 run.
     const TrappingState k01 = runOrReuse(report::k01Parameters(full), out / "runs" / ("k01-" + size + ".json"), threads);
@@ -170,7 +187,7 @@ int main(int argc, char** argv) {
     figure(Statistic::S, k01, st, "fig7a", "7a", std::string("S<sub>t</sub>") + steps);
     figure(Statistic::Dt, k01, st, "fig7b", "7b", std::string("D<sub>t</sub> = S<sub>t</sub>/2t") + steps);
     // Appendix C, not drawn by the paper: the Markov model's ε(τ).
-    {
+    if (drawing) {
       const auto c = report::markovEpsilon();
       if (!ui::report::writeCurveFigure(c.tau, c.epsilon, QStringLiteral("Markov model (appendix C): ε(τ), m = 20, N = 1000"),
                                         QStringLiteral("τ"), QStringLiteral("ε(τ)"),
@@ -180,6 +197,10 @@ int main(int argc, char** argv) {
                               "m = 20 among N = 1000 (<code>" + html(c.command) + "</code>)", "markov-epsilon"});
     }
     for (auto& it : report::pendingItems()) items.push_back(std::move(it));
+    if (!drawing) {
+      if (auto rc = printOnly()) return *rc;
+      throw std::invalid_argument("--only '" + only + "': no such statement (see the ids in items.csv)");
+    }
 
     // items.csv, index.html, report.pdf.
     std::ostringstream csv;

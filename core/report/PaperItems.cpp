@@ -48,40 +48,42 @@ const char* const cli = "archipelago-cli";
 
 std::string cmd(const char* rest) { return std::string(cli) + " " + rest; }
 
+/// Items with no archipelago-cli command of their own: the report's --only prints them alone.
+std::string only(const char* id) { return std::string("archipelago-reproduce --only ") + id + " OUTDIR"; }
+
 }  // namespace
 
 std::vector<PaperItem> theoryItems() {
   std::vector<PaperItem> items;
   const auto& mx = smallk::negativeKMaximum();
   items.push_back(make("tmax", "§4", "K < 0: the longest trapping time T_max = t_max |K|^¼", "5.1454", 5.1454, mx.T,
-                       0, 5e-5, cmd("run --preset small-k-negative  (and stats: t_max line)"),
+                       0, 5e-5, only("tmax"),
                        "smallk::negativeKMaximum(): root of T'(X0) via complete elliptic integrals"));
   items.push_back(make("tmax-X0", "§4", "the longest-trapped trajectory crosses y = 0 at X0", "−0.5536", -0.5536,
-                       mx.X0, 0, 5e-5, cmd("run --preset small-k-negative"), "argmax of T(X0)"));
+                       mx.X0, 0, 5e-5, only("tmax-X0"), "argmax of T(X0)"));
   items.push_back(make("F-smallT", "§4", "F(T) ≈ c T^−7 for small T", "c = 6.205·10⁵", 6.205e5,
-                       smallk::negativeKSmallTCoefficient(), 0, 50, cmd("run --preset small-k-negative"),
+                       smallk::negativeKSmallTCoefficient(), 0, 50, only("F-smallT"),
                        "112 A⁶, A = Γ(1/3)√π/Γ(5/6)"));
   items.push_back(make("F-cutoff", "§4", "F(T) ≈ c (T_max − T)^−½ near the cutoff", "c = 3.024", 3.024,
-                       smallk::negativeKCutoffCoefficient(), 0, 5e-4, cmd("run --preset small-k-negative"),
+                       smallk::negativeKCutoffCoefficient(), 0, 5e-4, only("F-cutoff"),
                        "2√2 (X0² + 1)/√|T''(X0)| at the maximum"));
   items.push_back(make("A-const", "§4", "K = 0: T(X0) = A X0^−½ (×√3 for X0 < 0)", "A = 4.207", 4.207,
-                       smallk::zeroKTimeConstant(), 0, 5e-4, cmd("run --preset small-k-zero"),
+                       smallk::zeroKTimeConstant(), 0, 5e-4, only("A-const"),
                        "Γ(1/3)√π/Γ(5/6)"));
   items.push_back(make("t7", "§4", "K = 0: f_t ~ t^−7 (kick x^m: (3m+1)/(m−1))", "7", 7.0,
-                       paper::segmentDecayExponent(2), 0, 0, cmd("run --preset small-k-zero"),
+                       paper::segmentDecayExponent(2), 0, 0, only("t7"),
                        "exponent from T ∝ X0^−½; the measured slope is checked by SmallKTrapping.ZeroK…"));
   for (double K : {1e-4, 1e-3, 1e-2}) {
     char id[32], st[96];
     std::snprintf(id, sizeof id, "decay-%g", K);
     std::snprintf(st, sizeof st, "K = %g: f_t ~ exp(−K^¼ t), rate ½ log λ", K);
     const double q = std::pow(K, 0.25);
-    items.push_back(make(id, "§4", st, "K^¼", q, smallk::positiveKDecayRate(K), 0, 0.1 * q,
-                         cmd("run --preset small-k-positive"),
+    items.push_back(make(id, "§4", st, "K^¼", q, smallk::positiveKDecayRate(K), 0, 0.1 * q, only(id),
                          "½ log λ, λ = 1 + 2√K + 2√(√K + K) (exact); K^¼ is its small-K form (tolerance 10 %)"));
   }
   items.push_back(make("cos-alpha", "§2", "K = 0.1: rotation at the elliptic point, cos α = 1 − 2√K",
                        "1 − 2√0.1 = 0.36754", 1 - 2 * std::sqrt(0.1), paper::ellipticRotationCosine(0.1), 0, 1e-12,
-                       cmd("periodic --K 0.1 --period 1 --near -0.3162,0"),
+                       only("cos-alpha"),
                        "½ trace DQ at (−√K, 0)"));
   items.push_back(make("pd-first", "§2", "the fixed point period-doubles at K = 1 (R = √K = 1)", "1", 1.0,
                        paper::kFirstPeriodDoubling, 0, 0, cmd("periodic --K 1 --period 1 --near -1,0"),
@@ -90,7 +92,7 @@ std::vector<PaperItem> theoryItems() {
     const auto cascade = paper::periodDoublingCascade(6);
     items.push_back(make("pd-accumulation", "§2", "the period-doubling cascade accumulates at", "K = 1.2840", 1.2840,
                          cascade.accumulation, cascade.accumulationChange, 5e-5,
-                         cmd("periodic --K 1.2840 --period 32 --near -1,0"),
+                         only("pd-accumulation"),
                          "K₀ … K₅ from the symmetric-orbit finder, geometric extrapolation"));
   }
   {
@@ -117,7 +119,7 @@ std::vector<PaperItem> theoryItems() {
                          cmd("periodic --K 0.1 --period 138 --near 0.0358,0.034 --stable"), note));
   }
   items.push_back(make("factor056", "§6", "accelerator modes: 2h²(γ/A₁)b₂ = (8/π²) b₂ with b₂ = 0.693", "≈ 0.56",
-                       0.56, acceleratorModeFactor(0.693), 0, 0.005, cmd("stats RUN --b2 0.693"),
+                       0.56, acceleratorModeFactor(0.693), 0, 0.005, only("factor056"),
                        "from the paper's b₂ (an area); ours in our box needs --b2 of that box"));
   {
     // Appendix C: eq. (dmark) gives the same D as the exact solution of the chain (paper: Macsyma result).
@@ -173,9 +175,9 @@ std::vector<PaperItem> k01Items(const TrappingState& run, const TrappingStatisti
   std::optional<double> alpha;
   if (n > 0) alpha = sum / n;
   items.push_back(make("alpha-quarter", "§5", "K = 0.1: C_τ ~ τ^−α with α ≈ ¼ for τ ≲ 10⁴ (fig. 6d)", "¼", 0.25,
-                       alpha, n > 0 ? err / n / std::sqrt(static_cast<double>(n)) : 0, 0.06,
+                       alpha, n > 0 ? err / n : 0, 0.06,
                        runCmd + " && " + cmd("stats k01.json --csv k01-csv"),
-                       "mean of −d log C/d log τ over 300 ≤ τ ≤ 3000"));
+                       "mean of −d log C/d log τ over 300 ≤ τ ≤ 3000; error: the mean 16-subset error of a point (neighbours are correlated)"));
   PaperItem d = make("D", "§5", "K = 0.1: D = 6400 ± 800 (eq. ddef)", "6400 ± 800", 6400, s.D, s.DError, 800,
                      runCmd + " && " + cmd("stats k01.json"), "16-subset error");
   if (!full) {
