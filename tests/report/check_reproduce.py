@@ -26,7 +26,7 @@ with tempfile.TemporaryDirectory() as out:
     # Statements this size can check: each must agree, and have a value.
     for key in ["tmax", "tmax-X0", "F-smallT", "F-cutoff", "A-const", "t7", "decay-0.0001", "decay-0.001",
                 "decay-0.01", "cos-alpha", "pd-accumulation", "chain138-x", "chain138-y", "factor056",
-                "markov-dmark", "markov-eps", "tmax-measured", "alpha-quarter"]:
+                "markov-dmark", "markov-eps", "tmax-measured", "alpha-quarter", "p-five-quarters", "S-superdiffusive"]:
         check(key in items and items[key]["mark"] == "agrees" and items[key]["ours"] != "",
               f"{key} agrees with the paper ({items.get(key, {}).get('ours')})")
     # The heavy-tail quantities are honestly not claimed at this size.
