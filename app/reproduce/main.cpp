@@ -178,6 +178,7 @@ int main(int argc, char** argv) {
     const TrappingState k01 = runOrReuse(report::k01Parameters(full), out / "runs" / ("k01-" + size + ".json"), threads);
     const TrappingStatistics st = statisticsOf(k01);
     for (auto& it : report::k01Items(k01, st, full)) items.push_back(std::move(it));
+    for (auto& it : report::stochasticAreaItems(k01, st, full)) items.push_back(std::move(it));
     char steps[64];
     std::snprintf(steps, sizeof steps, " at K = 0.1 (%.3g steps)", k01.stepsDone());
     figure(Statistic::f, k01, st, "fig6a", "6a", std::string("f<sub>t</sub>") + steps);

@@ -84,4 +84,9 @@ struct MarkovCurve {
 };
 [[nodiscard]] MarkovCurve markovEpsilon();
 
+/// b₂ (§5, an area) of the K = 0.1 run's box by box counting (quick 2²⁷ steps, full 2³⁰), and with the run's D the
+/// box-invariant b₂·D (eq. A3: the paper's 0.693 × 6400) and the §6 enhancement ≥ 360/n².
+[[nodiscard]] std::vector<PaperItem> stochasticAreaItems(const TrappingState& run, const TrappingStatistics& stats,
+                                                         bool full);
+
 }  // namespace archipelago::report

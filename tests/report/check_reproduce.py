@@ -30,7 +30,8 @@ with tempfile.TemporaryDirectory() as out:
         check(key in items and items[key]["mark"] == "agrees" and items[key]["ours"] != "",
               f"{key} agrees with the paper ({items.get(key, {}).get('ours')})")
     # The heavy-tail quantities are honestly not claimed at this size.
-    for key in ["D", "longest"]:
+    check(items.get("b2", {}).get("mark") == "differs, explained", "b2: the area of our box, explained")
+    for key in ["D", "longest", "b2D", "enhancement"]:
         check(items.get(key, {}).get("mark") == "not reproducible at this size", f"{key}: not claimed at this size")
     index = open(os.path.join(out, "index.html"), encoding="utf-8").read()
     check(len(index) > 5000 and "<table" in index, "index.html has the table")
