@@ -168,6 +168,23 @@ int main(int argc, char** argv) {
       figure(Statistic::f, run, st, std::string("fig3") + letters[i], std::string("3") + letters[i], caption);
       ++i;
     }
+    // Fig. 4: level curves of the three small-K Hamiltonians (eqs. hama, ham, hamb).
+    if (drawing) {
+      std::vector<double> levels;
+      for (int k = -12; k <= 12; ++k) levels.push_back(0.5 * k);
+      const char* names[] = {"a", "b", "c"};
+      const char* words[] = {"K &lt; 0 (eq. hama: H = ½Y² − ⅔X³ − 2X)", "K = 0 (eq. ham: H = ½Y² − ⅔X³)",
+                             "K &gt; 0 (eq. hamb: H = ½Y² − ⅔X³ + 2X)"};
+      for (int s = -1; s <= 1; ++s) {
+        const std::string stem = std::string("fig4") + names[s + 1];
+        if (!ui::report::writeLevelCurveFigure(
+                [s](double X, double Y) { return report::smallKHamiltonian(X, Y, s); }, -3, 3, -4, 4, levels,
+                QStringLiteral("Fig. 4%1 — level curves, H = 0, ±0.5, …").arg(QLatin1String(names[s + 1])),
+                QString::fromStdString((out / "figures" / stem).string()), &error))
+          throw std::runtime_error(error.toStdString());
+        figures.push_back({std::string("4") + names[s + 1], std::string("level curves for ") + words[s + 1], stem});
+      }
+    }
     // Fig. 5: T(X0) and F(T).
     if (drawing && !ui::report::writeTrappingTimeFigures(QString::fromStdString((out / "figures" / "fig5").string()), &error))
       throw std::runtime_error(error.toStdString());
@@ -250,7 +267,7 @@ int main(int argc, char** argv) {
       images << QString::fromStdString("figures/" + f.file + ".png");
     }
     h << "<h2>Not yet drawn</h2><p>Fig. 2 (orbits of the sea and the 138-chain "
-         "enlargement), fig. 4 (level curves of eqs. ham, hama, hamb), fig. 8 (the long orbit at the 138-chain), "
+         "enlargement), fig. 8 (the long orbit at the 138-chain), "
          "the K scan summary and the tail exponent against the literature are not yet "
          "in this report; <code>archipelago-cli portrait</code>, <code>replay --identify</code>, <code>scan</code> "
          "and <code>markov</code> produce their data.</p>\n</body></html>\n";

@@ -325,4 +325,8 @@ std::vector<PaperItem> stochasticAreaItems(const TrappingState& run, const Trapp
   return items;
 }
 
+double smallKHamiltonian(double X, double Y, int sign) noexcept {
+  return 0.5 * Y * Y - (2.0 / 3.0) * X * X * X + 2.0 * sign * X;
+}
+
 }  // namespace archipelago::report

@@ -89,4 +89,8 @@ struct MarkovCurve {
 [[nodiscard]] std::vector<PaperItem> stochasticAreaItems(const TrappingState& run, const TrappingStatistics& stats,
                                                          bool full);
 
+/// Fig. 4: the small-K Hamiltonians in scaled variables (core/theory/SmallKTheory.hpp's file comment):
+/// H = ½Y² − ⅔X³ + s·2X with s = −1 (K < 0, eq. hama), 0 (K = 0, eq. ham), +1 (K > 0, eq. hamb).
+[[nodiscard]] double smallKHamiltonian(double X, double Y, int sign) noexcept;
+
 }  // namespace archipelago::report

@@ -35,7 +35,7 @@ with tempfile.TemporaryDirectory() as out:
         check(items.get(key, {}).get("mark") == "not reproducible at this size", f"{key}: not claimed at this size")
     index = open(os.path.join(out, "index.html"), encoding="utf-8").read()
     check(len(index) > 5000 and "<table" in index, "index.html has the table")
-    for fig in ["fig1", "markov-epsilon", "fig3a", "fig3b", "fig3c", "fig5a", "fig5b", "fig6a", "fig6b", "fig6c", "fig6d", "fig7a", "fig7b"]:
+    for fig in ["fig1", "markov-epsilon", "fig4a", "fig4b", "fig4c", "fig3a", "fig3b", "fig3c", "fig5a", "fig5b", "fig6a", "fig6b", "fig6c", "fig6d", "fig7a", "fig7b"]:
         png, svg = (os.path.join(out, "figures", fig + s) for s in (".png", ".svg"))
         check(os.path.exists(png) and os.path.getsize(png) > 10000 and open(png, "rb").read(8) == b"\x89PNG\r\n\x1a\n",
               f"{fig}.png is a non-trivial PNG")

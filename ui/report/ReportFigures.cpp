@@ -13,10 +13,13 @@
 #include <qwt_text.h>
 #include <qwt_plot_curve.h>
 #include <qwt_plot_item.h>
+#include <qwt_matrix_raster_data.h>
+#include <qwt_plot_spectrogram.h>
 #include <qwt_scale_map.h>
 #include <qwt_plot_renderer.h>
 #include <qwt_scale_engine.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/theory/SmallKTheory.hpp"
@@ -185,6 +188,43 @@ bool writeCurveFigure(const std::vector<double>& x, const std::vector<double>& y
   QVector<QPointF> pts;
   for (std::size_t i = 0; i < x.size() && i < y.size(); ++i) pts.append({x[i], y[i]});
   addCurve(plot, pts, yLabel, QColor(0, 90, 180));
+  return renderPlot(plot, base, error);
+}
+
+bool writeLevelCurveFigure(const std::function<double(double, double)>& z, double x0, double x1, double y0, double y1,
+                           const std::vector<double>& levels, const QString& title, const QString& base,
+                           QString* error) {
+  constexpr int n = 300;
+  QVector<double> values;
+  values.reserve(n * n);
+  double lo = 1e300, hi = -1e300;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const double v = z(x0 + (x1 - x0) * (i + 0.5) / n, y0 + (y1 - y0) * (j + 0.5) / n);
+      values.append(v);
+      lo = std::min(lo, v);
+      hi = std::max(hi, v);
+    }
+  auto* data = new QwtMatrixRasterData;
+  data->setInterval(Qt::XAxis, QwtInterval(x0, x1));
+  data->setInterval(Qt::YAxis, QwtInterval(y0, y1));
+  data->setInterval(Qt::ZAxis, QwtInterval(lo, hi));
+  data->setValueMatrix(values, n);
+  data->setResampleMode(QwtMatrixRasterData::BilinearInterpolation);
+  QwtPlot plot;
+  plot.setCanvasBackground(Qt::white);
+  plot.setTitle(title);
+  plot.setAxisTitle(QwtPlot::xBottom, QStringLiteral("X"));
+  plot.setAxisTitle(QwtPlot::yLeft, QStringLiteral("Y"));
+  plot.setAxisScale(QwtPlot::xBottom, x0, x1);
+  plot.setAxisScale(QwtPlot::yLeft, y0, y1);
+  auto* spectrogram = new QwtPlotSpectrogram;
+  spectrogram->setData(data);
+  spectrogram->setDisplayMode(QwtPlotSpectrogram::ImageMode, false);
+  spectrogram->setDisplayMode(QwtPlotSpectrogram::ContourMode, true);
+  spectrogram->setDefaultContourPen(QPen(QColor(0, 90, 180), 1.2));
+  spectrogram->setContourLevels(QList<double>(levels.begin(), levels.end()));
+  spectrogram->attach(&plot);
   return renderPlot(plot, base, error);
 }
 

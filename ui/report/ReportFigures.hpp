@@ -6,6 +6,7 @@
 #include <QString>
 #include <QStringList>
 
+#include <functional>
 #include <vector>
 
 #include "core/portrait/ColourMap.hpp"
@@ -30,6 +31,11 @@ bool writePortraitFigure(const RasterImage& image, double x0, double x1, double 
 /// A plain curve y(x) on linear axes (the Markov model's ε(τ)), as `base`.png/.svg.
 bool writeCurveFigure(const std::vector<double>& x, const std::vector<double>& y, const QString& title,
                       const QString& xLabel, const QString& yLabel, const QString& base, QString* error);
+
+/// Fig. 4: level curves of z(x, y) on [x0, x1] × [y0, y1] (sampled on a grid), at the given levels.
+bool writeLevelCurveFigure(const std::function<double(double, double)>& z, double x0, double x1, double y0, double y1,
+                           const std::vector<double>& levels, const QString& title, const QString& base,
+                           QString* error);
 
 /// Writes `html` (with its images, given as file names relative to `dir`) as a PDF at `pdfPath`.
 bool writePdf(const QString& html, const QString& dir, const QStringList& images, const QString& pdfPath,
