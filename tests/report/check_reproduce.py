@@ -1,0 +1,61 @@
+"""report.quick: runs `archipelago-reproduce --quick` into a temporary folder and checks the report: the exit
+status, every statement that can be checked at this size (no unexplained 'DIFFERS'; the checkable ones agree),
+and that index.html, the figures (PNG and SVG) and the PDF exist and are not trivial.  Then runs it again into
+the same folder to check that finished runs are reused."""
+import csv, os, subprocess, sys, tempfile
+
+exe = sys.argv[1]
+failures = 0
+
+
+def check(cond, what):
+    global failures
+    print(("ok   " if cond else "FAIL ") + what, flush=True)
+    failures += 0 if cond else 1
+
+
+with tempfile.TemporaryDirectory() as out:
+    r = subprocess.run([exe, "--quick", out], capture_output=True, text=True, timeout=900)
+    print(r.stdout, r.stderr)
+    check(r.returncode == 0, f"exit status 0 (got {r.returncode})")
+    with open(os.path.join(out, "items.csv"), newline="") as f:
+        items = {row["id"]: row for row in csv.DictReader(f)}
+    for row in items.values():
+        check(row["mark"] != "DIFFERS", f"{row['id']}: not an unexplained difference ({row['mark']}, ours {row['ours']})")
+        check(row["command"].startswith(("archipelago-cli ", "archipelago-reproduce --only ")), f"{row['id']}: names a command")
+    # Statements this size can check: each must agree, and have a value.
+    for key in ["tmax", "tmax-X0", "F-smallT", "F-cutoff", "A-const", "t7", "decay-0.0001", "decay-0.001",
+                "decay-0.01", "cos-alpha", "pd-accumulation", "chain138-x", "chain138-y", "factor056",
+                "markov-dmark", "markov-eps", "tmax-measured", "alpha-quarter", "p-five-quarters", "S-superdiffusive"]:
+        check(key in items and items[key]["mark"] == "agrees" and items[key]["ours"] != "",
+              f"{key} agrees with the paper ({items.get(key, {}).get('ours')})")
+    # The heavy-tail quantities are honestly not claimed at this size.
+    check(items.get("b2", {}).get("mark") == "differs, explained", "b2: the area of our box, explained")
+    for key in ["D", "longest", "b2D", "enhancement"]:
+        check(items.get(key, {}).get("mark") == "not reproducible at this size", f"{key}: not claimed at this size")
+    index = open(os.path.join(out, "index.html"), encoding="utf-8").read()
+    check(len(index) > 5000 and "<table" in index, "index.html has the table")
+    for fig in ["fig1", "markov-epsilon", "fig4a", "fig4b", "fig4c", "fig3a", "fig3b", "fig3c", "fig5a", "fig5b", "fig6a", "fig6b", "fig6c", "fig6d", "fig7a", "fig7b"]:
+        png, svg = (os.path.join(out, "figures", fig + s) for s in (".png", ".svg"))
+        check(os.path.exists(png) and os.path.getsize(png) > 10000 and open(png, "rb").read(8) == b"\x89PNG\r\n\x1a\n",
+              f"{fig}.png is a non-trivial PNG")
+        check(os.path.exists(svg) and os.path.getsize(svg) > 10000 and b"<svg" in open(svg, "rb").read(),
+              f"{fig}.svg is a non-trivial SVG")
+        check(f"figures/{fig}.png" in index, f"index.html shows {fig}")
+    pdf = os.path.join(out, "report.pdf")
+    check(os.path.exists(pdf) and os.path.getsize(pdf) > 100000 and open(pdf, "rb").read(5) == b"%PDF-",
+          "report.pdf is a non-trivial PDF")
+    # Resumable: a second invocation reuses every finished run.
+    r2 = subprocess.run([exe, "--quick", out], capture_output=True, text=True, timeout=900)
+    check(r2.returncode == 0 and r2.stderr.count("reusing ") == 4, "a second invocation reuses the four runs")
+    # One statement alone, as its command says.
+    r4 = subprocess.run([exe, "--only", "chain138-x", out], capture_output=True, text=True, timeout=300)
+    check(r4.returncode == 0 and "mark: agrees" in r4.stdout and "period-138" in r4.stdout, "--only chain138-x")
+    r5 = subprocess.run([exe, "--only", "no-such-item", out], capture_output=True, text=True, timeout=300)
+    check(r5.returncode == 1 and "ERROR: --only 'no-such-item'" in r5.stderr, "--only with an unknown id is an error")
+    # A bad option is one clear error.
+    r3 = subprocess.run([exe, "--quick", "--full", out], capture_output=True, text=True, timeout=60)
+    check(r3.returncode != 0 and r3.stderr.strip() != "", "--quick with --full is an error")
+
+print(f"{failures} failure(s)")
+sys.exit(1 if failures else 0)

@@ -1,0 +1,256 @@
+#include "ui/report/ReportFigures.hpp"
+
+#include <QDir>
+#include <QFile>
+#include <QImage>
+#include <QPageSize>
+#include <QPainter>
+#include <QPdfWriter>
+#include <QSvgGenerator>
+#include <QTextDocument>
+#include <QUrl>
+#include <qwt_legend.h>
+#include <qwt_text.h>
+#include <qwt_plot_curve.h>
+#include <qwt_plot_item.h>
+#include <qwt_matrix_raster_data.h>
+#include <qwt_plot_spectrogram.h>
+#include <qwt_scale_map.h>
+#include <qwt_plot_renderer.h>
+#include <qwt_scale_engine.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/theory/SmallKTheory.hpp"
+#include "ui/plots/StatisticsPlot.hpp"
+
+namespace archipelago::ui::report {
+
+bool writeStatisticFigure(Statistic statistic, const TrappingStatistics& stats, const std::vector<TheoryCurve>& theory,
+                          const QString& base, QString* error) {
+  StatisticsPlot plot(statistic);
+  plot.resize(800, 550);
+  plot.setData(seriesOf(stats, statistic), theory);
+  plot.refresh();
+  return plot.exportImage(base + QStringLiteral(".png"), error) && plot.exportImage(base + QStringLiteral(".svg"), error);
+}
+
+namespace {
+
+bool renderPlot(QwtPlot& plot, const QString& base, QString* error) {
+  plot.resize(800, 550);
+  plot.replot();
+  QwtPlotRenderer renderer;
+  renderer.setDiscardFlag(QwtPlotRenderer::DiscardBackground, false);
+  const QRectF rect(0, 0, 945, 650);
+  QImage image(rect.size().toSize(), QImage::Format_ARGB32);
+  image.fill(Qt::white);
+  {
+    QPainter painter(&image);
+    renderer.render(&plot, &painter, rect);
+  }
+  if (!image.save(base + QStringLiteral(".png"))) {
+    if (error) *error = QStringLiteral("cannot write %1.png").arg(base);
+    return false;
+  }
+  QSvgGenerator generator;
+  generator.setFileName(base + QStringLiteral(".svg"));
+  generator.setSize(rect.size().toSize());
+  generator.setViewBox(rect);
+  generator.setTitle(plot.title().text());
+  QPainter painter(&generator);
+  renderer.render(&plot, &painter, rect);
+  if (!painter.end()) {
+    if (error) *error = QStringLiteral("cannot write %1.svg").arg(base);
+    return false;
+  }
+  return true;
+}
+
+/// A raster on the canvas, mapped from its physical rectangle by the plot's scales (row 0 at the top, y1).
+class RasterItem : public QwtPlotItem {
+ public:
+  RasterItem(QImage image, QRectF physical) : image_(std::move(image)), physical_(physical) {}
+  void draw(QPainter* painter, const QwtScaleMap& xMap, const QwtScaleMap& yMap, const QRectF&) const override {
+    const QRectF target(QPointF(xMap.transform(physical_.left()), yMap.transform(physical_.bottom())),
+                        QPointF(xMap.transform(physical_.right()), yMap.transform(physical_.top())));
+    painter->drawImage(target.normalized(), image_);
+  }
+
+ private:
+  QImage image_;
+  QRectF physical_;
+};
+
+QwtPlotCurve* addCurve(QwtPlot& plot, const QVector<QPointF>& points, const QString& title, const QColor& colour) {
+  auto* curve = new QwtPlotCurve(title);
+  curve->setPen(colour, 2);
+  curve->setRenderHint(QwtPlotItem::RenderAntialiased);
+  curve->setSamples(points);
+  curve->attach(&plot);
+  return curve;
+}
+
+}  // namespace
+
+bool writeTrappingTimeFigures(const QString& base, QString* error) {
+  const auto& mx = smallk::negativeKMaximum();
+  {  // (a) T(X0)
+    QwtPlot plot;
+    plot.setCanvasBackground(Qt::white);
+    plot.setTitle(QStringLiteral("Fig. 5a — T(X₀) for K < 0 (T_max = %1 at X₀ = %2)")
+                      .arg(mx.T, 0, 'f', 4).arg(mx.X0, 0, 'f', 4));
+    plot.setAxisTitle(QwtPlot::xBottom, QStringLiteral("X₀"));
+    plot.setAxisTitle(QwtPlot::yLeft, QStringLiteral("T"));
+    QVector<QPointF> pts;
+    for (int i = 0; i <= 400; ++i) {
+      const double X0 = -4 + 8.0 * i / 400;
+      pts.append({X0, smallk::negativeKTrappingTime(X0)});
+    }
+    addCurve(plot, pts, QStringLiteral("T(X₀)"), QColor(0, 90, 180));
+    plot.setAxisScale(QwtPlot::yLeft, 0, 6);
+    if (!renderPlot(plot, base + QStringLiteral("a"), error)) return false;
+  }
+  {  // (b) F(T) with its two limits
+    QwtPlot plot;
+    plot.setCanvasBackground(Qt::white);
+    plot.setTitle(QStringLiteral("Fig. 5b — F(T) for K < 0, with 6.205·10⁵ T⁻⁷ and 3.024 (T_max − T)^−½"));
+    plot.setAxisTitle(QwtPlot::xBottom, QStringLiteral("T"));
+    plot.setAxisTitle(QwtPlot::yLeft, QStringLiteral("F(T)"));
+    plot.setAxisScaleEngine(QwtPlot::yLeft, new QwtLogScaleEngine);
+    plot.insertLegend(new QwtLegend, QwtPlot::BottomLegend);
+    const double c0 = smallk::negativeKSmallTCoefficient(), c1 = smallk::negativeKCutoffCoefficient();
+    QVector<QPointF> f, small, cut;
+    for (int i = 1; i < 500; ++i) {
+      const double T = 1.5 + (mx.T - 1.5) * i / 500.0;
+      f.append({T, smallk::negativeKSegmentDensity(T)});
+      small.append({T, c0 * std::pow(T, -7.0)});
+      cut.append({T, c1 / std::sqrt(mx.T - T)});
+    }
+    addCurve(plot, f, QStringLiteral("F(T)"), QColor(0, 90, 180));
+    addCurve(plot, small, QStringLiteral("6.205·10⁵ T⁻⁷"), QColor(200, 60, 40))->setPen(QColor(200, 60, 40), 1, Qt::DashLine);
+    addCurve(plot, cut, QStringLiteral("3.024 (T_max − T)^−½"), QColor(40, 150, 60))->setPen(QColor(40, 150, 60), 1, Qt::DashLine);
+    plot.setAxisScale(QwtPlot::yLeft, 0.5, 1e4);
+    if (!renderPlot(plot, base + QStringLiteral("b"), error)) return false;
+  }
+  return true;
+}
+
+bool writePortraitFigure(const RasterImage& image, double x0, double x1, double y0, double y1, const QString& title,
+                         const QString& base, QString* error) {
+  // A deep copy: the item outlives nothing, but QImage must not borrow the vector past this scope's end.
+  const QImage raster = QImage(image.rgb.data(), image.width, image.height, 3 * image.width, QImage::Format_RGB888).copy();
+  QwtPlot plot;
+  plot.setTitle(title);
+  (new RasterItem(raster, QRectF(QPointF(x0, y0), QPointF(x1, y1))))->attach(&plot);
+  plot.setAxisTitle(QwtPlot::xBottom, QStringLiteral("x"));
+  plot.setAxisTitle(QwtPlot::yLeft, QStringLiteral("y"));
+  plot.setAxisScale(QwtPlot::xBottom, x0, x1);
+  plot.setAxisScale(QwtPlot::yLeft, y0, y1);
+  plot.resize(800, 800);
+  plot.replot();
+  QwtPlotRenderer renderer;
+  renderer.setDiscardFlag(QwtPlotRenderer::DiscardBackground, false);
+  const QRectF rect(0, 0, 800, 800);
+  auto draw = [&](QPainter& painter) { renderer.render(&plot, &painter, rect); };
+  QImage png(rect.size().toSize(), QImage::Format_ARGB32);
+  png.fill(Qt::white);
+  {
+    QPainter painter(&png);
+    draw(painter);
+  }
+  if (!png.save(base + QStringLiteral(".png"))) {
+    if (error) *error = QStringLiteral("cannot write %1.png").arg(base);
+    return false;
+  }
+  QSvgGenerator generator;
+  generator.setFileName(base + QStringLiteral(".svg"));
+  generator.setSize(rect.size().toSize());
+  generator.setViewBox(rect);
+  generator.setTitle(title);
+  QPainter painter(&generator);
+  draw(painter);
+  if (!painter.end()) {
+    if (error) *error = QStringLiteral("cannot write %1.svg").arg(base);
+    return false;
+  }
+  return true;
+}
+
+bool writeCurveFigure(const std::vector<double>& x, const std::vector<double>& y, const QString& title,
+                      const QString& xLabel, const QString& yLabel, const QString& base, QString* error) {
+  QwtPlot plot;
+  plot.setCanvasBackground(Qt::white);
+  plot.setTitle(title);
+  plot.setAxisTitle(QwtPlot::xBottom, xLabel);
+  plot.setAxisTitle(QwtPlot::yLeft, yLabel);
+  QVector<QPointF> pts;
+  for (std::size_t i = 0; i < x.size() && i < y.size(); ++i) pts.append({x[i], y[i]});
+  addCurve(plot, pts, yLabel, QColor(0, 90, 180));
+  return renderPlot(plot, base, error);
+}
+
+bool writeLevelCurveFigure(const std::function<double(double, double)>& z, double x0, double x1, double y0, double y1,
+                           const std::vector<double>& levels, const QString& title, const QString& base,
+                           QString* error) {
+  constexpr int n = 300;
+  QVector<double> values;
+  values.reserve(n * n);
+  double lo = 1e300, hi = -1e300;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const double v = z(x0 + (x1 - x0) * (i + 0.5) / n, y0 + (y1 - y0) * (j + 0.5) / n);
+      values.append(v);
+      lo = std::min(lo, v);
+      hi = std::max(hi, v);
+    }
+  auto* data = new QwtMatrixRasterData;
+  data->setInterval(Qt::XAxis, QwtInterval(x0, x1));
+  data->setInterval(Qt::YAxis, QwtInterval(y0, y1));
+  data->setInterval(Qt::ZAxis, QwtInterval(lo, hi));
+  data->setValueMatrix(values, n);
+  data->setResampleMode(QwtMatrixRasterData::BilinearInterpolation);
+  QwtPlot plot;
+  plot.setCanvasBackground(Qt::white);
+  plot.setTitle(title);
+  plot.setAxisTitle(QwtPlot::xBottom, QStringLiteral("X"));
+  plot.setAxisTitle(QwtPlot::yLeft, QStringLiteral("Y"));
+  plot.setAxisScale(QwtPlot::xBottom, x0, x1);
+  plot.setAxisScale(QwtPlot::yLeft, y0, y1);
+  auto* spectrogram = new QwtPlotSpectrogram;
+  spectrogram->setData(data);
+  spectrogram->setDisplayMode(QwtPlotSpectrogram::ImageMode, false);
+  spectrogram->setDisplayMode(QwtPlotSpectrogram::ContourMode, true);
+  spectrogram->setDefaultContourPen(QPen(QColor(0, 90, 180), 1.2));
+  spectrogram->setContourLevels(QList<double>(levels.begin(), levels.end()));
+  spectrogram->attach(&plot);
+  return renderPlot(plot, base, error);
+}
+
+bool writePdf(const QString& html, const QString& dir, const QStringList& images, const QString& pdfPath,
+              QString* error) {
+  QTextDocument doc;
+  for (const QString& name : images) {
+    QImage image(QDir(dir).filePath(name));
+    if (image.isNull()) {
+      if (error) *error = QStringLiteral("cannot read %1").arg(name);
+      return false;
+    }
+    doc.addResource(QTextDocument::ImageResource, QUrl(name), image);
+  }
+  doc.setHtml(html);
+  QPdfWriter writer(pdfPath);
+  writer.setPageSize(QPageSize(QPageSize::A4));
+  writer.setResolution(96);  // the offscreen screen's logical dpi: fonts and the 600-pixel figures keep their size
+  writer.setTitle(QStringLiteral("Karney (1983) reproduced by Archipelago"));
+  doc.setPageSize(QSizeF(writer.width(), writer.height()));
+  doc.print(&writer);
+  if (!QFile::exists(pdfPath) || QFile(pdfPath).size() < 1000) {
+    if (error) *error = QStringLiteral("cannot write %1").arg(pdfPath);
+    return false;
+  }
+  return true;
+}
+
+}  // namespace archipelago::ui::report
