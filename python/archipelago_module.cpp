@@ -42,6 +42,17 @@ py::array_t<T> toArray(const std::vector<T>& v) {
   return a;
 }
 
+// A unit coordinate from Python: an integer in [0, 2^52).
+std::uint64_t unitCoordinate(const py::object& v, const char* name) {
+  if (!py::isinstance<py::int_>(v) || py::isinstance<py::bool_>(v))
+    throw std::invalid_argument(std::string(name) + " must be an integer in [0, 2^52) (unit coordinates)");
+  const py::int_ i = py::reinterpret_borrow<py::int_>(v);
+  if (i < py::int_(0) || i >= py::int_(FixedPointMap::kOne))
+    throw std::invalid_argument(std::string(name) + " = " + std::string(py::str(py::handle(i))) +
+                                " must lie in [0, 2^52) (unit coordinates)");
+  return i.cast<std::uint64_t>();
+}
+
 MapParameters mapOf(double K, double xmin, double xmax) {
   MapParameters p{K, xmin, xmax};
   if (auto e = mapError(p)) throw std::invalid_argument(*e);
@@ -245,10 +256,9 @@ PYBIND11_MODULE(_archipelago, m) {
           if (steps > (std::uint64_t{1} << 28)) throw std::invalid_argument("steps must be <= 2^28 (arrays in memory)");
           UnitState z;
           if (!X0.is_none() || !Y0.is_none()) {
-            z.X = X0.cast<std::uint64_t>(); z.Y = Y0.cast<std::uint64_t>();
-            if (z.X >= FixedPointMap::kOne || z.Y >= FixedPointMap::kOne)
-              throw std::invalid_argument("X0 and Y0 must lie in [0, 2^52) (unit coordinates)");
+            z.X = unitCoordinate(X0, "X0"); z.Y = unitCoordinate(Y0, "Y0");
           } else {
+            if (x0.is_none() || y0.is_none()) throw std::invalid_argument("give x0 and y0 (physical) or X0 and Y0 (unit)");
             const double x = x0.cast<double>(), y = y0.cast<double>();
             if (!std::isfinite(x) || !std::isfinite(y)) throw std::invalid_argument("x0 and y0 must be finite");
             z = map.toUnit(x, y);
