@@ -23,6 +23,8 @@
 #include "core/runfile/RunFile.hpp"
 #include "core/spec/RunSpec.hpp"
 #include "core/stats/RunStatistics.hpp"
+#include "core/stats/StochasticAreaQuantities.hpp"
+#include "core/portrait/StochasticArea.hpp"
 #include "core/theory/SmallKTheory.hpp"
 
 namespace py = pybind11;
@@ -417,6 +419,46 @@ PYBIND11_MODULE(_archipelago, m) {
           return r; },
         py::arg("begin"), py::arg("end"), py::arg("spec") = py::none(),
         "As start(), over the orbits [begin, end) only: the parts of a run merged with merge().");
+
+  m.def("presets", [] {
+          py::dict d;
+          for (const Preset& p : presets()) d[py::str(p.id)] = runSpecJson(p.spec);
+          return d; },
+        "The paper's cases (resources/presets): id -> run spec JSON text, for start(spec).");
+
+  // ---- b2, the area of the stochastic region (core/portrait/StochasticArea.hpp, appendix A) ----
+  m.def("stochastic_area", [](double K, double xmin, double xmax, double Xr, std::uint32_t q, std::uint32_t orbits,
+                              std::uint64_t seed, std::uint64_t iterations, int gridBits, const std::string& kernel) {
+          StochasticAreaRequest r;
+          r.map = mapOf(K, xmin, xmax); r.Xr = Xr; r.q = q; r.orbits = orbits; r.seed = seed;
+          r.iterations = iterations; r.gridBits = gridBits; r.kernel = &selectKernel(kernel);
+          r.firstCheckpoint = std::min<std::uint64_t>(r.firstCheckpoint, iterations);
+          if (auto e = validationError(r)) throw std::invalid_argument(*e);
+          StochasticAreaResult res;
+          { py::gil_scoped_release release; res = computeStochasticArea(r); }
+          std::vector<std::uint64_t> it, boxes; std::vector<double> frac;
+          for (const auto& p : res.convergence) { it.push_back(p.iterations); boxes.push_back(p.boxesVisited); frac.push_back(p.b2); }
+          const StochasticAreaValue v = stochasticAreaOf(r.map, res.b2());
+          const auto side = py::ssize_t{1} << gridBits;
+          py::dict d;
+          d["fraction"] = v.fraction; d["box_area"] = v.boxArea; d["b2"] = v.area;
+          d["iterations"] = toArray(it); d["boxes_visited"] = toArray(boxes); d["fractions"] = toArray(frac);
+          d["visited"] = toArray(res.visited).reshape({side, side});
+          return d; },
+        py::arg("K") = 0.1, py::arg("xmin") = -0.8, py::arg("xmax") = 0.5, py::kw_only(), py::arg("Xr") = 0.02,
+        py::arg("q") = 16, py::arg("orbits") = 64, py::arg("seed") = 1, py::arg("iterations") = std::uint64_t{1} << 28,
+        py::arg("grid_bits") = 10, py::arg("kernel") = "auto",
+        "b2, the area of the stochastic region (appendix A): the fraction of 2^grid_bits x 2^grid_bits boxes visited by\n"
+        "randomized orbits, times the box area L^2; with its convergence curve and the visited map (rows = Y boxes).");
+  m.def("box_invariant", [](double K, double xmin, double xmax, double fraction, double D, double DError) {
+          if (!(fraction >= 0 && fraction <= 1)) throw std::invalid_argument("fraction must lie in [0, 1]");
+          if (!std::isfinite(D) || !std::isfinite(DError)) throw std::invalid_argument("D and D_error must be finite");
+          const BoxInvariantQuantities b = boxInvariantQuantities(stochasticAreaOf(mapOf(K, xmin, xmax), fraction), D, DError);
+          py::dict d; d["b2"] = b.b2.area; d["b2_D"] = b.b2D; d["b2_D_error"] = b.b2DError;
+          d["accelerator_factor"] = b.acceleratorFactor; d["enhancement_n1"] = b.enhancementN1; return d; },
+        py::arg("K"), py::arg("xmin"), py::arg("xmax"), py::arg("fraction"), py::arg("D"), py::arg("D_error") = 0.0,
+        "The b2-scaled, box-independent values (core/stats/StochasticAreaQuantities.hpp): b2 D with its error, the\n"
+        "accelerator-mode factor (8/pi^2) b2 and the n = 1 enhancement, from the visited fraction and D of statistics().");
 
   // ---- theory (core/theory/SmallKTheory.hpp, section 4) ----
   m.def("segment_shape", py::vectorize([](double t, double K) { return smallk::segmentShape(t, K); }), py::arg("t"), py::arg("K"),
