@@ -26,6 +26,8 @@
 #include "core/stats/StochasticAreaQuantities.hpp"
 #include "core/portrait/StochasticArea.hpp"
 #include "core/theory/SmallKTheory.hpp"
+#include "core/theory/KScan.hpp"
+#include "core/markov/MarkovModel.hpp"
 
 namespace py = pybind11;
 using namespace archipelago;
@@ -459,6 +461,60 @@ PYBIND11_MODULE(_archipelago, m) {
         py::arg("K"), py::arg("xmin"), py::arg("xmax"), py::arg("fraction"), py::arg("D"), py::arg("D_error") = 0.0,
         "The b2-scaled, box-independent values (core/stats/StochasticAreaQuantities.hpp): b2 D with its error, the\n"
         "accelerator-mode factor (8/pi^2) b2 and the n = 1 enhancement, from the visited fraction and D of statistics().");
+
+  // ---- the K scan (core/theory/KScan.hpp, section 5) ----
+  m.def("scan_box", [](double K) { const MapParameters b = scanBox(K); return py::make_tuple(b.xmin, b.xmax); },
+        py::arg("K"), "The box (xmin, xmax) the K scan of section 5 uses for K in [0, 4].");
+  m.def("scan_values", &scanValues, py::arg("start"), py::arg("stop"), py::arg("step"),
+        "The K values of a scan: start, start + step, ... up to stop (rounded to 12 significant digits).");
+  m.def("scan_point", [](const Run& r, py::object fraction) {
+          r.check();
+          TrappingStatistics st;
+          { py::gil_scoped_release release; st = statisticsOf(r.state); }
+          std::optional<StochasticAreaValue> b2;
+          if (!fraction.is_none()) {
+            const double f = fraction.cast<double>();
+            if (!(f >= 0 && f <= 1)) throw std::invalid_argument("fraction must lie in [0, 1]");
+            b2 = stochasticAreaOf(r.state.params.map, f);
+          }
+          const ScanPoint p = scanPointOf(r.state, st, b2);
+          py::dict d;
+          d["K"] = p.K; d["xmin"] = p.box.xmin; d["xmax"] = p.box.xmax; d["blocks_done"] = p.blocksDone;
+          d["blocks_total"] = p.blocksTotal; d["segments"] = p.segments; d["D"] = p.D; d["D_error"] = p.DError;
+          d["longest_steps"] = p.longestSteps; d["long_fraction"] = p.longFraction;
+          if (p.boxInvariant) { d["b2"] = p.boxInvariant->b2.area; d["b2_D"] = p.boxInvariant->b2D;
+                                d["b2_D_error"] = p.boxInvariant->b2DError; }
+          return d; },
+        py::arg("run"), py::arg("fraction") = py::none(),
+        "The K scan's summary of one run (section 5): D, the longest segment, the fraction of time in segments of at\n"
+        "least 10^4 steps, and b2 D when the visited fraction of stochastic_area() is given.");
+
+  // ---- the Markov model of appendix C (core/markov/MarkovModel.hpp) ----
+  m.def("markov", [](std::vector<std::int64_t> lengths, std::int64_t points, std::int64_t tauMax, double h0) {
+          markov::MarkovModel model{std::move(lengths), points};
+          markov::validate(model);
+          if (!std::isfinite(h0)) throw std::invalid_argument("h0 must be finite");
+          if (tauMax < 0) throw std::invalid_argument("tau_max must be >= 0");
+          const markov::LumpedObservable h = markov::paperObservable(model, h0);
+          py::dict d;
+          std::vector<double> C, Cis, eps;
+          double D = 0, Dmark = 0, Dis = 0;
+          {
+            py::gil_scoped_release release;
+            C = markov::correlation(model, h, tauMax);
+            Cis = markov::islandCorrelation(model, tauMax, h0);
+            eps = markov::correlationDeviation(model, h, tauMax, h0);
+            D = markov::diffusionCoefficient(model, h);
+            Dmark = markov::diffusionCoefficientDmark(model, h);
+            Dis = markov::islandDiffusionCoefficient(model, h0);
+          }
+          d["C"] = toArray(C); d["C_is"] = toArray(Cis); d["epsilon"] = toArray(eps);
+          d["D"] = D; d["D_dmark"] = Dmark; d["D_is"] = Dis;
+          return d; },
+        py::arg("segment_lengths"), py::arg("points"), py::kw_only(), py::arg("tau_max") = 100, py::arg("h0") = 1.0,
+        "The Markov model of appendix C: N points, trapped segments of lengths m_k, the paper's observable (h0 on the\n"
+        "trapped points): C(tau) for tau = 0..tau_max (eq. cmark), the island term C_is, epsilon = (C - C_is)/C_is(0),\n"
+        "and D by the lumped solve, by eq. (dmark), and D_is.");
 
   // ---- theory (core/theory/SmallKTheory.hpp, section 4) ----
   m.def("segment_shape", py::vectorize([](double t, double K) { return smallk::segmentShape(t, K); }), py::arg("t"), py::arg("K"),
