@@ -86,6 +86,12 @@ void applyParameters(TrappingParameters& p, const py::dict& kwargs) {
   if (auto e = validationError(p)) throw std::invalid_argument(*e);
 }
 
+// The theory curves are functions of a time t >= 0 (steps) and a finite K: anything else is an error, not NaN.
+void checkShapeArguments(double t, double K) {
+  if (!(std::isfinite(t) && t >= 0)) throw std::invalid_argument("t = " + shortestDecimal(t) + " must be a finite time >= 0 (steps)");
+  if (!std::isfinite(K)) throw std::invalid_argument("K = " + shortestDecimal(K) + " must be a finite number");
+}
+
 py::dict seriesDict(const Series& s) {
   py::dict d;
   d["x"] = toArray(s.x);
@@ -129,11 +135,14 @@ py::dict periodicOrbitDict(const PeriodicOrbit& o) {
 }
 
 /// A trapping run held by Python: a TrappingState (core/run/TrappingRun.hpp).
+/// Every access holds the GIL except advance()'s computation, which marks the run busy meanwhile.
 struct Run {
   TrappingState state;
   bool valid = true;
+  bool busy = false;
 
   void check() const {
+    if (busy) throw std::invalid_argument("this run is being advanced (advance() is running)");
     if (!valid) throw std::runtime_error("this run was lost by an error while computing");
   }
 };
@@ -202,10 +211,15 @@ void advanceRun(Run& run, int threads, const std::string& kernelName, const py::
     }
   };
   run.valid = false;
-  {
+  run.busy = true;
+  try {
     py::gil_scoped_release release;
     run.state = runTrapping(std::move(run.state), options, observer, stopper.get_token());
+  } catch (...) {
+    run.busy = false;
+    throw;
   }
+  run.busy = false;
   run.valid = true;
   if (!checkpoint.is_none() && !run.state.finished()) {
     const std::string path = py::str(checkpoint);
@@ -378,14 +392,15 @@ PYBIND11_MODULE(_archipelago, m) {
           r.check();
           if (rank >= r.state.longest.items().size()) throw std::invalid_argument("rank out of range (longest segments kept: " +
                                                                                    std::to_string(r.state.longest.items().size()) + ")");
-          return replayRecord(r.state.params, r.state.longest.items()[rank]); },
+          const TrappingParameters params = r.state.params;  // copies: the replay runs without the GIL
+          const SegmentRecord record = r.state.longest.items()[rank];
+          return replayRecord(params, record); },
            py::arg("rank") = 0,
            "Replays the rank-th longest segment bit for bit: dict of arrays X, Y (unit) and x, y (physical), one point per\n"
            "step of N^-1 (q*length + 1 points).")
       .def("statistics", [](const Run& r) {
           r.check();
-          TrappingStatistics s;
-          { py::gil_scoped_release release; s = statisticsOf(r.state); }
+          const TrappingStatistics s = statisticsOf(r.state);  // with the GIL: no advance() can run meanwhile
           py::dict d;
           d["f"] = seriesDict(s.f); d["p"] = seriesDict(s.p); d["P"] = seriesDict(s.P); d["C"] = seriesDict(s.C);
           d["local_exponent"] = seriesDict(s.localExponent); d["S"] = seriesDict(s.S); d["Dt"] = seriesDict(s.Dt);
@@ -469,8 +484,7 @@ PYBIND11_MODULE(_archipelago, m) {
         "The K values of a scan: start, start + step, ... up to stop (rounded to 12 significant digits).");
   m.def("scan_point", [](const Run& r, py::object fraction) {
           r.check();
-          TrappingStatistics st;
-          { py::gil_scoped_release release; st = statisticsOf(r.state); }
+          const TrappingStatistics st = statisticsOf(r.state);
           std::optional<StochasticAreaValue> b2;
           if (!fraction.is_none()) {
             const double f = fraction.cast<double>();
@@ -517,9 +531,9 @@ PYBIND11_MODULE(_archipelago, m) {
         "and D by the lumped solve, by eq. (dmark), and D_is.");
 
   // ---- theory (core/theory/SmallKTheory.hpp, section 4) ----
-  m.def("segment_shape", py::vectorize([](double t, double K) { return smallk::segmentShape(t, K); }), py::arg("t"), py::arg("K"),
+  m.def("segment_shape", py::vectorize([](double t, double K) { checkShapeArguments(t, K); return smallk::segmentShape(t, K); }), py::arg("t"), py::arg("K"),
         "The small-K theory's shape of f_t (section 4; t in steps), up to its amplitude.");
-  m.def("correlation_shape", py::vectorize([](double tau, double K) { return smallk::correlationShape(tau, K); }),
+  m.def("correlation_shape", py::vectorize([](double tau, double K) { checkShapeArguments(tau, K); return smallk::correlationShape(tau, K); }),
         py::arg("tau"), py::arg("K"), "The small-K theory's shape of C_tau (section 4; tau in steps), up to its amplitude.");
 
   // ---- periodic orbits and island chains (core/periodic) ----

@@ -87,3 +87,21 @@ def test_memory_does_not_grow_with_progress_callbacks():
     assert calls[0] >= 222000
     # 180000 more callbacks: a leak of even 16 bytes each would add 2.8 MB.
     assert after - middle < 1024, (before, middle, after)
+
+
+def test_run_is_not_touched_while_another_thread_advances_it():
+    run = ap.start(**dict(P, T=200000))
+    errors = []
+
+    def progress(d):
+        # The callback runs while the run is busy: reading it must be refused, not race.
+        try:
+            run.orbit_states()
+        except ValueError as e:
+            errors.append(str(e))
+        raise StopIteration
+
+    with pytest.raises(StopIteration):
+        run.advance(progress=progress, max_chunk=1000)
+    assert errors == ["this run is being advanced (advance() is running)"]
+    assert run.orbit_states().shape == (16, 9)  # usable again after the stop

@@ -47,3 +47,9 @@ def test_theory_and_statistics_shapes():
     t = np.array([1.0, 10.0, 100.0])
     s = ap.segment_shape(t, 0.1)
     assert s.shape == (3,) and np.all(np.isfinite(s))
+    with pytest.raises(ValueError, match="t = nan"):
+        ap.segment_shape(np.array([1.0, np.nan]), 0.1)
+    with pytest.raises(ValueError, match="t = -1"):
+        ap.correlation_shape(-1.0, 0.1)
+    with pytest.raises(ValueError, match="K = inf"):
+        ap.segment_shape(1.0, np.inf)
