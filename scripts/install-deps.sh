@@ -20,6 +20,7 @@ packages=(
   libgtest-dev libgmock-dev googletest libbenchmark-dev
   xvfb xauth python3
   clang libclang-rt-14-dev libomp-dev
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib  # the Python module (python/), its tests, examples/
 )
 
 SUDO=""
