@@ -20,6 +20,7 @@ packages=(
   libgtest-dev libgmock-dev googletest libbenchmark-dev
   xvfb xauth python3
   clang libclang-rt-14-dev libomp-dev
+  libopenmpi-dev openmpi-bin  # archipelago-mpi and its tests (issue #15); optional, CMake skips it without MPI
 )
 
 SUDO=""
