@@ -111,6 +111,24 @@ std::string partName(const std::string& manifest, std::uint64_t blocks, int rank
          std::to_string(rank) + ".json";
 }
 
+/// Removes what an aborted checkpoint left beside `manifest` (its parts, and the temporaries of parts being
+/// written when a rank was killed) except the parts in `keep`.  Rank 0 only, holding the manifest's lock.
+void removeStaleParts(const std::string& manifest, const std::vector<std::string>& keep) {
+  const std::filesystem::path path(manifest);
+  const std::filesystem::path folder = path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path();
+  const std::string prefix = path.filename().string() + ".b";
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(folder, ec)) {
+    const std::string name = entry.path().filename().string();
+    const bool part = name.starts_with(prefix) && name.ends_with(".json");
+    const bool temporary = name.starts_with("." + prefix);
+    if ((part || temporary) && std::find(keep.begin(), keep.end(), name) == keep.end()) {
+      std::error_code ignored;
+      std::filesystem::remove(entry.path(), ignored);
+    }
+  }
+}
+
 /// The whole state to resume: a manifest of parts or a plain run file (e.g. archipelago-cli run's checkpoint).
 TrappingState loadResume(const std::string& path) {
   const std::string text = io::readRegularFile(path, kMaxRunFileBytes);
@@ -245,6 +263,7 @@ int mpiRun(const cli::RunOptions& o, const std::vector<std::string>& explicitPar
         for (const auto& p : parseRunManifest(text, o.resume).parts) previousParts.push_back(p.file);
     }
   });
+  if (root) removeStaleParts(manifest, previousParts);
 
   cli::installInterruptHandlers();
   const KernelInfo& kernel = selectKernel(run.kernel);
