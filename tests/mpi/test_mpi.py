@@ -104,7 +104,9 @@ check(r.returncode == 0 and content(p("big.json")) == content(p("bigsingle.json"
 check(sorted(os.listdir(p("ck"))) == [], f"the finished run removed its checkpoint {os.listdir(p('ck'))}")
 
 # --- SIGINT to mpirun: checkpoint and stop; resume on 1 rank; a cli checkpoint resumes too ----------------------
-proc = subprocess.Popen(launcher(2) + big + ["--threads", "1", "--max-chunk", "2000", "--checkpoint-interval", "1000",
+longer = [x if x != "2000000" else "10000000" for x in big]  # long enough to be interrupted
+r = subprocess.run([cli, "run", *longer, "--threads", "2", "--out", p("longsingle.json")], capture_output=True, text=True)
+proc = subprocess.Popen(launcher(2) + longer + ["--threads", "1", "--max-chunk", "2000", "--checkpoint-interval", "1000",
                                              "--out", p("int.json"), "--checkpoint", p("int.ckpt")],
                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env,
                         # ctest may start tests with SIGINT ignored, which mpirun would inherit and keep
@@ -112,7 +114,7 @@ proc = subprocess.Popen(launcher(2) + big + ["--threads", "1", "--max-chunk", "2
 deadline = time.monotonic() + 30
 while len(children(proc.pid)) < 2 and proc.poll() is None and time.monotonic() < deadline:
     time.sleep(0.01)
-time.sleep(0.3)
+time.sleep(0.1)
 proc.send_signal(signal.SIGINT)
 out, err = proc.communicate(timeout=60)
 check(os.path.exists(p("int.ckpt")) and not os.path.exists(p("int.json")) and "interrupted" in err,
@@ -120,7 +122,7 @@ check(os.path.exists(p("int.ckpt")) and not os.path.exists(p("int.json")) and "i
       [l for l in open("/proc/self/status") if l.startswith("SigIgn")][0].strip())
 if os.path.exists(p("int.ckpt")):
     r = run_mpi(1, "--resume", p("int.ckpt"), "--threads", "2", "--out", p("int.json"), "--checkpoint", p("int.ckpt"))
-    check(r.returncode == 0 and content(p("int.json")) == content(p("bigsingle.json")),
+    check(r.returncode == 0 and content(p("int.json")) == content(p("longsingle.json")),
           "the interrupted run resumed on 1 rank: the single run " + r.stderr.strip()[-300:])
 
 # --- attacks: one ERROR, nothing written -------------------------------------------------------------------------
