@@ -11,12 +11,14 @@
 #include <string>
 
 #include "MpiRun.hpp"
+#include "RunSession.hpp"
 
 int main(int argc, char** argv) {
   int provided = 0;
   MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);  // OpenMP threads never call MPI
   int rank = 0;
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  archipelago::cli::installInterruptHandlers();  // at once: a stop asked before the first round is honoured too
   CLI::App app{"archipelago-mpi " ARCHIPELAGO_VERSION
                " -- `archipelago-cli run` distributed over MPI ranks, bit-identical to one process"};
   app.set_version_flag("--version", std::string("archipelago-mpi ") + ARCHIPELAGO_VERSION);
