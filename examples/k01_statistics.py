@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The paper's K = 0.1 trapping statistics (Karney 1983, fig. 5 "expense": f_t, P_t, C_tau and the local
+"""The paper's K = 0.1 trapping statistics (Karney 1983, fig. 6 "expense": f_t, P_t, C_tau and the local
 exponent -d log C_tau / d log tau), computed from Python with the archipelago module and drawn with matplotlib.
 
     PYTHONPATH=build/default/python python3 examples/k01_statistics.py --out k01.png
@@ -71,7 +71,7 @@ def main():
     ax[1, 1].set_ylim(0, 2)
     fig.suptitle(f"K = {p['K']}: M = {p['M']} orbits of qT = {p['q'] * p['T']:.3g} steps; "
                  f"α = {s['alpha']:.4g} ± {s['alpha_error']:.2g}, D = {s['D']:.4g} ± {s['D_error']:.2g} "
-                 f"(Karney 1983, fig. 5)")
+                 f"(Karney 1983, fig. 6)")
     fig.tight_layout()
     fig.savefig(args.out, dpi=110)
     print(f"wrote {args.out}", file=sys.stderr)

@@ -21,6 +21,7 @@ packages=(
   xvfb xauth python3
   clang libclang-rt-14-dev libomp-dev
   pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib  # the Python module (python/), its tests, examples/
+  libopenmpi-dev openmpi-bin  # archipelago-mpi and its tests (issue #15); optional, CMake skips it without MPI
 )
 
 SUDO=""

@@ -61,4 +61,12 @@ std::string seededPath(const std::string& path, std::uint64_t seed) {
   return out.string();
 }
 
+std::pair<std::uint64_t, std::uint64_t> orbitRange(const std::string& text, std::uint64_t M) {
+  if (text.empty()) return {0, M};
+  const std::string rule = "BEGIN:END, whole numbers with BEGIN < END <= M = " + std::to_string(M);
+  const std::vector<std::uint64_t> v = parseNumbers<std::uint64_t>("--orbits", text, ':', 2, rule);
+  if (!(v[0] < v[1] && v[1] <= M)) throw std::invalid_argument("--orbits '" + text + "' must be " + rule);
+  return {v[0], v[1]};
+}
+
 }  // namespace archipelago::cli

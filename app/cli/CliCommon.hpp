@@ -25,6 +25,7 @@
 #include <string>
 #include <string_view>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "core/map/MapParameters.hpp"
@@ -121,6 +122,10 @@ inline constexpr std::size_t kMaxSeeds = 1000;
 /// number read by toNumber<std::uint64_t> and within the seed parameter's range (parameterRules()).  Throws
 /// std::invalid_argument with one line naming `option` for anything else: an empty item, a sign, a fraction,
 /// nan or inf, a number too large, a reversed range, more than kMaxSeeds seeds, a seed given twice.
+/// The orbit range of `--orbits BEGIN:END` for a run of M orbits: [BEGIN, END) with BEGIN < END ≤ M; all M
+/// orbits when `text` is empty.  Throws std::invalid_argument naming --orbits otherwise.
+[[nodiscard]] std::pair<std::uint64_t, std::uint64_t> orbitRange(const std::string& text, std::uint64_t M);
+
 [[nodiscard]] std::vector<std::uint64_t> parseSeedList(const std::string& option, const std::string& text);
 
 /// The run file of one seed of an ensemble: "run.json" → "run.seed-3.json", "out/x" → "out/x.seed-3".

@@ -25,20 +25,6 @@
 
 namespace archipelago::cli {
 
-namespace {
-
-struct RunOptions : SpecOptions {  // --preset, --spec, the parameters, --threads, --kernel (RunSession.hpp)
-  TrappingParameters params;      // the run's parameters once resolved (resolveSpec)
-  bool printSpec = false;
-  std::string out = "run.json";
-  std::string checkpoint;  // empty: the output file
-  double checkpointSeconds = 60;
-  std::string resume;
-  std::uint64_t maxChunkBlocks = 0;
-  bool quiet = false;
-  std::string seeds;   // --seeds LIST: a seed ensemble, one run file per seed (issue #14, item 2)
-};
-
 void drawProgress(const TrappingProgress& p, const std::string& kernel) {
   constexpr int kWidth = 30;
   const int filled = static_cast<int>(p.fraction * kWidth);
@@ -49,7 +35,11 @@ void drawProgress(const TrappingProgress& p, const std::string& kernel) {
   std::fflush(stderr);
 }
 
+namespace {
+
 int runCommand(const RunOptions& o, const std::vector<std::string>& explicitParameters) {
+  if (!o.resume.empty() && !o.orbits.empty())
+    throw std::invalid_argument("--resume takes the orbit range from the run file; do not also give --orbits");
   if (!o.resume.empty() && !explicitParameters.empty())
     throw std::invalid_argument("--resume takes the parameters from the run file; do not also give " +
                                 explicitParameters.front());
@@ -70,7 +60,10 @@ int runCommand(const RunOptions& o, const std::vector<std::string>& explicitPara
   }
   const TrappingParameters& params = o.resume.empty() ? o.params : state.params;
   if (auto e = memoryError(params, o.threads)) throw std::runtime_error(*e);  // before allocating the orbits
-  if (o.resume.empty()) state = startTrapping(o.params);
+  if (o.resume.empty()) {
+    const auto [begin, end] = orbitRange(o.orbits, o.params.M);
+    state = startTrapping(o.params, begin, end);
+  }
   const bool tty = ::isatty(STDERR_FILENO) != 0;
 
   installInterruptHandlers();
@@ -140,23 +133,30 @@ int runSeeds(const RunOptions& o, const std::vector<std::string>& given) {
 
 }  // namespace
 
-void addRunCommand(CLI::App& app, int& status) {
-  auto o = std::make_shared<RunOptions>();
-  CLI::App* cmd = app.add_subcommand("run", "trapping statistics: M orbits x T blocks of N^-q (paper section 3)");
-  addSpecOptions(*cmd, *o);
-  addNumberOption(*cmd, "--threads", o->threads, "OpenMP threads (0: all cores; at most " + std::to_string(kMaxThreads) + ")");
-  cmd->add_option("--out", o->out, "run file written at the end")->capture_default_str();
-  cmd->add_option("--checkpoint", o->checkpoint, "checkpoint file (default: the --out file)");
-  addNumberOption(*cmd, "--checkpoint-interval", o->checkpointSeconds, "seconds between checkpoints");
-  cmd->add_option("--resume", o->resume, "continue the run in this checkpoint or run file");
-  addNumberOption(*cmd, "--max-chunk", o->maxChunkBlocks, "at most this many blocks between progress reports (0: adaptive)");
-  addKernelOption(*cmd, o->kernel);
-  cmd->add_flag("--print-spec", o->printSpec, "print the run spec (JSON) these options make, and run nothing");
-  cmd->add_flag("--quiet", o->quiet, "no progress bar or summary");
-  cmd->add_option("--seeds", o->seeds,
+void addRunOptions(CLI::App& cmd, RunOptions& o) {
+  addSpecOptions(cmd, o);
+  addNumberOption(cmd, "--threads", o.threads, "OpenMP threads (0: all cores; at most " + std::to_string(kMaxThreads) + ")");
+  cmd.add_option("--out", o.out, "run file written at the end")->capture_default_str();
+  cmd.add_option("--checkpoint", o.checkpoint, "checkpoint file (default: the --out file)");
+  addNumberOption(cmd, "--checkpoint-interval", o.checkpointSeconds, "seconds between checkpoints");
+  cmd.add_option("--resume", o.resume, "continue the run in this checkpoint or run file");
+  addNumberOption(cmd, "--max-chunk", o.maxChunkBlocks, "at most this many blocks between progress reports (0: adaptive)");
+  addKernelOption(cmd, o.kernel);
+  cmd.add_flag("--print-spec", o.printSpec, "print the run spec (JSON) these options make, and run nothing");
+  cmd.add_flag("--quiet", o.quiet, "no progress bar or summary");
+  cmd.add_option("--orbits", o.orbits,
+                  "run only orbits [BEGIN, END) of the M (e.g. 0:400): one part of the run, for a scheduler array job; "
+                  "`merge` joins the parts into the run file of the whole run");
+  cmd.add_option("--seeds", o.seeds,
                   "a seed ensemble: one independent run per seed (e.g. 1..8 or 1,2,5..7, at most " +
                       std::to_string(kMaxSeeds) + "), written to NAME.seed-K.json for --out NAME.json; "
                       "`stats` combines the files");
+}
+
+void addRunCommand(CLI::App& app, int& status) {
+  auto o = std::make_shared<RunOptions>();
+  CLI::App* cmd = app.add_subcommand("run", "trapping statistics: M orbits x T blocks of N^-q (paper section 3)");
+  addRunOptions(*cmd, *o);
   cmd->callback([o, cmd, &status] {
     const std::vector<std::string> given = givenSpecOptions(*cmd);
     const bool ensemble = cmd->count("--seeds") > 0;
@@ -178,6 +178,7 @@ void addRunCommand(CLI::App& app, int& status) {
       return;
     }
     o->params = spec.parameters;
+    (void)orbitRange(o->orbits, o->params.M);  // a bad range is named before any work
     o->threads = spec.threads;
     o->kernel = spec.kernel == "auto" ? std::string() : spec.kernel;  // "auto": $ARCHIPELAGO_KERNEL or the fastest
     status = ensemble ? runSeeds(*o, given) : runCommand(*o, given);

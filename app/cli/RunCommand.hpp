@@ -1,7 +1,35 @@
 #pragma once
 #include <CLI/CLI.hpp>
 
+#include <cstdint>
+#include <string>
+
+#include "RunSession.hpp"
+#include "core/run/TrappingRun.hpp"
+
 namespace archipelago::cli {
+
+/// Every option of `run`: the spec options (RunSession.hpp), --threads, --kernel, the files, checkpoints,
+/// --orbits, --seeds.  archipelago-mpi (app/mpi) takes the same set.
+struct RunOptions : SpecOptions {
+  TrappingParameters params;      // the run's parameters once resolved (resolveSpec)
+  bool printSpec = false;
+  std::string out = "run.json";
+  std::string checkpoint;  // empty: the output file
+  double checkpointSeconds = 60;
+  std::string resume;
+  std::uint64_t maxChunkBlocks = 0;
+  bool quiet = false;
+  std::string orbits;  // --orbits BEGIN:END: only these orbits (a part for `merge`, issue #15)
+  std::string seeds;   // --seeds LIST: a seed ensemble, one run file per seed (issue #14, item 2)
+};
+
+/// Registers the options of `run` on `cmd`.
+void addRunOptions(CLI::App& cmd, RunOptions& o);
+
+/// The progress bar of a run on stderr (carriage return, no newline).
+void drawProgress(const TrappingProgress& p, const std::string& kernel);
+
 /// `archipelago-cli run`: a trapping-statistics run with checkpoints, resumable.
 /// Exit status to `status`: 0, or 130 when interrupted (SIGINT/SIGTERM) after writing a checkpoint.
 void addRunCommand(CLI::App& app, int& status);

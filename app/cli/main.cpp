@@ -17,6 +17,7 @@
 #include "ReplayCommand.hpp"
 #include "StochasticAreaCommand.hpp"
 #include "MarkovCommand.hpp"
+#include "MergeCommand.hpp"
 #include "PresetsCommand.hpp"
 
 int main(int argc, char** argv) {
@@ -29,6 +30,7 @@ int main(int argc, char** argv) {
   archipelago::cli::addRunCommand(app, status);
   archipelago::cli::addScanCommand(app, status);
   archipelago::cli::addStatsCommand(app, status);
+  archipelago::cli::addMergeCommand(app, status);
   archipelago::cli::addReplayCommand(app, status);
   archipelago::cli::addPeriodicCommand(app, status);
   archipelago::cli::addPortraitCommand(app, status);

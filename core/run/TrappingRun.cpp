@@ -37,20 +37,29 @@ TrappingState startTrapping(const TrappingParameters& params, std::uint64_t orbi
   return s;
 }
 
-TrappingState mergeTrapping(const TrappingState& a, const TrappingState& b) {
+namespace {
+void checkMergeable(const TrappingState& a, const TrappingState& b) {
   if (!(a.params == b.params) || !(a.coefficients == b.coefficients))
     throw std::invalid_argument("cannot merge runs with different parameters");
   if (a.blocksDone != b.blocksDone)
     throw std::invalid_argument("cannot merge runs at different progress (blocks done differ)");
-  const TrappingState& lo = a.orbitBegin <= b.orbitBegin ? a : b;
-  const TrappingState& hi = a.orbitBegin <= b.orbitBegin ? b : a;
+}
+}  // namespace
+
+void appendTrappingRange(TrappingState& lo, const TrappingState& hi) {
+  checkMergeable(lo, hi);
   if (lo.orbitEnd != hi.orbitBegin) throw std::invalid_argument("cannot merge runs over non-adjacent orbit ranges");
-  TrappingState m = lo;
-  m.orbitEnd = hi.orbitEnd;
-  m.orbits.insert(m.orbits.end(), hi.orbits.begin(), hi.orbits.end());
-  for (std::size_t i = 0; i < m.subsets.size(); ++i) m.subsets[i].merge(hi.subsets[i]);
-  m.longest.merge(hi.longest);
-  m.elapsedSeconds = a.elapsedSeconds + b.elapsedSeconds;
+  lo.orbitEnd = hi.orbitEnd;
+  lo.orbits.insert(lo.orbits.end(), hi.orbits.begin(), hi.orbits.end());
+  for (std::size_t i = 0; i < lo.subsets.size(); ++i) lo.subsets[i].merge(hi.subsets[i]);
+  lo.longest.merge(hi.longest);
+  lo.elapsedSeconds += hi.elapsedSeconds;
+}
+
+TrappingState mergeTrapping(const TrappingState& a, const TrappingState& b) {
+  checkMergeable(a, b);
+  TrappingState m = a.orbitBegin <= b.orbitBegin ? a : b;
+  appendTrappingRange(m, a.orbitBegin <= b.orbitBegin ? b : a);
   return m;
 }
 
@@ -77,8 +86,10 @@ TrappingState runTrapping(TrappingState state, const TrappingRunOptions& options
   std::uint64_t chunk = 16;  // blocks per chunk; adapted to options.chunkSeconds as the rate is measured
   std::uint64_t sessionBlocks = 0;
 
-  while (!state.finished() && !stop.stop_requested()) {
-    std::uint64_t blocks = std::min(chunk, state.params.T - state.blocksDone);
+  const std::uint64_t endBlocks =
+      options.untilBlocks == 0 ? state.params.T : std::min(options.untilBlocks, state.params.T);
+  while (state.blocksDone < endBlocks && !stop.stop_requested()) {
+    std::uint64_t blocks = std::min(chunk, endBlocks - state.blocksDone);
     if (options.maxChunkBlocks) blocks = std::min(blocks, options.maxChunkBlocks);
     std::vector<SegmentSink> sinks(static_cast<std::size_t>(threads),
                                    SegmentSink(state.params.subsets, state.params.longestKept));

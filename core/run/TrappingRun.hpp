@@ -47,6 +47,10 @@ struct TrappingState {
 /// Merges two states of the same run (same parameters, same blocksDone) over adjacent orbit ranges.
 /// Throws std::invalid_argument when they do not fit together.
 [[nodiscard]] TrappingState mergeTrapping(const TrappingState& a, const TrappingState& b);
+/// Appends `hi` (the adjacent range above) to `lo` in place: orbits, subset histograms, longest segments,
+/// elapsed time.  The same checks as mergeTrapping(); the merge of many ranges (runfile/RunFileMerge.hpp) uses it
+/// so that its cost is proportional to bins + segments + orbits.
+void appendTrappingRange(TrappingState& lo, const TrappingState& hi);
 
 /// Progress at a chunk boundary.
 struct TrappingProgress {
@@ -65,6 +69,9 @@ struct TrappingRunOptions {
   int threads = 0;              ///< 0: OpenMP's default
   double chunkSeconds = 0.25;   ///< target wall time of a chunk (progress and stop granularity)
   std::uint64_t maxChunkBlocks = 0;  ///< 0: no limit; otherwise chunks have at most this many blocks
+  /// 0: run to T; otherwise return when blocksDone reaches min(untilBlocks, T) (a chunk never passes it): how
+  /// the ranks of a distributed run meet at a common block boundary (app/mpi).
+  std::uint64_t untilBlocks = 0;
   /// The instruction-set path, chosen by the caller (selectKernel() at the CLI or GUI edge); its name goes into
   /// TrappingState::kernel.  nullptr: bestKernel(), the fastest this CPU supports.  Every path gives
   /// bit-identical results.

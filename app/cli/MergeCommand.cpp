@@ -1,0 +1,56 @@
+#include "MergeCommand.hpp"
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "RunSession.hpp"
+#include "core/io/AtomicFile.hpp"
+#include "core/runfile/RunFile.hpp"
+#include "core/runfile/RunFileMerge.hpp"
+
+namespace archipelago::cli {
+
+namespace {
+struct MergeOptions {
+  std::vector<std::string> parts;
+  std::string out;
+  bool quiet = false;
+};
+
+int mergeCommand(const MergeOptions& o) {
+  io::checkWritableTarget(o.out);  // before reading the parts
+  for (const std::string& part : o.parts)
+    if (std::filesystem::exists(part) && std::filesystem::exists(o.out) &&
+        std::filesystem::equivalent(part, o.out))
+      throw std::invalid_argument("--out " + o.out + " is one of the parts: write the merged run to a new file");
+  const std::vector<io::FileLock> locks = lockRunFiles(o.out, o.out, "");
+  std::vector<RunPart> parts;
+  parts.reserve(o.parts.size());
+  for (const std::string& path : o.parts) parts.push_back({path, loadRunFile(path)});  // a modified file: its path
+  const TrappingState merged = mergeRunParts(std::move(parts));
+  saveRunFile(o.out, merged);
+  if (!o.quiet)
+    std::fprintf(stderr, "merged %zu parts: orbits [0, %llu), %llu of %llu blocks; wrote %s\n", o.parts.size(),
+                 static_cast<unsigned long long>(merged.orbitEnd), static_cast<unsigned long long>(merged.blocksDone),
+                 static_cast<unsigned long long>(merged.params.T), o.out.c_str());
+  return 0;
+}
+}  // namespace
+
+void addMergeCommand(CLI::App& app, int& status) {
+  auto o = std::make_shared<MergeOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "merge", "merge the run files of separate orbit ranges of one run (run --orbits BEGIN:END) into one");
+  cmd->add_option("parts", o->parts, "the run files of the parts, in any order; together orbits [0, M)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("--out", o->out, "the merged run file")->required();
+  cmd->add_flag("--quiet", o->quiet, "no summary");
+  cmd->callback([o, &status] { status = mergeCommand(*o); });
+}
+
+}  // namespace archipelago::cli

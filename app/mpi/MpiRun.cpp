@@ -1,0 +1,380 @@
+#include "MpiRun.hpp"
+
+#include <mpi.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <climits>
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "CliCommon.hpp"
+#include "RunSession.hpp"
+#include "core/io/AtomicFile.hpp"
+#include "core/kernels/KernelDispatch.hpp"
+#include "core/runfile/RunFile.hpp"
+#include "core/runfile/RunFileMerge.hpp"
+
+namespace archipelago::mpi {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct World {
+  int rank = 0;
+  int size = 1;
+};
+
+/// Orbits of rank r of R: [⌊M·r/R⌋, ⌊M·(r+1)/R⌋) (M ≤ 2³², R < 2³¹: no overflow).
+std::pair<std::uint64_t, std::uint64_t> rankRange(std::uint64_t M, int r, int R) {
+  const auto u = static_cast<std::uint64_t>(R);
+  return {M * static_cast<std::uint64_t>(r) / u, M * static_cast<std::uint64_t>(r + 1) / u};
+}
+
+/// An error of this rank alone (its file, its memory): printed with the rank, and the whole job aborted, since
+/// the others would wait for it forever.
+[[noreturn]] void abortJob(const World& w, const std::string& what) {
+  std::fprintf(stderr, "ERROR: rank %d: %s\n", w.rank, what.c_str());
+  std::fflush(stderr);
+  MPI_Abort(MPI_COMM_WORLD, 1);
+  std::_Exit(1);
+}
+
+/// Every rank's `ok`: true when all are.  With the first failing rank's message on rank 0's throw.
+void agree(const World& w, bool ok, const std::string& message) {
+  int mine = ok ? 1 : 0;
+  int all = 0;
+  MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+  if (all == 1) return;
+  // The lowest failing rank's message goes to rank 0.
+  int failing = ok ? INT_MAX : w.rank;
+  int first = 0;
+  MPI_Allreduce(&failing, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+  std::string text = message;
+  if (first != 0) {
+    if (w.rank == first) {
+      const auto n = static_cast<int>(std::min<std::size_t>(text.size(), 4096));
+      MPI_Send(text.data(), n, MPI_CHAR, 0, 7, MPI_COMM_WORLD);
+    } else if (w.rank == 0) {
+      MPI_Status st;
+      MPI_Probe(first, 7, MPI_COMM_WORLD, &st);
+      int n = 0;
+      MPI_Get_count(&st, MPI_CHAR, &n);
+      text.assign(static_cast<std::size_t>(n), '\0');
+      MPI_Recv(text.data(), n, MPI_CHAR, first, 7, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    }
+  }
+  throw std::runtime_error(first == 0 ? text : "rank " + std::to_string(first) + ": " + text);
+}
+
+/// Runs `f` on every rank; an exception on any rank becomes one error on all (printed by rank 0).
+template <class F>
+void together(const World& w, F&& f) {
+  std::string message;
+  bool ok = true;
+  try {
+    f();
+  } catch (const std::exception& e) {
+    ok = false;
+    message = e.what();
+  }
+  agree(w, ok, message);
+}
+
+void sendText(const std::string& text, int dest) {
+  const std::uint64_t n = text.size();
+  MPI_Send(&n, 1, MPI_UINT64_T, dest, 1, MPI_COMM_WORLD);
+  for (std::uint64_t at = 0; at < n; at += INT_MAX / 2) {
+    const auto piece = static_cast<int>(std::min<std::uint64_t>(n - at, INT_MAX / 2));
+    MPI_Send(text.data() + at, piece, MPI_CHAR, dest, 2, MPI_COMM_WORLD);
+  }
+}
+
+std::string receiveText(int source) {
+  std::uint64_t n = 0;
+  MPI_Recv(&n, 1, MPI_UINT64_T, source, 1, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+  std::string text(n, '\0');
+  for (std::uint64_t at = 0; at < n; at += INT_MAX / 2) {
+    const auto piece = static_cast<int>(std::min<std::uint64_t>(n - at, INT_MAX / 2));
+    MPI_Recv(text.data() + at, piece, MPI_CHAR, source, 2, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+  }
+  return text;
+}
+
+std::string partName(const std::string& manifest, std::uint64_t blocks, int rank) {
+  return std::filesystem::path(manifest).filename().string() + ".b" + std::to_string(blocks) + ".r" +
+         std::to_string(rank) + ".json";
+}
+
+/// Removes what an aborted checkpoint left beside `manifest` (its parts, and the temporaries of parts being
+/// written when a rank was killed) except the parts in `keep`.  Rank 0 only, holding the manifest's lock.
+void removeStaleParts(const std::string& manifest, const std::vector<std::string>& keep) {
+  const std::filesystem::path path(manifest);
+  const std::filesystem::path folder = path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path();
+  const std::string prefix = path.filename().string() + ".b";
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(folder, ec)) {
+    const std::string name = entry.path().filename().string();
+    const bool part = name.starts_with(prefix) && name.ends_with(".json");
+    const bool temporary = name.starts_with("." + prefix);
+    if ((part || temporary) && std::find(keep.begin(), keep.end(), name) == keep.end()) {
+      std::error_code ignored;
+      std::filesystem::remove(entry.path(), ignored);
+    }
+  }
+}
+
+/// The whole state to resume: a manifest of parts or a plain run file (e.g. archipelago-cli run's checkpoint).
+TrappingState loadResume(const std::string& path) {
+  const std::string text = io::readRegularFile(path, kMaxRunFileBytes);
+  if (looksLikeRunManifest(text)) return loadRunManifest(path);
+  try {
+    return parseRunFile(text);
+  } catch (const std::exception& e) {
+    throw std::runtime_error(path + ": " + e.what());
+  }
+}
+
+/// A collective checkpoint at the ranks' common blocksDone: each rank writes its part, then (when all did)
+/// rank 0 the manifest, then removes the previous checkpoint's parts.  A failure warns and the run goes on
+/// (the previous checkpoint stays whole).  Returns whether the new checkpoint was written.
+bool writeCheckpoint(const World& w, const TrappingState& s, const std::string& manifest,
+                     std::vector<std::string>& previousParts, bool breakLine) {
+  const std::filesystem::path folder = std::filesystem::path(manifest).parent_path();
+  const std::string mine = partName(manifest, s.blocksDone, w.rank);
+  std::string message;
+  bool ok = true;
+  try {
+    saveRunFile(folder / mine, s);
+  } catch (const std::exception& e) {
+    ok = false;
+    message = e.what();
+  }
+  try {
+    agree(w, ok, message);
+  } catch (const std::exception& e) {
+    if (w.rank == 0)
+      std::fprintf(stderr, "%sWARNING: checkpoint not written: %s; the run goes on\n", breakLine ? "\n" : "", e.what());
+    return false;
+  }
+  int written = 1;
+  if (w.rank == 0) {
+    RunManifest m;
+    m.blocksDone = s.blocksDone;
+    for (int r = 0; r < w.size; ++r) {
+      const auto [b, e] = rankRange(s.params.M, r, w.size);
+      m.parts.push_back({partName(manifest, s.blocksDone, r), b, e});
+    }
+    try {
+      io::writeFileAtomically(manifest, runManifestText(m));
+      std::vector<std::string> now;
+      for (const auto& p : m.parts) now.push_back(p.file);
+      for (const std::string& old : previousParts)
+        if (std::find(now.begin(), now.end(), old) == now.end()) {
+          std::error_code ignored;
+          std::filesystem::remove(folder / old, ignored);
+        }
+      previousParts = now;
+    } catch (const std::exception& e) {
+      written = 0;
+      std::fprintf(stderr, "%sWARNING: checkpoint manifest not written: %s; the run goes on\n", breakLine ? "\n" : "",
+                   e.what());
+    }
+  }
+  MPI_Bcast(&written, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  return written == 1;
+}
+
+}  // namespace
+
+int mpiRun(const cli::RunOptions& o, const std::vector<std::string>& explicitParameters, const CLI::App& cmd) {
+  World w;
+  MPI_Comm_rank(MPI_COMM_WORLD, &w.rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &w.size);
+  const bool root = w.rank == 0;
+
+  // --- what every rank checks alike (the same arguments): one error, printed by rank 0 ----------------------------
+  if (!o.seeds.empty()) throw std::invalid_argument("archipelago-mpi runs one seed: give --seed (or run one job per seed)");
+  if (!o.orbits.empty())
+    throw std::invalid_argument("archipelago-mpi partitions the orbits over its ranks itself: do not give --orbits");
+  if (!o.resume.empty() && !explicitParameters.empty())
+    throw std::invalid_argument("--resume takes the parameters from the run file; do not also give " +
+                                explicitParameters.front());
+  if (o.threads < 0 || o.threads > kMaxThreads)
+    throw std::invalid_argument("--threads = " + std::to_string(o.threads) + " must lie in [0, " +
+                                std::to_string(kMaxThreads) + "] (0: one per core)");
+  if (!(o.checkpointSeconds >= 0))
+    throw std::invalid_argument("--checkpoint-interval must be a number of seconds >= 0");
+  cli::RunOptions run = o;
+  if (o.resume.empty()) {
+    const RunSpec spec = cli::resolveSpec(o, cmd);
+    if (o.printSpec) {
+      if (root) std::fputs(runSpecJson(spec).c_str(), stdout);
+      return 0;
+    }
+    run.params = spec.parameters;
+    run.threads = spec.threads;
+    run.kernel = spec.kernel == "auto" ? std::string() : spec.kernel;
+  }
+  const std::string manifest = o.checkpoint.empty() ? o.out + ".checkpoint" : o.checkpoint;
+  if (manifest == o.out) throw std::invalid_argument("--checkpoint must differ from --out (it is a manifest of parts)");
+
+  // --- files: checked and locked by rank 0, every rank told the outcome --------------------------------------------
+  std::vector<io::FileLock> locks;
+  together(w, [&] {
+    if (!root) return;
+    io::checkWritableTarget(o.out);
+    io::checkWritableTarget(manifest);
+    locks = cli::lockRunFiles(o.out, manifest, o.resume);
+  });
+
+  // --- the state of this rank's orbits ----------------------------------------------------------------------------
+  TrappingState state;
+  std::vector<std::string> previousParts;  // rank 0: the parts of the manifest written last
+  together(w, [&] {
+    if (o.resume.empty()) {
+      if (static_cast<std::uint64_t>(w.size) > run.params.M)
+        throw std::invalid_argument(std::to_string(w.size) + " ranks for M = " + std::to_string(run.params.M) +
+                                    " orbits: use at most M ranks");
+      if (auto e = memoryError(run.params, run.threads)) throw std::runtime_error(*e);
+      const auto [b, e] = rankRange(run.params.M, w.rank, w.size);
+      state = startTrapping(run.params, b, e);
+      return;
+    }
+    // Every rank reads the whole checkpoint (a shared file system) and keeps its own orbits; rank 0 carries the
+    // statistics so far.  Errors are found alike on every rank.
+    TrappingState whole = loadResume(o.resume);
+    if (whole.finished())
+      throw std::invalid_argument(o.resume + " is already finished (" + std::to_string(whole.blocksDone) +
+                                  " of T blocks)");
+    if (static_cast<std::uint64_t>(w.size) > whole.params.M)
+      throw std::invalid_argument(std::to_string(w.size) + " ranks for M = " + std::to_string(whole.params.M) +
+                                  " orbits: use at most M ranks");
+    const auto [b, e] = rankRange(whole.params.M, w.rank, w.size);
+    state = sliceRun(whole, b, e, root);
+    if (root && o.resume == manifest) {
+      const std::string text = io::readRegularFile(o.resume, kMaxRunFileBytes);
+      if (looksLikeRunManifest(text))
+        for (const auto& p : parseRunManifest(text, o.resume).parts) previousParts.push_back(p.file);
+    }
+  });
+  if (root) removeStaleParts(manifest, previousParts);
+
+  cli::installInterruptHandlers();
+  const KernelInfo& kernel = selectKernel(run.kernel);
+  const bool tty = ::isatty(STDERR_FILENO) != 0;
+  TrappingRunOptions options;
+  options.kernel = &kernel;
+  options.threads = run.threads;
+  options.maxChunkBlocks = o.maxChunkBlocks;
+
+  // --- rounds to common block counts ------------------------------------------------------------------------------
+  const std::uint64_t T = state.params.T;
+  const std::uint64_t startBlocks = state.blocksDone;
+  const double stepsPerBlock = static_cast<double>(state.params.M) * state.params.q;
+  const auto sessionStart = Clock::now();
+  auto lastCheckpoint = sessionStart;
+  auto lastLine = sessionStart - std::chrono::hours(1);
+  std::uint64_t roundBlocks = o.maxChunkBlocks != 0 ? std::min<std::uint64_t>(o.maxChunkBlocks, 16) : 16;
+  std::vector<double> seconds(root ? static_cast<std::size_t>(w.size) : 1);
+  bool interrupted = false;
+  while (state.blocksDone < T) {
+    options.untilBlocks = std::min(T, state.blocksDone + roundBlocks);
+    const auto t0 = Clock::now();
+    try {
+      state = runTrapping(std::move(state), options);
+    } catch (const std::exception& e) {
+      abortJob(w, e.what());
+    }
+    double mine = std::chrono::duration<double>(Clock::now() - t0).count();
+    MPI_Gather(&mine, 1, MPI_DOUBLE, seconds.data(), 1, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+    // Rank 0 decides for all: the next round's length, a checkpoint, a stop.
+    std::uint64_t decision[3] = {roundBlocks, 0, 0};  // blocks, checkpoint, stop
+    int stopMine = cli::interruptRequested() ? 1 : 0;
+    int stopAny = 0;
+    MPI_Allreduce(&stopMine, &stopAny, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+    if (root) {
+      const auto slowest = std::max_element(seconds.begin(), seconds.end());
+      const double perBlock = *slowest / static_cast<double>(roundBlocks);
+      if (perBlock > 0)
+        decision[0] = static_cast<std::uint64_t>(std::clamp(1.0 / perBlock, 1.0, 4.0 * static_cast<double>(roundBlocks)));
+      else decision[0] = 4 * roundBlocks;
+      if (o.maxChunkBlocks != 0) decision[0] = std::min(decision[0], o.maxChunkBlocks);
+      const auto now = Clock::now();
+      decision[2] = stopAny != 0 ? 1 : 0;
+      decision[1] = state.blocksDone < T &&
+                    (decision[2] != 0 ||
+                     std::chrono::duration<double>(now - lastCheckpoint).count() >= o.checkpointSeconds);
+      const double session = std::chrono::duration<double>(now - sessionStart).count();
+      const double rate = session > 0 ? static_cast<double>(state.blocksDone - startBlocks) * stepsPerBlock / session : 0;
+      if (!o.quiet && (tty || std::chrono::duration<double>(now - lastLine).count() >= 10)) {
+        TrappingProgress p;
+        p.blocksDone = state.blocksDone;
+        p.blocksTotal = T;
+        p.fraction = static_cast<double>(state.blocksDone) / static_cast<double>(T);
+        p.stepsPerSecond = rate;
+        p.etaSeconds = rate > 0 ? static_cast<double>(T - state.blocksDone) * stepsPerBlock / rate : -1;
+        cli::drawProgress(p, std::string(kernel.name) + ", " + std::to_string(w.size) + " ranks, slowest rank " +
+                                 std::to_string(slowest - seconds.begin()) + " " +
+                                 std::to_string(static_cast<int>(100 * *slowest / std::max(1e-9, *std::min_element(seconds.begin(), seconds.end())) - 100 + 0.5)) +
+                                 "% behind");
+        if (!tty) std::fputc('\n', stderr);
+        lastLine = now;
+      }
+    }
+    MPI_Bcast(decision, 3, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+    roundBlocks = decision[0];
+    if (decision[1] != 0) {
+      if (writeCheckpoint(w, state, manifest, previousParts, root && tty && !o.quiet)) lastCheckpoint = Clock::now();
+    }
+    if (decision[2] != 0 && state.blocksDone < T) {
+      interrupted = true;
+      break;
+    }
+  }
+  if (root && !o.quiet && tty) std::fputc('\n', stderr);
+  if (interrupted) {
+    if (root)
+      std::fprintf(stderr, "interrupted: checkpoint written to %s (resume with --resume %s, on any number of ranks)\n",
+                   manifest.c_str(), manifest.c_str());
+    return 130;
+  }
+
+  // --- rank 0 gathers, merges and writes ----------------------------------------------------------------------------
+  int status = 0;
+  if (root) {
+    std::vector<RunPart> parts;
+    parts.push_back({"rank 0", std::move(state)});
+    for (int r = 1; r < w.size; ++r) {
+      std::string text = receiveText(r);
+      parts.push_back({"rank " + std::to_string(r), parseRunFile(text)});
+    }
+    const TrappingState merged = mergeRunParts(std::move(parts));
+    cli::LastCheckpoint last{previousParts.empty() ? std::string() : manifest, 0};
+    cli::saveRunFileOrSayWhere(o.out, merged, last);
+    // The run file holds everything now: the checkpoint's parts and manifest are superseded.
+    const std::filesystem::path folder = std::filesystem::path(manifest).parent_path();
+    std::error_code ignored;
+    for (const std::string& p : previousParts) std::filesystem::remove(folder / p, ignored);
+    if (!previousParts.empty()) std::filesystem::remove(manifest, ignored);
+    if (!o.quiet) {
+      const TrappingHistogram total = merged.total();
+      const std::uint64_t longest = merged.longest.items().empty() ? 0 : merged.longest.items().front().length;
+      std::fprintf(stderr, "done: %llu segments, longest %llu steps, %.3g steps on %d ranks in %.1f s; wrote %s\n",
+                   static_cast<unsigned long long>(total.segments()),
+                   static_cast<unsigned long long>(longest * merged.params.q), merged.stepsDone(), w.size,
+                   std::chrono::duration<double>(Clock::now() - sessionStart).count(), o.out.c_str());
+    }
+  } else {
+    sendText(runFileText(state), 0);
+  }
+  MPI_Bcast(&status, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  return status;
+}
+
+}  // namespace archipelago::mpi

@@ -1,0 +1,40 @@
+// archipelago-mpi: `archipelago-cli run` over MPI ranks (issue #15, MpiRun.hpp).  The options are `run`'s
+// (cli/RunCommand.hpp).  An error every rank finds alike (a bad option) is printed once, by rank 0; an error of
+// one rank (its file) is printed by that rank and aborts the job.
+
+#include <mpi.h>
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <exception>
+#include <string>
+
+#include "MpiRun.hpp"
+#include "RunSession.hpp"
+
+int main(int argc, char** argv) {
+  int provided = 0;
+  MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);  // OpenMP threads never call MPI
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  archipelago::cli::installInterruptHandlers();  // at once: a stop asked before the first round is honoured too
+  CLI::App app{"archipelago-mpi " ARCHIPELAGO_VERSION
+               " -- `archipelago-cli run` distributed over MPI ranks, bit-identical to one process"};
+  app.set_version_flag("--version", std::string("archipelago-mpi ") + ARCHIPELAGO_VERSION);
+  archipelago::cli::RunOptions o;
+  archipelago::cli::addRunOptions(app, o);
+  int status = 0;
+  try {
+    app.parse(argc, argv);
+    status = archipelago::mpi::mpiRun(o, archipelago::cli::givenSpecOptions(app), app);
+  } catch (const CLI::ParseError& e) {
+    if (rank == 0) status = app.exit(e);
+    else status = e.get_exit_code();
+  } catch (const std::exception& e) {
+    if (rank == 0) std::fprintf(stderr, "ERROR: %s\n", e.what());
+    status = 1;
+  }
+  MPI_Finalize();
+  return status;
+}
