@@ -20,8 +20,10 @@
 #include "LatencyProbe.hpp"
 #include "ui/MainWindow.hpp"
 #include "ui/ParameterPanel.hpp"
+#include "ui/Resources.hpp"
 
 int main(int argc, char** argv) {
+  archipelago::ui::configureProcessMemory();
   QApplication app(argc, argv);
   QApplication::setApplicationName(QStringLiteral("Archipelago"));
   QApplication::setOrganizationName(QStringLiteral("Archipelago"));

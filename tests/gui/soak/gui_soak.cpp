@@ -36,6 +36,7 @@
 
 #include "ui/MainWindow.hpp"
 #include "ui/ParameterPanel.hpp"
+#include "ui/Resources.hpp"
 #include "ui/RunController.hpp"
 #include "ui/portrait/PortraitPanel.hpp"
 #include "ui/portrait/PortraitController.hpp"
@@ -81,6 +82,7 @@ std::int64_t nowMs() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  archipelago::ui::configureProcessMemory();  // as the application's main() does
   QApplication app(argc, argv);
   QTemporaryDir home;
   qputenv("XDG_CONFIG_HOME", home.filePath(QStringLiteral("config")).toUtf8());
