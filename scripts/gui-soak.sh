@@ -2,7 +2,7 @@
 # GUI soak (issue #13): the real window under Xvfb at 1280×800, driven at random for MINUTES (default 30):
 # keys, clicks, wheel zooms, drags, runs, pauses, stops, exports, run files, presets, bad field values, the
 # periodic-orbit dialog; dialogs answered at random.  Fails on a crash, a hang (a watchdog inside sees the GUI
-# thread stop for 20 s) or a run stuck in pausing/stopping for a minute; prints resident memory every minute and its growth after the first minute.
+# thread stop for 20 s) or a run stuck in pausing/stopping for a minute; prints resident memory and the live heap every minute and their growth after the first minute.
 #   bash scripts/gui-soak.sh [MINUTES] [SEED]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -24,6 +24,7 @@ if [ "$status" -ne 0 ]; then
   echo "gui-soak: FAILED (exit status $status); log: $log" >&2
   exit 1
 fi
-growth=$(sed -n 's/.*growth after minute 1 \([-0-9.]*\) MiB.*/\1/p' "$log" | tail -1)
-echo "gui-soak: passed; resident memory growth after the first minute: ${growth} MiB (limit 100); log: $log"
+growth=$(sed -n 's/.*; RSS .* growth after minute 1 \([-0-9.]*\) MiB; heap.*/\1/p' "$log" | tail -1)
+heap=$(sed -n 's/.*heap growth after minute 1 \([-0-9.]*\) MiB.*/\1/p' "$log" | tail -1)
+echo "gui-soak: passed; growth after the first minute: resident ${growth} MiB (limit 100), live heap ${heap} MiB; log: $log"
 awk -v g="$growth" 'BEGIN { exit !(g < 100) }' || { echo "gui-soak: memory grew by ${growth} MiB" >&2; exit 1; }
