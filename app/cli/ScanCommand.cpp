@@ -133,12 +133,15 @@ int scanCommand(const ScanOptions& o, const RunSpec& base, const std::vector<dou
   const std::vector<ScanRunSummary>& runs = outcome.runs;
   // The summaries, from the run files (all finished now) and, when asked, b₂ of every box.
   writeHeatMapPng(dir / "scan_local_exponent.png", localExponentHeatMap(runs));
-  std::printf("K, box xmin..xmax, D +- error, longest (steps), time in segments >= 1e4 steps%s\n",
+  std::printf("K, box xmin..xmax, D +- error (bootstrap over segments; 'dominated': the longest segments dominate "
+              "D, no error), longest (steps), time in segments >= 1e4 steps%s\n",
               o.b2Iterations > 0 ? ", b2 (area), b2*D" : "");
   for (const ScanRunSummary& r : runs) {
     const ScanPoint& p = r.point;
-    std::printf("%-6s %.4g..%.4g  %.4g +- %.2g  %llu  %.3f", scanKText(p.K).c_str(), p.box.xmin, p.box.xmax, p.D,
-                p.DError, static_cast<unsigned long long>(p.longestSteps), p.longFraction);
+    char error[32] = "dominated";
+    if (std::isfinite(p.DError)) std::snprintf(error, sizeof error, "+- %.2g", p.DError);
+    std::printf("%-6s %.4g..%.4g  %.4g %s  %llu  %.3f", scanKText(p.K).c_str(), p.box.xmin, p.box.xmax, p.D, error,
+                static_cast<unsigned long long>(p.longestSteps), p.longFraction);
     if (p.boxInvariant) std::printf("  %.4f  %.4g", p.boxInvariant->b2.area, p.boxInvariant->b2D);
     std::printf("\n");
   }

@@ -47,8 +47,9 @@ StochasticAreaValue checkedStochasticArea(const MapParameters& map, double area)
 void printBoxInvariant(const MapParameters& map, const StochasticAreaValue& b2, const TrappingStatistics& s,
                        const TailAnalysis& tail) {
   // b₂·D carries D's honest error (the bootstrap over segments), and none when the tail dominates D.
-  const bool errorKnown = s.segments > 0 && !tail.dominated() && std::isfinite(tail.DBootstrapError);
-  const BoxInvariantQuantities q = boxInvariantQuantities(b2, s.D, errorKnown ? tail.DBootstrapError : 0);
+  const double DError = s.segments > 0 ? supportedDError(tail) : kTailUndefined;
+  const bool errorKnown = std::isfinite(DError);
+  const BoxInvariantQuantities q = boxInvariantQuantities(b2, s.D, errorKnown ? DError : 0);
   std::printf("b2          %s\n", stochasticAreaText(map, b2).c_str());
   if (errorKnown)
     std::printf("b2*D        %.6g +- %.2g   (box-invariant, eq. A3; the paper: 0.693 x 6400 = %.3g)\n", q.b2D,
@@ -234,7 +235,7 @@ int statsCommand(const StatsOptions& o) {
   if (!o.csvDir.empty())
     writeCsvFiles(o.csvDir, withNote(statisticsCsvFiles(state, s, theoryCurves(p, s)), state, ensembleNote(tail)));
   if (!o.csvDir.empty() && b2) {
-    for (const auto& [name, text] : {std::pair{boxInvariantCsvFileName, boxInvariantCsv(state, s, *b2)},
+    for (const auto& [name, text] : {std::pair{boxInvariantCsvFileName, boxInvariantCsv(state, s, *b2, supportedDError(tail))},
                                      std::pair{boxInvariantFtCsvFileName, boxInvariantFtCsv(state, s, *b2)}}) {
       const std::filesystem::path path = std::filesystem::path(o.csvDir) / name;
       io::writeFileAtomically(path, text);

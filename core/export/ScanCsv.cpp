@@ -114,12 +114,13 @@ std::string scanSummaryCsv(const std::vector<ScanRunSummary>& runs) {
 }
 
 std::string boxInvariantCsv(const TrappingState& state, const TrappingStatistics& statistics,
-                            const StochasticAreaValue& b2) {
-  const BoxInvariantQuantities q = boxInvariantQuantities(b2, statistics.D, statistics.DError);
+                            const StochasticAreaValue& b2, double DError) {
+  const BoxInvariantQuantities q = boxInvariantQuantities(b2, statistics.D, DError);
   std::string out = csvMetadataHeader(state);
   line(out, "content", "b2 as an area (appendix A: b0 = L^2, b2 its stochastic part), the box-invariant b2*D "
                        "(eq. A3) and the application figures of sec. 6 (first-order accelerator modes of the "
-                       "standard map); errors: D's one-sigma error over the subsets, b2's own error not included");
+                       "standard map); errors: D's one-sigma bootstrap error over segments, empty when the longest segments dominate D "
+                       "(the subset error is far too small for this heavy tail), b2's own error not included");
   out += "quantity,value,error\n";
   const auto row = [&](const char* name, double value, double error) {
     out += std::string(name) + ',' + number(value) + ',' + number(error) + '\n';
@@ -127,10 +128,10 @@ std::string boxInvariantCsv(const TrappingState& state, const TrappingStatistics
   row("b2_area", q.b2.area, 0);
   row("b2_fraction", q.b2.fraction, 0);
   row("box_area_L2", q.b2.boxArea, 0);
-  row("D", statistics.D, statistics.DError);
+  row("D", statistics.D, DError);
   row("b2_D", q.b2D, q.b2DError);
   row("accelerator_factor_8_over_pi2_b2", q.acceleratorFactor, 0);
-  row("enhancement_over_quasilinear_n1", q.enhancementN1, q.acceleratorFactor * statistics.DError / (std::numbers::pi * std::numbers::pi));
+  row("enhancement_over_quasilinear_n1", q.enhancementN1, q.acceleratorFactor * DError / (std::numbers::pi * std::numbers::pi));
   return out;
 }
 

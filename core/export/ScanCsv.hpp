@@ -52,9 +52,10 @@ struct ScanHeatMap {
 [[nodiscard]] std::string scanLocalExponentCsv(const std::vector<ScanRunSummary>& runs);
 [[nodiscard]] std::string scanSummaryCsv(const std::vector<ScanRunSummary>& runs);
 
-/// box_invariant.csv of a run (its statistics) whose box has stochastic area `b2`.
+/// box_invariant.csv of a run (its statistics) whose box has stochastic area `b2`; `DError` is D's error as
+/// supportedDError() gives it (TailAnalysis.hpp), NaN (an empty cell) when the tail dominates D.
 [[nodiscard]] std::string boxInvariantCsv(const TrappingState& state, const TrappingStatistics& statistics,
-                                          const StochasticAreaValue& b2);
+                                          const StochasticAreaValue& b2, double DError);
 /// b2_f_t.csv: b₂ (the area) times f_t and its error, at the abscissae of f_t.
 [[nodiscard]] std::string boxInvariantFtCsv(const TrappingState& state, const TrappingStatistics& statistics,
                                             const StochasticAreaValue& b2);

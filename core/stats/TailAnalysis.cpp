@@ -323,6 +323,10 @@ TailAnalysis analyseTail(const Ensemble& e, const TailOptions& options) {
   return a;
 }
 
+double supportedDError(const TailAnalysis& a) noexcept {
+  return !a.dominated() && std::isfinite(a.DBootstrapError) ? a.DBootstrapError : kTailUndefined;
+}
+
 std::string dominanceMessage(const TailAnalysis& a) {
   if (!a.dominated()) return {};
   std::string why;

@@ -202,6 +202,11 @@ struct TailAnalysis {
 /// ensemble, replicates outside [20, 100000], a confidence outside (0, 1), or as computeStatistics().
 [[nodiscard]] TailAnalysis analyseTail(const Ensemble& e, const TailOptions& options = {});
 
+/// D's one-sigma error where the data support one: the bootstrap over segments, unless the tail dominates D
+/// (then, and when the bootstrap could not be done, NaN).  Never the 16-subset error, which the heavy tail makes
+/// far too small (issue #14, item 2).  Every printed or exported error of D comes from here.
+[[nodiscard]] double supportedDError(const TailAnalysis& a) noexcept;
+
 /// The verdict on D in words, one line: "D is dominated by its longest segments; its error cannot be estimated
 /// from this run (...)" with the reasons, or an empty string when the bootstrap error stands.
 [[nodiscard]] std::string dominanceMessage(const TailAnalysis& a);

@@ -1,8 +1,12 @@
 #include "core/theory/KScan.hpp"
 
+#include "core/stats/RunEnsemble.hpp"
+#include "core/stats/TailAnalysis.hpp"
+
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -61,7 +65,15 @@ ScanPoint scanPointOf(const TrappingState& state, const TrappingStatistics& stat
   p.blocksTotal = state.params.T;
   p.segments = statistics.segments;
   p.D = statistics.D;
-  p.DError = statistics.DError;
+  // D's error as `stats` gives it for the same run file: the bootstrap over segments (default options), or none.
+  p.DError = std::numeric_limits<double>::quiet_NaN();
+  if (statistics.segments > 0) {
+    try {
+      p.DError = supportedDError(analyseTail(ensembleOf({state})));
+    } catch (const std::invalid_argument&) {
+      // too few segments to resample: no error
+    }
+  }
   const auto& longest = state.longest.items();
   const TrappingHistogram total = state.total();
   if (!longest.empty()) {
@@ -70,7 +82,7 @@ ScanPoint scanPointOf(const TrappingState& state, const TrappingStatistics& stat
     p.longestSteps = total.lengthSum(last) * state.params.q;  // longestKept = 0: the top bin, when it holds one
   }
   p.longFraction = timeFractionInSegmentsAtLeast(total, state.params.q, kScanLongSegmentSteps);
-  if (b2) p.boxInvariant = boxInvariantQuantities(*b2, statistics.D, statistics.DError);
+  if (b2) p.boxInvariant = boxInvariantQuantities(*b2, statistics.D, p.DError);
   return p;
 }
 

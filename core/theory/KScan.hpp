@@ -51,7 +51,9 @@ struct ScanPoint {
   MapParameters box;
   std::uint64_t blocksDone = 0, blocksTotal = 0;
   std::uint64_t segments = 0;
-  double D = 0, DError = 0;             ///< eq. ddef, one-sigma error over the subsets (TrappingStatistics.hpp)
+  double D = 0;                         ///< eq. ddef
+  double DError = 0;                    ///< supportedDError(): the bootstrap over segments; NaN when the tail
+                                        ///< dominates D or there are too few segments (never the subset error)
   std::uint64_t longestSteps = 0;       ///< the longest segment seen, in steps; 0 when none, or unknown (a run
                                         ///< with longestKept = 0 whose top bin holds several segments)
   double longFraction = 0;              ///< timeFractionInSegmentsAtLeast(total, q, kScanLongSegmentSteps)

@@ -1,7 +1,7 @@
 """archipelago-cli scan (issue #14, item 3; Karney 1983, sec. 5): a run file per K in the box of the rule
 xmin = -2 sqrt(K) - 0.2, xmax = sqrt(K) + 0.2 (core/theory/KScan.hpp), the same file `run` makes with that spec
 (byte-identical statistics), resumable after SIGKILL, summaries over K, and one ERROR line for each bad option."""
-import csv, io, math, os, signal, subprocess, tempfile, time
+import re, csv, io, math, os, signal, subprocess, tempfile, time
 
 from clitest import check, cli, finish, leftovers, run, wait_for_file
 
@@ -39,6 +39,15 @@ check(all(float(s["xmin"]) == box(float(s["K"]))[0] and float(s["xmax"]) == box(
 check(all(s["blocks_done"] == s["T"] == "3000" and float(s["D"]) > 0 and int(s["longest_steps"]) > 0 and
           0 <= float(s["time_fraction_ge_1e4"]) <= 1 and s["b2_area"] == "" for s in summary),
       "scan_summary.csv: finished runs, D > 0, a longest segment, a time fraction in [0, 1], no b2 unless asked")
+# D's error is the one `stats` gives for the same run file (the bootstrap over segments), or none where the
+# longest segments dominate D; never the 16-subset error (issue #14, item 2).
+for s in summary:
+    st = run("stats", os.path.join(d, f"K{s['K']}.json"))
+    dline = next(l for l in st.stdout.splitlines() if l.startswith("D "))
+    m = re.match(r"D\s+(\S+)\s+\+-\s+(\S+)", dline)
+    agrees = (m is not None and s["D_error"] != "" and f"{float(s['D_error']):.2g}" == f"{float(m.group(2)):.2g}") or \
+             (m is None and "no error" in dline and s["D_error"] == "")
+    check(st.returncode == 0 and agrees, f"K = {s['K']}: D_error {s['D_error']!r} is stats' ({dline.strip()[:90]})")
 ft = rows(os.path.join(d, "scan_f_t.csv"))
 check(sorted({f["K"] for f in ft}) == ["0", "0.05", "0.1"] and all(float(f["f_t"]) > 0 for f in ft),
       f"scan_f_t.csv holds f_t of every K in long format ({len(ft)} rows)")

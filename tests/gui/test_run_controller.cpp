@@ -102,7 +102,10 @@ class TestRunController : public QObject {
     window.parameterPanel()->setParameters(p, 2);
     ScriptedAnswers script;
     script.answer = RunAnswer::discard;  // "Yes, stop and quit"
-    script.beforeAnswer = [&] { QVERIFY(waitForStatus(window, RunStatus::finished)); };
+    script.beforeAnswer = [&] {
+      QVERIFY2(waitForStatus(window, RunStatus::finished),
+               qPrintable(QStringLiteral("status %1").arg(archipelago::ui::statusName(window.runStatus()))));
+    };
     script.install(window);
     QVERIFY(window.startRun());
     QCOMPARE(window.runStatus(), RunStatus::running);

@@ -388,14 +388,18 @@ void KScanDialog::replot() {
     const ScanPoint& p = run.point;
     if (p.D > 0) {
       dPoints.append(QPointF(p.K, p.D));
-      dErrors.append(QwtIntervalSample(p.K, std::max(p.D - p.DError, p.D * 1e-3), p.D + p.DError));
+      // No bar where the longest segments dominate D (DError NaN): the data support no error there.
+      if (std::isfinite(p.DError))
+        dErrors.append(QwtIntervalSample(p.K, std::max(p.D - p.DError, p.D * 1e-3), p.D + p.DError));
     }
     const int row = table_->rowCount();
     table_->insertRow(row);
     const QStringList cells = {kText(p.K), QString::number(p.box.xmin, 'g', 4), QString::number(p.box.xmax, 'g', 4),
                                QStringLiteral("%1 / %2").arg(p.blocksDone).arg(p.blocksTotal),
                                QString::number(p.segments),
-                               QStringLiteral("%1 ± %2").arg(p.D, 0, 'g', 4).arg(p.DError, 0, 'g', 2),
+                               std::isfinite(p.DError)
+                                   ? QStringLiteral("%1 ± %2").arg(p.D, 0, 'g', 4).arg(p.DError, 0, 'g', 2)
+                                   : tr("%1 (dominated by its longest segments: no error)").arg(p.D, 0, 'g', 4),
                                p.longestSteps > 0 ? QString::number(p.longestSteps) : QStringLiteral("—"),
                                QString::number(p.longFraction, 'f', 3)};
     for (int c = 0; c < cells.size(); ++c) table_->setItem(row, c, new QTableWidgetItem(cells[c]));

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/export/ScanCsv.hpp"
+#include "core/stats/TailAnalysis.hpp"
 #include "core/stats/RunStatistics.hpp"
 
 namespace archipelago {
@@ -72,7 +73,17 @@ TEST(ScanCsv, FilesHoldEveryKInTheirLayout) {
                         "b2_fraction,b2_D,b2_D_error");
   EXPECT_TRUE(summary[1].starts_with("0.05,")) << summary[1];
   EXPECT_TRUE(summary[1].ends_with(",,,,")) << summary[1];  // no b₂ for K = 0.05
-  EXPECT_FALSE(summary[2].ends_with(",")) << summary[2];
+  // With b₂: b2_D carries D's error exactly when D has one (supportedDError: none where the tail dominates).
+  const std::vector<std::string> cells = [&] {
+    std::vector<std::string> c;
+    std::stringstream in(summary[2]);
+    for (std::string cell; std::getline(in, cell, ',');) c.push_back(cell);
+    if (summary[2].ends_with(",")) c.emplace_back();
+    return c;
+  }();
+  ASSERT_EQ(cells.size(), 14u) << summary[2];
+  EXPECT_FALSE(cells[12].empty()) << summary[2];                  // b2_D
+  EXPECT_EQ(cells[7].empty(), cells[13].empty()) << summary[2];   // D_error and b2_D_error
 }
 
 TEST(ScanCsv, BoxInvariantFileHoldsAreaProductAndFactors) {
@@ -82,7 +93,7 @@ TEST(ScanCsv, BoxInvariantFileHoldsAreaProductAndFactors) {
   p.subsets = 2;
   const TrappingState s = runTrapping(startTrapping(p), TrappingRunOptions{});
   const TrappingStatistics st = statisticsOf(s);
-  const std::string text = boxInvariantCsv(s, st, stochasticAreaOf(p.map, 0.811));
+  const std::string text = boxInvariantCsv(s, st, stochasticAreaOf(p.map, 0.811), 12.5);
   const auto lines = dataLines(text);
   ASSERT_EQ(lines.size(), 8u);
   EXPECT_EQ(lines[0], "quantity,value,error");
@@ -90,6 +101,12 @@ TEST(ScanCsv, BoxInvariantFileHoldsAreaProductAndFactors) {
   EXPECT_TRUE(lines[2].starts_with("b2_fraction,0.811")) << lines[2];
   EXPECT_TRUE(lines[5].starts_with("b2_D,")) << lines[5];
   EXPECT_NE(text.find("# K: 0.1"), std::string::npos);  // the run's metadata opens the file
+  EXPECT_TRUE(lines[4].starts_with("D,") && lines[4].ends_with(",12.5")) << lines[4];  // the error given, not the subsets'
+  // No error where the tail dominates D: an empty cell for D, b₂·D and the enhancement, never a number.
+  const auto none = dataLines(boxInvariantCsv(s, st, stochasticAreaOf(p.map, 0.811), kTailUndefined));
+  EXPECT_TRUE(none[4].starts_with("D,") && none[4].ends_with(",")) << none[4];
+  EXPECT_TRUE(none[5].starts_with("b2_D,") && none[5].ends_with(",")) << none[5];
+  EXPECT_TRUE(none[7].ends_with(",")) << none[7];
 }
 
 }  // namespace
