@@ -38,12 +38,13 @@ bool writeStatisticFigure(Statistic statistic, const TrappingStatistics& stats, 
 
 namespace {
 
-bool renderPlot(QwtPlot& plot, const QString& base, QString* error) {
-  plot.resize(800, 550);
+/// The plot as BASE.png and BASE.svg, laid out at `widget` pixels and drawn into `rect`.
+bool renderPlot(QwtPlot& plot, const QString& base, QString* error, QSize widget = {800, 550},
+                QRectF rect = {0, 0, 945, 650}) {
+  plot.resize(widget);
   plot.replot();
   QwtPlotRenderer renderer;
   renderer.setDiscardFlag(QwtPlotRenderer::DiscardBackground, false);
-  const QRectF rect(0, 0, 945, 650);
   QImage image(rect.size().toSize(), QImage::Format_ARGB32);
   image.fill(Qt::white);
   {
@@ -148,34 +149,7 @@ bool writePortraitFigure(const RasterImage& image, double x0, double x1, double 
   plot.setAxisTitle(QwtPlot::yLeft, QStringLiteral("y"));
   plot.setAxisScale(QwtPlot::xBottom, x0, x1);
   plot.setAxisScale(QwtPlot::yLeft, y0, y1);
-  plot.resize(800, 800);
-  plot.replot();
-  QwtPlotRenderer renderer;
-  renderer.setDiscardFlag(QwtPlotRenderer::DiscardBackground, false);
-  const QRectF rect(0, 0, 800, 800);
-  auto draw = [&](QPainter& painter) { renderer.render(&plot, &painter, rect); };
-  QImage png(rect.size().toSize(), QImage::Format_ARGB32);
-  png.fill(Qt::white);
-  {
-    QPainter painter(&png);
-    draw(painter);
-  }
-  if (!png.save(base + QStringLiteral(".png"))) {
-    if (error) *error = QStringLiteral("cannot write %1.png").arg(base);
-    return false;
-  }
-  QSvgGenerator generator;
-  generator.setFileName(base + QStringLiteral(".svg"));
-  generator.setSize(rect.size().toSize());
-  generator.setViewBox(rect);
-  generator.setTitle(title);
-  QPainter painter(&generator);
-  draw(painter);
-  if (!painter.end()) {
-    if (error) *error = QStringLiteral("cannot write %1.svg").arg(base);
-    return false;
-  }
-  return true;
+  return renderPlot(plot, base, error, {800, 800}, QRectF(0, 0, 800, 800));
 }
 
 bool writeCurveFigure(const std::vector<double>& x, const std::vector<double>& y, const QString& title,
