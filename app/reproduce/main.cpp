@@ -8,18 +8,22 @@
 
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <optional>
 #include <sstream>
+#include <stop_token>
 
 #include "core/io/AtomicFile.hpp"
 #include "core/portrait/ColourMap.hpp"
+#include "core/report/LongOrbit.hpp"
 #include "core/report/PaperItems.hpp"
 #include "core/run/TrappingRun.hpp"
 #include "core/runfile/RunFile.hpp"
+#include "core/stats/RunEnsemble.hpp"
 #include "core/stats/RunStatistics.hpp"
 #include "core/theory/TheoryCurves.hpp"
 #include "ui/report/ReportFigures.hpp"
@@ -29,7 +33,23 @@ using namespace archipelago;
 
 namespace {
 
-/// Runs (or resumes, or reuses) one run file under OUTDIR/runs, checkpointing every minute.
+/// Set by SIGINT/SIGTERM: the run or scan in progress is saved at its next chunk and the report stops; the same
+/// command resumes it.
+volatile std::sig_atomic_t gInterrupted = 0;
+extern "C" void onInterrupt(int) { gInterrupted = 1; }
+
+/// Thrown when interrupted, after the work in progress is saved.
+struct Interrupted {};
+
+/// Between the stages that keep no state of their own (figures, timings): stop at once when interrupted.
+void stopIfInterrupted() {
+  if (gInterrupted) {
+    std::fprintf(stderr, "interrupted: every finished run is saved\n");
+    throw Interrupted{};
+  }
+}
+
+/// Runs (or resumes, or reuses) one run file under OUTDIR/runs, checkpointing every minute and at an interrupt.
 TrappingState runOrReuse(const TrappingParameters& p, const fs::path& file, int threads) {
   TrappingState state;
   if (fs::exists(file)) {
@@ -46,16 +66,61 @@ TrappingState runOrReuse(const TrappingParameters& p, const fs::path& file, int 
   TrappingRunOptions options;
   options.threads = threads;
   auto last = std::chrono::steady_clock::now();
+  std::stop_source stop;
   state = runTrapping(std::move(state), options, [&](const TrappingState& s, const TrappingProgress& pr) {
+    if (gInterrupted) stop.request_stop();
     const auto now = std::chrono::steady_clock::now();
     if (now - last > std::chrono::seconds(60)) {
       saveRunFile(file, s);
       last = now;
       std::fprintf(stderr, "%s: %.1f %%, ETA %.0f s\n", file.filename().c_str(), 100 * pr.fraction, pr.etaSeconds);
     }
-  });
+  }, stop.get_token());
   saveRunFile(file, state);
+  if (!state.finished()) {
+    std::fprintf(stderr, "interrupted: %s saved at %.1f %%\n", file.c_str(),
+                 100.0 * static_cast<double>(state.blocksDone) / static_cast<double>(state.params.T));
+    throw Interrupted{};
+  }
   return state;
+}
+
+/// Runs (or resumes, or reuses) the report's K scan in `dir` (core's runKScan: one run file per K).
+std::vector<ScanRunSummary> scanOrReuse(const KScanRequest& request, int threads) {
+  KScanRequest r = request;
+  r.base.threads = threads;
+  std::stop_source stop;
+  auto last = std::chrono::steady_clock::now();
+  KScanObserver observer;
+  observer.progress = [&](const KScanProgress& p) {
+    if (gInterrupted) stop.request_stop();
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last > std::chrono::seconds(60)) {
+      last = now;
+      std::fprintf(stderr, "K scan: K = %g (%zu of %zu), %.1f %%, ETA %.0f s\n", p.K, p.index + 1, p.count,
+                   100 * p.fractionScan(), p.etaScan);
+    }
+  };
+  observer.warning = [](const std::string& w) { std::fprintf(stderr, "WARNING: %s\n", w.c_str()); };
+  const KScanOutcome outcome = runKScan(r, observer, stop.get_token());
+  if (!outcome.finished) {
+    std::fprintf(stderr, "interrupted: the K scan is saved in %s\n", outcome.stoppedFile.c_str());
+    throw Interrupted{};
+  }
+  return outcome.runs;
+}
+
+std::vector<double> column(const std::vector<ScanRunSummary>& runs, double (*of)(const ScanRunSummary&)) {
+  std::vector<double> v;
+  for (const auto& r : runs) v.push_back(of(r));
+  return v;
+}
+
+std::vector<QPointF> qPoints(const std::vector<PhysicalPoint>& points) {
+  std::vector<QPointF> out;
+  out.reserve(points.size());
+  for (const auto& p : points) out.emplace_back(static_cast<double>(p.x), static_cast<double>(p.y));
+  return out;
 }
 
 std::string html(const std::string& s) {
@@ -107,6 +172,8 @@ int main(int argc, char** argv) {
     return app.exit(e);
   }
   QApplication qapp(argc, argv);
+  std::signal(SIGINT, onInterrupt);
+  std::signal(SIGTERM, onInterrupt);
   try {
     const auto started = std::chrono::steady_clock::now();
     const fs::path out(outdir);
@@ -152,6 +219,37 @@ int main(int argc, char** argv) {
       figures.push_back({"1", "the islands at K = 0.1 (orbits from a grid of seeds; <code>" +
                                   html(report::figureOneCommand(full)) + "</code>)", "fig1"});
     }
+    stopIfInterrupted();
+    // Fig. 2: the chaotic sea of Q* (dark), its holes the islands; (b) the enlargement with the 138-chain's member.
+    const std::optional<PeriodicOrbit> orbit138 = drawing ? report::chain138Orbit() : std::nullopt;
+    ui::report::FigureMarkers member138;
+    if (orbit138) {
+      member138.name = QStringLiteral("members of the elliptic period-138 orbit (periodic-orbit finder)");
+      for (const auto& z : orbit138->points) member138.points.emplace_back(double(z.x), double(z.y));
+    }
+    for (bool enlargement : {false, true}) {
+      if (!drawing) break;
+      const PortraitRequest r = report::figureTwoRequest(full, enlargement);
+      const PortraitResult portrait = renderPortrait(r);
+      const PhysicalRect v = r.view.physical(r.map);
+      const std::string stem = enlargement ? "fig2b" : "fig2a";
+      if (!ui::report::writePortraitFigure(colourize(portrait.raster, ColourMapName::Inferno), double(v.x0),
+                                           double(v.x1), double(v.y0), double(v.y1),
+                                           enlargement ? QStringLiteral("Fig. 2b — the sea near the 138-chain's member")
+                                                       : QStringLiteral("Fig. 2a — the chaotic sea of Q* at K = 0.1"),
+                                           QString::fromStdString((out / "figures" / stem).string()), &error,
+                                           enlargement ? member138 : ui::report::FigureMarkers{}))
+        throw std::runtime_error(error.toStdString());
+      figures.push_back({enlargement ? "2b" : "2a",
+                         std::string(enlargement ? "the enlargement around x + √K = 0.352, y = 0.034, where the paper "
+                                                   "sees a member of the 138 = 6 × 23 chain (circled: the elliptic "
+                                                   "period-138 orbit's members found there)"
+                                                 : "orbits of the chaotic sea (visits of 256 long orbits; black: "
+                                                   "islands, and the spurious islands of the accelerator modes)") +
+                             " (<code>" + html(report::figureTwoCommand(full, enlargement)) + "</code>)",
+                         stem});
+    }
+    stopIfInterrupted();
     // Fig. 3: f_t for small K with the theory of §4.
     const char* letters[] = {"a", "b", "c"};
     int i = 0;
@@ -168,6 +266,7 @@ int main(int argc, char** argv) {
       figure(Statistic::f, run, st, std::string("fig3") + letters[i], std::string("3") + letters[i], caption);
       ++i;
     }
+    stopIfInterrupted();
     // Fig. 4: level curves of the three small-K Hamiltonians (eqs. hama, ham, hamb).
     if (drawing) {
       std::vector<double> levels;
@@ -191,11 +290,15 @@ int main(int argc, char** argv) {
     if (drawing) figures.push_back({"5a", "T(X<sub>0</sub>) for K &lt; 0 (eq. tneg)", "fig5a"});
     if (drawing) figures.push_back({"5b", "F(T) for K &lt; 0 with its two limits (eq. fneg)", "fig5b"});
 
+    stopIfInterrupted();
     // Figs. 6 and 7: the K = 0.1 run.
     const TrappingState k01 = runOrReuse(report::k01Parameters(full), out / "runs" / ("k01-" + size + ".json"), threads);
     const TrappingStatistics st = statisticsOf(k01);
-    for (auto& it : report::k01Items(k01, st, full)) items.push_back(std::move(it));
-    for (auto& it : report::stochasticAreaItems(k01, st, full)) items.push_back(std::move(it));
+    const TailAnalysis tail = analyseTail(ensembleOf({k01}));
+    for (auto& it : report::k01Items(k01, st, tail, full)) items.push_back(std::move(it));
+    for (auto& it : report::localExponentRangeItems(k01, st, full)) items.push_back(std::move(it));
+    for (auto& it : report::stochasticAreaItems(k01, st, tail, full)) items.push_back(std::move(it));
+    for (auto& it : report::tailItems(tail, full)) items.push_back(std::move(it));
     char steps[64];
     std::snprintf(steps, sizeof steps, " at K = 0.1 (%.3g steps)", k01.stepsDone());
     figure(Statistic::f, k01, st, "fig6a", "6a", std::string("f<sub>t</sub>") + steps);
@@ -204,22 +307,176 @@ int main(int argc, char** argv) {
     figure(Statistic::localExponent, k01, st, "fig6d", "6d", std::string("−d log C/d log τ") + steps);
     figure(Statistic::S, k01, st, "fig7a", "7a", std::string("S<sub>t</sub>") + steps);
     figure(Statistic::Dt, k01, st, "fig7b", "7b", std::string("D<sub>t</sub> = S<sub>t</sub>/2t") + steps);
+    // Fig. 8: the longest segment replayed and zoomed, its chain identified; the longest on the 138-chain.
+    if (drawing) {
+      const std::string runName = "k01-" + size + ".json";
+      const report::LongOrbitFigures lo = report::longOrbitFigures(k01, full ? 30 : 10, 1'000'000, runName);
+      auto chainText = [](const IslandChain& c) {
+        std::string h;
+        for (int level : c.hierarchy) h += (h.empty() ? "" : " → ") + std::to_string(level);
+        char buf[200];
+        std::snprintf(buf, sizeof buf, "period %d (hierarchy %s), member at (%.5Lf, %.5Lf)", c.period, h.c_str(),
+                      c.member.x, c.member.y);
+        return std::string(buf);
+      };
+      auto drawSegment = [&](const report::LongOrbitView& v, const std::string& stem, const std::string& num,
+                             const std::string& what) {
+        ui::report::FigureMarkers centre;
+        if (v.chain.chain.centre) {
+          centre.name = QStringLiteral("the chain's elliptic periodic orbit");
+          for (const auto& z : v.chain.chain.centre->points) centre.points.emplace_back(double(z.x), double(z.y));
+        }
+        char title[160];
+        std::snprintf(title, sizeof title, "Fig. %s — segment %zu: %.3g steps, chain of period %d", num.c_str(),
+                      v.rank, double(v.steps), v.chain.chain.period);
+        if (!ui::report::writePointsFigure(qPoints(v.points), double(v.view.x0), double(v.view.x1), double(v.view.y0),
+                                           double(v.view.y1), QString::fromUtf8(title),
+                                           QString::fromStdString((out / "figures" / stem).string()), &error, centre))
+          throw std::runtime_error(error.toStdString());
+        char steps[64];
+        std::snprintf(steps, sizeof steps, "%.3g", double(v.steps));
+        figures.push_back({num, what + " segment " + std::to_string(v.rank) + " of the K = 0.1 run (" + steps +
+                                    " steps, orbit " + std::to_string(v.record.orbit) + "), replayed exactly and "
+                                    "zoomed to one island of its chain: " + html(chainText(v.chain.chain)) + " (<code>" +
+                                    html(v.command) + "</code>)", stem});
+      };
+      if (lo.longest) drawSegment(*lo.longest, "fig8a", "8a", "the longest identifiable");
+      if (lo.chain138 && lo.chain138->rank != (lo.longest ? lo.longest->rank : SIZE_MAX)) {
+        drawSegment(*lo.chain138, "fig8b", "8b", "on the 138 = 6 × 23 chain (§7): the longest such,");
+      } else if (!lo.chain138 && orbit138) {
+        // No recorded segment sticks to the 138-chain: orbits near it (a grid of seeds around the member).
+        PortraitRequest r;
+        constexpr long double h = 0.004L;
+        r.view = Viewport::fromPhysical(r.map, PhysicalRect{report::kChain138X - h, report::kChain138X + h,
+                                                             report::kChain138Y - h, report::kChain138Y + h});
+        r.mode = PortraitMode::Orbits;
+        r.width = r.height = 600;
+        r.points = full ? 200'000'000 : 40'000'000;
+        r.passes = 1;
+        const PortraitResult portrait = renderPortrait(r);
+        if (!ui::report::writePortraitFigure(colourize(portrait.raster, ColourMapName::Inferno), double(r.view.physical(r.map).x0),
+                                             double(r.view.physical(r.map).x1), double(r.view.physical(r.map).y0),
+                                             double(r.view.physical(r.map).y1),
+                                             QStringLiteral("Fig. 8b — orbits near the 138-chain's member"),
+                                             QString::fromStdString((out / "figures" / "fig8b").string()), &error,
+                                             member138))
+          throw std::runtime_error(error.toStdString());
+        figures.push_back({"8b", "none of the run's " + std::to_string(lo.examined) + " longest segments sticks to the "
+                                 "138-chain (a run of the paper's size is needed: its longest, ~6·10⁷ steps, did); "
+                                 "instead, orbits from a grid of seeds near the chain's member, its elliptic orbit "
+                                 "circled", "fig8b"});
+      }
+    }
+    stopIfInterrupted();
+    // §5's K scan (the paper's 26 K; not drawn by the paper).
+    {
+      const std::vector<ScanRunSummary> scan = scanOrReuse(report::kScanRequest(full, out / "runs" / ("kscan-" + size)), threads);
+      items.push_back(report::kScanItem(scan, full));
+      if (drawing) {
+        std::vector<ui::report::FigureCurve> f;
+        for (const auto& r : scan) {
+          const double K = r.point.K;
+          bool shown = false;
+          for (double k : {0.05, 0.1, 0.25, 0.5, 0.75, 1.0, 1.3}) shown = shown || std::abs(K - k) < 1e-9;
+          if (!shown) continue;
+          ui::report::FigureCurve c;
+          c.x = r.statistics.f.x;
+          c.y = r.statistics.f.value;
+          c.name = QStringLiteral("K = %1").arg(QString::fromStdString(scanKText(K)));
+          f.push_back(std::move(c));
+        }
+        const std::string scanCmd = html(report::kScanCommand(full));
+        if (!ui::report::writeCurvesFigure(f, {QStringLiteral("K scan — f_t for seven of the 26 K"), QStringLiteral("t (steps)"),
+                                               QStringLiteral("f_t"), true, true},
+                                           QString::fromStdString((out / "figures" / "kscan-f").string()), &error))
+          throw std::runtime_error(error.toStdString());
+        figures.push_back({"S1", "the K scan of §5: f<sub>t</sub> for seven of the 26 K, each in its own box (<code>" +
+                                     scanCmd + "</code>)", "kscan-f"});
+        ui::report::FigureCurve withError, dominated;
+        withError.name = QStringLiteral("D ± bootstrap error");
+        dominated.name = QStringLiteral("D dominated by its longest segments (no error)");
+        withError.symbols = dominated.symbols = true;
+        for (const auto& r : scan) {
+          auto& c = std::isfinite(r.point.DError) ? withError : dominated;
+          c.x.push_back(r.point.K);
+          c.y.push_back(r.point.D);
+          c.error.push_back(r.point.DError);
+        }
+        if (!ui::report::writeCurvesFigure({withError, dominated}, {QStringLiteral("K scan — D(K)"), QStringLiteral("K"),
+                                                                   QStringLiteral("D"), false, true},
+                                           QString::fromStdString((out / "figures" / "kscan-D").string()), &error))
+          throw std::runtime_error(error.toStdString());
+        figures.push_back({"S2", "D(K) with its honest error (a bootstrap over segments; none where the longest "
+                                 "segments dominate D)", "kscan-D"});
+        ui::report::FigureCurve longest, threshold;
+        longest.x = column(scan, [](const ScanRunSummary& r) { return r.point.K; });
+        longest.y = column(scan, [](const ScanRunSummary& r) { return double(r.point.longestSteps); });
+        longest.name = QStringLiteral("the longest segment");
+        longest.symbols = true;
+        threshold.x = {0, 1.35};
+        threshold.y = {kScanLongSegmentSteps, kScanLongSegmentSteps};
+        threshold.name = QStringLiteral("10⁴ steps: beyond any exponential decay of §4");
+        threshold.dashed = true;
+        if (!ui::report::writeCurvesFigure({longest, threshold}, {QStringLiteral("K scan — the longest segment"),
+                                                                 QStringLiteral("K"), QStringLiteral("steps"), false, true},
+                                           QString::fromStdString((out / "figures" / "kscan-longest").string()), &error))
+          throw std::runtime_error(error.toStdString());
+        figures.push_back({"S3", "the longest segment against K: the slow algebraic decay of §5 shows as segments "
+                                 "beyond 10<sup>4</sup> steps", "kscan-longest"});
+      }
+    }
+    stopIfInterrupted();
+    // Appendix B: the Cray-1's 75 ns and 65 hours against this machine.
+    for (auto& it : report::timingItems(report::measureStepTiming(threads))) items.push_back(std::move(it));
+    stopIfInterrupted();
+    // Not in the paper: the tail exponent against the later literature.
+    if (drawing) {
+      ui::report::FigureCurve windows;
+      windows.name = QStringLiteral("γ over decades of t (95 % bootstrap intervals)");
+      windows.symbols = true;
+      for (const TailWindow& w : tail.windows) {
+        windows.x.push_back(std::sqrt(w.from * w.to));
+        windows.y.push_back(w.gammaP);
+        windows.error.push_back((w.gammaPInterval.hi - w.gammaPInterval.lo) / 2);
+      }
+      std::vector<ui::report::FigureCurve> curves{windows};
+      double from = 1e300, to = 0;  // the reference lines span the windows
+      for (const TailWindow& w : tail.windows) from = std::min(from, w.from), to = std::max(to, w.to);
+      for (const ReferenceExponent& r : referenceExponents()) {
+        ui::report::FigureCurve c;
+        c.x = {from, to};
+        c.y = {r.gamma, r.gamma};
+        c.name = QStringLiteral("%1 (%2)").arg(r.gamma).arg(QString::fromUtf8(r.source));
+        c.dashed = true;
+        curves.push_back(std::move(c));
+      }
+      if (!ui::report::writeCurvesFigure(curves, {QStringLiteral("P_t ~ t^−γ: the local γ at K = 0.1 against the literature"),
+                                                  QStringLiteral("t (steps)"), QStringLiteral("γ"), true, false},
+                                         QString::fromStdString((out / "figures" / "tail-gamma").string()), &error))
+        throw std::runtime_error(error.toStdString());
+      figures.push_back({"T", "the tail exponent γ of P<sub>t</sub> ~ t<sup>−γ</sup> over decades of t (the last "
+                              "ends where 10 segments remain beyond it) against the later literature's exponents: the "
+                              "paper's open question (§7)", "tail-gamma"});
+    }
     // Appendix C, not drawn by the paper: the Markov model's ε(τ).
     if (drawing) {
       const auto c = report::markovEpsilon();
-      if (!ui::report::writeCurveFigure(c.tau, c.epsilon, QStringLiteral("Markov model (appendix C): ε(τ), m = 20, N = 1000"),
-                                        QStringLiteral("τ"), QStringLiteral("ε(τ)"),
-                                        QString::fromStdString((out / "figures" / "markov-epsilon").string()), &error))
+      ui::report::FigureCurve eps;
+      eps.x = c.tau;
+      eps.y = c.epsilon;
+      if (!ui::report::writeCurvesFigure({eps}, {QStringLiteral("Markov model (appendix C): ε(τ), m = 20, N = 1000"),
+                                                 QStringLiteral("τ"), QStringLiteral("ε(τ)")},
+                                         QString::fromStdString((out / "figures" / "markov-epsilon").string()), &error))
         throw std::runtime_error(error.toStdString());
       figures.push_back({"C", "the Markov model's ε(τ) = (C(τ) − C<sub>is</sub>(τ))/C<sub>is</sub>(0) for one segment of "
                               "m = 20 among N = 1000 (<code>" + html(c.command) + "</code>)", "markov-epsilon"});
     }
-    for (auto& it : report::pendingItems()) items.push_back(std::move(it));
     if (!drawing) {
       if (auto rc = printOnly()) return *rc;
       throw std::invalid_argument("--only '" + only + "': no such statement (see the ids in items.csv)");
     }
 
+    stopIfInterrupted();
     // items.csv, index.html, report.pdf.
     std::ostringstream csv;
     csv << "id,section,statement,paper_value,paper,ours,error,tolerance,mark,command,note\n";
@@ -266,11 +523,7 @@ int main(int argc, char** argv) {
         << ".svg\">SVG</a>)<br><img src=\"figures/" << f.file << ".png\" width=\"600\"></p>\n";
       images << QString::fromStdString("figures/" + f.file + ".png");
     }
-    h << "<h2>Not yet drawn</h2><p>Fig. 2 (orbits of the sea and the 138-chain "
-         "enlargement), fig. 8 (the long orbit at the 138-chain), "
-         "the K scan summary and the tail exponent against the literature are not yet "
-         "in this report; <code>archipelago-cli portrait</code>, <code>replay --identify</code>, <code>scan</code> "
-         "and <code>markov</code> produce their data.</p>\n</body></html>\n";
+    h << "</body></html>\n";
     io::writeFileAtomically(out / "index.html", h.str());
     if (!ui::report::writePdf(QString::fromStdString(h.str()), QString::fromStdString(out.string()), images,
                               QString::fromStdString((out / "report.pdf").string()), &error))
@@ -278,6 +531,9 @@ int main(int argc, char** argv) {
     std::printf("report: %s (%zu statements, %d differ unexplained, %.0f s)\n", (out / "index.html").c_str(),
                 items.size(), differs, seconds);
     return differs == 0 ? 0 : 2;
+  } catch (const Interrupted&) {
+    std::fprintf(stderr, "the same command resumes the report from the saved runs\n");
+    return 130;  // 128 + SIGINT, as a shell reports a process stopped by Ctrl-C
   } catch (const std::exception& e) {
     std::fprintf(stderr, "ERROR: %s\n", e.what());
     return 1;

@@ -1,8 +1,9 @@
 """report.quick: runs `archipelago-reproduce --quick` into a temporary folder and checks the report: the exit
 status, every statement that can be checked at this size (no unexplained 'DIFFERS'; the checkable ones agree),
 and that index.html, the figures (PNG and SVG) and the PDF exist and are not trivial.  Then runs it again into
-the same folder to check that finished runs are reused."""
-import csv, os, subprocess, sys, tempfile
+the same folder to check that finished runs (and the K scan) are reused, and interrupts a third one with SIGINT:
+it must save its work, exit 130, and finish on the next invocation with the same statements."""
+import csv, glob, os, signal, subprocess, sys, tempfile, time
 
 exe = sys.argv[1]
 failures = 0
@@ -31,11 +32,21 @@ with tempfile.TemporaryDirectory() as out:
               f"{key} agrees with the paper ({items.get(key, {}).get('ours')})")
     # The heavy-tail quantities are honestly not claimed at this size.
     check(items.get("b2", {}).get("mark") == "differs, explained", "b2: the area of our box, explained")
-    for key in ["D", "longest", "b2D", "enhancement"]:
+    for key in ["D", "longest", "b2D", "enhancement", "tail-gamma", "steps-to-decide"]:
         check(items.get(key, {}).get("mark") == "not reproducible at this size", f"{key}: not claimed at this size")
+    # §5's K scan over the paper's 26 K, and the local exponent's lower end (fig. 6d).
+    for key in ["kscan", "alpha-min", "alpha-max"]:
+        check(items.get(key, {}).get("mark") == "agrees", f"{key} agrees ({items.get(key, {}).get('ours')})")
+    check("26 K" in items.get("kscan", {}).get("note", ""), "kscan covers the paper's 26 K")
+    # Appendix B: a measured time per step, and the paper's 65 hours projected, both explained.
+    for key in ["cray-ns", "cray-hours"]:
+        row = items.get(key, {})
+        check(row.get("mark") == "differs, explained" and float(row.get("ours") or 0) > 0,
+              f"{key}: measured and explained ({row.get('ours')})")
     index = open(os.path.join(out, "index.html"), encoding="utf-8").read()
     check(len(index) > 5000 and "<table" in index, "index.html has the table")
-    for fig in ["fig1", "markov-epsilon", "fig4a", "fig4b", "fig4c", "fig3a", "fig3b", "fig3c", "fig5a", "fig5b", "fig6a", "fig6b", "fig6c", "fig6d", "fig7a", "fig7b"]:
+    for fig in ["fig1", "fig2a", "fig2b", "fig8a", "fig8b", "kscan-f", "kscan-D", "kscan-longest", "tail-gamma",
+                "markov-epsilon", "fig4a", "fig4b", "fig4c", "fig3a", "fig3b", "fig3c", "fig5a", "fig5b", "fig6a", "fig6b", "fig6c", "fig6d", "fig7a", "fig7b"]:
         png, svg = (os.path.join(out, "figures", fig + s) for s in (".png", ".svg"))
         check(os.path.exists(png) and os.path.getsize(png) > 10000 and open(png, "rb").read(8) == b"\x89PNG\r\n\x1a\n",
               f"{fig}.png is a non-trivial PNG")
@@ -45,9 +56,34 @@ with tempfile.TemporaryDirectory() as out:
     pdf = os.path.join(out, "report.pdf")
     check(os.path.exists(pdf) and os.path.getsize(pdf) > 100000 and open(pdf, "rb").read(5) == b"%PDF-",
           "report.pdf is a non-trivial PDF")
-    # Resumable: a second invocation reuses every finished run.
+    check("Not yet drawn" not in index and "not yet computed" not in open(os.path.join(out, "items.csv")).read(),
+          "nothing is listed as not yet done")
+    # Resumable: a second invocation reuses every finished run and the finished K scan.
+    scan_files = {f: os.path.getmtime(f) for f in glob.glob(os.path.join(out, "runs", "kscan-quick", "K*.json"))}
+    check(len(scan_files) == 26, f"the K scan kept a run file per K ({len(scan_files)})")
     r2 = subprocess.run([exe, "--quick", out], capture_output=True, text=True, timeout=900)
     check(r2.returncode == 0 and r2.stderr.count("reusing ") == 4, "a second invocation reuses the four runs")
+    check(all(os.path.getmtime(f) == t for f, t in scan_files.items()), "... and the K scan's run files untouched")
+
+    # Ctrl-C: the run in progress is saved, exit 130; the next invocation finishes with the same statements.
+    with tempfile.TemporaryDirectory() as out2:
+        p = subprocess.Popen([exe, "--quick", out2], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        deadline = time.time() + 300
+        while time.time() < deadline and p.poll() is None \
+                and len(glob.glob(os.path.join(out2, "runs", "kscan-quick", "K*.json"))) < 2:
+            time.sleep(0.05)  # until the K scan is under way (two of its K finished)
+        p.send_signal(signal.SIGINT)
+        so, se = p.communicate(timeout=300)
+        check(p.returncode == 130 and "interrupted:" in se and "resumes" in se,
+              f"SIGINT: saved and exit 130 (got {p.returncode}: {se.strip()[-200:]})")
+        r6 = subprocess.run([exe, "--quick", out2], capture_output=True, text=True, timeout=900)
+        check(r6.returncode == 0, f"the next invocation finishes (exit {r6.returncode})")
+        with open(os.path.join(out2, "items.csv"), newline="") as f:
+            again = {row["id"]: row for row in csv.DictReader(f)}
+        timed = {"cray-ns", "cray-hours"}  # measured wall times
+        same = [k for k in items if k not in timed and again.get(k, {}).get("ours") == items[k]["ours"]]
+        check(len(same) == len(items) - len(timed),
+              f"interrupted and resumed gives the same statements ({len(same)} of {len(items) - len(timed)})")
     # One statement alone, as its command says.
     r4 = subprocess.run([exe, "--only", "chain138-x", out], capture_output=True, text=True, timeout=300)
     check(r4.returncode == 0 and "mark: agrees" in r4.stdout and "period-138" in r4.stdout, "--only chain138-x")

@@ -9,7 +9,10 @@
 #include <QSvgGenerator>
 #include <QTextDocument>
 #include <QUrl>
+#include <qwt_interval_symbol.h>
 #include <qwt_legend.h>
+#include <qwt_plot_intervalcurve.h>
+#include <qwt_symbol.h>
 #include <qwt_text.h>
 #include <qwt_plot_curve.h>
 #include <qwt_plot_item.h>
@@ -23,6 +26,7 @@
 #include <cmath>
 
 #include "core/theory/SmallKTheory.hpp"
+#include "ui/plots/LogScaleDraw.hpp"
 #include "ui/plots/StatisticsPlot.hpp"
 
 namespace archipelago::ui::report {
@@ -93,6 +97,26 @@ QwtPlotCurve* addCurve(QwtPlot& plot, const QVector<QPointF>& points, const QStr
   return curve;
 }
 
+/// Open circles at `markers`, over everything else.
+void addMarkers(QwtPlot& plot, const FigureMarkers& markers) {
+  if (markers.points.empty()) return;
+  auto* curve = new QwtPlotCurve(markers.name);
+  curve->setStyle(QwtPlotCurve::NoCurve);
+  curve->setSymbol(new QwtSymbol(QwtSymbol::Ellipse, Qt::NoBrush, QPen(QColor(0, 160, 255), 2), QSize(13, 13)));
+  curve->setSamples(QVector<QPointF>(markers.points.begin(), markers.points.end()));
+  curve->setZ(100);
+  curve->attach(&plot);
+  if (!markers.name.isEmpty()) plot.insertLegend(new QwtLegend, QwtPlot::BottomLegend);
+}
+
+/// The report's palette for curves without a colour of their own (distinct on white, in print and on screen).
+QColor paletteColour(int i) {
+  static const QColor colours[] = {QColor(0, 90, 180), QColor(200, 60, 40), QColor(40, 150, 60),
+                                   QColor(150, 60, 170), QColor(230, 140, 0), QColor(0, 150, 160),
+                                   QColor(120, 90, 40), QColor(90, 90, 90)};
+  return colours[i % 8];
+}
+
 }  // namespace
 
 bool writeTrappingTimeFigures(const QString& base, QString* error) {
@@ -139,7 +163,7 @@ bool writeTrappingTimeFigures(const QString& base, QString* error) {
 }
 
 bool writePortraitFigure(const RasterImage& image, double x0, double x1, double y0, double y1, const QString& title,
-                         const QString& base, QString* error) {
+                         const QString& base, QString* error, const FigureMarkers& markers) {
   // A deep copy: the item outlives nothing, but QImage must not borrow the vector past this scope's end.
   const QImage raster = QImage(image.rgb.data(), image.width, image.height, 3 * image.width, QImage::Format_RGB888).copy();
   QwtPlot plot;
@@ -149,19 +173,86 @@ bool writePortraitFigure(const RasterImage& image, double x0, double x1, double 
   plot.setAxisTitle(QwtPlot::yLeft, QStringLiteral("y"));
   plot.setAxisScale(QwtPlot::xBottom, x0, x1);
   plot.setAxisScale(QwtPlot::yLeft, y0, y1);
+  addMarkers(plot, markers);
   return renderPlot(plot, base, error, {800, 800}, QRectF(0, 0, 800, 800));
 }
 
-bool writeCurveFigure(const std::vector<double>& x, const std::vector<double>& y, const QString& title,
-                      const QString& xLabel, const QString& yLabel, const QString& base, QString* error) {
+bool writePointsFigure(const std::vector<QPointF>& points, double x0, double x1, double y0, double y1,
+                       const QString& title, const QString& base, QString* error, const FigureMarkers& markers) {
+  if (!(x1 > x0) || !(y1 > y0)) {
+    if (error) *error = QStringLiteral("%1: an empty view").arg(base);
+    return false;
+  }
+  constexpr int n = 900;  // pixels each way: finer than the canvas, so that no two dots merge on screen
+  QImage raster(n, n, QImage::Format_RGB888);
+  raster.fill(Qt::white);
+  for (const QPointF& p : points) {
+    const double fx = (p.x() - x0) / (x1 - x0), fy = (y1 - p.y()) / (y1 - y0);  // row 0 at the top
+    if (!(fx >= 0 && fx < 1 && fy >= 0 && fy < 1)) continue;
+    raster.setPixelColor(static_cast<int>(fx * n), static_cast<int>(fy * n), Qt::black);
+  }
+  QwtPlot plot;
+  plot.setTitle(title);
+  plot.setCanvasBackground(Qt::white);
+  (new RasterItem(raster, QRectF(QPointF(x0, y0), QPointF(x1, y1))))->attach(&plot);
+  plot.setAxisTitle(QwtPlot::xBottom, QStringLiteral("x"));
+  plot.setAxisTitle(QwtPlot::yLeft, QStringLiteral("y"));
+  plot.setAxisScale(QwtPlot::xBottom, x0, x1);
+  plot.setAxisScale(QwtPlot::yLeft, y0, y1);
+  addMarkers(plot, markers);
+  return renderPlot(plot, base, error, {800, 800}, QRectF(0, 0, 800, 800));
+}
+
+bool writeCurvesFigure(const std::vector<FigureCurve>& curves, const FigureAxes& axes, const QString& base,
+                       QString* error) {
   QwtPlot plot;
   plot.setCanvasBackground(Qt::white);
-  plot.setTitle(title);
-  plot.setAxisTitle(QwtPlot::xBottom, xLabel);
-  plot.setAxisTitle(QwtPlot::yLeft, yLabel);
-  QVector<QPointF> pts;
-  for (std::size_t i = 0; i < x.size() && i < y.size(); ++i) pts.append({x[i], y[i]});
-  addCurve(plot, pts, yLabel, QColor(0, 90, 180));
+  plot.setTitle(axes.title);
+  plot.setAxisTitle(QwtPlot::xBottom, axes.xLabel);
+  plot.setAxisTitle(QwtPlot::yLeft, axes.yLabel);
+  if (axes.logX) {
+    plot.setAxisScaleEngine(QwtPlot::xBottom, new QwtLogScaleEngine);
+    plot.setAxisScaleDraw(QwtPlot::xBottom, new LogScaleDraw);
+  }
+  if (axes.logY) {
+    plot.setAxisScaleEngine(QwtPlot::yLeft, new QwtLogScaleEngine);
+    plot.setAxisScaleDraw(QwtPlot::yLeft, new LogScaleDraw);
+  }
+  int named = 0, next = 0;
+  for (const FigureCurve& c : curves) {
+    const QColor colour = c.colour.isValid() ? c.colour : paletteColour(next++);
+    QVector<QPointF> pts;
+    QVector<QwtIntervalSample> bars;
+    for (std::size_t i = 0; i < c.x.size() && i < c.y.size(); ++i) {
+      const double x = c.x[i], y = c.y[i];
+      if (!std::isfinite(x) || !std::isfinite(y) || (axes.logX && x <= 0) || (axes.logY && y <= 0)) continue;
+      pts.append({x, y});
+      if (i < c.error.size() && std::isfinite(c.error[i]) && c.error[i] > 0) {
+        const double lo = axes.logY ? std::max(y - c.error[i], y * 1e-3) : y - c.error[i];
+        bars.append(QwtIntervalSample(x, lo, y + c.error[i]));
+      }
+    }
+    QwtPlotCurve* curve = addCurve(plot, pts, c.name, colour);
+    if (c.dashed) curve->setPen(colour, 1, Qt::DashLine);
+    if (c.symbols) {
+      curve->setStyle(QwtPlotCurve::NoCurve);
+      curve->setSymbol(new QwtSymbol(QwtSymbol::Ellipse, QBrush(colour), QPen(colour), QSize(7, 7)));
+    }
+    if (c.name.isEmpty()) curve->setItemAttribute(QwtPlotItem::Legend, false);
+    else ++named;
+    if (!bars.isEmpty()) {
+      auto* band = new QwtPlotIntervalCurve;
+      band->setStyle(QwtPlotIntervalCurve::NoCurve);
+      auto* bar = new QwtIntervalSymbol(QwtIntervalSymbol::Bar);
+      bar->setWidth(7);
+      bar->setPen(QPen(colour, 1));
+      band->setSymbol(bar);
+      band->setSamples(bars);
+      band->setItemAttribute(QwtPlotItem::Legend, false);
+      band->attach(&plot);
+    }
+  }
+  if (named > 1) plot.insertLegend(new QwtLegend, QwtPlot::RightLegend);
   return renderPlot(plot, base, error);
 }
 

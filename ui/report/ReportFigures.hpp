@@ -3,6 +3,8 @@
 /// \brief The figures of the reproduction report (app/reproduce), drawn with the GUI's own plot code
 /// (StatisticsPlot, Qwt) offscreen, and the report's PDF.  No maths: the values come from core.
 
+#include <QColor>
+#include <QPointF>
 #include <QString>
 #include <QStringList>
 
@@ -24,13 +26,39 @@ bool writeStatisticFigure(Statistic statistic, const TrappingStatistics& stats, 
 /// `base`a.png/.svg and `base`b.png/.svg.
 bool writeTrappingTimeFigures(const QString& base, QString* error);
 
-/// A portrait (core's colourized raster, as the GUI colours it) with its physical axes, as `base`.png/.svg.
-bool writePortraitFigure(const RasterImage& image, double x0, double x1, double y0, double y1, const QString& title,
-                         const QString& base, QString* error);
+/// Points to mark on a figure (e.g. the members of a periodic orbit), drawn as open circles with a legend entry.
+struct FigureMarkers {
+  std::vector<QPointF> points;
+  QString name;
+};
 
-/// A plain curve y(x) on linear axes (the Markov model's ε(τ)), as `base`.png/.svg.
-bool writeCurveFigure(const std::vector<double>& x, const std::vector<double>& y, const QString& title,
-                      const QString& xLabel, const QString& yLabel, const QString& base, QString* error);
+/// A portrait (core's colourized raster, as the GUI colours it) with its physical axes and `markers`, as
+/// `base`.png/.svg.
+bool writePortraitFigure(const RasterImage& image, double x0, double x1, double y0, double y1, const QString& title,
+                         const QString& base, QString* error, const FigureMarkers& markers = {});
+
+/// An orbit's points (physical x, y) as black dots on [x0, x1] × [y0, y1] (rasterized at the canvas's
+/// resolution, so that a million points make a small SVG), with `markers`, as `base`.png/.svg.
+bool writePointsFigure(const std::vector<QPointF>& points, double x0, double x1, double y0, double y1,
+                       const QString& title, const QString& base, QString* error, const FigureMarkers& markers = {});
+
+/// One curve of writeCurvesFigure().
+struct FigureCurve {
+  std::vector<double> x, y;
+  std::vector<double> error;  ///< one-sigma error bars (empty, or NaN for a point: none)
+  QString name;               ///< legend entry (empty: none)
+  QColor colour;              ///< invalid: the next colour of the report's palette
+  bool dashed = false;        ///< a thin dashed line (reference lines)
+  bool symbols = false;       ///< points with symbols and no line
+};
+struct FigureAxes {
+  QString title, xLabel, yLabel;
+  bool logX = false, logY = false;  ///< logarithmic axes, labelled as the GUI's (powers of ten)
+};
+/// Curves y(x) (only points with finite x, y, and > 0 on a logarithmic axis), with a legend when more than one is
+/// named, as `base`.png/.svg: the Markov model's ε(τ), the K scan's summaries, the tail's exponents.
+bool writeCurvesFigure(const std::vector<FigureCurve>& curves, const FigureAxes& axes, const QString& base,
+                       QString* error);
 
 /// Fig. 4: level curves of z(x, y) on [x0, x1] × [y0, y1] (sampled on a grid), at the given levels.
 bool writeLevelCurveFigure(const std::function<double(double, double)>& z, double x0, double x1, double y0, double y1,
