@@ -18,7 +18,10 @@
 #include <QTemporaryDir>
 #include <QtTest>
 #include <qwt_plot.h>
+#include <qwt_color_map.h>
 #include <qwt_plot_curve.h>
+#include <qwt_plot_spectrogram.h>
+#include <qwt_scale_widget.h>
 #include <qwt_text.h>
 
 #include <cmath>
@@ -143,6 +146,21 @@ class ScanDialogTest : public QObject {
     QVERIFY(undefined > 0);  // the long-τ cells of K = 0.3, whose segments stay short, have no data
     QVERIFY(std::isnan(d.heatMapValue(0.1, 0.5)));  // below the τ grid: no cell
     QVERIFY(std::isnan(d.heatMapValue(1.0, 2.0)));  // far from every K: no cell
+    // A cell without data is drawn transparent over the grey canvas; a defined one opaque; a colour bar with a
+    // title beside it.
+    QwtPlot* heat = d.resultPlot(QStringLiteral("heatMap"));
+    QVERIFY(heat);
+    const QwtPlotItemList spectrograms = heat->itemList(QwtPlotItem::Rtti_PlotSpectrogram);
+    QCOMPARE(spectrograms.size(), 1);
+    const QwtColorMap* colours = static_cast<QwtPlotSpectrogram*>(spectrograms.front())->colorMap();
+    QVERIFY(colours);
+    QCOMPARE(qAlpha(colours->rgb(QwtInterval(0, 2), std::nan(""))), 0);
+    QCOMPARE(qAlpha(colours->rgb(QwtInterval(0, 2), 1.0)), 255);
+    const QColor canvas = heat->canvasBackground().color();
+    QVERIFY(canvas.red() == canvas.green() && canvas.green() == canvas.blue() && canvas.red() < 240);  // grey
+    QVERIFY(heat->axisWidget(QwtPlot::yRight)->isColorBarEnabled());
+    QVERIFY(!heat->axisTitle(QwtPlot::yRight).text().isEmpty());
+    QVERIFY(heat->footer().text().contains(QStringLiteral("grey: no data")));
 
     const QList<QList<QByteArray>> summary = csvRows(QDir(cliDir_).filePath(QStringLiteral("scan_summary.csv")));
     QCOMPARE(summary.size(), 3);
