@@ -346,11 +346,18 @@ class ScanDialogTest : public QObject {
     for (const QSize size : {QSize(1200, 740), QSize(1840, 1000)}) {
       d.resize(size);
       const QString suffix = size.width() > 1280 ? QStringLiteral("-1920x1080") : QString();
-      const std::pair<int, int> tabs[] = {{0, 0}, {1, 2}, {2, 1}};  // f_t | D; heat map | b₂; curves | long
-      const QString names[] = {QString(), QStringLiteral("-heatmap"), QStringLiteral("-exponent")};
-      for (int i = 0; i < 3; ++i) {
+      // f_t | D; heat map | b₂; curves | long segments; f_t | table
+      const std::pair<int, int> tabs[] = {{0, 0}, {1, 2}, {2, 1}, {0, 3}};
+      const QString names[] = {QString(), QStringLiteral("-heatmap"), QStringLiteral("-exponent"),
+                               QStringLiteral("-table")};
+      for (int i = 0; i < 4; ++i) {
         upper->setCurrentIndex(tabs[i].first);
         lower->setCurrentIndex(tabs[i].second);
+        if (i == 1) {  // the value under the mouse, on the heat map
+          QWidget* canvas = d.resultPlot(QStringLiteral("heatMap"))->canvas();
+          QTest::qWait(200);
+          QTest::mouseMove(canvas, QPoint(canvas->width() * 3 / 10, canvas->height() / 2));
+        }
         QTest::qWait(300);
         QVERIFY(d.grab().save(QDir(out).filePath(QStringLiteral("k-scan-dialog%1%2.png").arg(names[i], suffix))));
       }

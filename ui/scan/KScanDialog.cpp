@@ -23,7 +23,9 @@
 #include <qwt_plot.h>
 #include <qwt_plot_curve.h>
 #include <qwt_plot_grid.h>
+#include <qwt_picker_machine.h>
 #include <qwt_plot_intervalcurve.h>
+#include <qwt_plot_picker.h>
 #include <qwt_plot_spectrogram.h>
 #include <qwt_raster_data.h>
 #include <qwt_scale_engine.h>
@@ -165,6 +167,31 @@ class HeatMapData : public QwtRasterData {
   QwtInterval x_, y_, z_;
 };
 
+/// The heat map's value under the mouse: the pointer's K and τ and the cell's number (the colours stop at 0 and
+/// kHeatMapTop; this says what lies beyond), or "no data".
+class HeatMapPicker : public QwtPlotPicker {
+ public:
+  HeatMapPicker(QwtPlot* plot, const QwtPlotSpectrogram* map)
+      : QwtPlotPicker(kAxisX, kAxisY, QwtPicker::NoRubberBand, QwtPicker::AlwaysOn, plot->canvas()), map_(map) {
+    setStateMachine(new QwtPickerTrackerMachine);
+    setTrackerPen(QPen(Qt::black));
+  }
+
+ protected:
+  QwtText trackerTextF(const QPointF& pos) const override {
+    const double v = map_->data()->value(pos.x(), pos.y());
+    QwtText text(QStringLiteral("K %1, τ %2: %3")
+                     .arg(pos.x(), 0, 'f', 3)
+                     .arg(pos.y(), 0, 'g', 3)
+                     .arg(std::isnan(v) ? QObject::tr("no data") : QString::number(v, 'g', 4)));
+    text.setBackgroundBrush(QColor(255, 255, 255, 220));
+    return text;
+  }
+
+ private:
+  const QwtPlotSpectrogram* map_;
+};
+
 }  // namespace
 
 KScanDialog::KScanDialog(const RunSpec& base, QWidget* parent) : QDialog(parent), base_(base) {
@@ -268,6 +295,7 @@ KScanDialog::KScanDialog(const RunSpec& base, QWidget* parent) : QDialog(parent)
   heatMap_->setColorMap(new HeatColours);
   heatMap_->setData(new HeatMapData(ScanHeatMap{}));
   heatMap_->attach(heatMapPlot_);
+  new HeatMapPicker(heatMapPlot_, heatMap_);  // owned by the canvas
   heatMapPlot_->enableAxis(kAxisYRight);
   QwtScaleWidget* colourBar = heatMapPlot_->axisWidget(kAxisYRight);
   colourBar->setColorBarEnabled(true);
@@ -300,7 +328,10 @@ KScanDialog::KScanDialog(const RunSpec& base, QWidget* parent) : QDialog(parent)
   table_ = new QTableWidget(0, 9, this);
   table_->setHorizontalHeaderLabels({tr("K"), tr("xmin"), tr("xmax"), tr("blocks"), tr("segments"), tr("D ± error"),
                                      tr("longest (steps)"), tr("steps in ≥10⁴"), tr("b₂ area (fraction)")});
-  table_->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
+  // Each column as wide as its contents (a horizontal scroll bar rather than cut cells); the last fills the rest.
+  table_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
+  table_->horizontalHeader()->setStretchLastSection(true);
+  table_->setWordWrap(false);
   table_->verticalHeader()->setVisible(false);
   table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
   // Small minimum sizes: the dialog fits a 1280 × 800 screen whatever the plots' size hints.
@@ -560,7 +591,7 @@ void KScanDialog::replot() {
                                QString::number(p.segments),
                                std::isfinite(p.DError)
                                    ? QStringLiteral("%1 ± %2").arg(p.D, 0, 'g', 4).arg(p.DError, 0, 'g', 2)
-                                   : tr("%1 (dominated by its longest segments: no error)").arg(p.D, 0, 'g', 4),
+                                   : tr("%1 (tail dominates: no error)").arg(p.D, 0, 'g', 4),
                                p.longestSteps > 0 ? QString::number(p.longestSteps) : QStringLiteral("—"),
                                QString::number(p.longFraction, 'f', 3),
                                p.boxInvariant ? QStringLiteral("%1 (%2)")
@@ -568,6 +599,9 @@ void KScanDialog::replot() {
                                                     .arg(p.boxInvariant->b2.fraction, 0, 'f', 4)
                                               : tr("not computed")};
     for (int c = 0; c < cells.size(); ++c) table_->setItem(row, c, new QTableWidgetItem(cells[c]));
+    if (!std::isfinite(p.DError))
+      table_->item(row, 5)->setToolTip(tr("D is dominated by its longest segments: the run supports no error of D "
+                                          "(archipelago-cli stats says why)"));
   }
   auto* bars = new QwtPlotIntervalCurve(tr("one sigma"));
   bars->setStyle(QwtPlotIntervalCurve::NoCurve);
