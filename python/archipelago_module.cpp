@@ -24,6 +24,8 @@
 #include "core/spec/RunSpec.hpp"
 #include "core/stats/RunStatistics.hpp"
 #include "core/stats/StochasticAreaQuantities.hpp"
+#include "core/stats/RunEnsemble.hpp"
+#include "core/stats/TailAnalysis.hpp"
 #include "core/portrait/StochasticArea.hpp"
 #include "core/theory/SmallKTheory.hpp"
 #include "core/theory/KScan.hpp"
@@ -401,16 +403,36 @@ PYBIND11_MODULE(_archipelago, m) {
       .def("statistics", [](const Run& r) {
           r.check();
           const TrappingStatistics s = statisticsOf(r.state);  // with the GIL: no advance() can run meanwhile
+          // D's honest error, as `stats` prints it: the bootstrap over segments (default options), none (NaN)
+          // when the longest segments dominate D or there are too few segments to resample.
+          double DError = kTailUndefined;
+          bool dominated = false;
+          std::string verdict;
+          if (s.segments > 0) {
+            try {
+              const TailAnalysis tail = analyseTail(ensembleOf({r.state}));
+              DError = supportedDError(tail);
+              dominated = tail.dominated();
+              verdict = dominanceMessage(tail);
+            } catch (const std::invalid_argument& e) {
+              verdict = std::string("no error of D: ") + e.what();
+            }
+          }
           py::dict d;
           d["f"] = seriesDict(s.f); d["p"] = seriesDict(s.p); d["P"] = seriesDict(s.P); d["C"] = seriesDict(s.C);
           d["local_exponent"] = seriesDict(s.localExponent); d["S"] = seriesDict(s.S); d["Dt"] = seriesDict(s.Dt);
-          d["alpha"] = s.alpha; d["alpha_error"] = s.alphaError; d["D"] = s.D; d["D_error"] = s.DError;
+          d["alpha"] = s.alpha; d["alpha_error"] = s.alphaError; d["D"] = s.D; d["D_error"] = DError;
+          d["D_error_subsets"] = s.DError; d["D_dominated"] = dominated; d["D_verdict"] = verdict;
           d["sum_t_f"] = s.sumTf; d["segments"] = s.segments; d["longest_blocks"] = s.longestBlocks;
           return d; },
            "The statistics of section 3 (core/stats/TrappingStatistics.hpp), each series a dict of arrays x, value, error\n"
            "(one-sigma, from the spread over subsets): f (f_t per step), p = alpha f_t, P (P_t, eq. pdef), C (C_tau,\n"
            "eq. cdef), local_exponent (-dlog C/dlog tau, fig. 6d), S (S_t, eq. spreaddef), Dt (S_t/2t); scalars alpha\n"
-           "(mean segment length, steps), D (eq. ddef) with errors.  Lengths and times in steps of N.");
+           "(mean segment length, steps) and alpha_error, D (eq. ddef).  D_error is D's one-sigma error where the run\n"
+           "supports one, as `archipelago-cli stats` gives it (core supportedDError: the bootstrap over segments), NaN\n"
+           "when the longest segments dominate D (D_dominated True; D_verdict says why in words, empty otherwise);\n"
+           "D_error_subsets is the paper's error over the subsets, far too small for this heavy tail.  Lengths and\n"
+           "times in steps of N.");
 
   m.def("start", &startRun, py::arg("spec") = py::none(),
         "A fresh run from a run spec (JSON text or dict, format archipelago-spec: core/spec/RunSpec.hpp) and/or keyword\n"
@@ -495,13 +517,14 @@ PYBIND11_MODULE(_archipelago, m) {
           py::dict d;
           d["K"] = p.K; d["xmin"] = p.box.xmin; d["xmax"] = p.box.xmax; d["blocks_done"] = p.blocksDone;
           d["blocks_total"] = p.blocksTotal; d["segments"] = p.segments; d["D"] = p.D; d["D_error"] = p.DError;
-          d["longest_steps"] = p.longestSteps; d["long_fraction"] = p.longFraction;
+          d["D_error_subsets"] = st.DError; d["longest_steps"] = p.longestSteps; d["long_fraction"] = p.longFraction;
           if (p.boxInvariant) { d["b2"] = p.boxInvariant->b2.area; d["b2_D"] = p.boxInvariant->b2D;
                                 d["b2_D_error"] = p.boxInvariant->b2DError; }
           return d; },
         py::arg("run"), py::arg("fraction") = py::none(),
         "The K scan's summary of one run (section 5): D, the longest segment, the fraction of time in segments of at\n"
-        "least 10^4 steps, and b2 D when the visited fraction of stochastic_area() is given.");
+        "least 10^4 steps, and b2 D when the visited fraction of stochastic_area() is given.  D_error (and b2_D_error):\n"
+        "the supported error of statistics(), NaN when the longest segments dominate D; D_error_subsets: the subsets'.");
 
   // ---- the Markov model of appendix C (core/markov/MarkovModel.hpp) ----
   m.def("markov", [](std::vector<std::int64_t> lengths, std::int64_t points, std::int64_t tauMax, double h0) {

@@ -91,8 +91,8 @@ std::string scanLocalExponentCsv(const std::vector<ScanRunSummary>& runs) {
 
 std::string scanSummaryCsv(const std::vector<ScanRunSummary>& runs) {
   std::string out = scanHeader(runs);
-  line(out, "columns", "K; box xmin, xmax; blocks done of T; segments; D (eq. ddef) and its one-sigma error over the "
-                       "subsets; longest segment (steps); fraction of the time in segments >= 1e4 steps; b2 as an "
+  line(out, "columns", "K; box xmin, xmax; blocks done of T; segments; D (eq. ddef) and its one-sigma bootstrap error "
+                       "over segments (empty when the longest segments dominate D); longest segment (steps); fraction of the time in segments >= 1e4 steps; b2 as an "
                        "area and as a fraction of the box (appendix A), b2*D and its error (eq. A3; empty when b2 "
                        "was not computed)");
   out += "K,xmin,xmax,blocks_done,T,segments,D,D_error,longest_steps,time_fraction_ge_1e4,b2_area,b2_fraction,b2_D,"

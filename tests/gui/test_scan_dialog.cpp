@@ -1,7 +1,12 @@
 // The K-scan dialog (ui/scan/KScanDialog): a tiny scan runs to the end and its summaries equal, byte for byte,
 // those of `archipelago-cli scan` with the same parameters (both call core's runKScan); a scan stopped mid-way
 // and started again resumes and gives the identical summaries; bad inputs are refused with a clear message and
-// start nothing; Enter starts, Esc closes when idle.
+// start nothing; Enter starts, Esc closes when idle.  What the dialog draws is what the CLI wrote: every cell
+// of the heat map equals scan_local_exponent.csv's (empty cells: no data), the b₂ (area, fraction), longest
+// segment and long-segment fraction points equal scan_summary.csv's columns.
+//
+// With ARCHIPELAGO_SCREENSHOT_DIR set (run under xvfb-run with QT_QPA_PLATFORM=xcb), `screenshots` runs a
+// 12-K scan and saves the dialog at 1280 × 800 and 1920 × 1080 there (the README's docs/images/k-scan-dialog*.png).
 
 #include <QDir>
 #include <QFile>
@@ -9,8 +14,18 @@
 #include <QLineEdit>
 #include <QProcess>
 #include <QSignalSpy>
+#include <QTabWidget>
 #include <QTemporaryDir>
 #include <QtTest>
+#include <qwt_plot.h>
+#include <qwt_color_map.h>
+#include <qwt_plot_curve.h>
+#include <qwt_plot_spectrogram.h>
+#include <qwt_scale_widget.h>
+#include <qwt_text.h>
+
+#include <cmath>
+#include <map>
 
 #include "GuiTestSupport.hpp"
 #include "core/runfile/RunFile.hpp"
@@ -30,6 +45,8 @@ namespace {
 const QString kKs = QStringLiteral("0.1, 0.3");
 const QString kM = QStringLiteral("64"), kT = QStringLiteral("100000"), kQ = QStringLiteral("16"),
               kSeed = QStringLiteral("3"), kThreads = QStringLiteral("2");
+// b₂ of each box with 10⁶ steps: a coarse area, but every cell and column of the comparison is exercised.
+const QString kB2 = QStringLiteral("1000000");
 
 void fill(KScanDialog& d, const QString& folder) {
   d.kField()->setText(kKs);
@@ -38,6 +55,7 @@ void fill(KScanDialog& d, const QString& folder) {
   d.field(QStringLiteral("q"))->setText(kQ);
   d.field(QStringLiteral("seed"))->setText(kSeed);
   d.field(QStringLiteral("threads"))->setText(kThreads);
+  d.field(QStringLiteral("b2Iterations"))->setText(kB2);
   d.folderField()->setText(folder);
 }
 
@@ -47,6 +65,34 @@ QByteArray contents(const QString& path) {
 }
 
 const char* const kSummaries[] = {"scan_summary.csv", "scan_f_t.csv", "scan_local_exponent.csv"};
+
+/// A CSV file's rows (without the "# " lines), each a list of cells; the header first.
+QList<QList<QByteArray>> csvRows(const QString& path) {
+  QList<QList<QByteArray>> rows;
+  for (const QByteArray& line : contents(path).split('\n'))
+    if (!line.isEmpty() && !line.startsWith('#')) rows.append(line.split(','));
+  return rows;
+}
+
+/// A cell's number; NaN for an empty cell (undefined).
+double cell(const QByteArray& text) {
+  if (text.isEmpty()) return std::nan("");
+  bool ok = false;
+  const double v = text.toDouble(&ok);
+  return ok ? v : -12345.678;  // never equal to a plotted value
+}
+
+/// The points of the curve titled `title` in `plot`, by K (x).
+std::map<double, double> curvePoints(QwtPlot* plot, const QString& title) {
+  std::map<double, double> points;
+  if (!plot) return points;
+  for (QwtPlotItem* item : plot->itemList(QwtPlotItem::Rtti_PlotCurve)) {
+    if (item->title().text() != title) continue;
+    const auto* curve = static_cast<QwtPlotCurve*>(item);
+    for (size_t i = 0; i < curve->dataSize(); ++i) points[curve->sample(static_cast<int>(i)).x()] = curve->sample(static_cast<int>(i)).y();
+  }
+  return points;
+}
 
 }  // namespace
 
@@ -65,9 +111,85 @@ class ScanDialogTest : public QObject {
     cli.start(QStringLiteral(ARCHIPELAGO_CLI),
               {QStringLiteral("scan"), QStringLiteral("--K"), QStringLiteral("0.1,0.3"), QStringLiteral("--M"), kM,
                QStringLiteral("--T"), kT, QStringLiteral("--q"), kQ, QStringLiteral("--seed"), kSeed,
-               QStringLiteral("--threads"), kThreads, QStringLiteral("--dir"), cliDir_, QStringLiteral("--quiet")});
+               QStringLiteral("--threads"), kThreads, QStringLiteral("--b2-iterations"), kB2, QStringLiteral("--dir"),
+               cliDir_, QStringLiteral("--quiet")});
     QVERIFY(cli.waitForFinished(300000));
     QVERIFY2(cli.exitStatus() == QProcess::NormalExit && cli.exitCode() == 0, cli.readAllStandardError().constData());
+  }
+
+  /// The dialog's heat map, cell by cell, against the CLI's scan_local_exponent.csv; its b₂, longest-segment
+  /// and long-fraction points against the CLI's scan_summary.csv.
+  void comparePlotsWithCli(KScanDialog& d) {
+    runCli();
+    const QList<QList<QByteArray>> map = csvRows(QDir(cliDir_).filePath(QStringLiteral("scan_local_exponent.csv")));
+    QVERIFY(map.size() > 100);
+    QCOMPARE(map[0].size(), 3);  // tau, 0.1, 0.3
+    int defined = 0, undefined = 0;
+    for (int r = 1; r < map.size(); ++r) {
+      QCOMPARE(map[r].size(), 3);
+      const double tau = cell(map[r][0]);
+      for (int c = 1; c < 3; ++c) {
+        const double K = cell(map[0][c]);
+        const double expected = cell(map[r][c]);
+        const double drawn = d.heatMapValue(K, tau);
+        if (std::isnan(expected)) {
+          QVERIFY2(std::isnan(drawn), qPrintable(QStringLiteral("K %1 tau %2: %3").arg(K).arg(tau).arg(drawn)));
+          ++undefined;
+        } else {
+          QVERIFY2(drawn == expected,
+                   qPrintable(QStringLiteral("K %1 tau %2: %3 != %4").arg(K).arg(tau).arg(drawn).arg(expected)));
+          ++defined;
+        }
+      }
+    }
+    QVERIFY(defined > 100);
+    QVERIFY(undefined > 0);  // the long-τ cells of K = 0.3, whose segments stay short, have no data
+    QVERIFY(std::isnan(d.heatMapValue(0.1, 0.5)));  // below the τ grid: no cell
+    QVERIFY(std::isnan(d.heatMapValue(1.0, 2.0)));  // far from every K: no cell
+    // A cell without data is drawn transparent over the grey canvas; a defined one opaque; a colour bar with a
+    // title beside it.
+    QwtPlot* heat = d.resultPlot(QStringLiteral("heatMap"));
+    QVERIFY(heat);
+    const QwtPlotItemList spectrograms = heat->itemList(QwtPlotItem::Rtti_PlotSpectrogram);
+    QCOMPARE(spectrograms.size(), 1);
+    const QwtColorMap* colours = static_cast<QwtPlotSpectrogram*>(spectrograms.front())->colorMap();
+    QVERIFY(colours);
+    QCOMPARE(qAlpha(colours->rgb(QwtInterval(0, 2), std::nan(""))), 0);
+    QCOMPARE(qAlpha(colours->rgb(QwtInterval(0, 2), 1.0)), 255);
+    const QColor canvas = heat->canvasBackground().color();
+    QVERIFY(canvas.red() == canvas.green() && canvas.green() == canvas.blue() && canvas.red() < 240);  // grey
+    QVERIFY(heat->axisWidget(QwtPlot::yRight)->isColorBarEnabled());
+    QVERIFY(!heat->axisTitle(QwtPlot::yRight).text().isEmpty());
+    QVERIFY(heat->footer().text().contains(QStringLiteral("grey: no data")));
+
+    const QList<QList<QByteArray>> summary = csvRows(QDir(cliDir_).filePath(QStringLiteral("scan_summary.csv")));
+    QCOMPARE(summary.size(), 3);
+    const QList<QByteArray>& header = summary[0];
+    const auto column = [&](const char* name) { return static_cast<int>(header.indexOf(QByteArray(name))); };
+    const struct {
+      const char* plot;
+      QString curve;
+      const char* column;
+    } checks[] = {
+        {"b2", QStringLiteral("b₂, area (left)"), "b2_area"},
+        {"b2", QStringLiteral("b₂ / L², fraction of the box (right)"), "b2_fraction"},
+        {"long", QStringLiteral("longest segment (left)"), "longest_steps"},
+        {"long", QStringLiteral("steps in segments ≥ 10⁴, fraction (right)"), "time_fraction_ge_1e4"},
+    };
+    for (const auto& check : checks) {
+      const std::map<double, double> points = curvePoints(d.resultPlot(QLatin1String(check.plot)), check.curve);
+      QVERIFY2(column(check.column) >= 0, check.column);
+      QVERIFY2(points.size() == 2, check.column);
+      for (int r = 1; r < summary.size(); ++r) {
+        const double K = cell(summary[r][column("K")]);
+        const double expected = cell(summary[r][column(check.column)]);
+        QVERIFY2(std::isfinite(expected), check.column);
+        QVERIFY2(points.count(K) == 1, check.column);
+        QVERIFY2(points.at(K) == expected,
+                 qPrintable(QStringLiteral("%1 at K %2: %3 != %4").arg(QLatin1String(check.column)).arg(K)
+                                .arg(points.at(K)).arg(expected)));
+      }
+    }
   }
 
   void compareWithCli(const QString& dir) {
@@ -95,6 +217,7 @@ class ScanDialogTest : public QObject {
     QCOMPARE(d.results()[0].point.K, 0.1);
     QCOMPARE(d.results()[1].point.K, 0.3);
     compareWithCli(dir);
+    comparePlotsWithCli(d);
 
     // Export elsewhere writes the same files.
     const QString exported = tmp_.filePath(QStringLiteral("exported"));
@@ -171,6 +294,8 @@ class ScanDialogTest : public QObject {
         {QStringLiteral("T"), QString(), QStringLiteral("T = '' is not a whole number")},
         {QStringLiteral("q"), QStringLiteral("1.5"), QStringLiteral("q = '1.5' is not a whole number")},
         {QStringLiteral("threads"), QStringLiteral("-1"), QStringLiteral("threads")},
+        {QStringLiteral("b2Iterations"), QStringLiteral("-5"), QStringLiteral("b₂ steps = '-5' is not a whole number")},
+        {QStringLiteral("b2Iterations"), QStringLiteral("2251799813685248"), QStringLiteral("b2 at K = 0.1")},
         {QStringLiteral("folder"), QString(), QStringLiteral("empty")},
         {QStringLiteral("folder"), plain.fileName(), QStringLiteral("not a folder")},
         {QStringLiteral("folder"), plain.fileName() + QStringLiteral("/sub"), plain.fileName()},
@@ -189,6 +314,54 @@ class ScanDialogTest : public QObject {
       QVERIFY2(!d.message().contains(u'\n'), qPrintable(d.message()));
     }
     QVERIFY(!QFileInfo::exists(dir));  // nothing started, nothing written
+  }
+
+  void fitsA1280x800Screen() {
+    KScanDialog d{RunSpec{}};
+    // The window frame and a panel take some 40 pixels of 800, a few of 1280.
+    QVERIFY2(d.minimumSizeHint().width() <= 1240 && d.minimumSizeHint().height() <= 740,
+             qPrintable(QStringLiteral("%1 x %2").arg(d.minimumSizeHint().width()).arg(d.minimumSizeHint().height())));
+    QVERIFY(d.width() <= 1240 && d.height() <= 760);
+  }
+
+  void screenshots() {
+    const QString out = qEnvironmentVariable("ARCHIPELAGO_SCREENSHOT_DIR");
+    if (out.isEmpty()) QSKIP("ARCHIPELAGO_SCREENSHOT_DIR not set");
+    KScanDialog d{RunSpec{}};
+    const QString dir = tmp_.filePath(QStringLiteral("shots"));
+    fill(d, dir);
+    d.kField()->setText(QStringLiteral("0.05:0.6:0.05"));
+    d.field(QStringLiteral("T"))->setText(QStringLiteral("40000"));
+    d.field(QStringLiteral("seed"))->setText(QStringLiteral("1"));
+    d.field(QStringLiteral("b2Iterations"))->setText(QStringLiteral("67108864"));
+    d.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&d));
+    QSignalSpy ended(&d, &KScanDialog::scanEnded);
+    QVERIFY2(d.start(), qPrintable(d.message()));
+    QVERIFY(ended.wait(600000));
+    QCOMPARE(ended.takeFirst().at(0).toBool(), true);
+    auto* upper = d.findChild<QTabWidget*>(QStringLiteral("upperTabs"));
+    auto* lower = d.findChild<QTabWidget*>(QStringLiteral("lowerTabs"));
+    QVERIFY(upper && lower);
+    for (const QSize size : {QSize(1200, 740), QSize(1840, 1000)}) {
+      d.resize(size);
+      const QString suffix = size.width() > 1280 ? QStringLiteral("-1920x1080") : QString();
+      // f_t | D; heat map | b₂; curves | long segments; f_t | table
+      const std::pair<int, int> tabs[] = {{0, 0}, {1, 2}, {2, 1}, {0, 3}};
+      const QString names[] = {QString(), QStringLiteral("-heatmap"), QStringLiteral("-exponent"),
+                               QStringLiteral("-table")};
+      for (int i = 0; i < 4; ++i) {
+        upper->setCurrentIndex(tabs[i].first);
+        lower->setCurrentIndex(tabs[i].second);
+        if (i == 1) {  // the value under the mouse, on the heat map
+          QWidget* canvas = d.resultPlot(QStringLiteral("heatMap"))->canvas();
+          QTest::qWait(200);
+          QTest::mouseMove(canvas, QPoint(canvas->width() * 3 / 10, canvas->height() / 2));
+        }
+        QTest::qWait(300);
+        QVERIFY(d.grab().save(QDir(out).filePath(QStringLiteral("k-scan-dialog%1%2.png").arg(names[i], suffix))));
+      }
+    }
   }
 
   void enterStartsAndEscapeCloses() {

@@ -1,8 +1,10 @@
 """A run from Python is bit-identical to `archipelago-cli run` for the same spec (histograms, segments, states)."""
 import json
+import math
 import subprocess
 
 import numpy as np
+import pytest
 
 import archipelago as ap
 
@@ -75,3 +77,46 @@ def test_replay_reproduces_recorded_segment_exactly():
     orb = ap.orbit(0.1, -0.8, 0.5, X0=int(rec["X"][0]), Y0=int(rec["Y"][0]), steps=16, backward=True)
     # Randomization happens only between blocks, so the first block (q = 16 steps) is plain N^-1.
     assert np.array_equal(orb["X"][:17], seg["X"][:17])
+
+
+def _csv_values(path):
+    """quantity -> (value, error-or-lo) of a quantity,value,... CSV file; empty and "nan" cells are NaN."""
+    values = {}
+    for line in path.read_text().splitlines():
+        if not line or line.startswith("#") or line.startswith("quantity,"):
+            continue
+        cells = line.split(",")
+        values[cells[0]] = [float(c) if c else math.nan for c in cells[1:]]
+    return values
+
+
+def _same(a, b):
+    return (math.isnan(a) and math.isnan(b)) or a == b
+
+
+@pytest.mark.parametrize("K, dominated", [(0.3, False), (0.1, True)])
+def test_D_error_is_the_supported_error_of_cli_stats(tmp_path, cli, K, dominated):
+    # statistics()["D_error"] is D's error as `stats` gives it (the bootstrap over segments; NaN when the longest
+    # segments dominate D), "D_error_subsets" the subsets' error of its summary.csv.  At K = 0.3 the segments are
+    # short and the bootstrap error stands; at K = 0.1 (the paper's case) a few long segments carry D.
+    xmin, xmax = ap.scan_box(K)
+    run = ap.start(K=K, xmin=xmin, xmax=xmax, T=20000, M=16, seed=5)
+    run.advance(threads=2)
+    path = tmp_path / "run.json"
+    run.save(path)
+    subprocess.run([cli, "stats", str(path), "--csv", str(tmp_path / "csv"), "--tail-csv", str(tmp_path / "tail")],
+                   check=True, timeout=120, stdout=subprocess.DEVNULL)
+    tail = _csv_values(tmp_path / "tail" / "tail_summary.csv")
+    summary = _csv_values(tmp_path / "csv" / "summary.csv")
+    s = run.statistics()
+    assert s["D"] == summary["D"][0]
+    assert s["D_dominated"] == dominated == (tail["dominated"][0] == 1)
+    assert _same(s["D_error"], tail["D_bootstrap_error"][0])
+    assert s["D_error_subsets"] == summary["D"][1] > 0
+    if dominated:
+        assert math.isnan(s["D_error"])
+        assert s["D_verdict"].startswith("D is dominated by its longest segments")
+    else:
+        assert 0 < s["D_error"] < s["D"] and s["D_verdict"] == ""
+    p = ap.scan_point(run)
+    assert _same(p["D_error"], s["D_error"]) and p["D_error_subsets"] == s["D_error_subsets"]

@@ -4,9 +4,13 @@
 /// threads) and a folder; the scan runs in the background (ui/jobs, latest wins) through core's runKScan
 /// (export/KScanRun.hpp), the very loop of `archipelago-cli scan`, so a folder is resumed the same way by
 /// either: Stop leaves the K running checkpointed in its run file, Start again resumes it and reuses the
-/// finished K.  Progress and ETA per K and for the whole scan; each K's f_t, D ± error and local exponent are
-/// drawn (log-log) and tabulated as it finishes; the summaries (export/ScanCsv.hpp) are written into the
-/// folder at the end and can be exported elsewhere.  No maths here: every number comes from core.
+/// finished K.  Progress and ETA per K and for the whole scan.  As each K finishes: its f_t (log-log, one curve
+/// per K), the local exponent of C_τ as curves and as a heat map over (K, log τ) (localExponentHeatMap, the
+/// numbers of scan_local_exponent.csv), D ± its supported error, the longest segment and the fraction of the
+/// steps in segments ≥ 10⁴, b₂ (area and fraction, when b₂ steps > 0) against K (the ScanPoint of
+/// scan_summary.csv), and a table.  The summaries (export/ScanCsv.hpp) are written into the folder at the end
+/// and can be exported elsewhere.  No maths here: every number comes from core.  Two tab widgets in a splitter
+/// keep it inside a 1280 × 800 screen.
 ///
 /// Keys: Enter starts (the default button), Esc closes (asking first while a scan runs; closing stops it,
 /// resumably).
@@ -26,6 +30,7 @@ class QProgressBar;
 class QPushButton;
 class QTableWidget;
 class QwtPlot;
+class QwtPlotSpectrogram;
 
 namespace archipelago::ui {
 
@@ -56,6 +61,12 @@ class KScanDialog : public QDialog {
   [[nodiscard]] QLineEdit* kField() const noexcept { return kValues_; }
   [[nodiscard]] QLineEdit* field(const QString& name) const;
   [[nodiscard]] QLineEdit* folderField() const noexcept { return folder_; }
+  /// The result plots by object name ("ft", "D", "exponent", "heatMap", "long", "b2"), for tests; nullptr
+  /// for another name.
+  [[nodiscard]] QwtPlot* resultPlot(const QString& name) const;
+  /// The heat map's cell drawn at (K, τ): the local exponent of the finished K nearest to K at the grid τ nearest
+  /// in log τ; NaN where there is no data (drawn grey) or no K has finished.
+  [[nodiscard]] double heatMapValue(double K, double tau) const;
 
  Q_SIGNALS:
   /// The scan ended: finished (every K and the summaries written), stopped, or failed.
@@ -88,6 +99,7 @@ class KScanDialog : public QDialog {
   QLineEdit* q_ = nullptr;
   QLineEdit* seed_ = nullptr;
   QLineEdit* threads_ = nullptr;
+  QLineEdit* b2Iterations_ = nullptr;
   QLineEdit* folder_ = nullptr;
   QPushButton* startButton_ = nullptr;
   QPushButton* stopButton_ = nullptr;
@@ -100,6 +112,10 @@ class KScanDialog : public QDialog {
   QwtPlot* ftPlot_ = nullptr;
   QwtPlot* dPlot_ = nullptr;
   QwtPlot* exponentPlot_ = nullptr;
+  QwtPlot* heatMapPlot_ = nullptr;
+  QwtPlotSpectrogram* heatMap_ = nullptr;
+  QwtPlot* longPlot_ = nullptr;
+  QwtPlot* b2Plot_ = nullptr;
   QTableWidget* table_ = nullptr;
   std::vector<std::optional<ScanRunSummary>> shown_;  // per K of the running scan, as they finish
   std::vector<ScanRunSummary> finishedRuns_;
