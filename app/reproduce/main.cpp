@@ -110,12 +110,6 @@ std::vector<ScanRunSummary> scanOrReuse(const KScanRequest& request, int threads
   return outcome.runs;
 }
 
-std::vector<double> column(const std::vector<ScanRunSummary>& runs, double (*of)(const ScanRunSummary&)) {
-  std::vector<double> v;
-  for (const auto& r : runs) v.push_back(of(r));
-  return v;
-}
-
 std::vector<QPointF> qPoints(const std::vector<PhysicalPoint>& points) {
   std::vector<QPointF> out;
   out.reserve(points.size());
@@ -373,59 +367,19 @@ int main(int argc, char** argv) {
       const std::vector<ScanRunSummary> scan = scanOrReuse(report::kScanRequest(full, out / "runs" / ("kscan-" + size)), threads);
       items.push_back(report::kScanItem(scan, full));
       if (drawing) {
-        std::vector<ui::report::FigureCurve> f;
-        for (const auto& r : scan) {
-          const double K = r.point.K;
-          bool shown = false;
-          for (double k : {0.05, 0.1, 0.25, 0.5, 0.75, 1.0, 1.3}) shown = shown || std::abs(K - k) < 1e-9;
-          if (!shown) continue;
-          ui::report::FigureCurve c;
-          c.x = r.statistics.f.x;
-          c.y = r.statistics.f.value;
-          c.name = QStringLiteral("K = %1").arg(QString::fromStdString(scanKText(K)));
-          f.push_back(std::move(c));
-        }
-        const std::string scanCmd = html(report::kScanCommand(full));
-        if (!ui::report::writeCurvesFigure(f, {QStringLiteral("K scan — f_t for seven of the 26 K"), QStringLiteral("t (steps)"),
-                                               QStringLiteral("f_t"), true, true},
-                                           QString::fromStdString((out / "figures" / "kscan-f").string()), &error))
+        if (!ui::report::writeScanFigures(scan, QString::fromStdString((out / "figures" / "kscan").string()), &error))
           throw std::runtime_error(error.toStdString());
-        figures.push_back({"S1", "the K scan of §5: f<sub>t</sub> for seven of the 26 K, each in its own box (<code>" +
-                                     scanCmd + "</code>)", "kscan-f"});
-        ui::report::FigureCurve withError, dominated;
-        withError.name = QStringLiteral("D ± bootstrap error");
-        dominated.name = QStringLiteral("D dominated by its longest segments (no error)");
-        withError.symbols = dominated.symbols = true;
-        for (const auto& r : scan) {
-          auto& c = std::isfinite(r.point.DError) ? withError : dominated;
-          c.x.push_back(r.point.K);
-          c.y.push_back(r.point.D);
-          c.error.push_back(r.point.DError);
-        }
-        if (!ui::report::writeCurvesFigure({withError, dominated}, {QStringLiteral("K scan — D(K)"), QStringLiteral("K"),
-                                                                   QStringLiteral("D"), false, true},
-                                           QString::fromStdString((out / "figures" / "kscan-D").string()), &error))
-          throw std::runtime_error(error.toStdString());
-        figures.push_back({"S2", "D(K) with its honest error (a bootstrap over segments; none where the longest "
-                                 "segments dominate D)", "kscan-D"});
-        ui::report::FigureCurve longest, threshold;
-        longest.x = column(scan, [](const ScanRunSummary& r) { return r.point.K; });
-        longest.y = column(scan, [](const ScanRunSummary& r) { return double(r.point.longestSteps); });
-        longest.name = QStringLiteral("the longest segment");
-        longest.symbols = true;
-        threshold.x = {0, 1.35};
-        threshold.y = {kScanLongSegmentSteps, kScanLongSegmentSteps};
-        threshold.name = QStringLiteral("10⁴ steps: beyond any exponential decay of §4");
-        threshold.dashed = true;
-        if (!ui::report::writeCurvesFigure({longest, threshold}, {QStringLiteral("K scan — the longest segment"),
-                                                                 QStringLiteral("K"), QStringLiteral("steps"), false, true},
-                                           QString::fromStdString((out / "figures" / "kscan-longest").string()), &error))
-          throw std::runtime_error(error.toStdString());
-        figures.push_back({"S3", "the longest segment against K: the slow algebraic decay of §5 shows as segments "
-                                 "beyond 10<sup>4</sup> steps", "kscan-longest"});
+        const std::string scanCmd = " (<code>" + html(report::kScanCommand(full)) + "</code>; the GUI's Tools ▸ K Scan…)";
+        figures.push_back({"S1", "the K scan of §5: f<sub>t</sub> for the 26 K, each in its own box" + scanCmd, "kscan-ft"});
+        figures.push_back({"S2", "the local exponent −d log C<sub>τ</sub>/d log τ over K and τ (grey: no data)",
+                           "kscan-heatmap"});
+        figures.push_back({"S3", "D(K) with its honest error (a bootstrap over segments; no bar where the longest "
+                                 "segments dominate D)", "kscan-d"});
+        figures.push_back({"S4", "the longest segment and the fraction of the steps in segments ≥ 10<sup>4</sup> "
+                                 "against K: the slow algebraic decay of §5 shows as segments beyond 10<sup>4</sup> "
+                                 "steps", "kscan-long"});
       }
     }
-    stopIfInterrupted();
     // Appendix B: the Cray-1's 75 ns and 65 hours against this machine.
     for (auto& it : report::timingItems(report::measureStepTiming(threads))) items.push_back(std::move(it));
     stopIfInterrupted();

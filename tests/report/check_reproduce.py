@@ -45,7 +45,7 @@ with tempfile.TemporaryDirectory() as out:
               f"{key}: measured and explained ({row.get('ours')})")
     index = open(os.path.join(out, "index.html"), encoding="utf-8").read()
     check(len(index) > 5000 and "<table" in index, "index.html has the table")
-    for fig in ["fig1", "fig2a", "fig2b", "fig8a", "fig8b", "kscan-f", "kscan-D", "kscan-longest", "tail-gamma",
+    for fig in ["fig1", "fig2a", "fig2b", "fig8a", "fig8b", "kscan-ft", "kscan-heatmap", "kscan-d", "kscan-long", "tail-gamma",
                 "markov-epsilon", "fig4a", "fig4b", "fig4c", "fig3a", "fig3b", "fig3c", "fig5a", "fig5b", "fig6a", "fig6b", "fig6c", "fig6d", "fig7a", "fig7b"]:
         png, svg = (os.path.join(out, "figures", fig + s) for s in (".png", ".svg"))
         check(os.path.exists(png) and os.path.getsize(png) > 10000 and open(png, "rb").read(8) == b"\x89PNG\r\n\x1a\n",

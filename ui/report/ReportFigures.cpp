@@ -28,6 +28,7 @@
 #include "core/theory/SmallKTheory.hpp"
 #include "ui/plots/LogScaleDraw.hpp"
 #include "ui/plots/StatisticsPlot.hpp"
+#include "ui/scan/KScanDialog.hpp"
 
 namespace archipelago::ui::report {
 
@@ -201,6 +202,20 @@ bool writePointsFigure(const std::vector<QPointF>& points, double x0, double x1,
   plot.setAxisScale(QwtPlot::yLeft, y0, y1);
   addMarkers(plot, markers);
   return renderPlot(plot, base, error, {800, 800}, QRectF(0, 0, 800, 800));
+}
+
+bool writeScanFigures(const std::vector<ScanRunSummary>& runs, const QString& base, QString* error) {
+  KScanDialog dialog(RunSpec{});
+  dialog.showResults(runs);
+  for (const char* name : {"ft", "heatMap", "D", "long"}) {
+    QwtPlot* plot = dialog.resultPlot(QString::fromLatin1(name));
+    if (plot == nullptr) {
+      if (error) *error = QStringLiteral("the K-scan dialog has no plot %1").arg(QLatin1String(name));
+      return false;
+    }
+    if (!renderPlot(*plot, base + QLatin1Char('-') + QString::fromLatin1(name).toLower(), error)) return false;
+  }
+  return true;
 }
 
 bool writeCurvesFigure(const std::vector<FigureCurve>& curves, const FigureAxes& axes, const QString& base,

@@ -11,6 +11,7 @@
 #include <functional>
 #include <vector>
 
+#include "core/export/ScanCsv.hpp"
 #include "core/portrait/ColourMap.hpp"
 #include "core/stats/StatisticsTable.hpp"
 #include "core/theory/TheoryCurves.hpp"
@@ -41,6 +42,11 @@ bool writePortraitFigure(const RasterImage& image, double x0, double x1, double 
 /// resolution, so that a million points make a small SVG), with `markers`, as `base`.png/.svg.
 bool writePointsFigure(const std::vector<QPointF>& points, double x0, double x1, double y0, double y1,
                        const QString& title, const QString& base, QString* error, const FigureMarkers& markers = {});
+
+/// §5's K scan as the GUI's K-scan dialog draws it (ui/scan/KScanDialog: its own plots, fed the summaries):
+/// f_t per K, the local exponent's heat map over (K, τ), D(K) with its supported error, the longest segment and
+/// the fraction of steps in long segments against K, as `base`-ft, -heatmap, -D, -long (.png/.svg).
+bool writeScanFigures(const std::vector<ScanRunSummary>& runs, const QString& base, QString* error);
 
 /// One curve of writeCurvesFigure().
 struct FigureCurve {

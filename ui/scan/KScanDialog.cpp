@@ -540,6 +540,13 @@ void KScanDialog::clearResults() {
   replot();
 }
 
+void KScanDialog::showResults(const std::vector<ScanRunSummary>& runs) {
+  shown_.assign(runs.begin(), runs.end());
+  finishedRuns_ = runs;
+  exportButton_->setEnabled(!runs.empty());
+  replot();
+}
+
 void KScanDialog::addResult(std::size_t index, const ScanRunSummary& run) {
   if (index >= shown_.size()) return;
   shown_[index] = run;

@@ -52,6 +52,9 @@ class KScanDialog : public QDialog {
   [[nodiscard]] bool running() const noexcept { return running_; }
   /// The summaries of the last scan that finished (empty before).
   [[nodiscard]] const std::vector<ScanRunSummary>& results() const noexcept { return finishedRuns_; }
+  /// Shows the summaries of a finished scan (as if it had just run): its plots and table.  The reproduction
+  /// report (ui/report) draws its K-scan figures this way, with the dialog's own plots.
+  void showResults(const std::vector<ScanRunSummary>& runs);
   /// Writes the scan CSVs of the last finished scan into `dir`; false, with the reason shown, when it cannot.
   bool exportCsv(const QString& dir);
   /// The last message shown (an error, or where the scan is).
