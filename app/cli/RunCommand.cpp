@@ -74,7 +74,12 @@ int runCommand(const RunOptions& o, const std::vector<std::string>& explicitPara
   options.run.maxChunkBlocks = o.maxChunkBlocks;
   options.checkpoint = checkpoint;
   options.checkpointSeconds = o.checkpointSeconds;
-  options.breakLineBeforeWarning = tty && !o.quiet;
+  options.stopRequested = [] { return interruptRequested(); };
+  options.warning = [&](const std::string& reason, double retrySeconds) {
+    if (tty && !o.quiet) std::fputc('\n', stderr);  // off the progress bar's line
+    std::fprintf(stderr, "WARNING: checkpoint not written: %s; the run goes on and retries in %g s\n", reason.c_str(),
+                 retrySeconds);
+  };
   LastCheckpoint last{o.resume, state.blocksDone};
   auto lastLine = std::chrono::steady_clock::now();
   auto progress = [&](const TrappingState&, const TrappingProgress& p) {

@@ -112,40 +112,8 @@ std::string clockText(double seconds) {
   return buf;
 }
 
-TrappingState runWithCheckpoints(TrappingState state, const CheckpointedRunOptions& options, LastCheckpoint& last,
-                                 const std::function<void(const TrappingState&, const TrappingProgress&)>& progress) {
-  std::stop_source stopper;
-  auto lastCheckpointTime = std::chrono::steady_clock::now();
-  auto observer = [&](const TrappingState& s, const TrappingProgress& p) {
-    const auto now = std::chrono::steady_clock::now();
-    if (interruptRequested()) stopper.request_stop();
-    if (std::chrono::duration<double>(now - lastCheckpointTime).count() >= options.checkpointSeconds && !s.finished()) {
-      lastCheckpointTime = now;  // a failed write is retried at the next interval, not at every chunk
-      // A checkpoint that cannot be written (full disk, vanished folder) must not cost the run: warn, go on.
-      try {
-        saveRunFile(options.checkpoint, s);
-        last = {options.checkpoint, s.blocksDone};
-      } catch (const std::exception& e) {
-        if (options.breakLineBeforeWarning) std::fputc('\n', stderr);
-        std::fprintf(stderr, "WARNING: checkpoint not written: %s; the run goes on and retries in %g s\n", e.what(),
-                     options.checkpointSeconds);
-      }
-    }
-    if (progress) progress(s, p);
-  };
-  return runTrapping(std::move(state), options.run, observer, stopper.get_token());
-}
-
 void saveRunFileOrSayWhere(const std::string& path, const TrappingState& state, const LastCheckpoint& last) {
-  try {
-    saveRunFile(path, state);
-  } catch (const std::exception& e) {
-    const std::string kept = last.path.empty()
-        ? std::string("no checkpoint was written")
-        : "the last checkpoint (" + std::to_string(last.blocks) + " of " + std::to_string(state.params.T) +
-              " blocks) is in " + last.path + ": resume with --resume " + last.path;
-    throw std::runtime_error(std::string(e.what()) + "; " + kept);
-  }
+  archipelago::saveRunFileOrSayWhere(path, state, last, last.path.empty() ? "" : ": resume with --resume " + last.path);
 }
 
 }  // namespace archipelago::cli

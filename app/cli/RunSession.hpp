@@ -17,6 +17,7 @@
 
 #include "core/io/AtomicFile.hpp"
 #include "core/run/TrappingRun.hpp"
+#include "core/runfile/CheckpointedRun.hpp"
 #include "core/spec/RunSpec.hpp"
 
 namespace archipelago::cli {
@@ -56,29 +57,10 @@ void installInterruptHandlers();
 /// hh:mm:ss, or --:--:-- when unknown.
 [[nodiscard]] std::string clockText(double seconds);
 
-/// Where the last good checkpoint of a run is (the resumed file until one is written): what a failing final
-/// write reports.
-struct LastCheckpoint {
-  std::string path;
-  std::uint64_t blocks = 0;
-};
-
-struct CheckpointedRunOptions {
-  TrappingRunOptions run;
-  std::string checkpoint;          ///< the checkpoint file
-  double checkpointSeconds = 60;   ///< between checkpoints
-  bool breakLineBeforeWarning = false;  ///< a progress bar is on the terminal's line
-};
-
-/// Advances `state` until finished or interrupted, writing `checkpoint` every checkpointSeconds (a write that
-/// fails warns on stderr and is retried at the next interval: it must not cost the run) and calling `progress`
-/// at every chunk.  `last` is updated at each checkpoint written.
-[[nodiscard]] TrappingState runWithCheckpoints(
-    TrappingState state, const CheckpointedRunOptions& options, LastCheckpoint& last,
-    const std::function<void(const TrappingState&, const TrappingProgress&)>& progress);
-
-/// Writes the run file; when that fails, throws std::runtime_error whose text says where the work done so far is
-/// kept (`last`).
+/// The final write of `run` (core's saveRunFileOrSayWhere, runfile/CheckpointedRun.hpp, whose loop
+/// runWithCheckpoints the commands call): when it fails, the error says where the last checkpoint is and how to
+/// resume it (--resume).
+using archipelago::LastCheckpoint;
 void saveRunFileOrSayWhere(const std::string& path, const TrappingState& state, const LastCheckpoint& last);
 
 }  // namespace archipelago::cli

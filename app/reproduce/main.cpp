@@ -22,6 +22,7 @@
 #include "core/report/LongOrbit.hpp"
 #include "core/report/PaperItems.hpp"
 #include "core/run/TrappingRun.hpp"
+#include "core/runfile/CheckpointedRun.hpp"
 #include "core/runfile/RunFile.hpp"
 #include "core/stats/RunEnsemble.hpp"
 #include "core/stats/RunStatistics.hpp"
@@ -51,6 +52,8 @@ void stopIfInterrupted() {
 
 /// Runs (or resumes, or reuses) one run file under OUTDIR/runs, checkpointing every minute and at an interrupt.
 TrappingState runOrReuse(const TrappingParameters& p, const fs::path& file, int threads) {
+  const io::FileLock lock = io::FileLock::acquire(file);  // one report at a time per run file
+  io::removeStaleTemporaries(file);
   TrappingState state;
   if (fs::exists(file)) {
     state = loadRunFile(file);
@@ -63,20 +66,25 @@ TrappingState runOrReuse(const TrappingParameters& p, const fs::path& file, int 
   } else {
     state = startTrapping(p);
   }
-  TrappingRunOptions options;
-  options.threads = threads;
-  auto last = std::chrono::steady_clock::now();
-  std::stop_source stop;
-  state = runTrapping(std::move(state), options, [&](const TrappingState& s, const TrappingProgress& pr) {
-    if (gInterrupted) stop.request_stop();
+  CheckpointedRunOptions options;  // core's loop of `archipelago-cli run` (runfile/CheckpointedRun.hpp)
+  options.run.threads = threads;
+  options.checkpoint = file;
+  options.checkpointSeconds = 60;
+  options.stopRequested = [] { return gInterrupted != 0; };
+  options.warning = [](const std::string& reason, double retry) {
+    std::fprintf(stderr, "WARNING: checkpoint not written: %s; the run goes on and retries in %g s\n", reason.c_str(),
+                 retry);
+  };
+  LastCheckpoint last{state.blocksDone > 0 ? file.string() : std::string(), state.blocksDone};
+  auto lastLine = std::chrono::steady_clock::now();
+  state = runWithCheckpoints(std::move(state), options, last, [&](const TrappingState&, const TrappingProgress& pr) {
     const auto now = std::chrono::steady_clock::now();
-    if (now - last > std::chrono::seconds(60)) {
-      saveRunFile(file, s);
-      last = now;
+    if (now - lastLine > std::chrono::seconds(60)) {
+      lastLine = now;
       std::fprintf(stderr, "%s: %.1f %%, ETA %.0f s\n", file.filename().c_str(), 100 * pr.fraction, pr.etaSeconds);
     }
-  }, stop.get_token());
-  saveRunFile(file, state);
+  });
+  saveRunFileOrSayWhere(file, state, last);
   if (!state.finished()) {
     std::fprintf(stderr, "interrupted: %s saved at %.1f %%\n", file.c_str(),
                  100.0 * static_cast<double>(state.blocksDone) / static_cast<double>(state.params.T));

@@ -11,6 +11,7 @@
 
 #include "core/io/AtomicFile.hpp"
 #include "core/portrait/StochasticArea.hpp"
+#include "core/runfile/CheckpointedRun.hpp"
 #include "core/runfile/RunFile.hpp"
 #include "core/stats/RunStatistics.hpp"
 #include "core/theory/KScan.hpp"
@@ -205,8 +206,6 @@ KScanOutcome runKScan(const KScanRequest& r, const KScanObserver& observer, std:
     TrappingState state = std::filesystem::exists(item.file, ec) ? loadRunFile(item.file) : startTrapping(item.params);
     if (!(state.params == item.params)) throw std::runtime_error(item.file.string() + " changed during the scan");
     const std::uint64_t blocksAtStart = state.blocksDone;
-    std::uint64_t lastCheckpointBlocks = blocksAtStart;
-    bool checkpointWritten = blocksAtStart > 0;  // the file read holds blocksAtStart blocks
 
     auto report = [&](const TrappingState& s) {
       if (!observer.progress) return;
@@ -229,37 +228,21 @@ KScanOutcome runKScan(const KScanRequest& r, const KScanObserver& observer, std:
     };
     report(state);
 
-    // The run loop with periodic checkpoints (a failed checkpoint warns and is retried at the next interval).
-    TrappingRunOptions run;
-    run.kernel = r.kernel;
-    run.threads = r.base.threads;
-    run.maxChunkBlocks = r.maxChunkBlocks;
-    auto lastCheckpointTime = std::chrono::steady_clock::now();
-    auto chunk = [&](const TrappingState& s, const TrappingProgress&) {
-      const auto now = std::chrono::steady_clock::now();
-      if (std::chrono::duration<double>(now - lastCheckpointTime).count() >= r.checkpointSeconds && !s.finished()) {
-        lastCheckpointTime = now;
-        try {
-          saveRunFile(item.file, s);
-          lastCheckpointBlocks = s.blocksDone;
-          checkpointWritten = true;
-        } catch (const std::exception& e) {
-          if (observer.warning)
-            observer.warning(std::string("checkpoint not written: ") + e.what() + "; the run goes on and retries");
-        }
-      }
-      report(s);
-    };
-    state = runTrapping(std::move(state), run, chunk, stop);
-    try {
-      saveRunFile(item.file, state);
-    } catch (const std::exception& e) {
-      const std::string kept = checkpointWritten
-          ? "the last checkpoint (" + std::to_string(lastCheckpointBlocks) + " of " + std::to_string(state.params.T) +
-                " blocks) is in " + item.file.string()
-          : std::string("no checkpoint was written");
-      throw std::runtime_error(std::string(e.what()) + "; " + kept);
-    }
+    // The run loop with periodic checkpoints (runfile/CheckpointedRun.hpp: the loop of `run` too).
+    CheckpointedRunOptions run;
+    run.run.kernel = r.kernel;
+    run.run.threads = r.base.threads;
+    run.run.maxChunkBlocks = r.maxChunkBlocks;
+    run.checkpoint = item.file;
+    run.checkpointSeconds = r.checkpointSeconds;
+    if (observer.warning)
+      run.warning = [&](const std::string& reason, double) {
+        observer.warning("checkpoint not written: " + reason + "; the run goes on and retries");
+      };
+    LastCheckpoint last{blocksAtStart > 0 ? item.file.string() : std::string(), blocksAtStart};  // the file read
+    state = runWithCheckpoints(std::move(state), run, last,
+                               [&](const TrappingState& s, const TrappingProgress&) { report(s); }, stop);
+    saveRunFileOrSayWhere(item.file, state, last);
     if (!state.finished()) {
       outcome.stoppedIndex = k;
       outcome.stoppedFile = item.file;

@@ -1,0 +1,50 @@
+#pragma once
+/// \file CheckpointedRun.hpp
+/// \brief The one loop that advances a run with periodic checkpoints into a run file, and the final write that
+/// says where the work is when it fails.  `archipelago-cli run` (app/cli/RunSession), the K scan
+/// (export/KScanRun: the CLI's `scan` and the GUI's dialog) and the reproduction report all call it, so a
+/// checkpoint is written, retried and reported the same way everywhere.
+///
+/// A checkpoint that cannot be written (a full disk, a vanished folder) must not cost the run: the warning is
+/// reported and the write retried at the next interval (not at every chunk).  No checkpoint is written once the
+/// run is finished: the caller's final write follows.
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <stop_token>
+#include <string>
+
+#include "core/run/TrappingRun.hpp"
+
+namespace archipelago {
+
+/// Where the last good copy of a run's work is (the file resumed from, until a checkpoint is written).
+struct LastCheckpoint {
+  std::string path;
+  std::uint64_t blocks = 0;
+};
+
+struct CheckpointedRunOptions {
+  TrappingRunOptions run;
+  std::filesystem::path checkpoint;  ///< the checkpoint file
+  double checkpointSeconds = 60;     ///< between checkpoints, ≥ 0
+  /// Polled at every chunk; true stops the run at that chunk (e.g. a signal's flag).  Empty: never.
+  std::function<bool()> stopRequested;
+  /// A checkpoint that could not be written: the reason, and the seconds until the next attempt.  Empty: silent.
+  std::function<void(const std::string& reason, double retrySeconds)> warning;
+};
+
+/// Advances `state` until it is finished, `stop` is requested or options.stopRequested() says so, writing
+/// options.checkpoint every checkpointSeconds and calling `progress` at every chunk.  `last` is updated at each
+/// checkpoint written.  Throws what runTrapping() throws.
+[[nodiscard]] TrappingState runWithCheckpoints(TrappingState state, const CheckpointedRunOptions& options,
+                                               LastCheckpoint& last, const TrappingObserver& progress = {},
+                                               std::stop_token stop = {});
+
+/// Writes the run file; when that fails, throws std::runtime_error whose text says where the work done so far is
+/// (`last`, followed by `howToResume` when it holds a checkpoint, e.g. ": resume with --resume FILE").
+void saveRunFileOrSayWhere(const std::filesystem::path& path, const TrappingState& state, const LastCheckpoint& last,
+                           const std::string& howToResume = {});
+
+}  // namespace archipelago
