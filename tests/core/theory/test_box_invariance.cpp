@@ -180,8 +180,8 @@ std::uint64_t planeGap(long double x, long double y, long double K, const PlaneB
 // median 2, 90th percentile 4, never more than 5); the shared extension is 1.999 ± 0.0003 steps.  What does
 // hold, and what the paper's argument for eq. (A3) needs, is that the extension is a few steps, bounded, and
 // does not grow with the segment's length (1.80 steps on average for segments of ≥ 20 steps, 1.85 for ≥ 100),
-// so that f_t at large t only moves by a few steps of t.  The default 4·10⁵ steps (1.4·10⁵ segments, 0.1 s) gives the same
-// numbers within their errors.
+// so that f_t at large t only moves by a few steps of t.  The default 4·10⁵ steps (1.4·10⁵ segments, 0.1 s)
+// gives the same numbers within their errors.
 TEST(BoxExtension, DoublingTheBoxExtendsTheOriginalSegmentsByAFewStepsNotLessThanOne) {
   BoxExtensionRequest r;  // small: K = 0.1, (−0.8, 0.5), Xr = 0.02
   const double centre = (r.small.xmin + r.small.xmax) / 2, L = r.small.width();
