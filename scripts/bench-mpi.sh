@@ -10,7 +10,8 @@
 # The rates are the programs' own compute rates, measured inside them, so that mpirun's start (~0.4 s), MPI_Init,
 # reading and writing files are outside: archipelago-cli's run-file `elapsedSeconds` (its chunks' compute time,
 # one session), archipelago-mpi's "compute:" line (rank 0's MPI_Wtime from the barrier after every rank's setup
-# to the end of the last round, synchronisation between rounds included).  The wall rates (launch included)
+# to the end of the last round, synchronisation between rounds included, and how long the ranks idled waiting
+# for the slowest at the rounds' ends).  The wall rates (launch included)
 # are printed beside them.
 #   bash scripts/bench-mpi.sh [build-dir] [T] [R]   (default: build/default, T = 20000000: 1.28e11 steps a run,
 #                                                    about 20 s; R = 3 repeats)
@@ -36,6 +37,7 @@ configs = [("archipelago-cli run, 2 threads", [cli, "run", *spec, "--threads", "
            ("archipelago-mpi 2 ranks x 1 thread", ["mpirun", "-n", "2", "--bind-to", "core", *root, mpi, *spec, "--threads", "1"])]
 rates = [[] for _ in configs]   # in-program compute rates
 walls = [[] for _ in configs]   # launch-included rates
+idle = [[] for _ in configs]    # archipelago-mpi: % of the compute time the ranks waited for the slowest
 loads = [load()]
 reference, agree = None, True
 print(f"spec: M = 1600, q = 4, T = {T}: {steps:.3g} steps a run; {R} repeats, configurations alternated", flush=True)
@@ -49,17 +51,19 @@ for rep in range(R):
         if i == 0:
             seconds = content["elapsedSeconds"]
         else:
-            m = re.search(r"^compute: (\S+) steps in (\S+) s", r.stderr, re.M)
+            m = re.search(r"^compute: (\S+) steps in (\S+) s.*idle (\S+)% ", r.stderr, re.M)
             assert m and float(m.group(1)) == steps, r.stderr
             seconds = float(m.group(2))
+            idle[i].append(float(m.group(3)))
         rates[i].append(steps / seconds)
         walls[i].append(steps / wall)
         content = {k: v for k, v in content.items() if k not in ("elapsedSeconds", "checksum", "kernel", "program")}
         reference = reference or content
         agree = agree and content == reference
         loads.append(load())
+        waited = f", ranks idle {idle[i][-1]:.2f}%" if i else ""
         print(f"  repeat {rep + 1}: {name:36s} compute {seconds:7.2f} s  {steps / seconds:.4g} steps/s   "
-              f"(wall {wall:6.2f} s, {steps / wall:.4g} steps/s; load {loads[-1]})", flush=True)
+              f"(wall {wall:6.2f} s, {steps / wall:.4g} steps/s; load {loads[-1]}{waited})", flush=True)
 med = [statistics.median(x) for x in rates]
 wmed = [statistics.median(x) for x in walls]
 print(f"load average (1 min) before and after each run: {' '.join(loads)}")
@@ -68,6 +72,8 @@ for (name, _), m, w in zip(configs, med, wmed):
     print(f"median {name:36s} {m:.4g} steps/s compute   ({w:.4g} steps/s wall)")
 print(f"ratio 1 rank x 2 threads / cli 2 threads:  {med[1] / med[0]:.3f}   (wall: {wmed[1] / wmed[0]:.3f})")
 print(f"ratio 2 ranks x 1 thread / cli 2 threads:  {med[2] / med[0]:.3f}   (wall: {wmed[2] / wmed[0]:.3f})   target >= 0.95")
+print(f"2 ranks x 1 thread: the ranks idle, waiting for the slowest at the rounds' ends: "
+      f"{' '.join(f'{x:.2f}%' for x in idle[2])} of the compute time")
 print(f"ratio 2 ranks x 1 thread / 1 rank x 2 thr: {med[2] / med[1]:.3f}   (wall: {wmed[2] / wmed[1]:.3f})")
 print("per repeat, 2 ranks x 1 thread / cli 2 threads:", " ".join(f"{b / a:.3f}" for a, b in zip(rates[0], rates[2])))
 per_core = med[2] / 2
