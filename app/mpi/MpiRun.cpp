@@ -308,6 +308,7 @@ int mpiRun(const cli::RunOptions& o, const std::vector<std::string>& explicitPar
   std::vector<double> seconds(root ? static_cast<std::size_t>(w.size) : 1);
   double idleSeconds = 0;  // rank 0: the ranks' waits for the slowest at the rounds' ends, averaged over ranks
   std::uint64_t rounds = 0;
+  std::vector<double> busy(seconds.size(), 0.0);  // rank 0: each rank's compute seconds, summed over the rounds
   bool interrupted = false;
   while (state.blocksDone < T) {
     options.untilBlocks = std::min(T, state.blocksDone + roundBlocks);
@@ -333,7 +334,10 @@ int mpiRun(const cli::RunOptions& o, const std::vector<std::string>& explicitPar
         stopAny = stopAny || reports[2 * static_cast<std::size_t>(r) + 1] != 0;
       }
       const auto slowest = std::max_element(seconds.begin(), seconds.end());
-      for (const double t : seconds) idleSeconds += (*slowest - t) / static_cast<double>(w.size);
+      for (std::size_t r = 0; r < seconds.size(); ++r) {
+        idleSeconds += (*slowest - seconds[r]) / static_cast<double>(w.size);
+        busy[r] += seconds[r];
+      }
       ++rounds;
       const double perBlock = *slowest / static_cast<double>(roundBlocks);
       if (perBlock > 0)
@@ -407,12 +411,17 @@ int mpiRun(const cli::RunOptions& o, const std::vector<std::string>& explicitPar
       std::fprintf(stderr,
                    "done: %llu segments, longest %llu steps, %.3g steps on %d ranks in %.1f s; wrote %s\n"
                    "compute: %.4g steps in %.3f s = %.4g steps/s (rank 0's MPI_Wtime, setup and final write "
-                   "excluded); %llu rounds, the ranks idle %.2f%% of it waiting for the slowest\n",
+                   "excluded); %llu rounds, the ranks idle %.2f%% of it waiting for the slowest; busiest rank %d %.3f s, "
+                   "least busy rank %d %.3f s\n",
                    static_cast<unsigned long long>(total.segments()),
                    static_cast<unsigned long long>(longest * merged.params.q), merged.stepsDone(), w.size,
                    std::chrono::duration<double>(Clock::now() - sessionStart).count(), o.out.c_str(), sessionSteps,
                    computeSeconds, computeSeconds > 0 ? sessionSteps / computeSeconds : 0.0,
-                   static_cast<unsigned long long>(rounds), computeSeconds > 0 ? 100 * idleSeconds / computeSeconds : 0.0);
+                   static_cast<unsigned long long>(rounds), computeSeconds > 0 ? 100 * idleSeconds / computeSeconds : 0.0,
+                   static_cast<int>(std::max_element(busy.begin(), busy.end()) - busy.begin()),
+                   *std::max_element(busy.begin(), busy.end()),
+                   static_cast<int>(std::min_element(busy.begin(), busy.end()) - busy.begin()),
+                   *std::min_element(busy.begin(), busy.end()));
     }
   } else {
     sendText(runFileText(state), 0);
