@@ -109,8 +109,8 @@ std::string receiveText(int source) {
 
 /// The target wall time of a round of the slowest rank: the latency of a stop or checkpoint request, and the
 /// interval between the ranks' synchronisations.
-/// Measured (bench-mpi.sh's spec, T = 8e6, 2 ranks x 1 thread): rounds of 4 s left the ranks as idle as rounds of 1 s (2.4 % and
-/// 2.3 % of the time waiting for the slowest): the wait is the ranks' imbalance, not the number of rounds.
+/// Measured (bench-mpi.sh's spec, T = 8e6, 2 ranks x 1 thread): rounds of 4 s left the ranks as idle as
+/// rounds of 1 s (2.4 % and 2.3 % of the time waiting for the slowest): the wait is the ranks' imbalance, not the number of rounds.
 constexpr double kRoundSeconds = 1.0;
 
 /// MPI_Wait for a collective, polling every 100 µs and sleeping between (OpenMPI's blocking calls spin, taking a
@@ -351,7 +351,8 @@ int mpiRun(const cli::RunOptions& o, const std::vector<std::string>& explicitPar
                     (decision[2] != 0 ||
                      std::chrono::duration<double>(now - lastCheckpoint).count() >= o.checkpointSeconds);
       const double session = std::chrono::duration<double>(now - sessionStart).count();
-      const double rate = session > 0 ? static_cast<double>(state.blocksDone - startBlocks) * stepsPerBlock / session : 0;
+      const double rate =
+          session > 0 ? static_cast<double>(state.blocksDone - startBlocks) * stepsPerBlock / session : 0;
       if (!o.quiet && (tty || std::chrono::duration<double>(now - lastLine).count() >= 10)) {
         TrappingProgress p;
         p.blocksDone = state.blocksDone;
@@ -411,13 +412,14 @@ int mpiRun(const cli::RunOptions& o, const std::vector<std::string>& explicitPar
       std::fprintf(stderr,
                    "done: %llu segments, longest %llu steps, %.3g steps on %d ranks in %.1f s; wrote %s\n"
                    "compute: %.4g steps in %.3f s = %.4g steps/s (rank 0's MPI_Wtime, setup and final write "
-                   "excluded); %llu rounds, the ranks idle %.2f%% of it waiting for the slowest; busiest rank %d %.3f s, "
-                   "least busy rank %d %.3f s\n",
+                   "excluded); %llu rounds, the ranks idle %.2f%% of it waiting for the slowest; "
+                   "busiest rank %d %.3f s, least busy rank %d %.3f s\n",
                    static_cast<unsigned long long>(total.segments()),
                    static_cast<unsigned long long>(longest * merged.params.q), merged.stepsDone(), w.size,
                    std::chrono::duration<double>(Clock::now() - sessionStart).count(), o.out.c_str(), sessionSteps,
                    computeSeconds, computeSeconds > 0 ? sessionSteps / computeSeconds : 0.0,
-                   static_cast<unsigned long long>(rounds), computeSeconds > 0 ? 100 * idleSeconds / computeSeconds : 0.0,
+                   static_cast<unsigned long long>(rounds),
+                   computeSeconds > 0 ? 100 * idleSeconds / computeSeconds : 0.0,
                    static_cast<int>(std::max_element(busy.begin(), busy.end()) - busy.begin()),
                    *std::max_element(busy.begin(), busy.end()),
                    static_cast<int>(std::min_element(busy.begin(), busy.end()) - busy.begin()),
