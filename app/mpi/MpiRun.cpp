@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "CliCommon.hpp"
@@ -104,6 +105,23 @@ std::string receiveText(int source) {
     MPI_Recv(text.data() + at, piece, MPI_CHAR, source, 2, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
   }
   return text;
+}
+
+/// The target wall time of a round of the slowest rank: the latency of a stop or checkpoint request, and the
+/// interval between the ranks' synchronisations.
+/// Measured (bench-mpi.sh's spec, T = 8e6, 2 ranks x 1 thread): rounds of 4 s left the ranks as idle as
+/// rounds of 1 s (2.4 % and 2.3 % of the time waiting for the slowest): the wait is the ranks' imbalance, not the number of rounds.
+constexpr double kRoundSeconds = 1.0;
+
+/// MPI_Wait for a collective, polling every 100 µs and sleeping between (OpenMPI's blocking calls spin, taking a
+/// core from the ranks still computing when the machine is shared or oversubscribed).
+void waitWithoutSpinning(MPI_Request& request) {
+  int done = 0;
+  MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+  while (done == 0) {
+    std::this_thread::sleep_for(std::chrono::microseconds(100));
+    MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+  }
 }
 
 std::string partName(const std::string& manifest, std::uint64_t blocks, int rank) {
@@ -274,6 +292,10 @@ int mpiRun(const cli::RunOptions& o, const std::vector<std::string>& explicitPar
   options.maxChunkBlocks = o.maxChunkBlocks;
 
   // --- rounds to common block counts ------------------------------------------------------------------------------
+  // The compute time (rank 0's report): from here, every rank set up, to the end of the last round, before the
+  // gather and the final write; mpirun's start, MPI_Init and the reading of files are outside it.
+  MPI_Barrier(MPI_COMM_WORLD);
+  const double computeStart = MPI_Wtime();
   const std::uint64_t T = state.params.T;
   const std::uint64_t startBlocks = state.blocksDone;
   const double stepsPerBlock = static_cast<double>(state.params.M) * state.params.q;
@@ -281,7 +303,12 @@ int mpiRun(const cli::RunOptions& o, const std::vector<std::string>& explicitPar
   auto lastCheckpoint = sessionStart;
   auto lastLine = sessionStart - std::chrono::hours(1);
   std::uint64_t roundBlocks = o.maxChunkBlocks != 0 ? std::min<std::uint64_t>(o.maxChunkBlocks, 16) : 16;
+  // Per rank and round: {its compute seconds, whether it was asked to stop}; gathered by rank 0.
+  std::vector<double> reports(root ? 2 * static_cast<std::size_t>(w.size) : 2);
   std::vector<double> seconds(root ? static_cast<std::size_t>(w.size) : 1);
+  double idleSeconds = 0;  // rank 0: the ranks' waits for the slowest at the rounds' ends, averaged over ranks
+  std::uint64_t rounds = 0;
+  std::vector<double> busy(seconds.size(), 0.0);  // rank 0: each rank's compute seconds, summed over the rounds
   bool interrupted = false;
   while (state.blocksDone < T) {
     options.untilBlocks = std::min(T, state.blocksDone + roundBlocks);
@@ -291,27 +318,41 @@ int mpiRun(const cli::RunOptions& o, const std::vector<std::string>& explicitPar
     } catch (const std::exception& e) {
       abortJob(w, e.what());
     }
-    double mine = std::chrono::duration<double>(Clock::now() - t0).count();
-    MPI_Gather(&mine, 1, MPI_DOUBLE, seconds.data(), 1, MPI_DOUBLE, 0, MPI_COMM_WORLD);
+    // One gather of two numbers a rank, one broadcast of the decision, both waited for without spinning: a rank
+    // that finished its round first sleeps, leaving its core to the others (the machine may be shared).
+    const double mine[2] = {std::chrono::duration<double>(Clock::now() - t0).count(),
+                            cli::interruptRequested() ? 1.0 : 0.0};
+    MPI_Request request = MPI_REQUEST_NULL;
+    MPI_Igather(mine, 2, MPI_DOUBLE, reports.data(), 2, MPI_DOUBLE, 0, MPI_COMM_WORLD, &request);
+    waitWithoutSpinning(request);
     // Rank 0 decides for all: the next round's length, a checkpoint, a stop.
     std::uint64_t decision[3] = {roundBlocks, 0, 0};  // blocks, checkpoint, stop
-    int stopMine = cli::interruptRequested() ? 1 : 0;
-    int stopAny = 0;
-    MPI_Allreduce(&stopMine, &stopAny, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
     if (root) {
+      bool stopAny = false;
+      for (int r = 0; r < w.size; ++r) {
+        seconds[static_cast<std::size_t>(r)] = reports[2 * static_cast<std::size_t>(r)];
+        stopAny = stopAny || reports[2 * static_cast<std::size_t>(r) + 1] != 0;
+      }
       const auto slowest = std::max_element(seconds.begin(), seconds.end());
+      for (std::size_t r = 0; r < seconds.size(); ++r) {
+        idleSeconds += (*slowest - seconds[r]) / static_cast<double>(w.size);
+        busy[r] += seconds[r];
+      }
+      ++rounds;
       const double perBlock = *slowest / static_cast<double>(roundBlocks);
       if (perBlock > 0)
-        decision[0] = static_cast<std::uint64_t>(std::clamp(1.0 / perBlock, 1.0, 4.0 * static_cast<double>(roundBlocks)));
+        decision[0] = static_cast<std::uint64_t>(
+            std::clamp(kRoundSeconds / perBlock, 1.0, 4.0 * static_cast<double>(roundBlocks)));
       else decision[0] = 4 * roundBlocks;
       if (o.maxChunkBlocks != 0) decision[0] = std::min(decision[0], o.maxChunkBlocks);
       const auto now = Clock::now();
-      decision[2] = stopAny != 0 ? 1 : 0;
+      decision[2] = stopAny ? 1 : 0;
       decision[1] = state.blocksDone < T &&
                     (decision[2] != 0 ||
                      std::chrono::duration<double>(now - lastCheckpoint).count() >= o.checkpointSeconds);
       const double session = std::chrono::duration<double>(now - sessionStart).count();
-      const double rate = session > 0 ? static_cast<double>(state.blocksDone - startBlocks) * stepsPerBlock / session : 0;
+      const double rate =
+          session > 0 ? static_cast<double>(state.blocksDone - startBlocks) * stepsPerBlock / session : 0;
       if (!o.quiet && (tty || std::chrono::duration<double>(now - lastLine).count() >= 10)) {
         TrappingProgress p;
         p.blocksDone = state.blocksDone;
@@ -327,7 +368,8 @@ int mpiRun(const cli::RunOptions& o, const std::vector<std::string>& explicitPar
         lastLine = now;
       }
     }
-    MPI_Bcast(decision, 3, MPI_UINT64_T, 0, MPI_COMM_WORLD);
+    MPI_Ibcast(decision, 3, MPI_UINT64_T, 0, MPI_COMM_WORLD, &request);
+    waitWithoutSpinning(request);
     roundBlocks = decision[0];
     if (decision[1] != 0) {
       if (writeCheckpoint(w, state, manifest, previousParts, root && tty && !o.quiet)) lastCheckpoint = Clock::now();
@@ -337,6 +379,8 @@ int mpiRun(const cli::RunOptions& o, const std::vector<std::string>& explicitPar
       break;
     }
   }
+  const double computeSeconds = MPI_Wtime() - computeStart;
+  const double sessionSteps = static_cast<double>(state.blocksDone - startBlocks) * stepsPerBlock;
   if (root && !o.quiet && tty) std::fputc('\n', stderr);
   if (interrupted) {
     if (root)
@@ -365,10 +409,21 @@ int mpiRun(const cli::RunOptions& o, const std::vector<std::string>& explicitPar
     if (!o.quiet) {
       const TrappingHistogram total = merged.total();
       const std::uint64_t longest = merged.longest.items().empty() ? 0 : merged.longest.items().front().length;
-      std::fprintf(stderr, "done: %llu segments, longest %llu steps, %.3g steps on %d ranks in %.1f s; wrote %s\n",
+      std::fprintf(stderr,
+                   "done: %llu segments, longest %llu steps, %.3g steps on %d ranks in %.1f s; wrote %s\n"
+                   "compute: %.4g steps in %.3f s = %.4g steps/s (rank 0's MPI_Wtime, setup and final write "
+                   "excluded); %llu rounds, the ranks idle %.2f%% of it waiting for the slowest; "
+                   "busiest rank %d %.3f s, least busy rank %d %.3f s\n",
                    static_cast<unsigned long long>(total.segments()),
                    static_cast<unsigned long long>(longest * merged.params.q), merged.stepsDone(), w.size,
-                   std::chrono::duration<double>(Clock::now() - sessionStart).count(), o.out.c_str());
+                   std::chrono::duration<double>(Clock::now() - sessionStart).count(), o.out.c_str(), sessionSteps,
+                   computeSeconds, computeSeconds > 0 ? sessionSteps / computeSeconds : 0.0,
+                   static_cast<unsigned long long>(rounds),
+                   computeSeconds > 0 ? 100 * idleSeconds / computeSeconds : 0.0,
+                   static_cast<int>(std::max_element(busy.begin(), busy.end()) - busy.begin()),
+                   *std::max_element(busy.begin(), busy.end()),
+                   static_cast<int>(std::min_element(busy.begin(), busy.end()) - busy.begin()),
+                   *std::min_element(busy.begin(), busy.end()));
     }
   } else {
     sendText(runFileText(state), 0);

@@ -7,8 +7,11 @@
 /// RunFileMerge.hpp) is the single-process run, bit for bit, for any R and any threads.  The ranks advance in
 /// rounds to a common block count (TrappingRunOptions::untilBlocks); after each round rank 0 decides, for all,
 /// the next round's length (about one second for the slowest rank), whether to checkpoint, and whether to stop
-/// (SIGINT/SIGTERM on any rank).  A checkpoint is one run file per rank, NAME.b<blocks>.r<rank>.json beside the
-/// manifest NAME, written atomically before the manifest names them; --resume MANIFEST (or a plain run file)
+/// (SIGINT/SIGTERM on any rank): one gather of {seconds, stop} and one broadcast a round, waited for by polling
+/// and sleeping (no rank spins on a core).  Rank 0's closing "compute:" line is the rate measured inside the
+/// program (MPI_Wtime, setup and final write excluded) with the ranks' idle share (scripts/bench-mpi.sh).
+/// A checkpoint is one run file per rank, NAME.b<blocks>.r<rank>.json beside the manifest NAME, written
+/// atomically before the manifest names them; --resume MANIFEST (or a plain run file)
 /// continues on any number of ranks: every rank reads the whole checkpoint, takes its own orbits, and rank 0
 /// carries the statistics so far (sliceRun).  At the end rank 0 gathers the ranks' states, merges and writes
 /// --out.
