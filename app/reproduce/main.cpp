@@ -6,6 +6,7 @@
 #include <QDir>
 #include <QString>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <csignal>
@@ -165,7 +166,7 @@ int main(int argc, char** argv) {
   std::string only;
   app.add_option("OUTDIR", outdir, "the report folder (created; runs are kept in OUTDIR/runs and reused)")->required();
   auto* q = app.add_flag("--quick", quick, "CI size: a few minutes on two cores (the default)");
-  app.add_flag("--full", full, "the paper's sizes (3.2·10¹² steps: days; resumable, reuses finished runs)")->excludes(q);
+  app.add_flag("--full", full, "the paper's sizes (3.2·10¹² steps: minutes on two cores; resumable, reuses finished runs)")->excludes(q);
   app.add_option("--only", only, "compute and print this one statement (its id in items.csv), no figures");
   app.add_option("--threads", threads, "OpenMP threads (0: one per core)")->check(CLI::Range(0, 1024));
   try {
@@ -453,6 +454,9 @@ int main(int argc, char** argv) {
     io::writeFileAtomically(out / "items.csv", csv.str());
 
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    auto markCount = [&](report::Mark m) {
+      return std::count_if(items.begin(), items.end(), [m](const report::PaperItem& it) { return it.mark == m; });
+    };
     std::ostringstream h;
     h << "<!DOCTYPE html><html><head><meta charset=\"utf-8\"><title>Karney (1983) reproduced</title>"
          "<style>body{font-family:sans-serif;max-width:60em;margin:auto}table{border-collapse:collapse}"
@@ -465,6 +469,10 @@ int main(int argc, char** argv) {
          "Figures are numbered by first citation (README, \"Figures of the paper\") and drawn by the GUI's plot "
          "code; each links to its SVG. Differences: our map is 52-bit fixed point (the Cray's was 48-bit); D and "
          "the longest segment vary strongly from run to run (a heavy tail); b₂ depends on the box, b₂·D does not.</p>\n"
+      << "<p><b>" << markCount(report::Mark::agrees) << " of " << items.size() << " statements agree</b>, "
+      << markCount(report::Mark::differsExplained) << " differ for a stated reason, "
+      << markCount(report::Mark::notAtThisSize) << " are not reproducible at this size"
+      << (full ? "" : " (<code>--full</code> computes them)") << ", " << differs << " differ unexplained.</p>\n"
       << "<h2>Statements</h2>\n<table width=\"100%\"><tr><th width=\"8%\">id</th><th width=\"4%\">§</th>"
          "<th width=\"34%\">statement</th><th width=\"9%\">paper</th><th width=\"11%\">ours</th>"
          "<th width=\"5%\">tol.</th><th width=\"9%\">mark</th><th width=\"20%\">command</th></tr>\n";

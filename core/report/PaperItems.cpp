@@ -213,6 +213,12 @@ std::vector<PaperItem> k01Items(const TrappingState& run, const TrappingStatisti
                runCmd + " && " + cmd("stats k01.json --csv k01-csv"),
                "d log S/d log t over 100 ≤ t ≤ 10⁴ must exceed 3/2 (2 − α = 1.75 if C ~ τ^−¼)"};
   if (sp.ours) sp.mark = *sp.ours > 1.5 ? Mark::agrees : Mark::differs;
+  sp.note += "; local slopes over [t, 3t]:";  // the whole range's slope hides how it varies (fig. 7b)
+  for (double t : {100.0, 300.0, 1000.0, 3000.0, 10000.0}) {
+    char local[48];
+    std::snprintf(local, sizeof local, " %g: %.2f", t, -fitLogSlope(s.S, t, 3 * t));
+    sp.note += local;
+  }
   items.push_back(sp);
   // D's honest error: the bootstrap over segments, none when the longest segments dominate (TailAnalysis.hpp).
   const double dError = supportedDError(tail);
