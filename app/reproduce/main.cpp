@@ -57,7 +57,12 @@ TrappingState runOrReuse(const TrappingParameters& p, const fs::path& file, int 
   io::removeStaleTemporaries(file);
   TrappingState state;
   if (fs::exists(file)) {
-    state = loadRunFile(file);
+    try {
+      state = loadRunFile(file);
+    } catch (const std::exception& e) {  // the report's own run: recomputing it is the remedy
+      throw std::runtime_error(std::string(e.what()) + " (the report's run: remove " + file.string() +
+                               " to compute it again)");
+    }
     if (!(state.params == p)) throw std::runtime_error(file.string() + " holds a run of other parameters; remove it");
     if (state.finished()) {
       std::cerr << "reusing " << file.string() << "\n";
@@ -167,7 +172,9 @@ int main(int argc, char** argv) {
   app.add_option("OUTDIR", outdir, "the report folder (created; runs are kept in OUTDIR/runs and reused)")->required();
   auto* q = app.add_flag("--quick", quick, "CI size: a few minutes on two cores (the default)");
   app.add_flag("--full", full, "the paper's sizes (3.2·10¹² steps: minutes on two cores; resumable, reuses finished runs)")->excludes(q);
-  app.add_option("--only", only, "compute and print this one statement (its id in items.csv), no figures");
+  app.add_option("--only", only, "compute and print this one statement (its id in items.csv), no figures")
+      ->check(CLI::Validator([](std::string& id) { return id.empty() ? std::string("an empty id") : std::string(); },
+                             "ID"));
   app.add_option("--threads", threads, "OpenMP threads (0: one per core)")->check(CLI::Range(0, 1024));
   try {
     app.parse(argc, argv);
@@ -180,6 +187,14 @@ int main(int argc, char** argv) {
   try {
     const auto started = std::chrono::steady_clock::now();
     const fs::path out(outdir);
+    // OUTDIR may be new, but its parent must exist (a typo must not create a tree of folders), as for a scan.
+    const fs::path parent = fs::absolute(out).parent_path();
+    if (!fs::exists(out) && !fs::is_directory(parent))
+      throw std::invalid_argument("OUTDIR " + out.string() + ": its folder " + parent.string() + " does not exist");
+    if (fs::exists(out) && !fs::is_directory(out))
+      throw std::invalid_argument("OUTDIR " + out.string() + " is not a folder");
+    fs::create_directories(out);
+    const io::FileLock reportLock = io::FileLock::acquire(out / "index.html");  // one report per folder at a time
     fs::create_directories(out / "figures");
     fs::create_directories(out / "runs");
     const std::string size = full ? "full" : "quick";
@@ -357,9 +372,9 @@ int main(int argc, char** argv) {
         r.points = full ? 200'000'000 : 40'000'000;
         r.passes = 1;
         const PortraitResult portrait = renderPortrait(r);
-        if (!ui::report::writePortraitFigure(colourize(portrait.raster, ColourMapName::Inferno), double(r.view.physical(r.map).x0),
-                                             double(r.view.physical(r.map).x1), double(r.view.physical(r.map).y0),
-                                             double(r.view.physical(r.map).y1),
+        const PhysicalRect v = r.view.physical(r.map);
+        if (!ui::report::writePortraitFigure(colourize(portrait.raster, ColourMapName::Inferno), double(v.x0),
+                                             double(v.x1), double(v.y0), double(v.y1),
                                              QStringLiteral("Fig. 8b — orbits near the 138-chain's member"),
                                              QString::fromStdString((out / "figures" / "fig8b").string()), &error,
                                              member138))

@@ -72,6 +72,9 @@ with tempfile.TemporaryDirectory() as out:
         while time.time() < deadline and p.poll() is None \
                 and len(glob.glob(os.path.join(out2, "runs", "kscan-quick", "K*.json"))) < 2:
             time.sleep(0.05)  # until the K scan is under way (two of its K finished)
+        r7 = subprocess.run([exe, "--quick", out2], capture_output=True, text=True, timeout=60)
+        check(r7.returncode == 1 and "in use by another process" in r7.stderr,
+              f"a second report into the same folder meanwhile is refused ({r7.returncode}: {r7.stderr.strip()[-160:]})")
         p.send_signal(signal.SIGINT)
         so, se = p.communicate(timeout=300)
         check(p.returncode == 130 and "interrupted:" in se and "resumes" in se,
@@ -89,6 +92,15 @@ with tempfile.TemporaryDirectory() as out:
     check(r4.returncode == 0 and "mark: agrees" in r4.stdout and "period-138" in r4.stdout, "--only chain138-x")
     r5 = subprocess.run([exe, "--only", "no-such-item", out], capture_output=True, text=True, timeout=300)
     check(r5.returncode == 1 and "ERROR: --only 'no-such-item'" in r5.stderr, "--only with an unknown id is an error")
+    # A folder whose parent does not exist, a file as OUTDIR, an empty --only: one clear error, nothing created.
+    missing = os.path.join(out, "no-such-folder", "report")
+    r8 = subprocess.run([exe, "--quick", missing], capture_output=True, text=True, timeout=60)
+    check(r8.returncode == 1 and "does not exist" in r8.stderr and not os.path.exists(os.path.dirname(missing)),
+          "OUTDIR under a missing folder: an error, no folders made")
+    r9 = subprocess.run([exe, "--quick", os.path.join(out, "items.csv")], capture_output=True, text=True, timeout=60)
+    check(r9.returncode == 1 and "is not a folder" in r9.stderr, "OUTDIR that is a file: an error")
+    r10 = subprocess.run([exe, "--only", "", out], capture_output=True, text=True, timeout=60)
+    check(r10.returncode != 0 and "empty id" in r10.stderr, "--only '': an error")
     # A bad option is one clear error.
     r3 = subprocess.run([exe, "--quick", "--full", out], capture_output=True, text=True, timeout=60)
     check(r3.returncode != 0 and r3.stderr.strip() != "", "--quick with --full is an error")

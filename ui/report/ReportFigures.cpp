@@ -163,12 +163,15 @@ bool writeTrappingTimeFigures(const QString& base, QString* error) {
   return true;
 }
 
-bool writePortraitFigure(const RasterImage& image, double x0, double x1, double y0, double y1, const QString& title,
-                         const QString& base, QString* error, const FigureMarkers& markers) {
-  // A deep copy: the item outlives nothing, but QImage must not borrow the vector past this scope's end.
-  const QImage raster = QImage(image.rgb.data(), image.width, image.height, 3 * image.width, QImage::Format_RGB888).copy();
+namespace {
+
+/// An image on the physical rectangle [x0, x1] × [y0, y1] with x, y axes and `markers`, as `base`.png/.svg: the
+/// portraits and the replayed segments.
+bool writeRasterFigure(const QImage& raster, double x0, double x1, double y0, double y1, const QString& title,
+                       const QString& base, QString* error, const FigureMarkers& markers) {
   QwtPlot plot;
   plot.setTitle(title);
+  plot.setCanvasBackground(Qt::white);
   (new RasterItem(raster, QRectF(QPointF(x0, y0), QPointF(x1, y1))))->attach(&plot);
   plot.setAxisTitle(QwtPlot::xBottom, QStringLiteral("x"));
   plot.setAxisTitle(QwtPlot::yLeft, QStringLiteral("y"));
@@ -176,6 +179,15 @@ bool writePortraitFigure(const RasterImage& image, double x0, double x1, double 
   plot.setAxisScale(QwtPlot::yLeft, y0, y1);
   addMarkers(plot, markers);
   return renderPlot(plot, base, error, {800, 800}, QRectF(0, 0, 800, 800));
+}
+
+}  // namespace
+
+bool writePortraitFigure(const RasterImage& image, double x0, double x1, double y0, double y1, const QString& title,
+                         const QString& base, QString* error, const FigureMarkers& markers) {
+  // A deep copy: QImage must not borrow the vector past this scope's end.
+  const QImage raster = QImage(image.rgb.data(), image.width, image.height, 3 * image.width, QImage::Format_RGB888).copy();
+  return writeRasterFigure(raster, x0, x1, y0, y1, title, base, error, markers);
 }
 
 bool writePointsFigure(const std::vector<QPointF>& points, double x0, double x1, double y0, double y1,
@@ -192,16 +204,7 @@ bool writePointsFigure(const std::vector<QPointF>& points, double x0, double x1,
     if (!(fx >= 0 && fx < 1 && fy >= 0 && fy < 1)) continue;
     raster.setPixelColor(static_cast<int>(fx * n), static_cast<int>(fy * n), Qt::black);
   }
-  QwtPlot plot;
-  plot.setTitle(title);
-  plot.setCanvasBackground(Qt::white);
-  (new RasterItem(raster, QRectF(QPointF(x0, y0), QPointF(x1, y1))))->attach(&plot);
-  plot.setAxisTitle(QwtPlot::xBottom, QStringLiteral("x"));
-  plot.setAxisTitle(QwtPlot::yLeft, QStringLiteral("y"));
-  plot.setAxisScale(QwtPlot::xBottom, x0, x1);
-  plot.setAxisScale(QwtPlot::yLeft, y0, y1);
-  addMarkers(plot, markers);
-  return renderPlot(plot, base, error, {800, 800}, QRectF(0, 0, 800, 800));
+  return writeRasterFigure(raster, x0, x1, y0, y1, title, base, error, markers);
 }
 
 bool writeScanFigures(const std::vector<ScanRunSummary>& runs, const QString& base, QString* error) {
