@@ -7,14 +7,21 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <chrono>
 #include <cmath>
+#include <condition_variable>
+#include <exception>
 #include <filesystem>
+#include <mutex>
+#include <optional>
+#include <thread>
 #include <fstream>
 #include <stdexcept>
 #include <stop_token>
 #include <string>
 #include <vector>
 
+#include "core/io/Memory.hpp"
 #include "core/map/FixedPointMap.hpp"
 #include "core/periodic/IslandChain.hpp"
 #include "core/periodic/PeriodicOrbitFinder.hpp"
@@ -59,6 +66,108 @@ std::uint64_t unitCoordinate(const py::object& v, const char* name) {
   return i.cast<std::uint64_t>();
 }
 
+// A file path from Python: str or os.PathLike (os.fspath), never None or another type (a run once got saved to a
+// file named "None"), never with a NUL character (the C library would cut the name there).  Issue #23.
+std::string pathArgument(const py::object& path, const char* name) {
+  if (path.is_none() || !(py::isinstance<py::str>(path) || py::hasattr(path, "__fspath__")))
+    throw py::type_error(std::string(name) + " must be a path (str or os.PathLike), not " +
+                         std::string(py::str(py::type::handle_of(path).attr("__name__"))));
+  const py::object text = py::module_::import("os").attr("fspath")(path);
+  if (!py::isinstance<py::str>(text)) throw py::type_error(std::string(name) + " must be a text path, not bytes");
+  const std::string s = text.cast<std::string>();
+  if (s.empty()) throw std::invalid_argument(std::string(name) + " must not be empty");
+  if (s.find('\0') != std::string::npos) throw std::invalid_argument(std::string(name) + " must not contain a NUL character");
+  return s;
+}
+
+// A whole number from Python: int or anything with __index__ (NumPy integers), or a float that is exactly whole
+// (T=2e7: core's one rule, core/io/NumberText.hpp, as "2e7" is typed); never bool or text (TypeError), never a
+// fraction (ValueError).
+py::int_ wholeArgument(py::handle v, const std::string& name) {
+  if (PyBool_Check(v.ptr()) || py::isinstance<py::str>(v) || py::isinstance<py::bytes>(v))
+    throw py::type_error(name + " must be a whole number, not " + std::string(py::str(py::repr(v))));
+  if (PyIndex_Check(v.ptr())) return py::reinterpret_steal<py::int_>(PyNumber_Index(v.ptr()));
+  if (PyFloat_Check(v.ptr()) || py::hasattr(v, "__float__")) {
+    const double d = PyFloat_AsDouble(v.ptr());
+    if (d == -1.0 && PyErr_Occurred()) throw py::error_already_set();
+    if (!std::isfinite(d) || std::floor(d) != d)
+      throw std::invalid_argument(name + " = " + std::string(py::str(py::repr(v))) + " must be a whole number");
+    return py::reinterpret_steal<py::int_>(PyLong_FromDouble(d));
+  }
+  throw py::type_error(name + " must be a whole number, not " + std::string(py::str(py::repr(v))));
+}
+
+// A real number from Python: int, float or a NumPy number, never bool or str.
+double realArgument(py::handle v, const std::string& name) {
+  if (PyBool_Check(v.ptr()) || py::isinstance<py::str>(v) || py::isinstance<py::bytes>(v) ||
+      !(PyFloat_Check(v.ptr()) || PyIndex_Check(v.ptr()) || py::hasattr(v, "__float__")))
+    throw py::type_error(name + " must be a real number, not " + std::string(py::str(py::repr(v))));
+  const double d = PyFloat_AsDouble(v.ptr());
+  if (d == -1.0 && PyErr_Occurred()) throw py::error_already_set();
+  return d;
+}
+
+// Runs work(stop) on a worker thread with the GIL released, and checks for Ctrl-C every 50 ms: a pending signal
+// stops the work at its next check of `stop` and raises KeyboardInterrupt (issue #23: stochastic_area and
+// portrait once ran on for minutes after Ctrl-C).  Exceptions of the work are rethrown here.
+template <class Work>
+auto interruptible(Work work) -> decltype(work(std::stop_token{})) {
+  using Result = decltype(work(std::stop_token{}));
+  std::stop_source stop;
+  std::optional<Result> result;
+  std::exception_ptr failure;
+  std::mutex mutex;
+  std::condition_variable finished;
+  bool done = false;
+  PyObject *type = nullptr, *value = nullptr, *trace = nullptr;  // a KeyboardInterrupt, held until rethrown
+  {
+    py::gil_scoped_release release;
+    std::thread worker([&] {
+      try {
+        result.emplace(work(stop.get_token()));
+      } catch (...) {
+        failure = std::current_exception();
+      }
+      const std::lock_guard lock(mutex);
+      done = true;
+      finished.notify_all();
+    });
+    for (bool interrupted = false; !interrupted;) {
+      {
+        std::unique_lock lock(mutex);
+        if (finished.wait_for(lock, std::chrono::milliseconds(50), [&] { return done; })) break;
+      }
+      const py::gil_scoped_acquire gil;
+      if (PyErr_CheckSignals() != 0) {  // the signal's exception is now pending: keep it for after the join
+        PyErr_Fetch(&type, &value, &trace);
+        stop.request_stop();
+        interrupted = true;
+      }
+    }
+    worker.join();
+  }
+  if (type != nullptr) {
+    PyErr_Restore(type, value, trace);
+    throw py::error_already_set();
+  }
+  if (failure) std::rethrow_exception(failure);
+  return std::move(*result);
+}
+
+// A one-dimensional array of unit coordinates from Python: integers only (a float array was once truncated to
+// zeros silently), each in [0, 2^52).
+py::array_t<std::uint64_t> unitArray(const py::object& values, const char* name) {
+  const py::array a = py::module_::import("numpy").attr("asarray")(values);
+  const char kind = a.dtype().kind();
+  if (kind != 'u' && kind != 'i')
+    throw py::type_error(std::string(name) + " must hold integers (unit coordinates in [0, 2^52)), not dtype " +
+                         std::string(py::str(a.dtype())));
+  if (a.ndim() != 1) throw std::invalid_argument(std::string(name) + " must be one-dimensional");
+  if (kind == 'i' && a.size() > 0 && py::module_::import("numpy").attr("any")(a.attr("__lt__")(0)).cast<bool>())
+    throw std::invalid_argument(std::string(name) + " must lie in [0, 2^52) (unit coordinates)");
+  return py::array_t<std::uint64_t>::ensure(a.attr("astype")("uint64"));
+}
+
 MapParameters mapOf(double K, double xmin, double xmax) {
   MapParameters p{K, xmin, xmax};
   if (auto e = mapError(p)) throw std::invalid_argument(*e);
@@ -73,16 +182,12 @@ void applyParameters(TrappingParameters& p, const py::dict& kwargs) {
     if (rule == nullptr) throw std::invalid_argument("unknown parameter " + key);
     py::handle v = item.second;
     if (rule->integer) {
-      if (!py::isinstance<py::int_>(v) || py::isinstance<py::bool_>(v))
-        throw std::invalid_argument(key + " must be a whole number, not " + std::string(py::str(py::repr(v))));
-      const py::int_ i = py::reinterpret_borrow<py::int_>(v);
+      const py::int_ i = wholeArgument(v, key);
       if (i < py::int_(0) || i > py::int_(UINT64_MAX))
         throw std::invalid_argument(key + " = " + std::string(py::str(py::handle(i))) + " must lie in " + std::string(rule->range));
       setParameterValue(p, key, ParameterValue{i.cast<std::uint64_t>()});
     } else {
-      if (py::isinstance<py::bool_>(v) || !(py::isinstance<py::float_>(v) || py::isinstance<py::int_>(v)))
-        throw std::invalid_argument(key + " must be a real number, not " + std::string(py::str(py::repr(v))));
-      setParameterValue(p, key, ParameterValue{v.cast<double>()});
+      setParameterValue(p, key, ParameterValue{realArgument(v, key)});
     }
   }
   if (auto e = validationError(p)) throw std::invalid_argument(*e);
@@ -169,6 +274,9 @@ Run startRun(const py::object& spec, const py::kwargs& kwargs) {
 void advanceRun(Run& run, int threads, const std::string& kernelName, const py::object& progress,
                 std::uint64_t maxChunk, double chunkSeconds, const py::object& checkpoint) {
   run.check();
+  // The checkpoint's path is checked before the work, not found wrong after it.
+  const std::optional<std::string> checkpointPath =
+      checkpoint.is_none() ? std::nullopt : std::optional<std::string>(pathArgument(checkpoint, "checkpoint"));
   if (threads < 0 || threads > kMaxThreads)
     throw std::invalid_argument("threads = " + std::to_string(threads) + " must lie in [0, " +
                                 std::to_string(kMaxThreads) + "] (0: one per core)");
@@ -223,8 +331,8 @@ void advanceRun(Run& run, int threads, const std::string& kernelName, const py::
   }
   run.busy = false;
   run.valid = true;
-  if (!checkpoint.is_none() && !run.state.finished()) {
-    const std::string path = py::str(checkpoint);
+  if (checkpointPath && !run.state.finished()) {
+    const std::string& path = *checkpointPath;
     try { saveRunFile(path, run.state); } catch (const std::exception& e) { raiseOSError(e.what()); }
   }
   if (failed) {
@@ -259,6 +367,17 @@ PYBIND11_MODULE(_archipelago, m) {
   m.doc() = "Archipelago: stickiness of islands around islands in area-preserving maps "
             "(C. F. F. Karney, Long-time correlations in the stochastic regime, Physica D 8, 1983).";
   m.attr("__version__") = ARCHIPELAGO_VERSION;
+  // A value of the wrong type met by an explicit cast is a TypeError, not pybind11's RuntimeError ("Unable to
+  // cast Python instance…", issue #23).
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const py::cast_error& e) {
+      PyErr_SetString(PyExc_TypeError, e.what());
+    } catch (const io::NotEnoughMemory& e) {
+      PyErr_SetString(PyExc_MemoryError, e.what());
+    }
+  });
 
   // ---- the map (core/map/FixedPointMap.hpp, appendix B) ----
   m.def("map_error", [](double K, double xmin, double xmax) { return mapError({K, xmin, xmax}); },
@@ -274,6 +393,8 @@ PYBIND11_MODULE(_archipelago, m) {
                     std::uint64_t steps, bool backward) {
           const FixedPointMap map(mapOf(K, xmin, xmax));
           if (steps > (std::uint64_t{1} << 28)) throw std::invalid_argument("steps must be <= 2^28 (arrays in memory)");
+          // X, Y (8 bytes each), x, y (8 each) and wrapped (1) per point: 2^28 steps need 8.9 GB (issue #23).
+          io::checkMemory((steps + 1) * 33, "orbit(steps=" + std::to_string(steps) + ")");
           UnitState z;
           if (!X0.is_none() || !Y0.is_none()) {
             z.X = unitCoordinate(X0, "X0"); z.Y = unitCoordinate(Y0, "Y0");
@@ -307,7 +428,8 @@ PYBIND11_MODULE(_archipelago, m) {
         "coordinates (rounded to the 2^-52 grid) or (X0, Y0) in unit coordinates (integers in [0, 2^52)).\n"
         "Returns a dict of arrays of steps+1 points: X, Y (uint64, units of 2^-52), x, y (physical, x = xmin + L X/2^52,\n"
         "y = -L/2 + L Y/2^52) and wrapped (the step left the box: the trapped segment ends, section 3).");
-  m.def("involution", [](py::array_t<std::uint64_t> X, py::array_t<std::uint64_t> Y) {
+  m.def("involution", [](const py::object& Xin, const py::object& Yin) {
+          const py::array_t<std::uint64_t> X = unitArray(Xin, "X"), Y = unitArray(Yin, "Y");
           if (X.size() != Y.size()) throw std::invalid_argument("X and Y must have the same size");
           py::array_t<std::uint64_t> oX(X.size()), oY(Y.size());
           for (py::ssize_t i = 0; i < X.size(); ++i) {
@@ -350,7 +472,8 @@ PYBIND11_MODULE(_archipelago, m) {
            "results for every kernel and thread count.")
       .def("save", [](const Run& r, const py::object& path) {
           r.check();
-          try { saveRunFile(std::string(py::str(path)), r.state); } catch (const std::exception& e) { raiseOSError(e.what()); } },
+          const std::string file = pathArgument(path, "path");
+          try { saveRunFile(file, r.state); } catch (const std::exception& e) { raiseOSError(e.what()); } },
            py::arg("path"), "Writes the run file atomically (core/runfile/RunFile.hpp).  OSError on failure.")
       .def("histogram", [](const Run& r, py::object subset) {
           r.check();
@@ -440,7 +563,8 @@ PYBIND11_MODULE(_archipelago, m) {
         "ValueError with the CLI's message for a bad parameter.");
   m.def("load", [](const py::object& path, bool allowModified) {
           Run r;
-          try { r.state = loadRunFile(std::string(py::str(path)), {allowModified}); }
+          const std::string file = pathArgument(path, "path");
+          try { r.state = loadRunFile(file, {allowModified}); }
           catch (const std::exception& e) { raiseOSError(e.what()); }
           return r; },
         py::arg("path"), py::arg("allow_modified") = false,
@@ -473,8 +597,8 @@ PYBIND11_MODULE(_archipelago, m) {
           r.iterations = iterations; r.gridBits = gridBits; r.kernel = &selectKernel(kernel);
           r.firstCheckpoint = std::min<std::uint64_t>(r.firstCheckpoint, iterations);
           if (auto e = validationError(r)) throw std::invalid_argument(*e);
-          StochasticAreaResult res;
-          { py::gil_scoped_release release; res = computeStochasticArea(r); }
+          const StochasticAreaResult res =
+              interruptible([&](std::stop_token stop) { return computeStochasticArea(r, {}, stop); });
           std::vector<std::uint64_t> it, boxes; std::vector<double> frac;
           for (const auto& p : res.convergence) { it.push_back(p.iterations); boxes.push_back(p.boxesVisited); frac.push_back(p.b2); }
           const StochasticAreaValue v = stochasticAreaOf(r.map, res.b2());
@@ -565,10 +689,13 @@ PYBIND11_MODULE(_archipelago, m) {
           PeriodicOrbitSearch s;
           s.period = period; s.near = {x, y}; s.searchRadius = radius; s.stableOnly = stableOnly;
           validate(K, s);
-          PeriodicOrbit o;
-          try { py::gil_scoped_release release; o = findPeriodicOrbit(K, s); }
-          catch (const std::runtime_error& e) { throw std::invalid_argument(e.what()); }
-          return periodicOrbitDict(o); },
+          try {
+            return periodicOrbitDict(interruptible([&](std::stop_token stop) { return findPeriodicOrbit(K, s, stop); }));
+          } catch (const OperationStopped&) {
+            throw;  // unreachable: a stop comes with a KeyboardInterrupt, raised first
+          } catch (const std::runtime_error& e) {
+            throw std::invalid_argument(e.what());
+          } },
         py::arg("K"), py::arg("period"), py::arg("x"), py::arg("y"), py::arg("radius") = 0.01,
         py::arg("stable_only") = false,
         "The periodic orbit of Q of minimal period n nearest to (x, y): points, Greene's residue R = (2 - trace)/4,\n"
@@ -603,8 +730,7 @@ PYBIND11_MODULE(_archipelago, m) {
           r.Xr = Xr; r.q = q; r.passes = 1;
           r.kernel = &selectKernel(kernel);
           if (auto e = validationError(r)) throw std::invalid_argument(*e);
-          PortraitResult res;
-          { py::gil_scoped_release release; res = renderPortrait(r); }
+          const PortraitResult res = interruptible([&](std::stop_token stop) { return renderPortrait(r, {}, stop); });
           const PortraitRaster& ras = res.raster;
           py::dict d;
           auto shaped = [&](auto arr) { return arr.reshape({py::ssize_t{ras.height}, py::ssize_t{ras.width}}); };

@@ -3,15 +3,9 @@
 /// \brief What archipelago-cli's subcommands share: the one number parser, the options that use it, and the
 /// map options.
 ///
-/// Numbers on the command line are read strictly, by one parser (issue #12, item 2: no silent wrap):
-///   - the whole text must be the number (no leading blanks, nothing after it);
-///   - an integer option takes plain decimal digits (an optional sign) and must fit its type: `--seed=-5` or
-///     `--seed=18446744073709551616` is an error naming the option, the text and the range, never a wrapped
-///     value;
-///   - a real option takes what strtod/strtold reads (e.g. 0.1, -8e-1, 0x1p-3) and must be finite: nan and inf
-///     are errors, and so is a value that overflows.
-/// Every error is a std::invalid_argument whose text is the one line main() prints after "ERROR: ", e.g.
-/// "--steps = -1 must be an integer in [0, 18446744073709551615]".
+/// Numbers on the command line are read strictly, by core's one reader (core/io/NumberText.hpp: no silent
+/// wrap, no locale, exact whole numbers for integer options); every error is a std::invalid_argument whose text
+/// is the one line main() prints after "ERROR: ", e.g. "--steps = -1 must be an integer in [0, 18446744073709551615]".
 /// Ranges narrower than the type's (q ≥ 1, the box's xmin < −√K, …) are core's validation, not the parser's.
 
 #include <CLI/CLI.hpp>
@@ -28,79 +22,20 @@
 #include <utility>
 #include <vector>
 
+#include "core/io/NumberText.hpp"
 #include "core/map/MapParameters.hpp"
 
 namespace archipelago::cli {
 
-/// `text` read strictly as a T (the rules above), or nothing.
-template <class T>
-[[nodiscard]] std::optional<T> toNumber(std::string_view text) {
-  static_assert(std::is_arithmetic_v<T> && !std::is_same_v<T, bool>);
-  const bool plus = !text.empty() && text.front() == '+';  // from_chars and strtod differ on '+'
-  if (plus) text.remove_prefix(1);
-  if (text.empty() || text.front() == '+' || (plus && text.front() == '-') ||
-      std::isspace(static_cast<unsigned char>(text.front())))
-    return {};
-  if constexpr (std::is_integral_v<T>) {
-    T value{};
-    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value, 10);
-    if (error != std::errc{} || end != text.data() + text.size()) return {};
-    return value;
-  } else {
-    const std::string copy(text);  // strtod needs a terminated string
-    char* end = nullptr;
-    T value{};
-    if constexpr (std::is_same_v<T, float>) value = std::strtof(copy.c_str(), &end);
-    else if constexpr (std::is_same_v<T, double>) value = std::strtod(copy.c_str(), &end);
-    else value = std::strtold(copy.c_str(), &end);
-    if (end != copy.c_str() + copy.size() || !std::isfinite(value)) return {};
-    return value;
-  }
-}
-
-/// What a T must be, for error messages: "an integer in [0, 4294967295]" or "a finite number".
-template <class T>
-[[nodiscard]] std::string numberRule() {
-  if constexpr (std::is_integral_v<T>)
-    return "an integer in [" + std::to_string(std::numeric_limits<T>::min()) + ", " +
-           std::to_string(std::numeric_limits<T>::max()) + "]";
-  else
-    return "a finite number";
-}
-
-/// The value of option `option` given as `text`; throws std::invalid_argument
-/// "<option> = <text> must be <numberRule<T>()>" when toNumber<T> rejects it.
-template <class T>
-[[nodiscard]] T parseNumber(const std::string& option, const std::string& text) {
-  if (const std::optional<T> value = toNumber<T>(text)) return *value;
-  throw std::invalid_argument(option + " = " + text + " must be " + numberRule<T>());
-}
-
-/// Exactly `count` numbers separated by `separator` (e.g. "x,y", "WxH"), each read by toNumber<T>; throws
-/// std::invalid_argument "<option> '<text>' must be <what>" otherwise.
-template <class T>
-[[nodiscard]] std::vector<T> parseNumbers(const std::string& option, const std::string& text, char separator,
-                                          std::size_t count, const std::string& what) {
-  std::vector<T> values;
-  std::string_view rest = text;
-  for (bool more = true; more && values.size() < count;) {
-    const std::size_t end = rest.find(separator);
-    const std::optional<T> value = toNumber<T>(rest.substr(0, end));
-    if (!value) break;
-    values.push_back(*value);
-    more = end != std::string_view::npos;
-    if (more) rest.remove_prefix(end + 1);
-    else if (values.size() == count) return values;
-  }
-  throw std::invalid_argument(option + " '" + text + "' must be " + what);
-}
+using io::numberRule;
+using io::parseNumber;
+using io::parseNumbers;
+using io::toNumber;
 
 /// The shortest text that reads back as `value` (for --help's defaults).
 template <class T>
 [[nodiscard]] std::string formatNumber(T value) {
-  char text[64];
-  const auto result = std::to_chars(text, text + sizeof text, value);
-  return std::string(text, result.ptr);
+  return io::shortestText(value);
 }
 
 /// Adds a numeric option `name` (CLI11 names: "--a" or "--a,--b") that stores into `value` through parseNumber<T> (so every number of the CLI

@@ -10,6 +10,8 @@
 //   FILE.json            open a run file
 //   FILE.archipelago     open a session (the window as it was saved)
 #include <QApplication>
+
+#include <clocale>
 #include <QTabWidget>
 #include <QCommandLineParser>
 #include <QTimer>
@@ -25,6 +27,9 @@
 int main(int argc, char** argv) {
   archipelago::ui::configureProcessMemory();
   QApplication app(argc, argv);
+  // Qt sets the user's locale for the C library; files and ids are never localised (issue #23: a decimal
+  // comma once made sessions unreadable in another locale).  The widgets' text uses QLocale, untouched here.
+  std::setlocale(LC_NUMERIC, "C");
   QApplication::setApplicationName(QStringLiteral("Archipelago"));
   QApplication::setOrganizationName(QStringLiteral("Archipelago"));
   QApplication::setApplicationVersion(QStringLiteral(ARCHIPELAGO_VERSION));

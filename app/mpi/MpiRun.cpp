@@ -149,6 +149,10 @@ void removeStaleParts(const std::string& manifest, const std::vector<std::string
 
 /// The whole state to resume: a manifest of parts or a plain run file (e.g. archipelago-cli run's checkpoint).
 TrappingState loadResume(const std::string& path) {
+  // A manifest is small; a larger file can only be a run file, read with its memory check (io::loadJsonFile).
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path, ec);
+  if (!ec && size > kMaxManifestBytes) return loadRunFile(path);
   const std::string text = io::readRegularFile(path, kMaxRunFileBytes);
   if (looksLikeRunManifest(text)) return loadRunManifest(path);
   try {
@@ -275,8 +279,9 @@ int mpiRun(const cli::RunOptions& o, const std::vector<std::string>& explicitPar
                                   " orbits: use at most M ranks");
     const auto [b, e] = rankRange(whole.params.M, w.rank, w.size);
     state = sliceRun(whole, b, e, root);
-    if (root && o.resume == manifest) {
-      const std::string text = io::readRegularFile(o.resume, kMaxRunFileBytes);
+    std::error_code ec;
+    if (root && o.resume == manifest && std::filesystem::file_size(o.resume, ec) <= kMaxManifestBytes && !ec) {
+      const std::string text = io::readRegularFile(o.resume, kMaxManifestBytes);
       if (looksLikeRunManifest(text))
         for (const auto& p : parseRunManifest(text, o.resume).parts) previousParts.push_back(p.file);
     }

@@ -3,6 +3,8 @@
 // (core/report), the GUI's plot code for the figures (ui/report), then index.html, items.csv and report.pdf.
 #include <CLI/CLI.hpp>
 #include <QApplication>
+
+#include <clocale>
 #include <QDir>
 #include <QString>
 
@@ -19,6 +21,7 @@
 #include <stop_token>
 
 #include "core/io/AtomicFile.hpp"
+#include "core/io/NumberText.hpp"
 #include "core/portrait/ColourMap.hpp"
 #include "core/report/LongOrbit.hpp"
 #include "core/report/PaperItems.hpp"
@@ -144,9 +147,9 @@ std::string html(const std::string& s) {
 
 std::string number(const std::optional<double>& v, double error = 0) {
   if (!v) return "—";
-  char buf[64];
-  if (error > 0) std::snprintf(buf, sizeof buf, "%.6g ± %.2g", *v, error);
-  else std::snprintf(buf, sizeof buf, "%.8g", *v);
+  std::string buf;
+  if (error > 0) buf = io::formatC("%.6g ± %.2g", *v, error);
+  else buf = io::formatC("%.8g", *v);
   return buf;
 }
 
@@ -182,6 +185,10 @@ int main(int argc, char** argv) {
     return app.exit(e);
   }
   QApplication qapp(argc, argv);
+  // Qt sets the user's locale for the C library; printf-style text of this program is never localised (a
+  // decimal comma once split items.csv's columns and changed statement ids, issue #23).  Qt's own text uses
+  // QLocale, which this does not touch.
+  std::setlocale(LC_NUMERIC, "C");
   std::signal(SIGINT, onInterrupt);
   std::signal(SIGTERM, onInterrupt);
   try {
@@ -197,6 +204,9 @@ int main(int argc, char** argv) {
     const io::FileLock reportLock = io::FileLock::acquire(out / "index.html");  // one report per folder at a time
     fs::create_directories(out / "figures");
     fs::create_directories(out / "runs");
+    // What a killed report left half-written (only temporaries: every output is published atomically).
+    io::removeStaleTemporariesIn(out);
+    io::removeStaleTemporariesIn(out / "figures");
     const std::string size = full ? "full" : "quick";
 
     std::vector<report::PaperItem> items = report::theoryItems();
@@ -273,14 +283,12 @@ int main(int argc, char** argv) {
     int i = 0;
     for (double K : {-1e-4, 0.0, 1e-4}) {
       const TrappingParameters p = report::smallKParameters(K, full);
-      char name[64];
-      std::snprintf(name, sizeof name, "smallk%s-%s.json", letters[i], size.c_str());
+      const std::string name = io::formatC("smallk%s-%s.json", letters[i], size.c_str());
       const TrappingState run = runOrReuse(p, out / "runs" / name, threads);
       const TrappingStatistics st = statisticsOf(run);
       if (K < 0) items.push_back(report::negativeKCutoffItem(run));
-      char caption[160];
-      std::snprintf(caption, sizeof caption, "f<sub>t</sub> at K = %g with the small-K theory (%.3g steps)", K,
-                    run.stepsDone());
+      const std::string caption = io::formatC("f<sub>t</sub> at K = %g with the small-K theory (%.3g steps)", K,
+                                              run.stepsDone());
       figure(Statistic::f, run, st, std::string("fig3") + letters[i], std::string("3") + letters[i], caption);
       ++i;
     }
@@ -317,8 +325,8 @@ int main(int argc, char** argv) {
     for (auto& it : report::localExponentRangeItems(k01, st, full)) items.push_back(std::move(it));
     for (auto& it : report::stochasticAreaItems(k01, st, tail, full)) items.push_back(std::move(it));
     for (auto& it : report::tailItems(tail, full)) items.push_back(std::move(it));
-    char steps[64];
-    std::snprintf(steps, sizeof steps, " at K = 0.1 (%.3g steps)", k01.stepsDone());
+    std::string steps;
+    steps = io::formatC(" at K = 0.1 (%.3g steps)", k01.stepsDone());
     figure(Statistic::f, k01, st, "fig6a", "6a", std::string("f<sub>t</sub>") + steps);
     figure(Statistic::P, k01, st, "fig6b", "6b", std::string("P<sub>t</sub>") + steps);
     figure(Statistic::C, k01, st, "fig6c", "6c", std::string("C<sub>τ</sub>") + steps);
@@ -332,9 +340,8 @@ int main(int argc, char** argv) {
       auto chainText = [](const IslandChain& c) {
         std::string h;
         for (int level : c.hierarchy) h += (h.empty() ? "" : " → ") + std::to_string(level);
-        char buf[200];
-        std::snprintf(buf, sizeof buf, "period %d (hierarchy %s), member at (%.5Lf, %.5Lf)", c.period, h.c_str(),
-                      c.member.x, c.member.y);
+        const std::string buf = io::formatC("period %d (hierarchy %s), member at (%.5Lf, %.5Lf)", c.period, h.c_str(),
+                                            c.member.x, c.member.y);
         return std::string(buf);
       };
       auto drawSegment = [&](const report::LongOrbitView& v, const std::string& stem, const std::string& num,
@@ -344,15 +351,13 @@ int main(int argc, char** argv) {
           centre.name = QStringLiteral("the chain's elliptic periodic orbit");
           for (const auto& z : v.chain.chain.centre->points) centre.points.emplace_back(double(z.x), double(z.y));
         }
-        char title[160];
-        std::snprintf(title, sizeof title, "Fig. %s — segment %zu: %.3g steps, chain of period %d", num.c_str(),
-                      v.rank, double(v.steps), v.chain.chain.period);
+        const std::string title = io::formatC("Fig. %s — segment %zu: %.3g steps, chain of period %d", num.c_str(),
+                                              v.rank, double(v.steps), v.chain.chain.period);
         if (!ui::report::writePointsFigure(qPoints(v.points), double(v.view.x0), double(v.view.x1), double(v.view.y0),
-                                           double(v.view.y1), QString::fromUtf8(title),
+                                           double(v.view.y1), QString::fromUtf8(title.c_str()),
                                            QString::fromStdString((out / "figures" / stem).string()), &error, centre))
           throw std::runtime_error(error.toStdString());
-        char steps[64];
-        std::snprintf(steps, sizeof steps, "%.3g", double(v.steps));
+        const std::string steps = io::formatC("%.3g", double(v.steps));
         figures.push_back({num, what + " segment " + std::to_string(v.rank) + " of the K = 0.1 run (" + steps +
                                     " steps, orbit " + std::to_string(v.record.orbit) + "), replayed exactly and "
                                     "zoomed to one island of its chain: " + html(chainText(v.chain.chain)) + " (<code>" +
@@ -457,12 +462,13 @@ int main(int argc, char** argv) {
     stopIfInterrupted();
     // items.csv, index.html, report.pdf.
     std::ostringstream csv;
+    csv.imbue(std::locale::classic());  // never the user's decimal comma (issue #23)
     csv << "id,section,statement,paper_value,paper,ours,error,tolerance,mark,command,note\n";
     int differs = 0;
     for (const auto& it : items) {
       if (it.mark == report::Mark::differs) ++differs;
       csv << it.id << ',' << csvField(it.section) << ',' << csvField(it.statement) << ',' << csvField(it.paperValue)
-          << ',' << (it.paper ? std::to_string(*it.paper) : "") << ',' << (it.ours ? number(it.ours) : "") << ','
+          << ',' << (it.paper ? number(it.paper) : "") << ',' << (it.ours ? number(it.ours) : "") << ','
           << it.error << ',' << it.tolerance << ',' << csvField(report::markText(it.mark)) << ','
           << csvField(it.command) << ',' << csvField(it.note) << '\n';
     }
@@ -494,8 +500,7 @@ int main(int argc, char** argv) {
     for (const auto& it : items) {
       const char* cls = it.mark == report::Mark::agrees ? "agrees"
                         : it.mark == report::Mark::differs ? "differs" : "other";
-      char tol[32];
-      std::snprintf(tol, sizeof tol, "%.2g", it.tolerance);
+      const std::string tol = io::formatC("%.2g", it.tolerance);
       h << "<tr class=\"" << cls << "\"><td>" << it.id << "</td><td>" << html(it.section) << "</td><td>"
         << html(it.statement) << "<br><small>" << html(it.note) << "</small></td><td>" << html(it.paperValue)
         << "</td><td>" << number(it.ours, it.error) << "</td><td>" << (it.paper ? tol : "") << "</td><td>"

@@ -115,6 +115,22 @@ std::size_t removeStaleTemporaries(const std::filesystem::path& path) {
   return removed;
 }
 
+std::size_t removeStaleTemporariesIn(const std::filesystem::path& folder) {
+  std::size_t removed = 0;
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(folder, ec)) {
+    const std::string name = entry.path().filename().string();
+    // ".NAME.XXXXXX": a dot, a name, a dot and mkstemp's six characters (not ".NAME.lock").
+    if (name.size() < 9 || name[0] != '.' || name[name.size() - 7] != '.' || !entry.is_regular_file(ec)) continue;
+    const std::string suffix = name.substr(name.size() - 6);
+    if (suffix.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789") !=
+                                std::string::npos)
+      continue;
+    if (std::filesystem::remove(entry.path(), ec)) ++removed;
+  }
+  return removed;
+}
+
 FileLock FileLock::acquire(const std::filesystem::path& path) {
   const std::filesystem::path dir = path.has_parent_path() ? path.parent_path() : std::filesystem::path(".");
   const std::filesystem::path lockPath = dir / ("." + path.filename().string() + ".lock");

@@ -61,6 +61,10 @@ void checkWritableTarget(const std::filesystem::path& path);
 /// then be using one.  Returns how many were removed.
 std::size_t removeStaleTemporaries(const std::filesystem::path& path);
 
+/// The same for every file of `folder` (a report's figures): call it only while holding a lock that keeps every
+/// other writer of that folder away.  Returns how many were removed.
+std::size_t removeStaleTemporariesIn(const std::filesystem::path& folder);
+
 /// An advisory lock (flock) that keeps two processes from writing the same file: held on ".NAME.lock" beside
 /// NAME from acquire() until destruction; the lock file is removed then.  Released by the kernel when the
 /// process dies, even by SIGKILL, so a killed run never blocks the next one.

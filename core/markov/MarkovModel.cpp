@@ -1,5 +1,7 @@
 #include "core/markov/MarkovModel.hpp"
 
+#include "core/io/Memory.hpp"
+
 #include <cmath>
 #include <cstddef>
 #include <stdexcept>
@@ -85,6 +87,13 @@ LumpedObservable paperObservable(const MarkovModel& model, double h0) {
 
 namespace {
 
+// The series of a caller that holds C, C_is and ε at once, each made through a long double copy: at m = 1 the
+// work bound allows τmax = 2.5·10⁸, about 14 GB (issue #23), so the memory is checked before the work.
+void checkSeriesMemory(std::int64_t tauMax) {
+  io::checkMemory(static_cast<std::uintmax_t>(tauMax + 1) * MarkovModel::kBytesPerLag,
+                  "the Markov model's series up to tau = " + std::to_string(tauMax));
+}
+
 // N·C(τ) (eq. cmark) by the lumped chain, in long double.
 std::vector<long double> scaledCorrelation(const MarkovModel& model, const LumpedObservable& h, std::int64_t tauMax) {
   validate(model, h);
@@ -92,6 +101,7 @@ std::vector<long double> scaledCorrelation(const MarkovModel& model, const Lumpe
   if (tauMax < 0 || (tauMax + 1) > MarkovModel::kMaxWork / (m + 1))
     throw std::invalid_argument("tauMax = " + std::to_string(tauMax) + " must be 0 ... " +
                                 std::to_string(MarkovModel::kMaxWork / (m + 1) - 1) + " for m = " + std::to_string(m));
+  checkSeriesMemory(tauMax);
   const long double n = static_cast<long double>(model.seaPoints());
   const long double nFree = static_cast<long double>(model.freeSeaPoints());
   const long double seaSum = -h.trappedSum();  // Σ_S h
@@ -137,6 +147,7 @@ std::vector<long double> scaledCorrelation(const MarkovModel& model, const Lumpe
 std::vector<long double> scaledIslandCorrelation(const MarkovModel& model, std::int64_t tauMax, double h0) {
   validate(model);
   if (tauMax < 0) throw std::invalid_argument("tauMax = " + std::to_string(tauMax) + " must be >= 0");
+  checkSeriesMemory(tauMax);
   std::vector<long double> C(static_cast<std::size_t>(tauMax) + 1);
   for (std::int64_t tau = 0; tau <= tauMax; ++tau) {
     std::int64_t overlap = 0;

@@ -71,6 +71,9 @@ struct MarkovModel {
   static constexpr std::int64_t kMaxTrappedPoints = 1'000'000;         ///< bound on m = Σ m_k
   static constexpr std::int64_t kMaxPoints = std::int64_t{1} << 53;    ///< bound on N (exact in a double)
   static constexpr std::int64_t kMaxWork = 500'000'000;                ///< bound on (m + 1)(τmax + 1)
+  /// Memory per lag of a caller holding C, C_is and ε (each made through a long double copy): checked against
+  /// the memory available (io::checkMemory, std::runtime_error) before a series is computed.
+  static constexpr std::uintmax_t kBytesPerLag = 96;
 
   [[nodiscard]] std::int64_t trappedPoints() const noexcept;     ///< m = Σ m_k
   [[nodiscard]] std::int64_t seaPoints() const noexcept;         ///< n = N − m (S, pre-images included)

@@ -7,6 +7,8 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "core/io/NumberText.hpp"
+
 namespace archipelago {
 
 const char* toString(OrbitSymmetry s) noexcept {
@@ -40,20 +42,20 @@ long double PeriodicOrbit::distanceTo(PhysicalPoint p) const noexcept {
 bool PeriodicOrbit::stable() const noexcept { return !std::isnan(residue) && classifyOrbit(residue).stable(); }
 
 std::string rotationNumberText(const PeriodicOrbit& orbit, int digits) {
-  char text[256];
+  std::string text;
   if (orbit.linearRotation) {
     if (std::isnan(orbit.rotationNumber)) return "none (hyperbolic fixed point: nearby orbits do not turn about it)";
     const char* exact = orbit.rotationNumber == 0 ? " = 0/1" : (orbit.rotationNumber == 0.5L ? " = 1/2" : "");
-    std::snprintf(text, sizeof text, "%.*Lg%s (linear, at the central fixed point)", digits, orbit.rotationNumber,
-                  exact);
+    text = io::formatC("%.*Lg%s (linear, at the central fixed point)", digits, orbit.rotationNumber,
+                       exact);
     return text;
   }
   const long turns = orbit.windingTurns;
   const long period = orbit.period;
   const long divisor = std::gcd(turns, period);
-  std::snprintf(text, sizeof text, "%.*Lg = %ld/%ld = %ld/%ld (clockwise turns about (−√K, 0) per step)", digits,
-                orbit.rotationNumber, turns, period, divisor != 0 ? turns / divisor : turns,
-                divisor != 0 ? period / divisor : period);
+  text = io::formatC("%.*Lg = %ld/%ld = %ld/%ld (clockwise turns about (−√K, 0) per step)", digits,
+                     orbit.rotationNumber, turns, period, divisor != 0 ? turns / divisor : turns,
+                     divisor != 0 ? period / divisor : period);
   return text;
 }
 

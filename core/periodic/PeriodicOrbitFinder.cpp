@@ -8,6 +8,7 @@
 #include <string>
 #include <utility>
 
+#include "core/io/NumberText.hpp"
 #include "core/periodic/SmoothQuadraticMap.hpp"
 
 namespace archipelago {
@@ -27,8 +28,7 @@ constexpr long double kSubperiodTolerance = 1e-9L;
 constexpr long double kEscape = 1e3L;
 
 std::string formatNumber(long double v) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.10Lg", v);
+  const std::string buffer = io::formatC("%.10Lg", v);
   return buffer;
 }
 
@@ -158,7 +158,8 @@ void validate(long double K, const PeriodicOrbitSearch& search) {
     throw std::invalid_argument("samples per window = " + std::to_string(search.samplesPerWindow) + " must be >= 8");
 }
 
-std::vector<PeriodicOrbit> findSymmetricPeriodicOrbits(long double K, const PeriodicOrbitSearch& search) {
+std::vector<PeriodicOrbit> findSymmetricPeriodicOrbits(long double K, const PeriodicOrbitSearch& search,
+                                                       std::stop_token stop) {
   validate(K, search);
   const int n = search.period;
   std::vector<PeriodicOrbit> found;
@@ -171,6 +172,7 @@ std::vector<PeriodicOrbit> findSymmetricPeriodicOrbits(long double K, const Peri
       long double sPrevious = window.lo;
       long double fPrevious = shootOffset(shot, K, sPrevious);
       for (long i = 1; i <= samples; ++i) {
+        if (stop.stop_requested()) throw OperationStopped();  // each sample costs n steps: checked every one
         const long double s = window.lo + (window.hi - window.lo) * static_cast<long double>(i) / samples;
         const long double f = shootOffset(shot, K, s);
         const bool bracket = !std::isnan(f) && !std::isnan(fPrevious) && ((f < 0) != (fPrevious < 0) || f == 0);
@@ -247,8 +249,9 @@ std::optional<PeriodicOrbit> refinePeriodicOrbit(long double K, int period, Phys
   return orbit;
 }
 
-PeriodicOrbit findPeriodicOrbit(long double K, const PeriodicOrbitSearch& search) {
-  std::vector<PeriodicOrbit> symmetric = findSymmetricPeriodicOrbits(K, search);
+PeriodicOrbit findPeriodicOrbit(long double K, const PeriodicOrbitSearch& search, std::stop_token stop) {
+  std::vector<PeriodicOrbit> symmetric = findSymmetricPeriodicOrbits(K, search, stop);
+  if (stop.stop_requested()) throw OperationStopped();
   if (!symmetric.empty()) return std::move(symmetric.front());
   if (std::optional<PeriodicOrbit> general = refinePeriodicOrbit(K, search.period, search.near)) {
     if (!search.stableOnly || general->stable()) return general->rotatedToStart(general->nearestIndex(search.near));

@@ -23,6 +23,9 @@
 #include <optional>
 #include <vector>
 
+#include <stdexcept>
+#include <stop_token>
+
 #include "core/map/FixedPointMap.hpp"  // PhysicalPoint
 #include "core/periodic/PeriodicOrbit.hpp"
 
@@ -45,7 +48,10 @@ void validate(long double K, const PeriodicOrbitSearch& search);
 /// All distinct symmetric orbits of minimal period `search.period` found from the guess, nearest first
 /// (distance from `near` to the orbit's nearest point); each is relabelled so that z_0 is that nearest point.
 /// Empty when none was found.  Accepted orbits close to |Qⁿ(z_0) − z_0| ≤ 1e-12.
-[[nodiscard]] std::vector<PeriodicOrbit> findSymmetricPeriodicOrbits(long double K, const PeriodicOrbitSearch& search);
+/// A search of period n costs about 2 · samples · n steps of Q: at the largest periods that is tens of seconds,
+/// so `stop` is checked at every sample, and a stopped search throws OperationStopped.
+[[nodiscard]] std::vector<PeriodicOrbit> findSymmetricPeriodicOrbits(long double K, const PeriodicOrbitSearch& search,
+                                                                     std::stop_token stop = {});
 
 /// General (not necessarily symmetric) periodic orbit: damped Newton on Qⁿ(z) − z from `guess`, in __float128.
 /// Returns the orbit (z_0 = the converged point) when Newton converged to a point of minimal period n,
@@ -56,6 +62,12 @@ void validate(long double K, const PeriodicOrbitSearch& search);
 /// The orbit nearest to the guess: the nearest symmetric one, else the general Newton result from the guess.
 /// Throws std::invalid_argument for invalid input and std::runtime_error ("no periodic orbit of period n found
 /// near (x, y) ...") when neither method succeeds.
-[[nodiscard]] PeriodicOrbit findPeriodicOrbit(long double K, const PeriodicOrbitSearch& search);
+/// Throws OperationStopped when `stop` is requested.
+[[nodiscard]] PeriodicOrbit findPeriodicOrbit(long double K, const PeriodicOrbitSearch& search, std::stop_token stop = {});
+
+/// What a search stopped through its std::stop_token throws (not an error of the search: the caller asked).
+struct OperationStopped : std::runtime_error {
+  OperationStopped() : std::runtime_error("stopped") {}
+};
 
 }  // namespace archipelago

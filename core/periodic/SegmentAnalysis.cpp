@@ -9,6 +9,7 @@
 #include <tuple>
 #include <utility>
 
+#include "core/io/NumberText.hpp"
 #include "core/run/TrappingRun.hpp"
 
 #include "core/io/AtomicFile.hpp"
@@ -20,10 +21,9 @@ namespace {
 
 /// One line of a segment's CSV: step, x, y (17 significant digits), X, Y (exact).
 void writeCsvLine(std::ostream& out, std::uint64_t step, const PhysicalPoint& p, const UnitState& z) {
-  char line[160];
-  std::snprintf(line, sizeof line, "%llu,%.17g,%.17g,%llu,%llu\n", static_cast<unsigned long long>(step),
+  const std::string line = io::formatC("%llu,%.17g,%.17g,%llu,%llu\n", static_cast<unsigned long long>(step),
                 static_cast<double>(p.x), static_cast<double>(p.y), static_cast<unsigned long long>(z.X),
-                static_cast<unsigned long long>(z.Y));
+                                       static_cast<unsigned long long>(z.Y));
   out << line;
 }
 

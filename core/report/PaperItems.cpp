@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/io/NumberText.hpp"
 #include "core/kernels/KernelDispatch.hpp"
 #include "core/markov/MarkovModel.hpp"
 #include "core/parallel/ParallelFor.hpp"
@@ -52,10 +53,10 @@ PaperItem make(std::string id, std::string section, std::string statement, std::
 
 const char* const cli = "archipelago-cli";
 
-std::string cmd(const char* rest) { return std::string(cli) + " " + rest; }
+std::string cmd(const std::string& rest) { return std::string(cli) + " " + rest; }
 
 /// Items with no archipelago-cli command of their own: the report's --only prints them alone.
-std::string only(const char* id) { return std::string("archipelago-reproduce --only ") + id + " OUTDIR"; }
+std::string only(const std::string& id) { return "archipelago-reproduce --only " + id + " OUTDIR"; }
 
 }  // namespace
 
@@ -92,9 +93,8 @@ std::vector<PaperItem> theoryItems() {
                        paper::segmentDecayExponent(2), 0, 0, only("t7"),
                        "exponent from T ∝ X0^−½; the measured slope is checked by SmallKTrapping.ZeroK…"));
   for (double K : {1e-4, 1e-3, 1e-2}) {
-    char id[32], st[96];
-    std::snprintf(id, sizeof id, "decay-%g", K);
-    std::snprintf(st, sizeof st, "K = %g: f_t ~ exp(−K^¼ t), rate ½ log λ", K);
+    const std::string id = io::formatC("decay-%g", K);
+    const std::string st = io::formatC("K = %g: f_t ~ exp(−K^¼ t), rate ½ log λ", K);
     const double q = std::pow(K, 0.25);
     items.push_back(make(id, "§4", st, "K^¼", q, smallk::positiveKDecayRate(K), 0, 0.1 * q, only(id),
                          "½ log λ, λ = 1 + 2√K + 2√(√K + K) (exact); K^¼ is its small-K form (tolerance 10 %)"));
@@ -121,9 +121,8 @@ std::vector<PaperItem> theoryItems() {
       if (!o) throw std::runtime_error("no elliptic orbit of period 138 near the paper's point");
       x = static_cast<double>(o->points.front().x) + std::sqrt(0.1);
       y = static_cast<double>(o->points.front().y);
-      char buf[160];
-      std::snprintf(buf, sizeof buf, "elliptic period-%d orbit, residue %.3Lf, member at (%.6f, %.6f)", o->period,
-                    o->residue, static_cast<double>(o->points.front().x), *y);
+      const std::string buf = io::formatC("elliptic period-%d orbit, residue %.3Lf, member at (%.6f, %.6f)", o->period,
+                                          o->residue, static_cast<double>(o->points.front().x), *y);
       note = buf;
     } catch (const std::exception& e) {
       note = std::string("not found: ") + e.what();
@@ -173,10 +172,9 @@ std::vector<PaperItem> k01Items(const TrappingState& run, const TrappingStatisti
                                 bool full) {
   std::vector<PaperItem> items;
   const auto& p = run.params;
-  char spec[200];
-  std::snprintf(spec, sizeof spec, "run --K 0.1 --xmin -0.8 --xmax 0.5 --q %u --T %llu --M %llu --seed %llu --out k01.json",
-                p.q, static_cast<unsigned long long>(p.T), static_cast<unsigned long long>(p.M),
-                static_cast<unsigned long long>(p.seed));
+  const std::string spec = io::formatC("run --K 0.1 --xmin -0.8 --xmax 0.5 --q %u --T %llu --M %llu --seed %llu --out k01.json",
+                                       p.q, static_cast<unsigned long long>(p.T), static_cast<unsigned long long>(p.M),
+                                       static_cast<unsigned long long>(p.seed));
   const std::string runCmd = cmd(spec);
   // α ≈ ¼: the mean local exponent over 300 ≤ τ ≤ 3000 (fig. 6d), error the mean of the per-point errors.
   double sum = 0, err = 0;
@@ -197,11 +195,10 @@ std::vector<PaperItem> k01Items(const TrappingState& run, const TrappingStatisti
   // p = 1 + α ≈ 5/4 (§5): −d log P/d log t over the same steps.
   std::size_t pPoints = 0;
   const double pSlope = fitLogSlope(s.P, 300, 3000, &pPoints);
-  char pNote[240];
-  std::snprintf(pNote, sizeof pNote,
+  const std::string pNote = io::formatC(
                 "1 + α with α above (the paper's relation); the direct least-squares −d log P/d log t over "
-                "300 ≤ t ≤ 3000 is %.3f (%zu points): locally the two differ where α varies",
-                pSlope, pPoints);
+                                        "300 ≤ t ≤ 3000 is %.3f (%zu points): locally the two differ where α varies",
+                                        pSlope, pPoints);
   items.push_back(make("p-five-quarters", "§5", "K = 0.1: P_t ~ t^−p with p = 1 + α ≈ 5/4 (τ ≲ 10⁴)", "5/4", 1.25,
                        alpha ? std::optional<double>(1 + *alpha) : std::nullopt, items.front().error, 0.06,
                        runCmd + " && " + cmd("stats k01.json --tail-csv tail"), pNote));
@@ -215,8 +212,7 @@ std::vector<PaperItem> k01Items(const TrappingState& run, const TrappingStatisti
   if (sp.ours) sp.mark = *sp.ours > 1.5 ? Mark::agrees : Mark::differs;
   sp.note += "; local slopes over [t, 3t]:";  // the whole range's slope hides how it varies (fig. 7b)
   for (double t : {100.0, 300.0, 1000.0, 3000.0, 10000.0}) {
-    char local[48];
-    std::snprintf(local, sizeof local, " %g: %.2f", t, -fitLogSlope(s.S, t, 3 * t));
+    const std::string local = io::formatC(" %g: %.2f", t, -fitLogSlope(s.S, t, 3 * t));
     sp.note += local;
   }
   items.push_back(sp);
@@ -263,10 +259,9 @@ std::vector<PaperItem> localExponentRangeItems(const TrappingState& run, const T
     if (!hi || e.value[i] > *hi) hi = e.value[i], hiErr = err, hiTau = e.x[i];
   }
   const std::string command = cmd("stats k01.json --csv k01-csv") + " (local_exponent.csv)";
-  char note[240];
-  std::snprintf(note, sizeof note,
+  const std::string note = io::formatC(
                 "over the %g ≤ τ ≤ %.3g points whose subset error is ≤ %g: the smallest at τ = %.3g, the largest at "
-                "τ = %.3g", from, lastTau, kLocalExponentMaxError, loTau, hiTau);
+                                       "τ = %.3g", from, lastTau, kLocalExponentMaxError, loTau, hiTau);
   std::vector<PaperItem> items;
   items.push_back(make("alpha-min", "§5", "K = 0.1: the local exponent −d log C/d log τ varies between about ¼ …",
                        "≈ ¼", 0.25, lo, loErr, 0.06, command, note));
@@ -283,13 +278,12 @@ std::vector<PaperItem> tailItems(const TailAnalysis& tail, bool full) {
   std::vector<PaperItem> items;
   const TailWindow& w = tail.tailFit;
   const double half = (w.gammaPInterval.hi - w.gammaPInterval.lo) / 2;
-  char note[320];
-  std::snprintf(note, sizeof note,
+  const std::string note = io::formatC(
                 "not in the paper (its open question): γ of P_t ~ t^−γ over the last decade with ≥ 10 segments beyond "
                 "it, [%.3g, %.3g] steps, %llu segments beyond its start; bootstrap 95 %% interval [%.3f, %.3f]. "
                 "Literature: 1.57 (Cristadoro & Ketzmerick 2008), 3/2 (Venegeroles 2009), 1.3 (Shepelyansky 2010)",
                 w.from, w.to, static_cast<unsigned long long>(w.segmentsBeyondFrom), w.gammaPInterval.lo,
-                w.gammaPInterval.hi);
+                                       w.gammaPInterval.hi);
   PaperItem g = make("tail-gamma", "§7 (later work)", "the asymptotic decay of P_t: later work finds t^−1.57",
                      "open question", 1.57, std::isfinite(w.gammaP) ? std::optional<double>(w.gammaP) : std::nullopt,
                      std::isfinite(half) ? half / 1.96 : 0, 0.1, cmd("stats k01.json --tail-csv tail"), note);
@@ -300,10 +294,9 @@ std::vector<PaperItem> tailItems(const TailAnalysis& tail, bool full) {
   }
   items.push_back(g);
   const StepsToDecide& d = tail.decide;
-  char dnote[280];
-  std::snprintf(dnote, sizeof dnote,
+  const std::string dnote = io::formatC(
                 "steps for %g segments beyond t_a = %.3g (P = %.3g) to tell γ = %.2f from %.0f at %g σ "
-                "(TailAnalysis.hpp); this run did %.3g steps",
+                                        "(TailAnalysis.hpp); this run did %.3g steps",
                 d.segmentsNeeded, d.anchor, d.P, d.gammaSlow, d.gammaFast, d.sigmas, d.stepsDone);
   PaperItem s{"steps-to-decide", "§7 (later work)", "steps needed to decide between t^−1.57 and t^−3 at K = 0.1",
               "(the paper: ~10¹⁶, issue #15)", std::nullopt,
@@ -340,11 +333,10 @@ PaperItem kScanItem(const std::vector<ScanRunSummary>& runs, bool full) {
   }
   std::optional<double> fraction;
   if (!runs.empty()) fraction = static_cast<double>(slow) / static_cast<double>(runs.size());
-  char note[400];
-  std::snprintf(note, sizeof note,
+  const std::string note = io::formatC(
                 "fraction of the %zu K whose longest segment reaches 10⁴ steps (an exponential decay at §4's rate "
                 "cannot: e^−1600); none at K = %s. Box per K: xmin = −2√K − 0.2, xmax = √K + 0.2",
-                runs.size(), without.empty() ? "(none)" : without.c_str());
+                                       runs.size(), without.empty() ? "(none)" : without.c_str());
   PaperItem it{"kscan", "§5", "f_t for K from 0.05 to 1.3 in steps of 0.05: at most K a slow algebraic decay",
                "most K", 0.5, fraction, 0, 0, Mark::notReproduced, kScanCommand(full), note};
   if (fraction) it.mark = *fraction > 0.5 ? Mark::agrees : Mark::differs;
@@ -376,19 +368,19 @@ StepTiming measureStepTiming(int threads, double seconds) {
 
 std::vector<PaperItem> timingItems(const StepTiming& t) {
   std::vector<PaperItem> items;
-  char note[300];
-  std::snprintf(note, sizeof note,
-                "one thread of this machine (%s kernel, 52-bit fixed point): %.3g ns per step, %.0f× the Cray-1's "
-                "75 ns (a 1983 vector machine, CAL assembly, 48-bit fixed point)",
-                t.kernel.c_str(), t.nsPerStepOneThread, 75 / t.nsPerStepOneThread);
+  std::string note;
+  note = io::formatC(
+                     "one thread of this machine (%s kernel, 52-bit fixed point): %.3g ns per step, %.0f× the Cray-1's "
+                     "75 ns (a 1983 vector machine, CAL assembly, 48-bit fixed point)",
+                     t.kernel.c_str(), t.nsPerStepOneThread, 75 / t.nsPerStepOneThread);
   items.push_back(PaperItem{"cray-ns", "App. B", "the time for one iteration on a Cray-1: a little less than 75 ns",
                             "< 75 ns", 75, t.nsPerStepOneThread, 0, 0, Mark::differsExplained,
                             "archipelago-reproduce --only cray-ns OUTDIR", note});
   const double hours = 3.2e12 / t.stepsPerSecond / 3600;
-  std::snprintf(note, sizeof note,
+  note = io::formatC(
                 "fig. 6's 3.2·10¹² steps at this machine's measured %.3g steps/s on %d thread%s: %.3g h (the Cray-1: "
-                "65 h of CPU time)",
-                t.stepsPerSecond, t.threads, t.threads == 1 ? "" : "s", hours);
+                     "65 h of CPU time)",
+                     t.stepsPerSecond, t.threads, t.threads == 1 ? "" : "s", hours);
   items.push_back(PaperItem{"cray-hours", "App. B", "fig. 6 (3.2·10¹² iterations) took about 65 hours on the Cray-1",
                             "≈ 65 h", 65, hours, 0, 0, Mark::differsExplained,
                             "archipelago-reproduce --only cray-hours OUTDIR", note});
@@ -410,9 +402,8 @@ PaperItem negativeKCutoffItem(const TrappingState& run) {
   std::optional<double> longest;
   if (!run.longest.items().empty())
     longest = static_cast<double>(run.longest.items().front().length) * static_cast<double>(run.params.q);
-  char buf[200];
-  std::snprintf(buf, sizeof buf, "run --preset small-k-negative --T %llu --out kneg.json && archipelago-cli stats kneg.json",
-                static_cast<unsigned long long>(run.params.T));
+  const std::string buf = io::formatC("run --preset small-k-negative --T %llu --out kneg.json && archipelago-cli stats kneg.json",
+                                      static_cast<unsigned long long>(run.params.T));
   PaperItem it{"tmax-measured", "§4", "K = −10⁻⁴: no segment longer than t_max = 5.1454 |K|^−¼ (fig. 3a)",
                "≤ 51.5 steps", tmax, longest, 0, 0, Mark::notReproduced, cmd(buf),
                "the longest recorded segment (steps), which must not exceed t_max (+1 for the discrete map)"};
@@ -454,10 +445,9 @@ PortraitRequest figureTwoRequest(bool full, bool enlargement) {
 std::string figureTwoCommand(bool full, bool enlargement) {
   const PortraitRequest r = figureTwoRequest(full, enlargement);
   const PhysicalRect v = r.view.physical(r.map);
-  char buf[240];
-  std::snprintf(buf, sizeof buf, "portrait --view=%.4Lf,%.4Lf,%.4Lf,%.4Lf --size %dx%d --mode density --points %llu --out fig2%s.png",
+  const std::string buf = io::formatC("portrait --view=%.4Lf,%.4Lf,%.4Lf,%.4Lf --size %dx%d --mode density --points %llu --out fig2%s.png",
                 v.x0, v.x1, v.y0, v.y1, r.width, r.height, static_cast<unsigned long long>(r.points),
-                enlargement ? "b" : "a");
+                                      enlargement ? "b" : "a");
   return cmd(buf);
 }
 
@@ -482,18 +472,15 @@ std::vector<PaperItem> stochasticAreaItems(const TrappingState& run, const Trapp
   const StochasticAreaValue b2 = stochasticAreaOf(r.map, result.b2());
   const double dError = supportedDError(tail);
   const BoxInvariantQuantities inv = boxInvariantQuantities(b2, stats.D, std::isfinite(dError) ? dError : 0);
-  char b2cmd[96];
-  std::snprintf(b2cmd, sizeof b2cmd, "stochastic-area --iterations %llu", static_cast<unsigned long long>(r.iterations));
-  char note[200];
-  std::snprintf(note, sizeof note,
+  const std::string b2cmd = io::formatC("stochastic-area --iterations %llu", static_cast<unsigned long long>(r.iterations));
+  const std::string note = io::formatC(
                 "area = fraction %.4f × L² = %.2f of our box (−0.8, 0.5); the paper's box (its fig. 6 caption) is not "
-                "in our copy, so the areas differ: compare b₂·D",
-                b2.fraction, b2.boxArea);
+                                       "in our copy, so the areas differ: compare b₂·D",
+                                       b2.fraction, b2.boxArea);
   PaperItem area = make("b2", "§5", "K = 0.1: the stochastic area b₂", "0.693", 0.693, b2.area, 0, 0.01, cmd(b2cmd), note);
   if (area.mark == Mark::differs) area.mark = Mark::differsExplained;
   std::vector<PaperItem> items{area};
-  char statsCmd[96];
-  std::snprintf(statsCmd, sizeof statsCmd, "stats k01.json --b2 %.6f", b2.area);
+  const std::string statsCmd = io::formatC("stats k01.json --b2 %.6f", b2.area);
   PaperItem b2D = make("b2D", "§5, eq. A3", "K = 0.1: b₂·D, independent of the box (paper: 0.693 × 6400)",
                        "4435 ± 554", 0.693 * 6400, inv.b2D, inv.b2DError, 0.693 * 800, cmd(statsCmd),
                        std::isfinite(dError) ? "b₂·D with D's bootstrap error"

@@ -54,6 +54,7 @@ void appendTrappingRange(TrappingState& lo, const TrappingState& hi) {
   for (std::size_t i = 0; i < lo.subsets.size(); ++i) lo.subsets[i].merge(hi.subsets[i]);
   lo.longest.merge(hi.longest);
   lo.elapsedSeconds += hi.elapsedSeconds;
+  lo.unverified = lo.unverified || hi.unverified;  // a merge of an unverified part is unverified
 }
 
 TrappingState mergeTrapping(const TrappingState& a, const TrappingState& b) {

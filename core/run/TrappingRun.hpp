@@ -32,6 +32,10 @@ struct TrappingState {
   LongestSegments longest;
   double elapsedSeconds = 0;           ///< compute time, summed over every session of the run
   std::string kernel;                  ///< the kernel that computed it last
+  /// Read from a file whose checksum did not match its content or that had none (format version 1), with
+  /// RunFileReadOptions::allowModified: such a state is never written back as a checksummed run file
+  /// (runFileText refuses it), so an edit cannot be laundered into a file that looks verified (issue #23).
+  bool unverified = false;
 
   [[nodiscard]] bool finished() const noexcept { return blocksDone >= params.T; }
   /// The sum of the subset histograms.

@@ -1,11 +1,26 @@
 #include "core/runfile/CheckpointedRun.hpp"
 
+#include <unistd.h>
+
 #include <chrono>
+#include <cstdlib>
 #include <stdexcept>
+#include <vector>
 
 #include "core/runfile/RunFile.hpp"
 
 namespace archipelago {
+
+namespace {
+/// Where a run goes when its own file cannot be written: the temporary folder, then the home folder.
+std::vector<std::filesystem::path> rescueFolders() {
+  std::vector<std::filesystem::path> folders;
+  const char* tmp = std::getenv("TMPDIR");
+  folders.emplace_back(tmp != nullptr && *tmp != '\0' ? tmp : "/tmp");
+  if (const char* home = std::getenv("HOME"); home != nullptr && *home != '\0') folders.emplace_back(home);
+  return folders;
+}
+}  // namespace
 
 TrappingState runWithCheckpoints(TrappingState state, const CheckpointedRunOptions& options, LastCheckpoint& last,
                                  const TrappingObserver& progress, std::stop_token stop) {
@@ -34,8 +49,23 @@ void saveRunFileOrSayWhere(const std::filesystem::path& path, const TrappingStat
   try {
     saveRunFile(path, state);
   } catch (const std::exception& e) {
+    // The work must not be lost to a full disk or a vanished folder (issue #23): it goes to the temporary folder
+    // or the home folder instead, and the error says where.
+    std::string tried;
+    for (const std::filesystem::path& folder : rescueFolders()) {
+      const std::filesystem::path rescue =
+          folder / (path.filename().string() + ".rescued-" + std::to_string(::getpid()) + ".json");
+      try {
+        saveRunFile(rescue, state);
+      } catch (const std::exception&) {
+        tried += (tried.empty() ? "" : ", ") + folder.string();
+        continue;
+      }
+      throw std::runtime_error(std::string(e.what()) + "; the run (" + std::to_string(state.blocksDone) + " of " +
+                               std::to_string(state.params.T) + " blocks) was saved instead to " + rescue.string());
+    }
     const std::string kept = last.path.empty()
-        ? std::string("no checkpoint was written")
+        ? "no checkpoint was written" + (tried.empty() ? std::string() : " and the run could not be saved in " + tried)
         : "the last checkpoint (" + std::to_string(last.blocks) + " of " + std::to_string(state.params.T) +
               " blocks) is in " + last.path + howToResume;
     throw std::runtime_error(std::string(e.what()) + "; " + kept);

@@ -42,7 +42,9 @@ struct CheckpointedRunOptions {
                                                LastCheckpoint& last, const TrappingObserver& progress = {},
                                                std::stop_token stop = {});
 
-/// Writes the run file; when that fails, throws std::runtime_error whose text says where the work done so far is
+/// Writes the run file.  When that fails (a full disk, a vanished folder), the run is written instead to
+/// "<temporary folder>/NAME.rescued-PID.json" or, failing that, to the same name in $HOME, and a
+/// std::runtime_error says where it went; when that fails too, the error says where the work done so far is
 /// (`last`, followed by `howToResume` when it holds a checkpoint, e.g. ": resume with --resume FILE").
 void saveRunFileOrSayWhere(const std::filesystem::path& path, const TrappingState& state, const LastCheckpoint& last,
                            const std::string& howToResume = {});

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "core/io/AtomicFile.hpp"
+#include "core/io/Json.hpp"
 #include "core/io/Sha256.hpp"
 #include "core/run/StateValidation.hpp"
 #include "core/spec/RunSpecJson.hpp"
@@ -93,6 +94,9 @@ TrappingHistogram histogram(const json& j) {
 }  // namespace
 
 std::string runFileText(const TrappingState& s) {
+  if (s.unverified)
+    throw std::runtime_error("this run was read from a file whose checksum did not match (or that had none, format "
+                             "version 1) with --allow-modified: it cannot be written as a verified run file");
   const TrappingParameters& p = s.params;
   json j;
   j["format"] = kRunFileFormatName;
@@ -134,10 +138,14 @@ std::string runFileText(const TrappingState& s) {
 TrappingState parseRunFile(const std::string& text, const RunFileReadOptions& options) {
   json j;
   try {
-    j = spec::parseStrictJson(text);
+    j = io::parseJson(text);
   } catch (const std::invalid_argument& e) {
     throw std::runtime_error(std::string("corrupt or truncated run file: ") + e.what());
   }
+  return runFileFromJson(std::move(j), options);
+}
+
+TrappingState runFileFromJson(nlohmann::json j, const RunFileReadOptions& options) {
   if (!j.is_object() || !j.contains("format") || j["format"] != kRunFileFormatName)
     throw std::runtime_error("not an Archipelago run file (missing \"format\": \"archipelago-run\")");
   const std::int64_t version = i64(j, "version");
@@ -145,12 +153,20 @@ TrappingState parseRunFile(const std::string& text, const RunFileReadOptions& op
     throw std::runtime_error("run file format version " + std::to_string(version) +
                              " is not supported (this program reads versions 1 and " +
                              std::to_string(kRunFileFormatVersion) + ")");
-  if (version >= 2) {  // version 1 files carry no checksum: they are read and validated as they are
+  bool verified = false;
+  if (version == 1) {
+    // Format 1 had no checksum: deleting the checksum and declaring version 1 must not bypass it (issue #23).
+    if (!options.allowModified)
+      throw std::runtime_error("run file format version 1 has no checksum, so edits cannot be detected;"
+                               " --allow-modified reads it anyway (for inspection only: it cannot be resumed, merged"
+                               " or saved as a verified file)");
+  } else {
     const json& sum = field(j, "checksum");
     if (!sum.is_string()) corrupt("field 'checksum' must be a string");
     const std::string stored = sum.get<std::string>();
     j.erase("checksum");
-    if (stored != "sha256:" + io::sha256Hex(j.dump(1)) && !options.allowModified)
+    verified = stored == "sha256:" + io::sha256Hex(j.dump(1));
+    if (!verified && !options.allowModified)
       throw std::runtime_error("run file was modified after it was written (its checksum does not match its content);"
                                " --allow-modified reads it anyway, still checking its consistency");
   }
@@ -221,6 +237,7 @@ TrappingState parseRunFile(const std::string& text, const RunFileReadOptions& op
     s.orbits.push_back(st);
   }
   if (auto e = consistencyError(s)) corrupt(*e);
+  s.unverified = !verified;
   return s;
 }
 
@@ -229,9 +246,14 @@ void saveRunFile(const std::filesystem::path& path, const TrappingState& state) 
 }
 
 TrappingState loadRunFile(const std::filesystem::path& path, const RunFileReadOptions& options) {
-  const std::string text = io::readRegularFile(path, kMaxRunFileBytes);
+  json j;
   try {
-    return parseRunFile(text, options);
+    j = io::loadJsonFile(path, kMaxRunFileBytes);
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(path.string() + ": corrupt or truncated run file: " + e.what());
+  }
+  try {
+    return runFileFromJson(std::move(j), options);
   } catch (const std::exception& e) {
     throw std::runtime_error(path.string() + ": " + e.what());
   }

@@ -12,6 +12,7 @@
 /// folder.  A reader never sees a half-written file, and a crash leaves either the old or the new file.
 
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "core/run/TrappingRun.hpp"
@@ -20,15 +21,15 @@ namespace archipelago {
 
 inline constexpr int kRunFileFormatVersion = 2;  ///< 2: with a checksum; version 1 files are still read
 inline constexpr const char* kRunFileFormatName = "archipelago-run";
-/// The largest run file read (a run of 10⁶ orbits takes about 250 MB): a bound checked before reading, so
-/// that a wrong path (a disk image, /dev/zero) fails at once instead of exhausting memory.
-inline constexpr std::uintmax_t kMaxRunFileBytes = std::uintmax_t{2} << 30;
+// kMaxRunFileBytes, the largest run file read: core/trapping/TrappingParameters.hpp (it also bounds M).
 
-/// The JSON text of a run file.
+/// The JSON text of a run file.  Throws std::runtime_error for an unverified state (read with allowModified).
 [[nodiscard]] std::string runFileText(const TrappingState& state);
 struct RunFileReadOptions {
-  /// Read a file whose checksum does not match its content (an edited file), for forensic use.  The
-  /// content is still validated whole.
+  /// Read a file whose checksum does not match its content (an edited file) or that has none (format
+  /// version 1), for inspection.  The content is still validated whole, and the state is marked
+  /// TrappingState::unverified: it can be analysed but never resumed into, merged into or saved as a
+  /// checksummed run file.  Without it such files are refused.
   bool allowModified = false;
 };
 
@@ -37,6 +38,8 @@ struct RunFileReadOptions {
 /// message for corrupt, truncated, edited or inconsistent content, a different format or an unsupported
 /// version.
 [[nodiscard]] TrappingState parseRunFile(const std::string& text, const RunFileReadOptions& options = {});
+/// The same, from a parsed document (a session's embedded run): no second copy of its text.
+[[nodiscard]] TrappingState runFileFromJson(nlohmann::json document, const RunFileReadOptions& options = {});
 
 /// Writes atomically (temp file + fsync + rename).  Throws std::runtime_error naming the path on failure.
 void saveRunFile(const std::filesystem::path& path, const TrappingState& state);

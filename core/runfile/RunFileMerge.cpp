@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/io/AtomicFile.hpp"
+#include "core/io/Json.hpp"
 #include "core/runfile/RunFile.hpp"
 #include "core/trapping/TrappingParameters.hpp"
 
@@ -134,9 +135,9 @@ bool looksLikeRunManifest(const std::string& text) {
 RunManifest parseRunManifest(const std::string& text, const std::string& name) {
   json j;
   try {
-    j = json::parse(text);
-  } catch (const std::exception&) {
-    throw std::runtime_error(name + ": not a manifest of run parts (truncated or corrupt JSON)");
+    j = io::parseJson(text);
+  } catch (const std::exception& e) {
+    throw std::runtime_error(name + ": not a manifest of run parts (" + e.what() + ")");
   }
   if (!j.is_object() || j.value("format", std::string()) != kRunManifestFormatName)
     throw std::runtime_error(name + ": field 'format' is not \"" + kRunManifestFormatName + "\"");
@@ -152,14 +153,14 @@ RunManifest parseRunManifest(const std::string& text, const std::string& name) {
       throw std::runtime_error(name + ": field 'parts[].file' is missing (corrupt manifest)");
     m.parts.push_back({p["file"].get<std::string>(), manifestU64(p, "orbitBegin", name), manifestU64(p, "orbitEnd", name)});
     const std::string& file = m.parts.back().file;
-    if (file.find('/') != std::string::npos || file == "." || file == "..")
-      throw std::runtime_error(name + ": field 'parts[].file' '" + file + "' must be a file beside the manifest");
+    if (file.find('/') != std::string::npos || file.find('\0') != std::string::npos || file == "." || file == "..")
+      throw std::runtime_error(name + ": field 'parts[].file' '" + io::shortText(file) + "' must be a file beside the manifest");
   }
   return m;
 }
 
 TrappingState loadRunManifest(const std::filesystem::path& path) {
-  const RunManifest m = parseRunManifest(io::readRegularFile(path, std::uintmax_t{1} << 24), path.string());
+  const RunManifest m = parseRunManifest(io::readRegularFile(path, kMaxManifestBytes), path.string());
   std::vector<RunPart> parts;
   for (const auto& p : m.parts) {
     const std::filesystem::path file = path.parent_path() / p.file;

@@ -36,6 +36,8 @@ struct RunPart {
                                      bool withStatistics);
 
 inline constexpr const char* kRunManifestFormatName = "archipelago-run-parts";
+/// The largest manifest read (a manifest lists one line per part: 16 MiB is about 10⁵ parts).
+inline constexpr std::uintmax_t kMaxManifestBytes = std::uintmax_t{1} << 24;
 inline constexpr int kRunManifestFormatVersion = 1;
 
 /// A checkpoint of a run kept as parts (one run file per MPI rank): which files, at which blocks done.  The

@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
+#include <charconv>
 #include <set>
 #include <stdexcept>
 
 #include "core/io/AtomicFile.hpp"
+#include "core/io/Json.hpp"
 #include "core/runfile/RunFile.hpp"
 #include "core/spec/RunSpecJson.hpp"
 
@@ -23,11 +23,11 @@ void onlyKeys(const json& j, const std::string& where, std::initializer_list<con
   if (!j.is_object()) bad(where + " must be a JSON object");
   const std::set<std::string> known(keys.begin(), keys.end());
   for (auto it = j.begin(); it != j.end(); ++it)
-    if (!known.count(it.key())) bad("unknown key '" + it.key() + "' in " + where);
+    if (!known.count(it.key())) bad("unknown key '" + io::shortText(it.key()) + "' in " + where);
 }
 
 double finite(const json& v, const std::string& key) {
-  if (!v.is_number()) bad(key + " must be a number, not " + v.dump());
+  if (!v.is_number()) bad(key + " must be a number, not " + io::describeJson(v));
   const double d = v.get<double>();
   if (!std::isfinite(d)) bad(key + " must be finite");
   return d;
@@ -35,7 +35,7 @@ double finite(const json& v, const std::string& key) {
 
 std::uint64_t whole(const json& v, const std::string& key, std::uint64_t max) {
   if (!v.is_number_unsigned() || v.get<std::uint64_t>() > max)
-    bad(key + " = " + v.dump() + " must be a whole number in [0, " + std::to_string(max) + "]");
+    bad(key + " = " + io::describeJson(v) + " must be a whole number in [0, " + std::to_string(max) + "]");
   return v.get<std::uint64_t>();
 }
 
@@ -67,11 +67,17 @@ std::array<double, 2> point(const json& v, const std::string& key) {
   return {finite(v[0], key + "[0]"), finite(v[1], key + "[1]")};
 }
 
+/// 21 significant digits round-trip a long double's 64-bit mantissa; std::to_chars never uses the locale (a
+/// decimal comma once made sessions unreadable in another locale, issue #23).
+std::string longDoubleText(long double v) {
+  char text[64];
+  const auto r = std::to_chars(text, text + sizeof text, v, std::chars_format::general, 21);
+  return std::string(text, r.ptr);
+}
+
 json viewJson(const Viewport& v) {
-  char w[64], h[64];
-  std::snprintf(w, sizeof w, "%.21Lg", v.widthUnits());
-  std::snprintf(h, sizeof h, "%.21Lg", v.heightUnits());
-  return {{"centre", json::array({v.centre().X, v.centre().Y})}, {"size", json::array({w, h})}};
+  return {{"centre", json::array({v.centre().X, v.centre().Y})},
+          {"size", json::array({longDoubleText(v.widthUnits()), longDoubleText(v.heightUnits())})}};
 }
 
 Viewport view(const json& v, const std::string& key) {
@@ -86,9 +92,9 @@ Viewport view(const json& v, const std::string& key) {
   for (int i = 0; i < 2; ++i) {
     const std::string k = key + ".size[" + std::to_string(i) + "]";
     const std::string t = string((*z)[i], k, 64);
-    char* end = nullptr;
-    size[i] = std::strtold(t.c_str(), &end);
-    if (t.empty() || end != t.c_str() + t.size()) bad(k + " = \"" + t + "\" is not a number");
+    const auto r = std::from_chars(t.data(), t.data() + t.size(), size[i]);
+    if (t.empty() || r.ec != std::errc() || r.ptr != t.data() + t.size())
+      bad(k + " = \"" + io::shortText(t) + "\" is not a number");
   }
   try {
     return Viewport::fromUnits(centre, size[0], size[1]);
@@ -132,9 +138,9 @@ std::string sessionText(const Session& s) {
   return j.dump(1) + "\n";
 }
 
-Session parseSession(std::string_view text) {
-  const json j = spec::parseVersionedDocument(text, kSessionFormatName, kSessionFormatVersion, "an",
-                                                "Archipelago session");
+namespace {
+Session sessionFromJson(json j) {
+  spec::checkVersionedDocument(j, kSessionFormatName, kSessionFormatVersion, "an", "Archipelago session");
   onlyKeys(j, "the session", {"format", "version", "spec", "run", "tab", "portrait", "segment", "plots"});
 
   Session s;
@@ -152,10 +158,11 @@ Session parseSession(std::string_view text) {
     if (const auto f = run->find("file"); f != run->end()) {
       const std::string path = string(*f, "run.file", 4096);
       if (path.empty()) bad("run.file must not be empty");
+      if (path.find('\0') != std::string::npos) bad("run.file must not contain a NUL character");
       s.runFile = std::filesystem::path(path);
     } else {
       try {
-        s.embeddedRun = parseRunFile(run->at("embedded").dump(1));
+        s.embeddedRun = runFileFromJson(std::move(run->at("embedded")));
       } catch (const std::exception& e) {
         bad(std::string("run.embedded: ") + e.what());
       }
@@ -241,20 +248,26 @@ Session parseSession(std::string_view text) {
   return s;
 }
 
+}  // namespace
+
+Session parseSession(std::string_view text) { return sessionFromJson(io::parseJson(text)); }
+
 void saveSession(const std::filesystem::path& path, const Session& session) {
   io::writeFileAtomically(path, sessionText(session));
 }
 
 Session loadSession(const std::filesystem::path& path) {
-  std::string content;
+  json j;
   try {
-    content = io::readRegularFile(path, kMaxSessionFileBytes);
+    j = io::loadJsonFile(path, kMaxSessionFileBytes);
   } catch (const std::runtime_error& e) {
     bad(e.what());
+  } catch (const std::invalid_argument& e) {
+    bad(path.string() + ": " + e.what());
   }
   Session s;
   try {
-    s = parseSession(content);
+    s = sessionFromJson(std::move(j));
   } catch (const std::invalid_argument& e) {
     bad(path.string() + ": " + e.what());
   }

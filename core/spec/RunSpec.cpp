@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/io/AtomicFile.hpp"
+#include "core/io/Json.hpp"
 #include "core/kernels/KernelDispatch.hpp"
 #include "core/spec/RunSpecJson.hpp"
 
@@ -26,30 +27,32 @@ std::uint64_t wholeNumber(const json& v, std::string_view key, std::uint64_t max
   if (v.is_number_unsigned()) {
     n = v.get<std::uint64_t>();
   } else if (v.is_number_integer()) {
-    bad(std::string(key) + " = " + v.dump() + " must be a whole number in [0, " + std::to_string(max) + "]");
+    bad(std::string(key) + " = " + io::describeJson(v) + " must be a whole number in [0, " + std::to_string(max) + "]");
   } else if (v.is_number_float()) {
     const double d = v.get<double>();
     // 2^64 is the first double past the range of std::uint64_t.
     if (!(d >= 0 && d < 18446744073709551616.0) || std::floor(d) != d)
-      bad(std::string(key) + " = " + v.dump() + " must be a whole number in [0, " + std::to_string(max) + "]");
+      bad(std::string(key) + " = " + io::describeJson(v) + " must be a whole number in [0, " + std::to_string(max) + "]");
     n = static_cast<std::uint64_t>(d);
   } else {
-    bad(std::string(key) + " must be a number, not " + v.dump());
+    bad(std::string(key) + " must be a number, not " + io::describeJson(v));
   }
   if (n > max) bad(std::string(key) + " = " + std::to_string(n) + " must be <= " + std::to_string(max));
   return n;
 }
 
 double realNumber(const json& v, std::string_view key) {
-  if (!v.is_number()) bad(std::string(key) + " must be a number, not " + v.dump());
+  if (!v.is_number()) bad(std::string(key) + " must be a number, not " + io::describeJson(v));
   return v.get<double>();
 }
 
-std::string text(const json& j, const char* key) {
+std::string text(const json& j, const char* key, std::size_t maxBytes) {
   const auto it = j.find(key);
   if (it == j.end()) return {};
-  if (!it->is_string()) bad(std::string(key) + " must be a string");
-  return it->get<std::string>();
+  if (!it->is_string()) bad(std::string(key) + " must be a string, not " + io::describeJson(*it));
+  std::string s = it->get<std::string>();
+  if (s.size() > maxBytes) bad(std::string(key) + " is longer than " + std::to_string(maxBytes) + " bytes");
+  return s;
 }
 
 }  // namespace
@@ -71,7 +74,7 @@ json parametersJson(const TrappingParameters& p) {
 TrappingParameters parametersFromJson(const json& j, bool complete, const TrappingParameters& defaults) {
   if (!j.is_object()) bad("parameters must be a JSON object");
   for (auto it = j.begin(); it != j.end(); ++it)
-    if (!findParameterRule(it.key())) bad("unknown parameter '" + it.key() + "'");
+    if (!findParameterRule(it.key())) bad("unknown parameter '" + io::shortText(it.key()) + "'");
   TrappingParameters p = defaults;
   for (const ParameterRule& r : parameterRules()) {
     const std::string key(r.key);
@@ -90,42 +93,21 @@ TrappingParameters parametersFromJson(const json& j, bool complete, const Trappi
   return p;
 }
 
-json parseVersionedDocument(std::string_view text, const char* format, int version, const std::string& article,
+void checkVersionedDocument(const json& j, const char* format, int version, const std::string& article,
                             const std::string& what) {
-  const json j = parseStrictJson(text);
   if (!j.is_object()) bad(article + " " + what + " must be a JSON object");
   const auto f = j.find("format");
   if (f == j.end() || *f != format) bad("not " + article + " " + what + " (missing \"format\": \"" + format + "\")");
   const auto v = j.find("version");
   if (v == j.end() || !v->is_number_unsigned() || v->get<std::uint64_t>() != static_cast<std::uint64_t>(version))
-    bad(what + " version " + (v == j.end() ? std::string("(missing)") : v->dump()) +
+    bad(what + " version " + (v == j.end() ? std::string("(missing)") : io::describeJson(*v)) +
         " is not supported (this program reads version " + std::to_string(version) + ")");
-  return j;
 }
 
-json parseStrictJson(std::string_view text) {
-  std::vector<std::set<std::string>> keys;  // the keys seen in each open object
-  std::string repeated;
-  const json::parser_callback_t check = [&](int, json::parse_event_t event, json& parsed) {
-    if (event == json::parse_event_t::object_start) keys.emplace_back();
-    else if (event == json::parse_event_t::object_end && !keys.empty()) keys.pop_back();
-    else if (event == json::parse_event_t::key && !keys.empty() && !keys.back().insert(parsed.get<std::string>()).second &&
-             repeated.empty())
-      repeated = parsed.get<std::string>();
-    return true;
-  };
-  json j;
-  try {
-    j = json::parse(text.begin(), text.end(), check);
-  } catch (const json::exception& e) {
-    // Every error of nlohmann's parser, not only parse_error: a number too large for a double
-    // ("215e4434690031883725") is an out_of_range (406), found by fuzz_runfile and fuzz_runspec.
-    // nlohmann's message: "[json.exception.parse_error.101] parse error at line 1, column 2: …"
-    std::string what = e.what();
-    if (const auto at = what.find("] "); at != std::string::npos) what = what.substr(at + 2);
-    bad("not valid JSON: " + what);
-  }
-  if (!repeated.empty()) bad("the key '" + repeated + "' appears twice in one object");
+json parseVersionedDocument(std::string_view text, const char* format, int version, const std::string& article,
+                            const std::string& what) {
+  json j = io::parseJson(text);
+  checkVersionedDocument(j, format, version, article, what);
   return j;
 }
 
@@ -140,7 +122,7 @@ std::optional<std::string> validationError(const RunSpec& s) {
     if (!known) {
       std::string names = "auto";
       for (const KernelInfo& k : kernels) names += ", " + std::string(k.name);
-      return "kernel = '" + s.kernel + "' is not a kernel (" + names + ")";
+      return "kernel = '" + io::shortText(s.kernel) + "' is not a kernel (" + names + ")";
     }
   }
   if (s.threads < 0 || s.threads > kMaxThreads)
@@ -165,13 +147,13 @@ RunSpec parseRunSpec(std::string_view textIn) {
   const json j = spec::parseVersionedDocument(textIn, kRunSpecFormatName, kRunSpecFormatVersion, "a", "run spec");
   for (auto it = j.begin(); it != j.end(); ++it) {
     static const std::set<std::string> known{"format", "version", "name", "description", "parameters", "kernel", "threads"};
-    if (!known.count(it.key())) bad("unknown key '" + it.key() + "'");
+    if (!known.count(it.key())) bad("unknown key '" + io::shortText(it.key()) + "'");
   }
   RunSpec s;
-  s.name = text(j, "name");
-  s.description = text(j, "description");
+  s.name = text(j, "name", 200);
+  s.description = text(j, "description", 4000);
   if (const auto p = j.find("parameters"); p != j.end()) s.parameters = spec::parametersFromJson(*p, false);
-  if (j.contains("kernel")) s.kernel = text(j, "kernel");
+  if (j.contains("kernel")) s.kernel = text(j, "kernel", 64);
   if (const auto t = j.find("threads"); t != j.end())
     s.threads = static_cast<int>(wholeNumber(*t, "threads", kMaxThreads));
   if (auto e = validationError(s)) bad(*e);

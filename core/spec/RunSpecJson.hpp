@@ -23,12 +23,11 @@ namespace archipelago::spec {
 [[nodiscard]] TrappingParameters parametersFromJson(const nlohmann::json& j, bool complete,
                                                     const TrappingParameters& defaults = {});
 
-/// Parses JSON text, rejecting a key repeated within one object (nlohmann would keep the last silently).
-/// Throws std::invalid_argument with nlohmann's position for malformed text.
-[[nodiscard]] nlohmann::json parseStrictJson(std::string_view text);
-
-/// Parses a versioned document: a JSON object whose "format" is `format` and whose "version" is `version`.
+/// Parses a versioned document (io::parseJson: depth-limited, strict about repeated keys): a JSON object whose "format" is `format` and whose "version" is `version`.
 /// Throws std::invalid_argument naming the document ("a" + " run spec", "an" + " Archipelago session") otherwise.
+/// The same check on a parsed document.
+void checkVersionedDocument(const nlohmann::json& document, const char* format, int version, const std::string& article,
+                            const std::string& noun);
 [[nodiscard]] nlohmann::json parseVersionedDocument(std::string_view text, const char* format, int version,
                                                     const std::string& article, const std::string& noun);
 

@@ -5,6 +5,8 @@
 #include <limits>
 #include <numbers>
 
+#include "core/io/NumberText.hpp"
+
 namespace archipelago {
 
 namespace {
@@ -38,21 +40,19 @@ BoxInvariantQuantities boxInvariantQuantities(const StochasticAreaValue& b2, dou
 }
 
 std::string stochasticAreaText(const MapParameters& map, const StochasticAreaValue& b2) {
-  char text[256];
-  std::snprintf(text, sizeof text, "b2 = %.4f (area; fraction %.5f of the box L^2 = %.4g for xmin = %.6g, xmax = %.6g)",
-                b2.area, b2.fraction, b2.boxArea, map.xmin, map.xmax);
+  const std::string text = io::formatC("b2 = %.4f (area; fraction %.5f of the box L^2 = %.4g for xmin = %.6g, xmax = %.6g)",
+                                       b2.area, b2.fraction, b2.boxArea, map.xmin, map.xmax);
   return text;
 }
 
 std::optional<std::string> paperStochasticAreaComparison(const MapParameters& map, const StochasticAreaValue& b2) {
   if (map.K != kPaperK) return std::nullopt;
-  char text[320];
-  std::snprintf(text, sizeof text,
+  const std::string text = io::formatC(
                 "the paper (sec. 5, K = 0.1): b2 = %.3f in the box of its fig. 6 caption (not in our copy); this box "
                 "(xmin = %.6g, xmax = %.6g) gives %.4f, ratio %.3f; compare b2*D instead (eq. A3: the paper's "
-                "0.693 x 6400 = %.3g)",
+                                       "0.693 x 6400 = %.3g)",
                 kPaperStochasticArea, map.xmin, map.xmax, b2.area, b2.area / kPaperStochasticArea,
-                kPaperStochasticArea * kPaperDiffusion);
+                                       kPaperStochasticArea * kPaperDiffusion);
   return std::string(text);
 }
 

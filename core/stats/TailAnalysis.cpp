@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/io/NumberText.hpp"
 #include "core/random/CounterRng.hpp"
 
 namespace archipelago {
@@ -95,8 +96,7 @@ std::uint64_t sum(const std::vector<std::uint64_t>& v) {
 }
 
 std::string format(const char* f, double v) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, f, v);
+  const std::string buffer = io::formatC(f, v);
   return buffer;
 }
 

@@ -1,5 +1,6 @@
 #include "core/theory/KScan.hpp"
 
+#include "core/io/NumberText.hpp"
 #include "core/stats/RunEnsemble.hpp"
 #include "core/stats/TailAnalysis.hpp"
 
@@ -14,9 +15,8 @@ namespace archipelago {
 
 MapParameters scanBox(double K) {
   if (!(K >= 0 && K <= kScanMaxK)) {
-    char text[160];
-    std::snprintf(text, sizeof text, "K = %.17g must lie in [0, %g] for a scan (its box is -2 sqrt(K) - %g ... sqrt(K) + %g)",
-                  K, kScanMaxK, kScanBoxMargin, kScanBoxMargin);
+    const std::string text = io::formatC("K = %.17g must lie in [0, %g] for a scan (its box is -2 sqrt(K) - %g ... sqrt(K) + %g)",
+                                         K, kScanMaxK, kScanBoxMargin, kScanBoxMargin);
     throw std::invalid_argument(text);
   }
   const double r = std::sqrt(K);
@@ -37,9 +37,8 @@ std::vector<double> scanValues(double from, double to, double step) {
   std::vector<double> values;
   values.reserve(n);
   for (std::size_t i = 0; i < n; ++i) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.12g", from + static_cast<double>(i) * step);
-    values.push_back(std::strtod(text, nullptr));
+    const std::string text = io::formatC("%.12g", from + static_cast<double>(i) * step);
+    values.push_back(*io::parseDoubleC(text));  // the C locale: "%.12g" never writes a decimal comma here
   }
   return values;
 }

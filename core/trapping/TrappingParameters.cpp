@@ -103,7 +103,9 @@ void setParameterValue(TrappingParameters& p, std::string_view key, const Parame
 std::uint64_t estimatedMemoryBytes(const TrappingParameters& p, int threads) noexcept {
   const long cores = ::sysconf(_SC_NPROCESSORS_ONLN);
   const double workers = static_cast<double>(threads > 0 ? threads : std::max(1L, cores));
-  const double orbits = static_cast<double>(p.M) * (sizeof(OrbitState) + 200.0);  // state + its run-file text
+  // The state, and what writing it as a run file takes (issue #23: measured ~730 bytes per orbit of resident
+  // memory while saving: the JSON document, its text for the checksum and the text written).
+  const double orbits = static_cast<double>(p.M) * (sizeof(OrbitState) + kSaveBytesPerOrbit);
   const double histograms = static_cast<double>(p.subsets) * (workers + 2) * sizeof(TrappingHistogram);
   const double longest = static_cast<double>(p.longestKept) * (workers + 2) * (sizeof(SegmentRecord) + 200.0);
   const double total = orbits + histograms + longest;
@@ -111,6 +113,17 @@ std::uint64_t estimatedMemoryBytes(const TrappingParameters& p, int threads) noe
 }
 
 std::optional<std::string> memoryError(const TrappingParameters& p, int threads) {
+  // A run whose file could not be read back is refused too (issue #23: a very large M wrote files above the cap).
+  const double fileBytes = static_cast<double>(p.M) * kRunFileBytesPerOrbit + static_cast<double>(p.longestKept) * 300.0;
+  if (fileBytes > static_cast<double>(kMaxRunFileBytes)) {
+    std::ostringstream s;
+    s.imbue(std::locale::classic());
+    s.precision(3);
+    s << "M = " << p.M << " orbits would make a run file of up to " << fileBytes / 1e9 << " GB, more than the "
+      << static_cast<double>(kMaxRunFileBytes) / 1e9
+      << " GB a run file may hold: split the orbits over several runs (--orbits) and merge their statistics";
+    return s.str();
+  }
   const double physical = static_cast<double>(::sysconf(_SC_PHYS_PAGES)) * static_cast<double>(::sysconf(_SC_PAGESIZE));
   const double need = static_cast<double>(estimatedMemoryBytes(p, threads));
   if (!(physical > 0) || need <= 0.8 * physical) return std::nullopt;

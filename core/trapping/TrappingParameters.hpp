@@ -74,13 +74,22 @@ void validate(const TrappingParameters& p);
 /// The rule for the randomizing zone's width: Xr finite and in [0, 1).  The message names Xr, or nothing.
 [[nodiscard]] std::optional<std::string> randomizingZoneError(double Xr);
 
+/// The largest run file read (a run of 10⁶ orbits takes about 125 MB): a bound checked before reading, so that a
+/// wrong path (a disk image, /dev/zero) fails at once instead of exhausting memory; and a bound on M, so that
+/// no run writes a file it could not read back (memoryError()).
+inline constexpr std::uintmax_t kMaxRunFileBytes = std::uintmax_t{2} << 30;
+/// The most bytes one orbit's state takes in a run file (nine 52-bit integers, one per line, indented).
+inline constexpr double kRunFileBytesPerOrbit = 200;
+/// The most bytes of memory one orbit's state takes while its run file is written (measured ~730).
+inline constexpr double kSaveBytesPerOrbit = 800;
+
 /// The memory a run of these parameters needs on `threads` threads (0: one per core), in bytes: the orbit
 /// states, the histograms (one set per thread while a chunk runs), the longest segments and the run file's
 /// text when it is written.  An estimate within a factor of about two.
 [[nodiscard]] std::uint64_t estimatedMemoryBytes(const TrappingParameters& p, int threads) noexcept;
 
-/// An error when estimatedMemoryBytes() exceeds this machine's physical memory, naming both; checked before
-/// a run starts.
+/// An error when estimatedMemoryBytes() exceeds this machine's physical memory, naming both, or when the run's
+/// file would exceed kMaxRunFileBytes; checked before a run starts.
 [[nodiscard]] std::optional<std::string> memoryError(const TrappingParameters& p, int threads);
 
 /// ⌊Xr·2^52⌋, the largest X inside the randomizing zone.

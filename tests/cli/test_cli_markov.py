@@ -31,7 +31,7 @@ bad = [
     (["--m", "", "--N", "100"], "--m =  must be"),
     (["--m", "2000000", "--N", "100000000"], "--m = 2000000 must be"),
     (["--m", "10", "--N", "11"], "--N = 11 must be"),
-    (["--m", "10", "--N", "1e6"], "--N = 1e6 must be"),
+    (["--m", "10", "--N", "1.5e0"], "--N = 1.5e0 must be"),
     (["--m", "10", "--N", "100", "--tau-max", "-3"], "--tau-max = -3 must be"),
     (["--m", "10", "--N", "100", "--tau-max", "999999999999"], "--tau-max = 999999999999 must be"),
     (["--m", "10", "--N", "100", "--csv", "/nonexistent-folder/x.csv"], "cannot write /nonexistent-folder/x.csv: the folder"),

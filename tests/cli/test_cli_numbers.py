@@ -19,8 +19,10 @@ cases = [
     (["run", "--M=-1", "--out", out], f"--M = -1 must be an integer in {U64}"),
     # Narrower integer types, and integers written as reals.
     (["run", "--q=4294967296", "--out", out], "q = 4294967296 must lie in [1, 65536]"),  # the documented range
-    (["periodic", "--period", "1e3", "--near", "0,0"], "--period = 1e3 must be an integer in [-2147483648, 2147483647]"),
-    (["portrait", "--points", "10.0", "--out", os.path.join(tmp, "p.png")], f"--points = 10.0 must be an integer in {U64}"),
+    (["periodic", "--period", "1.5e0", "--near", "0,0"], "--period = 1.5e0 must be an integer in [-2147483648, 2147483647]"),
+    (["portrait", "--points", "10.5", "--out", os.path.join(tmp, "p.png")], f"--points = 10.5 must be an integer in {U64}"),
+    (["portrait", "--points", "1e-3", "--out", os.path.join(tmp, "p.png")], f"--points = 1e-3 must be an integer in {U64}"),
+    (["run", "--seed=1.8446744073709551616e19", "--out", out], f"--seed = 1.8446744073709551616e19 must be an integer in {U64}"),
     (["stochastic-area", "--iterations=-1"], f"--iterations = -1 must be an integer in {U64}"),
     # Reals: the whole text, finite.
     (["orbit", "--K", "inf", "--x", "0", "--y", "0"], "--K = inf must be a finite number"),
@@ -50,5 +52,13 @@ r = run("orbit", "--x", "0.1", "--y", "+0.05", "--steps=+3")
 check(r.returncode == 0 and len(r.stdout.strip().splitlines()) == 5, f"'+' signs are accepted ({r.stderr.strip()})")
 r = run("stochastic-area", "--seed=18446744073709551615", "--iterations", "1", "--orbits", "1")
 check(r.returncode == 0, f"--seed = 2^64 - 1 is accepted ({r.stderr.strip()})")
+
+# Issue #24: one rule for integers everywhere (core/io/NumberText.hpp): a decimal that is exactly whole, so the
+# paper's sizes can be typed as 2e9; it is read exactly (in integers), so 2e7 gives the very run 20000000 gives.
+a = run("orbit", "--x", "0.1", "--y", "0.05", "--steps=2e1")
+b = run("orbit", "--x", "0.1", "--y", "0.05", "--steps=20")
+check(a.returncode == 0 and a.stdout == b.stdout, f"--steps=2e1 is --steps=20 ({a.stderr.strip()})")
+a = run("orbit", "--x", "0.1", "--y", "0.05", "--steps=2.0e0")
+check(a.returncode == 0 and len(a.stdout.strip().splitlines()) == 4, f"--steps=2.0e0 is 2 ({a.stderr.strip()})")
 
 finish()

@@ -122,33 +122,56 @@ def finding_7_failing_final_write_loses_the_run():
     # resuming it gives the uninterrupted result.  The run must still be going when --out is spoiled: on a fast
     # machine a longer one is tried.
     d = folder("final-fails")
-    out, ck = os.path.join(d, "out.json"), os.path.join(d, "ck.json")
-    for T in ("300000", "3000000", "30000000"):
-        args = ["--T", T, "--M", "8", "--subsets", "2", "--q", "4", "--seed", "9", "--longest", "5"]
-        p = subprocess.Popen([cli, "run", *args, "--threads", "1", "--out", out, "--checkpoint", ck,
-                              "--checkpoint-interval", "0", "--max-chunk", "2000", "--quiet"],
-                             stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-        wait_for_file(ck, p)
-        spoiled = p.poll() is None
-        if spoiled:
-            try:
-                os.mkdir(out)
-            except FileExistsError:  # the run ended between the poll and the mkdir
-                spoiled = False
-        _, err = p.communicate(timeout=300)
-        if spoiled:
-            break
-        for f in (out, ck):
-            if os.path.exists(f):
-                os.remove(f)
-    lines = err.splitlines()
-    check(p.returncode != 0 and len(lines) == 1 and lines[0].startswith("ERROR: ") and ck in err,
-          f"finding 7: a failing final write is one ERROR naming the last checkpoint ({err.strip()})")
-    os.rmdir(out)
+    rescue = folder("rescue")
+    args = ["--T", "300000", "--M", "8", "--subsets", "2", "--q", "4", "--seed", "9", "--longest", "5"]
     ref = os.path.join(d, "ref.json")
     run("run", *args, "--out", ref, "--quiet")
+
+    def spoiled_run(env):
+        """A run whose final write fails (a folder appears where its file goes); (returncode, stderr, args)."""
+        out, ck = os.path.join(d, "out.json"), os.path.join(d, "ck.json")
+        for T in ("300000", "3000000", "30000000"):
+            args[1] = T
+            p = subprocess.Popen([cli, "run", *args, "--threads", "1", "--out", out, "--checkpoint", ck,
+                                  "--checkpoint-interval", "0", "--max-chunk", "2000", "--quiet"],
+                                 stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True, env=env)
+            wait_for_file(ck, p)
+            spoiled = p.poll() is None
+            if spoiled:
+                try:
+                    os.mkdir(out)
+                except FileExistsError:  # the run ended between the poll and the mkdir
+                    spoiled = False
+            _, err = p.communicate(timeout=300)
+            if spoiled:
+                os.rmdir(out)
+                return p.returncode, err, list(args), ck, out
+            for f in (out, ck):
+                if os.path.exists(f):
+                    os.remove(f)
+        return None, "(never spoiled)", list(args), ck, out
+
+    # Issue #23: the run is not lost: it goes to $TMPDIR (then $HOME) and the one ERROR line says where.
+    rc, err, used, ck, out = spoiled_run(dict(os.environ, TMPDIR=rescue))
+    lines = err.splitlines()
+    rescued = [os.path.join(rescue, f) for f in os.listdir(rescue)]
+    check(rc not in (0, None) and len(lines) == 1 and lines[0].startswith("ERROR: ") and len(rescued) == 1 and
+          rescued[0] in err, f"finding 7 / issue #23: a failing final write saves the run elsewhere, says where ({err.strip()})")
+    if len(rescued) == 1 and used[1] == "300000":
+        same = all(json.load(open(ref))[k] == json.load(open(rescued[0]))[k] for k in ("subsets", "longest", "orbits"))
+        check(same, "issue #23: the rescued run is the finished run")
+    for f in rescued + [ck]:
+        if os.path.exists(f):
+            os.remove(f)
+    # Nowhere to rescue it: the ERROR names the last checkpoint, which resumes to the uninterrupted result.
+    rc, err, used, ck, out = spoiled_run(dict(os.environ, TMPDIR="/nonexistent-archipelago", HOME="/nonexistent-archipelago"))
+    lines = err.splitlines()
+    check(rc not in (0, None) and len(lines) == 1 and lines[0].startswith("ERROR: ") and ck in err,
+          f"finding 7: a failing final write is one ERROR naming the last checkpoint ({err.strip()})")
+    ref2 = os.path.join(d, "ref2.json")
+    run("run", *used, "--out", ref2, "--quiet")
     r = run("run", "--resume", ck, "--out", out, "--quiet")
-    same = r.returncode == 0 and all(json.load(open(ref))[k] == json.load(open(out))[k]
+    same = r.returncode == 0 and all(json.load(open(ref2))[k] == json.load(open(out))[k]
                                      for k in ("subsets", "longest", "orbits", "blocksDone"))
     check(same, f"finding 7: the kept checkpoint resumes to the uninterrupted result ({r.stderr.strip()})")
 

@@ -11,7 +11,8 @@
 #include <string>
 
 #include "core/runfile/RunFile.hpp"
-#include "app/cli/CliCommon.hpp"
+#include "core/io/NumberText.hpp"
+#include "core/runfile/RunFileMerge.hpp"
 #include "core/session/SessionFile.hpp"
 #include "core/spec/RunSpec.hpp"
 
@@ -23,7 +24,18 @@ inline void runFile(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
   for (const bool allowModified : {false, true}) {
     try {
-      const TrappingState s = parseRunFile(text, {.allowModified = allowModified});
+      TrappingState s = parseRunFile(text, {.allowModified = allowModified});
+      if (s.unverified != allowModified && s.unverified) throw std::logic_error("unverified without the opt-in");
+      // An unverified state is never written as a verified file (issue #23): check that, then round-trip the
+      // content as if it were verified.
+      if (s.unverified) {
+        try {
+          (void)runFileText(s);
+          throw std::logic_error("an unverified state was written");
+        } catch (const std::runtime_error&) {
+        }
+        s.unverified = false;
+      }
       const std::string again = runFileText(s);
       if (!(parseRunFile(again).params == s.params)) throw std::logic_error("run file round trip changed it");
     } catch (const std::runtime_error&) {
@@ -42,25 +54,25 @@ inline void runSpec(const std::uint8_t* data, std::size_t size) {
   }
 }
 
-/// The CLI's one number parser (app/cli/CliCommon.hpp): any text is either refused (nothing / an
+/// The one number reader (core/io/NumberText.hpp, used by the CLI, the GUI and Python): any text is either refused (nothing / an
 /// std::invalid_argument naming the option) or read as a value that prints back to a text read as the same
 /// value — never a wrapped, saturated or non-finite number.
 inline void numbers(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
-  if (const auto v = cli::toNumber<std::uint64_t>(text)) {
-    if (cli::toNumber<std::uint64_t>(cli::formatNumber(*v)) != v) throw std::logic_error("uint64 round trip");
+  if (const auto v = io::toNumber<std::uint64_t>(text)) {
+    if (io::toNumber<std::uint64_t>(io::shortestText(*v)) != v) throw std::logic_error("uint64 round trip");
     if (text.find('-') != std::string::npos && *v != 0) throw std::logic_error("a negative text read as unsigned");
   }
-  if (const auto v = cli::toNumber<std::int32_t>(text)) {
-    if (cli::toNumber<std::int32_t>(cli::formatNumber(*v)) != v) throw std::logic_error("int32 round trip");
+  if (const auto v = io::toNumber<std::int32_t>(text)) {
+    if (io::toNumber<std::int32_t>(io::shortestText(*v)) != v) throw std::logic_error("int32 round trip");
   }
-  if (const auto v = cli::toNumber<double>(text)) {
+  if (const auto v = io::toNumber<double>(text)) {
     if (!std::isfinite(*v)) throw std::logic_error("a non-finite double was accepted");
-    if (cli::toNumber<double>(cli::formatNumber(*v)) != v) throw std::logic_error("double round trip");
+    if (io::toNumber<double>(io::shortestText(*v)) != v) throw std::logic_error("double round trip");
   }
   try {
-    (void)cli::parseNumbers<double>("--view", text, ',', 4, "four numbers");
-    (void)cli::parseNumbers<std::uint32_t>("--size", text, 'x', 2, "WxH");
+    (void)io::parseNumbers<double>("--view", text, ',', 4, "four numbers");
+    (void)io::parseNumbers<std::uint32_t>("--size", text, 'x', 2, "WxH");
   } catch (const std::invalid_argument&) {
   }
 }
@@ -74,6 +86,19 @@ inline void session(const std::uint8_t* data, std::size_t size) {
     const std::string again = sessionText(s);
     if (sessionText(parseSession(again)) != again) throw std::logic_error("session round trip changed it");
   } catch (const std::invalid_argument&) {
+  }
+}
+
+/// Run manifests (MPI checkpoints, core/runfile/RunFileMerge.hpp): parseRunManifest() throws std::runtime_error;
+/// an accepted manifest is written back to a manifest that reads the same.
+inline void manifest(const std::uint8_t* data, std::size_t size) {
+  const std::string text(reinterpret_cast<const char*>(data), size);
+  try {
+    const RunManifest m = parseRunManifest(text, "manifest");
+    const RunManifest again = parseRunManifest(runManifestText(m), "manifest");
+    if (again.parts.size() != m.parts.size() || again.blocksDone != m.blocksDone)
+      throw std::logic_error("manifest round trip changed it");
+  } catch (const std::runtime_error&) {
   }
 }
 

@@ -12,7 +12,7 @@
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(stderr, "usage: replay_corpus runfile|runspec|numbers|session PATH…\n");
+    std::fprintf(stderr, "usage: replay_corpus runfile|runspec|numbers|session|manifest PATH…\n");
     return 2;
   }
   const std::string target = argv[1];
@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
                                                     : target == "runspec" ? archipelago::fuzz::runSpec
                                                     : target == "numbers" ? archipelago::fuzz::numbers
                                                     : target == "session" ? archipelago::fuzz::session
+                                                    : target == "manifest" ? archipelago::fuzz::manifest
                                                                           : nullptr;
   if (!entry) {
     std::fprintf(stderr, "unknown target %s\n", target.c_str());

@@ -20,9 +20,8 @@ NAN, INF = float("nan"), float("inf")
     (dict(M=0), "M = 0"),
     (dict(M=2 ** 70), "M = "),
     (dict(q=0), "q = 0"),
-    (dict(T=1.5), "T must be a whole number"),
-    (dict(T=True), "T must be a whole number"),
-    (dict(K="0.1"), "K must be a real number"),
+    (dict(T=1.5), "T = 1.5 must be a whole number"),
+    (dict(T=float("inf")), "T = inf must be a whole number"),
     (dict(subsets=100, M=10), "subsets = 100 must be ≤ M = 10"),
     (dict(bogus=1), "unknown parameter bogus"),
     (dict(xmin=-1e308, xmax=1e308), "x"),
@@ -31,6 +30,25 @@ def test_bad_parameters_raise_value_error(kw, words):
     with pytest.raises(ValueError, match=None) as e:
         ap.start(**kw)
     assert words in str(e.value)
+
+
+# Issue #23: wrong types are TypeError (not pybind11's RuntimeError "Unable to cast"), NumPy numbers are numbers.
+@pytest.mark.parametrize("kw, words", [
+    (dict(T=True), "T must be a whole number"),
+    (dict(K="0.1"), "K must be a real number"),
+    (dict(M="4"), "M must be a whole number"),
+    (dict(K=None), "K must be a real number"),
+])
+def test_wrong_types_raise_type_error(kw, words):
+    with pytest.raises(TypeError) as e:
+        ap.start(**kw)
+    assert words in str(e.value)
+
+
+def test_numpy_numbers_and_whole_floats_are_accepted():
+    a = ap.start(M=np.int64(4), T=np.uint32(100), K=np.float32(0.125), subsets=np.int8(2))
+    b = ap.start(M=4, T=1e2, K=0.125, subsets=2)
+    assert a.parameters == b.parameters and a.parameters["M"] == 4 and a.parameters["T"] == 100
 
 
 def test_bad_spec_text():

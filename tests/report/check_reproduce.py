@@ -3,7 +3,7 @@ status, every statement that can be checked at this size (no unexplained 'DIFFER
 and that index.html, the figures (PNG and SVG) and the PDF exist and are not trivial.  Then runs it again into
 the same folder to check that finished runs (and the K scan) are reused, and interrupts a third one with SIGINT:
 it must save its work, exit 130, and finish on the next invocation with the same statements."""
-import csv, glob, os, signal, subprocess, sys, tempfile, time
+import csv, glob, os, random, resource, shutil, signal, subprocess, sys, tempfile, time
 
 exe = sys.argv[1]
 failures = 0
@@ -101,6 +101,74 @@ with tempfile.TemporaryDirectory() as out:
     check(r9.returncode == 1 and "is not a folder" in r9.stderr, "OUTDIR that is a file: an error")
     r10 = subprocess.run([exe, "--only", "", out], capture_output=True, text=True, timeout=60)
     check(r10.returncode != 0 and "empty id" in r10.stderr, "--only '': an error")
+        # --- Issue #23, finding 2: under a decimal-comma locale, items.csv had 13 columns and statement ids changed
+    # ("decay-0,0001"), so the documented --only decay-0.0001 failed.  The same report, the same bytes.
+    with tempfile.TemporaryDirectory() as locales:
+        made = subprocess.run(["localedef", "-i", "de_DE", "-f", "UTF-8", os.path.join(locales, "de_DE.UTF-8")],
+                              capture_output=True, text=True)
+        check(made.returncode in (0, 1) and os.path.isdir(os.path.join(locales, "de_DE.UTF-8")),
+              f"localedef made de_DE.UTF-8 ({made.stderr.strip()[-200:]})")
+        german = dict(os.environ, LOCPATH=locales, LC_ALL="de_DE.UTF-8", LANG="de_DE.UTF-8")
+        r11 = subprocess.run([exe, "--only", "decay-0.0001", out], capture_output=True, text=True, timeout=300,
+                             env=german)
+        check(r11.returncode == 0 and "decay-0.0001 (" in r11.stdout and "0,0" not in r11.stdout,
+              f"LC_ALL=de_DE.UTF-8: --only decay-0.0001 ({r11.returncode}: {r11.stdout[:120]} {r11.stderr.strip()[-160:]})")
+        de = os.path.join(out, "de")
+        shutil.copytree(os.path.join(out, "runs"), os.path.join(de, "runs"))
+        r12 = subprocess.run([exe, "--quick", de], capture_output=True, text=True, timeout=900, env=german)
+        with open(os.path.join(de, "items.csv"), newline="") as f:
+            rows = list(csv.reader(f))
+        check(r12.returncode == 0 and all(len(row) == 11 for row in rows), f"items.csv has 11 columns in every row "
+              f"under de_DE ({r12.returncode}, {sorted(set(len(row) for row in rows))})")
+        with open(os.path.join(de, "items.csv"), newline="") as f:
+            ids = [row["id"] for row in csv.DictReader(f)]
+        check(ids == list(items), "... and the same statement ids")
+
+    # --- Issue #23, finding 3: a full disk while the PDF was written exited 0 with a PDF cut short; figures were
+    # not atomic (SIGKILL left a truncated PNG; a full disk empty ones and libpng's own error lines).
+    def complete(path):
+        data = open(path, "rb").read()
+        if path.endswith(".png"):
+            return data.startswith(b"\x89PNG\r\n\x1a\n") and data.endswith(b"IEND\xaeB`\x82")
+        if path.endswith(".pdf"):
+            return data.startswith(b"%PDF-") and b"%%EOF" in data[-1024:]
+        if path.endswith(".svg"):
+            return b"</svg>" in data[-64:]
+        return True
+
+    full = os.path.join(out, "full")
+    shutil.copytree(os.path.join(out, "runs"), os.path.join(full, "runs"))
+    # Half the largest figure: some figures are written, one fails; the report must stop with one ERROR naming
+    # it, and leave no file cut short.  (The PDF alone on a full disk: gui.output_files.)
+    limit = max(os.path.getsize(f) for f in glob.glob(os.path.join(out, "figures", "*"))) // 2
+
+    def small_disk():
+        signal.signal(signal.SIGXFSZ, signal.SIG_IGN)  # a write past the limit fails with EFBIG, as on a full disk
+        resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit))
+
+    r13 = subprocess.run([exe, "--quick", full], capture_output=True, text=True, timeout=900, preexec_fn=small_disk)
+    errors = [line for line in r13.stderr.splitlines() if "error" in line.lower()]
+    check(r13.returncode != 0 and len(errors) == 1 and errors[0].startswith("ERROR: ") and "(write)" in errors[0],
+          f"a full disk: one ERROR naming the file, non-zero exit, no libpng line ({r13.returncode}: {errors})")
+    written = [f for f in glob.glob(os.path.join(full, "**", "*"), recursive=True) if os.path.isfile(f)]
+    check(all(complete(f) for f in written) and not os.path.exists(os.path.join(full, "report.pdf")),
+          f"a full disk: no file cut short, no report.pdf ({[f for f in written if not complete(f)][:3]})")
+    # SIGKILL at random moments: never a truncated figure; the next run removes the temporaries and finishes.
+    killed = os.path.join(out, "killed")
+    shutil.copytree(os.path.join(out, "runs"), os.path.join(killed, "runs"))
+    rng = random.Random(23)
+    for _ in range(4):
+        p = subprocess.Popen([exe, "--quick", killed], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        time.sleep(rng.uniform(0.5, 3.0))
+        p.kill()
+        p.wait()
+        pngs = glob.glob(os.path.join(killed, "figures", "*.png")) + glob.glob(os.path.join(killed, "figures", "*.svg"))
+        check(all(complete(f) for f in pngs), f"SIGKILL: no truncated figure ({len(pngs)} written so far)")
+    r14 = subprocess.run([exe, "--quick", killed], capture_output=True, text=True, timeout=900)
+    left = [f for f in os.listdir(os.path.join(killed, "figures")) if f.startswith(".")]
+    check(r14.returncode == 0 and not left and complete(os.path.join(killed, "report.pdf")),
+          f"after SIGKILL the next run finishes, no temporaries left ({r14.returncode}, {left[:3]})")
+
     # A bad option is one clear error.
     r3 = subprocess.run([exe, "--quick", "--full", out], capture_output=True, text=True, timeout=60)
     check(r3.returncode != 0 and r3.stderr.strip() != "", "--quick with --full is an error")

@@ -1,6 +1,7 @@
 #include "ui/plots/StatisticsPlot.hpp"
 
 #include <QBrush>
+#include <QBuffer>
 #include <QContextMenuEvent>
 #include <QFile>
 #include <QFileInfo>
@@ -35,6 +36,7 @@
 #include "ui/plots/CrosshairPicker.hpp"
 #include "ui/plots/LogScaleDraw.hpp"
 #include "ui/plots/QwtCompat.hpp"
+#include "ui/files/OutputFiles.hpp"
 
 namespace archipelago::ui {
 
@@ -407,41 +409,19 @@ bool StatisticsPlot::exportImage(const QString& path, QString* error) {
     if (error) *error = tr("unknown image format \"%1\" (use .png, .svg or .pdf)").arg(format);
     return false;
   }
-  QFile::remove(path);
   QwtPlotRenderer renderer;
   renderer.setDiscardFlag(QwtPlotRenderer::DiscardBackground, false);
   renderer.setDiscardFlag(QwtPlotRenderer::DiscardCanvasFrame, false);
   // 160 × 110 mm at 150 dpi: a journal column, and about 950 × 650 pixels for PNG.  QwtPlotRenderer's
   // renderDocument() would put the title's markup ("f<sub>t</sub>") into the SVG and PDF metadata, so the
-  // documents are set up here with a plain Unicode title and the plot is rendered into them.
+  // documents are set up here with a plain Unicode title and the plot is rendered into them.  Each is rendered
+  // in memory, checked and published atomically (ui/files/OutputFiles.hpp): never a truncated file.
   const QSizeF sizeMm(160, 110);
   constexpr int dpi = 150;
   const double mmToInch = 1.0 / 25.4;
   const QRectF rect(0, 0, sizeMm.width() * mmToInch * dpi, sizeMm.height() * mmToInch * dpi);
   const QString title = plainTitle();
-  bool ok = true;
-  if (format == QLatin1String("svg")) {
-    QSvgGenerator generator;
-    generator.setTitle(title);
-    generator.setDescription(tr("Archipelago: %1").arg(title));
-    generator.setFileName(path);
-    generator.setResolution(dpi);
-    generator.setSize(rect.size().toSize());
-    generator.setViewBox(rect);
-    QPainter painter(&generator);
-    renderer.render(this, &painter, rect);
-    ok = painter.end();
-  } else if (format == QLatin1String("pdf")) {
-    QPdfWriter writer(path);
-    writer.setTitle(title);
-    writer.setCreator(QStringLiteral("Archipelago"));
-    writer.setPageSize(QPageSize(sizeMm, QPageSize::Millimeter));
-    writer.setPageMargins(QMarginsF(0, 0, 0, 0));
-    writer.setResolution(dpi);
-    QPainter painter(&writer);
-    renderer.render(this, &painter, rect);
-    ok = painter.end();
-  } else {
+  if (format == QLatin1String("png")) {
     QImage image(rect.size().toSize(), QImage::Format_ARGB32);
     image.setDotsPerMeterX(qRound(dpi / 0.0254));
     image.setDotsPerMeterY(qRound(dpi / 0.0254));
@@ -452,13 +432,42 @@ bool StatisticsPlot::exportImage(const QString& path, QString* error) {
       QPainter painter(&image);
       renderer.render(this, &painter, rect);
     }
-    ok = image.save(path, "PNG");
+    return writePngFile(image, path, error);
   }
-  if (!ok || !QFileInfo(path).exists() || QFileInfo(path).size() == 0) {
-    if (error) *error = tr("could not write %1").arg(path);
+  QByteArray bytes;
+  QBuffer buffer(&bytes);
+  buffer.open(QIODevice::WriteOnly);
+  bool ok = true;
+  if (format == QLatin1String("svg")) {
+    QSvgGenerator generator;
+    generator.setTitle(title);
+    generator.setDescription(tr("Archipelago: %1").arg(title));
+    generator.setOutputDevice(&buffer);
+    generator.setResolution(dpi);
+    generator.setSize(rect.size().toSize());
+    generator.setViewBox(rect);
+    QPainter painter(&generator);
+    renderer.render(this, &painter, rect);
+    ok = painter.end() && isCompleteSvg(bytes);
+  } else {
+    {
+      QPdfWriter writer(&buffer);
+      writer.setTitle(title);
+      writer.setCreator(QStringLiteral("Archipelago"));
+      writer.setPageSize(QPageSize(sizeMm, QPageSize::Millimeter));
+      writer.setPageMargins(QMarginsF(0, 0, 0, 0));
+      writer.setResolution(dpi);
+      QPainter painter(&writer);
+      renderer.render(this, &painter, rect);
+      ok = painter.end();
+    }  // the writer finishes the document when it is destroyed
+    ok = ok && isCompletePdf(bytes);
+  }
+  if (!ok) {
+    if (error) *error = tr("could not render %1").arg(path);
     return false;
   }
-  return true;
+  return publishBytes(bytes, path, error);
 }
 
 void StatisticsPlot::contextMenuEvent(QContextMenuEvent* event) {

@@ -30,6 +30,7 @@
 
 #include "core/portrait/PortraitExport.hpp"
 #include "ui/portrait/PortraitWorker.hpp"
+#include "ui/files/OutputFiles.hpp"
 
 namespace archipelago::ui {
 
@@ -437,8 +438,9 @@ bool PortraitView::exportPng(const QString& path, const QSize& size) {
     QwtPlotRenderer renderer;
     renderer.render(plot_, &painter, QRectF(QPointF(0, 0), QSizeF(size)));
   }
-  const bool ok = image.save(path, "PNG");
-  Q_EMIT statusMessage(ok ? tr("Exported %1").arg(path) : tr("Could not write %1").arg(path));
+  QString error;
+  const bool ok = writePngFile(image, path, &error);
+  Q_EMIT statusMessage(ok ? tr("Exported %1").arg(path) : error);
   return ok;
 }
 

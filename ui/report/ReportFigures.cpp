@@ -2,6 +2,7 @@
 
 #include <QDir>
 #include <QFile>
+#include <QBuffer>
 #include <QImage>
 #include <QPageSize>
 #include <QPainter>
@@ -29,6 +30,7 @@
 #include "ui/plots/LogScaleDraw.hpp"
 #include "ui/plots/StatisticsPlot.hpp"
 #include "ui/scan/KScanDialog.hpp"
+#include "ui/files/OutputFiles.hpp"
 
 namespace archipelago::ui::report {
 
@@ -56,22 +58,22 @@ bool renderPlot(QwtPlot& plot, const QString& base, QString* error, QSize widget
     QPainter painter(&image);
     renderer.render(&plot, &painter, rect);
   }
-  if (!image.save(base + QStringLiteral(".png"))) {
-    if (error) *error = QStringLiteral("cannot write %1.png").arg(base);
-    return false;
-  }
+  if (!writePngFile(image, base + QStringLiteral(".png"), error)) return false;
+  QByteArray svg;
+  QBuffer buffer(&svg);
+  buffer.open(QIODevice::WriteOnly);
   QSvgGenerator generator;
-  generator.setFileName(base + QStringLiteral(".svg"));
+  generator.setOutputDevice(&buffer);
   generator.setSize(rect.size().toSize());
   generator.setViewBox(rect);
   generator.setTitle(plot.title().text());
   QPainter painter(&generator);
   renderer.render(&plot, &painter, rect);
-  if (!painter.end()) {
-    if (error) *error = QStringLiteral("cannot write %1.svg").arg(base);
+  if (!painter.end() || !isCompleteSvg(svg)) {
+    if (error) *error = QStringLiteral("cannot render %1.svg").arg(base);
     return false;
   }
-  return true;
+  return publishBytes(svg, base + QStringLiteral(".svg"), error);
 }
 
 /// A raster on the canvas, mapped from its physical rectangle by the plot's scales (row 0 at the top, y1).
@@ -323,17 +325,24 @@ bool writePdf(const QString& html, const QString& dir, const QStringList& images
     doc.addResource(QTextDocument::ImageResource, QUrl(name), image);
   }
   doc.setHtml(html);
-  QPdfWriter writer(pdfPath);
-  writer.setPageSize(QPageSize(QPageSize::A4));
-  writer.setResolution(96);  // the offscreen screen's logical dpi: fonts and the 600-pixel figures keep their size
-  writer.setTitle(QStringLiteral("Karney (1983) reproduced by Archipelago"));
-  doc.setPageSize(QSizeF(writer.width(), writer.height()));
-  doc.print(&writer);
-  if (!QFile::exists(pdfPath) || QFile(pdfPath).size() < 1000) {
-    if (error) *error = QStringLiteral("cannot write %1").arg(pdfPath);
+  // Rendered in memory and checked whole before it is published atomically: a full disk once left a PDF cut
+  // at 3.0 of its 3.8 MB while the report exited 0 (issue #23).
+  QByteArray pdf;
+  QBuffer buffer(&pdf);
+  buffer.open(QIODevice::WriteOnly);
+  {
+    QPdfWriter writer(&buffer);
+    writer.setPageSize(QPageSize(QPageSize::A4));
+    writer.setResolution(96);  // the offscreen screen's logical dpi: fonts and the 600-pixel figures keep their size
+    writer.setTitle(QStringLiteral("Karney (1983) reproduced by Archipelago"));
+    doc.setPageSize(QSizeF(writer.width(), writer.height()));
+    doc.print(&writer);
+  }
+  if (!isCompletePdf(pdf)) {
+    if (error) *error = QStringLiteral("cannot render %1: the PDF is incomplete").arg(pdfPath);
     return false;
   }
-  return true;
+  return publishBytes(pdf, pdfPath, error);
 }
 
 }  // namespace archipelago::ui::report

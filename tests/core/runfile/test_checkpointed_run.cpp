@@ -1,6 +1,7 @@
 // core/runfile/CheckpointedRun: the one checkpoint loop of `run`, the K scan and the report.
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <unistd.h>
@@ -98,7 +99,26 @@ TEST(CheckpointedRun, AFailedCheckpointWarnsAndTheRunGoesOn) {
   EXPECT_GE(warnings, 3);
   EXPECT_FALSE(reason.empty());
   EXPECT_EQ(last.path, "resumed.json");  // still where the work was
-  // The final write fails too: the error says where the last good copy is, and how to resume it.
+  // The final write fails: the run is not lost (issue #23: "no checkpoint was written" once lost it), it goes to
+  // the temporary folder and the error says where.
+  try {
+    saveRunFileOrSayWhere(dir, s, last, ": resume with --resume resumed.json");
+    ADD_FAILURE() << "writing over a folder succeeded";
+  } catch (const std::runtime_error& e) {
+    const std::string what = e.what();
+    const fs::path rescued = fs::temp_directory_path() / (dir.filename().string() + ".rescued-" +
+                                                          std::to_string(::getpid()) + ".json");
+    EXPECT_NE(what.find("the run (20000 of 20000 blocks) was saved instead to " + rescued.string()), std::string::npos)
+        << what;
+    ASSERT_TRUE(fs::exists(rescued));
+    EXPECT_TRUE(loadRunFile(rescued).subsets == s.subsets);
+    fs::remove(rescued);
+  }
+  // Nowhere to rescue it either: the error says where the last good copy is, and how to resume it.
+  const std::string tmpdir = std::getenv("TMPDIR") ? std::getenv("TMPDIR") : "";
+  const std::string home = std::getenv("HOME") ? std::getenv("HOME") : "";
+  ::setenv("TMPDIR", "/nonexistent-archipelago-tmp", 1);
+  ::setenv("HOME", "/nonexistent-archipelago-home", 1);
   try {
     saveRunFileOrSayWhere(dir, s, last, ": resume with --resume resumed.json");
     ADD_FAILURE() << "writing over a folder succeeded";
@@ -111,8 +131,14 @@ TEST(CheckpointedRun, AFailedCheckpointWarnsAndTheRunGoesOn) {
     saveRunFileOrSayWhere(dir, s, LastCheckpoint{});
     ADD_FAILURE() << "writing over a folder succeeded";
   } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("no checkpoint was written"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("no checkpoint was written and the run could not be saved in "
+                                         "/nonexistent-archipelago-tmp, /nonexistent-archipelago-home"),
+              std::string::npos) << e.what();
   }
+  if (tmpdir.empty()) ::unsetenv("TMPDIR");
+  else ::setenv("TMPDIR", tmpdir.c_str(), 1);
+  if (home.empty()) ::unsetenv("HOME");
+  else ::setenv("HOME", home.c_str(), 1);
   fs::remove_all(dir.parent_path());
 }
 

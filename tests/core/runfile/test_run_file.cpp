@@ -137,11 +137,56 @@ TEST(RunFile, AnyEditIsDetectedByTheChecksum) {
   EXPECT_NO_THROW((void)parseRunFile(json::parse(good).dump(4)));
 }
 
-TEST(RunFile, Version1FilesWithoutChecksumAreStillRead) {
+// Issue #23, finding 4: deleting the checksum and declaring "version": 1 bypassed it, and `run --resume`
+// then laundered the edit into a version-2 file with a fresh, valid checksum.
+TEST(RunFile, VersionDowngrade_Issue23_IsRefusedWithoutOptIn) {
   json j = json::parse(runFileText(sampleRun()));
   j.erase("checksum");
   j["version"] = 1;
-  EXPECT_TRUE(parseRunFile(j.dump(1)).params == sampleRun().params);
+  j["parameters"]["seed"] = 100;  // an edit a version-1 file cannot reveal
+  const std::string text = j.dump(1);
+  try {
+    (void)parseRunFile(text);
+    ADD_FAILURE() << "a version-1 file was read without --allow-modified";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("version 1 has no checksum"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("--allow-modified"), std::string::npos) << e.what();
+  }
+  // Inspection on request: read, validated, and marked unverified.
+  const TrappingState read = parseRunFile(text, {.allowModified = true});
+  EXPECT_TRUE(read.unverified);
+  EXPECT_EQ(read.params.seed, 100u);
+  EXPECT_FALSE(parseRunFile(runFileText(sampleRun())).unverified);
+}
+
+TEST(RunFile, UnverifiedState_Issue23_IsNeverWrittenAsAVerifiedFile) {
+  json j = json::parse(runFileText(sampleRun(16)));
+  j["elapsedSeconds"] = 1e9;  // an edit the consistency checks cannot see: only the checksum can
+  TrappingState s = parseRunFile(j.dump(1), {.allowModified = true});
+  ASSERT_TRUE(s.unverified);
+  EXPECT_THROW((void)runFileText(s), std::runtime_error);
+  const auto path = std::filesystem::temp_directory_path() / "archipelago-test-launder.json";
+  EXPECT_THROW(saveRunFile(path, s), std::runtime_error);
+  EXPECT_FALSE(std::filesystem::exists(path));
+  // Resuming it keeps the mark (the run goes on from an edited state), and so does a merge with a verified part.
+  TrappingRunOptions o;
+  o.untilBlocks = 32;
+  const TrappingState resumed = runTrapping(std::move(s), o);
+  EXPECT_TRUE(resumed.unverified);
+  EXPECT_THROW((void)runFileText(resumed), std::runtime_error);
+}
+
+TEST(RunFile, DeepJson_Issue23_IsACleanError) {
+  json j = json::parse(runFileText(sampleRun()));
+  std::string text = j.dump(1);
+  text.insert(1, "\"zzz\": " + std::string(60000, '[') + std::string(60000, ']') + ",");
+  try {
+    (void)parseRunFile(text);
+    ADD_FAILURE() << "accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("nested deeper than"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW((void)parseRunFile(text, {.allowModified = true}), std::runtime_error);
 }
 
 TEST(RunFile, CountsWhoseSumPassesTwoToTheSixtyFourAreRejected) {

@@ -14,6 +14,7 @@
 
 #include "core/runfile/RunFile.hpp"
 #include "core/session/SessionFile.hpp"
+#include "tests/core/DecimalCommaLocale.hpp"
 
 namespace archipelago {
 namespace {
@@ -196,6 +197,43 @@ TEST(SessionFile, BadAndForeignDocumentsAreRefusedWithTheKeyNamed) {
   nlohmann::json orbits = nlohmann::json::array();
   for (std::size_t i = 0; i <= kMaxSessionOrbits; ++i) orbits.push_back({0.1, 0.2});
   expectRejected(edited("portrait.orbits", orbits.dump()), "at most");
+}
+
+// Issue #23, finding 1: a deep value anywhere in a session (its version, spec, embedded run, a plot zoom, the
+// budget) crashed the reader; each is now one clean error naming the depth.
+TEST(SessionFile, DeepJson_Issue23_IsACleanErrorAnywhere) {
+  const std::string deep = std::string(60000, '[') + std::string(60000, ']');
+  for (const char* key : {"version", "spec", "run", "portrait.budget", "plots", "tab"}) {
+    std::string text = edited(key, R"("@DEEP@")");
+    text.replace(text.find(R"("@DEEP@")"), 8, deep);
+    expectRejected(text, "nested deeper than");
+  }
+  // A version-1 embedded run (no checksum) is refused like a version-1 run file.
+  std::mt19937_64 rng(7);
+  Session s = fullSession(rng);
+  s.spec.parameters = smallRun();
+  s.embeddedRun = runTrapping(startTrapping(s.spec.parameters), TrappingRunOptions{});
+  nlohmann::json j = nlohmann::json::parse(sessionText(s));
+  j["run"]["embedded"].erase("checksum");
+  j["run"]["embedded"]["version"] = 1;
+  expectRejected(j.dump(), "version 1 has no checksum");
+  // A NUL in the run's path would be cut by the C library: refused.
+  expectRejected(edited("run", R"({"file": "run.json\u0000x"})"), "NUL");
+}
+
+class SessionLocale : public testing::DecimalCommaLocale {};
+
+// Issue #23, finding 2: under a decimal-comma locale view sizes were written "4503599627370,5", which another
+// locale's reader refused.  The text is the same bytes in any locale, and reads back in any locale.
+TEST_F(SessionLocale, SessionsAreTheSameBytesInEveryLocale_Issue23) {
+  std::mt19937_64 rng(11);
+  const Session s = fullSession(rng);
+  const std::string here = sessionText(s);
+  EXPECT_EQ(here.find(",5\""), std::string::npos);
+  expectSame(s, parseSession(here));
+  std::setlocale(LC_ALL, "C");
+  EXPECT_EQ(sessionText(s), here);
+  expectSame(s, parseSession(here));
 }
 
 TEST(SessionFile, FilesAreBoundedAndRegular) {

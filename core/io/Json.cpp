@@ -1,0 +1,129 @@
+#include "core/io/Json.hpp"
+
+
+#include <limits>
+#include <set>
+#include <stdexcept>
+#include <vector>
+
+#include "core/io/AtomicFile.hpp"
+#include "core/io/Memory.hpp"
+
+namespace archipelago::io {
+
+using nlohmann::json;
+
+namespace {
+/// The byte (1-based) where the nesting of arrays and objects outside strings first exceeds `limit`, or 0.
+/// Linear; checks nothing else of the syntax.
+std::size_t firstByteDeeperThan(std::string_view text, int limit) {
+  int depth = 0;
+  bool inString = false, escaped = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (inString) {
+      if (escaped) escaped = false;
+      else if (c == '\\') escaped = true;
+      else if (c == '"') inString = false;
+    } else if (c == '"') {
+      inString = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > limit) return i + 1;
+    } else if ((c == ']' || c == '}') && depth > 0) {
+      --depth;
+    }
+  }
+  return 0;
+}
+/// A SAX handler that finds the first key repeated within one object (nlohmann would keep the last silently).
+struct RepeatedKeyFinder : nlohmann::json_sax<json> {
+  std::vector<std::set<std::string>> keysOfOpenObjects;
+  std::string repeated;
+
+  bool null() override { return true; }
+  bool boolean(bool) override { return true; }
+  bool number_integer(number_integer_t) override { return true; }
+  bool number_unsigned(number_unsigned_t) override { return true; }
+  bool number_float(number_float_t, const string_t&) override { return true; }
+  bool string(string_t&) override { return true; }
+  bool binary(binary_t&) override { return true; }
+  bool start_object(std::size_t) override {
+    keysOfOpenObjects.emplace_back();
+    return true;
+  }
+  bool key(string_t& k) override {
+    if (!keysOfOpenObjects.back().insert(k).second) {
+      repeated = k;
+      return false;  // stops the pass
+    }
+    return true;
+  }
+  bool end_object() override {
+    keysOfOpenObjects.pop_back();
+    return true;
+  }
+  bool start_array(std::size_t) override { return true; }
+  bool end_array() override { return true; }
+  bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception& e) override {
+    throw e;  // rethrown as the json::exception it is (a parse_error or an out_of_range)
+  }
+};
+
+}  // namespace
+
+json parseJson(std::string_view text) {
+  // The depth first, on the text: nothing deep is ever built, parsed or printed.
+  if (const std::size_t at = firstByteDeeperThan(text, kMaxJsonDepth); at != 0)
+    throw std::invalid_argument("JSON nested deeper than " + std::to_string(kMaxJsonDepth) + " levels (at byte " +
+                                std::to_string(at) + "); no Archipelago file is");
+  // Repeated keys by a SAX pass, then the document by nlohmann's plain parser: both linear.  (nlohmann's parser
+  // with a callback scans the enclosing array at the end of every object: quadratic, 34 s for 200,000 "{}".)
+  RepeatedKeyFinder finder;
+  try {
+    (void)json::sax_parse(text.begin(), text.end(), &finder);
+    if (!finder.repeated.empty())
+      throw std::invalid_argument("the key '" + shortText(finder.repeated) + "' appears twice in one object");
+    return json::parse(text.begin(), text.end());
+  } catch (const json::exception& e) {
+    // Every error of nlohmann's parser, not only parse_error: a number too large for a double
+    // ("215e4434690031883725") is an out_of_range (406), found by fuzz_runfile and fuzz_runspec.
+    // nlohmann's message: "[json.exception.parse_error.101] parse error at line 1, column 2: …"
+    std::string what = e.what();
+    if (const auto at = what.find("] "); at != std::string::npos) what = what.substr(at + 2);
+    throw std::invalid_argument("not valid JSON: " + shortText(what, 200));
+  }
+}
+
+std::string describeJson(const json& v) {
+  switch (v.type()) {
+    case json::value_t::array:
+      return "an array of " + std::to_string(v.size()) + (v.size() == 1 ? " entry" : " entries");
+    case json::value_t::object:
+      return "an object of " + std::to_string(v.size()) + (v.size() == 1 ? " key" : " keys");
+    case json::value_t::string: {
+      const std::string& text = v.get_ref<const std::string&>();
+      return text.size() <= 40 ? json(text).dump() : json(shortText(text, 40)).dump();
+    }
+    default:
+      return v.dump();  // a number, a bool, null: short and flat
+  }
+}
+
+json loadJsonFile(const std::filesystem::path& path, std::uintmax_t maxBytes) {
+  std::error_code ec;
+  if (std::filesystem::is_regular_file(path, ec)) {
+    const std::uintmax_t size = std::filesystem::file_size(path, ec);
+    if (!ec && size <= maxBytes) checkParseMemory(size, path.string());
+  }
+  return parseJson(readRegularFile(path, maxBytes));  // readRegularFile says what is wrong with a path
+}
+
+void checkParseMemory(std::uintmax_t textBytes, const std::string& what) {
+  // Below 16 MiB of text the check costs more than it can save.
+  if (textBytes < (std::uintmax_t{16} << 20)) return;
+  const std::uintmax_t limit = std::numeric_limits<std::uintmax_t>::max() / (kJsonBytesPerTextByte + 1);
+  checkMemory(textBytes > limit ? std::numeric_limits<std::uintmax_t>::max() : textBytes * (kJsonBytesPerTextByte + 1),
+              "reading " + what + " (" + std::to_string(textBytes >> 20) + " MiB of JSON)");
+}
+
+}  // namespace archipelago::io
