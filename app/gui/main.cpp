@@ -33,7 +33,8 @@ bool onlyInformation(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     for (const char* option : {"-h", "--help", "--help-all", "-?", "-v", "--version"})
       if (std::strcmp(argv[i], option) == 0) return true;
-    for (const char* withValue : {"--preset", "--threads", "--screenshot", "--after", "--measure", "--tab", "--segment"})
+    for (const char* withValue :
+         {"--preset", "--threads", "--screenshot", "--after", "--measure", "--tab", "--segment"})
       if (std::strcmp(argv[i], withValue) == 0) ++i;
   }
   return false;

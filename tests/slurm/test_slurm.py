@@ -194,9 +194,9 @@ try:
         raise RuntimeError("no cluster")
 
     # --- the specs and the single-process runs they must equal --------------------------------------------------------
-    # small: the MPI and array jobs (≈ 1.5 CPU-seconds here when idle).  Its reference run measures the CPU rate, by
-    # which the time-limit run is sized to ≈ 20 CPU-seconds: it is stopped ≈ 6 s after its start (below), so at least
-    # once even on a machine 3 times faster than measured (a loaded machine measures up to 2.4 times slower).
+    # small: the MPI and array jobs (≈ 1.5 CPU-seconds here when idle).  Its reference run measures the CPU rate,
+    # by which the time-limit run is sized to ≈ 20 CPU-seconds: it is stopped ≈ 6 s after its start (below), so at
+    # least once even on a machine 3 times faster than measured (a loaded machine measures up to 2.4 times slower).
     def spec(T):
         return {"format": "archipelago-spec", "version": 1, "kernel": "auto", "threads": 0,
                 "parameters": {"K": 0.1, "xmin": -0.8, "xmax": 0.5, "Xr": 0.02, "M": 16, "q": 16, "T": T,
@@ -333,8 +333,8 @@ finally:
     if submitted and tools["scancel"]:
         run(tools["scancel"], *submitted, check_ok=False)
         deadline = time.monotonic() + 30
-        while time.monotonic() < deadline and any(
-                r["JobState"] in ("RUNNING", "COMPLETING", "PENDING", "CONFIGURING") for j in submitted for r in show(j)):
+        active = ("RUNNING", "COMPLETING", "PENDING", "CONFIGURING")
+        while time.monotonic() < deadline and any(r["JobState"] in active for j in submitted for r in show(j)):
             time.sleep(0.25)
     for name, d in reversed(daemons):
         d.terminate()
