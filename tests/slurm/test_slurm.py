@@ -318,9 +318,10 @@ try:
     tl = records["time limit, 1 task"]
     restarts = int(tl[0].get("Restarts", 0)) if tl else 0
     log = open(p("timelimit", f"slurm-{jobs['time limit, 1 task']}.out"), errors="replace").read() if tl else ""
+    why = " (none: the run ended before the signal, faster than the rate measured)" if restarts == 0 else ""
     check(restarts == 1 and log.count("interrupted: checkpoint written") == 1,
-          f"the time-limit job was stopped by Slurm's signal, checkpointed and requeued once (restarts: {restarts}; "
-          "none: the run ended before the signal, faster than the rate measured)")
+          f"the time-limit job was stopped by Slurm's signal, checkpointed and requeued once (restarts: {restarts}"
+          f"{why})")
     check(reference.returncode == 0 and os.path.exists(p("timelimit", "k01.json")) and
           content(p("timelimit", "k01.json")) == content(p("ref-long.json")),
           "the time-limit job, resumed after its requeue: k01.json is the uninterrupted archipelago-cli run's")
