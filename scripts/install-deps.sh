@@ -22,6 +22,9 @@ packages=(
   clang libclang-rt-14-dev libomp-dev
   pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib  # the Python module (python/), its tests, examples/
   libopenmpi-dev openmpi-bin  # archipelago-mpi and its tests (issue #15); optional, CMake skips it without MPI
+  slurm-wlm munge  # slurm.guide: the cluster guide's batch scripts on a one-node Slurm of the test's own (issue 31)
+  python3-nbclient python3-ipykernel  # examples/*.ipynb executed by a test (issue 31)
+  help2man appstream desktop-file-utils  # cmake --install: man pages; the metainfo and desktop entry validated
 )
 
 SUDO=""

@@ -18,15 +18,38 @@
 #include <qwt_global.h>
 
 #include <cstdio>
+#include <cstring>
+#include <memory>
 
 #include "LatencyProbe.hpp"
 #include "ui/MainWindow.hpp"
 #include "ui/ParameterPanel.hpp"
 #include "ui/Resources.hpp"
 
+namespace {
+
+/// Whether the command line asks only for --help or --version: those are answered without a display (a
+/// QCoreApplication), so that they work on a server, in a package build (help2man) or over ssh.
+/// The scan skips the value of an option that takes one (`--preset -v` names a preset), as the parser does.
+bool onlyInformation(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    for (const char* option : {"-h", "--help", "--help-all", "-?", "-v", "--version"})
+      if (std::strcmp(argv[i], option) == 0) return true;
+    for (const char* withValue :
+         {"--preset", "--threads", "--screenshot", "--after", "--measure", "--tab", "--segment"})
+      if (std::strcmp(argv[i], withValue) == 0) ++i;
+  }
+  return false;
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   archipelago::ui::configureProcessMemory();
-  QApplication app(argc, argv);
+  const std::unique_ptr<QCoreApplication> application =
+      onlyInformation(argc, argv) ? std::make_unique<QCoreApplication>(argc, argv)
+                                  : std::make_unique<QApplication>(argc, argv);
+  QCoreApplication& app = *application;
   // Qt sets the user's locale for the C library; files and ids are never localised (issue #23: a decimal
   // comma once made sessions unreadable in another locale).  The widgets' text uses QLocale, untouched here.
   std::setlocale(LC_NUMERIC, "C");

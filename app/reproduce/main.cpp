@@ -168,6 +168,7 @@ struct Figure {
 int main(int argc, char** argv) {
   if (qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM")) qputenv("QT_QPA_PLATFORM", "offscreen");
   CLI::App app{"Karney (1983) reproduced: every figure and number into OUTDIR/index.html and OUTDIR/report.pdf"};
+  app.set_version_flag("--version", std::string("archipelago-reproduce ") + ARCHIPELAGO_VERSION);
   std::string outdir;
   bool quick = false, full = false;
   int threads = 0;
