@@ -14,55 +14,10 @@ import concurrent.futures, json, os, random, re, shutil, signal, subprocess, sys
 
 from clitest import check, cli, finish, interrupt, leftovers, wait_for_file
 
-TIMEOUT = 20
+from hostile import OUTCOMES, TIMEOUT, classify, invoke, print_table, problems, record, table
+
 SEED = 20261123
 tmp = tempfile.mkdtemp(prefix="archipelago-hostile-")
-OUTCOMES = ["clean error", "valid", "crash", "hang", "silent wrong"]
-table = {}
-problems = []
-
-
-def invoke(args, timeout=TIMEOUT, env=None):
-    """(returncode or None on timeout, stdout, stderr)."""
-    try:
-        r = subprocess.run([cli, *args], capture_output=True, text=True, errors="replace", timeout=timeout,
-                           stdin=subprocess.DEVNULL, env=env)
-        return r.returncode, r.stdout, r.stderr
-    except subprocess.TimeoutExpired:
-        return None, "", ""
-
-
-def crashed(rc, err):
-    return rc is not None and (rc < 0 or "terminate called" in err or "Sanitizer" in err or "runtime error:" in err)
-
-
-def clean_error(rc, err):
-    lines = err.splitlines()
-    return rc not in (None, 0) and len(lines) == 1 and lines[0].startswith("ERROR: ")
-
-
-def classify(rc, err, error_expected, output_ok):
-    """error_expected: True (must fail), False (must succeed) or None (either).  output_ok() checks a success."""
-    if rc is None:
-        return "hang"
-    if crashed(rc, err):
-        return "crash"
-    if rc == 0:
-        if error_expected is True:
-            return "silent wrong"
-        return "valid" if output_ok() else "silent wrong"
-    if error_expected is False:
-        return "silent wrong"
-    # A failure that is not one "ERROR: " line is an unhandled path: counted with the crashes.
-    return "clean error" if clean_error(rc, err) else "crash"
-
-
-def record(category, what, outcome, detail=""):
-    row = table.setdefault(category, {k: 0 for k in ["tried", *OUTCOMES]})
-    row["tried"] += 1
-    row[outcome] += 1
-    if outcome in ("crash", "hang", "silent wrong"):
-        problems.append(f"{category}: {what}: {outcome} {detail}".strip())
 
 
 def finite_text(text):
@@ -439,16 +394,7 @@ for shared in ("out", "checkpoint"):
 for result in killed_and_resumed():
     record(*result)
 
-print()
-print(f"{'category':<20}" + "".join(f"{h:>14}" for h in ["tried", *OUTCOMES]))
-for category, row in table.items():
-    print(f"{category:<20}" + "".join(f"{row[h]:>14}" for h in ["tried", *OUTCOMES]))
-print(f"({time.monotonic() - started:.0f} s)")
-for p in problems:
-    print("PROBLEM " + p)
-for category, row in table.items():
-    check(row["crash"] == 0 and row["hang"] == 0 and row["silent wrong"] == 0,
-          f"{category}: no crash, hang or silent wrong answer")
+print_table(started)
 if not problems:
     shutil.rmtree(tmp, ignore_errors=True)
 finish()

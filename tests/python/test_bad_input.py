@@ -1,5 +1,8 @@
 """Bad input from Python: ValueError with core's (the CLI's) message, OSError for files, never a crash."""
 import math
+import resource
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -129,3 +132,52 @@ def test_merge_of_misfits():
         ap.merge(a, b)
     with pytest.raises(ValueError):
         ap.start_range(4, 2, M=8)
+
+
+# Issue #23, finding 9: paths, arrays and sizes from Python are checked, never cut or truncated silently.
+def test_paths_are_checked_Issue23(tmp_path):
+    run = ap.start(T=100, M=2, subsets=1)
+    run.advance()
+    with pytest.raises(TypeError):
+        run.save(None)  # once wrote a file named "None"
+    assert not (tmp_path / "None").exists()
+    with pytest.raises(ValueError, match="NUL"):
+        run.save(str(tmp_path / "a\0b.json"))
+    with pytest.raises(ValueError, match="NUL"):
+        ap.load(str(tmp_path / "run.json") + "\0x")
+    run.save(tmp_path / "run.json")  # os.PathLike
+    assert ap.load(tmp_path / "run.json").finished
+
+
+def test_involution_needs_integers_Issue23():
+    with pytest.raises(TypeError, match="integers"):
+        ap.involution(np.array([0.7]), np.array([0.2]))  # was truncated to 0 silently
+    with pytest.raises(ValueError):
+        ap.involution(np.array([-1]), np.array([0]))
+    X, Y = ap.involution(np.array([5], dtype=np.int64), np.array([7], dtype=np.uint64))
+    X2, Y2 = ap.involution(X, Y)
+    assert X2[0] == 5 and Y2[0] == 7
+
+
+def test_huge_requests_are_refused_before_work_Issue23():
+    # In a process limited to 4 GB of address space (RLIMIT_AS, which the check reads), as on a smaller machine:
+    # MemoryError naming the size at once, never an allocation that takes the machine down.
+    code = """
+import archipelago as ap, time
+for name, call in [("orbit", lambda: ap.orbit(0.1, -0.8, 0.5, 0.0, 0.0, steps=2 ** 28)),
+                   ("markov", lambda: ap.markov([1], 1000, tau_max=249999999))]:
+    t = time.monotonic()
+    try:
+        call()
+        print(name, "no error")
+    except MemoryError as e:
+        print(name, "MemoryError", round(time.monotonic() - t, 2), str(e)[:80])
+"""
+    limit = 4 << 30
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120,
+                       preexec_fn=lambda: resource.setrlimit(resource.RLIMIT_AS, (limit, limit)))
+    lines = r.stdout.splitlines()
+    assert len(lines) == 2 and all(" MemoryError " in line and "needs about" in line for line in lines), r.stdout + r.stderr
+    assert all(float(line.split()[2]) < 1 for line in lines)
+    with pytest.raises(ValueError):
+        ap.periodic_orbit(0.1, 100001, 0.0, 0.0)  # beyond kMaxPeriod

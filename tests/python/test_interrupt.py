@@ -105,3 +105,30 @@ def test_run_is_not_touched_while_another_thread_advances_it():
         run.advance(progress=progress, max_chunk=1000)
     assert errors == ["this run is being advanced (advance() is running)"]
     assert run.orbit_states().shape == (16, 9)  # usable again after the stop
+
+
+# Issue #23, finding 7: Ctrl-C was ignored by long calls that do not report progress: stochastic_area and
+# portrait ran on for minutes, periodic_orbit(period=10**5) raised only after its whole search (~45 s).
+@pytest.mark.parametrize("call", [
+    lambda: ap.stochastic_area(iterations=2 ** 50),
+    lambda: ap.portrait(points=2 ** 49, width=64, height=64),
+    lambda: ap.periodic_orbit(0.1, 100000, 0.0358, 0.034),
+], ids=["stochastic_area", "portrait", "periodic_orbit"])
+def test_long_calls_stop_on_ctrl_c_Issue23(call):
+    timer = threading.Timer(0.3, _thread.interrupt_main)
+    start = time.monotonic()
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        call()
+    elapsed = time.monotonic() - start
+    timer.cancel()
+    assert elapsed < 10, f"stopped {elapsed:.1f} s after the call began (Ctrl-C at 0.3 s)"
+
+
+def test_an_interrupted_call_leaves_the_module_usable():
+    timer = threading.Timer(0.2, _thread.interrupt_main)
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        ap.portrait(points=2 ** 49, width=64, height=64)
+    small = ap.portrait(points=100000, width=32, height=32)
+    assert small["points_iterated"] >= 100000
