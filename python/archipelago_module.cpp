@@ -35,7 +35,7 @@
 #include "core/stats/TailAnalysis.hpp"
 #include "core/portrait/StochasticArea.hpp"
 #include "core/theory/SmallKTheory.hpp"
-#include "core/theory/KScan.hpp"
+#include "core/scan/ScanPoint.hpp"
 #include "core/markov/MarkovModel.hpp"
 
 namespace py = pybind11;
@@ -623,7 +623,7 @@ PYBIND11_MODULE(_archipelago, m) {
         "The b2-scaled, box-independent values (core/stats/StochasticAreaQuantities.hpp): b2 D with its error, the\n"
         "accelerator-mode factor (8/pi^2) b2 and the n = 1 enhancement, from the visited fraction and D of statistics().");
 
-  // ---- the K scan (core/theory/KScan.hpp, section 5) ----
+  // ---- the K scan (core/scan, section 5) ----
   m.def("scan_box", [](double K) { const MapParameters b = scanBox(K); return py::make_tuple(b.xmin, b.xmax); },
         py::arg("K"), "The box (xmin, xmax) the K scan of section 5 uses for K in [0, 4].");
   m.def("scan_values", &scanValues, py::arg("start"), py::arg("stop"), py::arg("step"),

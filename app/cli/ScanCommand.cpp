@@ -17,10 +17,9 @@
 #include "CliCommon.hpp"
 #include "PngWriter.hpp"
 #include "RunSession.hpp"
-#include "core/export/KScanRun.hpp"
-#include "core/export/ScanCsv.hpp"
+#include "core/scan/ScanHeatMap.hpp"
+#include "core/scan/ScanRun.hpp"
 #include "core/kernels/KernelDispatch.hpp"
-#include "core/theory/KScan.hpp"
 
 namespace archipelago::cli {
 
@@ -35,27 +34,18 @@ struct ScanOptions : SpecOptions {  // --preset, --spec, the parameters but K, x
   bool quiet = false;
 };
 
-/// --K: "FROM:TO:STEP" (scanValues) or a comma-separated list; every K once, in [0, kScanMaxK].
+/// --K: core's one reader of K lists (core/scan/ScanBox.hpp), its message naming the option.
 std::vector<double> parseKList(const std::string& text) {
-  std::vector<double> values;
-  if (text.find(':') != std::string::npos) {
-    const std::vector<double> r = parseNumbers<double>("--K", text, ':', 3, "FROM:TO:STEP, e.g. 0.05:1.3:0.05");
-    values = scanValues(r[0], r[1], r[2]);
-  } else {
-    const std::size_t count = static_cast<std::size_t>(std::count(text.begin(), text.end(), ',')) + 1;
-    values = parseNumbers<double>("--K", text, ',', count, "a list K1,K2,... or a range FROM:TO:STEP");
-  }
   try {
-    checkScanValues(values);
+    return parseScanValues(text);
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(std::string("--K: ") + e.what());
   }
-  return values;
 }
 
 /// The heat map of the local exponent as an image: a column of cells per K (left to right), log τ upwards at 30
-/// rows per decade (each row the grid τ nearest in log τ); white (0) through orange to dark red (2 and more);
-/// grey where undefined.
+/// rows per decade (each row the grid τ nearest in log τ), coloured by core's one scale (heatMapColour: white at 0
+/// through orange to dark red at 2 and more, grey where undefined), as the K-scan dialog and the report colour it.
 void writeHeatMapPng(const std::filesystem::path& path, const ScanHeatMap& map) {
   if (map.K.empty() || map.tau.empty() || !(map.tau.front() > 0)) return;
   constexpr int kRowsPerDecade = 30, cellH = 4;
@@ -70,16 +60,11 @@ void writeHeatMapPng(const std::filesystem::path& path, const ScanHeatMap& map) 
     if (it == map.tau.end() || (it != map.tau.begin() && logTau - std::log10(*(it - 1)) < std::log10(*it) - logTau)) --it;
     const auto row = static_cast<std::size_t>(it - map.tau.begin());
     for (int x = 0; x < width; ++x) {
-      const double v = map.value[row * map.K.size() + static_cast<std::size_t>(x / cellW)];
+      const Rgb c = heatMapColour(map.value[row * map.K.size() + static_cast<std::size_t>(x / cellW)]);
       std::uint8_t* px = &rgb[(static_cast<std::size_t>(y) * width + x) * 3];
-      if (std::isnan(v)) {
-        px[0] = px[1] = px[2] = 160;
-        continue;
-      }
-      const double s = std::clamp(v / 2, 0.0, 1.0);
-      px[0] = static_cast<std::uint8_t>(255 - 115 * s * s);
-      px[1] = static_cast<std::uint8_t>(255 * (1 - s));
-      px[2] = static_cast<std::uint8_t>(255 * (1 - s) * (1 - s));
+      px[0] = c.r;
+      px[1] = c.g;
+      px[2] = c.b;
     }
   }
   writePng(path.string(), width, height, rgb);
@@ -96,7 +81,7 @@ int scanCommand(const ScanOptions& o, const RunSpec& base, const std::vector<dou
   request.b2Iterations = o.b2Iterations;
   const std::filesystem::path dir = o.dir;
 
-  // The scan itself is core's (export/KScanRun.hpp), shared with the GUI; here only its progress line.
+  // The scan itself is core's (core/scan/ScanRun.hpp), shared with the GUI; here only its progress line.
   const bool tty = ::isatty(STDERR_FILENO) != 0;
   auto lastLine = std::chrono::steady_clock::now() - std::chrono::seconds(60);
   std::stop_source stopper;

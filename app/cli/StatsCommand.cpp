@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "CliCommon.hpp"
-#include "core/export/ScanCsv.hpp"
+#include "core/export/BoxInvariantCsv.hpp"
 #include "core/export/StatisticsCsv.hpp"
 #include "core/export/TailCsv.hpp"
 #include "core/io/AtomicFile.hpp"

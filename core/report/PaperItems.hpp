@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "core/export/KScanRun.hpp"
+#include "core/scan/ScanRun.hpp"
 #include "core/periodic/PeriodicOrbit.hpp"
 #include "core/portrait/PortraitRenderer.hpp"
 #include "core/run/TrappingRun.hpp"
@@ -77,7 +77,7 @@ inline constexpr double kLocalExponentMaxError = 0.15;
 [[nodiscard]] std::vector<PaperItem> tailItems(const TailAnalysis& tail, bool full);
 
 /// §5's K scan ("K between 0 and 1.3 at intervals of 0.05"): the scan of the report in `dir` (core's runKScan,
-/// the box rule of core/theory/KScan.hpp).  Quick: M = 64 orbits of 2·10⁵ blocks of q = 16 per K (3.3·10⁸ steps
+/// the box rule of core/scan/ScanBox.hpp).  Quick: M = 64 orbits of 2·10⁵ blocks of q = 16 per K (3.3·10⁸ steps
 /// per K, ~15 s for the 26 K); full: M = 64 × 5·10⁶ blocks (8·10⁹ steps per K).
 [[nodiscard]] KScanRequest kScanRequest(bool full, const std::filesystem::path& dir);
 [[nodiscard]] std::string kScanCommand(bool full);

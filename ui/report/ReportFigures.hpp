@@ -11,7 +11,7 @@
 #include <functional>
 #include <vector>
 
-#include "core/export/ScanCsv.hpp"
+#include "core/scan/ScanSummary.hpp"
 #include "core/portrait/ColourMap.hpp"
 #include "core/stats/StatisticsTable.hpp"
 #include "core/theory/TheoryCurves.hpp"

@@ -2,13 +2,13 @@
 /// \file KScanDialog.hpp
 /// \brief The K scan of §5 in the GUI: the K values (the paper's list by default), the sizes (M, T, q, seed,
 /// threads) and a folder; the scan runs in the background (ui/jobs, latest wins) through core's runKScan
-/// (export/KScanRun.hpp), the very loop of `archipelago-cli scan`, so a folder is resumed the same way by
+/// (core/scan/ScanRun.hpp), the very loop of `archipelago-cli scan`, so a folder is resumed the same way by
 /// either: Stop leaves the K running checkpointed in its run file, Start again resumes it and reuses the
 /// finished K.  Progress and ETA per K and for the whole scan.  As each K finishes: its f_t (log-log, one curve
 /// per K), the local exponent of C_τ as curves and as a heat map over (K, log τ) (localExponentHeatMap, the
 /// numbers of scan_local_exponent.csv), D ± its supported error, the longest segment and the fraction of the
 /// steps in segments ≥ 10⁴, b₂ (area and fraction, when b₂ steps > 0) against K (the ScanPoint of
-/// scan_summary.csv), and a table.  The summaries (export/ScanCsv.hpp) are written into the folder at the end
+/// scan_summary.csv), and a table.  The summaries (core/scan/ScanSummary.hpp) are written into the folder at the end
 /// and can be exported elsewhere.  No maths here: every number comes from core.  Two tab widgets in a splitter
 /// keep it inside a 1280 × 800 screen.
 ///
@@ -21,7 +21,8 @@
 #include <optional>
 #include <vector>
 
-#include "core/export/KScanRun.hpp"
+#include "core/scan/ScanHeatMap.hpp"
+#include "core/scan/ScanRun.hpp"
 #include "ui/jobs/BackgroundJobs.hpp"
 
 class QLabel;

@@ -1,4 +1,4 @@
-#include "core/export/KScanRun.hpp"
+#include "core/scan/ScanRun.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -14,7 +14,7 @@
 #include "core/runfile/CheckpointedRun.hpp"
 #include "core/runfile/RunFile.hpp"
 #include "core/stats/RunStatistics.hpp"
-#include "core/theory/KScan.hpp"
+#include "core/scan/ScanPoint.hpp"
 
 namespace archipelago {
 
@@ -56,55 +56,6 @@ ScanRunSummary summaryOf(const TrappingState& state, const KScanRequest& r) {
 }
 
 }  // namespace
-
-void checkScanValues(const std::vector<double>& K) {
-  if (K.empty()) throw std::invalid_argument("the K list is empty: give at least one K");
-  for (std::size_t i = 0; i < K.size(); ++i) {
-    (void)scanBox(K[i]);  // the range of the box rule
-    for (std::size_t j = 0; j < i; ++j)
-      if (K[j] == K[i]) throw std::invalid_argument("the K list holds K = " + scanKText(K[i]) + " twice");
-  }
-}
-
-std::vector<double> parseScanValues(std::string_view text) {
-  const auto trim = [](std::string_view t) {
-    while (!t.empty() && (t.front() == ' ' || t.front() == '\t')) t.remove_prefix(1);
-    while (!t.empty() && (t.back() == ' ' || t.back() == '\t')) t.remove_suffix(1);
-    return t;
-  };
-  const auto split = [&](std::string_view t, char sep) {
-    std::vector<double> values;
-    while (true) {
-      const std::size_t end = t.find(sep);
-      const std::string_view word = trim(t.substr(0, end));
-      double v = 0;
-      const auto result = std::from_chars(word.data(), word.data() + word.size(), v);
-      if (word.empty() || result.ec != std::errc() || result.ptr != word.data() + word.size() || !std::isfinite(v))
-        throw std::invalid_argument("'" + std::string(word) + "' in the K list is not a finite number");
-      values.push_back(v);
-      if (end == std::string_view::npos) return values;
-      t.remove_prefix(end + 1);
-    }
-  };
-  text = trim(text);
-  if (text.empty()) throw std::invalid_argument("the K list is empty: give at least one K");
-  std::vector<double> values;
-  if (text.find(':') != std::string_view::npos) {
-    const std::vector<double> r = split(text, ':');
-    if (r.size() != 3) throw std::invalid_argument("a K range is FROM:TO:STEP, e.g. 0.05:1.3:0.05");
-    values = scanValues(r[0], r[1], r[2]);
-  } else {
-    values = split(text, ',');
-  }
-  checkScanValues(values);
-  return values;
-}
-
-std::string scanKText(double K) {
-  char text[64];
-  const auto result = std::to_chars(text, text + sizeof text, K);
-  return std::string(text, result.ptr);
-}
 
 std::filesystem::path scanRunFile(const std::filesystem::path& dir, double K) {
   return dir / ("K" + scanKText(K) + ".json");

@@ -1,6 +1,5 @@
-#include "core/theory/KScan.hpp"
+#include "core/scan/ScanPoint.hpp"
 
-#include "core/io/NumberText.hpp"
 #include "core/stats/RunEnsemble.hpp"
 #include "core/stats/TailAnalysis.hpp"
 
@@ -12,36 +11,6 @@
 #include <string>
 
 namespace archipelago {
-
-MapParameters scanBox(double K) {
-  if (!(K >= 0 && K <= kScanMaxK)) {
-    const std::string text = io::formatC("K = %.17g must lie in [0, %g] for a scan (its box is -2 sqrt(K) - %g ... sqrt(K) + %g)",
-                                         K, kScanMaxK, kScanBoxMargin, kScanBoxMargin);
-    throw std::invalid_argument(text);
-  }
-  const double r = std::sqrt(K);
-  MapParameters box;
-  box.K = K;
-  box.xmin = -2 * r - kScanBoxMargin;
-  box.xmax = r + kScanBoxMargin;
-  return box;
-}
-
-std::vector<double> scanValues(double from, double to, double step) {
-  if (!(step > 0) || !std::isfinite(step)) throw std::invalid_argument("the step of a K range must be positive");
-  if (!(to >= from) || !std::isfinite(from) || !std::isfinite(to))
-    throw std::invalid_argument("a K range must run upwards (from <= to)");
-  const double intervals = (to - from) / step;
-  if (intervals > 1e4) throw std::invalid_argument("a K range may hold at most 10^4 values");
-  const auto n = static_cast<std::size_t>(std::floor(intervals + 1e-9)) + 1;
-  std::vector<double> values;
-  values.reserve(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::string text = io::formatC("%.12g", from + static_cast<double>(i) * step);
-    values.push_back(*io::parseDoubleC(text));  // the C locale: "%.12g" never writes a decimal comma here
-  }
-  return values;
-}
 
 double timeFractionInSegmentsAtLeast(const TrappingHistogram& h, std::uint32_t q, double minSteps) {
   long double all = 0, inLong = 0;

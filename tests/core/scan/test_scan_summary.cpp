@@ -1,4 +1,4 @@
-// The summary files of a K scan and box_invariant.csv (export/ScanCsv.hpp).
+// The summary files of a K scan and box_invariant.csv (core/scan/ScanSummary.hpp, core/export/BoxInvariantCsv.hpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -8,7 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "core/export/ScanCsv.hpp"
+#include "core/export/BoxInvariantCsv.hpp"
+#include "core/scan/ScanHeatMap.hpp"
+#include "core/scan/ScanSummary.hpp"
 #include "core/stats/TailAnalysis.hpp"
 #include "core/stats/RunStatistics.hpp"
 

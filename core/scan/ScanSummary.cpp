@@ -1,4 +1,4 @@
-#include "core/export/ScanCsv.hpp"
+#include "core/scan/ScanSummary.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "core/export/StatisticsCsv.hpp"
+#include "core/scan/ScanHeatMap.hpp"
 
 namespace archipelago {
 
@@ -38,27 +39,6 @@ std::string scanHeader(const std::vector<ScanRunSummary>& runs) {
 }
 
 }  // namespace
-
-ScanHeatMap localExponentHeatMap(const std::vector<ScanRunSummary>& runs) {
-  ScanHeatMap map;
-  std::vector<double> taus;
-  for (const ScanRunSummary& r : runs) {
-    map.K.push_back(r.point.K);
-    taus.insert(taus.end(), r.statistics.localExponent.x.begin(), r.statistics.localExponent.x.end());
-  }
-  std::sort(taus.begin(), taus.end());
-  taus.erase(std::unique(taus.begin(), taus.end()), taus.end());
-  map.tau = taus;
-  map.value.assign(map.tau.size() * map.K.size(), std::numeric_limits<double>::quiet_NaN());
-  for (std::size_t c = 0; c < runs.size(); ++c) {
-    const Series& e = runs[c].statistics.localExponent;
-    for (std::size_t i = 0; i < e.x.size(); ++i) {
-      const auto row = static_cast<std::size_t>(std::lower_bound(taus.begin(), taus.end(), e.x[i]) - taus.begin());
-      map.value[row * map.K.size() + c] = e.value[i];
-    }
-  }
-  return map;
-}
 
 std::string scanFtCsv(const std::vector<ScanRunSummary>& runs) {
   std::string out = scanHeader(runs);
@@ -110,41 +90,6 @@ std::string scanSummaryCsv(const std::vector<ScanRunSummary>& runs) {
     }
     out += '\n';
   }
-  return out;
-}
-
-std::string boxInvariantCsv(const TrappingState& state, const TrappingStatistics& statistics,
-                            const StochasticAreaValue& b2, double DError) {
-  const BoxInvariantQuantities q = boxInvariantQuantities(b2, statistics.D, DError);
-  std::string out = csvMetadataHeader(state);
-  line(out, "content", "b2 as an area (appendix A: b0 = L^2, b2 its stochastic part), the box-invariant b2*D "
-                       "(eq. A3) and the application figures of sec. 6 (first-order accelerator modes of the "
-                       "standard map); errors: D's one-sigma bootstrap error over segments, empty when the longest segments dominate D "
-                       "(the subset error is far too small for this heavy tail), b2's own error not included");
-  out += "quantity,value,error\n";
-  const auto row = [&](const char* name, double value, double error) {
-    out += std::string(name) + ',' + number(value) + ',' + number(error) + '\n';
-  };
-  row("b2_area", q.b2.area, 0);
-  row("b2_fraction", q.b2.fraction, 0);
-  row("box_area_L2", q.b2.boxArea, 0);
-  row("D", statistics.D, DError);
-  row("b2_D", q.b2D, q.b2DError);
-  row("accelerator_factor_8_over_pi2_b2", q.acceleratorFactor, 0);
-  row("enhancement_over_quasilinear_n1", q.enhancementN1, q.acceleratorFactor * DError / (std::numbers::pi * std::numbers::pi));
-  return out;
-}
-
-std::string boxInvariantFtCsv(const TrappingState& state, const TrappingStatistics& statistics,
-                              const StochasticAreaValue& b2) {
-  std::string out = csvMetadataHeader(state);
-  line(out, "statistic", "b2_f_t: b2 (an area, appendix A) times f_t; does not depend on the box for large t (eq. A3)");
-  line(out, "b2", number(b2.area) + " (fraction " + number(b2.fraction) + " of L^2 = " + number(b2.boxArea) + ")");
-  line(out, "columns", "t (steps); b2 f_t (area per step); b2_f_t_error (one sigma over the subsets)");
-  out += "t,b2_f_t,b2_f_t_error\n";
-  const Series& f = statistics.f;
-  for (std::size_t i = 0; i < f.x.size(); ++i)
-    out += number(f.x[i]) + ',' + number(b2.area * f.value[i]) + ',' + number(b2.area * f.error[i]) + '\n';
   return out;
 }
 

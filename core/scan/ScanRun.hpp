@@ -1,11 +1,11 @@
 #pragma once
-/// \file KScanRun.hpp
+/// \file ScanRun.hpp
 /// \brief The K scan of §5 as a resumable computation: the one loop that `archipelago-cli scan` and the GUI's
 /// K-scan dialog both call, so that a scan folder made by one is resumed, and summarised, identically by the other.
 ///
 /// A scan folder holds one run file per K (K0.05.json: the shortest text that reads back as K), each the
 /// run of the scan's parameters in the box of scanBox(K), and, once every K is finished, the summaries of
-/// export/ScanCsv.hpp.  A K whose run file is finished is not run again; an unfinished one is resumed from its
+/// scan/ScanSummary.hpp.  A K whose run file is finished is not run again; an unfinished one is resumed from its
 /// file.  The folder's summary file is locked for the whole scan (one scan per folder at a time), each K's
 /// run file while it runs.
 
@@ -19,27 +19,12 @@
 #include <string_view>
 #include <vector>
 
-#include "core/export/ScanCsv.hpp"
+#include "core/scan/ScanBox.hpp"
+#include "core/scan/ScanSummary.hpp"
 #include "core/kernels/KernelDispatch.hpp"
 #include "core/spec/RunSpec.hpp"
 
 namespace archipelago {
-
-/// Every K checked: each in the box rule's range [0, kScanMaxK] (scanBox), none twice, at least one.  Throws
-/// std::invalid_argument naming the offending K.
-void checkScanValues(const std::vector<double>& K);
-
-/// The K list of a text: "FROM:TO:STEP" (scanValues) or "K1, K2, …" (commas, blanks allowed around them), each K
-/// a finite decimal number; then checkScanValues.  Throws std::invalid_argument saying what is wrong (an empty
-/// list, a word that is not a number, NaN, a K outside the range, a K twice).  The GUI's reader (the CLI keeps
-/// its own option syntax, CliCommon.hpp, with the same range and uniqueness rules).
-[[nodiscard]] std::vector<double> parseScanValues(std::string_view text);
-
-/// The paper's list (§5: "K between 0 and 1.3 at intervals of 0.05"), as a text parseScanValues reads.
-inline constexpr const char* kPaperScanValuesText = "0.05:1.3:0.05";
-
-/// The shortest text that reads back as K ("0.05"): the run file's name and the messages.
-[[nodiscard]] std::string scanKText(double K);
 
 /// The run file of K in the scan folder `dir`: dir/K<scanKText(K)>.json.
 [[nodiscard]] std::filesystem::path scanRunFile(const std::filesystem::path& dir, double K);

@@ -1,4 +1,4 @@
-// The K scan of §5 (theory/KScan.hpp): the box rule, the list of K, and the per-K figures of the summary.
+// The K scan of §5 (core/scan/ScanBox.hpp, ScanPoint.hpp): the box rule, the list of K, and the per-K figures of the summary.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "core/stats/RunStatistics.hpp"
-#include "core/theory/KScan.hpp"
+#include "core/scan/ScanPoint.hpp"
 
 namespace archipelago {
 namespace {

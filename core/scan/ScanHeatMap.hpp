@@ -1,0 +1,43 @@
+#pragma once
+/// \file ScanHeatMap.hpp
+/// \brief The local exponent −d log C_τ/d log τ (fig. 6d) over τ and K of a K scan, and its one colour scale: the
+/// CLI's scan_local_exponent.png, the K-scan dialog and the report's figure all colour it with heatMapColour()
+/// (issue #24: they once used a quadratic formula with grey 160 and linear stops with grey 190).
+
+#include <array>
+#include <span>
+#include <vector>
+
+#include "core/portrait/ColourMap.hpp"
+#include "core/scan/ScanSummary.hpp"
+
+namespace archipelago {
+
+/// The local exponent over τ and K: value[row · K.size() + column] at tau[row], K[column]; NaN where undefined.
+/// tau is the sorted union of the runs' grids.
+struct ScanHeatMap {
+  std::vector<double> K;
+  std::vector<double> tau;
+  std::vector<double> value;
+};
+[[nodiscard]] ScanHeatMap localExponentHeatMap(const std::vector<ScanRunSummary>& runs);
+
+/// The colour scale's top: the local exponent is drawn in [0, kHeatMapTop] (the paper's range is ¼ … 3/2); larger
+/// values take the top colour, negative ones the bottom one.
+inline constexpr double kHeatMapTop = 2;
+
+/// A stop of the colour scale: at value·kHeatMapTop, the colour.
+struct HeatMapStop {
+  double position;  ///< in [0, 1]
+  Rgb colour;
+};
+/// White at 0, orange at the middle, dark red at the top; linear in between.
+[[nodiscard]] std::span<const HeatMapStop> heatMapStops() noexcept;
+/// The grey of a cell without data (C_τ = 0, or τ beyond that K's run).
+inline constexpr Rgb kHeatMapNoData{190, 190, 190};
+
+/// The colour of a local exponent `value` (NaN: kHeatMapNoData), by linear interpolation between the stops,
+/// each channel rounded to the nearest integer.
+[[nodiscard]] Rgb heatMapColour(double value) noexcept;
+
+}  // namespace archipelago
