@@ -83,7 +83,8 @@ std::string statisticCsv(const TrappingState& state, const TrappingStatistics& s
   const Series& series = seriesOf(statistics, s);
   std::string out = csvMetadataHeader(state);
   line(out, "statistic", text(info.key) + ": " + text(info.description) +
-                             (info.figure.empty() ? std::string() : " (Karney 1983, fig. " + text(info.figure) + ")"));
+                             (figurePanelsOf(info.statistic).empty() ? std::string()
+                                                       : " (Karney 1983, fig. " + figurePanelsOf(info.statistic) + ")"));
   line(out, "columns", text(info.abscissaLabel) + "; " + text(info.valueLabel) + "; " + text(info.key) + "_error");
   line(out, "error", text(info.error));
   out += text(info.abscissa) + ',' + text(info.key) + ',' + text(info.key) + "_error\n";

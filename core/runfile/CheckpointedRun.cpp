@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "core/io/AtomicFile.hpp"
 #include "core/runfile/RunFile.hpp"
 
 namespace archipelago {
@@ -70,6 +71,32 @@ void saveRunFileOrSayWhere(const std::filesystem::path& path, const TrappingStat
               " blocks) is in " + last.path + howToResume;
     throw std::runtime_error(std::string(e.what()) + "; " + kept);
   }
+}
+
+RunFileOutcome runOrResumeFile(const std::filesystem::path& file, const TrappingParameters& params,
+                               CheckpointedRunOptions options, const TrappingObserver& progress, std::stop_token stop,
+                               std::uint64_t orbitBegin, std::uint64_t orbitEnd) {
+  const io::FileLock lock = io::FileLock::acquire(file);
+  io::removeStaleTemporaries(file);
+  RunFileOutcome outcome;
+  std::error_code ec;
+  if (std::filesystem::exists(file, ec)) {
+    outcome.state = loadRunFile(file);
+    if (!(outcome.state.params == params))
+      throw std::runtime_error(file.string() + " holds a run of other parameters");
+    if (outcome.state.finished()) {
+      outcome.reused = true;
+      return outcome;
+    }
+    outcome.resumed = true;
+  } else {
+    outcome.state = startTrapping(params, orbitBegin, orbitEnd);
+  }
+  options.checkpoint = file;
+  LastCheckpoint last{outcome.resumed ? file.string() : std::string(), outcome.state.blocksDone};  // the file read
+  outcome.state = runWithCheckpoints(std::move(outcome.state), options, last, progress, stop);
+  saveRunFileOrSayWhere(file, outcome.state, last);
+  return outcome;
 }
 
 }  // namespace archipelago

@@ -49,4 +49,23 @@ struct CheckpointedRunOptions {
 void saveRunFileOrSayWhere(const std::filesystem::path& path, const TrappingState& state, const LastCheckpoint& last,
                            const std::string& howToResume = {});
 
+/// What runOrResumeFile() found and did.
+struct RunFileOutcome {
+  TrappingState state;      ///< the run as it is now (finished, or stopped and saved)
+  bool reused = false;      ///< the file held the finished run: nothing was computed
+  bool resumed = false;     ///< the file held an unfinished run of these parameters: it was continued
+};
+
+/// The one "run or resume this file" step of the K scan (one file per K), the report (one file per run) and
+/// `archipelago-cli run` when its output is its own checkpoint: `file` is locked for the whole call (one writer at
+/// a time; io::FileLock) and its stale temporaries removed; when it exists it must hold a run of `params` (else
+/// std::runtime_error: "… holds a run of other parameters") and is reused when finished or resumed; when it does
+/// not, a fresh run of `params` over [orbitBegin, orbitEnd) starts.  The run goes on with runWithCheckpoints()
+/// into `file` (options.checkpoint is set to it) and is saved there at the end (saveRunFileOrSayWhere(), so a
+/// failing final write says where the work is).  A stopped run is saved and returned unfinished.
+[[nodiscard]] RunFileOutcome runOrResumeFile(const std::filesystem::path& file, const TrappingParameters& params,
+                                             CheckpointedRunOptions options, const TrappingObserver& progress = {},
+                                             std::stop_token stop = {}, std::uint64_t orbitBegin = 0,
+                                             std::uint64_t orbitEnd = UINT64_MAX);
+
 }  // namespace archipelago

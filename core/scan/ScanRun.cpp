@@ -152,48 +152,43 @@ KScanOutcome runKScan(const KScanRequest& r, const KScanObserver& observer, std:
       if (observer.finished) observer.finished(k, outcome.runs.back());
       continue;
     }
-    const io::FileLock lock = io::FileLock::acquire(item.file);
-    io::removeStaleTemporaries(item.file);
-    TrappingState state = std::filesystem::exists(item.file, ec) ? loadRunFile(item.file) : startTrapping(item.params);
-    if (!(state.params == item.params)) throw std::runtime_error(item.file.string() + " changed during the scan");
-    const std::uint64_t blocksAtStart = state.blocksDone;
+    const std::uint64_t blocksAtStart = item.blocksDone;  // read by the check above
 
-    auto report = [&](const TrappingState& s) {
+    auto report = [&](const TrappingParameters& params, std::uint64_t blocksDone) {
       if (!observer.progress) return;
       KScanProgress p;
       p.index = k;
       p.count = items.size();
-      p.K = s.params.map.K;
-      p.blocksDone = s.blocksDone;
-      p.blocksTotal = s.params.T;
-      const double thisSession = stepsFinishedThisSession + stepsOf(s.params, s.blocksDone - blocksAtStart);
+      p.K = params.map.K;
+      p.blocksDone = blocksDone;
+      p.blocksTotal = params.T;
+      const double thisSession = stepsFinishedThisSession + stepsOf(params, blocksDone - blocksAtStart);
       p.stepsDone = stepsBefore + thisSession;
       p.stepsTotal = totalSteps;
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - sessionStart).count();
       p.stepsPerSecond = seconds > 0 && thisSession > 0 ? thisSession / seconds : 0;
       if (p.stepsPerSecond > 0) {
-        p.etaK = stepsOf(s.params, s.params.T - s.blocksDone) / p.stepsPerSecond;
+        p.etaK = stepsOf(params, params.T - blocksDone) / p.stepsPerSecond;
         p.etaScan = (totalSteps - p.stepsDone) / p.stepsPerSecond;
       }
       observer.progress(p);
     };
-    report(state);
+    report(item.params, blocksAtStart);
 
-    // The run loop with periodic checkpoints (runfile/CheckpointedRun.hpp: the loop of `run` too).
+    // Run or resume this K's file: core's one step for it (runfile/CheckpointedRun.hpp), as the report's runs.
     CheckpointedRunOptions run;
     run.run.kernel = r.kernel;
     run.run.threads = r.base.threads;
     run.run.maxChunkBlocks = r.maxChunkBlocks;
-    run.checkpoint = item.file;
     run.checkpointSeconds = r.checkpointSeconds;
     if (observer.warning)
       run.warning = [&](const std::string& reason, double) {
         observer.warning("checkpoint not written: " + reason + "; the run goes on and retries");
       };
-    LastCheckpoint last{blocksAtStart > 0 ? item.file.string() : std::string(), blocksAtStart};  // the file read
-    state = runWithCheckpoints(std::move(state), run, last,
-                               [&](const TrappingState& s, const TrappingProgress&) { report(s); }, stop);
-    saveRunFileOrSayWhere(item.file, state, last);
+    const TrappingState state =
+        runOrResumeFile(item.file, item.params, run,
+                        [&](const TrappingState& s, const TrappingProgress&) { report(s.params, s.blocksDone); }, stop)
+            .state;
     if (!state.finished()) {
       outcome.stoppedIndex = k;
       outcome.stoppedFile = item.file;

@@ -1,5 +1,7 @@
 #include "core/stats/StatisticsTable.hpp"
 
+#include "core/paper/PaperTable.hpp"
+
 #include <array>
 
 namespace archipelago {
@@ -13,7 +15,7 @@ constexpr AxisScale kLinear = AxisScale::linear;
 // Figures are numbered as in DESIGN.md: 3 small-K f_t (fsmall), 6 the K = 0.1 statistics (expense), 7 S_t and
 // D_t (spread).  File stems differ even where case does not count (macOS, Windows): p_t's is not "p_t", which
 // would name the same file as P_t's there.
-constexpr std::array<StatisticInfo, 7> kTable = {{
+constexpr std::array<StatisticInfo, 8> kTable = {{
     {
         .statistic = Statistic::f,
         .key = "f_t",
@@ -30,7 +32,6 @@ constexpr std::array<StatisticInfo, 7> kTable = {{
         .abscissaScale = kLog,
         .valueScale = kLog,
         .member = &TrappingStatistics::f,
-        .figure = "3, 6(a)",
         .plotted = true,
     },
     {
@@ -49,7 +50,6 @@ constexpr std::array<StatisticInfo, 7> kTable = {{
         .abscissaScale = kLog,
         .valueScale = kLog,
         .member = &TrappingStatistics::p,
-        .figure = "",
         .plotted = false,
     },
     {
@@ -68,7 +68,6 @@ constexpr std::array<StatisticInfo, 7> kTable = {{
         .abscissaScale = kLog,
         .valueScale = kLog,
         .member = &TrappingStatistics::P,
-        .figure = "6(b)",
         .plotted = true,
     },
     {
@@ -87,7 +86,6 @@ constexpr std::array<StatisticInfo, 7> kTable = {{
         .abscissaScale = kLog,
         .valueScale = kLog,
         .member = &TrappingStatistics::C,
-        .figure = "6(c)",
         .plotted = true,
     },
     {
@@ -106,7 +104,6 @@ constexpr std::array<StatisticInfo, 7> kTable = {{
         .abscissaScale = kLog,
         .valueScale = kLinear,
         .member = &TrappingStatistics::localExponent,
-        .figure = "6(d)",
         .plotted = true,
     },
     {
@@ -125,8 +122,25 @@ constexpr std::array<StatisticInfo, 7> kTable = {{
         .abscissaScale = kLog,
         .valueScale = kLog,
         .member = &TrappingStatistics::S,
-        .figure = "7(a)",
         .plotted = true,
+    },
+    {
+        .statistic = Statistic::Scompensated,
+        .key = "S_t_compensated",
+        .symbol = "S_t/t^1.5",
+        .symbolRich = "S<sub>t</sub>/t<sup>3/2</sup>",
+        .description = "S_t against t^{3/2} (flat where S_t ~ t^{3/2})",
+        .abscissa = "t",
+        .abscissaLabel = "t (steps)",
+        .abscissaLabelRich = "t (steps)",
+        .valueLabel = "S_t / t^1.5 (steps^0.5)",
+        .valueLabelRich = "S<sub>t</sub> / t<sup>3/2</sup> (steps<sup>1/2</sup>)",
+        .fileStem = "S_t_compensated",
+        .error = kSubsetError,
+        .abscissaScale = kLog,
+        .valueScale = kLog,
+        .member = &TrappingStatistics::Scompensated,
+        .plotted = false,
     },
     {
         .statistic = Statistic::Dt,
@@ -144,7 +158,6 @@ constexpr std::array<StatisticInfo, 7> kTable = {{
         .abscissaScale = kLog,
         .valueScale = kLog,
         .member = &TrappingStatistics::Dt,
-        .figure = "7(c)",
         .plotted = true,
     },
 }};
@@ -162,6 +175,8 @@ static_assert(inEnumOrder(), "the rows of kTable must follow the order of enum S
 std::span<const StatisticInfo> statisticsTable() noexcept { return kTable; }
 
 const StatisticInfo& statisticInfo(Statistic s) noexcept { return kTable[static_cast<std::size_t>(s)]; }
+
+std::string figurePanelsOf(Statistic s) { return paper::panelsShowing(statisticInfo(s).key); }
 
 std::optional<Statistic> statisticWithKey(std::string_view key) noexcept {
   for (const StatisticInfo& row : kTable)

@@ -18,6 +18,7 @@
 
 #include <optional>
 #include <span>
+#include <string>
 #include <string_view>
 
 #include "core/stats/TrappingStatistics.hpp"
@@ -25,7 +26,7 @@
 namespace archipelago {
 
 /// The statistics, in the order of the table (the paper's reading order: fig. 6 a–d, then fig. 7).
-enum class Statistic { f, p, P, C, localExponent, S, Dt };
+enum class Statistic { f, p, P, C, localExponent, S, Scompensated, Dt };
 
 /// How an axis is best drawn.
 enum class AxisScale { linear, logarithmic };
@@ -47,7 +48,6 @@ struct StatisticInfo {
   AxisScale abscissaScale;             ///< hint for plots
   AxisScale valueScale;                ///< hint for plots (the local exponent is log-linear, fig. 6d)
   Series TrappingStatistics::*member;  ///< where the series lives
-  std::string_view figure;             ///< the paper's figure (DESIGN.md numbering), empty when none
   bool plotted;                        ///< has its own plot in the GUI's statistics view (p_t = α f_t has not)
 };
 
@@ -56,6 +56,10 @@ struct StatisticInfo {
 
 /// The row of one statistic.
 [[nodiscard]] const StatisticInfo& statisticInfo(Statistic s) noexcept;
+
+/// The paper's figure panels that plot `s` ("3, 6a" for f_t; empty when none), from the one table of the paper
+/// (core/paper/PaperTable.hpp).
+[[nodiscard]] std::string figurePanelsOf(Statistic s);
 
 /// The statistic with this key, or nothing.
 [[nodiscard]] std::optional<Statistic> statisticWithKey(std::string_view key) noexcept;

@@ -226,7 +226,11 @@ TrappingStatistics assemble(const TrappingHistogram& total, std::uint64_t orbits
     push(out.P, t, value.P[g], errorOf([g](const Raw& r) { return r.P[g]; }));
     push(out.C, t, value.C[g], errorOf([g](const Raw& r) { return r.C[g]; }));
     push(out.S, t, value.S[g], errorOf([g](const Raw& r) { return r.S[g]; }));
-    if (t > 0) push(out.Dt, t, value.S[g] / (2 * t), errorOf([g, t](const Raw& r) { return r.S[g] / (2 * t); }));
+    if (t > 0) {
+      const Real t32 = t * std::sqrt(t);
+      push(out.Scompensated, t, value.S[g] / t32, errorOf([g, t32](const Raw& r) { return r.S[g] / t32; }));
+      push(out.Dt, t, value.S[g] / (2 * t), errorOf([g, t](const Raw& r) { return r.S[g] / (2 * t); }));
+    }
     if (!std::isnan(value.exponent[g]))
       push(out.localExponent, t, value.exponent[g], errorOf([g](const Raw& r) { return r.exponent[g]; }));
   }

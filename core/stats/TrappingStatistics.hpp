@@ -79,6 +79,7 @@ struct TrappingStatistics {
   Series C;               ///< C_τ on the grid
   Series localExponent;   ///< −d log C / d log τ on the grid points where defined (log-linear plot)
   Series S;               ///< S_t on the grid
+  Series Scompensated;    ///< S_t / t^{3/2} on the grid without t = 0 (fig. 7b: flat where S_t ~ t^{3/2})
   Series Dt;              ///< D_t = S_t / 2t on the grid without t = 0
   double alpha = 0, alphaError = 0;  ///< mean segment length α (steps)
   double D = 0, DError = 0;          ///< diffusion coefficient (eq. ddef)

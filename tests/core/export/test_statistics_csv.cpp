@@ -159,7 +159,7 @@ TEST(StatisticsCsv, FileNamesForKPointOneHaveNoTheory) {
   std::vector<std::string> names;
   for (const CsvFile& f : statisticsCsvFiles(state, stats, theory)) names.push_back(f.name);
   EXPECT_EQ(names, (std::vector<std::string>{"f_t.csv", "p_t_probability.csv", "P_t.csv", "C_tau.csv",
-                                             "local_exponent.csv", "S_t.csv", "D_t.csv", "summary.csv",
+                                             "local_exponent.csv", "S_t.csv", "S_t_compensated.csv", "D_t.csv", "summary.csv",
                                              "longest_segments.csv"}));
   EXPECT_TRUE(theoryCsv(state, theory, Statistic::f).empty());
 }
@@ -173,7 +173,7 @@ TEST(StatisticsCsv, NegativeKWritesTheTheoryNextToItsStatistic) {
   for (const CsvFile& f : statisticsCsvFiles(state, stats, theory)) names.insert(f.name);
   for (const char* n : {"f_t.theory.csv", "P_t.theory.csv", "C_tau.theory.csv"}) EXPECT_EQ(names.count(n), 1u) << n;
   EXPECT_EQ(names.count("S_t.theory.csv"), 0u);
-  EXPECT_EQ(names.size(), 12u);
+  EXPECT_EQ(names.size(), 13u);
 
   const Split f = split(theoryCsv(state, theory, Statistic::f));
   const double tmax = 5.1454 * std::pow(1e-4, -0.25);

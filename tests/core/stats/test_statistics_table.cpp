@@ -24,6 +24,7 @@ TrappingStatistics tagged() {
   s.C.x = {4};
   s.localExponent.x = {5};
   s.S.x = {6};
+  s.Scompensated.x = {8};
   s.Dt.x = {7};
   return s;
 }
@@ -36,14 +37,14 @@ TEST(StatisticsTable, EverySeriesMemberAppearsExactlyOnce) {
     ASSERT_EQ((s.*row.member).x.size(), 1u) << row.key;
     seen.insert((s.*row.member).x[0]);
   }
-  EXPECT_EQ(seen, (std::multiset<double>{1, 2, 3, 4, 5, 6, 7}));
+  EXPECT_EQ(seen, (std::multiset<double>{1, 2, 3, 4, 5, 6, 7, 8}));
 }
 
-// A tripwire: TrappingStatistics holds 7 series and 5 doubles and 2 counters.  A new member changes its size;
+// A tripwire: TrappingStatistics holds 8 series and 5 doubles and 2 counters.  A new member changes its size;
 // if it is a Series, add it to the table (and to tagged() above), then update this count.
 TEST(StatisticsTable, TrappingStatisticsHasNoSeriesTheTableMisses) {
-  EXPECT_EQ(sizeof(TrappingStatistics), 7 * sizeof(Series) + 5 * sizeof(double) + 2 * sizeof(std::uint64_t));
-  EXPECT_EQ(statisticsTable().size(), 7u);
+  EXPECT_EQ(sizeof(TrappingStatistics), 8 * sizeof(Series) + 5 * sizeof(double) + 2 * sizeof(std::uint64_t));
+  EXPECT_EQ(statisticsTable().size(), 8u);
 }
 
 TEST(StatisticsTable, RowsFollowTheEnumAndLookUpsAgree) {
@@ -72,7 +73,7 @@ TEST(StatisticsTable, KeysAndFileStemsAreUniqueDescriptiveAndSafe) {
     for (const char c : row.key) EXPECT_NE(c, ',') << row.key;  // the key is a CSV column name
   }
   EXPECT_EQ(stems, (std::set<std::string_view>{"f_t", "p_t_probability", "P_t", "C_tau", "local_exponent", "S_t",
-                                                "D_t"}));
+                                                "S_t_compensated", "D_t"}));
 }
 
 // Regression: stems "p" and "P" (then "p_t" and "P_t") name the same file on a case-insensitive file system
@@ -103,10 +104,18 @@ TEST(StatisticsTable, AbscissaeLabelsAndScales) {
     // Fig. 6(d) draws the local exponent on a linear axis; every other statistic is log-log.
     EXPECT_EQ(row.valueScale, row.statistic == Statistic::localExponent ? AxisScale::linear : AxisScale::logarithmic)
         << row.key;
-    // The GUI has a plot for each series of figs. 6 and 7; p_t = α f_t has none.
-    EXPECT_EQ(row.plotted, row.statistic != Statistic::p) << row.key;
-    EXPECT_EQ(row.plotted, !row.figure.empty()) << row.key;
+    // The GUI has a plot for each series of figs. 6 and 7 but p_t = α f_t and fig. 7b's S_t/t^{3/2} (S_t's plot
+    // shows the t^{3/2} slope).  Figure panels come from the paper's table: every plotted series is in a figure.
+    EXPECT_EQ(row.plotted, row.statistic != Statistic::p && row.statistic != Statistic::Scompensated) << row.key;
+    EXPECT_EQ(!figurePanelsOf(row.statistic).empty(), row.statistic != Statistic::p) << row.key;
   }
+  // Issue #24: fig. 7 has three panels, (a) S_t, (b) S_t against t^{3/2}, (c) D_t (the report once drew two and
+  // labelled D_t "7b"); f_t is drawn in figs. 3 and 6a.
+  EXPECT_EQ(figurePanelsOf(Statistic::S), "7a");
+  EXPECT_EQ(figurePanelsOf(Statistic::Scompensated), "7b");
+  EXPECT_EQ(figurePanelsOf(Statistic::Dt), "7c");
+  EXPECT_EQ(figurePanelsOf(Statistic::f), "3abc, 6a");
+  EXPECT_EQ(figurePanelsOf(Statistic::localExponent), "6d");
   // Densities per step (appendix B).
   EXPECT_NE(statisticInfo(Statistic::f).valueLabel.find("per step"), std::string_view::npos);
   EXPECT_EQ(statisticInfo(Statistic::f).symbolRich, "f<sub>t</sub>");
