@@ -12,7 +12,7 @@
 //     next()                   one step of N for every orbit;
 //     x(v), y(v) -> D          vector v's current X, Y as doubles (exact: integers below 2^52);
 //     store(xs, ys, wraps)     the states back; wraps[l] |= 1 when orbit l wrapped since construction
-//                              (only when trackWraps: Rotation).
+//                              (only when trackWraps: Dig and Rotation).
 // The accumulation below is the definition of every measure (MeasureKernels.hpp's file comment): the same
 // operations in the same order for every lane, whatever D is.
 
@@ -55,7 +55,7 @@ void measureGroup(const MeasureSetup& s, MeasureLane* lanes, std::size_t n, std:
     sumLnA[l] = m.sumLn;
     sumYA[l] = m.sumY;
   }
-  typename Simd::template Stepper<V> orbit(s, xs, ys, steps, kKind == IndicatorKind::Rotation);
+  typename Simd::template Stepper<V> orbit(s, xs, ys, steps, kBirkhoff);
 
   D hi[V], lo[V], firstBlock[V], vx[V], vy[V], rescale[V], maxNormSq[V], lnNorm[V], sumLn[V], sumY[V];
   D px[V], py[V];  // Rotation: z_n − c;  Fli, Megno, Lyapunov: X_n

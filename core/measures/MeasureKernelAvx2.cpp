@@ -6,7 +6,7 @@
 // states are bit for bit those of N), and the accumulation reads it back in round-to-nearest with 256-bit
 // double arithmetic (MeasureMath.inl, one IEEE operation per lane as in the scalar kernel).
 //
-// Wraps (Rotation only) are not in the trace, so they are recovered from consecutive points, exactly: with
+// Wraps (Dig and Rotation) are not in the trace, so they are recovered from consecutive points, exactly: with
 // z = (X, Y) and z' = N(z),
 //   - the second sum of the step wrapped  ⇔  X + Y' − 2^51 ≠ X'  (integers below 2^53: exact in double);
 //   - the first sum Y + G(X) wrapped  ⇔  |Y + Ĝ − Y'| > 2^51, Ĝ = 2^52 g(x)/L in double, since Y' differs from

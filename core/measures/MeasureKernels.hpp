@@ -16,8 +16,8 @@
 /// Steps, with n = 0, 1, … the step index of the orbit (all orbits of a call are at the same n) and
 /// z_{n+1} = N(z_n):
 ///   - Dig       : f_n = X_{n+1} (unit coordinates; the physical x is xmin + unit·X), weight g(n mod T / T);
-///   - Rotation  : f_n = clockwiseAngle(z_n − c, z_{n+1} − c) (grid units), weight g(n mod T / T); a step that
-///                 wraps (FixedPointMap.hpp) marks the orbit;
+///   - Rotation  : f_n = clockwiseAngle(z_n − c, z_{n+1} − c) (grid units), weight g(n mod T / T);
+///   - Dig and Rotation: a step that wraps (FixedPointMap.hpp) marks the orbit;
 ///   - Dig and Rotation: the terms n < T form the first block (its sum is kept in firstBlock when n = T − 1
 ///                 ends it), the terms T ≤ n < 2T the second;
 ///   - Fli, Megno, Lyapunov: the tangent vector v_{n+1} = DN(z_n) v_n, DN = [[1 + 4x, 1], [4x, 1]] with
@@ -54,7 +54,7 @@ struct MeasureSetup {
 /// One orbit's state between calls (see the file comment for the fields' meaning).
 struct MeasureLane {
   std::uint64_t X = 0, Y = 0;
-  std::uint64_t wrapped = 0;     ///< 1 once a step wrapped (Rotation only; 0 for the other kinds)
+  std::uint64_t wrapped = 0;     ///< 1 once a step wrapped (Dig, Rotation; 0 for the other kinds)
   double hi = 0, lo = 0;         ///< Σ g f of the open block (TwoSum pair)
   double firstBlock = 0;         ///< Σ g f of the first block, once it ended
   double vx = 1, vy = 0;         ///< tangent vector / 2^rescale

@@ -135,7 +135,8 @@ OrbitMeasure finish(const MeasureSettings& s, double weightSum, const measures::
       // Physical x = xmin + unit·X; the digits are of the physical averages' difference.
       r.digits = convergenceDigits(unit * (m.firstBlock / weightSum), unit * ((m.hi + m.lo) / weightSum));
       r.value = r.digits;
-      r.verdict = r.digits >= s.digitsThreshold ? OrbitVerdict::Regular : OrbitVerdict::Chaotic;
+      if (!(r.digits >= s.digitsThreshold)) r.verdict = OrbitVerdict::Chaotic;
+      else r.verdict = m.wrapped ? OrbitVerdict::Escaping : OrbitVerdict::Regular;  // an accelerator mode of Q*
       break;
     }
     case IndicatorKind::Rotation: {

@@ -11,8 +11,9 @@
 ///   - Dig: the weighted Birkhoff average (BirkhoffAverage.hpp) of the physical x over two consecutive blocks
 ///     of T points (z_1 … z_T, z_{T+1} … z_{2T}); value = digits = −log₁₀ |difference|.  Regular orbits reach
 ///     ~14 at T = 10⁴, chaotic ones a few.  x is smooth on every orbit that stays away from the seam of the
-///     torus, so islands of Q* (those of Q, and the accelerator modes that wrap around the torus) count as
-///     regular, the chaotic sea as chaotic.
+///     torus, so islands of Q* (those of Q, and the accelerator modes that wrap around the torus) converge and
+///     the chaotic sea does not.  Verdict: Chaotic below the threshold, else Regular, or Escaping for an
+///     orbit that wrapped (an accelerator-mode island of Q*: regular on the torus, but not an orbit of Q).
 ///   - Rotation: the rotation number about the elliptic fixed point (−√K, 0) of Q (0 < K < 1), in turns per
 ///     step, positive in the sense Q turns about it (clockwise in the (x, y) plane; Q moves (−√K + δ, 0) to
 ///     y = −4√K δ < 0).  The weighted Birkhoff average of the clockwise angle increments about the centre over
@@ -62,9 +63,11 @@ enum class IndicatorKind { Dig, Rotation, Fli, Megno, Lyapunov };
 enum class OrbitVerdict : std::uint8_t {
   NotComputed = 0,  ///< not measured (a progressive raster's pixel not reached yet, or a stop request)
   Measured = 1,     ///< Fli, Megno, Lyapunov: a value, no classification
-  Regular = 2,      ///< Dig, Rotation: digits ≥ the threshold
+  Regular = 2,      ///< Dig, Rotation: digits ≥ the threshold, and the orbit stayed in the box
   Chaotic = 3,      ///< Dig, Rotation: digits below the threshold
-  Escaping = 4,     ///< Rotation: the orbit left the box (a step of N wrapped)
+  Escaping = 4,     ///< the orbit left the box (a step of N wrapped), where Q* is no longer Q: Rotation gives
+                    ///< it no number; for Dig, a regular orbit of Q* that is no orbit of Q (an accelerator
+                    ///< mode, §2 and appendix B), a chaotic one that wraps is Chaotic
 };
 /// "not computed", "measured", "regular", "chaotic", "escaping".
 [[nodiscard]] std::string_view toString(OrbitVerdict verdict) noexcept;
