@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <sstream>
 #include <stdexcept>
@@ -72,6 +73,18 @@ std::optional<std::string> validationError(const MeasureSettings& s) {
 }
 
 std::uint64_t stepsPerOrbit(const MeasureSettings& s) noexcept { return measures::totalSteps(s.kind, s.iterations); }
+
+std::optional<std::string> boxPointError(const std::string& name, const MapParameters& map, PhysicalPoint p) {
+  const long double L = static_cast<long double>(map.xmax) - map.xmin;
+  if (!std::isfinite(p.x) || !std::isfinite(p.y)) return name + " must be two finite numbers x,y";
+  if (!(p.x >= map.xmin && p.x < map.xmax && p.y >= -L / 2 && p.y < L / 2)) {
+    char text[320];
+    std::snprintf(text, sizeof text, "%s = (%.17Lg, %.17Lg) must lie in the box [%s, %s) x [%.17Lg, %.17Lg)", name.c_str(),
+                  p.x, p.y, shortestDecimal(map.xmin).c_str(), shortestDecimal(map.xmax).c_str(), -L / 2, L / 2);
+    return std::string(text);
+  }
+  return std::nullopt;
+}
 
 PhysicalPoint rotationCentreUnits(const MapParameters& map) noexcept {
   const long double L = static_cast<long double>(map.xmax) - static_cast<long double>(map.xmin);

@@ -96,6 +96,11 @@ struct OrbitMeasure {
   OrbitVerdict verdict = OrbitVerdict::NotComputed;
 };
 
+/// "<name> = (x, y) must lie in the box [xmin, xmax) x [−L/2, L/2)" (or must be finite) when the physical point p
+/// is not a point of the box, where an orbit of Q starts as one of Q*; nothing when it is.
+[[nodiscard]] std::optional<std::string> boxPointError(const std::string& name, const MapParameters& map,
+                                                       PhysicalPoint p);
+
 /// The rotation centre (−√K, 0) in unit coordinates (long double: the centre is not a grid point).
 [[nodiscard]] PhysicalPoint rotationCentreUnits(const MapParameters& map) noexcept;
 

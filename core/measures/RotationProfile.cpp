@@ -13,18 +13,6 @@ namespace {
 constexpr std::uint32_t kMaxPoints = 1'000'000;
 constexpr std::size_t kRoundPoints = 4096;
 
-std::optional<std::string> pointError(const char* name, const MapParameters& map, PhysicalPoint p) {
-  const long double L = static_cast<long double>(map.xmax) - map.xmin;
-  if (!std::isfinite(p.x) || !std::isfinite(p.y)) return std::string(name) + " must be two finite numbers x,y";
-  if (!(p.x >= map.xmin && p.x < map.xmax && p.y >= -L / 2 && p.y < L / 2)) {
-    char text[256];
-    std::snprintf(text, sizeof text, "%s = (%.17Lg, %.17Lg) must lie in the box [%s, %s) x [%.17Lg, %.17Lg)", name, p.x,
-                  p.y, shortestDecimal(map.xmin).c_str(), shortestDecimal(map.xmax).c_str(), -L / 2, L / 2);
-    return std::string(text);
-  }
-  return std::nullopt;
-}
-
 /// The rational a regular rotation names (RotationProfile.hpp).
 std::optional<Rational> rationalOf(const OrbitMeasure& m, std::int64_t maxDenominator) {
   if (m.verdict != OrbitVerdict::Regular) return std::nullopt;
@@ -41,8 +29,8 @@ std::optional<std::string> validationError(const RotationProfileRequest& r) {
     return "points = " + std::to_string(r.points) + " must be 1 ... " + std::to_string(kMaxPoints);
   if (r.maxDenominator < 1 || r.maxDenominator > 1'000'000)
     return "maxDenominator = " + std::to_string(r.maxDenominator) + " must be 1 ... 1000000";
-  if (auto e = pointError("from", r.measure.map, r.from)) return e;
-  if (auto e = pointError("to", r.measure.map, r.to)) return e;
+  if (auto e = boxPointError("from", r.measure.map, r.from)) return e;
+  if (auto e = boxPointError("to", r.measure.map, r.to)) return e;
   if (r.threads < 0 || r.threads > 1024) return "threads = " + std::to_string(r.threads) + " must be 0 ... 1024";
   return std::nullopt;
 }

@@ -98,11 +98,11 @@ TEST(MeasureKernels, EveryPathGivesTheScalarPointsAndSumsBitForBit) {
     for (std::size_t i = 0; i < z.size(); ++i) {
       ASSERT_EQ(reference[i].X, plain[i].X);
       ASSERT_EQ(reference[i].Y, plain[i].Y);
-      // The wrap flag (Rotation only) is FixedPointMap::forward's.
+      // The wrap flag (Dig and Rotation) is FixedPointMap::forward's.
       bool wrapped = false;
       UnitState q = z[i];
       for (std::uint64_t n = 0; n < steps; ++n) wrapped |= forwardStep(s.coefficients, q);
-      EXPECT_EQ(reference[i].wrapped, kind == IndicatorKind::Rotation && wrapped ? 1u : 0u) << i;
+      EXPECT_EQ(reference[i].wrapped, isBirkhoffKind(kind) && wrapped ? 1u : 0u) << i;
       wrappedCount += wrapped;
     }
     EXPECT_GT(wrappedCount, 10u);           // the sample has escaping orbits …
