@@ -77,7 +77,8 @@ int runIndicator(const IndicatorOptions& o) {
               static_cast<unsigned long long>(o.iterations), static_cast<unsigned long long>(raster.pixelsDone),
               raster.count(OrbitVerdict::Regular), raster.count(OrbitVerdict::Chaotic),
               raster.count(OrbitVerdict::Escaping), raster.count(OrbitVerdict::Measured),
-              std::string(kernelOrBest(req.measure.kernel).name).c_str(), result.seconds, steps / result.seconds);
+              std::string(kernelOrBest(req.measure.kernel).name).c_str(), result.seconds,
+              result.seconds > 0 ? steps / result.seconds : 0.0);
   return 0;
 }
 }  // namespace
