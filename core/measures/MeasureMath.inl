@@ -63,13 +63,45 @@ constexpr int kLogTerms = 11;
 
 // --- the functions -------------------------------------------------------------------------------------------
 
-/// atan u for |u| ≤ tan(π/8), Horner on u² (coefficients (−1)^k/(2k+1), each correctly rounded).
+/// Σ_{k<N} c[k] x^k by Estrin's scheme, with pow2[i] = x^(2^i): the low half (the largest power of two of terms
+/// below N) plus x^half times the rest, recursively — a dependency chain of ⌈log₂ N⌉ multiply-adds instead of
+/// Horner's N − 1, so that the vector kernels are not latency-bound; the recursion is resolved at compile time.
+template <int N, class V>
+[[nodiscard]] inline V estrinPart(const double* c, const V* pow2) noexcept {
+  if constexpr (N == 1) {
+    return V(c[0]);
+  } else {
+    constexpr int half = static_cast<int>(std::bit_floor(static_cast<unsigned>(N - 1)));
+    constexpr int level = std::countr_zero(static_cast<unsigned>(half));
+    return estrinPart<half>(c, pow2) + estrinPart<N - half>(c + half, pow2) * pow2[level];
+  }
+}
+
+template <int N, class V>
+[[nodiscard]] inline V estrin(V x, const double (&c)[N]) noexcept {
+  constexpr int levels = N > 1 ? std::bit_width(static_cast<unsigned>(N - 1)) : 1;
+  V pow2[levels];
+  pow2[0] = x;
+  for (int i = 1; i < levels; ++i) pow2[i] = pow2[i - 1] * pow2[i - 1];
+  return estrinPart<N>(c, pow2);
+}
+
+/// The coefficients (−1)^k/(2k + 1) of atan u / u in powers of u², and 1/(2k + 1) of atanh s / s in powers of
+/// s², each correctly rounded (the compiler folds the divisions exactly).
+template <int N, bool kAlternating>
+struct OddSeries {
+  double c[N];
+  constexpr OddSeries() : c() {
+    for (int k = 0; k < N; ++k) c[k] = (kAlternating && k % 2 ? -1.0 : 1.0) / (2 * k + 1);
+  }
+};
+constexpr OddSeries<kAtanTerms, true> kAtanSeries;
+constexpr OddSeries<kLogTerms, false> kAtanhSeries;
+
+/// atan u for |u| ≤ tan(π/8): u · Σ (−1)^k u^{2k}/(2k + 1).
 template <class V>
 [[nodiscard]] inline V atanReduced(V u) noexcept {
-  const V u2 = u * u;
-  V p = V(((kAtanTerms - 1) % 2 ? -1.0 : 1.0) / (2 * (kAtanTerms - 1) + 1));
-  for (int k = kAtanTerms - 2; k >= 0; --k) p = p * u2 + ((k % 2 ? -1.0 : 1.0) / (2 * k + 1));
-  return u * p;
+  return u * estrin(u * u, kAtanSeries.c);
 }
 
 /// atan2(s, c) in (−π, π]: 0 for s = c = 0.  The octant is reduced exactly (absolute values, min, max); the
@@ -109,8 +141,8 @@ template <class V>
   e = select(big, e + 1.0, e);
   const V s = (m - 1.0) / (m + 1.0);
   const V s2 = s * s;
-  V p = V(1.0 / (2 * (kLogTerms - 1) + 1));
-  for (int k = kLogTerms - 2; k >= 0; --k) p = p * s2 + 1.0 / (2 * k + 1);
+  V p = V(kAtanhSeries.c[kLogTerms - 1]);  // Horner: Estrin's order rounds ln r near 1 up to 4 ulps
+  for (int k = kLogTerms - 2; k >= 0; --k) p = p * s2 + kAtanhSeries.c[k];
   const V lnm = (s + s) * p;
   return e * kLn2Hi + (e * kLn2Lo + lnm);
 }
