@@ -4,7 +4,7 @@
 #
 #   bench/run-benchmarks.sh [build-dir] [extra Google Benchmark options…]
 #   BENCH_REPETITIONS=9 bench/run-benchmarks.sh build-bench --benchmark_filter='bare_step|pipeline/avx512ifma'
-#   bench/run-benchmarks.sh build-bench --benchmark_filter='^bare_step/[a-z0-9]*$|^measure/'   # measures only
+#   bench/run-benchmarks.sh build-bench --benchmark_filter='^bare_step/[a-z0-9]+/min|^measure/'   # measures only
 #
 # The machine may be shared, and its speed then changes over minutes.  So every benchmark runs
 # BENCH_REPETITIONS times (default 5), each repetition a few tenths of a second, all repetitions of all
