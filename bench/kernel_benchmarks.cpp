@@ -2,8 +2,9 @@
 // "steps_per_second" (steps of N or N⁻¹ per second of wall time) and "steps_per_iteration"; bench/run-benchmarks.sh
 // runs each several times (--benchmark_repetitions, randomly interleaved) and turns the medians into ratios.
 // Multi-threaded CPU times are of the whole process (all threads).  Names: bare_step/<kernel>,
-// bare_step/<kernel>/threads:2, naive_double, pipeline/<kernel>/q:<q>/threads:<t>, and the paired ratios
-// paired/<what>, which report a counter "ratio" (see pairedRatio).
+// bare_step/<kernel>/threads:2, naive_double, pipeline/<kernel>/q:<q>/threads:<t>, measure/<kind>/<kernel> (the
+// orbit measures of issue 27: iterate N and accumulate, one thread), and the paired ratios paired/<what>, which
+// report a counter "ratio" (see pairedRatio).
 //
 // Each repetition is kept short (a few tenths of a second): on a shared machine the speed changes over
 // minutes, and many short interleaved repetitions let slow periods hit every benchmark alike.
@@ -22,6 +23,7 @@
 #include <vector>
 
 #include "core/kernels/KernelDispatch.hpp"
+#include "core/measures/OrbitMeasures.hpp"
 #include "core/run/TrappingRun.hpp"
 
 namespace archipelago {
@@ -122,6 +124,29 @@ void pipeline(benchmark::State& state, const KernelInfo* kernel, std::uint32_t q
   reportSteps(state, steps);
   state.counters["segments_per_block"] =
       static_cast<double>(segments) / (steps / q);  // how often the bookkeeping runs
+}
+
+// The orbit measures (core/measures/OrbitMeasures.hpp): 512 orbits on a line across the K = 0.1 box (the central
+// island, the six islands, the sea) measured by OrbitMeasurer on one thread, T = 10⁴ (2·10⁴ steps per orbit for
+// dig and rotation, 10⁴ for fli, megno and lyapunov).  Steps of N per second, comparable with the bare step.
+void measureOrbits(benchmark::State& state, const KernelInfo* kernel, IndicatorKind kind) {
+  MeasureSettings settings;
+  settings.map = kPaperBox;
+  settings.kind = kind;
+  settings.iterations = 10000;
+  settings.kernel = kernel;
+  const OrbitMeasurer measurer(settings);
+  const FixedPointMap map(kPaperBox);
+  std::vector<UnitState> starts(512);
+  for (std::size_t i = 0; i < starts.size(); ++i)
+    starts[i] = map.toUnit(-0.7L + 1.1L * static_cast<long double>(i) / 512, 0.05L);
+  std::vector<OrbitMeasure> out(starts.size());
+  for (auto _ : state) {
+    measurer.measure(starts, out, {}, 1);
+    benchmark::DoNotOptimize(out.data());
+  }
+  reportSteps(state, static_cast<double>(state.iterations()) * static_cast<double>(stepsPerOrbit(settings)) *
+                         static_cast<double>(starts.size()));
 }
 
 // --- Paired ratios -------------------------------------------------------------------------------------------
@@ -244,6 +269,17 @@ void registerPaired() {
   }
 }
 
+void registerMeasures() {
+  for (const auto& k : supportedKernels())
+    for (IndicatorKind kind : {IndicatorKind::Dig, IndicatorKind::Rotation, IndicatorKind::Fli, IndicatorKind::Megno,
+                               IndicatorKind::Lyapunov})
+      benchmark::RegisterBenchmark(("measure/" + std::string(toString(kind)) + "/" + std::string(k.name)).c_str(),
+                                   measureOrbits, &kernelByName(k.name), kind)
+          ->UseRealTime()
+          ->Unit(benchmark::kMillisecond)
+          ->MinTime(0.25);
+}
+
 void registerAll() {
   // Bare steps: ≈ 13–130 ms per iteration (avx512ifma–scalar), ≈ 0.25–0.4 s per repetition.
   for (const auto& k : supportedKernels())
@@ -276,6 +312,7 @@ void registerAll() {
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
   archipelago::registerAll();
+  archipelago::registerMeasures();
   archipelago::registerPaired();
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
-# Builds the benchmarks (Release, no GUI, no tests) and prints the kernel speeds of issue 4 as ratios.
+# Builds the benchmarks (Release, no GUI, no tests) and prints the kernel speeds of issue 4 as ratios, and the
+# orbit measures of issue 27 as ratios to the bare step of the same path.
 #
 #   bench/run-benchmarks.sh [build-dir] [extra Google Benchmark options…]
 #   BENCH_REPETITIONS=9 bench/run-benchmarks.sh build-bench --benchmark_filter='bare_step|pipeline/avx512ifma'
+#   bench/run-benchmarks.sh build-bench --benchmark_filter='^bare_step/[a-z0-9]+/min|^measure/'   # measures only
 #
 # The machine may be shared, and its speed then changes over minutes.  So every benchmark runs
 # BENCH_REPETITIONS times (default 5), each repetition a few tenths of a second, all repetitions of all
@@ -118,6 +120,17 @@ for q in (1, 16, 100):
         na, nb = f"pipeline/{a}/q:{q}/threads:1", f"pipeline/{b}/q:{q}/threads:1"
         if na in runs and nb in runs:
             print(f"  q={q:3d}  {a:10s} / {b:10s}: {ratio(na, nb):6.2f}x wall, {ratio(na, nb, 'cpu'):6.2f}x CPU")
+
+measures = [n for n in runs if n.startswith("measure/")]
+if measures:
+    print("\n== Orbit measures (issue 27; OrbitMeasurer, 1 thread, T = 10^4, 512 orbits across the K = 0.1 box) ==")
+    print("  steps of N per second, and as a ratio to the bare step of the same path measured in this run")
+    print(f"  {'':30s} {'wall, G/s':22s} {'per CPU s, G/s':22s} {'/ bare: wall   CPU'}")
+    for k in kernels:
+        for kind in ("dig", "rotation", "fli", "megno", "lyapunov"):
+            n, bare = f"measure/{kind}/{k}", f"bare_step/{k}"
+            if n in runs and bare in runs:
+                print(f"  {n:30s} {rate(n, 'wall')} {rate(n, 'cpu')} {ratio(n, bare):6.3f} {ratio(n, bare, 'cpu'):6.3f}")
 
 if paired:
     print("\n== Paired ratios (the two sides alternate every few tens of ms; 1-thread sides timed by the thread's CPU clock) ==")

@@ -363,6 +363,8 @@ py::dict replayRecord(const TrappingParameters& params, const SegmentRecord& rec
 
 }  // namespace
 
+void bindMeasures(py::module_& m);  // bind_measures.cpp
+
 PYBIND11_MODULE(_archipelago, m) {
   m.doc() = "Archipelago: stickiness of islands around islands in area-preserving maps "
             "(C. F. F. Karney, Long-time correlations in the stochastic regime, Physica D 8, 1983).";
@@ -744,4 +746,6 @@ PYBIND11_MODULE(_archipelago, m) {
         py::arg("seed") = 1, py::arg("Xr") = 0.02, py::arg("q") = 16, py::arg("kernel") = "auto",
         "A portrait of the whole box (fig. 1): mode density (visits, counts), orbits (labels of seed orbits) or\n"
         "stickiness (mean trapped-segment length in steps per pixel); arrays of shape (height, width), row 0 at the top.");
+
+  bindMeasures(m);  // rotation numbers, island chains, indicator maps (core/measures)
 }

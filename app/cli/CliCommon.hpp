@@ -23,7 +23,9 @@
 #include <vector>
 
 #include "core/io/NumberText.hpp"
+#include "core/map/FixedPointMap.hpp"  // PhysicalPoint
 #include "core/map/MapParameters.hpp"
+#include "core/portrait/Viewport.hpp"    // PhysicalRect
 
 namespace archipelago::cli {
 
@@ -65,6 +67,16 @@ inline constexpr std::size_t kMaxSeeds = 1000;
 
 /// The run file of one seed of an ensemble: "run.json" → "run.seed-3.json", "out/x" → "out/x.seed-3".
 [[nodiscard]] std::string seededPath(const std::string& path, std::uint64_t seed);
+
+/// "x0,x1,y0,y1" (physical coordinates, --view of portrait and indicator) → the rectangle; throws
+/// std::invalid_argument "--view '<text>' must be four finite numbers x0,x1,y0,y1 (physical coordinates)".
+[[nodiscard]] PhysicalRect parseView(const std::string& text);
+
+/// "WxH" with whole numbers 1 … limit (--size, --seeds); throws std::invalid_argument naming `option` otherwise.
+[[nodiscard]] std::pair<int, int> parseSize(const std::string& text, const std::string& option, int limit);
+
+/// "x,y" → the physical point; throws std::invalid_argument "<option> '<text>' must be two finite numbers x,y".
+[[nodiscard]] PhysicalPoint parsePoint(const std::string& option, const std::string& text);
 
 /// Adds --K, --xmin and --xmax (defaults: the paper's K = 0.1 box, §5) to a subcommand.
 void addMapOptions(CLI::App& command, MapParameters& params);

@@ -19,17 +19,11 @@ struct PeriodicOptions {
   bool stableOnly = false;
 };
 
-/// "x,y" → the point; the one-line error names the option.
-PhysicalPoint parsePoint(const std::string& text) {
-  const auto v = parseNumbers<long double>("--near", text, ',', 2, "two finite numbers x,y");
-  return {v[0], v[1]};
-}
-
 int runPeriodic(const PeriodicOptions& o) {
   validate(o.map);  // the box of Q*: Q* = Q inside it (appendix B rules)
   PeriodicOrbitSearch search;
   search.period = o.period;
-  search.near = parsePoint(o.near);
+  search.near = parsePoint("--near", o.near);
   search.searchRadius = o.radius;
   search.stableOnly = o.stableOnly;
   const long double K = o.map.K;

@@ -36,20 +36,6 @@ struct PortraitOptions {
   bool quiet = false;
 };
 
-PhysicalRect parseView(const std::string& text) {
-  const auto v = parseNumbers<long double>("--view", text, ',', 4, "four finite numbers x0,x1,y0,y1 (physical coordinates)");
-  return {v[0], v[1], v[2], v[3]};
-}
-
-/// "WxH" with whole numbers 1 … limit.
-std::pair<int, int> parseSize(const std::string& text, const std::string& option, int limit) {
-  const std::string rule = "WxH with whole numbers 1 ... " + std::to_string(limit);
-  const auto v = parseNumbers<int>(option, text, 'x', 2, rule);
-  if (v[0] < 1 || v[1] < 1 || v[0] > limit || v[1] > limit)
-    throw std::invalid_argument(option + " '" + text + "' must be " + rule);
-  return {v[0], v[1]};
-}
-
 int runPortrait(const PortraitOptions& o) {
   validate(o.map);
   PortraitRequest req;

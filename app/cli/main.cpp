@@ -19,6 +19,8 @@
 #include "MarkovCommand.hpp"
 #include "MergeCommand.hpp"
 #include "PresetsCommand.hpp"
+#include "RotationCommand.hpp"
+#include "IndicatorCommand.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"archipelago-cli " ARCHIPELAGO_VERSION
@@ -37,6 +39,8 @@ int main(int argc, char** argv) {
   archipelago::cli::addStochasticAreaCommand(app, status);
   archipelago::cli::addMarkovCommand(app, status);
   archipelago::cli::addPresetsCommand(app, status);
+  archipelago::cli::addRotationCommand(app, status);
+  archipelago::cli::addIndicatorCommand(app, status);
   if (argc > 1 && argv[1][0] != '-') {  // name an unknown command instead of CLI11's generic message
     std::string names;
     bool known = false;

@@ -7,6 +7,7 @@
 
 #include "core/io/AtomicFile.hpp"
 #include "core/map/FixedPointMap.hpp"
+#include "core/portrait/PortraitJson.hpp"
 #include "core/spec/RunSpecJson.hpp"
 #include "core/stats/StochasticAreaQuantities.hpp"
 
@@ -23,6 +24,22 @@ std::string longDouble(long double v) {
 void writeText(const std::string& path, const std::string& text) { io::writeFileAtomically(path, text + '\n'); }
 }  // namespace
 
+nlohmann::json mapWithCoefficientsJson(const MapParameters& map) {
+  const MapCoefficients k = computeCoefficients(map);
+  nlohmann::json j = spec::mapJson(map);
+  j["coefficients"] = {{"A", k.A}, {"B", k.B}, {"C", k.C}, {"m", k.m}};
+  return j;
+}
+
+nlohmann::json viewportJson(const MapParameters& map, const Viewport& view) {
+  const PhysicalRect b = view.physical(map);
+  return {{"centre_unit", {{"X", view.centre().X}, {"Y", view.centre().Y}}},
+          {"width_units", longDouble(view.widthUnits())},
+          {"height_units", longDouble(view.heightUnits())},
+          {"physical", {{"x0", longDouble(b.x0)}, {"x1", longDouble(b.x1)}, {"y0", longDouble(b.y0)}, {"y1", longDouble(b.y1)}}},
+          {"unit", "physical x = xmin + L*X/2^52, y = -L/2 + L*Y/2^52, L = xmax - xmin"}};
+}
+
 std::string sidecarPath(const std::string& npyPath) {
   const std::string ext = ".npy";
   if (npyPath.size() > ext.size() && npyPath.compare(npyPath.size() - ext.size(), ext.size(), ext) == 0)
@@ -32,8 +49,6 @@ std::string sidecarPath(const std::string& npyPath) {
 
 std::string portraitMetadataJson(const PortraitRequest& r, const PortraitRaster& raster, const std::string& arrayName) {
   using nlohmann::json;
-  const MapCoefficients k = computeCoefficients(r.map);
-  const PhysicalRect b = r.view.physical(r.map);
   std::uint64_t maxCount = 0;
   for (std::uint64_t c : raster.counts) maxCount = std::max(maxCount, c);
   json j;
@@ -43,14 +58,8 @@ std::string portraitMetadataJson(const PortraitRequest& r, const PortraitRaster&
   j["rows"] = "row 0 is the top of the view (largest y); column 0 its left edge (smallest x)";
   j["shape"] = {raster.height, raster.width};
   j["mode"] = std::string(toString(r.mode));
-  j["map"] = spec::mapJson(r.map);
-  j["map"]["coefficients"] = {{"A", k.A}, {"B", k.B}, {"C", k.C}, {"m", k.m}};
-  j["viewport"] = {
-      {"centre_unit", {{"X", r.view.centre().X}, {"Y", r.view.centre().Y}}},
-      {"width_units", longDouble(r.view.widthUnits())},
-      {"height_units", longDouble(r.view.heightUnits())},
-      {"physical", {{"x0", longDouble(b.x0)}, {"x1", longDouble(b.x1)}, {"y0", longDouble(b.y0)}, {"y1", longDouble(b.y1)}}},
-      {"unit", "physical x = xmin + L*X/2^52, y = -L/2 + L*Y/2^52, L = xmax - xmin"}};
+  j["map"] = mapWithCoefficientsJson(r.map);
+  j["viewport"] = viewportJson(r.map, r.view);
   j["request"] = {{"points", r.points},     {"orbits", r.orbitCount()}, {"steps_per_orbit", r.stepsPerOrbit()},
                   {"seed", r.seed},         {"passes", r.passes},       {"seed_grid", {r.seedColumns, r.seedRows}},
                   {"Xr", r.Xr},             {"q", r.q}};

@@ -93,10 +93,17 @@ def baseline(command, d):
         "stochastic-area": ["stochastic-area", "--iterations", "20000", "--orbits", "4",
                             "--json", os.path.join(d, "a.json")],
         "markov": ["markov", "--m", "3", "--N", "100", "--csv", os.path.join(d, "m.csv")],
+        "rotation": ["rotation", "--x=-0.3", "--y", "0", "--iterations", "100"],
+        "indicator": ["indicator", "--kind", "dig", "--size", "4x4", "--iterations", "100",
+                      "--npy", os.path.join(d, "i.npy"), "--quiet"],
     }.get(command)
 
 
-NUMBER_TEXT = {"--near", "--view", "--size", "--seeds", "--m", "--N", "--tau-max", "--radius"}
+# The rotation profile, attacked separately (--x/--y and --line exclude each other).
+PROFILE = ["rotation", "--line=-0.3,0:0.1,0", "--points", "5", "--iterations", "100", "--quiet"]
+
+
+NUMBER_TEXT = {"--near", "--view", "--size", "--seeds", "--m", "--N", "--tau-max", "--radius", "--line"}
 HOSTILE = ["nan", "inf", "-inf", "1e308", "-1e308", "1e300", "-1", "-5", "0", "1.5", "18446744073709551616",
            "99999999999999999999999", "", "abc", "0x10", " 1"]
 # Reals are read as strtod reads them (CliCommon.hpp): "0x10" is the hexadecimal real 16, a valid spelling.
@@ -121,7 +128,10 @@ def with_value(args, option, value):
 
 def numeric_case(command, option, kind, value, index):
     d = make_dir(f"num-{command}-{index}")
-    args = with_value(baseline(command, d), option, value)
+    if command == "rotation" and option in ("--line", "--points", "--max-denominator"):
+        args = with_value([*PROFILE, "--csv", os.path.join(d, "p.csv")], option, value)
+    else:
+        args = with_value(baseline(command, d), option, value)
     if kind == "INT":
         expected = True if value in NEVER_AN_INTEGER else None
     elif kind == "FLOAT":
@@ -240,6 +250,11 @@ def output_targets(d):
         ("stats --csv", ["stats", run_file, "--csv", "{}"], "folder"),
         ("stochastic-area --json", ["stochastic-area", "--iterations", "20000", "--orbits", "4", "--json", "{}"], "file"),
         ("markov --csv", ["markov", "--m", "3", "--N", "100", "--csv", "{}"], "file"),
+        ("rotation --csv", [*PROFILE, "--csv", "{}"], "file"),
+        ("indicator --npy", ["indicator", "--size", "4x4", "--iterations", "100", "--quiet", "--npy", "{}"], "file"),
+        ("indicator --out", ["indicator", "--size", "4x4", "--iterations", "100", "--quiet", "--out", "{}"], "file"),
+        ("indicator --verdicts", ["indicator", "--size", "4x4", "--iterations", "100", "--quiet", "--npy",
+                                  os.path.join(d, "ok.npy"), "--verdicts", "{}"], "file"),
     ]
 
 

@@ -1,0 +1,106 @@
+#include "core/measures/RotationProfile.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+#include "core/io/AtomicFile.hpp"
+
+namespace archipelago {
+
+namespace {
+constexpr std::uint32_t kMaxPoints = 1'000'000;
+constexpr std::size_t kRoundPoints = 4096;
+
+/// The rational a regular rotation names (RotationProfile.hpp).
+std::optional<Rational> rationalOf(const OrbitMeasure& m, std::int64_t maxDenominator) {
+  if (m.verdict != OrbitVerdict::Regular) return std::nullopt;
+  const double delta = std::max(kAccuracyFactor * std::pow(10.0, -m.digits), 0x1p-50);
+  return smallestDenominatorRational(m.value - delta, m.value + delta, maxDenominator);
+}
+}  // namespace
+
+std::optional<std::string> validationError(const RotationProfileRequest& r) {
+  MeasureSettings s = r.measure;
+  s.kind = IndicatorKind::Rotation;
+  if (auto e = validationError(s)) return e;
+  if (r.points < 1 || r.points > kMaxPoints)
+    return "points = " + std::to_string(r.points) + " must be 1 ... " + std::to_string(kMaxPoints);
+  if (r.maxDenominator < 1 || r.maxDenominator > 1'000'000)
+    return "maxDenominator = " + std::to_string(r.maxDenominator) + " must be 1 ... 1000000";
+  if (auto e = boxPointError("from", r.measure.map, r.from)) return e;
+  if (auto e = boxPointError("to", r.measure.map, r.to)) return e;
+  if (r.threads < 0 || r.threads > 1024) return "threads = " + std::to_string(r.threads) + " must be 0 ... 1024";
+  return std::nullopt;
+}
+
+RotationProfile computeRotationProfile(const RotationProfileRequest& r, const RotationProfileObserver& observer,
+                                       std::stop_token stop) {
+  if (auto e = validationError(r)) throw std::invalid_argument(*e);
+  MeasureSettings settings = r.measure;
+  settings.kind = IndicatorKind::Rotation;
+  const OrbitMeasurer measurer(settings);
+  const FixedPointMap map(settings.map);
+
+  RotationProfile profile;
+  profile.points.resize(r.points);
+  std::vector<UnitState> starts(r.points);
+  for (std::uint32_t i = 0; i < r.points; ++i) {
+    const long double t = r.points == 1 ? 0.0L : static_cast<long double>(i) / (r.points - 1);
+    starts[i] = map.toUnit(r.from.x + t * (r.to.x - r.from.x), r.from.y + t * (r.to.y - r.from.y));
+    profile.points[i].start = starts[i];
+    profile.points[i].point = map.toPhysical(starts[i]);
+  }
+  std::vector<OrbitMeasure> measured;
+  for (std::size_t first = 0; first < starts.size(); first += kRoundPoints) {
+    const std::size_t n = std::min(kRoundPoints, starts.size() - first);
+    measured.assign(n, OrbitMeasure{});
+    const bool complete = measurer.measure(std::span<const UnitState>(starts.data() + first, n), measured, stop, r.threads);
+    for (std::size_t i = 0; i < n; ++i) {
+      RotationProfilePoint& p = profile.points[first + i];
+      p.measure = measured[i];
+      p.rational = rationalOf(measured[i], r.maxDenominator);
+    }
+    if (!complete) {
+      profile.cancelled = true;
+      break;
+    }
+    if (observer) observer(first + n, starts.size());
+  }
+  return profile;
+}
+
+void writeRotationProfileCsv(const std::string& path, const RotationProfileRequest& r, const RotationProfile& profile) {
+  io::AtomicOutputFile file(path);
+  std::ostream& out = file.stream();
+  char line[512];
+  std::snprintf(line, sizeof line,
+                "# rotation profile: rotation number about (-sqrt K, 0), turns per step, positive clockwise "
+                "(the sense Q turns), weighted Birkhoff average over two blocks of T steps\n"
+                "# K: %s\n# xmin: %s\n# xmax: %s\n# iterations: %llu\n# digits_threshold: %s\n"
+                "# from: %.19Lg,%.19Lg\n# to: %.19Lg,%.19Lg\n# points: %u\n# max_denominator: %lld\n",
+                shortestDecimal(r.measure.map.K).c_str(), shortestDecimal(r.measure.map.xmin).c_str(),
+                shortestDecimal(r.measure.map.xmax).c_str(), static_cast<unsigned long long>(r.measure.iterations),
+                shortestDecimal(r.measure.digitsThreshold).c_str(), r.from.x, r.from.y, r.to.x, r.to.y, r.points,
+                static_cast<long long>(r.maxDenominator));
+  out << line << "index,x,y,rotation,digits,verdict,rational\n";
+  for (std::size_t i = 0; i < profile.points.size(); ++i) {
+    const RotationProfilePoint& p = profile.points[i];
+    std::snprintf(line, sizeof line, "%zu,%.19Lg,%.19Lg,", i, p.point.x, p.point.y);
+    out << line;
+    if (std::isfinite(p.measure.value)) {
+      std::snprintf(line, sizeof line, "%.17g", p.measure.value);
+      out << line;
+    }
+    out << ',';
+    if (std::isfinite(p.measure.digits)) {
+      std::snprintf(line, sizeof line, "%.3f", p.measure.digits);
+      out << line;
+    }
+    out << ',' << toString(p.measure.verdict) << ',' << (p.rational ? toString(*p.rational) : "") << '\n';
+  }
+  file.commit();
+}
+
+}  // namespace archipelago
