@@ -19,6 +19,7 @@
 #include "core/stats/RunEnsemble.hpp"
 #include "core/stats/RunStatistics.hpp"
 #include "core/stats/StochasticAreaQuantities.hpp"
+#include "core/stats/ReferenceSlopes.hpp"
 #include "core/stats/TailAnalysis.hpp"
 #include "core/theory/TheoryCurves.hpp"
 

@@ -29,6 +29,7 @@
 #include "core/runfile/CheckpointedRun.hpp"
 #include "core/runfile/RunFile.hpp"
 #include "core/stats/RunEnsemble.hpp"
+#include "core/stats/ReferenceSlopes.hpp"
 #include "core/stats/RunStatistics.hpp"
 #include "core/theory/TheoryCurves.hpp"
 #include "ui/report/ReportFigures.hpp"

@@ -2,6 +2,8 @@
 
 #include <cstdint>
 
+#include "core/stats/ReferenceSlopes.hpp"
+
 namespace archipelago {
 
 namespace {

@@ -15,6 +15,8 @@
 #include "core/portrait/StochasticArea.hpp"
 #include "core/spec/RunSpec.hpp"
 #include "core/stats/StochasticAreaQuantities.hpp"
+#include "core/stats/LogFits.hpp"
+#include "core/stats/ReferenceSlopes.hpp"
 #include "core/stats/TailAnalysis.hpp"
 #include "core/theory/PaperNumbers.hpp"
 #include "core/theory/SmallKTheory.hpp"

@@ -17,6 +17,23 @@ std::string text(const ParameterValue& v) {
 }
 }  // namespace
 
+std::vector<TrappingHistogram> pooledSubsets(const Ensemble& e) {
+  std::vector<TrappingHistogram> out;
+  for (const EnsembleMember& m : e.members) out.insert(out.end(), m.subsets.begin(), m.subsets.end());
+  return out;
+}
+
+std::vector<std::uint64_t> pooledOrbitsPerSubset(const Ensemble& e) {
+  std::vector<std::uint64_t> out;
+  for (const EnsembleMember& m : e.members) out.insert(out.end(), m.orbitsPerSubset.begin(), m.orbitsPerSubset.end());
+  return out;
+}
+
+TrappingStatistics ensembleStatistics(const Ensemble& e) {
+  if (e.members.empty()) throw std::invalid_argument("an ensemble needs at least one run");
+  return computeStatistics(pooledSubsets(e), pooledOrbitsPerSubset(e), e.blocks, e.q);
+}
+
 Ensemble ensembleOf(const std::vector<TrappingState>& runs, const std::vector<std::string>& names) {
   if (runs.empty()) throw std::invalid_argument("an ensemble needs at least one run");
   const auto name = [&](std::size_t i) { return i < names.size() ? names[i] : "run " + std::to_string(i + 1); };

@@ -10,9 +10,31 @@
 #include <vector>
 
 #include "core/run/TrappingRun.hpp"
-#include "core/stats/TailAnalysis.hpp"
+#include "core/stats/TrappingStatistics.hpp"
+#include "core/trapping/TrappingHistogram.hpp"
 
 namespace archipelago {
+
+/// One independent run of an ensemble: its subset histograms, the orbits behind each, and its seed.
+struct EnsembleMember {
+  std::vector<TrappingHistogram> subsets;
+  std::vector<std::uint64_t> orbitsPerSubset;
+  std::uint64_t seed = 0;
+};
+
+/// Independent runs of the same parameters but the seed (one run: one member), all over `blocks` blocks.
+struct Ensemble {
+  std::vector<EnsembleMember> members;
+  std::uint64_t blocks = 0;  ///< T (blocks done) of every member
+  std::uint32_t q = 1;
+};
+
+/// The pooled subsets of an ensemble (every member's subsets, in member order) and their orbit counts.
+[[nodiscard]] std::vector<TrappingHistogram> pooledSubsets(const Ensemble& e);
+[[nodiscard]] std::vector<std::uint64_t> pooledOrbitsPerSubset(const Ensemble& e);
+/// The statistics of the pooled histograms, errors from the spread over all subsets of all members.
+/// Throws std::invalid_argument as computeStatistics() does, or for an ensemble without members.
+[[nodiscard]] TrappingStatistics ensembleStatistics(const Ensemble& e);
 
 /// The ensemble of `runs` (one run: an ensemble of one).  `names` (same size, or empty) name the runs in
 /// messages.  Throws std::invalid_argument with one line when the runs cannot be combined: none; a parameter

@@ -11,42 +11,13 @@
 #include <string>
 
 #include "core/io/NumberText.hpp"
-#include "core/random/CounterRng.hpp"
+#include "core/stats/LogFits.hpp"
 
 namespace archipelago {
 
 namespace {
 
 using Real = long double;
-
-// A non-negative whole number as a count, clamped to [0, 2⁶⁴ − 2¹¹] (no undefined conversion for huge values).
-std::uint64_t toCount(long double v) {
-  constexpr long double kMax = 18446744073709549568.0L;  // the largest double below 2⁶⁴
-  return v <= 0 ? 0 : v >= kMax ? static_cast<std::uint64_t>(kMax) : static_cast<std::uint64_t>(v);
-}
-
-double uniform(std::uint64_t key, std::uint64_t& counter) {
-  return (static_cast<double>(orbitDraw(key, ++counter)) + 0.5) * 0x1p-52;  // in (0, 1)
-}
-
-// The percentile of sorted finite values, linearly interpolated (NaN for none).
-double percentile(const std::vector<double>& sorted, double p) {
-  if (sorted.empty()) return kTailUndefined;
-  const double at = p * static_cast<double>(sorted.size() - 1);
-  const auto i = static_cast<std::size_t>(std::floor(at));
-  if (i + 1 >= sorted.size()) return sorted.back();
-  return sorted[i] + (at - static_cast<double>(i)) * (sorted[i + 1] - sorted[i]);
-}
-
-// The percentile interval of the finite values; undefined when fewer than 90 % of them are finite (the
-// statistic then has no value in too many replicates to be trusted).
-ConfidenceInterval percentileInterval(std::vector<double> values, double confidence) {
-  const std::size_t all = values.size();
-  values.erase(std::remove_if(values.begin(), values.end(), [](double v) { return !std::isfinite(v); }), values.end());
-  if (values.empty() || static_cast<double>(values.size()) < 0.9 * static_cast<double>(all)) return {};
-  std::sort(values.begin(), values.end());
-  return {percentile(values, (1 - confidence) / 2), percentile(values, (1 + confidence) / 2)};
-}
 
 double standardDeviation(const std::vector<double>& values) {
   Real sum = 0, squares = 0;
@@ -101,85 +72,6 @@ std::string format(const char* f, double v) {
 }
 
 }  // namespace
-
-std::vector<TrappingHistogram> pooledSubsets(const Ensemble& e) {
-  std::vector<TrappingHistogram> out;
-  for (const EnsembleMember& m : e.members) out.insert(out.end(), m.subsets.begin(), m.subsets.end());
-  return out;
-}
-
-std::vector<std::uint64_t> pooledOrbitsPerSubset(const Ensemble& e) {
-  std::vector<std::uint64_t> out;
-  for (const EnsembleMember& m : e.members) out.insert(out.end(), m.orbitsPerSubset.begin(), m.orbitsPerSubset.end());
-  return out;
-}
-
-TrappingStatistics ensembleStatistics(const Ensemble& e) {
-  if (e.members.empty()) throw std::invalid_argument("an ensemble needs at least one run");
-  return computeStatistics(pooledSubsets(e), pooledOrbitsPerSubset(e), e.blocks, e.q);
-}
-
-std::uint64_t poissonVariate(double mean, std::uint64_t key, std::uint64_t& counter) {
-  if (!(mean > 0)) return 0;
-  if (mean < 10) {  // multiplication (Knuth): the number of uniforms whose product stays above e^−mean
-    const double limit = std::exp(-mean);
-    std::uint64_t k = 0;
-    for (double product = uniform(key, counter); product > limit; product *= uniform(key, counter)) ++k;
-    return k;
-  }
-  if (mean > 1e7) {  // normal limit (relative skewness 1/√mean < 3·10⁻⁴), Box–Muller
-    const double u1 = uniform(key, counter), u2 = uniform(key, counter);
-    const double z = std::sqrt(-2 * std::log(u1)) * std::cos(2 * M_PI * u2);
-    return toCount(std::round(mean + std::sqrt(mean) * z));
-  }
-  // PTRS, transformed rejection with squeeze (W. Hörmann, Insurance: Math. Econ. 12, 39, 1993), mean ≥ 10.
-  const double slam = std::sqrt(mean), loglam = std::log(mean);
-  const double b = 0.931 + 2.53 * slam, a = -0.059 + 0.02483 * b;
-  const double invalpha = 1.1239 + 1.1328 / (b - 3.4), vr = 0.9277 - 3.6224 / (b - 2);
-  for (;;) {
-    const double U = uniform(key, counter) - 0.5, V = uniform(key, counter);
-    const double us = 0.5 - std::fabs(U);
-    const double k = std::floor((2 * a / us + b) * U + mean + 0.43);
-    if (us >= 0.07 && V <= vr) return static_cast<std::uint64_t>(k);
-    if (k < 0 || (us < 0.013 && V > us)) continue;
-    if (std::log(V) + std::log(invalpha) - std::log(a / (us * us) + b) <= -mean + k * loglam - std::lgamma(k + 1))
-      return static_cast<std::uint64_t>(k);
-  }
-}
-
-TrappingHistogram resampleHistogram(const TrappingHistogram& h, std::uint64_t seed, std::uint64_t replicate) {
-  TrappingHistogram out;
-  const std::uint64_t key = orbitKey(seed, replicate);
-  std::uint64_t counter = 0;
-  for (int i = 1; i < TrappingHistogram::kBins; ++i) {
-    const std::uint64_t n = h.count(i);
-    if (n == 0) continue;
-    const std::uint64_t drawn = poissonVariate(static_cast<double>(n), key, counter);
-    const Real lengths = static_cast<Real>(drawn) * static_cast<Real>(h.lengthSum(i)) / static_cast<Real>(n);
-    out.setBin(i, drawn, toCount(std::round(lengths)));
-  }
-  return out;
-}
-
-double fitLogSlope(const Series& s, double from, double to, std::size_t* points) {
-  Real sx = 0, sy = 0, sxx = 0, sxy = 0;
-  std::size_t n = 0;
-  for (std::size_t i = 0; i < s.x.size(); ++i) {
-    if (!(s.x[i] >= from && s.x[i] <= to && s.x[i] > 0 && s.value[i] > 0)) continue;
-    const Real x = std::log(static_cast<Real>(s.x[i])), y = std::log(static_cast<Real>(s.value[i]));
-    sx += x;
-    sy += y;
-    sxx += x * x;
-    sxy += x * y;
-    ++n;
-  }
-  if (points) *points = n;
-  if (n < 3) return kTailUndefined;
-  const Real N = static_cast<Real>(n);
-  const Real denominator = N * sxx - sx * sx;
-  if (!(denominator > 0)) return kTailUndefined;
-  return static_cast<double>(-(N * sxy - sx * sy) / denominator);
-}
 
 TailAnalysis analyseTail(const Ensemble& e, const TailOptions& options) {
   if (e.members.empty()) throw std::invalid_argument("an ensemble needs at least one run");
@@ -338,53 +230,6 @@ std::string dominanceMessage(const TailAnalysis& a) {
     add("P_t decays as t^-" + format("%.2f", a.tailFit.gammaP) + " < t^-2 at the tail's end, so D = sum t^2 f_t / 2 "
         "grows with the steps sampled if the tail goes on");
   return "D is dominated by its longest segments; its error cannot be estimated from this run (" + why + ")";
-}
-
-const std::vector<ReferenceExponent>& referenceExponents() {
-  static const std::vector<ReferenceExponent> table = {
-      {1.57, "Cristadoro & Ketzmerick 2008"},
-      {1.5, "Venegeroles 2009"},
-      {1.3, "Shepelyansky 2010"},
-      {3.0, "Chirikov & Shepelyansky 1999"},
-  };
-  return table;
-}
-
-std::vector<ReferenceSlope> referenceSlopes(const Series& P) {
-  double minimum = 0;
-  for (std::size_t i = 0; i < P.x.size(); ++i)
-    if (P.value[i] > 0 && P.x[i] > 0 && (minimum == 0 || P.value[i] < minimum)) minimum = P.value[i];
-  if (!(minimum > 0)) return {};
-  double anchor = 0, anchorP = 0, last = 0;
-  for (std::size_t i = 0; i < P.x.size(); ++i) {
-    if (!(P.x[i] > 0)) continue;
-    last = std::max(last, P.x[i]);
-    if (P.value[i] >= 100 * minimum) {
-      anchor = P.x[i];
-      anchorP = P.value[i];
-    }
-  }
-  if (!(anchor > 0)) return {};
-  const double from = anchor / 10, to = std::max(last, 10 * anchor);
-  constexpr int kSamples = 40;
-  std::vector<ReferenceSlope> out;
-  for (const ReferenceExponent& r : referenceExponents()) {
-    ReferenceSlope slope;
-    slope.gamma = r.gamma;
-    const std::string g = format("%g", r.gamma);
-    slope.label = "t^-" + g + " (" + r.source + ")";
-    std::string source = r.source;
-    if (const auto amp = source.find('&'); amp != std::string::npos) source.replace(amp, 1, "&amp;");
-    slope.labelRich = "t<sup>\u2212" + g + "</sup> (" + source + ")";
-    for (int k = 0; k < kSamples; ++k) {
-      const double t = from * std::pow(to / from, static_cast<double>(k) / (kSamples - 1));
-      slope.line.x.push_back(t);
-      slope.line.value.push_back(anchorP * std::pow(t / anchor, -r.gamma));
-      slope.line.error.push_back(0);
-    }
-    out.push_back(std::move(slope));
-  }
-  return out;
 }
 
 }  // namespace archipelago

@@ -67,55 +67,12 @@
 #include <string>
 #include <vector>
 
+#include "core/stats/Bootstrap.hpp"
+#include "core/stats/RunEnsemble.hpp"
 #include "core/stats/TrappingStatistics.hpp"
 #include "core/trapping/TrappingHistogram.hpp"
 
 namespace archipelago {
-
-inline constexpr double kTailUndefined = std::numeric_limits<double>::quiet_NaN();
-
-/// One independent run of an ensemble: its subset histograms, the orbits behind each, and its seed.
-struct EnsembleMember {
-  std::vector<TrappingHistogram> subsets;
-  std::vector<std::uint64_t> orbitsPerSubset;
-  std::uint64_t seed = 0;
-};
-
-/// Independent runs of the same parameters but the seed (one run: one member), all over `blocks` blocks.
-struct Ensemble {
-  std::vector<EnsembleMember> members;
-  std::uint64_t blocks = 0;  ///< T (blocks done) of every member
-  std::uint32_t q = 1;
-};
-
-/// The pooled subsets of an ensemble (every member's subsets, in member order) and their orbit counts.
-[[nodiscard]] std::vector<TrappingHistogram> pooledSubsets(const Ensemble& e);
-[[nodiscard]] std::vector<std::uint64_t> pooledOrbitsPerSubset(const Ensemble& e);
-/// The statistics of the pooled histograms, errors from the spread over all subsets of all members.
-/// Throws std::invalid_argument as computeStatistics() does, or for an ensemble without members.
-[[nodiscard]] TrappingStatistics ensembleStatistics(const Ensemble& e);
-
-struct BootstrapOptions {
-  std::uint32_t replicates = 1000;  ///< 20 to 100000
-  std::uint64_t seed = 14;          ///< of the resampling (printed with the results)
-  double confidence = 0.95;         ///< of the percentile intervals, in (0, 1)
-};
-
-/// A Poisson variate of mean `mean` ≥ 0 (finite), drawn from the counter stream `key`, whose draw counter
-/// `counter` is advanced (the k-th uniform is (orbitDraw(key, k) + ½)/2⁵²).
-[[nodiscard]] std::uint64_t poissonVariate(double mean, std::uint64_t key, std::uint64_t& counter);
-
-/// Replicate `replicate` of the Poisson bootstrap of `h` (see the file comment).
-[[nodiscard]] TrappingHistogram resampleHistogram(const TrappingHistogram& h, std::uint64_t seed,
-                                                  std::uint64_t replicate);
-
-/// −d log y / d log x: the least-squares slope of log y on log x over the points of `s` with
-/// from ≤ x ≤ to, x > 0 and y > 0 (NaN with fewer than 3 such points).
-[[nodiscard]] double fitLogSlope(const Series& s, double from, double to, std::size_t* points = nullptr);
-
-struct ConfidenceInterval {
-  double lo = kTailUndefined, hi = kTailUndefined;
-};
 
 /// A window of the tail with its exponents and their bootstrap intervals.
 struct TailWindow {
@@ -210,26 +167,5 @@ struct TailAnalysis {
 /// The verdict on D in words, one line: "D is dominated by its longest segments; its error cannot be estimated
 /// from this run (...)" with the reasons, or an empty string when the bootstrap error stands.
 [[nodiscard]] std::string dominanceMessage(const TailAnalysis& a);
-
-/// A reference slope t^−γ for the P_t plot.
-struct ReferenceSlope {
-  double gamma = 0;
-  std::string label;      ///< plain: "t^-1.57 (Cristadoro & Ketzmerick 2008)"
-  std::string labelRich;  ///< rich text: "t<sup>−1.57</sup> (Cristadoro &amp; Ketzmerick 2008)"
-  Series line;            ///< P(t_a)(t/t_a)^−γ sampled on a logarithmic grid (error 0)
-};
-
-/// The reference exponents, once: 1.57, 1.5, 1.3, 3 with their sources.
-struct ReferenceExponent {
-  double gamma;
-  const char* source;
-};
-[[nodiscard]] const std::vector<ReferenceExponent>& referenceExponents();
-
-/// Reference slopes anchored at the data: at t_a, the largest t of `P` where P_t ≥ 100 P_min, P_min being P's
-/// smallest positive value (about one segment's share, so some 100 segments lie beyond t_a; the series alone
-/// decides it, so the GUI and the CLI agree), each line drawn from t_a/10 to P's largest abscissa.  Empty when
-/// P has no such point.
-[[nodiscard]] std::vector<ReferenceSlope> referenceSlopes(const Series& P);
 
 }  // namespace archipelago

@@ -51,11 +51,15 @@
 /// these errors may be underestimates.
 
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "core/trapping/TrappingHistogram.hpp"
 
 namespace archipelago {
+
+/// The value of a quantity the data do not define (a fit with too few points, an error that cannot be estimated).
+inline constexpr double kTailUndefined = std::numeric_limits<double>::quiet_NaN();
 
 /// A sampled curve: value[i] at abscissa x[i], with a one-sigma error (0 when unknown); the three vectors
 /// always have the same size.

@@ -32,6 +32,7 @@
 #include <cmath>
 #include <string_view>
 
+#include "core/stats/ReferenceSlopes.hpp"
 #include "core/stats/TailAnalysis.hpp"
 #include "ui/plots/CrosshairPicker.hpp"
 #include "ui/plots/LogScaleDraw.hpp"

@@ -16,6 +16,8 @@
 #include "core/random/CounterRng.hpp"
 #include "core/run/TrappingRun.hpp"
 #include "core/stats/RunEnsemble.hpp"
+#include "core/random/Poisson.hpp"
+#include "core/stats/ReferenceSlopes.hpp"
 #include "core/stats/TailAnalysis.hpp"
 
 namespace archipelago {
