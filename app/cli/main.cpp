@@ -19,6 +19,8 @@
 #include "MarkovCommand.hpp"
 #include "MergeCommand.hpp"
 #include "PresetsCommand.hpp"
+#include "ManifoldCommand.hpp"
+#include "FluxCommand.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"archipelago-cli " ARCHIPELAGO_VERSION
@@ -37,6 +39,8 @@ int main(int argc, char** argv) {
   archipelago::cli::addStochasticAreaCommand(app, status);
   archipelago::cli::addMarkovCommand(app, status);
   archipelago::cli::addPresetsCommand(app, status);
+  archipelago::cli::addManifoldCommand(app, status);
+  archipelago::cli::addFluxCommand(app, status);
   if (argc > 1 && argv[1][0] != '-') {  // name an unknown command instead of CLI11's generic message
     std::string names;
     bool known = false;

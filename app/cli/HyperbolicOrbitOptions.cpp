@@ -1,0 +1,48 @@
+#include "HyperbolicOrbitOptions.hpp"
+
+#include <stdexcept>
+
+#include "CliCommon.hpp"
+#include "core/manifolds/HyperbolicOrbit.hpp"
+#include "core/periodic/HyperbolicPartner.hpp"
+
+namespace archipelago::cli {
+
+void addHyperbolicOrbitOptions(CLI::App& command, HyperbolicOrbitOptions& o) {
+  addNumberOption(command, "--period", o.period,
+                  "period n of the hyperbolic orbit, [1, " + std::to_string(kMaxManifoldPeriod) +
+                      "]; 1 without --near: the fixed point (sqrt K, 0)");
+  command.add_option("--near", o.near,
+                     "x,y: a guess for a point of the hyperbolic orbit, or a point inside an island of its chain (its "
+                     "hyperbolic partner is used); use --near=-0.3,0 for x < 0");
+  addNumberOption(command, "--radius", o.radius, "how far (physical units) from the guess's iterates to search");
+  command.add_option("--side", o.side, "branch at the orbit point: inward, outward or auto (inward for the fixed point, "
+                                       "outward for a periodic orbit)")
+      ->default_str("auto");
+}
+
+std::optional<PeriodicOrbit> chosenOrbit(long double K, const HyperbolicOrbitOptions& o) {
+  if (o.period < 1 || o.period > kMaxManifoldPeriod)
+    throw std::invalid_argument("--period = " + std::to_string(o.period) + " must be in [1, " +
+                                std::to_string(kMaxManifoldPeriod) + "]");
+  if (o.near.empty()) {
+    if (o.period != 1) throw std::invalid_argument("--near x,y is required with --period " + std::to_string(o.period));
+    return std::nullopt;
+  }
+  if (auto e = manifoldKError(K)) throw std::invalid_argument(*e);
+  const auto v = parseNumbers<long double>("--near", o.near, ',', 2, "two finite numbers x,y");
+  PeriodicOrbitSearch search;
+  search.period = o.period;
+  search.near = {v[0], v[1]};
+  search.searchRadius = o.radius;
+  return findHyperbolicOrbit(K, search);
+}
+
+BranchSide chosenSide(const HyperbolicOrbitOptions& o, bool fixedPoint) {
+  if (o.side == "inward") return BranchSide::Inward;
+  if (o.side == "outward") return BranchSide::Outward;
+  if (o.side == "auto") return fixedPoint ? BranchSide::Inward : BranchSide::Outward;
+  throw std::invalid_argument("--side '" + o.side + "' must be inward, outward or auto");
+}
+
+}  // namespace archipelago::cli
