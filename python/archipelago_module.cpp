@@ -34,6 +34,8 @@
 namespace py = pybind11;
 using namespace archipelago;
 
+void bindManifolds(py::module_& m);  // bind_manifolds.cpp
+
 namespace {
 
 [[noreturn]] void raiseOSError(const std::string& message) {
@@ -259,6 +261,7 @@ PYBIND11_MODULE(_archipelago, m) {
   m.doc() = "Archipelago: stickiness of islands around islands in area-preserving maps "
             "(C. F. F. Karney, Long-time correlations in the stochastic regime, Physica D 8, 1983).";
   m.attr("__version__") = ARCHIPELAGO_VERSION;
+  bindManifolds(m);
 
   // ---- the map (core/map/FixedPointMap.hpp, appendix B) ----
   m.def("map_error", [](double K, double xmin, double xmax) { return mapError({K, xmin, xmax}); },

@@ -75,8 +75,6 @@ int runFlux(FluxOptions o) {
   if (o.kac) {
     o.kacRequest.K = r.K;
     if (auto e = validationError(o.kacRequest)) throw std::invalid_argument(*e);
-    if (o.orbit.period != 1 || !o.orbit.near.empty())
-      throw std::invalid_argument("--kac measures the zone of the fixed point (sqrt K, 0): give no --period/--near");
   }
   if (!o.out.empty()) io::checkWritableTarget(o.out);
   const auto started = std::chrono::steady_clock::now();
@@ -84,7 +82,11 @@ int runFlux(FluxOptions o) {
   r.side = chosenSide(o.orbit, !r.orbit);
   const TurnstileFlux flux = computeTurnstileFlux(r);
   std::optional<KacResult> kac;
-  if (o.kac) kac = runKacCheck(o.kacRequest);
+  if (o.kac) {
+    o.kacRequest.orbit = r.orbit;
+    o.kacRequest.side = r.side;
+    kac = runKacCheck(o.kacRequest);
+  }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   const std::string json = turnstileJson(r, flux, o.kac ? &o.kacRequest : nullptr, kac ? &*kac : nullptr, seconds) + "\n";
   if (!o.out.empty()) io::writeFileAtomically(o.out, json);
@@ -106,7 +108,7 @@ void addFluxCommand(CLI::App& app, int& status) {
   cmd->add_option("--out", o->out, "also write the JSON here (atomically)");
   addNumberOption(*cmd, "--vertices", o->request.maxVertices, "polygon vertices per arc at the finest Romberg level");
   addNumberOption(*cmd, "--domains", o->request.maxDomains, "fundamental domains scanned for the primary points");
-  cmd->add_flag("--kac", o->kac, "also run the Kac check (fixed point only)");
+  cmd->add_flag("--kac", o->kac, "also run the Kac check: mean residence of orbits entering the zone against transit area / flux");
   addNumberOption(*cmd, "--kac-samples", o->kacRequest.entrySamples, "orbits started in the entry lobe");
   addNumberOption(*cmd, "--kac-zone-samples", o->kacRequest.zoneSamples, "points of the zone for the transit area");
   addNumberOption(*cmd, "--kac-steps", o->kacRequest.maxSteps, "T: residence times are capped at T steps");

@@ -4,7 +4,6 @@
 
 #include "CliCommon.hpp"
 #include "core/manifolds/HyperbolicOrbit.hpp"
-#include "core/periodic/HyperbolicPartner.hpp"
 
 namespace archipelago::cli {
 
@@ -25,24 +24,16 @@ std::optional<PeriodicOrbit> chosenOrbit(long double K, const HyperbolicOrbitOpt
   if (o.period < 1 || o.period > kMaxManifoldPeriod)
     throw std::invalid_argument("--period = " + std::to_string(o.period) + " must be in [1, " +
                                 std::to_string(kMaxManifoldPeriod) + "]");
-  if (o.near.empty()) {
-    if (o.period != 1) throw std::invalid_argument("--near x,y is required with --period " + std::to_string(o.period));
-    return std::nullopt;
+  if (o.near.empty() && o.period != 1)
+    throw std::invalid_argument("--near x,y is required with --period " + std::to_string(o.period));
+  std::optional<PhysicalPoint> near;
+  if (!o.near.empty()) {
+    const auto v = parseNumbers<long double>("--near", o.near, ',', 2, "two finite numbers x,y");
+    near = PhysicalPoint{v[0], v[1]};
   }
-  if (auto e = manifoldKError(K)) throw std::invalid_argument(*e);
-  const auto v = parseNumbers<long double>("--near", o.near, ',', 2, "two finite numbers x,y");
-  PeriodicOrbitSearch search;
-  search.period = o.period;
-  search.near = {v[0], v[1]};
-  search.searchRadius = o.radius;
-  return findHyperbolicOrbit(K, search);
+  return hyperbolicOrbitNear(K, o.period, near, o.radius);
 }
 
-BranchSide chosenSide(const HyperbolicOrbitOptions& o, bool fixedPoint) {
-  if (o.side == "inward") return BranchSide::Inward;
-  if (o.side == "outward") return BranchSide::Outward;
-  if (o.side == "auto") return fixedPoint ? BranchSide::Inward : BranchSide::Outward;
-  throw std::invalid_argument("--side '" + o.side + "' must be inward, outward or auto");
-}
+BranchSide chosenSide(const HyperbolicOrbitOptions& o, bool fixedPoint) { return parseBranchSide(o.side, fixedPoint, "--side"); }
 
 }  // namespace archipelago::cli

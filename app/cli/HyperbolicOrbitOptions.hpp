@@ -8,13 +8,11 @@
 #include <optional>
 #include <string>
 
+#include "core/manifolds/HyperbolicOrbit.hpp"
 #include "core/manifolds/ManifoldParameterization.hpp"
 #include "core/periodic/PeriodicOrbit.hpp"
 
 namespace archipelago::cli {
-
-/// The largest period `manifold` and `flux` accept (the 138-chain of §6 is the longest the paper needs).
-inline constexpr int kMaxManifoldPeriod = 2000;
 
 struct HyperbolicOrbitOptions {
   int period = 1;

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -27,7 +29,7 @@ Real lineOffset(SymmetryLine line, Real K, const Point<Real>& z) {
 }
 
 /// The crossing of `line` by Φ_j between σ = a and σ = b (offsets of opposite signs), in __float128: bisection to
-/// adjacent quads, then Newton along σ while it reduces |offset|.
+/// adjacent quads (from a long double bracket: ~50 halvings), then Newton along σ while it reduces |offset|.
 quad refineCrossing(const ManifoldParameterization& u, int j, SymmetryLine line, quad a, quad b) {
   const quad K = u.orbit().K;
   quad fa = lineOffset(line, K, u.point(j, a));
@@ -149,76 +151,137 @@ PrimaryIntersections primaryHeteroclinicPoints(const ManifoldParameterization& u
   const long double K = orbit.K;
   const long double factor = static_cast<long double>(unstable.domainFactor());
   const long double logFactor = std::log(factor);
+  const long double sign = static_cast<long double>(static_cast<int>(side));
 
-  std::vector<HeteroclinicPoint> found;
-  for (int j = 0; j < n; ++j) {
-    if (stop.stop_requested()) break;
-    const quad toBranch = unstableStretchProduct(unstable, j);  // σ on B_j = σ on B_0 · toBranch
-    const long double sign = (static_cast<int>(side) > 0) == (toBranch > 0) ? 1.0L : -1.0L;
-    const long double start = static_cast<long double>(unstable.radius(j)) * std::pow(factor, -kScanInsideDomains);
-    const int samples = kScanPerDomain * (maxDomains + kScanInsideDomains);
-    for (SymmetryLine line : {SymmetryLine::S1, SymmetryLine::S2}) {
-      long double previousSigma = sign * start;
-      long double previous = lineOffset(line, K, unstable.point(j, previousSigma));
-      for (int i = 1; i <= samples; ++i) {
-        const long double sigma = sign * start * std::exp(logFactor * static_cast<long double>(i) / kScanPerDomain);
-        const Point<long double> zl = unstable.point(j, sigma);
-        const long double f = lineOffset(line, K, zl);
-        if (std::isnan(f)) break;  // the branch escaped to infinity
-        if ((f < 0) != (previous < 0) || f == 0) {
-          const quad root = refineCrossing(unstable, j, line, quad(previousSigma), quad(sigma));
-          const Reversor r = reversorOf(line);
-          const std::optional<int> b = reversedIndex(orbit, r, j);  // I(z_j) = z_b
-          HeteroclinicPoint h;
-          h.line = line;
-          h.symmetricIndex = j;
-          h.target = modulo(*b - j, n);
-          h.sigma = root / toBranch;
-          quad mu = reversalScale(unstable, stable, r, *b) * root;  // on Ψ_b
-          for (int step = 0; step < j; ++step) mu *= stable.stretch(*b - step);  // Q⁻ʲ: Ψ_b → Ψ_{b−j}
-          h.mu = mu;
-          h.point = unstable.point(0, h.sigma);
-          const Point<quad> other = stable.point(h.target, h.mu);
-          h.mismatch = smooth::squareRoot((h.point.x - other.x) * (h.point.x - other.x) +
-                                          (h.point.y - other.y) * (h.point.y - other.y));
-          found.push_back(h);
-          break;  // the first crossing of this line on this branch
+  // The scan runs over the fundamental domains of the parameter σ₀ carried to B_0 (σ_j = σ₀ · μ_0⋯μ_{j−1} on B_j),
+  // all branches and both lines together, domain after domain, from kScanInsideDomains inside the series' radius at
+  // z_0: a crossing found on B_j at σ_j is Qʲ of the point σ₀ of B_0, so after domain k every crossing with
+  // |σ₀| < s₀Λ^{k+1} is known, and the scan stops as soon as the primary pair is certain.  Brackets are refined in
+  // long double; only the distinct orbits found are refined in __float128.
+  std::vector<long double> toBranch(static_cast<std::size_t>(n));
+  for (int j = 0; j < n; ++j) toBranch[static_cast<std::size_t>(j)] = static_cast<long double>(unstableStretchProduct(unstable, j));
+  const long double start = static_cast<long double>(unstable.radius(0)) * std::pow(factor, -kScanInsideDomains);
+  struct Track {
+    long double sigma0 = 0;  // carried parameter of the last sample
+    long double offset = 0;
+    bool started = false;
+  };
+  std::vector<Track> tracks(static_cast<std::size_t>(2 * n));
+  struct Candidate {
+    int branch;
+    SymmetryLine line;
+    long double sigma0;  // carried to B_0
+    long double a, b;    // bracket on B_j
+    int target;
+  };
+  std::vector<Candidate> candidates;
+  auto distinctOrbits = [&](std::vector<Candidate> list) {
+    std::sort(list.begin(), list.end(), [](const Candidate& x, const Candidate& y) { return std::fabs(x.sigma0) < std::fabs(y.sigma0); });
+    std::vector<Candidate> distinct;
+    for (const Candidate& c : list) {
+      const bool same = std::any_of(distinct.begin(), distinct.end(), [&](const Candidate& d) {
+        if (d.target != c.target) return false;
+        const long double ratio = std::log(std::fabs(c.sigma0 / d.sigma0)) / logFactor;
+        return std::fabs(ratio - std::round(ratio)) < 1e-9L;
+      });
+      if (!same) distinct.push_back(c);
+    }
+    return distinct;
+  };
+  auto primaryPair = [&](const std::vector<Candidate>& distinct) -> std::optional<std::pair<Candidate, Candidate>> {
+    if (distinct.empty()) return std::nullopt;
+    const Candidate& first = distinct.front();
+    for (std::size_t i = 1; i < distinct.size(); ++i) {
+      const Candidate& c = distinct[i];
+      if (c.target == first.target && std::fabs(c.sigma0) > std::fabs(first.sigma0) &&
+          std::fabs(c.sigma0) < factor * std::fabs(first.sigma0))
+        return std::pair{first, c};
+    }
+    return std::nullopt;
+  };
+  std::optional<std::pair<Candidate, Candidate>> pair;
+  const int domains = maxDomains + kScanInsideDomains;
+  for (int k = 0; k < domains && !pair; ++k) {
+    if (stop.stop_requested()) throw std::runtime_error("stopped");
+    for (int j = 0; j < n; ++j) {
+      for (SymmetryLine line : {SymmetryLine::S1, SymmetryLine::S2}) {
+        Track& t = tracks[static_cast<std::size_t>(2 * j + (line == SymmetryLine::S1 ? 0 : 1))];
+        const long double scale = toBranch[static_cast<std::size_t>(j)];
+        const long double branchSign = (sign > 0) == (scale > 0) ? 1.0L : -1.0L;
+        auto offsetAt = [&](long double sigma0) {
+          return lineOffset(line, K, unstable.point(j, branchSign * std::fabs(sigma0 * scale)));
+        };
+        if (!t.started) {
+          t.sigma0 = start * std::exp(logFactor * k);
+          t.offset = offsetAt(t.sigma0);
+          t.started = true;
         }
-        previous = f;
-        previousSigma = sigma;
+        for (int i = 1; i <= kScanPerDomain; ++i) {
+          const long double sigma0 = start * std::exp(logFactor * (k + static_cast<long double>(i) / kScanPerDomain));
+          const long double f = offsetAt(sigma0);
+          if (std::isnan(f)) break;  // the branch escaped to infinity
+          if ((f < 0) != (t.offset < 0) || f == 0) {
+            // Bisection in long double on the carried parameter.
+            long double a = t.sigma0, b = sigma0, fa = t.offset;
+            for (int it = 0; it < 80 && b - a > 4 * std::numeric_limits<long double>::epsilon() * b; ++it) {
+              const long double m = a + (b - a) / 2;
+              const long double fm = offsetAt(m);
+              if ((fm < 0) == (fa < 0)) {
+                a = m;
+                fa = fm;
+              } else {
+                b = m;
+              }
+            }
+            const std::optional<int> image = reversedIndex(orbit, reversorOf(line), j);  // I(z_j) = z_b
+            candidates.push_back({j, line, sign * (a + (b - a) / 2), a, b, modulo(*image - j, n)});
+          }
+          t.sigma0 = sigma0;
+          t.offset = f;
+        }
       }
     }
+    // Every crossing with |σ₀| < s₀Λ^{k+1} is known: the pair is certain once its second point is below that.
+    std::vector<Candidate> distinct = distinctOrbits(candidates);
+    if (auto found = primaryPair(distinct); found && std::fabs(found->second.sigma0) < start * std::exp(logFactor * (k + 1)))
+      pair = found;
   }
-  if (stop.stop_requested()) throw std::runtime_error("stopped");
-
-  // One entry per orbit: crossings whose σ differ by a power of Λ are the same orbit.
-  std::sort(found.begin(), found.end(), [](const HeteroclinicPoint& a, const HeteroclinicPoint& b) {
-    return smooth::absolute(a.sigma) < smooth::absolute(b.sigma);
-  });
-  std::vector<HeteroclinicPoint> distinct;
-  for (const HeteroclinicPoint& h : found) {
-    const bool same = std::any_of(distinct.begin(), distinct.end(), [&](const HeteroclinicPoint& d) {
-      if (d.target != h.target) return false;
-      const long double ratio = std::log(static_cast<long double>(smooth::absolute(h.sigma / d.sigma))) / logFactor;
-      return std::fabs(ratio - std::round(ratio)) < 1e-9L;
-    });
-    if (!same) distinct.push_back(h);
-  }
-  PrimaryIntersections result;
-  result.crossings = distinct;
+  const std::vector<Candidate> distinct = distinctOrbits(candidates);
   if (distinct.empty())
     throw std::runtime_error("no symmetric heteroclinic point found within " + std::to_string(maxDomains) +
                              " fundamental domains of the " + toString(side) + " branch");
-  result.first = distinct.front();
-  const quad lo = smooth::absolute(result.first.sigma);
-  const auto second = std::find_if(distinct.begin() + 1, distinct.end(), [&](const HeteroclinicPoint& h) {
-    const quad s = smooth::absolute(h.sigma);
-    return h.target == result.first.target && s > lo && s < lo * unstable.domainFactor();
-  });
-  if (second == distinct.end())
+  if (!pair)
     throw std::runtime_error("only one symmetric heteroclinic orbit found on the " + std::string(toString(side)) +
                              " branch (a turnstile needs two)");
-  result.second = *second;
+
+  // Refine in __float128 the distinct orbits up to the pair's second point.
+  auto refine = [&](const Candidate& c) {
+    const quad scale = unstableStretchProduct(unstable, c.branch);
+    const long double branchSign = (sign > 0) == (scale > 0) ? 1.0L : -1.0L;
+    const quad a = quad(branchSign) * smooth::absolute(quad(c.a) * scale), b = quad(branchSign) * smooth::absolute(quad(c.b) * scale);
+    const quad root = refineCrossing(unstable, c.branch, c.line, a, b);
+    const Reversor r = reversorOf(c.line);
+    const int image = *reversedIndex(orbit, r, c.branch);
+    HeteroclinicPoint h;
+    h.line = c.line;
+    h.symmetricIndex = c.branch;
+    h.target = c.target;
+    h.sigma = root / scale;
+    quad mu = reversalScale(unstable, stable, r, image) * root;  // on Ψ_b
+    for (int step = 0; step < c.branch; ++step) mu *= stable.stretch(image - step);  // Q⁻ʲ: Ψ_b → Ψ_{b−j}
+    h.mu = mu;
+    h.point = unstable.point(0, h.sigma);
+    const Point<quad> other = stable.point(h.target, h.mu);
+    h.mismatch = smooth::squareRoot((h.point.x - other.x) * (h.point.x - other.x) + (h.point.y - other.y) * (h.point.y - other.y));
+    return h;
+  };
+  PrimaryIntersections result;
+  for (const Candidate& c : distinct) {
+    if (std::fabs(c.sigma0) > std::fabs(pair->second.sigma0)) break;
+    result.crossings.push_back(refine(c));
+  }
+  result.first = refine(pair->first);
+  result.second = refine(pair->second);
   computeAction(unstable, stable, result.first);
   computeAction(unstable, stable, result.second);
   return result;

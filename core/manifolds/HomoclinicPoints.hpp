@@ -8,14 +8,15 @@
 /// or heteroclinic point, "symmetric".  For an orbit that I₁ (hence I₂ = Q I₁) maps onto itself, every symmetric
 /// heteroclinic orbit meets S₁ or S₂ (Devaney 1976; MacKay, Meiss & Percival 1984, §4).
 ///
-/// Method.  On each of the n branches B_j = Qʲ(B_0) of the unstable manifold (B_0 the chosen branch of z_0), the
-/// first crossing of S₁ and the first crossing of S₂ away from z_j are bracketed on a grid uniform in the branch's
-/// domain coordinate (ManifoldCurve.hpp), 512 points per fundamental domain, in long double, then refined by
-/// bisection and Newton in __float128 along σ (|offset| ≤ 1e−30).  Each crossing is carried back to the branch of
-/// z_0 by Q⁻ʲ, which divides σ by μ_0⋯μ_{j−1}; two crossings whose σ differ by a power of the domain factor Λ are
-/// one orbit.  The primary points are the crossing nearest to z_0 along B_0 (smallest |σ|), h, and the next one
-/// along B_0 that goes to the same point z_b of the orbit, h' (|σ_h| < |σ_h'| < Λ|σ_h|): the turnstile lobe
-/// lies between them.  For the fixed point (√K, 0) and its inner branch they are the two classical primary
+/// Method.  A crossing of S₁ or S₂ by the branch B_j = Qʲ(B_0) of the unstable manifold (B_0 the chosen branch of
+/// z_0) at σ_j is Qʲ of the point σ₀ = σ_j/(μ_0⋯μ_{j−1}) of B_0.  The scan runs over the fundamental domains of σ₀,
+/// all n branches and both lines together, 512 points per domain in long double, from 3 domains inside the local
+/// series' radius outward; a sign change is bisected in long double, and two crossings whose σ₀ differ by a power of
+/// the domain factor Λ are one orbit.  The primary points are the crossing nearest to z_0 along B_0 (smallest |σ₀|),
+/// h, and the next orbit along B_0 that goes to the same point z_b of the orbit, h' (|σ_h| < |σ_h'| < Λ|σ_h|): the
+/// turnstile lobe lies between them.  After domain k every crossing with |σ₀| below its end is known, so the scan
+/// stops once h' is; the distinct orbits up to h' are then refined by bisection and Newton in __float128 along σ
+/// (|offset| ≤ 1e−30).  For the fixed point (√K, 0) and its inner branch they are the two classical primary
 /// homoclinic points near the tip of the loop (−2√K, 0): h on S₁, h' on S₂.
 ///
 /// Each point's stable parameter follows from the symmetry: I(Φ_j(σ)) = Ψ_b(c_b σ) (ManifoldParameterization.hpp),
@@ -57,7 +58,7 @@ struct HeteroclinicPoint {
 struct PrimaryIntersections {
   HeteroclinicPoint first;              ///< h: nearest to z_0 along the branch
   HeteroclinicPoint second;             ///< h': the next one to the same z_b, |σ_h| < |σ_h'| < Λ|σ_h|
-  std::vector<HeteroclinicPoint> crossings;  ///< every distinct symmetric crossing found, carried to B_0, sorted by |σ|
+  std::vector<HeteroclinicPoint> crossings;  ///< the distinct symmetric orbits found up to h', carried to B_0, by |σ|
 };
 
 /// The primary intersections of the branch `side` of W^u(z_0) with the stable manifolds of the orbit.  The orbit

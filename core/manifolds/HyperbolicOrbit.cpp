@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/map/MapParameters.hpp"  // shortestDecimal
+#include "core/periodic/HyperbolicPartner.hpp"
 #include "core/periodic/PeriodicOrbitFinder.hpp"
 
 namespace archipelago {
@@ -85,6 +86,24 @@ HyperbolicOrbit hyperbolicOrbitOf(const PeriodicOrbit& periodic) {
   orbit.multiplier = multiplierOf(trace);
   orbit.fixedPoint = n == 1;
   return orbit;
+}
+
+std::optional<PeriodicOrbit> hyperbolicOrbitNear(long double K, int period, std::optional<PhysicalPoint> near,
+                                                 long double radius) {
+  if (auto e = manifoldKError(K)) throw std::invalid_argument(*e);
+  if (period < 1 || period > kMaxManifoldPeriod)
+    throw std::invalid_argument("period = " + std::to_string(period) + " must be in [1, " +
+                                std::to_string(kMaxManifoldPeriod) + "]");
+  if (!near) {
+    if (period != 1)
+      throw std::invalid_argument("a guess near a point of the orbit is needed for period " + std::to_string(period));
+    return std::nullopt;
+  }
+  PeriodicOrbitSearch search;
+  search.period = period;
+  search.near = *near;
+  search.searchRadius = radius;
+  return findHyperbolicOrbit(K, search);
 }
 
 }  // namespace archipelago

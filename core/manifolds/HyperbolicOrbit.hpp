@@ -20,6 +20,10 @@
 
 namespace archipelago {
 
+/// The largest period of an orbit whose manifolds are computed (the 138-chain of §6 is the longest the paper needs;
+/// the local series costs O(n · 48²) quad operations).
+inline constexpr int kMaxManifoldPeriod = 2000;
+
 /// The valid range of K for the manifolds and fluxes of core/manifolds: 0 < K ≤ 1 (the central island exists
 /// and the fixed point (√K, 0) is hyperbolic; beyond K = 1 the central fixed point is unstable too).
 inline constexpr long double kManifoldMinK = 0;
@@ -50,5 +54,14 @@ struct HyperbolicOrbit {
 /// The orbit `orbit` polished in __float128.  Throws std::invalid_argument when K is outside (0, 1], the orbit is
 /// not hyperbolic (|trace DQⁿ| ≤ 2 + 1e-12), or Newton does not converge back to it (closure above 1e-24).
 [[nodiscard]] HyperbolicOrbit hyperbolicOrbitOf(const PeriodicOrbit& orbit);
+
+/// The orbit every front end means by (period, near, radius): nothing — the fixed point (√K, 0) — for period 1 without
+/// a guess; otherwise the hyperbolic orbit of that period nearest to the guess (findHyperbolicOrbit: a guess inside
+/// an island of a chain gives the chain's hyperbolic partner).  Throws std::invalid_argument for K outside (0, 1], a
+/// period outside [1, kMaxManifoldPeriod], a missing guess for period > 1 or an invalid search, and
+/// std::runtime_error when no hyperbolic orbit is found.
+[[nodiscard]] std::optional<PeriodicOrbit> hyperbolicOrbitNear(long double K, int period,
+                                                               std::optional<PhysicalPoint> near,
+                                                               long double radius = 0.01L);
 
 }  // namespace archipelago

@@ -74,6 +74,9 @@ void runChunks(std::uint64_t samples, int threads, std::vector<ChunkSums>& chunk
 
 std::optional<std::string> validationError(const KacRequest& r) {
   if (auto e = manifoldKError(r.K)) return e;
+  if (r.orbit && r.orbit->K != r.K)
+    return "the orbit's K = " + shortestDecimal(static_cast<double>(r.orbit->K)) + " differs from K = " +
+           shortestDecimal(static_cast<double>(r.K));
   if (r.entrySamples < 1 || r.entrySamples > 1'000'000'000ULL)
     return "entry samples = " + std::to_string(r.entrySamples) + " must be in [1, 1000000000]";
   if (r.zoneSamples < 1 || r.zoneSamples > 1'000'000'000ULL)
@@ -95,6 +98,8 @@ KacResult runKacCheck(const KacRequest& request, const ManifoldProgressCallback&
   if (progress) progress({0, "turnstile"});
   TurnstileRequest turnstile;
   turnstile.K = request.K;
+  turnstile.orbit = request.orbit;
+  turnstile.side = request.side;
   turnstile.maxVertices = 1 << 10;  // the areas come from the actions here; the polygons only draw the regions
   const TurnstileFlux flux = computeTurnstileFlux(turnstile, {}, stop);
   const PolygonRegion zone(flux.zoneBoundary), exit(flux.exitLobe), entry(flux.entryLobe);

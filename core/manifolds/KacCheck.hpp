@@ -1,21 +1,23 @@
 #pragma once
 /// \file KacCheck.hpp
-/// \brief Flux and trapping tied together: the mean residence time of orbits entering the resonance zone of the
-/// fixed point equals the zone's transit area divided by the flux (Kac's lemma for the turnstile).
+/// \brief Flux and trapping tied together: the mean residence time of orbits entering a resonance zone equals the
+/// zone's transit area divided by the flux (Kac's lemma for the turnstile).
 ///
 /// MacKay, Meiss & Percival (1984), §5; Meiss, Rev. Mod. Phys. 64 (1992) 795, §V.A.  Let Z be the zone of
-/// TurnstileFlux.hpp (fixed point (√K, 0), inner branch), E its entry lobe (outside Z, Q(E) ⊂ Z) and X its exit
-/// lobe (inside Z, Q(X) outside).  An orbit started in E makes τ ≥ 1 steps inside Z (Q¹z … Q^τ z ∈ Z) and leaves
-/// from X.  The sets Qᵏ(E ∩ {τ ≥ k}), k ≥ 1, tile the transit region T ⊂ Z (the points of Z that entered, which
-/// are those that will leave: Z minus its invariant islands) without overlap, because a point of Z has one last
-/// entry; Q preserves area, so
+/// TurnstileFlux.hpp (by default the fixed point's (√K, 0), inner branch; or a symmetric hyperbolic orbit's), E its
+/// entry lobe (outside Z, Q(E) ⊂ Z) and X its exit lobe (inside Z, Q(X) outside).  An orbit started in E makes τ ≥ 1
+/// steps inside Z (Q¹z … Q^τ z ∈ Z) and leaves from X.  The sets Qᵏ(E ∩ {τ ≥ k}), k ≥ 1, tile the transit region
+/// T ⊂ Z (the points of Z that entered, which are those that will leave: Z minus its invariant islands) without
+/// overlap, because a point of Z has one last entry; Q preserves area, so
 ///     ∫_E τ dA = area(T),   i.e.   ⟨τ⟩_E = area(T) / Φ,   Φ = area(E), the flux per step.
 /// At a finite horizon the same tiling with k ≤ T gives the exact identity
 ///     Φ · ⟨min(τ, T)⟩_E = area{w ∈ Z : τ_b(w) ≤ T} = area{w ∈ Z : τ_f(w) ≤ T},
-/// τ_b(w) the steps back to the last entry, τ_f(w) the steps forward to the exit; the last equality holds because
-/// Z is symmetric under the involution I whose line its boundary point h lies on (I₁ for the fixed point: h is on
-/// S₁, and I maps W^u[z, h] onto W^s[h, z]) and I Qᵏ = Q⁻ᵏ I exchanges the two, preserving area.  As T → ∞ both sides tend to ⟨τ⟩ and area(T)/Φ; the still-trapped
-/// fraction says how far from that limit a measurement is (sticky orbits near the islands make the approach slow).
+/// τ_b(w) the steps back to the last entry, τ_f(w) the steps forward to the exit.  The last equality holds for any
+/// zone: each visit has one entry point (in Q(E)) and one exit point (in X), Q^{τ−1} carries the first onto the
+/// second preserving area, so the visits of each length τ have equal areas at their entries and at their exits, and
+/// tiling from the exits gives Φ ⟨min(τ, T)⟩ = area{τ_f ≤ T}.  As T → ∞ both sides tend to ⟨τ⟩ and area(T)/Φ; the
+/// still-trapped fraction says how far from that limit a measurement is (sticky orbits near the islands make the
+/// approach slow).  The same holds for Q⁻¹ (the trapping runs' N⁻¹) with entries through Q(X) and exits into E.
 ///
 /// Measurement: the plane map Q in double precision (rounding gives a shadowing orbit, statistically the same);
 /// E, X and Z are the polygons of TurnstileFlux (2048 vertices per arc, PolygonRegion.hpp; their chords miss the
@@ -40,7 +42,9 @@
 namespace archipelago {
 
 struct KacRequest {
-  long double K = 0.1L;                        ///< (0, 1]: the fixed point's zone
+  long double K = 0.1L;                        ///< (0, 1]
+  std::optional<PeriodicOrbit> orbit;          ///< a symmetric hyperbolic orbit; none: the fixed point (√K, 0)
+  BranchSide side = BranchSide::Inward;        ///< the separatrix (TurnstileRequest::side)
   std::uint64_t entrySamples = 10000;          ///< orbits started in the entry lobe, [1, 10⁹]
   std::uint64_t zoneSamples = 10000;           ///< points of the zone for the transit area, [1, 10⁹]
   std::uint64_t maxSteps = 100000;             ///< T, [1, 10¹²]: residence times are capped here on both sides

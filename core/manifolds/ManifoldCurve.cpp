@@ -158,11 +158,10 @@ class Builder {
         64 * std::numeric_limits<long double>::epsilon() * std::max({1.0L, std::fabs(a.t), std::fabs(b.t)});
     const bool continuous = a.valid && b.valid && a.signature == b.signature;
     if (b.t - a.t <= resolution) {
-      if (continuous) {
-        ++curve.unresolved;
-      } else {
-        cut();
-      }
+      // Still too coarse at the resolution of t (the branch runs off to infinity here, or rounding dominates), or
+      // discontinuous: cut rather than draw a chord that is not the curve.
+      if (continuous) ++curve.unresolved;
+      cut();
       emit(b);
       return;
     }

@@ -17,7 +17,9 @@
 /// Refinement.  Each domain starts with `initialPoints` points uniform in t; an interval [a, b] of neighbours is
 /// accepted when its chord is at most maxSpacing and the polyline a → m → b through its parameter midpoint m turns
 /// by at most maxAngle (then m is kept too); otherwise both halves are refined, down to the parameter resolution
-/// (64 ε|t|; intervals still too coarse there are counted as `unresolved`).  With a view rectangle, intervals whose
+/// (64 ε|t|; an interval still too coarse there is counted as `unresolved` and the polyline is cut there rather than
+/// drawn with a chord that is not the curve: it happens where the branch runs off to infinity, whose speed |dz/dt|
+/// grows without bound, or where rounding of long double dominates after many domains).  With a view rectangle, intervals whose
 /// three points lie away from the view (farther than maxSpacing) use coarse bounds instead (spacing at most the
 /// view's larger side, angle 0.5 rad): the curve is resolved where it is seen.
 ///
@@ -82,7 +84,7 @@ struct ManifoldCurve {
   long double length = 0;              ///< arc length drawn
   int domains = 0;                     ///< fundamental domains computed
   std::size_t points = 0;
-  std::size_t unresolved = 0;          ///< intervals still coarser than the bounds at the parameter resolution
+  std::size_t unresolved = 0;          ///< intervals still coarser than the bounds at the parameter resolution (cut)
   std::size_t breaks = 0;              ///< cuts (escapes to infinity, wraps of the torus)
   std::string stoppedBy;               ///< "length", "domains", "points" or "escaped"
 };

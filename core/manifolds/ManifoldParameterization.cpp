@@ -38,6 +38,38 @@ Point<quad> eigenvector(const Matrix2<quad>& m, quad e) {
   return {v.x / n, v.y / n};
 }
 
+/// The centre each point of the orbit winds around: for a chain around the central island, (−√K, 0) is not central
+/// enough for distorted chains, and a sub-chain (the 138-chain of §6: 23 points around each of six islands) winds
+/// around its island.  Among the divisors d of n leaving ≥ 3 points per class, the classes {z_{j+kd}} with the
+/// smallest spread about their centroid are the clusters around one island; point j's centre is its class centroid.
+/// The fixed point and orbits of period < 3: (−√K, 0).
+std::vector<Point<quad>> chainCentres(const HyperbolicOrbit& orbit) {
+  const int n = orbit.period;
+  const Point<quad> central{-smooth::squareRoot(quad(orbit.K)), 0};
+  if (n < 3) return std::vector<Point<quad>>(static_cast<std::size_t>(n), central);
+  std::vector<Point<quad>> best;
+  quad bestSpread = -1;
+  for (int d = 1; n / d >= 3; ++d) {
+    if (n % d != 0) continue;
+    std::vector<Point<quad>> centres(static_cast<std::size_t>(n));
+    quad spread = 0;
+    for (int c = 0; c < d; ++c) {
+      Point<quad> m{0, 0};
+      for (int j = c; j < n; j += d) m = {m.x + orbit.points[static_cast<std::size_t>(j)].x, m.y + orbit.points[static_cast<std::size_t>(j)].y};
+      m = {m.x / (n / d), m.y / (n / d)};
+      for (int j = c; j < n; j += d) {
+        centres[static_cast<std::size_t>(j)] = m;
+        spread += norm({orbit.points[static_cast<std::size_t>(j)].x - m.x, orbit.points[static_cast<std::size_t>(j)].y - m.y});
+      }
+    }
+    if (bestSpread < 0 || spread < bestSpread) {
+      bestSpread = spread;
+      best = centres;
+    }
+  }
+  return best;
+}
+
 template <class Real>
 bool escaped(const Point<Real>& z) {
   return !(smooth::absolute(z.x) < Real(kOverflow) && smooth::absolute(z.y) < Real(kOverflow));
@@ -49,6 +81,13 @@ const char* toString(ManifoldKind kind) noexcept { return kind == ManifoldKind::
 
 const char* toString(BranchSide side) noexcept { return side == BranchSide::Outward ? "outward" : "inward"; }
 
+BranchSide parseBranchSide(const std::string& text, bool fixedPoint, const std::string& option) {
+  if (text == "inward") return BranchSide::Inward;
+  if (text == "outward") return BranchSide::Outward;
+  if (text == "auto") return defaultSide(fixedPoint);
+  throw std::invalid_argument(option + " '" + text + "' must be inward, outward or auto");
+}
+
 ManifoldParameterization::ManifoldParameterization(HyperbolicOrbit orbit, ManifoldKind kind, int order)
     : orbit_(std::move(orbit)), kind_(kind), order_(order) {
   if (order < 2 || order > 200)
@@ -56,7 +95,6 @@ ManifoldParameterization::ManifoldParameterization(HyperbolicOrbit orbit, Manifo
   const int n = orbit_.period;
   if (n < 1 || orbit_.points.size() != static_cast<std::size_t>(n))
     throw std::invalid_argument("the hyperbolic orbit has no points");
-  const quad K = orbit_.K;
   const bool unstable = kind == ManifoldKind::Unstable;
   const auto un = static_cast<std::size_t>(n);
 
@@ -73,9 +111,30 @@ ManifoldParameterization::ManifoldParameterization(HyperbolicOrbit orbit, Manifo
   const Matrix2<quad>& mono = orbit_.monodromy;
   const Matrix2<quad> inverseMono{mono.yy, -mono.xy, -mono.yx, mono.xx};  // det = 1
   Point<quad> v0 = eigenvector(unstable ? mono : inverseMono, orbit_.multiplier);
-  const Point<quad> radial{orbit_.points[0].x + smooth::squareRoot(K), orbit_.points[0].y};
-  const quad along = v0.x * radial.x + v0.y * radial.y;
-  if (along < 0 || (along == 0 && v0.x < 0)) v0 = {-v0.x, -v0.y};
+  {
+    // Orient the branch "outward": at the point of the orbit where the linear term is the most nearly radial (from
+    // that point's centre, chainCentres()), σ > 0 must point away from the centre.  Q maps a branch onto a branch, so
+    // the orientation carried around the cycle (positive stretches) is the same at every point: deciding where the
+    // geometry is clearest avoids the points of a distorted chain where both branches are nearly tangential.
+    const std::vector<Point<quad>> centres = chainCentres(orbit_);
+    Point<quad> v = v0;
+    int j = 0;
+    quad decisive = 0, sign = 1;
+    for (int s = 0; s < n; ++s) {
+      const auto uj = static_cast<std::size_t>(j);
+      const Point<quad> r{orbit_.points[uj].x - centres[uj].x, orbit_.points[uj].y - centres[uj].y};
+      const quad c = (v.x * r.x + v.y * r.y) / (norm(r) + quad(1e-300L));
+      if (smooth::absolute(c) > decisive) {
+        decisive = smooth::absolute(c);
+        sign = c < 0 ? -1 : 1;
+      }
+      const Point<quad> w = step[uj] * v;
+      const quad m = norm(w);
+      v = {w.x / m, w.y / m};
+      j = next(j);
+    }
+    if (sign < 0 || (decisive == 0 && v0.x < 0)) v0 = {-v0.x, -v0.y};
+  }
 
   coefficients_.assign(un, std::vector<Point<quad>>(static_cast<std::size_t>(order) + 1));
   stretch_.assign(un, 0);
@@ -154,6 +213,8 @@ ManifoldParameterization::ManifoldParameterization(HyperbolicOrbit orbit, Manifo
       if (k > order - 3) rho = std::min(rho, std::pow(kSeriesTolerance / (3 * size), e));
     }
     radius_[j] = rho;
+    radiusLd_.push_back(rho);
+    stretchLd_.push_back(static_cast<long double>(stretch_[j]));
     for (const Point<quad>& a : coefficients_[j])
       coefficientsLd_[j].push_back({static_cast<long double>(a.x), static_cast<long double>(a.y)});
   }
@@ -178,9 +239,9 @@ long ManifoldParameterization::stepsTo(int j, long double sigma) const {
   int i = index(j);
   long double s = std::fabs(sigma);
   long m = 0;
-  while (s > static_cast<long double>(radius_[static_cast<std::size_t>(i)]) && m <= kMaxSteps) {
+  while (s > radiusLd_[static_cast<std::size_t>(i)] && m <= kMaxSteps) {
     i = unstable ? (i - 1 + n) % n : (i + 1) % n;
-    s /= std::fabs(static_cast<long double>(stretch_[static_cast<std::size_t>(i)]));
+    s /= std::fabs(stretchLd_[static_cast<std::size_t>(i)]);
     ++m;
   }
   return m;
@@ -194,9 +255,9 @@ Point<Real> ManifoldParameterization::point(int j, Real sigma, Point<Real>* tang
   Real s = sigma;
   Real scale = 1;  // dσ_local/dσ
   long m = 0;
-  while (smooth::absolute(s) > Real(radius_[static_cast<std::size_t>(i)])) {
+  while (smooth::absolute(s) > radiusAs<Real>(static_cast<std::size_t>(i))) {
     i = unstable ? (i - 1 + n) % n : (i + 1) % n;
-    const Real mu = Real(stretch_[static_cast<std::size_t>(i)]);
+    const Real mu = stretchAs<Real>(static_cast<std::size_t>(i));
     s /= mu;
     scale /= mu;
     if (++m > kMaxSteps) {
@@ -249,9 +310,9 @@ Point<Real> ManifoldParameterization::localPoint(int j, Real sigma, long* steps)
   int i = index(j);
   Real s = sigma;
   long m = 0;
-  while (smooth::absolute(s) > Real(radius_[static_cast<std::size_t>(i)])) {
+  while (smooth::absolute(s) > radiusAs<Real>(static_cast<std::size_t>(i))) {
     i = unstable ? (i - 1 + n) % n : (i + 1) % n;
-    s /= Real(stretch_[static_cast<std::size_t>(i)]);
+    s /= stretchAs<Real>(static_cast<std::size_t>(i));
     if (++m > kMaxSteps) {
       *steps = -1;
       const Real nan = std::numeric_limits<Real>::quiet_NaN();

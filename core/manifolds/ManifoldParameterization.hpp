@@ -9,9 +9,12 @@
 ///     so that Qⁿ(Φ_j(σ)) = Φ_j(λσ): σ is a coordinate in which Qⁿ is multiplication by λ (Koenigs/Poincaré);
 ///   - stable manifold of z_j: Ψ_j(σ) with Ψ_j(0) = z_j, |Ψ_j'(0)| = 1 and Q⁻¹(Ψ_j(σ)) = Ψ_{j−1}(ν_j σ),
 ///     ν_0 ⋯ ν_{n−1} = λ — the unstable manifold of Q⁻¹ (whose inverse is exact: x = x' − y', y = y' − g(x));
-///   - branches: σ > 0 and σ < 0.  The linear term of Φ_0 (Ψ_0) is oriented so that σ > 0 leaves z_0 away from
-///     the central elliptic point (−√K, 0) ("outward"); the branches of the other points are its images.  For
-///     λ < 0 the two branches of z_j are exchanged by Qⁿ (a branch is invariant under Q²ⁿ);
+///   - branches: σ > 0 and σ < 0.  The linear terms are oriented so that σ > 0 is the "outward" branch: away from
+///     the centre the chain winds around — (−√K, 0) for the fixed point and the chains around the central island,
+///     the island a sub-chain surrounds (the 138-chain of §6); decided at the point of the orbit where the branch is
+///     most nearly radial and carried around the orbit (Q maps branches onto branches).  For a chain the outward
+///     branches form its outer separatrix, the inward ones its inner separatrix.  For λ < 0 the two branches of z_j
+///     are exchanged by Qⁿ (a branch is invariant under Q²ⁿ);
 ///   - fundamental domain: [ρ/|λ|, ρ] (or [ρ/λ², ρ] when λ < 0): every point of a branch is an image of one.
 ///
 /// Method (Cabré, Fontich & de la Llave, Indiana Univ. Math. J. 52 (2003) 283; Haro et al., "The
@@ -39,6 +42,8 @@
 /// computes that second construction of the stable manifold.
 
 #include <optional>
+#include <string>
+#include <type_traits>
 #include <vector>
 
 #include "core/manifolds/HyperbolicOrbit.hpp"
@@ -50,10 +55,19 @@ enum class ManifoldKind { Unstable, Stable };
 
 [[nodiscard]] const char* toString(ManifoldKind kind) noexcept;
 
-/// A branch of a manifold at a point of the orbit: σ > 0 (outward from (−√K, 0) at z_0) or σ < 0.
+/// A branch of a manifold at a point of the orbit: σ > 0 (outward at z_0, see the file comment) or σ < 0.
 enum class BranchSide { Outward = 1, Inward = -1 };
 
 [[nodiscard]] const char* toString(BranchSide side) noexcept;
+
+/// The branch every front end draws by default: inward for the fixed point (its inner branch bounds the central
+/// island's resonance zone), outward for a periodic orbit (its outer separatrix faces the chaotic sea).
+[[nodiscard]] constexpr BranchSide defaultSide(bool fixedPoint) noexcept {
+  return fixedPoint ? BranchSide::Inward : BranchSide::Outward;
+}
+
+/// "inward", "outward" or "auto" (defaultSide) → the side; throws std::invalid_argument naming `option` otherwise.
+[[nodiscard]] BranchSide parseBranchSide(const std::string& text, bool fixedPoint, const std::string& option = "side");
 
 /// One of the two reversing involutions of Q (SmoothQuadraticMap.hpp): I₁(x, y) = (x, −y − g(x)) with fixed line
 /// S₁: y = K − x², I₂(x, y) = (x − y, −y) with fixed line S₂: y = 0.
@@ -97,6 +111,18 @@ class ManifoldParameterization {
   /// The number of steps of Q (Q⁻¹) point(j, σ) takes: how far σ is from the local series, in steps.
   [[nodiscard]] long stepsTo(int j, long double sigma) const;
 
+  /// The radii and stretches in the precision Real (quad, or rounded once to long double / double).
+  template <class Real>
+  [[nodiscard]] Real radiusAs(std::size_t i) const noexcept {
+    if constexpr (std::is_same_v<Real, quad>) return radius_[i];
+    else return static_cast<Real>(radiusLd_[i]);
+  }
+  template <class Real>
+  [[nodiscard]] Real stretchAs(std::size_t i) const noexcept {
+    if constexpr (std::is_same_v<Real, quad>) return stretch_[i];
+    else return static_cast<Real>(stretchLd_[i]);
+  }
+
   /// The first half of point(): the point of the local series from which `*steps` steps of Q (unstable) or Q⁻¹
   /// (stable) lead to the point with parameter σ at point j, for callers that iterate another map from there (the
   /// torus map Q* of ManifoldCurve.hpp).  *steps = −1 and NaN when more than kMaxSteps would be needed.
@@ -120,6 +146,8 @@ class ManifoldParameterization {
   std::vector<std::vector<smooth::Point<long double>>> coefficientsLd_;
   std::vector<quad> stretch_;
   std::vector<quad> radius_;
+  std::vector<long double> stretchLd_;  ///< the same in long double: converting quad costs ~100 ns a value
+  std::vector<long double> radiusLd_;
 };
 
 /// The index i with I(z_i) = z_j (within 1e-20), or nothing when I does not map the orbit onto itself.

@@ -35,8 +35,24 @@ long double signedShoelaceArea(const std::vector<PhysicalPoint>& v) noexcept {
   return static_cast<long double>(sum / 2);
 }
 
-PolygonRegion::PolygonRegion(std::vector<PhysicalPoint> vertices, int gridCells) : vertices_(std::move(vertices)) {
-  if (vertices_.size() < 3) throw std::invalid_argument("a polygon region needs at least 3 vertices");
+PolygonRegion::PolygonRegion(std::vector<PhysicalPoint> vertices, int gridCells)
+    : PolygonRegion(std::vector<std::vector<PhysicalPoint>>{std::move(vertices)}, gridCells) {}
+
+PolygonRegion::PolygonRegion(const std::vector<std::vector<PhysicalPoint>>& rings, int gridCells) {
+  if (rings.empty()) throw std::invalid_argument("a polygon region needs at least one ring");
+  for (const std::vector<PhysicalPoint>& ring : rings) {
+    if (ring.size() < 3) throw std::invalid_argument("a polygon region needs at least 3 vertices per ring");
+    const long double a = signedShoelaceArea(ring);
+    signedArea_ += a;
+    area_ += std::fabs(a);
+    const int first = static_cast<int>(vertices_.size()), n = static_cast<int>(ring.size());
+    for (int i = 0; i < n; ++i) edges_.emplace_back(first + i, first + (i + 1) % n);
+    vertices_.insert(vertices_.end(), ring.begin(), ring.end());
+  }
+  build(gridCells);
+}
+
+void PolygonRegion::build(int gridCells) {
   bounds_ = {vertices_[0].x, vertices_[0].x, vertices_[0].y, vertices_[0].y};
   for (const PhysicalPoint& p : vertices_) {
     if (!std::isfinite(p.x) || !std::isfinite(p.y)) throw std::invalid_argument("a polygon vertex is not finite");
@@ -45,9 +61,7 @@ PolygonRegion::PolygonRegion(std::vector<PhysicalPoint> vertices, int gridCells)
     bounds_.y0 = std::min(bounds_.y0, p.y);
     bounds_.y1 = std::max(bounds_.y1, p.y);
   }
-  signedArea_ = signedShoelaceArea(vertices_);
-  area_ = std::fabs(signedArea_);
-  const int n = static_cast<int>(vertices_.size());
+  const int n = static_cast<int>(edges_.size());
   const int cells = gridCells > 0 ? gridCells : std::clamp(static_cast<int>(std::sqrt(static_cast<double>(n))) * 2, 8, 512);
   columns_ = rows_ = cells;
   // Cells a little larger than the box so that every vertex falls strictly inside the grid.
@@ -56,8 +70,8 @@ PolygonRegion::PolygonRegion(std::vector<PhysicalPoint> vertices, int gridCells)
   cellHeight_ = h * (1 + 1e-9L) / rows_;
   cells_.assign(static_cast<std::size_t>(columns_) * static_cast<std::size_t>(rows_), {});
   for (int e = 0; e < n; ++e) {
-    const PhysicalPoint& a = vertices_[static_cast<std::size_t>(e)];
-    const PhysicalPoint& b = vertices_[static_cast<std::size_t>((e + 1) % n)];
+    const PhysicalPoint& a = vertices_[static_cast<std::size_t>(edges_[static_cast<std::size_t>(e)].first)];
+    const PhysicalPoint& b = vertices_[static_cast<std::size_t>(edges_[static_cast<std::size_t>(e)].second)];
     const int c0 = column(std::min(a.x, b.x)), c1 = column(std::max(a.x, b.x));
     const int r0 = row(std::min(a.y, b.y)), r1 = row(std::max(a.y, b.y));
     for (int r = r0; r <= r1; ++r)
@@ -68,9 +82,9 @@ PolygonRegion::PolygonRegion(std::vector<PhysicalPoint> vertices, int gridCells)
   for (int r = 0; r < rows_; ++r) {
     const long double y = bounds_.y0 + (r + 0.5L) * cellHeight_;
     crossings.clear();
-    for (int e = 0; e < n; ++e) {
-      const PhysicalPoint& a = vertices_[static_cast<std::size_t>(e)];
-      const PhysicalPoint& b = vertices_[static_cast<std::size_t>((e + 1) % n)];
+    for (const auto& [i, j] : edges_) {
+      const PhysicalPoint& a = vertices_[static_cast<std::size_t>(i)];
+      const PhysicalPoint& b = vertices_[static_cast<std::size_t>(j)];
       if ((a.y > y) != (b.y > y)) crossings.push_back(a.x + (y - a.y) * (b.x - a.x) / (b.y - a.y));
     }
     std::sort(crossings.begin(), crossings.end());
@@ -99,9 +113,10 @@ bool PolygonRegion::contains(long double x, long double y) const noexcept {
   const PhysicalPoint p{x, y};
   const PhysicalPoint centre{bounds_.x0 + (c + 0.5L) * cellWidth_, bounds_.y0 + (r + 0.5L) * cellHeight_};
   bool inside = cell.centreInside;
-  const int n = static_cast<int>(vertices_.size());
-  for (int e : cell.edges)
-    if (crosses(p, centre, vertices_[static_cast<std::size_t>(e)], vertices_[static_cast<std::size_t>((e + 1) % n)])) inside = !inside;
+  for (int e : cell.edges) {
+    const auto& [i, j] = edges_[static_cast<std::size_t>(e)];
+    if (crosses(p, centre, vertices_[static_cast<std::size_t>(i)], vertices_[static_cast<std::size_t>(j)])) inside = !inside;
+  }
   return inside;
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 /// \file PolygonRegion.hpp
-/// \brief A closed polygon as a region of the plane: area (shoelace) and a fast point-in-region test.
+/// \brief A region of the plane bounded by closed polygons (one or several disjoint rings): area (shoelace) and a
+/// fast point-in-region test.
 ///
 /// The regions of core/manifolds — a resonance zone bounded by manifold arcs, a turnstile lobe — are polygons of
 /// thousands of vertices queried at every step of millions of orbit points (the Kac check, the chain-entry
@@ -31,15 +32,18 @@ class PolygonRegion {
   /// `gridCells` ≥ 1 cells per side of the acceleration grid (0: chosen from the number of vertices).  Throws
   /// std::invalid_argument for fewer than 3 vertices or a non-finite one.
   explicit PolygonRegion(std::vector<PhysicalPoint> vertices, int gridCells = 0);
+  /// The region bounded by several closed polygons (even–odd rule over all their edges: the union of disjoint
+  /// rings, e.g. the six zones of a sub-chain around six islands).  Each ring as above.
+  explicit PolygonRegion(const std::vector<std::vector<PhysicalPoint>>& rings, int gridCells = 0);
 
   /// Whether (x, y) is inside (even–odd rule).
   [[nodiscard]] bool contains(long double x, long double y) const noexcept;
-  /// |signedShoelaceArea(vertices)|.
+  /// Σ |signedShoelaceArea(ring)| over the rings.
   [[nodiscard]] long double area() const noexcept { return area_; }
+  /// Σ signedShoelaceArea(ring).
   [[nodiscard]] long double signedArea() const noexcept { return signedArea_; }
   /// The bounding box of the vertices.
   [[nodiscard]] const PhysicalRect& bounds() const noexcept { return bounds_; }
-  [[nodiscard]] const std::vector<PhysicalPoint>& vertices() const noexcept { return vertices_; }
 
  private:
   struct Cell {
@@ -49,7 +53,10 @@ class PolygonRegion {
   [[nodiscard]] int column(long double x) const noexcept;
   [[nodiscard]] int row(long double y) const noexcept;
 
-  std::vector<PhysicalPoint> vertices_;
+  void build(int gridCells);
+
+  std::vector<PhysicalPoint> vertices_;       ///< all rings' vertices, ring after ring
+  std::vector<std::pair<int, int>> edges_;    ///< vertex indices of each edge (a ring's last vertex joins its first)
   PhysicalRect bounds_;
   long double area_ = 0;
   long double signedArea_ = 0;

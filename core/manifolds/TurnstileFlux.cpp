@@ -45,6 +45,31 @@ quad pieceAction(const HyperbolicOrbit& orbit, quad action0, int b, int c) {
   return w;
 }
 
+/// The signed normal offset of the W^s arc `s` from the midpoint of the W^u arc `u` (both of one lobe): positive when
+/// the W^s arc lies to the left of W^u travelled away from its orbit point (increasing |σ|).  The W^s point is the one on
+/// the normal through the W^u midpoint (Newton on μ in __float128, kept within the arc).
+quad lobeSide(const ManifoldArc& u, const ManifoldArc& s) {
+  const quad sigma = (u.from + u.to) / 2;
+  Point<quad> t;
+  const Point<quad> pu = u.manifold->point(u.point, sigma, &t);
+  if (sigma < 0) t = {-t.x, -t.y};
+  const quad lo = s.from < s.to ? s.from : s.to, hi = s.from < s.to ? s.to : s.from;
+  quad mu = (s.from + s.to) / 2;
+  for (int i = 0; i < 60; ++i) {
+    Point<quad> ts;
+    const Point<quad> ps = s.manifold->point(s.point, mu, &ts);
+    const quad f = (ps.x - pu.x) * t.x + (ps.y - pu.y) * t.y;
+    const quad df = ts.x * t.x + ts.y * t.y;
+    if (df == 0) break;
+    quad next = mu - f / df;
+    next = next < lo ? lo : (next > hi ? hi : next);
+    if (smooth::absolute(next - mu) <= quad(1e-32L) * smooth::absolute(mu)) break;
+    mu = next;
+  }
+  const Point<quad> ps = s.manifold->point(s.point, mu);
+  return (t.x * (ps.y - pu.y) - t.y * (ps.x - pu.x)) / smooth::squareRoot(t.x * t.x + t.y * t.y);
+}
+
 }  // namespace
 
 std::optional<std::string> validationError(const TurnstileRequest& r) {
@@ -63,7 +88,7 @@ std::optional<std::string> validationError(const TurnstileRequest& r) {
   return std::nullopt;
 }
 
-std::vector<PhysicalPoint> arcPolygon(const std::vector<ManifoldArc>& arcs, int perArc) {
+std::vector<PhysicalPoint> arcPolygon(const ArcRing& arcs, int perArc) {
   std::vector<PhysicalPoint> v;
   v.reserve(arcs.size() * static_cast<std::size_t>(perArc));
   for (const ManifoldArc& a : arcs) {
@@ -77,13 +102,14 @@ std::vector<PhysicalPoint> arcPolygon(const std::vector<ManifoldArc>& arcs, int 
   return v;
 }
 
-PolygonArea extrapolatedArea(const std::vector<ManifoldArc>& arcs, int firstVertices, int maxVertices,
+PolygonArea extrapolatedArea(const std::vector<ArcRing>& rings, int firstVertices, int maxVertices,
                              std::stop_token stop) {
   PolygonArea out;
   std::vector<std::vector<long double>> table;
   for (int n = firstVertices, level = 0; n <= maxVertices; n *= 2, ++level) {
     checkStop(stop);
-    const long double raw = -signedShoelaceArea(arcPolygon(arcs, n));  // −(counter-clockwise area) = ∮ y dx
+    long double raw = 0;  // −(counter-clockwise area) = ∮ y dx, ring by ring
+    for (const ArcRing& ring : rings) raw -= signedShoelaceArea(arcPolygon(ring, n));
     std::vector<long double> row{raw};
     for (int j = 1; j <= level; ++j) {
       const long double p = std::ldexp(1.0L, 2 * j);  // 4^j
@@ -135,10 +161,8 @@ TurnstileFlux computeTurnstileFlux(const TurnstileRequest& request, const Manifo
   out.lobeArea = std::fabs(static_cast<long double>(out.lobeAction));
   checkStop(stop);
 
-  // The zone: pieces c = 0, b, 2b, … (mod n) in the order they join (piece c ends at z_{c+b}, where piece c+b starts).
-  if (std::gcd(b == 0 ? n : b, n) != 1 && n > 1)
-    throw std::runtime_error("the separatrix arcs from z_0 go to z_" + std::to_string(b) +
-                             ": they do not close into one curve through all " + std::to_string(n) + " points");
+  // The zone: pieces c, c + b, c + 2b, … (mod n) join into closed curves (piece c ends at z_{c+b}, where piece c + b
+  // starts): gcd(b, n) of them (one when b = 0, n = 1).
   // σ_c on Φ_c and μ_c on Ψ_{b+c} for h_c = Q^c(h) (and h'_c): σ_{c+1} = μ_c σ_c, μ_{c+1} = μ_c / ν_{b+c+1}.
   auto carried = [&](const HeteroclinicPoint& p) {
     std::vector<std::pair<quad, quad>> v(static_cast<std::size_t>(n));
@@ -149,54 +173,60 @@ TurnstileFlux computeTurnstileFlux(const TurnstileRequest& request, const Manifo
     return v;
   };
   const auto hc = carried(h), h2c = carried(h2);
-  std::vector<ManifoldArc> zoneArcs;
+  std::vector<ArcRing> zoneRings;
   {
     quad action = 0;
-    int c = 0;
-    for (int piece = 0; piece < n; ++piece) {
-      const auto uc = static_cast<std::size_t>(c);
-      zoneArcs.push_back({&unstable, c, 0, hc[uc].first});
-      zoneArcs.push_back({&stable, b + c, hc[uc].second, 0});
-      action += pieceAction(out.orbit, h.action, b, c);
-      c = modulo(c + b, n);
+    std::vector<bool> used(static_cast<std::size_t>(n), false);
+    for (int start = 0; start < n; ++start) {
+      if (used[static_cast<std::size_t>(start)]) continue;
+      ArcRing ring;
+      int c = start;
+      do {
+        const auto uc = static_cast<std::size_t>(c);
+        used[uc] = true;
+        ring.push_back({&unstable, c, 0, hc[uc].first});
+        ring.push_back({&stable, b + c, hc[uc].second, 0});
+        action += pieceAction(out.orbit, h.action, b, c);
+        c = modulo(c + b, n);
+      } while (c != start);
+      zoneRings.push_back(std::move(ring));
     }
     out.zoneAction = action;
     out.zoneArea = std::fabs(static_cast<long double>(action));
   }
   // The lobe between h' and h (the loop of ΔW(h) − ΔW(h')): W^u from σ_h' to σ_h, W^s from μ_h to μ_h'.
-  const std::vector<ManifoldArc> lobeArcs{{&unstable, 0, h2.sigma, h.sigma}, {&stable, b, h.mu, h2.mu}};
+  const ArcRing lobeArcs{{&unstable, 0, h2.sigma, h.sigma}, {&stable, b, h.mu, h2.mu}};
   // The turnstile, on the last piece p = n − 1, between Q⁻ⁿ(h_p) (σ_p/λ, λμ_p) and h_p: the lobe up to Q⁻ⁿ(h'_p)
   // and the lobe from there to h_p.
   const quad lambda = out.orbit.multiplier;
   const int p = n - 1;
   const auto [sp, mp] = hc[static_cast<std::size_t>(p)];
   const auto [sq, mq] = h2c[static_cast<std::size_t>(p)];
-  const std::vector<ManifoldArc> firstTurnstileArcs{{&unstable, p, sp / lambda, sq / lambda}, {&stable, b + p, mq * lambda, mp * lambda}};
-  const std::vector<ManifoldArc> secondTurnstileArcs{{&unstable, p, sq / lambda, sp}, {&stable, b + p, mp, mq * lambda}};
+  const ArcRing firstTurnstileArcs{{&unstable, p, sp / lambda, sq / lambda}, {&stable, b + p, mq * lambda, mp * lambda}};
+  const ArcRing secondTurnstileArcs{{&unstable, p, sq / lambda, sp}, {&stable, b + p, mp, mq * lambda}};
 
   report(progress, 0.2, "lobe polygon");
-  out.lobePolygon = extrapolatedArea(lobeArcs, request.firstVertices, request.maxVertices, stop);
+  out.lobePolygon = extrapolatedArea({lobeArcs}, request.firstVertices, request.maxVertices, stop);
   report(progress, 0.5, "zone polygon");
-  out.zonePolygon = extrapolatedArea(zoneArcs, request.firstVertices, request.maxVertices, stop);
+  out.zonePolygon = extrapolatedArea(zoneRings, request.firstVertices, request.maxVertices, stop);
 
   report(progress, 0.85, "boundaries");
-  out.zoneBoundary = arcPolygon(zoneArcs, request.boundaryVertices);
+  for (const ArcRing& ring : zoneRings) out.zoneBoundary.push_back(arcPolygon(ring, request.boundaryVertices));
   out.lobeBoundary = arcPolygon(lobeArcs, request.boundaryVertices);
   {
-    // Which turnstile lobe is inside the zone: test a point inside each thin lobe, halfway between the midpoints of
-    // its two arcs.
-    const PolygonRegion zone(out.zoneBoundary);
-    auto inside = [&](const std::vector<ManifoldArc>& arcs) {
-      const Point<long double> a = arcs[0].manifold->point(arcs[0].point, static_cast<long double>((arcs[0].from + arcs[0].to) / 2));
-      const Point<long double> s = arcs[1].manifold->point(arcs[1].point, static_cast<long double>((arcs[1].from + arcs[1].to) / 2));
-      return zone.contains((a.x + s.x) / 2, (a.y + s.y) / 2);
-    };
-    const bool first = inside(firstTurnstileArcs), second = inside(secondTurnstileArcs);
-    if (first == second)
-      throw std::runtime_error(std::string("the turnstile's lobes are both ") + (first ? "inside" : "outside") +
-                               " the zone: the separatrix arcs do not bound a simple resonance zone here");
-    out.exitLobe = arcPolygon(first ? firstTurnstileArcs : secondTurnstileArcs, request.boundaryVertices);
-    out.entryLobe = arcPolygon(first ? secondTurnstileArcs : firstTurnstileArcs, request.boundaryVertices);
+    // Which turnstile lobe is inside the zone.  Both have their W^u arc on the zone's boundary, traversed away from
+    // z_p; a lobe is inside when its W^s arc lies on the interior side of that arc, i.e. to the left of it for a
+    // counter-clockwise boundary (ΔW = ∮ y dx < 0).  The side is the signed normal offset of the W^s arc from the
+    // midpoint of the W^u arc, in __float128, so that lobes far thinner than the polygons' chords are classified.
+    const bool counterClockwise = out.zoneAction < 0;
+    const quad first = lobeSide(firstTurnstileArcs[0], firstTurnstileArcs[1]);
+    const quad second = lobeSide(secondTurnstileArcs[0], secondTurnstileArcs[1]);
+    if ((first > 0) == (second > 0) || first == 0 || second == 0)
+      throw std::runtime_error("the turnstile's lobes lie on the same side of the zone's boundary: the separatrix arcs "
+                               "do not bound a simple resonance zone here");
+    const bool firstInside = (first > 0) == counterClockwise;
+    out.exitLobe = arcPolygon(firstInside ? firstTurnstileArcs : secondTurnstileArcs, request.boundaryVertices);
+    out.entryLobe = arcPolygon(firstInside ? secondTurnstileArcs : firstTurnstileArcs, request.boundaryVertices);
   }
   report(progress, 1, "done");
   return out;

@@ -96,7 +96,9 @@ struct TurnstileFlux {
   PolygonArea zonePolygon;              ///< the zone by method 2 (signed like zoneAction)
 
   /// Boundaries for drawing and for region tests (boundaryVertices per arc), physical coordinates:
-  std::vector<PhysicalPoint> zoneBoundary;   ///< the zone (all n pieces)
+  std::vector<std::vector<PhysicalPoint>> zoneBoundary;  ///< the zone: its closed curves (one through all n points,
+                                                         ///< or gcd(b, n) of them, e.g. one around each of the six
+                                                         ///< islands a 138-chain surrounds)
   std::vector<PhysicalPoint> lobeBoundary;   ///< the lobe between h and h' (the one whose area is reported)
   std::vector<PhysicalPoint> exitLobe;       ///< the turnstile's lobe inside the zone: its points leave in one step
   std::vector<PhysicalPoint> entryLobe;      ///< the turnstile's lobe outside the zone: its points come in
@@ -122,11 +124,14 @@ struct ManifoldArc {
   quad to = 0;
 };
 
-/// The closed polygon with `perArc` vertices on each arc (uniform in its parameter, its end left to the next arc).
-[[nodiscard]] std::vector<PhysicalPoint> arcPolygon(const std::vector<ManifoldArc>& arcs, int perArc);
+/// A closed curve made of manifold arcs, each starting where the previous one ends.
+using ArcRing = std::vector<ManifoldArc>;
 
-/// The Romberg-extrapolated signed area −(counter-clockwise area) of the closed curve (see PolygonArea).
-[[nodiscard]] PolygonArea extrapolatedArea(const std::vector<ManifoldArc>& arcs, int firstVertices, int maxVertices,
+/// The closed polygon with `perArc` vertices on each arc (uniform in its parameter, its end left to the next arc).
+[[nodiscard]] std::vector<PhysicalPoint> arcPolygon(const ArcRing& arcs, int perArc);
+
+/// The Romberg-extrapolated signed area −(counter-clockwise area), summed over the closed curves (see PolygonArea).
+[[nodiscard]] PolygonArea extrapolatedArea(const std::vector<ArcRing>& rings, int firstVertices, int maxVertices,
                                            std::stop_token stop = {});
 
 }  // namespace archipelago

@@ -1,34 +1,60 @@
 #include "core/periodic/HyperbolicPartner.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace archipelago {
 
 namespace {
 
-/// The smallest distance between two points of the orbit (∞ for a fixed point).
-long double smallestSpacing(const PeriodicOrbit& orbit) {
-  long double d = std::numeric_limits<long double>::infinity();
-  for (std::size_t i = 0; i < orbit.points.size(); ++i)
-    for (std::size_t j = i + 1; j < orbit.points.size(); ++j)
-      d = std::min(d, std::hypot(orbit.points[i].x - orbit.points[j].x, orbit.points[i].y - orbit.points[j].y));
-  return d;
+long double distance(const PhysicalPoint& a, const PhysicalPoint& b) { return std::hypot(a.x - b.x, a.y - b.y); }
+
+/// The largest distance from a point of the orbit to its nearest other point: the widest gap between neighbours.
+long double widestGap(const PeriodicOrbit& orbit) {
+  long double widest = 0;
+  for (std::size_t i = 0; i < orbit.points.size(); ++i) {
+    long double nearest = std::numeric_limits<long double>::infinity();
+    for (std::size_t j = 0; j < orbit.points.size(); ++j)
+      if (j != i) nearest = std::min(nearest, distance(orbit.points[i], orbit.points[j]));
+    widest = std::max(widest, nearest);
+  }
+  return widest;
 }
 
-/// The largest distance from a point of `candidate` to the nearest point of `chain`: small for a partner.
-long double separation(const PeriodicOrbit& candidate, const PeriodicOrbit& chain) {
+/// How far `candidate` lies from between the chain's islands: the largest, over its points p, of d₁(p) / s(p), with
+/// d₁ the distance to the nearest point of the chain and s the distance between the two chain points nearest to p
+/// (the local spacing).  A partner point sits between two neighbouring islands (≈ ½ for the six islands of §6; up to
+/// 1.9 at the elongated tips of the 138-chain, where neighbouring islands bunch up); a point of another orbit of the
+/// same period and winding, elsewhere in the sea, gives tens (44 for those near the 138-chain at K = 0.1).
+constexpr long double kMaxBetweenness = 4;
+long double betweenness(const PeriodicOrbit& candidate, const PeriodicOrbit& chain) {
   long double worst = 0;
-  for (const PhysicalPoint& p : candidate.points) worst = std::max(worst, chain.distanceTo(p));
+  for (const PhysicalPoint& p : candidate.points) {
+    std::size_t a = 0, b = 1;
+    if (distance(p, chain.points[b]) < distance(p, chain.points[a])) std::swap(a, b);
+    for (std::size_t i = 2; i < chain.points.size(); ++i) {
+      const long double d = distance(p, chain.points[i]);
+      if (d < distance(p, chain.points[a])) {
+        b = a;
+        a = i;
+      } else if (d < distance(p, chain.points[b])) {
+        b = i;
+      }
+    }
+    worst = std::max(worst, distance(p, chain.points[a]) / distance(chain.points[a], chain.points[b]));
+  }
   return worst;
 }
 
 bool partnerOf(const PeriodicOrbit& candidate, const PeriodicOrbit& chain) {
   return candidate.period == chain.period && !std::isnan(candidate.residue) && !candidate.stable() &&
-         candidate.residue != 0 && candidate.windingTurns == chain.windingTurns;
+         candidate.residue != 0 && candidate.windingTurns == chain.windingTurns &&
+         betweenness(candidate, chain) <= kMaxBetweenness;
 }
 
 }  // namespace
@@ -47,37 +73,34 @@ std::optional<PeriodicOrbit> findHyperbolicPartner(const PeriodicOrbit& chain) {
     const quad root = smooth::squareRoot(quad(chain.K));
     return analysePeriodicOrbit(chain.K, 1, root, 0, OrbitSymmetry::LineS2);
   }
-  const long double spacing = smallestSpacing(chain);
+  if (chain.period == 2) return std::nullopt;  // two points: no "between" to speak of
   PeriodicOrbitSearch search;
   search.period = chain.period;
   search.near = start;
-  search.searchRadius = spacing;
+  search.searchRadius = widestGap(chain);
   std::optional<PeriodicOrbit> best;
-  long double bestSeparation = std::numeric_limits<long double>::infinity();
+  long double bestBetweenness = std::numeric_limits<long double>::infinity();
   for (PeriodicOrbit& candidate : findSymmetricPeriodicOrbits(chain.K, search)) {
     if (!partnerOf(candidate, chain)) continue;
-    const long double s = separation(candidate, chain);
-    if (s < bestSeparation) {
-      bestSeparation = s;
+    const long double b = betweenness(candidate, chain);
+    if (b < bestBetweenness) {
+      bestBetweenness = b;
       best = std::move(candidate);
     }
   }
   if (!best) {
-    const std::size_t neighbour = [&] {
-      std::size_t index = 1;
-      long double d = std::numeric_limits<long double>::infinity();
-      for (std::size_t i = 1; i < chain.points.size(); ++i) {
-        const long double di = std::hypot(chain.points[i].x - start.x, chain.points[i].y - start.y);
-        if (di < d) {
-          d = di;
-          index = i;
-        }
-      }
-      return index;
-    }();
-    const PhysicalPoint middle{(start.x + chain.points[neighbour].x) / 2, (start.y + chain.points[neighbour].y) / 2};
-    if (std::optional<PeriodicOrbit> general = refinePeriodicOrbit(chain.K, chain.period, middle))
-      if (partnerOf(*general, chain)) best = std::move(general);
+    // Not symmetric (or missed): damped Newton from the midpoints of z_0 and its nearest neighbours.
+    std::vector<std::size_t> order(chain.points.size() - 1);
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i + 1;
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return distance(start, chain.points[a]) < distance(start, chain.points[b]);
+    });
+    for (std::size_t k = 0; k < std::min<std::size_t>(2, order.size()) && !best; ++k) {
+      const PhysicalPoint& other = chain.points[order[k]];
+      const PhysicalPoint middle{(start.x + other.x) / 2, (start.y + other.y) / 2};
+      if (std::optional<PeriodicOrbit> general = refinePeriodicOrbit(chain.K, chain.period, middle))
+        if (partnerOf(*general, chain)) best = std::move(general);
+    }
   }
   if (best) *best = best->rotatedToStart(best->nearestIndex(start));
   return best;
@@ -87,11 +110,11 @@ PeriodicOrbit findHyperbolicOrbit(long double K, const PeriodicOrbitSearch& requ
   PeriodicOrbitSearch search = request;
   search.stableOnly = false;
   validate(K, search);
-  const std::vector<PeriodicOrbit> found = findSymmetricPeriodicOrbits(K, search);  // nearest first
-  for (const PeriodicOrbit& orbit : found)
-    if (!std::isnan(orbit.residue) && !orbit.stable() && orbit.residue != 0) return orbit;
-  for (const PeriodicOrbit& orbit : found) {
-    if (!orbit.stable()) continue;
+  // The nearest orbit found decides: unstable, it is the one; elliptic, the guess is in one of its islands and the
+  // orbit wanted is that chain's partner.
+  for (const PeriodicOrbit& orbit : findSymmetricPeriodicOrbits(K, search)) {  // nearest first
+    if (std::isnan(orbit.residue) || orbit.residue == 0) continue;
+    if (!orbit.stable()) return orbit;
     if (std::optional<PeriodicOrbit> partner = findHyperbolicPartner(orbit))
       return partner->rotatedToStart(partner->nearestIndex(search.near));
   }
