@@ -211,7 +211,7 @@ void bindManifolds(py::module_& m) {
         "finely only there.  Returns arrays s (arc length), x, y, piece (the polyline is cut where the branch escapes\n"
         "or wraps), parameter, and the counts.  ValueError for bad input.");
   m.def("flux", &flux, py::arg("K") = 0.1, py::kw_only(), py::arg("period") = 1, py::arg("near") = py::none(),
-        py::arg("radius") = 0.01, py::arg("side") = "auto", py::arg("vertices") = 1 << 14, py::arg("domains") = 12,
+        py::arg("radius") = 0.01, py::arg("side") = "auto", py::arg("vertices") = 1 << 14, py::arg("domains") = 0,
         py::arg("kac") = false, py::arg("kac_samples") = 10000, py::arg("kac_zone_samples") = 10000,
         py::arg("kac_steps") = 100000, py::arg("seed") = 1, py::arg("threads") = 0,
         "The turnstile flux through the separatrix of the fixed point (sqrt K, 0) or of a symmetric hyperbolic\n"

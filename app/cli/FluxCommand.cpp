@@ -46,6 +46,7 @@ void printText(const TurnstileFlux& f, const KacResult* k, double seconds) {
                 static_cast<long double>(p->point.y), p->line == smooth::SymmetryLine::S1 ? "S1" : "S2", p->symmetricIndex,
                 quadText(p->action, 25).c_str());
   std::printf("# lobe_area_action: %s\n", quadText(f.lobeAction < 0 ? -f.lobeAction : f.lobeAction, 25).c_str());
+  std::printf("# lobe_action_error: %s\n", quadText(f.lobeActionError, 2).c_str());
   std::printf("# lobe_area_polygon: %.19Lg\n", std::fabs(f.lobePolygon.area));
   std::printf("# lobe_polygon_error: %.3Lg (Romberg, %d vertices per arc)\n", f.lobePolygon.error, f.lobePolygon.verticesPerArc);
   std::printf("# lobe_agreeing_digits: %s\n", digitsText(f.lobeDigits()).c_str());
@@ -107,7 +108,7 @@ void addFluxCommand(CLI::App& app, int& status) {
   cmd->add_flag("--json", o->json, "print JSON instead of '# key: value' lines");
   cmd->add_option("--out", o->out, "also write the JSON here (atomically)");
   addNumberOption(*cmd, "--vertices", o->request.maxVertices, "polygon vertices per arc at the finest Romberg level");
-  addNumberOption(*cmd, "--domains", o->request.maxDomains, "fundamental domains scanned for the primary points");
+  addNumberOption(*cmd, "--domains", o->request.maxDomains, "fundamental domains scanned for the primary points (0: automatic)");
   cmd->add_flag("--kac", o->kac, "also run the Kac check: mean residence of orbits entering the zone against transit area / flux");
   addNumberOption(*cmd, "--kac-samples", o->kacRequest.entrySamples, "orbits started in the entry lobe");
   addNumberOption(*cmd, "--kac-zone-samples", o->kacRequest.zoneSamples, "points of the zone for the transit area");

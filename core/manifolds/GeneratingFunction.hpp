@@ -30,11 +30,14 @@
 /// i.e. the lobe's area, with the sign of ∮ y dx = −(counter-clockwise area): positive for a lobe whose boundary
 /// runs clockwise.  The flux per iteration across the separatrix of a fixed point is one lobe's area
 /// |ΔW(h) − ΔW(h')| for the two primary homoclinic orbits (MacKay–Meiss–Percival, eq. 3.6; Meiss 2015, eq. 12);
-/// for a period-n orbit whose separatrix is made of n such arcs, n lobes cross per step.  The area of the
-/// resonance zone bounded by W^u[z → h] and W^s[h → z] is ΔW(h) itself (summed over the n arcs).
+/// for a period-n orbit whose separatrix is made of n such arcs, images of each other, one lobe still crosses per
+/// step (each of the n turnstiles acts once in n steps; TurnstileFlux.hpp).  The area of the resonance zone bounded
+/// by W^u[z → h] and W^s[h → z] is ΔW(h) itself (summed over the n arcs).
 ///
-/// Convergence: near a hyperbolic point the summand is O(|h_t − z|²) (L is stationary on orbits and
-/// ∂₁L = −y, ∂₂L = y' vanish to first order along the orbit's variation), so the sums converge like λ^(−2|t|).
+/// Convergence: with δ_t = h_t − z_t = O(λ^(−|t|/n)), the summand is ∂₁L δ_t + ∂₂L δ_{t+1} + O(δ²).  The first-order
+/// parts telescope (z is an orbit: ∂₂L(z_{t−1}, z_t) + ∂₁L(z_t, z_{t+1}) = 0), leaving a boundary term y_{t+1} δ_{t+1} at
+/// the truncation; at the fixed point y = 0 and each summand is O(δ²).  So the sums converge geometrically, and are
+/// stopped when the summands fall below 1e−40 of the sum (HomoclinicPoints.cpp).
 ///
 /// Arithmetic: the terms are evaluated in the caller's Real; core/manifolds sums them in __float128 (113 bits):
 /// ΔW is O(K^{5/4}) while the lobe, the difference of two such actions, is exponentially small in K^{−1/4}

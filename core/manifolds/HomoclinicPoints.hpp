@@ -45,6 +45,7 @@ struct HeteroclinicPoint {
   int symmetricIndex = 0;               ///< j: Qʲ(h_0) lies on `line`
   quad mismatch = 0;                    ///< |Φ_0(σ) − Ψ_b(μ)| in __float128: the two manifolds' points agree
   quad action = 0;                      ///< ΔW(h_0) (GeneratingFunction.hpp), __float128
+  quad actionError = 0;                 ///< bound on its rounding: 4 ε_quad Σ_t (|L(h_t, h_{t+1})| + |L(z_t, z_{t+1})|)
   int actionTerms = 0;                  ///< terms summed (both directions)
 };
 
@@ -62,12 +63,13 @@ struct PrimaryIntersections {
 };
 
 /// The primary intersections of the branch `side` of W^u(z_0) with the stable manifolds of the orbit.  The orbit
-/// must be mapped onto itself by I₁ (and so by I₂) and have λ > 0.  `maxDomains` ≥ 1 fundamental domains are
-/// scanned on each branch.  Throws std::invalid_argument for an orbit that is not symmetric or has λ < 0, and
+/// must be mapped onto itself by I₁ (and so by I₂) and have λ > 0.  At most `maxDomains` fundamental domains are
+/// scanned (0: automatic, ⌈30/ln Λ⌉ capped at 1000 — a multiplier near 1, at small K, needs many to reach the
+/// intersections; the scan stops as soon as the pair is found).  Throws std::invalid_argument for an orbit that is not symmetric or has λ < 0, and
 /// std::runtime_error when fewer than two suitable crossings are found.
 [[nodiscard]] PrimaryIntersections primaryHeteroclinicPoints(const ManifoldParameterization& unstable,
                                                              const ManifoldParameterization& stable, BranchSide side,
-                                                             int maxDomains = 12, std::stop_token stop = {});
+                                                             int maxDomains = 0, std::stop_token stop = {});
 
 /// ΔW(h) for a point with `target`, `sigma` and `mu` set (fills action and actionTerms).
 void computeAction(const ManifoldParameterization& unstable, const ManifoldParameterization& stable,

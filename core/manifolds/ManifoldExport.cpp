@@ -156,6 +156,7 @@ std::string turnstileJson(const TurnstileRequest& request, const TurnstileFlux& 
   }
   j[f.orbit.fixedPoint ? "homoclinic_points" : "heteroclinic_points"] = primary;
   j["lobe_area"] = areaJson(f.lobeAction, f.lobePolygon, f.lobeDigits());
+  j["lobe_area"]["action_error"] = static_cast<double>(f.lobeActionError);
   j["flux_per_step"] = static_cast<double>(f.lobeArea);
   j["zone_area"] = areaJson(f.zoneAction, f.zonePolygon, f.zoneDigits());
   if (kac && k) {

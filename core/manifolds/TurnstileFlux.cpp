@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/manifolds/GeneratingFunction.hpp"
+#include "core/manifolds/ManifoldExport.hpp"  // quadText
 
 namespace archipelago {
 
@@ -77,8 +78,8 @@ std::optional<std::string> validationError(const TurnstileRequest& r) {
   if (r.orbit && r.orbit->K != r.K)
     return "the orbit's K = " + shortestDecimal(static_cast<double>(r.orbit->K)) + " differs from K = " +
            shortestDecimal(static_cast<double>(r.K));
-  if (r.maxDomains < 1 || r.maxDomains > 1000)
-    return "the domains scanned = " + std::to_string(r.maxDomains) + " must be in [1, 1000]";
+  if (r.maxDomains < 0 || r.maxDomains > 1000)
+    return "the domains scanned = " + std::to_string(r.maxDomains) + " must be in [0, 1000] (0: automatic)";
   if (r.firstVertices < 4) return "the first level's vertices per arc = " + std::to_string(r.firstVertices) + " must be >= 4";
   if (r.maxVertices < r.firstVertices || r.maxVertices > (1 << 20))
     return "the finest level's vertices per arc = " + std::to_string(r.maxVertices) + " must be in [" +
@@ -108,8 +109,19 @@ PolygonArea extrapolatedArea(const std::vector<ArcRing>& rings, int firstVertice
   std::vector<std::vector<long double>> table;
   for (int n = firstVertices, level = 0; n <= maxVertices; n *= 2, ++level) {
     checkStop(stop);
-    long double raw = 0;  // −(counter-clockwise area) = ∮ y dx, ring by ring
-    for (const ArcRing& ring : rings) raw -= signedShoelaceArea(arcPolygon(ring, n));
+    long double raw = 0;    // −(counter-clockwise area) = ∮ y dx, ring by ring
+    long double floor = 0;  // the shoelace sum's rounding, worst case: one rounding of each cross product, ε Σ|cross|
+    for (const ArcRing& ring : rings) {
+      const std::vector<PhysicalPoint> v = arcPolygon(ring, n);
+      raw -= signedShoelaceArea(v);
+      long double cross = 0;
+      for (std::size_t i = 0; i < v.size(); ++i) {
+        const PhysicalPoint& a = v[i];
+        const PhysicalPoint& b = v[(i + 1) % v.size()];
+        cross += std::fabs((a.x - v[0].x) * (b.y - v[0].y)) + std::fabs((b.x - v[0].x) * (a.y - v[0].y));
+      }
+      floor += std::numeric_limits<long double>::epsilon() * cross;
+    }
     std::vector<long double> row{raw};
     for (int j = 1; j <= level; ++j) {
       const long double p = std::ldexp(1.0L, 2 * j);  // 4^j
@@ -122,7 +134,7 @@ PolygonArea extrapolatedArea(const std::vector<ArcRing>& rings, int firstVertice
     out.area = row.back();
     if (level >= 1) {
       const long double previous = out.error;
-      out.error = std::fabs(row.back() - table[static_cast<std::size_t>(level - 1)].back());
+      out.error = std::max(std::fabs(row.back() - table[static_cast<std::size_t>(level - 1)].back()), floor);
       // Converged to the rounding of long double (relative to the area, or, for a lobe much smaller than its
       // coordinates, the error stopped falling at the extrapolation's order): more levels only add noise.
       const long double eps = std::numeric_limits<long double>::epsilon();
@@ -158,7 +170,13 @@ TurnstileFlux computeTurnstileFlux(const TurnstileRequest& request, const Manifo
   const HeteroclinicPoint& h2 = out.intersections.second;
   const int b = out.target = h.target;
   out.lobeAction = h.action - h2.action;
+  out.lobeActionError = h.actionError + h2.actionError;
   out.lobeArea = std::fabs(static_cast<long double>(out.lobeAction));
+  if (!(out.lobeActionError <= quad(1e-9L) * smooth::absolute(out.lobeAction)))
+    throw std::runtime_error("the lobe's area (" + quadText(smooth::absolute(out.lobeAction), 3) +
+                             ") is not resolved by __float128: the rounding of the two actions is ~" +
+                             quadText(out.lobeActionError, 2) + " (K too small: the lobe is exponentially small, "
+                             "A ~ 3.9e5 exp(-2 pi^2 / ln lambda))");
   checkStop(stop);
 
   // The zone: pieces c, c + b, c + 2b, … (mod n) join into closed curves (piece c ends at z_{c+b}, where piece c + b

@@ -56,7 +56,8 @@ struct TurnstileRequest {
   long double K = 0.1L;                   ///< (0, 1]
   std::optional<PeriodicOrbit> orbit;     ///< a hyperbolic symmetric periodic orbit; none: the fixed point (√K, 0)
   BranchSide side = BranchSide::Inward;   ///< the unstable branch at z_0 (inward: the fixed point's loop)
-  int maxDomains = 12;                    ///< fundamental domains scanned for the primary points, [1, 1000]
+  int maxDomains = 0;                     ///< fundamental domains scanned for the primary points, [0, 1000]
+                                          ///< (0: automatic, HomoclinicPoints.hpp)
   int firstVertices = 32;                 ///< N₀ ≥ 4: vertices per arc at the first Romberg level
   int maxVertices = 1 << 14;              ///< ≥ N₀, ≤ 2^20: vertices per arc at the finest level
   int boundaryVertices = 2048;            ///< ≥ 8: vertices per arc of the returned boundaries (drawing, regions)
@@ -69,7 +70,10 @@ struct TurnstileRequest {
 struct PolygonArea {
   long double area = 0;       ///< signed: −(counter-clockwise area) along the path of the action's loop, i.e. the
                               ///< same sign as the action ΔW it is compared with
-  long double error = 0;      ///< |T(i,i) − T(i−1,i−1)| of the last two diagonal entries of Romberg's table
+  long double error = 0;      ///< the larger of |T(i,i) − T(i−1,i−1)| (the last two diagonal entries of Romberg's
+                              ///< table) and a worst-case bound on the shoelace sum's rounding, ε_ld Σ(|x_i y_{i+1}| +
+                              ///< |x_{i+1} y_i|) about the first vertex (one rounding per product; typically the sum
+                              ///< is 100 times more accurate)
   long double raw = 0;        ///< the plain (signed) shoelace area of the finest polygon
   int verticesPerArc = 0;     ///< N of the finest polygon
   int levels = 0;             ///< rows of Romberg's table computed
@@ -89,6 +93,7 @@ struct TurnstileFlux {
   int target = 0;                       ///< b: the arcs go from z_0 to z_b
 
   quad lobeAction = 0;                  ///< ΔW(h) − ΔW(h') (signed, __float128)
+  quad lobeActionError = 0;             ///< bound on its rounding (the two actions' actionError)
   long double lobeArea = 0;             ///< |lobeAction|: the flux per step
   PolygonArea lobePolygon;              ///< the same lobe by method 2 (signed like lobeAction)
   quad zoneAction = 0;                  ///< Σ_c ΔW(h_c) (signed)
@@ -109,7 +114,9 @@ struct TurnstileFlux {
 };
 
 /// Computes everything above.  Throws std::invalid_argument for an invalid request (validationError), an orbit that is
-/// not hyperbolic or not symmetric; std::runtime_error when the primary points are not found or when stopped.
+/// not hyperbolic or not symmetric; std::runtime_error when the primary points are not found, when the lobe is not
+/// resolved by __float128 (its action error above 1e−9 of it: K below ≈ 3e−4 for the fixed point, where the lobe is
+/// below 1e−25 of the zone), or when stopped.
 /// progress (if set) is called between stages on the calling thread; `stop` is checked between stages and levels.
 [[nodiscard]] TurnstileFlux computeTurnstileFlux(const TurnstileRequest& request,
                                                  const ManifoldProgressCallback& progress = {},

@@ -161,7 +161,7 @@ TEST(HomoclinicPoints, PeriodSixChainHasTwoPrimaryHeteroclinicOrbits) {
 TEST(HomoclinicPoints, RejectsNonSymmetricOrReflectingOrbits) {
   const Manifolds m(hyperbolicFixedPoint(0.1L));
   EXPECT_THROW((void)primaryHeteroclinicPoints(m.stable, m.unstable, BranchSide::Inward), std::invalid_argument);
-  EXPECT_THROW((void)primaryHeteroclinicPoints(m.unstable, m.stable, BranchSide::Inward, 0), std::invalid_argument);
+  EXPECT_THROW((void)primaryHeteroclinicPoints(m.unstable, m.stable, BranchSide::Inward, -1), std::invalid_argument);
 }
 
 }  // namespace

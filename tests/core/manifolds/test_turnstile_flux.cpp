@@ -21,15 +21,18 @@ TurnstileFlux fixedPointFlux(long double K) {
   return computeTurnstileFlux(r);
 }
 
-// Both methods, at the issue's three K.  Error budget (TurnstileFlux.hpp): the action is good to ~1e−30 absolute; the
-// long double polygon's rounding floor is ~1e−19 × perimeter ≈ 1e−20, i.e. 1e−16 of the smallest lobe (K = 0.05),
-// and the Romberg error estimate must be below that scale.  Asserted: ≥ 13 agreeing digits (the issue asks 9) and a
-// polygon error below 1e−14 of the lobe.
+// Both methods, at the issue's three K.  Error budget (TurnstileFlux.hpp): the action is good to ~1e−30 absolute (its
+// bound, lobeActionError, below 1e−26 of the lobe); the long double polygon's rounding is ~1e−19 × perimeter ≈ 1e−20,
+// i.e. 1e−16 of the smallest lobe (K = 0.05), and its reported error, a worst-case bound (one rounding per cross
+// product, ≈ 5e−18 there), must stay below 1e−12 of the lobe.  Asserted: ≥ 13 agreeing digits (the issue asks 9).
 TEST(TurnstileFlux, ActionAndPolygonAgreeAtTheIssuesK) {
   for (long double K : {0.05L, 0.1L, 0.2L}) {
     const TurnstileFlux f = fixedPointFlux(K);
     EXPECT_GE(f.lobeDigits(), 13) << "K " << static_cast<double>(K);
-    EXPECT_LE(f.lobePolygon.error, 1e-14L * f.lobeArea);
+    EXPECT_LE(f.lobePolygon.error, 1e-12L * f.lobeArea);
+    EXPECT_LE(f.lobeActionError, quad(1e-26L) * f.lobeArea);
+    // The reported errors bound the difference of the methods.
+    EXPECT_LE(std::fabs(std::fabs(f.lobePolygon.area) - f.lobeArea), f.lobePolygon.error + static_cast<long double>(f.lobeActionError));
     EXPECT_GE(f.zoneDigits(), 13);
     // Signs: the lobe's loop h' → h along W^u runs counter-clockwise (action difference < 0), the zone's clockwise.
     EXPECT_LT(f.lobeAction, 0);
@@ -174,6 +177,19 @@ TEST(TurnstileFlux, TurnstileLobesExchangePointsWithTheZone) {
       ++checked;
     }
   }
+}
+
+// "No silent wrong answer": where the lobe is below quad's resolution (K = 1e−4: ~1e−37 against actions of 1e−6) the
+// flux is refused with the reason; where long double cannot resolve the polygon (K = 0.001: the lobe is 1e−16 of the
+// zone) its error says so.
+TEST(TurnstileFlux, RefusesOrFlagsWhatArithmeticCannotResolve) {
+  TurnstileRequest r;
+  r.K = 1e-4L;
+  EXPECT_THROW((void)computeTurnstileFlux(r), std::runtime_error);
+  r.K = 0.001L;
+  const TurnstileFlux f = computeTurnstileFlux(r);
+  EXPECT_GE(f.lobePolygon.error, std::fabs(std::fabs(f.lobePolygon.area) - f.lobeArea));
+  EXPECT_GT(f.lobePolygon.error, 1e-3L * f.lobeArea);
 }
 
 TEST(TurnstileFlux, ValidatesAndStops) {
