@@ -171,9 +171,7 @@ py::dict flux(double K, int period, const py::object& near, double radius, const
   k.maxSteps = kacSteps;
   k.seed = seed;
   k.threads = threads;
-  if (kac) {
-    if (auto e = validationError(k)) throw std::invalid_argument(*e);
-  }
+  if (auto e = validationError(k)) throw std::invalid_argument(*e);  // checked even without kac=True
   const std::optional<PhysicalPoint> at = guess(near);
   TurnstileFlux f;
   std::optional<KacResult> result;

@@ -73,10 +73,8 @@ int runFlux(FluxOptions o) {
   r.K = o.map.K;
   if (auto e = manifoldKError(r.K)) throw std::invalid_argument(*e);
   if (auto e = validationError(r)) throw std::invalid_argument(*e);
-  if (o.kac) {
-    o.kacRequest.K = r.K;
-    if (auto e = validationError(o.kacRequest)) throw std::invalid_argument(*e);
-  }
+  o.kacRequest.K = r.K;  // the Kac options are checked even without --kac: a bad value is never ignored silently
+  if (auto e = validationError(o.kacRequest)) throw std::invalid_argument(*e);
   if (!o.out.empty()) io::checkWritableTarget(o.out);
   const auto started = std::chrono::steady_clock::now();
   r.orbit = chosenOrbit(r.K, o.orbit);

@@ -16,8 +16,8 @@
 ///     y' dx' − y dx = dL(x, x')          (the sign convention: L generates Q with y = −∂₁L, y' = +∂₂L).
 /// Integrating along γ:  ∫_{Q(γ)} y dx − ∫_γ y dx = L(end) − L(start), the ends evaluated as (x, x') pairs.
 ///
-/// Actions of homoclinic and heteroclinic orbits (MacKay, Meiss & Percival, Physica D 13 (1984) 55, §3;
-/// Meiss, Chaos 25 (2015) 097602, §4).  Let h_t (t ∈ ℤ) be an orbit with h_t → z_{a+t} as t → −∞ and
+/// Actions of homoclinic and heteroclinic orbits (MacKay, Meiss & Percival, Physica D 13 (1984) 55;
+/// Meiss, Chaos 25 (2015) 097602).  Let h_t (t ∈ ℤ) be an orbit with h_t → z_{a+t} as t → −∞ and
 /// h_t → z_{b+t} as t → +∞, where z_0 … z_{n−1} is a hyperbolic periodic orbit (indices mod n; n = 1 and
 /// a = b = 0 for the fixed point (√K, 0)).  Define
 ///     ΔW(h) = Σ_{t<0} [L(h_t, h_{t+1}) − L(z_{a+t}, z_{a+t+1})] + Σ_{t≥0} [L(h_t, h_{t+1}) − L(z_{b+t}, z_{b+t+1})]
@@ -29,7 +29,7 @@
 ///     ΔW(h) − ΔW(h') = ∮ y dx  around the lobe  h' —W^u→ h —W^s→ h',
 /// i.e. the lobe's area, with the sign of ∮ y dx = −(counter-clockwise area): positive for a lobe whose boundary
 /// runs clockwise.  The flux per iteration across the separatrix of a fixed point is one lobe's area
-/// |ΔW(h) − ΔW(h')| for the two primary homoclinic orbits (MacKay–Meiss–Percival, eq. 3.6; Meiss 2015, eq. 12);
+/// |ΔW(h) − ΔW(h')| for the two primary homoclinic orbits (MacKay–Meiss–Percival 1984; Meiss 2015);
 /// for a period-n orbit whose separatrix is made of n such arcs, images of each other, one lobe still crosses per
 /// step (each of the n turnstiles acts once in n steps; TurnstileFlux.hpp).  The area of the resonance zone bounded
 /// by W^u[z → h] and W^s[h → z] is ΔW(h) itself (summed over the n arcs).

@@ -6,7 +6,7 @@
 /// Reversibility (SmoothQuadraticMap.hpp): Q = I₂ ∘ I₁, I Q I = Q⁻¹, so an involution I maps W^u(z) onto W^s(I z).
 /// A point h of W^u(z_j) on the fixed line S of I is therefore on W^s(I z_j) as well: a homoclinic (I z_j = z_j)
 /// or heteroclinic point, "symmetric".  For an orbit that I₁ (hence I₂ = Q I₁) maps onto itself, every symmetric
-/// heteroclinic orbit meets S₁ or S₂ (Devaney 1976; MacKay, Meiss & Percival 1984, §4).
+/// heteroclinic orbit meets S₁ or S₂ (Devaney, Trans. AMS 218 (1976) 89; MacKay, Meiss & Percival 1984).
 ///
 /// Method.  A crossing of S₁ or S₂ by the branch B_j = Qʲ(B_0) of the unstable manifold (B_0 the chosen branch of
 /// z_0) at σ_j is Qʲ of the point σ₀ = σ_j/(μ_0⋯μ_{j−1}) of B_0.  The scan runs over the fundamental domains of σ₀,

@@ -3,7 +3,7 @@
 /// \brief Flux and trapping tied together: the mean residence time of orbits entering a resonance zone equals the
 /// zone's transit area divided by the flux (Kac's lemma for the turnstile).
 ///
-/// MacKay, Meiss & Percival (1984), §5; Meiss, Rev. Mod. Phys. 64 (1992) 795, §V.A.  Let Z be the zone of
+/// MacKay, Meiss & Percival, Physica D 13 (1984) 55; Meiss, Rev. Mod. Phys. 64 (1992) 795.  Let Z be the zone of
 /// TurnstileFlux.hpp (by default the fixed point's (√K, 0), inner branch; or a symmetric hyperbolic orbit's), E its
 /// entry lobe (outside Z, Q(E) ⊂ Z) and X its exit lobe (inside Z, Q(X) outside).  An orbit started in E makes τ ≥ 1
 /// steps inside Z (Q¹z … Q^τ z ∈ Z) and leaves from X.  The sets Qᵏ(E ∩ {τ ≥ k}), k ≥ 1, tile the transit region

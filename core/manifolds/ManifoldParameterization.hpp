@@ -18,7 +18,7 @@
 ///   - fundamental domain: [ρ/|λ|, ρ] (or [ρ/λ², ρ] when λ < 0): every point of a branch is an image of one.
 ///
 /// Method (Cabré, Fontich & de la Llave, Indiana Univ. Math. J. 52 (2003) 283; Haro et al., "The
-/// Parameterization Method for Invariant Manifolds", Springer 2016, ch. 2): the invariance equation is solved
+/// Parameterization Method for Invariant Manifolds", Springer 2016): the invariance equation is solved
 /// order by order in σ.  Q is quadratic, so the coefficient of σᵏ (k ≥ 2) of Q(Φ_j) is
 ///     DQ(z_j) a_{j,k} + (2c_{j,k}, 2c_{j,k}),      c_{j,k} = Σ_{i=1}^{k−1} x_{j,i} x_{j,k−i},
 /// and invariance gives a_{j+1,k} = μ_j^{−k} (DQ(z_j) a_{j,k} + b_{j,k}): a cyclic 2×2 system around the orbit,

@@ -138,6 +138,9 @@ def baseline(command, d):
         "stochastic-area": ["stochastic-area", "--iterations", "20000", "--orbits", "4",
                             "--json", os.path.join(d, "a.json")],
         "markov": ["markov", "--m", "3", "--N", "100", "--csv", os.path.join(d, "m.csv")],
+        "manifold": ["manifold", "--length", "0.5", "--out", os.path.join(d, "w.csv")],
+        "flux": ["flux", "--vertices", "64", "--kac-samples", "50", "--kac-zone-samples", "50", "--kac-steps", "100",
+                 "--out", os.path.join(d, "f.json")],
     }.get(command)
 
 
@@ -285,6 +288,8 @@ def output_targets(d):
         ("stats --csv", ["stats", run_file, "--csv", "{}"], "folder"),
         ("stochastic-area --json", ["stochastic-area", "--iterations", "20000", "--orbits", "4", "--json", "{}"], "file"),
         ("markov --csv", ["markov", "--m", "3", "--N", "100", "--csv", "{}"], "file"),
+        ("manifold --out", ["manifold", "--length", "0.5", "--out", "{}"], "file"),
+        ("flux --out", ["flux", "--vertices", "64", "--out", "{}"], "file"),
     ]
 
 
