@@ -6,8 +6,10 @@
 /// MacKay, Meiss & Percival, "Transport in Hamiltonian systems", Physica D 13 (1984) 55; Meiss, "Thirty years of
 /// turnstiles and transport", Chaos 25 (2015) 097602.  The resonance zone of a hyperbolic orbit z_0 … z_{n−1} is
 /// bounded by n pieces W^u(z_c)[z_c → h_c] ∪ W^s(z_{c+b})[h_c → z_{c+b}] (h_c = Q^c(h), h the primary
-/// heteroclinic point nearest to z_0, HomoclinicPoints.hpp); for the fixed point (√K, 0) it is the loop around the
-/// central island (n = 1, b = 0).  The pieces are images of each other (piece c = Q^c(piece 0)), so Q⁻¹ maps the
+/// heteroclinic point nearest to z_0, HomoclinicPoints.hpp), joined at the points c → c + b → c + 2b → …: one closed
+/// curve when gcd(b, n) = 1 (the six islands of §6), else gcd(b, n) of them (the 138-chain: b = −6, one curve of 23
+/// pieces around each of the six islands it surrounds); for the fixed point (√K, 0) it is the loop around the central
+/// island (n = 1, b = 0).  The pieces are images of each other (piece c = Q^c(piece 0)), so Q⁻¹ maps the
 /// zone onto itself except on the last piece, where W^u(z_{n−1}) now ends at Q⁻ⁿ(h_{n−1}) instead of h_{n−1}: the
 /// zone and its preimage differ by the two lobes between those points (the turnstile), the exit lobe inside the zone
 /// (its points leave in one step) and the entry lobe outside (they come in).  Each lobe has the area of the lobe
@@ -21,23 +23,25 @@
 ///      uniform in the analytic parameter (σ on W^u, μ on W^s; ManifoldParameterization.hpp), in long double, for
 ///      N = N₀, 2N₀, 4N₀, …; the area between a chord and its arc is an odd function of the chord's parameter length,
 ///      so the polygon's error is a series in even powers 1/N², 1/N⁴, … (Euler–Maclaurin) and Richardson
-///      extrapolation (Romberg's table) removes them.  The result is the extrapolated value, its error the last
-///      difference of the table's diagonal, `raw` the plain shoelace area of the finest polygon.
-/// The two share only the parameterizations of the manifolds (checked separately to 1e−33 by their invariance), not
-/// the formula: one sums L along two orbits, the other integrates around a curve.
+///      extrapolation (Romberg's table) removes them.  The result is the extrapolated value, its error the larger of
+///      the table's last diagonal difference and a bound on the shoelace sum's rounding, `raw` the plain shoelace area
+///      of the finest polygon.
+/// The two share only the parameterizations of the manifolds (checked separately, to 1e−30 relative, by their
+/// invariance), not the formula: one sums L along two orbits, the other integrates around a curve.
 ///
 /// Arithmetic, step by step, and why:
 ///   - Taylor coefficients, homoclinic points (bisection + Newton), the action sums: __float128.  The lobe is the
 ///     difference of two actions of size ≈ 9.6 K^{5/4} and is exponentially smaller (7e−4 of them at K = 0.05,
 ///     ~1e−16 at K = 0.001): quad's 34 digits leave ≥ 17 after the cancellation; long double's 19 would leave 3 at
-///     K = 0.001.  The sums are stationary in the orbit (errors in h enter squared), so h to ~1e−32 suffices.
+///     K = 0.001.  The sums are stationary in the orbit (errors in h enter squared), so h to ~1e−32 suffices.  Their
+///     rounding is bounded (HeteroclinicPoint::actionError) and a lobe not resolved to 1e−9 by it is refused.
 ///   - polygon vertices: long double.  Rounding moves a vertex by ~1e−19 of the coordinates, almost all of it along
 ///     the curve; the area moves by ~1e−19 × perimeter ≈ 1e−20, i.e. 1e−16 of the lobe at K = 0.05.  In double
 ///     (1e−16 × perimeter ≈ 3e−17) it would be 2e−13 of that lobe: enough for 9 digits at K ≥ 0.05, not below
 ///     K ≈ 0.01.  The shoelace sum is taken about a vertex of the polygon and accumulated in __float128.
 ///   - Where the lobe is so small that long double cannot resolve it (below ~1e−13 of the zone, K ≲ 0.01) the
 ///     polygon's `error` says so, and the action (method 1) remains valid.
-/// Measured (docs/manifolds.md): at K = 0.05, 0.1, 0.2 the two agree to 16–17 significant digits.
+/// Measured (docs/manifolds.md): at K = 0.05, 0.1, 0.2 the two agree to 17–18 significant digits.
 
 #include <functional>
 #include <optional>
