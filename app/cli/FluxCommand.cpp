@@ -101,7 +101,8 @@ void addFluxCommand(CLI::App& app, int& status) {
       "flux", "turnstile flux through the separatrix of the fixed point (sqrt K, 0) or of a symmetric hyperbolic "
               "periodic orbit: the lobe area by the action difference and by the polygon area, the zone's area, and "
               "(--kac) the mean residence time against transit area / flux");
-  addMapOptions(*cmd, o->map);
+  // Only K: the flux is of the plane map Q (no box), so --xmin/--xmax would be ignored silently.
+  addNumberOption(*cmd, "--K", o->map.K, "map parameter K of Q: y′ = y + 2(x² − K), x′ = x + y′ (§2); in (0, 1]");
   addHyperbolicOrbitOptions(*cmd, o->orbit);
   cmd->add_flag("--json", o->json, "print JSON instead of '# key: value' lines");
   cmd->add_option("--out", o->out, "also write the JSON here (atomically)");
