@@ -41,6 +41,8 @@
 namespace py = pybind11;
 using namespace archipelago;
 
+void bindManifolds(py::module_& m);  // bind_manifolds.cpp
+
 namespace {
 
 [[noreturn]] void raiseOSError(const std::string& message) {
@@ -380,6 +382,7 @@ PYBIND11_MODULE(_archipelago, m) {
       PyErr_SetString(PyExc_MemoryError, e.what());
     }
   });
+  bindManifolds(m);
 
   // ---- the map (core/map/FixedPointMap.hpp, appendix B) ----
   m.def("map_error", [](double K, double xmin, double xmax) { return mapError({K, xmin, xmax}); },

@@ -21,6 +21,8 @@
 #include "PresetsCommand.hpp"
 #include "RotationCommand.hpp"
 #include "IndicatorCommand.hpp"
+#include "ManifoldCommand.hpp"
+#include "FluxCommand.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"archipelago-cli " ARCHIPELAGO_VERSION
@@ -41,6 +43,8 @@ int main(int argc, char** argv) {
   archipelago::cli::addPresetsCommand(app, status);
   archipelago::cli::addRotationCommand(app, status);
   archipelago::cli::addIndicatorCommand(app, status);
+  archipelago::cli::addManifoldCommand(app, status);
+  archipelago::cli::addFluxCommand(app, status);
   if (argc > 1 && argv[1][0] != '-') {  // name an unknown command instead of CLI11's generic message
     std::string names;
     bool known = false;

@@ -200,15 +200,17 @@ std::vector<PeriodicOrbit> findSymmetricPeriodicOrbits(long double K, const Peri
   return found;
 }
 
-std::optional<PeriodicOrbit> refinePeriodicOrbit(long double K, int period, PhysicalPoint guess, int maxIterations) {
-  if (period < 1 || !std::isfinite(K) || !std::isfinite(guess.x) || !std::isfinite(guess.y)) return std::nullopt;
-  const quad k = K;
-  auto residual = [&](Point<quad> z, smooth::Matrix2<quad>* jacobian) {
-    const Point<quad> image = smooth::iterate(k, z, period, jacobian);
-    return Point<quad>{image.x - z.x, image.y - z.y};
+namespace {
+
+/// Damped Newton on Qⁿ(z) − z in __float128 with the exact Jacobian DQⁿ − I (refinePeriodicOrbit's method):
+/// the converged point, or nothing when Newton escaped, stalled above the quad rounding floor or the Jacobian
+/// was singular.
+std::optional<Point<quad>> newtonPeriodicPoint(quad k, int period, Point<quad> z, int maxIterations) {
+  auto residual = [&](Point<quad> w, smooth::Matrix2<quad>* jacobian) {
+    const Point<quad> image = smooth::iterate(k, w, period, jacobian);
+    return Point<quad>{image.x - w.x, image.y - w.y};
   };
   auto size = [](Point<quad> v) { return smooth::absolute(v.x) + smooth::absolute(v.y); };
-  Point<quad> z{guess.x, guess.y};
   bool converged = false;
   for (int iteration = 0; iteration < maxIterations && !converged; ++iteration) {
     smooth::Matrix2<quad> m;
@@ -243,10 +245,28 @@ std::optional<PeriodicOrbit> refinePeriodicOrbit(long double K, int period, Phys
     const quad norm = size(residual(z, nullptr));
     converged = norm <= quad(1e-24L);
   }
-  if (!converged || minimalPeriod(k, z, period) != period) return std::nullopt;
-  PeriodicOrbit orbit = analysePeriodicOrbit(K, period, z.x, z.y, OrbitSymmetry::None);
+  if (!converged) return std::nullopt;
+  return z;
+}
+
+}  // namespace
+
+std::optional<PeriodicOrbit> refinePeriodicOrbit(long double K, int period, PhysicalPoint guess, int maxIterations) {
+  if (period < 1 || !std::isfinite(K) || !std::isfinite(guess.x) || !std::isfinite(guess.y)) return std::nullopt;
+  const quad k = K;
+  const std::optional<Point<quad>> z = newtonPeriodicPoint(k, period, Point<quad>{guess.x, guess.y}, maxIterations);
+  if (!z || minimalPeriod(k, *z, period) != period) return std::nullopt;
+  PeriodicOrbit orbit = analysePeriodicOrbit(K, period, z->x, z->y, OrbitSymmetry::None);
   if (!(orbit.closure <= kClosureTolerance)) return std::nullopt;
   return orbit;
+}
+
+std::optional<smooth::Point<quad>> polishPeriodicPoint(long double K, int period, smooth::Point<quad> guess,
+                                                       int maxIterations) {
+  if (period < 1 || !std::isfinite(K) || !std::isfinite(static_cast<long double>(guess.x)) ||
+      !std::isfinite(static_cast<long double>(guess.y)))
+    return std::nullopt;
+  return newtonPeriodicPoint(quad(K), period, guess, maxIterations);
 }
 
 PeriodicOrbit findPeriodicOrbit(long double K, const PeriodicOrbitSearch& search, std::stop_token stop) {

@@ -28,6 +28,7 @@
 
 #include "core/map/FixedPointMap.hpp"  // PhysicalPoint
 #include "core/periodic/PeriodicOrbit.hpp"
+#include "core/periodic/SmoothQuadraticMap.hpp"
 
 namespace archipelago {
 
@@ -58,6 +59,14 @@ void validate(long double K, const PeriodicOrbitSearch& search);
 /// nothing otherwise.
 [[nodiscard]] std::optional<PeriodicOrbit> refinePeriodicOrbit(long double K, int period, PhysicalPoint guess,
                                                                int maxIterations = 100);
+
+/// The same damped Newton as refinePeriodicOrbit(), returning the converged point itself in __float128 (113 bits):
+/// for callers that need the orbit to quad precision (the invariant manifolds of core/manifolds are built on it;
+/// PeriodicOrbit keeps long double points).  Nothing when K or the guess is not finite, the period is < 1, or
+/// Newton did not converge (|Qⁿ(z) − z| above 1e-24); the minimal period is not checked.
+[[nodiscard]] std::optional<smooth::Point<quad>> polishPeriodicPoint(long double K, int period,
+                                                                     smooth::Point<quad> guess,
+                                                                     int maxIterations = 100);
 
 /// The orbit nearest to the guess: the nearest symmetric one, else the general Newton result from the guess.
 /// Throws std::invalid_argument for invalid input and std::runtime_error ("no periodic orbit of period n found

@@ -96,6 +96,9 @@ def baseline(command, d):
         "rotation": ["rotation", "--x=-0.3", "--y", "0", "--iterations", "100"],
         "indicator": ["indicator", "--kind", "dig", "--size", "4x4", "--iterations", "100",
                       "--npy", os.path.join(d, "i.npy"), "--quiet"],
+        "manifold": ["manifold", "--length", "0.5", "--out", os.path.join(d, "w.csv")],
+        "flux": ["flux", "--vertices", "64", "--kac-samples", "50", "--kac-zone-samples", "50", "--kac-steps", "100",
+                 "--out", os.path.join(d, "f.json")],
     }.get(command)
 
 
@@ -255,6 +258,8 @@ def output_targets(d):
         ("indicator --out", ["indicator", "--size", "4x4", "--iterations", "100", "--quiet", "--out", "{}"], "file"),
         ("indicator --verdicts", ["indicator", "--size", "4x4", "--iterations", "100", "--quiet", "--npy",
                                   os.path.join(d, "ok.npy"), "--verdicts", "{}"], "file"),
+        ("manifold --out", ["manifold", "--length", "0.5", "--out", "{}"], "file"),
+        ("flux --out", ["flux", "--vertices", "64", "--out", "{}"], "file"),
     ]
 
 

@@ -1,0 +1,212 @@
+#include "core/manifolds/KacCheck.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "core/parallel/ParallelFor.hpp"
+#include "core/random/CounterRng.hpp"
+
+namespace archipelago {
+
+namespace {
+
+/// Samples per unit of parallel work: results are summed per chunk in index order, then over chunks in order, so
+/// they do not depend on the number of threads.
+constexpr std::uint64_t kChunk = 256;
+/// Chunks between two progress reports (and stop checks beyond parallelFor's own).
+constexpr std::uint64_t kChunksPerBatch = 64;
+/// The zone is re-checked every this many steps (a safety net; see the header).
+constexpr std::uint64_t kZoneCheckInterval = 1024;
+
+/// A uniform random point of `region`, by rejection from its bounding box, from the draws of sample `index`.
+PhysicalPoint uniformPoint(const PolygonRegion& region, std::uint64_t seed, std::uint64_t index) {
+  const std::uint64_t key = orbitKey(seed, index);
+  const PhysicalRect& b = region.bounds();
+  for (std::uint64_t k = 1;; k += 2) {
+    const long double u = std::ldexp(static_cast<long double>(orbitDraw(key, k)), -52);
+    const long double v = std::ldexp(static_cast<long double>(orbitDraw(key, k + 1)), -52);
+    const PhysicalPoint p{b.x0 + u * (b.x1 - b.x0), b.y0 + v * (b.y1 - b.y0)};
+    if (region.contains(p.x, p.y)) return p;
+  }
+}
+
+struct Step {
+  double K;
+  void operator()(double& x, double& y) const noexcept {
+    y += 2 * (x * x - K);
+    x += y;
+  }
+};
+
+struct ChunkSums {
+  double sum = 0, sumSquares = 0;
+  std::uint64_t count = 0, capped = 0, longest = 0, inconsistent = 0, steps = 0;
+};
+
+template <class Body>
+void runChunks(std::uint64_t samples, int threads, std::vector<ChunkSums>& chunks, const Body& body,
+               const ManifoldProgressCallback& progress, double fraction0, double fraction1, const char* stage,
+               std::stop_token stop) {
+  const std::uint64_t total = (samples + kChunk - 1) / kChunk;
+  chunks.assign(total, {});
+  for (std::uint64_t first = 0; first < total; first += kChunksPerBatch) {
+    const std::uint64_t count = std::min(kChunksPerBatch, total - first);
+    const bool complete = parallelFor(
+        count,
+        [&](std::size_t i, int) {
+          const std::uint64_t chunk = first + i;
+          ChunkSums& s = chunks[chunk];
+          const std::uint64_t end = std::min(samples, (chunk + 1) * kChunk);
+          for (std::uint64_t sample = chunk * kChunk; sample < end; ++sample) body(sample, s);
+        },
+        stop, threads);
+    if (!complete || stop.stop_requested()) throw std::runtime_error("stopped");
+    if (progress)
+      progress({fraction0 + (fraction1 - fraction0) * static_cast<double>(first + count) / static_cast<double>(total), stage});
+  }
+}
+
+}  // namespace
+
+std::optional<std::string> validationError(const KacRequest& r) {
+  if (auto e = manifoldKError(r.K)) return e;
+  if (r.orbit && r.orbit->K != r.K)
+    return "the orbit's K = " + shortestDecimal(static_cast<double>(r.orbit->K)) + " differs from K = " +
+           shortestDecimal(static_cast<double>(r.K));
+  if (r.entrySamples < 1 || r.entrySamples > 1'000'000'000ULL)
+    return "entry samples = " + std::to_string(r.entrySamples) + " must be in [1, 1000000000]";
+  if (r.zoneSamples < 1 || r.zoneSamples > 1'000'000'000ULL)
+    return "zone samples = " + std::to_string(r.zoneSamples) + " must be in [1, 1000000000]";
+  if (r.maxSteps < 1 || r.maxSteps > 1'000'000'000'000ULL)
+    return "maximum steps = " + std::to_string(r.maxSteps) + " must be in [1, 1000000000000]";
+  if (r.threads < 0 || r.threads > 4096) return "threads = " + std::to_string(r.threads) + " must be in [0, 4096]";
+  return std::nullopt;
+}
+
+double KacResult::discrepancy() const noexcept {
+  const double sigma = std::hypot(meanResidenceError, predictedResidenceError);
+  return sigma > 0 ? (meanResidence - predictedResidence) / sigma : 0;
+}
+
+KacResult runKacCheck(const KacRequest& request, const ManifoldProgressCallback& progress, std::stop_token stop) {
+  if (auto e = validationError(request)) throw std::invalid_argument(*e);
+  const auto started = std::chrono::steady_clock::now();
+  if (progress) progress({0, "turnstile"});
+  TurnstileRequest turnstile;
+  turnstile.K = request.K;
+  turnstile.orbit = request.orbit;
+  turnstile.side = request.side;
+  turnstile.maxVertices = 1 << 10;  // the areas come from the actions here; the polygons only draw the regions
+  const TurnstileFlux flux = computeTurnstileFlux(turnstile, {}, stop);
+  const PolygonRegion zone(flux.zoneBoundary), exit(flux.exitLobe), entry(flux.entryLobe);
+  const Step step{static_cast<double>(request.K)};
+  const std::uint64_t T = request.maxSteps;
+
+  KacResult out;
+  out.flux = flux.lobeArea;
+  out.zoneArea = flux.zoneArea;
+  out.maxSteps = T;
+
+  // Left side: τ of orbits entering through E, capped at T.
+  std::vector<ChunkSums> chunks;
+  runChunks(
+      request.entrySamples, request.threads, chunks,
+      [&](std::uint64_t sample, ChunkSums& s) {
+        const PhysicalPoint p = uniformPoint(entry, request.seed, sample);
+        double x = static_cast<double>(p.x), y = static_cast<double>(p.y);
+        step(x, y);  // now inside Z
+        std::uint64_t tau = 1;
+        bool capped = false;
+        for (;; ++tau) {
+          if (exit.contains(x, y)) break;
+          if (tau >= T) {
+            capped = true;
+            break;
+          }
+          if (tau % kZoneCheckInterval == 0 && !zone.contains(x, y)) {
+            ++s.inconsistent;
+            break;
+          }
+          step(x, y);
+        }
+        const auto t = static_cast<double>(tau);
+        s.sum += t;
+        s.sumSquares += t * t;
+        ++s.count;
+        s.capped += capped ? 1 : 0;
+        s.longest = std::max(s.longest, tau);
+        s.steps += tau;
+      },
+      progress, 0.05, 0.5, "entry orbits", stop);
+  ChunkSums left;
+  for (const ChunkSums& c : chunks) {
+    left.sum += c.sum;
+    left.sumSquares += c.sumSquares;
+    left.count += c.count;
+    left.capped += c.capped;
+    left.longest = std::max(left.longest, c.longest);
+    left.inconsistent += c.inconsistent;
+    left.steps += c.steps;
+  }
+  const auto n = static_cast<double>(left.count);
+  out.entryOrbits = left.count;
+  out.meanResidence = left.sum / n;
+  const double variance = std::max(0.0, left.sumSquares / n - out.meanResidence * out.meanResidence);
+  out.meanResidenceError = left.count > 1 ? std::sqrt(variance / (n - 1)) : 0;
+  out.stillInside = left.capped;
+  out.longestResidence = left.longest;
+
+  // Right side: points of Z leaving within T steps (τ_f ≤ T ⇔ Q^j w ∈ X for some j < T).
+  runChunks(
+      request.zoneSamples, request.threads, chunks,
+      [&](std::uint64_t sample, ChunkSums& s) {
+        const PhysicalPoint p = uniformPoint(zone, request.seed ^ 0x5A4F4E45ULL, sample);  // "ZONE": other draws than E's
+        double x = static_cast<double>(p.x), y = static_cast<double>(p.y);
+        std::uint64_t j = 0;
+        bool leaves = false;
+        for (; j < T; ++j) {
+          if (exit.contains(x, y)) {
+            leaves = true;
+            break;
+          }
+          if (j > 0 && j % kZoneCheckInterval == 0 && !zone.contains(x, y)) {
+            ++s.inconsistent;
+            break;
+          }
+          step(x, y);
+        }
+        s.sum += leaves ? 1 : 0;
+        ++s.count;
+        s.steps += j + 1;
+      },
+      progress, 0.5, 1.0, "zone points", stop);
+  ChunkSums right;
+  for (const ChunkSums& c : chunks) {
+    right.sum += c.sum;
+    right.count += c.count;
+    right.inconsistent += c.inconsistent;
+    right.steps += c.steps;
+  }
+  const auto m = static_cast<double>(right.count);
+  const double p = right.sum / m;
+  const double area = static_cast<double>(flux.zoneArea), phi = static_cast<double>(flux.lobeArea);
+  out.zonePoints = right.count;
+  out.transitFraction = p;
+  out.transitFractionError = std::sqrt(p * (1 - p) / m);
+  out.transitArea = p * area;
+  out.transitAreaError = out.transitFractionError * area;
+  out.predictedResidence = out.transitArea / phi;
+  out.predictedResidenceError = out.transitAreaError / phi;
+  out.islandArea = (1 - p) * area;
+  out.inconsistent = left.inconsistent + right.inconsistent;
+  out.steps = left.steps + right.steps;
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  if (progress) progress({1, "done"});
+  return out;
+}
+
+}  // namespace archipelago
