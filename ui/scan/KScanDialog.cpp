@@ -41,7 +41,7 @@
 #include <utility>
 
 #include "core/kernels/KernelDispatch.hpp"
-#include "ui/RunController.hpp"
+#include "ui/jobs/DurationText.hpp"
 #include "ui/plots/LogScaleDraw.hpp"
 #include "ui/plots/QwtCompat.hpp"
 
