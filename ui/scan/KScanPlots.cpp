@@ -270,7 +270,8 @@ KScanPlots::KScanPlots(QWidget* parent) : QWidget(parent) {
   auto* layout = new QVBoxLayout(this);
   layout->setContentsMargins(0, 0, 0, 0);
   layout->addWidget(splitter);
-  clear();
+  // Not replotted here: the first showRuns() or clear() does it, as the dialog always did.  (A first replot with
+  // the empty ranges would leave Qwt's layout of the heat map a pixel off in the report's figure.)
 }
 
 QwtPlot* KScanPlots::plot(const QString& name) const {
