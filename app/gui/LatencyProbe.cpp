@@ -11,8 +11,8 @@
 #include <chrono>
 #include <numeric>
 
-#include "ui/MainWindow.hpp"
-#include "ui/StatisticsView.hpp"
+#include "ui/window/MainWindow.hpp"
+#include "ui/window/StatisticsView.hpp"
 
 namespace archipelago::app {
 

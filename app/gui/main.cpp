@@ -22,9 +22,9 @@
 #include <memory>
 
 #include "LatencyProbe.hpp"
-#include "ui/MainWindow.hpp"
-#include "ui/ParameterPanel.hpp"
-#include "ui/Resources.hpp"
+#include "ui/window/MainWindow.hpp"
+#include "ui/window/ParameterPanel.hpp"
+#include "ui/window/Resources.hpp"
 
 namespace {
 

@@ -8,8 +8,8 @@
 #include <QTemporaryDir>
 #include <QtTest>
 
-#include "ui/MainWindow.hpp"
-#include "ui/ParameterPanel.hpp"
+#include "ui/window/MainWindow.hpp"
+#include "ui/window/ParameterPanel.hpp"
 
 namespace archipelago::test {
 

@@ -8,9 +8,9 @@
 #include <QProcess>
 #include <QTemporaryDir>
 
-#include "ui/ExportActions.hpp"
+#include "ui/window/ExportActions.hpp"
 #include "GuiTestSupport.hpp"
-#include "ui/StatisticsView.hpp"
+#include "ui/window/StatisticsView.hpp"
 #include "ui/plots/StatisticsPlot.hpp"
 #include "core/runfile/RunFile.hpp"
 #include "core/run/TrappingRun.hpp"

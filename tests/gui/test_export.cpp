@@ -12,12 +12,12 @@
 #include <QTemporaryDir>
 
 #include "GuiTestSupport.hpp"
-#include "ui/SettingsController.hpp"
-#include "ui/StatisticsView.hpp"
+#include "ui/settings/SettingsController.hpp"
+#include "ui/window/StatisticsView.hpp"
 #include "ui/plots/StatisticsPlot.hpp"
 #include "core/runfile/RunFile.hpp"
 #include "core/spec/RunSpec.hpp"
-#include "ui/ExportActions.hpp"
+#include "ui/window/ExportActions.hpp"
 
 #include <QMessageBox>
 

@@ -1,5 +1,5 @@
 // The GUI's background-job mechanism (ui/jobs/BackgroundJobs): latest wins, cancel, tagging, throttled
-// progress, lifetimes and failures.  No timing: a job that must still be running when the test acts waits on
+// progress, lifetimes and failures; the ETA text of long tasks (ui/jobs/DurationText).  No timing: a job that must still be running when the test acts waits on
 // its stop token (or on a gate the test opens), and "nothing else arrives" is proved by a later job on the same
 // channel, whose result is handed over after anything the earlier one could have posted.
 
@@ -11,7 +11,9 @@
 #include <atomic>
 #include <cerrno>
 #include <chrono>
+#include <cmath>
 #include <condition_variable>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <new>
@@ -27,8 +29,9 @@
 
 #include "GuiTestSupport.hpp"
 #include "core/run/TrappingRun.hpp"
-#include "ui/RunWorker.hpp"
+#include "ui/run/RunWorker.hpp"
 #include "ui/jobs/BackgroundJobs.hpp"
+#include "ui/jobs/DurationText.hpp"
 
 using namespace archipelago::ui;
 using namespace std::chrono_literals;
@@ -98,6 +101,7 @@ class TestJobs : public QObject {
   void channelsRunIndependently();
   void backgroundPriorityNicesTheThreads();
   void runWorkerLatestRunWinsAndPauseKeepsTheState();
+  void durationsAsText();
 };
 
 void TestJobs::resultIsTaggedAndArrivesOnTheReceiversThread() {
@@ -521,6 +525,22 @@ void TestJobs::runWorkerLatestRunWinsAndPauseKeepsTheState() {
   QCOMPARE(ended[0].runId, quint64{5});
   QCOMPARE(ended[0].how, RunEnd::finished);
   QCOMPARE(ended[0].last->state.blocksDone, paused.blocksDone);
+}
+
+// formatDuration: rounded to the second; m:ss below an hour, h:mm:ss from it; "—" for what is no duration.
+void TestJobs::durationsAsText() {
+  QCOMPARE(formatDuration(0), QStringLiteral("0:00"));
+  QCOMPARE(formatDuration(0.49), QStringLiteral("0:00"));
+  QCOMPARE(formatDuration(59.5), QStringLiteral("1:00"));
+  QCOMPARE(formatDuration(61), QStringLiteral("1:01"));
+  QCOMPARE(formatDuration(3599.4), QStringLiteral("59:59"));
+  QCOMPARE(formatDuration(3600), QStringLiteral("1:00:00"));
+  QCOMPARE(formatDuration(36000 + 9 * 60 + 5), QStringLiteral("10:09:05"));
+  QCOMPARE(formatDuration(1e9), QStringLiteral("277777:46:40"));
+  QCOMPARE(formatDuration(1.5e9), QStringLiteral("—"));
+  QCOMPARE(formatDuration(-1), QStringLiteral("—"));
+  QCOMPARE(formatDuration(std::nan("")), QStringLiteral("—"));
+  QCOMPARE(formatDuration(std::numeric_limits<double>::infinity()), QStringLiteral("—"));
 }
 
 QTEST_GUILESS_MAIN(TestJobs)

@@ -6,7 +6,7 @@
 #include <QTabWidget>
 
 #include "GuiTestSupport.hpp"
-#include "ui/StatisticsView.hpp"
+#include "ui/window/StatisticsView.hpp"
 #include "ui/plots/StatisticsPlot.hpp"
 
 using archipelago::ui::MainWindow;

@@ -8,7 +8,7 @@
 #include <cmath>
 
 #include "GuiTestSupport.hpp"
-#include "ui/StatisticsView.hpp"
+#include "ui/window/StatisticsView.hpp"
 #include "ui/plots/StatisticsPlot.hpp"
 #include "core/runfile/RunFile.hpp"
 #include "core/stats/RunStatistics.hpp"

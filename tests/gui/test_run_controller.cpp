@@ -15,8 +15,8 @@
 #include "GuiTestSupport.hpp"
 #include "core/runfile/RunFile.hpp"
 #include "core/run/TrappingRun.hpp"
-#include "ui/RunController.hpp"
-#include "ui/StatisticsView.hpp"
+#include "ui/run/RunController.hpp"
+#include "ui/window/StatisticsView.hpp"
 #include "ui/segments/LongSegmentsPanel.hpp"
 #include "ui/segments/LongestSegmentsModel.hpp"
 

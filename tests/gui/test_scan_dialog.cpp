@@ -1,9 +1,11 @@
 // The K-scan dialog (ui/scan/KScanDialog): a tiny scan runs to the end and its summaries equal, byte for byte,
 // those of `archipelago-cli scan` with the same parameters (both call core's runKScan); a scan stopped mid-way
 // and started again resumes and gives the identical summaries; bad inputs are refused with a clear message and
-// start nothing; Enter starts, Esc closes when idle.  What the dialog draws is what the CLI wrote: every cell
-// of the heat map equals scan_local_exponent.csv's (empty cells: no data), the b₂ (area, fraction), longest
-// segment and long-segment fraction points equal scan_summary.csv's columns.
+// start nothing; Enter starts, Esc closes when idle.  What the dialog draws (its KScanPlots) is what the CLI
+// wrote: every cell of the heat map equals scan_local_exponent.csv's (empty cells: no data), the b₂ (area,
+// fraction), longest segment and long-segment fraction points equal scan_summary.csv's columns.  A KScanPlots
+// of its own fed the finished summaries (as the report draws its K-scan figures) shows the same.  The heat map
+// has one colour scale: cells, colour bar and no-data grey all come from KScanPlots::heatMapColour.
 //
 // With ARCHIPELAGO_SCREENSHOT_DIR set (run under xvfb-run with QT_QPA_PLATFORM=xcb), `screenshots` runs a
 // 12-K scan and saves the dialog at 1280 × 800 and 1920 × 1080 there (the README's docs/images/k-scan-dialog*.png).
@@ -30,6 +32,7 @@
 #include "GuiTestSupport.hpp"
 #include "core/runfile/RunFile.hpp"
 #include "ui/scan/KScanDialog.hpp"
+#include "ui/scan/KScanPlots.hpp"
 
 #ifndef ARCHIPELAGO_CLI
 #error "ARCHIPELAGO_CLI must name the archipelago-cli executable (tests/gui/CMakeLists.txt)"
@@ -37,6 +40,7 @@
 
 using archipelago::RunSpec;
 using archipelago::ui::KScanDialog;
+using archipelago::ui::KScanPlots;
 
 namespace {
 
@@ -117,9 +121,9 @@ class ScanDialogTest : public QObject {
     QVERIFY2(cli.exitStatus() == QProcess::NormalExit && cli.exitCode() == 0, cli.readAllStandardError().constData());
   }
 
-  /// The dialog's heat map, cell by cell, against the CLI's scan_local_exponent.csv; its b₂, longest-segment
+  /// The plots' heat map, cell by cell, against the CLI's scan_local_exponent.csv; their b₂, longest-segment
   /// and long-fraction points against the CLI's scan_summary.csv.
-  void comparePlotsWithCli(KScanDialog& d) {
+  void comparePlotsWithCli(const KScanPlots& d) {
     runCli();
     const QList<QList<QByteArray>> map = csvRows(QDir(cliDir_).filePath(QStringLiteral("scan_local_exponent.csv")));
     QVERIFY(map.size() > 100);
@@ -148,7 +152,7 @@ class ScanDialogTest : public QObject {
     QVERIFY(std::isnan(d.heatMapValue(1.0, 2.0)));  // far from every K: no cell
     // A cell without data is drawn transparent over the grey canvas; a defined one opaque; a colour bar with a
     // title beside it.
-    QwtPlot* heat = d.resultPlot(QStringLiteral("heatMap"));
+    QwtPlot* heat = d.plot(QStringLiteral("heatMap"));
     QVERIFY(heat);
     const QwtPlotItemList spectrograms = heat->itemList(QwtPlotItem::Rtti_PlotSpectrogram);
     QCOMPARE(spectrograms.size(), 1);
@@ -177,7 +181,7 @@ class ScanDialogTest : public QObject {
         {"long", QStringLiteral("steps in segments ≥ 10⁴, fraction (right)"), "time_fraction_ge_1e4"},
     };
     for (const auto& check : checks) {
-      const std::map<double, double> points = curvePoints(d.resultPlot(QLatin1String(check.plot)), check.curve);
+      const std::map<double, double> points = curvePoints(d.plot(QLatin1String(check.plot)), check.curve);
       QVERIFY2(column(check.column) >= 0, check.column);
       QVERIFY2(points.size() == 2, check.column);
       for (int r = 1; r < summary.size(); ++r) {
@@ -217,7 +221,11 @@ class ScanDialogTest : public QObject {
     QCOMPARE(d.results()[0].point.K, 0.1);
     QCOMPARE(d.results()[1].point.K, 0.3);
     compareWithCli(dir);
-    comparePlotsWithCli(d);
+    comparePlotsWithCli(*d.plots());
+    // The report's way: plots of their own, fed the finished summaries.
+    KScanPlots report;
+    report.showRuns(d.results());
+    comparePlotsWithCli(report);
 
     // Export elsewhere writes the same files.
     const QString exported = tmp_.filePath(QStringLiteral("exported"));
@@ -269,6 +277,35 @@ class ScanDialogTest : public QObject {
     QVERIFY(ended.wait(300000));
     QCOMPARE(ended.takeFirst().at(0).toBool(), true);
     compareWithCli(dir);
+  }
+
+  void heatMapHasOneColourScale() {
+    KScanPlots plots;
+    QwtPlot* heat = plots.plot(QStringLiteral("heatMap"));
+    QVERIFY(heat);
+    const QwtPlotItemList spectrograms = heat->itemList(QwtPlotItem::Rtti_PlotSpectrogram);
+    QCOMPARE(spectrograms.size(), 1);
+    const QwtColorMap* cells = static_cast<QwtPlotSpectrogram*>(spectrograms.front())->colorMap();
+    const QwtColorMap* bar = heat->axisWidget(QwtPlot::yRight)->colorMap();
+    QVERIFY(cells && bar);
+    const QwtInterval range(0, KScanPlots::kHeatMapTop);
+    QCOMPARE(heat->axisWidget(QwtPlot::yRight)->colorBarInterval().maxValue(), KScanPlots::kHeatMapTop);
+    // Below 0, every 1/64 of the range, and beyond its top: cells and bar alike, both heatMapColour.
+    for (int i = -8; i <= 72; ++i) {
+      const double v = KScanPlots::kHeatMapTop * i / 64;
+      const QRgb expected = KScanPlots::heatMapColour(v).rgb();
+      QVERIFY2(cells->rgb(range, v) == expected, qPrintable(QString::number(v)));
+      QVERIFY2(bar->rgb(range, v) == expected, qPrintable(QString::number(v)));
+    }
+    // The ends of the scale are its end colours; distinct values inside are distinct colours (a scale, not a flat
+    // colour); no data is the canvas's grey, which no value takes.
+    QCOMPARE(KScanPlots::heatMapColour(-1), KScanPlots::heatMapColour(0));
+    QCOMPARE(KScanPlots::heatMapColour(10), KScanPlots::heatMapColour(KScanPlots::kHeatMapTop));
+    QVERIFY(KScanPlots::heatMapColour(0.5) != KScanPlots::heatMapColour(1.5));
+    const QColor noData = KScanPlots::heatMapColour(std::nan(""));
+    QCOMPARE(heat->canvasBackground().color(), noData);
+    for (int i = 0; i <= 64; ++i)
+      QVERIFY(KScanPlots::heatMapColour(KScanPlots::kHeatMapTop * i / 64) != noData);
   }
 
   void badInputsStartNothing() {
@@ -354,7 +391,7 @@ class ScanDialogTest : public QObject {
         upper->setCurrentIndex(tabs[i].first);
         lower->setCurrentIndex(tabs[i].second);
         if (i == 1) {  // the value under the mouse, on the heat map
-          QWidget* canvas = d.resultPlot(QStringLiteral("heatMap"))->canvas();
+          QWidget* canvas = d.plots()->plot(QStringLiteral("heatMap"))->canvas();
           QTest::qWait(200);
           QTest::mouseMove(canvas, QPoint(canvas->width() * 3 / 10, canvas->height() / 2));
         }

@@ -8,8 +8,8 @@
 #include <QTabWidget>
 
 #include "GuiTestSupport.hpp"
-#include "ui/SettingsController.hpp"
-#include "ui/StatisticsView.hpp"
+#include "ui/settings/SettingsController.hpp"
+#include "ui/window/StatisticsView.hpp"
 #include "ui/portrait/PortraitController.hpp"
 #include "ui/portrait/PortraitPanel.hpp"
 #include "ui/portrait/PortraitView.hpp"

@@ -23,8 +23,9 @@
 #include <optional>
 #include <vector>
 
-#include "ui/RunSnapshot.hpp"
 #include "core/stats/StatisticsTable.hpp"
+#include "core/stats/TrappingStatistics.hpp"
+#include "core/theory/TheoryCurves.hpp"
 
 class QwtPlotCurve;
 class QwtPlotIntervalCurve;

@@ -14,7 +14,7 @@
 #include "core/portrait/MapOverlays.hpp"
 #include "ui/portrait/PortraitLayers.hpp"
 #include "ui/portrait/PortraitView.hpp"
-#include "ui/segments/SegmentOverlay.hpp"
+#include "ui/portrait/SegmentOverlay.hpp"
 
 namespace archipelago::ui {
 

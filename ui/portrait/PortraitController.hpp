@@ -24,7 +24,7 @@
 #include "core/portrait/Viewport.hpp"
 #include "core/session/SessionFile.hpp"
 #include "ui/portrait/PortraitView.hpp"
-#include "ui/segments/SegmentResults.hpp"
+#include "ui/portrait/SegmentResults.hpp"
 
 class QWidget;
 

@@ -16,7 +16,7 @@
 
 #include "core/portrait/ColourMap.hpp"
 #include "core/portrait/StochasticArea.hpp"
-#include "ui/SettingsController.hpp"
+#include "ui/settings/SettingsController.hpp"
 #include "ui/portrait/PortraitController.hpp"
 #include "ui/portrait/PortraitView.hpp"
 #include "ui/portrait/StochasticAreaDialog.hpp"

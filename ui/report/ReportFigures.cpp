@@ -29,7 +29,7 @@
 #include "core/theory/SmallKTheory.hpp"
 #include "ui/plots/LogScaleDraw.hpp"
 #include "ui/plots/StatisticsPlot.hpp"
-#include "ui/scan/KScanDialog.hpp"
+#include "ui/scan/KScanPlots.hpp"
 #include "ui/files/OutputFiles.hpp"
 
 namespace archipelago::ui::report {
@@ -210,12 +210,12 @@ bool writePointsFigure(const std::vector<QPointF>& points, double x0, double x1,
 }
 
 bool writeScanFigures(const std::vector<ScanRunSummary>& runs, const QString& base, QString* error) {
-  KScanDialog dialog(RunSpec{});
-  dialog.showResults(runs);
+  KScanPlots plots;
+  plots.showRuns(runs);
   for (const char* name : {"ft", "heatMap", "D", "long"}) {
-    QwtPlot* plot = dialog.resultPlot(QString::fromLatin1(name));
+    QwtPlot* plot = plots.plot(QString::fromLatin1(name));
     if (plot == nullptr) {
-      if (error) *error = QStringLiteral("the K-scan dialog has no plot %1").arg(QLatin1String(name));
+      if (error) *error = QStringLiteral("the K-scan plots have no plot %1").arg(QLatin1String(name));
       return false;
     }
     if (!renderPlot(*plot, base + QLatin1Char('-') + QString::fromLatin1(name).toLower(), error)) return false;

@@ -43,7 +43,7 @@ bool writePortraitFigure(const RasterImage& image, double x0, double x1, double 
 bool writePointsFigure(const std::vector<QPointF>& points, double x0, double x1, double y0, double y1,
                        const QString& title, const QString& base, QString* error, const FigureMarkers& markers = {});
 
-/// §5's K scan as the GUI's K-scan dialog draws it (ui/scan/KScanDialog: its own plots, fed the summaries):
+/// §5's K scan as the GUI's K-scan dialog draws it (ui/scan/KScanPlots, the dialog's plots, fed the summaries):
 /// f_t per K, the local exponent's heat map over (K, τ), D(K) with its supported error, the longest segment and
 /// the fraction of steps in long segments against K, as `base`-ft, -heatmap, -D, -long (.png/.svg).
 bool writeScanFigures(const std::vector<ScanRunSummary>& runs, const QString& base, QString* error);

@@ -4,13 +4,11 @@
 /// threads) and a folder; the scan runs in the background (ui/jobs, latest wins) through core's runKScan
 /// (core/scan/ScanRun.hpp), the very loop of `archipelago-cli scan`, so a folder is resumed the same way by
 /// either: Stop leaves the K running checkpointed in its run file, Start again resumes it and reuses the
-/// finished K.  Progress and ETA per K and for the whole scan.  As each K finishes: its f_t (log-log, one curve
-/// per K), the local exponent of C_τ as curves and as a heat map over (K, log τ) (localExponentHeatMap, the
-/// numbers of scan_local_exponent.csv), D ± its supported error, the longest segment and the fraction of the
-/// steps in segments ≥ 10⁴, b₂ (area and fraction, when b₂ steps > 0) against K (the ScanPoint of
-/// scan_summary.csv), and a table.  The summaries (core/scan/ScanSummary.hpp) are written into the folder at the end
-/// and can be exported elsewhere.  No maths here: every number comes from core.  Two tab widgets in a splitter
-/// keep it inside a 1280 × 800 screen.
+/// finished K.  Progress and ETA per K and for the whole scan.  As each K finishes, its results appear in the
+/// dialog's KScanPlots (f_t per K, the local exponent's heat map and curves, D(K), the long segments, b₂, a
+/// table).  The summaries (core/scan/ScanSummary.hpp) are written into the folder at the end and can be exported
+/// elsewhere.  No maths here: every number comes from core.  The plots' two tab widgets in a splitter keep it
+/// inside a 1280 × 800 screen.
 ///
 /// Keys: Enter starts (the default button), Esc closes (asking first while a scan runs; closing stops it,
 /// resumably).
@@ -21,7 +19,6 @@
 #include <optional>
 #include <vector>
 
-#include "core/scan/ScanHeatMap.hpp"
 #include "core/scan/ScanRun.hpp"
 #include "ui/jobs/BackgroundJobs.hpp"
 
@@ -29,11 +26,10 @@ class QLabel;
 class QLineEdit;
 class QProgressBar;
 class QPushButton;
-class QTableWidget;
-class QwtPlot;
-class QwtPlotSpectrogram;
 
 namespace archipelago::ui {
+
+class KScanPlots;
 
 class KScanDialog : public QDialog {
   Q_OBJECT
@@ -53,9 +49,6 @@ class KScanDialog : public QDialog {
   [[nodiscard]] bool running() const noexcept { return running_; }
   /// The summaries of the last scan that finished (empty before).
   [[nodiscard]] const std::vector<ScanRunSummary>& results() const noexcept { return finishedRuns_; }
-  /// Shows the summaries of a finished scan (as if it had just run): its plots and table.  The reproduction
-  /// report (ui/report) draws its K-scan figures this way, with the dialog's own plots.
-  void showResults(const std::vector<ScanRunSummary>& runs);
   /// Writes the scan CSVs of the last finished scan into `dir`; false, with the reason shown, when it cannot.
   bool exportCsv(const QString& dir);
   /// The last message shown (an error, or where the scan is).
@@ -65,12 +58,8 @@ class KScanDialog : public QDialog {
   [[nodiscard]] QLineEdit* kField() const noexcept { return kValues_; }
   [[nodiscard]] QLineEdit* field(const QString& name) const;
   [[nodiscard]] QLineEdit* folderField() const noexcept { return folder_; }
-  /// The result plots by object name ("ft", "D", "exponent", "heatMap", "long", "b2"), for tests; nullptr
-  /// for another name.
-  [[nodiscard]] QwtPlot* resultPlot(const QString& name) const;
-  /// The heat map's cell drawn at (K, τ): the local exponent of the finished K nearest to K at the grid τ nearest
-  /// in log τ; NaN where there is no data (drawn grey) or no K has finished.
-  [[nodiscard]] double heatMapValue(double K, double tau) const;
+  /// The results on screen: the plots and the table of the K finished so far.
+  [[nodiscard]] KScanPlots* plots() const noexcept { return plots_; }
 
  Q_SIGNALS:
   /// The scan ended: finished (every K and the summaries written), stopped, or failed.
@@ -92,7 +81,6 @@ class KScanDialog : public QDialog {
   void showProgress(const KScanProgress& p);
   void addResult(std::size_t index, const ScanRunSummary& run);
   void clearResults();
-  void replot();
   void browse();
   void exportInteractively();
 
@@ -113,14 +101,7 @@ class KScanDialog : public QDialog {
   QLabel* kEta_ = nullptr;
   QLabel* scanEta_ = nullptr;
   QLabel* message_ = nullptr;
-  QwtPlot* ftPlot_ = nullptr;
-  QwtPlot* dPlot_ = nullptr;
-  QwtPlot* exponentPlot_ = nullptr;
-  QwtPlot* heatMapPlot_ = nullptr;
-  QwtPlotSpectrogram* heatMap_ = nullptr;
-  QwtPlot* longPlot_ = nullptr;
-  QwtPlot* b2Plot_ = nullptr;
-  QTableWidget* table_ = nullptr;
+  KScanPlots* plots_ = nullptr;
   std::vector<std::optional<ScanRunSummary>> shown_;  // per K of the running scan, as they finish
   std::vector<ScanRunSummary> finishedRuns_;
   bool running_ = false;

@@ -2,7 +2,7 @@
 
 #include <QDir>
 
-#include "ui/SettingsController.hpp"
+#include "ui/settings/SettingsController.hpp"
 
 #include <QElapsedTimer>
 #include <QFileDialog>

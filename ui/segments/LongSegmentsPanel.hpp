@@ -20,7 +20,7 @@
 
 #include "ui/jobs/BackgroundJobs.hpp"
 #include "ui/segments/LongestSegmentsModel.hpp"
-#include "ui/segments/SegmentResults.hpp"
+#include "ui/portrait/SegmentResults.hpp"
 #include "core/periodic/PeriodicOrbit.hpp"
 #include "core/trapping/LongestSegments.hpp"
 

@@ -10,12 +10,23 @@
 
 #include <QAbstractTableModel>
 
+#include <compare>
+#include <cstdint>
 #include <map>
 #include <vector>
 
-#include "ui/segments/SegmentResults.hpp"
+#include "core/periodic/SegmentAnalysis.hpp"
+#include "ui/portrait/SegmentResults.hpp"
 
 namespace archipelago::ui {
+
+/// A segment's identity within a run: (orbit, first block).
+struct SegmentKey {
+  std::uint64_t orbit = 0;
+  std::uint64_t block = 0;
+  [[nodiscard]] static SegmentKey of(const SegmentRecord& r) noexcept { return {r.orbit, r.start.block}; }
+  friend auto operator<=>(const SegmentKey&, const SegmentKey&) = default;
+};
 
 class LongestSegmentsModel : public QAbstractTableModel {
   Q_OBJECT

@@ -34,10 +34,10 @@
 #include <string>
 #include <thread>
 
-#include "ui/MainWindow.hpp"
-#include "ui/ParameterPanel.hpp"
-#include "ui/Resources.hpp"
-#include "ui/RunController.hpp"
+#include "ui/window/MainWindow.hpp"
+#include "ui/window/ParameterPanel.hpp"
+#include "ui/window/Resources.hpp"
+#include "ui/run/RunController.hpp"
 #include "ui/portrait/PortraitPanel.hpp"
 #include "ui/portrait/PortraitController.hpp"
 #include "ui/portrait/PortraitView.hpp"

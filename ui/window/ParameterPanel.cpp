@@ -1,4 +1,4 @@
-#include "ui/ParameterPanel.hpp"
+#include "ui/window/ParameterPanel.hpp"
 
 #include <QComboBox>
 #include <QFormLayout>

@@ -1,4 +1,4 @@
-#include "ui/MainWindow.hpp"
+#include "ui/window/MainWindow.hpp"
 
 #include <QAction>
 #include <QApplication>
@@ -32,12 +32,13 @@
 
 #include <exception>
 
-#include "ui/ExportActions.hpp"
-#include "ui/Resources.hpp"
-#include "ui/SessionController.hpp"
-#include "ui/SettingsController.hpp"
-#include "ui/ParameterPanel.hpp"
-#include "ui/StatisticsView.hpp"
+#include "ui/jobs/DurationText.hpp"
+#include "ui/window/ExportActions.hpp"
+#include "ui/window/Resources.hpp"
+#include "ui/window/SessionController.hpp"
+#include "ui/settings/SettingsController.hpp"
+#include "ui/window/ParameterPanel.hpp"
+#include "ui/window/StatisticsView.hpp"
 #include "ui/periodic/PeriodicOrbitDialog.hpp"
 #include "ui/scan/KScanDialog.hpp"
 #include "ui/portrait/PortraitController.hpp"
@@ -68,7 +69,6 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   setAcceptDrops(true);
 
   run_ = new RunController(this);
-  sessions_ = new SessionController(*this);
   run_->setAsk([this](const RunQuestion& q) { return askUser(q); });
   run_->setSaveHandler([this] { return run_->currentFile().isEmpty() ? saveDialog() : saveRunFile(run_->currentFile()); });
   connect(run_, &RunController::statusChanged, this, &MainWindow::onStatusChanged);
@@ -125,6 +125,9 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   dock->setWidget(createParameterDock());
   addDockWidget(Qt::LeftDockWidgetArea, dock);
   createLongSegmentsDock(dock);
+  sessions_ = new SessionController({panel_, run_, statistics_, portrait_, segments_, tabs_, [this] { refreshView(); },
+                                     [this](int rank) { showLongSegment(rank, false); }},
+                                    this);
 
   connect(panel_, &ParameterPanel::validityChanged, this, [this] { updateActions(); });
   connect(panel_, &ParameterPanel::parametersChanged, this, [this] {

@@ -15,9 +15,9 @@
 #include <cstdint>
 #include <optional>
 
-#include "ui/RunController.hpp"
-#include "ui/RunSnapshot.hpp"
-#include "ui/RunWorker.hpp"
+#include "ui/run/RunController.hpp"
+#include "ui/run/RunSnapshot.hpp"
+#include "ui/run/RunWorker.hpp"
 
 class QAction;
 class QDockWidget;

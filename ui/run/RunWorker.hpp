@@ -18,7 +18,7 @@
 #include <atomic>
 #include <memory>
 
-#include "ui/RunSnapshot.hpp"
+#include "ui/run/RunSnapshot.hpp"
 #include "ui/jobs/BackgroundJobs.hpp"
 
 namespace archipelago::ui {

@@ -1,4 +1,4 @@
-#include "ui/SessionController.hpp"
+#include "ui/window/SessionController.hpp"
 
 #include <QDir>
 #include <QFileInfo>
@@ -6,11 +6,11 @@
 #include <QTimer>
 
 #include <exception>
+#include <utility>
 
-#include "ui/MainWindow.hpp"
-#include "ui/ParameterPanel.hpp"
-#include "ui/RunController.hpp"
-#include "ui/StatisticsView.hpp"
+#include "ui/window/ParameterPanel.hpp"
+#include "ui/run/RunController.hpp"
+#include "ui/window/StatisticsView.hpp"
 #include "ui/plots/StatisticsPlot.hpp"
 #include "ui/portrait/PortraitController.hpp"
 #include "ui/portrait/PortraitPanel.hpp"
@@ -18,15 +18,18 @@
 
 namespace archipelago::ui {
 
-SessionController::SessionController(MainWindow& window) : QObject(&window), window_(window) {}
+SessionController::SessionController(SessionParts parts, QObject* parent) : QObject(parent), parts_(std::move(parts)) {
+  Q_ASSERT(parts_.parameters && parts_.run && parts_.statistics && parts_.portrait && parts_.segments &&
+           parts_.tabs && parts_.refreshNow && parts_.showSegment);
+}
 
 Session SessionController::capture(const QString& sessionPath) const {
   Session s;
-  const ParameterPanel& panel = *window_.parameterPanel();
+  const ParameterPanel& panel = *parts_.parameters;
   if (const auto spec = panel.spec()) s.spec = *spec;
-  else if (const auto& latest = window_.latestSnapshot()) s.spec.parameters = latest->state.params;
+  else if (const auto& latest = parts_.run->latest()) s.spec.parameters = latest->state.params;
 
-  const RunController& run = *window_.runController();
+  const RunController& run = *parts_.run;
   if (const auto& latest = run.latest()) {
     const QString file = run.currentFile();
     if (!file.isEmpty() && !run.unsaved() && file != RunController::checkpointPath() && QFileInfo::exists(file)) {
@@ -38,15 +41,15 @@ Session SessionController::capture(const QString& sessionPath) const {
     }
   }
 
-  s.tab = window_.tabs()->tabText(window_.tabs()->currentIndex()).remove(QLatin1Char('&')).toStdString();
-  s.portrait = window_.portraitPanel()->sessionState();
+  s.tab = parts_.tabs->tabText(parts_.tabs->currentIndex()).remove(QLatin1Char('&')).toStdString();
+  s.portrait = parts_.portrait->sessionState();
 
-  const LongSegmentsPanel& segments = *window_.longSegments();
+  const LongSegmentsPanel& segments = *parts_.segments;
   if (run.latest() && segments.selectedRow() >= 0) {
     s.segmentRank = segments.selectedRow();
     s.segmentPosition = segments.currentIndex();
   }
-  for (const StatisticsPlot* plot : window_.statisticsView()->plots())
+  for (const StatisticsPlot* plot : parts_.statistics->plots())
     if (const auto view = plot->userView())
       s.plots.push_back({plot->fileName().toStdString(), {view->left(), view->right(), view->top(), view->bottom()}});
   return s;
@@ -65,17 +68,17 @@ bool SessionController::save(const QString& path, QString* error) {
 std::optional<QString> SessionController::windowError(const Session& s) const {
   if (!s.tab.empty()) {
     bool found = false;
-    for (int i = 0; i < window_.tabs()->count(); ++i)
-      found = found || window_.tabs()->tabText(i).remove(QLatin1Char('&')).toStdString() == s.tab;
+    for (int i = 0; i < parts_.tabs->count(); ++i)
+      found = found || parts_.tabs->tabText(i).remove(QLatin1Char('&')).toStdString() == s.tab;
     if (!found) return tr("tab \"%1\" is not a tab of this window").arg(QString::fromStdString(s.tab));
   }
   for (const SessionPlotZoom& z : s.plots) {
     bool found = false;
-    for (const StatisticsPlot* plot : window_.statisticsView()->plots())
+    for (const StatisticsPlot* plot : parts_.statistics->plots())
       found = found || plot->fileName().toStdString() == z.name;
     if (!found) return tr("plot \"%1\" is not a plot of this window").arg(QString::fromStdString(z.name));
     if (const StatisticsPlot* plot = [&]() -> const StatisticsPlot* {
-          for (const StatisticsPlot* p : window_.statisticsView()->plots())
+          for (const StatisticsPlot* p : parts_.statistics->plots())
             if (p->fileName().toStdString() == z.name) return p;
           return nullptr;
         }();
@@ -101,7 +104,7 @@ bool SessionController::apply(const Session& s, QString* error) {
     if (error) *error = *e;
     return false;
   }
-  RunController& run = *window_.runController();
+  RunController& run = *parts_.run;
   if (isLive(run.status())) {
     if (error) *error = tr("Stop or pause the run before opening a session");
     return false;
@@ -140,14 +143,14 @@ void SessionController::applyViews(const Session& s) {
   selectTab(s.tab);
   const TrappingParameters& p =
       s.embeddedRun ? s.embeddedRun->params : s.spec.parameters;
-  window_.portraitPanel()->restoreSessionState(s.portrait, p.map, p.Xr);
+  parts_.portrait->restoreSessionState(s.portrait, p.map, p.Xr);
 }
 
 void SessionController::applyRunDependent(const Session& s) {
   // A resumable run shows its own parameters (read-only); otherwise the panel holds the session's.
-  if (window_.runStatus() != RunStatus::paused) window_.parameterPanel()->setSpec(s.spec);
-  window_.refreshNow();
-  for (StatisticsPlot* plot : window_.statisticsView()->plots()) {
+  if (parts_.run->status() != RunStatus::paused) parts_.parameters->setSpec(s.spec);
+  parts_.refreshNow();
+  for (StatisticsPlot* plot : parts_.statistics->plots()) {
     plot->resetZoom();
     for (const SessionPlotZoom& z : s.plots)
       if (plot->fileName().toStdString() == z.name)
@@ -160,24 +163,24 @@ void SessionController::applyRunDependent(const Session& s) {
   // The segment is replayed in the background; drawing it switches to the portrait and frames it.  Once it is
   // drawn, its replay position, the session's tab and its exact views are put back.
   auto connection = std::make_shared<QMetaObject::Connection>();
-  *connection = connect(window_.longSegments(), &LongSegmentsPanel::replayReady, this,
+  *connection = connect(parts_.segments, &LongSegmentsPanel::replayReady, this,
                         [this, connection, s](const SegmentReplayPtr& replay) {
                           if (!replay) return;
                           disconnect(*connection);
                           QTimer::singleShot(0, this, [this, s] {
-                            window_.longSegments()->setCurrentIndex(static_cast<std::size_t>(s.segmentPosition));
+                            parts_.segments->setCurrentIndex(static_cast<std::size_t>(s.segmentPosition));
                             selectTab(s.tab);
                             if (!s.portrait.history.empty())
-                              window_.portraitPanel()->controller()->restoreHistory(s.portrait.history, s.portrait.current);
+                              parts_.portrait->controller()->restoreHistory(s.portrait.history, s.portrait.current);
                             Q_EMIT restored();
                           });
                         });
-  window_.showLongSegment(s.segmentRank, false);
+  parts_.showSegment(s.segmentRank);
 }
 
 void SessionController::selectTab(const std::string& tab) {
-  for (int i = 0; i < window_.tabs()->count(); ++i)
-    if (window_.tabs()->tabText(i).remove(QLatin1Char('&')).toStdString() == tab) window_.tabs()->setCurrentIndex(i);
+  for (int i = 0; i < parts_.tabs->count(); ++i)
+    if (parts_.tabs->tabText(i).remove(QLatin1Char('&')).toStdString() == tab) parts_.tabs->setCurrentIndex(i);
 }
 
 }  // namespace archipelago::ui

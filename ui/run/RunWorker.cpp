@@ -1,4 +1,4 @@
-#include "ui/RunWorker.hpp"
+#include "ui/run/RunWorker.hpp"
 
 #include "core/stats/RunEnsemble.hpp"
 

@@ -1,4 +1,4 @@
-#include "ui/segments/SegmentOverlay.hpp"
+#include "ui/portrait/SegmentOverlay.hpp"
 
 #include <QCoreApplication>
 #include <QLocale>

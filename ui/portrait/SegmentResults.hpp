@@ -1,9 +1,12 @@
 #pragma once
 /// \file SegmentResults.hpp
-/// \brief What the background jobs of the long-segment table hand to the GUI: immutable values.
+/// \brief What the background jobs of the long-segment table hand to the GUI, and the portrait draws:
+/// immutable values.
 ///
-/// Both are computed by core (periodic/SegmentAnalysis.hpp) as background jobs (ui/jobs) and passed as shared
-/// pointers to const, so the GUI can keep and read them without locks.
+/// Both are computed by core (periodic/SegmentAnalysis.hpp) as background jobs (ui/jobs) of the long-segment
+/// panel (ui/segments) and passed as shared pointers to const, so the GUI can keep and read them without locks.
+/// They live here, in the portrait's folder, because the portrait's segment layers (SegmentOverlay) draw them:
+/// the segment panel depends on the portrait, never the other way round.
 
 #include <QMetaType>
 #include <QString>
@@ -33,14 +36,6 @@ struct ChainResult {
   double seconds = 0;
 };
 using ChainResultPtr = std::shared_ptr<const ChainResult>;
-
-/// A segment's identity within a run: (orbit, first block).
-struct SegmentKey {
-  std::uint64_t orbit = 0;
-  std::uint64_t block = 0;
-  [[nodiscard]] static SegmentKey of(const SegmentRecord& r) noexcept { return {r.orbit, r.start.block}; }
-  friend auto operator<=>(const SegmentKey&, const SegmentKey&) = default;
-};
 
 }  // namespace archipelago::ui
 

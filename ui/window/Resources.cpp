@@ -1,4 +1,4 @@
-#include "ui/Resources.hpp"
+#include "ui/window/Resources.hpp"
 
 #include <QtGlobal>
 

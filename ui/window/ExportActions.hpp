@@ -10,7 +10,7 @@
 #include <QString>
 #include <QStringList>
 
-#include "ui/RunSnapshot.hpp"
+#include "ui/run/RunSnapshot.hpp"
 
 namespace archipelago::ui {
 

@@ -1,4 +1,4 @@
-#include "ui/StatisticsView.hpp"
+#include "ui/window/StatisticsView.hpp"
 
 #include <QElapsedTimer>
 #include <QGridLayout>

@@ -1,4 +1,4 @@
-#include "ui/ExportActions.hpp"
+#include "ui/window/ExportActions.hpp"
 
 #include <QDir>
 #include <QFileInfo>

@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "core/periodic/PeriodicOrbit.hpp"
-#include "ui/segments/SegmentResults.hpp"
+#include "ui/portrait/SegmentResults.hpp"
 
 class QwtPlotItem;
 

@@ -1,4 +1,4 @@
-#include "ui/SettingsController.hpp"
+#include "ui/settings/SettingsController.hpp"
 
 #include <QDir>
 #include <QFileInfo>

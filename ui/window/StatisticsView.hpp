@@ -9,7 +9,7 @@
 #include <QList>
 #include <QWidget>
 
-#include "ui/RunSnapshot.hpp"
+#include "ui/run/RunSnapshot.hpp"
 #include "core/stats/StatisticsTable.hpp"
 
 class QLabel;

@@ -29,8 +29,8 @@
 #include <functional>
 #include <optional>
 
-#include "ui/RunSnapshot.hpp"
-#include "ui/RunWorker.hpp"
+#include "ui/run/RunSnapshot.hpp"
+#include "ui/run/RunWorker.hpp"
 
 namespace archipelago::ui {
 
@@ -56,8 +56,6 @@ enum class RunEvent {
 [[nodiscard]] bool isLive(RunStatus status) noexcept;
 /// A user-facing name ("running", "paused", …).
 [[nodiscard]] QString statusName(RunStatus status);
-/// A duration as h:mm:ss or m:ss ("—" when unknown).
-[[nodiscard]] QString formatDuration(double seconds);
 
 /// A question the controller needs answered before it throws work away.
 struct RunQuestion {

@@ -9,22 +9,46 @@
 /// knows (plot and tab names): a bad or foreign file changes nothing and the reason is returned.  Discarding
 /// unsaved work asks (the run controller).  What depends on the run (the segment table, plot ranges) is applied
 /// when its analysis has come back.
+///
+/// The controller sees the window's parts (SessionParts), never the window itself: MainWindow creates it and
+/// includes this header, and this file includes none of MainWindow's (no include cycle between the two).
 
 #include <QObject>
 #include <QString>
 
+#include <functional>
 #include <optional>
 
 #include "core/session/SessionFile.hpp"
 
+class QTabWidget;
+
 namespace archipelago::ui {
 
-class MainWindow;
+class LongSegmentsPanel;
+class ParameterPanel;
+class PortraitPanel;
+class RunController;
+class StatisticsView;
+
+/// What a session captures and restores: the window's parts (none may be null) and two of its actions.
+struct SessionParts {
+  ParameterPanel* parameters = nullptr;
+  RunController* run = nullptr;
+  StatisticsView* statistics = nullptr;
+  PortraitPanel* portrait = nullptr;
+  LongSegmentsPanel* segments = nullptr;
+  QTabWidget* tabs = nullptr;
+  /// Shows the run's newest snapshot now (plots, segment table), instead of at the window's next refresh.
+  std::function<void()> refreshNow;
+  /// Selects the long segment of this rank as soon as the segment table has it (the window raises its dock).
+  std::function<void(int rank)> showSegment;
+};
 
 class SessionController : public QObject {
   Q_OBJECT
  public:
-  explicit SessionController(MainWindow& window);
+  SessionController(SessionParts parts, QObject* parent);
 
   /// The window as it is now.  The run is embedded unless it is in `currentFile` unchanged; a referenced run's
   /// path is written relative to `sessionPath`'s folder when it lies inside it.
@@ -48,7 +72,7 @@ class SessionController : public QObject {
   void applyRunDependent(const Session& session);
   void selectTab(const std::string& tab);
 
-  MainWindow& window_;
+  SessionParts parts_;
   std::optional<Session> pending_;
 };
 

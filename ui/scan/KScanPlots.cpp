@@ -1,0 +1,421 @@
+#include "ui/scan/KScanPlots.hpp"
+
+#include <QHeaderView>
+#include <QSplitter>
+#include <QTabWidget>
+#include <QTableWidget>
+#include <QVBoxLayout>
+#include <qwt_color_map.h>
+#include <qwt_interval.h>
+#include <qwt_interval_symbol.h>
+#include <qwt_legend.h>
+#include <qwt_picker_machine.h>
+#include <qwt_plot.h>
+#include <qwt_plot_curve.h>
+#include <qwt_plot_grid.h>
+#include <qwt_plot_intervalcurve.h>
+#include <qwt_plot_picker.h>
+#include <qwt_plot_spectrogram.h>
+#include <qwt_raster_data.h>
+#include <qwt_scale_engine.h>
+#include <qwt_scale_widget.h>
+#include <qwt_symbol.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <initializer_list>
+#include <limits>
+#include <numeric>
+#include <utility>
+
+#include "core/scan/ScanBox.hpp"
+#include "core/scan/ScanHeatMap.hpp"
+#include "ui/plots/LogScaleDraw.hpp"
+#include "ui/plots/QwtCompat.hpp"
+
+namespace archipelago::ui {
+
+QColor KScanPlots::heatMapColour(double exponent) {
+  if (std::isnan(exponent)) return {190, 190, 190};
+  // Linear between the stops, each channel rounded half up (Qwt's QwtLinearColorMap drew it so before: the
+  // same pixels).
+  struct Stop {
+    double at;
+    int r, g, b;
+  };
+  static constexpr Stop stops[] = {{0, 255, 255, 255}, {kHeatMapTop / 2, 226, 128, 64}, {kHeatMapTop, 140, 0, 0}};
+  if (!(exponent > stops[0].at)) return {stops[0].r, stops[0].g, stops[0].b};
+  if (exponent >= stops[2].at) return {stops[2].r, stops[2].g, stops[2].b};
+  const Stop& a = exponent < stops[1].at ? stops[0] : stops[1];
+  const Stop& b = exponent < stops[1].at ? stops[1] : stops[2];
+  const double ratio = (exponent - a.at) / (b.at - a.at);
+  return {static_cast<int>(a.r + 0.5 + ratio * (b.r - a.r)), static_cast<int>(a.g + 0.5 + ratio * (b.g - a.g)),
+          static_cast<int>(a.b + 0.5 + ratio * (b.b - a.b))};
+}
+
+namespace {
+
+#if QWT_VERSION >= 0x060200
+constexpr int kAxisYRight = QwtAxis::YRight;
+#else
+constexpr int kAxisYRight = QwtPlot::yRight;
+#endif
+
+QwtPlot* makePlot(QWidget* parent, const QString& x, const QString& y, bool logX, bool logY) {
+  auto* plot = new QwtPlot(parent);
+  plot->setCanvasBackground(Qt::white);
+  plot->setAxisTitle(kAxisX, x);
+  plot->setAxisTitle(kAxisY, y);
+  if (logX) {
+    plot->setAxisScaleEngine(kAxisX, new QwtLogScaleEngine);
+    plot->setAxisScaleDraw(kAxisX, new LogScaleDraw);
+  }
+  if (logY) {
+    plot->setAxisScaleEngine(kAxisY, new QwtLogScaleEngine);
+    plot->setAxisScaleDraw(kAxisY, new LogScaleDraw);
+  }
+  auto* grid = new QwtPlotGrid;
+  grid->setMajorPen(QColor(0, 0, 0, 40), 0, Qt::DotLine);
+  grid->attach(plot);
+  return plot;
+}
+
+/// The colour of K number `i` of `n`: blue (small K) through red (large K).
+QColor colourOf(std::size_t i, std::size_t n) {
+  const float s = n > 1 ? static_cast<float>(i) / static_cast<float>(n - 1) : 0.0f;
+  return QColor::fromHsvF(0.66f * (1 - s), 0.85f, 0.8f);
+}
+
+QString kText(double K) { return QString::fromStdString(scanKText(K)); }
+
+/// The heat map's colours (KScanPlots::heatMapColour, whatever interval Qwt passes: the scale is absolute); a cell
+/// without data (NaN) transparent, so that the canvas, painted in the no-data colour, shows through.
+/// (A QwtLinearColorMap only for the rest of QwtColorMap's interface, which differs between Qwt 6.1 and 6.2;
+/// its own stops are never used: the map is drawn in RGB format, through rgb().)
+class HeatColours : public QwtLinearColorMap {
+ public:
+  QRgb rgb(const QwtInterval&, double value) const override {
+    return std::isnan(value) ? qRgba(0, 0, 0, 0) : KScanPlots::heatMapColour(value).rgb();
+  }
+};
+
+/// The cells of a ScanHeatMap (core's localExponentHeatMap) over x = K, y = τ: each K a column reaching half
+/// way to its neighbours, each grid τ a row reaching to the τ nearest in log τ (the lookup of the CLI's PNG),
+/// nothing below the first τ or above the last.
+/// No values of its own: value() returns the map's number of the cell, or NaN.
+class HeatMapData : public QwtRasterData {
+ public:
+  explicit HeatMapData(ScanHeatMap map) : map_(std::move(map)) {
+    order_.resize(map_.K.size());
+    std::iota(order_.begin(), order_.end(), std::size_t{0});
+    std::sort(order_.begin(), order_.end(), [&](std::size_t a, std::size_t b) { return map_.K[a] < map_.K[b]; });
+    // Column edges: half way between neighbouring K; the outer ones as far out as the nearest inner one
+    // (±0.025 for a single K, the paper's half step).
+    const std::size_t n = order_.size();
+    edges_.resize(n + 1);
+    for (std::size_t i = 1; i < n; ++i) edges_[i] = (map_.K[order_[i - 1]] + map_.K[order_[i]]) / 2;
+    if (n == 1) {
+      edges_[0] = map_.K[order_[0]] - 0.025;
+      edges_[1] = map_.K[order_[0]] + 0.025;
+    } else if (n > 1) {
+      edges_[0] = 2 * map_.K[order_[0]] - edges_[1];
+      edges_[n] = 2 * map_.K[order_[n - 1]] - edges_[n - 1];
+    }
+    x_ = n > 0 ? QwtInterval(edges_.front(), edges_.back()) : QwtInterval();
+    y_ = map_.tau.empty() ? QwtInterval() : QwtInterval(map_.tau.front(), map_.tau.back());
+    z_ = QwtInterval(0, KScanPlots::kHeatMapTop);
+#if QWT_VERSION < 0x060200
+    setInterval(Qt::XAxis, x_);
+    setInterval(Qt::YAxis, y_);
+    setInterval(Qt::ZAxis, z_);
+#endif
+  }
+#if QWT_VERSION >= 0x060200
+  QwtInterval interval(Qt::Axis axis) const override {
+    return axis == Qt::XAxis ? x_ : axis == Qt::YAxis ? y_ : z_;
+  }
+#endif
+  [[nodiscard]] bool empty() const { return map_.K.empty() || map_.tau.empty(); }
+
+  double value(double K, double tau) const override {
+    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+    if (empty() || !x_.contains(K) || !y_.contains(tau)) return nan;  // outside every cell
+    const auto column = static_cast<std::size_t>(
+        std::min<std::ptrdiff_t>(std::upper_bound(edges_.begin() + 1, edges_.end() - 1, K) - (edges_.begin() + 1),
+                                 static_cast<std::ptrdiff_t>(order_.size()) - 1));
+    const std::vector<double>& t = map_.tau;
+    auto it = std::lower_bound(t.begin(), t.end(), tau);
+    if (it != t.begin() && tau * tau < *it * *(it - 1)) {
+      --it;  // nearer in log τ to the grid τ below
+    }
+    const auto row = static_cast<std::size_t>(it - t.begin());
+    return map_.value[row * map_.K.size() + order_[column]];
+  }
+
+ private:
+  ScanHeatMap map_;
+  std::vector<std::size_t> order_;  // the columns by increasing K
+  std::vector<double> edges_;
+  QwtInterval x_, y_, z_;
+};
+
+/// The heat map's value under the mouse: the pointer's K and τ and the cell's number (the colours stop at 0 and
+/// kHeatMapTop; this says what lies beyond), or "no data".
+class HeatMapPicker : public QwtPlotPicker {
+ public:
+  HeatMapPicker(QwtPlot* plot, const QwtPlotSpectrogram* map)
+      : QwtPlotPicker(kAxisX, kAxisY, QwtPicker::NoRubberBand, QwtPicker::AlwaysOn, plot->canvas()), map_(map) {
+    setStateMachine(new QwtPickerTrackerMachine);
+    setTrackerPen(QPen(Qt::black));
+  }
+
+ protected:
+  QwtText trackerTextF(const QPointF& pos) const override {
+    const double v = map_->data()->value(pos.x(), pos.y());
+    QwtText text(QStringLiteral("K %1, τ %2: %3")
+                     .arg(pos.x(), 0, 'f', 3)
+                     .arg(pos.y(), 0, 'g', 3)
+                     .arg(std::isnan(v) ? QObject::tr("no data") : QString::number(v, 'g', 4)));
+    text.setBackgroundBrush(QColor(255, 255, 255, 220));
+    return text;
+  }
+
+ private:
+  const QwtPlotSpectrogram* map_;
+};
+
+}  // namespace
+
+KScanPlots::KScanPlots(QWidget* parent) : QWidget(parent) {
+  setObjectName(QStringLiteral("kScanPlots"));
+  ftPlot_ = makePlot(this, tr("t (steps)"), tr("f_t"), true, true);
+  ftPlot_->setTitle(tr("f_t, one curve per K"));
+  ftPlot_->insertLegend(new QwtLegend, QwtPlot::RightLegend);
+  dPlot_ = makePlot(this, tr("K"), tr("D ± 1σ (bootstrap)"), false, true);
+  dPlot_->setTitle(tr("D against K (error: bootstrap over segments)"));
+  exponentPlot_ = makePlot(this, tr("τ (steps)"), tr("−d log C_τ / d log τ"), true, false);
+  exponentPlot_->setTitle(tr("local exponent of C_τ, one curve per K"));
+
+  // The heat map: K across, log τ upwards (as the CLI's scan_local_exponent.png), the colour bar on the right.
+  heatMapPlot_ = makePlot(this, tr("K"), tr("τ (steps)"), false, true);
+  heatMapPlot_->setTitle(tr("local exponent −d log C_τ / d log τ over K and τ"));
+  heatMapPlot_->setFooter(tr("grey: no data (C_τ = 0, or τ beyond that K's run); colours stop at 0 and %1")
+                              .arg(kHeatMapTop));
+  heatMapPlot_->setCanvasBackground(heatMapColour(std::numeric_limits<double>::quiet_NaN()));
+  heatMapPlot_->detachItems(QwtPlotItem::Rtti_PlotGrid, true);
+  heatMap_ = new QwtPlotSpectrogram(tr("local exponent"));
+  heatMap_->setRenderThreadCount(1);
+  heatMap_->setColorMap(new HeatColours);
+  heatMap_->setData(new HeatMapData(ScanHeatMap{}));
+  heatMap_->attach(heatMapPlot_);
+  new HeatMapPicker(heatMapPlot_, heatMap_);  // owned by the canvas
+  heatMapPlot_->enableAxis(kAxisYRight);
+  QwtScaleWidget* colourBar = heatMapPlot_->axisWidget(kAxisYRight);
+  colourBar->setColorBarEnabled(true);
+  colourBar->setColorBarWidth(14);
+  colourBar->setColorMap(QwtInterval(0, kHeatMapTop), new HeatColours);
+  heatMapPlot_->setAxisScale(kAxisYRight, 0, kHeatMapTop);
+  heatMapPlot_->setAxisTitle(kAxisYRight, tr("−d log C_τ / d log τ"));
+
+  // The long segments: the longest (log, left) and the fraction of the steps in segments ≥ 10⁴ (right).
+  longPlot_ = makePlot(this, tr("K"), tr("longest segment (steps)"), false, true);
+  longPlot_->setTitle(tr("the longest segment and the steps in segments ≥ 10⁴ against K"));
+  longPlot_->enableAxis(kAxisYRight);
+  longPlot_->setAxisTitle(kAxisYRight, tr("steps in segments ≥ 10⁴ (fraction)"));
+  longPlot_->insertLegend(new QwtLegend, QwtPlot::BottomLegend);
+
+  // b₂ against K: the area (left) and the fraction of the box (right).
+  b2Plot_ = makePlot(this, tr("K"), tr("b₂ (area)"), false, false);
+  b2Plot_->setTitle(tr("b₂, the area of the sea (appendix A), against K"));
+  b2Plot_->enableAxis(kAxisYRight);
+  b2Plot_->setAxisTitle(kAxisYRight, tr("b₂ / L²"));
+  b2Plot_->insertLegend(new QwtLegend, QwtPlot::BottomLegend);
+
+  ftPlot_->setObjectName(QStringLiteral("ft"));
+  dPlot_->setObjectName(QStringLiteral("D"));
+  exponentPlot_->setObjectName(QStringLiteral("exponent"));
+  heatMapPlot_->setObjectName(QStringLiteral("heatMap"));
+  longPlot_->setObjectName(QStringLiteral("long"));
+  b2Plot_->setObjectName(QStringLiteral("b2"));
+
+  table_ = new QTableWidget(0, 9, this);
+  table_->setHorizontalHeaderLabels({tr("K"), tr("xmin"), tr("xmax"), tr("blocks"), tr("segments"), tr("D ± error"),
+                                     tr("longest (steps)"), tr("steps in ≥10⁴"), tr("b₂ area (fraction)")});
+  // Each column as wide as its contents (a horizontal scroll bar rather than cut cells); the last fills the rest.
+  table_->horizontalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
+  table_->horizontalHeader()->setStretchLastSection(true);
+  table_->setWordWrap(false);
+  table_->verticalHeader()->setVisible(false);
+  table_->setEditTriggers(QAbstractItemView::NoEditTriggers);
+  // Small minimum sizes: the dialog fits a 1280 × 800 screen whatever the plots' size hints.
+  for (QWidget* w : std::initializer_list<QWidget*>{ftPlot_, exponentPlot_, heatMapPlot_, dPlot_, longPlot_,
+                                                    b2Plot_, table_})
+    w->setMinimumSize(320, 180);
+
+  // Over τ (above) and against K (below), each a tab widget: any curve of one beside any of the other.
+  auto* upper = new QTabWidget(this);
+  upper->setObjectName(QStringLiteral("upperTabs"));
+  upper->addTab(ftPlot_, tr("f_t"));
+  upper->addTab(heatMapPlot_, tr("Local exponent map"));
+  upper->addTab(exponentPlot_, tr("Local exponent curves"));
+  auto* lower = new QTabWidget(this);
+  lower->setObjectName(QStringLiteral("lowerTabs"));
+  lower->addTab(dPlot_, tr("D(K)"));
+  lower->addTab(longPlot_, tr("Long segments(K)"));
+  lower->addTab(b2Plot_, tr("b₂(K)"));
+  lower->addTab(table_, tr("Table"));
+  auto* splitter = new QSplitter(Qt::Vertical, this);
+  splitter->addWidget(upper);
+  splitter->addWidget(lower);
+  auto* layout = new QVBoxLayout(this);
+  layout->setContentsMargins(0, 0, 0, 0);
+  layout->addWidget(splitter);
+  // Not replotted here: the first showRuns() or clear() does it, as the dialog always did.  (A first replot with
+  // the empty ranges would leave Qwt's layout of the heat map a pixel off in the report's figure.)
+}
+
+QwtPlot* KScanPlots::plot(const QString& name) const {
+  for (QwtPlot* plot : {ftPlot_, heatMapPlot_, exponentPlot_, dPlot_, longPlot_, b2Plot_})
+    if (plot->objectName() == name) return plot;
+  return nullptr;
+}
+
+QStringList KScanPlots::plotNames() {
+  return {QStringLiteral("ft"), QStringLiteral("heatMap"), QStringLiteral("exponent"),
+          QStringLiteral("D"),  QStringLiteral("long"),    QStringLiteral("b2")};
+}
+
+double KScanPlots::heatMapValue(double K, double tau) const { return heatMap_->data()->value(K, tau); }
+
+void KScanPlots::clear() { showRuns(std::vector<std::optional<ScanRunSummary>>{}); }
+
+void KScanPlots::showRuns(const std::vector<ScanRunSummary>& runs) {
+  showRuns(std::vector<std::optional<ScanRunSummary>>(runs.begin(), runs.end()));
+}
+
+void KScanPlots::showRuns(const std::vector<std::optional<ScanRunSummary>>& runs) {
+  for (QwtPlot* plot : {ftPlot_, dPlot_, exponentPlot_, longPlot_, b2Plot_})
+    plot->detachItems(QwtPlotItem::Rtti_PlotCurve, true);
+  dPlot_->detachItems(QwtPlotItem::Rtti_PlotIntervalCurve, true);
+  table_->setRowCount(0);
+  QVector<QPointF> dPoints, longest, longFraction, b2Area, b2Fraction;
+  QVector<QwtIntervalSample> dErrors;
+  std::vector<ScanRunSummary> done;  // the K finished so far, in the scan's order: the heat map's columns
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    if (!runs[i]) continue;
+    const ScanRunSummary& run = *runs[i];
+    done.push_back(run);
+    const QColor colour = colourOf(i, runs.size());
+    auto addCurve = [&](QwtPlot* plot, const Series& s) {
+      QVector<QPointF> points;
+      for (std::size_t j = 0; j < s.x.size(); ++j)
+        if (s.x[j] > 0 && std::isfinite(s.value[j]) && (plot != ftPlot_ || s.value[j] > 0))
+          points.append(QPointF(s.x[j], s.value[j]));
+      auto* curve = new QwtPlotCurve(QStringLiteral("K = %1").arg(kText(run.point.K)));
+      curve->setPen(colour, 1.5);
+      curve->setSamples(points);
+      curve->attach(plot);
+    };
+    addCurve(ftPlot_, run.statistics.f);
+    addCurve(exponentPlot_, run.statistics.localExponent);
+    const ScanPoint& p = run.point;
+    if (p.D > 0) {
+      dPoints.append(QPointF(p.K, p.D));
+      // No bar where the longest segments dominate D (DError NaN): the data support no error there.
+      if (std::isfinite(p.DError))
+        dErrors.append(QwtIntervalSample(p.K, std::max(p.D - p.DError, p.D * 1e-3), p.D + p.DError));
+    }
+    if (p.longestSteps > 0) longest.append(QPointF(p.K, static_cast<double>(p.longestSteps)));  // 0: unknown
+    longFraction.append(QPointF(p.K, p.longFraction));
+    if (p.boxInvariant) {
+      b2Area.append(QPointF(p.K, p.boxInvariant->b2.area));
+      b2Fraction.append(QPointF(p.K, p.boxInvariant->b2.fraction));
+    }
+    const int row = table_->rowCount();
+    table_->insertRow(row);
+    const QStringList cells = {kText(p.K), QString::number(p.box.xmin, 'g', 4), QString::number(p.box.xmax, 'g', 4),
+                               QStringLiteral("%1 / %2").arg(p.blocksDone).arg(p.blocksTotal),
+                               QString::number(p.segments),
+                               std::isfinite(p.DError)
+                                   ? QStringLiteral("%1 ± %2").arg(p.D, 0, 'g', 4).arg(p.DError, 0, 'g', 2)
+                                   : tr("%1 (tail dominates: no error)").arg(p.D, 0, 'g', 4),
+                               p.longestSteps > 0 ? QString::number(p.longestSteps) : QStringLiteral("—"),
+                               QString::number(p.longFraction, 'f', 3),
+                               p.boxInvariant ? QStringLiteral("%1 (%2)")
+                                                    .arg(p.boxInvariant->b2.area, 0, 'g', 5)
+                                                    .arg(p.boxInvariant->b2.fraction, 0, 'f', 4)
+                                              : tr("not computed")};
+    for (int c = 0; c < cells.size(); ++c) table_->setItem(row, c, new QTableWidgetItem(cells[c]));
+    if (!std::isfinite(p.DError))
+      table_->item(row, 5)->setToolTip(tr("D is dominated by its longest segments: the run supports no error of D "
+                                          "(archipelago-cli stats says why)"));
+  }
+  auto* bars = new QwtPlotIntervalCurve(tr("one sigma"));
+  bars->setStyle(QwtPlotIntervalCurve::NoCurve);
+  bars->setSymbol(new QwtIntervalSymbol(QwtIntervalSymbol::Bar));
+  bars->setSamples(dErrors);
+  bars->attach(dPlot_);
+  auto addPoints = [](QwtPlot* plot, const QString& title, const QVector<QPointF>& points, const QColor& colour,
+                      QwtSymbol::Style style, int yAxis) {
+    auto* curve = new QwtPlotCurve(title);
+    curve->setPen(colour, 1.5);
+    curve->setSymbol(new QwtSymbol(style, colour, colour, QSize(7, 7)));
+    curve->setSamples(points);
+    curve->setYAxis(yAxis);
+    curve->attach(plot);
+    return curve;
+  };
+  const QColor blue(31, 119, 180), orange(230, 120, 20);
+  addPoints(dPlot_, tr("D"), dPoints, blue, QwtSymbol::Ellipse, kAxisY);
+  addPoints(longPlot_, tr("longest segment (left)"), longest, blue, QwtSymbol::Ellipse, kAxisY);
+  addPoints(longPlot_, tr("steps in segments ≥ 10⁴, fraction (right)"), longFraction, orange, QwtSymbol::Rect,
+            kAxisYRight);
+  addPoints(b2Plot_, tr("b₂, area (left)"), b2Area, blue, QwtSymbol::Ellipse, kAxisY);
+  addPoints(b2Plot_, tr("b₂ / L², fraction of the box (right)"), b2Fraction, orange, QwtSymbol::Rect, kAxisYRight);
+  b2Plot_->setFooter(b2Area.isEmpty() && !done.empty() ? tr("b₂ not computed: set b₂ steps > 0 and start again")
+                                                       : QString());
+
+  // The heat map: core's localExponentHeatMap of the K finished (the numbers of scan_local_exponent.csv).
+  auto* cells = new HeatMapData(localExponentHeatMap(done));
+  const bool mapEmpty = cells->empty();
+  heatMap_->setData(cells);
+
+  // Before any result, fixed ranges (an empty log axis would span hundreds of decades); then autoscale.
+  const bool empty = done.empty();
+  const auto noError = std::count_if(done.begin(), done.end(), [](const ScanRunSummary& r) {
+    return r.point.D > 0 && !std::isfinite(r.point.DError);
+  });
+  dPlot_->setFooter(noError > 0 ? tr("no error bar at %1 of %2 K: their longest segments dominate D, the run supports "
+                                     "no error there (see the table)")
+                                      .arg(noError)
+                                      .arg(done.size())
+                                : QString());
+  const std::pair<QwtPlot*, std::array<double, 4>> ranges[] = {
+      {ftPlot_, {1, 1e6, 1e-8, 1}},   {dPlot_, {0, 1.3, 1, 1e4}},  {exponentPlot_, {1, 1e6, 0, 3}},
+      {longPlot_, {0, 1.3, 1, 1e6}}, {b2Plot_, {0, 1.3, 0, 4}}};
+  for (const auto& [plot, r] : ranges) {
+    if (empty) {
+      plot->setAxisScale(kAxisX, r[0], r[1]);
+      plot->setAxisScale(kAxisY, r[2], r[3]);
+      if (plot == longPlot_ || plot == b2Plot_) plot->setAxisScale(kAxisYRight, 0, 1);
+    } else {
+      plot->setAxisAutoScale(kAxisX, true);
+      plot->setAxisAutoScale(kAxisY, true);
+      if (plot == longPlot_ || plot == b2Plot_) plot->setAxisAutoScale(kAxisYRight, true);
+    }
+    plot->replot();
+  }
+  // The heat map spans its cells exactly (autoscale would pad them with no-data grey).
+  if (mapEmpty) {
+    heatMapPlot_->setAxisScale(kAxisX, 0, 1.3);
+    heatMapPlot_->setAxisScale(kAxisY, 1, 1e6);
+  } else {
+    const QwtInterval x = cells->interval(Qt::XAxis), y = cells->interval(Qt::YAxis);
+    heatMapPlot_->setAxisScale(kAxisX, x.minValue(), x.maxValue());
+    heatMapPlot_->setAxisScale(kAxisY, y.minValue(), y.maxValue());
+  }
+  heatMapPlot_->replot();
+}
+
+}  // namespace archipelago::ui
