@@ -146,7 +146,7 @@ void addScanCommand(CLI::App& app, int& status) {
       ->required();
   cmd->add_option("--dir", o->dir, "folder of the scan: a run file per K (K0.05.json, ...) and the summaries")
       ->capture_default_str();
-  // The run's parameters but the map: K is the scan's, the box is the rule's (theory/KScan.hpp).
+  // The run's parameters but the map: K is the scan's, the box is the rule's (core/scan/ScanBox.hpp).
   addSpecOptions(*cmd, *o, {"K", "xmin", "xmax"});
   addNumberOption(*cmd, "--threads", o->threads, "OpenMP threads (0: all cores; at most " + std::to_string(kMaxThreads) + ")");
   addKernelOption(*cmd, o->kernel);

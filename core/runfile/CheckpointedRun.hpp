@@ -2,7 +2,7 @@
 /// \file CheckpointedRun.hpp
 /// \brief The one loop that advances a run with periodic checkpoints into a run file, and the final write that
 /// says where the work is when it fails.  `archipelago-cli run` (app/cli/RunSession), the K scan
-/// (export/KScanRun: the CLI's `scan` and the GUI's dialog) and the reproduction report all call it, so a
+/// (core/scan/ScanRun: the CLI's `scan` and the GUI's dialog) and the reproduction report all call it, so a
 /// checkpoint is written, retried and reported the same way everywhere.
 ///
 /// A checkpoint that cannot be written (a full disk, a vanished folder) must not cost the run: the warning is

@@ -1,5 +1,5 @@
 """archipelago-cli scan (issue #14, item 3; Karney 1983, sec. 5): a run file per K in the box of the rule
-xmin = -2 sqrt(K) - 0.2, xmax = sqrt(K) + 0.2 (core/theory/KScan.hpp), the same file `run` makes with that spec
+xmin = -2 sqrt(K) - 0.2, xmax = sqrt(K) + 0.2 (core/scan/ScanBox.hpp), the same file `run` makes with that spec
 (byte-identical statistics), resumable after SIGKILL, summaries over K, and one ERROR line for each bad option."""
 import re, csv, io, math, os, signal, subprocess, tempfile, time
 

@@ -37,21 +37,8 @@
 namespace archipelago::ui {
 
 QColor KScanPlots::heatMapColour(double exponent) {
-  if (std::isnan(exponent)) return {190, 190, 190};
-  // Linear between the stops, each channel rounded half up (Qwt's QwtLinearColorMap drew it so before: the
-  // same pixels).
-  struct Stop {
-    double at;
-    int r, g, b;
-  };
-  static constexpr Stop stops[] = {{0, 255, 255, 255}, {kHeatMapTop / 2, 226, 128, 64}, {kHeatMapTop, 140, 0, 0}};
-  if (!(exponent > stops[0].at)) return {stops[0].r, stops[0].g, stops[0].b};
-  if (exponent >= stops[2].at) return {stops[2].r, stops[2].g, stops[2].b};
-  const Stop& a = exponent < stops[1].at ? stops[0] : stops[1];
-  const Stop& b = exponent < stops[1].at ? stops[1] : stops[2];
-  const double ratio = (exponent - a.at) / (b.at - a.at);
-  return {static_cast<int>(a.r + 0.5 + ratio * (b.r - a.r)), static_cast<int>(a.g + 0.5 + ratio * (b.g - a.g)),
-          static_cast<int>(a.b + 0.5 + ratio * (b.b - a.b))};
+  const Rgb c = archipelago::heatMapColour(exponent);  // core's one scale (core/scan/ScanHeatMap.hpp)
+  return {c.r, c.g, c.b};
 }
 
 namespace {

@@ -21,6 +21,7 @@
 #include <optional>
 #include <vector>
 
+#include "core/scan/ScanHeatMap.hpp"
 #include "core/scan/ScanSummary.hpp"
 
 class QTableWidget;
@@ -51,12 +52,10 @@ class KScanPlots : public QWidget {
   /// in log τ; NaN where there is no data (drawn grey) or no K has finished.
   [[nodiscard]] double heatMapValue(double K, double tau) const;
 
-  /// The colours stop at 0 and at this local exponent (values beyond take the end colours).
-  static constexpr double kHeatMapTop = 2;
-  /// The heat map's colour of a local exponent; NaN (no data) gives the no-data grey.  The GUI's own scale
-  /// today: linear from white (0) through orange (1) to dark red (kHeatMapTop and beyond), grey 190 for no data.
-  /// Issue #24 gives the CLI's PNG, the GUI and the report one scale in core (core/scan): this function is then
-  /// the one line to change.
+  /// The colours stop at 0 and at this local exponent (values beyond take the end colours): core's.
+  static constexpr double kHeatMapTop = archipelago::kHeatMapTop;
+  /// The heat map's colour of a local exponent; NaN (no data) gives the no-data grey: core's one scale
+  /// (core/scan/ScanHeatMap.hpp), the colours of the CLI's PNG and the report.
   [[nodiscard]] static QColor heatMapColour(double exponent);
 
  private:
