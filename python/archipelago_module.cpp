@@ -279,9 +279,7 @@ void advanceRun(Run& run, int threads, const std::string& kernelName, const py::
   // The checkpoint's path is checked before the work, not found wrong after it.
   const std::optional<std::string> checkpointPath =
       checkpoint.is_none() ? std::nullopt : std::optional<std::string>(pathArgument(checkpoint, "checkpoint"));
-  if (threads < 0 || threads > kMaxThreads)
-    throw std::invalid_argument("threads = " + std::to_string(threads) + " must lie in [0, " +
-                                std::to_string(kMaxThreads) + "] (0: one per core)");
+  if (auto e = threadsError(threads)) throw std::invalid_argument(*e);
   if (!(std::isfinite(chunkSeconds) && chunkSeconds > 0 && chunkSeconds <= 3600))
     throw std::invalid_argument("chunk_seconds must lie in (0, 3600]");
   if (auto e = memoryError(run.state.params, threads)) throw std::invalid_argument(*e);

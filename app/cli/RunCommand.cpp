@@ -43,9 +43,7 @@ int runCommand(const RunOptions& o, const std::vector<std::string>& explicitPara
   if (!o.resume.empty() && !explicitParameters.empty())
     throw std::invalid_argument("--resume takes the parameters from the run file; do not also give " +
                                 explicitParameters.front());
-  if (o.threads < 0 || o.threads > kMaxThreads)  // --resume skips the spec's validation
-    throw std::invalid_argument("--threads = " + std::to_string(o.threads) + " must lie in [0, " +
-                                std::to_string(kMaxThreads) + "] (0: one per core)");
+  if (auto e = threadsError(o.threads)) throw std::invalid_argument("--" + *e);  // --resume skips the spec's check
   const std::string checkpoint = o.checkpoint.empty() ? o.out : o.checkpoint;
   // Every output path before any work (issue #12, finding 7): a typo fails now, not after the computation.
   io::checkWritableTarget(o.out);

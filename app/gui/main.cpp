@@ -22,6 +22,7 @@
 #include <memory>
 
 #include "LatencyProbe.hpp"
+#include "core/spec/InputRules.hpp"
 #include "ui/window/MainWindow.hpp"
 #include "ui/window/ParameterPanel.hpp"
 #include "ui/window/Resources.hpp"
@@ -101,14 +102,12 @@ int main(int argc, char** argv) {
     return 1;
   }
   if (parser.isSet(threads)) {
-    bool ok = false;
-    const int n = parser.value(threads).toInt(&ok);
-    if (!ok || n < 0) {
-      std::fprintf(stderr, "ERROR: --threads must be a whole number ≥ 0 (0 = every core), not \"%s\"\n",
-                   qPrintable(parser.value(threads)));
-      return 1;
+    try {
+      window.setThreads(archipelago::readThreads(parser.value(threads).toStdString()));  // core's one rule
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "ERROR: --%s\n", e.what());
+      return 2;
     }
-    window.setThreads(n);
   }
   window.show();
   if (parser.isSet(tab)) {

@@ -227,9 +227,7 @@ int mpiRun(const cli::RunOptions& o, const std::vector<std::string>& explicitPar
   if (!o.resume.empty() && !explicitParameters.empty())
     throw std::invalid_argument("--resume takes the parameters from the run file; do not also give " +
                                 explicitParameters.front());
-  if (o.threads < 0 || o.threads > kMaxThreads)
-    throw std::invalid_argument("--threads = " + std::to_string(o.threads) + " must lie in [0, " +
-                                std::to_string(kMaxThreads) + "] (0: one per core)");
+  if (auto e = threadsError(o.threads)) throw std::invalid_argument("--" + *e);  // --resume skips the spec's check
   if (!(o.checkpointSeconds >= 0))
     throw std::invalid_argument("--checkpoint-interval must be a number of seconds >= 0");
   cli::RunOptions run = o;

@@ -24,7 +24,9 @@
 #include "core/io/NumberText.hpp"
 #include "core/portrait/ColourMap.hpp"
 #include "core/report/LongOrbit.hpp"
+#include "core/paper/PaperTable.hpp"
 #include "core/report/PaperItems.hpp"
+#include "core/spec/InputRules.hpp"
 #include "core/run/TrappingRun.hpp"
 #include "core/runfile/CheckpointedRun.hpp"
 #include "core/runfile/RunFile.hpp"
@@ -180,11 +182,28 @@ int main(int argc, char** argv) {
   app.add_option("--only", only, "compute and print this one statement (its id in items.csv), no figures")
       ->check(CLI::Validator([](std::string& id) { return id.empty() ? std::string("an empty id") : std::string(); },
                              "ID"));
-  app.add_option("--threads", threads, "OpenMP threads (0: one per core)")->check(CLI::Range(0, 1024));
+  app.add_option_function<std::string>(
+         "--threads", [&threads](const std::string& text) { threads = readThreads(text); },
+         "OpenMP threads (0: one per core; core's rule, at most " + std::to_string(kMaxThreads) + ")")
+      ->type_name("INT");
   try {
     app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
+  } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {  // one ERROR line and status 2, as archipelago-cli (issue #23)
+    std::fprintf(stderr, "ERROR: %s\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {  // an option's own reader (--threads)
+    std::fprintf(stderr, "ERROR: %s\n", e.what());
+    return 2;
+  }
+  // An unknown statement is refused before any work (issue #23: a typo once computed every run first).
+  if (!only.empty() && paper::findStatement(only) == nullptr) {
+    std::fprintf(stderr, "ERROR: --only '%s': no such statement (archipelago-reproduce --table lists them)\n",
+                 only.c_str());
+    return 2;
   }
   QApplication qapp(argc, argv);
   // Qt sets the user's locale for the C library; printf-style text of this program is never localised (a

@@ -125,9 +125,7 @@ std::optional<std::string> validationError(const RunSpec& s) {
       return "kernel = '" + io::shortText(s.kernel) + "' is not a kernel (" + names + ")";
     }
   }
-  if (s.threads < 0 || s.threads > kMaxThreads)
-    return "threads = " + std::to_string(s.threads) + " must lie in [0, " + std::to_string(kMaxThreads) +
-           "] (0: one per core)";
+  if (auto e = threadsError(s.threads)) return e;
   return std::nullopt;
 }
 

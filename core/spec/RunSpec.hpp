@@ -30,6 +30,7 @@
 #include <string>
 #include <string_view>
 
+#include "core/spec/InputRules.hpp"  // kMaxThreads, threadsError
 #include "core/trapping/TrappingParameters.hpp"
 
 namespace archipelago {
@@ -48,8 +49,6 @@ struct RunSpec {
   friend bool operator==(const RunSpec&, const RunSpec&) = default;
 };
 
-/// The largest thread count a spec accepts (each thread holds its own histograms while a chunk runs).
-inline constexpr int kMaxThreads = 256;
 
 /// The first violated rule of the spec (the parameters' rules, the kernel's name, the thread count), naming
 /// the field, or nothing when valid.  The kernel is checked by name only: whether this CPU can run it is

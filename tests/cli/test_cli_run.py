@@ -85,7 +85,7 @@ r = run("stats", ref, "--csv", csvdir)
 check(r.returncode == 0 and "alpha" in r.stdout and "sum t f_t" in r.stdout, f"stats prints a summary ({r.stderr.strip()})")
 names = sorted(os.listdir(csvdir)) if os.path.isdir(csvdir) else []
 check(names == sorted(["f_t.csv", "p_t_probability.csv", "P_t.csv", "C_tau.csv", "local_exponent.csv", "S_t.csv",
-                       "D_t.csv", "summary.csv", "longest_segments.csv"]),
+                       "S_t_compensated.csv", "D_t.csv", "summary.csv", "longest_segments.csv"]),
       f"stats --csv writes every series, and no theory file for K = 0.1 ({names})")
 if "C_tau.csv" in names:
     lines = open(os.path.join(csvdir, "C_tau.csv")).read().strip().splitlines()

@@ -41,7 +41,7 @@ class TestParameterPanel : public QObject {
     QCOMPARE(panel_->fieldError(QStringLiteral("T")), QStringLiteral("T = 1e30 must be a whole number in [1, 2⁶²], q·T ≤ 2⁶²"));
     QCOMPARE(panel_->fieldError(QStringLiteral("M")), QStringLiteral("M = 0 must lie in [1, 2³²] (and the memory they need)"));
     QCOMPARE(panel_->fieldError(QStringLiteral("threads")),
-             QStringLiteral("threads = 999 must be a whole number in [0, %1] (0: one per core)").arg(archipelago::kMaxThreads));
+             QStringLiteral("threads = 999 must lie in [0, %1] (0: one per core)").arg(archipelago::kMaxThreads));
     const QStringList shown = panel_->findChild<QLabel*>(QStringLiteral("validationMessage"))->text().split(QLatin1Char('\n'));
     QCOMPARE(shown.size(), 4);
     QVERIFY(panel_->field(QStringLiteral("T"))->toolTip().contains(QStringLiteral("2⁶²")));

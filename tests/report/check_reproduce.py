@@ -90,8 +90,15 @@ with tempfile.TemporaryDirectory() as out:
     # One statement alone, as its command says.
     r4 = subprocess.run([exe, "--only", "chain138-x", out], capture_output=True, text=True, timeout=300)
     check(r4.returncode == 0 and "mark: agrees" in r4.stdout and "period-138" in r4.stdout, "--only chain138-x")
+    t5 = time.monotonic()
     r5 = subprocess.run([exe, "--only", "no-such-item", out], capture_output=True, text=True, timeout=300)
-    check(r5.returncode == 1 and "ERROR: --only 'no-such-item'" in r5.stderr, "--only with an unknown id is an error")
+    check(r5.returncode == 2 and r5.stderr.startswith("ERROR: --only 'no-such-item'") and time.monotonic() - t5 < 10,
+          "--only with an unknown id is one ERROR line, before any work (issue #23)")
+    r15 = subprocess.run([exe, "--threads", "-1", out], capture_output=True, text=True, timeout=60)
+    check(r15.returncode == 2 and r15.stderr.count("\n") == 1 and r15.stderr.startswith("ERROR: threads = -1"),
+          f"--threads -1: one ERROR line with core's rule ({r15.stderr.strip()})")
+    r16 = subprocess.run([exe, "--bogus", out], capture_output=True, text=True, timeout=60)
+    check(r16.returncode == 2 and r16.stderr.startswith("ERROR: "), "an unknown option: one ERROR line, status 2")
     # A folder whose parent does not exist, a file as OUTDIR, an empty --only: one clear error, nothing created.
     missing = os.path.join(out, "no-such-folder", "report")
     r8 = subprocess.run([exe, "--quick", missing], capture_output=True, text=True, timeout=60)

@@ -17,21 +17,23 @@
 
 #include "core/kernels/KernelDispatch.hpp"
 #include "ui/jobs/DurationText.hpp"
+#include "core/io/NumberText.hpp"
+#include "core/spec/InputRules.hpp"
 #include "ui/scan/KScanPlots.hpp"
+
+#include <variant>
 
 namespace archipelago::ui {
 
 namespace {
 
-const QLocale kNumbers = QLocale::c();
-
-/// A whole number ≥ 0 as typed (digits only: no sign, no NaN), or nothing.
-std::optional<std::uint64_t> parseCount(const QString& text) {
-  const QString t = text.trimmed();
-  bool ok = false;
-  const qulonglong v = kNumbers.toULongLong(t, &ok);
-  if (!ok || t.isEmpty() || t.startsWith(u'+')) return std::nullopt;
-  return static_cast<std::uint64_t>(v);
+/// A field's number through core's one input layer (core/spec/InputRules.hpp): its value, or its message.
+std::variant<ParameterValue, QString> input(const char* key, const QLineEdit* edit) {
+  try {
+    return readInput(key, edit->text().trimmed().toStdString());
+  } catch (const std::exception& e) {
+    return QString::fromStdString(e.what());
+  }
 }
 
 }  // namespace
@@ -155,20 +157,19 @@ std::optional<KScanRequest> KScanDialog::request(QString* error) const {
   }
   const std::pair<QLineEdit*, const char*> counts[] = {{M_, "M"}, {T_, "T"}, {q_, "q"}, {seed_, "seed"}};
   for (const auto& [edit, key] : counts) {
-    const auto v = parseCount(edit->text());
-    if (!v) return fail(tr("%1 = '%2' is not a whole number ≥ 0").arg(QLatin1String(key), edit->text()));
+    const auto v = input(key, edit);
+    if (const QString* message = std::get_if<QString>(&v)) return fail(*message);
     try {
-      setParameterValue(r.base.parameters, key, *v);
+      setParameterValue(r.base.parameters, key, std::get<ParameterValue>(v));
     } catch (const std::exception& e) {
       return fail(QString::fromStdString(e.what()));
     }
   }
-  const auto threads = parseCount(threads_->text());
-  if (!threads || *threads > static_cast<std::uint64_t>(kMaxThreads))
-    return fail(tr("threads = '%1' must be a whole number from 0 to %2").arg(threads_->text()).arg(kMaxThreads));
-  r.base.threads = static_cast<int>(*threads);
-  const auto b2 = parseCount(b2Iterations_->text());
-  if (!b2) return fail(tr("b₂ steps = '%1' is not a whole number ≥ 0").arg(b2Iterations_->text()));
+  const auto threads = input("threads", threads_);
+  if (const QString* message = std::get_if<QString>(&threads)) return fail(*message);
+  r.base.threads = static_cast<int>(std::get<std::uint64_t>(std::get<ParameterValue>(threads)));
+  const std::optional<std::uint64_t> b2 = io::toNumber<std::uint64_t>(b2Iterations_->text().trimmed().toStdString());
+  if (!b2) return fail(tr("b₂ steps = %1 must be a whole number ≥ 0").arg(b2Iterations_->text()));
   r.b2Iterations = *b2;
   r.dir = folder_->text().trimmed().toStdString();
   if (auto e = kScanValidationError(r)) return fail(QString::fromStdString(*e));

@@ -12,6 +12,9 @@
 
 #include <cmath>
 #include <limits>
+#include <variant>
+
+#include "core/spec/InputRules.hpp"
 
 namespace archipelago::ui {
 
@@ -24,22 +27,14 @@ const QStringList kFieldOrder = {QStringLiteral("K"),    QStringLiteral("xmin"),
 
 const QLocale kNumbers = QLocale::c();  // the paper's notation: a point and an exponent, never a comma
 
-std::optional<double> parseReal(const QString& text) {
-  bool ok = false;
-  const double v = kNumbers.toDouble(text.trimmed(), &ok);
-  if (!ok || !std::isfinite(v)) return std::nullopt;
-  return v;
-}
-
-/// Integers may be typed as 20000000 or as 2e7 (the paper writes qT = 2×10⁹).
-std::optional<std::uint64_t> parseCount(const QString& text) {
-  bool ok = false;
-  const QString t = text.trimmed();
-  const qulonglong v = kNumbers.toULongLong(t, &ok);
-  if (ok) return static_cast<std::uint64_t>(v);
-  const double d = kNumbers.toDouble(t, &ok);
-  if (!ok || !(d >= 0) || d != std::floor(d) || d >= 9.2e18) return std::nullopt;
-  return static_cast<std::uint64_t>(d);
+/// A field's value through core's one input layer (core/spec/InputRules.hpp, "2e7" an integer as everywhere), or
+/// its message; surrounding blanks are not part of a typed number.
+std::variant<ParameterValue, QString> input(const QString& key, const QString& text) {
+  try {
+    return readInput(key.toStdString(), text.trimmed().toStdString());
+  } catch (const std::exception& e) {
+    return QString::fromStdString(e.what());
+  }
 }
 
 /// The shortest text that reads back as exactly v (0.1, not 0.10000000000000001).
@@ -168,8 +163,9 @@ void ParameterPanel::addField(QFormLayout* form, const QString& name, const QStr
 std::optional<TrappingParameters> ParameterPanel::parameters() const { return valid_ ? parsed_ : std::nullopt; }
 
 int ParameterPanel::threads() const {
-  const auto n = parseCount(fields_.value(QStringLiteral("threads"))->text());
-  return n ? static_cast<int>(*n) : 0;
+  const auto n = input(QStringLiteral("threads"), fields_.value(QStringLiteral("threads"))->text());
+  const auto* v = std::get_if<ParameterValue>(&n);
+  return v ? static_cast<int>(std::get<std::uint64_t>(*v)) : 0;
 }
 
 QString ParameterPanel::validationMessage() const { return reason_; }
@@ -272,46 +268,26 @@ void ParameterPanel::revalidate() {
     for (const QString& f : fields) errors[f] << message;
     messages << message;
   };
-  const auto typed = [this](const char* key) {
-    const QString text = fields_.value(QLatin1String(key))->text().trimmed();
-    return text.isEmpty() ? tr("(empty)") : text;
-  };
   QStringList unparsed;
   TrappingParameters p;  // fields that do not parse keep their default value, and their rules are skipped
-  const auto real = [&](const char* key, double& out) {
-    if (const auto v = parseReal(fields_.value(QLatin1String(key))->text())) {
-      out = *v;
-      return;
-    }
+  // Every field through core's one input layer: its value, or its rule's one message.
+  const auto read = [&](const char* key) -> std::optional<ParameterValue> {
+    const auto v = input(QLatin1String(key), fields_.value(QLatin1String(key))->text());
+    if (const auto* value = std::get_if<ParameterValue>(&v)) return *value;
     unparsed << QLatin1String(key);
-    addError({QLatin1String(key)}, tr("%1 = %2 must be a finite number").arg(QLatin1String(key), typed(key)));
+    addError({QLatin1String(key)}, std::get<QString>(v));
+    return std::nullopt;
   };
-  const auto count = [&](const char* key, auto& out) {
-    const auto v = parseCount(fields_.value(QLatin1String(key))->text());
-    using Out = std::remove_reference_t<decltype(out)>;
-    if (v && *v <= std::numeric_limits<Out>::max()) {
-      out = static_cast<Out>(*v);
-      return;
+  for (const char* key : {"K", "xmin", "xmax", "Xr", "q", "T", "M", "seed", "subsets"})
+    if (const auto v = read(key)) {
+      try {
+        setParameterValue(p, key, *v);
+      } catch (const std::exception& e) {  // a value its member cannot hold (q > 2³²): the rule's range
+        unparsed << QLatin1String(key);
+        addError({QLatin1String(key)}, QString::fromStdString(e.what()));
+      }
     }
-    unparsed << QLatin1String(key);
-    const ParameterRule* rule = findParameterRule(key);
-    const QString range = rule ? QString::fromUtf8(rule->range.data(), static_cast<int>(rule->range.size())) : QString();
-    addError({QLatin1String(key)}, tr("%1 = %2 must be a whole number in %3").arg(QLatin1String(key), typed(key), range));
-  };
-  real("K", p.map.K);
-  real("xmin", p.map.xmin);
-  real("xmax", p.map.xmax);
-  real("Xr", p.Xr);
-  count("q", p.q);
-  count("T", p.T);
-  count("M", p.M);
-  count("seed", p.seed);
-  count("subsets", p.subsets);
-  const auto threads = parseCount(fields_.value(QStringLiteral("threads"))->text());
-  if (!threads || *threads > static_cast<std::uint64_t>(kMaxThreads))
-    addError({QStringLiteral("threads")}, tr("threads = %1 must be a whole number in [0, %2] (0: one per core)")
-                                              .arg(typed("threads"))
-                                              .arg(kMaxThreads));
+  (void)read("threads");
   for (const ParameterError& e : validationErrors(p)) {
     QStringList fields;
     bool aboutUnparsed = false;
