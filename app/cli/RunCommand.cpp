@@ -78,6 +78,20 @@ int runCommand(const RunOptions& o, const std::vector<std::string>& explicitPara
     std::fprintf(stderr, "WARNING: checkpoint not written: %s; the run goes on and retries in %g s\n", reason.c_str(),
                  retrySeconds);
   };
+  // The spec's q = 1 companion first (issue #26: the short times of the paper's process; a small fraction of the
+  // steps), run or resumed in its own file beside --out.
+  if (o.companion > 0 && o.resume.empty() && o.orbits.empty()) {
+    const std::filesystem::path file = companionRunFile(o.out);
+    const TrappingParameters cp = companionParameters(params, o.companion);
+    if (!o.quiet)
+      std::fprintf(stderr, "companion   q = 1, T = %llu steps (%.3g of the run's steps) -> %s\n",
+                   static_cast<unsigned long long>(cp.T), o.companion, file.c_str());
+    const RunFileOutcome c = runOrResumeFile(file, cp, options);
+    if (!c.state.finished()) {
+      std::fprintf(stderr, "interrupted: the companion is saved in %s (the same command resumes it)\n", file.c_str());
+      return 130;
+    }
+  }
   LastCheckpoint last{o.resume, state.blocksDone};
   auto lastLine = std::chrono::steady_clock::now();
   auto progress = [&](const TrappingState&, const TrappingProgress& p) {
@@ -107,6 +121,9 @@ int runCommand(const RunOptions& o, const std::vector<std::string>& explicitPara
                  static_cast<unsigned long long>(total.segments()),
                  static_cast<unsigned long long>(longest * state.params.q), state.stepsDone(),
                  state.elapsedSeconds, state.kernel.c_str(), o.out.c_str());
+    if (o.companion > 0 && o.orbits.empty())
+      std::fprintf(stderr, "statistics: archipelago-cli stats %s --short %s\n", o.out.c_str(),
+                   companionRunFile(o.out).c_str());
   }
   return 0;
 }
@@ -183,6 +200,7 @@ void addRunCommand(CLI::App& app, int& status) {
     o->params = spec.parameters;
     (void)orbitRange(o->orbits, o->params.M);  // a bad range is named before any work
     o->threads = spec.threads;
+    o->companion = spec.companion;
     o->kernel = spec.kernel == "auto" ? std::string() : spec.kernel;  // "auto": $ARCHIPELAGO_KERNEL or the fastest
     status = ensemble ? runSeeds(*o, given) : runCommand(*o, given);
   });

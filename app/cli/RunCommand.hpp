@@ -22,6 +22,7 @@ struct RunOptions : SpecOptions {
   bool quiet = false;
   std::string orbits;  // --orbits BEGIN:END: only these orbits (a part for `merge`, issue #15)
   std::string seeds;   // --seeds LIST: a seed ensemble, one run file per seed (issue #14, item 2)
+  double companion = 0;  // the spec's q = 1 companion (fraction of the steps; 0: none), written beside --out
 };
 
 /// Registers the options of `run` on `cmd`.

@@ -33,6 +33,7 @@ struct StatsOptions {
   bool allowModified = false;
   BootstrapOptions bootstrap;         // --bootstrap, --bootstrap-seed
   double b2 = -1;                     // --b2 AREA; negative: not given
+  std::string shortRun;               // --short: the run's q = 1 companion (issue #26)
 };
 
 /// --b2 AREA: b₂ as an area in the run's box (appendix A), its fraction of L², the box-invariant b₂·D (eq. A3)
@@ -133,8 +134,8 @@ void printD(const TailAnalysis& a, const TrappingStatistics& s) {
   }
 }
 
-/// The tail: its end, the fitted exponents with intervals, the reference exponents, what cannot be decided,
-/// and the steps that would decide.
+/// The tail: its end, the running exponent over log-spaced windows with intervals, the literature's asymptotic
+/// exponents, and the forward estimate of what more data would cost (issue #26).
 void printTail(const TailAnalysis& a) {
   const int percent = static_cast<int>(std::lround(100 * a.bootstrap.confidence));
   if (a.windows.empty()) {
@@ -156,20 +157,15 @@ void printTail(const TailAnalysis& a) {
                 g(w.gammaP).c_str(), interval(w.gammaPInterval).c_str(), g(w.exponentC).c_str(),
                 interval(w.exponentCInterval).c_str(), static_cast<unsigned long long>(w.segmentsBeyondFrom),
                 static_cast<unsigned long long>(w.segmentsBeyondTo));
-  std::string verdicts;
-  for (const ReferenceExponent& r : referenceExponents()) {
-    const bool defined = std::isfinite(f.gammaPInterval.lo);
-    const bool inside = defined && f.gammaPInterval.lo <= r.gamma && r.gamma <= f.gammaPInterval.hi;
-    verdicts += (verdicts.empty() ? "" : "; ") + g(r.gamma) + " (" + r.source + ") " +
-                (!defined ? "undecided" : inside ? "consistent" : "excluded");
-  }
-  std::printf("reference   over the tail fit's window, at %d%%: %s\n", percent, verdicts.c_str());
-  const StepsToDecide& d = a.decide;
-  std::printf("to decide   gamma = %s against %s beyond t_end at %s sigma: %s segments longer than t_end, about %.2g "
-              "steps (%.2g times this sample's %.3g); a lower bound: it assumes a pure power law beyond t_end%s\n",
-              g(d.gammaSlow).c_str(), g(d.gammaFast).c_str(), g(d.sigmas).c_str(), g(d.segmentsNeeded).c_str(),
-              d.stepsNeeded, d.stepsNeeded / d.stepsDone, d.stepsDone,
-              d.recordTooShort ? ", and longer orbits (q T < 10 t_end)" : "");
+  // The literature's exponents are asymptotic (t → ∞): set beside the running exponent, never judged by one window.
+  std::string literature;
+  for (const ReferenceExponent& r : referenceExponents())
+    literature += (literature.empty() ? "" : ", ") + g(r.gamma) + " (" + r.source + ")";
+  std::printf("literature  asymptotic exponents (t -> infinity): %s; the windows above are finite t\n", literature.c_str());
+  std::printf("forecast    steps for %g segments beyond t if P_t ~ t^-gamma past t_end (this sample: %.3g steps):\n",
+              a.forecast.empty() ? 100.0 : a.forecast.front().segments, a.stepsDone);
+  for (const TailForecast& f : a.forecast)
+    std::printf("            t = %s, gamma = %s: %.2g steps\n", g(f.target).c_str(), g(f.gamma).c_str(), f.steps);
 }
 
 void printVerdict(const TailAnalysis& a) {
@@ -188,7 +184,13 @@ int statsCommand(const StatsOptions& o) {
   if (o.allowModified) std::fprintf(stderr, "warning: --allow-modified: a file edited after it was written is read\n");
   const Ensemble ensemble = ensembleOf(states, o.runFiles);  // one run, or seeds checked to differ only in the seed
   const TrappingState& state = states.front();
-  const TrappingStatistics s = ensembleStatistics(ensemble);
+  // With its q = 1 companion the short times are the q = 1 process's (issue #26): composite statistics.
+  std::optional<TrappingState> companion;
+  if (!o.shortRun.empty()) {
+    if (states.size() > 1) throw std::invalid_argument("--short splices one run with its companion, not an ensemble");
+    companion = loadRunFile(o.shortRun, {.allowModified = o.allowModified});
+  }
+  const TrappingStatistics s = companion ? splicedStatisticsOf(state, *companion) : ensembleStatistics(ensemble);
   TailOptions tailOptions;
   tailOptions.bootstrap = o.bootstrap;
   const TailAnalysis tail = analyseTail(ensemble, tailOptions);
@@ -208,6 +210,14 @@ int statsCommand(const StatsOptions& o) {
     std::printf("ensemble    %zu runs pooled (seeds %s): %llu orbits\n", states.size(), seeds.c_str(),
                 static_cast<unsigned long long>(p.M * states.size()));
   }
+  if (companion)
+    std::printf("spliced     with the q = 1 companion %s (T = %llu steps): f_t below t = %.6g steps is the companion's, "
+                "at and above it the run's (the first point >= 10 q where both agree within 2 sigma)\n",
+                o.shortRun.c_str(), static_cast<unsigned long long>(companion->blocksDone), s.splicedAt);
+  else if (s.blockAffectedBelow > 0)
+    std::printf("blocks      below t = 10 q = %.6g steps the statistics are those of blocks of q steps, not of the "
+                "paper's q = 1 process (marked in the CSV files; a q = 1 companion, --short, splices them)\n",
+                s.blockAffectedBelow);
   std::printf("segments    %llu\n", static_cast<unsigned long long>(s.segments));
   std::printf("alpha       %.6g +- %.2g   (mean segment length, steps)\n", s.alpha, s.alphaError);
   if (s.segments > 0) printD(tail, s);
@@ -256,6 +266,9 @@ void addStatsCommand(CLI::App& app, int& status) {
                   "seeds")->required();
   cmd->add_flag("--allow-modified", o->allowModified,
                 "read a run file whose checksum does not match (edited by hand; forensic use); it is still validated");
+  cmd->add_option("--short", o->shortRun,
+                  "the run's q = 1 companion (run writes NAME.short.json when its spec asks for one): the statistics "
+                  "below a crossover >= 10 q come from it, the rest from the run (issue #26)");
   cmd->add_option("--csv", o->csvDir, "write every series, its small-K theory curves and a summary as CSV into this folder");
   cmd->add_option("--tail-csv", o->tailCsvDir,
                   "write D's errors and the tail (tail_summary, D_vs_steps, tail_fit, segments_beyond, "

@@ -85,11 +85,24 @@ std::string statisticCsv(const TrappingState& state, const TrappingStatistics& s
   line(out, "statistic", text(info.key) + ": " + text(info.description) +
                              (figurePanelsOf(info.statistic).empty() ? std::string()
                                                        : " (Karney 1983, fig. " + figurePanelsOf(info.statistic) + ")"));
-  line(out, "columns", text(info.abscissaLabel) + "; " + text(info.valueLabel) + "; " + text(info.key) + "_error");
+  // Issue #26: below 10 q a run of q > 1 describes blocks of q steps, not the paper's q = 1 process; the rows are
+  // marked (blocks_affected = 1) unless the statistics were spliced with a q = 1 companion.
+  const bool marked = statistics.blockAffectedBelow > 0;
+  line(out, "columns", text(info.abscissaLabel) + "; " + text(info.valueLabel) + "; " + text(info.key) + "_error" +
+                           (marked ? "; blocks_affected (1: t below 10 q = " + number(statistics.blockAffectedBelow) +
+                                         " steps, the statistics of blocks of q steps, not of the q = 1 process)"
+                                   : std::string()));
   line(out, "error", text(info.error));
-  out += text(info.abscissa) + ',' + text(info.key) + ',' + text(info.key) + "_error\n";
-  for (std::size_t i = 0; i < series.x.size(); ++i)
-    out += number(series.x[i]) + ',' + number(series.value[i]) + ',' + number(series.error[i]) + '\n';
+  if (statistics.splicedAt > 0)
+    line(out, "spliced", "below t = " + number(statistics.splicedAt) +
+                             " steps f_t is the q = 1 companion's, above it the run's; every other statistic is "
+                             "derived from that spliced f_t");
+  out += text(info.abscissa) + ',' + text(info.key) + ',' + text(info.key) + "_error" + (marked ? ",blocks_affected" : "") + "\n";
+  for (std::size_t i = 0; i < series.x.size(); ++i) {
+    out += number(series.x[i]) + ',' + number(series.value[i]) + ',' + number(series.error[i]);
+    if (marked) out += series.x[i] < statistics.blockAffectedBelow ? ",1" : ",0";
+    out += '\n';
+  }
   return out;
 }
 

@@ -2,6 +2,7 @@
 
 #include <cstdint>
 
+#include "core/io/NumberText.hpp"
 #include "core/stats/ReferenceSlopes.hpp"
 
 namespace archipelago {
@@ -123,16 +124,12 @@ std::vector<CsvFile> tailCsvFiles(const TrappingState& state, const TailAnalysis
     row(out, "exponent_C_tail", a.tailFit.exponentC, a.tailFit.exponentCInterval.lo, a.tailFit.exponentCInterval.hi);
     row(out, "tail_fit_from", a.tailFit.from);
     row(out, "tail_fit_to", a.tailFit.to);
-    const StepsToDecide& d = a.decide;
-    row(out, "decide_gamma_slow", d.gammaSlow);
-    row(out, "decide_gamma_fast", d.gammaFast);
-    row(out, "decide_sigmas", d.sigmas);
-    row(out, "decide_anchor", d.anchor);
-    row(out, "decide_segments_beyond_anchor", static_cast<double>(d.segmentsBeyond));
-    row(out, "decide_segments_needed", d.segmentsNeeded);
-    row(out, "decide_steps_needed", d.stepsNeeded);
-    row(out, "steps_done", d.stepsDone);
-    row(out, "decide_record_too_short", d.recordTooShort ? 1 : 0);
+    row(out, "steps_done", a.stepsDone);
+    // The forward estimate (TailAnalysis.hpp): steps for N segments beyond t under P ∝ t^−γ past t_end.
+    for (const TailForecast& f : a.forecast)
+      row(out, "forecast_steps_" + std::to_string(static_cast<long long>(f.segments)) + "_beyond_" +
+                   io::formatC("%g", f.target) + "_gamma_" + io::formatC("%g", f.gamma),
+          f.steps);
     files.push_back({"tail_summary.csv", out});
   }
   return files;

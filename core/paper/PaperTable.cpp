@@ -139,9 +139,10 @@ const std::array<Statement, 34> kStatements{{
      "dominate D)", 800, "the paper's own error; plus 3 σ of ours", true},
     {"b2", "§5", "K = 0.1: the stochastic area b₂ = 0.693", "0.693", 0.693, "", Source::measured, Comparison::value,
      "the area of the 1024² boxes visited by the sea's orbits in a box of the paper's size, L = 1: (−0.7, 0.3)",
-     0.02,
-     "the paper's box is not in our copy (its fig. 6 caption): b₂ depends on it; 0.02 covers boxes of side 1 "
-     "shifted by ± 0.1 (measured, tests/paper)"},
+     0.07,
+     "the paper's box is not in our copy (its fig. 6 caption) and b₂ depends on it: boxes of side 1 shifted by "
+     "± 0.1 give 0.628 … 0.760 (measured: archipelago-cli stochastic-area --xmin=-0.8 --xmax 0.2 … --xmin=-0.6 "
+     "--xmax 0.4, 2²⁷ iterations); the tolerance covers that spread, so this checks b₂'s size, not its digits"},
     {"b2D", "§5, eq. A3", "K = 0.1: b₂·D does not depend on the box (paper: 0.693 × 6400)", "4435 ± 554", 4435.2, "",
      Source::measured, Comparison::value, "b₂ (area) of the run's box times the run's D", 554,
      "the paper's error of D times 0.693; plus 3 σ of ours", true},
@@ -154,8 +155,8 @@ const std::array<Statement, 34> kStatements{{
      "one sample of a heavy tail: an order of magnitude either way is one sample's spread", true},
     // §6
     {"factor056", "§6", "accelerator modes: 2h²(γ/A₁)b₂ = (8/π²) b₂ ≈ 0.56", "≈ 0.56", 0.56, "", Source::measured,
-     Comparison::value, "(8/π²) times our b₂ in a box of the paper's size (the b2 statement)", 0.02,
-     "b₂'s tolerance times 8/π², and the paper's two digits"},
+     Comparison::value, "(8/π²) times our b₂ in a box of the paper's size (the b2 statement)", 0.057,
+     "b₂'s tolerance (0.07, the spread over boxes) times 8/π²"},
     {"enhancement", "§6", "accelerator modes: the diffusion is enhanced at least 360/n² times (n = 1)", "≥ 360", 360, "",
      Source::measured, Comparison::atLeast, "(8/π²) b₂ D/𝒟_ql with our b₂ and D", 45,
      "the paper's bound with its D = 6400 − 800", true},
@@ -195,8 +196,10 @@ const std::array<Statement, 34> kStatements{{
      "ε(1) = (m − 1)/(N − m) exceeds m/N by up to 11 %, said in the note)", 1e-9, "rounding of the series"},
     {"markov-period", "App. C", "ε(τ) settles into an oscillation of half-period m that decays as n^−τ/m",
      "half-period m = 20", 20, "", Source::computation, Comparison::value,
-     "the mean distance between sign changes of ε(τ) for m = 20, N = 1000 over 2m < τ ≤ 10m", 2,
-     "sign changes are counted at whole τ: ± 2 steps over a few oscillations"},
+     "the mean distance between sign changes of ε(τ) for m = 20, N = 1000 over 2m < τ ≤ 10m", 4.4,
+     "the paper's \"approximately\": the exact half-period is π/θ, θ the argument of the dominant root of "
+     "λ^m (n(λ − 1) + 1) = 1 (core/markov/MarkovModel.hpp, tests/core/markov), 17.33 at m = 20, N = 1000; it lies "
+     "below m by at most 1.5 m/log n (4.4 steps here) for the paper's N ≥ 10m, and tends to m only as N → ∞"},
 }};
 
 }  // namespace

@@ -259,4 +259,10 @@ TrappingState loadRunFile(const std::filesystem::path& path, const RunFileReadOp
   }
 }
 
+std::filesystem::path companionRunFile(const std::filesystem::path& run) {
+  std::filesystem::path p = run;
+  const std::string stem = run.extension() == ".json" ? run.stem().string() : run.filename().string();
+  return p.replace_filename(stem + ".short.json");
+}
+
 }  // namespace archipelago

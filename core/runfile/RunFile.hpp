@@ -47,4 +47,8 @@ void saveRunFile(const std::filesystem::path& path, const TrappingState& state);
 /// naming the path on failure.
 [[nodiscard]] TrappingState loadRunFile(const std::filesystem::path& path, const RunFileReadOptions& options = {});
 
+/// The run file of a run's q = 1 companion (issue #26): "k01.json" → "k01.short.json" (`run` writes it beside the
+/// run when the spec asks for one; `stats RUN --short` reads it).
+[[nodiscard]] std::filesystem::path companionRunFile(const std::filesystem::path& run);
+
 }  // namespace archipelago

@@ -126,6 +126,11 @@ std::optional<std::string> validationError(const RunSpec& s) {
     }
   }
   if (auto e = threadsError(s.threads)) return e;
+  if (s.companion != 0) {
+    if (!(s.companion > 0 && s.companion <= 1))
+      return "companion = " + io::shortestText(s.companion) + " must lie in (0, 1] (the fraction of the run's steps)";
+    if (s.parameters.q <= 1) return "companion: a run of q = 1 needs no q = 1 companion (remove it)";
+  }
   return std::nullopt;
 }
 
@@ -138,13 +143,15 @@ std::string runSpecJson(const RunSpec& s) {
   j["parameters"] = spec::parametersJson(s.parameters);
   j["kernel"] = s.kernel;
   j["threads"] = s.threads;
+  if (s.companion != 0) j["companion"] = s.companion;
   return j.dump(2) + "\n";
 }
 
 RunSpec parseRunSpec(std::string_view textIn) {
   const json j = spec::parseVersionedDocument(textIn, kRunSpecFormatName, kRunSpecFormatVersion, "a", "run spec");
   for (auto it = j.begin(); it != j.end(); ++it) {
-    static const std::set<std::string> known{"format", "version", "name", "description", "parameters", "kernel", "threads"};
+    static const std::set<std::string> known{"format", "version", "name", "description", "parameters", "kernel", "threads",
+                                             "companion"};
     if (!known.count(it.key())) bad("unknown key '" + io::shortText(it.key()) + "'");
   }
   RunSpec s;
@@ -154,6 +161,7 @@ RunSpec parseRunSpec(std::string_view textIn) {
   if (j.contains("kernel")) s.kernel = text(j, "kernel", 64);
   if (const auto t = j.find("threads"); t != j.end())
     s.threads = static_cast<int>(wholeNumber(*t, "threads", kMaxThreads));
+  if (const auto c = j.find("companion"); c != j.end()) s.companion = realNumber(*c, "companion");
   if (auto e = validationError(s)) bad(*e);
   return s;
 }

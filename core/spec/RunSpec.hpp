@@ -14,7 +14,7 @@
 ///      "name": "…", "description": "…",                      (optional: presets and saved specs)
 ///      "parameters": {"K": 0.1, "xmin": -0.8, "xmax": 0.5, "Xr": 0.02, "q": 16, "T": 1000000,
 ///                     "M": 64, "seed": 1, "subsets": 16, "longestKept": 100},
-///      "kernel": "auto", "threads": 0}
+///      "kernel": "auto", "threads": 0, "companion": 0.1}              ("companion": optional, q > 1 only)
 ///
 /// Reals are written with the shortest decimal form that reads back to the same double; integers as JSON
 /// integers (exact to 2^64).  The keys and the documented range of each parameter are TrappingParameters'
@@ -43,6 +43,9 @@ struct RunSpec {
   TrappingParameters parameters;
   std::string kernel = "auto";  ///< "auto" or a kernel name (kernels/KernelDispatch.hpp); chosen at the edges
   int threads = 0;              ///< OpenMP threads, 0 … kMaxThreads; 0: one per core
+  /// A run of q > 1 may carry a q = 1 companion for its short times (issue #26): the fraction of the run's steps
+  /// it costs, in (0, 1]; 0: none.  companionParameters(parameters, companion) are its parameters.
+  double companion = 0;
   std::string name;             ///< a short title (presets); may be empty
   std::string description;      ///< one paragraph (presets); may be empty
 

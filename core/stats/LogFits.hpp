@@ -27,10 +27,7 @@ struct SlopeFit {
   [[nodiscard]] bool valid() const noexcept { return points >= 3 && slope == slope; }
 };
 
-/// The points per decade of every power-law fit and of the local exponent's grid.
-inline constexpr int kLogGridPerDecade = 10;
-
-/// d log y / d log x over [from, to] on a log grid (the file comment).  Points with y ≤ 0 are skipped; NaN slope
+/// d log y / d log x over [from, to] on a log grid of kLogGridPerDecade points per decade (TrappingStatistics.hpp; the file comment).  Points with y ≤ 0 are skipped; NaN slope
 /// (valid() false) with fewer than 3 grid points.
 [[nodiscard]] SlopeFit logLogSlope(const Series& s, double from, double to, int perDecade = kLogGridPerDecade);
 

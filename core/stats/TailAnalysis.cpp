@@ -12,6 +12,7 @@
 
 #include "core/io/NumberText.hpp"
 #include "core/stats/LogFits.hpp"
+#include "core/stats/ReferenceSlopes.hpp"
 
 namespace archipelago {
 
@@ -189,23 +190,22 @@ TailAnalysis analyseTail(const Ensemble& e, const TailOptions& options) {
     }
   }
 
-  // What can be decided: the steps that would separate gammaSlow from gammaFast beyond the tail's end.
-  StepsToDecide& d = a.decide;
-  d.gammaSlow = options.gammaSlow;
-  d.gammaFast = options.gammaFast;
-  d.sigmas = options.sigmas;
-  d.stepsDone = static_cast<double>(orbits) * static_cast<double>(e.blocks) * e.q;
+  // The forward estimate (the header): steps for N segments beyond each target under each literature exponent.
+  a.stepsDone = static_cast<double>(orbits) * static_cast<double>(e.blocks) * e.q;
   if (std::isfinite(a.tailEnd)) {
-    d.anchor = a.tailEnd;
+    std::uint64_t beyondEnd = 0;
     for (const SegmentsBeyond& b : a.beyond)
-      if (b.t == a.tailEnd) {
-        d.P = b.P;
-        d.segmentsBeyond = b.segments;
+      if (b.t == a.tailEnd) beyondEnd = b.segments;
+    const double rate = beyondEnd > 0 ? static_cast<double>(beyondEnd) / a.stepsDone : 0;
+    for (const double target : {1e8, 1e9, 1e10})
+      for (const ReferenceExponent& r : referenceExponents()) {
+        TailForecast f;
+        f.target = target;
+        f.gamma = r.gamma;
+        f.segments = options.forecastSegments;
+        if (rate > 0 && target > a.tailEnd) f.steps = f.segments / rate * std::pow(target / a.tailEnd, r.gamma);
+        a.forecast.push_back(f);
       }
-    const double z = options.sigmas * (d.gammaSlow + d.gammaFast) / (d.gammaFast - d.gammaSlow);
-    d.segmentsNeeded = std::ceil(z * z);
-    d.stepsNeeded = d.P > 0 ? d.segmentsNeeded * stats.alpha / d.P : kTailUndefined;
-    d.recordTooShort = static_cast<double>(e.q) * static_cast<double>(e.blocks) < 10 * d.anchor;
   }
 
   // The verdict.

@@ -38,24 +38,18 @@
 ///    Then no error is printed for D (the message says why); otherwise the bootstrap error.  With several
 ///    seeds the spread over seeds (standard error of the mean of the per-seed D) is given too, and it is the
 ///    error of choice when the tail does not dominate the pooled run.
-///  - What can be decided.  The number of segments beyond each t.  And how many steps would decide between
-///    two tail exponents γ₁ < γ₂ (1.57, Cristadoro & Ketzmerick 2008, and 3, Chirikov & Shepelyansky 1999):
-///
-///    Derivation.  Both laws are anchored at the data's end t_a = t_end, where P_t is still measured (with
-///    minTailSegments segments beyond).  Beyond t_a the question is the slope alone: if P_t ∝ t^−γ for
-///    t > t_a, the lengths t of the segments longer than t_a follow the Pareto law Pr(t > x | t > t_a) =
-///    (x/t_a)^−γ.  For n such segments the log-likelihood is n log γ − (γ + 1) Σ log(t_j/t_a) + const, the
-///    maximum-likelihood γ̂ = n / Σ log(t_j/t_a) has Fisher information n/γ², so γ̂ is normal with standard
-///    deviation γ/√n for large n.  A threshold c between γ₁ and γ₂ decides at z standard deviations under
-///    either hypothesis when c − γ₁ ≥ zγ₁/√n and γ₂ − c ≥ zγ₂/√n, i.e. when
-///        n ≥ n* = ⌈(z (γ₁ + γ₂)/(γ₂ − γ₁))²⌉        (z = 3, γ₁ = 1.57, γ₂ = 3: n* = 92).
-///    Segments longer than t_a start at the rate Σ_{s_i > t_a} w_i = P(t_a)/α per step of record (the
-///    estimator of TrappingStatistics.hpp, truncation corrected), so the steps needed are
-///        steps* = n* α / P(t_a),
-///    in the run's box and at its K (α and P come from this run).  This is a lower bound: it assumes P_t is
-///    a pure power law beyond t_a, while the paper's fig. 6(d) shows the local exponent stepping; and the
-///    record must be long enough to hold the tail (q T ≫ t_a; flagged when q T < 10 t_a).
-///
+///  - The running exponent γ(t): the windows above, log-spaced (decades ending at t_end·10^(−k/2)), each with its
+///    bootstrap interval; plotted against the later literature's asymptotic exponents (ReferenceSlopes.hpp), which
+///    no finite window is said to be "consistent" with (issue #26).
+///  - A forward estimate (issue #26; it replaced a "steps to decide" that asked for 9.2 times the steps already
+///    run whatever the run: it anchored at t_end, the very point that moves out as the run grows).  Segments
+///    longer than t_end start at the measured rate r = n(t_end)/steps, n(t_end) the segments longer than t_end in
+///    the data (≥ minTailSegments) and steps = M T q.  If P_t ∝ t^−γ beyond t_end, segments longer than a target t
+///    start at r (t/t_end)^−γ, so N of them need
+///        steps(t, γ) = N / r · (t/t_end)^γ
+///    steps of record (and orbits longer than t: q T > t).  Given for N = 100, the targets 10⁸, 10⁹, 10¹⁰ and each
+///    literature exponent: what each hypothesis would cost, not a verdict.
+
 /// Reference slopes for the P_t plot: t^−1.57 (Cristadoro & Ketzmerick, PRL 100, 184101, 2008), t^−3/2
 /// (Venegeroles, PRL 102, 064101, 2009), t^−1.3 (Shepelyansky 2010, few degrees of freedom) and t^−3
 /// (Chirikov & Shepelyansky, PRL 82, 528, 1999), anchored at the data (referenceSlopes()).
@@ -103,16 +97,12 @@ struct LongestShare {
   double shortestOfThem = 0;   ///< length of the k-th longest (its bin's mean), steps
 };
 
-/// The estimate of the steps that would decide between two tail exponents (see the file comment).
-struct StepsToDecide {
-  double gammaSlow = 1.57, gammaFast = 3, sigmas = 3;
-  double anchor = kTailUndefined;             ///< t_a, steps
-  double P = kTailUndefined;                  ///< P(t_a)
-  std::uint64_t segmentsBeyond = 0; ///< segments longer than t_a in the data
-  double segmentsNeeded = kTailUndefined;     ///< n*
-  double stepsNeeded = kTailUndefined;        ///< n* α / P(t_a)
-  double stepsDone = 0;             ///< M T q summed over members
-  bool recordTooShort = false;      ///< q T < 10 t_a
+/// The steps a run would need for `segments` segments longer than `target`, if P_t ∝ t^−γ beyond t_end.
+struct TailForecast {
+  double target = 0;       ///< t, steps
+  double gamma = 0;        ///< the hypothesis (a literature exponent)
+  double segments = 100;   ///< N
+  double steps = kTailUndefined;
 };
 
 /// Segments longer than t, on P's grid.
@@ -126,8 +116,7 @@ struct TailOptions {
   BootstrapOptions bootstrap;
   std::uint64_t minTailSegments = 10;   ///< segments beyond t_end
   double dominanceShare = 0.2;          ///< criterion (a)
-  double sigmas = 3;                    ///< z of the steps-to-decide estimate
-  double gammaSlow = 1.57, gammaFast = 3;
+  double forecastSegments = 100;        ///< N of the forecast
 };
 
 struct TailAnalysis {
@@ -147,7 +136,8 @@ struct TailAnalysis {
   TailWindow tailFit;                   ///< [t_end/10, t_end]
   std::vector<TailWindow> windows;      ///< decades ending at t_end, t_end/√10, …
   std::vector<SegmentsBeyond> beyond;
-  StepsToDecide decide;
+  double stepsDone = 0;                 ///< M T q summed over members
+  std::vector<TailForecast> forecast;   ///< targets 10⁸, 10⁹, 10¹⁰ × referenceExponents(); empty without t_end
 
   bool shareDominates = false;          ///< (a)
   bool intervalTooWide = false;         ///< (b)

@@ -28,14 +28,27 @@ using Real = long double;
 constexpr std::uint64_t kDenseGridMax = 4096;  // caps the integer part of the grid: cost ∝ grid × bins × subsets
 
 struct PointMass {
-  int bin;
-  Real s;  // steps
-  Real w;  // per step
+  int key;  // the bin, plus kBins for the second piece of spliced statistics: the same key in every subset
+  Real s;   // steps
+  Real w;   // per step
+  Real f;   // the plotted density at s (appendix B: F_i/q²)
 };
 
-// The point masses of one histogram, in increasing order of bin (hence of s).
-std::vector<PointMass> pointMasses(const TrappingHistogram& h, std::uint64_t orbits, std::uint64_t blocks,
-                                   std::uint32_t q) {
+// One histogram's share of the masses: the record behind it, and the range of s (steps) it contributes
+// ([0, ∞) alone; below or above the crossover for spliced statistics).
+struct Piece {
+  const TrappingHistogram* h;
+  std::uint64_t orbits, blocks;
+  std::uint32_t q;
+  Real from = 0, to = std::numeric_limits<Real>::infinity();
+  int keyOffset = 0;
+};
+
+// The point masses of one histogram within [piece.from, piece.to), in increasing order of bin (hence of s).
+std::vector<PointMass> pointMasses(const Piece& piece) {
+  const TrappingHistogram& h = *piece.h;
+  const std::uint64_t orbits = piece.orbits, blocks = piece.blocks;
+  const std::uint32_t q = piece.q;
   std::vector<PointMass> masses;
   if (h.segments() == 0) return masses;
   if (orbits == 0 || blocks == 0 || q == 0)
@@ -50,25 +63,38 @@ std::vector<PointMass> pointMasses(const TrappingHistogram& h, std::uint64_t orb
                                   std::to_string(static_cast<double>(h.lengthSum(i)) / static_cast<double>(n)) +
                                   " blocks, longer than the record of " + std::to_string(blocks) + " blocks");
     const Real meanBlocks = static_cast<Real>(h.lengthSum(i)) / static_cast<Real>(n);
+    const Real s = q * meanBlocks;
+    if (s < piece.from || s >= piece.to) continue;
     const Real opportunities = records * (static_cast<Real>(blocks) + 1 - meanBlocks);  // M(T + 1 − t̄)
-    masses.push_back({i, q * meanBlocks, static_cast<Real>(n) / opportunities / q});
+    const Real w = static_cast<Real>(n) / opportunities / q;
+    // Appendix B: F_i = B_i/(T+1−t)/width, then f = F_i/q²; w already holds one 1/q.
+    const Real width = static_cast<Real>(TrappingHistogram::binUpper(i) - TrappingHistogram::binLower(i));
+    masses.push_back({i + piece.keyOffset, s, w, w / width / q});
   }
   return masses;
 }
 
-// Integer grid in steps: 0..min(50q, kDenseGridMax), then 30 per decade up to 2 q longestBlocks (inclusive).
-std::vector<Real> makeGrid(std::uint32_t q, std::uint64_t longestBlocks) {
+// Integer grid in steps: 0..dense, then 30 per decade up to `top` (inclusive).
+std::vector<Real> makeGrid(std::uint64_t dense, Real top) {
   std::vector<Real> grid;
-  const std::uint64_t dense =
-      std::min<std::uint64_t>(static_cast<std::uint64_t>(TrappingHistogram::kExactMax) * q, kDenseGridMax);
   for (std::uint64_t t = 0; t <= dense; ++t) grid.push_back(static_cast<Real>(t));
-  const Real top = 2 * static_cast<Real>(q) * static_cast<Real>(longestBlocks);
   const Real start = static_cast<Real>(dense);
   for (int k = 1;; ++k) {
     const Real t = std::min(top, std::round(start * std::pow(Real(10), Real(k) / TrappingHistogram::kBinsPerDecade)));
     if (t <= start) break;  // top ≤ dense: the integer part already covers it
     if (t > grid.back()) grid.push_back(t);
     if (t >= top) break;
+  }
+  return grid;
+}
+
+// The local exponent's grid: τ = 10^(j/kLogGridPerDecade), j = 0, 1, …, up to `top` (issue #26).
+std::vector<Real> makeLogGrid(Real top) {
+  std::vector<Real> grid;
+  for (int j = 0;; ++j) {
+    const Real t = std::pow(Real(10), Real(j) / kLogGridPerDecade);
+    if (t > top) break;
+    grid.push_back(t);
   }
   return grid;
 }
@@ -91,20 +117,24 @@ Real spreadOffset(Real s) {
 
 // Everything for one histogram, on a given grid; NaN marks an undefined local exponent.
 struct Raw {
-  std::vector<Real> f;  // per bin index (kBins), 0 where empty
+  std::vector<Real> f;  // per mass key (2 kBins), 0 where empty
   Real alpha = 0, D = 0, sumTf = 0;
-  std::vector<Real> P, C, S, exponent;
+  std::vector<Real> P, C, S;
+  std::vector<Real> exponent;  // on the log grid; NaN where undefined
 };
 
-Raw computeRaw(const TrappingHistogram& h, std::uint64_t orbits, std::uint64_t blocks, std::uint32_t q,
-               const std::vector<Real>& grid) {
+Raw computeRaw(const std::vector<Piece>& pieces, const std::vector<Real>& grid, const std::vector<Real>& logGrid) {
   Raw r;
-  const auto masses = pointMasses(h, orbits, blocks, q);
-  r.f.assign(TrappingHistogram::kBins, 0);
+  std::vector<PointMass> masses;
+  for (const Piece& piece : pieces) {  // pieces are in increasing s: the masses stay sorted
+    const auto part = pointMasses(piece);
+    masses.insert(masses.end(), part.begin(), part.end());
+  }
+  r.f.assign(2 * TrappingHistogram::kBins, 0);
   r.P.assign(grid.size(), 0);
   r.C.assign(grid.size(), 0);
   r.S.assign(grid.size(), 0);
-  r.exponent.assign(grid.size(), std::numeric_limits<Real>::quiet_NaN());
+  r.exponent.assign(logGrid.size(), std::numeric_limits<Real>::quiet_NaN());
   if (masses.empty()) {  // no segment seen: f, C, S, D are 0, but α and P = α Σ w have no value
     r.alpha = std::numeric_limits<Real>::quiet_NaN();
     std::fill(r.P.begin(), r.P.end(), r.alpha);
@@ -116,9 +146,7 @@ Raw computeRaw(const TrappingHistogram& h, std::uint64_t orbits, std::uint64_t b
     sumW += m.w;
     sumSW += m.s * m.w;
     sumS2W += m.s * m.s * m.w;
-    // Appendix B: F_i = B_i/(T+1−t)/width, then f = F_i/q²; w already holds one 1/q.
-    const Real width = static_cast<Real>(TrappingHistogram::binUpper(m.bin) - TrappingHistogram::binLower(m.bin));
-    r.f[m.bin] = m.w / width / q;
+    r.f[m.key] = m.f;
   }
   r.alpha = 1 / sumW;
   r.sumTf = sumSW;  // = C_0
@@ -152,9 +180,18 @@ Raw computeRaw(const TrappingHistogram& h, std::uint64_t orbits, std::uint64_t b
     r.C[g] = c;
     r.S[g] = spread;  // eq. (spreaddef)
   }
-  for (std::size_t g = 1; g + 1 < grid.size(); ++g) {
-    if (grid[g - 1] <= 0 || r.C[g - 1] <= 0 || r.C[g + 1] <= 0) continue;
-    r.exponent[g] = -(std::log(r.C[g + 1]) - std::log(r.C[g - 1])) / (std::log(grid[g + 1]) - std::log(grid[g - 1]));
+  // The local exponent on the log grid (issue #26): C_τ = Σ w (s − τ)₊ evaluated exactly at each τ_j (it is
+  // piecewise linear), then centred differences of log C over log τ across ±1/kLogGridPerDecade decade.
+  std::vector<Real> logC(logGrid.size(), 0);
+  above = 0;
+  for (std::size_t j = 0; j < logGrid.size(); ++j) {
+    const Real t = logGrid[j];
+    while (above < n && masses[above].s <= t) ++above;
+    logC[j] = above < n ? G[above] + (masses[above].s - t) * W[above] : 0;
+  }
+  for (std::size_t j = 1; j + 1 < logGrid.size(); ++j) {
+    if (!(logC[j - 1] > 0 && logC[j + 1] > 0)) continue;
+    r.exponent[j] = -(std::log(logC[j + 1]) - std::log(logC[j - 1])) / (std::log(logGrid[j + 1]) - std::log(logGrid[j - 1]));
   }
   return r;
 }
@@ -184,19 +221,19 @@ std::uint64_t longestLength(const TrappingHistogram& h) {
   return TrappingHistogram::binUpper(last) - 1;
 }
 
-TrappingStatistics assemble(const TrappingHistogram& total, std::uint64_t orbits, std::uint64_t blocks,
-                            std::uint32_t q, const std::vector<TrappingHistogram>& subsets,
-                            const std::vector<std::uint64_t>& orbitsPerSubset) {
+// The statistics of the masses of `total` (values) and of each entry of `subsets` (errors).
+TrappingStatistics assemble(const std::vector<Piece>& total, const std::vector<std::vector<Piece>>& subsets,
+                            std::uint64_t dense, Real top, std::uint64_t segments, std::uint64_t longestBlocks) {
   TrappingStatistics out;
-  out.segments = total.segments();
+  out.segments = segments;
   if (out.segments == 0) return out;
-  out.longestBlocks = longestLength(total);
-  const auto grid = makeGrid(q, out.longestBlocks);
-  const Raw value = computeRaw(total, orbits, blocks, q, grid);
+  out.longestBlocks = longestBlocks;
+  const auto grid = makeGrid(dense, top);
+  const auto logGrid = makeLogGrid(top);
+  const Raw value = computeRaw(total, grid, logGrid);
   std::vector<Raw> parts;
   parts.reserve(subsets.size());
-  for (std::size_t i = 0; i < subsets.size(); ++i)
-    parts.push_back(computeRaw(subsets[i], orbitsPerSubset[i], blocks, q, grid));
+  for (const auto& pieces : subsets) parts.push_back(computeRaw(pieces, grid, logGrid));
 
   std::vector<Real> sample(parts.size());
   const auto errorOf = [&](auto&& pick) {
@@ -215,12 +252,12 @@ TrappingStatistics assemble(const TrappingHistogram& total, std::uint64_t orbits
   out.alphaError = errorOf([](const Raw& r) { return r.alpha; });
   out.DError = errorOf([](const Raw& r) { return r.D; });
 
-  for (int i = 1; i < TrappingHistogram::kBins; ++i) {
-    if (total.count(i) == 0) continue;
-    const Real x = static_cast<Real>(q) * static_cast<Real>(total.lengthSum(i)) / static_cast<Real>(total.count(i));
-    push(out.f, x, value.f[i], errorOf([i](const Raw& r) { return r.f[i]; }));
-    push(out.p, x, value.alpha * value.f[i], errorOf([i](const Raw& r) { return r.alpha * r.f[i]; }));
-  }
+  for (const Piece& piece : total)
+    for (const PointMass& m : pointMasses(piece)) {
+      const int k = m.key;
+      push(out.f, m.s, value.f[k], errorOf([k](const Raw& r) { return r.f[k]; }));
+      push(out.p, m.s, value.alpha * value.f[k], errorOf([k](const Raw& r) { return r.alpha * r.f[k]; }));
+    }
   for (std::size_t g = 0; g < grid.size(); ++g) {
     const Real t = grid[g];
     push(out.P, t, value.P[g], errorOf([g](const Raw& r) { return r.P[g]; }));
@@ -231,16 +268,26 @@ TrappingStatistics assemble(const TrappingHistogram& total, std::uint64_t orbits
       push(out.Scompensated, t, value.S[g] / t32, errorOf([g, t32](const Raw& r) { return r.S[g] / t32; }));
       push(out.Dt, t, value.S[g] / (2 * t), errorOf([g, t](const Raw& r) { return r.S[g] / (2 * t); }));
     }
-    if (!std::isnan(value.exponent[g]))
-      push(out.localExponent, t, value.exponent[g], errorOf([g](const Raw& r) { return r.exponent[g]; }));
   }
+  for (std::size_t j = 0; j < logGrid.size(); ++j)
+    if (!std::isnan(value.exponent[j]))
+      push(out.localExponent, logGrid[j], value.exponent[j], errorOf([j](const Raw& r) { return r.exponent[j]; }));
   return out;
+}
+
+// The dense part of one run's grid: every length of the exact bins when q ≤ 81.
+std::uint64_t denseGrid(std::uint32_t q) {
+  return std::min<std::uint64_t>(static_cast<std::uint64_t>(TrappingHistogram::kExactMax) * q, kDenseGridMax);
 }
 
 }  // namespace
 
 TrappingStatistics computeStatistics(const TrappingHistogram& h, const RecordShape& shape) {
-  return assemble(h, shape.orbits, shape.blocks, shape.q, {}, {});
+  const std::uint64_t longest = longestLength(h);
+  TrappingStatistics s = assemble({Piece{&h, shape.orbits, shape.blocks, shape.q}}, {}, denseGrid(shape.q),
+                                  2 * static_cast<Real>(shape.q) * static_cast<Real>(longest), h.segments(), longest);
+  s.blockAffectedBelow = shape.q > 1 ? kBlockAffectedBlocks * static_cast<double>(shape.q) : 0;
+  return s;
 }
 
 TrappingStatistics computeStatistics(const std::vector<TrappingHistogram>& subsets,
@@ -256,7 +303,48 @@ TrappingStatistics computeStatistics(const std::vector<TrappingHistogram>& subse
     total.merge(subsets[i]);
     orbits += orbitsPerSubset[i];
   }
-  return assemble(total, orbits, blocks, q, subsets, orbitsPerSubset);
+  std::vector<std::vector<Piece>> parts;
+  for (std::size_t i = 0; i < subsets.size(); ++i) parts.push_back({Piece{&subsets[i], orbitsPerSubset[i], blocks, q}});
+  const std::uint64_t longest = longestLength(total);
+  TrappingStatistics s = assemble({Piece{&total, orbits, blocks, q}}, parts, denseGrid(q),
+                                  2 * static_cast<Real>(q) * static_cast<Real>(longest), total.segments(), longest);
+  s.blockAffectedBelow = q > 1 ? kBlockAffectedBlocks * static_cast<double>(q) : 0;
+  return s;
+}
+
+TrappingStatistics computeSplicedStatistics(const SplicedRecord& r) {
+  if (r.longSubsets.empty() || r.longSubsets.size() != r.longOrbits.size() ||
+      r.shortSubsets.size() != r.longSubsets.size() || r.shortOrbits.size() != r.longSubsets.size())
+    throw std::invalid_argument("spliced statistics need the same number of subsets in the run and its companion");
+  if (r.shortQ != 1) throw std::invalid_argument("the short-time companion must have q = 1");
+  if (!(r.crossover >= kBlockAffectedBlocks * static_cast<double>(r.longQ)))
+    throw std::invalid_argument("the crossover must be at least 10 q steps");
+  TrappingHistogram longTotal, shortTotal;
+  std::uint64_t longOrbits = 0, shortOrbits = 0;
+  for (std::size_t i = 0; i < r.longSubsets.size(); ++i) {
+    longTotal.merge(r.longSubsets[i]);
+    shortTotal.merge(r.shortSubsets[i]);
+    longOrbits += r.longOrbits[i];
+    shortOrbits += r.shortOrbits[i];
+  }
+  const Real cut = r.crossover;
+  const auto pieces = [&](const TrappingHistogram& s, std::uint64_t so, const TrappingHistogram& l, std::uint64_t lo) {
+    return std::vector<Piece>{Piece{&s, so, r.shortBlocks, 1, 0, cut, 0},
+                              Piece{&l, lo, r.longBlocks, r.longQ, cut, std::numeric_limits<Real>::infinity(),
+                                    TrappingHistogram::kBins}};
+  };
+  std::vector<std::vector<Piece>> parts;
+  for (std::size_t i = 0; i < r.longSubsets.size(); ++i)
+    parts.push_back(pieces(r.shortSubsets[i], r.shortOrbits[i], r.longSubsets[i], r.longOrbits[i]));
+  const std::uint64_t longest = longestLength(longTotal);
+  const std::uint64_t dense = std::min<std::uint64_t>(
+      std::max<std::uint64_t>(TrappingHistogram::kExactMax, static_cast<std::uint64_t>(std::ceil(r.crossover))),
+      kDenseGridMax);
+  TrappingStatistics s = assemble(pieces(shortTotal, shortOrbits, longTotal, longOrbits), parts, dense,
+                                  std::max(2 * static_cast<Real>(r.longQ) * static_cast<Real>(longest), 2 * cut),
+                                  longTotal.segments() + shortTotal.segments(), longest);
+  s.splicedAt = r.crossover;
+  return s;
 }
 
 }  // namespace archipelago

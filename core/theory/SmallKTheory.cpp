@@ -223,6 +223,55 @@ double negativeKMaximumTime(double K) noexcept {
   return negativeKMaximum().T / std::sqrt(std::sqrt(-K));
 }
 
+double negativeKMaximumTimeInBox(double K, double xmin, double xmax) {
+  if (!(K < 0) || !(xmin < 0 && xmax > 0) || !std::isfinite(xmin) || !std::isfinite(xmax)) return kNaN;
+  const double eps = std::sqrt(std::sqrt(-K));
+  const double Xb = xmax / (eps * eps), Yb = (xmax - xmin) / 2 / (eps * eps * eps), X0min = xmin / (eps * eps);
+  // The time inside the box of the trajectory through (X0, 0).
+  const auto inside = [&](double X0) {
+    if (!(X0 < Xb)) return 0.0;
+    // X_e: where the trajectory leaves, the first of X = Xb and |Y| = Yb (Y grows with X for X > X0).
+    const auto Y = [X0](double X) { return 2 * std::sqrt(std::max(0.0, (X * X * X - X0 * X0 * X0) / 3 + X - X0)); };
+    double Xe = Xb;
+    if (Y(Xb) > Yb) {
+      double lo = X0, hi = Xb;
+      for (int i = 0; i < 200; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (Y(mid) > Yb ? hi : lo) = mid;
+      }
+      Xe = lo;
+    }
+    // ∫_0^U 2 du / √(⅓(X² + X X0 + X0²) + 1), X = X0 + u² (both branches: 2 × dX/Y): 8-point Gauss–Legendre on
+    // 200 panels.
+    static constexpr double node[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267, 0.9602898564975363};
+    static constexpr double weight[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745, 0.1012285362903763};
+    const double U = std::sqrt(Xe - X0);
+    constexpr int panels = 200;
+    double sum = 0;
+    for (int p = 0; p < panels; ++p) {
+      const double a = U * p / panels, b = U * (p + 1) / panels, m = 0.5 * (a + b), r = 0.5 * (b - a);
+      for (int k = 0; k < 4; ++k)
+        for (const double sign : {-1.0, 1.0}) {
+          const double u = m + sign * r * node[k], X = X0 + u * u;
+          sum += weight[k] * r * 2 / std::sqrt((X * X + X * X0 + X0 * X0) / 3 + 1);
+        }
+    }
+    return sum;
+  };
+  // The maximum lies near X0 = −0.5536 for a large box; a golden-section search over [max(xmin/ε², −5), 5].
+  double lo = std::max(X0min, -5.0), hi = std::min(Xb, 5.0);
+  const double g = (std::sqrt(5.0) - 1) / 2;
+  double a = hi - g * (hi - lo), b = lo + g * (hi - lo), fa = inside(a), fb = inside(b);
+  for (int i = 0; i < 100; ++i) {
+    if (fa < fb) {
+      lo = a, a = b, fa = fb, b = lo + g * (hi - lo), fb = inside(b);
+    } else {
+      hi = b, b = a, fb = fa, a = hi - g * (hi - lo), fa = inside(a);
+    }
+  }
+  return std::max(fa, fb) / eps;
+}
+
 double negativeKMaximumPosition(double K) noexcept {
   if (!(K < 0)) return kNaN;
   return negativeKMaximum().X0 * std::sqrt(-K);

@@ -87,6 +87,17 @@ struct TrappingTimeBranches {
 
 /// Unscaled K < 0: the longest trapping t_max = Tmax |K|^(−1/4) (iterations of Q).  NaN unless K < 0.
 [[nodiscard]] double negativeKMaximumTime(double K) noexcept;
+/// The longest trapping in a finite box (issue #26): a run of Q* ends a segment when the orbit leaves the box
+/// x ∈ [xmin, xmax), |y| < L/2 (L = xmax − xmin), so its longest segment is shorter than t_max by the time the
+/// trajectory of eq. (hama) spends beyond the box.  In the scaled variables x = ε²X, y = ε³Y, t = T/ε (ε = |K|^¼),
+/// the trajectory through (X₀, 0) has Y(X) = 2√(⅓(X³ − X₀³) + X − X₀) and spends
+///     T_box(X₀) = 2 ∫_{X₀}^{X_e} dX / Y(X),   X_e = min(xmax/ε², the X where |Y| = (L/2)/ε³),
+/// inside (both branches leave on the right: Y > 0 going out, Y < 0 coming in; eq. tneg is X_e → ∞).  With
+/// X = X₀ + u² the integrand is smooth: T_box = ∫_0^{√(X_e − X₀)} 2 du / √(⅓(X² + X X₀ + X₀²) + 1); Gauss–Legendre.  This returns
+/// max over X₀ of T_box, in steps (÷ ε): the continuous limit (ε → 0) of the longest segment a run in that box can
+/// record.  For xmax → ∞ it tends to negativeKMaximumTime(K).  NaN unless K < 0 and xmin < 0 < xmax.
+[[nodiscard]] double negativeKMaximumTimeInBox(double K, double xmin, double xmax);
+
 /// Unscaled K < 0: x of the longest-trapped trajectory on y = 0, X0max √|K|.  NaN unless K < 0.
 [[nodiscard]] double negativeKMaximumPosition(double K) noexcept;
 /// f_t ∝ F(|K|^(1/4) t) for t = O(|K|^(−1/4)), K < 0.  NaN unless K < 0 and t > 0.

@@ -1,5 +1,9 @@
 #include "core/trapping/TrappingParameters.hpp"
 
+#include "core/io/Memory.hpp"
+
+#include "core/random/CounterRng.hpp"
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -100,6 +104,18 @@ void setParameterValue(TrappingParameters& p, std::string_view key, const Parame
   else p.*a.u64 = v;
 }
 
+TrappingParameters companionParameters(const TrappingParameters& p, double fraction) {
+  if (p.q <= 1) throw std::invalid_argument("a run of q = 1 needs no q = 1 companion");
+  if (!(fraction > 0 && fraction <= 1))
+    throw std::invalid_argument("the companion's fraction of the run's steps must lie in (0, 1]");
+  TrappingParameters c = p;
+  c.q = 1;
+  const long double steps = static_cast<long double>(fraction) * p.q * static_cast<long double>(p.T);
+  c.T = steps < 1 ? 1 : static_cast<std::uint64_t>(std::llround(static_cast<double>(steps)));
+  c.seed = mix64(p.seed ^ kCompanionSeedSalt);
+  return c;
+}
+
 std::uint64_t estimatedMemoryBytes(const TrappingParameters& p, int threads) noexcept {
   const long cores = ::sysconf(_SC_NPROCESSORS_ONLN);
   const double workers = static_cast<double>(threads > 0 ? threads : std::max(1L, cores));
@@ -124,13 +140,15 @@ std::optional<std::string> memoryError(const TrappingParameters& p, int threads)
       << " GB a run file may hold: split the orbits over several runs (--orbits) and merge their statistics";
     return s.str();
   }
-  const double physical = static_cast<double>(::sysconf(_SC_PHYS_PAGES)) * static_cast<double>(::sysconf(_SC_PAGESIZE));
+  // What this process may still take (core/io's one definition: MemAvailable and what RLIMIT_AS leaves).
+  const double available = static_cast<double>(io::availableMemoryBytes());
   const double need = static_cast<double>(estimatedMemoryBytes(p, threads));
-  if (!(physical > 0) || need <= 0.8 * physical) return std::nullopt;
+  if (need <= available) return std::nullopt;
   std::ostringstream s;
+  s.imbue(std::locale::classic());
   s.precision(3);
   s << "the run needs about " << need / 1e9 << " GB of memory (M = " << p.M << " orbits, subsets = " << p.subsets
-    << ", longestKept = " << p.longestKept << "), more than this machine's " << physical / 1e9 << " GB";
+    << ", longestKept = " << p.longestKept << ") but only " << available / 1e9 << " GB are available";
   return s.str();
 }
 

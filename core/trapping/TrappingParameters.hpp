@@ -88,9 +88,19 @@ inline constexpr double kSaveBytesPerOrbit = 800;
 /// text when it is written.  An estimate within a factor of about two.
 [[nodiscard]] std::uint64_t estimatedMemoryBytes(const TrappingParameters& p, int threads) noexcept;
 
-/// An error when estimatedMemoryBytes() exceeds this machine's physical memory, naming both, or when the run's
+/// An error when estimatedMemoryBytes() exceeds the memory this process may still take (io::availableMemoryBytes:
+/// MemAvailable and what RLIMIT_AS leaves), naming both, or when the run's
 /// file would exceed kMaxRunFileBytes; checked before a run starts.
 [[nodiscard]] std::optional<std::string> memoryError(const TrappingParameters& p, int threads);
+
+/// The q = 1 companion of a run of q > 1 (issue #26; DESIGN.md, "Blocks of q steps"): the short-time statistics
+/// of the paper's q = 1 process, spliced with the run's at a crossover ≥ 10 q (computeSplicedStatistics).  The same
+/// map, Xr, M, subsets and longestKept; q = 1; T = max(1, round(fraction · q · T)) blocks of one step, so that it
+/// costs `fraction` of the run's steps; the seed mix64(seed ⊕ kCompanionSeedSalt), another member of the seed's
+/// family, so that its random numbers are independent of the run's yet reproducible from the run's spec.
+/// Throws std::invalid_argument for q = 1 (no companion is needed) or a fraction outside (0, 1].
+[[nodiscard]] TrappingParameters companionParameters(const TrappingParameters& p, double fraction);
+inline constexpr std::uint64_t kCompanionSeedSalt = 0x436f6d70616e696fULL;  // "Companio"
 
 /// ⌊Xr·2^52⌋, the largest X inside the randomizing zone.
 [[nodiscard]] std::uint64_t randomizingThreshold(double Xr) noexcept;

@@ -94,8 +94,12 @@ if "C_tau.csv" in names:
     check(meta.get("program", "").startswith("archipelago ") and meta.get("K") == "0.1"
           and "A" in meta and "kernel" in meta,
           f"C_tau.csv records the program, the parameters and the map ({sorted(meta)})")
-    check(rows[0] == ["tau", "C_tau", "C_tau_error"] and abs(float(rows[1][1]) - 1) < 0.05,
+    check(rows[0][:3] == ["tau", "C_tau", "C_tau_error"] and abs(float(rows[1][1]) - 1) < 0.05,
           f"C_tau.csv starts at C_0 close to 1 ({rows[:2]})")
+    # Issue #26: q = 16, so the rows below 10 q = 160 steps are marked as statistics of blocks, the rest not.
+    check(rows[0][3:] == ["blocks_affected"]
+          and all(r[3] == ("1" if float(r[0]) < 160 else "0") for r in rows[1:]),
+          f"C_tau.csv marks exactly the rows below 10 q ({[(r[0], r[3]) for r in rows[1:40]]})")
 
 # Every kernel the CPU supports (--kernel, or $ARCHIPELAGO_KERNEL) gives the same run file, bit for bit.
 short = ["--K", "0.1", "--q", "16", "--T", "20000", "--M", "21", "--subsets", "3", "--quiet"]

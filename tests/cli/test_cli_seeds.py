@@ -82,7 +82,7 @@ dline = next(l for l in r.stdout.splitlines() if l.startswith("D  "))
 dominated = summary["dominated"]["value"] == "1"
 check(("+-" not in dline and "cannot be estimated" in dline) if dominated else "+-" in dline,
       f"D's line agrees with the verdict (dominated = {dominated}): {dline[:90]}")
-for key in ("tail end", "gamma_P", "reference", "to decide", "verdict"):
+for key in ("tail end", "gamma_P", "literature", "forecast", "verdict"):
     check(any(l.startswith(key) for l in r.stdout.splitlines()), f"stats prints '{key}'")
 check(sorted(os.listdir(taildir)) == sorted(["tail_summary.csv", "D_vs_steps.csv", "tail_fit.csv",
                                               "segments_beyond.csv", "P_t.reference.csv"]),

@@ -26,12 +26,12 @@ using archipelago::ui::RunStatus;
 
 // The columns of each plot's CSV file, by file name (issue #11: descriptive names, never a generic "x").
 const QHash<QString, QString> kColumns = {
-    {QStringLiteral("f_t"), QStringLiteral("t,f_t,f_t_error")},
-    {QStringLiteral("P_t"), QStringLiteral("t,P_t,P_t_error")},
-    {QStringLiteral("C_tau"), QStringLiteral("tau,C_tau,C_tau_error")},
-    {QStringLiteral("local_exponent"), QStringLiteral("tau,local_exponent,local_exponent_error")},
-    {QStringLiteral("S_t"), QStringLiteral("t,S_t,S_t_error")},
-    {QStringLiteral("D_t"), QStringLiteral("t,D_t,D_t_error")},
+    {QStringLiteral("f_t"), QStringLiteral("t,f_t,f_t_error,blocks_affected")},
+    {QStringLiteral("P_t"), QStringLiteral("t,P_t,P_t_error,blocks_affected")},
+    {QStringLiteral("C_tau"), QStringLiteral("tau,C_tau,C_tau_error,blocks_affected")},
+    {QStringLiteral("local_exponent"), QStringLiteral("tau,local_exponent,local_exponent_error,blocks_affected")},
+    {QStringLiteral("S_t"), QStringLiteral("t,S_t,S_t_error,blocks_affected")},
+    {QStringLiteral("D_t"), QStringLiteral("t,D_t,D_t_error,blocks_affected")},
 };
 
 class TestExport : public QObject {
@@ -93,7 +93,9 @@ class TestExport : public QObject {
       int dataRows = 0;
       for (int i = 1; i < lines.size(); ++i) {
         const QStringList cells = lines.at(i).split(QLatin1Char(','));
-        QCOMPARE(cells.size(), 3);
+        QCOMPARE(cells.size(), 4);
+        // blocks_affected: 1 below 10 q steps (the q-block artefact; DESIGN.md), else 0.
+        QVERIFY(cells.at(3) == QStringLiteral("0") || cells.at(3) == QStringLiteral("1"));
         bool okX = false, okV = false, okE = false;
         const double x = cells.at(0).toDouble(&okX);
         const double v = cells.at(1).toDouble(&okV);

@@ -118,13 +118,16 @@ TEST(StatisticsCsv, EachStatisticHasDescriptiveColumnsAndExactNumbers) {
     EXPECT_EQ(text.rfind(header, 0), 0u) << "every file opens with the run's metadata";
     const Split s = split(text);
     ASSERT_FALSE(s.rows.empty());
-    EXPECT_EQ(s.rows.front(), columns);
+    // Issue #26: a run of q > 1 marks the rows below 10 q (blocks of q steps, not the q = 1 process).
+    const bool marked = stats.blockAffectedBelow > 0;
+    EXPECT_EQ(s.rows.front(), std::string(columns) + (marked ? ",blocks_affected" : ""));
     const Series& series = seriesOf(stats, statistic);
     ASSERT_GT(series.x.size(), 0u) << columns;
     ASSERT_EQ(s.rows.size(), series.x.size() + 1) << columns;
     for (std::size_t i = 0; i < series.x.size(); ++i) {
       const auto c = cells(s.rows[i + 1]);
-      ASSERT_EQ(c.size(), 3u) << s.rows[i + 1];
+      ASSERT_EQ(c.size(), marked ? 4u : 3u) << s.rows[i + 1];
+      if (marked) EXPECT_EQ(c[3], series.x[i] < stats.blockAffectedBelow ? "1" : "0") << s.rows[i + 1];
       // 17 significant digits: every double reads back exactly.
       EXPECT_EQ(std::strtod(c[0].c_str(), nullptr), series.x[i]);
       EXPECT_EQ(std::strtod(c[1].c_str(), nullptr), series.value[i]);

@@ -2,7 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "core/report/LongOrbit.hpp"
-#include "core/report/PaperItems.hpp"
+#include "core/report/ReportRuns.hpp"
 
 namespace archipelago::report {
 namespace {
@@ -24,7 +24,7 @@ TEST(LongOrbit, The138ChainIsRecognisedAtAnyLevel) {
 }
 
 TEST(LongOrbit, TheLongestSegmentIsReplayedFramedAndNamed) {
-  TrappingParameters p = k01Parameters(false);
+  TrappingParameters p = k01Run(ReportSize::quick).params;
   p.T = 40'000;  // 4·10⁷ steps: long segments of ~10⁴–10⁵ steps
   const TrappingState run = runTrapping(startTrapping(p), TrappingRunOptions{});
   ASSERT_GE(run.longest.items().size(), 3u);

@@ -183,16 +183,24 @@ TEST(TailAnalysis, PowerLawBelowTwoMeansDiverges) {
   EXPECT_NEAR(a.windows.back().exponentC, 0.3, 0.1);
 }
 
-TEST(TailAnalysis, StepsToDecide) {
+// Issue #26, finding 3: "steps to decide" anchored at t_end and so always asked for 9.2 times the steps already run.
+// The forecast is for fixed targets: it depends on the measured rate beyond t_end and the hypothesis, and doubling
+// the data does not double it.
+TEST(TailAnalysis, ForecastForFixedTargets_Issue26) {
   const TailAnalysis a = analyseTail(single(powerLawSample(1.57, 50000, 8)));
-  // n* = ⌈(3 (1.57 + 3)/(3 − 1.57))²⌉ = ⌈91.92…⌉.
-  EXPECT_EQ(a.decide.segmentsNeeded, 92);
-  ASSERT_TRUE(std::isfinite(a.decide.anchor));
-  EXPECT_GE(a.decide.segmentsBeyond, 10u);
-  // Segments longer than t_a arrive at segmentsBeyond per stepsDone (T + 1 − t ≈ T here), so the steps
-  // needed are n* stepsDone / segmentsBeyond.
-  EXPECT_NEAR(a.decide.stepsNeeded / (92.0 * a.decide.stepsDone / static_cast<double>(a.decide.segmentsBeyond)), 1.0, 1e-6);
-  EXPECT_FALSE(a.decide.recordTooShort);
+  ASSERT_TRUE(std::isfinite(a.tailEnd));
+  ASSERT_EQ(a.forecast.size(), 12u);  // 3 targets × 4 exponents
+  std::uint64_t beyond = 0;
+  for (const SegmentsBeyond& b : a.beyond)
+    if (b.t == a.tailEnd) beyond = b.segments;
+  ASSERT_GE(beyond, 10u);
+  for (const TailForecast& f : a.forecast) {
+    // N / r · (t/t_end)^γ with r = beyond/steps.
+    const double expected = 100.0 * a.stepsDone / static_cast<double>(beyond) * std::pow(f.target / a.tailEnd, f.gamma);
+    EXPECT_NEAR(f.steps / expected, 1.0, 1e-12) << f.target << " " << f.gamma;
+  }
+  // A steeper tail costs more at the same target.
+  EXPECT_LT(a.forecast[0].steps, a.forecast[3].steps);  // γ = 1.57 < 3 at t = 10⁸
   // Segments beyond each t: a count from the histogram, non-increasing in t.
   for (std::size_t i = 1; i < a.beyond.size(); ++i) EXPECT_LE(a.beyond[i].segments, a.beyond[i - 1].segments);
   EXPECT_EQ(a.beyond.front().segments, 50000u);  // all are longer than t = 0

@@ -232,10 +232,44 @@ TEST(TrappingStatistics, LocalExponentOfPowerLaw) {
       EXPECT_NEAR(e.value[k], static_cast<double>(c.a), c.tolerance) << "tau=" << e.x[k];
       ++checked;
     }
-    EXPECT_GT(checked, 30);
+    EXPECT_EQ(checked, 16);  // the log grid: 10 points per decade, 10^2.5 … 10^4 both included (issue #26)
     // Beyond the longest segment C = 0 and the exponent is left out.
     EXPECT_LT(e.x.back(), 1.1 * static_cast<double>(c.tmax));
   }
+}
+
+// Issue #26: the local exponent of an exact power law is exact on the log grid (C_τ is evaluated at each grid τ,
+// not interpolated), and a run of q = 100 shows no kink at τ = q (5.41 on the old integer grid).
+TEST(TrappingStatistics, LocalExponentOnTheLogGrid_Issue26) {
+  // Masses at every integer t with w ∝ t^−(2+a)(1 + 1/t)…: build C_τ = τ^−a exactly by the masses' second
+  // difference; simpler and exact: a single mass at s gives C_τ = w (s − τ) for τ < s, whose local exponent at τ is
+  // τ/(s − τ) — the centred difference on the log grid reproduces it to the grid's O(h²).
+  TrappingHistogram h;
+  h.setBin(TrappingHistogram::binOf(1000), 1, 1000);  // one segment of 1000 blocks
+  const auto stats = computeStatistics(h, {1, 2000, 1});
+  const auto& e = stats.localExponent;
+  ASSERT_FALSE(e.x.empty());
+  for (std::size_t k = 0; k < e.x.size(); ++k) {
+    const double tau = e.x[k];
+    EXPECT_NEAR(std::log10(tau) * 10, std::round(std::log10(tau) * 10), 1e-9) << "a log-grid point";
+    // exact: −(log C(τ₊) − log C(τ₋))/(log τ₊ − log τ₋) with C = s − τ
+    const double a = std::pow(10.0, 0.1), s = static_cast<double>(stats.f.x.front());
+    const double expected = -(std::log(s - tau * a) - std::log(s - tau / a)) / (2 * std::log(a));
+    EXPECT_NEAR(e.value[k], expected, 1e-9 * std::max(1.0, expected)) << "tau=" << tau;
+  }
+  // q = 100: masses at multiples of 100 only.  The exponent near τ = 100 stays within the range of its neighbours.
+  TrappingHistogram g;
+  for (std::uint64_t t = 1; t <= 50; ++t) g.setBin(static_cast<int>(t), 1000 / t, 1000 / t * t);
+  const auto blocks = computeStatistics(g, {1, 100000, 100});
+  double nearQ = 0, largest = 0;
+  for (std::size_t k = 0; k < blocks.localExponent.x.size(); ++k) {
+    const double tau = blocks.localExponent.x[k], v = blocks.localExponent.value[k];
+    if (tau >= 50 && tau <= 200) nearQ = std::max(nearQ, v);
+    if (tau >= 200 && tau <= 2000) largest = std::max(largest, v);
+  }
+  EXPECT_LT(nearQ, 1.5) << "no spike at tau = q";
+  EXPECT_EQ(blocks.blockAffectedBelow, 1000) << "10 q";
+  EXPECT_EQ(computeStatistics(g, {1, 100000, 1}).blockAffectedBelow, 0);
 }
 
 TEST(TrappingStatistics, QConversionScalesTimeAndDensity) {

@@ -1,0 +1,120 @@
+// The report's items and marks (core/report/ReportItem.hpp, ReportPlan.hpp; issue #26: "report checks that can
+// fail"): every statement's check fails for a wrong value, the marks follow the table (sizes, open questions), the
+// plan covers exactly the table, and the theory statements agree with the paper.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <set>
+#include <string>
+
+#include "core/paper/PaperTable.hpp"
+#include "core/report/ReportItem.hpp"
+#include "core/report/ReportPlan.hpp"
+#include "core/report/TheoryStatements.hpp"
+
+namespace archipelago::report {
+namespace {
+
+/// A value the statement's comparison must refuse: well beyond its tolerance, on the failing side.
+double wrongValue(const paper::Statement& s) {
+  const double target = *s.paper;
+  const double away = 2 * s.tolerance + 0.5 * std::abs(target) + 1;
+  return s.comparison == paper::Comparison::atLeast ? target - away : target + away;
+}
+
+TEST(ReportItems, EveryStatementsCheckFailsForAWrongValueAndPassesForThePapers) {
+  int checked = 0;
+  for (const paper::Statement& s : paper::statements()) {
+    SCOPED_TRACE(std::string(s.id));
+    if (s.comparison == paper::Comparison::openQuestion) {
+      // An open question is reported, never judged, whatever the value.
+      EXPECT_EQ(makeItem(s.id, 1.0, 0, true, "", "").mark, Mark::reported);
+      EXPECT_FALSE(passes(s, 1.0, 0, s.paper));
+      continue;
+    }
+    ASSERT_TRUE(s.paper.has_value()) << "a judged statement needs the paper's value";
+    EXPECT_EQ(makeItem(s.id, *s.paper, 0, true, "", "").mark, Mark::agrees);
+    EXPECT_EQ(makeItem(s.id, wrongValue(s), 0, true, "", "").mark, Mark::differs);
+    // The error widens the check by 3 σ, no more.
+    const double w = wrongValue(s);
+    const double gap = std::abs(w - *s.paper) - s.tolerance;
+    EXPECT_EQ(makeItem(s.id, w, gap / 2.9, true, "", "").mark, Mark::agrees);
+    EXPECT_EQ(makeItem(s.id, w, gap / 3.1, true, "", "").mark, Mark::differs);
+    ++checked;
+  }
+  EXPECT_GE(checked, 30);
+}
+
+TEST(ReportItems, OneSidedComparisonsFailOnTheirSideOnly) {
+  for (const paper::Statement& s : paper::statements()) {
+    if (s.comparison != paper::Comparison::atLeast && s.comparison != paper::Comparison::atMost) continue;
+    SCOPED_TRACE(std::string(s.id));
+    const double far = 10 * (s.tolerance + std::abs(*s.paper) + 1);
+    const bool atLeast = s.comparison == paper::Comparison::atLeast;
+    EXPECT_EQ(makeItem(s.id, *s.paper + (atLeast ? far : -far), 0, true, "", "").mark, Mark::agrees);
+    EXPECT_EQ(makeItem(s.id, *s.paper + (atLeast ? -far : far), 0, true, "", "").mark, Mark::differs);
+  }
+}
+
+TEST(ReportItems, MarksFollowTheTable) {
+  for (const paper::Statement& s : paper::statements()) {
+    SCOPED_TRACE(std::string(s.id));
+    if (s.comparison == paper::Comparison::openQuestion) continue;
+    // No value, or a value that is not a number: not computed, never "agrees".
+    EXPECT_EQ(makeItem(s.id, std::nullopt, 0, true, "", "").mark, Mark::notComputed);
+    EXPECT_EQ(makeItem(s.id, std::numeric_limits<double>::quiet_NaN(), 0, true, "", "").mark, Mark::notComputed);
+    EXPECT_EQ(makeItem(s.id, std::numeric_limits<double>::infinity(), 0, true, "", "").mark, Mark::notComputed);
+    // A NaN error does not widen the check.
+    EXPECT_EQ(makeItem(s.id, wrongValue(s), std::numeric_limits<double>::quiet_NaN(), true, "", "").mark,
+              Mark::differs);
+    // A quick report does not judge what needs the paper's size.
+    EXPECT_EQ(makeItem(s.id, wrongValue(s), 0, false, "", "").mark,
+              s.needsFullSize ? Mark::notAtThisSize : Mark::differs);
+  }
+  EXPECT_THROW((void)makeItem("no-such-statement", 1.0, 0, true, "", ""), std::out_of_range);
+}
+
+TEST(ReportItems, AReferenceReplacesThePapersValue) {
+  const paper::Statement& s = paper::statement("tmax-measured");
+  // The longest segment in the run's finite box is compared with the box's prediction, not the infinite box's.
+  EXPECT_EQ(makeItem(s.id, *s.paper - 6, 0, true, "", "", *s.paper - 6).mark, Mark::agrees);
+  EXPECT_EQ(makeItem(s.id, *s.paper, 0, true, "", "", *s.paper - 6).mark, Mark::differs);
+}
+
+TEST(ReportItems, OnlyADifferenceIsExplained) {
+  ReportItem agrees = makeItem("t7", 7.0, 0, true, "", "fit");
+  explainDifference(agrees, "a reason");
+  EXPECT_EQ(agrees.mark, Mark::agrees);
+  EXPECT_EQ(agrees.note, "fit");
+  ReportItem differs = makeItem("t7", 20.0, 0, true, "", "fit");
+  explainDifference(differs, "a reason");
+  EXPECT_EQ(differs.mark, Mark::differsExplained);
+  EXPECT_EQ(differs.note, "fit; a reason");
+}
+
+TEST(ReportPlan, EveryStatementHasExactlyOneNeedAndNoOtherIdHasOne) {
+  std::set<Need> used;
+  for (const paper::Statement& s : paper::statements()) used.insert(needOf(s.id));
+  EXPECT_EQ(used, allNeeds()) << "every part of a report serves some statement";
+  EXPECT_THROW((void)needOf("no-such-statement"), std::out_of_range);
+  EXPECT_THROW((void)needOf(""), std::out_of_range);
+}
+
+// §2, §4's closed forms, §7's orbit and appendix C: computations of ours against the paper's printed numbers.
+TEST(TheoryStatements, AgreeWithThePaper) {
+  const auto items = theoryStatements();
+  std::set<std::string> ids;
+  for (const ReportItem& it : items) {
+    SCOPED_TRACE(std::string(it.id()) + ": ours " + (it.ours ? std::to_string(*it.ours) : "none") + "; " + it.note);
+    ids.insert(std::string(it.id()));
+    EXPECT_EQ(it.mark, Mark::agrees);
+    EXPECT_EQ(needOf(it.id()), Need::theory);
+    EXPECT_FALSE(it.command.empty()) << "every item names a command that reproduces it";
+  }
+  for (const paper::Statement& s : paper::statements())
+    if (needOf(s.id) == Need::theory) EXPECT_EQ(ids.count(std::string(s.id)), 1u) << s.id;
+}
+
+}  // namespace
+}  // namespace archipelago::report
