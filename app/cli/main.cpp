@@ -21,6 +21,7 @@
 #include "PresetsCommand.hpp"
 #include "RotationCommand.hpp"
 #include "IndicatorCommand.hpp"
+#include "TailCommand.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"archipelago-cli " ARCHIPELAGO_VERSION
@@ -41,6 +42,7 @@ int main(int argc, char** argv) {
   archipelago::cli::addPresetsCommand(app, status);
   archipelago::cli::addRotationCommand(app, status);
   archipelago::cli::addIndicatorCommand(app, status);
+  archipelago::cli::addTailCommand(app, status);
   if (argc > 1 && argv[1][0] != '-') {  // name an unknown command instead of CLI11's generic message
     std::string names;
     bool known = false;

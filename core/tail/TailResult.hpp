@@ -1,0 +1,69 @@
+#pragma once
+/// \file TailResult.hpp
+/// \brief What a sampler run (TailSampler.hpp) estimates: P_t at every level reached, its error from the
+/// replicas, the survivors and lineages behind it, whether it is reliable, and the local exponent between
+/// neighbouring reliable levels.
+///
+/// Per replica r, P_r(t_0) = (N − 1)/(n_r − 1) (stage 0, inverse sampling) and P_r(t_{k+1}) = P_r(t_k)·s_{r,k+1}/N
+/// (splitting: the product of survival fractions).  Each is an unbiased estimate when clones are exact samples.
+///   P(t_k)       = (1/R) Σ_r P_r(t_k),   error = s/√R  (s the sample standard deviation over replicas; NaN, written
+///                  null, with one replica).
+///   survivors    = Σ_r s_{r,k};  ancestors = Σ_r (distinct lineages among replica r's survivors).
+///   reliable     = every replica has survivors and ancestors ≥ minAncestors (TailRequest).  A replica whose
+///                  population descends from a handful of entries estimates P from those few histories: its
+///                  error bar, and the spread over R replicas, no longer mean what they say (docs/tail.md gives
+///                  the measurement behind the threshold).  An unreliable level is neither plotted as data nor
+///                  used in fits.
+///   local exponent between neighbouring reliable levels a < b (the sampler's own; to be unified with core/stats'
+///                  running exponent γ(t) of issue #26):
+///                  γ = −(ln P(t_b) − ln P(t_a))/(ln t_b − ln t_a), plotted at √(t_a t_b), with the error
+///                  propagated from the replicas to first order, covariance included (the two levels share
+///                  their histories):  var = V_a/P_a² + V_b/P_b² − 2 C_ab/(P_a P_b),  V = s²/R,
+///                  C_ab = Σ_r (P_ra − P_a)(P_rb − P_b)/(R(R − 1)).
+
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "core/tail/TailSampler.hpp"
+
+namespace archipelago {
+
+struct TailLevelResult {
+  std::uint64_t blocks = 0;       ///< the level L_k, blocks
+  double t = 0;                   ///< q·L_k, steps: P is Pr(segment length > t)
+  double P = 0;
+  double PError = std::numeric_limits<double>::quiet_NaN();
+  std::uint64_t population = 0;   ///< walkers that set out for it, all replicas (stage 0: trials)
+  std::uint64_t survivors = 0;
+  std::uint64_t ancestors = 0;
+  std::uint64_t fewestAncestors = 0;  ///< in one replica
+  bool reliable = false;
+  std::vector<double> replicaP;   ///< P_r(t_k)
+  double steps = 0;               ///< the sampler's steps when every replica had reached it
+  /// Metropolis moves accepted / proposed when the survivors were resampled (NaN: perturb, or the last level).
+  double acceptance = std::numeric_limits<double>::quiet_NaN();
+};
+
+/// The local exponent between two neighbouring reliable levels.
+struct TailExponent {
+  double tFrom = 0, tTo = 0;  ///< steps
+  double t = 0;               ///< √(tFrom·tTo), where it is plotted
+  double gamma = 0;
+  double gammaError = std::numeric_limits<double>::quiet_NaN();  ///< NaN with one replica
+};
+
+struct TailResult {
+  std::vector<TailLevelResult> levels;    ///< every level reached by every replica
+  std::vector<TailExponent> exponents;    ///< between consecutive levels that are both reliable
+  double steps = 0;                       ///< TailState::steps
+  bool finished = false;
+};
+
+/// The estimates of a sampler state (finished or not).  A pure function.
+[[nodiscard]] TailResult tailResult(const TailState& state);
+
+/// The largest t of a reliable level, or 0 when none is.
+[[nodiscard]] double largestReliableT(const TailResult& result) noexcept;
+
+}  // namespace archipelago

@@ -1,0 +1,519 @@
+#include "core/tail/TailSampler.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+
+#include "core/kernels/ScalarLanes.hpp"
+#include "core/parallel/ParallelFor.hpp"
+#include "core/random/CounterRng.hpp"
+#include "core/trapping/BlockKernel.hpp"
+#include "core/trapping/TrappingHistogram.hpp"
+
+namespace archipelago {
+
+namespace {
+
+// Where the sampler's random numbers come from (TailSampler.hpp): orbit indices no `run` uses (M ≤ 2^32).
+constexpr std::uint64_t kEntryOrbitBase = std::uint64_t{1} << 63;   // + r·2^40 + j: entry orbit j of replica r
+constexpr int kEntryReplicaShift = 40;
+constexpr std::uint64_t kLevelStreamBase = std::uint64_t{1} << 62;  // + r·2^24 + k: choices at level k
+constexpr int kLevelReplicaShift = 24;
+
+// Stage 0 examines this many trials of each unfinished replica between two stop checks (a fixed number, so that
+// the steps counted do not depend on when a run was stopped).
+constexpr std::uint64_t kTrialsPerBatch = 2048;
+constexpr std::size_t kTrialsPerTask = 16;
+// A chunk of splitting lasts at most age/16 blocks (a walker that dies in it is iterated at most 1/16 of its age
+// in vain) and at most 2^20 steps per walker (a stop is honoured within a second or two at N·R = 800).
+constexpr std::uint64_t kChunkAgeDivisor = 16;
+constexpr std::uint64_t kMaxChunkStepsPerWalker = std::uint64_t{1} << 20;
+// A warm-up segment of an entry orbit longer than this many blocks (or than the last level) means an orbit that
+// cannot leave: the zone meets an island (a bad Xr or box).  Loud, never an endless loop.
+constexpr std::uint64_t kMinWarmupCapBlocks = std::uint64_t{1} << 24;
+constexpr std::uint64_t kStopCheckBlocks = std::uint64_t{1} << 16;
+
+// e(j) = ⌈10^(j/30)⌉: the lower edge of histogram bin j when j > 50 (TrappingHistogram's own table), else the
+// same formula (every length up to 50 is an edge of its own exact bin).
+std::uint64_t ceilPow10Thirtieth(int j) {
+  if (j > TrappingHistogram::kExactMax) return TrappingHistogram::binLower(j);
+  if (j % TrappingHistogram::kBinsPerDecade == 0) {
+    std::uint64_t p = 1;
+    for (int k = 0; k < j / TrappingHistogram::kBinsPerDecade; ++k) p *= 10;
+    return p;
+  }
+  return static_cast<std::uint64_t>(
+      std::ceil(std::pow(10.0L, static_cast<long double>(j) / TrappingHistogram::kBinsPerDecade)));
+}
+
+std::uint64_t levelKey(std::uint64_t seed, std::size_t replica, std::size_t level) {
+  return orbitKey(seed, kLevelStreamBase + (static_cast<std::uint64_t>(replica) << kLevelReplicaShift) + level);
+}
+
+std::uint64_t entryOrbit(std::size_t replica, std::uint64_t trial) {
+  return kEntryOrbitBase + (static_cast<std::uint64_t>(replica) << kEntryReplicaShift) + trial;
+}
+
+// A uniform integer of [−ε, ε] from a 52-bit draw: ⌊u (2ε + 1)/2^52⌋ − ε (exact in 128 bits; the 2^52 draws
+// fall on the 2ε + 1 values within one part in 2^52/(2ε + 1) ≥ 2^11 of uniform).
+std::int64_t offsetOf(std::uint64_t u, std::uint64_t epsilon) {
+  const auto v = static_cast<std::uint64_t>((uint128{u} * (2 * epsilon + 1)) >> fixedpoint::kBits);
+  return static_cast<std::int64_t>(v) - static_cast<std::int64_t>(epsilon);
+}
+
+// The state moved by the next (δX, δY) of stream `key` (draws counter + 1, …), not both 0.
+UnitState moved(const UnitState& z, std::uint64_t key, std::uint64_t& counter, std::uint64_t epsilon) {
+  for (;;) {
+    const std::int64_t dx = offsetOf(orbitDraw(key, ++counter), epsilon);
+    const std::int64_t dy = offsetOf(orbitDraw(key, ++counter), epsilon);
+    if (dx == 0 && dy == 0) continue;
+    return {(z.X + static_cast<std::uint64_t>(dx)) & fixedpoint::kMask,
+            (z.Y + static_cast<std::uint64_t>(dy)) & fixedpoint::kMask};
+  }
+}
+
+struct TrialOutcome {
+  bool success = false;
+  OrbitState state;          // at age levels[0] when success
+  std::uint64_t blocks = 0;  // computed
+};
+
+// Trial `trial` of replica `replica` (TailSampler.hpp, "entry"): the orbit's first (unrecorded) segment and
+// `warmup` recorded ones end, then the next segment is followed until it ends (a failure) or reaches `level`.
+TrialOutcome runTrial(const KernelSettings& k, std::size_t replica, std::uint64_t trial, std::uint32_t warmup,
+                      std::uint64_t level, std::uint64_t warmupCap, const std::stop_token& stop, bool& stopped) {
+  const std::uint64_t orbit = entryOrbit(replica, trial);
+  TrialOutcome out;
+  OrbitState& s = out.state;  // (0, 0): appendix B, step 2
+  for (std::uint64_t endings = 0; endings < std::uint64_t{warmup} + 1;) {
+    if (advanceOneBlock(k, orbit, s, nullptr)) ++endings;
+    ++out.blocks;
+    if (s.length > warmupCap)
+      throw std::runtime_error("entry orbit " + std::to_string(trial) + " of replica " + std::to_string(replica) +
+                               " stayed more than " + std::to_string(warmupCap) +
+                               " blocks in one segment of its warm-up: the randomizing zone seems to meet an island");
+    if (out.blocks % kStopCheckBlocks == 0 && stop.stop_requested()) {
+      stopped = true;
+      return out;
+    }
+  }
+  for (;;) {
+    const bool ended = advanceOneBlock(k, orbit, s, nullptr);
+    ++out.blocks;
+    if (ended) return out;
+    if (s.length == level) {
+      out.success = true;
+      return out;
+    }
+  }
+}
+
+}  // namespace
+
+const char* cloneRuleName(CloneRule rule) noexcept { return rule == CloneRule::perturb ? "perturb" : "metropolis"; }
+
+std::optional<CloneRule> cloneRuleByName(std::string_view name) noexcept {
+  if (name == "perturb") return CloneRule::perturb;
+  if (name == "metropolis") return CloneRule::metropolis;
+  return std::nullopt;
+}
+
+std::optional<std::string> tailRequestError(const TailRequest& r) {
+  if (auto e = validationError(r.run)) return e;
+  const auto range = [](const char* name, std::uint64_t v, std::uint64_t lo, std::uint64_t hi) -> std::optional<std::string> {
+    if (v >= lo && v <= hi) return std::nullopt;
+    return std::string(name) + " = " + std::to_string(v) + " must lie in [" + std::to_string(lo) + ", " +
+           std::to_string(hi) + "]";
+  };
+  if (auto e = range("population", r.population, 2, kMaxTailPopulation)) return e;
+  if (auto e = range("replicas", r.replicas, 1, kMaxTailReplicas)) return e;
+  if (std::uint64_t{r.population} * r.replicas > kMaxTailWalkers)
+    return "population x replicas = " + std::to_string(std::uint64_t{r.population} * r.replicas) +
+           " walkers exceeds the limit of " + std::to_string(kMaxTailWalkers);
+  if (auto e = range("t-max", r.maxSteps, 1, kMaxTailSteps)) return e;
+  if (auto e = range("first", r.firstSteps, 1, r.maxSteps)) return e;
+  if (auto e = range("level-bins", r.binsPerLevel, 1, kMaxBinsPerLevel)) return e;
+  if (auto e = range("epsilon", r.epsilon, 1, kMaxTailEpsilon)) return e;
+  if (auto e = range("metropolis-steps", r.metropolisSteps, 1, kMaxMetropolisSteps)) return e;
+  if (auto e = range("warmup", r.warmupSegments, 0, kMaxWarmupSegments)) return e;
+  if (auto e = range("min-ancestors", r.minAncestors, 1, std::uint64_t{r.population} * r.replicas)) return e;
+  return std::nullopt;
+}
+
+std::vector<std::uint64_t> tailLevels(const TailRequest& r) {
+  if (auto e = tailRequestError(r)) throw std::invalid_argument(*e);
+  const std::uint64_t q = r.run.q;
+  // Level L = e(j) − 1 blocks is t = q·L steps; the bins stop at 2^63 > q·L for every t ≤ kMaxTailSteps.
+  const auto stepsOf = [&](int j) { return (ceilPow10Thirtieth(j) - 1) * q; };
+  int j = 1;  // e(0) − 1 = 0 is no level
+  while (stepsOf(j) < r.firstSteps) ++j;
+  std::vector<std::uint64_t> levels;
+  for (;; j += static_cast<int>(r.binsPerLevel)) {
+    if (j >= TrappingHistogram::kBins) throw std::invalid_argument("t-max is beyond the histogram's bins");
+    const std::uint64_t L = ceilPow10Thirtieth(j) - 1;
+    if (levels.empty() || L > levels.back()) levels.push_back(L);
+    if (L * q >= r.maxSteps) break;
+  }
+  return levels;
+}
+
+TailState startTail(const TailRequest& request) {
+  TailState s;
+  s.request = request;
+  s.levels = tailLevels(request);  // validates
+  s.coefficients = computeCoefficients(request.run.map);
+  s.replicas.resize(request.replicas);
+  return s;
+}
+
+std::optional<std::string> tailStateError(const TailState& s) {
+  const TailRequest& r = s.request;
+  if (auto e = tailRequestError(r)) return e;
+  if (s.levels != tailLevels(r)) return std::string("the levels differ from those of the sampler's settings");
+  if (s.replicas.size() != r.replicas) return std::string("expected one entry per replica");
+  if (s.next > s.levels.size()) return std::string("the level under way is beyond the last level");
+  if (s.stepsAtLevel.size() != s.next) return std::string("expected the steps of every level reached");
+  for (std::size_t k = 1; k < s.stepsAtLevel.size(); ++k)
+    if (s.stepsAtLevel[k] < s.stepsAtLevel[k - 1]) return std::string("the steps per level must not decrease");
+  if (!s.stepsAtLevel.empty() && s.stepsAtLevel.back() > s.steps) return std::string("a level's steps exceed the total");
+  if (s.next == 0 && s.age != 0) return std::string("stage 0 has no age");
+  if (s.next > 0) {
+    const std::uint64_t lo = s.levels[s.next - 1], hi = s.finished() ? lo : s.levels[s.next];
+    if (s.age < lo || s.age > hi) return std::string("the walkers' age lies outside the level under way");
+  }
+  const std::uint64_t N = r.population;
+  for (std::size_t rep = 0; rep < s.replicas.size(); ++rep) {
+    const TailReplica& x = s.replicas[rep];
+    const std::string who = "replica " + std::to_string(rep) + ": ";
+    if (x.levels.size() != s.next) return who + "expected one count per level reached";
+    for (std::size_t k = 0; k < x.levels.size(); ++k) {
+      const TailLevelCount& c = x.levels[k];
+      if (c.survivors > c.population || c.ancestors > c.survivors || (c.survivors > 0 && c.ancestors == 0) ||
+          c.accepted > c.proposals)
+        return who + "a level's counts are inconsistent";
+      if (k == 0 && (c.survivors != N || c.ancestors != N || c.population < N || c.population != x.trials))
+        return who + "stage 0's counts are inconsistent";
+      if (k > 0 && c.population != (x.levels[k - 1].survivors > 0 ? N : 0)) return who + "a level's population is not N";
+      if (k > 0 && c.ancestors > x.levels[k - 1].ancestors) return who + "lineages cannot grow";
+    }
+    if (s.next == 0) {
+      if (!x.alive.empty() || x.walkers.size() > N || x.trials < x.walkers.size())
+        return who + "stage 0's walkers are inconsistent";
+      for (std::size_t w = 0; w < x.walkers.size(); ++w)
+        if (x.walkers[w].ancestor != w || x.walkers[w].state.length != s.levels[0])
+          return who + "a stage-0 walker is inconsistent";
+      continue;
+    }
+    if (x.alive.size() != x.walkers.size()) return who + "expected one alive flag per walker";
+    if (x.walkers.size() != 0 && x.walkers.size() != N) return who + "the population is not N";
+    for (std::size_t w = 0; w < x.walkers.size(); ++w)
+      if (x.alive[w] && x.walkers[w].state.length != s.age) return who + "a live walker's age differs from the level's";
+  }
+  return std::nullopt;
+}
+
+std::optional<std::uint64_t> segmentAge(const KernelSettings& k, const UnitState& z, std::uint64_t maxBlocks) {
+  UnitState lane = z;
+  const ScalarStep c(k.coefficients);
+  for (std::uint64_t age = 0; age <= maxBlocks; ++age) {
+    std::uint8_t wrapped = 0;
+    stepLanes<1>(c, MapDirection::forward, &lane, k.q, &wrapped, [](std::uint64_t, const std::uint64_t*,
+                                                                     const std::uint64_t*) {});
+    if (wrapped || lane.X <= k.randomizingX) return age;  // that block ended the previous segment
+  }
+  return std::nullopt;
+}
+
+namespace {
+
+// The ages of many states at once: kScalarLanes in lockstep (ScalarLanes.hpp), each lane's answer
+// decided at its first ended block or after maxBlocks + 1 clean ones.  Returns the steps computed.
+std::uint64_t segmentAgesAreExactly(const KernelSettings& k, std::span<UnitState> z, std::uint64_t level,
+                                    std::uint8_t* exact) {
+  const ScalarStep c(k.coefficients);
+  std::uint64_t steps = 0;
+  const auto group = [&]<std::size_t Lanes>(UnitState* lanes, std::uint8_t* out) {
+    std::uint8_t decided[Lanes] = {};
+    std::size_t open = Lanes;
+    for (std::uint64_t age = 0; age <= level && open > 0; ++age) {
+      std::uint8_t wrapped[Lanes] = {};
+      stepLanes<Lanes>(c, MapDirection::forward, lanes, k.q, wrapped,
+                       [](std::uint64_t, const std::uint64_t*, const std::uint64_t*) {});
+      steps += Lanes * k.q;
+      for (std::size_t l = 0; l < Lanes; ++l) {
+        if (decided[l] || !(wrapped[l] || lanes[l].X <= k.randomizingX)) continue;
+        decided[l] = 1;
+        --open;
+        out[l] = age == level ? 1 : 0;  // the block before the segment's first ended it: age exactly `level`
+      }
+    }
+    for (std::size_t l = 0; l < Lanes; ++l)
+      if (!decided[l]) out[l] = 0;  // older than `level`
+  };
+  std::size_t i = 0;
+  for (; i + kScalarLanes <= z.size(); i += kScalarLanes) group.template operator()<kScalarLanes>(z.data() + i, exact + i);
+  for (; i < z.size(); ++i) group.template operator()<1>(z.data() + i, exact + i);
+  return steps;
+}
+
+using Clock = std::chrono::steady_clock;
+
+class Sampler {
+ public:
+  Sampler(TailState& s, const TailRunOptions& o, std::stop_token stop)
+      : s_(s), stop_(std::move(stop)), threads_(parallelThreads(o.threads)), kernel_(kernelOrBest(o.kernel)),
+        k_(blockSettings(s.coefficients, s.request.run.Xr, s.request.run.q, s.request.run.seed)) {
+    s_.kernel = std::string(kernel_.name);
+  }
+
+  // One unit of work: a stage-0 batch, a chunk of blocks, or a level closed.  False when stopped inside it
+  // (the state is then unchanged).
+  bool step() {
+    if (s_.next == 0) return stageZeroBatch();
+    if (s_.age < s_.levels[s_.next]) return propagateChunk();
+    return closeLevel();
+  }
+
+ private:
+  bool stageZeroBatch() {
+    const TailRequest& r = s_.request;
+    struct Item {
+      std::size_t replica;
+      std::uint64_t trial;
+    };
+    std::vector<Item> items;
+    for (std::size_t rep = 0; rep < s_.replicas.size(); ++rep) {
+      const TailReplica& x = s_.replicas[rep];
+      if (x.walkers.size() >= r.population) continue;
+      for (std::uint64_t j = 0; j < kTrialsPerBatch; ++j) items.push_back({rep, x.trials + j});
+    }
+    std::vector<TrialOutcome> outcomes(items.size());
+    const std::uint64_t cap = std::max(kMinWarmupCapBlocks, s_.levels.back());
+    std::atomic<bool> stopped{false};
+    const bool complete = parallelFor(
+        (items.size() + kTrialsPerTask - 1) / kTrialsPerTask,
+        [&](std::size_t task, int) {
+          for (std::size_t i = task * kTrialsPerTask; i < std::min(items.size(), (task + 1) * kTrialsPerTask); ++i) {
+            bool halted = false;
+            outcomes[i] = runTrial(k_, items[i].replica, items[i].trial, r.warmupSegments, s_.levels[0], cap, stop_,
+                                   halted);
+            if (halted) stopped = true;
+          }
+        },
+        stop_, threads_);
+    if (!complete || stopped) return false;
+    std::uint64_t blocks = 0;
+    for (const TrialOutcome& o : outcomes) blocks += o.blocks;
+    s_.steps += blocks * r.run.q;
+    std::size_t i = 0;
+    for (std::size_t rep = 0; rep < s_.replicas.size(); ++rep) {
+      TailReplica& x = s_.replicas[rep];
+      if (x.walkers.size() >= r.population) continue;
+      for (std::uint64_t j = 0; j < kTrialsPerBatch; ++j, ++i) {
+        if (x.walkers.size() >= r.population) continue;  // computed beyond the N-th success: counted, not used
+        x.trials = items[i].trial + 1;
+        if (outcomes[i].success)
+          x.walkers.push_back({outcomes[i].state, static_cast<std::uint32_t>(x.walkers.size())});
+      }
+    }
+    if (std::all_of(s_.replicas.begin(), s_.replicas.end(),
+                    [&](const TailReplica& x) { return x.walkers.size() >= r.population; })) {
+      for (TailReplica& x : s_.replicas) {
+        x.levels.push_back({x.trials, r.population, r.population, 0, 0});
+        x.alive.assign(x.walkers.size(), 1);
+      }
+      s_.stepsAtLevel.push_back(s_.steps);
+      s_.age = s_.levels[0];
+      s_.next = 1;
+    }
+    return true;
+  }
+
+  bool propagateChunk() {
+    const std::uint64_t target = s_.levels[s_.next];
+    const std::uint64_t chunk = std::min({target - s_.age, std::max<std::uint64_t>(1, s_.age / kChunkAgeDivisor),
+                                          std::max<std::uint64_t>(1, kMaxChunkStepsPerWalker / s_.request.run.q)});
+    std::vector<OrbitState> live;
+    std::vector<std::pair<std::size_t, std::size_t>> where;
+    for (std::size_t rep = 0; rep < s_.replicas.size(); ++rep) {
+      const TailReplica& x = s_.replicas[rep];
+      for (std::size_t w = 0; w < x.walkers.size(); ++w)
+        if (x.alive[w]) {
+          live.push_back(x.walkers[w].state);
+          where.emplace_back(rep, w);
+        }
+    }
+    const std::size_t per = orbitsPerTask(kernel_, live.size(), threads_);
+    std::vector<SegmentSink> sinks(static_cast<std::size_t>(threads_), SegmentSink(1, 0));
+    // No stop token: a chunk completes, so that every live walker has the same age.
+    parallelFor(
+        (live.size() + per - 1) / per,
+        [&](std::size_t g, int thread) {
+          const std::size_t first = g * per;
+          const std::size_t n = std::min(per, live.size() - first);
+          // The orbit index only selects random draws, and a draw ends the segment: a dead walker's draws
+          // are never looked at.
+          kernel_.blocks(k_, std::span<OrbitState>(live.data() + first, n), 0, chunk,
+                         sinks[static_cast<std::size_t>(thread)]);
+        },
+        {}, threads_);
+    s_.steps += static_cast<std::uint64_t>(live.size()) * chunk * s_.request.run.q;
+    s_.age += chunk;
+    for (std::size_t i = 0; i < live.size(); ++i) {
+      auto [rep, w] = where[i];
+      TailReplica& x = s_.replicas[rep];
+      x.walkers[w].state = live[i];
+      if (live[i].length != s_.age) x.alive[w] = 0;  // the segment ended within the chunk
+    }
+    return true;
+  }
+
+  // The live walkers reached levels[next]: count them, and (below the last level) resample them to N.
+  bool closeLevel() {
+    const TailRequest& r = s_.request;
+    const std::size_t level = s_.next;
+    const bool last = level + 1 >= s_.levels.size();
+    std::vector<TailLevelCount> counts(s_.replicas.size());
+    std::vector<std::vector<TailWalker>> next(s_.replicas.size());
+    std::vector<std::vector<std::uint8_t>> isClone(s_.replicas.size());
+    for (std::size_t rep = 0; rep < s_.replicas.size(); ++rep) {
+      const TailReplica& x = s_.replicas[rep];
+      std::vector<std::size_t> survivors;
+      for (std::size_t w = 0; w < x.walkers.size(); ++w)
+        if (x.alive[w]) survivors.push_back(w);
+      std::vector<std::uint32_t> lineages;
+      for (std::size_t w : survivors) lineages.push_back(x.walkers[w].ancestor);
+      std::sort(lineages.begin(), lineages.end());
+      counts[rep].population = x.walkers.size();
+      counts[rep].survivors = survivors.size();
+      counts[rep].ancestors = static_cast<std::uint64_t>(std::unique(lineages.begin(), lineages.end()) - lineages.begin());
+      if (last || survivors.empty()) continue;
+      // ⌊N/s⌋ copies each; N mod s survivors, those of the smallest random ranks, one more.
+      const std::size_t n = r.population, sCount = survivors.size();
+      const std::uint64_t key = levelKey(r.run.seed, rep, level);
+      std::vector<std::size_t> order(sCount);
+      std::iota(order.begin(), order.end(), std::size_t{0});
+      std::vector<std::uint64_t> rank(sCount);
+      for (std::size_t i = 0; i < sCount; ++i) rank[i] = orbitDraw(key, i + 1);
+      std::sort(order.begin(), order.end(),
+                [&](std::size_t a, std::size_t b) { return rank[a] != rank[b] ? rank[a] < rank[b] : a < b; });
+      std::vector<std::size_t> copies(sCount, n / sCount);
+      for (std::size_t e = 0; e < n % sCount; ++e) copies[order[e]] += 1;
+      for (std::size_t i = 0; i < sCount; ++i)
+        for (std::size_t c = 0; c < copies[i]; ++c) {
+          next[rep].push_back(x.walkers[survivors[i]]);
+          isClone[rep].push_back(c > 0 ? 1 : 0);
+        }
+    }
+    if (!last && !moveClones(next, isClone, counts, level)) return false;
+    for (std::size_t rep = 0; rep < s_.replicas.size(); ++rep) {
+      TailReplica& x = s_.replicas[rep];
+      x.levels.push_back(counts[rep]);
+      if (!last) {
+        x.walkers = std::move(next[rep]);
+        x.alive.assign(x.walkers.size(), 1);
+      }
+    }
+    s_.stepsAtLevel.push_back(s_.steps);
+    s_.next = level + 1;
+    return true;
+  }
+
+  // Moves every clone: a perturbation, or metropolisSteps Metropolis steps (TailSampler.hpp).
+  bool moveClones(std::vector<std::vector<TailWalker>>& next, const std::vector<std::vector<std::uint8_t>>& isClone,
+                  std::vector<TailLevelCount>& counts, std::size_t level) {
+    const TailRequest& r = s_.request;
+    struct Clone {
+      std::size_t replica, index;
+      std::uint64_t key, counter;
+    };
+    std::vector<Clone> clones;
+    for (std::size_t rep = 0; rep < next.size(); ++rep) {
+      const std::uint64_t key = levelKey(r.run.seed, rep, level);
+      for (std::size_t c = 0; c < next[rep].size(); ++c)
+        if (isClone[rep][c]) clones.push_back({rep, c, orbitKey(key, c), 0});
+    }
+    if (r.clones == CloneRule::perturb) {
+      for (Clone& c : clones) {
+        UnitState& z = next[c.replica][c.index].state.z;
+        z = moved(z, c.key, c.counter, r.epsilon);
+      }
+      return true;
+    }
+    const std::uint64_t age = s_.levels[level];
+    std::vector<UnitState> proposal(clones.size()), stepped(clones.size());
+    std::vector<std::uint8_t> accept(clones.size());
+    std::uint64_t steps = 0;
+    for (std::uint32_t m = 0; m < r.metropolisSteps; ++m) {
+      for (std::size_t i = 0; i < clones.size(); ++i)
+        proposal[i] = moved(next[clones[i].replica][clones[i].index].state.z, clones[i].key, clones[i].counter,
+                            r.epsilon);
+      stepped = proposal;  // followed back in place
+      const std::size_t per = 8 * kScalarLanes;
+      std::vector<std::uint64_t> taskSteps((clones.size() + per - 1) / per, 0);
+      const bool complete = parallelFor(
+          taskSteps.size(),
+          [&](std::size_t g, int) {
+            const std::size_t first = g * per;
+            const std::size_t n = std::min(per, clones.size() - first);
+            taskSteps[g] = segmentAgesAreExactly(k_, std::span<UnitState>(stepped.data() + first, n), age,
+                                                 accept.data() + first);
+          },
+          stop_, threads_);
+      if (!complete) return false;  // the level is closed again on resume, from the same survivors
+      for (std::uint64_t t : taskSteps) steps += t;
+      for (std::size_t i = 0; i < clones.size(); ++i) {
+        const Clone& c = clones[i];
+        counts[c.replica].proposals += 1;
+        if (!accept[i]) continue;  // the Metropolis step stays where it was
+        next[c.replica][c.index].state.z = proposal[i];
+        counts[c.replica].accepted += 1;
+      }
+    }
+    s_.steps += steps;
+    return true;
+  }
+
+  TailState& s_;
+  std::stop_token stop_;
+  int threads_;
+  const KernelInfo& kernel_;
+  KernelSettings k_;
+};
+
+}  // namespace
+
+TailState runTail(TailState state, const TailRunOptions& options, const TailObserver& observer, std::stop_token stop) {
+  Sampler sampler(state, options, stop);
+  const auto sessionStart = Clock::now();
+  const std::uint64_t stepsAtStart = state.steps;
+  while (!state.finished() && state.next < options.untilLevel && !stop.stop_requested()) {
+    const auto t0 = Clock::now();
+    const bool done = sampler.step();
+    const auto now = Clock::now();
+    state.elapsedSeconds += std::chrono::duration<double>(now - t0).count();
+    if (!done) break;
+    if (observer) {
+      TailProgress p;
+      p.level = state.next;
+      p.levels = state.levels.size();
+      p.t = static_cast<double>(state.age) * state.request.run.q;
+      const double top = std::log(static_cast<double>(state.levels.back()) * state.request.run.q);
+      p.fraction = state.finished() ? 1.0 : (p.t > 1 && top > 0 ? std::log(p.t) / top : 0.0);
+      p.steps = static_cast<double>(state.steps);
+      const double seconds = std::chrono::duration<double>(now - sessionStart).count();
+      p.stepsPerSecond = seconds > 0 ? static_cast<double>(state.steps - stepsAtStart) / seconds : 0;
+      for (const TailReplica& x : state.replicas)
+        p.alive += state.next == 0 ? x.walkers.size()
+                                   : static_cast<std::uint64_t>(std::count(x.alive.begin(), x.alive.end(), 1));
+      observer(state, p);
+    }
+  }
+  return state;
+}
+
+}  // namespace archipelago
