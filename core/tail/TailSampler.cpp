@@ -27,14 +27,14 @@ constexpr int kLevelReplicaShift = 24;
 // Stage 0 examines this many trials of each unfinished replica between two stop checks (a fixed number, so that
 // the steps counted do not depend on when a run was stopped).
 constexpr std::uint64_t kTrialsPerBatch = 2048;
-constexpr std::size_t kTrialsPerTask = 16;
 // A chunk of splitting lasts at most age/16 blocks (a walker that dies in it is iterated at most 1/16 of its age
 // in vain) and at most 2^20 steps per walker (a stop is honoured within a second or two at N·R = 800).
 constexpr std::uint64_t kChunkAgeDivisor = 16;
 constexpr std::uint64_t kMaxChunkStepsPerWalker = std::uint64_t{1} << 20;
-// A warm-up segment of an entry orbit longer than this many blocks (or than the last level) means an orbit that
-// cannot leave: the zone meets an island (a bad Xr or box).  Loud, never an endless loop.
-constexpr std::uint64_t kMinWarmupCapBlocks = std::uint64_t{1} << 24;
+// A warm-up segment of an entry orbit longer than this many blocks (or than the level) means an orbit that cannot
+// leave: the zone meets an island (a bad Xr or box).  Loud, never an endless loop.  At K = 0.1 a segment lasts
+// 2^32 blocks (7·10^10 steps at q = 16) with a probability of order 10^-14.
+constexpr std::uint64_t kMinWarmupCapBlocks = std::uint64_t{1} << 32;
 constexpr std::uint64_t kStopCheckBlocks = std::uint64_t{1} << 16;
 
 // e(j) = ⌈10^(j/30)⌉: the lower edge of histogram bin j when j > 50 (TrappingHistogram's own table), else the
@@ -76,18 +76,13 @@ UnitState moved(const UnitState& z, std::uint64_t key, std::uint64_t& counter, s
   }
 }
 
-struct TrialOutcome {
-  bool success = false;
-  OrbitState state;          // at age levels[0] when success
-  std::uint64_t blocks = 0;  // computed
-};
+}  // namespace
 
-// Trial `trial` of replica `replica` (TailSampler.hpp, "entry"): the orbit's first (unrecorded) segment and
-// `warmup` recorded ones end, then the next segment is followed until it ends (a failure) or reaches `level`.
-TrialOutcome runTrial(const KernelSettings& k, std::size_t replica, std::uint64_t trial, std::uint32_t warmup,
-                      std::uint64_t level, std::uint64_t warmupCap, const std::stop_token& stop, bool& stopped) {
+EntryTrial entryTrial(const KernelSettings& k, std::size_t replica, std::uint64_t trial, std::uint32_t warmup,
+                      std::uint64_t level, std::stop_token stop) {
   const std::uint64_t orbit = entryOrbit(replica, trial);
-  TrialOutcome out;
+  const std::uint64_t warmupCap = std::max(kMinWarmupCapBlocks, level);
+  EntryTrial out;
   OrbitState& s = out.state;  // (0, 0): appendix B, step 2
   for (std::uint64_t endings = 0; endings < std::uint64_t{warmup} + 1;) {
     if (advanceOneBlock(k, orbit, s, nullptr)) ++endings;
@@ -97,7 +92,7 @@ TrialOutcome runTrial(const KernelSettings& k, std::size_t replica, std::uint64_
                                " stayed more than " + std::to_string(warmupCap) +
                                " blocks in one segment of its warm-up: the randomizing zone seems to meet an island");
     if (out.blocks % kStopCheckBlocks == 0 && stop.stop_requested()) {
-      stopped = true;
+      out.stopped = true;
       return out;
     }
   }
@@ -111,8 +106,6 @@ TrialOutcome runTrial(const KernelSettings& k, std::size_t replica, std::uint64_
     }
   }
 }
-
-}  // namespace
 
 const char* cloneRuleName(CloneRule rule) noexcept { return rule == CloneRule::perturb ? "perturb" : "metropolis"; }
 
@@ -291,23 +284,22 @@ class Sampler {
       if (x.walkers.size() >= r.population) continue;
       for (std::uint64_t j = 0; j < kTrialsPerBatch; ++j) items.push_back({rep, x.trials + j});
     }
-    std::vector<TrialOutcome> outcomes(items.size());
-    const std::uint64_t cap = std::max(kMinWarmupCapBlocks, s_.levels.back());
-    std::atomic<bool> stopped{false};
+    std::vector<EntryTrial> outcomes(items.size());
+    // One trial at a time, as entryTrial() defines it: a trial is a dozen blocks, too short and too uneven for the
+    // vector kernels' lockstep groups (measured: grouping 64 trials cost more than it saved).
+    constexpr std::size_t kTrialsPerTask = 64;
     const bool complete = parallelFor(
         (items.size() + kTrialsPerTask - 1) / kTrialsPerTask,
         [&](std::size_t task, int) {
-          for (std::size_t i = task * kTrialsPerTask; i < std::min(items.size(), (task + 1) * kTrialsPerTask); ++i) {
-            bool halted = false;
-            outcomes[i] = runTrial(k_, items[i].replica, items[i].trial, r.warmupSegments, s_.levels[0], cap, stop_,
-                                   halted);
-            if (halted) stopped = true;
-          }
+          const std::size_t end = std::min(items.size(), (task + 1) * kTrialsPerTask);
+          for (std::size_t i = task * kTrialsPerTask; i < end; ++i)
+            outcomes[i] = entryTrial(k_, items[i].replica, items[i].trial, r.warmupSegments, s_.levels[0], stop_);
         },
         stop_, threads_);
-    if (!complete || stopped) return false;
+    if (!complete || std::any_of(outcomes.begin(), outcomes.end(), [](const EntryTrial& o) { return o.stopped; }))
+      return false;
     std::uint64_t blocks = 0;
-    for (const TrialOutcome& o : outcomes) blocks += o.blocks;
+    for (const EntryTrial& o : outcomes) blocks += o.blocks;
     s_.steps += blocks * r.run.q;
     std::size_t i = 0;
     for (std::size_t rep = 0; rep < s_.replicas.size(); ++rep) {

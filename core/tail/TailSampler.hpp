@@ -58,6 +58,7 @@
 #include <vector>
 
 #include "core/kernels/KernelDispatch.hpp"
+#include "core/trapping/BlockKernel.hpp"
 #include "core/trapping/TrappingParameters.hpp"
 
 namespace archipelago {
@@ -185,6 +186,22 @@ struct TailRunOptions {
 /// Checks the consistency of a state read from a file (sizes, ages, ancestors, levels): the first problem, or
 /// nothing.  The state's request is checked by tailRequestError() and its levels against tailLevels().
 [[nodiscard]] std::optional<std::string> tailStateError(const TailState& state);
+
+/// One stage-0 trial, the reference definition, one block at a time (advanceOneBlock()): entry orbit
+/// 2^63 + replica·2^40 + trial of the run process (settings: its map, Xr, q, seed); once its first (unrecorded)
+/// segment and `warmup` recorded ones have ended, the next segment is followed until it ends (success false) or has
+/// lasted `level` blocks (success true, `state` at that age).  `blocks`: the blocks it took.  The sampler computes
+/// the same trials, in parallel batches (a test checks the batching).  A warm-up segment longer than
+/// max(2^32, level) blocks (an orbit that cannot leave: the zone meets an island) throws std::runtime_error;
+/// `stop` is checked every 2^16 blocks of the warm-up (then `stopped` is set and the rest is meaningless).
+struct EntryTrial {
+  bool success = false;
+  bool stopped = false;
+  OrbitState state;
+  std::uint64_t blocks = 0;
+};
+[[nodiscard]] EntryTrial entryTrial(const KernelSettings& settings, std::size_t replica, std::uint64_t trial,
+                                    std::uint32_t warmup, std::uint64_t level, std::stop_token stop = {});
 
 /// The age of the state z in the run process: the number of blocks back, at most maxBlocks + 1, to the block
 /// that ended the previous segment, followed with the exact inverse N.  Returns the age when it is ≤ maxBlocks
