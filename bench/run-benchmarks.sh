@@ -143,9 +143,9 @@ if tails:
         if n in runs and bare in runs:
             print(f"  {n:30s} {rate(n, 'wall')} {rate(n, 'cpu')} {ratio(n, bare):6.3f} {ratio(n, bare, 'cpu'):6.3f}")
     for k in kernels:
-        n, bare = "tail/stage0", f"bare_step/{k}"
+        n, bare = f"tail/stage0/{k}", f"bare_step/{k}"
         if n in runs and bare in runs:
-            print(f"  {n + ' / ' + k:30s} {rate(n, 'wall')} {rate(n, 'cpu')} {ratio(n, bare):6.3f} {ratio(n, bare, 'cpu'):6.3f}")
+            print(f"  {n:30s} {rate(n, 'wall')} {rate(n, 'cpu')} {ratio(n, bare):6.3f} {ratio(n, bare, 'cpu'):6.3f}")
 
 if paired:
     print("\n== Paired ratios (the two sides alternate every few tens of ms; 1-thread sides timed by the thread's CPU clock) ==")

@@ -181,12 +181,16 @@ int tailCommand(TailOptions& o, const CLI::App& cmd) {
     if (!o.quiet && (tty ? std::chrono::duration<double>(now - lastLine).count() >= 0.2
                          : std::chrono::duration<double>(now - lastLine).count() >= 10)) {
       lastLine = now;
-      if (p.level == 0)
-        std::fprintf(stderr, "%sstage 0: %llu of %llu entries reached t = %llu  %.3g steps  %.3g steps/s   %s", tty ? "\r" : "",
-                     static_cast<unsigned long long>(p.alive),
-                     static_cast<unsigned long long>(std::uint64_t{s.request.population} * s.request.replicas),
+      if (p.level == 0 && s.entryOrbits == 0)
+        std::fprintf(stderr, "%sstage 0, pilot: %llu of %llu segments reached t = %llu  %.3g steps  %.3g steps/s   %s",
+                     tty ? "\r" : "", static_cast<unsigned long long>(s.pilotSuccesses),
+                     static_cast<unsigned long long>(s.pilotTrials),
                      static_cast<unsigned long long>(s.levels[0] * s.request.run.q), p.steps, p.stepsPerSecond,
                      tty ? "" : "\n");
+      else if (p.level == 0)
+        std::fprintf(stderr, "%sstage 0: %llu successes at t = %llu  %.3g steps  %.3g steps/s   %s", tty ? "\r" : "",
+                     static_cast<unsigned long long>(p.alive), static_cast<unsigned long long>(s.levels[0] * s.request.run.q),
+                     p.steps, p.stepsPerSecond, tty ? "" : "\n");
       else
         std::fprintf(stderr, "%slevel %zu of %zu: t = %.4g, %llu walkers alive  %.3g steps  %.3g steps/s (%s)   %s",
                      tty ? "\r" : "", p.level, p.levels, p.t, static_cast<unsigned long long>(p.alive), p.steps,
@@ -247,7 +251,7 @@ void addTailCommand(CLI::App& app, int& status) {
   cmd->add_option("--clones", o->clones, "perturb (a move) or metropolis (a move kept only when the exact inverse map "
                                          "shows the state has the survivor's age)")->capture_default_str();
   addNumberOption(*cmd, "--metropolis-steps", r.metropolisSteps, "Metropolis moves per clone (--clones metropolis)");
-  addNumberOption(*cmd, "--warmup", r.warmupSegments, "segments an entry orbit runs before its trial segment");
+  addNumberOption(*cmd, "--warmup", r.warmupBlocks, "blocks an entry orbit runs before its window of trials (stage 0)");
   addNumberOption(*cmd, "--min-ancestors", r.minAncestors,
                   "a level is reliable when its survivors descend from at least this many entries (all replicas)");
   addNumberOption(*cmd, "--threads", o->threads, "OpenMP threads (0: all cores; at most " + std::to_string(kMaxThreads) + ")");

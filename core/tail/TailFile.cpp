@@ -44,7 +44,7 @@ json samplerJson(const TailRequest& r) {
           {"first", r.firstSteps},        {"t_max", r.maxSteps},
           {"level_bins", r.binsPerLevel}, {"epsilon", r.epsilon},
           {"clones", cloneRuleName(r.clones)}, {"metropolis_steps", r.metropolisSteps},
-          {"warmup", r.warmupSegments},   {"min_ancestors", r.minAncestors}};
+          {"warmup", r.warmupBlocks},     {"min_ancestors", r.minAncestors}};
 }
 
 json stateJson(const TailState& s) {
@@ -60,9 +60,15 @@ json stateJson(const TailState& s) {
                                      o.start.draws, x.walkers[w].ancestor,
                                      w < x.alive.size() ? static_cast<unsigned>(x.alive[w]) : 0u}));
     }
-    replicas.push_back({{"trials", x.trials}, {"levels", levels}, {"walkers", walkers}, {"alive", !x.alive.empty()}});
+    replicas.push_back({{"orbits_done", x.orbitsDone}, {"trials", x.trials}, {"levels", levels}, {"walkers", walkers},
+                        {"alive", !x.alive.empty()}});
   }
-  return {{"next", s.next}, {"age", s.age}, {"steps_at_level", s.stepsAtLevel}, {"replicas", replicas}};
+  return {{"next", s.next},
+          {"age", s.age},
+          {"pilot", {{"orbits", s.pilotOrbits}, {"trials", s.pilotTrials}, {"successes", s.pilotSuccesses}}},
+          {"entry_orbits", s.entryOrbits},
+          {"steps_at_level", s.stepsAtLevel},
+          {"replicas", replicas}};
 }
 
 UnitState unitState(const json& a, std::size_t i) {
@@ -153,7 +159,7 @@ TailState parseTailFile(const std::string& text) {
   if (!rule) corrupt("field 'clones' must be \"perturb\" or \"metropolis\"");
   r.clones = *rule;
   r.metropolisSteps = static_cast<std::uint32_t>(bounded(js, "metropolis_steps", kMaxMetropolisSteps));
-  r.warmupSegments = static_cast<std::uint32_t>(bounded(js, "warmup", kMaxWarmupSegments));
+  r.warmupBlocks = bounded(js, "warmup", kMaxWarmupBlocks);
   r.minAncestors = u64(js, "min_ancestors");
   if (auto e = tailRequestError(r)) corrupt("invalid sampler settings: " + *e);
 
@@ -182,6 +188,11 @@ TailState parseTailFile(const std::string& text) {
   const json& st = field(j, "state");
   s.next = static_cast<std::size_t>(bounded(st, "next", s.levels.size()));
   s.age = u64(st, "age");
+  const json& pilot = field(st, "pilot");
+  s.pilotOrbits = u64(pilot, "orbits");
+  s.pilotTrials = u64(pilot, "trials");
+  s.pilotSuccesses = u64(pilot, "successes");
+  s.entryOrbits = u64(st, "entry_orbits");
   const json& sal = field(st, "steps_at_level");
   if (!sal.is_array() || sal.size() > s.levels.size()) corrupt("field 'steps_at_level' must list one count per level reached");
   for (const json& v : sal) s.stepsAtLevel.push_back(valueU64(v, "a level's steps"));
@@ -190,6 +201,7 @@ TailState parseTailFile(const std::string& text) {
   for (std::size_t rep = 0; rep < s.replicas.size(); ++rep) {
     TailReplica& x = s.replicas[rep];
     const json& jr = reps[rep];
+    x.orbitsDone = u64(jr, "orbits_done");
     x.trials = u64(jr, "trials");
     const json& lv = field(jr, "levels");
     if (!lv.is_array() || lv.size() > s.levels.size()) corrupt("a replica lists more levels than the sampler has");
@@ -199,7 +211,9 @@ TailState parseTailFile(const std::string& text) {
                           valueU64(c[4], "a count")});
     }
     const json& jw = field(jr, "walkers");
-    if (!jw.is_array() || jw.size() > r.population) corrupt("a replica holds more walkers than its population");
+    // Stage 0 may hold more successes than N (about 2N); a walker takes ~200 bytes of text, so the file's size
+    // (kMaxTailFileBytes) bounds their number.
+    if (!jw.is_array()) corrupt("a replica's walkers must be an array");
     const json& hasAlive = field(jr, "alive");
     if (!hasAlive.is_boolean()) corrupt("field 'alive' must be true or false");
     for (const json& w : jw) {
@@ -211,7 +225,7 @@ TailState parseTailFile(const std::string& text) {
       t.state.length = valueU64(w[4], "a walker's age");
       t.state.start = {unitState(w, 5), valueU64(w[7], "a walker's start block"), valueU64(w[8], "a walker's start draws")};
       const std::uint64_t ancestor = valueU64(w[9], "a walker's ancestor");
-      if (ancestor >= r.population) corrupt("a walker's ancestor is out of range");
+      if (ancestor > UINT32_MAX) corrupt("a walker's ancestor is out of range");
       t.ancestor = static_cast<std::uint32_t>(ancestor);
       const std::uint64_t alive = valueU64(w[10], "a walker's alive flag");
       if (alive > 1) corrupt("a walker's alive flag must be 0 or 1");

@@ -14,9 +14,10 @@
 ///      "levels": [{"t", "P", "P_error", "survivors", "ancestors", "reliable", "fewest_ancestors", "population",
 ///                  "P_replicas", "steps", "acceptance"}, …],
 ///      "exponents": [{"t", "t_from", "t_to", "gamma", "gamma_error"}, …],
-///      "state": {"next", "age", "steps_at_level", "replicas": [{"trials", "levels": [[population, survivors,
-///                ancestors, proposals, accepted], …], "walkers": [[X, Y, block, draws, length, X₀, Y₀, block₀,
-///                draws₀, ancestor, alive], …]}, …]},
+///      "state": {"next", "age", "pilot": {"orbits", "trials", "successes"}, "entry_orbits", "steps_at_level",
+///                "replicas": [{"orbits_done", "trials", "levels": [[population, survivors, ancestors, proposals,
+///                accepted], …], "walkers": [[X, Y, block, draws, length, X₀, Y₀, block₀, draws₀, ancestor, alive],
+///                …], "alive": bool}, …]},
 ///      "checksum": "sha256:…"}
 ///
 /// "levels" and "exponents" are TailResult.hpp's, written for readers (a NaN is null) and recomputed from the state

@@ -25,12 +25,9 @@ TailResult tailResult(const TailState& s) {
     std::uint64_t proposals = 0, accepted = 0;
     for (std::size_t rep = 0; rep < R; ++rep) {
       const TailLevelCount& c = s.replicas[rep].levels[k];
-      if (k == 0) {
-        running[rep] = c.population > 1 ? static_cast<double>(c.survivors - 1) / static_cast<double>(c.population - 1)
-                                        : 0.0;
-      } else {
-        running[rep] *= c.population > 0 ? static_cast<double>(c.survivors) / static_cast<double>(c.population) : 0.0;
-      }
+      const double fraction =
+          c.population > 0 ? static_cast<double>(c.survivors) / static_cast<double>(c.population) : 0.0;
+      running[rep] = k == 0 ? fraction : running[rep] * fraction;
       L.replicaP.push_back(running[rep]);
       L.population += c.population;
       L.survivors += c.survivors;
@@ -77,6 +74,11 @@ TailResult tailResult(const TailState& s) {
     out.exponents.push_back(e);
   }
   return out;
+}
+
+TailResult runTailSampler(const TailRequest& request, const TailRunOptions& options, const TailObserver& observer,
+                          std::stop_token stop) {
+  return tailResult(runTail(startTail(request), options, observer, std::move(stop)));
 }
 
 double largestReliableT(const TailResult& result) noexcept {

@@ -4,8 +4,9 @@
 /// replicas, the survivors and lineages behind it, whether it is reliable, and the local exponent between
 /// neighbouring reliable levels.
 ///
-/// Per replica r, P_r(t_0) = (N − 1)/(n_r − 1) (stage 0, inverse sampling) and P_r(t_{k+1}) = P_r(t_k)·s_{r,k+1}/N
-/// (splitting: the product of survival fractions).  Each is an unbiased estimate when clones are exact samples.
+/// Per replica r, P_r(t_0) = s_{r,0}/n_r (stage 0: successes over trials, the estimator of `run`) and
+/// P_r(t_{k+1}) = P_r(t_k)·s_{r,k+1}/N (splitting: the product of survival fractions).  Each is an unbiased estimate
+/// when clones are exact samples (the first to within O(1/n_r), as a ratio of two counts).
 ///   P(t_k)       = (1/R) Σ_r P_r(t_k),   error = s/√R  (s the sample standard deviation over replicas; NaN, written
 ///                  null, with one replica).
 ///   survivors    = Σ_r s_{r,k};  ancestors = Σ_r (distinct lineages among replica r's survivors).
@@ -23,6 +24,7 @@
 
 #include <cstdint>
 #include <limits>
+#include <stop_token>
 #include <vector>
 
 #include "core/tail/TailSampler.hpp"
@@ -62,6 +64,11 @@ struct TailResult {
 
 /// The estimates of a sampler state (finished or not).  A pure function.
 [[nodiscard]] TailResult tailResult(const TailState& state);
+
+/// The one call for a caller that wants the levels (the reproduction report): startTail(request), runTail() to the
+/// end (or until `stop`), tailResult().  Throws std::invalid_argument for a bad request (tailRequestError()).
+[[nodiscard]] TailResult runTailSampler(const TailRequest& request, const TailRunOptions& options = {},
+                                        const TailObserver& observer = {}, std::stop_token stop = {});
 
 /// The largest t of a reliable level, or 0 when none is.
 [[nodiscard]] double largestReliableT(const TailResult& result) noexcept;

@@ -24,18 +24,13 @@ constexpr int kEntryReplicaShift = 40;
 constexpr std::uint64_t kLevelStreamBase = std::uint64_t{1} << 62;  // + r·2^24 + k: choices at level k
 constexpr int kLevelReplicaShift = 24;
 
-// Stage 0 examines this many trials of each unfinished replica between two stop checks (a fixed number, so that
-// the steps counted do not depend on when a run was stopped).
-constexpr std::uint64_t kTrialsPerBatch = 2048;
+// Stage 0 (TailSampler.hpp): entry orbits per unit of work (between stop checks) per replica, and for the pilot.
+constexpr std::uint64_t kEntryOrbitsPerUnit = 64;
+constexpr std::size_t kEntryGroup = 32;  // orbits the block kernel advances together
 // A chunk of splitting lasts at most age/16 blocks (a walker that dies in it is iterated at most 1/16 of its age
 // in vain) and at most 2^20 steps per walker (a stop is honoured within a second or two at N·R = 800).
 constexpr std::uint64_t kChunkAgeDivisor = 16;
 constexpr std::uint64_t kMaxChunkStepsPerWalker = std::uint64_t{1} << 20;
-// A warm-up segment of an entry orbit longer than this many blocks (or than the level) means an orbit that cannot
-// leave: the zone meets an island (a bad Xr or box).  Loud, never an endless loop.  At K = 0.1 a segment lasts
-// 2^32 blocks (7·10^10 steps at q = 16) with a probability of order 10^-14.
-constexpr std::uint64_t kMinWarmupCapBlocks = std::uint64_t{1} << 32;
-constexpr std::uint64_t kStopCheckBlocks = std::uint64_t{1} << 16;
 
 // e(j) = ⌈10^(j/30)⌉: the lower edge of histogram bin j when j > 50 (TrappingHistogram's own table), else the
 // same formula (every length up to 50 is an edge of its own exact bin).
@@ -54,9 +49,13 @@ std::uint64_t levelKey(std::uint64_t seed, std::size_t replica, std::size_t leve
   return orbitKey(seed, kLevelStreamBase + (static_cast<std::uint64_t>(replica) << kLevelReplicaShift) + level);
 }
 
-std::uint64_t entryOrbit(std::size_t replica, std::uint64_t trial) {
-  return kEntryOrbitBase + (static_cast<std::uint64_t>(replica) << kEntryReplicaShift) + trial;
+}  // namespace
+
+std::uint64_t entryOrbitIndex(std::size_t replica, std::uint64_t j) {
+  return kEntryOrbitBase + (static_cast<std::uint64_t>(replica) << kEntryReplicaShift) + j;
 }
+
+namespace {
 
 // A uniform integer of [−ε, ε] from a 52-bit draw: ⌊u (2ε + 1)/2^52⌋ − ε (exact in 128 bits; the 2^52 draws
 // fall on the 2ε + 1 values within one part in 2^52/(2ε + 1) ≥ 2^11 of uniform).
@@ -78,33 +77,30 @@ UnitState moved(const UnitState& z, std::uint64_t key, std::uint64_t& counter, s
 
 }  // namespace
 
-EntryTrial entryTrial(const KernelSettings& k, std::size_t replica, std::uint64_t trial, std::uint32_t warmup,
-                      std::uint64_t level, std::stop_token stop) {
-  const std::uint64_t orbit = entryOrbit(replica, trial);
-  const std::uint64_t warmupCap = std::max(kMinWarmupCapBlocks, level);
-  EntryTrial out;
-  OrbitState& s = out.state;  // (0, 0): appendix B, step 2
-  for (std::uint64_t endings = 0; endings < std::uint64_t{warmup} + 1;) {
-    if (advanceOneBlock(k, orbit, s, nullptr)) ++endings;
-    ++out.blocks;
-    if (s.length > warmupCap)
-      throw std::runtime_error("entry orbit " + std::to_string(trial) + " of replica " + std::to_string(replica) +
-                               " stayed more than " + std::to_string(warmupCap) +
-                               " blocks in one segment of its warm-up: the randomizing zone seems to meet an island");
-    if (out.blocks % kStopCheckBlocks == 0 && stop.stop_requested()) {
-      out.stopped = true;
-      return out;
-    }
-  }
-  for (;;) {
+EntryOrbitResult entryOrbitTrials(const KernelSettings& k, std::uint64_t orbit, std::uint64_t warmupBlocks,
+                                  std::uint64_t level) {
+  EntryOrbitResult out;
+  OrbitState s;  // (0, 0): appendix B, step 2
+  const std::uint64_t end = warmupBlocks + kEntryWindowBlocks;
+  for (std::uint64_t b = 0; b < end; ++b) {
     const bool ended = advanceOneBlock(k, orbit, s, nullptr);
-    ++out.blocks;
-    if (ended) return out;
-    if (s.length == level) {
-      out.success = true;
-      return out;
+    if (ended && b >= warmupBlocks) ++out.trials;  // the next segment starts at block b + 1, inside the window
+    if (!ended && s.start.block > warmupBlocks && s.length == level) out.successes.push_back(s);
+  }
+  out.blocks = end;
+  // The trial still open when the window closes is followed until it ends or reaches the level.
+  if (s.start.block > warmupBlocks && s.length < level) {
+    for (;;) {
+      const bool ended = advanceOneBlock(k, orbit, s, nullptr);
+      ++out.blocks;
+      if (ended) break;
+      if (s.length == level) {
+        out.successes.push_back(s);
+        break;
+      }
     }
   }
+  return out;
 }
 
 const char* cloneRuleName(CloneRule rule) noexcept { return rule == CloneRule::perturb ? "perturb" : "metropolis"; }
@@ -113,6 +109,12 @@ std::optional<CloneRule> cloneRuleByName(std::string_view name) noexcept {
   if (name == "perturb") return CloneRule::perturb;
   if (name == "metropolis") return CloneRule::metropolis;
   return std::nullopt;
+}
+
+std::uint64_t entryOrbitsPerReplica(std::uint32_t population, std::uint64_t pilotOrbits, std::uint64_t pilotSuccesses) {
+  if (pilotSuccesses == 0) throw std::invalid_argument("the pilot found no success");
+  const uint128 wanted = uint128{kEntrySuccessTarget} * population * pilotOrbits;
+  return static_cast<std::uint64_t>((wanted + pilotSuccesses - 1) / pilotSuccesses);
 }
 
 std::optional<std::string> tailRequestError(const TailRequest& r) {
@@ -132,7 +134,7 @@ std::optional<std::string> tailRequestError(const TailRequest& r) {
   if (auto e = range("level-bins", r.binsPerLevel, 1, kMaxBinsPerLevel)) return e;
   if (auto e = range("epsilon", r.epsilon, 1, kMaxTailEpsilon)) return e;
   if (auto e = range("metropolis-steps", r.metropolisSteps, 1, kMaxMetropolisSteps)) return e;
-  if (auto e = range("warmup", r.warmupSegments, 0, kMaxWarmupSegments)) return e;
+  if (auto e = range("warmup", r.warmupBlocks, 1, kMaxWarmupBlocks)) return e;
   if (auto e = range("min-ancestors", r.minAncestors, 1, std::uint64_t{r.population} * r.replicas)) return e;
   return std::nullopt;
 }
@@ -173,7 +175,13 @@ std::optional<std::string> tailStateError(const TailState& s) {
   for (std::size_t k = 1; k < s.stepsAtLevel.size(); ++k)
     if (s.stepsAtLevel[k] < s.stepsAtLevel[k - 1]) return std::string("the steps per level must not decrease");
   if (!s.stepsAtLevel.empty() && s.stepsAtLevel.back() > s.steps) return std::string("a level's steps exceed the total");
-  if (s.next == 0 && s.age != 0) return std::string("stage 0 has no age");
+  if (s.next == 0 && s.age != 0 && s.age != s.levels[0]) return std::string("stage 0's age is 0 or the first level");
+  if (s.pilotSuccesses > s.pilotTrials || s.pilotOrbits % kEntryOrbitsPerUnit != 0 || s.pilotOrbits > kMaxPilotOrbits)
+    return std::string("the pilot's counts are inconsistent");
+  if ((s.entryOrbits != 0) != (s.pilotSuccesses >= kPilotSuccesses) ||
+      (s.entryOrbits != 0 && s.entryOrbits != entryOrbitsPerReplica(r.population, s.pilotOrbits, s.pilotSuccesses)))
+    return std::string("the entry orbits per replica are not the pilot's");
+  if (s.entryOrbits == 0 && (s.next != 0 || s.age != 0)) return std::string("stage 0 went on without its pilot");
   if (s.next > 0) {
     const std::uint64_t lo = s.levels[s.next - 1], hi = s.finished() ? lo : s.levels[s.next];
     if (s.age < lo || s.age > hi) return std::string("the walkers' age lies outside the level under way");
@@ -188,16 +196,20 @@ std::optional<std::string> tailStateError(const TailState& s) {
       if (c.survivors > c.population || c.ancestors > c.survivors || (c.survivors > 0 && c.ancestors == 0) ||
           c.accepted > c.proposals)
         return who + "a level's counts are inconsistent";
-      if (k == 0 && (c.survivors != N || c.ancestors != N || c.population < N || c.population != x.trials))
+      if (k == 0 && (c.population != x.trials || c.ancestors != c.survivors))
         return who + "stage 0's counts are inconsistent";
       if (k > 0 && c.population != (x.levels[k - 1].survivors > 0 ? N : 0)) return who + "a level's population is not N";
+      if (k == 1 && c.ancestors > N) return who + "lineages cannot grow";
       if (k > 0 && c.ancestors > x.levels[k - 1].ancestors) return who + "lineages cannot grow";
     }
     if (s.next == 0) {
-      if (!x.alive.empty() || x.walkers.size() > N || x.trials < x.walkers.size())
+      const bool examined = s.age == s.levels[0];
+      if (x.orbitsDone > s.entryOrbits || (examined && x.orbitsDone != s.entryOrbits) || x.trials < x.walkers.size() ||
+          x.alive.size() != (examined ? x.walkers.size() : 0) || x.walkers.size() > std::uint64_t{UINT32_MAX})
         return who + "stage 0's walkers are inconsistent";
       for (std::size_t w = 0; w < x.walkers.size(); ++w)
-        if (x.walkers[w].ancestor != w || x.walkers[w].state.length != s.levels[0])
+        if (x.walkers[w].ancestor != w || x.walkers[w].state.length != s.levels[0] ||
+            (examined && x.alive[w] != 1))
           return who + "a stage-0 walker is inconsistent";
       continue;
     }
@@ -253,6 +265,63 @@ std::uint64_t segmentAgesAreExactly(const KernelSettings& k, std::span<UnitState
   return steps;
 }
 
+// entryOrbitTrials() for n consecutive entry orbits at once, advanced by the block kernel (any path: the orbit
+// states are bit-identical), with the same results.  Trials are counted from each lane's histogram (every segment
+// that ends in a block of the window starts a trial); a success needs the state at the moment a trial segment
+// reaches the level, which the kernel does not stop at: chunks are at most the level long, so only a segment
+// already open at a chunk's start can reach the level within it, and such a lane ("candidate": a trial of age a
+// with a + chunk ≥ level) is followed again from the chunk's start with advanceOneBlock() for at most level − a
+// blocks, which says whether it reaches the level and gives the state there.
+std::vector<EntryOrbitResult> entryGroupTrials(const KernelSettings& k, const KernelInfo& kernel,
+                                               std::uint64_t firstOrbit, std::size_t n, std::uint64_t warmupBlocks,
+                                               std::uint64_t level) {
+  std::vector<EntryOrbitResult> out(n);
+  std::vector<OrbitState> lanes(n);  // (0, 0): appendix B, step 2
+  SegmentSink sink(static_cast<std::uint32_t>(n), 0);  // one histogram per lane: lane i is subset (firstOrbit + i) % n
+  const auto segmentsOf = [&](std::size_t i) { return sink.subsets()[(firstOrbit + i) % n].segments(); };
+  kernel.blocks(k, lanes, firstOrbit, warmupBlocks, sink);
+  std::vector<std::uint64_t> before(n);
+  for (std::size_t i = 0; i < n; ++i) before[i] = segmentsOf(i);
+  const std::uint64_t chunk = std::max<std::uint64_t>(1, std::min<std::uint64_t>(level / 4, 64));
+  std::vector<OrbitState> saved(n);
+  std::vector<std::uint8_t> candidate(n);
+  for (std::uint64_t done = 0; done < kEntryWindowBlocks;) {
+    const std::uint64_t c = std::min(chunk, kEntryWindowBlocks - done);
+    for (std::size_t i = 0; i < n; ++i) {
+      const OrbitState& s = lanes[i];
+      candidate[i] = s.start.block > warmupBlocks && s.length < level && s.length + c >= level ? 1 : 0;
+      if (candidate[i]) saved[i] = s;
+    }
+    kernel.blocks(k, lanes, firstOrbit, c, sink);
+    done += c;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!candidate[i]) continue;
+      OrbitState s = saved[i];
+      while (!advanceOneBlock(k, firstOrbit + i, s, nullptr))
+        if (s.length == level) {
+          out[i].successes.push_back(s);
+          break;
+        }
+    }
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    out[i].trials = segmentsOf(i) - before[i];
+    out[i].blocks = warmupBlocks + kEntryWindowBlocks;
+    OrbitState s = lanes[i];
+    if (!(s.start.block > warmupBlocks && s.length < level)) continue;
+    for (;;) {  // the trial still open when the window closes
+      const bool ended = advanceOneBlock(k, firstOrbit + i, s, nullptr);
+      ++out[i].blocks;
+      if (ended) break;
+      if (s.length == level) {
+        out[i].successes.push_back(s);
+        break;
+      }
+    }
+  }
+  return out;
+}
+
 using Clock = std::chrono::steady_clock;
 
 class Sampler {
@@ -266,62 +335,76 @@ class Sampler {
   // One unit of work: a stage-0 batch, a chunk of blocks, or a level closed.  False when stopped inside it
   // (the state is then unchanged).
   bool step() {
-    if (s_.next == 0) return stageZeroBatch();
+    if (s_.next == 0 && s_.age == 0) return stageZeroUnit();
     if (s_.age < s_.levels[s_.next]) return propagateChunk();
     return closeLevel();
   }
 
  private:
-  bool stageZeroBatch() {
-    const TailRequest& r = s_.request;
-    struct Item {
-      std::size_t replica;
-      std::uint64_t trial;
-    };
-    std::vector<Item> items;
-    for (std::size_t rep = 0; rep < s_.replicas.size(); ++rep) {
-      const TailReplica& x = s_.replicas[rep];
-      if (x.walkers.size() >= r.population) continue;
-      for (std::uint64_t j = 0; j < kTrialsPerBatch; ++j) items.push_back({rep, x.trials + j});
-    }
-    std::vector<EntryTrial> outcomes(items.size());
-    // One trial at a time, as entryTrial() defines it: a trial is a dozen blocks, too short and too uneven for the
-    // vector kernels' lockstep groups (measured: grouping 64 trials cost more than it saved).
-    constexpr std::size_t kTrialsPerTask = 64;
+  // Entry orbits [first, first + count) of stream `replica` (a replica, or the pilot's), by groups in parallel.
+  std::optional<std::vector<EntryOrbitResult>> entryOrbits(std::size_t replica, std::uint64_t first, std::uint64_t count) {
+    std::vector<EntryOrbitResult> results(count);
+    const std::size_t groups = (count + kEntryGroup - 1) / kEntryGroup;
     const bool complete = parallelFor(
-        (items.size() + kTrialsPerTask - 1) / kTrialsPerTask,
-        [&](std::size_t task, int) {
-          const std::size_t end = std::min(items.size(), (task + 1) * kTrialsPerTask);
-          for (std::size_t i = task * kTrialsPerTask; i < end; ++i)
-            outcomes[i] = entryTrial(k_, items[i].replica, items[i].trial, r.warmupSegments, s_.levels[0], stop_);
+        groups,
+        [&](std::size_t g, int) {
+          const std::uint64_t j = g * kEntryGroup;
+          const std::size_t n = std::min<std::uint64_t>(kEntryGroup, count - j);
+          std::vector<EntryOrbitResult> r = entryGroupTrials(k_, kernel_, entryOrbitIndex(replica, first + j), n,
+                                                             s_.request.warmupBlocks, s_.levels[0]);
+          std::move(r.begin(), r.end(), results.begin() + static_cast<std::ptrdiff_t>(j));
         },
         stop_, threads_);
-    if (!complete || std::any_of(outcomes.begin(), outcomes.end(), [](const EntryTrial& o) { return o.stopped; }))
-      return false;
-    std::uint64_t blocks = 0;
-    for (const EntryTrial& o : outcomes) blocks += o.blocks;
-    s_.steps += blocks * r.run.q;
-    std::size_t i = 0;
+    if (!complete) return std::nullopt;
+    for (const EntryOrbitResult& r : results) s_.steps += r.blocks * s_.request.run.q;
+    return results;
+  }
+
+  // The pilot (TailSampler.hpp, "stage 0"): entry orbits of its own stream until kPilotSuccesses trials reached
+  // the first level; then the number of entry orbits per replica.
+  bool pilotUnit() {
+    const std::optional<std::vector<EntryOrbitResult>> r = entryOrbits(kPilotStream, s_.pilotOrbits, kEntryOrbitsPerUnit);
+    if (!r) return false;
+    for (const EntryOrbitResult& o : *r) {
+      s_.pilotTrials += o.trials;
+      s_.pilotSuccesses += o.successes.size();
+    }
+    s_.pilotOrbits += kEntryOrbitsPerUnit;
+    if (s_.pilotSuccesses >= kPilotSuccesses) {
+      s_.entryOrbits = entryOrbitsPerReplica(s_.request.population, s_.pilotOrbits, s_.pilotSuccesses);
+    } else if (s_.pilotOrbits >= kMaxPilotOrbits) {
+      throw std::runtime_error(
+          "the pilot's " + std::to_string(s_.pilotTrials) + " segments of " + std::to_string(s_.pilotOrbits) +
+          " entry orbits gave " + std::to_string(s_.pilotSuccesses) + " longer than the first level t = " +
+          std::to_string(s_.levels[0] * s_.request.run.q) + " steps: give a lower --first");
+    }
+    return true;
+  }
+
+  bool stageZeroUnit() {
+    if (s_.entryOrbits == 0) return pilotUnit();
+    const TailRequest& r = s_.request;
     for (std::size_t rep = 0; rep < s_.replicas.size(); ++rep) {
       TailReplica& x = s_.replicas[rep];
-      if (x.walkers.size() >= r.population) continue;
-      for (std::uint64_t j = 0; j < kTrialsPerBatch; ++j, ++i) {
-        if (x.walkers.size() >= r.population) continue;  // computed beyond the N-th success: counted, not used
-        x.trials = items[i].trial + 1;
-        if (outcomes[i].success)
-          x.walkers.push_back({outcomes[i].state, static_cast<std::uint32_t>(x.walkers.size())});
+      if (x.orbitsDone >= s_.entryOrbits) continue;
+      const std::uint64_t count = std::min(kEntryOrbitsPerUnit, s_.entryOrbits - x.orbitsDone);
+      const std::uint64_t steps = s_.steps;
+      const std::optional<std::vector<EntryOrbitResult>> results = entryOrbits(rep, x.orbitsDone, count);
+      if (!results) {
+        s_.steps = steps;
+        return false;
       }
-    }
-    if (std::all_of(s_.replicas.begin(), s_.replicas.end(),
-                    [&](const TailReplica& x) { return x.walkers.size() >= r.population; })) {
-      for (TailReplica& x : s_.replicas) {
-        x.levels.push_back({x.trials, r.population, r.population, 0, 0});
-        x.alive.assign(x.walkers.size(), 1);
+      for (const EntryOrbitResult& o : *results) {
+        x.trials += o.trials;
+        for (const OrbitState& w : o.successes) x.walkers.push_back({w, static_cast<std::uint32_t>(x.walkers.size())});
       }
-      s_.stepsAtLevel.push_back(s_.steps);
-      s_.age = s_.levels[0];
-      s_.next = 1;
+      x.orbitsDone += count;
+      return true;  // one replica's unit at a time: a stop is honoured between them
     }
+    // Every replica examined its entry orbits: its successes are level 0's survivors, closed like any level's.
+    for (TailReplica& x : s_.replicas) x.alive.assign(x.walkers.size(), 1);
+    s_.age = s_.levels[0];
+    (void)r;
     return true;
   }
 
@@ -380,11 +463,12 @@ class Sampler {
       std::vector<std::uint32_t> lineages;
       for (std::size_t w : survivors) lineages.push_back(x.walkers[w].ancestor);
       std::sort(lineages.begin(), lineages.end());
-      counts[rep].population = x.walkers.size();
+      counts[rep].population = level == 0 ? x.trials : x.walkers.size();
       counts[rep].survivors = survivors.size();
       counts[rep].ancestors = static_cast<std::uint64_t>(std::unique(lineages.begin(), lineages.end()) - lineages.begin());
       if (last || survivors.empty()) continue;
-      // ⌊N/s⌋ copies each; N mod s survivors, those of the smallest random ranks, one more.
+      // ⌊N/s⌋ copies each; N mod s survivors, those of the smallest random ranks, one more (when s > N, which only
+      // stage 0 can give: the N of the smallest ranks, once each).
       const std::size_t n = r.population, sCount = survivors.size();
       const std::uint64_t key = levelKey(r.run.seed, rep, level);
       std::vector<std::size_t> order(sCount);

@@ -11,14 +11,21 @@
 ///                      P(t_k) = Pr(length > L_k) = P_t of eq. (pdef) at t = q·L_k, exactly.  Levels are
 ///                      chosen so that L_k + 1 is a lower edge of TrappingHistogram's bins: there a run's
 ///                      histogram gives the brute-force P_t exactly (BruteForceSurvival.hpp).
-///   - entry          — the first state of a segment.  Entries are drawn from the run process itself: the
-///                      trial of entry orbit j of replica r is the (warmupSegments + 1)-th recorded segment of
-///                      orbit 2^63 + r·2^40 + j of the run (its seed, its random numbers; `run` uses orbits
-///                      below 2^32, so never the same ones).  Trials are independent.
-///   - stage 0        — per replica, trials j = 0, 1, … are examined in order until N of them reach L_0; the
-///                      n-th trial is the N-th success.  P(t_0) = (N − 1)/(n − 1), the unbiased estimate of a
-///                      Bernoulli probability under inverse sampling (Haldane 1945).  The N successes, each
-///                      held at age L_0, are the population, each its own ancestor (lineage 0 … N − 1).
+///   - entry orbit    — an orbit of the run process itself (its block, its seed, its random numbers): entry orbit
+///                      j of stream r is orbit 2^63 + r·2^40 + j (`run` uses orbits below 2^32, so never the same
+///                      ones).  Replica r is stream r, the pilot stream 2^23 − 1.  It runs warmupBlocks blocks
+///                      (the record's start on X = 0 forgotten), then a window of kEntryWindowBlocks blocks: every
+///                      segment that starts in the window (after a block of the window ended the previous one) is
+///                      a trial, followed until it ends or reaches L_0 — the one still open when the window closes
+///                      too.  A trial that reaches L_0 is a success: its state at age L_0 is kept, and the orbit
+///                      goes on through it (the window is fixed in advance, never cut by an outcome).
+///   - stage 0        — a brute-force estimate of P(t_0) and the first population.  A pilot (its own stream, entry
+///                      orbits until kPilotSuccesses successes) sizes it: every replica then examines the same
+///                      number of entry orbits, entryOrbitsPerReplica(), expecting kEntrySuccessTarget·N successes.
+///                      P_r(t_0) = successes/trials, the estimator of `run` (each segment counts once); the pilot is
+///                      independent of the replicas, so the number of orbits is not an outcome of their data.  The
+///                      successes are level 0's survivors, resampled to N like any level's (N of them when there
+///                      are more, each its own lineage).
 ///   - splitting      — the population (N walkers at age L_k) is advanced by the block kernel (any path of
 ///                      core/kernels: bit-identical) until age L_{k+1}; the s walkers still in their segment
 ///                      survive, and P(t_{k+1}) = P(t_k)·s/N.  The survivors are resampled to N: each gets ⌊N/s⌋
@@ -47,8 +54,9 @@
 /// sampler run is a pure function of its request: bit for bit the same on any number of threads, any kernel,
 /// and across stops and resumes (chunk sizes depend only on ages, never on time).
 ///
-/// Cost: stage 0 takes about N (warmupSegments + 1) α / P(t_0) steps per replica (α the mean segment length);
-/// splitting takes N times the mean age a walker reaches within a level, summed over levels: a few · N · t_max.
+/// Cost: stage 0 takes about kEntrySuccessTarget·N·α / P(t_0) steps per replica (α the mean segment length, steps),
+/// a brute-force run up to t_0 at the block kernel's speed; splitting takes N times the mean age a walker reaches
+/// within a level, summed over levels: measured 0.66 N t_max at K = 0.1 (docs/tail.md).
 
 #include <cstdint>
 #include <functional>
@@ -85,7 +93,7 @@ struct TailRequest {
   std::uint64_t epsilon = 1;                  ///< clone moves: each coordinate within ±ε lattice units
   CloneRule clones = CloneRule::perturb;
   std::uint32_t metropolisSteps = 1;          ///< Metropolis steps per clone (clone rule metropolis)
-  std::uint32_t warmupSegments = 8;           ///< recorded segments of an entry orbit before its trial
+  std::uint64_t warmupBlocks = 64;            ///< blocks an entry orbit runs before its window of trials
   std::uint64_t minAncestors = kDefaultMinAncestors;  ///< lineages a reliable level needs (all replicas)
 
   friend bool operator==(const TailRequest&, const TailRequest&) = default;
@@ -96,7 +104,14 @@ inline constexpr std::uint32_t kMaxTailPopulation = 1'000'000;
 inline constexpr std::uint32_t kMaxTailReplicas = 4096;
 inline constexpr std::uint64_t kMaxTailEpsilon = std::uint64_t{1} << 40;
 inline constexpr std::uint32_t kMaxMetropolisSteps = 64;
-inline constexpr std::uint32_t kMaxWarmupSegments = 1'000'000;
+inline constexpr std::uint64_t kMaxWarmupBlocks = std::uint64_t{1} << 20;
+/// Stage 0: the window of an entry orbit (blocks), the pilot's successes, its largest number of entry orbits (then
+/// the first level is out of reach: an error), and the successes a replica's entry orbits are sized for, per walker.
+inline constexpr std::uint64_t kEntryWindowBlocks = 1024;
+inline constexpr std::uint64_t kPilotSuccesses = 32;
+inline constexpr std::uint64_t kMaxPilotOrbits = std::uint64_t{1} << 24;
+inline constexpr std::uint64_t kEntrySuccessTarget = 2;
+inline constexpr std::size_t kPilotStream = (std::size_t{1} << 23) - 1;
 inline constexpr std::uint32_t kMaxBinsPerLevel = 300;   ///< ten decades a level
 inline constexpr std::uint64_t kMaxTailSteps = std::uint64_t{1} << 60;  ///< t_max (steps)
 inline constexpr std::size_t kMaxTailWalkers = 16'000'000;  ///< N·R: the population held in memory (≈ 1.3 GB)
@@ -112,7 +127,7 @@ inline constexpr std::size_t kMaxTailWalkers = 16'000'000;  ///< N·R: the popul
 
 /// One replica's count at one level.
 struct TailLevelCount {
-  std::uint64_t population = 0;  ///< walkers that set out for the level (stage 0: the trials examined, n)
+  std::uint64_t population = 0;  ///< walkers that set out for the level (level 0: the trials examined)
   std::uint64_t survivors = 0;   ///< that reached it
   std::uint64_t ancestors = 0;   ///< distinct lineages among the survivors
   std::uint64_t proposals = 0;   ///< Metropolis moves proposed when the survivors were resampled (0: perturb)
@@ -131,7 +146,8 @@ struct TailReplica {
   std::vector<TailLevelCount> levels;  ///< one per level reached
   std::vector<TailWalker> walkers;     ///< stage 0: the successes so far; then the population (alive or not)
   std::vector<std::uint8_t> alive;     ///< per walker, while a level is under way
-  std::uint64_t trials = 0;            ///< stage 0: trials examined so far
+  std::uint64_t orbitsDone = 0;        ///< stage 0: entry orbits examined
+  std::uint64_t trials = 0;            ///< stage 0: trials examined
   friend bool operator==(const TailReplica&, const TailReplica&) = default;
 };
 
@@ -144,7 +160,11 @@ struct TailState {
   std::vector<std::uint64_t> levels;     ///< blocks (tailLevels())
   /// The level the walkers are heading for: 0 during stage 0; levels.size() when finished.
   std::size_t next = 0;
-  std::uint64_t age = 0;                 ///< blocks the live walkers have lasted (next ≥ 1)
+  /// Blocks the live walkers have lasted: 0 while stage 0 examines entry orbits, levels[0] once it has (level 0 is
+  /// then closed next).
+  std::uint64_t age = 0;
+  std::uint64_t pilotOrbits = 0, pilotTrials = 0, pilotSuccesses = 0;  ///< stage 0's pilot so far
+  std::uint64_t entryOrbits = 0;         ///< per replica, once the pilot is done (0 before)
   std::vector<TailReplica> replicas;
   std::uint64_t steps = 0;               ///< steps of N⁻¹ and N the sampler computed (exact, thread-independent)
   std::vector<std::uint64_t> stepsAtLevel;  ///< `steps` when each level was reached
@@ -187,21 +207,25 @@ struct TailRunOptions {
 /// nothing.  The state's request is checked by tailRequestError() and its levels against tailLevels().
 [[nodiscard]] std::optional<std::string> tailStateError(const TailState& state);
 
-/// One stage-0 trial, the reference definition, one block at a time (advanceOneBlock()): entry orbit
-/// 2^63 + replica·2^40 + trial of the run process (settings: its map, Xr, q, seed); once its first (unrecorded)
-/// segment and `warmup` recorded ones have ended, the next segment is followed until it ends (success false) or has
-/// lasted `level` blocks (success true, `state` at that age).  `blocks`: the blocks it took.  The sampler computes
-/// the same trials, in parallel batches (a test checks the batching).  A warm-up segment longer than
-/// max(2^32, level) blocks (an orbit that cannot leave: the zone meets an island) throws std::runtime_error;
-/// `stop` is checked every 2^16 blocks of the warm-up (then `stopped` is set and the rest is meaningless).
-struct EntryTrial {
-  bool success = false;
-  bool stopped = false;
-  OrbitState state;
+/// The index of entry orbit j of stream `replica` (a replica's, or kPilotStream): 2^63 + replica·2^40 + j.
+[[nodiscard]] std::uint64_t entryOrbitIndex(std::size_t replica, std::uint64_t j);
+
+/// What one entry orbit gives stage 0: its trials, the states at age `level` of those that reached it (in order),
+/// and the blocks it took.
+struct EntryOrbitResult {
+  std::uint64_t trials = 0;
+  std::vector<OrbitState> successes;
   std::uint64_t blocks = 0;
+  friend bool operator==(const EntryOrbitResult&, const EntryOrbitResult&) = default;
 };
-[[nodiscard]] EntryTrial entryTrial(const KernelSettings& settings, std::size_t replica, std::uint64_t trial,
-                                    std::uint32_t warmup, std::uint64_t level, std::stop_token stop = {});
+/// The reference definition, one block at a time (advanceOneBlock()): orbit `orbit` of the run process (settings:
+/// its map, Xr, q, seed) from (0, 0), warmupBlocks blocks, then its window (see "entry orbit" above).  The sampler
+/// computes the same with the block kernel, 32 orbits at a time (a test checks them equal, on every kernel).
+[[nodiscard]] EntryOrbitResult entryOrbitTrials(const KernelSettings& settings, std::uint64_t orbit,
+                                                std::uint64_t warmupBlocks, std::uint64_t level);
+/// The entry orbits each replica examines: ⌈kEntrySuccessTarget·N·pilotOrbits/pilotSuccesses⌉.
+[[nodiscard]] std::uint64_t entryOrbitsPerReplica(std::uint32_t population, std::uint64_t pilotOrbits,
+                                                  std::uint64_t pilotSuccesses);
 
 /// The age of the state z in the run process: the number of blocks back, at most maxBlocks + 1, to the block
 /// that ended the previous segment, followed with the exact inverse N.  Returns the age when it is ≤ maxBlocks

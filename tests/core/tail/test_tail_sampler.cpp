@@ -26,7 +26,6 @@ TailRequest smallRequest() {
   r.replicas = 3;
   r.firstSteps = 150;
   r.maxSteps = 4000;
-  r.warmupSegments = 2;
   r.minAncestors = 4;
   return r;
 }
@@ -96,39 +95,60 @@ TEST(SegmentAge, EqualsTheAgeOfTheRunProcess) {
   EXPECT_GT(long_, 100);
 }
 
-// Stage 0 examines its trials in parallel batches: the same walkers, trial counts and steps as the reference
-// definition taken trial by trial in order (entryTrial()), whatever the kernel.
-TEST(TailSampler, StageZeroIsTheReferenceTrials) {
+// Stage 0 follows its entry orbits with the block kernel, 32 at a time, and replays the lanes that may reach the
+// level within a chunk: the same trials, successes, pilot and steps as the reference definition, one block at a time
+// (entryOrbitTrials()), on every kernel this CPU has.
+TEST(TailSampler, StageZeroIsTheReferenceEntryOrbits) {
   TailRequest r = smallRequest();
-  r.population = 4;  // about 1300 trials at P(160) ≈ 3·10^-3: one batch of 2048
-  r.warmupSegments = 3;
+  r.population = 40;
   const TailState fresh = startTail(r);
   const KernelSettings k = blockSettings(fresh.coefficients, r.run.Xr, r.run.q, r.run.seed);
+  const std::uint64_t L0 = fresh.levels[0];
+  std::uint64_t pilotTrials = 0, pilotSuccesses = 0, steps = 0;
+  std::uint64_t pilotOrbits = 0;
+  while (pilotSuccesses < kPilotSuccesses) {  // in units of 64 orbits, as the sampler
+    for (std::uint64_t j = 0; j < 64; ++j, ++pilotOrbits) {
+      const EntryOrbitResult e = entryOrbitTrials(k, entryOrbitIndex(kPilotStream, pilotOrbits), r.warmupBlocks, L0);
+      pilotTrials += e.trials;
+      pilotSuccesses += e.successes.size();
+      steps += e.blocks * r.run.q;
+    }
+  }
+  const std::uint64_t orbits = entryOrbitsPerReplica(r.population, pilotOrbits, pilotSuccesses);
+  std::vector<std::vector<TailWalker>> successes(r.replicas);
+  std::vector<std::uint64_t> trials(r.replicas, 0);
+  for (std::size_t rep = 0; rep < r.replicas; ++rep)
+    for (std::uint64_t j = 0; j < orbits; ++j) {
+      const EntryOrbitResult e = entryOrbitTrials(k, entryOrbitIndex(rep, j), r.warmupBlocks, L0);
+      trials[rep] += e.trials;
+      steps += e.blocks * r.run.q;
+      for (const OrbitState& w : e.successes)
+        successes[rep].push_back({w, static_cast<std::uint32_t>(successes[rep].size())});
+    }
   for (const KernelInfo& kernel : supportedKernels()) {
     TailRunOptions o;
     o.kernel = &kernel;
-    o.untilLevel = 1;
-    const TailState s = runTail(fresh, o);
-    ASSERT_EQ(s.next, 1u) << kernel.name;
-    std::uint64_t steps = 0;
-    for (std::size_t rep = 0; rep < s.replicas.size(); ++rep) {
-      const TailReplica& x = s.replicas[rep];
-      std::vector<TailWalker> expected;
-      std::uint64_t trials = 0;
-      for (std::uint64_t j = 0; j < 2048; ++j) {
-        const EntryTrial t = entryTrial(k, rep, j, r.warmupSegments, s.levels[0]);
-        steps += t.blocks * r.run.q;
-        if (expected.size() < r.population) {
-          trials = j + 1;
-          if (t.success) expected.push_back({t.state, static_cast<std::uint32_t>(expected.size())});
-        }
-      }
-      ASSERT_EQ(expected.size(), r.population) << "one batch was meant to be enough";
-      EXPECT_TRUE(x.walkers == expected) << kernel.name << " replica " << rep;
-      EXPECT_EQ(x.trials, trials) << kernel.name;
+    std::stop_source stopper;
+    const TailState s = runTail(fresh, o, [&](const TailState& st, const TailProgress&) {
+      if (st.age == st.levels[0]) stopper.request_stop();  // every entry orbit examined, level 0 not closed yet
+    }, stopper.get_token());
+    ASSERT_EQ(s.age, L0) << kernel.name;
+    ASSERT_EQ(s.next, 0u);
+    EXPECT_EQ(s.pilotOrbits, pilotOrbits) << kernel.name;
+    EXPECT_EQ(s.pilotTrials, pilotTrials) << kernel.name;
+    EXPECT_EQ(s.pilotSuccesses, pilotSuccesses) << kernel.name;
+    EXPECT_EQ(s.entryOrbits, orbits) << kernel.name;
+    for (std::size_t rep = 0; rep < r.replicas; ++rep) {
+      EXPECT_TRUE(s.replicas[rep].walkers == successes[rep]) << kernel.name << " replica " << rep;
+      EXPECT_EQ(s.replicas[rep].trials, trials[rep]) << kernel.name;
     }
     EXPECT_EQ(s.steps, steps) << kernel.name;
+    EXPECT_FALSE(tailStateError(s)) << *tailStateError(s);
   }
+  // Sized for 2N successes a replica: fewer than N in all replicas together would mean a wrong size.
+  std::uint64_t allSuccesses = 0;
+  for (std::size_t rep = 0; rep < r.replicas; ++rep) allSuccesses += successes[rep].size();
+  EXPECT_GT(allSuccesses, r.replicas * r.population);
 }
 
 TEST(TailSampler, SurvivorsHaveExactlyTheirLevelsAge) {
