@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "core/io/AtomicFile.hpp"
 #include "core/kernels/KernelDispatch.hpp"
 #include "core/spec/RunSpec.hpp"
 #include "core/tail/TailFile.hpp"
@@ -41,6 +42,15 @@ TailState loadOrRaise(const std::string& path) {
   }
   if (!error.empty()) raiseOSError(error);
   return s;
+}
+
+// OSError now when `path` cannot be written (a missing folder, a read-only file), not after the computation.
+void checkWritable(const std::string& path) {
+  try {
+    io::checkWritableTarget(path);
+  } catch (const std::exception& e) {
+    raiseOSError(e.what());
+  }
 }
 
 template <class T>
@@ -224,6 +234,7 @@ void bindTail(py::module_& m) {
         r.minAncestors = wholeOf(minAncestors, "min_ancestors");
         if (auto e = tailRequestError(r)) throw std::invalid_argument(*e);
         const std::optional<std::string> path = out.is_none() ? std::nullopt : std::optional(pathOf(out, "out"));
+        if (path) checkWritable(*path);  // before the work, not after it
         return runAndReport(startTail(r), threads, kernel, progress, path);
       },
       py::arg("K") = 0.1, py::arg("xmin") = -0.8, py::arg("xmax") = 0.5, py::arg("Xr") = 0.02, py::arg("q") = 16,
@@ -245,6 +256,7 @@ void bindTail(py::module_& m) {
         TailState s = loadOrRaise(in);
         if (s.finished()) throw std::invalid_argument(in + " is already finished");
         const std::string target = out.is_none() ? in : pathOf(out, "out");
+        checkWritable(target);
         return runAndReport(std::move(s), threads, kernel, progress, target);
       },
       py::arg("path"), py::arg("threads") = 0, py::arg("kernel") = "", py::arg("progress") = py::none(),
