@@ -239,7 +239,7 @@ void bindTail(py::module_& m) {
       },
       py::arg("K") = 0.1, py::arg("xmin") = -0.8, py::arg("xmax") = 0.5, py::arg("Xr") = 0.02, py::arg("q") = 16,
       py::arg("seed") = 1, py::arg("population") = 200, py::arg("replicas") = 4, py::arg("first") = 1000,
-      py::arg("t_max") = 10'000'000, py::arg("level_bins") = 10, py::arg("epsilon") = 1, py::arg("clones") = "perturb",
+      py::arg("t_max") = 10'000'000, py::arg("level_bins") = 10, py::arg("epsilon") = 1'000'000, py::arg("clones") = "perturb",
       py::arg("metropolis_steps") = 1, py::arg("warmup") = 64, py::arg("min_ancestors") = kDefaultMinAncestors,
       py::arg("threads") = 0, py::arg("kernel") = "", py::arg("progress") = py::none(), py::arg("out") = py::none(),
       "P_t beyond brute force by splitting on the age of trapped segments, for the process of a run with these\n"

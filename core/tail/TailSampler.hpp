@@ -90,7 +90,7 @@ struct TailRequest {
   std::uint64_t firstSteps = 1000;            ///< the first level is the lowest one at or above this (steps)
   std::uint64_t maxSteps = 10'000'000;        ///< the last level is the lowest one at or above this (steps)
   std::uint32_t binsPerLevel = 10;            ///< level spacing in histogram bins (30 a decade): 10 = ×2.15
-  std::uint64_t epsilon = 1;                  ///< clone moves: each coordinate within ±ε lattice units
+  std::uint64_t epsilon = 1'000'000;          ///< clone moves: each coordinate within ±ε lattice units (docs/tail.md)
   CloneRule clones = CloneRule::perturb;
   std::uint32_t metropolisSteps = 1;          ///< Metropolis steps per clone (clone rule metropolis)
   std::uint64_t warmupBlocks = 64;            ///< blocks an entry orbit runs before its window of trials
