@@ -21,7 +21,6 @@ TailResult tailResult(const TailState& s) {
     L.t = static_cast<double>(s.levels[k]) * r.run.q;
     L.steps = k < s.stepsAtLevel.size() ? static_cast<double>(s.stepsAtLevel[k]) : out.steps;
     L.fewestAncestors = UINT64_MAX;
-    bool everyReplicaSurvives = true;
     std::uint64_t proposals = 0, accepted = 0;
     for (std::size_t rep = 0; rep < R; ++rep) {
       const TailLevelCount& c = s.replicas[rep].levels[k];
@@ -33,7 +32,6 @@ TailResult tailResult(const TailState& s) {
       L.survivors += c.survivors;
       L.ancestors += c.ancestors;
       L.fewestAncestors = std::min(L.fewestAncestors, c.ancestors);
-      everyReplicaSurvives = everyReplicaSurvives && c.survivors > 0;
       proposals += c.proposals;
       accepted += c.accepted;
     }
@@ -46,7 +44,7 @@ TailResult tailResult(const TailState& s) {
       for (double p : L.replicaP) ss += (p - mean) * (p - mean);
       L.PError = std::sqrt(ss / static_cast<double>(R - 1) / static_cast<double>(R));
     }
-    L.reliable = everyReplicaSurvives && L.ancestors >= r.minAncestors;
+    L.reliable = R > 1 && L.ancestors >= r.minAncestors;
     if (proposals > 0) L.acceptance = static_cast<double>(accepted) / static_cast<double>(proposals);
     out.levels.push_back(std::move(L));
   }

@@ -10,11 +10,12 @@
 ///   P(t_k)       = (1/R) Σ_r P_r(t_k),   error = s/√R  (s the sample standard deviation over replicas; NaN, written
 ///                  null, with one replica).
 ///   survivors    = Σ_r s_{r,k};  ancestors = Σ_r (distinct lineages among replica r's survivors).
-///   reliable     = every replica has survivors and ancestors ≥ minAncestors (TailRequest).  A replica whose
-///                  population descends from a handful of entries estimates P from those few histories: its
-///                  error bar, and the spread over R replicas, no longer mean what they say (docs/tail.md gives
-///                  the measurement behind the threshold).  An unreliable level is neither plotted as data nor
-///                  used in fits.
+///   reliable     = R ≥ 2 (an error) and ancestors ≥ minAncestors (TailRequest).  Replicas whose populations
+///                  descend from a handful of entries estimate P from those few histories: the spread over the
+///                  replicas no longer measures the error (docs/tail.md gives the measurement behind the
+///                  threshold).  A replica whose population died out is no exception: its P_r = 0 is an unbiased
+///                  sample, and it carries no lineage.  An unreliable level is neither plotted as data nor used
+///                  in fits.
 ///   local exponent between neighbouring reliable levels a < b (the sampler's own; to be unified with core/stats'
 ///                  running exponent γ(t) of issue #26):
 ///                  γ = −(ln P(t_b) − ln P(t_a))/(ln t_b − ln t_a), plotted at √(t_a t_b), with the error
