@@ -27,6 +27,7 @@ constexpr int kLevelReplicaShift = 24;
 // Stage 0 (TailSampler.hpp): entry orbits per unit of work (between stop checks) per replica, and for the pilot.
 constexpr std::uint64_t kEntryOrbitsPerUnit = 64;
 constexpr std::size_t kEntryGroup = 32;  // orbits the block kernel advances together
+constexpr std::uint64_t kEntryGroupMinLevel = 8;  // below, entry orbits are followed one block at a time
 // A chunk of splitting lasts at most age/16 blocks (a walker that dies in it is iterated at most 1/16 of its age
 // in vain) and at most 2^20 steps per walker (a stop is honoured within a second or two at N·R = 800).
 constexpr std::uint64_t kChunkAgeDivisor = 16;
@@ -350,8 +351,16 @@ class Sampler {
         [&](std::size_t g, int) {
           const std::uint64_t j = g * kEntryGroup;
           const std::size_t n = std::min<std::uint64_t>(kEntryGroup, count - j);
-          std::vector<EntryOrbitResult> r = entryGroupTrials(k_, kernel_, entryOrbitIndex(replica, first + j), n,
-                                                             s_.request.warmupBlocks, s_.levels[0]);
+          const std::uint64_t orbit = entryOrbitIndex(replica, first + j);
+          if (s_.levels[0] < kEntryGroupMinLevel) {
+            // A first level of a few blocks makes every open trial a candidate in every chunk of one block: the
+            // block-at-a-time reference is then the faster way to the same results.
+            for (std::size_t i = 0; i < n; ++i)
+              results[j + i] = entryOrbitTrials(k_, orbit + i, s_.request.warmupBlocks, s_.levels[0]);
+            return;
+          }
+          std::vector<EntryOrbitResult> r =
+              entryGroupTrials(k_, kernel_, orbit, n, s_.request.warmupBlocks, s_.levels[0]);
           std::move(r.begin(), r.end(), results.begin() + static_cast<std::ptrdiff_t>(j));
         },
         stop_, threads_);
@@ -372,6 +381,12 @@ class Sampler {
     s_.pilotOrbits += kEntryOrbitsPerUnit;
     if (s_.pilotSuccesses >= kPilotSuccesses) {
       s_.entryOrbits = entryOrbitsPerReplica(s_.request.population, s_.pilotOrbits, s_.pilotSuccesses);
+    } else if (s_.pilotTrials >= kPilotTrials && s_.pilotSuccesses < kPilotSuccesses / 8) {
+      // P(t_0) below ~2·10^-7: stage 0 would need more than 10^7 N segments a replica (a map without sticky
+      // islands, K ≤ 0, or a first level too high).  Said after a second or two, rather than after hours.
+      throw std::runtime_error("only " + std::to_string(s_.pilotSuccesses) + " of the pilot's " +
+                               std::to_string(s_.pilotTrials) + " segments lasted longer than the first level t = " +
+                               std::to_string(s_.levels[0] * s_.request.run.q) + " steps: give a lower --first");
     } else if (s_.pilotOrbits >= kMaxPilotOrbits) {
       throw std::runtime_error(
           "the pilot's " + std::to_string(s_.pilotTrials) + " segments of " + std::to_string(s_.pilotOrbits) +

@@ -106,10 +106,15 @@ inline constexpr std::uint64_t kMaxTailEpsilon = std::uint64_t{1} << 40;
 inline constexpr std::uint32_t kMaxMetropolisSteps = 64;
 inline constexpr std::uint64_t kMaxWarmupBlocks = std::uint64_t{1} << 20;
 /// Stage 0: the window of an entry orbit (blocks), the pilot's successes, its largest number of entry orbits (then
-/// the first level is out of reach: an error), and the successes a replica's entry orbits are sized for, per walker.
+/// the first level is out of reach: an error naming --first), and the successes a replica's entry orbits are sized
+/// for, per walker.
 inline constexpr std::uint64_t kEntryWindowBlocks = 1024;
 inline constexpr std::uint64_t kPilotSuccesses = 32;
 inline constexpr std::uint64_t kMaxPilotOrbits = std::uint64_t{1} << 24;
+/// The pilot gives up (an error naming --first) when this many segments gave fewer than kPilotSuccesses/8
+/// successes: P(t_0) ≲ 2·10⁻⁷, where stage 0 would need more than 10⁷ N segments a replica (at K = 0.1 that is
+/// t_0 ≳ 10⁵ steps; a map without sticky islands, K ≤ 0, gives up within seconds).
+inline constexpr std::uint64_t kPilotTrials = std::uint64_t{1} << 24;
 inline constexpr std::uint64_t kEntrySuccessTarget = 2;
 inline constexpr std::size_t kPilotStream = (std::size_t{1} << 23) - 1;
 inline constexpr std::uint32_t kMaxBinsPerLevel = 300;   ///< ten decades a level

@@ -96,7 +96,7 @@ def baseline(command, d):
         "rotation": ["rotation", "--x=-0.3", "--y", "0", "--iterations", "100"],
         "indicator": ["indicator", "--kind", "dig", "--size", "4x4", "--iterations", "100",
                       "--npy", os.path.join(d, "i.npy"), "--quiet"],
-        "tail": ["tail", "--first", "150", "--t-max", "400", "--population", "4", "--replicas", "2", "--warmup", "8",
+        "tail": ["tail", "--first", "16", "--t-max", "100", "--population", "4", "--replicas", "2", "--warmup", "8",
                  "--min-ancestors", "1", "--out", os.path.join(d, "t.json"), "--quiet", "--threads", "1"],
     }.get(command)
 
