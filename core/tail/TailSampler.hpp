@@ -31,9 +31,9 @@
 ///                      survive, and P(t_{k+1}) = P(t_k)·s/N.  The survivors are resampled to N: each gets ⌊N/s⌋
 ///                      copies and N mod s of them, chosen at random, one more; a survivor's first copy is
 ///                      itself, the others are clones.  A clone inherits its parent's ancestor.
-///   - clone rule     — perturb: a clone is its parent moved by (δX, δY), each uniform in [−ε, ε] lattice units
-///                      (2^−52 of the box), not both 0.  The map is exact and one-to-one, so the clone's future
-///                      is exactly that of its own state.  metropolis: the move is a Metropolis step whose
+///   - clone rule     — perturb (the default, docs/tail.md says why): a clone is its parent moved by (δX, δY), each
+///                      uniform in [−ε, ε] lattice units (2^−52 of the box), not both 0.  The map is exact and
+///                      one-to-one, so the clone's future is exactly that of its own state.  metropolis: the move is a Metropolis step whose
 ///                      target is the uniform law on the states of age exactly L_k (what the process puts at
 ///                      age L_k: the block is doubly stochastic, so the stationary law is uniform on the
 ///                      lattice of the stochastic region, and age is a function of the state).  The proposal is
@@ -43,6 +43,9 @@
 ///                      parent's state.  That step preserves the target exactly (Leitão, Lopes & Altmann, PRL
 ///                      110 (2013) 220601; PRE 90 (2014) 052916, sample initial conditions by Metropolis steps
 ///                      restricted to trajectories still trapped).  metropolisSteps steps are made per clone.
+///                      Measured at K = 0.1, almost every move is rejected (the past of a trapped state holds the
+///                      chaotic approach to the trap, so the exact-age states form a dust at the lattice's scale):
+///                      the clones stay copies of their parents.
 ///   - lineages       — the distinct ancestors among a level's survivors, per replica.  A level whose replicas
 ///                      hold fewer than minAncestors lineages in all is unreliable (TailResult.hpp).
 ///   - replicas       — R independent populations (their own entry orbits and random choices); the error of
@@ -55,8 +58,9 @@
 /// and across stops and resumes (chunk sizes depend only on ages, never on time).
 ///
 /// Cost: stage 0 takes about kEntrySuccessTarget·N·α / P(t_0) steps per replica (α the mean segment length, steps),
-/// a brute-force run up to t_0 at the block kernel's speed; splitting takes N times the mean age a walker reaches
-/// within a level, summed over levels: measured 0.66 N t_max at K = 0.1 (docs/tail.md).
+/// a brute-force run up to t_0 at the block kernel's speed; splitting takes, at each level, the ages its walkers
+/// reach within it, which grows like t_k once the survivors sit in deep traps (measured at K = 0.1, N = 800, R = 16:
+/// 0.38 N R t_max for the level from 4.7·10⁶ to t_max = 10⁷, 0.68 N R t_max for the whole splitting; docs/tail.md).
 
 #include <cstdint>
 #include <functional>
