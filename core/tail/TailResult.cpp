@@ -15,6 +15,10 @@ TailResult tailResult(const TailState& s) {
   for (const TailReplica& x : s.replicas) reached = std::min(reached, x.levels.size());
   if (R == 0 || reached == SIZE_MAX) return out;
   std::vector<double> running(R, 0);
+  // Σ_j (1 − p_j)/(n_j p_j) over the levels so far, pooled over the replicas: the relative variance of P if every
+  // walker were independent (the binomial floor, TailResult.hpp); binomial[k] after level k, and per level.
+  std::vector<double> binomial, binomialOfLevel;
+  double relative = 0;
   for (std::size_t k = 0; k < reached; ++k) {
     TailLevelResult L;
     L.blocks = s.levels[k];
@@ -39,11 +43,17 @@ TailResult tailResult(const TailState& s) {
     for (double p : L.replicaP) mean += p;
     mean /= static_cast<double>(R);
     L.P = mean;
+    const double pooled = L.population > 0 ? static_cast<double>(L.survivors) / static_cast<double>(L.population) : 0;
+    binomialOfLevel.push_back(pooled > 0 ? (1 - pooled) / (static_cast<double>(L.population) * pooled) : 0);
+    relative += binomialOfLevel.back();
+    binomial.push_back(relative);
+    L.PErrorBinomial = mean * std::sqrt(relative);
     if (R > 1) {
       double ss = 0;
       for (double p : L.replicaP) ss += (p - mean) * (p - mean);
-      L.PError = std::sqrt(ss / static_cast<double>(R - 1) / static_cast<double>(R));
+      L.PErrorReplicas = std::sqrt(ss / static_cast<double>(R - 1) / static_cast<double>(R));
     }
+    L.PError = R > 1 ? std::max(L.PErrorReplicas, L.PErrorBinomial) : L.PErrorBinomial;
     L.reliable = R > 1 && L.ancestors >= r.minAncestors;
     if (proposals > 0) L.acceptance = static_cast<double>(accepted) / static_cast<double>(proposals);
     out.levels.push_back(std::move(L));
@@ -67,7 +77,8 @@ TailResult tailResult(const TailState& s) {
       }
       const double norm = static_cast<double>(R) * static_cast<double>(R - 1);
       const double var = va / norm / (a.P * a.P) + vb / norm / (b.P * b.P) - 2 * cab / norm / (a.P * b.P);
-      e.gammaError = std::sqrt(std::max(var, 0.0)) / span;
+      // The binomial floor of ln(P_b/P_a): the survival fraction of level b alone (the levels below are shared).
+      e.gammaError = std::sqrt(std::max(var, binomialOfLevel[k + 1])) / span;
     }
     out.exponents.push_back(e);
   }
