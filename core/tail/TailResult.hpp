@@ -14,7 +14,7 @@
 ///                    would have if every walker were independent.  Clones share their ancestors' histories, so
 ///                    the true error is larger; the floor guards against a few replicas that agree by chance.
 ///                    Measured (docs/tail.md): with R = 4 the spread alone has three degrees of freedom and its
-///                    z-scores follow Student's t₃ (mean z² ≈ 3); with the floor, mean z² 1.0–1.9 below 2·10⁵ steps.
+///                    z-scores follow Student's t₃ (mean z² ≈ 3); with the floor, mean z² 0.95–2.2 below 2.2·10⁵ steps.
 ///   survivors    = Σ_r s_{r,k};  ancestors = Σ_r (distinct lineages among replica r's survivors).
 ///   reliable     = R ≥ 2 (an error) and ancestors ≥ minAncestors (TailRequest).  Replicas whose populations
 ///                  descend from a handful of entries estimate P from those few histories: the spread over the
