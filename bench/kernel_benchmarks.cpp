@@ -25,6 +25,7 @@
 #include "core/kernels/KernelDispatch.hpp"
 #include "core/measures/OrbitMeasures.hpp"
 #include "core/run/TrappingRun.hpp"
+#include "core/tail/TailSampler.hpp"
 
 namespace archipelago {
 namespace {
@@ -269,6 +270,58 @@ void registerPaired() {
   }
 }
 
+// The tail sampler (core/tail, issue 29) on one thread, K = 0.1 box, q = 16.  tail/splitting/<kernel>: the splitting
+// from t = 1008 to 10^6 steps (N = 200, R = 2, perturbed clones), started each iteration from the same population
+// (stage 0 done once, outside the timing): walkers advanced in chunks by the block kernel, dead ones dropped at chunk
+// boundaries, survivors resampled at each level.  tail/stage0/<kernel>: stage 0 alone (N = 100, R = 1, the first
+// level at 1008 steps: a brute-force run of entry orbits, 32 at a time, with its pilot).  Steps of the sampler per
+// second (TailState::steps: the map steps it computes), comparable with bare_step/<kernel>.
+void tailSplitting(benchmark::State& state, const KernelInfo* kernel) {
+  TailRequest r;
+  r.population = 200;
+  r.replicas = 2;
+  r.maxSteps = 1'000'000;
+  TailRunOptions options;
+  options.threads = 1;
+  options.kernel = kernel;
+  options.untilLevel = 1;
+  const TailState start = runTail(startTail(r), options);
+  options.untilLevel = SIZE_MAX;
+  double steps = 0;
+  for (auto _ : state) {
+    const TailState done = runTail(start, options);
+    steps += static_cast<double>(done.steps - start.steps);
+  }
+  reportSteps(state, steps);
+}
+
+void tailStageZero(benchmark::State& state, const KernelInfo* kernel) {
+  TailRequest r;
+  r.population = 100;
+  r.replicas = 1;
+  r.maxSteps = 1000;
+  TailRunOptions options;
+  options.threads = 1;
+  options.kernel = kernel;
+  double steps = 0;
+  for (auto _ : state) steps += static_cast<double>(runTail(startTail(r), options).steps);
+  reportSteps(state, steps);
+}
+
+void registerTail() {
+  for (const auto& k : supportedKernels()) {
+    benchmark::RegisterBenchmark(("tail/splitting/" + std::string(k.name)).c_str(), tailSplitting,
+                                 &kernelByName(k.name))
+        ->UseRealTime()
+        ->Unit(benchmark::kMillisecond)
+        ->MinTime(0.4);
+    benchmark::RegisterBenchmark(("tail/stage0/" + std::string(k.name)).c_str(), tailStageZero, &kernelByName(k.name))
+        ->UseRealTime()
+        ->Unit(benchmark::kMillisecond)
+        ->MinTime(0.4);
+  }
+}
+
 void registerMeasures() {
   for (const auto& k : supportedKernels())
     for (IndicatorKind kind : {IndicatorKind::Dig, IndicatorKind::Rotation, IndicatorKind::Fli, IndicatorKind::Megno,
@@ -313,6 +366,7 @@ int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
   archipelago::registerAll();
   archipelago::registerMeasures();
+  archipelago::registerTail();
   archipelago::registerPaired();
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();

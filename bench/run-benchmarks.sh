@@ -5,6 +5,7 @@
 #   bench/run-benchmarks.sh [build-dir] [extra Google Benchmark options…]
 #   BENCH_REPETITIONS=9 bench/run-benchmarks.sh build-bench --benchmark_filter='bare_step|pipeline/avx512ifma'
 #   bench/run-benchmarks.sh build-bench --benchmark_filter='^bare_step/[a-z0-9]+/min|^measure/'   # measures only
+#   bench/run-benchmarks.sh build-bench --benchmark_filter='^bare_step/[a-z0-9]+/min|^tail/'      # the tail sampler
 #
 # The machine may be shared, and its speed then changes over minutes.  So every benchmark runs
 # BENCH_REPETITIONS times (default 5), each repetition a few tenths of a second, all repetitions of all
@@ -131,6 +132,20 @@ if measures:
             n, bare = f"measure/{kind}/{k}", f"bare_step/{k}"
             if n in runs and bare in runs:
                 print(f"  {n:30s} {rate(n, 'wall')} {rate(n, 'cpu')} {ratio(n, bare):6.3f} {ratio(n, bare, 'cpu'):6.3f}")
+
+tails = [n for n in runs if n.startswith("tail/")]
+if tails:
+    print("\n== Tail sampler (issue 29; core/tail, 1 thread, K = 0.1 box, q = 16) ==")
+    print("  the sampler's map steps per second, and as a ratio to the bare step of the same path measured in this run")
+    print(f"  {'':30s} {'wall, G/s':22s} {'per CPU s, G/s':22s} {'/ bare: wall   CPU'}")
+    for k in kernels:
+        n, bare = f"tail/splitting/{k}", f"bare_step/{k}"
+        if n in runs and bare in runs:
+            print(f"  {n:30s} {rate(n, 'wall')} {rate(n, 'cpu')} {ratio(n, bare):6.3f} {ratio(n, bare, 'cpu'):6.3f}")
+    for k in kernels:
+        n, bare = f"tail/stage0/{k}", f"bare_step/{k}"
+        if n in runs and bare in runs:
+            print(f"  {n:30s} {rate(n, 'wall')} {rate(n, 'cpu')} {ratio(n, bare):6.3f} {ratio(n, bare, 'cpu'):6.3f}")
 
 if paired:
     print("\n== Paired ratios (the two sides alternate every few tens of ms; 1-thread sides timed by the thread's CPU clock) ==")

@@ -364,6 +364,7 @@ py::dict replayRecord(const TrappingParameters& params, const SegmentRecord& rec
 }  // namespace
 
 void bindMeasures(py::module_& m);  // bind_measures.cpp
+void bindTail(py::module_& m);      // bind_tail.cpp
 
 PYBIND11_MODULE(_archipelago, m) {
   m.doc() = "Archipelago: stickiness of islands around islands in area-preserving maps "
@@ -749,4 +750,5 @@ PYBIND11_MODULE(_archipelago, m) {
         "stickiness (mean trapped-segment length in steps per pixel); arrays of shape (height, width), row 0 at the top.");
 
   bindMeasures(m);  // rotation numbers, island chains, indicator maps (core/measures)
+  bindTail(m);      // the tail of P_t beyond brute force (core/tail)
 }

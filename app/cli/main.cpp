@@ -23,6 +23,7 @@
 #include "IndicatorCommand.hpp"
 #include "ManifoldCommand.hpp"
 #include "FluxCommand.hpp"
+#include "TailCommand.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"archipelago-cli " ARCHIPELAGO_VERSION
@@ -45,6 +46,7 @@ int main(int argc, char** argv) {
   archipelago::cli::addIndicatorCommand(app, status);
   archipelago::cli::addManifoldCommand(app, status);
   archipelago::cli::addFluxCommand(app, status);
+  archipelago::cli::addTailCommand(app, status);
   if (argc > 1 && argv[1][0] != '-') {  // name an unknown command instead of CLI11's generic message
     std::string names;
     bool known = false;

@@ -91,6 +91,11 @@ def json_case(reader, name, text, spec_text, index):
         args = ["merge", part_a, path, "--out", os.path.join(d, "m.json")]
     elif reader == "run --spec":
         args = ["run", "--spec", path, "--out", os.path.join(d, "r.json"), "--quiet"]
+    elif reader == "tail --compare":  # the run file a tail is compared with (issue 29)
+        args = ["tail", "--first", "16", "--t-max", "100", "--population", "4", "--replicas", "2", "--q", "4",
+                "--compare", path, "--out", os.path.join(d, "t.json"), "--quiet"]
+    elif reader == "tail --resume":  # the attacked document given as a tail file
+        args = ["tail", "--resume", path, "--out", os.path.join(d, "t.json"), "--quiet"]
     else:  # a scan folder whose run file for K = 0.1 was attacked
         scan = make_dir(f"json-{index}/scan")
         shutil.copy(path, os.path.join(scan, "K0.1.json"))
@@ -284,7 +289,8 @@ def huge_cases():
 
 # ------------------------------------------------------------------------------------------------------ main
 started = time.monotonic()
-readers = ["stats", "stats --allow-modified", "replay", "run --resume", "merge", "run --spec", "scan folder"]
+readers = ["stats", "stats --allow-modified", "replay", "run --resume", "merge", "run --spec", "scan folder",
+           "tail --compare", "tail --resume"]
 index = 0
 for name, text, spec_text in json_variants():
     for reader in readers:
