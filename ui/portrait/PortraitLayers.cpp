@@ -19,6 +19,8 @@ PointsItem::PointsItem(Style style, std::vector<QPointF> points, QColor colour)
     case Style::trail: setZ(32); break;
     case Style::discs: setZ(34); break;
     case Style::diamonds: setZ(35); break;
+    case Style::polyline: setZ(12); break;
+    case Style::polygon: setZ(10); break;
   }
   setItemAttribute(QwtPlotItem::AutoScale, false);
 }
@@ -32,7 +34,7 @@ void PointsItem::draw(QPainter* painter, const QwtScaleMap& xMap, const QwtScale
   painter->setRenderHint(QPainter::Antialiasing, style_ != Style::timeDots && style_ != Style::dots);
   switch (style_) {
     case Style::dots: {
-      painter->setPen(QPen(colour_, 2));
+      painter->setPen(QPen(colour_, penWidth_));
       QVector<QPointF> visible;
       for (const QPointF& p : points_) {
         const QPointF q = toCanvas(p);
@@ -92,6 +94,46 @@ void PointsItem::draw(QPainter* painter, const QwtScaleMap& xMap, const QwtScale
         } else {
           const QPointF d[4] = {q + QPointF(0, -7), q + QPointF(7, 0), q + QPointF(0, 7), q + QPointF(-7, 0)};
           painter->drawPolygon(d, 4);
+        }
+      }
+      break;
+    }
+    case Style::polyline: {
+      // Only the runs of consecutive points near the canvas: a refined manifold holds 10⁵ points and more,
+      // most far outside a deep view.
+      painter->setRenderHint(QPainter::Antialiasing, true);
+      painter->setPen(QPen(colour_, penWidth_ / 2 + 0.5));
+      QPolygonF run;
+      const QRectF wide = canvasRect.adjusted(-canvasRect.width(), -canvasRect.height(), canvasRect.width(),
+                                              canvasRect.height());
+      const auto flush = [&] {
+        if (run.size() > 1) painter->drawPolyline(run);
+        run.clear();
+      };
+      for (const QPointF& p : points_) {
+        const QPointF q = toCanvas(p);
+        if (wide.contains(q)) run.append(q);
+        else flush();
+      }
+      flush();
+      break;
+    }
+    case Style::polygon: {
+      QPolygonF polygon;
+      polygon.reserve(static_cast<int>(points_.size()));
+      for (const QPointF& p : points_) polygon.append(toCanvas(p));
+      if (!polygon.boundingRect().intersects(canvasRect)) break;
+      QColor fill = colour_;
+      fill.setAlpha(90);
+      painter->setRenderHint(QPainter::Antialiasing, true);
+      painter->setPen(QPen(colour_, 1));
+      painter->setBrush(fill);
+      painter->drawPolygon(polygon);
+      if (!label_.isEmpty()) {
+        const QPointF c = polygon.boundingRect().center();
+        if (canvasRect.contains(c)) {
+          painter->setPen(Qt::white);
+          painter->drawText(QRectF(c.x() - 150, c.y() - 10, 300, 20), Qt::AlignCenter, label_);
         }
       }
       break;
