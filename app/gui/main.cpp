@@ -5,7 +5,8 @@
 //   --run                start the run at once
 //   --screenshot PATH    after --after seconds of running, save the window as PATH and quit
 //   --measure SECONDS    run, measure event latency and plot refresh rate, print them as JSON and quit
-//   --segment N          select the long segment of rank N (0: the longest) of the opened run file
+//   --segment N          select the long segment of rank N (0: the longest) of the opened run file (a rank
+//                        beyond the segments it keeps is an error: one ERROR line, status 2)
 //   --island             and zoom to one island of its chain once it is identified
 //   FILE.json            open a run file
 //   FILE.archipelago     open a session (the window as it was saved)
@@ -20,10 +21,15 @@
 #include <cstdio>
 #include <cstring>
 #include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
 
 #include "LatencyProbe.hpp"
+#include "core/io/NumberText.hpp"
 #include "core/spec/InputRules.hpp"
 #include "ui/window/MainWindow.hpp"
+#include "ui/segments/LongSegmentsPanel.hpp"
 #include "ui/window/ParameterPanel.hpp"
 #include "ui/window/Resources.hpp"
 
@@ -43,10 +49,63 @@ bool onlyInformation(int argc, char** argv) {
   return false;
 }
 
+/// The longest a scripted run may wait before its screenshot or measure (a day): anything longer is a typo.
+constexpr double kMaxScriptSeconds = 86400;
+
+/// A number of seconds given to `option` (`text`), read by core's one reader: finite, in [lo, kMaxScriptSeconds]
+/// (issue #23, finding 9: --after nan|-5|1e12 never quit).  Throws std::invalid_argument with the message.
+double readSeconds(const char* option, const QString& text, double lo) {
+  const double v = archipelago::io::parseNumber<double>(std::string("--") + option, text.toStdString());
+  if (!(v >= lo && v <= kMaxScriptSeconds))
+    throw std::invalid_argument(std::string("--") + option + " = " + archipelago::io::shortText(text.toStdString()) +
+                                " must lie in [" + archipelago::io::shortestText(lo) + ", 86400] seconds");
+  return v;
+}
+
+/// The rank given to --segment: a whole number ≥ 0 (core's reader: "abc", "1.5", "-1" are errors).
+int readRank(const QString& text) {
+  const auto v = archipelago::io::parseNumber<std::uint32_t>("--segment", text.toStdString());
+  if (v < 0 || v > 1'000'000)
+    throw std::invalid_argument("--segment = " + archipelago::io::shortText(text.toStdString()) +
+                                " must be a rank in [0, the number of longest segments the run keeps)");
+  return static_cast<int>(v);
+}
+
+/// The numbers of the command line checked before any window or display: the first error's message, if any.
+/// (The parser reads them again below, through the same functions.)
+std::optional<std::string> numberError(int argc, char** argv) {
+  try {
+    for (int i = 1; i < argc; ++i) {
+      const QString arg = QString::fromLocal8Bit(argv[i]);
+      for (const char* name : {"after", "measure", "segment", "threads"}) {
+        const QString option = QStringLiteral("--") + QLatin1String(name);
+        QString value;
+        if (arg == option && i + 1 < argc) value = QString::fromLocal8Bit(argv[i + 1]);
+        else if (arg.startsWith(option + QLatin1Char('='))) value = arg.mid(option.size() + 1);
+        else continue;
+        if (std::strcmp(name, "after") == 0) (void)readSeconds("after", value, 0);
+        else if (std::strcmp(name, "measure") == 0) (void)readSeconds("measure", value, 1);
+        else if (std::strcmp(name, "segment") == 0) (void)readRank(value);
+        else (void)archipelago::readThreads(value.toStdString());
+      }
+    }
+  } catch (const std::exception& e) {
+    return std::string(e.what());
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   archipelago::ui::configureProcessMemory();
+  std::setlocale(LC_NUMERIC, "C");
+  if (!onlyInformation(argc, argv)) {
+    if (const auto e = numberError(argc, argv)) {
+      std::fprintf(stderr, "ERROR: %s\n", e->c_str());
+      return 2;
+    }
+  }
   const std::unique_ptr<QCoreApplication> application =
       onlyInformation(argc, argv) ? std::make_unique<QCoreApplication>(argc, argv)
                                   : std::make_unique<QApplication>(argc, argv);
@@ -92,6 +151,24 @@ int main(int argc, char** argv) {
     return 0;
   }
 
+  // Every number of the command line is read and checked before the window opens: one ERROR line and status 2.
+  double afterSeconds = 20, measureSeconds = 0;
+  int segmentRank = -1;
+  try {
+    if (parser.isSet(after)) afterSeconds = readSeconds("after", parser.value(after), 0);
+    if (parser.isSet(measure)) measureSeconds = readSeconds("measure", parser.value(measure), 1);
+    if (parser.isSet(segment)) {
+      segmentRank = readRank(parser.value(segment));
+      if (parser.positionalArguments().isEmpty())
+        throw std::invalid_argument("--segment needs a run file or a session to take the segment from");
+    }
+    if (parser.isSet(island) && !parser.isSet(segment)) throw std::invalid_argument("--island needs --segment N");
+    if (parser.isSet(threads)) (void)archipelago::readThreads(parser.value(threads).toStdString());  // core's rule
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "ERROR: %s\n", e.what());
+    return 2;
+  }
+
   archipelago::ui::MainWindow window;
   const bool scripted = parser.isSet(screenshot) || parser.isSet(measure);
   window.setConfirmations(!scripted);
@@ -101,14 +178,7 @@ int main(int argc, char** argv) {
                  qPrintable(panel->presetNames().join(QStringLiteral(", "))));
     return 1;
   }
-  if (parser.isSet(threads)) {
-    try {
-      window.setThreads(archipelago::readThreads(parser.value(threads).toStdString()));  // core's one rule
-    } catch (const std::exception& e) {
-      std::fprintf(stderr, "ERROR: --%s\n", e.what());
-      return 2;
-    }
-  }
+  if (parser.isSet(threads)) window.setThreads(archipelago::readThreads(parser.value(threads).toStdString()));
   window.show();
   if (parser.isSet(tab)) {
     bool found = false;
@@ -123,12 +193,25 @@ int main(int argc, char** argv) {
     }
   }
   if (!parser.positionalArguments().isEmpty()) window.openInteractively(parser.positionalArguments().front());
-  if (parser.isSet(segment)) window.showLongSegment(parser.value(segment).toInt(), parser.isSet(island));
+  if (segmentRank >= 0) {
+    window.showLongSegment(segmentRank, parser.isSet(island));
+    // A rank beyond the segments the run keeps is an error, known once the run file is analysed.
+    QObject::connect(&window, &archipelago::ui::MainWindow::runStatusChanged, &window, [&window, segmentRank](auto status) {
+      if (archipelago::ui::isLive(status) || !window.latestSnapshot()) return;
+      window.refreshNow();
+      const int kept = window.longSegments()->model()->rowCount();
+      if (segmentRank < kept) return;
+      std::fprintf(stderr, "ERROR: --segment = %d: the run keeps %d longest segments (ranks 0 to %d)\n", segmentRank,
+                   kept, kept - 1);
+      std::fflush(stderr);
+      QTimer::singleShot(0, [] { QApplication::exit(2); });
+    });
+  }
   // A screenshot of a segment shows the opened run, so it does not start a new one.
   if (parser.isSet(run) || (scripted && !parser.isSet(segment))) QTimer::singleShot(0, &window, [&window] { window.startRun(); });
 
   if (parser.isSet(screenshot)) {
-    const int ms = static_cast<int>(1000 * parser.value(after).toDouble());
+    const int ms = static_cast<int>(1000 * afterSeconds);
     QTimer::singleShot(ms, &window, [&window, path = parser.value(screenshot)] {
       const bool ok = window.grab().save(path);
       std::printf("%s %s\n", ok ? "wrote" : "could not write", qPrintable(path));
@@ -137,7 +220,7 @@ int main(int argc, char** argv) {
     });
   }
   if (parser.isSet(measure)) {
-    auto* probe = new archipelago::app::LatencyProbe(window, parser.value(measure).toDouble(), &window);
+    auto* probe = new archipelago::app::LatencyProbe(window, measureSeconds, &window);
     QObject::connect(probe, &archipelago::app::LatencyProbe::done, &window, [&window](const QString& json) {
       std::printf("%s\n", qPrintable(json));
       std::fflush(stdout);

@@ -109,7 +109,7 @@ void OrbitListPanel::refresh() {
       item->setData(0, Qt::UserRole, QVariant::fromValue<qulonglong>(o.id));
       item->setIcon(0, swatch(o.colour));
       item->setText(0, QString::number(o.id));
-      item->setText(1, QStringLiteral("%1, %2").arg(number(o.x), number(o.y)));
+      item->setText(1, QStringLiteral("%1, %2").arg(static_cast<double>(o.x), 0, 'g', 6).arg(static_cast<double>(o.y), 0, 'g', 6));
       item->setText(2, locale.toString(static_cast<qulonglong>(o.steps)));
       list_->insertTopLevelItem(static_cast<int>(i), item);
     }

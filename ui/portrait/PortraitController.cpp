@@ -406,6 +406,7 @@ void PortraitController::redrawOrbit(std::size_t index) {
   if (orbit.id == highlighted_) width = 3.5;
   auto* item = new PointsItem(PointsItem::Style::dots, *orbit.points, colour);
   item->setPenWidth(width);
+  item->setStartMarker(true);
   item->setZ(orbit.id == highlighted_ ? 22 : 20);
   item->setTitle(tr("orbit %1").arg(orbit.id));
   orbitItems_[index] = item;

@@ -41,6 +41,15 @@ void PointsItem::draw(QPainter* painter, const QwtScaleMap& xMap, const QwtScale
         if (canvasRect.contains(q)) visible.append(q);
       }
       painter->drawPoints(visible.constData(), static_cast<int>(visible.size()));
+      if (startMarker_) {
+        const QPointF start = toCanvas(points_.front());
+        if (clip.contains(start)) {
+          painter->setRenderHint(QPainter::Antialiasing, true);
+          painter->setBrush(colour_);
+          painter->setPen(QPen(Qt::white, 1.5));
+          painter->drawEllipse(start, 4.5, 4.5);
+        }
+      }
       break;
     }
     case Style::timeDots: {

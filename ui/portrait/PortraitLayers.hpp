@@ -42,6 +42,8 @@ class PointsItem : public QwtPlotItem {
   void setPenWidth(double width) noexcept { penWidth_ = width; }
   /// A label drawn at the polygon's centroid (e.g. a lobe's area).
   void setLabel(const QString& label) { label_ = label; }
+  /// Dots: a ring at the first point (a launched orbit's start, told apart from the portrait's own orbits).
+  void setStartMarker(bool on) noexcept { startMarker_ = on; }
   [[nodiscard]] QColor colour() const noexcept { return colour_; }
   int rtti() const override { return kRtti; }
   [[nodiscard]] std::size_t size() const noexcept { return points_.size(); }
@@ -54,6 +56,7 @@ class PointsItem : public QwtPlotItem {
   std::vector<QPointF> points_;
   QColor colour_;
   double penWidth_ = 2;
+  bool startMarker_ = false;
   QString label_;
 };
 

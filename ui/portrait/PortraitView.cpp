@@ -337,10 +337,9 @@ std::pair<double, double> PortraitView::yAxisRange() const {
 }
 
 double PortraitView::targetAspect() const {
-  // The room the canvas could have: the widget less what the axes take beside it.
-  const QWidget* c = plot_->canvas();
-  const int ox = plot_->width() - c->width(), oy = plot_->height() - c->height();
-  const int w = width() - ox, h = height() - oy;
+  // The room the canvas could have: the widget less a fixed allowance for the axes (not their width of the
+  // moment, which follows the digits of the labels: a region framed twice gets the same view).
+  const int w = width() - 90, h = height() - 50;
   return w > 0 && h > 0 ? static_cast<double>(w) / h : 1.0;
 }
 
@@ -544,7 +543,7 @@ QString PortraitView::readout() const {
       return tr("%1 points, %2 pixels — accumulating…").arg(points, pixels) + allSea();
     case RenderState::done:
       if (sparse())
-        return tr("%1 points, %2 pixels (%3 %) — sparse: raise the budget (Ctrl+B)")
+        return tr("%1 points, %2 pixels (%3 %) — done; sparse: raise the budget (Ctrl+B)")
                    .arg(points, pixels)
                    .arg(100.0 * static_cast<double>(frame_->nonEmptyPixels()) / static_cast<double>(frame_->pixelCount()), 0, 'f', 0);
       return tr("%1 points, %2 pixels — done (budget reached)").arg(points, pixels) + allSea();

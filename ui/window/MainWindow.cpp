@@ -59,7 +59,7 @@ namespace archipelago::ui {
 namespace {
 constexpr int kRefreshIntervalMs = 66;  // 15 Hz: live, yet far from saturating the GUI thread
 /// The left panel's width (parameters, long segments): fixed, so that nothing on it widens the window.
-constexpr int kLeftPanelWidth = 320;
+constexpr int kLeftPanelWidth = 360;
 
 QString formatRate(double stepsPerSecond) {
   if (stepsPerSecond >= 1e9) return QObject::tr("%1 G steps/s").arg(stepsPerSecond / 1e9, 0, 'f', 2);
