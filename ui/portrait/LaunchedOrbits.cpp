@@ -17,7 +17,7 @@ QString rotationText(const OrbitMeasuresResult& m) {
   switch (r.verdict) {
     case OrbitVerdict::Regular:
       if (const auto& q = m.chain.levels.front().rational)
-        return tr("%1 = %2 (%3 digits)").arg(QString::fromStdString(toString(*q))).arg(r.rotation, 0, 'g', 8).arg(digits);
+        return tr("%1 = %2 (%3 digits)").arg(QString::fromStdString(toString(*q))).arg(r.rotation, 0, 'g', 10).arg(digits);
       return tr("%1 (%2 digits)").arg(r.rotation, 0, 'g', 10).arg(digits);
     case OrbitVerdict::Chaotic: return tr("none: chaotic (%1 digits)").arg(digits);
     case OrbitVerdict::Escaping: return tr("none: leaves the box");

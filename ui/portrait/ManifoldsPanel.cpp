@@ -119,7 +119,7 @@ void ManifoldsPanel::refresh() {
     const QString kind = f.orbit.fixedPoint ? tr("homoclinic") : tr("heteroclinic");
     text = tr("<b>%1</b>, K = %2<br>"
               "multiplier λ = %3<br>"
-              "%4 points: (%5, %6), (%7, %8)<br>"
+              "%4 points h, h′: (%5, %6), (%7, %8)<br>"
               "<b>flux per step (lobe area)</b><br>"
               "&nbsp;by actions: %9<br>"
               "&nbsp;by polygon: %10 ± %11<br>"
@@ -130,7 +130,7 @@ void ManifoldsPanel::refresh() {
               "&nbsp;agreeing digits: %15<br>"
               "computed in %16 s")
                .arg(f.orbit.fixedPoint ? tr("Hyperbolic fixed point (√K, 0)") : tr("Hyperbolic orbit of period %1").arg(f.orbit.period))
-               .arg(ld(f.orbit.K, 17))
+               .arg(ld(f.orbit.K, 12))
                .arg(quad(f.orbit.multiplier, 12))
                .arg(kind)
                .arg(quad(h.point.x, 12), quad(h.point.y, 12), quad(h2.point.x, 12), quad(h2.point.y, 12))

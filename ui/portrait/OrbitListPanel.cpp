@@ -7,6 +7,8 @@
 #include <QPainter>
 #include <QPixmap>
 #include <QPushButton>
+#include <QSet>
+#include <QTimer>
 #include <QSignalBlocker>
 #include <QTreeWidget>
 #include <QVBoxLayout>
@@ -67,7 +69,14 @@ OrbitListPanel::OrbitListPanel(PortraitController* controller, QWidget* parent)
   connect(list_, &QTreeWidget::currentItemChanged, this, [this](QTreeWidgetItem* item) {
     controller_->highlightOrbit(item ? item->data(0, Qt::UserRole).toULongLong() : 0);
   });
-  connect(controller_, &PortraitController::orbitsChanged, this, &OrbitListPanel::refresh);
+  // Many changes in a burst (a session's orbits arriving one by one): one refresh when the event loop is free.
+  refreshTimer_ = new QTimer(this);
+  refreshTimer_->setSingleShot(true);
+  refreshTimer_->setInterval(30);
+  connect(refreshTimer_, &QTimer::timeout, this, &OrbitListPanel::refresh);
+  connect(controller_, &PortraitController::orbitsChanged, this, [this] {
+    if (!refreshTimer_->isActive()) refreshTimer_->start();
+  });
 
   auto* buttons = new QHBoxLayout;
   buttons->addWidget(undo_);
@@ -87,19 +96,11 @@ void OrbitListPanel::refresh() {
   // Rows follow the controller's list: the rows of removed orbits go, new ones are appended, the others are
   // updated in place (a session's 500 orbits arrive one by one).
   const QSignalBlocker block(list_);
-  while (list_->topLevelItemCount() > 0) {
-    bool stale = true;
-    const quint64 id = list_->topLevelItem(0)->data(0, Qt::UserRole).toULongLong();
-    for (const LaunchedOrbit& o : orbits) stale = stale && o.id != id;
-    if (!stale) break;
-    delete list_->takeTopLevelItem(0);
-  }
-  for (int row = list_->topLevelItemCount() - 1; row >= 0; --row) {
-    const quint64 id = list_->topLevelItem(row)->data(0, Qt::UserRole).toULongLong();
-    bool present = false;
-    for (const LaunchedOrbit& o : orbits) present = present || o.id == id;
-    if (!present) delete list_->takeTopLevelItem(row);
-  }
+  refreshTimer_->stop();
+  QSet<quint64> ids;
+  for (const LaunchedOrbit& o : orbits) ids.insert(o.id);
+  for (int row = list_->topLevelItemCount() - 1; row >= 0; --row)
+    if (!ids.contains(list_->topLevelItem(row)->data(0, Qt::UserRole).toULongLong())) delete list_->takeTopLevelItem(row);
   const QLocale locale;
   for (std::size_t i = 0; i < orbits.size(); ++i) {
     const LaunchedOrbit& o = orbits[i];

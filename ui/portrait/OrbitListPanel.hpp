@@ -12,6 +12,7 @@
 
 class QLabel;
 class QPushButton;
+class QTimer;
 class QTreeWidget;
 
 namespace archipelago::ui {
@@ -42,6 +43,7 @@ class OrbitListPanel : public QWidget {
   QPushButton* remove_ = nullptr;
   QPushButton* clear_ = nullptr;
   QPushButton* undo_ = nullptr;
+  QTimer* refreshTimer_ = nullptr;
 };
 
 }  // namespace archipelago::ui

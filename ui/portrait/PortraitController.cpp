@@ -617,11 +617,15 @@ void PortraitController::requestManifolds() {
     clock.start();
     auto result = std::make_shared<ManifoldsResult>();
     const int period = orbit ? orbit->period : 1;
-    // Every point of a short orbit (the six of the period-6 chain); only the first of a long one.
+    // Every point of a short orbit (the six of the period-6 chain); only the first of a long one.  The fixed
+    // point's inward branches (the loop about the central island and its turnstile; the outward ones wrap around
+    // the torus into the sea); both sides of a periodic orbit's (the separatrices of its chain).
     const int points = period <= 24 ? period : 1;
     const long double width = std::max(view.x1 - view.x0, view.y1 - view.y0);
+    std::vector<BranchSide> sides{BranchSide::Inward};
+    if (orbit) sides.push_back(BranchSide::Outward);
     for (ManifoldKind kind : {ManifoldKind::Unstable, ManifoldKind::Stable})
-      for (BranchSide side : {BranchSide::Inward, BranchSide::Outward})
+      for (BranchSide side : sides)
         for (int i = 0; i < points; ++i) {
           ManifoldCurveRequest r;
           r.K = box.K;
@@ -629,11 +633,11 @@ void PortraitController::requestManifolds() {
           r.point = i;
           r.kind = kind;
           r.side = side;
-          r.length = orbit ? 4.0L : 12.0L;
+          r.length = orbit ? 2.0L : 8.0L;
           r.maxSpacing = std::clamp(width / 400, 1e-14L, 2e-3L);
           r.view = view;
           r.box = box;
-          r.maxPoints = kMaxManifoldPoints / static_cast<std::size_t>(4 * points);
+          r.maxPoints = kMaxManifoldPoints / static_cast<std::size_t>(2 * sides.size() * static_cast<std::size_t>(points));
           ManifoldCurve curve = computeManifoldCurve(r, {}, context.stopToken());
           (kind == ManifoldKind::Unstable ? result->unstable : result->stable).push_back(std::move(curve));
         }
@@ -722,11 +726,8 @@ void PortraitController::drawManifolds() {
       exit->setLabel(area);
       lobes.push_back(exit);
     }
-    if (f.entryLobe.size() > 2) {
-      auto* entry = new PointsItem(PointsItem::Style::polygon, toQt(f.entryLobe), QColor(60, 220, 120));
-      entry->setLabel(area);
-      lobes.push_back(entry);
-    }
+    if (f.entryLobe.size() > 2)  // the same area: one label is enough
+      lobes.push_back(new PointsItem(PointsItem::Style::polygon, toQt(f.entryLobe), QColor(60, 220, 120)));
   }
   view_->setLayer(PortraitLayer::lobes, std::move(lobes));
 }

@@ -34,11 +34,21 @@ void PointsItem::draw(QPainter* painter, const QwtScaleMap& xMap, const QwtScale
   painter->setRenderHint(QPainter::Antialiasing, style_ != Style::timeDots && style_ != Style::dots);
   switch (style_) {
     case Style::dots: {
+      // One point per pixel: a launched orbit of 2·10⁴ steps covers a few thousand pixels, and 500 of them must
+      // draw in a fraction of a second (issue #23, finding 5).
       painter->setPen(QPen(colour_, penWidth_));
+      const int w = static_cast<int>(canvasRect.width()) + 1, h = static_cast<int>(canvasRect.height()) + 1;
+      std::vector<bool> seen(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), false);
       QVector<QPointF> visible;
       for (const QPointF& p : points_) {
         const QPointF q = toCanvas(p);
-        if (canvasRect.contains(q)) visible.append(q);
+        if (!canvasRect.contains(q)) continue;
+        const auto col = static_cast<int>(q.x() - canvasRect.left()), row = static_cast<int>(q.y() - canvasRect.top());
+        if (col < 0 || row < 0 || col >= w || row >= h) continue;
+        const std::size_t cell = static_cast<std::size_t>(row) * static_cast<std::size_t>(w) + static_cast<std::size_t>(col);
+        if (seen[cell]) continue;
+        seen[cell] = true;
+        visible.append(q);
       }
       painter->drawPoints(visible.constData(), static_cast<int>(visible.size()));
       if (startMarker_) {
@@ -141,8 +151,13 @@ void PointsItem::draw(QPainter* painter, const QwtScaleMap& xMap, const QwtScale
       if (!label_.isEmpty()) {
         const QPointF c = polygon.boundingRect().center();
         if (canvasRect.contains(c)) {
+          const QRectF box = painter->fontMetrics().boundingRect(label_).adjusted(-4, -2, 4, 2);
+          const QRectF at(c.x() + 8, c.y() - box.height() / 2, box.width(), box.height());
+          painter->setPen(Qt::NoPen);
+          painter->setBrush(QColor(0, 0, 0, 170));
+          painter->drawRoundedRect(at, 3, 3);
           painter->setPen(Qt::white);
-          painter->drawText(QRectF(c.x() - 150, c.y() - 10, 300, 20), Qt::AlignCenter, label_);
+          painter->drawText(at, Qt::AlignCenter, label_);
         }
       }
       break;

@@ -181,7 +181,7 @@ PortraitView::PortraitView(QWidget* parent) : QWidget(parent) {
   connect(renderTimer_, &QTimer::timeout, this, &PortraitView::startRender);
   replotTimer_ = new QTimer(this);
   replotTimer_->setSingleShot(true);
-  replotTimer_->setInterval(0);  // many layer changes in one event: one replot
+  replotTimer_->setInterval(40);  // a burst of layer changes (a session's orbits arriving): one replot
   connect(replotTimer_, &QTimer::timeout, this, [this] { plot_->replot(); });
 
   gate_ = std::make_shared<PauseGate>();
@@ -379,7 +379,14 @@ void PortraitView::updateColourBar() {
   const QwtInterval interval(frame_->scaleMin, std::max(frame_->scaleMax, frame_->scaleMin + 1e-9));
   plot_->axisWidget(QwtPlot::yRight)->setColorMap(interval, new CoreColourMap(colours_));
   plot_->setAxisScale(QwtPlot::yRight, interval.minValue(), interval.maxValue());
-  QwtText title(frame_->quantity);
+  // An indicator's bar says what it measures, with units (core's quantity names the raw column).
+  static const std::map<IndicatorKind, const char*> kTitles = {
+      {IndicatorKind::Dig, QT_TRANSLATE_NOOP("PortraitView", "digits of convergence (16: exact)")},
+      {IndicatorKind::Rotation, QT_TRANSLATE_NOOP("PortraitView", "rotation number (turns per step)")},
+      {IndicatorKind::Fli, QT_TRANSLATE_NOOP("PortraitView", "fast Lyapunov indicator, max ln |v|")},
+      {IndicatorKind::Megno, QT_TRANSLATE_NOOP("PortraitView", "MEGNO ⟨Y⟩ (2: regular)")},
+      {IndicatorKind::Lyapunov, QT_TRANSLATE_NOOP("PortraitView", "Lyapunov exponent (per step)")}};
+  QwtText title(frame_->indicatorRequest ? tr(kTitles.at(frame_->indicatorRequest->measure.kind)) : frame_->quantity);
   QFont font = title.font();
   font.setPointSizeF(font.pointSizeF() * 0.9);
   title.setFont(font);
@@ -668,6 +675,7 @@ bool PortraitView::exportPng(const QString& path, const QSize& requested) {
     return false;
   }
 
+  lastExportRaster_ = QSize(frame->image.width(), frame->image.height());
   // The plot as on screen, with the export's raster under its axes.
   const QImage screenImage = frame_ ? frame_->image : QImage();
   const bool hadBar = plot_->axisEnabled(QwtPlot::yRight);

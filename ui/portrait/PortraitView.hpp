@@ -100,6 +100,8 @@ class PortraitView : public QWidget {
   /// per pixel as the screen's so far.  Waits for that render (a progress dialog appears after half a second,
   /// Cancel stops it).  False on failure or cancel.
   bool exportPng(const QString& path, const QSize& size = QSize(1200, 1000));
+  /// The raster size of the last exportPng() (tests: the export's own pixels, not the screen's).
+  [[nodiscard]] QSize lastExportRasterSize() const noexcept { return lastExportRaster_; }
   /// The current raster as .npy plus its JSON sidecar.  False when there is none yet or writing failed.
   bool exportNpy(const QString& path);
 
@@ -212,6 +214,7 @@ class PortraitView : public QWidget {
   bool renderWanted_ = false;   // a render of the current view is due (waits while hidden)
   std::uint64_t pointsSoFar_ = 0;
   QSize renderedSize_;          // raster size of the current request
+  QSize lastExportRaster_;
   std::unique_ptr<PortraitFrame> frame_;
 };
 

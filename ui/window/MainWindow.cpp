@@ -49,6 +49,7 @@
 #include "ui/periodic/PeriodicOrbitDialog.hpp"
 #include "ui/scan/KScanDialog.hpp"
 #include "ui/portrait/PortraitController.hpp"
+#include "ui/portrait/ManifoldsPanel.hpp"
 #include "ui/portrait/PortraitPanel.hpp"
 #include "ui/segments/LongSegmentsPanel.hpp"
 #include "ui/plots/StatisticsPlot.hpp"
@@ -501,6 +502,11 @@ void MainWindow::showPeriodicOrbitDialog() {
     connect(periodicDialog_, &PeriodicOrbitDialog::overlayRequested, this, [this](const PeriodicOrbit& orbit) {
       tabs_->setCurrentWidget(portrait_);
       portrait_->controller()->showPeriodicOrbit(orbit);
+    });
+    connect(periodicDialog_, &PeriodicOrbitDialog::manifoldsRequested, this, [this](const PeriodicOrbit& orbit) {
+      tabs_->setCurrentWidget(portrait_);
+      portrait_->controller()->setManifoldOrbit(orbit);
+      portrait_->sidePages()->setCurrentWidget(portrait_->manifoldsPanel());
     });
   }
   if (const auto p = panel_->parameters()) periodicDialog_->setK(p->map.K);
