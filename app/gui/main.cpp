@@ -3,8 +3,11 @@
 // Options for scripts (README screenshots, scripts/gui-latency.py):
 //   --preset NAME        load a preset instead of the last parameters
 //   --run                start the run at once
-//   --screenshot PATH    after --after seconds of running, save the window as PATH and quit
+//   --screenshot PATH    after --after seconds, save the window as PATH and quit (a run only with --run)
 //   --measure SECONDS    run, measure event latency and plot refresh rate, print them as JSON and quit
+//   --mode NAME          the portrait's mode (orbits, density, stickiness) or indicator (dig, rotation, …)
+//   --view X0,X1,Y0,Y1   the portrait's rectangle;  --budget POINTS  its points budget
+//   --manifolds          the manifolds of the hyperbolic fixed point with the turnstile and the flux
 //   --segment N          select the long segment of rank N (0: the longest) of the opened run file (a rank
 //                        beyond the segments it keeps is an error: one ERROR line, status 2)
 //   --island             and zoom to one island of its chain once it is identified
@@ -29,6 +32,10 @@
 #include "core/io/NumberText.hpp"
 #include "core/spec/InputRules.hpp"
 #include "ui/window/MainWindow.hpp"
+#include "core/measures/OrbitMeasures.hpp"
+#include "core/portrait/Viewport.hpp"
+#include "ui/portrait/PortraitController.hpp"
+#include "ui/portrait/PortraitPanel.hpp"
 #include "ui/segments/LongSegmentsPanel.hpp"
 #include "ui/window/ParameterPanel.hpp"
 #include "ui/window/Resources.hpp"
@@ -43,7 +50,8 @@ bool onlyInformation(int argc, char** argv) {
     for (const char* option : {"-h", "--help", "--help-all", "-?", "-v", "--version"})
       if (std::strcmp(argv[i], option) == 0) return true;
     for (const char* withValue :
-         {"--preset", "--threads", "--screenshot", "--after", "--measure", "--tab", "--segment"})
+         {"--preset", "--threads", "--screenshot", "--after", "--measure", "--tab", "--segment", "--mode", "--view",
+          "--budget"})
       if (std::strcmp(argv[i], withValue) == 0) ++i;
   }
   return false;
@@ -71,13 +79,37 @@ int readRank(const QString& text) {
   return static_cast<int>(v);
 }
 
+/// --view X0,X1,Y0,Y1: a rectangle of the portrait, physical coordinates (checked against the box later).
+archipelago::PhysicalRect readView(const QString& text) {
+  const auto v = archipelago::io::parseNumbers<long double>("--view", text.toStdString(), ',', 4,
+                                                           "four finite numbers x0,x1,y0,y1 (physical coordinates)");
+  return {v[0], v[1], v[2], v[3]};
+}
+
+/// --budget N: the portrait's points budget, 10⁶ … 10¹².
+std::uint64_t readBudget(const QString& text) {
+  const auto v = archipelago::io::parseNumber<std::uint64_t>("--budget", text.toStdString());
+  if (v < 1'000'000 || v > 1'000'000'000'000)
+    throw std::invalid_argument("--budget = " + archipelago::io::shortText(text.toStdString()) + " must lie in [1e6, 1e12] points");
+  return v;
+}
+
+/// --mode NAME: a portrait mode (orbits, density, stickiness) or an indicator (dig, rotation, fli, megno, lyapunov).
+archipelago::ui::PortraitDisplay readMode(const QString& text) {
+  const std::string name = text.toStdString();
+  if (const auto mode = archipelago::parsePortraitMode(name)) return {*mode, std::nullopt};
+  if (const auto kind = archipelago::parseIndicatorKind(name)) return {archipelago::PortraitMode::Orbits, *kind};
+  throw std::invalid_argument("--mode = " + archipelago::io::shortText(name) +
+                              " must be orbits, density, stickiness, or an indicator: " + archipelago::indicatorKindNames());
+}
+
 /// The numbers of the command line checked before any window or display: the first error's message, if any.
 /// (The parser reads them again below, through the same functions.)
 std::optional<std::string> numberError(int argc, char** argv) {
   try {
     for (int i = 1; i < argc; ++i) {
       const QString arg = QString::fromLocal8Bit(argv[i]);
-      for (const char* name : {"after", "measure", "segment", "threads"}) {
+      for (const char* name : {"after", "measure", "segment", "threads", "view", "budget", "mode"}) {
         const QString option = QStringLiteral("--") + QLatin1String(name);
         QString value;
         if (arg == option && i + 1 < argc) value = QString::fromLocal8Bit(argv[i + 1]);
@@ -86,6 +118,9 @@ std::optional<std::string> numberError(int argc, char** argv) {
         if (std::strcmp(name, "after") == 0) (void)readSeconds("after", value, 0);
         else if (std::strcmp(name, "measure") == 0) (void)readSeconds("measure", value, 1);
         else if (std::strcmp(name, "segment") == 0) (void)readRank(value);
+        else if (std::strcmp(name, "view") == 0) (void)readView(value);
+        else if (std::strcmp(name, "budget") == 0) (void)readBudget(value);
+        else if (std::strcmp(name, "mode") == 0) (void)readMode(value);
         else (void)archipelago::readThreads(value.toStdString());
       }
     }
@@ -139,7 +174,17 @@ int main(int argc, char** argv) {
                                    QStringLiteral("Select the long segment of rank N of the run file (0: the longest)."),
                                    QStringLiteral("N"));
   const QCommandLineOption island(QStringLiteral("island"), QStringLiteral("Zoom to one island of its chain."));
-  parser.addOptions({version, preset, run, threads, screenshot, after, measure, tab, segment, island});
+  const QCommandLineOption mode(QStringLiteral("mode"),
+                                QStringLiteral("Portrait mode: orbits, density, stickiness, dig, rotation, fli, megno or lyapunov."),
+                                QStringLiteral("NAME"));
+  const QCommandLineOption view(QStringLiteral("view"), QStringLiteral("Show the portrait's rectangle x0,x1,y0,y1."),
+                                QStringLiteral("X0,X1,Y0,Y1"));
+  const QCommandLineOption budget(QStringLiteral("budget"), QStringLiteral("The portrait's points budget."),
+                                  QStringLiteral("POINTS"));
+  const QCommandLineOption manifolds(QStringLiteral("manifolds"),
+                                     QStringLiteral("Draw the manifolds of the hyperbolic fixed point and the flux."));
+  parser.addOptions({version, preset, run, threads, screenshot, after, measure, tab, segment, island, mode, view, budget,
+                     manifolds});
   parser.addPositionalArgument(QStringLiteral("file"), QStringLiteral("A run file (.json) or a session (.archipelago) to open."),
                                QStringLiteral("[file.json|file.archipelago]"));
   parser.process(app);
@@ -208,7 +253,22 @@ int main(int argc, char** argv) {
     });
   }
   // A screenshot of a segment shows the opened run, so it does not start a new one.
-  if (parser.isSet(run) || (scripted && !parser.isSet(segment))) QTimer::singleShot(0, &window, [&window] { window.startRun(); });
+  // The portrait as asked (README screenshots, docs/images).
+  archipelago::ui::PortraitPanel* portrait = window.portraitPanel();
+  if (parser.isSet(mode)) portrait->setDisplay(readMode(parser.value(mode)));
+  if (parser.isSet(budget)) portrait->controller()->setPointBudget(readBudget(parser.value(budget)));
+  if (parser.isSet(view)) {
+    const archipelago::PhysicalRect r = readView(parser.value(view));
+    const archipelago::MapParameters& map = portrait->controller()->map();
+    if (const auto e = archipelago::Viewport::validationError(map, r)) {
+      std::fprintf(stderr, "ERROR: --view: %s\n", e->c_str());
+      return 2;
+    }
+    portrait->controller()->setViewport(archipelago::Viewport::fromPhysical(map, r));
+  }
+  if (parser.isSet(manifolds)) portrait->manifoldsAction()->setChecked(true);
+  // A screenshot shows a run only when asked (--run); the latency measure always runs one.
+  if (parser.isSet(run) || parser.isSet(measure)) QTimer::singleShot(0, &window, [&window] { window.startRun(); });
 
   if (parser.isSet(screenshot)) {
     const int ms = static_cast<int>(1000 * afterSeconds);

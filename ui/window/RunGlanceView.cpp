@@ -28,6 +28,7 @@ void RunGlanceView::showSnapshot(const RunSnapshotPtr& snapshot) {
 }
 
 void RunGlanceView::clear() {
+  note_->show();
   pending_.reset();
   drawn_.reset();
   f_->clearData();
@@ -48,6 +49,7 @@ void RunGlanceView::draw() {
     clear();
     return;
   }
+  note_->hide();  // the plots speak for themselves once there is data
   for (StatisticsPlot* p : {f_, c_}) {
     p->setData(seriesOf(drawn_->statistics, p->statistic()), drawn_->theory);
     p->refresh();
