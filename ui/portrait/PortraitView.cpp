@@ -35,6 +35,7 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <limits>
 
 #include "core/measures/MeasureExport.hpp"
 #include "core/portrait/PortraitExport.hpp"
@@ -589,6 +590,17 @@ void PortraitView::setLineTool(bool on) {
 }
 
 bool PortraitView::exportPng(const QString& path, const QSize& requested) {
+  // One export at a time: the wait below runs the event loop, where a second request could otherwise replace
+  // the first one's render (latest wins) and leave it waiting.
+  if (exporting_) {
+    Q_EMIT statusMessage(tr("An export of the portrait is in progress"));
+    return false;
+  }
+  exporting_ = true;
+  const struct Done {
+    bool& flag;
+    ~Done() { flag = false; }
+  } done{exporting_};
   // The export's own layout: the canvas it gets in an image of that size (with equal aspect, the image is cut
   // to the view's aspect), then a raster rendered at exactly that canvas size.
   QSize size = requested;
@@ -617,10 +629,11 @@ bool PortraitView::exportPng(const QString& path, const QSize& requested) {
   request.mode = mode_;
   request.width = w;
   request.height = h;
-  // As many points per pixel as the screen's raster has so far (at least 2^22, at most 2^29: seconds).
+  // As many points per pixel as the screen's raster has so far, at least 2^22 and at most 2^27 (about a second
+  // with two cores: an export after a long accumulation has fewer points per pixel than the screen, not more).
   const double screenPixels = frame_ ? static_cast<double>(frame_->pixelCount()) : 1.0;
   const double perPixel = static_cast<double>(std::max<std::uint64_t>(pointsSoFar_, 1)) / std::max(screenPixels, 1.0);
-  request.points = static_cast<std::uint64_t>(std::clamp(perPixel * w * h, 0x1p22, 0x1p29));
+  request.points = static_cast<std::uint64_t>(std::clamp(perPixel * w * h, 0x1p22, 0x1p27));
   request.passes = 1;
   std::optional<IndicatorRequest> indicator;
   if (indicator_) {
@@ -645,10 +658,11 @@ bool PortraitView::exportPng(const QString& path, const QSize& requested) {
   QEventLoop loop;
   QProgressDialog progress(tr("Rendering the portrait at %1 × %2 pixels for %3…").arg(w).arg(h).arg(path), tr("Cancel"),
                            0, 1000, this);
-  progress.setWindowModality(Qt::WindowModal);
-  progress.setMinimumDuration(500);
+  progress.setWindowModality(Qt::ApplicationModal);
+  progress.setMinimumDuration(std::numeric_limits<int>::max());  // shown below, at half a second, not by setValue
   progress.setAutoClose(false);
   progress.setAutoReset(false);
+  progress.hide();
   const auto ready = connect(worker_, &PortraitWorker::exportReady, &loop,
                              [&](quint64 request, std::shared_ptr<const PortraitFrame> f, const QString& e) {
                                if (request != id) return;
@@ -665,8 +679,15 @@ bool PortraitView::exportPng(const QString& path, const QSize& requested) {
     error = tr("cancelled");
     loop.quit();
   });
-  progress.setValue(0);
-  if (!finished) loop.exec();
+  // The first half second without user input (nothing can close the window under this wait); a longer render
+  // shows the (modal) progress dialog, whose Cancel stops it.
+  QTimer::singleShot(500, &loop, [&] {
+    if (!finished) loop.exit(1);
+  });
+  if (!finished && loop.exec(QEventLoop::ExcludeUserInputEvents) == 1 && !finished) {
+    progress.show();
+    loop.exec();
+  }
   disconnect(ready);
   disconnect(moved);
   progress.close();

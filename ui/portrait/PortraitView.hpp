@@ -215,6 +215,7 @@ class PortraitView : public QWidget {
   std::uint64_t pointsSoFar_ = 0;
   QSize renderedSize_;          // raster size of the current request
   QSize lastExportRaster_;
+  bool exporting_ = false;      // exportPng() waiting for its render
   std::unique_ptr<PortraitFrame> frame_;
 };
 
