@@ -11,6 +11,8 @@
 #include <chrono>
 #include <numeric>
 
+#include "ui/portrait/PortraitPanel.hpp"
+#include "ui/portrait/PortraitView.hpp"
 #include "ui/window/MainWindow.hpp"
 #include "ui/window/StatisticsView.hpp"
 
@@ -49,6 +51,8 @@ void LatencyProbe::start() {
     refreshesAtStart_ = window_.statisticsView()->refreshCount();
     refreshSecondsAtStart_ = window_.statisticsView()->refreshSeconds();
     measureStartNs_ = clock_.nsecsElapsed();
+    if (const auto snapshot = window_.latestSnapshot()) stepsAtStart_ = snapshot->state.stepsDone();
+    portraitAtStart_ = window_.portraitPanel()->view()->pointsSoFar();
     posting_ = true;
     poster_ = std::thread([this] {
       while (posting_) {
@@ -73,6 +77,13 @@ void LatencyProbe::finish() {
   const double elapsed = static_cast<double>(clock_.nsecsElapsed() - measureStartNs_) / 1e9;
   const quint64 refreshes = window_.statisticsView()->refreshCount() - refreshesAtStart_;
   QJsonObject o;
+  const auto snapshot = window_.latestSnapshot();
+  o[QStringLiteral("run_steps_per_second")] =
+      snapshot && elapsed > 0 ? (snapshot->state.stepsDone() - stepsAtStart_) / elapsed : 0.0;
+  const std::uint64_t portraitNow = window_.portraitPanel()->view()->pointsSoFar();
+  o[QStringLiteral("portrait_points_added")] =
+      static_cast<double>(portraitNow >= portraitAtStart_ ? portraitNow - portraitAtStart_ : portraitNow);
+  o[QStringLiteral("portrait_visible")] = window_.portraitPanel()->view()->isVisible();
   o[QStringLiteral("seconds")] = elapsed;
   o[QStringLiteral("events")] = static_cast<int>(latenciesMs_.size());
   o[QStringLiteral("latency_ms_median")] = percentile(latenciesMs_, 0.5);

@@ -4,13 +4,16 @@
 // Event latency: every 20 ms a separate thread (as the X server would, independent of the GUI's own timers)
 // posts a timestamped event to the GUI thread, which measures how long its event loop took to deliver it: the
 // delay a key press or a click would see.  Refresh rate: the
-// number of plot redraws (StatisticsView::refreshCount) per second of the measurement.
+// number of plot redraws (StatisticsView::refreshCount) per second of the measurement.  Run rate: the run's steps
+// per second over the measurement, and the points the phase portrait added meanwhile (scripts/gui-portrait-yield.py
+// compares the rate with the portrait accumulating beside the run and with it hidden, issue 25, finding 15).
 
 #include <QElapsedTimer>
 #include <QObject>
 #include <QTimer>
 
 #include <atomic>
+#include <cstdint>
 #include <thread>
 
 #include <vector>
@@ -46,6 +49,8 @@ class LatencyProbe : public QObject {
   quint64 refreshesAtStart_ = 0;
   double refreshSecondsAtStart_ = 0;
   qint64 measureStartNs_ = 0;
+  double stepsAtStart_ = 0;             // the run's steps done when the measure starts
+  std::uint64_t portraitAtStart_ = 0;   // the portrait's points so far then
   bool measuring_ = false;
 };
 

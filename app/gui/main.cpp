@@ -3,9 +3,13 @@
 // Options for scripts (README screenshots, scripts/gui-latency.py):
 //   --preset NAME        load a preset instead of the last parameters
 //   --run                start the run at once
-//   --screenshot PATH    after --after seconds of running, save the window as PATH and quit
+//   --screenshot PATH    after --after seconds, save the window as PATH and quit (a run only with --run)
 //   --measure SECONDS    run, measure event latency and plot refresh rate, print them as JSON and quit
-//   --segment N          select the long segment of rank N (0: the longest) of the opened run file
+//   --mode NAME          the portrait's mode (orbits, density, stickiness) or indicator (dig, rotation, …)
+//   --view X0,X1,Y0,Y1   the portrait's rectangle;  --budget POINTS  its points budget
+//   --manifolds          the manifolds of the hyperbolic fixed point with the turnstile and the flux
+//   --segment N          select the long segment of rank N (0: the longest) of the opened run file (a rank
+//                        beyond the segments it keeps is an error: one ERROR line, status 2)
 //   --island             and zoom to one island of its chain once it is identified
 //   FILE.json            open a run file
 //   FILE.archipelago     open a session (the window as it was saved)
@@ -20,10 +24,19 @@
 #include <cstdio>
 #include <cstring>
 #include <memory>
+#include <optional>
+#include <stdexcept>
+#include <string>
 
 #include "LatencyProbe.hpp"
+#include "core/io/NumberText.hpp"
 #include "core/spec/InputRules.hpp"
 #include "ui/window/MainWindow.hpp"
+#include "core/measures/OrbitMeasures.hpp"
+#include "core/portrait/Viewport.hpp"
+#include "ui/portrait/PortraitController.hpp"
+#include "ui/portrait/PortraitPanel.hpp"
+#include "ui/segments/LongSegmentsPanel.hpp"
 #include "ui/window/ParameterPanel.hpp"
 #include "ui/window/Resources.hpp"
 
@@ -37,16 +50,97 @@ bool onlyInformation(int argc, char** argv) {
     for (const char* option : {"-h", "--help", "--help-all", "-?", "-v", "--version"})
       if (std::strcmp(argv[i], option) == 0) return true;
     for (const char* withValue :
-         {"--preset", "--threads", "--screenshot", "--after", "--measure", "--tab", "--segment"})
+         {"--preset", "--threads", "--screenshot", "--after", "--measure", "--tab", "--segment", "--mode", "--view",
+          "--budget"})
       if (std::strcmp(argv[i], withValue) == 0) ++i;
   }
   return false;
+}
+
+/// The longest a scripted run may wait before its screenshot or measure (a day): anything longer is a typo.
+constexpr double kMaxScriptSeconds = 86400;
+
+/// A number of seconds given to `option` (`text`), read by core's one reader: finite, in [lo, kMaxScriptSeconds]
+/// (issue #23, finding 9: --after nan|-5|1e12 never quit).  Throws std::invalid_argument with the message.
+double readSeconds(const char* option, const QString& text, double lo) {
+  const double v = archipelago::io::parseNumber<double>(std::string("--") + option, text.toStdString());
+  if (!(v >= lo && v <= kMaxScriptSeconds))
+    throw std::invalid_argument(std::string("--") + option + " = " + archipelago::io::shortText(text.toStdString()) +
+                                " must lie in [" + archipelago::io::shortestText(lo) + ", 86400] seconds");
+  return v;
+}
+
+/// The rank given to --segment: a whole number ≥ 0 (core's reader: "abc", "1.5", "-1" are errors).
+int readRank(const QString& text) {
+  const auto v = archipelago::io::parseNumber<std::uint32_t>("--segment", text.toStdString());
+  if (v < 0 || v > 1'000'000)
+    throw std::invalid_argument("--segment = " + archipelago::io::shortText(text.toStdString()) +
+                                " must be a rank in [0, the number of longest segments the run keeps)");
+  return static_cast<int>(v);
+}
+
+/// --view X0,X1,Y0,Y1: a rectangle of the portrait, physical coordinates (checked against the box later).
+archipelago::PhysicalRect readView(const QString& text) {
+  const auto v = archipelago::io::parseNumbers<long double>("--view", text.toStdString(), ',', 4,
+                                                           "four finite numbers x0,x1,y0,y1 (physical coordinates)");
+  return {v[0], v[1], v[2], v[3]};
+}
+
+/// --budget N: the portrait's points budget, 10⁶ … 10¹².
+std::uint64_t readBudget(const QString& text) {
+  const auto v = archipelago::io::parseNumber<std::uint64_t>("--budget", text.toStdString());
+  if (v < 1'000'000 || v > 1'000'000'000'000)
+    throw std::invalid_argument("--budget = " + archipelago::io::shortText(text.toStdString()) + " must lie in [1e6, 1e12] points");
+  return v;
+}
+
+/// --mode NAME: a portrait mode (orbits, density, stickiness) or an indicator (dig, rotation, fli, megno, lyapunov).
+archipelago::ui::PortraitDisplay readMode(const QString& text) {
+  const std::string name = text.toStdString();
+  if (const auto mode = archipelago::parsePortraitMode(name)) return {*mode, std::nullopt};
+  if (const auto kind = archipelago::parseIndicatorKind(name)) return {archipelago::PortraitMode::Orbits, *kind};
+  throw std::invalid_argument("--mode = " + archipelago::io::shortText(name) +
+                              " must be orbits, density, stickiness, or an indicator: " + archipelago::indicatorKindNames());
+}
+
+/// The numbers of the command line checked before any window or display: the first error's message, if any.
+/// (The parser reads them again below, through the same functions.)
+std::optional<std::string> numberError(int argc, char** argv) {
+  try {
+    for (int i = 1; i < argc; ++i) {
+      const QString arg = QString::fromLocal8Bit(argv[i]);
+      for (const char* name : {"after", "measure", "segment", "threads", "view", "budget", "mode"}) {
+        const QString option = QStringLiteral("--") + QLatin1String(name);
+        QString value;
+        if (arg == option && i + 1 < argc) value = QString::fromLocal8Bit(argv[i + 1]);
+        else if (arg.startsWith(option + QLatin1Char('='))) value = arg.mid(option.size() + 1);
+        else continue;
+        if (std::strcmp(name, "after") == 0) (void)readSeconds("after", value, 0);
+        else if (std::strcmp(name, "measure") == 0) (void)readSeconds("measure", value, 1);
+        else if (std::strcmp(name, "segment") == 0) (void)readRank(value);
+        else if (std::strcmp(name, "view") == 0) (void)readView(value);
+        else if (std::strcmp(name, "budget") == 0) (void)readBudget(value);
+        else if (std::strcmp(name, "mode") == 0) (void)readMode(value);
+        else (void)archipelago::readThreads(value.toStdString());
+      }
+    }
+  } catch (const std::exception& e) {
+    return std::string(e.what());
+  }
+  return std::nullopt;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   archipelago::ui::configureProcessMemory();
+  std::setlocale(LC_NUMERIC, "C");
+  if (!onlyInformation(argc, argv)) {
+    if (const auto e = numberError(argc, argv)) {
+      std::fprintf(stderr, "ERROR: %s\n", e->c_str());
+      return 2;
+    }
+  }
   const std::unique_ptr<QCoreApplication> application =
       onlyInformation(argc, argv) ? std::make_unique<QCoreApplication>(argc, argv)
                                   : std::make_unique<QApplication>(argc, argv);
@@ -80,7 +174,17 @@ int main(int argc, char** argv) {
                                    QStringLiteral("Select the long segment of rank N of the run file (0: the longest)."),
                                    QStringLiteral("N"));
   const QCommandLineOption island(QStringLiteral("island"), QStringLiteral("Zoom to one island of its chain."));
-  parser.addOptions({version, preset, run, threads, screenshot, after, measure, tab, segment, island});
+  const QCommandLineOption mode(QStringLiteral("mode"),
+                                QStringLiteral("Portrait mode: orbits, density, stickiness, dig, rotation, fli, megno or lyapunov."),
+                                QStringLiteral("NAME"));
+  const QCommandLineOption view(QStringLiteral("view"), QStringLiteral("Show the portrait's rectangle x0,x1,y0,y1."),
+                                QStringLiteral("X0,X1,Y0,Y1"));
+  const QCommandLineOption budget(QStringLiteral("budget"), QStringLiteral("The portrait's points budget."),
+                                  QStringLiteral("POINTS"));
+  const QCommandLineOption manifolds(QStringLiteral("manifolds"),
+                                     QStringLiteral("Draw the manifolds of the hyperbolic fixed point and the flux."));
+  parser.addOptions({version, preset, run, threads, screenshot, after, measure, tab, segment, island, mode, view, budget,
+                     manifolds});
   parser.addPositionalArgument(QStringLiteral("file"), QStringLiteral("A run file (.json) or a session (.archipelago) to open."),
                                QStringLiteral("[file.json|file.archipelago]"));
   parser.process(app);
@@ -92,6 +196,24 @@ int main(int argc, char** argv) {
     return 0;
   }
 
+  // Every number of the command line is read and checked before the window opens: one ERROR line and status 2.
+  double afterSeconds = 20, measureSeconds = 0;
+  int segmentRank = -1;
+  try {
+    if (parser.isSet(after)) afterSeconds = readSeconds("after", parser.value(after), 0);
+    if (parser.isSet(measure)) measureSeconds = readSeconds("measure", parser.value(measure), 1);
+    if (parser.isSet(segment)) {
+      segmentRank = readRank(parser.value(segment));
+      if (parser.positionalArguments().isEmpty())
+        throw std::invalid_argument("--segment needs a run file or a session to take the segment from");
+    }
+    if (parser.isSet(island) && !parser.isSet(segment)) throw std::invalid_argument("--island needs --segment N");
+    if (parser.isSet(threads)) (void)archipelago::readThreads(parser.value(threads).toStdString());  // core's rule
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "ERROR: %s\n", e.what());
+    return 2;
+  }
+
   archipelago::ui::MainWindow window;
   const bool scripted = parser.isSet(screenshot) || parser.isSet(measure);
   window.setConfirmations(!scripted);
@@ -101,14 +223,7 @@ int main(int argc, char** argv) {
                  qPrintable(panel->presetNames().join(QStringLiteral(", "))));
     return 1;
   }
-  if (parser.isSet(threads)) {
-    try {
-      window.setThreads(archipelago::readThreads(parser.value(threads).toStdString()));  // core's one rule
-    } catch (const std::exception& e) {
-      std::fprintf(stderr, "ERROR: --%s\n", e.what());
-      return 2;
-    }
-  }
+  if (parser.isSet(threads)) window.setThreads(archipelago::readThreads(parser.value(threads).toStdString()));
   window.show();
   if (parser.isSet(tab)) {
     bool found = false;
@@ -123,12 +238,40 @@ int main(int argc, char** argv) {
     }
   }
   if (!parser.positionalArguments().isEmpty()) window.openInteractively(parser.positionalArguments().front());
-  if (parser.isSet(segment)) window.showLongSegment(parser.value(segment).toInt(), parser.isSet(island));
+  if (segmentRank >= 0) {
+    window.showLongSegment(segmentRank, parser.isSet(island));
+    // A rank beyond the segments the run keeps is an error, known once the run file is analysed.
+    QObject::connect(&window, &archipelago::ui::MainWindow::runStatusChanged, &window, [&window, segmentRank](auto status) {
+      if (archipelago::ui::isLive(status) || !window.latestSnapshot()) return;
+      window.refreshNow();
+      const int kept = window.longSegments()->model()->rowCount();
+      if (segmentRank < kept) return;
+      std::fprintf(stderr, "ERROR: --segment = %d: the run keeps %d longest segments (ranks 0 to %d)\n", segmentRank,
+                   kept, kept - 1);
+      std::fflush(stderr);
+      QTimer::singleShot(0, [] { QApplication::exit(2); });
+    });
+  }
   // A screenshot of a segment shows the opened run, so it does not start a new one.
-  if (parser.isSet(run) || (scripted && !parser.isSet(segment))) QTimer::singleShot(0, &window, [&window] { window.startRun(); });
+  // The portrait as asked (README screenshots, docs/images).
+  archipelago::ui::PortraitPanel* portrait = window.portraitPanel();
+  if (parser.isSet(mode)) portrait->setDisplay(readMode(parser.value(mode)));
+  if (parser.isSet(budget)) portrait->controller()->setPointBudget(readBudget(parser.value(budget)));
+  if (parser.isSet(view)) {
+    const archipelago::PhysicalRect r = readView(parser.value(view));
+    const archipelago::MapParameters& map = portrait->controller()->map();
+    if (const auto e = archipelago::Viewport::validationError(map, r)) {
+      std::fprintf(stderr, "ERROR: --view: %s\n", e->c_str());
+      return 2;
+    }
+    portrait->controller()->setViewport(archipelago::Viewport::fromPhysical(map, r));
+  }
+  if (parser.isSet(manifolds)) portrait->manifoldsAction()->setChecked(true);
+  // A screenshot shows a run only when asked (--run); the latency measure always runs one.
+  if (parser.isSet(run) || parser.isSet(measure)) QTimer::singleShot(0, &window, [&window] { window.startRun(); });
 
   if (parser.isSet(screenshot)) {
-    const int ms = static_cast<int>(1000 * parser.value(after).toDouble());
+    const int ms = static_cast<int>(1000 * afterSeconds);
     QTimer::singleShot(ms, &window, [&window, path = parser.value(screenshot)] {
       const bool ok = window.grab().save(path);
       std::printf("%s %s\n", ok ? "wrote" : "could not write", qPrintable(path));
@@ -137,7 +280,7 @@ int main(int argc, char** argv) {
     });
   }
   if (parser.isSet(measure)) {
-    auto* probe = new archipelago::app::LatencyProbe(window, parser.value(measure).toDouble(), &window);
+    auto* probe = new archipelago::app::LatencyProbe(window, measureSeconds, &window);
     QObject::connect(probe, &archipelago::app::LatencyProbe::done, &window, [&window](const QString& json) {
       std::printf("%s\n", qPrintable(json));
       std::fflush(stdout);

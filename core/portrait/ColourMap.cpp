@@ -98,8 +98,12 @@ Rgb orbitColour(std::uint32_t label) noexcept {
 }
 
 namespace {
-/// log10 of robust extremes of the visit counts (0.5% and 99.9% quantiles): a few pixels grazed once at the
-/// islands' edges would otherwise flatten the whole sea into one colour.  (0, 0) when there are none.
+/// The Density scale, in log10 visits: centred on the median visited pixel, as wide on each side as the farther
+/// of the 5% and 99.5% quantiles.  The sea is nearly uniform, so between robust extremes (0.5% … 99.9%, as
+/// before) its bulk sat at the top of the scale and the portrait was almost all saturated yellow (issue 25,
+/// finding 14); centred, the bulk spans the middle of the map, the stickier pixels rise towards its top and the
+/// few grazed ones at the islands' edges fall towards its bottom.  (0, 0) when no pixel was visited; lo = hi when
+/// every visited pixel has the same count.
 std::pair<double, double> logRange(std::vector<std::uint64_t>& visited) {
   if (visited.empty()) return {0.0, 0.0};
   auto quantile = [&](double f) {
@@ -107,8 +111,9 @@ std::pair<double, double> logRange(std::vector<std::uint64_t>& visited) {
     std::nth_element(visited.begin(), it, visited.end());
     return std::log10(static_cast<double>(*it));
   };
-  const double lo = quantile(0.005);
-  return {lo, quantile(0.999)};
+  const double median = quantile(0.5);
+  const double halfWidth = std::max(median - quantile(0.05), quantile(0.995) - median);
+  return {median - halfWidth, median + halfWidth};
 }
 }  // namespace
 
@@ -127,8 +132,7 @@ RasterImage colourize(const PortraitRaster& raster, ColourMapName name) {
   auto scaled = [](double t) { return kLowest + (1 - kLowest) * t; };
   switch (raster.mode) {
     case PortraitMode::Density: {
-      // Log scale between robust extremes of the visited pixels (0.5% and 99.9% quantiles): a few pixels
-      // grazed once at the islands' edges would otherwise flatten the whole sea into one colour.
+      // Log scale centred on the median visited pixel (logRange above), clamped at its ends.
       std::vector<std::uint64_t> visited;
       for (std::size_t i = 0; i < n; ++i)
         if (raster.counts[i] > 0) visited.push_back(raster.counts[i]);
@@ -139,7 +143,8 @@ RasterImage colourize(const PortraitRaster& raster, ColourMapName name) {
       for (std::size_t i = 0; i < n; ++i) {
         const std::uint64_t c = raster.counts[i];
         put(i, c == 0 ? map.at(0)
-                      : map.at(scaled(hi > lo ? (std::log10(static_cast<double>(c)) - lo) / (hi - lo) : 1)));
+                      : map.at(scaled(hi > lo ? std::clamp((std::log10(static_cast<double>(c)) - lo) / (hi - lo), 0.0, 1.0)
+                                              : 1)));
       }
       break;
     }

@@ -4,8 +4,9 @@
 ///
 /// The perceptual maps are the matplotlib maps "inferno" and "viridis" (van der Walt & Smith, CC0),
 /// evaluated from degree-6 polynomial fits (max error < 1/255 per channel), plus a grey ramp.  Scales:
-///   - Density: t = (log c − log cmin) / (log cmax − log cmin) over the visited pixels (the sea is nearly
-///     uniform, so a log scale between its extremes shows where sticky orbits linger);
+///   - Density: t = (log c − log m)/(2w) + ½ clamped to [0, 1], m the median visited count and w the larger of
+///     log(m/c₅%) and log(c₉₉.₅%/m): the sea is nearly uniform, so a log scale centred on its bulk shows where
+///     sticky orbits linger (between its extremes the bulk saturated the top of the map: issue 25, finding 14);
 ///   - Stickiness: t = (log10 L − log10 Lmin) / (log10 Lmax − log10 Lmin), L the mean segment length (§3);
 ///   - Orbits: each label gets its own hue (golden-ratio steps around the colour wheel), not a scale;
 ///     orbits that wrapped around the torus (the sea and accelerator modes) are shaded by log visits through

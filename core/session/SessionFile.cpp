@@ -119,6 +119,7 @@ std::string sessionText(const Session& s) {
   if (s.embeddedRun) j["run"] = {{"embedded", json::parse(runFileText(*s.embeddedRun))}};
   else if (s.runFile) j["run"] = {{"file", s.runFile->generic_string()}};
   else j["run"] = nullptr;
+  if (s.runStopped && !j["run"].is_null()) j["run"]["stopped"] = true;
   j["tab"] = s.tab;
   json portrait = json::object();
   portrait["history"] = json::array();
@@ -153,8 +154,12 @@ Session sessionFromJson(json j) {
   }
 
   if (const auto run = j.find("run"); run != j.end() && !run->is_null()) {
-    onlyKeys(*run, "run", {"file", "embedded"});
-    if (run->size() != 1) bad("run must hold exactly one of 'file' and 'embedded'");
+    onlyKeys(*run, "run", {"file", "embedded", "stopped"});
+    if (const auto stopped = run->find("stopped"); stopped != run->end()) {
+      if (!stopped->is_boolean()) bad("run.stopped must be true or false");
+      s.runStopped = stopped->get<bool>();
+    }
+    if (run->size() - run->count("stopped") != 1) bad("run must hold exactly one of 'file' and 'embedded'");
     if (const auto f = run->find("file"); f != run->end()) {
       const std::string path = string(*f, "run.file", 4096);
       if (path.empty()) bad("run.file must not be empty");

@@ -13,7 +13,7 @@
 ///
 ///   {"format": "archipelago-session", "version": 1,
 ///    "spec": {…run spec…},
-///    "run": null | {"file": "run.json"} | {"embedded": {…run file…}},
+///    "run": null | {"file": "run.json"} | {"embedded": {…run file…}},  (either may add "stopped": true)
 ///    "tab": "Phase portrait",
 ///    "portrait": {"history": [{"centre": [X, Y], "size": ["w", "h"]}, …], "current": 0, "mode": "density",
 ///                 "colours": "inferno", "budget": 100000000, "orbits": [[x, y], …],
@@ -43,7 +43,10 @@ inline constexpr const char* kSessionFileSuffix = ".archipelago";
 /// Bounds of what a session may hold (a bigger file is refused before it is read, a longer list is an error).
 inline constexpr std::uintmax_t kMaxSessionFileBytes = std::uintmax_t{2} << 30;  ///< an embedded run may be large
 inline constexpr std::size_t kMaxSessionHistory = 1000;
-inline constexpr std::size_t kMaxSessionOrbits = 10000;
+/// Launched orbits: the GUI's own bound too (PortraitController refuses more), so that every orbit a session
+/// can hold is drawn and measured: 500 orbits of 20 000 steps are 10⁷ points (160 MB drawn), and each is
+/// measured once in the background (issue #23, finding 5: 10⁴ orbits once froze the GUI for an hour).
+inline constexpr std::size_t kMaxSessionOrbits = 500;
 inline constexpr std::size_t kMaxSessionPeriodicPoints = 1'000'000;  ///< over all periodic overlays
 inline constexpr std::size_t kMaxSessionPlots = 64;
 
@@ -84,6 +87,7 @@ struct Session {
   RunSpec spec;
   std::optional<std::filesystem::path> runFile;  ///< a referenced run file (as written: relative or absolute)
   std::optional<TrappingState> embeddedRun;      ///< or the run itself
+  bool runStopped = false;                       ///< the run was stopped (final: it opens stopped, not resumable)
   std::string tab;                               ///< the active tab's title ("" = the first)
   SessionPortrait portrait;
   int segmentRank = -1;                          ///< the selected long segment (−1: none)

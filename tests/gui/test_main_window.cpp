@@ -25,7 +25,10 @@ class TestMainWindow : public QObject {
     QVERIFY(titles.contains(QStringLiteral("&Run")));
     QVERIFY(titles.contains(QStringLiteral("&Help")));
     QCOMPARE(window.windowTitle(), QStringLiteral("Archipelago"));
-    QCOMPARE(window.tabs()->tabText(0), QStringLiteral("Statistics"));
+    // The first screen is the phase portrait (issue 25, finding 5), with the run's f_t and C_τ beside it.
+    QCOMPARE(window.tabs()->tabText(0), QStringLiteral("Phase portrait"));
+    QCOMPARE(window.tabs()->currentIndex(), 0);
+    QCOMPARE(window.tabs()->tabText(1), QStringLiteral("Statistics"));
     QCOMPARE(window.statisticsView()->plots().size(), 6);
     QCOMPARE(window.runAction()->shortcut(), QKeySequence(Qt::Key_F5));
     QVERIFY(window.runAction()->isEnabled());

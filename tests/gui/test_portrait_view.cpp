@@ -162,7 +162,8 @@ class TestPortraitView : public QObject {
     c.setMode(PortraitMode::Stickiness);
     c.setColourMap(archipelago::ColourMapName::Grey);
     c.setPointBudget(123'000'000);
-    QCOMPARE(panel.findChildren<QComboBox*>().front()->currentData().toInt(), static_cast<int>(PortraitMode::Stickiness));
+    QVERIFY(panel.display() == (archipelago::ui::PortraitDisplay{PortraitMode::Stickiness, std::nullopt}));
+    QCOMPARE(panel.modeBox()->currentText(), QStringLiteral("Stickiness (mean trapped length)"));
     QCOMPARE(panel.colourBox()->currentData().toInt(), static_cast<int>(archipelago::ColourMapName::Grey));
     QCOMPARE(panel.budgetBox()->currentData().toULongLong(), 123'000'000ULL);
     c.launchOrbit(-0.3, 0.05, 100);
@@ -181,7 +182,8 @@ class TestPortraitView : public QObject {
     QCOMPARE(p.controller->orbitCount(), 0);
     QTest::mouseClick(canvas, Qt::LeftButton, Qt::NoModifier, canvas->rect().center());
     QCOMPARE(p.controller->orbitCount(), 1);
-    QCOMPARE(p.view->layerItems(PortraitLayer::launchedOrbits).size(), std::size_t{1});
+    // Traced off the GUI thread, then drawn (issue #23, finding 5).
+    QTRY_COMPARE(p.view->layerItems(PortraitLayer::launchedOrbits).size(), std::size_t{1});
     QVERIFY(p.controller->viewport() == Viewport());  // a click is not a zoom
     p.controller->launchOrbit(-0.3, 0.05, 1000);
     QCOMPARE(p.controller->orbitCount(), 2);
@@ -194,7 +196,9 @@ class TestPortraitView : public QObject {
     const QString png = dir.filePath(QStringLiteral("portrait.png")), npy = dir.filePath(QStringLiteral("portrait.npy"));
     QVERIFY(p.view->exportPng(png, QSize(500, 400)));
     QImage written(png);
-    QCOMPARE(written.size(), QSize(500, 400));
+    // At most the size asked, cut to the view's aspect (equal aspect: the whole box is square).
+    QCOMPARE(written.height(), 400);
+    QVERIFY(written.width() <= 500 && written.width() > 300);
     QVERIFY(p.view->exportNpy(npy));
     QVERIFY(QFileInfo(npy).size() > 128);
     QVERIFY(QFileInfo::exists(dir.filePath(QStringLiteral("portrait.json"))));
@@ -231,11 +235,12 @@ class TestPortraitView : public QObject {
     QVERIFY(frame->request.map == other);
   }
 
-  // The same in the main window: the portrait tab is not the first one, so nothing renders until it is shown.
+  // The same in the main window: with the portrait's tab not shown, nothing renders until it is shown.
   void theMainWindowsPortraitRendersWhenItsTabIsShown() {
     archipelago::ui::MainWindow window;
     window.setConfirmations(false);
     window.resize(1500, 920);
+    window.tabs()->setCurrentIndex(1);
     window.show();
     QVERIFY(QTest::qWaitForWindowExposed(&window));
     PortraitPanel& panel = *window.portraitPanel();
@@ -247,7 +252,7 @@ class TestPortraitView : public QObject {
     QVERIFY(waitFinished(panel.view()));
     const QWidget* canvas = panel.view()->canvas();
     QCOMPARE(panel.view()->currentFrame()->request.width, static_cast<int>(canvas->width() * canvas->devicePixelRatioF()));
-    QVERIFY(panel.view()->currentFrame()->request.width > 500);
+    QVERIFY(panel.view()->currentFrame()->request.width > 450);
     QVERIFY(panel.view()->currentFrame()->request.map == window.parameterPanel()->parameters()->map);
   }
 

@@ -6,7 +6,8 @@
 /// Threads (Qt's threaded-Mandelbrot pattern, STYLE.md).  A BackgroundJobs object serves one receiver, a
 /// QObject of the thread that creates it (the GUI thread), and owns one worker thread per *channel*, started
 /// at the channel's first job; with JobPriority::background the threads are niced so that the GUI thread keeps
-/// the upper hand over long computations (the OpenMP team a job starts inherits the nice value).  Only the
+/// the upper hand over long computations (the OpenMP team a job starts inherits the nice value), and with
+/// JobPriority::idle niced further, so that a background run keeps most of the cores too.  Only the
 /// receiver's thread calls submit(), cancel() and requestStop().
 ///
 /// A job is a callable that computes from the values it captured (calling core; it never touches a GUI
@@ -65,6 +66,23 @@ enum class JobOrder {
 enum class JobPriority {
   normal,       ///< as the GUI thread: short interactive jobs (a replay, an orbit search) finish soonest
   background,   ///< niced (Linux): long computations using every core (a run) leave the GUI thread responsive
+  idle,         ///< niced further: work that should yield the cores to a run (the portrait's accumulation)
+};
+
+/// A pause switch a long job can wait at between chunks (the portrait's accumulation while its tab is hidden):
+/// the receiver's thread sets it, the job calls waitWhilePaused() where stopping would lose work.  A stop
+/// request ends the wait at once.
+class PauseGate {
+ public:
+  void setPaused(bool paused);
+  [[nodiscard]] bool paused() const;
+  /// Blocks while paused, until resumed or `stop` is requested; returns false when stopped.
+  bool waitWhilePaused(const std::stop_token& stop);
+
+ private:
+  mutable std::mutex mutex_;
+  std::condition_variable_any wake_;
+  bool paused_ = false;  // guarded by mutex_
 };
 
 /// The progress type of a job that reports none.

@@ -1,5 +1,10 @@
 #include "ui/periodic/PeriodicOrbitDialog.hpp"
 
+#include <stdexcept>
+#include <string>
+
+#include "core/periodic/HyperbolicPartner.hpp"
+
 #include <QCheckBox>
 #include <QDialogButtonBox>
 #include <QDoubleSpinBox>
@@ -60,6 +65,14 @@ PeriodicOrbitDialog::PeriodicOrbitDialog(QWidget* parent) : QDialog(parent) {
   stableBox_ = new QCheckBox(tr("Stable (elliptic) orbits only"), this);
   stableBox_->setChecked(true);
 
+  // Positions are those of the portrait's axes: the map Q in (x, y), the central island about x = −√K.  The
+  // paper quotes positions from that centre, x + √K (issue 25, finding 10).
+  note_ = new QLabel(tr("Coordinates are those of the portrait: (x, y) of the map Q, whose central island lies "
+                        "around (−√K, 0). The paper quotes positions from that centre, x + √K: its period-138 orbit "
+                        "at x + √K = 0.352 is at x = 0.352 − √0.1 = 0.036 here."),
+                     this);
+  note_->setWordWrap(true);
+  note_->setObjectName(QStringLiteral("coordinatesNote"));
   auto* form = new QFormLayout;
   form->addRow(tr("&K:"), kEdit_);
   form->addRow(tr("&Period n:"), periodBox_);
@@ -85,9 +98,21 @@ PeriodicOrbitDialog::PeriodicOrbitDialog(QWidget* parent) : QDialog(parent) {
   overlayButton_ = new QPushButton(tr("&Overlay"), this);
   overlayButton_->setToolTip(tr("Draw the orbit on the phase portrait"));
   overlayButton_->setEnabled(false);
+  partnerButton_ = new QPushButton(tr("Hyperbolic &Partner"), this);
+  partnerButton_->setToolTip(tr("The unstable orbit of the same period between the islands of this elliptic orbit: "
+                                "its manifolds are the chain's separatrices"));
+  manifoldsButton_ = new QPushButton(tr("&Manifolds"), this);
+  manifoldsButton_->setToolTip(tr("Draw the stable and unstable manifolds of this hyperbolic orbit on the portrait, "
+                                  "with its turnstile and the flux (Portrait ▸ Manifolds and Flux)"));
   auto* buttons = new QDialogButtonBox(QDialogButtonBox::Close, this);
   buttons->addButton(findButton_, QDialogButtonBox::ActionRole);
   buttons->addButton(overlayButton_, QDialogButtonBox::ActionRole);
+  buttons->addButton(partnerButton_, QDialogButtonBox::ActionRole);
+  buttons->addButton(manifoldsButton_, QDialogButtonBox::ActionRole);
+  connect(partnerButton_, &QPushButton::clicked, this, &PeriodicOrbitDialog::findPartner);
+  connect(manifoldsButton_, &QPushButton::clicked, this, [this] {
+    if (orbit_) Q_EMIT manifoldsRequested(*orbit_);
+  });
   connect(buttons, &QDialogButtonBox::rejected, this, &QDialog::reject);
   connect(findButton_, &QPushButton::clicked, this, &PeriodicOrbitDialog::find);
   connect(overlayButton_, &QPushButton::clicked, this, [this] {
@@ -95,11 +120,40 @@ PeriodicOrbitDialog::PeriodicOrbitDialog(QWidget* parent) : QDialog(parent) {
   });
 
   auto* layout = new QVBoxLayout(this);
+  layout->addWidget(note_);
   layout->addLayout(form);
   layout->addWidget(summary_);
   layout->addWidget(points_, 1);
   layout->addWidget(buttons);
-  resize(520, 560);
+  resize(560, 600);
+  updateButtons();
+}
+
+QString PeriodicOrbitDialog::coordinatesNote() const { return note_->text(); }
+
+void PeriodicOrbitDialog::updateButtons() {
+  const bool have = orbit_.has_value() && !searching_;
+  const bool elliptic = have && orbit_->classification().stable();
+  overlayButton_->setEnabled(have);
+  partnerButton_->setEnabled(elliptic && orbit_->period >= 1);
+  manifoldsButton_->setEnabled(have && !elliptic);
+}
+
+void PeriodicOrbitDialog::findPartner() {
+  if (!orbit_ || !orbit_->classification().stable()) return;
+  const PeriodicOrbit chain = *orbit_;
+  searching_ = true;
+  findButton_->setEnabled(false);
+  updateButtons();
+  summary_->setText(tr("Searching for the hyperbolic partner of the period-%1 orbit\u2026").arg(chain.period));
+  Job<PeriodicOrbit> job;
+  job.work = [chain](JobContext<NoProgress>&) -> std::optional<PeriodicOrbit> {
+    if (auto partner = findHyperbolicPartner(chain)) return partner;
+    throw std::runtime_error("no hyperbolic orbit of period " + std::to_string(chain.period) +
+                             " found between the islands");
+  };
+  job.done = [this](const JobResult<PeriodicOrbit>& r) { onResult(r.id, r.value, r.error); };
+  request_ = jobs_->submit(std::move(job));
 }
 
 PeriodicOrbitDialog::~PeriodicOrbitDialog() {
@@ -136,6 +190,7 @@ void PeriodicOrbitDialog::find() {
   search.stableOnly = stableBox_->isChecked();
   searching_ = true;
   findButton_->setEnabled(false);
+  updateButtons();
   summary_->setText(tr("Searching for an orbit of period %1 near (%2, %3)\u2026").arg(search.period).arg(x).arg(y));
   Job<PeriodicOrbit> job;  // JobOrder::latest: the answer of an older search is dropped
   job.work = [K, search](JobContext<NoProgress>&) -> std::optional<PeriodicOrbit> {
@@ -150,7 +205,7 @@ void PeriodicOrbitDialog::onResult(quint64 requestId, const std::optional<Period
   searching_ = false;
   findButton_->setEnabled(true);
   orbit_ = orbit;
-  overlayButton_->setEnabled(orbit_.has_value());
+  updateButtons();
   if (!orbit_) {
     summary_->setText(tr("<b>No orbit found:</b> %1").arg(error.toHtmlEscaped()));
     points_->setRowCount(0);

@@ -41,6 +41,11 @@ class PeriodicOrbitDialog : public QDialog {
 
   /// Starts a search with the values in the form (also the "Find" button).
   void find();
+  /// Finds the hyperbolic partner of the elliptic orbit shown (core's findHyperbolicPartner): the unstable orbit
+  /// between its islands, whose manifolds are the chain's separatrices.  (The "Hyperbolic Partner" button.)
+  void findPartner();
+  /// The note on coordinates shown above the form (tests).
+  [[nodiscard]] QString coordinatesNote() const;
   /// The orbit found by the last search that succeeded (nothing before, or after a failed search).
   [[nodiscard]] const std::optional<PeriodicOrbit>& orbit() const noexcept { return orbit_; }
   /// True while a search runs.
@@ -51,10 +56,13 @@ class PeriodicOrbitDialog : public QDialog {
   void searchFinished(bool found);
   /// The user asked to draw this orbit on the portrait.
   void overlayRequested(const archipelago::PeriodicOrbit& orbit);
+  /// The user asked for the manifolds of this hyperbolic orbit on the portrait (issue #28).
+  void manifoldsRequested(const archipelago::PeriodicOrbit& orbit);
 
  private:
   void onResult(quint64 requestId, const std::optional<PeriodicOrbit>& orbit, const QString& error);
   void showOrbit();
+  void updateButtons();
 
   QLineEdit* kEdit_ = nullptr;
   QSpinBox* periodBox_ = nullptr;
@@ -64,6 +72,9 @@ class PeriodicOrbitDialog : public QDialog {
   QCheckBox* stableBox_ = nullptr;
   QPushButton* findButton_ = nullptr;
   QPushButton* overlayButton_ = nullptr;
+  QPushButton* partnerButton_ = nullptr;
+  QPushButton* manifoldsButton_ = nullptr;
+  QLabel* note_ = nullptr;
   QLabel* summary_ = nullptr;
   QTableWidget* points_ = nullptr;
   std::unique_ptr<BackgroundJobs> jobs_;

@@ -93,19 +93,24 @@ class Zoomer : public QwtPlotZoomer {
     setMousePattern(QwtEventPattern::MouseSelect3, Qt::RightButton);
   }
 };
-// The literature's tail slopes t^−γ on the P_t plot (issue #14, item 7): the lines, their anchor and labels
-// are core's (stats/TailAnalysis.hpp, referenceSlopes()); this draws them, thin and grey, into `items`.
+// The literature's tail slopes t^−γ on the P_t plot (issue #14, item 7): the lines, their anchor and exponents
+// are core's (stats/ReferenceSlopes.hpp, referenceSlopes()); this draws them thin, each in its own colour and
+// dash so that the legend tells them apart, and labels them as what they are: asymptotic values from the
+// literature (issue 25, finding 6; the sources are in core's table and the CSV).
 void addReferenceSlopes(QwtPlot& plot, const Series& P, bool logY, std::vector<QwtPlotCurve*>& items) {
-  static const Qt::PenStyle kStyles[] = {Qt::DotLine, Qt::DashDotLine, Qt::DashDotDotLine, Qt::DashLine};
+  static const Qt::PenStyle kStyles[] = {Qt::DashLine, Qt::DashDotLine, Qt::DotLine, Qt::DashDotDotLine};
+  static const QColor kColours[] = {QColor(140, 86, 75), QColor(148, 103, 189), QColor(23, 150, 170), QColor(110, 110, 110)};
   int index = 0;
   for (const ReferenceSlope& r : referenceSlopes(P)) {
     QVector<QPointF> points;
     for (std::size_t i = 0; i < r.line.x.size(); ++i)
       if (usable(r.line.x[i], r.line.value[i], logY)) points.append(QPointF(r.line.x[i], r.line.value[i]));
-    auto* c = new QwtPlotCurve(QwtText(QString::fromStdString(r.labelRich), QwtText::RichText));
-    c->setPen(QPen(QColor(110, 110, 110), 1.2, kStyles[index++ % 4]));
+    auto* c = new QwtPlotCurve(QwtText(QObject::tr("t<sup>−%1</sup> asymptotic (literature)").arg(r.gamma), QwtText::RichText));
+    c->setPen(QPen(kColours[index % 4], 1.4, kStyles[index % 4]));
+    ++index;
     c->setRenderHint(QwtPlotItem::RenderAntialiased);
     c->setItemAttribute(QwtPlotItem::AutoScale, false);  // references never move the ranges of the data
+    c->setLegendIconSize(QSize(22, 8));
     c->setSamples(points);
     c->attach(&plot);
     items.push_back(c);
@@ -187,7 +192,8 @@ StatisticsPlot::StatisticsPlot(Statistic statistic, QWidget* parent) : QwtPlot(p
   legend->setSpacing(2);
   legend->setItemMargin(1);
   QFont legendFont = font();
-  legendFont.setPointSizeF(legendFont.pointSizeF() * 0.85);
+  legendFont.setPointSizeF(legendFont.pointSizeF() * 0.8);
+  legendPointSize_ = legendFont.pointSizeF();
   legend->setFont(legendFont);
   legend->attach(this);
 
@@ -317,22 +323,25 @@ void StatisticsPlot::showPlaceholder(bool empty) {
 }
 
 QwtInterval StatisticsPlot::exponentRange() const {
-  // The local exponent's tail (few segments left in C_τ) is noise that reaches 10 and more: the range follows
-  // the points known to better than ±0.5, so K = 0's τ⁻⁵ regime (exponent 5) is on scale as well as the
-  // paper's fig. 5d (0 … 2).  Never less than 0 … 1.
-  double lo = 0, hi = 1;
-  bool any = false;
+  // The range of interest is the paper's 0 … 2 (fig. 5d: the exponent of C_τ's slow decay, ¼ … 3/2), whatever
+  // the few noisy points at the end of the tail reach (they once set 0 … 16, issue 25, finding 7).  Only when
+  // most of the well-measured points (error ≤ 0.5) lie above 2 — K = 0's τ⁻⁵ regime — does the range follow
+  // them, to their 90th percentile.  Reset Zoom (Ctrl+0) comes back here after a zoom.
+  std::vector<double> measured;
+  double lo = 0;
   for (std::size_t i = 0; i < data_.x.size() && i < data_.value.size(); ++i) {
     const double v = data_.value[i];
     const double e = i < data_.error.size() ? std::abs(data_.error[i]) : 0;
     if (!std::isfinite(v) || !(data_.x[i] > 0) || !(e <= 0.5)) continue;
+    measured.push_back(v);
     lo = std::min(lo, v);
-    hi = std::max(hi, v);
-    any = true;
   }
-  if (!any) return QwtInterval(0, 3);
-  const double pad = 0.08 * (hi - lo);
-  return QwtInterval(lo < 0 ? lo - pad : 0, hi + pad);
+  if (measured.empty()) return QwtInterval(0, 2);
+  std::sort(measured.begin(), measured.end());
+  const double median = measured[measured.size() / 2];
+  double hi = 2;
+  if (median > 2) hi = 1.15 * measured[std::min(measured.size() - 1, measured.size() * 9 / 10)];
+  return QwtInterval(lo < 0 ? std::max(lo, -1.0) - 0.1 : 0, hi);
 }
 
 QVector<QPointF> StatisticsPlot::plottedPoints() const {
@@ -348,6 +357,37 @@ bool StatisticsPlot::followingData() const {
   // Panning and the wheel change the scales without the zoom stack: any range other than the last
   // automatic one is the user's.
   return axisInterval(kAxisX) == autoX_ && axisInterval(kAxisY) == autoY_;
+}
+
+std::vector<const QwtPlotCurve*> StatisticsPlot::referenceCurves() const {
+  std::vector<const QwtPlotCurve*> curves;
+  for (const QwtPlotCurve* c : theoryCurves_)
+    if (c->title().text().contains(QStringLiteral("asymptotic (literature)"))) curves.push_back(c);
+  return curves;
+}
+
+QRectF StatisticsPlot::legendRect() const {
+  return legend_->isVisible() ? legend_->geometry(canvas()->contentsRect()) : QRectF();
+}
+
+void StatisticsPlot::fitLegend() {
+  // The legend stays inside the frame (issue 25, finding 6): a smaller font while it does not fit, down to 6 pt.
+  QFont f = legend_->font();
+  f.setPointSizeF(legendPointSize_);
+  legend_->setFont(f);
+  const QRectF frame = canvas()->contentsRect();
+  while (legend_->font().pointSizeF() > 6.0) {
+    const QRectF r = legend_->geometry(frame);
+    if (frame.contains(r)) break;
+    QFont smaller = legend_->font();
+    smaller.setPointSizeF(smaller.pointSizeF() - 0.5);
+    legend_->setFont(smaller);
+  }
+}
+
+void StatisticsPlot::resizeEvent(QResizeEvent* event) {
+  QwtPlot::resizeEvent(event);
+  fitLegend();
 }
 
 void StatisticsPlot::refresh() {
@@ -369,6 +409,7 @@ void StatisticsPlot::refresh() {
       setAxisAutoScale(kAxisY, true);
     }
   }
+  fitLegend();
   replot();
   if (follow && !empty) {
     zoomer_->setZoomBase(false);

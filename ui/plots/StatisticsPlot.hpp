@@ -71,6 +71,10 @@ class StatisticsPlot : public QwtPlot {
   [[nodiscard]] bool placeholderShown() const;
   [[nodiscard]] bool legendShown() const;
   [[nodiscard]] bool crosshairEnabled() const;
+  /// Where the legend is drawn, in canvas coordinates (empty when hidden): always inside the canvas.
+  [[nodiscard]] QRectF legendRect() const;
+  /// The reference slopes drawn (P_t only): one curve each, with its own pen (tests).
+  [[nodiscard]] std::vector<const QwtPlotCurve*> referenceCurves() const;
   /// The title as plain Unicode text for file metadata: "fₜ — distribution of trapping times".
   [[nodiscard]] QString plainTitle() const;
 
@@ -81,12 +85,14 @@ class StatisticsPlot : public QwtPlot {
 
  protected:
   void contextMenuEvent(QContextMenuEvent* event) override;
+  void resizeEvent(QResizeEvent* event) override;
 
  private:
   [[nodiscard]] bool logY() const noexcept;
   [[nodiscard]] bool followingData() const;
   void showPlaceholder(bool empty);
   [[nodiscard]] QwtInterval exponentRange() const;
+  void fitLegend();
 
   Statistic statistic_;
   Series data_;
@@ -101,6 +107,7 @@ class StatisticsPlot : public QwtPlot {
   QwtPlotPicker* crosshair_ = nullptr;
   QwtInterval autoX_, autoY_;  // the ranges last chosen by autoscaling; anything else is the user's view
   bool forceFollow_ = true;
+  double legendPointSize_ = 8;
 };
 
 }  // namespace archipelago::ui

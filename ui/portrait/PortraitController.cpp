@@ -1,6 +1,8 @@
 #include "ui/portrait/PortraitController.hpp"
 
 #include <QBrush>
+#include <QElapsedTimer>
+#include <QLocale>
 #include <QPen>
 #include <QWidget>
 #include <qwt_plot_marker.h>
@@ -8,32 +10,71 @@
 #include <qwt_text.h>
 
 #include <algorithm>
+#include <cmath>
 #include <exception>
 
+#include "core/kernels/KernelDispatch.hpp"
+#include "core/manifolds/HyperbolicOrbit.hpp"
+#include "core/map/FixedPointMap.hpp"
 #include "core/periodic/SegmentAnalysis.hpp"
 #include "core/portrait/MapOverlays.hpp"
+#include "ui/jobs/BackgroundJobs.hpp"
 #include "ui/portrait/PortraitLayers.hpp"
 #include "ui/portrait/PortraitView.hpp"
 #include "ui/portrait/SegmentOverlay.hpp"
 
 namespace archipelago::ui {
 
+namespace {
+// Channels of jobs_ (normal priority: interactive work the user waits for).
+constexpr int kTraceChannel = 0;     // a queue: each launched orbit once, in launch order
+constexpr int kManifoldChannel = 1;  // latest wins: the manifolds of the view shown
+constexpr int kFluxChannel = 2;      // latest wins: the flux of the orbit shown
+
+/// The smallest view aspect (and its inverse the largest) a rectangle zoom gives with equal aspect.
+constexpr double kMinCropAspect = 0.25;
+
+/// Orbit points drawn per branch piece at most: a manifold refined at a deep zoom stays drawable.
+constexpr std::size_t kMaxManifoldPoints = 1'500'000;
+
+std::vector<QPointF> toQt(const std::vector<PhysicalPoint>& points) {
+  std::vector<QPointF> out;
+  out.reserve(points.size());
+  for (const PhysicalPoint& p : points) out.emplace_back(static_cast<double>(p.x), static_cast<double>(p.y));
+  return out;
+}
+
+QColor launchedColour(quint64 id) {
+  const Rgb c = orbitColour(static_cast<std::uint32_t>(id));
+  return QColor(c.r, c.g, c.b);
+}
+
+QString areaText(long double a) { return QString::number(static_cast<double>(a), 'g', 6); }
+}  // namespace
+
 PortraitController::PortraitController(QWidget* viewParent) : QObject(viewParent) {
+  qRegisterMetaType<OrbitMeasuresPtr>();
   view_ = new PortraitView(viewParent);
   PortraitView* v = view_;
   connect(v, &PortraitView::zoomRequested, this, &PortraitController::zoomAt);
   connect(v, &PortraitView::panRequested, this, &PortraitController::panBy);
   connect(v, &PortraitView::cropRequested, this, &PortraitController::crop);
-  connect(v, &PortraitView::clicked, this, [this](double x, double y) { launchOrbit(x, y); });
+  connect(v, &PortraitView::clicked, this, [this](long double x, long double y) { launchOrbit(x, y); });
   connect(v, &PortraitView::backRequested, this, &PortraitController::back);
   connect(v, &PortraitView::forwardRequested, this, &PortraitController::forward);
   connect(v, &PortraitView::resetRequested, this, &PortraitController::resetView);
   connect(v, &PortraitView::statusMessage, this, &PortraitController::statusMessage);
+  jobs_ = std::make_unique<BackgroundJobs>(this, 3);
+  measureJobs_ = std::make_unique<BackgroundJobs>(this, 1, JobPriority::background);
   updateFixedPoints();
   view_->display(map_, viewport());
 }
 
-PortraitController::~PortraitController() = default;
+PortraitController::~PortraitController() {
+  // Stop the jobs and join their threads before the view and the lists they report to go.
+  measureJobs_.reset();
+  jobs_.reset();
+}
 
 bool PortraitController::setMap(const MapParameters& map, double Xr) {
   if (auto e = validationError(map)) {
@@ -48,11 +89,20 @@ bool PortraitController::setMap(const MapParameters& map, double Xr) {
   Xr_ = Xr;
   history_.assign(1, Viewport());
   historyIndex_ = 0;
-  orbits_.clear();
-  if (view_) view_->setLayer(PortraitLayer::launchedOrbits, {});
+  clearOrbits();
   clearSegment();
+  clearPeriodicOrbit();
+  showProfileLine(std::nullopt);
+  manifoldOrbit_.reset();  // an orbit of another K
+  flux_.reset();
+  manifolds_.reset();
   updateFixedPoints();
   if (view_) view_->display(map_, viewport());
+  if (manifoldsShown_) {
+    requestFlux();
+    requestManifolds();
+  }
+  Q_EMIT manifoldsChanged();
   Q_EMIT mapChanged();
   Q_EMIT viewportChanged();
   return true;
@@ -64,10 +114,40 @@ void PortraitController::zoomAt(double fx, double fy, double factor) {
   show(true, viewport().zoomedAboutFraction(fx, fy, factor));
 }
 
-void PortraitController::panBy(double fx, double fy) { show(true, viewport().panned(fx, fy)); }
+void PortraitController::panBy(double fx, double fy) {
+  const Viewport moved = viewport().panned(fx, fy);
+  if (moved == viewport()) {
+    Q_EMIT statusMessage(viewport() == Viewport()
+                             ? tr("The whole box is shown: zoom in (+, the wheel or a drag) before panning")
+                             : tr("The view is at the edge of the box: it cannot move further that way"));
+    if (view_) view_->display(map_, viewport());  // axes back where the view is, whatever moved them
+    return;
+  }
+  show(true, moved);
+}
 
 void PortraitController::crop(double fx0, double fx1, double fy0, double fy1) {
-  show(true, viewport().cropped(fx0, fx1, fy0, fy1));
+  if (!equalAspect() || !view_) {
+    show(true, viewport().cropped(fx0, fx1, fy0, fy1));
+    return;
+  }
+  // The rectangle as dragged, widened (never shrunk) so that it is no thinner than 1:4 on screen.
+  const PhysicalRect r = viewport().physical(map_);
+  const long double w = r.x1 - r.x0, h = r.y1 - r.y0;
+  SegmentRegion region;
+  region.x0 = r.x0 + fx0 * w;
+  region.x1 = r.x0 + fx1 * w;
+  region.y0 = r.y0 + fy0 * h;
+  region.y1 = r.y0 + fy1 * h;
+  const long double rw = region.x1 - region.x0, rh = region.y1 - region.y0;
+  if (!(rw > 0) || !(rh > 0)) return;
+  const double aspect = std::clamp(static_cast<double>(rw / rh), kMinCropAspect, 1 / kMinCropAspect);
+  try {
+    const SegmentRegion framed = framedInBox(region, map_, aspect, map_.width() * 0x1p-36L);
+    show(true, Viewport::fromPhysical(map_, {framed.x0, framed.x1, framed.y0, framed.y1}));
+  } catch (const std::exception&) {
+    show(true, viewport().cropped(fx0, fx1, fy0, fy1));
+  }
 }
 
 bool PortraitController::zoomToRegion(const SegmentRegion& region) {
@@ -75,7 +155,7 @@ bool PortraitController::zoomToRegion(const SegmentRegion& region) {
   // At least 2^16 grid units: a few pixels of the finest view the portrait allows, far below any island.
   const long double minSize = map_.width() * 0x1p-36L;
   try {
-    const SegmentRegion framed = framedInBox(region, map_, view_->canvasAspect(), minSize);
+    const SegmentRegion framed = framedInBox(region, map_, view_->targetAspect(), minSize);
     show(true, Viewport::fromPhysical(map_, {framed.x0, framed.x1, framed.y0, framed.y1}));
   } catch (const std::exception&) {
     return false;  // a region outside this map's box: leave the view alone
@@ -118,7 +198,10 @@ void PortraitController::forward() {
 
 void PortraitController::resetView() {
   if (viewport() == Viewport()) {
-    if (view_) view_->rerender();  // Reset always draws anew (e.g. after a render at a smaller size)
+    if (view_) {
+      view_->display(map_, viewport());  // axes back to the box, whatever moved them
+      view_->rerender();                 // Reset always draws anew (e.g. after a render at a smaller size)
+    }
     return;
   }
   show(true, Viewport());
@@ -126,22 +209,44 @@ void PortraitController::resetView() {
 
 void PortraitController::show(bool record, const Viewport& view) {
   if (record) {
-    if (view == viewport()) return;
+    if (view == viewport()) {
+      if (view_) view_->display(map_, viewport());
+      return;
+    }
     history_.resize(historyIndex_ + 1);
     history_.push_back(view);
     historyIndex_ = history_.size() - 1;
   }
   if (view_) view_->display(map_, viewport());
+  if (manifoldsShown_) requestManifolds();  // refined anew in the visible view
   Q_EMIT viewportChanged();
 }
 
+void PortraitController::setEqualAspect(bool on) {
+  if (!view_ || view_->equalAspect() == on) return;
+  view_->setEqualAspect(on);
+  Q_EMIT settingsChanged();
+}
+
+bool PortraitController::equalAspect() const noexcept { return view_ && view_->equalAspect(); }
+
 void PortraitController::setMode(PortraitMode mode) {
-  if (!view_ || view_->mode() == mode) return;
-  view_->setMode(mode);
+  if (!view_ || (view_->mode() == mode && !view_->indicator())) return;
+  view_->setMode(mode, std::nullopt);
   Q_EMIT settingsChanged();
 }
 
 PortraitMode PortraitController::mode() const noexcept { return view_ ? view_->mode() : PortraitMode::Orbits; }
+
+void PortraitController::setIndicator(std::optional<IndicatorKind> kind) {
+  if (!view_ || view_->indicator() == kind) return;
+  view_->setMode(view_->mode(), kind);
+  Q_EMIT settingsChanged();
+}
+
+std::optional<IndicatorKind> PortraitController::indicator() const noexcept {
+  return view_ ? view_->indicator() : std::nullopt;
+}
 
 void PortraitController::setColourMap(ColourMapName colours) {
   if (!view_ || view_->colourMap() == colours) return;
@@ -159,47 +264,226 @@ void PortraitController::setPointBudget(std::uint64_t points) {
   Q_EMIT settingsChanged();
 }
 
-std::vector<PhysicalPoint> PortraitController::launchedOrbitStarts() const {
-  std::vector<PhysicalPoint> starts;
-  for (const auto& orbit : orbits_)
-    if (!orbit.empty()) starts.push_back(orbit.front());
-  return starts;
-}
-
 std::uint64_t PortraitController::pointBudget() const noexcept { return view_ ? view_->pointBudget() : 0; }
 
 void PortraitController::stopRendering() {
   if (view_) view_->stopRender();
 }
 
-void PortraitController::launchOrbit(double x, double y, int steps) {
-  std::vector<PhysicalPoint> points;
-  try {
-    points = traceOrbit(map_, x, y, static_cast<std::uint64_t>(std::max(steps, 0)));
-  } catch (const std::exception& e) {
-    Q_EMIT statusMessage(tr("Orbit: %1").arg(QString::fromUtf8(e.what())));
-    return;
+void PortraitController::setRenderPaused(bool paused) {
+  if (view_) view_->setRenderPaused(paused);
+}
+
+// ------------------------------------------------------------------------------------------ launched orbits
+
+std::vector<PhysicalPoint> PortraitController::launchedOrbitStarts() const {
+  std::vector<PhysicalPoint> starts;
+  starts.reserve(orbits_.size());
+  for (const LaunchedOrbit& orbit : orbits_) starts.push_back({orbit.x, orbit.y});
+  return starts;
+}
+
+quint64 PortraitController::launchOrbit(long double x, long double y, std::uint64_t steps) {
+  if (orbits_.size() >= kMaxLaunchedOrbits) {
+    Q_EMIT statusMessage(tr("%1 orbits are launched already, the most the portrait keeps: remove some (Ctrl+Z, "
+                            "Clear orbits) first")
+                             .arg(kMaxLaunchedOrbits));
+    return 0;
   }
-  orbits_.push_back(std::move(points));
-  std::vector<QwtPlotItem*> items;
-  for (std::size_t i = 0; i < orbits_.size(); ++i) {
-    std::vector<QPointF> samples;
-    samples.reserve(orbits_[i].size());
-    for (const PhysicalPoint& p : orbits_[i]) samples.emplace_back(static_cast<double>(p.x), static_cast<double>(p.y));
-    const Rgb c = orbitColour(static_cast<std::uint32_t>(i + 1));
-    auto* item = new PointsItem(PointsItem::Style::dots, std::move(samples), QColor(c.r, c.g, c.b));
-    item->setTitle(tr("orbit %1").arg(i + 1));
-    items.push_back(item);
+  LaunchedOrbit orbit;
+  orbit.id = ++nextOrbitId_;
+  orbit.x = x;
+  orbit.y = y;
+  orbit.steps = std::min<std::uint64_t>(steps, 100'000'000);
+  orbit.colour = launchedColour(orbit.id);
+  orbits_.push_back(orbit);
+  orbitItems_.push_back(nullptr);
+  traceOrbit(orbits_.back());
+  Q_EMIT statusMessage(tr("Orbit %1 from (%2, %3): %4 steps; measuring its rotation number and chain…")
+                           .arg(orbit.id)
+                           .arg(static_cast<double>(x), 0, 'g', 17)
+                           .arg(static_cast<double>(y), 0, 'g', 17)
+                           .arg(orbit.steps));
+  Q_EMIT orbitsChanged();
+  return orbit.id;
+}
+
+void PortraitController::traceOrbit(const LaunchedOrbit& orbit) {
+  // Each orbit once: traced on a queue (its points), then measured on the niced queue.  Nothing of the earlier
+  // orbits is recomputed; the GUI thread only adds one plot item per orbit.
+  const MapParameters map = map_;
+  const quint64 id = orbit.id, generation = orbitGeneration_;
+  const long double x = orbit.x, y = orbit.y;
+  const std::uint64_t steps = orbit.steps;
+  Job<std::shared_ptr<const std::vector<QPointF>>> trace;
+  trace.channel = kTraceChannel;
+  trace.order = JobOrder::queued;
+  trace.work = [map, x, y, steps](JobContext<NoProgress>&) -> std::optional<std::shared_ptr<const std::vector<QPointF>>> {
+    return std::make_shared<const std::vector<QPointF>>(toQt(archipelago::traceOrbit(map, x, y, steps)));
+  };
+  trace.done = [this, id, generation](JobResult<std::shared_ptr<const std::vector<QPointF>>> r) {
+    if (generation != orbitGeneration_) return;
+    onOrbitTraced(id, r.value.value_or(nullptr), r.error);
+  };
+  jobs_->submit(std::move(trace));
+
+  Job<OrbitMeasuresPtr> measure;
+  measure.order = JobOrder::queued;
+  measure.work = [map, x, y](JobContext<NoProgress>& context) -> std::optional<OrbitMeasuresPtr> {
+    QElapsedTimer clock;
+    clock.start();
+    auto result = std::make_shared<OrbitMeasuresResult>();
+    // As `archipelago-cli rotation` does (the same request for the same start): the measure's rules, then the
+    // start's, then core's identification.
+    ChainRequest& r = result->request;
+    r.map = map;
+    MeasureSettings check;
+    check.map = map;
+    try {
+      if (auto e = validationError(check)) throw std::invalid_argument(*e);
+      if (auto e = boxPointError("the start", map, {x, y})) throw std::invalid_argument(*e);
+      r.start = FixedPointMap(map).toUnit(x, y);
+      result->chain = identifyChain(r, context.stopToken());
+    } catch (const std::exception& e) {
+      result->error = QString::fromUtf8(e.what());
+    }
+    if (context.stopRequested()) return std::nullopt;
+    result->seconds = static_cast<double>(clock.nsecsElapsed()) * 1e-9;
+    return result;
+  };
+  measure.done = [this, id, generation](JobResult<OrbitMeasuresPtr> r) {
+    if (generation != orbitGeneration_) return;
+    if (r.ok()) {
+      onOrbitMeasured(id, *r.value);
+    } else {
+      auto failed = std::make_shared<OrbitMeasuresResult>();
+      failed->error = r.error;
+      onOrbitMeasured(id, failed);
+    }
+  };
+  measureJobs_->submit(std::move(measure));
+}
+
+LaunchedOrbit* PortraitController::findOrbit(quint64 id) {
+  for (LaunchedOrbit& o : orbits_)
+    if (o.id == id) return &o;
+  return nullptr;
+}
+
+void PortraitController::onOrbitTraced(quint64 id, std::shared_ptr<const std::vector<QPointF>> points,
+                                       const QString& error) {
+  LaunchedOrbit* orbit = findOrbit(id);
+  if (!orbit) return;  // removed meanwhile
+  orbit->points = std::move(points);
+  orbit->error = error;
+  if (!error.isEmpty()) Q_EMIT statusMessage(tr("Orbit %1: %2").arg(id).arg(error));
+  redrawOrbit(static_cast<std::size_t>(orbit - orbits_.data()));
+  Q_EMIT orbitsChanged();
+}
+
+void PortraitController::onOrbitMeasured(quint64 id, const OrbitMeasuresPtr& measures) {
+  LaunchedOrbit* orbit = findOrbit(id);
+  if (!orbit) return;
+  orbit->measures = measures;
+  Q_EMIT statusMessage(measures->error.isEmpty()
+                           ? tr("Orbit %1: rotation %2; %3").arg(id).arg(rotationText(*measures), chainText(*measures))
+                           : tr("Orbit %1: no measures (%2)").arg(id).arg(measures->error));
+  if (highlighted_ == id) updateOrbitChain();
+  Q_EMIT orbitsChanged();
+}
+
+void PortraitController::redrawOrbit(std::size_t index) {
+  if (!view_ || index >= orbits_.size()) return;
+  const LaunchedOrbit& orbit = orbits_[index];
+  if (orbitItems_[index]) {
+    view_->removeLayerItem(PortraitLayer::launchedOrbits, orbitItems_[index]);
+    orbitItems_[index] = nullptr;
   }
-  if (view_) view_->setLayer(PortraitLayer::launchedOrbits, std::move(items));
-  Q_EMIT statusMessage(
-      tr("Orbit %1 from (%2, %3): %4 steps").arg(orbits_.size()).arg(x, 0, 'g', 17).arg(y, 0, 'g', 17).arg(steps));
+  if (!orbit.points) return;
+  QColor colour = orbit.colour;
+  double width = 2;
+  if (highlighted_ != 0 && orbit.id != highlighted_) colour.setAlpha(70);  // the highlighted one stands out
+  if (orbit.id == highlighted_) width = 3.5;
+  auto* item = new PointsItem(PointsItem::Style::dots, *orbit.points, colour);
+  item->setPenWidth(width);
+  item->setStartMarker(true);
+  item->setZ(orbit.id == highlighted_ ? 22 : 20);
+  item->setTitle(tr("orbit %1").arg(orbit.id));
+  orbitItems_[index] = item;
+  view_->addLayerItem(PortraitLayer::launchedOrbits, item);
+}
+
+bool PortraitController::removeOrbit(quint64 id) {
+  const auto it = std::find_if(orbits_.begin(), orbits_.end(), [id](const LaunchedOrbit& o) { return o.id == id; });
+  if (it == orbits_.end()) return false;
+  const auto index = static_cast<std::size_t>(it - orbits_.begin());
+  if (view_ && orbitItems_[index]) view_->removeLayerItem(PortraitLayer::launchedOrbits, orbitItems_[index]);
+  orbits_.erase(it);
+  orbitItems_.erase(orbitItems_.begin() + static_cast<std::ptrdiff_t>(index));
+  if (highlighted_ == id) highlightOrbit(0);  // its jobs' results find no orbit and are dropped
+  Q_EMIT orbitsChanged();
+  return true;
+}
+
+bool PortraitController::undoLastOrbit() {
+  if (orbits_.empty()) {
+    Q_EMIT statusMessage(tr("No launched orbit to remove"));
+    return false;
+  }
+  const quint64 id = orbits_.back().id;
+  removeOrbit(id);
+  Q_EMIT statusMessage(tr("Orbit %1 removed (%2 left)").arg(id).arg(orbits_.size()));
+  return true;
 }
 
 void PortraitController::clearOrbits() {
+  ++orbitGeneration_;
+  if (jobs_) jobs_->cancel(kTraceChannel);
+  if (measureJobs_) measureJobs_->cancel();
   orbits_.clear();
-  if (view_) view_->setLayer(PortraitLayer::launchedOrbits, {});
+  orbitItems_.clear();
+  highlighted_ = 0;
+  if (view_) {
+    view_->setLayer(PortraitLayer::launchedOrbits, {});
+    view_->setLayer(PortraitLayer::orbitChain, {});
+  }
+  Q_EMIT orbitsChanged();
 }
+
+void PortraitController::highlightOrbit(quint64 id) {
+  if (id != 0 && !findOrbit(id)) id = 0;
+  if (id == highlighted_) return;
+  highlighted_ = id;
+  for (std::size_t i = 0; i < orbits_.size(); ++i) redrawOrbit(i);
+  updateOrbitChain();
+  Q_EMIT orbitsChanged();
+}
+
+void PortraitController::updateOrbitChain() {
+  if (!view_) return;
+  const LaunchedOrbit* orbit = highlighted_ ? findOrbit(highlighted_) : nullptr;
+  std::vector<QwtPlotItem*> items;
+  if (orbit && orbit->measures) {
+    // The elliptic orbit of the deepest chain level: the island chain the orbit belongs to (issue #27).
+    const auto& levels = orbit->measures->chain.levels;
+    for (auto it = levels.rbegin(); it != levels.rend(); ++it)
+      if (it->orbit) {
+        auto* item = new PointsItem(PointsItem::Style::discs, toQt(it->orbit->points), orbit->colour.lighter(130));
+        item->setTitle(tr("elliptic orbit of period %1").arg(it->orbit->period));
+        items.push_back(item);
+        break;
+      }
+  }
+  view_->setLayer(PortraitLayer::orbitChain, std::move(items));
+}
+
+bool PortraitController::orbitsSettled() const {
+  for (const LaunchedOrbit& o : orbits_)
+    if ((!o.points && o.error.isEmpty()) || !o.measures) return false;
+  return true;
+}
+
+// ------------------------------------------------------------------------------------------------ segment
 
 void PortraitController::showSegment(const SegmentReplayPtr& replay) {
   replay_ = replay;
@@ -233,17 +517,39 @@ void PortraitController::showPeriodicOrbit(const PeriodicOrbit& orbit) {
 void PortraitController::clearSegment() {
   replay_.reset();
   chain_.reset();
-  periodicPeriod_ = 0;
-  periodic_.reset();
   if (!view_) return;
-  for (PortraitLayer layer : {PortraitLayer::segment, PortraitLayer::segmentChain, PortraitLayer::segmentStep,
-                              PortraitLayer::periodicOrbits})
+  for (PortraitLayer layer : {PortraitLayer::segment, PortraitLayer::segmentChain, PortraitLayer::segmentStep})
     view_->setLayer(layer, {});
   updateLegend();
 }
 
+void PortraitController::clearPeriodicOrbit() {
+  periodicPeriod_ = 0;
+  periodic_.reset();
+  if (view_) view_->setLayer(PortraitLayer::periodicOrbits, {});
+  updateLegend();
+}
+
+void PortraitController::showProfileLine(std::optional<std::pair<PhysicalPoint, PhysicalPoint>> line) {
+  if (!view_) return;
+  std::vector<QwtPlotItem*> items;
+  if (line) {
+    auto* item = new PointsItem(PointsItem::Style::polyline, toQt({line->first, line->second}), QColor(0, 255, 160));
+    item->setPenWidth(4);
+    item->setZ(36);
+    items.push_back(item);
+  }
+  view_->setLayer(PortraitLayer::profileLine, std::move(items));
+}
+
 void PortraitController::updateLegend() {
-  if (view_) view_->setLegend(SegmentOverlay::legendLines(replay_, chain_, periodicPeriod_).join(QStringLiteral("<br>")));
+  QStringList lines = SegmentOverlay::legendLines(replay_, chain_, periodicPeriod_);
+  if (manifoldsShown_ && manifolds_)
+    lines << tr("<span style='color:#ff5050'>━</span> unstable, <span style='color:#50a0ff'>━</span> stable manifold "
+                "of %1")
+                 .arg(manifoldOrbit_ ? tr("the period-%1 orbit").arg(manifoldOrbit_->period)
+                                     : tr("the hyperbolic fixed point"));
+  if (view_) view_->setLegend(lines.join(QStringLiteral("<br>")));
 }
 
 void PortraitController::updateFixedPoints() {
@@ -261,6 +567,173 @@ void PortraitController::updateFixedPoints() {
   view_->setLayer(PortraitLayer::fixedPoints, std::move(markers));
 }
 
+// -------------------------------------------------------------------------------------------------- manifolds
+
+void PortraitController::setManifoldsShown(bool shown) {
+  if (shown == manifoldsShown_) return;
+  manifoldsShown_ = shown;
+  if (shown) {
+    requestFlux();
+    requestManifolds();
+  } else {
+    jobs_->cancel(kManifoldChannel);
+    jobs_->cancel(kFluxChannel);
+    manifoldsRequest_ = fluxRequest_ = 0;
+    if (view_) {
+      view_->setLayer(PortraitLayer::manifolds, {});
+      view_->setLayer(PortraitLayer::lobes, {});
+    }
+  }
+  updateLegend();
+  Q_EMIT manifoldsChanged();
+}
+
+void PortraitController::setManifoldOrbit(std::optional<PeriodicOrbit> orbit) {
+  manifoldOrbit_ = std::move(orbit);
+  manifolds_.reset();
+  flux_.reset();
+  if (!manifoldsShown_) {
+    setManifoldsShown(true);
+    return;
+  }
+  requestFlux();
+  requestManifolds();
+  Q_EMIT manifoldsChanged();
+}
+
+bool PortraitController::manifoldsSettled() const {
+  return !manifoldsShown_ || (manifoldsRequest_ == 0 && fluxRequest_ == 0);
+}
+
+void PortraitController::requestManifolds() {
+  if (!manifoldsShown_) return;
+  const PhysicalRect view = viewport().physical(map_);
+  const MapParameters box = map_;
+  const std::optional<PeriodicOrbit> orbit = manifoldOrbit_;
+  Job<ManifoldsPtr> job;
+  job.channel = kManifoldChannel;  // latest wins: a new view replaces the refinement of the old one
+  job.work = [view, box, orbit](JobContext<NoProgress>& context) -> std::optional<ManifoldsPtr> {
+    QElapsedTimer clock;
+    clock.start();
+    auto result = std::make_shared<ManifoldsResult>();
+    const int period = orbit ? orbit->period : 1;
+    // Every point of a short orbit (the six of the period-6 chain); only the first of a long one.  The fixed
+    // point's inward branches (the loop about the central island and its turnstile; the outward ones wrap around
+    // the torus into the sea); both sides of a periodic orbit's (the separatrices of its chain).
+    const int points = period <= 24 ? period : 1;
+    const long double width = std::max(view.x1 - view.x0, view.y1 - view.y0);
+    std::vector<BranchSide> sides{BranchSide::Inward};
+    if (orbit) sides.push_back(BranchSide::Outward);
+    for (ManifoldKind kind : {ManifoldKind::Unstable, ManifoldKind::Stable})
+      for (BranchSide side : sides)
+        for (int i = 0; i < points; ++i) {
+          ManifoldCurveRequest r;
+          r.K = box.K;
+          r.orbit = orbit;
+          r.point = i;
+          r.kind = kind;
+          r.side = side;
+          r.length = orbit ? 2.0L : 8.0L;
+          r.maxSpacing = std::clamp(width / 400, 1e-14L, 2e-3L);
+          r.view = view;
+          r.box = box;
+          r.maxPoints = kMaxManifoldPoints / static_cast<std::size_t>(2 * sides.size() * static_cast<std::size_t>(points));
+          ManifoldCurve curve = computeManifoldCurve(r, {}, context.stopToken());
+          (kind == ManifoldKind::Unstable ? result->unstable : result->stable).push_back(std::move(curve));
+        }
+    result->seconds = static_cast<double>(clock.nsecsElapsed()) * 1e-9;
+    return result;
+  };
+  job.done = [this](JobResult<ManifoldsPtr> r) {
+    manifoldsRequest_ = 0;
+    if (!manifoldsShown_) return;
+    if (!r.ok()) {
+      Q_EMIT statusMessage(tr("Manifolds: %1").arg(r.error));
+      return;
+    }
+    manifolds_ = *r.value;
+    drawManifolds();
+    updateLegend();
+    Q_EMIT manifoldsChanged();
+  };
+  manifoldsRequest_ = jobs_->submit(std::move(job));
+}
+
+void PortraitController::requestFlux() {
+  if (!manifoldsShown_) return;
+  TurnstileRequest request;
+  request.K = map_.K;
+  request.orbit = manifoldOrbit_;
+  request.side = defaultSide(!manifoldOrbit_);
+  Job<FluxPtr> job;
+  job.channel = kFluxChannel;
+  job.work = [request](JobContext<NoProgress>& context) -> std::optional<FluxPtr> {
+    QElapsedTimer clock;
+    clock.start();
+    auto result = std::make_shared<FluxResult>();
+    result->request = request;
+    try {
+      if (auto e = manifoldKError(request.K)) throw std::invalid_argument(*e);
+      result->flux = computeTurnstileFlux(request, {}, context.stopToken());
+    } catch (const std::exception& e) {
+      if (context.stopRequested()) return std::nullopt;
+      result->error = QString::fromUtf8(e.what());
+    }
+    result->seconds = static_cast<double>(clock.nsecsElapsed()) * 1e-9;
+    return result;
+  };
+  job.done = [this](JobResult<FluxPtr> r) {
+    fluxRequest_ = 0;
+    if (!manifoldsShown_) return;
+    if (r.ok()) {
+      flux_ = *r.value;
+    } else {
+      auto failed = std::make_shared<FluxResult>();
+      failed->error = r.error;
+      flux_ = failed;
+    }
+    drawManifolds();
+    Q_EMIT manifoldsChanged();
+  };
+  fluxRequest_ = jobs_->submit(std::move(job));
+}
+
+void PortraitController::drawManifolds() {
+  if (!view_) return;
+  std::vector<QwtPlotItem*> curves;
+  if (manifolds_) {
+    const auto add = [&curves](const std::vector<ManifoldCurve>& list, const QColor& colour) {
+      for (const ManifoldCurve& c : list)
+        for (const ManifoldPiece& piece : c.pieces) {
+          if (piece.points.size() < 2) continue;
+          auto* item = new PointsItem(PointsItem::Style::polyline, toQt(piece.points), colour);
+          item->setPenWidth(2);
+          curves.push_back(item);
+        }
+    };
+    add(manifolds_->stable, QColor(80, 160, 255));
+    add(manifolds_->unstable, QColor(255, 80, 80));
+  }
+  view_->setLayer(PortraitLayer::manifolds, std::move(curves));
+  std::vector<QwtPlotItem*> lobes;
+  if (flux_ && flux_->flux) {
+    const TurnstileFlux& f = *flux_->flux;
+    // The turnstile: the lobe that leaves the zone in one step (orange) and the one that enters (green), each
+    // of area the flux per step; labelled with it.
+    const QString area = tr("lobe area %1").arg(areaText(f.lobeArea));
+    if (f.exitLobe.size() > 2) {
+      auto* exit = new PointsItem(PointsItem::Style::polygon, toQt(f.exitLobe), QColor(255, 170, 40));
+      exit->setLabel(area);
+      lobes.push_back(exit);
+    }
+    if (f.entryLobe.size() > 2)  // the same area: one label is enough
+      lobes.push_back(new PointsItem(PointsItem::Style::polygon, toQt(f.entryLobe), QColor(60, 220, 120)));
+  }
+  view_->setLayer(PortraitLayer::lobes, std::move(lobes));
+}
+
+// ------------------------------------------------------------------------------------------------- sessions
+
 SessionPortrait PortraitController::sessionState() const {
   SessionPortrait state;
   state.history = history_;
@@ -268,8 +741,8 @@ SessionPortrait PortraitController::sessionState() const {
   state.mode = mode();
   state.colours = view_ ? view_->colourMap() : ColourMapName::Inferno;
   state.budget = pointBudget();
-  for (const auto& orbit : orbits_)
-    if (!orbit.empty()) state.orbits.push_back({static_cast<double>(orbit.front().x), static_cast<double>(orbit.front().y)});
+  for (const LaunchedOrbit& orbit : orbits_)
+    state.orbits.push_back({static_cast<double>(orbit.x), static_cast<double>(orbit.y)});
   if (periodic_ && periodicPeriod_ > 0) {
     SessionPeriodicOverlay overlay;
     overlay.label = "period " + std::to_string(periodic_->period);
@@ -284,10 +757,13 @@ void PortraitController::restoreSession(const SessionPortrait& state, const MapP
   setMap(map, Xr);
   clearOrbits();
   clearSegment();
+  clearPeriodicOrbit();
   setMode(state.mode);
   setColourMap(state.colours);
   if (state.budget > 0) setPointBudget(state.budget);
   if (!state.history.empty()) restoreHistory(state.history, std::min(state.current, state.history.size() - 1));
+  // Each orbit is traced and measured once, in the background (the codec bounds them by kMaxSessionOrbits,
+  // which is kMaxLaunchedOrbits).
   for (const auto& start : state.orbits) launchOrbit(start[0], start[1]);
   for (const SessionPeriodicOverlay& overlay : state.periodic) {
     PeriodicOrbit orbit;

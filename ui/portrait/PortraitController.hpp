@@ -4,31 +4,60 @@
 ///
 /// Everything that changes the portrait asks this object: the main window sets the map from the parameter
 /// panel, the long-segment panel draws a segment and zooms to it, the periodic-orbit dialog's orbit is
-/// drawn here, and the portrait panel's buttons navigate.  The PortraitView only draws and renders what this
+/// drawn here, and the portrait panel's actions navigate.  The PortraitView only draws and renders what this
 /// controller hands it (its setters are private to it) and turns mouse and keys into requests that come back
-/// here.  The layers (PortraitLayers.hpp) are: fixed points, launched orbits, the selected long segment (with
-/// its chain's centre orbit and the step shown) and periodic orbits.  Viewport maths is core's (Viewport,
-/// framedInBox); no maths here.
+/// here.  The layers (PortraitLayers.hpp) are: the manifolds and their lobes, fixed points, launched orbits
+/// (with the chain of the highlighted one), the selected long segment (with its chain's centre orbit and the
+/// step shown), periodic orbits and the rotation-profile line.  Viewport maths is core's (Viewport,
+/// framedInBox), so are the orbits, their measures, the manifolds and the flux; no maths here.
+///
+/// Background work (ui/jobs/BackgroundJobs, values tagged with their request): launched orbits are traced on one
+/// channel (a queue: each orbit once, drawn as it arrives, never recomputing the earlier ones — issue #23, finding
+/// 5) and measured on a niced one (the rotation number and chain, issue #27); the manifolds of the visible view
+/// (latest request wins: a zoom refines them anew) and the turnstile flux (once per orbit) on their own channels.
 
 #include <QObject>
 #include <QPointer>
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <vector>
 
+#include "core/manifolds/ManifoldCurve.hpp"
+#include "core/manifolds/TurnstileFlux.hpp"
 #include "core/map/MapParameters.hpp"
+#include "core/measures/OrbitMeasures.hpp"
 #include "core/periodic/PeriodicOrbit.hpp"
 #include "core/portrait/ColourMap.hpp"
 #include "core/portrait/PortraitRaster.hpp"
 #include "core/portrait/Viewport.hpp"
 #include "core/session/SessionFile.hpp"
+#include "ui/portrait/LaunchedOrbits.hpp"
 #include "ui/portrait/PortraitView.hpp"
 #include "ui/portrait/SegmentResults.hpp"
 
 class QWidget;
+class QwtPlotItem;
 
 namespace archipelago::ui {
+
+class BackgroundJobs;
+
+/// The manifolds of one hyperbolic orbit in the visible view, and the flux through its turnstile.
+struct ManifoldsResult {
+  std::vector<ManifoldCurve> unstable;  ///< every branch drawn, both sides at every orbit point drawn
+  std::vector<ManifoldCurve> stable;
+  double seconds = 0;
+};
+using ManifoldsPtr = std::shared_ptr<const ManifoldsResult>;
+struct FluxResult {
+  TurnstileRequest request;           ///< what was asked (as `archipelago-cli flux` asks it)
+  std::optional<TurnstileFlux> flux;
+  QString error;
+  double seconds = 0;
+};
+using FluxPtr = std::shared_ptr<const FluxResult>;
 
 class PortraitController : public QObject {
   Q_OBJECT
@@ -54,9 +83,11 @@ class PortraitController : public QObject {
   [[nodiscard]] const Viewport& viewport() const noexcept { return history_[historyIndex_]; }
   /// Zoom by `factor` (> 1 in) about the point at fractions (fx, fy) of the view (0,0 bottom-left).
   void zoomAt(double fx, double fy, double factor);
-  /// Move by fractions of the view.
+  /// Move by fractions of the view.  A pan that cannot move (the whole box is shown, or the view is at the
+  /// box's edge) says so in statusMessage rather than doing nothing silently (issue 25, finding 12).
   void panBy(double fx, double fy);
-  /// The sub-rectangle [fx0, fx1] × [fy0, fy1] of the view, in fractions.
+  /// The sub-rectangle [fx0, fx1] × [fy0, fy1] of the view, in fractions.  With equal aspect, a rectangle
+  /// thinner than 1:4 is widened to 1:4 (core's framedInBox), so that no drag gives a sliver of a view.
   void crop(double fx0, double fx1, double fy0, double fy1);
   /// Frames `region` to the canvas's aspect ratio inside the box (core's framedInBox) and shows it.
   /// False when the region does not fit this map (the view is left alone).
@@ -74,10 +105,16 @@ class PortraitController : public QObject {
   bool restoreHistory(std::vector<Viewport> views, std::size_t current);
   [[nodiscard]] bool canGoBack() const noexcept { return historyIndex_ > 0; }
   [[nodiscard]] bool canGoForward() const noexcept { return historyIndex_ + 1 < history_.size(); }
+  /// Equal aspect ratio (the default): a unit of x is as long on screen as a unit of y, whatever the view.
+  void setEqualAspect(bool on);
+  [[nodiscard]] bool equalAspect() const noexcept;
 
   // --- Rendering ---------------------------------------------------------------------------------------
   void setMode(PortraitMode mode);
   [[nodiscard]] PortraitMode mode() const noexcept;
+  /// A chaos-indicator map instead of the mode's raster (nothing: the mode's raster).
+  void setIndicator(std::optional<IndicatorKind> kind);
+  [[nodiscard]] std::optional<IndicatorKind> indicator() const noexcept;
   void setColourMap(ColourMapName colours);
   [[nodiscard]] ColourMapName colourMap() const noexcept;
   /// The points budget of a view: the render accumulates until it has done this many map steps.
@@ -85,21 +122,55 @@ class PortraitController : public QObject {
   [[nodiscard]] std::uint64_t pointBudget() const noexcept;
   /// Stops accumulating; the portrait so far stays.
   void stopRendering();
+  /// Pauses the render in progress (it keeps its orbits and goes on from there on resume), e.g. while the
+  /// portrait is hidden or a run should have the cores (issue 25, finding 15).
+  void setRenderPaused(bool paused);
 
-  // --- Layers ------------------------------------------------------------------------------------------
-  /// Launch an orbit of N from the physical point (x, y), `steps` long, drawn in its own colour.
-  void launchOrbit(double x, double y, int steps = 20000);
+  // --- Launched orbits -----------------------------------------------------------------------------------
+  /// Launches an orbit of N from the physical point (x, y), `steps` long, drawn in its own colour as soon as it
+  /// is traced (off the GUI thread), then measured (rotation number, digits, chain).  Returns its id, or 0 when
+  /// refused: kMaxLaunchedOrbits are shown already (statusMessage says so).
+  quint64 launchOrbit(long double x, long double y, std::uint64_t steps = kLaunchedOrbitSteps);
   [[nodiscard]] int orbitCount() const noexcept { return static_cast<int>(orbits_.size()); }
+  [[nodiscard]] const std::vector<LaunchedOrbit>& launchedOrbits() const noexcept { return orbits_; }
   /// The physical start points of the launched orbits, in launch order.
   [[nodiscard]] std::vector<PhysicalPoint> launchedOrbitStarts() const;
+  /// Removes one orbit; the last one launched (Ctrl+Z).  False when there is none.
+  bool removeOrbit(quint64 id);
+  bool undoLastOrbit();
+  /// Highlights one orbit (0: none): drawn wider, the others dimmed, its chain's elliptic orbit drawn.
+  void highlightOrbit(quint64 id);
+  [[nodiscard]] quint64 highlightedOrbit() const noexcept { return highlighted_; }
+  /// True when every launched orbit is traced and measured (tests; sessions).
+  [[nodiscard]] bool orbitsSettled() const;
+
+  // --- Other layers ------------------------------------------------------------------------------------
   /// The selected long segment (null: none); its chain's centre orbit; the kept state shown.
   void showSegment(const SegmentReplayPtr& replay);
   void showSegmentChain(const ChainResultPtr& chain);
   void showSegmentStep(std::size_t index);
   /// A periodic orbit from the dialog (replacing the previous one).
   void showPeriodicOrbit(const PeriodicOrbit& orbit);
-  /// Removes the segment, its chain, its step and the periodic orbit.
+  /// Removes the segment, its chain and its step (a new run: the periodic orbits of the same map stay, issue 25,
+  /// finding 13).
   void clearSegment();
+  /// Removes the periodic orbit of the dialog.
+  void clearPeriodicOrbit();
+  /// The rotation-profile line (none: hidden).
+  void showProfileLine(std::optional<std::pair<PhysicalPoint, PhysicalPoint>> line);
+
+  // --- Manifolds -----------------------------------------------------------------------------------------
+  /// Shows the stable and unstable manifolds of the hyperbolic orbit (none: the fixed point (√K, 0)), refined in
+  /// the visible view, and the turnstile's lobes with their areas.
+  void setManifoldsShown(bool shown);
+  [[nodiscard]] bool manifoldsShown() const noexcept { return manifoldsShown_; }
+  /// The hyperbolic orbit whose manifolds are drawn (none: the fixed point).  Shows the layer.
+  void setManifoldOrbit(std::optional<PeriodicOrbit> orbit);
+  [[nodiscard]] const std::optional<PeriodicOrbit>& manifoldOrbit() const noexcept { return manifoldOrbit_; }
+  [[nodiscard]] ManifoldsPtr manifolds() const noexcept { return manifolds_; }
+  [[nodiscard]] FluxPtr flux() const noexcept { return flux_; }
+  /// Nothing computing for the manifolds layer (tests).
+  [[nodiscard]] bool manifoldsSettled() const;
 
   // --- Sessions (core/session) -------------------------------------------------------------------------
   /// The portrait's part of a session: the view history and its current entry, mode, colour map, points
@@ -122,25 +193,51 @@ class PortraitController : public QObject {
   void mapChanged();
   /// The view changed (zoom, pan, history, reset, map).
   void viewportChanged();
-  /// The mode, colour map or points budget changed (the panel's controls follow).
+  /// The mode, colour map, points budget or aspect changed (the panel's controls follow).
   void settingsChanged();
   void statusMessage(const QString& text);
+  /// The list of launched orbits changed (one added, removed, traced or measured; the highlight).
+  void orbitsChanged();
+  /// The manifolds or the flux changed (computed, cleared).
+  void manifoldsChanged();
 
  private:
   void show(bool record, const Viewport& view);
   void updateFixedPoints();
   void updateLegend();
+  void traceOrbit(const LaunchedOrbit& orbit);
+  void onOrbitTraced(quint64 id, std::shared_ptr<const std::vector<QPointF>> points, const QString& error);
+  void onOrbitMeasured(quint64 id, const OrbitMeasuresPtr& measures);
+  void redrawOrbit(std::size_t index);
+  void updateOrbitChain();
+  LaunchedOrbit* findOrbit(quint64 id);
+  void requestManifolds();
+  void requestFlux();
+  void drawManifolds();
 
   QPointer<PortraitView> view_;
   MapParameters map_;
   double Xr_ = 0.02;
   std::vector<Viewport> history_{Viewport()};
   std::size_t historyIndex_ = 0;
-  std::vector<std::vector<PhysicalPoint>> orbits_;  // launched orbits (their items live in the view's layer)
+  std::vector<LaunchedOrbit> orbits_;
+  std::vector<QwtPlotItem*> orbitItems_;            // orbitItems_[i] draws orbits_[i] (owned by the view), or null
+  quint64 nextOrbitId_ = 0;
+  quint64 highlighted_ = 0;
+  quint64 orbitGeneration_ = 0;                     // bumped by clear and by a new map: older results are dropped
   SegmentReplayPtr replay_;
   ChainResultPtr chain_;
   int periodicPeriod_ = 0;
   std::optional<PeriodicOrbit> periodic_;           // the overlay from the periodic-orbit dialog
+  bool manifoldsShown_ = false;
+  std::optional<PeriodicOrbit> manifoldOrbit_;
+  ManifoldsPtr manifolds_;
+  FluxPtr flux_;
+  quint64 manifoldsRequest_ = 0;
+  quint64 fluxRequest_ = 0;
+  // Last members: destroyed first, they stop the jobs and join their threads while everything they use lives.
+  std::unique_ptr<BackgroundJobs> jobs_;            // channels: kTraceChannel, kManifoldChannel, kFluxChannel
+  std::unique_ptr<BackgroundJobs> measureJobs_;     // niced: the measures of launched orbits, a queue
 };
 
 }  // namespace archipelago::ui

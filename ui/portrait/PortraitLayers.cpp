@@ -19,6 +19,8 @@ PointsItem::PointsItem(Style style, std::vector<QPointF> points, QColor colour)
     case Style::trail: setZ(32); break;
     case Style::discs: setZ(34); break;
     case Style::diamonds: setZ(35); break;
+    case Style::polyline: setZ(12); break;
+    case Style::polygon: setZ(10); break;
   }
   setItemAttribute(QwtPlotItem::AutoScale, false);
 }
@@ -32,13 +34,32 @@ void PointsItem::draw(QPainter* painter, const QwtScaleMap& xMap, const QwtScale
   painter->setRenderHint(QPainter::Antialiasing, style_ != Style::timeDots && style_ != Style::dots);
   switch (style_) {
     case Style::dots: {
-      painter->setPen(QPen(colour_, 2));
+      // One point per pixel: a launched orbit of 2·10⁴ steps covers a few thousand pixels, and 500 of them must
+      // draw in a fraction of a second (issue #23, finding 5).
+      painter->setPen(QPen(colour_, penWidth_));
+      const int w = static_cast<int>(canvasRect.width()) + 1, h = static_cast<int>(canvasRect.height()) + 1;
+      std::vector<bool> seen(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), false);
       QVector<QPointF> visible;
       for (const QPointF& p : points_) {
         const QPointF q = toCanvas(p);
-        if (canvasRect.contains(q)) visible.append(q);
+        if (!canvasRect.contains(q)) continue;
+        const auto col = static_cast<int>(q.x() - canvasRect.left()), row = static_cast<int>(q.y() - canvasRect.top());
+        if (col < 0 || row < 0 || col >= w || row >= h) continue;
+        const std::size_t cell = static_cast<std::size_t>(row) * static_cast<std::size_t>(w) + static_cast<std::size_t>(col);
+        if (seen[cell]) continue;
+        seen[cell] = true;
+        visible.append(q);
       }
       painter->drawPoints(visible.constData(), static_cast<int>(visible.size()));
+      if (startMarker_) {
+        const QPointF start = toCanvas(points_.front());
+        if (clip.contains(start)) {
+          painter->setRenderHint(QPainter::Antialiasing, true);
+          painter->setBrush(colour_);
+          painter->setPen(QPen(Qt::white, 1.5));
+          painter->drawEllipse(start, 4.5, 4.5);
+        }
+      }
       break;
     }
     case Style::timeDots: {
@@ -92,6 +113,51 @@ void PointsItem::draw(QPainter* painter, const QwtScaleMap& xMap, const QwtScale
         } else {
           const QPointF d[4] = {q + QPointF(0, -7), q + QPointF(7, 0), q + QPointF(0, 7), q + QPointF(-7, 0)};
           painter->drawPolygon(d, 4);
+        }
+      }
+      break;
+    }
+    case Style::polyline: {
+      // Only the runs of consecutive points near the canvas: a refined manifold holds 10⁵ points and more,
+      // most far outside a deep view.
+      painter->setRenderHint(QPainter::Antialiasing, true);
+      painter->setPen(QPen(colour_, penWidth_ / 2 + 0.5));
+      QPolygonF run;
+      const QRectF wide = canvasRect.adjusted(-canvasRect.width(), -canvasRect.height(), canvasRect.width(),
+                                              canvasRect.height());
+      const auto flush = [&] {
+        if (run.size() > 1) painter->drawPolyline(run);
+        run.clear();
+      };
+      for (const QPointF& p : points_) {
+        const QPointF q = toCanvas(p);
+        if (wide.contains(q)) run.append(q);
+        else flush();
+      }
+      flush();
+      break;
+    }
+    case Style::polygon: {
+      QPolygonF polygon;
+      polygon.reserve(static_cast<int>(points_.size()));
+      for (const QPointF& p : points_) polygon.append(toCanvas(p));
+      if (!polygon.boundingRect().intersects(canvasRect)) break;
+      QColor fill = colour_;
+      fill.setAlpha(90);
+      painter->setRenderHint(QPainter::Antialiasing, true);
+      painter->setPen(QPen(colour_, 1));
+      painter->setBrush(fill);
+      painter->drawPolygon(polygon);
+      if (!label_.isEmpty()) {
+        const QPointF c = polygon.boundingRect().center();
+        if (canvasRect.contains(c)) {
+          const QRectF box = painter->fontMetrics().boundingRect(label_).adjusted(-4, -2, 4, 2);
+          const QRectF at(c.x() + 8, c.y() - box.height() / 2, box.width(), box.height());
+          painter->setPen(Qt::NoPen);
+          painter->setBrush(QColor(0, 0, 0, 170));
+          painter->drawRoundedRect(at, 3, 3);
+          painter->setPen(Qt::white);
+          painter->drawText(at, Qt::AlignCenter, label_);
         }
       }
       break;

@@ -16,23 +16,35 @@ namespace archipelago::ui {
 
 /// The layers, bottom to top.
 enum class PortraitLayer {
+  lobes,           ///< the turnstile's lobes of the manifolds layer, shaded (below every curve)
+  manifolds,       ///< stable (blue) and unstable (red) manifolds of a hyperbolic orbit
   fixedPoints,     ///< the fixed points of Q* (elliptic: ring, hyperbolic: cross)
   launchedOrbits,  ///< orbits launched by clicks, one colour each
+  orbitChain,      ///< the elliptic periodic orbit of the highlighted launched orbit's chain
   segment,         ///< the selected long segment (dots coloured by time)
   segmentChain,    ///< the centre orbit of its island chain
   segmentStep,     ///< the step of the segment shown, with a trail of the steps before it
   periodicOrbits,  ///< orbits from the "Find periodic orbit" dialog
+  profileLine,     ///< the segment of the rotation-profile tool
 };
 
 /// Points in physical coordinates: dots in one colour, dots coloured by their position in the list (time),
-/// a trail of growing dots ending in a ring, discs or diamonds.  (A plain QwtPlotItem: Qwt 6.1's curve
+/// a trail of growing dots ending in a ring, discs, diamonds, a polyline (a manifold's piece), or a closed
+/// polygon filled with a translucent colour (a lobe).  (A plain QwtPlotItem: Qwt 6.1's curve
 /// headers are not C++20, and only the points inside the canvas need drawing.)
 class PointsItem : public QwtPlotItem {
  public:
-  enum class Style { dots, timeDots, trail, discs, diamonds };
+  enum class Style { dots, timeDots, trail, discs, diamonds, polyline, polygon };
   static constexpr int kRtti = QwtPlotItem::Rtti_PlotUserItem + 40;
 
   PointsItem(Style style, std::vector<QPointF> points, QColor colour = Qt::white);
+  /// Dots and polylines: the pen width (highlighted launched orbits are drawn wider).
+  void setPenWidth(double width) noexcept { penWidth_ = width; }
+  /// A label drawn at the polygon's centroid (e.g. a lobe's area).
+  void setLabel(const QString& label) { label_ = label; }
+  /// Dots: a ring at the first point (a launched orbit's start, told apart from the portrait's own orbits).
+  void setStartMarker(bool on) noexcept { startMarker_ = on; }
+  [[nodiscard]] QColor colour() const noexcept { return colour_; }
   int rtti() const override { return kRtti; }
   [[nodiscard]] std::size_t size() const noexcept { return points_.size(); }
   [[nodiscard]] const std::vector<QPointF>& points() const noexcept { return points_; }
@@ -43,6 +55,9 @@ class PointsItem : public QwtPlotItem {
   Style style_;
   std::vector<QPointF> points_;
   QColor colour_;
+  double penWidth_ = 2;
+  bool startMarker_ = false;
+  QString label_;
 };
 
 }  // namespace archipelago::ui

@@ -1,7 +1,14 @@
 #include "ui/portrait/PortraitView.hpp"
 
+#include <QAbstractSpinBox>
+#include <QApplication>
+#include <QComboBox>
+#include <QEventLoop>
 #include <QKeyEvent>
+#include <QLineEdit>
 #include <QLocale>
+#include <QPointer>
+#include <QProgressDialog>
 #include <QResizeEvent>
 #include <QShowEvent>
 #include <QMouseEvent>
@@ -16,7 +23,8 @@
 #include <qwt_plot_canvas.h>
 #include <qwt_plot_item.h>
 #include <qwt_plot_textlabel.h>
-#include <qwt_plot_panner.h>
+#include <qwt_panner.h>
+#include <qwt_plot_layout.h>
 #include <qwt_plot_picker.h>
 #include <qwt_plot_renderer.h>
 #include <qwt_scale_draw.h>
@@ -27,8 +35,11 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <limits>
 
+#include "core/measures/MeasureExport.hpp"
 #include "core/portrait/PortraitExport.hpp"
+#include "ui/jobs/BackgroundJobs.hpp"
 #include "ui/portrait/PortraitWorker.hpp"
 #include "ui/files/OutputFiles.hpp"
 
@@ -123,7 +134,10 @@ PortraitView::PortraitView(QWidget* parent) : QWidget(parent) {
   if (auto* canvas = qobject_cast<QwtPlotCanvas*>(plot_->canvas())) canvas->setFrameStyle(QFrame::NoFrame);
   plot_->canvas()->setMouseTracking(true);
   plot_->canvas()->installEventFilter(this);
-  plot_->canvas()->setFocusPolicy(Qt::StrongFocus);
+  // The wheel and a click give the canvas the focus, so that the keys (arrows, +, −, Home) work at once; so
+  // does the mouse entering it, unless the user is typing somewhere (issue 25, finding 12).
+  plot_->canvas()->setFocusPolicy(Qt::WheelFocus);
+  setFocusProxy(plot_->canvas());
   xScale_ = new PrecisionScaleDraw;
   yScale_ = new PrecisionScaleDraw;
   plot_->setAxisScaleDraw(QwtPlot::xBottom, xScale_);
@@ -136,6 +150,8 @@ PortraitView::PortraitView(QWidget* parent) : QWidget(parent) {
   // The axes' labels get longer digits as the view narrows: they must not grow the window's minimum width.
   plot_->setMinimumSize(200, 160);
   plot_->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Ignored);
+  setMinimumSize(200, 160);
+  setSizePolicy(QSizePolicy::Expanding, QSizePolicy::Expanding);
 
   image_ = new PortraitImageItem;
   image_->attach(plot_);
@@ -149,23 +165,27 @@ PortraitView::PortraitView(QWidget* parent) : QWidget(parent) {
   picker_->setRubberBandPen(QPen(Qt::white, 1, Qt::DashLine));
   connect(picker_, qOverload<const QRectF&>(&QwtPlotPicker::selected), this, &PortraitView::onRectangleSelected);
 
-  panner_ = new QwtPlotPanner(plot_->canvas());
+  // A plain QwtPanner: it drags a picture of the canvas and reports the distance; the controller decides the
+  // view (clamped to the box) and the axes follow it.  (QwtPlotPanner moved the axes itself, past the box.)
+  panner_ = new QwtPanner(plot_->canvas());
   panner_->setMouseButton(Qt::MiddleButton);
   connect(panner_, &QwtPanner::panned, this, [this](int dx, int dy) {
     const QWidget* canvas = plot_->canvas();
     Q_EMIT panRequested(-static_cast<double>(dx) / std::max(1, canvas->width()),
                         static_cast<double>(dy) / std::max(1, canvas->height()));
+    plot_->replot();
   });
-
-  auto* layout = new QVBoxLayout(this);
-  layout->setContentsMargins(0, 0, 0, 0);
-  layout->addWidget(plot_);
 
   renderTimer_ = new QTimer(this);
   renderTimer_->setSingleShot(true);
   renderTimer_->setInterval(60);  // coalesce a burst of wheel steps or resizes into one request
   connect(renderTimer_, &QTimer::timeout, this, &PortraitView::startRender);
+  replotTimer_ = new QTimer(this);
+  replotTimer_->setSingleShot(true);
+  replotTimer_->setInterval(40);  // a burst of layer changes (a session's orbits arriving): one replot
+  connect(replotTimer_, &QTimer::timeout, this, [this] { plot_->replot(); });
 
+  gate_ = std::make_shared<PauseGate>();
   worker_ = new PortraitWorker(this);
   // Queued although the worker emits on this thread: a slot of frameShown() or renderFinished() may close the
   // view, which must not happen inside the worker's delivery (BackgroundJobs: a handler must not destroy it).
@@ -185,6 +205,7 @@ PortraitView::PortraitView(QWidget* parent) : QWidget(parent) {
 }
 
 PortraitView::~PortraitView() {
+  gate_->setPaused(false);
   delete worker_;  // stops the render in progress and waits for the thread before the plot goes away
   worker_ = nullptr;
   for (auto& [layer, items] : layers_)
@@ -200,12 +221,14 @@ void PortraitView::display(const MapParameters& map, const Viewport& view) {
   map_ = map;
   view_ = view;
   updateAxes();
+  layoutPlot();
   scheduleRender();
 }
 
-void PortraitView::setMode(PortraitMode mode) {
-  if (mode == mode_) return;
+void PortraitView::setMode(PortraitMode mode, std::optional<IndicatorKind> indicator) {
+  if (mode == mode_ && indicator == indicator_) return;
   mode_ = mode;
+  indicator_ = indicator;
   scheduleRender();
 }
 
@@ -221,6 +244,20 @@ void PortraitView::setPointBudget(std::uint64_t points) {
   points_ = points;
   scheduleRender();
 }
+
+void PortraitView::setEqualAspect(bool on) {
+  if (on == equalAspect_) return;
+  equalAspect_ = on;
+  layoutPlot();
+  scheduleRender();  // the canvas has another size
+}
+
+void PortraitView::setRenderPaused(bool paused) {
+  pausedByUser_ = paused;
+  gate_->setPaused(pausedByUser_ || !isVisible());
+}
+
+bool PortraitView::renderPaused() const noexcept { return gate_->paused(); }
 
 void PortraitView::rerender() { scheduleRender(); }
 
@@ -239,7 +276,29 @@ void PortraitView::setLayer(PortraitLayer layer, std::vector<QwtPlotItem*> items
   }
   slot = std::move(items);
   for (QwtPlotItem* item : slot) item->attach(plot_);
-  plot_->replot();
+  replotSoon();
+}
+
+void PortraitView::addLayerItem(PortraitLayer layer, QwtPlotItem* item) {
+  layers_[layer].push_back(item);
+  item->attach(plot_);
+  replotSoon();
+}
+
+void PortraitView::removeLayerItem(PortraitLayer layer, QwtPlotItem* item) {
+  std::vector<QwtPlotItem*>& slot = layers_[layer];
+  const auto it = std::find(slot.begin(), slot.end(), item);
+  if (it == slot.end()) return;
+  slot.erase(it);
+  item->detach();
+  delete item;
+  replotSoon();
+}
+
+void PortraitView::replotSoon() {
+  // Adding a thousand orbits from a session is a thousand layer changes: they are drawn once, when the event
+  // loop is next free.
+  if (!replotTimer_->isActive()) replotTimer_->start();
 }
 
 const std::vector<QwtPlotItem*>& PortraitView::layerItems(PortraitLayer layer) const {
@@ -263,7 +322,7 @@ void PortraitView::setLegend(const QString& html) {
     legend_->setText(text);
     legend_->setMargin(10);
   }
-  plot_->replot();
+  replotSoon();
 }
 
 QWidget* PortraitView::canvas() const { return plot_->canvas(); }
@@ -273,9 +332,37 @@ std::pair<double, double> PortraitView::xAxisRange() const {
   return {d.lowerBound(), d.upperBound()};
 }
 
-double PortraitView::canvasAspect() const {
+std::pair<double, double> PortraitView::yAxisRange() const {
+  const QwtScaleDiv& d = plot_->axisScaleDiv(QwtPlot::yLeft);
+  return {d.lowerBound(), d.upperBound()};
+}
+
+double PortraitView::targetAspect() const {
+  // The room the canvas could have: the widget less a fixed allowance for the axes (not their width of the
+  // moment, which follows the digits of the labels: a region framed twice gets the same view).
+  const int w = width() - 90, h = height() - 50;
+  return w > 0 && h > 0 ? static_cast<double>(w) / h : 1.0;
+}
+
+void PortraitView::layoutPlot() {
+  plot_->setGeometry(rect());
+  if (!equalAspect_) return;
+  plot_->updateLayout();
   const QWidget* c = plot_->canvas();
-  return c->height() > 0 && c->width() > 0 ? static_cast<double>(c->width()) / c->height() : 1.0;
+  if (c->width() <= 0 || c->height() <= 0) return;
+  const int ox = plot_->width() - c->width(), oy = plot_->height() - c->height();
+  const long double aspect = view_.widthUnits() / view_.heightUnits();  // the box is square: units are alike
+  const int cw = c->width(), ch = c->height();
+  QRect r = rect();
+  if (cw > ch * aspect) {
+    const int w = static_cast<int>(std::lround(static_cast<double>(ch * aspect))) + ox;
+    r = QRect((width() - w) / 2, 0, w, height());
+  } else {
+    const int h = static_cast<int>(std::lround(static_cast<double>(cw / aspect))) + oy;
+    r = QRect(0, (height() - h) / 2, width(), h);
+  }
+  plot_->setGeometry(r);
+  plot_->updateLayout();
 }
 
 void PortraitView::updateAxes() {
@@ -288,12 +375,23 @@ void PortraitView::updateAxes() {
 }
 
 void PortraitView::updateColourBar() {
-  const bool scale = frame_ && frame_->request.mode != PortraitMode::Orbits;
+  const bool scale = frame_ && (frame_->indicatorRequest || frame_->request.mode != PortraitMode::Orbits);
   if (!scale) return;
   const QwtInterval interval(frame_->scaleMin, std::max(frame_->scaleMax, frame_->scaleMin + 1e-9));
   plot_->axisWidget(QwtPlot::yRight)->setColorMap(interval, new CoreColourMap(colours_));
   plot_->setAxisScale(QwtPlot::yRight, interval.minValue(), interval.maxValue());
-  plot_->setAxisTitle(QwtPlot::yRight, frame_->quantity);
+  // An indicator's bar says what it measures, with units (core's quantity names the raw column).
+  static const std::map<IndicatorKind, const char*> kTitles = {
+      {IndicatorKind::Dig, QT_TRANSLATE_NOOP("PortraitView", "digits of convergence (16: exact)")},
+      {IndicatorKind::Rotation, QT_TRANSLATE_NOOP("PortraitView", "rotation number (turns per step)")},
+      {IndicatorKind::Fli, QT_TRANSLATE_NOOP("PortraitView", "fast Lyapunov indicator, max ln |v|")},
+      {IndicatorKind::Megno, QT_TRANSLATE_NOOP("PortraitView", "MEGNO ⟨Y⟩ (2: regular)")},
+      {IndicatorKind::Lyapunov, QT_TRANSLATE_NOOP("PortraitView", "Lyapunov exponent (per step)")}};
+  QwtText title(frame_->indicatorRequest ? tr(kTitles.at(frame_->indicatorRequest->measure.kind)) : frame_->quantity);
+  QFont font = title.font();
+  font.setPointSizeF(font.pointSizeF() * 0.9);
+  title.setFont(font);
+  plot_->setAxisTitle(QwtPlot::yRight, title);
 }
 
 void PortraitView::setState(RenderState state) {
@@ -312,6 +410,7 @@ void PortraitView::scheduleRender() {
 
 void PortraitView::resizeEvent(QResizeEvent* event) {
   QWidget::resizeEvent(event);
+  layoutPlot();
   // A new size of the view renders again at the canvas's new size (debounced by the render timer; the old
   // image stays, scaled, meanwhile).  Only the view's own resizes count: the plot's axes changing width
   // (longer labels, the colour bar) must not restart an accumulation.
@@ -323,7 +422,16 @@ void PortraitView::resizeEvent(QResizeEvent* event) {
 
 void PortraitView::showEvent(QShowEvent* event) {
   QWidget::showEvent(event);
+  gate_->setPaused(pausedByUser_);
+  layoutPlot();
   if (renderWanted_) renderTimer_->start();
+}
+
+void PortraitView::hideEvent(QHideEvent* event) {
+  QWidget::hideEvent(event);
+  // Hidden (another tab, a minimised window): the render waits where it is, keeping its orbits, so that the
+  // cores go to a run (issue 25, finding 15); it goes on when the view is shown again.
+  gate_->setPaused(true);
 }
 
 QSize PortraitView::rasterSize() const {
@@ -337,16 +445,38 @@ void PortraitView::startRender() {
   if (!isVisible()) return;  // showEvent() comes back here
   renderWanted_ = false;
   // The colour bar takes its room before the raster size is chosen (Orbits mode has none).
-  const bool bar = mode_ != PortraitMode::Orbits;
+  const bool bar = indicator_ || mode_ != PortraitMode::Orbits;
   if (plot_->axisEnabled(QwtPlot::yRight) != bar) {
     plot_->enableAxis(QwtPlot::yRight, bar);
-    plot_->updateLayout();
+    layoutPlot();
+  }
+  renderedSize_ = rasterSize();
+  if (indicator_) {
+    IndicatorRequest request;
+    request.measure.map = map_;
+    request.measure.kind = *indicator_;
+    request.view = view_;
+    // At most 512 × 512 orbits of 2·10⁴ steps: the finest pass stays a few seconds on two cores; the first
+    // (1/256 of the pixels) arrives within a fraction of a second (issue #27).
+    const double scale = std::min(1.0, 512.0 / std::max(renderedSize_.width(), renderedSize_.height()));
+    request.width = std::max(1, static_cast<int>(renderedSize_.width() * scale));
+    request.height = std::max(1, static_cast<int>(renderedSize_.height() * scale));
+    request.passes = 5;
+    if (auto e = validationError(request)) {
+      setState(RenderState::failed);
+      Q_EMIT statusMessage(tr("Indicator map: %1").arg(QString::fromStdString(*e)));
+      return;
+    }
+    pointsSoFar_ = 0;
+    gate_->setPaused(pausedByUser_);
+    currentRequest_ = worker_->renderIndicator(request, colours_, gate_);
+    setState(RenderState::accumulating);
+    return;
   }
   PortraitRequest request;
   request.map = map_;
   request.view = view_;
   request.mode = mode_;
-  renderedSize_ = rasterSize();
   request.width = renderedSize_.width();
   request.height = renderedSize_.height();
   request.points = points_;
@@ -361,7 +491,8 @@ void PortraitView::startRender() {
     return;
   }
   pointsSoFar_ = 0;
-  currentRequest_ = worker_->render(request, colours_);
+  gate_->setPaused(pausedByUser_);
+  currentRequest_ = worker_->render(request, colours_, gate_);
   setState(RenderState::accumulating);
 }
 
@@ -384,14 +515,32 @@ void PortraitView::onFrame(const PortraitFrame& frame) {
   }
 }
 
+bool PortraitView::sparse() const {
+  return state_ == RenderState::done && frame_ && frame_->raster && frame_->pixelCount() > 0 &&
+         static_cast<double>(frame_->nonEmptyPixels()) < kSparseFraction * static_cast<double>(frame_->pixelCount());
+}
+
 QString PortraitView::readout() const {
   const QLocale locale;
+  if (indicator_) {
+    const QString done = frame_ ? locale.toString(static_cast<qulonglong>(frame_->pointsDone)) : QStringLiteral("0");
+    const QString total = frame_ ? locale.toString(static_cast<qulonglong>(frame_->pointsTotal)) : QStringLiteral("?");
+    switch (state_) {
+      case RenderState::idle: return tr("No map yet");
+      case RenderState::pending: return tr("Waiting to compute…");
+      case RenderState::accumulating: return tr("%1 of %2 orbits measured — refining…").arg(done, total);
+      case RenderState::done: return tr("%1 orbits measured — done").arg(done);
+      case RenderState::stopped: return tr("%1 of %2 orbits measured — stopped").arg(done, total);
+      case RenderState::noSea:
+      case RenderState::failed: return tr("The map could not be computed");
+    }
+    return {};
+  }
   const QString points = locale.toString(static_cast<double>(pointsSoFar_), 'g', 3);
-  const QString pixels =
-      frame_ ? locale.toString(static_cast<qulonglong>(frame_->raster->nonEmptyPixels())) : QStringLiteral("0");
+  const QString pixels = frame_ ? locale.toString(static_cast<qulonglong>(frame_->nonEmptyPixels())) : QStringLiteral("0");
   // Orbits mode with no island orbit: say so, rather than leave a plain sea unexplained.
   const auto allSea = [this] {
-    return frame_ && frame_->request.mode == PortraitMode::Orbits && frame_->raster->allOrbitsWrapped()
+    return frame_ && frame_->raster && frame_->request.mode == PortraitMode::Orbits && frame_->raster->allOrbitsWrapped()
                ? tr(" · every seed here is in the chaotic sea (no island orbit; shaded by visits)")
                : QString();
   };
@@ -399,10 +548,14 @@ QString PortraitView::readout() const {
     case RenderState::idle: return tr("No portrait yet");
     case RenderState::pending: return tr("Waiting to render…");
     case RenderState::accumulating:
-      return tr("%1 points so far, %2 pixels visited — accumulating…").arg(points, pixels) + allSea();
+      return tr("%1 points, %2 pixels — accumulating…").arg(points, pixels) + allSea();
     case RenderState::done:
-      return tr("%1 points, %2 pixels visited — done (budget reached)").arg(points, pixels) + allSea();
-    case RenderState::stopped: return tr("%1 points, %2 pixels visited — stopped").arg(points, pixels) + allSea();
+      if (sparse())
+        return tr("%1 points, %2 pixels (%3 %) — done; sparse: raise the budget (Ctrl+B)")
+                   .arg(points, pixels)
+                   .arg(100.0 * static_cast<double>(frame_->nonEmptyPixels()) / static_cast<double>(frame_->pixelCount()), 0, 'f', 0);
+      return tr("%1 points, %2 pixels — done (budget reached)").arg(points, pixels) + allSea();
+    case RenderState::stopped: return tr("%1 points, %2 pixels — stopped").arg(points, pixels) + allSea();
     case RenderState::noSea:
       return tr("No chaotic points in this view after %1 points (an all-sea view would have had %2): it lies "
                 "inside an island — try Island orbits")
@@ -423,14 +576,131 @@ void PortraitView::onRectangleSelected(const QRectF& rect) {
     // Launch from the exact position: the view's centre plus the click's offset, in long double.
     const PhysicalRect b = view_.physical(map_);
     const long double fx = (fx0 + fx1) / 2, fy = (fy0 + fy1) / 2;
-    const long double x = b.x0 + fx * (b.x1 - b.x0), y = b.y0 + fy * (b.y1 - b.y0);
-    Q_EMIT clicked(static_cast<double>(x), static_cast<double>(y));
+    Q_EMIT clicked(b.x0 + fx * (b.x1 - b.x0), b.y0 + fy * (b.y1 - b.y0));
     return;
   }
   Q_EMIT cropRequested(std::min(fx0, fx1), std::max(fx0, fx1), std::min(fy0, fy1), std::max(fy0, fy1));
 }
 
-bool PortraitView::exportPng(const QString& path, const QSize& size) {
+void PortraitView::setLineTool(bool on) {
+  lineTool_ = on;
+  lineDragging_ = false;
+  picker_->setEnabled(!on);
+  plot_->canvas()->setCursor(on ? Qt::CrossCursor : Qt::ArrowCursor);
+}
+
+bool PortraitView::exportPng(const QString& path, const QSize& requested) {
+  // One export at a time: the wait below runs the event loop, where a second request could otherwise replace
+  // the first one's render (latest wins) and leave it waiting.
+  if (exporting_) {
+    Q_EMIT statusMessage(tr("An export of the portrait is in progress"));
+    return false;
+  }
+  exporting_ = true;
+  const struct Done {
+    bool& flag;
+    ~Done() { flag = false; }
+  } done{exporting_};
+  // The export's own layout: the canvas it gets in an image of that size (with equal aspect, the image is cut
+  // to the view's aspect), then a raster rendered at exactly that canvas size.
+  QSize size = requested;
+  QwtPlotLayout* layout = plot_->plotLayout();
+  const auto canvasIn = [&](const QSize& s) {
+    layout->activate(plot_, QRectF(QPointF(0, 0), QSizeF(s)), QwtPlotLayout::IgnoreScrollbars);
+    return layout->canvasRect();
+  };
+  QRectF canvas = canvasIn(size);
+  if (equalAspect_ && canvas.width() > 0 && canvas.height() > 0) {
+    const double aspect = static_cast<double>(view_.widthUnits() / view_.heightUnits());
+    if (canvas.width() > canvas.height() * aspect)
+      size.setWidth(static_cast<int>(std::lround(size.width() - (canvas.width() - canvas.height() * aspect))));
+    else
+      size.setHeight(static_cast<int>(std::lround(size.height() - (canvas.height() - canvas.width() / aspect))));
+    canvas = canvasIn(size);
+  }
+  layout->invalidate();
+  plot_->updateLayout();
+  const int w = std::clamp(static_cast<int>(std::lround(canvas.width())), 16, 8192);
+  const int h = std::clamp(static_cast<int>(std::lround(canvas.height())), 16, 8192);
+
+  PortraitRequest request;
+  request.map = map_;
+  request.view = view_;
+  request.mode = mode_;
+  request.width = w;
+  request.height = h;
+  // As many points per pixel as the screen's raster has so far, at least 2^22 and at most 2^27 (about a second
+  // with two cores: an export after a long accumulation has fewer points per pixel than the screen, not more).
+  const double screenPixels = frame_ ? static_cast<double>(frame_->pixelCount()) : 1.0;
+  const double perPixel = static_cast<double>(std::max<std::uint64_t>(pointsSoFar_, 1)) / std::max(screenPixels, 1.0);
+  request.points = static_cast<std::uint64_t>(std::clamp(perPixel * w * h, 0x1p22, 0x1p27));
+  request.passes = 1;
+  std::optional<IndicatorRequest> indicator;
+  if (indicator_) {
+    IndicatorRequest r;
+    r.measure.map = map_;
+    r.measure.kind = *indicator_;
+    r.view = view_;
+    r.width = w;
+    r.height = h;
+    r.passes = 1;
+    indicator = r;
+  }
+  if (auto e = indicator ? validationError(*indicator) : validationError(request)) {
+    Q_EMIT statusMessage(tr("Export failed: %1").arg(QString::fromStdString(*e)));
+    return false;
+  }
+
+  const quint64 id = worker_->renderForExport(request, indicator, colours_);
+  std::shared_ptr<const PortraitFrame> frame;
+  QString error;
+  bool finished = false;
+  QEventLoop loop;
+  QProgressDialog progress(tr("Rendering the portrait at %1 × %2 pixels for %3…").arg(w).arg(h).arg(path), tr("Cancel"),
+                           0, 1000, this);
+  progress.setWindowModality(Qt::ApplicationModal);
+  progress.setMinimumDuration(std::numeric_limits<int>::max());  // shown below, at half a second, not by setValue
+  progress.setAutoClose(false);
+  progress.setAutoReset(false);
+  progress.hide();
+  const auto ready = connect(worker_, &PortraitWorker::exportReady, &loop,
+                             [&](quint64 request, std::shared_ptr<const PortraitFrame> f, const QString& e) {
+                               if (request != id) return;
+                               frame = std::move(f);
+                               error = e;
+                               finished = true;
+                               loop.quit();
+                             });
+  const auto moved = connect(worker_, &PortraitWorker::exportProgress, &progress, [&](quint64 request, double f) {
+    if (request == id) progress.setValue(static_cast<int>(1000 * f));
+  });
+  connect(&progress, &QProgressDialog::canceled, &loop, [&] {
+    worker_->cancelExport();
+    error = tr("cancelled");
+    loop.quit();
+  });
+  // The first half second without user input (nothing can close the window under this wait); a longer render
+  // shows the (modal) progress dialog, whose Cancel stops it.
+  QTimer::singleShot(500, &loop, [&] {
+    if (!finished) loop.exit(1);
+  });
+  if (!finished && loop.exec(QEventLoop::ExcludeUserInputEvents) == 1 && !finished) {
+    progress.show();
+    loop.exec();
+  }
+  disconnect(ready);
+  disconnect(moved);
+  progress.close();
+  if (!frame) {
+    Q_EMIT statusMessage(tr("Export failed: %1").arg(error.isEmpty() ? tr("no raster") : error));
+    return false;
+  }
+
+  lastExportRaster_ = QSize(frame->image.width(), frame->image.height());
+  // The plot as on screen, with the export's raster under its axes.
+  const QImage screenImage = frame_ ? frame_->image : QImage();
+  const bool hadBar = plot_->axisEnabled(QwtPlot::yRight);
+  image_->setImage(frame->image, physicalRect(view_, map_));
   QImage image(size, QImage::Format_ARGB32);
   image.fill(Qt::white);
   {
@@ -438,9 +708,14 @@ bool PortraitView::exportPng(const QString& path, const QSize& size) {
     QwtPlotRenderer renderer;
     renderer.render(plot_, &painter, QRectF(QPointF(0, 0), QSizeF(size)));
   }
-  QString error;
-  const bool ok = writePngFile(image, path, &error);
-  Q_EMIT statusMessage(ok ? tr("Exported %1").arg(path) : error);
+  if (frame_) image_->setImage(screenImage, physicalRect(frame_->request.view, frame_->request.map));
+  else image_->setImage(QImage(), QRectF());
+  plot_->enableAxis(QwtPlot::yRight, hadBar);
+  plot_->replot();
+  QString writeError;
+  const bool ok = writePngFile(image, path, &writeError);
+  Q_EMIT statusMessage(ok ? tr("Exported %1 (%2 × %3, its raster %4 × %5)").arg(path).arg(size.width()).arg(size.height()).arg(w).arg(h)
+                          : writeError);
   return ok;
 }
 
@@ -450,13 +725,28 @@ bool PortraitView::exportNpy(const QString& path) {
     return false;
   }
   try {
-    exportPortraitNpy(path.toStdString(), frame_->request, *frame_->raster);
+    if (frame_->indicator) {
+      IndicatorResult result;
+      result.raster = *frame_->indicator;
+      result.cancelled = !frame_->final;
+      exportIndicatorNpy(path.toStdString(), *frame_->indicatorRequest, result, {});
+    } else {
+      exportPortraitNpy(path.toStdString(), frame_->request, *frame_->raster);
+    }
   } catch (const std::exception& e) {
     Q_EMIT statusMessage(tr("Export failed: %1").arg(QString::fromUtf8(e.what())));
     return false;
   }
   Q_EMIT statusMessage(tr("Exported %1 and %2").arg(path, QString::fromStdString(sidecarPath(path.toStdString()))));
   return true;
+}
+
+PhysicalPoint PortraitView::physicalAt(const QPointF& pos) const {
+  const QwtScaleMap xMap = plot_->canvasMap(QwtPlot::xBottom), yMap = plot_->canvasMap(QwtPlot::yLeft);
+  const double fx = (pos.x() - xMap.p1()) / (xMap.p2() - xMap.p1());
+  const double fy = (pos.y() - yMap.p1()) / (yMap.p2() - yMap.p1());  // p1 is y0 (bottom)
+  const PhysicalRect b = view_.physical(map_);
+  return {b.x0 + fx * (b.x1 - b.x0), b.y0 + fy * (b.y1 - b.y0)};
 }
 
 QString PortraitView::cursorText(const QPointF& pos) const {
@@ -475,28 +765,64 @@ QString PortraitView::cursorText(const QPointF& pos) const {
       .arg(static_cast<double>(std::ldexp(Y, -52)), 0, 'g', digits);
 }
 
+namespace {
+/// True when the focus is in a field the user types into: the mouse passing over the portrait leaves it there.
+bool typing() {
+  QWidget* w = QApplication::focusWidget();
+  if (!w) return false;
+  if (qobject_cast<QLineEdit*>(w) || qobject_cast<QAbstractSpinBox*>(w)) return true;
+  if (auto* box = qobject_cast<QComboBox*>(w)) return box->isEditable();
+  return false;
+}
+}  // namespace
+
 bool PortraitView::eventFilter(QObject* watched, QEvent* event) {
   if (watched == plot_->canvas()) {
-    if (event->type() == QEvent::Wheel) {
-      auto* wheel = static_cast<QWheelEvent*>(event);
-      const double steps = wheel->angleDelta().y() / 120.0;
-      if (steps != 0) {
-        const QPointF pos = wheel->position();
-        const QwtScaleMap xMap = plot_->canvasMap(QwtPlot::xBottom), yMap = plot_->canvasMap(QwtPlot::yLeft);
-        const double fx = (pos.x() - xMap.p1()) / (xMap.p2() - xMap.p1());
-        const double fy = (pos.y() - yMap.p1()) / (yMap.p2() - yMap.p1());
-        Q_EMIT zoomRequested(fx, fy, std::pow(1.25, steps));
+    switch (event->type()) {
+      case QEvent::Enter:
+        if (!typing() && window()->isActiveWindow()) plot_->canvas()->setFocus(Qt::MouseFocusReason);
+        break;
+      case QEvent::Wheel: {
+        auto* wheel = static_cast<QWheelEvent*>(event);
+        const double steps = wheel->angleDelta().y() / 120.0;
+        if (steps != 0) {
+          const QPointF pos = wheel->position();
+          const QwtScaleMap xMap = plot_->canvasMap(QwtPlot::xBottom), yMap = plot_->canvasMap(QwtPlot::yLeft);
+          const double fx = (pos.x() - xMap.p1()) / (xMap.p2() - xMap.p1());
+          const double fy = (pos.y() - yMap.p1()) / (yMap.p2() - yMap.p1());
+          Q_EMIT zoomRequested(fx, fy, std::pow(1.25, steps));
+        }
+        return true;
       }
-      return true;
+      case QEvent::MouseButtonPress:
+        if (lineTool_ && static_cast<QMouseEvent*>(event)->button() == Qt::LeftButton) {
+          lineStart_ = mousePosition(static_cast<QMouseEvent*>(event));
+          lineDragging_ = true;
+          return true;
+        }
+        break;
+      case QEvent::MouseMove: {
+        const QPointF pos = mousePosition(static_cast<QMouseEvent*>(event));
+        Q_EMIT cursorMoved(cursorText(pos));
+        break;
+      }
+      case QEvent::MouseButtonRelease:
+        if (lineTool_ && lineDragging_ && static_cast<QMouseEvent*>(event)->button() == Qt::LeftButton) {
+          lineDragging_ = false;
+          const QPointF end = mousePosition(static_cast<QMouseEvent*>(event));
+          if ((end - lineStart_).manhattanLength() >= 4) Q_EMIT lineSelected(physicalAt(lineStart_), physicalAt(end));
+          return true;
+        }
+        break;
+      default: break;
     }
-    if (event->type() == QEvent::MouseMove) Q_EMIT cursorMoved(cursorText(mousePosition(static_cast<QMouseEvent*>(event))));
   }
   return QWidget::eventFilter(watched, event);
 }
 
 void PortraitView::keyPressEvent(QKeyEvent* event) {
-  // Alt+Left / Alt+Right (and the Back/Forward mouse and keyboard keys) go through the history, as in a browser;
-  // plain arrows pan.
+  // The keys of a view without its panel (the panel's Portrait actions take them first when it is there):
+  // Alt+Left / Alt+Right (and the Back/Forward keys) go through the history, as in a browser; arrows pan.
   if (event->matches(QKeySequence::Back) || event->key() == Qt::Key_Back) {
     Q_EMIT backRequested();
     return;
@@ -510,7 +836,8 @@ void PortraitView::keyPressEvent(QKeyEvent* event) {
     case Qt::Key_Right: Q_EMIT panRequested(0.1, 0); break;
     case Qt::Key_Up: Q_EMIT panRequested(0, 0.1); break;
     case Qt::Key_Down: Q_EMIT panRequested(0, -0.1); break;
-    case Qt::Key_Plus: Q_EMIT zoomRequested(0.5, 0.5, 2.0); break;
+    case Qt::Key_Plus:
+    case Qt::Key_Equal: Q_EMIT zoomRequested(0.5, 0.5, 2.0); break;
     case Qt::Key_Minus: Q_EMIT zoomRequested(0.5, 0.5, 0.5); break;
     case Qt::Key_Home: Q_EMIT resetRequested(); break;
     case Qt::Key_Backspace: Q_EMIT backRequested(); break;

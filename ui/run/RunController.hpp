@@ -110,6 +110,9 @@ class RunController : public QObject {
   bool clear();
   /// Writes the newest state (atomically, through core) and makes it the current file.
   bool save(const QString& path, QString* error = nullptr);
+  /// The run as it is now was written into a session file (embedded): quitting or replacing it loses nothing,
+  /// so nothing asks (issue 25, finding 13).  A live run goes on computing blocks that are in no file.
+  void markSavedInSession() noexcept { unsaved_ = isLive(status_); }
   /// Called when the window is asked to close.  True: close now.  False: not yet — either the user cancelled,
   /// or the run is stopping and closeReady() follows once its checkpoint is written.
   bool requestClose();

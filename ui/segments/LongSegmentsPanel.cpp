@@ -4,6 +4,7 @@
 
 #include "ui/settings/SettingsController.hpp"
 
+#include <QComboBox>
 #include <QElapsedTimer>
 #include <QFileDialog>
 #include <QGridLayout>
@@ -84,10 +85,30 @@ LongSegmentsPanel::LongSegmentsPanel(QWidget* parent) : QWidget(parent) {
   connect(csvButton_, &QPushButton::clicked, this, [this] { exportDialog(false); });
   connect(npyButton_, &QPushButton::clicked, this, [this] { exportDialog(true); });
 
-  auto* steps = new QHBoxLayout;
-  steps->addWidget(playButton_);
-  steps->addWidget(slider_, 1);
-  steps->addWidget(stepBox_);
+  // Replay speed: a multiple of the base pace (the whole segment in ~15 s); 64× is a glance, ¼× a close look.
+  speedBox_ = new QComboBox(this);
+  speedBox_->setObjectName(QStringLiteral("replaySpeed"));
+  for (const auto& [label, factor] : std::initializer_list<std::pair<const char*, double>>{
+           {"¼×", 0.25}, {"½×", 0.5}, {"1×", 1}, {"2×", 2}, {"4×", 4}, {"16×", 16}, {"64×", 64}})
+    speedBox_->addItem(QString::fromUtf8(label), factor);
+  speedBox_->setCurrentIndex(2);
+  speedBox_->setToolTip(tr("Replay speed (1×: the whole segment in about 15 s)"));
+  // The slider has a row of its own, so that it keeps its length whatever the other controls show (issue 25,
+  // finding 3: a restored session once squeezed it to a handle); the coordinates wrap below.
+  playButton_->setMinimumWidth(playButton_->fontMetrics().horizontalAdvance(tr("Pause")) + 24);
+  stepLabel_->setWordWrap(true);
+  slider_->setMinimumWidth(120);
+  auto* steps = new QVBoxLayout;
+  auto* playRow = new QHBoxLayout;
+  playRow->addWidget(playButton_);
+  playRow->addWidget(slider_, 1);
+  auto* stepRow = new QHBoxLayout;
+  stepRow->addWidget(new QLabel(tr("Step"), this));
+  stepRow->addWidget(stepBox_, 1);
+  stepRow->addWidget(new QLabel(tr("Speed"), this));
+  stepRow->addWidget(speedBox_);
+  steps->addLayout(playRow);
+  steps->addLayout(stepRow);
   steps->addWidget(stepLabel_);
   zoomSegmentButton_ = new QPushButton(tr("Zoom to segment"), this);
   zoomSegmentButton_->setToolTip(tr("Show the region where the segment spent 90 % of its time"));
@@ -102,6 +123,7 @@ LongSegmentsPanel::LongSegmentsPanel(QWidget* parent) : QWidget(parent) {
   exports->addWidget(csvButton_, 1, 0);
   exports->addWidget(npyButton_, 1, 1);
   auto* layout = new QVBoxLayout(this);
+  layout->setContentsMargins(4, 4, 4, 4);
   layout->addWidget(table_, 1);
   layout->addWidget(hint_);
   layout->addWidget(info_);
@@ -387,7 +409,9 @@ void LongSegmentsPanel::togglePlay() {
 void LongSegmentsPanel::advancePlay() {
   if (!replay_) return;
   const std::size_t n = replay_->trace.states.size();
-  const std::size_t next = index_ + std::max<std::size_t>(1, n / kPlayTicks);
+  const double speed = speedBox_->currentData().toDouble();
+  const auto advance = static_cast<std::size_t>(std::max(1.0, speed * static_cast<double>(n) / kPlayTicks));
+  const std::size_t next = index_ + advance;
   setCurrentIndex(std::min(next, n - 1));
   if (index_ + 1 >= n) togglePlay();
 }

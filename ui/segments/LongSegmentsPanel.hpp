@@ -24,6 +24,7 @@
 #include "core/periodic/PeriodicOrbit.hpp"
 #include "core/trapping/LongestSegments.hpp"
 
+class QComboBox;
 class QLabel;
 class QPushButton;
 class QSlider;
@@ -86,6 +87,9 @@ class LongSegmentsPanel : public QWidget {
 
   [[nodiscard]] LongestSegmentsModel* model() const noexcept { return model_; }
   [[nodiscard]] QTableView* table() const noexcept { return table_; }
+  /// The replay slider and speed (tests: the slider keeps its length, the speed multiplies the pace).
+  [[nodiscard]] QSlider* slider() const noexcept { return slider_; }
+  [[nodiscard]] QComboBox* speedBox() const noexcept { return speedBox_; }
 
  Q_SIGNALS:
   /// A replay is about to be drawn on the portrait (connect directly: the receiver can show the portrait's
@@ -121,6 +125,7 @@ class LongSegmentsPanel : public QWidget {
   QSpinBox* stepBox_ = nullptr;
   QLabel* stepLabel_ = nullptr;
   QToolButton* playButton_ = nullptr;
+  QComboBox* speedBox_ = nullptr;
   QPushButton* csvButton_ = nullptr;
   QPushButton* npyButton_ = nullptr;
   QPushButton* zoomSegmentButton_ = nullptr;

@@ -10,6 +10,7 @@
 #include "core/io/AtomicFile.hpp"
 #include "core/spec/RunSpec.hpp"
 #include "ui/plots/StatisticsPlot.hpp"
+#include "core/portrait/PortraitExport.hpp"
 #include "ui/portrait/PortraitView.hpp"
 
 namespace archipelago::ui {
@@ -68,7 +69,8 @@ ExportResult exportAll(const QList<StatisticsPlot*>& plots, const RunSnapshotPtr
     else fail(QObject::tr("could not write the phase portrait to %1").arg(png));
     if (portrait->currentFrame()) {
       const QString npy = dir.filePath(QLatin1String(kPortraitNpyName));
-      if (portrait->exportNpy(npy)) result.written << npy;
+      // The .npy and its JSON sidecar: both counted ("Wrote N files" says how many are in the folder).
+      if (portrait->exportNpy(npy)) result.written << npy << QString::fromStdString(sidecarPath(npy.toStdString()));
       else fail(QObject::tr("could not write the portrait's raster to %1").arg(npy));
     }
   }

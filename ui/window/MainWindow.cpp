@@ -20,6 +20,11 @@
 #include <QProgressBar>
 #include <QPushButton>
 #include <QScrollArea>
+#include <QHeaderView>
+#include <QTableWidget>
+#include <QDialog>
+#include <QDialogButtonBox>
+#include <QTabBar>
 #include <QStandardPaths>
 #include <QStatusBar>
 #include <QTabWidget>
@@ -31,6 +36,7 @@
 #include <qwt_global.h>
 
 #include <exception>
+#include <functional>
 
 #include "ui/jobs/DurationText.hpp"
 #include "ui/window/ExportActions.hpp"
@@ -38,10 +44,12 @@
 #include "ui/window/SessionController.hpp"
 #include "ui/settings/SettingsController.hpp"
 #include "ui/window/ParameterPanel.hpp"
+#include "ui/window/RunGlanceView.hpp"
 #include "ui/window/StatisticsView.hpp"
 #include "ui/periodic/PeriodicOrbitDialog.hpp"
 #include "ui/scan/KScanDialog.hpp"
 #include "ui/portrait/PortraitController.hpp"
+#include "ui/portrait/ManifoldsPanel.hpp"
 #include "ui/portrait/PortraitPanel.hpp"
 #include "ui/segments/LongSegmentsPanel.hpp"
 #include "ui/plots/StatisticsPlot.hpp"
@@ -51,6 +59,8 @@ namespace archipelago::ui {
 
 namespace {
 constexpr int kRefreshIntervalMs = 66;  // 15 Hz: live, yet far from saturating the GUI thread
+/// The left panel's width (parameters, long segments): fixed, so that nothing on it widens the window.
+constexpr int kLeftPanelWidth = 360;
 
 QString formatRate(double stepsPerSecond) {
   if (stepsPerSecond >= 1e9) return QObject::tr("%1 G steps/s").arg(stepsPerSecond / 1e9, 0, 'f', 2);
@@ -84,15 +94,22 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   connect(run_, &RunController::runReplaced, this, [this] {
     shown_.reset();
     statistics_->clear();
+    glance_->clear();
     segments_->clear();
   });
 
+  // The first screen is the phase portrait, accumulating, with f_t and C_τ of the run beside it (issue 25,
+  // finding 5): what the program is about, seen at once; the Statistics tab has all six plots.
   tabs_ = new QTabWidget(this);
   tabs_->setDocumentMode(true);
-  statistics_ = new StatisticsView(tabs_);
-  tabs_->addTab(statistics_, tr("Statistics"));
   portrait_ = new PortraitPanel(tabs_);
   tabs_->addTab(portrait_, tr("Phase portrait"));
+  statistics_ = new StatisticsView(tabs_);
+  tabs_->addTab(statistics_, tr("Statistics"));
+  glance_ = new RunGlanceView(portrait_->sidePages());
+  portrait_->sidePages()->insertTab(0, glance_, tr("Run"));
+  portrait_->sidePages()->setCurrentIndex(0);
+  tabs_->setCurrentWidget(portrait_);
   // The portrait's progress belongs to the portrait: shown only while its tab is.
   connect(portrait_, &PortraitPanel::statusMessage, this, [this](const QString& text) {
     if (tabs_->currentWidget() == portrait_) statusBar()->showMessage(text, 5000);
@@ -121,6 +138,7 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
 
   auto* dock = new QDockWidget(tr("Parameters"), this);
   dock->setObjectName(QStringLiteral("parametersDock"));
+  parametersDock_ = dock;
   dock->setFeatures(QDockWidget::DockWidgetMovable | QDockWidget::DockWidgetFloatable);
   dock->setWidget(createParameterDock());
   addDockWidget(Qt::LeftDockWidgetArea, dock);
@@ -171,7 +189,10 @@ void MainWindow::createActions() {
     else saveRunFile(run_->currentFile());
   });
   saveAsAction_ = new QAction(tr("Save Run File &As…"), this);
-  saveAsAction_->setShortcut(QKeySequence::SaveAs);
+  // The platform's Save As, else Ctrl+Shift+S (some platforms define none: issue 25, finding 14).
+  saveAsAction_->setShortcuts(QKeySequence::keyBindings(QKeySequence::SaveAs).isEmpty()
+                                  ? QList<QKeySequence>{QKeySequence(QStringLiteral("Ctrl+Shift+S"))}
+                                  : QKeySequence::keyBindings(QKeySequence::SaveAs));
   connect(saveAsAction_, &QAction::triggered, this, &MainWindow::saveDialog);
 
   exportAllAction_ = new QAction(tr("&Export All Plots…"), this);
@@ -246,6 +267,13 @@ void MainWindow::createMenus() {
 
   QMenu* view = menuBar()->addMenu(tr("&View"));
   view->addAction(resetZoomAction_);
+  view->addSeparator();
+  for (int i = 0; i < tabs_->count(); ++i) {
+    QAction* a = view->addAction(tabs_->tabText(i), this, [this, i] { tabs_->setCurrentIndex(i); });
+    a->setShortcut(QKeySequence(QStringLiteral("Alt+%1").arg(i + 1)));
+  }
+
+  menuBar()->addMenu(portrait_->menu());
 
   QMenu* tools = menuBar()->addMenu(tr("&Tools"));
   QAction* periodic = tools->addAction(tr("Find &Periodic Orbit…"), this, &MainWindow::showPeriodicOrbitDialog);
@@ -255,6 +283,9 @@ void MainWindow::createMenus() {
   kScan->setStatusTip(tr("The K scan of sec. 5: a resumable run per K, f_t and D over K"));
 
   QMenu* help = menuBar()->addMenu(tr("&Help"));
+  QAction* keys = help->addAction(tr("&Keyboard Shortcuts"), this, &MainWindow::showKeyboardShortcuts);
+  keys->setShortcut(QKeySequence(QStringLiteral("Ctrl+/")));
+  keys->setStatusTip(tr("Every key of every menu, and the mouse on the portrait"));
   help->addAction(tr("&About Archipelago"), this, &MainWindow::showAbout);
   help->addAction(tr("About &Qt"), qApp, &QApplication::aboutQt);
 
@@ -302,6 +333,7 @@ QWidget* MainWindow::createParameterDock() {
   scroll->setWidget(panel_);
   scroll->setWidgetResizable(true);
   scroll->setFrameShape(QFrame::NoFrame);
+  scroll->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);  // the fields fit the width: no second bar
   layout->addWidget(scroll, 1);
   auto* buttons = new QHBoxLayout;
   for (QAction* a : {runAction_, pauseAction_, resumeAction_, stopAction_}) {
@@ -312,7 +344,8 @@ QWidget* MainWindow::createParameterDock() {
     buttons->addWidget(b);
   }
   layout->addLayout(buttons);
-  box->setMinimumWidth(300);
+  // A fixed width: the panel never widens by itself (issue 25, finding 4); its texts wrap or elide.
+  box->setFixedWidth(kLeftPanelWidth);
   return box;
 }
 
@@ -402,6 +435,7 @@ void MainWindow::refreshView() {
   if (!latest || latest == shown_) return;
   shown_ = latest;
   statistics_->showSnapshot(*shown_);
+  glance_->showSnapshot(shown_);
   segments_->updateSegments(shown_->state.params, shown_->state.longest);
   if (pendingSegment_ >= 0 && pendingSegment_ < segments_->model()->rowCount()) {
     segments_->selectRow(pendingSegment_);
@@ -444,6 +478,7 @@ void MainWindow::createLongSegmentsDock(QDockWidget* parametersDock) {
   segmentsDock_ = new QDockWidget(tr("Long segments"), this);
   segmentsDock_->setObjectName(QStringLiteral("longSegmentsDock"));
   segmentsDock_->setFeatures(QDockWidget::DockWidgetMovable | QDockWidget::DockWidgetFloatable);
+  segments_->setFixedWidth(kLeftPanelWidth);
   segmentsDock_->setWidget(segments_);
   // A tab beside the parameters: the portrait keeps the width it needs.
   addDockWidget(Qt::LeftDockWidgetArea, segmentsDock_);
@@ -467,6 +502,11 @@ void MainWindow::showPeriodicOrbitDialog() {
     connect(periodicDialog_, &PeriodicOrbitDialog::overlayRequested, this, [this](const PeriodicOrbit& orbit) {
       tabs_->setCurrentWidget(portrait_);
       portrait_->controller()->showPeriodicOrbit(orbit);
+    });
+    connect(periodicDialog_, &PeriodicOrbitDialog::manifoldsRequested, this, [this](const PeriodicOrbit& orbit) {
+      tabs_->setCurrentWidget(portrait_);
+      portrait_->controller()->setManifoldOrbit(orbit);
+      portrait_->sidePages()->setCurrentWidget(portrait_->manifoldsPanel());
     });
   }
   if (const auto p = panel_->parameters()) periodicDialog_->setK(p->map.K);
@@ -572,7 +612,7 @@ bool MainWindow::exportAllTo(const QString& folder, QString* error) {
     message(tr("Export failed: %1").arg(r.error), 0);
     return false;
   }
-  message(tr("Wrote %1 files to %2").arg(r.written.size()).arg(folder));
+  message(tr("Wrote %1 files to %2").arg(r.written.size()).arg(folder));  // every file, sidecars included
   return true;
 }
 
@@ -731,5 +771,56 @@ void MainWindow::showAbout() {
 }
 
 void MainWindow::message(const QString& text, int timeoutMs) { statusBar()->showMessage(text, timeoutMs); }
+
+QList<QPair<QString, QString>> MainWindow::keyboardShortcuts() const {
+  QList<QPair<QString, QString>> rows;
+  // Every action of every menu, by its menu path: the one list of keys (a menu item shows its key too).
+  std::function<void(const QMenu*, const QString&)> walk = [&](const QMenu* menu, const QString& path) {
+    for (QAction* a : menu->actions()) {
+      if (a->isSeparator()) continue;
+      const QString name = path + QStringLiteral(" ▸ ") + QString(a->text()).remove(QLatin1Char('&'));
+      if (a->menu()) {
+        walk(a->menu(), name);
+        continue;
+      }
+      QStringList keys;
+      for (const QKeySequence& k : a->shortcuts()) keys << k.toString(QKeySequence::NativeText);
+      if (!keys.isEmpty()) rows.append({name, keys.join(QStringLiteral(", "))});
+    }
+  };
+  for (QAction* a : menuBar()->actions())
+    if (a->menu()) walk(a->menu(), QString(a->text()).remove(QLatin1Char('&')));
+  rows.append({tr("Portrait: click"), tr("launch an orbit (listed under Orbits with its rotation number and chain)")});
+  rows.append({tr("Portrait: drag"), tr("zoom to the rectangle (with the profile tool: draw the line)")});
+  rows.append({tr("Portrait: wheel"), tr("zoom about the cursor")});
+  rows.append({tr("Portrait: middle-drag"), tr("pan")});
+  rows.append({tr("Plots: drag / right click / wheel"), tr("zoom / zoom back / zoom about the cursor")});
+  return rows;
+}
+
+void MainWindow::showKeyboardShortcuts() {
+  auto* dialog = new QDialog(this);
+  dialog->setObjectName(QStringLiteral("keyboardShortcutsDialog"));
+  dialog->setWindowTitle(tr("Keyboard Shortcuts"));
+  dialog->setAttribute(Qt::WA_DeleteOnClose);
+  const auto rows = keyboardShortcuts();
+  auto* table = new QTableWidget(static_cast<int>(rows.size()), 2, dialog);
+  table->setHorizontalHeaderLabels({tr("Action"), tr("Keys")});
+  table->verticalHeader()->hide();
+  table->setEditTriggers(QAbstractItemView::NoEditTriggers);
+  for (int i = 0; i < rows.size(); ++i) {
+    table->setItem(i, 0, new QTableWidgetItem(rows[i].first));
+    table->setItem(i, 1, new QTableWidgetItem(rows[i].second));
+  }
+  table->horizontalHeader()->setSectionResizeMode(0, QHeaderView::Stretch);
+  table->horizontalHeader()->setSectionResizeMode(1, QHeaderView::ResizeToContents);
+  auto* buttons = new QDialogButtonBox(QDialogButtonBox::Close, dialog);
+  connect(buttons, &QDialogButtonBox::rejected, dialog, &QDialog::close);
+  auto* layout = new QVBoxLayout(dialog);
+  layout->addWidget(table);
+  layout->addWidget(buttons);
+  dialog->resize(620, 560);
+  dialog->show();
+}
 
 }  // namespace archipelago::ui

@@ -36,6 +36,7 @@ class KScanDialog;
 class PortraitPanel;
 
 class ParameterPanel;
+class RunGlanceView;
 class SessionController;
 class StatisticsView;
 
@@ -78,6 +79,13 @@ class MainWindow : public QMainWindow {
   /// Tools ▸ Find Periodic Orbit: the dialog, with K from the current parameters.
   void showPeriodicOrbitDialog();
   void showKScanDialog();
+  /// Help ▸ Keyboard Shortcuts: every key of every menu (menu path, keys) and the mouse on the portrait.
+  [[nodiscard]] QList<QPair<QString, QString>> keyboardShortcuts() const;
+  void showKeyboardShortcuts();
+  /// The "Run" page beside the portrait (f_t and C_τ live).
+  [[nodiscard]] RunGlanceView* runGlance() const noexcept { return glance_; }
+  [[nodiscard]] QDockWidget* parametersDock() const noexcept { return parametersDock_; }
+  [[nodiscard]] QDockWidget* segmentsDock() const noexcept { return segmentsDock_; }
   [[nodiscard]] QTabWidget* tabs() const noexcept { return tabs_; }
   [[nodiscard]] RunSnapshotPtr latestSnapshot() const { return run_->latest(); }
   [[nodiscard]] QAction* runAction() const noexcept { return runAction_; }
@@ -142,7 +150,9 @@ class MainWindow : public QMainWindow {
   RunController* run_ = nullptr;
   ParameterPanel* panel_ = nullptr;
   StatisticsView* statistics_ = nullptr;
+  RunGlanceView* glance_ = nullptr;
   PortraitPanel* portrait_ = nullptr;
+  QDockWidget* parametersDock_ = nullptr;
   LongSegmentsPanel* segments_ = nullptr;
   QDockWidget* segmentsDock_ = nullptr;
   PeriodicOrbitDialog* periodicDialog_ = nullptr;

@@ -39,6 +39,7 @@ Session SessionController::capture(const QString& sessionPath) const {
     } else {
       s.embeddedRun = latest->state;
     }
+    s.runStopped = run.status() == RunStatus::stopped;
   }
 
   s.tab = parts_.tabs->tabText(parts_.tabs->currentIndex()).remove(QLatin1Char('&')).toStdString();
@@ -57,7 +58,9 @@ Session SessionController::capture(const QString& sessionPath) const {
 
 bool SessionController::save(const QString& path, QString* error) {
   try {
-    saveSession(path.toStdString(), capture(path));
+    const Session s = capture(path);
+    saveSession(path.toStdString(), s);
+    if (s.embeddedRun) parts_.run->markSavedInSession();  // the session holds it: quitting loses nothing
   } catch (const std::exception& e) {
     if (error) *error = QString::fromStdString(e.what());
     return false;
@@ -147,6 +150,8 @@ void SessionController::applyViews(const Session& s) {
 }
 
 void SessionController::applyRunDependent(const Session& s) {
+  // A run saved stopped comes back stopped (final), not resumable (issue 25, finding 13).
+  if (s.runStopped && parts_.run->status() == RunStatus::paused) parts_.run->stop();
   // A resumable run shows its own parameters (read-only); otherwise the panel holds the session's.
   if (parts_.run->status() != RunStatus::paused) parts_.parameters->setSpec(s.spec);
   parts_.refreshNow();

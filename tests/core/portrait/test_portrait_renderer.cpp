@@ -535,6 +535,30 @@ TEST(ColourMap, EndsAndOrbitColours) {
   EXPECT_EQ(image.rgb[3], 0);    // the most visited pixel: black
 }
 
+// Issue 25, finding 14: Density was almost all saturated yellow (the scale between the 0.5% and 99.9% quantiles
+// put the nearly uniform sea at its top).  Centred on the median, the bulk of the sea sits mid-scale.
+TEST(ColourMap, DensityCentresTheSeaOnTheScale_Issue25Finding14) {
+  PortraitRequest req;  // the paper's box, K = 0.1
+  req.width = req.height = 160;
+  req.mode = PortraitMode::Density;
+  req.points = 20'000'000;
+  const PortraitRaster raster = renderPortrait(req).raster;
+  const RasterImage image = colourize(raster, ColourMapName::Grey);
+  // Grey runs from white (t = 0) to black (t = 1): the pixels in the top tenth of the scale are a minority.
+  std::size_t visited = 0, top = 0, middle = 0;
+  for (std::size_t i = 0; i < raster.pixelCount(); ++i) {
+    if (raster.counts[i] == 0) continue;
+    ++visited;
+    const double t = 1 - image.rgb[3 * i] / 255.0;
+    top += t > 0.92;
+    middle += t > 0.3 && t < 0.8;
+  }
+  ASSERT_GT(visited, raster.pixelCount() / 2);
+  EXPECT_LT(top, visited / 10);
+  EXPECT_GT(middle, visited / 2);
+  EXPECT_LT(image.scaleMin, image.scaleMax);
+}
+
 // K = 0 (fig. 3b): Q has no island, every seed of the Orbits mode wraps around the torus.  The sea used to be
 // painted one grey, so the portrait was blank; it is now shaded by its visits through the colour map, and
 // the colour map changes the picture.

@@ -132,6 +132,22 @@ TEST(SessionFile, EmbeddedRunKeepsItsStateAndChecksum) {
   EXPECT_EQ(otherBack.embeddedRun->params.seed, s.spec.parameters.seed);
 }
 
+// Issue 25, finding 13: a stopped run is final; its session says so, so that it does not come back resumable.
+TEST(SessionFile, StoppedRunStaysStopped_Issue25Finding13) {
+  std::mt19937_64 rng(9);
+  Session s = fullSession(rng);
+  s.runFile = "run.json";
+  EXPECT_FALSE(parseSession(sessionText(s)).runStopped);
+  s.runStopped = true;
+  const std::string text = sessionText(s);
+  EXPECT_TRUE(parseSession(text).runStopped);
+  nlohmann::json j = nlohmann::json::parse(text);
+  j["run"]["stopped"] = 1;
+  expectRejected(j.dump(), "run.stopped");
+  j["run"] = {{"stopped", true}};
+  expectRejected(j.dump(), "exactly one");
+}
+
 TEST(SessionFile, ReferencedRunResolvesBesideTheSession) {
   TempDir dir;
   std::mt19937_64 rng(3);

@@ -169,7 +169,7 @@ int main(int argc, char** argv) {
   QObject::connect(&step, &QTimer::timeout, [&] {
     if (QApplication::activeModalWidget()) return;  // the answer timer handles it
     ++actions;
-    const int kind = pick(22);
+    const int kind = pick(26);
     auto* portrait = window.portraitPanel()->controller();
     auto* view = window.portraitPanel()->view();
     switch (kind) {
@@ -283,6 +283,25 @@ int main(int argc, char** argv) {
       case 21: {
         setAction("open session");
         window.openSession(work.filePath(QStringLiteral("session-%1.archipelago").arg(pick(3))));
+        break;
+      }
+      case 22: {
+        setAction("portrait mode");  // the three modes and the five indicator maps (issue 25, #27)
+        const auto displays = archipelago::ui::PortraitPanel::displays();
+        window.portraitPanel()->setDisplay(displays[static_cast<std::size_t>(pick(static_cast<int>(displays.size())))]);
+        break;
+      }
+      case 23: setAction("manifolds"); window.portraitPanel()->manifoldsAction()->trigger(); break;
+      case 24: setAction("undo orbit (Ctrl+Z)"); QTest::keyClick(&window, Qt::Key_Z, Qt::ControlModifier); break;
+      case 25: {
+        setAction("rotation profile");
+        window.portraitPanel()->profileToolAction()->trigger();
+        QWidget* canvas = view->canvas();
+        const QPoint a(pick(std::max(1, canvas->width())), pick(std::max(1, canvas->height())));
+        const QPoint b(pick(std::max(1, canvas->width())), pick(std::max(1, canvas->height())));
+        QTest::mousePress(canvas, Qt::LeftButton, Qt::NoModifier, a);
+        QTest::mouseMove(canvas, b);
+        QTest::mouseRelease(canvas, Qt::LeftButton, Qt::NoModifier, b);
         break;
       }
     }

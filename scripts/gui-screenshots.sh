@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# The GUI's screenshots in docs/images, made by the application itself (--screenshot) on a virtual screen:
+# the first screen at 1280×800 and 1920×1080, each chaos-indicator mode, the manifolds layer with its turnstile and
+# a deep zoom into its tangle, and the Statistics tab after a run (issues 25, 27, 28).  Look at them before
+# committing: only a person can judge a picture.
+#   bash scripts/gui-screenshots.sh [OUT_DIR]        (default docs/images; APP=… for another build)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+app="${APP:-build/default/app/gui/archipelago}"
+out="${1:-docs/images}"
+command -v xvfb-run >/dev/null || { echo "gui-screenshots: xvfb-run is missing (apt-get install xvfb)" >&2; exit 1; }
+mkdir -p "$out"
+home="$(mktemp -d)"
+trap 'rm -rf "$home"' EXIT
+chmod 700 "$home"
+
+# shot SCREEN NAME SECONDS ARGS…: the window filling a SCREEN (less a title bar) after SECONDS.
+shot() {
+  local screen="$1" name="$2" seconds="$3"
+  shift 3
+  local w="${screen%x*}" h="${screen#*x}"
+  XDG_CONFIG_HOME="$home/config" XDG_DATA_HOME="$home/data" XDG_RUNTIME_DIR="$home" \
+    xvfb-run -a -s "-screen 0 ${screen}x24" "$app" -qwindowgeometry "${w}x$((h - 30))+0+0" \
+    --preset "K = 0.1, under a minute" --after "$seconds" --screenshot "$home/$name.png" "$@" >/dev/null
+  # 256 colours: a few hundred kB per screen, the portraits' detail kept.
+  convert "$home/$name.png" -colors 256 "PNG8:$out/$name.png"
+  echo "wrote $out/$name.png"
+}
+
+shot 1280x800 gui-first-screen-1280x800 15 --run
+shot 1920x1080 gui-first-screen-1920x1080 15 --run
+for kind in dig rotation fli megno lyapunov; do
+  shot 1280x800 "gui-indicator-$kind-1280x800" 40 --mode "$kind"
+done
+shot 1280x800 gui-manifolds-1280x800 10 --manifolds
+# The folds of the tangle about the central island, then a view 0.014 wide at the first homoclinic point h of
+# (√K, 0), with the entry lobe: the manifolds refined in the view.
+shot 1280x800 gui-manifolds-zoom-1280x800 10 --manifolds --view=-0.80,-0.40,-0.46,0.14
+shot 1280x800 gui-manifolds-tangle-1280x800 10 --manifolds --view=-0.688,-0.674,-0.371,-0.357
+shot 1280x800 gui-statistics-1280x800 40 --run --tab Statistics

@@ -1,0 +1,172 @@
+#include "ui/portrait/OrbitListPanel.hpp"
+
+#include <QHBoxLayout>
+#include <QHeaderView>
+#include <QLabel>
+#include <QLocale>
+#include <QPainter>
+#include <QPixmap>
+#include <QPushButton>
+#include <QSet>
+#include <QTimer>
+#include <QSignalBlocker>
+#include <QTreeWidget>
+#include <QVBoxLayout>
+
+#include <cmath>
+
+#include "ui/portrait/PortraitController.hpp"
+
+namespace archipelago::ui {
+
+namespace {
+QIcon swatch(const QColor& colour) {
+  QPixmap p(12, 12);
+  p.fill(Qt::transparent);
+  QPainter painter(&p);
+  painter.setRenderHint(QPainter::Antialiasing);
+  painter.setPen(QPen(Qt::black, 1));
+  painter.setBrush(colour);
+  painter.drawEllipse(QRectF(1, 1, 10, 10));
+  return QIcon(p);
+}
+
+QString number(long double v) { return QString::number(static_cast<double>(v), 'g', 9); }
+}  // namespace
+
+OrbitListPanel::OrbitListPanel(PortraitController* controller, QWidget* parent)
+    : QWidget(parent), controller_(controller) {
+  empty_ = new QLabel(tr("Click the portrait to launch an orbit: it is listed here with its rotation number about "
+                         "the centre, the digits it converged to and its island chain."),
+                      this);
+  empty_->setWordWrap(true);
+  list_ = new QTreeWidget(this);
+  list_->setObjectName(QStringLiteral("launchedOrbits"));
+  list_->setRootIsDecorated(false);
+  list_->setUniformRowHeights(true);
+  list_->setAlternatingRowColors(true);
+  list_->setColumnCount(5);
+  list_->setHeaderLabels({tr("#"), tr("start (x, y)"), tr("steps"), tr("rotation"), tr("chain")});
+  list_->header()->setSectionResizeMode(QHeaderView::ResizeToContents);
+  list_->header()->setStretchLastSection(false);
+  list_->setSelectionMode(QAbstractItemView::SingleSelection);
+  list_->setToolTip(tr("Select an orbit to highlight it and draw its chain's elliptic orbit"));
+  details_ = new QLabel(this);
+  details_->setWordWrap(true);
+  details_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  details_->setObjectName(QStringLiteral("orbitDetails"));
+  undo_ = new QPushButton(tr("Undo"), this);
+  undo_->setToolTip(tr("Remove the orbit launched last (Ctrl+Z)"));
+  remove_ = new QPushButton(tr("Remove"), this);
+  remove_->setToolTip(tr("Remove the selected orbit"));
+  clear_ = new QPushButton(tr("Clear"), this);
+  clear_->setToolTip(tr("Remove every launched orbit"));
+  connect(undo_, &QPushButton::clicked, controller_, &PortraitController::undoLastOrbit);
+  connect(remove_, &QPushButton::clicked, this, [this] {
+    if (QTreeWidgetItem* item = list_->currentItem()) controller_->removeOrbit(item->data(0, Qt::UserRole).toULongLong());
+  });
+  connect(clear_, &QPushButton::clicked, controller_, &PortraitController::clearOrbits);
+  connect(list_, &QTreeWidget::currentItemChanged, this, [this](QTreeWidgetItem* item) {
+    controller_->highlightOrbit(item ? item->data(0, Qt::UserRole).toULongLong() : 0);
+  });
+  // Many changes in a burst (a session's orbits arriving one by one): one refresh when the event loop is free.
+  refreshTimer_ = new QTimer(this);
+  refreshTimer_->setSingleShot(true);
+  refreshTimer_->setInterval(30);
+  connect(refreshTimer_, &QTimer::timeout, this, &OrbitListPanel::refresh);
+  connect(controller_, &PortraitController::orbitsChanged, this, [this] {
+    if (!refreshTimer_->isActive()) refreshTimer_->start();
+  });
+
+  auto* buttons = new QHBoxLayout;
+  buttons->addWidget(undo_);
+  buttons->addWidget(remove_);
+  buttons->addWidget(clear_);
+  auto* layout = new QVBoxLayout(this);
+  layout->setContentsMargins(2, 4, 2, 2);
+  layout->addWidget(empty_);
+  layout->addWidget(list_, 1);
+  layout->addWidget(details_);
+  layout->addLayout(buttons);
+  refresh();
+}
+
+void OrbitListPanel::refresh() {
+  const auto& orbits = controller_->launchedOrbits();
+  // Rows follow the controller's list: the rows of removed orbits go, new ones are appended, the others are
+  // updated in place (a session's 500 orbits arrive one by one).
+  const QSignalBlocker block(list_);
+  refreshTimer_->stop();
+  QSet<quint64> ids;
+  for (const LaunchedOrbit& o : orbits) ids.insert(o.id);
+  for (int row = list_->topLevelItemCount() - 1; row >= 0; --row)
+    if (!ids.contains(list_->topLevelItem(row)->data(0, Qt::UserRole).toULongLong())) delete list_->takeTopLevelItem(row);
+  const QLocale locale;
+  for (std::size_t i = 0; i < orbits.size(); ++i) {
+    const LaunchedOrbit& o = orbits[i];
+    QTreeWidgetItem* item = static_cast<int>(i) < list_->topLevelItemCount() ? list_->topLevelItem(static_cast<int>(i)) : nullptr;
+    if (!item || item->data(0, Qt::UserRole).toULongLong() != o.id) {
+      item = new QTreeWidgetItem;
+      item->setData(0, Qt::UserRole, QVariant::fromValue<qulonglong>(o.id));
+      item->setIcon(0, swatch(o.colour));
+      item->setText(0, QString::number(o.id));
+      item->setText(1, QStringLiteral("%1, %2").arg(static_cast<double>(o.x), 0, 'g', 6).arg(static_cast<double>(o.y), 0, 'g', 6));
+      item->setText(2, locale.toString(static_cast<qulonglong>(o.steps)));
+      list_->insertTopLevelItem(static_cast<int>(i), item);
+    }
+    const QString rotation = !o.error.isEmpty() ? tr("failed")
+                             : o.measures      ? rotationText(*o.measures)
+                                               : tr("measuring…");
+    const QString chain = o.measures ? chainText(*o.measures) : QString();
+    if (item->text(3) != rotation) item->setText(3, rotation);
+    if (item->text(4) != chain) item->setText(4, chain);
+    const QString tip = o.measures && o.measures->error.isEmpty() ? QString::fromStdString(o.measures->chain.summary) : chain;
+    for (int c = 0; c < 5; ++c) item->setToolTip(c, tip);
+    if (o.id == controller_->highlightedOrbit()) list_->setCurrentItem(item);
+  }
+  if (controller_->highlightedOrbit() == 0) list_->clearSelection(), list_->setCurrentItem(nullptr);
+  const bool any = !orbits.empty();
+  empty_->setVisible(!any);
+  undo_->setEnabled(any);
+  clear_->setEnabled(any);
+  remove_->setEnabled(controller_->highlightedOrbit() != 0);
+  updateDetails();
+}
+
+QString OrbitListPanel::detailsText() const { return details_->text(); }
+
+void OrbitListPanel::updateDetails() {
+  const quint64 id = controller_->highlightedOrbit();
+  const LaunchedOrbit* orbit = nullptr;
+  for (const LaunchedOrbit& o : controller_->launchedOrbits())
+    if (o.id == id) orbit = &o;
+  if (!orbit) {
+    details_->setText(controller_->launchedOrbits().empty() ? QString() : tr("Select an orbit for its details."));
+    return;
+  }
+  QString text = tr("<b>Orbit %1</b> from (%2, %3), %4 steps")
+                     .arg(orbit->id)
+                     .arg(number(orbit->x), number(orbit->y))
+                     .arg(QLocale().toString(static_cast<qulonglong>(orbit->steps)));
+  if (!orbit->measures) {
+    text += tr("<br>Measuring its rotation number and chain…");
+  } else if (!orbit->measures->error.isEmpty()) {
+    text += tr("<br>No measures: %1").arg(orbit->measures->error.toHtmlEscaped());
+  } else {
+    const ChainIdentification& c = orbit->measures->chain;
+    const RotationMeasurement& r = c.levels.front().rotation;
+    text += tr("<br>Rotation number about (−√K, 0): %1").arg(rotationText(*orbit->measures).toHtmlEscaped());
+    if (std::isfinite(r.digits)) text += tr("<br>Digits: %1 (verdict: %2)").arg(r.digits, 0, 'f', 2).arg(QString::fromLatin1(toString(r.verdict).data()));
+    text += tr("<br>%1").arg(QString::fromStdString(c.summary).toHtmlEscaped());
+    for (auto it = c.levels.rbegin(); it != c.levels.rend(); ++it)
+      if (it->orbit) {
+        text += tr("<br>Drawn: its elliptic orbit of period %1 (residue %2)")
+                    .arg(it->orbit->period)
+                    .arg(static_cast<double>(it->orbit->residue), 0, 'g', 6);
+        break;
+      }
+  }
+  details_->setText(text);
+}
+
+}  // namespace archipelago::ui

@@ -1,0 +1,49 @@
+#pragma once
+/// \file OrbitListPanel.hpp
+/// \brief The "Orbits" page beside the portrait: the launched orbits with their colour, start, steps and
+/// measures (rotation number, digits, island chain), highlight, undo and clear (issue 25, deliverable 6;
+/// issue 27, deliverable 3).
+///
+/// A view of the PortraitController's list: it shows what the controller holds and asks it to highlight or
+/// remove; the orbits themselves (their points, their measures) are computed by the controller's background jobs
+/// through core.  Selecting a row highlights that orbit on the portrait and draws its chain's elliptic orbit.
+
+#include <QWidget>
+
+class QLabel;
+class QPushButton;
+class QTimer;
+class QTreeWidget;
+
+namespace archipelago::ui {
+
+class PortraitController;
+
+class OrbitListPanel : public QWidget {
+  Q_OBJECT
+ public:
+  OrbitListPanel(PortraitController* controller, QWidget* parent = nullptr);
+
+  [[nodiscard]] QTreeWidget* list() const noexcept { return list_; }
+  /// The details of the selected orbit, as shown under the list (rich text).
+  [[nodiscard]] QString detailsText() const;
+  [[nodiscard]] QSize sizeHint() const override { return {300, 400}; }
+
+ Q_SIGNALS:
+  void statusMessage(const QString& text);
+
+ private:
+  void refresh();
+  void updateDetails();
+
+  PortraitController* controller_;
+  QTreeWidget* list_ = nullptr;
+  QLabel* details_ = nullptr;
+  QLabel* empty_ = nullptr;
+  QPushButton* remove_ = nullptr;
+  QPushButton* clear_ = nullptr;
+  QPushButton* undo_ = nullptr;
+  QTimer* refreshTimer_ = nullptr;
+};
+
+}  // namespace archipelago::ui
