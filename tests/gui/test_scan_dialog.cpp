@@ -126,7 +126,7 @@ class ScanDialogTest : public QObject {
   void comparePlotsWithCli(const KScanPlots& d) {
     runCli();
     const QList<QList<QByteArray>> map = csvRows(QDir(cliDir_).filePath(QStringLiteral("scan_local_exponent.csv")));
-    QVERIFY(map.size() > 100);
+    QVERIFY(map.size() > 40);  // the local exponent's log grid (10 a decade, issue #26) over five decades of τ
     QCOMPARE(map[0].size(), 3);  // tau, 0.1, 0.3
     int defined = 0, undefined = 0;
     for (int r = 1; r < map.size(); ++r) {

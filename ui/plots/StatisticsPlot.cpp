@@ -23,6 +23,7 @@
 #include <qwt_plot_panner.h>
 #include <qwt_plot_renderer.h>
 #include <qwt_plot_textlabel.h>
+#include <qwt_plot_zoneitem.h>
 #include <qwt_plot_zoomer.h>
 #include <qwt_scale_engine.h>
 #include <qwt_symbol.h>
@@ -232,6 +233,27 @@ bool StatisticsPlot::logY() const noexcept {
   return statisticInfo(statistic_).valueScale == AxisScale::logarithmic;
 }
 
+void StatisticsPlot::setBlockAffectedBelow(double steps) {
+  blockAffectedBelow_ = std::isfinite(steps) && steps > 0 ? steps : 0;
+  if (blockAffectedBelow_ == 0) {
+    if (blockZone_) blockZone_->detach();
+    return;
+  }
+  if (!blockZone_) {
+    blockZone_ = new QwtPlotZoneItem();
+    blockZone_->setOrientation(Qt::Vertical);  // between two values of t
+    blockZone_->setBrush(QColor(120, 120, 120, 40));
+    blockZone_->setPen(QPen(QColor(120, 120, 120, 140), 1, Qt::DotLine));
+    blockZone_->setTitle(tr("t < 10 q: blocks of q steps (no q = 1 companion)"));
+    blockZone_->setItemAttribute(QwtPlotItem::Legend, true);
+    blockZone_->setItemAttribute(QwtPlotItem::AutoScale, false);
+    blockZone_->setZ(curve_->z() - 2);
+  }
+  // From far left of any axis (log axes start at t ≥ 1) to the bound.
+  blockZone_->setInterval(1e-6, blockAffectedBelow_);
+  if (!blockZone_->plot()) blockZone_->attach(this);
+}
+
 void StatisticsPlot::setData(const Series& data, const std::vector<TheoryCurve>& theory) {
   data_ = data;
   theory_.clear();
@@ -298,7 +320,10 @@ void StatisticsPlot::setData(const Series& data, const std::vector<TheoryCurve>&
   if (statistic_ == Statistic::P) addReferenceSlopes(*this, data, ly, theoryCurves_);  // rebuilt with the theory
 }
 
-void StatisticsPlot::clearData() { setData(Series{}, {}); }
+void StatisticsPlot::clearData() {
+  setData(Series{}, {});
+  setBlockAffectedBelow(0);
+}
 
 bool StatisticsPlot::isEmpty() const { return curve_->dataSize() == 0; }
 

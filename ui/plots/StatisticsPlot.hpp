@@ -32,6 +32,7 @@ class QwtPlotIntervalCurve;
 class QwtPlotMarker;
 class QwtPlotLegendItem;
 class QwtPlotTextLabel;
+class QwtPlotZoneItem;
 class QwtPlotZoomer;
 class QwtPlotPicker;
 
@@ -51,6 +52,10 @@ class StatisticsPlot : public QwtPlot {
 
   /// Copies the data and the theory curves that belong to this statistic; call refresh() to show them.
   void setData(const Series& data, const std::vector<TheoryCurve>& theory);
+  /// Shades the times below `steps` (TrappingStatistics::blockAffectedBelow: 10 q for a run of q > 1 without its
+  /// q = 1 companion) as affected by the q-block artefact (DESIGN.md, "Blocks of q steps"); 0 removes the shade.
+  void setBlockAffectedBelow(double steps);
+  [[nodiscard]] double blockAffectedBelow() const noexcept { return blockAffectedBelow_; }
   void clearData();
   /// Replots, rescaling to the data unless the user has zoomed or panned.
   void refresh();
@@ -99,6 +104,8 @@ class StatisticsPlot : public QwtPlot {
   std::vector<TheoryCurve> theory_;
   QwtPlotCurve* curve_ = nullptr;
   QwtPlotIntervalCurve* band_ = nullptr;
+  QwtPlotZoneItem* blockZone_ = nullptr;  ///< t < blockAffectedBelow_, shaded
+  double blockAffectedBelow_ = 0;
   std::vector<QwtPlotCurve*> theoryCurves_;
   std::vector<QwtPlotMarker*> theoryMarkers_;
   QwtPlotZoomer* zoomer_ = nullptr;

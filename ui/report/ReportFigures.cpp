@@ -39,6 +39,7 @@ bool writeStatisticFigure(Statistic statistic, const TrappingStatistics& stats, 
   StatisticsPlot plot(statistic);
   plot.resize(800, 550);
   plot.setData(seriesOf(stats, statistic), theory);
+  plot.setBlockAffectedBelow(stats.blockAffectedBelow);
   plot.refresh();
   return plot.exportImage(base + QStringLiteral(".png"), error) && plot.exportImage(base + QStringLiteral(".svg"), error);
 }

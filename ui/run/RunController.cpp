@@ -1,5 +1,7 @@
 #include "ui/run/RunController.hpp"
 
+#include <filesystem>
+
 #include <QDir>
 #include <QFile>
 #include <QFileInfo>
@@ -192,8 +194,21 @@ bool RunController::open(const QString& path, QString* error, bool resumeWhenRea
     return false;
   }
   TrappingState state;
+  std::shared_ptr<const TrappingState> companion;
   try {
     state = loadRunFile(path.toStdString());
+    // Its q = 1 companion beside it (issue #26: `run` writes k01.short.json next to k01.json): the spliced
+    // statistics.  A companion that does not load is named, and the run is shown without it.
+    const std::filesystem::path shortFile = companionRunFile(path.toStdString());
+    if (state.params.q > 1 && std::filesystem::exists(shortFile)) {
+      try {
+        companion = std::make_shared<const TrappingState>(loadRunFile(shortFile));
+      } catch (const std::exception& e) {
+        Q_EMIT message(tr("The companion %1 is not used: %2")
+                           .arg(QString::fromStdString(shortFile.string()), QString::fromStdString(e.what())),
+                       true);
+      }
+    }
   } catch (const std::exception& e) {
     const QString text = QString::fromStdString(e.what());
     if (error) *error = text;
@@ -206,7 +221,7 @@ bool RunController::open(const QString& path, QString* error, bool resumeWhenRea
   }
   resumeWhenReady_.reset();
   if (resumeWhenReady) resumeWhenReady_ = settings;
-  analyse(std::move(state), path);
+  analyse(std::move(state), path, std::move(companion));
   Q_EMIT message(tr("Opened %1").arg(path), false);
   return true;
 }
@@ -238,7 +253,7 @@ bool RunController::clear() {
   return true;
 }
 
-void RunController::analyse(TrappingState state, const QString& path) {
+void RunController::analyse(TrappingState state, const QString& path, std::shared_ptr<const TrappingState> companion) {
   Q_EMIT runReplaced();
   Q_EMIT runOpened(state.params);
   runId_ += 1;
@@ -248,7 +263,7 @@ void RunController::analyse(TrappingState state, const QString& path) {
   Q_EMIT currentFileChanged(currentFile_);
   // The analysis is a short worker session: the run is live (nothing else may start) until it answers.
   apply(RunEvent::start);
-  worker_->analyse(runId_, std::move(state));
+  worker_->analyse(runId_, std::move(state), std::move(companion));
 }
 
 bool RunController::save(const QString& path, QString* error) {
@@ -258,6 +273,7 @@ bool RunController::save(const QString& path, QString* error) {
   }
   try {
     saveRunFile(path.toStdString(), latest_->state);
+    if (latest_->companion) saveRunFile(companionRunFile(path.toStdString()), *latest_->companion);
   } catch (const std::exception& e) {
     const QString text = QString::fromStdString(e.what());
     if (error) *error = text;

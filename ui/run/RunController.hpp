@@ -145,7 +145,7 @@ class RunController : public QObject {
   void onRunEnded(quint64 runId, const RunSnapshotPtr& last, RunEnd how, const QString& text);
   RunAnswer ask(RunQuestion::Kind kind);
   void finishClose();
-  void analyse(TrappingState state, const QString& path);
+  void analyse(TrappingState state, const QString& path, std::shared_ptr<const TrappingState> companion = {});
 
   RunWorker* worker_ = nullptr;
   RunStatus status_ = RunStatus::idle;

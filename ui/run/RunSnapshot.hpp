@@ -32,6 +32,9 @@ struct RunSnapshot {
   bool hasStatistics = false;       ///< false until a segment has been recorded
   TrappingStatistics statistics;    ///< core's statistics of `state` (with errors from the subsets)
   std::vector<TheoryCurve> theory;  ///< core's small-K theory curves for `statistics`, where they apply
+  /// The run's finished q = 1 companion (issue #26), when it has one: `statistics` are then the spliced ones
+  /// (splicedStatisticsOf), and saving the run writes it beside the run file (companionRunFile).
+  std::shared_ptr<const TrappingState> companion;
   std::string kernel;               ///< the kernel that computed the last chunk
   /// D's honest error and the tail's verdict (core/stats/TailAnalysis: a bootstrap over segments), computed
   /// when a session ends (finished, paused, stopped, an opened file) — not at every chunk: it takes a second.

@@ -34,7 +34,7 @@ TrappingProgress progressOf(const TrappingState& state) {
 }  // namespace
 
 RunSnapshotPtr makeSnapshot(std::uint64_t runId, const TrappingState& state, const TrappingProgress& progress,
-                            bool judgeTail) {
+                            bool judgeTail, std::shared_ptr<const TrappingState> companion) {
   auto snapshot = std::make_shared<RunSnapshot>();
   snapshot->runId = runId;
   snapshot->state = state;
@@ -42,6 +42,15 @@ RunSnapshotPtr makeSnapshot(std::uint64_t runId, const TrappingState& state, con
   snapshot->kernel = state.kernel;
   if (state.blocksDone > 0 && state.total().segments() > 0) {
     snapshot->statistics = statisticsOf(state);
+    if (companion && companion->finished() && state.finished()) {
+      try {
+        snapshot->statistics = splicedStatisticsOf(state, *companion);
+        snapshot->companion = std::move(companion);
+      } catch (const std::exception&) {
+        // Not this run's companion, or the two never agree above 10 q: the run's own statistics, whose block-
+        // affected times the plots shade (blockAffectedBelow).
+      }
+    }
     snapshot->hasStatistics = true;
     snapshot->theory = theoryCurves(state.params, snapshot->statistics);
     if (judgeTail) {
@@ -85,8 +94,8 @@ void RunWorker::startRun(std::uint64_t runId, TrappingState state, const RunSett
   submit(runId, std::move(state), settings, true);
 }
 
-void RunWorker::analyse(std::uint64_t runId, TrappingState state) {
-  submit(runId, std::move(state), RunSettings{}, false);
+void RunWorker::analyse(std::uint64_t runId, TrappingState state, std::shared_ptr<const TrappingState> companion) {
+  submit(runId, std::move(state), RunSettings{}, false, std::move(companion));
 }
 
 void RunWorker::requestEnd(std::uint64_t runId, RunEnd how) {
@@ -102,16 +111,17 @@ void RunWorker::snapshotConsumed() noexcept {
   }
 }
 
-void RunWorker::submit(std::uint64_t runId, TrappingState state, const RunSettings& settings, bool advance) {
+void RunWorker::submit(std::uint64_t runId, TrappingState state, const RunSettings& settings, bool advance,
+                       std::shared_ptr<const TrappingState> companion) {
   auto endReason = std::make_shared<std::atomic<int>>(static_cast<int>(RunEnd::finished));
   struct Ended {
     RunSnapshotPtr last;
     RunEnd how = RunEnd::finished;
   };
   Job<Ended, RunSnapshotPtr> job;
-  job.work = [this, runId, state = std::move(state), settings, advance,
-              endReason](JobContext<RunSnapshotPtr>& context) mutable -> std::optional<Ended> {
-    if (!advance) return Ended{makeSnapshot(runId, state, progressOf(state), true), RunEnd::finished};
+  job.work = [this, runId, state = std::move(state), settings, advance, endReason,
+              companion = std::move(companion)](JobContext<RunSnapshotPtr>& context) mutable -> std::optional<Ended> {
+    if (!advance) return Ended{makeSnapshot(runId, state, progressOf(state), true, companion), RunEnd::finished};
     busy_ = true;
     inFlight_ = 0;  // the snapshots of a replaced session were dropped
     struct NotBusy {
@@ -133,7 +143,13 @@ void RunWorker::submit(std::uint64_t runId, TrappingState state, const RunSettin
     lastProgress.blocksDone = ended.blocksDone;
     lastProgress.fraction = progressOf(ended).fraction;
     if (how == RunEnd::finished) lastProgress.etaSeconds = 0;
-    return Ended{makeSnapshot(runId, ended, lastProgress, true), how};
+    // The q = 1 companion (issue #26), a small fraction of the run's steps, once the run is finished.
+    if (how == RunEnd::finished && settings.companion > 0 && ended.params.q > 1) {
+      TrappingState short1 = runTrapping(startTrapping(companionParameters(ended.params, settings.companion)),
+                                         coreOptions(settings), {}, context.stopToken());
+      if (short1.finished()) companion = std::make_shared<const TrappingState>(std::move(short1));
+    }
+    return Ended{makeSnapshot(runId, ended, lastProgress, true, companion), how};
   };
   job.progress = [this](quint64, RunSnapshotPtr snapshot) { Q_EMIT snapshotReady(std::move(snapshot)); };
   job.done = [this, runId](JobResult<Ended> result) {

@@ -27,6 +27,9 @@ namespace archipelago::ui {
 struct RunSettings {
   int threads = 0;             ///< 0: every core (OpenMP's default)
   double chunkSeconds = 0.1;   ///< chunk wall time, hence the snapshot period (≥ 5 Hz refresh)
+  /// A run of q > 1 finished runs its q = 1 companion of this fraction of its steps (RunSpec::companion; 0: none),
+  /// and its last snapshot carries the spliced statistics (issue #26).
+  double companion = 0;
 };
 
 class RunWorker : public QObject {
@@ -39,7 +42,7 @@ class RunWorker : public QObject {
   /// paused or stopped.  A session of another run still going is stopped first.
   void startRun(std::uint64_t runId, TrappingState state, const RunSettings& settings);
   /// Computes the snapshot of `state` without advancing it (an opened run file); answers with runEnded().
-  void analyse(std::uint64_t runId, TrappingState state);
+  void analyse(std::uint64_t runId, TrappingState state, std::shared_ptr<const TrappingState> companion = {});
   /// Ends the session of `runId` at the next chunk boundary; runEnded() reports `how` (paused or stopped).
   void requestEnd(std::uint64_t runId, RunEnd how);
   /// True while a session is computing.
@@ -62,7 +65,8 @@ class RunWorker : public QObject {
   void runEnded(quint64 runId, archipelago::ui::RunSnapshotPtr last, archipelago::ui::RunEnd how, QString message);
 
  private:
-  void submit(std::uint64_t runId, TrappingState state, const RunSettings& settings, bool advance);
+  void submit(std::uint64_t runId, TrappingState state, const RunSettings& settings, bool advance,
+              std::shared_ptr<const TrappingState> companion = {});
 
   std::uint64_t sessionRunId_ = 0;             // GUI thread: the run of the latest request
   quint64 sessionJob_ = 0;                     // GUI thread: its job
@@ -75,8 +79,10 @@ class RunWorker : public QObject {
 };
 
 /// The snapshot of `state` (statistics and theory from core); used by the worker, and by tests to compare.
-/// With `judgeTail`, also D's honest error and the tail's verdict (the end of a session).
+/// With `judgeTail`, also D's honest error and the tail's verdict (the end of a session).  With a finished
+/// `companion` of a finished run, the statistics are the spliced ones (issue #26) and the snapshot keeps it.
 [[nodiscard]] RunSnapshotPtr makeSnapshot(std::uint64_t runId, const TrappingState& state,
-                                          const TrappingProgress& progress, bool judgeTail = false);
+                                          const TrappingProgress& progress, bool judgeTail = false,
+                                          std::shared_ptr<const TrappingState> companion = {});
 
 }  // namespace archipelago::ui

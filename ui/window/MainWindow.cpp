@@ -372,6 +372,7 @@ void MainWindow::createCheckpointBanner() {
 RunSettings MainWindow::runSettings() const {
   RunSettings settings;
   settings.threads = panel_->threads();
+  if (const auto spec = panel_->spec()) settings.companion = spec->companion;  // the preset's q = 1 companion
   return settings;
 }
 

@@ -204,6 +204,7 @@ std::optional<RunSpec> ParameterPanel::spec() const {
     const Preset& preset = presets()[static_cast<std::size_t>(i - 1)];
     s.name = preset.spec.name;
     s.description = preset.spec.description;
+    s.companion = s.parameters.q > 1 ? preset.spec.companion : 0;
   }
   return s;
 }

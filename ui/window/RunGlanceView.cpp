@@ -52,6 +52,7 @@ void RunGlanceView::draw() {
   note_->hide();  // the plots speak for themselves once there is data
   for (StatisticsPlot* p : {f_, c_}) {
     p->setData(seriesOf(drawn_->statistics, p->statistic()), drawn_->theory);
+    p->setBlockAffectedBelow(drawn_->statistics.blockAffectedBelow);
     p->refresh();
   }
 }

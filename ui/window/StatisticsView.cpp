@@ -56,6 +56,7 @@ void StatisticsView::showSnapshot(const RunSnapshot& snapshot) {
   const TrappingStatistics& s = snapshot.statistics;
   for (StatisticsPlot* plot : std::as_const(plots_)) {
     plot->setData(seriesOf(s, plot->statistic()), snapshot.theory);
+    plot->setBlockAffectedBelow(s.blockAffectedBelow);
     plot->refresh();
   }
   ++refreshes_;
