@@ -48,9 +48,9 @@ def main():
     p = run.parameters
     fig, ax = plt.subplots(2, 2, figsize=(10, 8))
     panels = [
-        (ax[0, 0], "f", r"$f_t$", True),
-        (ax[0, 1], "P", r"$P_t$", True),
-        (ax[1, 0], "C", r"$C_\tau$", True),
+        (ax[0, 0], "f_t", r"$f_t$", True),
+        (ax[0, 1], "P_t", r"$P_t$", True),
+        (ax[1, 0], "C_tau", r"$C_\tau$", True),
         (ax[1, 1], "local_exponent", r"$-d\log C_\tau/d\log\tau$", False),
     ]
     for a, key, label, logy in panels:
@@ -60,7 +60,7 @@ def main():
         a.set_xscale("log")
         if logy:
             a.set_yscale("log")
-        a.set_xlabel(r"$t$ (steps)" if key in ("f", "P") else r"$\tau$ (steps)")
+        a.set_xlabel(r"$t$ (steps)" if key in ("f_t", "P_t") else r"$\tau$ (steps)")
         a.set_ylabel(label)
         a.grid(True, which="major", alpha=0.3)
     # Guides of the paper's section 5: P_t ~ t^(-5/4) for t <~ 1e4 (local exponent 1/4).

@@ -30,6 +30,7 @@
 #include "core/runfile/RunFile.hpp"
 #include "core/spec/RunSpec.hpp"
 #include "core/stats/RunStatistics.hpp"
+#include "core/stats/StatisticsTable.hpp"
 #include "core/stats/StochasticAreaQuantities.hpp"
 #include "core/stats/RunEnsemble.hpp"
 #include "core/stats/TailAnalysis.hpp"
@@ -527,9 +528,21 @@ PYBIND11_MODULE(_archipelago, m) {
            py::arg("rank") = 0,
            "Replays the rank-th longest segment bit for bit: dict of arrays X, Y (unit) and x, y (physical), one point per\n"
            "step of N^-1 (q*length + 1 points).")
-      .def("statistics", [](const Run& r) {
+      .def("statistics", [](const Run& r, const py::object& shortRun) {
           r.check();
-          const TrappingStatistics s = statisticsOf(r.state);  // with the GIL: no advance() can run meanwhile
+          // With its q = 1 companion (a Run, or the path of its run file): the spliced statistics (issue #26), as
+          // `archipelago-cli stats RUN --short SHORT` computes them.  With the GIL: no advance() can run meanwhile.
+          std::optional<TrappingState> companion;
+          if (!shortRun.is_none()) {
+            if (py::isinstance<Run>(shortRun)) {
+              const Run& c = shortRun.cast<const Run&>();
+              c.check();
+              companion = c.state;
+            } else {
+              companion = loadRunFile(py::str(py::module_::import("os").attr("fspath")(shortRun)).cast<std::string>());
+            }
+          }
+          const TrappingStatistics s = companion ? splicedStatisticsOf(r.state, *companion) : statisticsOf(r.state);
           // D's honest error, as `stats` prints it: the bootstrap over segments (default options), none (NaN)
           // when the longest segments dominate D or there are too few segments to resample.
           double DError = kTailUndefined;
@@ -546,20 +559,27 @@ PYBIND11_MODULE(_archipelago, m) {
             }
           }
           py::dict d;
-          d["f"] = seriesDict(s.f); d["p"] = seriesDict(s.p); d["P"] = seriesDict(s.P); d["C"] = seriesDict(s.C);
-          d["local_exponent"] = seriesDict(s.localExponent); d["S"] = seriesDict(s.S); d["Dt"] = seriesDict(s.Dt);
+          // The series under the statistics table's keys (core/stats/StatisticsTable: f_t, p_t, P_t, C_tau, …), the
+          // same names as the CSV files' value columns and the sessions'.
+          for (const StatisticInfo& info : statisticsTable())
+            d[py::str(std::string(info.key))] = seriesDict(seriesOf(s, info.statistic));
           d["alpha"] = s.alpha; d["alpha_error"] = s.alphaError; d["D"] = s.D; d["D_error"] = DError;
           d["D_error_subsets"] = s.DError; d["D_dominated"] = dominated; d["D_verdict"] = verdict;
           d["sum_t_f"] = s.sumTf; d["segments"] = s.segments; d["longest_blocks"] = s.longestBlocks;
+          d["blocks_affected_below"] = s.blockAffectedBelow; d["spliced_at"] = s.splicedAt;
           return d; },
-           "The statistics of section 3 (core/stats/TrappingStatistics.hpp), each series a dict of arrays x, value, error\n"
-           "(one-sigma, from the spread over subsets): f (f_t per step), p = alpha f_t, P (P_t, eq. pdef), C (C_tau,\n"
-           "eq. cdef), local_exponent (-dlog C/dlog tau, fig. 6d), S (S_t, eq. spreaddef), Dt (S_t/2t); scalars alpha\n"
-           "(mean segment length, steps) and alpha_error, D (eq. ddef).  D_error is D's one-sigma error where the run\n"
-           "supports one, as `archipelago-cli stats` gives it (core supportedDError: the bootstrap over segments), NaN\n"
-           "when the longest segments dominate D (D_dominated True; D_verdict says why in words, empty otherwise);\n"
-           "D_error_subsets is the paper's error over the subsets, far too small for this heavy tail.  Lengths and\n"
-           "times in steps of N.");
+           py::arg("short") = py::none(),
+           "The statistics of section 3 (core/stats/TrappingStatistics.hpp) under the keys of the statistics table\n"
+           "(core/stats/StatisticsTable, the CSV files' names), each series a dict of arrays x, value, error (one-sigma,\n"
+           "from the spread over subsets): f_t (per step), p_t = alpha f_t, P_t (eq. pdef), C_tau (eq. cdef),\n"
+           "local_exponent (-dlog C/dlog tau, fig. 6d), S_t (eq. spreaddef), S_t_compensated (S_t/t^1.5, fig. 7b), D_t\n"
+           "(S_t/2t); scalars alpha (mean segment length, steps) and alpha_error, D (eq. ddef).  D_error is D's one-sigma\n"
+           "error where the run supports one, as `archipelago-cli stats` gives it (core supportedDError: the bootstrap\n"
+           "over segments), NaN when the longest segments dominate D (D_dominated True; D_verdict says why in words,\n"
+           "empty otherwise); D_error_subsets is the paper's error over the subsets, far too small for this heavy tail.\n"
+           "short: the run's q = 1 companion (a Run or a run file, e.g. k01.short.json): the spliced statistics, f_t\n"
+           "below spliced_at (steps) the companion's (issue #26).  blocks_affected_below: times below it (10 q for a run\n"
+           "of q > 1 without its companion, else 0) carry the q-block artefact.  Lengths and times in steps of N.");
 
   m.def("start", &startRun, py::arg("spec") = py::none(),
         "A fresh run from a run spec (JSON text or dict, format archipelago-spec: core/spec/RunSpec.hpp) and/or keyword\n"

@@ -96,16 +96,16 @@ std::string g(double v) {
 std::string interval(const ConfidenceInterval& i) { return "[" + g(i.lo) + ", " + g(i.hi) + "]"; }
 
 /// The D line: with the bootstrap error when the tail does not dominate, with no error (and why) when it does.
-void printD(const TailAnalysis& a, const TrappingStatistics& s) {
+void printD(const TailAnalysis& a, const TrappingStatistics& s, const char* label) {
   const std::string replicates = std::to_string(a.bootstrap.replicates) + " replicates, seed " +
                                  std::to_string(a.bootstrap.seed);
   const int percent = static_cast<int>(std::lround(100 * a.bootstrap.confidence));
   if (!a.dominated())
-    std::printf("D           %.6g +- %.2g   (eq. ddef; one sigma of a bootstrap over segments, %s; %d%% interval %s; "
-                "the subsets give +- %.2g)\n", a.D, a.DBootstrapError, replicates.c_str(), percent,
+    std::printf("%s%.6g +- %.2g   (eq. ddef; one sigma of a bootstrap over segments, %s; %d%% interval %s; "
+                "the subsets give +- %.2g)\n", label, a.D, a.DBootstrapError, replicates.c_str(), percent,
                 interval(a.DInterval).c_str(), s.DError);
   else
-    std::printf("D           %.6g   (eq. ddef; no error: %s)\n", a.D, dominanceMessage(a).c_str());
+    std::printf("%s%.6g   (eq. ddef; no error: %s)\n", label, a.D, dominanceMessage(a).c_str());
   if (!a.seedD.empty()) {
     std::string values;
     for (std::size_t i = 0; i < a.seedD.size(); ++i)
@@ -218,9 +218,15 @@ int statsCommand(const StatsOptions& o) {
     std::printf("blocks      below t = 10 q = %.6g steps the statistics are those of blocks of q steps, not of the "
                 "paper's q = 1 process (marked in the CSV files; a q = 1 companion, --short, splices them)\n",
                 s.blockAffectedBelow);
-  std::printf("segments    %llu\n", static_cast<unsigned long long>(s.segments));
+  std::printf("segments    %llu%s\n", static_cast<unsigned long long>(s.segments),
+              companion ? "   (the run's and the companion's)" : "");
   std::printf("alpha       %.6g +- %.2g   (mean segment length, steps)\n", s.alpha, s.alphaError);
-  if (s.segments > 0) printD(tail, s);
+  // Spliced, D (the summary's) is the composite statistics'; its error and the tail below are the run's own: the
+  // longest segments, which carry D's error, are the run's (the companion is a fraction of its steps).
+  if (companion)
+    std::printf("D           %.6g +- %.2g   (eq. ddef, spliced; the subsets' error; the run alone below)\n", s.D,
+                s.DError);
+  if (s.segments > 0) printD(tail, companion ? statisticsOf(state) : s, companion ? "D (run)     " : "D           ");
   else std::printf("D           0   (no segment yet)\n");
   std::printf("sum t f_t   %.9f           (should be close to 1)\n", s.sumTf);
   if (b2) printBoxInvariant(p.map, *b2, s, tail);

@@ -32,7 +32,7 @@ int main(int argc, char** argv) {
          "--threads", [&options](const std::string& text) { options.threads = readThreads(text); },
          "OpenMP threads (0: one per core; core's rule, at most " + std::to_string(kMaxThreads) + ")")
       ->type_name("INT");
-  app.add_flag("--table", table, "print the paper's table (every figure and statement, Markdown) and stop")
+  app.add_flag("--table", table, "print the table of the paper's statements (Markdown) and stop")
       ->excludes(outOption);
   try {
     app.parse(argc, argv);

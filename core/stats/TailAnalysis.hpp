@@ -23,7 +23,8 @@
 ///    over the next seed's subsets): D of the union of subsets 1..k.  Every point uses whole orbits of the
 ///    full record, so each point is an unbiased D of fewer orbits, not of shorter orbits.
 ///  - Tail fits.  γ_P = −d log P/d log t and γ_C = −d log C/d log τ over a window [from, to]: the least-squares
-///    slope of log value on log t over the grid points of P (or C) in the window where the value is > 0.  The
+///    slope of log value on log t on a log grid (LogFits.hpp: equal weight per unit of log t) in the window,
+///    where the value is > 0.  The
 ///    tail end t_end is the largest grid t with at least minTailSegments segments beyond it (counted in the
 ///    histogram as segments whose bin mean is > t, the masses P_t counts); the tail fit is the last decade
 ///    [t_end/10, t_end]; the windows are decades ending at t_end·10^(−k/2), k = 0, 1, …, while their lower end

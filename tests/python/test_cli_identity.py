@@ -120,3 +120,33 @@ def test_D_error_is_the_supported_error_of_cli_stats(tmp_path, cli, K, dominated
         assert 0 < s["D_error"] < s["D"] and s["D_verdict"] == ""
     p = ap.scan_point(run)
     assert _same(p["D_error"], s["D_error"]) and p["D_error_subsets"] == s["D_error_subsets"]
+
+
+def test_spliced_statistics_are_the_cli_stats_short(tmp_path, cli):
+    # Issue #26: statistics(short=…) splices a run of q = 16 with its q = 1 companion exactly as
+    # `archipelago-cli stats RUN --short SHORT` does (summary.csv's D, f_t.csv's rows), from a Run or a file; the
+    # series carry the statistics table's keys; without the companion the times below 10 q are marked.
+    out = tmp_path / "k01.json"
+    subprocess.run([cli, "run", "--preset", "k0.1-minute", "--T", "50000", "--out", str(out), "--quiet"],
+                   check=True, timeout=300, stdout=subprocess.DEVNULL)
+    short = tmp_path / "k01.short.json"
+    assert short.exists(), "run writes the preset's companion beside the run"
+    subprocess.run([cli, "stats", str(out), "--short", str(short), "--csv", str(tmp_path / "csv")],
+                   check=True, timeout=120, stdout=subprocess.DEVNULL)
+    run = ap.load(out)
+    spliced = run.statistics(short=short)
+    for other in (run.statistics(short=str(short)), run.statistics(short=ap.load(short))):
+        assert other["D"] == spliced["D"] and np.array_equal(other["C_tau"]["value"], spliced["C_tau"]["value"])
+    summary = _csv_values(tmp_path / "csv" / "summary.csv")
+    assert spliced["D"] == summary["D"][0]
+    assert spliced["spliced_at"] >= 160 and spliced["blocks_affected_below"] == 0
+    rows = [line.split(",") for line in (tmp_path / "csv" / "f_t.csv").read_text().splitlines()
+            if line and not line.startswith("#")]
+    assert rows[0] == ["t", "f_t", "f_t_error"]  # spliced: no time carries the blocks, no blocks_affected column
+    assert [float(r[1]) for r in rows[1:]] == list(spliced["f_t"]["value"])  # the CSV's values, exactly
+    alone = run.statistics()
+    assert alone["blocks_affected_below"] == 160 and alone["spliced_at"] == 0
+    assert alone["D"] != spliced["D"]
+    assert set(spliced) >= {"f_t", "p_t", "P_t", "C_tau", "local_exponent", "S_t", "S_t_compensated", "D_t"}
+    with pytest.raises(ValueError):  # not its companion: a run of q = 16 is not a q = 1 companion
+        run.statistics(short=out)
