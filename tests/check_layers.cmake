@@ -233,9 +233,25 @@ if(cyclic)
   list(APPEND offenders "ui's files include each other in cycles among: ${names}")
 endif()
 
+# The K scan of §5 lives in core/scan only (issue #24: it was in theory/, export/ and the report): no other source
+# defines its box rule, its K-list reader or its loop (a definition: the name followed by its parameter list and a
+# body on the same or the next line is hard to match in CMake, so any line that starts a definition of these
+# names at column 0, a return type before it, counts).
+file(GLOB_RECURSE all_sources RELATIVE "${ROOT}" "${ROOT}/core/*.cpp" "${ROOT}/ui/*.cpp" "${ROOT}/app/*.cpp"
+     "${ROOT}/python/*.cpp")
+foreach(f IN LISTS all_sources)
+  if(f MATCHES "^core/scan/")
+    continue()
+  endif()
+  file(STRINGS "${ROOT}/${f}" defs REGEX "^[A-Za-z][A-Za-z0-9_:<>, ]* (scanBox|parseScanValues|scanValues|runKScan|writeScanSummaries|scanParameters)\\(")
+  if(defs)
+    list(APPEND offenders "${f} defines a piece of the K scan outside core/scan: ${defs}")
+  endif()
+endforeach()
+
 if(offenders)
   string(REPLACE ";" "\n" offenders "${offenders}")
   message(FATAL_ERROR "layer violations:\n${offenders}")
 endif()
 message(STATUS "layers: core has no Qt, ui or app; ui has no app; private headers stay in core; includes name their layer; "
-               "ui's folders include only what they depend on, without cycles")
+               "ui's folders include only what they depend on, without cycles; the K scan only in core/scan")

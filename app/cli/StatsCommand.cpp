@@ -223,7 +223,10 @@ int statsCommand(const StatsOptions& o) {
   std::printf("alpha       %.6g +- %.2g   (mean segment length, steps)\n", s.alpha, s.alphaError);
   // Spliced, D (the summary's) is the composite statistics'; its error and the tail below are the run's own: the
   // longest segments, which carry D's error, are the run's (the companion is a fraction of its steps).
-  if (companion)
+  if (companion && tail.dominated())
+    std::printf("D           %.6g   (eq. ddef, spliced; no error: the run's longest segments dominate D, below)\n",
+                s.D);
+  else if (companion)
     std::printf("D           %.6g +- %.2g   (eq. ddef, spliced; the subsets' error; the run alone below)\n", s.D,
                 s.DError);
   if (s.segments > 0) printD(tail, companion ? statisticsOf(state) : s, companion ? "D (run)     " : "D           ");
