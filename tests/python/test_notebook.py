@@ -30,6 +30,8 @@ OVERRIDES = {"M": 32, "T": 4_000_000}
 THREADS = 2
 PORTRAIT_POINTS = 2_000_000
 CHAIN_POINTS = 200_000
+PROFILE_POINTS = 200
+MANIFOLD_LENGTH = 4.0
 """
 
 
@@ -92,7 +94,13 @@ def test_notebook_runs(tmp_path, monkeypatch):
     def text(cell):
         return "".join(o.get("text", "") + o.get("data", {}).get("text/plain", "") for o in cell.outputs)
 
-    assert len(figures) == 3, figures  # the portrait, fig. 6, the segment and its zoom
+    # the portrait, fig. 6, the segment and its zoom, the rotation profile, the manifolds and lobes
+    assert len(figures) == 5, figures
+    flux = next(text(c) for c in nb.cells if c.cell_type == "code" and "ap.flux(K)" in c.source)
+    digits = float(flux.split(" digits agree")[0].split(": ")[-1])
+    assert digits >= 9, flux  # the two independent flux methods agree (issue #28's criterion)
+    profile = next(text(c) for c in nb.cells if c.cell_type == "code" and "rotation_profile" in c.source)
+    assert "plateaus (p/q: starts)" in profile, profile
     bar = next(text(c) for c in nb.cells if c.cell_type == "code" and "job.wait()" in c.source)
     assert "100.0%" in bar, bar  # the progress display, updated in place, reached the end
     summary = json.loads(text(nb.cells[-1]).strip().splitlines()[-1])
