@@ -12,6 +12,8 @@
 #include <stop_token>
 #include <vector>
 
+#include "core/tail/BruteForceSurvival.hpp"
+#include "core/tail/TailResult.hpp"
 #include "core/io/AtomicFile.hpp"
 #include "core/io/NumberText.hpp"
 #include "core/paper/PaperTable.hpp"
@@ -298,6 +300,22 @@ class Report {
     const TailAnalysis tail = analyseTail(ensembleOf({run}));
     for (auto& it : report::k01Statements(run, st, tail, full_, made.command)) items_.push_back(std::move(it));
     for (auto& it : report::tailStatements(tail, full_)) items_.push_back(std::move(it));
+    // Issue #29: P_t beyond brute force by splitting on segment age, checked against this run where both have data.
+    // The sampler keeps no file here: an interrupted one starts again (a second at the quick size).
+    const TailRequest sampler = report::tailSamplerRequest(o_.size);
+    TailRunOptions samplerOptions;
+    samplerOptions.threads = o_.threads;
+    std::stop_source stopSampler;
+    const TailState sampled = runTail(
+        startTail(sampler), samplerOptions,
+        [&](const TailState&, const TailProgress&) {
+          if (gInterrupted) stopSampler.request_stop();
+        },
+        stopSampler.get_token());
+    stopIfInterrupted();
+    const TailResult samplerResult = tailResult(sampled);
+    items_.push_back(report::tailSplittingStatement(compareWithRuns(sampled, samplerResult, {run}),
+                                                    report::tailSamplerCommand(o_.size)));
     if (withB2) {
       const MapParameters paperBox = report::paperSizedBox();
       const StochasticAreaResult inPaperBox = computeStochasticArea(report::stochasticAreaRequest(o_.size, paperBox));
@@ -323,6 +341,27 @@ class Report {
     longOrbitFigures(run, made.file);
     stopIfInterrupted();
     tailFigure(tail);
+    {
+      QString error;
+      double factor = 1;
+      const Series levels = reliableSurvivalIn(samplerResult, run, st, &factor);
+      check(ui::report::writeStatisticFigure(
+                Statistic::P, st, theoryCurves(run.params, st), levels,
+                QStringLiteral("P_t by splitting (tail, %1 × %2), reliable levels × %3")
+                    .arg(sampler.population)
+                    .arg(sampler.replicas)
+                    .arg(factor, 0, 'g', 3),
+                base("tail-splitting"), &error),
+            error);
+      figures_.push_back({"tail", io::formatC("P<sub>t</sub> at K = 0.1: the run's, spliced with its q = 1 companion "
+                                              "(line), and the tail sampler's (diamonds: %zu reliable levels to t = %.3g "
+                                              "steps, %.3g steps of the sampler; its P<sub>t</sub> counts the segments of "
+                                              "blocks of q steps, here times α₁/α<sub>q</sub> = %.3g to count the q = 1 "
+                                              "process's, as the line does; <code>%s</code>)",
+                                              levels.x.size(), largestReliableT(samplerResult), samplerResult.steps,
+                                              factor, report::html(report::tailSamplerCommand(o_.size)).c_str()),
+                          "tail-splitting"});
+    }
   }
 
   // Fig. 8: the longest segment replayed and zoomed, its chain identified; the longest on the 138-chain.

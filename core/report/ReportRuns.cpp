@@ -53,6 +53,23 @@ ReportRun k01CompanionRun(ReportSize size) {
   return run(p, std::string("k01-") + sizeName(size) + ".short.json");
 }
 
+TailRequest tailSamplerRequest(ReportSize size) {
+  TailRequest r;
+  r.run = k01Run(size).params;
+  r.population = size == ReportSize::full ? 800 : 100;
+  r.replicas = size == ReportSize::full ? 16 : 8;
+  r.maxSteps = size == ReportSize::full ? 10'000'000 : 1'000'000;
+  return r;
+}
+
+std::string tailSamplerCommand(ReportSize size) {
+  const TailRequest r = tailSamplerRequest(size);
+  return cliCommand(io::formatC("tail --preset %s --population %u --replicas %u --t-max %llu --out tail.json "
+                                "--compare %s",
+                                size == ReportSize::full ? "k0.1-paper-fig6" : "k0.1-minute", r.population, r.replicas,
+                                static_cast<unsigned long long>(r.maxSteps), k01Run(size).file.c_str()));
+}
+
 ReportRun smallKRun(char panel, ReportSize size) {
   const char* id = panel == 'a' ? "small-k-negative" : panel == 'b' ? "small-k-zero" : "small-k-positive";
   TrappingParameters p = presetSpec(id).parameters;

@@ -17,6 +17,7 @@
 
 #include "core/portrait/StochasticArea.hpp"
 #include "core/scan/ScanRun.hpp"
+#include "core/tail/TailSampler.hpp"
 #include "core/trapping/TrappingParameters.hpp"
 
 namespace archipelago::report {
@@ -36,6 +37,11 @@ struct ReportRun {
 [[nodiscard]] ReportRun k01Run(ReportSize size);
 /// Its q = 1 companion (companionParameters with the preset's fraction), file "k01-SIZE.short.json".
 [[nodiscard]] ReportRun k01CompanionRun(ReportSize size);
+/// The tail sampler's request for the K = 0.1 run's process (issue #29): quick N = 100, R = 8 to 10⁶ steps (about
+/// a second), full N = 800, R = 16 to 10⁷ (9·10¹⁰ steps, docs/tail.md).
+[[nodiscard]] TailRequest tailSamplerRequest(ReportSize size);
+/// Its command line, for the item and the figure.
+[[nodiscard]] std::string tailSamplerCommand(ReportSize size);
 /// The small-K run of fig. 3, panel 'a' (K = −10⁻⁴), 'b' (0) or 'c' (10⁻⁴).
 [[nodiscard]] ReportRun smallKRun(char panel, ReportSize size);
 /// A run at K = 10⁻³ or 10⁻² for §4's "similar agreement" (the K = 10⁻⁴ run is smallKRun('c')).

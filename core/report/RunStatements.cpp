@@ -52,6 +52,23 @@ DecayFit decayRateOf(const TrappingState& run, const TrappingStatistics& stats) 
   return d;
 }
 
+ReportItem tailSplittingStatement(const TailComparison& comparison, const std::string& command) {
+  double worst = -1, at = 0, upTo = 0;
+  int compared = 0;
+  for (const TailComparisonLevel& L : comparison.levels) {
+    if (!L.reliable || L.bruteSegments < 10 || !std::isfinite(L.z)) continue;
+    ++compared;
+    upTo = std::max(upTo, L.t);
+    if (std::abs(L.z) > worst) worst = std::abs(L.z), at = L.t;
+  }
+  const double lastT = comparison.levels.empty() ? 0 : comparison.levels.back().t;
+  return makeItem("tail-splitting", compared > 0 ? std::optional<double>(worst) : std::nullopt, 0, true, command,
+                  compared > 0 ? io::formatC("%d levels compared (t ≤ %.3g steps), the largest |z| at t = %.3g; the "
+                                             "sampler's levels reach t = %.3g",
+                                             compared, upTo, at, lastT)
+                               : std::string("no level where both have data"));
+}
+
 std::vector<ReportItem> smallKStatements(const TrappingState& runA, const TrappingState& runB,
                                          const TrappingState& runC, const TrappingState& decay3,
                                          const TrappingState& decay2, ReportSize size) {

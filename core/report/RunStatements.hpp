@@ -16,6 +16,7 @@
 #include "core/scan/ScanSummary.hpp"
 #include "core/stats/TailAnalysis.hpp"
 #include "core/stats/TrappingStatistics.hpp"
+#include "core/tail/BruteForceSurvival.hpp"
 
 namespace archipelago::report {
 
@@ -33,6 +34,10 @@ struct DecayFit {
 [[nodiscard]] std::vector<ReportItem> smallKStatements(const TrappingState& runA, const TrappingState& runB,
                                                        const TrappingState& runC, const TrappingState& decay3,
                                                        const TrappingState& decay2, ReportSize size);
+
+/// §7 (later work, issue #29): tail-splitting, the largest |z| between the tail sampler's P_t and the run's at the
+/// sampler's reliable levels where the run has at least 10 segments beyond t (core/tail's compareWithRuns).
+[[nodiscard]] ReportItem tailSplittingStatement(const TailComparison& comparison, const std::string& command);
 
 /// §5 and §7 on the K = 0.1 run: alpha-quarter, p-five-quarters, alpha-min, alpha-max, S-superdiffusive, D,
 /// longest.  `stats` are the spliced statistics of the run and its companion (or the run's alone, when none);

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/stats/RunStatistics.hpp"
+
 namespace archipelago {
 
 TailResult tailResult(const TailState& s) {
@@ -88,6 +90,28 @@ TailResult tailResult(const TailState& s) {
 TailResult runTailSampler(const TailRequest& request, const TailRunOptions& options, const TailObserver& observer,
                           std::stop_token stop) {
   return tailResult(runTail(startTail(request), options, observer, std::move(stop)));
+}
+
+Series reliableSurvival(const TailResult& result) {
+  Series s;
+  for (const TailLevelResult& L : result.levels) {
+    if (!L.reliable) continue;
+    s.x.push_back(L.t);
+    s.value.push_back(L.P);
+    s.error.push_back(L.PError);
+  }
+  return s;
+}
+
+Series reliableSurvivalIn(const TailResult& result, const TrappingState& run, const TrappingStatistics& shown,
+                          double* factor) {
+  const double own = statisticsOf(run).alpha;
+  const double f = shown.splicedAt > 0 && own > 0 && std::isfinite(shown.alpha) ? shown.alpha / own : 1;
+  if (factor) *factor = f;
+  Series s = reliableSurvival(result);
+  for (double& v : s.value) v *= f;
+  for (double& e : s.error) e *= f;
+  return s;
 }
 
 double largestReliableT(const TailResult& result) noexcept {

@@ -35,6 +35,8 @@
 #include <stop_token>
 #include <vector>
 
+#include "core/run/TrappingRun.hpp"
+#include "core/stats/TrappingStatistics.hpp"
 #include "core/tail/TailSampler.hpp"
 
 namespace archipelago {
@@ -82,5 +84,17 @@ struct TailResult {
 
 /// The largest t of a reliable level, or 0 when none is.
 [[nodiscard]] double largestReliableT(const TailResult& result) noexcept;
+
+/// P_t at the reliable levels (x: t in steps, value: P, error: PError): P_t of the sampled process, whose segments
+/// are those of `run` (whole blocks of q steps).
+[[nodiscard]] Series reliableSurvival(const TailResult& result);
+
+/// The reliable levels as P_t of the statistics `shown` of `run` (issue #29: the GUI's P_t plot and the report draw
+/// them beside the run's).  P_t counts segments: statistics spliced with a q = 1 companion count the q = 1
+/// process's, many more and shorter than the q-block process's the sampler follows, while f_t per step is the
+/// same above the splice; so P_shown(t) = P(t) · α_shown / α_run, α the mean segment length (§3: α = 1/Σ f_t).  For
+/// the run's own statistics the factor is 1.  `factor`, when given, receives it.
+[[nodiscard]] Series reliableSurvivalIn(const TailResult& result, const TrappingState& run,
+                                        const TrappingStatistics& shown, double* factor = nullptr);
 
 }  // namespace archipelago

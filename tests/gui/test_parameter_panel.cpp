@@ -101,6 +101,12 @@ class TestParameterPanel : public QObject {
     QVERIFY(panel_->applyPreset(QStringLiteral("small-k-negative")));  // a longer description
     QApplication::processEvents();
     QCOMPARE(panel_->field(QStringLiteral("K"))->mapTo(panel_, QPoint(0, 0)).y(), before);
+    // A description longer than its five lines scrolls instead of being cut mid-line (the k0.1 presets' were).
+    QVERIFY(panel_->applyPreset(QStringLiteral("k0.1-minute")));
+    QApplication::processEvents();
+    QCOMPARE(panel_->field(QStringLiteral("K"))->mapTo(panel_, QPoint(0, 0)).y(), before);
+    QVERIFY2(description->height() >= description->heightForWidth(description->width()),
+             qPrintable(QStringLiteral("%1 < %2").arg(description->height()).arg(description->heightForWidth(description->width()))));
   }
 
   // Issue 13, finding 12: Find Periodic Orbit showed a literal "&Near (x, y):" and K = 0.10000000000000001.

@@ -45,6 +45,7 @@ namespace archipelago::ui {
 namespace {
 const QColor kDataColor(31, 78, 154);
 const QColor kBandColor(31, 78, 154, 55);
+const QColor kEstimateColor(200, 70, 20);  // another method's estimate of the same statistic (setEstimate)
 const QColor kTheoryColors[] = {QColor(214, 96, 18), QColor(160, 30, 60), QColor(40, 130, 60)};
 
 QString fromTable(std::string_view text) {
@@ -254,6 +255,54 @@ void StatisticsPlot::setBlockAffectedBelow(double steps) {
   if (!blockZone_->plot()) blockZone_->attach(this);
 }
 
+void StatisticsPlot::setEstimate(const Series& estimate, const QString& title) {
+  const bool ly = logY();
+  QVector<QPointF> points;
+  QVector<QwtIntervalSample> bars;
+  for (std::size_t i = 0; i < estimate.x.size() && i < estimate.value.size(); ++i) {
+    const double x = estimate.x[i], y = estimate.value[i];
+    if (!usable(x, y, ly)) continue;
+    points.append(QPointF(x, y));
+    const double e = i < estimate.error.size() && std::isfinite(estimate.error[i]) ? std::abs(estimate.error[i]) : 0;
+    bars.append(QwtIntervalSample(x, ly && y - e <= 0 ? y / 10 : y - e, y + e));
+  }
+  if (points.isEmpty()) {
+    if (estimate_) estimate_->detach();
+    if (estimateBars_) estimateBars_->detach();
+    return;
+  }
+  if (!estimate_) {
+    estimateBars_ = new QwtPlotIntervalCurve();
+    estimateBars_->setStyle(QwtPlotIntervalCurve::NoCurve);
+    auto* bar = new QwtIntervalSymbol(QwtIntervalSymbol::Bar);
+    bar->setWidth(5);
+    bar->setPen(QPen(kEstimateColor, 1.2));
+    estimateBars_->setSymbol(bar);
+    estimateBars_->setItemAttribute(QwtPlotItem::Legend, false);
+    estimateBars_->setItemAttribute(QwtPlotItem::AutoScale, false);
+    estimate_ = new QwtPlotCurve();
+    estimate_->setPen(QPen(kEstimateColor, 1.2, Qt::DashLine));
+    estimate_->setSymbol(new QwtSymbol(QwtSymbol::Diamond, QBrush(Qt::white), QPen(kEstimateColor, 1.4), QSize(7, 7)));
+    estimate_->setRenderHint(QwtPlotItem::RenderAntialiased);
+    estimate_->setItemAttribute(QwtPlotItem::AutoScale, true);  // beyond the run's data: the ranges follow it
+    estimate_->setLegendAttribute(QwtPlotCurve::LegendShowSymbol, true);
+  }
+  estimate_->setTitle(title);
+  estimate_->setSamples(points);
+  estimateBars_->setSamples(bars);
+  if (!estimate_->plot()) {
+    estimateBars_->attach(this);
+    estimate_->attach(this);
+  }
+}
+
+QVector<QPointF> StatisticsPlot::estimatePoints() const {
+  QVector<QPointF> points;
+  if (estimate_ && estimate_->plot())
+    for (size_t i = 0; i < estimate_->dataSize(); ++i) points.append(estimate_->sample(static_cast<int>(i)));
+  return points;
+}
+
 void StatisticsPlot::setData(const Series& data, const std::vector<TheoryCurve>& theory) {
   data_ = data;
   theory_.clear();
@@ -323,6 +372,7 @@ void StatisticsPlot::setData(const Series& data, const std::vector<TheoryCurve>&
 void StatisticsPlot::clearData() {
   setData(Series{}, {});
   setBlockAffectedBelow(0);
+  setEstimate(Series{}, QString());
 }
 
 bool StatisticsPlot::isEmpty() const { return curve_->dataSize() == 0; }

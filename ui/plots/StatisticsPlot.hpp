@@ -56,6 +56,11 @@ class StatisticsPlot : public QwtPlot {
   /// q = 1 companion) as affected by the q-block artefact (DESIGN.md, "Blocks of q steps"); 0 removes the shade.
   void setBlockAffectedBelow(double steps);
   [[nodiscard]] double blockAffectedBelow() const noexcept { return blockAffectedBelow_; }
+  /// Draws an estimate of the same statistic made another way — P_t beyond the run's data by the tail sampler
+  /// (core/tail, issue #29) — as points with ±1σ bars in a colour of its own, titled `title` in the legend; an
+  /// empty series removes it.  It takes part in the autoscale (the estimate reaches beyond the run's data).
+  void setEstimate(const Series& estimate, const QString& title);
+  [[nodiscard]] QVector<QPointF> estimatePoints() const;
   void clearData();
   /// Replots, rescaling to the data unless the user has zoomed or panned.
   void refresh();
@@ -105,6 +110,8 @@ class StatisticsPlot : public QwtPlot {
   QwtPlotCurve* curve_ = nullptr;
   QwtPlotIntervalCurve* band_ = nullptr;
   QwtPlotZoneItem* blockZone_ = nullptr;  ///< t < blockAffectedBelow_, shaded
+  QwtPlotCurve* estimate_ = nullptr;                ///< setEstimate(): the points
+  QwtPlotIntervalCurve* estimateBars_ = nullptr;    ///< … and their ±1σ bars
   double blockAffectedBelow_ = 0;
   std::vector<QwtPlotCurve*> theoryCurves_;
   std::vector<QwtPlotMarker*> theoryMarkers_;

@@ -36,10 +36,16 @@ namespace archipelago::ui::report {
 
 bool writeStatisticFigure(Statistic statistic, const TrappingStatistics& stats, const std::vector<TheoryCurve>& theory,
                           const QString& base, QString* error) {
+  return writeStatisticFigure(statistic, stats, theory, Series{}, QString(), base, error);
+}
+
+bool writeStatisticFigure(Statistic statistic, const TrappingStatistics& stats, const std::vector<TheoryCurve>& theory,
+                          const Series& estimate, const QString& estimateTitle, const QString& base, QString* error) {
   StatisticsPlot plot(statistic);
   plot.resize(800, 550);
   plot.setData(seriesOf(stats, statistic), theory);
   plot.setBlockAffectedBelow(stats.blockAffectedBelow);
+  plot.setEstimate(estimate, estimateTitle);
   plot.refresh();
   return plot.exportImage(base + QStringLiteral(".png"), error) && plot.exportImage(base + QStringLiteral(".svg"), error);
 }

@@ -22,6 +22,10 @@ namespace archipelago::ui::report {
 /// `error`) when a file cannot be written.
 bool writeStatisticFigure(Statistic statistic, const TrappingStatistics& stats, const std::vector<TheoryCurve>& theory,
                           const QString& base, QString* error);
+/// The same, with another method's estimate drawn beside the run's statistic (StatisticsPlot::setEstimate: the tail
+/// sampler's P_t, issue #29).
+bool writeStatisticFigure(Statistic statistic, const TrappingStatistics& stats, const std::vector<TheoryCurve>& theory,
+                          const Series& estimate, const QString& estimateTitle, const QString& base, QString* error);
 
 /// Fig. 5: T(X0) (a) and F(T) (b) of the small-K theory for K < 0 (core's smallk functions sampled), written as
 /// `base`a.png/.svg and `base`b.png/.svg.

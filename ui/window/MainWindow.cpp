@@ -38,6 +38,9 @@
 #include <exception>
 #include <functional>
 
+#include "core/tail/BruteForceSurvival.hpp"
+#include "core/tail/TailFile.hpp"
+#include "core/tail/TailResult.hpp"
 #include "ui/jobs/DurationText.hpp"
 #include "ui/window/ExportActions.hpp"
 #include "ui/window/Resources.hpp"
@@ -181,6 +184,15 @@ void MainWindow::createActions() {
   openAction_->setStatusTip(tr("Open a run file (.json): show its statistics, resume it if unfinished"));
   connect(openAction_, &QAction::triggered, this, &MainWindow::openDialog);
 
+  openTailAction_ = new QAction(tr("Open &Tail Estimate…"), this);
+  openTailAction_->setStatusTip(tr("Draw P_t beyond the run's data from a tail file (archipelago-cli tail): "
+                                   "splitting on segment age, for the run's process"));
+  connect(openTailAction_, &QAction::triggered, this, [this] {
+    const QString path = QFileDialog::getOpenFileName(this, tr("Open Tail Estimate"), QString(),
+                                                      tr("Tail files (*.json);;All files (*)"));
+    if (!path.isEmpty()) openTailEstimate(path);
+  });
+
   saveAction_ = new QAction(QIcon::fromTheme(QStringLiteral("document-save")), tr("&Save Run File"), this);
   saveAction_->setShortcut(QKeySequence::Save);
   saveAction_->setStatusTip(tr("Save the run (parameters, histograms, orbit states) so it can be resumed"));
@@ -237,6 +249,7 @@ void MainWindow::createActions() {
 void MainWindow::createMenus() {
   QMenu* file = menuBar()->addMenu(tr("&File"));
   file->addAction(openAction_);
+  file->addAction(openTailAction_);
   recentMenu_ = file->addMenu(tr("Open &Recent"));
   connect(recentMenu_, &QMenu::aboutToShow, this, &MainWindow::fillRecentMenu);
   file->addAction(saveAction_);
@@ -560,6 +573,47 @@ bool MainWindow::openRunFile(const QString& path, QString* error) {
     return false;
   }
   return true;
+}
+
+bool MainWindow::openTailEstimate(const QString& path, QString* error) {
+  QString why;
+  const RunSnapshotPtr& shown = run_->latest();
+  if (!shown || !shown->hasStatistics) {
+    why = tr("there is no run to compare it with: open or start the run first");
+  } else {
+    try {
+      const TailState tail = loadTailFile(path.toStdString());
+      if (const auto mismatch = tailRunMismatch(tail.request, shown->state)) {
+        why = tr("it samples another process than the run's: %1").arg(QString::fromStdString(*mismatch));
+      } else {
+        const TailResult result = tailResult(tail);
+        double factor = 1;
+        const Series levels = reliableSurvivalIn(result, shown->state, shown->statistics, &factor);
+        if (levels.x.empty()) {
+          why = tr("it has no reliable level yet");
+        } else if (StatisticsPlot* p = statistics_->plot(Statistic::P)) {
+          QString title = tr("P_t by splitting (tail, %1 × %2), %3 reliable levels")
+                              .arg(tail.request.population)
+                              .arg(tail.request.replicas)
+                              .arg(levels.x.size());
+          if (factor != 1)  // spliced statistics count the q = 1 process's segments
+            title += tr(", × %1 (α₁/α_q)").arg(QLocale::c().toString(factor, 'g', 3));
+          p->setEstimate(levels, title);
+          p->refresh();
+          message(tr("Drew %1 levels of %2 to t = %3 steps on P_t")
+                      .arg(levels.x.size())
+                      .arg(QFileInfo(path).fileName())
+                      .arg(QLocale::c().toString(largestReliableT(result), 'g', 3)));
+          return true;
+        }
+      }
+    } catch (const std::exception& e) {
+      why = QString::fromStdString(e.what());
+    }
+  }
+  if (error) *error = why;
+  showOpenError(tr("Cannot draw the tail estimate"), path, why);
+  return false;
 }
 
 bool MainWindow::saveRunFile(const QString& path, QString* error) { return run_->save(path, error); }

@@ -56,6 +56,10 @@ class MainWindow : public QMainWindow {
 
   // Files.  Errors go to the status bar and, when `error` is given, to it.
   bool openRunFile(const QString& path, QString* error = nullptr);
+  /// Draws P_t of a tail file (`archipelago-cli tail --out …`, core/tail) beside the run's own P_t, at its reliable
+  /// levels (issue #29).  Refused, with the reason, without a run or when the file's process is not the run's
+  /// (map, box, Xr, q: core's tailRunMismatch).
+  bool openTailEstimate(const QString& path, QString* error = nullptr);
   bool saveRunFile(const QString& path, QString* error = nullptr);
   /// Writes every plot (PNG, SVG, PDF) and every CSV file of the run on screen (as `stats --csv` does) into `folder`.
   bool exportAllTo(const QString& folder, QString* error = nullptr);
@@ -172,6 +176,7 @@ class MainWindow : public QMainWindow {
   QLabel* kernelLabel_ = nullptr;
 
   QAction* openAction_ = nullptr;
+  QAction* openTailAction_ = nullptr;
   QAction* saveAction_ = nullptr;
   QAction* saveAsAction_ = nullptr;
   QAction* exportAllAction_ = nullptr;

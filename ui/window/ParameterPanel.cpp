@@ -6,6 +6,7 @@
 #include <QLabel>
 #include <QLineEdit>
 #include <QLocale>
+#include <QScrollArea>
 #include <QSignalBlocker>
 #include <QThread>
 #include <QVBoxLayout>
@@ -64,13 +65,20 @@ ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
   presetDescription_->setWordWrap(true);
   presetDescription_->setAlignment(Qt::AlignLeft | Qt::AlignTop);
   presetDescription_->setTextInteractionFlags(Qt::TextSelectableByMouse);
-  // Ordinary text (a grey caption read as disabled), and a fixed height of five lines whether a preset is
-  // chosen or not, so that the fields below never move (the whole text is in the tooltip).
-  presetDescription_->setFixedHeight(presetDescription_->fontMetrics().lineSpacing() * 5 + 4);
+  // Ordinary text (a grey caption read as disabled) in a frameless area of a fixed height of five lines whether a
+  // preset is chosen or not, so that the fields below never move; a longer text scrolls (it was cut mid-line), and
+  // the whole text is in the tooltip.
+  auto* descriptionArea = new QScrollArea(this);
+  descriptionArea->setObjectName(QStringLiteral("presetDescriptionArea"));
+  descriptionArea->setFrameShape(QFrame::NoFrame);
+  descriptionArea->setWidgetResizable(true);
+  descriptionArea->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+  descriptionArea->setWidget(presetDescription_);
+  descriptionArea->setFixedHeight(presetDescription_->fontMetrics().lineSpacing() * 5 + 4);
   auto* presetForm = new QFormLayout;
   presetForm->addRow(tr("Preset"), presetBox_);
   layout->addLayout(presetForm);
-  layout->addWidget(presetDescription_);
+  layout->addWidget(descriptionArea);
 
   auto* mapGroup = new QGroupBox(tr("Map Q*  (y′ = y + 2(x² − K),  x′ = x + y′)"), this);
   auto* mapForm = new QFormLayout(mapGroup);
