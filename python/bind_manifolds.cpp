@@ -1,12 +1,13 @@
 // Python bindings of core/manifolds (issue 28): branches of stable and unstable manifolds, the turnstile flux by two
 // methods, the Kac check.  Arrays out (NumPy); the numbers are core's (the flux dict is parsed from the same JSON the
 // CLI prints, so `archipelago-cli flux --json` and flux() agree to the last digit).  Long calls release the GIL and
-// stop on Ctrl-C at their next progress point (a domain of a branch, a batch of the Kac check): KeyboardInterrupt.
+// stop on Ctrl-C at core's next check of the stop token (python/Interruption.hpp): KeyboardInterrupt.
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <cmath>
 #include <optional>
 #include <stdexcept>
 #include <stop_token>
@@ -17,18 +18,14 @@
 #include "core/manifolds/ManifoldCurve.hpp"
 #include "core/manifolds/ManifoldExport.hpp"
 #include "core/manifolds/TurnstileFlux.hpp"
+#include "python/Conversions.hpp"
+#include "python/Interruption.hpp"
 
 namespace py = pybind11;
 using namespace archipelago;
+using namespace archipelago::bindings;
 
 namespace {
-
-template <class T>
-py::array_t<T> array(const std::vector<T>& v) {
-  py::array_t<T> a(static_cast<py::ssize_t>(v.size()));
-  std::copy(v.begin(), v.end(), a.mutable_data());
-  return a;
-}
 
 std::optional<PhysicalPoint> guess(const py::object& near) {
   if (near.is_none()) return std::nullopt;
@@ -40,34 +37,6 @@ std::optional<PhysicalPoint> guess(const py::object& near) {
 
 void checkK(double K) {
   if (auto e = manifoldKError(K)) throw std::invalid_argument(*e);
-}
-
-/// Runs `work(progress, stop)` without the GIL; the progress callback takes the GIL back to check for Ctrl-C and, when
-/// a signal is pending, stops the work and re-raises the signal's exception once the work has returned.
-template <class Work>
-auto interruptible(Work&& work) {
-  std::stop_source stopper;
-  py::object type, value, trace;
-  bool interrupted = false;
-  const ManifoldProgressCallback progress = [&](const ManifoldProgress&) {
-    py::gil_scoped_acquire gil;
-    if (interrupted || PyErr_CheckSignals() == 0) return;
-    interrupted = true;
-    PyObject *t, *v, *tb;
-    PyErr_Fetch(&t, &v, &tb);
-    type = py::reinterpret_steal<py::object>(t);
-    value = py::reinterpret_steal<py::object>(v);
-    trace = py::reinterpret_steal<py::object>(tb);
-    stopper.request_stop();
-  };
-  try {
-    py::gil_scoped_release release;
-    return work(progress, stopper.get_token());
-  } catch (const std::runtime_error&) {
-    if (!interrupted) throw;
-  }
-  PyErr_Restore(type.release().ptr(), value.release().ptr(), trace.release().ptr());
-  throw py::error_already_set();
 }
 
 py::dict manifold(double K, const std::string& branch, const std::string& side, double length, int period,
@@ -107,10 +76,10 @@ py::dict manifold(double K, const std::string& branch, const std::string& side, 
     if (auto e = validationError(check)) throw std::invalid_argument(*e);
   }
   const std::optional<PhysicalPoint> at = guess(near);
-  const ManifoldCurve c = interruptible([&](const ManifoldProgressCallback& progress, std::stop_token stop) {
+  const ManifoldCurve c = interruptible([&](std::stop_token stop) {
     r.orbit = hyperbolicOrbitNear(r.K, period, at, radius);
     r.side = parseBranchSide(side, !r.orbit);
-    return computeManifoldCurve(r, progress, stop);
+    return computeManifoldCurve(r, {}, stop);
   });
   std::vector<double> s, x, y, t;
   std::vector<std::int32_t> piece;
@@ -125,11 +94,11 @@ py::dict manifold(double K, const std::string& branch, const std::string& side, 
     }
   }
   py::dict d;
-  d["s"] = array(s);
-  d["x"] = array(x);
-  d["y"] = array(y);
-  d["piece"] = array(piece);
-  d["parameter"] = array(t);
+  d["s"] = toArray(s);
+  d["x"] = toArray(x);
+  d["y"] = toArray(y);
+  d["piece"] = toArray(piece);
+  d["parameter"] = toArray(t);
   d["origin"] = py::make_tuple(static_cast<double>(c.origin.x), static_cast<double>(c.origin.y));
   d["length"] = static_cast<double>(c.length);
   d["domains"] = c.domains;
@@ -150,8 +119,8 @@ py::dict boundary(const std::vector<PhysicalPoint>& v) {
     y.push_back(static_cast<double>(p.y));
   }
   py::dict d;
-  d["x"] = array(x);
-  d["y"] = array(y);
+  d["x"] = toArray(x);
+  d["y"] = toArray(y);
   return d;
 }
 
@@ -175,13 +144,13 @@ py::dict flux(double K, int period, const py::object& near, double radius, const
   const std::optional<PhysicalPoint> at = guess(near);
   TurnstileFlux f;
   std::optional<KacResult> result;
-  std::string json = interruptible([&](const ManifoldProgressCallback& progress, std::stop_token stop) {
+  std::string json = interruptible([&](std::stop_token stop) {
     r.orbit = hyperbolicOrbitNear(r.K, period, at, radius);
     r.side = parseBranchSide(side, !r.orbit);
-    f = computeTurnstileFlux(r, progress, stop);
+    f = computeTurnstileFlux(r, {}, stop);
     k.orbit = r.orbit;
     k.side = r.side;
-    if (kac) result = runKacCheck(k, progress, stop);
+    if (kac) result = runKacCheck(k, {}, stop);
     return turnstileJson(r, f, kac ? &k : nullptr, result ? &*result : nullptr);
   });
   py::dict d = py::module_::import("json").attr("loads")(json);

@@ -1,16 +1,15 @@
 // The orbit measures of core/measures as NumPy arrays: rotation numbers and island chains of single orbits,
 // rotation profiles, indicator maps (dig, rotation, fli, megno, lyapunov) and measures of arbitrary starts.
 // No maths here: every number comes from core (the same functions as archipelago-cli's `rotation` and
-// `indicator`).  Long calls release the GIL and check for Ctrl-C between rounds of orbits.
+// `indicator`).  Long calls release the GIL and stop on Ctrl-C (python/Interruption.hpp): the indicator map at its
+// next round of pixels, where it also calls the progress callback, the others within 50 ms.
 
-#include <pybind11/functional.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <optional>
 #include <stdexcept>
 #include <stop_token>
@@ -21,54 +20,14 @@
 #include "core/measures/IndicatorMap.hpp"
 #include "core/measures/MeasureExport.hpp"
 #include "core/measures/RotationProfile.hpp"
+#include "python/Conversions.hpp"
+#include "python/Interruption.hpp"
 
 namespace py = pybind11;
 using namespace archipelago;
+using namespace archipelago::bindings;
 
 namespace {
-
-MapParameters boxOf(double K, double xmin, double xmax) {
-  MapParameters p{K, xmin, xmax};
-  if (auto e = mapError(p)) throw std::invalid_argument(*e);
-  return p;
-}
-
-/// Interrupts a computation running without the GIL: call check() at round boundaries (on the computing
-/// thread); a pending KeyboardInterrupt (or any Python exception from the progress callback) requests a stop
-/// and is raised again by finish() once the computation returned.
-class Interruption {
- public:
-  [[nodiscard]] std::stop_token token() const { return stopper_.get_token(); }
-  /// Checks for a signal; then, when `report` is given, calls progress(report()) (both with the GIL).
-  void check(const py::object& progress = py::none(), const std::function<py::dict()>& report = {}) {
-    py::gil_scoped_acquire gil;
-    if (failed_) return;
-    try {
-      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-      if (report && !progress.is_none()) progress(report());
-    } catch (py::error_already_set& e) {
-      failed_ = true;
-      e.restore();  // keep the exception until the computation returned
-      PyObject *t, *v, *tb;
-      PyErr_Fetch(&t, &v, &tb);
-      type_ = py::reinterpret_steal<py::object>(t);
-      value_ = py::reinterpret_steal<py::object>(v);
-      trace_ = py::reinterpret_steal<py::object>(tb);
-      stopper_.request_stop();
-    }
-  }
-  /// With the GIL held: raises the pending exception, if any.
-  void finish() {
-    if (!failed_) return;
-    PyErr_Restore(type_.release().ptr(), value_.release().ptr(), trace_.release().ptr());
-    throw py::error_already_set();
-  }
-
- private:
-  std::stop_source stopper_;
-  bool failed_ = false;
-  py::object type_, value_, trace_;
-};
 
 MeasureSettings settingsOf(const std::string& kind, double K, double xmin, double xmax, std::uint64_t iterations,
                            double threshold, const std::string& kernel) {
@@ -76,19 +35,12 @@ MeasureSettings settingsOf(const std::string& kind, double K, double xmin, doubl
   const auto k = parseIndicatorKind(kind);
   if (!k) throw std::invalid_argument("kind must be one of " + indicatorKindNames() + ", not " + kind);
   s.kind = *k;
-  s.map = boxOf(K, xmin, xmax);
+  s.map = mapOf(K, xmin, xmax);
   s.iterations = iterations;
   s.digitsThreshold = threshold;
   s.kernel = &selectKernel(kernel);
   if (auto e = validationError(s)) throw std::invalid_argument(*e);
   return s;
-}
-
-template <class T>
-py::array_t<T> shaped(const std::vector<T>& v, py::ssize_t rows, py::ssize_t cols) {
-  py::array_t<T> a({rows, cols});
-  std::copy(v.begin(), v.end(), a.mutable_data());
-  return a;
 }
 
 py::array_t<std::uint8_t> verdictCodes(const std::vector<OrbitVerdict>& v, py::ssize_t rows, py::ssize_t cols) {
@@ -116,7 +68,7 @@ void bindMeasures(py::module_& m) {
                        double threshold, std::uint64_t maxPeriod) {
           if (!std::isfinite(x) || !std::isfinite(y)) throw std::invalid_argument("x and y must be finite");
           ChainRequest r;
-          r.map = boxOf(K, xmin, xmax);
+          r.map = mapOf(K, xmin, xmax);
           r.iterations = iterations;
           r.digitsThreshold = threshold;
           r.maxPeriod = maxPeriod;
@@ -152,14 +104,8 @@ void bindMeasures(py::module_& m) {
           r.points = points;
           r.maxDenominator = maxDenominator;
           if (auto e = validationError(r)) throw std::invalid_argument(*e);
-          Interruption interruption;
-          RotationProfile profile;
-          {
-            py::gil_scoped_release release;
-            profile = computeRotationProfile(r, [&](std::uint64_t, std::uint64_t) { interruption.check(); },
-                                             interruption.token());
-          }
-          interruption.finish();
+          const RotationProfile profile =
+              interruptible([&](std::stop_token stop) { return computeRotationProfile(r, {}, stop); });
           const auto n = static_cast<py::ssize_t>(profile.points.size());
           py::array_t<double> x(n), y(n), rotation(n), digits(n);
           py::array_t<std::uint8_t> verdict(n);
@@ -204,10 +150,8 @@ void bindMeasures(py::module_& m) {
           r.roundPixels = 4096;  // Ctrl-C and progress between rounds
           if (auto e = validationError(r)) throw std::invalid_argument(*e);
           Interruption interruption;
-          IndicatorResult result;
-          {
-            py::gil_scoped_release release;
-            result = computeIndicatorMap(r, [&](const IndicatorProgress& p) {
+          const IndicatorResult result = interruption.run([&] {
+            return computeIndicatorMap(r, [&](const IndicatorProgress& p) {
               interruption.check(progress, [&p] {
                 py::dict d;
                 d["pixels_done"] = p.pixelsDone;
@@ -218,14 +162,13 @@ void bindMeasures(py::module_& m) {
                 return d;
               });
             }, interruption.token());
-          }
-          interruption.finish();
+          });
           const IndicatorRaster& ras = result.raster;
           const py::ssize_t rows = ras.height, cols = ras.width;
           py::dict d;
           d["kind"] = kind;
-          d["values"] = shaped(ras.values, rows, cols);
-          d["digits"] = shaped(ras.digits, rows, cols);
+          d["values"] = toArray(ras.values, rows, cols);
+          d["digits"] = toArray(ras.digits, rows, cols);
           d["verdicts"] = verdictCodes(ras.verdicts, rows, cols);
           d["seconds"] = result.seconds;
           d["metadata"] = py::module_::import("json").attr("loads")(indicatorMetadataJson(r, result));
@@ -254,19 +197,7 @@ void bindMeasures(py::module_& m) {
           }
           const OrbitMeasurer measurer(s);
           std::vector<OrbitMeasure> out(starts.size());
-          Interruption interruption;
-          {
-            py::gil_scoped_release release;
-            constexpr std::size_t kRound = 4096;
-            for (std::size_t first = 0; first < starts.size(); first += kRound) {
-              const std::size_t n = std::min(kRound, starts.size() - first);
-              if (!measurer.measure(std::span<const UnitState>(starts.data() + first, n),
-                                    std::span<OrbitMeasure>(out.data() + first, n), interruption.token(), threads))
-                break;
-              interruption.check();
-            }
-          }
-          interruption.finish();
+          interruptible([&](std::stop_token stop) { return measurer.measure(starts, out, stop, threads); });
           const auto n = static_cast<py::ssize_t>(out.size());
           py::array_t<double> value(n), digits(n);
           py::array_t<std::uint8_t> verdict(n);

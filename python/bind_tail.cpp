@@ -6,10 +6,8 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include <cmath>
 #include <optional>
 #include <stdexcept>
-#include <stop_token>
 #include <string>
 #include <vector>
 
@@ -17,16 +15,14 @@
 #include "core/kernels/KernelDispatch.hpp"
 #include "core/spec/RunSpec.hpp"
 #include "core/tail/TailFile.hpp"
+#include "python/Conversions.hpp"
+#include "python/Interruption.hpp"
 
 namespace py = pybind11;
 using namespace archipelago;
+using namespace archipelago::bindings;
 
 namespace {
-
-[[noreturn]] void raiseOSError(const std::string& message) {
-  PyErr_SetString(PyExc_OSError, message.c_str());
-  throw py::error_already_set();
-}
 
 // A tail file read with the GIL released; OSError naming the path for a missing, corrupt or edited file.
 TailState loadOrRaise(const std::string& path) {
@@ -53,38 +49,10 @@ void checkWritable(const std::string& path) {
   }
 }
 
-template <class T>
-py::array_t<T> array(const std::vector<T>& v) {
-  py::array_t<T> a(static_cast<py::ssize_t>(v.size()));
-  std::copy(v.begin(), v.end(), a.mutable_data());
-  return a;
-}
-
-// A path: str or os.PathLike, not empty, no NUL (as every path of the module).
-std::string pathOf(const py::object& path, const char* name) {
-  if (path.is_none() || !(py::isinstance<py::str>(path) || py::hasattr(path, "__fspath__")))
-    throw py::type_error(std::string(name) + " must be a path (str or os.PathLike)");
-  const py::object text = py::module_::import("os").attr("fspath")(path);
-  if (!py::isinstance<py::str>(text)) throw py::type_error(std::string(name) + " must be a text path, not bytes");
-  const std::string s = text.cast<std::string>();
-  if (s.empty() || s.find('\0') != std::string::npos)
-    throw std::invalid_argument(std::string(name) + " must be a non-empty path without NUL characters");
-  return s;
-}
-
-// A whole number given as int or as a float such as 1e7; a bool, NaN, a fraction or a negative value is refused.
-std::uint64_t wholeOf(const py::handle& v, const char* name) {
-  if (py::isinstance<py::bool_>(v) || !(py::isinstance<py::int_>(v) || py::isinstance<py::float_>(v)))
-    throw py::type_error(std::string(name) + " must be a whole number");
-  if (py::isinstance<py::int_>(v)) {
-    const py::int_ i = py::reinterpret_borrow<py::int_>(v);
-    if (i < py::int_(0) || i > py::int_(UINT64_MAX)) throw std::invalid_argument(std::string(name) + " must be >= 0");
-    return i.cast<std::uint64_t>();
-  }
-  const double d = v.cast<double>();
-  if (!(std::isfinite(d) && d >= 0 && d == std::floor(d) && d < 1.8e19))
-    throw std::invalid_argument(std::string(name) + " = " + std::string(py::str(v)) + " must be a whole number >= 0");
-  return static_cast<std::uint64_t>(d);
+// A whole number of the request (an int, or a float such as 1e7: wholeArgument) that fits its field.
+std::uint64_t whole64(const py::object& v, const char* name) { return unsignedArgument(v, name, UINT64_MAX, "[0, 2^64)"); }
+std::uint32_t whole32(const py::object& v, const char* name) {
+  return static_cast<std::uint32_t>(unsignedArgument(v, name, UINT32_MAX, "[0, 2^32)"));
 }
 
 py::dict resultDict(const TailState& s) {
@@ -106,15 +74,15 @@ py::dict resultDict(const TailState& s) {
   py::array_t<bool> rel(static_cast<py::ssize_t>(reliable.size()));
   for (std::size_t i = 0; i < reliable.size(); ++i) rel.mutable_data()[i] = reliable[i];
   py::dict d;
-  d["t"] = array(t);
-  d["P"] = array(P);
-  d["P_error"] = array(PError);
-  d["survivors"] = array(survivors);
-  d["ancestors"] = array(ancestors);
-  d["fewest_ancestors"] = array(fewest);
-  d["population"] = array(population);
+  d["t"] = toArray(t);
+  d["P"] = toArray(P);
+  d["P_error"] = toArray(PError);
+  d["survivors"] = toArray(survivors);
+  d["ancestors"] = toArray(ancestors);
+  d["fewest_ancestors"] = toArray(fewest);
+  d["population"] = toArray(population);
   d["reliable"] = rel;
-  d["steps"] = array(steps);
+  d["steps"] = toArray(steps);
   std::vector<double> et, from, to, gamma, gammaError;
   for (const TailExponent& e : r.exponents) {
     et.push_back(e.t);
@@ -124,18 +92,18 @@ py::dict resultDict(const TailState& s) {
     gammaError.push_back(e.gammaError);
   }
   py::dict ex;
-  ex["t"] = array(et);
-  ex["t_from"] = array(from);
-  ex["t_to"] = array(to);
-  ex["gamma"] = array(gamma);
-  ex["gamma_error"] = array(gammaError);
+  ex["t"] = toArray(et);
+  ex["t_from"] = toArray(from);
+  ex["t_to"] = toArray(to);
+  ex["gamma"] = toArray(gamma);
+  ex["gamma_error"] = toArray(gammaError);
   d["exponents"] = ex;
   d["total_steps"] = r.steps;
   d["finished"] = r.finished;
   d["largest_reliable_t"] = largestReliableT(r);
   std::vector<double> levels;
   for (const std::uint64_t L : s.levels) levels.push_back(static_cast<double>(L * s.request.run.q));
-  d["level_t"] = array(levels);
+  d["level_t"] = toArray(levels);
   return d;
 }
 
@@ -144,60 +112,39 @@ py::dict resultDict(const TailState& s) {
 // (when given) and the exception raised.
 py::dict runAndReport(TailState state, int threads, const std::string& kernelName, const py::object& progress,
                       const std::optional<std::string>& out) {
-  if (threads < 0 || threads > kMaxThreads)
-    throw std::invalid_argument("threads = " + std::to_string(threads) + " must lie in [0, " + std::to_string(kMaxThreads) + "]");
+  if (auto e = threadsError(threads)) throw std::invalid_argument(*e);
   TailRunOptions options;
   options.threads = threads;
   options.kernel = &selectKernel(kernelName);
-  std::stop_source stopper;
-  py::object type, value, trace;
-  bool failed = false;
+  Interruption interruption;
   const auto observer = [&](const TailState&, const TailProgress& p) {
-    py::gil_scoped_acquire gil;
-    if (failed) return;
-    try {
-      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-      if (!progress.is_none()) {
-        py::dict d;
-        d["level"] = p.level;
-        d["levels"] = p.levels;
-        d["t"] = p.t;
-        d["fraction"] = p.fraction;
-        d["steps"] = p.steps;
-        d["steps_per_second"] = p.stepsPerSecond;
-        d["alive"] = p.alive;
-        progress(d);
-      }
-    } catch (py::error_already_set& e) {
-      failed = true;
-      e.restore();
-      PyObject *t, *v, *tb;
-      PyErr_Fetch(&t, &v, &tb);
-      type = py::reinterpret_steal<py::object>(t);
-      value = py::reinterpret_steal<py::object>(v);
-      trace = py::reinterpret_steal<py::object>(tb);
-      stopper.request_stop();
-    }
+    interruption.check(progress, [&] {
+      py::dict d;
+      d["level"] = p.level;
+      d["levels"] = p.levels;
+      d["t"] = p.t;
+      d["fraction"] = p.fraction;
+      d["steps"] = p.steps;
+      d["steps_per_second"] = p.stepsPerSecond;
+      d["alive"] = p.alive;
+      return d;
+    });
   };
+  // Saved (when `out` is given) before the exception that stopped the sampler is raised: the state is resumable.
   std::string saveError;
-  {
-    py::gil_scoped_release release;
-    state = runTail(std::move(state), options, observer, stopper.get_token());
+  state = interruption.withoutGil([&] {
+    TailState done = runTail(std::move(state), options, observer, interruption.token());
     if (out) {
       try {
-        saveTailFile(*out, state);
+        saveTailFile(*out, done);
       } catch (const std::exception& e) {
         saveError = e.what();
       }
     }
-  }
-  if (!saveError.empty()) {
-    raiseOSError(saveError);
-  }
-  if (failed) {
-    PyErr_Restore(type.release().ptr(), value.release().ptr(), trace.release().ptr());
-    throw py::error_already_set();
-  }
+    return done;
+  });
+  if (!saveError.empty()) raiseOSError(saveError);
+  interruption.raisePending();
   return resultDict(state);
 }
 
@@ -214,26 +161,22 @@ void bindTail(py::module_& m) {
         TailRequest r;
         r.run.map = {K, xmin, xmax};
         r.run.Xr = Xr;
-        const auto narrow = [](std::uint64_t v, const char* name) {
-          if (v > UINT32_MAX) throw std::invalid_argument(std::string(name) + " is out of range");
-          return static_cast<std::uint32_t>(v);
-        };
-        r.run.q = narrow(wholeOf(q, "q"), "q");
-        r.run.seed = wholeOf(seed, "seed");
-        r.population = narrow(wholeOf(population, "population"), "population");
-        r.replicas = narrow(wholeOf(replicas, "replicas"), "replicas");
-        r.firstSteps = wholeOf(first, "first");
-        r.maxSteps = wholeOf(tMax, "t_max");
-        r.binsPerLevel = narrow(wholeOf(levelBins, "level_bins"), "level_bins");
-        r.epsilon = wholeOf(epsilon, "epsilon");
+        r.run.q = whole32(q, "q");
+        r.run.seed = whole64(seed, "seed");
+        r.population = whole32(population, "population");
+        r.replicas = whole32(replicas, "replicas");
+        r.firstSteps = whole64(first, "first");
+        r.maxSteps = whole64(tMax, "t_max");
+        r.binsPerLevel = whole32(levelBins, "level_bins");
+        r.epsilon = whole64(epsilon, "epsilon");
         const auto rule = cloneRuleByName(clones);
         if (!rule) throw std::invalid_argument("clones must be 'perturb' or 'metropolis'");
         r.clones = *rule;
-        r.metropolisSteps = narrow(wholeOf(metropolisSteps, "metropolis_steps"), "metropolis_steps");
-        r.warmupBlocks = wholeOf(warmup, "warmup");
-        r.minAncestors = wholeOf(minAncestors, "min_ancestors");
+        r.metropolisSteps = whole32(metropolisSteps, "metropolis_steps");
+        r.warmupBlocks = whole64(warmup, "warmup");
+        r.minAncestors = whole64(minAncestors, "min_ancestors");
         if (auto e = tailRequestError(r)) throw std::invalid_argument(*e);
-        const std::optional<std::string> path = out.is_none() ? std::nullopt : std::optional(pathOf(out, "out"));
+        const std::optional<std::string> path = out.is_none() ? std::nullopt : std::optional(pathArgument(out, "out"));
         if (path) checkWritable(*path);  // before the work, not after it
         return runAndReport(startTail(r), threads, kernel, progress, path);
       },
@@ -252,10 +195,10 @@ void bindTail(py::module_& m) {
       "tail_resume",
       [](const py::object& path, int threads, const std::string& kernel, const py::object& progress,
          const py::object& out) {
-        const std::string in = pathOf(path, "path");
+        const std::string in = pathArgument(path, "path");
         TailState s = loadOrRaise(in);
         if (s.finished()) throw std::invalid_argument(in + " is already finished");
-        const std::string target = out.is_none() ? in : pathOf(out, "out");
+        const std::string target = out.is_none() ? in : pathArgument(out, "out");
         checkWritable(target);
         return runAndReport(std::move(s), threads, kernel, progress, target);
       },
@@ -265,7 +208,7 @@ void bindTail(py::module_& m) {
   m.def(
       "load_tail",
       [](const py::object& path) {
-        return resultDict(loadOrRaise(pathOf(path, "path")));
+        return resultDict(loadOrRaise(pathArgument(path, "path")));
       },
       py::arg("path"), "The results of a tail file (finished or not), as tail() returns them.");
 }
