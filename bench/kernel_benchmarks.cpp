@@ -166,10 +166,12 @@ void measureOrbits(benchmark::State& state, const KernelInfo* kernel, IndicatorK
 // "ratio" is the median over the iterations.  One-thread work is timed by the thread's CPU clock (time the
 // guest took the vCPU away does not count), two-thread work by the wall clock.
 
-/// Steps done and the seconds they took.
+/// Steps done, the seconds they took, and the CPUs the process got meanwhile (CPU time / wall time; 2-thread work
+/// only, else 0).
 struct Timed {
   double steps = 0;
   double seconds = 0;
+  double cpus = 0;
 };
 using Work = std::function<Timed()>;
 
@@ -180,6 +182,11 @@ double threadSeconds() {
 }
 double wallSeconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+double processSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
 /// Work on one thread: the bare step of `kernel` on 48 orbits for `steps` steps each.
@@ -210,17 +217,19 @@ Work pipelineWork(const KernelInfo* kernel, std::uint32_t q, int threads, std::u
   return [=] {
     const TrappingState start = startTrapping(p);
     const bool byWall = wall || threads > 1;
-    const double t0 = byWall ? wallSeconds() : threadSeconds();
+    const double t0 = byWall ? wallSeconds() : threadSeconds(), c0 = processSeconds();
     const TrappingState done = runTrapping(start, options);
-    const double t1 = byWall ? wallSeconds() : threadSeconds();
-    return Timed{done.stepsDone(), t1 - t0};
+    const double t1 = byWall ? wallSeconds() : threadSeconds(), c1 = processSeconds();
+    return Timed{done.stepsDone(), t1 - t0, threads > 1 ? (c1 - c0) / (t1 - t0) : 0.0};
   };
 }
 
 /// Rate of `numerator` / rate of `denominator`, alternated; the counter "ratio" is the median of the
-/// iterations' ratios.  (Two-thread work is wall-timed, and so is the one-thread side it is compared with.)
+/// iterations' ratios.  (Two-thread work is wall-timed, and so is the one-thread side it is compared with; the
+/// counter "cpus" is then the median of the CPUs the numerator's process got, so that a ratio measured while a
+/// co-tenant held a vCPU can be told from one that measures scaling.)
 void pairedRatio(benchmark::State& state, const Work& numerator, const Work& denominator) {
-  std::vector<double> ratios;
+  std::vector<double> ratios, cpus;
   bool numeratorFirst = true;
   for (auto _ : state) {
     Timed a, b;
@@ -233,9 +242,12 @@ void pairedRatio(benchmark::State& state, const Work& numerator, const Work& den
     }
     numeratorFirst = !numeratorFirst;
     ratios.push_back((a.steps / a.seconds) / (b.steps / b.seconds));
+    cpus.push_back(a.cpus);
   }
   std::sort(ratios.begin(), ratios.end());
+  std::sort(cpus.begin(), cpus.end());
   state.counters["ratio"] = ratios.empty() ? 0.0 : ratios[ratios.size() / 2];
+  if (!cpus.empty() && cpus.back() > 0) state.counters["cpus"] = cpus[cpus.size() / 2];
 }
 
 void registerPaired() {
