@@ -3,8 +3,12 @@
 // runs each several times (--benchmark_repetitions, randomly interleaved) and turns the medians into ratios.
 // Multi-threaded CPU times are of the whole process (all threads).  Names: bare_step/<kernel>,
 // bare_step/<kernel>/threads:2, naive_double, pipeline/<kernel>/q:<q>/threads:<t>, measure/<kind>/<kernel> (the
-// orbit measures of issue 27: iterate N and accumulate, one thread), and the paired ratios paired/<what>, which
-// report a counter "ratio" (see pairedRatio).
+// orbit measures of issue 27: iterate N and accumulate, one thread), indicator/<kind>/<kernel> (a whole indicator
+// map, issue 27), rotation/profile/<kernel> and rotation/number/scalar (rotation numbers: a profile along a segment,
+// one chain-identification measurement), tail/<what>/<kernel> (the tail sampler, issue 29), manifold/branch_<what>
+// (manifold refinement, issue 28: "steps" there are refined points of the branch), and the paired ratios
+// paired/<what>, which report a counter "ratio" (see pairedRatio).  The JSON's context names the CPU (cpu_model,
+// cpu_flags: see main), so that a kept result names the machine it was measured on.
 //
 // Each repetition is kept short (a few tenths of a second): on a shared machine the speed changes over
 // minutes, and many short interleaved repetitions let slow periods hit every benchmark alike.
@@ -17,13 +21,19 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <fstream>
 #include <functional>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
 
 #include "core/kernels/KernelDispatch.hpp"
+#include "core/manifolds/ManifoldCurve.hpp"
+#include "core/measures/IndicatorMap.hpp"
 #include "core/measures/OrbitMeasures.hpp"
+#include "core/measures/RotationNumber.hpp"
+#include "core/measures/RotationProfile.hpp"
 #include "core/run/TrappingRun.hpp"
 #include "core/tail/TailSampler.hpp"
 
@@ -156,10 +166,12 @@ void measureOrbits(benchmark::State& state, const KernelInfo* kernel, IndicatorK
 // "ratio" is the median over the iterations.  One-thread work is timed by the thread's CPU clock (time the
 // guest took the vCPU away does not count), two-thread work by the wall clock.
 
-/// Steps done and the seconds they took.
+/// Steps done, the seconds they took, and the CPUs the process got meanwhile (CPU time / wall time; 2-thread work
+/// only, else 0).
 struct Timed {
   double steps = 0;
   double seconds = 0;
+  double cpus = 0;
 };
 using Work = std::function<Timed()>;
 
@@ -170,6 +182,11 @@ double threadSeconds() {
 }
 double wallSeconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+double processSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
 }
 
 /// Work on one thread: the bare step of `kernel` on 48 orbits for `steps` steps each.
@@ -200,17 +217,19 @@ Work pipelineWork(const KernelInfo* kernel, std::uint32_t q, int threads, std::u
   return [=] {
     const TrappingState start = startTrapping(p);
     const bool byWall = wall || threads > 1;
-    const double t0 = byWall ? wallSeconds() : threadSeconds();
+    const double t0 = byWall ? wallSeconds() : threadSeconds(), c0 = processSeconds();
     const TrappingState done = runTrapping(start, options);
-    const double t1 = byWall ? wallSeconds() : threadSeconds();
-    return Timed{done.stepsDone(), t1 - t0};
+    const double t1 = byWall ? wallSeconds() : threadSeconds(), c1 = processSeconds();
+    return Timed{done.stepsDone(), t1 - t0, threads > 1 ? (c1 - c0) / (t1 - t0) : 0.0};
   };
 }
 
 /// Rate of `numerator` / rate of `denominator`, alternated; the counter "ratio" is the median of the
-/// iterations' ratios.  (Two-thread work is wall-timed, and so is the one-thread side it is compared with.)
+/// iterations' ratios.  (Two-thread work is wall-timed, and so is the one-thread side it is compared with; the
+/// counter "cpus" is then the median of the CPUs the numerator's process got, so that a ratio measured while a
+/// co-tenant held a vCPU can be told from one that measures scaling.)
 void pairedRatio(benchmark::State& state, const Work& numerator, const Work& denominator) {
-  std::vector<double> ratios;
+  std::vector<double> ratios, cpus;
   bool numeratorFirst = true;
   for (auto _ : state) {
     Timed a, b;
@@ -223,9 +242,12 @@ void pairedRatio(benchmark::State& state, const Work& numerator, const Work& den
     }
     numeratorFirst = !numeratorFirst;
     ratios.push_back((a.steps / a.seconds) / (b.steps / b.seconds));
+    cpus.push_back(a.cpus);
   }
   std::sort(ratios.begin(), ratios.end());
+  std::sort(cpus.begin(), cpus.end());
   state.counters["ratio"] = ratios.empty() ? 0.0 : ratios[ratios.size() / 2];
+  if (!cpus.empty() && cpus.back() > 0) state.counters["cpus"] = cpus[cpus.size() / 2];
 }
 
 void registerPaired() {
@@ -333,6 +355,119 @@ void registerMeasures() {
           ->MinTime(0.25);
 }
 
+// An indicator map (core/measures/IndicatorMap.hpp) of the whole K = 0.1 box, one thread, T = 10⁴, the default 4
+// progressive passes: the measure's loop over pixels with the raster's bookkeeping.  Dig: 128 × 128 pixels with
+// AVX-512 IFMA, 64 × 64 otherwise; MEGNO (a log per step) half as wide and high (≈ 0.1–0.4 s per iteration).  Steps of N per second (stepsPerOrbit per pixel:
+// no orbit stops early), comparable with bare_step/<kernel>.
+void indicatorMap(benchmark::State& state, const KernelInfo* kernel, IndicatorKind kind) {
+  IndicatorRequest r;
+  r.measure.map = kPaperBox;
+  r.measure.kind = kind;
+  r.measure.iterations = 10000;
+  r.measure.kernel = kernel;
+  r.width = r.height = (kernel->kind == KernelKind::avx512ifma ? 128 : 64) / (kind == IndicatorKind::Megno ? 2 : 1);
+  r.threads = 1;
+  double steps = 0;
+  for (auto _ : state) {
+    const IndicatorResult done = computeIndicatorMap(r);
+    steps += static_cast<double>(done.raster.pixelsDone) * static_cast<double>(stepsPerOrbit(r.measure));
+    benchmark::DoNotOptimize(done.raster.values.data());
+  }
+  reportSteps(state, steps);
+}
+
+// Rotation numbers.  rotation/profile/<kernel>: computeRotationProfile (RotationProfile.hpp) along the x axis across
+// the K = 0.1 box's central island and six islands, 256 points, T = 10⁴, one thread (the Rotation measure, plus the
+// rationals).  rotation/number/scalar: measureRotation (RotationNumber.hpp), one chain-identification level: Q⁶
+// about the central fixed point from a point of the central island, T = 10⁴ (1.2·10⁵ steps of N, scalar on the
+// calling thread whatever the CPU, so it is compared with bare_step/scalar).  Steps of N per second.
+void rotationProfile(benchmark::State& state, const KernelInfo* kernel) {
+  RotationProfileRequest r;
+  r.measure.map = kPaperBox;
+  r.measure.kind = IndicatorKind::Rotation;
+  r.measure.iterations = 10000;
+  r.measure.kernel = kernel;
+  r.from = {-0.6L, 0};
+  r.to = {0.1L, 0};
+  r.points = 256;
+  r.threads = 1;
+  double steps = 0;
+  for (auto _ : state) {
+    const RotationProfile done = computeRotationProfile(r);
+    steps += static_cast<double>(done.points.size()) * static_cast<double>(stepsPerOrbit(r.measure));
+    benchmark::DoNotOptimize(done.points.data());
+  }
+  reportSteps(state, steps);
+}
+
+void rotationNumber(benchmark::State& state) {
+  RotationRequest r;
+  r.map = kPaperBox;
+  r.start = FixedPointMap(kPaperBox).toUnit(-0.4L, 0);
+  r.centre = centralFixedPoint(kPaperBox);
+  r.power = 6;
+  r.iterations = 10000;
+  double steps = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(measureRotation(r).rotation);
+    steps += 2.0 * static_cast<double>(r.iterations) * static_cast<double>(r.power);
+  }
+  reportSteps(state, steps);
+}
+
+// Manifold refinement (core/manifolds/ManifoldCurve.hpp, issue 28): the fixed point's inner unstable branch at
+// K = 0.1, arc length 20, in the paper's box (manifold/branch_box) and in a zoomed view 0.01 wide at the tip of the
+// loop refined to 10⁻⁵ there (manifold/branch_view: a zoomed portrait's hot loop); one thread, long double.  The
+// "steps" reported are refined points of the branch (each the local series iterated d·stepsPerDomain steps of Q in
+// long double, d its domain), so the ratio to the bare step is points per second over steps per second: its
+// inverse is what one point costs, in steps of the bare kernel.  bench/manifold_benchmarks.cpp has more cases.
+void manifoldBranch(benchmark::State& state, ManifoldCurveRequest request) {
+  double points = 0;
+  for (auto _ : state) {
+    const ManifoldCurve c = computeManifoldCurve(request);
+    points += static_cast<double>(c.points);
+    benchmark::DoNotOptimize(c.length);
+  }
+  reportSteps(state, points);
+}
+
+void registerInstruments() {
+  for (const auto& k : supportedKernels()) {
+    for (IndicatorKind kind : {IndicatorKind::Dig, IndicatorKind::Megno})
+      benchmark::RegisterBenchmark(("indicator/" + std::string(toString(kind)) + "/" + std::string(k.name)).c_str(),
+                                   indicatorMap, &kernelByName(k.name), kind)
+          ->UseRealTime()
+          ->Unit(benchmark::kMillisecond)
+          ->MinTime(0.25);
+    benchmark::RegisterBenchmark(("rotation/profile/" + std::string(k.name)).c_str(), rotationProfile,
+                                 &kernelByName(k.name))
+        ->UseRealTime()
+        ->Unit(benchmark::kMillisecond)
+        ->MinTime(0.25);
+  }
+  benchmark::RegisterBenchmark("rotation/number/scalar", rotationNumber)
+      ->UseRealTime()
+      ->Unit(benchmark::kMillisecond)
+      ->MinTime(0.25);
+  ManifoldCurveRequest box;
+  box.K = 0.1L;
+  box.length = 20;
+  box.box = kPaperBox;
+  benchmark::RegisterBenchmark("manifold/branch_box", manifoldBranch, box)
+      ->UseRealTime()
+      ->Unit(benchmark::kMillisecond)
+      ->MinTime(0.25);
+  ManifoldCurveRequest view;
+  view.K = 0.1L;
+  view.length = 20;
+  view.view = PhysicalRect{-0.69L, -0.68L, -0.37L, -0.36L};
+  view.maxSpacing = 1e-5L;
+  benchmark::RegisterBenchmark("manifold/branch_view", manifoldBranch, view)
+      ->UseRealTime()
+      ->Unit(benchmark::kMillisecond)
+      ->MinTime(0.25);
+}
+
 void registerAll() {
   // Bare steps: ≈ 13–130 ms per iteration (avx512ifma–scalar), ≈ 0.25–0.4 s per repetition.
   for (const auto& k : supportedKernels())
@@ -359,13 +494,39 @@ void registerAll() {
   }
 }
 
+/// The CPU, from /proc/cpuinfo (Linux; empty elsewhere): "model name", family/model/stepping, and which of the flags
+/// that decide the paths (and their speed) it has.  Stored in the JSON's context by main.
+std::pair<std::string, std::string> cpuDescription() {
+  std::ifstream in("/proc/cpuinfo");
+  std::string line, model, family, number, stepping, flags;
+  const auto value = [&] { return line.substr(std::min(line.size(), line.find(':') + 2)); };
+  while (std::getline(in, line) && (model.empty() || flags.empty() || family.empty())) {
+    if (line.rfind("model name", 0) == 0) model = value();
+    else if (line.rfind("cpu family", 0) == 0) family = value();
+    else if (line.rfind("model\t", 0) == 0) number = value();
+    else if (line.rfind("stepping", 0) == 0) stepping = value();
+    else if (line.rfind("flags", 0) == 0) flags = " " + value() + " ";
+  }
+  if (!family.empty()) model += " (family " + family + ", model " + number + ", stepping " + stepping + ")";
+  std::string has, lacks;
+  for (const std::string f : {"avx2", "fma", "bmi2", "adx", "avx512f", "avx512dq", "avx512vl", "avx512ifma",
+                              "avx512vbmi", "hypervisor"})
+    (flags.find(" " + f + " ") != std::string::npos ? has : lacks) += " " + f;
+  return {model, (has.empty() ? "" : has.substr(1)) + (lacks.empty() ? "" : "; lacks" + lacks)};
+}
+
 }  // namespace
 }  // namespace archipelago
 
 int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
+  const auto [model, flags] = archipelago::cpuDescription();
+  benchmark::AddCustomContext("cpu_model", model);
+  benchmark::AddCustomContext("cpu_flags", flags);
+  benchmark::AddCustomContext("best_kernel", std::string(archipelago::bestKernel().name));
   archipelago::registerAll();
   archipelago::registerMeasures();
+  archipelago::registerInstruments();
   archipelago::registerTail();
   archipelago::registerPaired();
   benchmark::RunSpecifiedBenchmarks();
