@@ -26,6 +26,7 @@ py::dict markovModel(std::vector<std::int64_t> lengths, std::int64_t points, std
   if (!std::isfinite(h0)) throw std::invalid_argument("h0 must be finite");
   if (tauMax < 0) throw std::invalid_argument("tau_max must be >= 0");
   const markov::LumpedObservable h = markov::paperObservable(model, h0);
+  markov::checkSeriesMemory(tauMax);  // the three series at once, before the first (issue #23)
   std::vector<double> C, Cis, eps;
   double D = 0, Dmark = 0, Dis = 0;
   {

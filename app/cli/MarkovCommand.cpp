@@ -70,6 +70,7 @@ int runMarkov(const MarkovOptions& o) {
                        : parseWhole("--tau-max", o.tauMax, o.tauMax, 0, tauLimit,
                                     "a whole number 0 ... " + std::to_string(tauLimit) + " (5e8/(m + 1) - 1)");
   if (!o.csv.empty()) io::checkWritableTarget(o.csv);  // before any work: a bad path fails at once
+  markov::checkSeriesMemory(tauMax);  // the three series at once, before the first (issue #23)
 
   const markov::LumpedObservable h = markov::paperObservable(model);
   const double D = markov::diffusionCoefficient(model, h);

@@ -85,14 +85,14 @@ LumpedObservable paperObservable(const MarkovModel& model, double h0) {
   return h;
 }
 
-namespace {
-
 // The series of a caller that holds C, C_is and ε at once, each made through a long double copy: at m = 1 the
 // work bound allows τmax = 2.5·10⁸, about 14 GB (issue #23), so the memory is checked before the work.
 void checkSeriesMemory(std::int64_t tauMax) {
   io::checkMemory(static_cast<std::uintmax_t>(tauMax + 1) * MarkovModel::kBytesPerLag,
                   "the Markov model's series up to tau = " + std::to_string(tauMax));
 }
+
+namespace {
 
 // N·C(τ) (eq. cmark) by the lumped chain, in long double.
 std::vector<long double> scaledCorrelation(const MarkovModel& model, const LumpedObservable& h, std::int64_t tauMax) {

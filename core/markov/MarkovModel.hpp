@@ -102,6 +102,12 @@ void validate(const MarkovModel& model, const LumpedObservable& h);
 /// (the smallest Σ_{S′} h² with Σ h = 0).  Then Σ_k m_k h(q_k) = 0, so D's island part equals D_is.
 [[nodiscard]] LumpedObservable paperObservable(const MarkovModel& model, double h0 = 1);
 
+/// Throws io::NotEnoughMemory (std::runtime_error) when the series C, C_is and ε up to τmax (kBytesPerLag per lag)
+/// do not fit in the memory available now.  correlation(), islandCorrelation() and correlationDeviation() check it
+/// each; a caller that computes all three calls it once before any of them, so that a series too large is refused
+/// before the work, not after the first of three (issue #23: the hostile harness saw a refusal after 40 s).
+void checkSeriesMemory(std::int64_t tauMax);
+
 /// C(τ) = h·P^τ·h/N for τ = 0 … tauMax (eq. cmark), by the lumped chain: O(m) per τ.
 [[nodiscard]] std::vector<double> correlation(const MarkovModel& model, const LumpedObservable& h,
                                               std::int64_t tauMax);

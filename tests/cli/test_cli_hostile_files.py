@@ -263,6 +263,15 @@ def downgrade_cases():
 
 # ------------------------------------------------------------------------------------------------ huge counts
 def huge_cases():
+    # The Markov series case needs 22.9 GB, about what a 24 GB machine has free: without a limit it is refused or,
+    # when the memory happens to be there, computed for minutes (the harness saw both).  Under a 4 GiB address-space
+    # limit it cannot fit on any machine, so the refusal before the work is what is checked.  Under ASan (whose
+    # shadow memory no address-space limit holds) that case is left out, and said so.
+    under_asan = "ASAN_OPTIONS" in os.environ
+
+    def four_gib():
+        resource.setrlimit(resource.RLIMIT_AS, (4 << 30, 4 << 30))
+
     d = make_dir("huge")
     spec = os.path.join(d, "huge.json")
     open(spec, "w").write('{"format": "archipelago-spec", "version": 1, "parameters": {"M": 4294967295, "T": 10}}')
@@ -270,15 +279,19 @@ def huge_cases():
         ("run --spec with M = 2^32 - 1", ["run", "--spec", spec, "--out", os.path.join(d, "r.json"), "--quiet"], True),
         ("run --M 2e7 (a file above the read cap)", ["run", "--M", "2e7", "--T", "10", "--out",
                                                      os.path.join(d, "r2.json"), "--quiet"], True),
-        ("markov --m 1 --N 1000 --tau-max 249999999", ["markov", "--m", "1", "--N", "1000", "--tau-max",
-                                                       "249999999", "--csv", os.path.join(d, "m.csv")], None),
+        ("markov --m 1 --N 1000 --tau-max 249999999 (4 GiB address space)",
+         ["markov", "--m", "1", "--N", "1000", "--tau-max", "249999999", "--csv", os.path.join(d, "m.csv")], True),
         ("portrait --size 16384x16384", ["portrait", "--size", "16384x16384", "--points", "1000", "--quiet",
                                          "--out", os.path.join(d, "p.png")], None),
     ]
     results = []
     for name, args, expected in cases:
+        limited = "address space" in name
+        if limited and under_asan:
+            print(f"skipped under ASan: {name} (an address-space limit cannot hold ASan's shadow memory)")
+            continue
         start = time.monotonic()
-        rc, out, err = invoke(args, timeout=60)
+        rc, out, err = invoke(args, timeout=60, preexec_fn=four_gib if limited else None)
         seconds = time.monotonic() - start
         outcome = classify(rc, err, expected, lambda: True)
         if rc not in (None, 0) and outcome == "clean error" and seconds > 20:
