@@ -20,6 +20,21 @@ struct Counts {
 };
 using PortraitUpdate = std::variant<PortraitFrame, Counts>;
 
+// A render's frames and counts as the worker's signals (the portrait's and the indicator maps' renders alike).
+void forwardFrames(Job<bool, PortraitUpdate>& job, PortraitWorker* worker) {
+  job.progress = [worker](quint64 id, PortraitUpdate update) {
+    if (auto* frame = std::get_if<PortraitFrame>(&update)) {
+      Q_EMIT worker->frameReady(*frame);
+    } else {
+      const Counts& counts = std::get<Counts>(update);
+      Q_EMIT worker->progress(id, counts.done, counts.total);
+    }
+  };
+  job.done = [worker](JobResult<bool> r) {
+    if (!r.ok()) Q_EMIT worker->failed(r.id, r.error);
+  };
+}
+
 QImage toImage(const RasterImage& rgb) {
   return QImage(rgb.rgb.data(), rgb.width, rgb.height, 3 * rgb.width, QImage::Format_RGB888).copy();
 }
@@ -107,17 +122,7 @@ quint64 PortraitWorker::render(const PortraitRequest& request, ColourMapName col
         local.get_token());
     return true;  // every pass was a frame: the result itself says nothing more
   };
-  job.progress = [this](quint64 id, PortraitUpdate update) {
-    if (auto* frame = std::get_if<PortraitFrame>(&update)) {
-      Q_EMIT frameReady(*frame);
-    } else {
-      const Counts& counts = std::get<Counts>(update);
-      Q_EMIT progress(id, counts.done, counts.total);
-    }
-  };
-  job.done = [this](JobResult<bool> r) {
-    if (!r.ok()) Q_EMIT failed(r.id, r.error);
-  };
+  forwardFrames(job, this);
   return jobs_.submit(std::move(job));
 }
 
@@ -147,17 +152,7 @@ quint64 PortraitWorker::renderIndicator(const IndicatorRequest& request, ColourM
         context.stopToken());
     return true;
   };
-  job.progress = [this](quint64 id, PortraitUpdate update) {
-    if (auto* frame = std::get_if<PortraitFrame>(&update)) {
-      Q_EMIT frameReady(*frame);
-    } else {
-      const Counts& counts = std::get<Counts>(update);
-      Q_EMIT progress(id, counts.done, counts.total);
-    }
-  };
-  job.done = [this](JobResult<bool> r) {
-    if (!r.ok()) Q_EMIT failed(r.id, r.error);
-  };
+  forwardFrames(job, this);
   return jobs_.submit(std::move(job));
 }
 
