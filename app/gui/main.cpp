@@ -13,6 +13,7 @@
 //   --island             and zoom to one island of its chain once it is identified
 //   FILE.json            open a run file
 //   FILE.archipelago     open a session (the window as it was saved)
+#include <QAction>
 #include <QApplication>
 
 #include <clocale>

@@ -3,6 +3,7 @@
 // `archipelago-cli rotation --json` (the Python module's are compared with the CLI's in tests/python); each
 // indicator mode renders progressively with a titled colour bar and core's own numbers, and exports .npy with
 // its sidecar; the rotation-profile tool gives the CLI's profile.
+#include <QAction>
 #include <QDir>
 #include <QFile>
 #include <QFileInfo>

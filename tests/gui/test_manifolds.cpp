@@ -2,6 +2,7 @@
 // refined in the visible view when zooming, stable and unstable in their colours, the turnstile's lobes shaded with
 // their area; the "Manifolds and flux" page's numbers are the CLI's (`archipelago-cli flux --json`); Tools ▸ Find
 // Periodic Orbit offers the hyperbolic partner of an elliptic chain and its manifolds.
+#include <QAction>
 #include <QFile>
 #include <QJsonDocument>
 #include <QJsonObject>

@@ -1,5 +1,8 @@
 #include "ui/window/MainWindow.hpp"
 
+#include <algorithm>
+
+#include <QFontMetrics>
 #include <QAction>
 #include <QApplication>
 #include <QCloseEvent>
@@ -62,8 +65,10 @@ namespace archipelago::ui {
 
 namespace {
 constexpr int kRefreshIntervalMs = 66;  // 15 Hz: live, yet far from saturating the GUI thread
-/// The left panel's width (parameters, long segments): fixed, so that nothing on it widens the window.
-constexpr int kLeftPanelWidth = 360;
+/// The left panel's width (parameters, long segments): fixed, so that nothing on it widens the window; 360
+/// pixels at a 9-point font, wider with a larger one, so that the long segments' seven columns (about 43
+/// digits wide) fit without a horizontal scroll bar at any font size (Qt 5's offscreen default is 12 points).
+int leftPanelWidth(const QFontMetrics& metrics) { return std::max(360, 46 * metrics.horizontalAdvance(QLatin1Char('0'))); }
 
 QString formatRate(double stepsPerSecond) {
   if (stepsPerSecond >= 1e9) return QObject::tr("%1 G steps/s").arg(stepsPerSecond / 1e9, 0, 'f', 2);
@@ -358,7 +363,7 @@ QWidget* MainWindow::createParameterDock() {
   }
   layout->addLayout(buttons);
   // A fixed width: the panel never widens by itself (issue 25, finding 4); its texts wrap or elide.
-  box->setFixedWidth(kLeftPanelWidth);
+  box->setFixedWidth(leftPanelWidth(fontMetrics()));
   return box;
 }
 
@@ -492,7 +497,7 @@ void MainWindow::createLongSegmentsDock(QDockWidget* parametersDock) {
   segmentsDock_ = new QDockWidget(tr("Long segments"), this);
   segmentsDock_->setObjectName(QStringLiteral("longSegmentsDock"));
   segmentsDock_->setFeatures(QDockWidget::DockWidgetMovable | QDockWidget::DockWidgetFloatable);
-  segments_->setFixedWidth(kLeftPanelWidth);
+  segments_->setFixedWidth(leftPanelWidth(fontMetrics()));
   segmentsDock_->setWidget(segments_);
   // A tab beside the parameters: the portrait keeps the width it needs.
   addDockWidget(Qt::LeftDockWidgetArea, segmentsDock_);
