@@ -26,20 +26,6 @@ namespace archipelago::cli {
 
 namespace {
 
-struct TailOptions : SpecOptions {
-  TailRequest request;
-  std::string clones = "perturb";
-  std::string out = "tail.json";
-  std::string csv;
-  std::string checkpoint;  // empty: the --out file
-  double checkpointSeconds = 60;
-  std::string resume;
-  std::vector<std::string> compare;
-  std::string compareCsv;
-  bool printLevels = false;
-  bool quiet = false;
-};
-
 // The sampler's own options, as they are named in errors and --help.
 const char* const kSamplerOptions[] = {"--population", "--replicas", "--first", "--t-max", "--level-bins", "--epsilon",
                                        "--clones", "--metropolis-steps", "--warmup", "--min-ancestors"};
@@ -51,6 +37,9 @@ void printLevels(const TailState& s, const TailResult& r) {
               io::shortestText(s.request.run.map.K).c_str(), s.request.run.q, s.request.population,
               s.request.replicas, static_cast<unsigned long long>(s.request.epsilon), cloneRuleName(s.request.clones),
               text(r.steps).c_str(), r.finished ? "" : " (unfinished)");
+  if (s.replicas.size() != s.request.replicas)
+    std::printf("# the slice of replicas [%u, %zu) of %u: P and its error are those of its replicas alone\n",
+                s.firstReplica, s.firstReplica + s.replicas.size(), s.request.replicas);
   std::printf("%12s %12s %10s %10s %10s %8s %9s %12s\n", "t", "P", "P_error", "survivors", "ancestors", "fewest",
               "reliable", "steps");
   for (const TailLevelResult& L : r.levels)
@@ -89,7 +78,51 @@ void printComparison(const TailComparison& c) {
               "own error; e: estimated alpha/(P r^2) where they have none)\n");
 }
 
+// "I/N" of --slice: slice I of N (0 ≤ I < N ≤ R).
+ReplicaRange sliceOption(const std::string& text, std::uint32_t replicas) {
+  const std::string rule = "I/N, whole numbers with I < N <= R = " + std::to_string(replicas) + " (slice I of N)";
+  const std::vector<std::uint32_t> v = parseNumbers<std::uint32_t>("--slice", text, '/', 2, rule);
+  if (!(v[0] < v[1] && v[1] <= replicas)) throw std::invalid_argument("--slice '" + io::shortText(text) + "' must be " + rule);
+  return replicaSlice(replicas, v[0], v[1]);
+}
+
 int tailCommand(TailOptions& o, const CLI::App& cmd) {
+  std::optional<ReplicaRange> slice;
+  if (!o.slice.empty()) {
+    if (!o.resume.empty()) throw std::invalid_argument("--resume takes the slice from the tail file; do not also give --slice");
+    slice = sliceOption(o.slice, o.request.replicas);
+  }
+  TailJob job = prepareTail(o, cmd, slice);
+  if (job.printedLevels) return 0;
+  const std::string checkpoint = o.checkpoint.empty() ? o.out : o.checkpoint;
+  const std::vector<io::FileLock> locks = lockRunFiles(o.out, checkpoint, o.resume);
+  std::string lastCheckpoint = o.resume;
+  TailState state = runTailSession(std::move(job.state), o, checkpoint, lastCheckpoint);
+  if (!state.finished()) {
+    saveTailOrSayWhere(checkpoint, state, lastCheckpoint);
+    std::fprintf(stderr, "interrupted: checkpoint written to %s (resume with --resume %s)\n", checkpoint.c_str(),
+                 checkpoint.c_str());
+    return 130;
+  }
+  saveTailOrSayWhere(o.out, state, lastCheckpoint);
+  reportTail(state, o, job.runs);
+  if (!o.quiet) {
+    const TailResult result = tailResult(state);
+    std::fprintf(stderr, "done: %zu levels, the largest reliable t = %.4g; %.3g steps in %.1f s (%s kernel); wrote %s\n",
+                 result.levels.size(), largestReliableT(result), result.steps, state.elapsedSeconds,
+                 state.kernel.c_str(), o.out.c_str());
+    if (state.replicas.size() != state.request.replicas)
+      std::fprintf(stderr, "this is replicas [%u, %zu) of %u: merge the slices with archipelago-cli merge\n",
+                   state.firstReplica, state.firstReplica + state.replicas.size(), state.request.replicas);
+  }
+  return 0;
+}
+
+}  // namespace
+
+
+TailJob prepareTail(TailOptions& o, const CLI::App& cmd, std::optional<ReplicaRange> slice, const std::string& resumeFile) {
+  const std::string resume = resumeFile.empty() ? o.resume : resumeFile;
   const std::vector<std::string> givenSpec = givenSpecOptions(cmd);
   std::vector<std::string> givenSampler;
   for (const char* name : kSamplerOptions)
@@ -106,7 +139,7 @@ int tailCommand(TailOptions& o, const CLI::App& cmd) {
                                 std::to_string(kMaxThreads) + "] (0: one per core)");
   if (!(o.checkpointSeconds >= 0)) throw std::invalid_argument("--checkpoint-interval must be >= 0");
 
-  TailState state;
+  TailJob job;
   if (o.resume.empty()) {
     const RunSpec spec = resolveSpec(o, cmd);
     o.request.run = spec.parameters;
@@ -116,11 +149,13 @@ int tailCommand(TailOptions& o, const CLI::App& cmd) {
     if (!rule) throw std::invalid_argument("--clones '" + io::shortText(o.clones) + "' must be perturb or metropolis");
     o.request.clones = *rule;
     if (auto e = tailRequestError(o.request)) throw std::invalid_argument(*e);
-    state = startTail(o.request);
+    job.state = slice ? startTailSlice(o.request, *slice) : startTail(o.request);
     if (o.printLevels) {
       std::printf("t (steps)\n");
-      for (const std::uint64_t L : state.levels) std::printf("%llu\n", static_cast<unsigned long long>(L * o.request.run.q));
-      return 0;
+      for (const std::uint64_t L : job.state.levels)
+        std::printf("%llu\n", static_cast<unsigned long long>(L * o.request.run.q));
+      job.printedLevels = true;
+      return job;
     }
   }
   const std::string checkpoint = o.checkpoint.empty() ? o.out : o.checkpoint;
@@ -131,20 +166,22 @@ int tailCommand(TailOptions& o, const CLI::App& cmd) {
     if (o.compare.empty()) throw std::invalid_argument("--compare-csv needs --compare RUN.json");
     io::checkWritableTarget(o.compareCsv);
   }
-  const std::vector<io::FileLock> locks = lockRunFiles(o.out, checkpoint, o.resume);
-  if (!o.resume.empty()) {
-    state = loadTailFile(o.resume);
-    if (state.finished()) throw std::invalid_argument(o.resume + " is already finished");
+  if (!resume.empty()) {
+    job.state = loadTailFile(resume);
+    if (job.state.finished() && resumeFile.empty()) throw std::invalid_argument(resume + " is already finished");
   }
   // The runs to compare with, read and checked before any work.
-  std::vector<TrappingState> runs;
   for (const std::string& path : o.compare) {
-    runs.push_back(loadRunFile(path));
-    if (auto e = tailRunMismatch(state.request, runs.back()))
+    job.runs.push_back(loadRunFile(path));
+    if (auto e = tailRunMismatch(job.state.request, job.runs.back()))
       throw std::invalid_argument(path + " is not a run of the sampler's process: " + *e);
   }
-  if (!runs.empty()) (void)bruteForceSurvival(runs, state.levels);  // throws when the runs do not pool
+  if (!job.runs.empty()) (void)bruteForceSurvival(job.runs, job.state.levels);  // throws when the runs do not pool
+  return job;
+}
 
+TailState runTailSession(TailState state, const TailOptions& o, const std::string& checkpoint, std::string& lastCheckpoint) {
+  if (state.finished()) return state;
   const bool tty = ::isatty(STDERR_FILENO) != 0;
   installInterruptHandlers();
   const KernelInfo& kernel = selectKernel(o.kernel);
@@ -162,7 +199,6 @@ int tailCommand(TailOptions& o, const CLI::App& cmd) {
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
     }
   });
-  std::string lastCheckpoint = o.resume;
   auto lastSave = std::chrono::steady_clock::now();
   auto lastLine = std::chrono::steady_clock::now() - std::chrono::hours(1);
   const auto observer = [&](const TailState& s, const TailProgress& p) {
@@ -201,23 +237,21 @@ int tailCommand(TailOptions& o, const CLI::App& cmd) {
   state = runTail(std::move(state), options, observer, stopper.get_token());
   watcher.request_stop();
   if (!o.quiet && tty) std::fputc('\n', stderr);
-  const auto save = [&](const std::string& path) {
-    try {
-      saveTailFile(path, state);
-    } catch (const std::exception& e) {
-      throw std::runtime_error(std::string(e.what()) + (lastCheckpoint.empty()
-                                                            ? "; no checkpoint was written"
-                                                            : "; the last checkpoint is in " + lastCheckpoint +
-                                                                  ": resume with --resume " + lastCheckpoint));
-    }
-  };
-  if (!state.finished()) {
-    save(checkpoint);
-    std::fprintf(stderr, "interrupted: checkpoint written to %s (resume with --resume %s)\n", checkpoint.c_str(),
-                 checkpoint.c_str());
-    return 130;
+  return state;
+}
+
+void saveTailOrSayWhere(const std::string& path, const TailState& state, const std::string& lastCheckpoint) {
+  try {
+    saveTailFile(path, state);
+  } catch (const std::exception& e) {
+    throw std::runtime_error(std::string(e.what()) + (lastCheckpoint.empty()
+                                                          ? "; no checkpoint was written"
+                                                          : "; the last checkpoint is in " + lastCheckpoint +
+                                                                ": resume with --resume " + lastCheckpoint));
   }
-  save(o.out);
+}
+
+void reportTail(const TailState& state, const TailOptions& o, const std::vector<TrappingState>& runs) {
   const TailResult result = tailResult(state);
   if (!o.csv.empty()) io::writeFileAtomically(o.csv, tailCsvText(state, result));
   if (!o.quiet) printLevels(state, result);
@@ -226,19 +260,11 @@ int tailCommand(TailOptions& o, const CLI::App& cmd) {
     if (!o.compareCsv.empty()) io::writeFileAtomically(o.compareCsv, comparisonCsv(c));
     if (!o.quiet) printComparison(c);
   }
-  if (!o.quiet)
-    std::fprintf(stderr, "done: %zu levels, the largest reliable t = %.4g; %.3g steps in %.1f s (%s kernel); wrote %s\n",
-                 result.levels.size(), largestReliableT(result), result.steps, state.elapsedSeconds,
-                 state.kernel.c_str(), o.out.c_str());
-  return 0;
 }
 
-}  // namespace
-
-void addTailCommand(CLI::App& app, int& status) {
-  auto o = std::make_shared<TailOptions>();
-  CLI::App* cmd = app.add_subcommand(
-      "tail", "P_t beyond brute force: splitting on the age of trapped segments, for the process of run (issue 29)");
+void addTailOptions(CLI::App& cmd_, TailOptions& o_, bool withSlice) {
+  CLI::App* cmd = &cmd_;
+  TailOptions* o = &o_;
   addSpecOptions(*cmd, *o, {"T", "M", "subsets", "longestKept"});
   TailRequest& r = o->request;
   addNumberOption(*cmd, "--population", r.population, "N: walkers per replica (2 to " + std::to_string(kMaxTailPopulation) + ")");
@@ -266,6 +292,16 @@ void addTailCommand(CLI::App& app, int& status) {
   cmd->add_option("--compare-csv", o->compareCsv, "the comparison as CSV");
   cmd->add_flag("--print-levels", o->printLevels, "print the levels (t in steps) of these settings and run nothing");
   cmd->add_flag("--quiet", o->quiet, "no progress, table or summary");
+  if (withSlice)
+    cmd->add_option("--slice", o->slice, "I/N: run only slice I of N of the replicas, [R*I/N, R*(I+1)/N) "
+                                         "(archipelago-cli merge joins the slices' tail files)");
+}
+
+void addTailCommand(CLI::App& app, int& status) {
+  auto o = std::make_shared<TailOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "tail", "P_t beyond brute force: splitting on the age of trapped segments, for the process of run (issue 29)");
+  addTailOptions(*cmd, *o, /*withSlice=*/true);
   cmd->callback([o, cmd, &status] { status = tailCommand(*o, *cmd); });
 }
 

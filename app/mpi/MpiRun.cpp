@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "CliCommon.hpp"
+#include "MpiCommon.hpp"
 #include "RunSession.hpp"
 #include "core/io/AtomicFile.hpp"
 #include "core/kernels/KernelDispatch.hpp"
@@ -26,85 +27,10 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-struct World {
-  int rank = 0;
-  int size = 1;
-};
-
 /// Orbits of rank r of R: [⌊M·r/R⌋, ⌊M·(r+1)/R⌋) (M ≤ 2³², R < 2³¹: no overflow).
 std::pair<std::uint64_t, std::uint64_t> rankRange(std::uint64_t M, int r, int R) {
   const auto u = static_cast<std::uint64_t>(R);
   return {M * static_cast<std::uint64_t>(r) / u, M * static_cast<std::uint64_t>(r + 1) / u};
-}
-
-/// An error of this rank alone (its file, its memory): printed with the rank, and the whole job aborted, since
-/// the others would wait for it forever.
-[[noreturn]] void abortJob(const World& w, const std::string& what) {
-  std::fprintf(stderr, "ERROR: rank %d: %s\n", w.rank, what.c_str());
-  std::fflush(stderr);
-  MPI_Abort(MPI_COMM_WORLD, 1);
-  std::_Exit(1);
-}
-
-/// Every rank's `ok`: true when all are.  With the first failing rank's message on rank 0's throw.
-void agree(const World& w, bool ok, const std::string& message) {
-  int mine = ok ? 1 : 0;
-  int all = 0;
-  MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
-  if (all == 1) return;
-  // The lowest failing rank's message goes to rank 0.
-  int failing = ok ? INT_MAX : w.rank;
-  int first = 0;
-  MPI_Allreduce(&failing, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
-  std::string text = message;
-  if (first != 0) {
-    if (w.rank == first) {
-      const auto n = static_cast<int>(std::min<std::size_t>(text.size(), 4096));
-      MPI_Send(text.data(), n, MPI_CHAR, 0, 7, MPI_COMM_WORLD);
-    } else if (w.rank == 0) {
-      MPI_Status st;
-      MPI_Probe(first, 7, MPI_COMM_WORLD, &st);
-      int n = 0;
-      MPI_Get_count(&st, MPI_CHAR, &n);
-      text.assign(static_cast<std::size_t>(n), '\0');
-      MPI_Recv(text.data(), n, MPI_CHAR, first, 7, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-    }
-  }
-  throw std::runtime_error(first == 0 ? text : "rank " + std::to_string(first) + ": " + text);
-}
-
-/// Runs `f` on every rank; an exception on any rank becomes one error on all (printed by rank 0).
-template <class F>
-void together(const World& w, F&& f) {
-  std::string message;
-  bool ok = true;
-  try {
-    f();
-  } catch (const std::exception& e) {
-    ok = false;
-    message = e.what();
-  }
-  agree(w, ok, message);
-}
-
-void sendText(const std::string& text, int dest) {
-  const std::uint64_t n = text.size();
-  MPI_Send(&n, 1, MPI_UINT64_T, dest, 1, MPI_COMM_WORLD);
-  for (std::uint64_t at = 0; at < n; at += INT_MAX / 2) {
-    const auto piece = static_cast<int>(std::min<std::uint64_t>(n - at, INT_MAX / 2));
-    MPI_Send(text.data() + at, piece, MPI_CHAR, dest, 2, MPI_COMM_WORLD);
-  }
-}
-
-std::string receiveText(int source) {
-  std::uint64_t n = 0;
-  MPI_Recv(&n, 1, MPI_UINT64_T, source, 1, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-  std::string text(n, '\0');
-  for (std::uint64_t at = 0; at < n; at += INT_MAX / 2) {
-    const auto piece = static_cast<int>(std::min<std::uint64_t>(n - at, INT_MAX / 2));
-    MPI_Recv(text.data() + at, piece, MPI_CHAR, source, 2, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-  }
-  return text;
 }
 
 /// The target wall time of a round of the slowest rank: the latency of a stop or checkpoint request, and the
@@ -112,17 +38,6 @@ std::string receiveText(int source) {
 /// Measured (bench-mpi.sh's spec, T = 8e6, 2 ranks x 1 thread): rounds of 4 s left the ranks as idle as
 /// rounds of 1 s (2.4 % and 2.3 % of the time waiting for the slowest): the wait is the ranks' imbalance, not the number of rounds.
 constexpr double kRoundSeconds = 1.0;
-
-/// MPI_Wait for a collective, polling every 100 µs and sleeping between (OpenMPI's blocking calls spin, taking a
-/// core from the ranks still computing when the machine is shared or oversubscribed).
-void waitWithoutSpinning(MPI_Request& request) {
-  int done = 0;
-  MPI_Test(&request, &done, MPI_STATUS_IGNORE);
-  while (done == 0) {
-    std::this_thread::sleep_for(std::chrono::microseconds(100));
-    MPI_Test(&request, &done, MPI_STATUS_IGNORE);
-  }
-}
 
 std::string partName(const std::string& manifest, std::uint64_t blocks, int rank) {
   return std::filesystem::path(manifest).filename().string() + ".b" + std::to_string(blocks) + ".r" +
@@ -215,9 +130,7 @@ bool writeCheckpoint(const World& w, const TrappingState& s, const std::string& 
 }  // namespace
 
 int mpiRun(const cli::RunOptions& o, const std::vector<std::string>& explicitParameters, const CLI::App& cmd) {
-  World w;
-  MPI_Comm_rank(MPI_COMM_WORLD, &w.rank);
-  MPI_Comm_size(MPI_COMM_WORLD, &w.size);
+  const World w = world();
   const bool root = w.rank == 0;
 
   // --- what every rank checks alike (the same arguments): one error, printed by rank 0 ----------------------------

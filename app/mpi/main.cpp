@@ -1,5 +1,6 @@
-// archipelago-mpi: `archipelago-cli run` over MPI ranks (issue #15, MpiRun.hpp).  The options are `run`'s
-// (cli/RunCommand.hpp).  An error every rank finds alike (a bad option) is printed once, by rank 0; an error of
+// archipelago-mpi: `archipelago-cli run` over MPI ranks (issue #15, MpiRun.hpp), and with the subcommand tail,
+// `archipelago-cli tail` with its replicas over the ranks (issue #29, MpiTail.hpp).  The options are `run`'s
+// (cli/RunCommand.hpp) and `tail`'s (cli/TailCommand.hpp).  An error every rank finds alike (a bad option) is printed once, by rank 0; an error of
 // one rank (its file) is printed by that rank and aborts the job.
 
 #include <mpi.h>
@@ -11,6 +12,7 @@
 #include <string>
 
 #include "MpiRun.hpp"
+#include "MpiTail.hpp"
 #include "RunSession.hpp"
 
 int main(int argc, char** argv) {
@@ -24,10 +26,16 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("archipelago-mpi ") + ARCHIPELAGO_VERSION);
   archipelago::cli::RunOptions o;
   archipelago::cli::addRunOptions(app, o);
+  // archipelago-mpi tail …: `archipelago-cli tail` with its replicas over the ranks (MpiTail.hpp).
+  archipelago::cli::TailOptions tail;
+  CLI::App* tailCmd = app.add_subcommand(
+      "tail", "`archipelago-cli tail` (P_t beyond brute force) with its replicas distributed over the ranks");
+  archipelago::cli::addTailOptions(*tailCmd, tail, /*withSlice=*/false);
   int status = 0;
   try {
     app.parse(argc, argv);
-    status = archipelago::mpi::mpiRun(o, archipelago::cli::givenSpecOptions(app), app);
+    status = tailCmd->parsed() ? archipelago::mpi::mpiTail(tail, *tailCmd)
+                               : archipelago::mpi::mpiRun(o, archipelago::cli::givenSpecOptions(app), app);
   } catch (const CLI::ParseError& e) {
     if (rank == 0) status = app.exit(e);
     else status = e.get_exit_code();

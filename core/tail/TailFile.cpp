@@ -65,6 +65,7 @@ json stateJson(const TailState& s) {
   }
   return {{"next", s.next},
           {"age", s.age},
+          {"first_replica", s.firstReplica},
           {"pilot", {{"orbits", s.pilotOrbits}, {"trials", s.pilotTrials}, {"successes", s.pilotSuccesses}}},
           {"entry_orbits", s.entryOrbits},
           {"steps_at_level", s.stepsAtLevel},
@@ -196,8 +197,14 @@ TailState parseTailFile(const std::string& text) {
   const json& sal = field(st, "steps_at_level");
   if (!sal.is_array() || sal.size() > s.levels.size()) corrupt("field 'steps_at_level' must list one count per level reached");
   for (const json& v : sal) s.stepsAtLevel.push_back(valueU64(v, "a level's steps"));
+  // A slice's replicas (TailSampler.hpp, "slice"); files written before slices existed hold every replica from 0.
+  s.firstReplica = st.contains("first_replica")
+                       ? static_cast<std::uint32_t>(bounded(st, "first_replica", s.request.replicas - 1))
+                       : 0;
   const json& reps = field(st, "replicas");
-  if (!reps.is_array() || reps.size() != s.replicas.size()) corrupt("expected one entry per replica");
+  if (!reps.is_array() || reps.empty() || reps.size() > s.request.replicas - s.firstReplica)
+    corrupt("expected one entry per replica of the run or of its slice");
+  s.replicas.resize(reps.size());
   for (std::size_t rep = 0; rep < s.replicas.size(); ++rep) {
     TailReplica& x = s.replicas[rep];
     const json& jr = reps[rep];
@@ -239,6 +246,15 @@ TailState parseTailFile(const std::string& text) {
 
 void saveTailFile(const std::filesystem::path& path, const TailState& state) {
   io::writeFileAtomically(path, tailFileText(state));
+}
+
+bool isTailFile(const std::filesystem::path& path) {
+  try {
+    const json j = io::loadJsonFile(path, kMaxTailFileBytes);
+    return j.is_object() && j.contains("format") && j["format"] == kTailFileFormatName;
+  } catch (const std::exception&) {
+    return false;
+  }
 }
 
 TailState loadTailFile(const std::filesystem::path& path) {

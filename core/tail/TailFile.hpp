@@ -14,12 +14,15 @@
 ///      "levels": [{"t", "P", "P_error", "survivors", "ancestors", "reliable", "fewest_ancestors", "population",
 ///                  "P_replicas", "steps", "acceptance"}, …],
 ///      "exponents": [{"t", "t_from", "t_to", "gamma", "gamma_error"}, …],
-///      "state": {"next", "age", "pilot": {"orbits", "trials", "successes"}, "entry_orbits", "steps_at_level",
+///      "state": {"next", "age", "first_replica", "pilot": {"orbits", "trials", "successes"}, "entry_orbits", "steps_at_level",
 ///                "replicas": [{"orbits_done", "trials", "levels": [[population, survivors, ancestors, proposals,
 ///                accepted], …], "walkers": [[X, Y, block, draws, length, X₀, Y₀, block₀, draws₀, ancestor, alive],
 ///                …], "alive": bool}, …]},
 ///      "checksum": "sha256:…"}
 ///
+/// A slice of a distributed run (TailSampler.hpp, "slice") holds the replicas [first_replica, first_replica +
+/// its replicas' count) of "sampler"'s R; its "levels" are those of its own replicas.  "first_replica" is absent
+/// from files written before slices existed (they hold every replica from 0).
 /// "levels" and "exponents" are TailResult.hpp's, written for readers (a NaN is null) and recomputed from the state
 /// when read.  Integers are JSON integers (exact); the checksum is that of RunFile.hpp (SHA-256 of the document
 /// without it, as dumped), so that an edit is detected.  Read with io::parseJson (depth-limited, strict); the
@@ -43,6 +46,10 @@ inline constexpr std::uintmax_t kMaxTailFileBytes = std::uintmax_t{4} << 30;
 /// another format or version, a checksum that does not match, a field missing or of the wrong type, a request
 /// out of range, levels or coefficients this program would not derive, an inconsistent state).
 [[nodiscard]] TailState parseTailFile(const std::string& text);
+
+/// Whether `path` is a JSON document of format "archipelago-tail" (whatever else it holds); false for anything
+/// else, unreadable included (the reader of the other format then says what is wrong).
+[[nodiscard]] bool isTailFile(const std::filesystem::path& path);
 
 /// Writes atomically.  Throws std::runtime_error naming the path.
 void saveTailFile(const std::filesystem::path& path, const TailState& state);

@@ -157,20 +157,77 @@ std::vector<std::uint64_t> tailLevels(const TailRequest& r) {
   return levels;
 }
 
-TailState startTail(const TailRequest& request) {
+TailState startTail(const TailRequest& request) { return startTailSlice(request, {0, request.replicas}); }
+
+ReplicaRange replicaSlice(std::uint32_t replicas, std::uint32_t i, std::uint32_t n) {
+  if (n == 0 || i >= n)
+    throw std::invalid_argument("slice " + std::to_string(i) + " of " + std::to_string(n) + ": the slice must lie in [0, " +
+                                std::to_string(n) + ")");
+  if (n > replicas)
+    throw std::invalid_argument(std::to_string(n) + " slices of " + std::to_string(replicas) +
+                                " replicas: every slice needs a replica (at most " + std::to_string(replicas) + " slices)");
+  const auto edge = [&](std::uint64_t k) { return static_cast<std::uint32_t>(std::uint64_t{replicas} * k / n); };
+  return {edge(i), edge(i + 1) - edge(i)};
+}
+
+TailState startTailSlice(const TailRequest& request, ReplicaRange range) {
   TailState s;
   s.request = request;
   s.levels = tailLevels(request);  // validates
+  if (range.count == 0 || std::uint64_t{range.first} + range.count > request.replicas)
+    throw std::invalid_argument("replicas [" + std::to_string(range.first) + ", " +
+                                std::to_string(std::uint64_t{range.first} + range.count) + ") are not a slice of the " +
+                                std::to_string(request.replicas) + " replicas");
   s.coefficients = computeCoefficients(request.run.map);
-  s.replicas.resize(request.replicas);
+  s.firstReplica = range.first;
+  s.replicas.resize(range.count);
   return s;
+}
+
+TailState mergeTailSlices(std::vector<TailState> slices) {
+  if (slices.empty()) throw std::invalid_argument("no slices to merge");
+  std::sort(slices.begin(), slices.end(),
+            [](const TailState& a, const TailState& b) { return a.firstReplica < b.firstReplica; });
+  TailState m = slices.front();
+  const auto where = [](const TailState& s) {
+    return "the slice of replicas [" + std::to_string(s.firstReplica) + ", " +
+           std::to_string(s.firstReplica + s.replicas.size()) + ")";
+  };
+  if (m.firstReplica != 0) throw std::invalid_argument("no slice holds replica 0");
+  for (std::size_t i = 0; i < slices.size(); ++i) {
+    const TailState& s = slices[i];
+    if (auto e = tailStateError(s)) throw std::invalid_argument(where(s) + ": " + *e);
+    if (!s.finished()) throw std::invalid_argument(where(s) + " is not finished (resume it first)");
+    if (!(s.request == m.request)) throw std::invalid_argument(where(s) + " is of another sampler run (its settings differ)");
+    if (s.pilotOrbits != m.pilotOrbits || s.pilotTrials != m.pilotTrials || s.pilotSuccesses != m.pilotSuccesses ||
+        s.entryOrbits != m.entryOrbits || s.age != m.age)
+      throw std::invalid_argument(where(s) + " has another pilot");
+    if (i == 0) continue;
+    const TailState& before = slices[i - 1];
+    const std::uint64_t expected = before.firstReplica + before.replicas.size();
+    if (s.firstReplica != expected)
+      throw std::invalid_argument(s.firstReplica < expected ? where(s) + " overlaps " + where(before)
+                                                            : "replicas [" + std::to_string(expected) + ", " +
+                                                                  std::to_string(s.firstReplica) + ") are in no slice");
+    m.replicas.insert(m.replicas.end(), s.replicas.begin(), s.replicas.end());
+    m.steps += s.steps;
+    for (std::size_t k = 0; k < m.stepsAtLevel.size(); ++k) m.stepsAtLevel[k] += s.stepsAtLevel[k];
+    m.elapsedSeconds += s.elapsedSeconds;
+    if (s.kernel != m.kernel && m.kernel.find(s.kernel) == std::string::npos) m.kernel += ", " + s.kernel;
+  }
+  if (m.replicas.size() != m.request.replicas)
+    throw std::invalid_argument("replicas [" + std::to_string(m.replicas.size()) + ", " +
+                                std::to_string(m.request.replicas) + ") are in no slice");
+  if (auto e = tailStateError(m)) throw std::invalid_argument("the merged slices: " + *e);
+  return m;
 }
 
 std::optional<std::string> tailStateError(const TailState& s) {
   const TailRequest& r = s.request;
   if (auto e = tailRequestError(r)) return e;
   if (s.levels != tailLevels(r)) return std::string("the levels differ from those of the sampler's settings");
-  if (s.replicas.size() != r.replicas) return std::string("expected one entry per replica");
+  if (s.replicas.empty() || std::uint64_t{s.firstReplica} + s.replicas.size() > r.replicas)
+    return std::string("expected one entry per replica of the run or of its slice");
   if (s.next > s.levels.size()) return std::string("the level under way is beyond the last level");
   if (s.stepsAtLevel.size() != s.next) return std::string("expected the steps of every level reached");
   for (std::size_t k = 1; k < s.stepsAtLevel.size(); ++k)
@@ -247,9 +304,11 @@ std::uint64_t segmentAgesAreExactly(const KernelSettings& k, std::span<UnitState
     std::size_t open = Lanes;
     for (std::uint64_t age = 0; age <= level && open > 0; ++age) {
       std::uint8_t wrapped[Lanes] = {};
+      // Each clone's own steps, up to its decision (not the lanes a group carries on past it): so the count is
+      // a function of each replica alone, and a distributed run's slices add up to the one-process run's.
+      steps += open * k.q;
       stepLanes<Lanes>(c, MapDirection::forward, lanes, k.q, wrapped,
                        [](std::uint64_t, const std::uint64_t*, const std::uint64_t*) {});
-      steps += Lanes * k.q;
       for (std::size_t l = 0; l < Lanes; ++l) {
         if (decided[l] || !(wrapped[l] || lanes[l].X <= k.randomizingX)) continue;
         decided[l] = 1;
@@ -372,8 +431,10 @@ class Sampler {
   // The pilot (TailSampler.hpp, "stage 0"): entry orbits of its own stream until kPilotSuccesses trials reached
   // the first level; then the number of entry orbits per replica.
   bool pilotUnit() {
+    const std::uint64_t steps = s_.steps;
     const std::optional<std::vector<EntryOrbitResult>> r = entryOrbits(kPilotStream, s_.pilotOrbits, kEntryOrbitsPerUnit);
     if (!r) return false;
+    if (s_.firstReplica != 0) s_.steps = steps;  // every slice computes the pilot; the slice of replica 0 counts it
     for (const EntryOrbitResult& o : *r) {
       s_.pilotTrials += o.trials;
       s_.pilotSuccesses += o.successes.size();
@@ -404,7 +465,7 @@ class Sampler {
       if (x.orbitsDone >= s_.entryOrbits) continue;
       const std::uint64_t count = std::min(kEntryOrbitsPerUnit, s_.entryOrbits - x.orbitsDone);
       const std::uint64_t steps = s_.steps;
-      const std::optional<std::vector<EntryOrbitResult>> results = entryOrbits(rep, x.orbitsDone, count);
+      const std::optional<std::vector<EntryOrbitResult>> results = entryOrbits(s_.firstReplica + rep, x.orbitsDone, count);
       if (!results) {
         s_.steps = steps;
         return false;
@@ -456,8 +517,11 @@ class Sampler {
     for (std::size_t i = 0; i < live.size(); ++i) {
       auto [rep, w] = where[i];
       TailReplica& x = s_.replicas[rep];
-      x.walkers[w].state = live[i];
-      if (live[i].length != s_.age) x.alive[w] = 0;  // the segment ended within the chunk
+      // A walker whose segment ended within the chunk keeps its state at the chunk's start (its last age on a
+      // chunk boundary): past the end, the kernel's draws depend on its lane, i.e. on the other walkers and the
+      // threads, and would make the state (never used again) differ between runs that agree on every result.
+      if (live[i].length == s_.age) x.walkers[w].state = live[i];
+      else x.alive[w] = 0;
     }
     return true;
   }
@@ -485,7 +549,7 @@ class Sampler {
       // ⌊N/s⌋ copies each; N mod s survivors, those of the smallest random ranks, one more (when s > N, which only
       // stage 0 can give: the N of the smallest ranks, once each).
       const std::size_t n = r.population, sCount = survivors.size();
-      const std::uint64_t key = levelKey(r.run.seed, rep, level);
+      const std::uint64_t key = levelKey(r.run.seed, s_.firstReplica + rep, level);
       std::vector<std::size_t> order(sCount);
       std::iota(order.begin(), order.end(), std::size_t{0});
       std::vector<std::uint64_t> rank(sCount);
@@ -524,7 +588,7 @@ class Sampler {
     };
     std::vector<Clone> clones;
     for (std::size_t rep = 0; rep < next.size(); ++rep) {
-      const std::uint64_t key = levelKey(r.run.seed, rep, level);
+      const std::uint64_t key = levelKey(r.run.seed, s_.firstReplica + rep, level);
       for (std::size_t c = 0; c < next[rep].size(); ++c)
         if (isClone[rep][c]) clones.push_back({rep, c, orbitKey(key, c), 0});
     }

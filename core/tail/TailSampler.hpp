@@ -50,6 +50,12 @@
 ///                      hold fewer than minAncestors lineages in all is unreliable (TailResult.hpp).
 ///   - replicas       — R independent populations (their own entry orbits and random choices); the error of
 ///                      P(t_k) is the standard error of the mean over replicas.
+///   - slice          — the replicas [first, first + count) of a request, run on their own (a process of a
+///                      distributed run: `tail --slice`, `archipelago-mpi tail`).  Replica r's work depends only on
+///                      r and the pilot, which every slice computes alike (it is deterministic and small); the
+///                      slice holding replica 0 counts the pilot's steps, the others do not.  So the merge of
+///                      slices that tile [0, R) (mergeTailSlices()) is the one-process run, bit for bit, steps
+///                      included; only the compute time (the slices' sum) and the kernel's name may differ.
 ///
 /// Random choices (which survivors get an extra copy, the moves) use core/random's counter generator with the
 /// run's seed: the key of replica r at level k is orbitKey(seed, 2^62 + r·2^24 + k), the draws of its i-th
@@ -174,6 +180,8 @@ struct TailState {
   std::uint64_t age = 0;
   std::uint64_t pilotOrbits = 0, pilotTrials = 0, pilotSuccesses = 0;  ///< stage 0's pilot so far
   std::uint64_t entryOrbits = 0;         ///< per replica, once the pilot is done (0 before)
+  /// The replicas [firstReplica, firstReplica + replicas.size()): all R from 0, or a slice of them.
+  std::uint32_t firstReplica = 0;
   std::vector<TailReplica> replicas;
   std::uint64_t steps = 0;               ///< steps of N⁻¹ and N the sampler computed (exact, thread-independent)
   std::vector<std::uint64_t> stepsAtLevel;  ///< `steps` when each level was reached
@@ -186,6 +194,21 @@ struct TailState {
 
 /// A fresh sampler run.  Throws std::invalid_argument (tailRequestError()) for a bad request.
 [[nodiscard]] TailState startTail(const TailRequest& request);
+
+/// The replicas [⌊R·i/n⌋, ⌊R·(i+1)/n⌋) of R: slice i of n, as the ranks of a distributed run take them.
+struct ReplicaRange {
+  std::uint32_t first = 0, count = 0;
+};
+/// Throws std::invalid_argument unless 0 ≤ i < n ≤ R (every slice holds a replica).
+[[nodiscard]] ReplicaRange replicaSlice(std::uint32_t replicas, std::uint32_t i, std::uint32_t n);
+/// A fresh run of the replicas `range` of the request ("slice" above).  Throws std::invalid_argument for a bad
+/// request or a range that is empty or beyond R.
+[[nodiscard]] TailState startTailSlice(const TailRequest& request, ReplicaRange range);
+/// The one-process state of finished slices that tile the replicas [0, R) (in any order): their replicas in
+/// order, their steps summed (the pilot's counted once, by the slice of replica 0), and their compute times
+/// summed.  Throws std::invalid_argument naming the first problem (no slices, another request, an unfinished
+/// slice, a gap or an overlap, pilots that differ).
+[[nodiscard]] TailState mergeTailSlices(std::vector<TailState> slices);
 
 /// Where the sampler stands, at each chunk boundary.
 struct TailProgress {

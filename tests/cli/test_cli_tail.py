@@ -117,6 +117,13 @@ with tempfile.TemporaryDirectory() as d:
         (["--resume", out, "--population", "5"], "do not also give --population"),
         (["--threads", "-1"], "--threads"),
         (["--kernel", "quantum"], "quantum"),
+        (["--slice", "3/3"], "--slice '3/3' must be I/N, whole numbers with I < N <= R = 3"),
+        (["--slice", "0/4"], "--slice '0/4' must be I/N"),
+        (["--slice", "0/0"], "--slice '0/0' must be I/N"),
+        (["--slice", "-1/2"], "--slice"),
+        (["--slice", "1/nan"], "--slice"),
+        (["--slice", "1"], "--slice"),
+        (["--resume", out, "--slice", "0/2"], "--resume takes the slice from the tail file; do not also give --slice"),
     ]:
         r = run("tail", *(args if "--resume" in args else small_with(args)), "--out", target)
         lines = r.stderr.strip().splitlines()
@@ -125,6 +132,30 @@ with tempfile.TemporaryDirectory() as d:
     r = run("tail", *SMALL, "--out", os.path.join(d, "no-such-folder", "t.json"))
     check(r.returncode != 0 and r.stderr.startswith("ERROR: ") and len(r.stderr.strip().splitlines()) == 1,
           f"an unwritable --out is one ERROR before any work ({r.stderr.strip()})")
+    # --slice I/N: the slices' tail files merge to the one-process run, bit for bit (steps included).
+    slices = [os.path.join(d, f"slice{i}.json") for i in range(3)]
+    for i in (2, 0, 1):
+        r = run("tail", *SMALL, "--slice", f"{i}/3", "--out", slices[i])
+        check(r.returncode == 0 and "merge the slices" in r.stderr, f"--slice {i}/3 ({r.stderr.strip()[-120:]})")
+    check([json.load(open(f))["state"]["first_replica"] for f in slices] == [0, 1, 2]
+          and all(len(json.load(open(f))["state"]["replicas"]) == 1 for f in slices), "each slice holds its replica")
+    merged = os.path.join(d, "merged.json")
+    r = run("merge", slices[2], slices[0], slices[1], "--out", merged)
+    check(r.returncode == 0 and results(merged) == results(out), f"the merged slices are the whole run ({r.stderr.strip()})")
+    for parts, mention in [([slices[0], slices[1]], "replicas [2, 3) are in no slice"),
+                           ([slices[0], slices[0], slices[1], slices[2]], "overlaps"),
+                           ([slices[1], slices[2]], "no slice holds replica 0"),
+                           ([out, slices[1]], "overlaps"),
+                           ([slices[0], os.path.join(d, "tail.csv")], "tail.csv")]:
+        target = os.path.join(bad, "m.json")
+        r = run("merge", *parts, "--out", target)
+        lines = r.stderr.strip().splitlines()
+        check(r.returncode != 0 and len(lines) == 1 and lines[0].startswith("ERROR: ") and mention in lines[0]
+              and not os.path.exists(target), f"merge {[os.path.basename(x) for x in parts]} -> {lines[:1]}")
+    other = os.path.join(d, "other-slice.json")
+    run("tail", *small_with(["--seed", "2"]), "--slice", "1/3", "--out", other)
+    r = run("merge", slices[0], other, slices[2], "--out", os.path.join(bad, "m.json"))
+    check(r.returncode != 0 and "another sampler run" in r.stderr, f"slices of another seed are refused ({r.stderr.strip()})")
     # An edited tail file is refused.
     text = open(out).read().replace('"population": 20', '"population": 21', 1)
     edited = os.path.join(d, "edited.json")

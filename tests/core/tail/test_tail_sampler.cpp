@@ -192,6 +192,69 @@ TEST(TailSampler, IsBitIdenticalOverThreadsKernelsAndClonesRules) {
   }
 }
 
+TEST(TailSlices, PartitionTheReplicasLikeTheRanks) {
+  for (std::uint32_t R : {1u, 3u, 7u, 16u})
+    for (std::uint32_t n = 1; n <= R; ++n) {
+      std::uint32_t next = 0;
+      for (std::uint32_t i = 0; i < n; ++i) {
+        const ReplicaRange s = replicaSlice(R, i, n);
+        EXPECT_EQ(s.first, next);
+        EXPECT_GE(s.count, R / n);
+        EXPECT_LE(s.count, R / n + 1);
+        next = s.first + s.count;
+      }
+      EXPECT_EQ(next, R);
+    }
+  EXPECT_THROW((void)replicaSlice(3, 0, 4), std::invalid_argument);  // a slice without a replica
+  EXPECT_THROW((void)replicaSlice(3, 3, 3), std::invalid_argument);
+  EXPECT_THROW((void)replicaSlice(3, 0, 0), std::invalid_argument);
+  EXPECT_THROW((void)startTailSlice(smallRequest(), {2, 2}), std::invalid_argument);  // beyond R = 3
+  EXPECT_THROW((void)startTailSlice(smallRequest(), {0, 0}), std::invalid_argument);
+}
+
+TEST(TailSlices, MergedAreTheWholeRunBitForBitStepsIncluded) {
+  for (const CloneRule rule : {CloneRule::perturb, CloneRule::metropolis}) {
+    TailRequest r = smallRequest();
+    r.replicas = 4;
+    r.clones = rule;
+    r.epsilon = 3;
+    const TailState whole = runTail(startTail(r), {});
+    ASSERT_TRUE(whole.finished());
+    std::vector<TailState> slices;
+    for (std::uint32_t i : {2u, 0u, 1u}) {  // any order; [0, 1), [1, 2), [2, 4)
+      TailState s = runTail(startTailSlice(r, replicaSlice(4, i, 3)), {});
+      s = parseTailFile(tailFileText(s));  // through the file, as the ranks send them
+      slices.push_back(std::move(s));
+    }
+    EXPECT_LT(slices[0].steps, whole.steps);
+    TailState merged = mergeTailSlices(slices);
+    merged.elapsedSeconds = whole.elapsedSeconds;
+    merged.kernel = whole.kernel;
+    EXPECT_TRUE(merged == whole) << cloneRuleName(rule);
+    EXPECT_EQ(merged.steps, whole.steps);
+    EXPECT_EQ(merged.stepsAtLevel, whole.stepsAtLevel);
+    // The slice's own estimate is of its replicas alone: replica 2's and 3's P at the first level.
+    const TailResult part = tailResult(slices[0]);
+    ASSERT_FALSE(part.levels.empty());
+    EXPECT_EQ(part.levels[0].replicaP.size(), 2u);
+    EXPECT_EQ(part.levels[0].replicaP[0], tailResult(whole).levels[0].replicaP[2]);
+
+    // What does not merge: a gap, an overlap, another run, an unfinished slice.
+    EXPECT_THROW((void)mergeTailSlices({slices[1], slices[2]}), std::invalid_argument);               // [2, 4) missing
+    EXPECT_THROW((void)mergeTailSlices({slices[0], slices[2]}), std::invalid_argument);               // no replica 0
+    EXPECT_THROW((void)mergeTailSlices({whole, slices[0]}), std::invalid_argument);                   // overlap
+    EXPECT_THROW((void)mergeTailSlices({}), std::invalid_argument);
+    TailRequest other = r;
+    other.run.seed = 2;
+    const TailState foreign = runTail(startTailSlice(other, replicaSlice(4, 0, 3)), {});
+    EXPECT_THROW((void)mergeTailSlices({foreign, slices[2], slices[0]}), std::invalid_argument);
+    TailRunOptions partOnly;
+    partOnly.untilLevel = 2;
+    const TailState unfinished = runTail(startTailSlice(r, replicaSlice(4, 2, 3)), partOnly);
+    EXPECT_THROW((void)mergeTailSlices({slices[1], slices[2], unfinished}), std::invalid_argument);
+  }
+}
+
 TEST(TailSampler, StopAndResumeThroughAFileIsBitIdentical) {
   const TailRequest r = smallRequest();
   const TailState whole = runTail(startTail(r), {});

@@ -1,0 +1,83 @@
+#include "MpiCommon.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <climits>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <stdexcept>
+#include <thread>
+
+namespace archipelago::mpi {
+
+World world() {
+  World w;
+  MPI_Comm_rank(MPI_COMM_WORLD, &w.rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &w.size);
+  return w;
+}
+
+[[noreturn]] void abortJob(const World& w, const std::string& what) {
+  std::fprintf(stderr, "ERROR: rank %d: %s\n", w.rank, what.c_str());
+  std::fflush(stderr);
+  MPI_Abort(MPI_COMM_WORLD, 1);
+  std::_Exit(1);
+}
+
+void agree(const World& w, bool ok, const std::string& message) {
+  int mine = ok ? 1 : 0;
+  int all = 0;
+  MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+  if (all == 1) return;
+  // The lowest failing rank's message goes to rank 0.
+  int failing = ok ? INT_MAX : w.rank;
+  int first = 0;
+  MPI_Allreduce(&failing, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+  std::string text = message;
+  if (first != 0) {
+    if (w.rank == first) {
+      const auto n = static_cast<int>(std::min<std::size_t>(text.size(), 4096));
+      MPI_Send(text.data(), n, MPI_CHAR, 0, 7, MPI_COMM_WORLD);
+    } else if (w.rank == 0) {
+      MPI_Status st;
+      MPI_Probe(first, 7, MPI_COMM_WORLD, &st);
+      int n = 0;
+      MPI_Get_count(&st, MPI_CHAR, &n);
+      text.assign(static_cast<std::size_t>(n), '\0');
+      MPI_Recv(text.data(), n, MPI_CHAR, first, 7, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    }
+  }
+  throw std::runtime_error(first == 0 ? text : "rank " + std::to_string(first) + ": " + text);
+}
+
+void sendText(const std::string& text, int dest) {
+  const std::uint64_t n = text.size();
+  MPI_Send(&n, 1, MPI_UINT64_T, dest, 1, MPI_COMM_WORLD);
+  for (std::uint64_t at = 0; at < n; at += INT_MAX / 2) {
+    const auto piece = static_cast<int>(std::min<std::uint64_t>(n - at, INT_MAX / 2));
+    MPI_Send(text.data() + at, piece, MPI_CHAR, dest, 2, MPI_COMM_WORLD);
+  }
+}
+
+std::string receiveText(int source) {
+  std::uint64_t n = 0;
+  MPI_Recv(&n, 1, MPI_UINT64_T, source, 1, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+  std::string text(n, '\0');
+  for (std::uint64_t at = 0; at < n; at += INT_MAX / 2) {
+    const auto piece = static_cast<int>(std::min<std::uint64_t>(n - at, INT_MAX / 2));
+    MPI_Recv(text.data() + at, piece, MPI_CHAR, source, 2, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+  }
+  return text;
+}
+
+void waitWithoutSpinning(MPI_Request& request) {
+  int done = 0;
+  MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+  while (done == 0) {
+    std::this_thread::sleep_for(std::chrono::microseconds(100));
+    MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+  }
+}
+
+}  // namespace archipelago::mpi
