@@ -187,8 +187,8 @@ void bindTail(py::module_& m) {
       py::arg("threads") = 0, py::arg("kernel") = "", py::arg("progress") = py::none(), py::arg("out") = py::none(),
       "P_t beyond brute force by splitting on the age of trapped segments, for the process of a run with these\n"
       "parameters (archipelago-cli tail; docs/tail.md).  Returns a dict of arrays per level: t (steps), P, P_error,\n"
-      "survivors, ancestors, fewest_ancestors, population, reliable, steps; 'exponents' (the local exponent\n"
-      "-dlnP/dlnt between neighbouring reliable levels: t, t_from, t_to, gamma, gamma_error); total_steps, finished,\n"
+      "survivors, ancestors, fewest_ancestors, population, reliable, steps; 'exponents' (the running exponent\n"
+      "gamma(t) = -dlnP/dlnt over decade windows, as stats defines it: t, t_from, t_to, gamma, gamma_error); total_steps, finished,\n"
       "largest_reliable_t, level_t.  out: a tail file written at the end (or when stopped by Ctrl-C), which\n"
       "tail_resume() continues bit for bit.");
   m.def(

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Plots a tail file (archipelago-cli tail --out FILE): P_t with its error bars at the reliable levels (the unreliable
-ones hollow, not data), optionally the brute-force P_t of a `tail --compare-csv` file, and the sampler's local
-exponent -dlnP/dlnt between neighbouring reliable levels with its error, against the literature's asymptotic values
+ones hollow, not data), optionally the brute-force P_t of a `tail --compare-csv` file, and the running
+exponent gamma(t) = -dlnP/dlnt over decade windows (stats' definition) with its error, against the literature's asymptotic values
 (t^-1.57 Cristadoro & Ketzmerick 2008, t^-3/2 Venegeroles 2009, t^-1.3 Shepelyansky 2010, t^-3 Chirikov &
 Shepelyansky 1999).
 
@@ -45,7 +45,7 @@ for g, name, c in ((1.57, "1.57 Cristadoro & Ketzmerick 2008", "C1"), (1.5, "3/2
     bottom.axhline(g, color=c, ls="--", lw=1, label=name)
 bottom.set_xscale("log")
 bottom.set_xlabel("t (steps)")
-bottom.set_ylabel("local exponent")
+bottom.set_ylabel("running exponent γ(t)")
 bottom.legend(fontsize=7)
 sampler = d["sampler"]
 fig.suptitle(f"K = {d['parameters']['K']}, q = {d['parameters']['q']}: N = {sampler['population']}, "

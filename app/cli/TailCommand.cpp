@@ -47,7 +47,7 @@ void printLevels(const TailState& s, const TailResult& r) {
                 static_cast<unsigned long long>(L.survivors), static_cast<unsigned long long>(L.ancestors),
                 static_cast<unsigned long long>(L.fewestAncestors), L.reliable ? "yes" : "no", L.steps);
   if (!r.exponents.empty()) {
-    std::printf("# local exponent -dlnP/dlnt between neighbouring reliable levels\n");
+    std::printf("# running exponent gamma(t) = -dlnP/dlnt over decade windows (as stats: least squares on a log grid)\n");
     std::printf("%12s %12s %12s %8s %8s\n", "t", "t_from", "t_to", "gamma", "error");
     for (const TailExponent& e : r.exponents)
       std::printf("%12.4g %12.0f %12.0f %8.4f %8.3g\n", e.t, e.tFrom, e.tTo, e.gamma, e.gammaError);
@@ -284,7 +284,7 @@ void addTailOptions(CLI::App& cmd_, TailOptions& o_, bool withSlice) {
   addKernelOption(*cmd, o->kernel);
   cmd->add_option("--out", o->out, "tail file written at the end (JSON: levels, exponents, the resumable state)")
       ->capture_default_str();
-  cmd->add_option("--csv", o->csv, "the levels and local exponents as CSV");
+  cmd->add_option("--csv", o->csv, "the levels and the running exponent as CSV");
   cmd->add_option("--checkpoint", o->checkpoint, "checkpoint file (default: the --out file)");
   addNumberOption(*cmd, "--checkpoint-interval", o->checkpointSeconds, "seconds between checkpoints");
   cmd->add_option("--resume", o->resume, "continue the sampler run in this tail file");

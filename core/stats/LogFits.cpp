@@ -110,4 +110,20 @@ SlopeFit logLinearSlope(const Series& s, double from, double to) {
   return fit;
 }
 
+std::vector<LogWindow> runningExponentWindows(double tEnd, double lowest) {
+  std::vector<LogWindow> windows;
+  if (!(std::isfinite(tEnd) && std::isfinite(lowest) && lowest > 0 && tEnd >= 3 * lowest)) return windows;
+  for (int k = 0; k < 16; ++k) {
+    LogWindow w;
+    w.to = tEnd * std::pow(10.0, -k / 2.0);
+    w.from = w.to / 10;
+    if (w.from < lowest) {
+      if (k > 0) break;
+      w.from = lowest;  // the tail fit alone may be shorter than a decade
+    }
+    windows.push_back(w);
+  }
+  return windows;
+}
+
 }  // namespace archipelago

@@ -13,6 +13,7 @@
 /// (RunStatistics.hpp, slopeOverSubsets) is the honest one.
 
 #include <cstddef>
+#include <vector>
 
 #include "core/stats/TrappingStatistics.hpp"
 
@@ -39,5 +40,17 @@ struct SlopeFit {
 /// weighted least squares with weights (y/σ)² (σ the point's error; points with σ = 0 are left out unless every
 /// point has σ = 0, when the weights are equal).  The error is the weighted fit's.
 [[nodiscard]] SlopeFit logLinearSlope(const Series& s, double from, double to);
+
+/// A window [from, to] (steps) of the running exponent.
+struct LogWindow {
+  double from = 0, to = 0;
+};
+
+/// The running exponent's windows, one definition for the statistics' tail analysis (TailAnalysis.hpp) and the tail
+/// sampler (TailResult.hpp): decades ending at tEnd·10^(−k/2), k = 0, 1, … (at most 16), while they start at or
+/// above `lowest`; the first (k = 0, the tail fit) starts at `lowest` when tEnd/10 is below it; none when tEnd <
+/// 3·lowest (less than half a decade to fit) or either is not finite and positive.  γ over a window is
+/// fitLogSlope() of P_t over it.
+[[nodiscard]] std::vector<LogWindow> runningExponentWindows(double tEnd, double lowest);
 
 }  // namespace archipelago

@@ -134,21 +134,15 @@ TailAnalysis analyseTail(const Ensemble& e, const TailOptions& options) {
     if (n >= options.minTailSegments) a.tailEnd = stats.P.x[g];
   }
   const double lowest = std::max(10.0, 2.0 * e.q);
-  if (std::isfinite(a.tailEnd) && a.tailEnd >= 3 * lowest) {  // at least half a decade to fit
-    for (int k = 0; k < 16; ++k) {
-      TailWindow w;
-      w.to = a.tailEnd * std::pow(10.0, -k / 2.0);
-      w.from = w.to / 10;
-      if (w.from < lowest) {
-        if (k > 0) break;
-        w.from = lowest;  // the tail fit alone may be shorter than a decade
-      }
-      w.gammaP = fitLogSlope(stats.P, w.from, w.to, &w.points);
-      w.exponentC = fitLogSlope(stats.C, w.from, w.to);
-      w.segmentsBeyondFrom = segmentsBeyond(masses, w.from);
-      w.segmentsBeyondTo = segmentsBeyond(masses, w.to);
-      a.windows.push_back(w);
-    }
+  for (const LogWindow& window : runningExponentWindows(a.tailEnd, lowest)) {
+    TailWindow w;
+    w.from = window.from;
+    w.to = window.to;
+    w.gammaP = fitLogSlope(stats.P, w.from, w.to, &w.points);
+    w.exponentC = fitLogSlope(stats.C, w.from, w.to);
+    w.segmentsBeyondFrom = segmentsBeyond(masses, w.from);
+    w.segmentsBeyondTo = segmentsBeyond(masses, w.to);
+    a.windows.push_back(w);
   }
 
   // The bootstrap: D and every window's exponents in each replicate.

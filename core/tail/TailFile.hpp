@@ -57,7 +57,7 @@ void saveTailFile(const std::filesystem::path& path, const TailState& state);
 [[nodiscard]] TailState loadTailFile(const std::filesystem::path& path);
 
 /// The CSV of the levels: a "# key: value" header (the process, the sampler's settings, the steps) and
-/// t,P,P_error,survivors,ancestors,fewest_ancestors,reliable,steps, then the local exponents in their own table
+/// t,P,P_error,survivors,ancestors,fewest_ancestors,reliable,steps, then the running exponent in its own table
 /// (t,t_from,t_to,gamma,gamma_error) after a blank line.
 [[nodiscard]] std::string tailCsvText(const TailState& state, const TailResult& result);
 

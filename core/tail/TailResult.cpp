@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/stats/LogFits.hpp"
 #include "core/stats/RunStatistics.hpp"
 
 namespace archipelago {
@@ -60,27 +61,51 @@ TailResult tailResult(const TailState& s) {
     if (proposals > 0) L.acceptance = static_cast<double>(accepted) / static_cast<double>(proposals);
     out.levels.push_back(std::move(L));
   }
-  for (std::size_t k = 0; k + 1 < out.levels.size(); ++k) {
-    const TailLevelResult& a = out.levels[k];
-    const TailLevelResult& b = out.levels[k + 1];
-    if (!a.reliable || !b.reliable || !(a.P > 0) || !(b.P > 0)) continue;
+  // The running exponent γ(t) (TailResult.hpp): over the windows of the statistics' own (runningExponentWindows),
+  // fitLogSlope() of P at the reliable levels.
+  const Series P = reliableSurvival(out);
+  if (P.x.empty()) return out;
+  std::vector<std::size_t> levelOf;  // the level of each point of P
+  for (std::size_t k = 0; k < out.levels.size(); ++k)
+    if (out.levels[k].reliable) levelOf.push_back(k);
+  const double lowest = std::max({P.x.front(), 10.0, 2.0 * r.run.q});
+  for (const LogWindow& w : runningExponentWindows(P.x.back(), lowest)) {
     TailExponent e;
-    e.tFrom = a.t;
-    e.tTo = b.t;
-    e.t = std::sqrt(a.t * b.t);
-    const double span = std::log(b.t / a.t);
-    e.gamma = -(std::log(b.P) - std::log(a.P)) / span;
+    e.tFrom = w.from;
+    e.tTo = w.to;
+    e.t = std::sqrt(w.from * w.to);
+    e.gamma = fitLogSlope(P, w.from, w.to, &e.points);
+    if (!std::isfinite(e.gamma)) continue;
+    // The fit is linear in ln P at the levels: γ = −Σ_j w_j ln P_j, w_j the fitted slope of ln y = [point j].
+    std::vector<double> weight(P.x.size());
+    for (std::size_t j = 0; j < P.x.size(); ++j) {
+      Series unit = P;
+      for (std::size_t i = 0; i < unit.value.size(); ++i) unit.value[i] = i == j ? std::exp(1.0) : 1.0;
+      weight[j] = logLogSlope(unit, w.from, w.to).slope;
+    }
     if (R > 1) {
-      double va = 0, vb = 0, cab = 0;
-      for (std::size_t rep = 0; rep < R; ++rep) {
-        va += (a.replicaP[rep] - a.P) * (a.replicaP[rep] - a.P);
-        vb += (b.replicaP[rep] - b.P) * (b.replicaP[rep] - b.P);
-        cab += (a.replicaP[rep] - a.P) * (b.replicaP[rep] - b.P);
-      }
+      // The replicas' covariance of ln P_i and ln P_j, to first order C_ij/(P_i P_j); and the binomial floor:
+      // ln P_j is the sum of ln p over the levels up to j, independent binomial terms of variance b_k, so
+      // var = Σ_k b_k (Σ_{j: level(j) ≥ k} w_j)².
       const double norm = static_cast<double>(R) * static_cast<double>(R - 1);
-      const double var = va / norm / (a.P * a.P) + vb / norm / (b.P * b.P) - 2 * cab / norm / (a.P * b.P);
-      // The binomial floor of ln(P_b/P_a): the survival fraction of level b alone (the levels below are shared).
-      e.gammaError = std::sqrt(std::max(var, binomialOfLevel[k + 1])) / span;
+      double var = 0;
+      for (std::size_t i = 0; i < P.x.size(); ++i)
+        for (std::size_t j = 0; j < P.x.size(); ++j) {
+          if (weight[i] == 0 || weight[j] == 0) continue;
+          const TailLevelResult& a = out.levels[levelOf[i]];
+          const TailLevelResult& b = out.levels[levelOf[j]];
+          double c = 0;
+          for (std::size_t rep = 0; rep < R; ++rep) c += (a.replicaP[rep] - a.P) * (b.replicaP[rep] - b.P);
+          var += weight[i] * weight[j] * c / norm / (a.P * b.P);
+        }
+      double floor = 0;
+      for (std::size_t k = 0; k < binomialOfLevel.size(); ++k) {
+        double later = 0;
+        for (std::size_t j = 0; j < P.x.size(); ++j)
+          if (levelOf[j] >= k) later += weight[j];
+        floor += binomialOfLevel[k] * later * later;
+      }
+      e.gammaError = std::sqrt(std::max(var, floor));
     }
     out.exponents.push_back(e);
   }

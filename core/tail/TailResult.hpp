@@ -1,8 +1,8 @@
 #pragma once
 /// \file TailResult.hpp
 /// \brief What a sampler run (TailSampler.hpp) estimates: P_t at every level reached, its error from the
-/// replicas, the survivors and lineages behind it, whether it is reliable, and the local exponent between
-/// neighbouring reliable levels.
+/// replicas, the survivors and lineages behind it, whether it is reliable, and the running exponent γ(t) over
+/// decade windows, as the statistics define it.
 ///
 /// Per replica r, P_r(t_0) = s_{r,0}/n_r (stage 0: successes over trials, the estimator of `run`) and
 /// P_r(t_{k+1}) = P_r(t_k)·s_{r,k+1}/N (splitting: the product of survival fractions).  Each is an unbiased estimate
@@ -22,13 +22,16 @@
 ///                  threshold).  A replica whose population died out is no exception: its P_r = 0 is an unbiased
 ///                  sample, and it carries no lineage.  An unreliable level is neither plotted as data nor used
 ///                  in fits.
-///   local exponent between neighbouring reliable levels a < b (the sampler's own; to be unified with core/stats'
-///                  running exponent γ(t) of issue #26):
-///                  γ = −(ln P(t_b) − ln P(t_a))/(ln t_b − ln t_a), plotted at √(t_a t_b), with the error
-///                  propagated from the replicas to first order, covariance included (the two levels share
-///                  their histories):  var = V_a/P_a² + V_b/P_b² − 2 C_ab/(P_a P_b),  V = s²/R,
-///                  C_ab = Σ_r (P_ra − P_a)(P_rb − P_b)/(R(R − 1)), and at least level b's binomial term
-///                  (1 − p_b)/(n_b p_b) (the floor above, for the one survival fraction between the two levels).
+///   running exponent γ(t), the one definition of the statistics' (TailAnalysis.hpp, issue #26): over the windows
+///                  runningExponentWindows(t_end, lowest) (decades ending at t_end·10^(−k/2)), t_end the largest
+///                  reliable level and lowest = max(the first reliable level, 10, 2q), γ = fitLogSlope() of P at the
+///                  reliable levels (LogFits.hpp: −d ln P/d ln t, least squares on a log grid, ln P interpolated
+///                  linearly in ln t between levels), plotted at √(from·to).  Its error: the fit is linear in
+///                  ln P_j, γ = −Σ_j w_j ln P_j, so to first order var = Σ_ij w_i w_j C_ij/(P_i P_j), C_ij the
+///                  replicas' covariance of the mean (Σ_r (P_ri − P_i)(P_rj − P_j)/(R(R − 1))), and at least the
+///                  binomial floor Σ_k b_k (Σ_{j at or after level k} w_j)², b_k = (1 − p_k)/(n_k p_k) (ln P_j is
+///                  the sum of the ln p_k up to j).  Before 2026-11-26 the sampler's exponent was the finite
+///                  difference between neighbouring levels (a third of a decade): a second definition.
 
 #include <cstdint>
 #include <limits>
@@ -59,17 +62,18 @@ struct TailLevelResult {
   double acceptance = std::numeric_limits<double>::quiet_NaN();
 };
 
-/// The local exponent between two neighbouring reliable levels.
+/// The running exponent over one window.
 struct TailExponent {
   double tFrom = 0, tTo = 0;  ///< steps
   double t = 0;               ///< √(tFrom·tTo), where it is plotted
+  std::size_t points = 0;     ///< log-grid points of the fit
   double gamma = 0;
   double gammaError = std::numeric_limits<double>::quiet_NaN();  ///< NaN with one replica
 };
 
 struct TailResult {
   std::vector<TailLevelResult> levels;    ///< every level reached by every replica
-  std::vector<TailExponent> exponents;    ///< between consecutive levels that are both reliable
+  std::vector<TailExponent> exponents;    ///< the running exponent γ(t), one per window (longest t first)
   double steps = 0;                       ///< TailState::steps
   bool finished = false;
 };

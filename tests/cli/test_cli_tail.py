@@ -41,7 +41,7 @@ with tempfile.TemporaryDirectory() as d:
     rows = list(csv.DictReader(io.StringIO("".join(l for l in open(table) if not l.startswith("#")).split("\n\n")[0])))
     check(len(rows) == len(levels) and all(float(row["P"]) == L["P"] for row, L in zip(rows, levels)),
           "the CSV holds the file's levels")
-    check("gamma" in r.stdout and "reliable" in r.stdout, "the table and the local exponents are printed")
+    check("gamma" in r.stdout and "reliable" in r.stdout, "the table and the running exponent are printed")
 
     # The same request on two threads and the scalar kernel: the same file but time and kernel.
     other = os.path.join(d, "other.json")

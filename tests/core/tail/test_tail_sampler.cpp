@@ -9,6 +9,8 @@
 
 #include "core/kernels/KernelDispatch.hpp"
 #include "core/run/TrappingRun.hpp"
+#include "core/random/CounterRng.hpp"
+#include "core/stats/LogFits.hpp"
 #include "core/stats/RunStatistics.hpp"
 #include "core/stats/TrappingStatistics.hpp"
 #include "core/tail/BruteForceSurvival.hpp"
@@ -189,6 +191,80 @@ TEST(TailSampler, IsBitIdenticalOverThreadsKernelsAndClonesRules) {
     bSameKernel.elapsedSeconds = a.elapsedSeconds;
     EXPECT_TRUE(bSameKernel == a) << cloneRuleName(rule);
     EXPECT_GT(a.steps, 0u);
+  }
+}
+
+// A state whose replicas' P follow c·t^−1.5 at every level, each replica's survival fraction at level k scaled by
+// (1 + noise[r][k]); N = 10⁶ walkers, so the binomial floor is negligible beside a noise of a few per cent.
+TailState syntheticState(const std::vector<std::vector<double>>& noise) {
+  TailRequest r;
+  r.population = 1'000'000;
+  r.replicas = static_cast<std::uint32_t>(noise.size());
+  r.firstSteps = 150;
+  r.maxSteps = 1'000'000;
+  r.minAncestors = 1;
+  TailState s = startTail(r);
+  const auto target = [&](std::size_t k) { return 0.01 * std::pow(static_cast<double>(s.levels[k] * r.run.q) / 160.0, -1.5); };
+  for (std::size_t rep = 0; rep < noise.size(); ++rep)
+    for (std::size_t k = 0; k < s.levels.size(); ++k) {
+      TailLevelCount c;
+      const double fraction = (k == 0 ? target(0) : target(k) / target(k - 1)) * (1 + noise[rep][k]);
+      c.population = k == 0 ? 1'000'000'000 : r.population;
+      c.survivors = static_cast<std::uint64_t>(std::llround(fraction * static_cast<double>(c.population)));
+      c.ancestors = std::min<std::uint64_t>(c.survivors, 1000);
+      s.replicas[rep].levels.push_back(c);
+    }
+  s.next = s.levels.size();
+  s.stepsAtLevel.assign(s.levels.size(), 0);
+  return s;
+}
+
+TEST(TailRunningExponent, IsTheStatisticsDefinitionOnThePowerLawsLevels) {
+  const TailState s = syntheticState(std::vector<std::vector<double>>(4, std::vector<double>(13, 0.0)));
+  const TailResult r = tailResult(s);
+  const Series P = reliableSurvival(r);
+  ASSERT_GT(P.x.size(), 8u);
+  const std::vector<LogWindow> windows = runningExponentWindows(P.x.back(), std::max(P.x.front(), 32.0));
+  ASSERT_EQ(r.exponents.size(), windows.size());
+  ASSERT_GE(windows.size(), 5u);
+  for (std::size_t i = 0; i < windows.size(); ++i) {
+    EXPECT_EQ(r.exponents[i].tFrom, windows[i].from);
+    EXPECT_EQ(r.exponents[i].tTo, windows[i].to);
+    EXPECT_NEAR(r.exponents[i].gamma, 1.5, 2e-5) << r.exponents[i].t;  // survivors rounded to 10⁻⁶
+    EXPECT_GE(r.exponents[i].points, 5u);
+  }
+}
+
+TEST(TailRunningExponent, ErrorIsTheReplicasCovariancePropagated) {
+  // Noise of a few per cent per replica and level, from the counter generator.
+  std::vector<std::vector<double>> noise(5, std::vector<double>(13));
+  for (std::size_t rep = 0; rep < noise.size(); ++rep)
+    for (std::size_t k = 0; k < 13; ++k)
+      noise[rep][k] = 0.08 * ((static_cast<double>(orbitDraw(orbitKey(7, rep), k + 1)) + 0.5) / 4503599627370496.0 - 0.5);
+  const TailState s = syntheticState(noise);
+  const TailResult r = tailResult(s);
+  const Series P = reliableSurvival(r);
+  const std::size_t R = noise.size(), n = P.x.size();
+  // The delta method, done here by finite differences of the fit itself: ∂γ/∂P_i.
+  for (const TailExponent& e : r.exponents) {
+    std::vector<double> d(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      Series up = P, down = P;
+      up.value[i] *= 1 + 1e-6;
+      down.value[i] *= 1 - 1e-6;
+      d[i] = (fitLogSlope(up, e.tFrom, e.tTo) - fitLogSlope(down, e.tFrom, e.tTo)) / (2e-6 * P.value[i]);
+    }
+    double var = 0;
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j = 0; j < n; ++j) {
+        const TailLevelResult& a = r.levels[i];  // every level is reliable here: point i is level i
+        const TailLevelResult& b = r.levels[j];
+        double c = 0;
+        for (std::size_t rep = 0; rep < R; ++rep) c += (a.replicaP[rep] - a.P) * (b.replicaP[rep] - b.P);
+        var += d[i] * d[j] * c / static_cast<double>(R * (R - 1));
+      }
+    EXPECT_NEAR(e.gammaError, std::sqrt(var), 1e-4 * std::sqrt(var)) << e.t;
+    EXPECT_GT(e.gammaError, 0.002);  // the noise, not the binomial floor (5·10⁻⁴ here)
   }
 }
 
