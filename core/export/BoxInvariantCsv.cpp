@@ -40,11 +40,13 @@ std::string boxInvariantFtCsv(const TrappingState& state, const TrappingStatisti
   std::string out = csvMetadataHeader(state);
   line(out, "statistic", "b2_f_t: b2 (an area, appendix A) times f_t; does not depend on the box for large t (eq. A3)");
   line(out, "b2", number(b2.area) + " (fraction " + number(b2.fraction) + " of L^2 = " + number(b2.boxArea) + ")");
-  line(out, "columns", "t (steps); b2 f_t (area per step); b2_f_t_error (one sigma over the subsets)");
-  out += "t,b2_f_t,b2_f_t_error\n";
+  line(out, "columns", "t (steps); b2 f_t (area per step); b2_f_t_error (one sigma over the subsets)" +
+                           blocksAffectedColumnNote(statistics));
+  out += std::string("t,b2_f_t,b2_f_t_error") + (hasBlocksAffectedColumn(statistics) ? ",blocks_affected" : "") + "\n";
   const Series& f = statistics.f;
   for (std::size_t i = 0; i < f.x.size(); ++i)
-    out += number(f.x[i]) + ',' + number(b2.area * f.value[i]) + ',' + number(b2.area * f.error[i]) + '\n';
+    out += number(f.x[i]) + ',' + number(b2.area * f.value[i]) + ',' + number(b2.area * f.error[i]) +
+           blocksAffectedCell(statistics, f.x[i]) + '\n';
   return out;
 }
 

@@ -75,6 +75,19 @@ void csvMetadataLine(std::string& out, std::string_view name, const std::string&
   out += '\n';
 }
 
+bool hasBlocksAffectedColumn(const TrappingStatistics& statistics) noexcept { return statistics.blockAffectedBelow > 0; }
+
+std::string blocksAffectedColumnNote(const TrappingStatistics& statistics) {
+  if (!hasBlocksAffectedColumn(statistics)) return {};
+  return "; blocks_affected (1: t below 10 q = " + number(statistics.blockAffectedBelow) +
+         " steps, the statistics of blocks of q steps, not of the q = 1 process)";
+}
+
+std::string blocksAffectedCell(const TrappingStatistics& statistics, double t) {
+  if (!hasBlocksAffectedColumn(statistics)) return {};
+  return t < statistics.blockAffectedBelow ? ",1" : ",0";
+}
+
 std::string statisticCsvFileName(Statistic s) { return text(statisticInfo(s).fileStem) + ".csv"; }
 std::string theoryCsvFileName(Statistic s) { return text(statisticInfo(s).fileStem) + ".theory.csv"; }
 
@@ -87,11 +100,9 @@ std::string statisticCsv(const TrappingState& state, const TrappingStatistics& s
                                                        : " (Karney 1983, fig. " + figurePanelsOf(info.statistic) + ")"));
   // Issue #26: below 10 q a run of q > 1 describes blocks of q steps, not the paper's q = 1 process; the rows are
   // marked (blocks_affected = 1) unless the statistics were spliced with a q = 1 companion.
-  const bool marked = statistics.blockAffectedBelow > 0;
+  const bool marked = hasBlocksAffectedColumn(statistics);
   line(out, "columns", text(info.abscissaLabel) + "; " + text(info.valueLabel) + "; " + text(info.key) + "_error" +
-                           (marked ? "; blocks_affected (1: t below 10 q = " + number(statistics.blockAffectedBelow) +
-                                         " steps, the statistics of blocks of q steps, not of the q = 1 process)"
-                                   : std::string()));
+                           blocksAffectedColumnNote(statistics));
   line(out, "error", text(info.error));
   if (statistics.splicedAt > 0)
     line(out, "spliced", "below t = " + number(statistics.splicedAt) +
@@ -100,7 +111,7 @@ std::string statisticCsv(const TrappingState& state, const TrappingStatistics& s
   out += text(info.abscissa) + ',' + text(info.key) + ',' + text(info.key) + "_error" + (marked ? ",blocks_affected" : "") + "\n";
   for (std::size_t i = 0; i < series.x.size(); ++i) {
     out += number(series.x[i]) + ',' + number(series.value[i]) + ',' + number(series.error[i]);
-    if (marked) out += series.x[i] < statistics.blockAffectedBelow ? ",1" : ",0";
+    out += blocksAffectedCell(statistics, series.x[i]);
     out += '\n';
   }
   return out;

@@ -41,6 +41,15 @@ namespace archipelago {
 /// Appends one metadata line of a CSV header, "# name: value".
 void csvMetadataLine(std::string& out, std::string_view name, const std::string& value);
 
+/// The column `blocks_affected` (issue #26), one definition for every CSV file of a series over t (the statistics,
+/// b2_f_t.csv, the scan's scan_f_t.csv): present when the statistics of a run of q > 1 were not spliced with a
+/// q = 1 companion (TrappingStatistics::blockAffectedBelow > 0); 1 where t < 10 q, else 0.
+[[nodiscard]] bool hasBlocksAffectedColumn(const TrappingStatistics& statistics) noexcept;
+/// For the `# columns:` line: "; blocks_affected (1: t below 10 q = … steps, …)", or "" without the column.
+[[nodiscard]] std::string blocksAffectedColumnNote(const TrappingStatistics& statistics);
+/// A row's cell with its leading comma (",1" or ",0"), or "" without the column.
+[[nodiscard]] std::string blocksAffectedCell(const TrappingStatistics& statistics, double t);
+
 /// The file name of a statistic's CSV ("f_t.csv") and of its theory curves ("f_t.theory.csv").
 [[nodiscard]] std::string statisticCsvFileName(Statistic s);
 [[nodiscard]] std::string theoryCsvFileName(Statistic s);

@@ -43,12 +43,17 @@ std::string scanHeader(const std::vector<ScanRunSummary>& runs) {
 std::string scanFtCsv(const std::vector<ScanRunSummary>& runs) {
   std::string out = scanHeader(runs);
   line(out, "statistic", "f_t: distribution of trapping times (Karney 1983, figs. 3, 6(a)), every K");
-  line(out, "columns", "K; t (steps); f_t (per step); f_t_error (one sigma over the subsets)");
-  out += "K,t,f_t,f_t_error\n";
+  // Every K shares q: the column is there when one K's statistics have it (then all have).
+  const auto marked = std::find_if(runs.begin(), runs.end(),
+                                   [](const ScanRunSummary& r) { return hasBlocksAffectedColumn(r.statistics); });
+  line(out, "columns", "K; t (steps); f_t (per step); f_t_error (one sigma over the subsets)" +
+                           (marked != runs.end() ? blocksAffectedColumnNote(marked->statistics) : std::string()));
+  out += std::string("K,t,f_t,f_t_error") + (marked != runs.end() ? ",blocks_affected" : "") + "\n";
   for (const ScanRunSummary& r : runs) {
     const Series& f = r.statistics.f;
     for (std::size_t i = 0; i < f.x.size(); ++i)
-      out += shortest(r.point.K) + ',' + number(f.x[i]) + ',' + number(f.value[i]) + ',' + number(f.error[i]) + '\n';
+      out += shortest(r.point.K) + ',' + number(f.x[i]) + ',' + number(f.value[i]) + ',' + number(f.error[i]) +
+             (marked != runs.end() ? blocksAffectedCell(marked->statistics, f.x[i]) : std::string()) + '\n';
   }
   return out;
 }

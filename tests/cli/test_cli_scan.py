@@ -51,6 +51,9 @@ for s in summary:
 ft = rows(os.path.join(d, "scan_f_t.csv"))
 check(sorted({f["K"] for f in ft}) == ["0", "0.05", "0.1"] and all(float(f["f_t"]) > 0 for f in ft),
       f"scan_f_t.csv holds f_t of every K in long format ({len(ft)} rows)")
+q = 16  # run's default q: no --q in PARAMS
+check(all(f["blocks_affected"] == ("1" if float(f["t"]) < 10 * q else "0") for f in ft)
+      and any(f["blocks_affected"] == "1" for f in ft), f"scan_f_t.csv marks t < 10 q = {10 * q} as blocks of q steps")
 heat = rows(os.path.join(d, "scan_local_exponent.csv"))
 check(list(heat[0].keys()) == ["tau", "0", "0.05", "0.1"] and len(heat) > 20,
       f"scan_local_exponent.csv: tau by K ({len(heat)} rows, columns {list(heat[0].keys())})")

@@ -41,10 +41,13 @@ ScanRunSummary summaryOf(double K, std::optional<double> fraction) {
 TEST(ScanCsv, FilesHoldEveryKInTheirLayout) {
   const std::vector<ScanRunSummary> runs{summaryOf(0.05, std::nullopt), summaryOf(0.1, 0.8)};
   const auto ft = dataLines(scanFtCsv(runs));
-  EXPECT_EQ(ft.front(), "K,t,f_t,f_t_error");
+  // q = 16: the rows below 10 q = 160 steps describe blocks of q steps (issue #26), marked as in f_t.csv.
+  EXPECT_EQ(ft.front(), "K,t,f_t,f_t_error,blocks_affected");
   EXPECT_EQ(ft.size(), 1 + runs[0].statistics.f.x.size() + runs[1].statistics.f.x.size());
   EXPECT_TRUE(ft[1].starts_with("0.05,")) << ft[1];
+  EXPECT_TRUE(ft[1].ends_with(",1")) << ft[1];
   EXPECT_TRUE(ft.back().starts_with("0.1,")) << ft.back();
+  EXPECT_TRUE(ft.back().ends_with(",0")) << ft.back();
 
   const ScanHeatMap map = localExponentHeatMap(runs);
   const auto heat = dataLines(scanLocalExponentCsv(runs));
