@@ -326,6 +326,16 @@ void TestSegments::playKeepsTheStepShownInView() {
 
 // Finding 14: the Start y and Chain period columns needed horizontal scrolling, and the hint stayed.
 void TestSegments::columnsFitTheDockAndTheHintHides() {
+  // At a desktop's usual 9-point font (Qt 6's offscreen platform has it; Qt 5's has 12 points, at which the panel's
+  // width is capped so that the window fits a 1024-pixel screen, and the table scrolls: MainWindow.cpp).
+  const QFont font = QApplication::font();
+  QFont usual = font;
+  usual.setPointSize(9);
+  QApplication::setFont(usual);
+  const struct Restore {
+    QFont f;
+    ~Restore() { QApplication::setFont(f); }
+  } restore{font};
   const TrappingState& state = shortRun();
   QTemporaryDir dir;
   const QString file = dir.filePath(QStringLiteral("short.json"));

@@ -65,10 +65,13 @@ namespace archipelago::ui {
 
 namespace {
 constexpr int kRefreshIntervalMs = 66;  // 15 Hz: live, yet far from saturating the GUI thread
-/// The left panel's width (parameters, long segments): fixed, so that nothing on it widens the window; 360
-/// pixels at a 9-point font, wider with a larger one, so that the long segments' seven columns (about 43
-/// digits wide) fit without a horizontal scroll bar at any font size (Qt 5's offscreen default is 12 points).
-int leftPanelWidth(const QFontMetrics& metrics) { return std::max(360, 46 * metrics.horizontalAdvance(QLatin1Char('0'))); }
+/// The left panel's width (parameters, long segments): fixed, so that nothing on it widens the window; 48 digits
+/// of the font (the long segments' seven columns with their margins: no horizontal scroll bar), at least 360 pixels
+/// and at most 390, so that the window still fits a 1024-pixel screen (from about 11 points, as Qt 5's offscreen
+/// platform's 12, the table scrolls instead).
+int leftPanelWidth(const QFontMetrics& metrics) {
+  return std::clamp(48 * metrics.horizontalAdvance(QLatin1Char('0')), 360, 390);
+}
 
 QString formatRate(double stepsPerSecond) {
   if (stepsPerSecond >= 1e9) return QObject::tr("%1 G steps/s").arg(stepsPerSecond / 1e9, 0, 'f', 2);
