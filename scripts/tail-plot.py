@@ -38,8 +38,9 @@ top.set_yscale("log")
 top.set_ylabel("P_t")
 top.legend()
 E = d["exponents"]
-bottom.errorbar([e["t"] for e in E], [e["gamma"] for e in E], yerr=[e["gamma_error"] or 0 for e in E], fmt="o",
-                color="C0", label="-dlnP/dlnt between reliable levels")
+bottom.errorbar([e["t"] for e in E], [e["gamma"] for e in E], yerr=[e["gamma_error"] or 0 for e in E],
+                xerr=[[e["t"] - e["t_from"] for e in E], [e["t_to"] - e["t"] for e in E]], fmt="o", color="C0",
+                label="γ(t) = -dlnP/dlnt over decade windows (horizontal bar), ±1σ")
 for g, name, c in ((1.57, "1.57 Cristadoro & Ketzmerick 2008", "C1"), (1.5, "3/2 Venegeroles 2009", "C2"),
                    (1.3, "1.3 Shepelyansky 2010", "C4"), (3.0, "3 Chirikov & Shepelyansky 1999", "C5")):
     bottom.axhline(g, color=c, ls="--", lw=1, label=name)
