@@ -157,7 +157,7 @@ void bindTail(py::module_& m) {
          const py::object& population, const py::object& replicas, const py::object& first, const py::object& tMax,
          const py::object& levelBins, const py::object& epsilon, const std::string& clones,
          const py::object& metropolisSteps, const py::object& warmup, const py::object& minAncestors, int threads,
-         const std::string& kernel, const py::object& progress, const py::object& out) {
+         const std::string& kernel, const py::object& progress, const py::object& out, const py::object& slice) {
         TailRequest r;
         r.run.map = {K, xmin, xmax};
         r.run.Xr = Xr;
@@ -178,19 +178,26 @@ void bindTail(py::module_& m) {
         if (auto e = tailRequestError(r)) throw std::invalid_argument(*e);
         const std::optional<std::string> path = out.is_none() ? std::nullopt : std::optional(pathArgument(out, "out"));
         if (path) checkWritable(*path);  // before the work, not after it
-        return runAndReport(startTail(r), threads, kernel, progress, path);
+        if (slice.is_none()) return runAndReport(startTail(r), threads, kernel, progress, path);
+        if (!py::isinstance<py::tuple>(slice) || py::len(slice) != 2)
+          throw py::type_error("slice must be a tuple (i, n): slice i of n of the replicas");
+        const py::tuple in = slice.cast<py::tuple>();
+        const ReplicaRange range = replicaSlice(r.replicas, whole32(in[0], "slice i"), whole32(in[1], "slice n"));
+        return runAndReport(startTailSlice(r, range), threads, kernel, progress, path);
       },
       py::arg("K") = 0.1, py::arg("xmin") = -0.8, py::arg("xmax") = 0.5, py::arg("Xr") = 0.02, py::arg("q") = 16,
       py::arg("seed") = 1, py::arg("population") = 200, py::arg("replicas") = 4, py::arg("first") = 1000,
       py::arg("t_max") = 10'000'000, py::arg("level_bins") = 10, py::arg("epsilon") = 1'000'000, py::arg("clones") = "perturb",
       py::arg("metropolis_steps") = 1, py::arg("warmup") = 64, py::arg("min_ancestors") = kDefaultMinAncestors,
       py::arg("threads") = 0, py::arg("kernel") = "", py::arg("progress") = py::none(), py::arg("out") = py::none(),
+      py::arg("slice") = py::none(),
       "P_t beyond brute force by splitting on the age of trapped segments, for the process of a run with these\n"
       "parameters (archipelago-cli tail; docs/tail.md).  Returns a dict of arrays per level: t (steps), P, P_error,\n"
       "survivors, ancestors, fewest_ancestors, population, reliable, steps; 'exponents' (the running exponent\n"
       "gamma(t) = -dlnP/dlnt over decade windows, as stats defines it: t, t_from, t_to, gamma, gamma_error); total_steps, finished,\n"
       "largest_reliable_t, level_t.  out: a tail file written at the end (or when stopped by Ctrl-C), which\n"
-      "tail_resume() continues bit for bit.");
+      "tail_resume() continues bit for bit.  slice=(i, n): only slice i of n of the replicas, [R*i/n, R*(i+1)/n)\n"
+      "(archipelago-cli tail --slice); merge_tails() joins the slices' files into the whole run's, bit for bit.");
   m.def(
       "tail_resume",
       [](const py::object& path, int threads, const std::string& kernel, const py::object& progress,
@@ -205,6 +212,24 @@ void bindTail(py::module_& m) {
       py::arg("path"), py::arg("threads") = 0, py::arg("kernel") = "", py::arg("progress") = py::none(),
       py::arg("out") = py::none(),
       "Continues the sampler run of a tail file (to `out`, default: the same file); returns what tail() returns.");
+  m.def(
+      "merge_tails",
+      [](const py::list& paths, const py::object& out) {
+        std::vector<TailState> slices;
+        for (const py::handle& p : paths) slices.push_back(loadOrRaise(pathArgument(py::reinterpret_borrow<py::object>(p), "paths")));
+        const std::string target = pathArgument(out, "out");
+        checkWritable(target);
+        const TailState merged = mergeTailSlices(std::move(slices));
+        try {
+          saveTailFile(target, merged);
+        } catch (const std::exception& e) {
+          raiseOSError(e.what());
+        }
+        return resultDict(merged);
+      },
+      py::arg("paths"), py::arg("out"),
+      "Joins the tail files of the slices of one sampler run (tail(slice=(i, n)), archipelago-cli tail --slice) into\n"
+      "the whole run's tail file `out`, bit for bit (archipelago-cli merge); returns what tail() returns.");
   m.def(
       "load_tail",
       [](const py::object& path) {

@@ -34,6 +34,24 @@ def test_tail_is_the_cli_bit_for_bit(tmp_path, cli):
     assert np.array_equal(loaded["P"], r["P"]) and np.array_equal(loaded["steps"], r["steps"])
 
 
+def test_slices_merge_to_the_whole_run(tmp_path):
+    whole = ap.tail(**SMALL, out=tmp_path / "whole.json")
+    parts = [tmp_path / f"s{i}.json" for i in range(3)]
+    for i in (1, 0, 2):
+        part = ap.tail(**SMALL, slice=(i, 3), out=parts[i])
+        assert part["finished"] and part["total_steps"] < whole["total_steps"]
+    merged = ap.merge_tails(parts, tmp_path / "merged.json")
+    assert np.array_equal(merged["P"], whole["P"]) and merged["total_steps"] == whole["total_steps"]
+    a, b = json.load(open(tmp_path / "whole.json")), json.load(open(tmp_path / "merged.json"))
+    assert a["state"] == b["state"]
+    with pytest.raises(ValueError, match="no slice holds replica 0|in no slice"):
+        ap.merge_tails(parts[1:], tmp_path / "x.json")
+    with pytest.raises(ValueError, match="every slice needs a replica"):
+        ap.tail(**SMALL, slice=(0, 4))
+    with pytest.raises(TypeError, match="slice must be a tuple"):
+        ap.tail(**SMALL, slice=[0, 2])
+
+
 def test_keyboard_interrupt_leaves_a_resumable_file(tmp_path):
     calls = []
 
