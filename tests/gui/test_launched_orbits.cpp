@@ -69,8 +69,11 @@ class TestLaunchedOrbits : public QObject {
     QTRY_COMPARE_WITH_TIMEOUT(p.controller->view()->layerItems(PortraitLayer::launchedOrbits).size(), kMaxLaunchedOrbits,
                               60000);
     tick.stop();
-    // Every delivery adds one item; redraws are coalesced: the loop never stalls for long (a frozen GUI would).
-    QVERIFY2(longest < 1000, qPrintable(QStringLiteral("longest gap %1 ms").arg(longest)));
+    // Every delivery adds one item; redraws are coalesced: the loop never stalls for long (a frozen GUI would: finding
+    // 5's GUI thread traced 1000 orbits in 34.6 s, so these 500 would stall it ~17 s).  The bound is 4 s, far below
+    // that and above what a sanitizer on busy cores adds (1.5 s measured under ASan with a build beside it; this is a
+    // check of where the work runs, not a timing goal).
+    QVERIFY2(longest < 4000, qPrintable(QStringLiteral("longest gap %1 ms").arg(longest)));
     for (const auto& o : p.controller->launchedOrbits()) {
       QVERIFY(o.points);
       QCOMPARE(o.points->size(), std::size_t{archipelago::ui::kLaunchedOrbitSteps + 1});
