@@ -61,7 +61,8 @@ inline void numbers(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
   if (const auto v = io::toNumber<std::uint64_t>(text)) {
     if (io::toNumber<std::uint64_t>(io::shortestText(*v)) != v) throw std::logic_error("uint64 round trip");
-    if (text.find('-') != std::string::npos && *v != 0) throw std::logic_error("a negative text read as unsigned");
+    // A sign is the text's first character (no blanks are read); a '-' elsewhere is an exponent's ("11e-0" is 11).
+    if (text.starts_with('-') && *v != 0) throw std::logic_error("a negative text read as unsigned");
   }
   if (const auto v = io::toNumber<std::int32_t>(text)) {
     if (io::toNumber<std::int32_t>(io::shortestText(*v)) != v) throw std::logic_error("int32 round trip");
