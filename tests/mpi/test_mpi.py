@@ -6,38 +6,17 @@ on another number of ranks to the identical result; SIGINT checkpoints and stops
 part, more ranks than orbits, NaN options) are one clear ERROR with nothing written."""
 import json, os, signal, subprocess, sys, tempfile, time
 
-mpiexec, mpi, cli = sys.argv[1:4]
-failures = 0
-tmp = tempfile.mkdtemp(prefix="archipelago-mpi-")
-env = dict(os.environ, OMPI_MCA_plm_rsh_agent="false",  # one node: no ssh needed
-           OMPI_MCA_btl_vader_single_copy_mechanism="none", OMPI_MCA_rmaps_base_oversubscribe="1")
-VOLATILE = ("elapsedSeconds", "checksum", "kernel", "program")
-
-
-def check(cond, what):
-    global failures
-    print(("ok   " if cond else "FAIL ") + what, flush=True)
-    failures += 0 if cond else 1
-
-
-def p(name):
-    return os.path.join(tmp, name)
-
-
-def content(path):
-    return {k: v for k, v in json.load(open(path)).items() if k not in VOLATILE}
+from mpitest import check, cli, content, env, error_lines, finish, launcher as base_launcher, p, tmp
 
 
 def launcher(n):
-    return [mpiexec, "-n", str(n), "--oversubscribe", "--allow-run-as-root", mpi]
+    return base_launcher(n)
 
 
 def run_mpi(n, *args, timeout=120):
     return subprocess.run(launcher(n) + list(args), capture_output=True, text=True, timeout=timeout, env=env)
 
 
-def error_lines(r):
-    return [l for l in r.stderr.splitlines() if l.startswith("ERROR: ")]
 
 
 small = ["--K", "0.1", "--xmin", "-0.8", "--xmax", "0.5", "--q", "4", "--T", "20000", "--M", "10", "--subsets", "3",
@@ -191,4 +170,4 @@ r = subprocess.run([cli, "merge", *[p(x["file"]) for x in manifest["parts"]], "-
                    capture_output=True, text=True)
 check(r.returncode == 0 and json.load(open(p("a.json")))["blocksDone"] == manifest["blocksDone"],
       "the attacked checkpoint, restored, is whole again " + r.stderr.strip())
-sys.exit(1 if failures else 0)
+finish()

@@ -5,38 +5,17 @@ the single-process run (all but timing and the kernel's name); SIGINT stops ever
 resume on another number of ranks, a slice file edited) are one clear ERROR with no tail file written."""
 import json, os, signal, subprocess, sys, tempfile, time
 
-mpiexec, mpi, cli = sys.argv[1:4]
-failures = 0
-tmp = tempfile.mkdtemp(prefix="archipelago-mpi-tail-")
-env = dict(os.environ, OMPI_MCA_plm_rsh_agent="false",  # one node: no ssh needed
-           OMPI_MCA_btl_vader_single_copy_mechanism="none", OMPI_MCA_rmaps_base_oversubscribe="1")
-VOLATILE = ("elapsedSeconds", "checksum", "kernel", "program")
-
-
-def check(cond, what):
-    global failures
-    print(("ok   " if cond else "FAIL ") + what, flush=True)
-    failures += 0 if cond else 1
-
-
-def p(name):
-    return os.path.join(tmp, name)
-
-
-def content(path):
-    return {k: v for k, v in json.load(open(path)).items() if k not in VOLATILE}
+from mpitest import check, cli, content, env, error_lines, finish, launcher as base_launcher, p, tmp
 
 
 def launcher(n):
-    return [mpiexec, "-n", str(n), "--oversubscribe", "--allow-run-as-root", mpi, "tail"]
+    return base_launcher(n, "tail")
 
 
 def run_mpi(n, *args, timeout=180):
     return subprocess.run(launcher(n) + list(args), capture_output=True, text=True, timeout=timeout, env=env)
 
 
-def errors(r):
-    return [l for l in r.stderr.splitlines() if l.startswith("ERROR: ")]
 
 
 small = ["--K", "0.1", "--population", "60", "--replicas", "5", "--t-max", "1e5", "--threads", "1", "--quiet"]
@@ -70,7 +49,7 @@ else:
           and "interrupted" in err, f"SIGINT: each rank's slice written, no tail file (status {proc.returncode}) "
           + err.strip()[-300:])
     r = run_mpi(2, "--resume", p("long.json"), "--threads", "1", "--quiet", "--out", p("long.json"))
-    check(r.returncode != 0 and len(errors(r)) == 1 and "number of ranks" in errors(r)[0]
+    check(r.returncode != 0 and len(error_lines(r)) == 1 and "number of ranks" in error_lines(r)[0]
           and not os.path.exists(p("long.json")), "resume on another number of ranks: one ERROR " + r.stderr[-300:])
     r = run_mpi(3, "--resume", p("long.json"), "--threads", "1", "--quiet", "--out", p("long.json"), timeout=600)
     check(r.returncode == 0 and content(p("long.json")) == content(p("long-single.json"))
@@ -79,10 +58,10 @@ else:
 
 # --- attacks: one ERROR, no tail file ---------------------------------------------------------------------------
 r = run_mpi(3, "--K", "0.1", "--replicas", "2", "--t-max", "1e4", "--out", p("x.json"))
-check(r.returncode != 0 and len(errors(r)) == 1 and "at most 2" in errors(r)[0] and not os.path.exists(p("x.json")),
+check(r.returncode != 0 and len(error_lines(r)) == 1 and "at most 2" in error_lines(r)[0] and not os.path.exists(p("x.json")),
       "3 ranks for 2 replicas: one ERROR " + r.stderr[-300:])
 r = run_mpi(2, "--K", "nan", "--out", p("x.json"))
-check(r.returncode != 0 and len(errors(r)) == 1 and not os.path.exists(p("x.json")), "--K nan: one ERROR " + r.stderr[-300:])
+check(r.returncode != 0 and len(error_lines(r)) == 1 and not os.path.exists(p("x.json")), "--K nan: one ERROR " + r.stderr[-300:])
 # `archipelago-cli tail --slice i/2` writes what rank i of 2 would: resumed there, the finished slices merge.
 for i in range(2):
     subprocess.run([cli, "tail", *small, "--slice", f"{i}/2", "--out", p(f"e.slice-{i}-of-2.json")], check=True)
@@ -96,8 +75,7 @@ for i in range(2):
 edited = p("e.slice-1-of-2.json")
 open(edited, "w").write(saved[1].replace('"trials": ', '"trials": 1', 1))
 r = run_mpi(2, "--resume", p("e.json"), "--out", p("e.json"))
-check(r.returncode != 0 and len(errors(r)) == 1 and "rank 1" in errors(r)[0] and not os.path.exists(p("e.json")),
+check(r.returncode != 0 and len(error_lines(r)) == 1 and "rank 1" in error_lines(r)[0] and not os.path.exists(p("e.json")),
       "an edited slice file: one ERROR naming its rank " + r.stderr[-300:])
 
-print(f"{failures} failure(s)")
-sys.exit(1 if failures else 0)
+finish()
