@@ -139,7 +139,8 @@ RunManifest parseRunManifest(const std::string& text, const std::string& name) {
   } catch (const std::exception& e) {
     throw std::runtime_error(name + ": not a manifest of run parts (" + e.what() + ")");
   }
-  if (!j.is_object() || j.value("format", std::string()) != kRunManifestFormatName)
+  // Compared as JSON: a "format" of another type (an array, found by the fuzzer) is a wrong format, not a type error.
+  if (!j.is_object() || !j.contains("format") || j["format"] != kRunManifestFormatName)
     throw std::runtime_error(name + ": field 'format' is not \"" + kRunManifestFormatName + "\"");
   if (manifestU64(j, "version", name) != static_cast<std::uint64_t>(kRunManifestFormatVersion))
     throw std::runtime_error(name + ": field 'version' is not " + std::to_string(kRunManifestFormatVersion));
