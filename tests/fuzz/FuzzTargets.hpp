@@ -11,10 +11,13 @@
 #include <string>
 
 #include "core/runfile/RunFile.hpp"
+#include "core/io/Json.hpp"
 #include "core/io/NumberText.hpp"
+#include "core/io/Sha256.hpp"
 #include "core/runfile/RunFileMerge.hpp"
 #include "core/session/SessionFile.hpp"
 #include "core/spec/RunSpec.hpp"
+#include "core/tail/TailFile.hpp"
 
 namespace archipelago::fuzz {
 
@@ -99,6 +102,29 @@ inline void manifest(const std::uint8_t* data, std::size_t size) {
     const RunManifest again = parseRunManifest(runManifestText(m), "manifest");
     if (again.parts.size() != m.parts.size() || again.blocksDone != m.blocksDone)
       throw std::logic_error("manifest round trip changed it");
+  } catch (const std::runtime_error&) {
+  }
+}
+
+/// Tail files (core/tail/TailFile.hpp, the rare-event sampler's checkpoints): parseTailFile() throws
+/// std::runtime_error.  A JSON object's checksum is first signed again over its content, as the writer does, so
+/// that the fuzzer reaches the fields behind it (an edited file is refused by the checksum before any of them is
+/// read).  An accepted file is written back to a text that reads the same.
+inline void tailFile(const std::uint8_t* data, std::size_t size) {
+  std::string text(reinterpret_cast<const char*>(data), size);
+  try {
+    nlohmann::json j = io::parseJson(text);
+    if (j.is_object() && j.contains("checksum")) {
+      j.erase("checksum");
+      j["checksum"] = "sha256:" + io::sha256Hex(j.dump(1));
+      text = j.dump(1);
+    }
+  } catch (const std::invalid_argument&) {
+  }
+  try {
+    const TailState s = parseTailFile(text);
+    const std::string again = tailFileText(s);
+    if (tailFileText(parseTailFile(again)) != again) throw std::logic_error("tail file round trip changed it");
   } catch (const std::runtime_error&) {
   }
 }
