@@ -102,7 +102,35 @@ class TestJobs : public QObject {
   void backgroundPriorityNicesTheThreads();
   void runWorkerLatestRunWinsAndPauseKeepsTheState();
   void durationsAsText();
+  void pauseGateHoldsAJobUntilResumedOrStopped();
 };
+
+// PauseGate: a job waits at it only while paused; holding() says when it waits (the portrait's pause test waits
+// for it instead of a fixed time); a resume or a stop request releases it.
+void TestJobs::pauseGateHoldsAJobUntilResumedOrStopped() {
+  PauseGate gate;
+  std::stop_source never;
+  QVERIFY(!gate.paused() && !gate.holding());
+  QVERIFY(gate.waitWhilePaused(never.get_token()));  // not paused: passes at once
+  QVERIFY(!gate.holding());
+  for (const bool byStop : {false, true}) {
+    gate.setPaused(true);
+    std::stop_source stop;
+    std::atomic<int> result{-1};
+    std::thread job([&] { result = gate.waitWhilePaused(stop.get_token()) ? 1 : 0; });
+    QTRY_VERIFY(gate.holding());
+    std::this_thread::sleep_for(50ms);
+    QCOMPARE(result.load(), -1);  // still held
+    if (byStop) {
+      stop.request_stop();
+    } else {
+      gate.setPaused(false);
+    }
+    job.join();
+    QCOMPARE(result.load(), byStop ? 0 : 1);
+    QVERIFY(!gate.holding());
+  }
+}
 
 void TestJobs::resultIsTaggedAndArrivesOnTheReceiversThread() {
   QObject receiver;

@@ -68,7 +68,15 @@ bool PauseGate::paused() const {
 
 bool PauseGate::waitWhilePaused(const std::stop_token& stop) {
   std::unique_lock lock(mutex_);
-  return wake_.wait(lock, stop, [this] { return !paused_; });
+  ++waiting_;
+  const bool resumed = wake_.wait(lock, stop, [this] { return !paused_; });
+  --waiting_;
+  return resumed;
+}
+
+bool PauseGate::holding() const {
+  std::lock_guard lock(mutex_);
+  return waiting_ > 0;
 }
 
 QString jobFailureMessage(const std::exception_ptr& failure) {

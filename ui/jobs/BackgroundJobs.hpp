@@ -78,11 +78,15 @@ class PauseGate {
   [[nodiscard]] bool paused() const;
   /// Blocks while paused, until resumed or `stop` is requested; returns false when stopped.
   bool waitWhilePaused(const std::stop_token& stop);
+  /// True while a job is blocked in waitWhilePaused(): everything it sent before has been sent, and it sends
+  /// nothing more until resumed (a pause takes effect only at the job's next chunk).
+  [[nodiscard]] bool holding() const;
 
  private:
   mutable std::mutex mutex_;
   std::condition_variable_any wake_;
   bool paused_ = false;  // guarded by mutex_
+  int waiting_ = 0;      // jobs blocked in waitWhilePaused(); guarded by mutex_
 };
 
 /// The progress type of a job that reports none.

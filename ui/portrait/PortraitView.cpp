@@ -259,6 +259,8 @@ void PortraitView::setRenderPaused(bool paused) {
 
 bool PortraitView::renderPaused() const noexcept { return gate_->paused(); }
 
+bool PortraitView::renderHeld() const { return gate_->holding(); }
+
 void PortraitView::rerender() { scheduleRender(); }
 
 void PortraitView::stopRender() {

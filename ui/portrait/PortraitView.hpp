@@ -80,6 +80,8 @@ class PortraitView : public QWidget {
   [[nodiscard]] std::uint64_t pointBudget() const noexcept { return points_; }
   [[nodiscard]] bool equalAspect() const noexcept { return equalAspect_; }
   [[nodiscard]] bool renderPaused() const noexcept;
+  /// True once a paused render has finished its pass in flight and waits: its points so far are final until resumed.
+  [[nodiscard]] bool renderHeld() const;
 
   [[nodiscard]] RenderState renderState() const noexcept { return state_; }
   /// True while the worker still adds passes to the current view (or is about to).
