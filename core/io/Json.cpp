@@ -8,6 +8,7 @@
 
 #include "core/io/AtomicFile.hpp"
 #include "core/io/Memory.hpp"
+#include "core/io/Sha256.hpp"
 
 namespace archipelago::io {
 
@@ -93,6 +94,8 @@ json parseJson(std::string_view text) {
     throw std::invalid_argument("not valid JSON: " + shortText(what, 200));
   }
 }
+
+std::string jsonChecksum(const json& content) { return "sha256:" + sha256Hex(content.dump(1)); }
 
 std::string describeJson(const json& v) {
   switch (v.type()) {

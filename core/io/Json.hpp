@@ -39,6 +39,11 @@ inline constexpr std::uintmax_t kJsonBytesPerTextByte = 32;
 /// line and column>", "JSON nested deeper than 32 levels (at byte N) …", or "the key 'k' appears twice in one object".
 [[nodiscard]] nlohmann::json parseJson(std::string_view text);
 
+/// The value of the "checksum" field of Archipelago's checksummed files (run files, tail files): "sha256:" and the
+/// SHA-256 of `content`, the file's object without that field, dumped with an indent of 1.  The one definition the
+/// writers sign with and the readers verify against.
+[[nodiscard]] std::string jsonChecksum(const nlohmann::json& content);
+
 /// A short description of a value for an error message: a number, bool or null as JSON, a string quoted and
 /// cut at 40 characters, otherwise "an array of N entries" / "an object of N keys".  Never long, never deep.
 [[nodiscard]] std::string describeJson(const nlohmann::json& value);

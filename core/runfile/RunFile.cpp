@@ -6,7 +6,6 @@
 
 #include "core/io/AtomicFile.hpp"
 #include "core/io/Json.hpp"
-#include "core/io/Sha256.hpp"
 #include "core/run/StateValidation.hpp"
 #include "core/spec/RunSpecJson.hpp"
 
@@ -131,7 +130,7 @@ std::string runFileText(const TrappingState& s) {
   j["orbits"] = orbits;
   // The checksum covers the document without itself, as dumped here: parse + dump reproduces those bytes
   // (sorted keys, exact integers, shortest round-trip reals), so any edit of a value is detected on reading.
-  j["checksum"] = "sha256:" + io::sha256Hex(j.dump(1));
+  j["checksum"] = io::jsonChecksum(j);
   return j.dump(1) + "\n";
 }
 
@@ -165,7 +164,7 @@ TrappingState runFileFromJson(nlohmann::json j, const RunFileReadOptions& option
     if (!sum.is_string()) corrupt("field 'checksum' must be a string");
     const std::string stored = sum.get<std::string>();
     j.erase("checksum");
-    verified = stored == "sha256:" + io::sha256Hex(j.dump(1));
+    verified = stored == io::jsonChecksum(j);
     if (!verified && !options.allowModified)
       throw std::runtime_error("run file was modified after it was written (its checksum does not match its content);"
                                " --allow-modified reads it anyway, still checking its consistency");

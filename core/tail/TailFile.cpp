@@ -7,7 +7,6 @@
 
 #include "core/io/AtomicFile.hpp"
 #include "core/io/Json.hpp"
-#include "core/io/Sha256.hpp"
 #include "core/spec/RunSpecJson.hpp"
 
 namespace archipelago {
@@ -118,7 +117,7 @@ std::string tailFileText(const TailState& s) {
                          {"gamma_error", number(e.gammaError)}});
   j["exponents"] = exponents;
   j["state"] = stateJson(s);
-  j["checksum"] = "sha256:" + io::sha256Hex(j.dump(1));
+  j["checksum"] = io::jsonChecksum(j);
   return j.dump(1) + "\n";
 }
 
@@ -139,7 +138,7 @@ TailState parseTailFile(const std::string& text) {
   if (!sum.is_string()) corrupt("field 'checksum' must be a string");
   const std::string stored = sum.get<std::string>();
   j.erase("checksum");
-  if (stored != "sha256:" + io::sha256Hex(j.dump(1)))
+  if (stored != io::jsonChecksum(j))
     throw std::runtime_error("tail file was modified after it was written (its checksum does not match its content)");
 
   TailRequest r;

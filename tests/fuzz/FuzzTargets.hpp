@@ -13,7 +13,6 @@
 #include "core/runfile/RunFile.hpp"
 #include "core/io/Json.hpp"
 #include "core/io/NumberText.hpp"
-#include "core/io/Sha256.hpp"
 #include "core/runfile/RunFileMerge.hpp"
 #include "core/session/SessionFile.hpp"
 #include "core/spec/RunSpec.hpp"
@@ -116,7 +115,7 @@ inline void tailFile(const std::uint8_t* data, std::size_t size) {
     nlohmann::json j = io::parseJson(text);
     if (j.is_object() && j.contains("checksum")) {
       j.erase("checksum");
-      j["checksum"] = "sha256:" + io::sha256Hex(j.dump(1));
+      j["checksum"] = io::jsonChecksum(j);
       text = j.dump(1);
     }
   } catch (const std::invalid_argument&) {
