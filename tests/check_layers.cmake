@@ -1,5 +1,5 @@
 cmake_minimum_required(VERSION 3.21)  # policies of a script run with -P (IN_LIST)
-# The layers of DESIGN.md, checked on the sources (run by ctest as architecture.layers):
+# The layers of docs/design.md, "Layout", checked on the sources (run by ctest as architecture.layers):
 #  - core/ includes no Qt or Qwt header and nothing of ui/ or app/;
 #  - ui/ includes nothing of app/;
 #  - app/ and ui/ include none of core's private headers (kernel internals, the JSON codec's internals);

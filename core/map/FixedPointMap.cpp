@@ -5,7 +5,7 @@
 #include <string>
 #include <stdexcept>
 
-// The coefficients must be computed exactly as DESIGN.md orders them; core is compiled with
+// The coefficients must be computed exactly as docs/design.md, "Arithmetic contract", orders them; core is compiled with
 // -ffp-contract=off so that no FMA contraction changes a rounding.
 
 namespace archipelago {

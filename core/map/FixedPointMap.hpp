@@ -52,7 +52,7 @@ struct MapCoefficients {
   friend bool operator==(const MapCoefficients&, const MapCoefficients&) = default;
 };
 
-/// Computes (A, B, C, m) by DESIGN.md's contract: a, b, c in IEEE double without FMA contraction, in the
+/// Computes (A, B, C, m) by docs/design.md, "Arithmetic contract": a, b, c in IEEE double without FMA contraction, in the
 /// order L = xmax − xmin, a = 2L, b = −4·xmin, c = 2(xmin·xmin − K)/L; m the smallest m ≥ 0 with a, b, c < 2^m;
 /// A, B, C = llround(ldexp(·, 52 − m)), increasing m while any of them reaches 2^52.
 /// Throws std::invalid_argument for invalid parameters, or when m would exceed FixedPointMap::kMaxShift

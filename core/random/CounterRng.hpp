@@ -3,7 +3,7 @@
 /// \brief Counter-based random numbers: every orbit's k-th draw is a pure function of (seed, orbit, k).
 ///
 /// This replaces the Cray's sequential generator (appendix B, step 6.2) so that each orbit is reproducible
-/// alone, whichever thread, rank or resumed checkpoint computes it (DESIGN.md, "arithmetic contract"):
+/// alone, whichever thread, rank or resumed checkpoint computes it (docs/design.md, "arithmetic contract"):
 ///   mix64(z)   = SplitMix64's finaliser,
 ///   key(orbit) = mix64(seed ^ mix64(orbit + 1)),
 ///   U_k        = mix64(key + k·0x9E3779B97F4A7C15) >> 12   (k = 1, 2, …), a 52-bit fraction of the unit.

@@ -1,6 +1,6 @@
 #pragma once
 /// \file FigureRequests.hpp
-/// \brief The portraits of the report's figures 1, 2 and 8b (DESIGN.md numbering) and the level curves of fig. 4,
+/// \brief The portraits of the report's figures 1, 2 and 8b (docs/design.md, "Figures") and the level curves of fig. 4,
 /// as requests to core's renderers, each with the archipelago-cli command that draws it alone.
 
 #include <string>

@@ -11,7 +11,7 @@
 
 namespace archipelago::report {
 
-/// A figure of the report: "6a" (the paper's numbering, DESIGN.md) or S1…, T, C (ours), its caption (HTML) and the
+/// A figure of the report: "6a" (the paper's numbering, docs/design.md, "Figures") or S1…, T, C (ours), its caption (HTML) and the
 /// stem of its files under figures/ (stem.png, stem.svg).
 struct ReportFigure {
   std::string number, caption, file;

@@ -1,7 +1,7 @@
 #pragma once
 /// \file StateValidation.hpp
 /// \brief The internal consistency of a TrappingState, checked whole: what a run file, a checkpoint or a
-/// merge must satisfy before a single statistic is computed from it (DESIGN.md, "no silent wrong answer").
+/// merge must satisfy before a single statistic is computed from it (docs/design.md, "no silent wrong answer").
 ///
 /// The rules follow from how runTrapping() builds a state (BlockKernel.hpp, appendix B):
 ///  - orbits: one state per orbit of [orbitBegin, orbitEnd), each at block blocksDone; the open segment

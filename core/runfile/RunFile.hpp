@@ -1,6 +1,6 @@
 #pragma once
 /// \file RunFile.hpp
-/// \brief Run files: a versioned JSON document holding a whole TrappingState (DESIGN.md, issue 3).
+/// \brief Run files: a versioned JSON document holding a whole TrappingState (docs/design.md, "No silent wrong answer"; issue 3).
 ///
 /// A run file holds the parameters, the integer map coefficients (A, B, C, m) that define the map exactly,
 /// the run settings and seed, the subset histograms (integer counts and length sums per bin, with the bin

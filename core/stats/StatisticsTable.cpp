@@ -12,7 +12,7 @@ constexpr std::string_view kSubsetError = "one sigma: standard error of the mean
 constexpr AxisScale kLog = AxisScale::logarithmic;
 constexpr AxisScale kLinear = AxisScale::linear;
 
-// Figures are numbered as in DESIGN.md: 3 small-K f_t (fsmall), 6 the K = 0.1 statistics (expense), 7 S_t and
+// Figures are numbered as in docs/design.md, "Figures": 3 small-K f_t (fsmall), 6 the K = 0.1 statistics (expense), 7 S_t and
 // D_t (spread).  File stems differ even where case does not count (macOS, Windows): p_t's is not "p_t", which
 // would name the same file as P_t's there.
 constexpr std::array<StatisticInfo, 8> kTable = {{

@@ -93,7 +93,7 @@ struct TrappingStatistics {
   std::uint64_t segments = 0;        ///< segments in the histogram
   std::uint64_t longestBlocks = 0;   ///< longest length the highest non-empty bin can hold, in blocks
   /// Below this t (steps) the statistics describe the process of blocks of q steps, not the paper's q = 1 process
-  /// (DESIGN.md, "Blocks of q steps"): 10 q for a run of q > 1 without a q = 1 companion, 0 otherwise.  Plots
+  /// (docs/design.md, "Blocks of q steps"): 10 q for a run of q > 1 without a q = 1 companion, 0 otherwise.  Plots
   /// shade it, CSV files mark it.
   double blockAffectedBelow = 0;
   /// Spliced statistics (computeSplicedStatistics): the crossover t_c (steps) below which f_t is the q = 1
@@ -133,7 +133,7 @@ struct SplicedRecord {
   double crossover = 0;  ///< t_c in steps, ≥ 10 longQ
 };
 
-/// Composite statistics (issue #26, DESIGN.md "Blocks of q steps"): f_t from the companion's masses below t_c
+/// Composite statistics (issue #26, docs/design.md, "Blocks of q steps"): f_t from the companion's masses below t_c
 /// and from the run's at and above it (each estimated per step of its own record, so they join without a
 /// factor), and every other statistic (α, p_t, P_t, C_τ, the local exponent, S_t, D_t, D) from that spliced f_t.
 /// Subset i of the run is paired with subset i of the companion for the errors.  Throws std::invalid_argument when

@@ -1,7 +1,7 @@
 #pragma once
 /// \file TailSampler.hpp
 /// \brief The tail of P_t beyond brute force: fixed-population splitting on the age of a trapped segment
-/// (issue #29), for exactly the process of `run` (Karney 1983, §3 and appendix B; DESIGN.md, "Trapping
+/// (issue #29), for exactly the process of `run` (Karney 1983, §3 and appendix B; docs/design.md, "Trapping
 /// statistics" and "Rare-event tail").
 ///
 /// Glossary (lengths in blocks of q steps, as the trapping block counts them; t = q·blocks in steps):

@@ -6,7 +6,7 @@
 /// segments may be extended both forwards and backwards"; "we can, for instance, double the edge of the box and
 /// only increase the average length of the orbit segments by less than one".  This measures that extension.
 ///
-/// Definitions (DESIGN.md, appendix B).  A box [xmin, xmax) × [−L/2, L/2) is the torus of its map N; a step of N
+/// Definitions (docs/design.md, "Trapping statistics"; the paper, appendix B).  A box [xmin, xmax) × [−L/2, L/2) is the torus of its map N; a step of N
 /// wraps exactly when the plane map Q (no periodic continuation) leaves the box, so a segment of a box is a
 /// maximal run of consecutive points of a plane orbit inside the box, and its length is the number of those
 /// points (the kernel's length with q = 1).  The two boxes share K; the larger contains the smaller.  The plane

@@ -36,7 +36,7 @@ struct KernelSettings {
 }
 
 /// Whether an ended segment counts: not the one that ends in an orbit's first block (it started on X = 0,
-/// inside the randomizing zone), so that every recorded segment starts at a random point (DESIGN.md).
+/// inside the randomizing zone), so that every recorded segment starts at a random point (docs/design.md, "Trapping statistics").
 [[nodiscard]] inline bool isRecorded(const SegmentStart& start) noexcept { return start.block != 0; }
 
 /// Starts the next segment of `s` at its current state, after a block in which the open one ended.

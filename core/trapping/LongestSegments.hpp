@@ -1,6 +1,6 @@
 #pragma once
 /// \file LongestSegments.hpp
-/// \brief The N longest trapped segments, each with the exact state at its start (DESIGN.md).
+/// \brief The N longest trapped segments, each with the exact state at its start (docs/design.md, "Trapping statistics").
 ///
 /// Order: longer first; ties by orbit, then by start block.  This is a total order on segments, so the
 /// kept set does not depend on the order of insertion or merging (threads, ranks, checkpoints).

@@ -2,7 +2,7 @@
 /// \file TrappingHistogram.hpp
 /// \brief Counts of trapped-segment lengths: exact for short segments, logarithmic bins above.
 ///
-/// Karney (1983), appendix B, bins b(t): t itself for t ≤ 50, then ⌊30 log10 t⌋; DESIGN.md drops the paper's
+/// Karney (1983), appendix B, bins b(t): t itself for t ≤ 50, then ⌊30 log10 t⌋; docs/design.md, "Trapping statistics", drops the paper's
 /// overflow bin at 10^5, so the logarithmic bins (30 per decade) go on to 2^63.  Lengths are in blocks (one
 /// block = q steps of N⁻¹).  Each bin keeps the integer count of segments and the integer sum of their
 /// lengths, so that merging threads, ranks and checkpoints is exact and independent of order.

@@ -10,6 +10,7 @@
 #include <variant>
 #include <vector>
 
+#include "core/limits/Limits.hpp"
 #include "core/map/FixedPointMap.hpp"
 
 namespace archipelago {
@@ -28,12 +29,12 @@ struct TrappingParameters {
   friend bool operator==(const TrappingParameters&, const TrappingParameters&) = default;
 };
 
-/// The documented limits of the integer parameters (DESIGN.md, "no silent wrong answer": every input has a
+/// The documented limits of the integer parameters (docs/design.md, "no silent wrong answer": every input has a
 /// range checked before work starts).  Each bounds the time or memory one value can ask for: q a block's
 /// length (a chunk is at least one block, so q bounds the latency of a stop), T so that lengths in steps
 /// (blocks × q) fit 63 bits, M the orbit states held, subsets the histograms and the statistics' work,
 /// longestKept the records kept and written.
-inline constexpr std::uint64_t kMaxQ = 65536;
+inline constexpr std::uint64_t kMaxQ = limits::kRunQ;  // the one table of limits (core/limits)
 inline constexpr std::uint64_t kMaxT = std::uint64_t{1} << 62;
 inline constexpr std::uint64_t kMaxStepsPerOrbit = std::uint64_t{1} << 62;  ///< q·T
 inline constexpr std::uint64_t kMaxM = std::uint64_t{1} << 32;
@@ -93,7 +94,7 @@ inline constexpr double kSaveBytesPerOrbit = 800;
 /// file would exceed kMaxRunFileBytes; checked before a run starts.
 [[nodiscard]] std::optional<std::string> memoryError(const TrappingParameters& p, int threads);
 
-/// The q = 1 companion of a run of q > 1 (issue #26; DESIGN.md, "Blocks of q steps"): the short-time statistics
+/// The q = 1 companion of a run of q > 1 (issue #26; docs/design.md, "Blocks of q steps"): the short-time statistics
 /// of the paper's q = 1 process, spliced with the run's at a crossover ≥ 10 q (computeSplicedStatistics).  The same
 /// map, Xr, M, subsets and longestKept; q = 1; T = max(1, round(fraction · q · T)) blocks of one step, so that it
 /// costs `fraction` of the run's steps; the seed mix64(seed ⊕ kCompanionSeedSalt), another member of the seed's

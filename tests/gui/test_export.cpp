@@ -94,7 +94,7 @@ class TestExport : public QObject {
       for (int i = 1; i < lines.size(); ++i) {
         const QStringList cells = lines.at(i).split(QLatin1Char(','));
         QCOMPARE(cells.size(), 4);
-        // blocks_affected: 1 below 10 q steps (the q-block artefact; DESIGN.md), else 0.
+        // blocks_affected: 1 below 10 q steps (the q-block artefact; docs/design.md, "Blocks of q steps"), else 0.
         QVERIFY(cells.at(3) == QStringLiteral("0") || cells.at(3) == QStringLiteral("1"));
         bool okX = false, okV = false, okE = false;
         const double x = cells.at(0).toDouble(&okX);

@@ -9,7 +9,7 @@ import archipelago as ap
 
 def test_coefficients_follow_appendix_b():
     c = ap.coefficients(0.1, -0.8, 0.5)
-    L = 0.5 - (-0.8)  # in double, as DESIGN.md's contract orders it
+    L = 0.5 - (-0.8)  # in double, as docs/design.md, "Arithmetic contract", orders it
     # A = round(2L 2^(52-m)), B = round(-4 xmin 2^(52-m)), computed independently here.
     assert c["m"] == 2  # a = 2.6 < 4, b = 3.2 < 4
     assert c["A"] == math.floor(2 * L * 2 ** 50 + 0.5)  # llround: halves away from 0

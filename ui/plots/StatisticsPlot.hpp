@@ -53,7 +53,7 @@ class StatisticsPlot : public QwtPlot {
   /// Copies the data and the theory curves that belong to this statistic; call refresh() to show them.
   void setData(const Series& data, const std::vector<TheoryCurve>& theory);
   /// Shades the times below `steps` (TrappingStatistics::blockAffectedBelow: 10 q for a run of q > 1 without its
-  /// q = 1 companion) as affected by the q-block artefact (DESIGN.md, "Blocks of q steps"); 0 removes the shade.
+  /// q = 1 companion) as affected by the q-block artefact (docs/design.md, "Blocks of q steps"); 0 removes the shade.
   void setBlockAffectedBelow(double steps);
   [[nodiscard]] double blockAffectedBelow() const noexcept { return blockAffectedBelow_; }
   /// Draws an estimate of the same statistic made another way — P_t beyond the run's data by the tail sampler

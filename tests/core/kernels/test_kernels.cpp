@@ -1,5 +1,5 @@
-// Every instruction-set path gives bit-identical results to the scalar reference (issue 4, DESIGN.md's
-// arithmetic contract): orbit states, wrap-ended segments, histograms and longest segments.
+// Every instruction-set path gives bit-identical results to the scalar reference (issue 4; docs/design.md,
+// "Arithmetic contract"): orbit states, wrap-ended segments, histograms and longest segments.
 #include <gtest/gtest.h>
 
 #include <cfenv>

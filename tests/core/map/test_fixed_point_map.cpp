@@ -1,4 +1,4 @@
-// The exact fixed-point map N of DESIGN.md's arithmetic contract (Karney 1983, appendix B).
+// The exact fixed-point map N of docs/design.md, "Arithmetic contract" (Karney 1983, appendix B).
 #include <gtest/gtest.h>
 
 #include <cmath>

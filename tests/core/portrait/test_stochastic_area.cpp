@@ -77,7 +77,7 @@ TEST(StochasticArea, DoesNotDependOnTheThreadCountAndStops) {
   EXPECT_NE(validationError(req)->find("gridBits = 13"), std::string::npos);
 }
 
-// Issue #11, items 4 and 6: b2's orbits are those of trapping runs (DESIGN.md, "Trapping statistics"): from
+// Issue #11, items 4 and 6: b2's orbits are those of trapping runs (docs/design.md, "Trapping statistics"): from
 // (0, 0), each block randomizes Y by the orbit's next draw when X <= floor(Xr 2^52), then takes q steps of N^-1.
 // Recomputed here from that rule with backwardStep() alone, box by box, and compared with b2 computed by every
 // path the CPU supports, passed in the request.

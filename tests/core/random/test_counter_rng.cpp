@@ -1,4 +1,4 @@
-// Counter-based random numbers (DESIGN.md): reference values computed independently in Python.
+// Counter-based random numbers (docs/design.md, "Arithmetic contract"): reference values computed independently in Python.
 #include <gtest/gtest.h>
 
 #include "core/random/CounterRng.hpp"

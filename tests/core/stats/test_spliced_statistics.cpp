@@ -1,4 +1,4 @@
-// Composite statistics (issue #26; DESIGN.md, "Blocks of q steps"): a run of q = 16 spliced with its q = 1
+// Composite statistics (issue #26; docs/design.md, "Blocks of q steps"): a run of q = 16 spliced with its q = 1
 // companion must give the statistics of the paper's q = 1 process.  The reference is an independent q = 1 run
 // (another seed, as many steps as the q = 16 run): over the overlap the spliced C_τ and S_t agree with it within
 // errors, while the q = 16 run alone does not at τ < 10 q (the block artefact the splice removes).
