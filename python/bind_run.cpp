@@ -21,6 +21,7 @@
 #include "core/spec/RunSpec.hpp"
 #include "core/stats/RunEnsemble.hpp"
 #include "core/stats/RunStatistics.hpp"
+#include "core/stats/RunSummary.hpp"
 #include "core/stats/StatisticsTable.hpp"
 #include "core/stats/TailAnalysis.hpp"
 #include "python/Conversions.hpp"
@@ -217,33 +218,26 @@ py::dict statisticsDict(const Run& r, const py::object& shortRun) {
     }
   }
   const TrappingStatistics s = companion ? splicedStatisticsOf(r.state, *companion) : statisticsOf(r.state);
-  // D's honest error, as `stats` prints it: the bootstrap over segments (default options), none (NaN)
-  // when the longest segments dominate D or there are too few segments to resample.
-  double DError = kTailUndefined;
-  bool dominated = false;
-  std::string verdict;
-  if (s.segments > 0) {
-    try {
-      const TailAnalysis tail = analyseTail(ensembleOf({r.state}));
-      DError = supportedDError(tail);
-      dominated = tail.dominated();
-      verdict = dominanceMessage(tail);
-    } catch (const std::invalid_argument& e) {
-      verdict = std::string("no error of D: ") + e.what();
-    }
-  }
+  // D, its error and where it comes from, as `stats` prints them: core's one run summary (issue 35), never
+  // assembled here (this function once paired the spliced D with the bootstrap error of the run alone).
+  const RunSummary summary = summarizeRun(r.state, s);
   py::dict d;
   // The series under the statistics table's keys (core/stats/StatisticsTable: f_t, p_t, P_t, C_tau, …), the
   // same names as the CSV files' value columns and the sessions'.
   for (const StatisticInfo& info : statisticsTable())
     d[py::str(std::string(info.key))] = seriesDict(seriesOf(s, info.statistic));
-  d["alpha"] = s.alpha;
-  d["alpha_error"] = s.alphaError;
-  d["D"] = s.D;
-  d["D_error"] = DError;
-  d["D_error_subsets"] = s.DError;
-  d["D_dominated"] = dominated;
-  d["D_verdict"] = verdict;
+  d["alpha"] = summary.alpha;
+  d["alpha_error"] = summary.alphaError;
+  d["D"] = summary.D;
+  d["D_error"] = summary.DError;
+  d["D_error_source"] = std::string(keyOf(summary.errorSource));
+  d["D_error_note"] = summary.DErrorNote;
+  d["D_error_subsets"] = summary.DSubsetsError;
+  d["D_run"] = summary.runD;
+  d["D_run_error"] = summary.runDError;
+  d["D_dominated"] = summary.dominated;
+  d["D_verdict"] = summary.verdict;
+  d["gamma_P"] = summary.gammaP;
   d["sum_t_f"] = s.sumTf;
   d["segments"] = s.segments;
   d["longest_blocks"] = s.longestBlocks;
@@ -319,9 +313,7 @@ void bindRun(py::module_& m) {
         "Merges two runs of the same parameters over adjacent orbit ranges (core mergeTrapping).  ValueError if they do not fit.");
   m.def("start_range", [](std::uint64_t begin, std::uint64_t end, const py::object& spec, const py::kwargs& kw) {
           Run r = startRun(spec, kw);
-          const TrappingParameters p = r.state.params;
-          if (begin >= end || end > p.M) throw std::invalid_argument("orbit range must satisfy 0 <= begin < end <= M");
-          r.state = startTrapping(p, begin, end);
+          r.state = startTrapping(r.state.params, begin, end);  // core's rule and message (orbitRangeError)
           return r; },
         py::arg("begin"), py::arg("end"), py::arg("spec") = py::none(),
         "As start(), over the orbits [begin, end) only: the parts of a run merged with merge().");

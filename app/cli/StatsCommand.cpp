@@ -18,6 +18,7 @@
 #include "core/runfile/RunFile.hpp"
 #include "core/stats/RunEnsemble.hpp"
 #include "core/stats/RunStatistics.hpp"
+#include "core/stats/RunSummary.hpp"
 #include "core/stats/StochasticAreaQuantities.hpp"
 #include "core/stats/ReferenceSlopes.hpp"
 #include "core/stats/TailAnalysis.hpp"
@@ -48,17 +49,17 @@ StochasticAreaValue checkedStochasticArea(const MapParameters& map, double area)
 
 void printBoxInvariant(const MapParameters& map, const StochasticAreaValue& b2, const TrappingStatistics& s,
                        const TailAnalysis& tail) {
-  // b₂·D carries D's honest error (the bootstrap over segments), and none when the tail dominates D.
-  const double DError = s.segments > 0 ? supportedDError(tail) : kTailUndefined;
-  const bool errorKnown = std::isfinite(DError);
-  const BoxInvariantQuantities q = boxInvariantQuantities(b2, s.D, errorKnown ? DError : 0);
+  // b₂·D carries D's error as core's run summary gives it (issue 35), and none when the tail dominates D.
+  const RunSummary summary = summarizeRun(s, s.segments > 0 ? &tail : nullptr, "no segment yet");
+  const bool errorKnown = std::isfinite(summary.DError);
+  const BoxInvariantQuantities q = boxInvariantQuantities(b2, summary.D, errorKnown ? summary.DError : 0);
   std::printf("b2          %s\n", stochasticAreaText(map, b2).c_str());
+  const std::string paperB2D = io::formatC("the paper: %.3g x %.4g = %.3g", kPaperStochasticArea, kPaperDiffusion,
+                                           kPaperStochasticArea * kPaperDiffusion);
   if (errorKnown)
-    std::printf("b2*D        %.6g +- %.2g   (box-invariant, eq. A3; the paper: 0.693 x 6400 = %.3g)\n", q.b2D,
-                q.b2DError, kPaperStochasticArea * kPaperDiffusion);
+    std::printf("b2*D        %.6g +- %.2g   (box-invariant, eq. A3; %s)\n", q.b2D, q.b2DError, paperB2D.c_str());
   else
-    std::printf("b2*D        %.6g   (box-invariant, eq. A3; no error: see D above; the paper: 0.693 x 6400 = %.3g)\n",
-                q.b2D, kPaperStochasticArea * kPaperDiffusion);
+    std::printf("b2*D        %.6g   (box-invariant, eq. A3; no error: see D above; %s)\n", q.b2D, paperB2D.c_str());
   std::printf("sec. 6      (8/pi^2) b2 = %.4g (paper: 0.56); D_island/D_ql = %.4g/n^2 (paper: at least 360/n^2)\n",
               q.acceleratorFactor, q.enhancementN1);
 }
@@ -221,14 +222,16 @@ int statsCommand(const StatsOptions& o) {
   std::printf("segments    %llu%s\n", static_cast<unsigned long long>(s.segments),
               companion ? "   (the run's and the companion's)" : "");
   std::printf("alpha       %.6g +- %.2g   (mean segment length, steps)\n", s.alpha, s.alphaError);
-  // Spliced, D (the summary's) is the composite statistics'; its error and the tail below are the run's own: the
-  // longest segments, which carry D's error, are the run's (the companion is a fraction of its steps).
-  if (companion && tail.dominated())
-    std::printf("D           %.6g   (eq. ddef, spliced; no error: the run's longest segments dominate D, below)\n",
-                s.D);
-  else if (companion)
-    std::printf("D           %.6g +- %.2g   (eq. ddef, spliced; the subsets' error; the run alone below)\n", s.D,
-                s.DError);
+  // Spliced, D is the composite statistics' with the error core's run summary gives it (the subsets' of the spliced
+  // statistics); the tail below is the run's own: the longest segments, which carry D's error, are the run's.
+  if (companion) {
+    const RunSummary summary = summarizeRun(s, &tail);
+    if (std::isfinite(summary.DError))
+      std::printf("D           %.6g +- %.2g   (eq. ddef, spliced; the error: the %s of the spliced statistics; the run "
+                  "alone below)\n", summary.D, summary.DError, std::string(toString(summary.errorSource)).c_str());
+    else
+      std::printf("D           %.6g   (eq. ddef, spliced; %s)\n", summary.D, summary.DErrorNote.c_str());
+  }
   if (s.segments > 0) printD(tail, companion ? statisticsOf(state) : s, companion ? "D (run)     " : "D           ");
   else std::printf("D           0   (no segment yet)\n");
   std::printf("sum t f_t   %.9f           (should be close to 1)\n", s.sumTf);
@@ -255,7 +258,7 @@ int statsCommand(const StatsOptions& o) {
   if (!o.csvDir.empty())
     writeCsvFiles(o.csvDir, withNote(statisticsCsvFiles(state, s, theoryCurves(p, s)), state, ensembleNote(tail)));
   if (!o.csvDir.empty() && b2) {
-    for (const auto& [name, text] : {std::pair{boxInvariantCsvFileName, boxInvariantCsv(state, s, *b2, supportedDError(tail))},
+    for (const auto& [name, text] : {std::pair{boxInvariantCsvFileName, boxInvariantCsv(state, s, *b2, summarizeRun(s, &tail).DError)},
                                      std::pair{boxInvariantFtCsvFileName, boxInvariantFtCsv(state, s, *b2)}}) {
       const std::filesystem::path path = std::filesystem::path(o.csvDir) / name;
       io::writeFileAtomically(path, text);

@@ -18,7 +18,7 @@ inline constexpr const char* boxInvariantCsvFileName = "box_invariant.csv";
 inline constexpr const char* boxInvariantFtCsvFileName = "b2_f_t.csv";
 
 /// box_invariant.csv of a run (its statistics) whose box has stochastic area `b2`; `DError` is D's error as
-/// supportedDError() gives it (TailAnalysis.hpp), NaN (an empty cell) when the tail dominates D.
+/// core's run summary gives it (RunSummary::DError), NaN (an empty cell) when the tail dominates D.
 [[nodiscard]] std::string boxInvariantCsv(const TrappingState& state, const TrappingStatistics& statistics,
                                           const StochasticAreaValue& b2, double DError);
 /// b2_f_t.csv: b₂ (the area) times f_t and its error, at the abscissae of f_t.

@@ -11,8 +11,10 @@
 #include "core/report/ReportRuns.hpp"
 #include "core/scan/ScanBox.hpp"
 #include "core/stats/LogFits.hpp"
+#include "core/paper/PaperTable.hpp"
 #include "core/stats/ReferenceSlopes.hpp"
 #include "core/stats/RunStatistics.hpp"
+#include "core/stats/RunSummary.hpp"
 #include "core/stats/StochasticAreaQuantities.hpp"
 #include "core/theory/SmallKTheory.hpp"
 
@@ -133,7 +135,7 @@ std::vector<ReportItem> k01Statements(const TrappingState& run, const TrappingSt
     const SlopeFit c = logLogSlope(s.C, 300, 3000), a = logLogSlope(s.localExponent, 300, 3000);
     if (c.valid() && a.valid()) {
       const double predicted = 1 - c.slope - a.slope;
-      const double gap = std::abs(*p.ours - 1.25), residual = std::abs(*p.ours - predicted);
+      const double gap = std::abs(*p.ours - paper::kSurvivalPower), residual = std::abs(*p.ours - predicted);
       if (residual < gap / 2)
         explainDifference(p, io::formatC("P_τ ∝ α_loc C_τ/τ exactly, so p = 1 + α − d ln α_loc/d ln τ = 1 + %.3f + "
                                          "%.3f = %.3f over this window (ours %.3f): the paper's p = 1 + α drops the "
@@ -175,11 +177,12 @@ std::vector<ReportItem> k01Statements(const TrappingState& run, const TrappingSt
                                              : "; no q = 1 companion: below 10 q the blocks change S_t"));
     items.push_back(it);
   }
-  // D with its honest error (the bootstrap over segments, none when the longest segments dominate it).
+  // D with its honest error, from core's one run summary (issue 35): the bootstrap over segments for the run alone,
+  // the subsets of the spliced statistics when spliced, none when the longest segments dominate D.
   {
-    const double dError = supportedDError(tail);
-    ReportItem d = makeItem("D", s.D, std::isfinite(dError) ? dError : 0, full, statsCmd,
-                            std::isfinite(dError) ? "error: the bootstrap over segments" : dominanceMessage(tail));
+    const RunSummary summary = summarizeRun(s, &tail);
+    const bool errorKnown = std::isfinite(summary.DError);
+    ReportItem d = makeItem("D", summary.D, errorKnown ? summary.DError : 0, full, statsCmd, summary.DErrorNote);
     if (tail.dominated())
       explainDifference(d, "D is carried by its longest segments; the paper's 16-subset error underestimates it (§5)");
     if (!full)
@@ -209,8 +212,9 @@ std::vector<ReportItem> stochasticAreaStatements(const StochasticAreaResult& pap
   items.push_back(makeItem("factor056", acceleratorModeFactor(paperArea.area), 0, true, b2Command,
                            "(8/π²) b₂ with the b₂ above"));
   const StochasticAreaValue runArea = stochasticAreaOf(run.params.map, runBox.b2());
-  const double dError = supportedDError(tail);
-  const BoxInvariantQuantities inv = boxInvariantQuantities(runArea, stats.D, std::isfinite(dError) ? dError : 0);
+  const RunSummary summary = summarizeRun(stats, &tail);  // D and its error, as the D item gives them
+  const BoxInvariantQuantities inv =
+      boxInvariantQuantities(runArea, summary.D, std::isfinite(summary.DError) ? summary.DError : 0);
   ReportItem b2D = makeItem("b2D", inv.b2D, inv.b2DError, full, b2Command,
                             io::formatC("b₂ = %.4f of the run's box (%g, %g) times D", runArea.area, run.params.map.xmin,
                                         run.params.map.xmax));
@@ -239,7 +243,7 @@ std::vector<ReportItem> tailStatements(const TailAnalysis& tail, bool full) {
   std::optional<double> at1e9;
   std::string all;
   for (const TailForecast& f : tail.forecast) {
-    if (f.target == 1e9 && f.gamma == 1.57) at1e9 = f.steps;
+    if (f.target == 1e9 && f.gamma == referenceExponents().front().gamma) at1e9 = f.steps;  // Cristadoro & Ketzmerick
     all += io::formatC("%s%.0e/%.2f: %.2g", all.empty() ? "" : "; ", f.target, f.gamma, f.steps);
   }
   items.push_back(makeItem("tail-forecast", at1e9, 0, full, cliCommand("stats k01.json"),

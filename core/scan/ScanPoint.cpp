@@ -1,6 +1,6 @@
 #include "core/scan/ScanPoint.hpp"
 
-#include "core/stats/RunEnsemble.hpp"
+#include "core/stats/RunSummary.hpp"
 #include "core/stats/TailAnalysis.hpp"
 
 #include <cmath>
@@ -33,15 +33,8 @@ ScanPoint scanPointOf(const TrappingState& state, const TrappingStatistics& stat
   p.blocksTotal = state.params.T;
   p.segments = statistics.segments;
   p.D = statistics.D;
-  // D's error as `stats` gives it for the same run file: the bootstrap over segments (default options), or none.
-  p.DError = std::numeric_limits<double>::quiet_NaN();
-  if (statistics.segments > 0) {
-    try {
-      p.DError = supportedDError(analyseTail(ensembleOf({state})));
-    } catch (const std::invalid_argument&) {
-      // too few segments to resample: no error
-    }
-  }
+  // D's error as `stats` gives it for the same run file: core's one run summary (issue 35).
+  p.DError = summarizeRun(state, statistics).DError;
   const auto& longest = state.longest.items();
   const TrappingHistogram total = state.total();
   if (!longest.empty()) {

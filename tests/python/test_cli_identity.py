@@ -1,6 +1,7 @@
 """A run from Python is bit-identical to `archipelago-cli run` for the same spec (histograms, segments, states)."""
 import json
 import math
+import re
 import subprocess
 
 import numpy as np
@@ -150,3 +151,30 @@ def test_spliced_statistics_are_the_cli_stats_short(tmp_path, cli):
     assert set(spliced) >= {"f_t", "p_t", "P_t", "C_tau", "local_exponent", "S_t", "S_t_compensated", "D_t"}
     with pytest.raises(ValueError):  # not its companion: a run of q = 16 is not a q = 1 companion
         run.statistics(short=out)
+
+
+def test_spliced_D_error_is_the_cli_stats_short(tmp_path, cli):
+    # Issue 35: statistics(short=…)["D_error"] paired the spliced D with the bootstrap error of the run alone, while
+    # `stats --short` prints the spliced D with the subsets' error of the spliced statistics.  Both now print core's
+    # one run summary.  At K = 0.3 the segments are short, so the tail does not dominate and an error is given.
+    xmin, xmax = ap.scan_box(0.3)
+    out = tmp_path / "k03.json"
+    subprocess.run([cli, "run", "--preset", "k0.1-minute", "--K", "0.3", "--xmin", repr(xmin), "--xmax", repr(xmax),
+                    "--T", "20000", "--M", "32", "--out", str(out), "--quiet"],
+                   check=True, timeout=600, stdout=subprocess.DEVNULL)
+    short = tmp_path / "k03.short.json"
+    assert short.exists()
+    printed = subprocess.run([cli, "stats", str(out), "--short", str(short), "--csv", str(tmp_path / "csv")],
+                             check=True, timeout=600, capture_output=True, text=True).stdout
+    line = next(l for l in printed.splitlines() if l.startswith("D ") and "spliced" in l)
+    value, error = (float(v) for v in re.match(r"D\s+(\S+) \+- (\S+)", line).groups())
+    s = ap.load(out).statistics(short=short)
+    assert not s["D_dominated"] and s["spliced_at"] > 0
+    assert f"{s['D']:.6g}" == f"{value:.6g}" and f"{s['D_error']:.2g}" == f"{error:.2g}"
+    assert s["D_error_source"] == "subsets" and "subsets of orbits" in line
+    summary = _csv_values(tmp_path / "csv" / "summary.csv")
+    assert s["D_error"] == summary["D"][1] == s["D_error_subsets"]  # the spliced statistics' subsets, exactly
+    # The run alone keeps the bootstrap over segments, which differs from the spliced subsets' error.
+    alone = ap.load(out).statistics()
+    assert alone["D_error_source"] == "bootstrap" and s["D_run_error"] == alone["D_error"] != s["D_error"]
+    assert s["D_run"] == alone["D"]

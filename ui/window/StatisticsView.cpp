@@ -6,6 +6,9 @@
 #include <QLocale>
 #include <QVBoxLayout>
 
+#include <cmath>
+
+#include "core/stats/RunSummary.hpp"
 #include "ui/plots/StatisticsPlot.hpp"
 
 namespace archipelago::ui {
@@ -80,20 +83,23 @@ QString StatisticsView::longestText(const RunSnapshot& snapshot) {
 }
 
 QString StatisticsView::dText(const RunSnapshot& snapshot) {
-  const TrappingStatistics& s = snapshot.statistics;
+  // D, its error and the error's source from core's one run summary (issue 35): the bootstrap over segments for the
+  // run alone, the subsets of the spliced statistics with a companion, none when the longest segments dominate D.
   const TailAnalysis* tail = snapshot.tail.get();
-  // The 16-subset error understates D's error when a few long segments carry it (§5; core/stats/TailAnalysis):
-  // it is shown only when the bootstrap over segments agrees that the tail does not dominate.
-  if (!tail) return tr("%1 <i>(its error is judged when the run pauses or ends)</i>").arg(QString::number(s.D, 'g', 4));
-  if (tail->dominated()) {
+  const RunSummary summary = summarizeRun(snapshot.statistics, tail);
+  const QString D = QString::number(summary.D, 'g', 4);
+  if (!tail) return tr("%1 <i>(its error is judged when the run pauses or ends)</i>").arg(D);
+  if (summary.dominated) {
     QString share;
     if (!tail->shares.empty())
       share = tr("; the longest segment carries %1 % of it").arg(100 * tail->shares.front().share, 0, 'f', 0);
-    return tr("%1 <i>(dominated by its longest segments%2: no error can be estimated from this run)</i>")
-        .arg(QString::number(s.D, 'g', 4), share);
+    return tr("%1 <i>(dominated by its longest segments%2: no error can be estimated from this run)</i>").arg(D, share);
   }
-  return tr("%1 ± %2 <i>(bootstrap over segments)</i>")
-      .arg(QString::number(s.D, 'g', 4), QString::number(tail->DBootstrapError, 'g', 2));
+  if (!std::isfinite(summary.DError)) return tr("%1 <i>(%2)</i>").arg(D, QString::fromStdString(summary.DErrorNote));
+  const QString source = QString::fromUtf8(toString(summary.errorSource).data(),
+                                           static_cast<qsizetype>(toString(summary.errorSource).size()));
+  return (summary.spliced ? tr("%1 ± %2 <i>(spliced; %3 of the spliced statistics)</i>") : tr("%1 ± %2 <i>(%3)</i>"))
+      .arg(D, QString::number(summary.DError, 'g', 2), source);
 }
 
 void StatisticsView::clear() {
