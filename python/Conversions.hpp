@@ -128,6 +128,10 @@ inline double realArgument(py::handle v, const std::string& name) {
 }
 
 /// The box (K, xmin, xmax) of the map, checked by core's mapError (appendix B).
+/// The map's defaults of every function's K, xmin, xmax: core's MapParameters{} (the paper's K = 0.1 box), never
+/// restated here (issue 35: the (0.1, −0.8, 0.5) box was written in nine signatures).
+inline const MapParameters kDefaultMap{};
+
 inline MapParameters mapOf(double K, double xmin, double xmax) {
   MapParameters p{K, xmin, xmax};
   if (auto e = mapError(p)) throw std::invalid_argument(*e);

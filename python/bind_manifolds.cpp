@@ -46,12 +46,8 @@ py::dict manifold(double K, const std::string& branch, const std::string& side, 
   checkK(K);
   ManifoldCurveRequest r;
   r.K = K;
-  if (branch == "unstable") r.kind = ManifoldKind::Unstable;
-  else if (branch == "stable") r.kind = ManifoldKind::Stable;
-  else throw std::invalid_argument("branch '" + branch + "' must be 'stable' or 'unstable'");
-  if (stableFrom == "inverse") r.stableFrom = StableConstruction::InverseMap;
-  else if (stableFrom == "symmetry") r.stableFrom = StableConstruction::ReversingSymmetry;
-  else throw std::invalid_argument("stable_from '" + stableFrom + "' must be 'inverse' or 'symmetry'");
+  r.kind = parseManifoldKind(branch, "branch");  // core's names and message, as the CLI's --branch
+  r.stableFrom = parseStableConstruction(stableFrom, "stable_from");
   r.length = length;
   r.point = point;
   r.maxSpacing = spacing;
@@ -165,22 +161,31 @@ py::dict flux(double K, int period, const py::object& near, double radius, const
 
 }  // namespace
 
+// The defaults of manifold() and flux() are the requests' own (issue 35: a front end restates no default).
+const ManifoldCurveRequest kManifold{};
+const TurnstileRequest kTurnstile{};
+const KacRequest kKac{};
+
 void bindManifolds(py::module_& m) {
-  m.def("manifold", &manifold, py::arg("K") = 0.1, py::kw_only(), py::arg("branch") = "unstable",
-        py::arg("side") = "auto", py::arg("length") = 4.0, py::arg("period") = 1, py::arg("near") = py::none(),
-        py::arg("radius") = 0.01, py::arg("point") = 0, py::arg("box") = py::none(), py::arg("view") = py::none(),
-        py::arg("spacing") = 2e-3, py::arg("angle") = 0.1, py::arg("domains") = 40, py::arg("initial_points") = 32,
-        py::arg("stable_from") = "inverse", py::arg("escape") = 3.0, py::arg("max_points") = 4'000'000,
+  m.def("manifold", &manifold, py::arg("K") = kDefaultMap.K, py::kw_only(), py::arg("branch") = "unstable",
+        py::arg("side") = "auto", py::arg("length") = static_cast<double>(kManifold.length), py::arg("period") = 1,
+        py::arg("near") = py::none(), py::arg("radius") = 0.01, py::arg("point") = kManifold.point,
+        py::arg("box") = py::none(), py::arg("view") = py::none(),
+        py::arg("spacing") = static_cast<double>(kManifold.maxSpacing),
+        py::arg("angle") = static_cast<double>(kManifold.maxAngle), py::arg("domains") = kManifold.maxDomains,
+        py::arg("initial_points") = kManifold.initialPoints, py::arg("stable_from") = toString(kManifold.stableFrom),
+        py::arg("escape") = static_cast<double>(kManifold.escapeRadius), py::arg("max_points") = kManifold.maxPoints,
         "A branch of the stable or unstable manifold of the fixed point (sqrt K, 0) (period=1, near=None) or of the\n"
         "hyperbolic periodic orbit of that period near `near` (x, y), by fundamental-domain iteration with adaptive\n"
         "refinement (core/manifolds/ManifoldCurve.hpp).  side: 'inward', 'outward' or 'auto' (inward for the fixed\n"
         "point, outward for an orbit).  box=(xmin, xmax): the torus map Q* in that box; view=(x0, x1, y0, y1): refine\n"
         "finely only there.  Returns arrays s (arc length), x, y, piece (the polyline is cut where the branch escapes\n"
         "or wraps), parameter, and the counts.  ValueError for bad input.");
-  m.def("flux", &flux, py::arg("K") = 0.1, py::kw_only(), py::arg("period") = 1, py::arg("near") = py::none(),
-        py::arg("radius") = 0.01, py::arg("side") = "auto", py::arg("vertices") = 1 << 14, py::arg("domains") = 0,
-        py::arg("kac") = false, py::arg("kac_samples") = 10000, py::arg("kac_zone_samples") = 10000,
-        py::arg("kac_steps") = 100000, py::arg("seed") = 1, py::arg("threads") = 0,
+  m.def("flux", &flux, py::arg("K") = kDefaultMap.K, py::kw_only(), py::arg("period") = 1, py::arg("near") = py::none(),
+        py::arg("radius") = 0.01, py::arg("side") = "auto", py::arg("vertices") = kTurnstile.maxVertices,
+        py::arg("domains") = kTurnstile.maxDomains, py::arg("kac") = false, py::arg("kac_samples") = kKac.entrySamples,
+        py::arg("kac_zone_samples") = kKac.zoneSamples, py::arg("kac_steps") = kKac.maxSteps,
+        py::arg("seed") = kKac.seed, py::arg("threads") = kKac.threads,
         "The turnstile flux through the separatrix of the fixed point (sqrt K, 0) or of a symmetric hyperbolic\n"
         "periodic orbit (MacKay, Meiss & Percival 1984; core/manifolds/TurnstileFlux.hpp): the lobe area by the\n"
         "action difference of the two primary homoclinic (heteroclinic) orbits and by the Romberg-extrapolated\n"

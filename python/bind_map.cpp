@@ -14,6 +14,7 @@
 #include "core/io/Memory.hpp"
 #include "core/kernels/KernelDispatch.hpp"
 #include "core/map/FixedPointMap.hpp"
+#include "core/map/OrbitIterator.hpp"
 #include "python/Conversions.hpp"
 
 namespace py = pybind11;
@@ -50,30 +51,33 @@ py::array_t<std::uint64_t> unitArray(const py::object& values, const char* name)
 py::dict orbit(double K, double xmin, double xmax, const py::object& x0, const py::object& y0, const py::object& X0,
                const py::object& Y0, std::uint64_t steps, bool backward) {
   const FixedPointMap map(mapOf(K, xmin, xmax));
-  if (steps > (std::uint64_t{1} << 28)) throw std::invalid_argument("steps must be <= 2^28 (arrays in memory)");
-  // X, Y (8 bytes each), x, y (8 each) and wrapped (1) per point: 2^28 steps need 8.9 GB (issue #23).
-  io::checkMemory((steps + 1) * 33, "orbit(steps=" + std::to_string(steps) + ")");
-  UnitState z;
+  OrbitRequest r;
+  r.map = mapOf(K, xmin, xmax);
+  r.steps = steps;
+  r.backward = backward;
   if (!X0.is_none() || !Y0.is_none()) {
-    z.X = unitCoordinate(X0, "X0");
-    z.Y = unitCoordinate(Y0, "Y0");
+    r.start.X = unitCoordinate(X0, "X0");
+    r.start.Y = unitCoordinate(Y0, "Y0");
   } else {
     if (x0.is_none() || y0.is_none()) throw std::invalid_argument("give x0 and y0 (physical) or X0 and Y0 (unit)");
     const double x = x0.cast<double>(), y = y0.cast<double>();
     if (!std::isfinite(x) || !std::isfinite(y)) throw std::invalid_argument("x0 and y0 must be finite");
-    z = map.toUnit(x, y);
+    r.start = map.toUnit(x, y);
   }
+  // core's one orbit loop and its rules (the length limit of core/limits, the CLI's message), before any memory.
+  if (auto e = validationError(r)) throw std::invalid_argument(*e);
+  // X, Y (8 bytes each), x, y (8 each) and wrapped (1) per point (issue #23).
+  io::checkMemory((steps + 1) * 33, "orbit(steps=" + std::to_string(steps) + ")");
   const auto n = static_cast<py::ssize_t>(steps + 1);
   OrbitArrays points(map, n);
   py::array_t<bool> wrapped(n);
   auto pw = wrapped.mutable_data();
   {
     py::gil_scoped_release release;
-    for (std::uint64_t i = 0; i <= steps; ++i) {
-      if (i > 0) pw[i] = backward ? map.backward(z) : map.forward(z);
-      else pw[i] = false;
+    iterateOrbit(r, [&](std::uint64_t i, const UnitState& z, bool w) {
+      pw[i] = w;
       points.set(i, z);
-    }
+    });
   }
   py::dict d = points.dict();
   d["wrapped"] = wrapped;
@@ -103,11 +107,11 @@ void bindMap(py::module_& m) {
         "The first violated rule of the box (appendix B: xmin < -sqrt(K), xmax > xmin), or None.");
   m.def("coefficients", [](double K, double xmin, double xmax) {
           return coefficientsDict(computeCoefficients(mapOf(K, xmin, xmax))); },
-        py::arg("K") = 0.1, py::arg("xmin") = -0.8, py::arg("xmax") = 0.5,
+        py::arg("K") = kDefaultMap.K, py::arg("xmin") = kDefaultMap.xmin, py::arg("xmax") = kDefaultMap.xmax,
         "The integers (A, B, C, m) that define the fixed-point map N exactly (appendix B):\n"
         "G(X) = 2^m (floor(A floor(X^2/2^52)/2^52) - floor(B X/2^52) + C), in units of 2^-52.");
   m.def("orbit", &orbit,
-        py::arg("K") = 0.1, py::arg("xmin") = -0.8, py::arg("xmax") = 0.5, py::arg("x0") = py::none(),
+        py::arg("K") = kDefaultMap.K, py::arg("xmin") = kDefaultMap.xmin, py::arg("xmax") = kDefaultMap.xmax, py::arg("x0") = py::none(),
         py::arg("y0") = py::none(), py::kw_only(), py::arg("X0") = py::none(), py::arg("Y0") = py::none(),
         py::arg("steps") = 1000, py::arg("backward") = false,
         "An orbit of the exact map N (forward) or N^-1 (backward=True), appendix B, from (x0, y0) in physical\n"

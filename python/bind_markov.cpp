@@ -23,8 +23,7 @@ namespace {
 py::dict markovModel(std::vector<std::int64_t> lengths, std::int64_t points, std::int64_t tauMax, double h0) {
   markov::MarkovModel model{std::move(lengths), points};
   markov::validate(model);
-  if (!std::isfinite(h0)) throw std::invalid_argument("h0 must be finite");
-  if (tauMax < 0) throw std::invalid_argument("tau_max must be >= 0");
+  if (auto e = markov::seriesError(model, tauMax, h0)) throw std::invalid_argument(*e);  // core's rule, the CLI's words
   const markov::LumpedObservable h = markov::paperObservable(model, h0);
   markov::checkSeriesMemory(tauMax);  // the three series at once, before the first (issue #23)
   std::vector<double> C, Cis, eps;

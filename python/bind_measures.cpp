@@ -72,20 +72,14 @@ void bindMeasures(py::module_& m) {
           r.iterations = iterations;
           r.digitsThreshold = threshold;
           r.maxPeriod = maxPeriod;
-          MeasureSettings check;
-          check.map = r.map;
-          check.iterations = iterations;
-          check.digitsThreshold = threshold;
-          if (auto e = validationError(check)) throw std::invalid_argument(*e);
-          if (auto e = boxPointError("the start (x, y)", r.map, {x, y})) throw std::invalid_argument(*e);
-          r.start = FixedPointMap(r.map).toUnit(x, y);
+          r = chainRequestAt(r, {x, y});  // core's recipe and messages, as the CLI's `rotation`
           std::string json;
           {
             py::gil_scoped_release release;
             json = rotationReportJson(r, identifyChain(r));
           }
           return py::module_::import("json").attr("loads")(json); },
-        py::arg("x"), py::arg("y"), py::arg("K") = 0.1, py::arg("xmin") = -0.8, py::arg("xmax") = 0.5, py::kw_only(),
+        py::arg("x"), py::arg("y"), py::arg("K") = kDefaultMap.K, py::arg("xmin") = kDefaultMap.xmin, py::arg("xmax") = kDefaultMap.xmax, py::kw_only(),
         py::arg("iterations") = kDefaultIterations, py::arg("threshold") = kDefaultDigitsThreshold,
         py::arg("max_period") = ChainRequest{}.maxPeriod,
         "The rotation number about (-sqrt K, 0) of the exact orbit from (x, y) (turns per step, positive in the sense\n"
@@ -124,8 +118,8 @@ void bindMeasures(py::module_& m) {
           d["x"] = x; d["y"] = y; d["rotation"] = rotation; d["digits"] = digits; d["verdict"] = verdict;
           d["p"] = p; d["q"] = q;
           return d; },
-        py::arg("start"), py::arg("end"), py::arg("points") = 1000, py::arg("K") = 0.1, py::arg("xmin") = -0.8,
-        py::arg("xmax") = 0.5, py::kw_only(), py::arg("iterations") = kDefaultIterations,
+        py::arg("start"), py::arg("end"), py::arg("points") = 1000, py::arg("K") = kDefaultMap.K, py::arg("xmin") = kDefaultMap.xmin,
+        py::arg("xmax") = kDefaultMap.xmax, py::kw_only(), py::arg("iterations") = kDefaultIterations,
         py::arg("threshold") = kDefaultDigitsThreshold, py::arg("max_denominator") = RotationProfileRequest{}.maxDenominator,
         py::arg("kernel") = "auto",
         "The rotation number about (-sqrt K, 0) along the segment start -> end ((x, y) tuples, physical), `points`\n"
@@ -173,8 +167,8 @@ void bindMeasures(py::module_& m) {
           d["seconds"] = result.seconds;
           d["metadata"] = py::module_::import("json").attr("loads")(indicatorMetadataJson(r, result));
           return d; },
-        py::arg("kind"), py::arg("K") = 0.1, py::arg("xmin") = -0.8, py::arg("xmax") = 0.5, py::kw_only(),
-        py::arg("view") = py::none(), py::arg("width") = 256, py::arg("height") = 256,
+        py::arg("kind"), py::arg("K") = kDefaultMap.K, py::arg("xmin") = kDefaultMap.xmin, py::arg("xmax") = kDefaultMap.xmax, py::kw_only(),
+        py::arg("view") = py::none(), py::arg("width") = IndicatorRequest{}.width, py::arg("height") = IndicatorRequest{}.height,
         py::arg("iterations") = kDefaultIterations, py::arg("threshold") = kDefaultDigitsThreshold,
         py::arg("passes") = 1, py::arg("kernel") = "auto", py::arg("threads") = 0, py::arg("progress") = py::none(),
         "A chaos-indicator map (core/measures/IndicatorMap.hpp): kind dig, rotation, fli, megno or lyapunov; one\n"
@@ -209,7 +203,7 @@ void bindMeasures(py::module_& m) {
           py::dict d;
           d["value"] = value; d["digits"] = digits; d["verdict"] = verdict;
           return d; },
-        py::arg("kind"), py::arg("x"), py::arg("y"), py::arg("K") = 0.1, py::arg("xmin") = -0.8, py::arg("xmax") = 0.5,
+        py::arg("kind"), py::arg("x"), py::arg("y"), py::arg("K") = kDefaultMap.K, py::arg("xmin") = kDefaultMap.xmin, py::arg("xmax") = kDefaultMap.xmax,
         py::kw_only(), py::arg("iterations") = kDefaultIterations, py::arg("threshold") = kDefaultDigitsThreshold,
         py::arg("kernel") = "auto", py::arg("threads") = 0,
         "The measure `kind` of the exact orbits from the physical points (x[i], y[i]) (inside the box): arrays value,\n"

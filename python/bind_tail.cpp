@@ -150,6 +150,9 @@ py::dict runAndReport(TailState state, int threads, const std::string& kernelNam
 
 }  // namespace
 
+// The defaults are the request's own (issue 35: a front end restates no default).
+const TailRequest kTail{};
+
 void bindTail(py::module_& m) {
   m.def(
       "tail",
@@ -185,10 +188,12 @@ void bindTail(py::module_& m) {
         const ReplicaRange range = replicaSlice(r.replicas, whole32(in[0], "slice i"), whole32(in[1], "slice n"));
         return runAndReport(startTailSlice(r, range), threads, kernel, progress, path);
       },
-      py::arg("K") = 0.1, py::arg("xmin") = -0.8, py::arg("xmax") = 0.5, py::arg("Xr") = 0.02, py::arg("q") = 16,
-      py::arg("seed") = 1, py::arg("population") = 200, py::arg("replicas") = 4, py::arg("first") = 1000,
-      py::arg("t_max") = 10'000'000, py::arg("level_bins") = 10, py::arg("epsilon") = 1'000'000, py::arg("clones") = "perturb",
-      py::arg("metropolis_steps") = 1, py::arg("warmup") = 64, py::arg("min_ancestors") = kDefaultMinAncestors,
+      py::arg("K") = kDefaultMap.K, py::arg("xmin") = kDefaultMap.xmin, py::arg("xmax") = kDefaultMap.xmax, py::arg("Xr") = kTail.run.Xr,
+      py::arg("q") = kTail.run.q, py::arg("seed") = kTail.run.seed, py::arg("population") = kTail.population,
+      py::arg("replicas") = kTail.replicas, py::arg("first") = kTail.firstSteps, py::arg("t_max") = kTail.maxSteps,
+      py::arg("level_bins") = kTail.binsPerLevel, py::arg("epsilon") = kTail.epsilon,
+      py::arg("clones") = cloneRuleName(kTail.clones), py::arg("metropolis_steps") = kTail.metropolisSteps,
+      py::arg("warmup") = kTail.warmupBlocks, py::arg("min_ancestors") = kTail.minAncestors,
       py::arg("threads") = 0, py::arg("kernel") = "", py::arg("progress") = py::none(), py::arg("out") = py::none(),
       py::arg("slice") = py::none(),
       "P_t beyond brute force by splitting on the age of trapped segments, for the process of a run with these\n"

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "core/kernels/KernelDispatch.hpp"
+#include "core/run/TrappingRun.hpp"  // orbitRangeError
 #include "core/trapping/TrappingParameters.hpp"
 
 namespace archipelago::cli {
@@ -19,10 +20,7 @@ void addMapOptions(CLI::App& command, MapParameters& params) {
   addNumberOption(command, "--xmax", params.xmax, help("xmax"));
 }
 
-PhysicalRect parseView(const std::string& text) {
-  const auto v = parseNumbers<long double>("--view", text, ',', 4, "four finite numbers x0,x1,y0,y1 (physical coordinates)");
-  return {v[0], v[1], v[2], v[3]};
-}
+PhysicalRect parseView(const std::string& text) { return parsePhysicalRect(text, "--view"); }
 
 std::pair<int, int> parseSize(const std::string& text, const std::string& option, int limit) {
   const std::string rule = "WxH with whole numbers 1 ... " + std::to_string(limit);
@@ -83,7 +81,7 @@ std::pair<std::uint64_t, std::uint64_t> orbitRange(const std::string& text, std:
   if (text.empty()) return {0, M};
   const std::string rule = "BEGIN:END, whole numbers with BEGIN < END <= M = " + std::to_string(M);
   const std::vector<std::uint64_t> v = parseNumbers<std::uint64_t>("--orbits", text, ':', 2, rule);
-  if (!(v[0] < v[1] && v[1] <= M)) throw std::invalid_argument("--orbits '" + text + "' must be " + rule);
+  if (auto e = orbitRangeError(M, v[0], v[1])) throw std::invalid_argument(*e);  // core's rule and message
   return {v[0], v[1]};
 }
 

@@ -8,6 +8,7 @@
 #include "CliCommon.hpp"
 #include "PngWriter.hpp"
 #include "core/io/AtomicFile.hpp"
+#include "core/limits/Limits.hpp"
 #include "core/kernels/KernelDispatch.hpp"
 #include "core/measures/IndicatorMap.hpp"
 #include "core/measures/MeasureExport.hpp"
@@ -43,7 +44,7 @@ int runIndicator(const IndicatorOptions& o) {
   req.measure.digitsThreshold = o.threshold;
   req.measure.kernel = &selectKernel(o.kernel);
   req.view = o.view.empty() ? Viewport::wholeBox() : Viewport::fromPhysical(o.map, parseView(o.view));
-  std::tie(req.width, req.height) = parseSize(o.size, "--size", 16384);
+  std::tie(req.width, req.height) = parseSize(o.size, "--size", limits::kRasterSide);
   req.passes = o.passes;
   const auto colours = parseColourMap(o.colourMap);
   if (!colours) throw std::invalid_argument("--colormap '" + o.colourMap + "' must be inferno, viridis or grey");

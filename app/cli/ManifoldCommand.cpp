@@ -29,15 +29,10 @@ struct ManifoldOptions {
 int runManifold(ManifoldOptions o) {
   ManifoldCurveRequest& r = o.request;
   r.K = o.map.K;
-  if (o.branch == "unstable") r.kind = ManifoldKind::Unstable;
-  else if (o.branch == "stable") r.kind = ManifoldKind::Stable;
-  else throw std::invalid_argument("--branch '" + o.branch + "' must be stable or unstable");
-  if (o.stableFrom == "inverse") r.stableFrom = StableConstruction::InverseMap;
-  else if (o.stableFrom == "symmetry") r.stableFrom = StableConstruction::ReversingSymmetry;
-  else throw std::invalid_argument("--stable-from '" + o.stableFrom + "' must be inverse or symmetry");
+  r.kind = parseManifoldKind(o.branch, "branch");  // core's names and message, as Python's manifold(branch=)
+  r.stableFrom = parseStableConstruction(o.stableFrom, "stable_from");
   if (!o.view.empty()) {
-    const auto v = parseNumbers<long double>("--view", o.view, ',', 4, "four finite numbers x0,x1,y0,y1");
-    r.view = PhysicalRect{v[0], v[1], v[2], v[3]};
+    r.view = parseView(o.view);
   }
   if (o.box) {
     validate(o.map);

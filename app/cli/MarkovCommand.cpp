@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <optional>
+#include <limits>
 #include <memory>
 #include <sstream>
 #include <stdexcept>
@@ -64,11 +65,11 @@ int runMarkov(const MarkovOptions& o) {
   model.points = parseWhole("--N", o.points, o.points, m + M + 1, markov::MarkovModel::kMaxPoints,
                             "a whole number m + M + 1 = " + std::to_string(m + M + 1) +
                                 " ... 2^53 (at least one sea point besides the pre-images)");
-  const std::int64_t tauLimit = markov::MarkovModel::kMaxWork / (m + 1) - 1;
   const std::int64_t tauMax =
-      o.tauMax.empty() ? std::min(4 * m, tauLimit)
-                       : parseWhole("--tau-max", o.tauMax, o.tauMax, 0, tauLimit,
-                                    "a whole number 0 ... " + std::to_string(tauLimit) + " (5e8/(m + 1) - 1)");
+      o.tauMax.empty() ? std::min(4 * m, markov::maxTau(model))
+                       : parseWhole("--tau-max", o.tauMax, o.tauMax, 0, std::numeric_limits<std::int64_t>::max(),
+                                    "a whole number");
+  if (auto e = markov::seriesError(model, tauMax)) throw std::invalid_argument(*e);  // core's rule and message
   if (!o.csv.empty()) io::checkWritableTarget(o.csv);  // before any work: a bad path fails at once
   markov::checkSeriesMemory(tauMax);  // the three series at once, before the first (issue #23)
 

@@ -1,10 +1,13 @@
 #include "OrbitCommand.hpp"
 
 #include <cstdio>
+#include <string>
 #include <memory>
+#include <stdexcept>
 
 #include "CliCommon.hpp"
 #include "core/map/FixedPointMap.hpp"
+#include "core/map/OrbitIterator.hpp"
 
 namespace archipelago::cli {
 
@@ -18,19 +21,16 @@ struct OrbitOptions {
 };
 
 int runOrbit(const OrbitOptions& o) {
-  const FixedPointMap map(o.map);  // throws std::invalid_argument with the rule that failed
-  UnitState z = map.toUnit(o.x, o.y);
+  // core's one orbit loop and its rules (the map's, the length limit): checked before the header is printed.
+  const OrbitRequest r = orbitRequestAt(o.map, o.x, o.y, o.steps, o.backward);
+  if (auto e = validationError(r)) throw std::invalid_argument(*e);
+  const FixedPointMap map(o.map);
   std::printf("step,x,y,X,Y,wrapped\n");
-  auto print = [&](std::uint64_t step, bool wrapped) {
+  iterateOrbit(r, [&](std::uint64_t step, const UnitState& z, bool wrapped) {
     const PhysicalPoint p = map.toPhysical(z);
     std::printf("%llu,%.21Lg,%.21Lg,%llu,%llu,%d\n", static_cast<unsigned long long>(step), p.x, p.y,
                 static_cast<unsigned long long>(z.X), static_cast<unsigned long long>(z.Y), wrapped ? 1 : 0);
-  };
-  print(0, false);
-  for (std::uint64_t i = 1; i <= o.steps; ++i) {
-    const bool wrapped = o.backward ? map.backward(z) : map.forward(z);
-    print(i, wrapped);
-  }
+  });
   return 0;
 }
 }  // namespace
@@ -41,7 +41,7 @@ void addOrbitCommand(CLI::App& app, int& status) {
   addMapOptions(*cmd, options->map);
   addNumberOption(*cmd, "--x", options->x, "initial x (physical)")->required();
   addNumberOption(*cmd, "--y", options->y, "initial y (physical)")->required();
-  addNumberOption(*cmd, "--steps", options->steps, "number of steps");
+  addNumberOption(*cmd, "--steps", options->steps, "number of steps (at most " + std::to_string(limits::kOrbitLength) + ")");
   cmd->add_flag("--backward", options->backward, "iterate N^-1 instead of N");
   cmd->callback([options, &status] { status = runOrbit(*options); });
 }

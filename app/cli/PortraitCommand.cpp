@@ -10,6 +10,7 @@
 #include "CliCommon.hpp"
 #include "PngWriter.hpp"
 #include "core/io/AtomicFile.hpp"
+#include "core/limits/Limits.hpp"
 #include "core/kernels/KernelDispatch.hpp"
 #include "core/portrait/ColourMap.hpp"
 #include "core/portrait/PortraitExport.hpp"
@@ -41,13 +42,13 @@ int runPortrait(const PortraitOptions& o) {
   PortraitRequest req;
   req.map = o.map;
   req.view = o.view.empty() ? Viewport::wholeBox() : Viewport::fromPhysical(o.map, parseView(o.view));
-  std::tie(req.width, req.height) = parseSize(o.size, "--size", 16384);
+  std::tie(req.width, req.height) = parseSize(o.size, "--size", limits::kRasterSide);
   const auto mode = parsePortraitMode(o.mode);
   if (!mode) throw std::invalid_argument("--mode '" + o.mode + "' must be density, orbits or stickiness");
   req.mode = *mode;
   const auto colours = parseColourMap(o.colourMap);
   if (!colours) throw std::invalid_argument("--colormap '" + o.colourMap + "' must be inferno, viridis or grey");
-  const auto [columns, rows] = parseSize(o.seeds, "--seeds", 4096);
+  const auto [columns, rows] = parseSize(o.seeds, "--seeds", static_cast<int>(limits::kSeedGridSide));
   req.seedColumns = static_cast<std::uint32_t>(columns);
   req.seedRows = static_cast<std::uint32_t>(rows);
   req.points = o.points;

@@ -90,20 +90,13 @@ int runOrbit(const RotationOptions& o) {
   r.iterations = o.iterations;
   r.digitsThreshold = o.threshold;
   r.maxPeriod = o.maxPeriod;
-  MeasureSettings check;  // the measure's rules (iterations, threshold, 0 < K < 1) before the start's
-  check.map = o.map;
-  check.iterations = o.iterations;
-  check.digitsThreshold = o.threshold;
-  if (auto e = validationError(check)) throw std::invalid_argument(*e);
-  if (auto e = boxPointError("the start (--x, --y)", o.map, {o.x, o.y})) throw std::invalid_argument(*e);
-  const FixedPointMap map(o.map);
-  r.start = map.toUnit(o.x, o.y);
+  r = chainRequestAt(r, {o.x, o.y});  // core's recipe and messages, as Python's rotation() and the GUI's orbits
   const ChainIdentification chain = identifyChain(r);
   if (o.json) {
     std::printf("%s\n", rotationReportJson(r, chain).c_str());
     return 0;
   }
-  const PhysicalPoint p = map.toPhysical(r.start);
+  const PhysicalPoint p = FixedPointMap(o.map).toPhysical(r.start);
   const ChainLevel& centre = chain.levels.front();
   std::printf("# rotation number about (-sqrt K, 0) of Q, K = %s: turns per step, positive clockwise (the sense Q "
               "turns)\n", shortestDecimal(o.map.K).c_str());

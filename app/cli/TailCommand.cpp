@@ -134,9 +134,7 @@ TailJob prepareTail(TailOptions& o, const CLI::App& cmd, std::optional<ReplicaRa
                                   givenSampler.front());
     if (o.printLevels) throw std::invalid_argument("--print-levels prints a new run's levels; do not give --resume");
   }
-  if (o.threads < 0 || o.threads > kMaxThreads)
-    throw std::invalid_argument("--threads = " + std::to_string(o.threads) + " must lie in [0, " +
-                                std::to_string(kMaxThreads) + "] (0: one per core)");
+  if (auto e = threadsError(o.threads)) throw std::invalid_argument(*e);  // the one table's rule and wording
   if (!(o.checkpointSeconds >= 0)) throw std::invalid_argument("--checkpoint-interval must be >= 0");
 
   TailJob job;

@@ -19,6 +19,7 @@
 #include "MarkovCommand.hpp"
 #include "MergeCommand.hpp"
 #include "PresetsCommand.hpp"
+#include "LimitsCommand.hpp"
 #include "RotationCommand.hpp"
 #include "IndicatorCommand.hpp"
 #include "ManifoldCommand.hpp"
@@ -42,6 +43,7 @@ int main(int argc, char** argv) {
   archipelago::cli::addStochasticAreaCommand(app, status);
   archipelago::cli::addMarkovCommand(app, status);
   archipelago::cli::addPresetsCommand(app, status);
+  archipelago::cli::addLimitsCommand(app, status);
   archipelago::cli::addRotationCommand(app, status);
   archipelago::cli::addIndicatorCommand(app, status);
   archipelago::cli::addManifoldCommand(app, status);

@@ -82,9 +82,7 @@ int readRank(const QString& text) {
 
 /// --view X0,X1,Y0,Y1: a rectangle of the portrait, physical coordinates (checked against the box later).
 archipelago::PhysicalRect readView(const QString& text) {
-  const auto v = archipelago::io::parseNumbers<long double>("--view", text.toStdString(), ',', 4,
-                                                           "four finite numbers x0,x1,y0,y1 (physical coordinates)");
-  return {v[0], v[1], v[2], v[3]};
+  return archipelago::parsePhysicalRect(text.toStdString(), "--view");  // core's one parser of a typed view
 }
 
 /// --budget N: the portrait's points budget, 10⁶ … 10¹².

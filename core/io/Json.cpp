@@ -129,4 +129,13 @@ void checkParseMemory(std::uintmax_t textBytes, const std::string& what) {
               "reading " + what + " (" + std::to_string(textBytes >> 20) + " MiB of JSON)");
 }
 
+std::optional<std::uint64_t> wholeJson(const nlohmann::json& value, std::uint64_t max) noexcept {
+  std::uint64_t n = 0;
+  if (value.is_number_unsigned()) n = value.get<std::uint64_t>();
+  else if (value.is_number_integer() && value.get<std::int64_t>() >= 0) n = static_cast<std::uint64_t>(value.get<std::int64_t>());
+  else return std::nullopt;
+  if (n > max) return std::nullopt;
+  return n;
+}
+
 }  // namespace archipelago::io

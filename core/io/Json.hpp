@@ -18,6 +18,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -43,6 +44,14 @@ inline constexpr std::uintmax_t kJsonBytesPerTextByte = 32;
 /// SHA-256 of `content`, the file's object without that field, dumped with an indent of 1.  The one definition the
 /// writers sign with and the readers verify against.
 [[nodiscard]] std::string jsonChecksum(const nlohmann::json& content);
+
+/// The one rule of a whole number in Archipelago's documents (run files, tail files, sessions, manifests; issue 35:
+/// five readers had four rules): a JSON integer ≥ 0, whether nlohmann holds it signed or unsigned, and at most
+/// `max`; nothing for a negative integer, a real (even 2.0), a string or any other value.  Each reader words its
+/// own error around it (its file's name and field).  Hand-written run specs, which may say 2e7, read their whole
+/// numbers by their own documented rule (core/spec/RunSpec.cpp).
+[[nodiscard]] std::optional<std::uint64_t> wholeJson(const nlohmann::json& value,
+                                                     std::uint64_t max = UINT64_MAX) noexcept;
 
 /// A short description of a value for an error message: a number, bool or null as JSON, a string quoted and
 /// cut at 40 characters, otherwise "an array of N entries" / "an object of N keys".  Never long, never deep.

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/limits/Limits.hpp"
 #include "core/parallel/ParallelFor.hpp"
 #include "core/random/CounterRng.hpp"
 
@@ -83,7 +84,7 @@ std::optional<std::string> validationError(const KacRequest& r) {
     return "zone samples = " + std::to_string(r.zoneSamples) + " must be in [1, 1000000000]";
   if (r.maxSteps < 1 || r.maxSteps > 1'000'000'000'000ULL)
     return "maximum steps = " + std::to_string(r.maxSteps) + " must be in [1, 1000000000000]";
-  if (r.threads < 0 || r.threads > 4096) return "threads = " + std::to_string(r.threads) + " must be in [0, 4096]";
+  if (auto e = threadsError(r.threads)) return e;
   return std::nullopt;
 }
 

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/io/NumberText.hpp"  // shortText
 #include "core/random/CounterRng.hpp"  // mix64, for the wrap signatures
 
 namespace archipelago {
@@ -319,6 +320,16 @@ ManifoldCurve computeManifoldCurve(const ManifoldCurveRequest& request, const Ma
     curve.length = std::max(curve.length, p.arcLength.back());
   }
   return curve;
+}
+
+const char* toString(StableConstruction c) noexcept {
+  return c == StableConstruction::ReversingSymmetry ? "symmetry" : "inverse";
+}
+
+StableConstruction parseStableConstruction(const std::string& text, const std::string& option) {
+  for (const StableConstruction c : {StableConstruction::InverseMap, StableConstruction::ReversingSymmetry})
+    if (text == toString(c)) return c;
+  throw std::invalid_argument(option + " '" + io::shortText(text) + "' must be inverse or symmetry");
 }
 
 }  // namespace archipelago

@@ -89,6 +89,12 @@ struct ManifoldCurve {
   std::string stoppedBy;               ///< "length", "domains", "points" or "escaped"
 };
 
+/// "inverse" (InverseMap) or "symmetry" (ReversingSymmetry): the names every front end gives the construction.
+[[nodiscard]] const char* toString(StableConstruction c) noexcept;
+/// The inverse of toString(); throws std::invalid_argument "<option> '<text>' must be inverse or symmetry".
+[[nodiscard]] StableConstruction parseStableConstruction(const std::string& text,
+                                                         const std::string& option = "stable_from");
+
 /// Computes the branch.  Throws std::invalid_argument for an invalid request (or an orbit that is not hyperbolic, a
 /// point out of range, a box that does not contain the orbit point, a reversing symmetry that does not map the
 /// orbit onto itself); std::runtime_error("stopped") when stopped.  progress is called after each domain.

@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/io/NumberText.hpp"  // shortText
+
 namespace archipelago {
 
 namespace {
@@ -78,6 +80,12 @@ bool escaped(const Point<Real>& z) {
 }  // namespace
 
 const char* toString(ManifoldKind kind) noexcept { return kind == ManifoldKind::Unstable ? "unstable" : "stable"; }
+
+ManifoldKind parseManifoldKind(const std::string& text, const std::string& option) {
+  for (const ManifoldKind kind : {ManifoldKind::Stable, ManifoldKind::Unstable})
+    if (text == toString(kind)) return kind;
+  throw std::invalid_argument(option + " '" + io::shortText(text) + "' must be stable or unstable");
+}
 
 const char* toString(BranchSide side) noexcept { return side == BranchSide::Outward ? "outward" : "inward"; }
 

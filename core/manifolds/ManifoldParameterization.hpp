@@ -54,6 +54,9 @@ namespace archipelago {
 enum class ManifoldKind { Unstable, Stable };
 
 [[nodiscard]] const char* toString(ManifoldKind kind) noexcept;
+/// "stable" or "unstable" → the kind (the names toString() prints; issue 35: one parser for every front end);
+/// throws std::invalid_argument "<option> '<text>' must be stable or unstable" otherwise.
+[[nodiscard]] ManifoldKind parseManifoldKind(const std::string& text, const std::string& option = "branch");
 
 /// A branch of a manifold at a point of the orbit: σ > 0 (outward at z_0, see the file comment) or σ < 0.
 enum class BranchSide { Outward = 1, Inward = -1 };

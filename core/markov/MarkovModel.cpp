@@ -1,6 +1,7 @@
 #include "core/markov/MarkovModel.hpp"
 
 #include "core/io/Memory.hpp"
+#include "core/limits/Limits.hpp"
 
 #include <cmath>
 #include <cstddef>
@@ -92,15 +93,26 @@ void checkSeriesMemory(std::int64_t tauMax) {
                   "the Markov model's series up to tau = " + std::to_string(tauMax));
 }
 
+std::int64_t maxTau(const MarkovModel& model) noexcept {
+  return MarkovModel::kMaxWork / (model.trappedPoints() + 1) - 1;
+}
+
+std::optional<std::string> seriesError(const MarkovModel& model, std::int64_t tauMax, double h0) {
+  if (auto e = rangeError("tau_max", tauMax, 0, maxTau(model),
+                          "5e8/(m + 1) - 1 for m = " + std::to_string(model.trappedPoints())))
+    return e;
+  if (!std::isfinite(h0)) return std::string("h0 = ") + (std::isnan(h0) ? "nan" : h0 > 0 ? "inf" : "-inf") +
+                                 " must be a finite number";
+  return std::nullopt;
+}
+
 namespace {
 
 // N·C(τ) (eq. cmark) by the lumped chain, in long double.
 std::vector<long double> scaledCorrelation(const MarkovModel& model, const LumpedObservable& h, std::int64_t tauMax) {
   validate(model, h);
   const std::int64_t m = model.trappedPoints();
-  if (tauMax < 0 || (tauMax + 1) > MarkovModel::kMaxWork / (m + 1))
-    throw std::invalid_argument("tauMax = " + std::to_string(tauMax) + " must be 0 ... " +
-                                std::to_string(MarkovModel::kMaxWork / (m + 1) - 1) + " for m = " + std::to_string(m));
+  if (auto e = seriesError(model, tauMax)) throw std::invalid_argument(*e);
   checkSeriesMemory(tauMax);
   const long double n = static_cast<long double>(model.seaPoints());
   const long double nFree = static_cast<long double>(model.freeSeaPoints());

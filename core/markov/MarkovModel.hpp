@@ -59,6 +59,8 @@
 /// std::invalid_argument naming the first offending quantity.
 
 #include <cstdint>
+#include <optional>
+#include <string>
 #include <vector>
 
 namespace archipelago::markov {
@@ -107,6 +109,13 @@ void validate(const MarkovModel& model, const LumpedObservable& h);
 /// each; a caller that computes all three calls it once before any of them, so that a series too large is refused
 /// before the work, not after the first of three (issue #23: the hostile harness saw a refusal after 40 s).
 void checkSeriesMemory(std::int64_t tauMax);
+
+/// The largest τmax of correlation() for the model: kMaxWork/(m + 1) − 1.
+[[nodiscard]] std::int64_t maxTau(const MarkovModel& model) noexcept;
+
+/// The rules of the series (issue 35: one message for the CLI's `markov` and Python's markov()): "tau_max = … must
+/// lie in [0, maxTau] (kMaxWork/(m + 1) − 1 for m = …)", "h0 = … must be a finite number"; nothing when they hold.
+[[nodiscard]] std::optional<std::string> seriesError(const MarkovModel& model, std::int64_t tauMax, double h0 = 1);
 
 /// C(τ) = h·P^τ·h/N for τ = 0 … tauMax (eq. cmark), by the lumped chain: O(m) per τ.
 [[nodiscard]] std::vector<double> correlation(const MarkovModel& model, const LumpedObservable& h,

@@ -5,6 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/measures/OrbitMeasures.hpp"  // MeasureSettings, boxPointError
 #include "core/periodic/PeriodicOrbitFinder.hpp"
 #include "core/periodic/SmoothQuadraticMap.hpp"
 
@@ -215,6 +216,17 @@ ChainIdentification identifyChain(const ChainRequest& r, std::stop_token stop) {
   s << ending;
   out.summary = s.str();
   return out;
+}
+
+ChainRequest chainRequestAt(ChainRequest request, PhysicalPoint start) {
+  MeasureSettings check;  // the measure's rules first, as the rotation measurement reads them
+  check.map = request.map;
+  check.iterations = request.iterations;
+  check.digitsThreshold = request.digitsThreshold;
+  if (auto e = validationError(check)) throw std::invalid_argument(*e);
+  if (auto e = boxPointError("the start (x, y)", request.map, start)) throw std::invalid_argument(*e);
+  request.start = FixedPointMap(request.map).toUnit(start.x, start.y);
+  return request;
 }
 
 }  // namespace archipelago

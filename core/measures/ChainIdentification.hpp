@@ -95,6 +95,12 @@ struct ChainIdentification {
   bool cancelled = false;
 };
 
+/// `request` started at the physical point `start` (issue 35: the recipe the CLI's `rotation`, Python's rotation()
+/// and the GUI's launched orbits each wrote out): the measure's rules (0 < K < 1, iterations, threshold), then the
+/// start's ("the start (x, y) = … must lie in the box …"), then the start placed on the lattice.  Throws
+/// std::invalid_argument with the first rule broken.
+[[nodiscard]] ChainRequest chainRequestAt(ChainRequest request, PhysicalPoint start);
+
 /// Runs the recursion.  Throws std::invalid_argument for invalid input (the map's rules, 0 < K < 1, the
 /// ranges above); a stop request (checked during every measurement) returns the levels so far, cancelled set.
 [[nodiscard]] ChainIdentification identifyChain(const ChainRequest& request, std::stop_token stop = {});

@@ -6,12 +6,12 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/limits/Limits.hpp"
 #include "core/portrait/PortraitRenderer.hpp"  // orbitSeed: the portraits' seed of a cell
 
 namespace archipelago {
 
 namespace {
-constexpr std::uint64_t kMaxPixels = std::uint64_t{1} << 24;
 constexpr std::uint32_t kMaxPasses = 12;
 
 /// The stride of pass k of `passes`.
@@ -68,11 +68,7 @@ std::size_t IndicatorRaster::count(OrbitVerdict v) const noexcept {
 std::optional<std::string> validationError(const IndicatorRequest& r) {
   if (auto e = validationError(r.measure)) return e;
   std::ostringstream s;
-  if (r.width < 1 || r.width > 16384 || r.height < 1 || r.height > 16384 ||
-      static_cast<std::uint64_t>(r.width) * static_cast<std::uint64_t>(r.height) > kMaxPixels) {
-    s << "raster size " << r.width << "x" << r.height << " must be 1 ... 16384 pixels each way and at most 2^24 in all";
-    return s.str();
-  }
+  if (auto e = rasterSizeError(r.width, r.height, limits::kIndicatorPixels)) return e;
   if (r.passes < 1 || r.passes > kMaxPasses) {
     s << "passes = " << r.passes << " must be 1 ... " << kMaxPasses;
     return s.str();
@@ -81,10 +77,7 @@ std::optional<std::string> validationError(const IndicatorRequest& r) {
     s << "roundPixels = " << r.roundPixels << " must be 1 ... 2^26";
     return s.str();
   }
-  if (r.threads < 0 || r.threads > 1024) {
-    s << "threads = " << r.threads << " must be 0 ... 1024";
-    return s.str();
-  }
+  if (auto e = threadsError(r.threads)) return e;
   return std::nullopt;
 }
 

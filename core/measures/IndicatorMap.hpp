@@ -37,8 +37,8 @@ namespace archipelago {
 struct IndicatorRequest {
   MeasureSettings measure;         ///< map, kind, iterations, threshold, kernel
   Viewport view;                   ///< default: the whole box
-  int width = 256;                 ///< pixels, 1 … 16384
-  int height = 256;                ///< pixels, 1 … 16384; width·height ≤ 2^26
+  int width = 256;                 ///< pixels, 1 … limits::kRasterSide
+  int height = 256;                ///< pixels, 1 … limits::kRasterSide; width·height ≤ limits::kIndicatorPixels
   std::uint32_t passes = 4;        ///< progressive refinement, 1 … 12
   std::uint32_t roundPixels = 1u << 14;  ///< pixels per progress report within a pass, 1 … 2^26
   int threads = 0;                 ///< 0: OpenMP's default

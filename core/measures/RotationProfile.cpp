@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "core/limits/Limits.hpp"
 #include "core/io/AtomicFile.hpp"
 
 namespace archipelago {
@@ -31,7 +32,7 @@ std::optional<std::string> validationError(const RotationProfileRequest& r) {
     return "maxDenominator = " + std::to_string(r.maxDenominator) + " must be 1 ... 1000000";
   if (auto e = boxPointError("from", r.measure.map, r.from)) return e;
   if (auto e = boxPointError("to", r.measure.map, r.to)) return e;
-  if (r.threads < 0 || r.threads > 1024) return "threads = " + std::to_string(r.threads) + " must be 0 ... 1024";
+  if (auto e = threadsError(r.threads)) return e;
   return std::nullopt;
 }
 

@@ -119,7 +119,7 @@ const std::array<Statement, 35> kStatements{{
     {"alpha-quarter", "§5", "K = 0.1: C_τ ~ τ^−α with α ≈ ¼ for τ ≲ 10⁴ (fig. 6d)", "¼", 0.25, "6d", Source::measured,
      Comparison::value, "the least-squares slope −d log C_τ/d log τ over 300 ≤ τ ≤ 3000 on a logarithmic grid", 0.06,
      "the paper reads ≈ ¼ off a curve that varies by ± 0.05 over 10²–10⁴ (fig. 6d); plus 3 σ of the fit"},
-    {"p-five-quarters", "§5", "K = 0.1: correspondingly P_t ~ t^−p with p = 1 + α ≈ 5/4", "5/4", 1.25, "6b",
+    {"p-five-quarters", "§5", "K = 0.1: correspondingly P_t ~ t^−p with p = 1 + α ≈ 5/4", "5/4", kSurvivalPower, "6b",
      Source::measured, Comparison::value,
      "the least-squares slope −d log P_t/d log t over 300 ≤ t ≤ 3000 on a logarithmic grid (P_t fitted itself, "
      "not 1 + α)", 0.06, "as α ≈ ¼ (p = 1 + α); plus 3 σ of the fit"},
@@ -135,10 +135,10 @@ const std::array<Statement, 35> kStatements{{
      "the least-squares slope d log S_t/d log t over 10² ≤ t ≤ 10⁴ on a logarithmic grid (S_t from the spliced f_t "
      "of the run and its q = 1 companion: no block artefact)", 0,
      "\"somewhat faster than t^{3/2}\": the slope must exceed 3/2, and 2 − α = 1.75 if C ~ τ^−¼"},
-    {"D", "§5", "K = 0.1: D = 6400 ± 800 (eq. ddef)", "6400 ± 800", 6400, "", Source::measured, Comparison::value,
+    {"D", "§5", "K = 0.1: D = 6400 ± 800 (eq. ddef)", "6400 ± 800", kDiffusion, "", Source::measured, Comparison::value,
      "Σ ½ t² f_t of the K = 0.1 run, with the bootstrap error over segments (none when the longest segments "
      "dominate D)", 800, "the paper's own error; plus 3 σ of ours", true},
-    {"b2", "§5", "K = 0.1: the stochastic area b₂ = 0.693", "0.693", 0.693, "", Source::measured, Comparison::value,
+    {"b2", "§5", "K = 0.1: the stochastic area b₂ = 0.693", "0.693", kStochasticArea, "", Source::measured, Comparison::value,
      "the area of the 1024² boxes visited by the sea's orbits in a box of the paper's size, L = 1: (−0.7, 0.3)",
      0.07,
      "the paper's box is not in our copy (its fig. 6 caption) and b₂ depends on it: boxes of side 1 shifted by "
@@ -162,16 +162,16 @@ const std::array<Statement, 35> kStatements{{
      Source::measured, Comparison::atLeast, "(8/π²) b₂ D/𝒟_ql with our b₂ and D", 45,
      "the paper's bound with its D = 6400 − 800", true},
     // §7
-    {"chain138-x", "§7", "a member of the 138 = 6 × 23 chain at x + √K ≈ 0.352", "≈ 0.352", 0.352, "2b",
+    {"chain138-x", "§7", "a member of the 138 = 6 × 23 chain at x + √K ≈ 0.352", "≈ 0.352", kChain138XPlusRootK, "2b",
      Source::computation, Comparison::value,
      "the elliptic period-138 orbit the periodic-orbit finder converges to from (0.0358, 0.034): its member nearest "
      "there", 1.5e-3,
      "the paper gives 3 digits of a position read off fig. 2b: a unit of the third, plus half of it for the "
      "member's size in that figure"},
-    {"chain138-y", "§7", "… and y ≈ 0.034", "≈ 0.034", 0.034, "2b", Source::computation, Comparison::value,
+    {"chain138-y", "§7", "… and y ≈ 0.034", "≈ 0.034", kChain138Y, "2b", Source::computation, Comparison::value,
      "as chain138-x", 1.5e-3, "as chain138-x"},
     {"tail-gamma", "§7 (later work)", "the asymptotic decay of P_t (the paper's open question; later work: t^−1.57, "
-     "3/2, 1.3, 3)", "open question", 1.57, "", Source::measured, Comparison::openQuestion,
+     "3/2, 1.3, 3)", "open question", kGammaCristadoroKetzmerick, "", Source::measured, Comparison::openQuestion,
      "the running exponent γ(t) of P_t ~ t^−γ over the last log-spaced window with ≥ 10 segments beyond it, with "
      "its bootstrap interval", 0, "reported, never marked: an asymptotic exponent cannot be read off one window",
      true},

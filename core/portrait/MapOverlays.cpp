@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/map/OrbitIterator.hpp"
+
 namespace archipelago {
 
 std::vector<FixedPoint> fixedPoints(const MapParameters& map) {
@@ -25,17 +27,14 @@ std::vector<FixedPoint> fixedPoints(const MapParameters& map) {
   return points;
 }
 
-std::vector<PhysicalPoint> traceOrbit(const MapParameters& map, long double x, long double y, std::uint64_t steps) {
-  if (steps > 100'000'000) throw std::invalid_argument("traceOrbit: steps must be <= 10^8");
+std::vector<PhysicalPoint> traceOrbit(const MapParameters& map, long double x, long double y, std::uint64_t steps,
+                                      bool backward) {
+  const OrbitRequest r = orbitRequestAt(map, x, y, steps, backward);
+  if (auto e = validationError(r)) throw std::invalid_argument(*e);
   const FixedPointMap N(map);
-  UnitState z = N.toUnit(x, y);
   std::vector<PhysicalPoint> points;
   points.reserve(static_cast<std::size_t>(steps) + 1);
-  points.push_back(N.toPhysical(z));
-  for (std::uint64_t i = 0; i < steps; ++i) {
-    N.forward(z);
-    points.push_back(N.toPhysical(z));
-  }
+  iterateOrbit(r, [&](std::uint64_t, const UnitState& z, bool) { points.push_back(N.toPhysical(z)); });
   return points;
 }
 

@@ -20,9 +20,10 @@ struct FixedPoint {
 /// [[1 + 4x, 1], [4x, 1]], i.e. −1 < x < 0.
 [[nodiscard]] std::vector<FixedPoint> fixedPoints(const MapParameters& map);
 
-/// The orbit of the exact map N from the grid point nearest (x, y): the start and `steps` images, in
-/// physical coordinates.  `steps` ≤ 10^8.
+/// The orbit of the exact map N (N⁻¹ when `backward`) from the grid point nearest (x, y): the start and `steps`
+/// images, in physical coordinates, by core's one orbit loop (core/map/OrbitIterator.hpp; `steps` at most
+/// limits::kOrbitLength).
 [[nodiscard]] std::vector<PhysicalPoint> traceOrbit(const MapParameters& map, long double x, long double y,
-                                                    std::uint64_t steps);
+                                                    std::uint64_t steps, bool backward = false);
 
 }  // namespace archipelago

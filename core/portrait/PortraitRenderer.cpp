@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/limits/Limits.hpp"
 #include "core/kernels/ScalarLanes.hpp"
 #include "core/parallel/ParallelFor.hpp"
 #include "core/portrait/RangeCheck.hpp"
@@ -90,22 +91,21 @@ bool forEachPassEnd(const PortraitRequest& r, std::uint64_t limit, F&& f) {
 std::optional<std::string> validationError(const PortraitRequest& r) {
   if (auto e = mapError(r.map)) return e;
   std::ostringstream s;
-  if (r.width < 1 || r.width > 16384 || r.height < 1 || r.height > 16384) {
-    s << "raster size " << r.width << "x" << r.height << " must be 1 ... 16384 pixels each way";
-    return s.str();
-  }
+  if (auto e = rasterSizeError(r.width, r.height)) return e;
   if (r.points < 1) return "points = 0 must be >= 1";
   if (r.points > (std::uint64_t{1} << 50)) return "points must be < 2^50";
   if (r.mode != PortraitMode::Orbits)
-    if (auto e = outsideRange("orbits", r.orbits, 1, 65536)) return e;
+    if (auto e = outsideRange("orbits", r.orbits, 1, limits::kRasterOrbits)) return e;
   if (r.mode == PortraitMode::Orbits &&
-      (r.seedColumns < 1 || r.seedColumns > 4096 || r.seedRows < 1 || r.seedRows > 4096)) {
-    s << "seed grid " << r.seedColumns << "x" << r.seedRows << " must be 1 ... 4096 each way";
+      (r.seedColumns < 1 || r.seedColumns > limits::kSeedGridSide || r.seedRows < 1 ||
+       r.seedRows > limits::kSeedGridSide)) {
+    s << "seed grid " << r.seedColumns << "x" << r.seedRows << " must be 1 ... " << limits::kSeedGridSide
+      << " each way";
     return s.str();
   }
   if (r.mode == PortraitMode::Stickiness) {
     if (auto e = randomizingZoneError(r.Xr)) return e;
-    if (auto e = outsideRange("q", r.q, 1, 4096)) return e;
+    if (auto e = outsideRange("q", r.q, 1, limits::kRasterQ)) return e;
   }
   if (auto e = outsideRange("passes", r.passes, 1, 30)) return e;
   if (auto e = outsideRange("chunkSteps", r.chunkSteps, 1, 1u << 20, "2^20"))

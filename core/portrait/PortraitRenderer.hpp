@@ -59,15 +59,15 @@ namespace archipelago {
 struct PortraitRequest {
   MapParameters map;                    ///< K, xmin, xmax (default: the paper's K = 0.1 box, §5)
   Viewport view;                        ///< default: the whole box
-  int width = 512;                      ///< pixels, 1 … 16384
-  int height = 512;                     ///< pixels, 1 … 16384
+  int width = 512;                      ///< pixels, 1 … limits::kRasterSide
+  int height = 512;                     ///< pixels, 1 … limits::kRasterSide
   PortraitMode mode = PortraitMode::Density;
   std::uint64_t points = 20'000'000;    ///< map steps in all; each orbit does ⌈points / orbits⌉ of them
-  std::uint32_t orbits = 256;           ///< Density and Stickiness: number of orbits, 1 … 65536
-  std::uint32_t seedColumns = 24;       ///< Orbits: seed grid, 1 … 4096 each way
+  std::uint32_t orbits = 256;           ///< Density and Stickiness: number of orbits, 1 … limits::kRasterOrbits
+  std::uint32_t seedColumns = 24;       ///< Orbits: seed grid, 1 … limits::kSeedGridSide each way
   std::uint32_t seedRows = 24;
   double Xr = 0.02;                     ///< Stickiness: randomizing zone in unit X, [0, 1) (appendix B)
-  std::uint32_t q = 16;                 ///< Stickiness: steps of N⁻¹ per block, 1 … 4096
+  std::uint32_t q = 16;                 ///< Stickiness: steps of N⁻¹ per block, 1 … limits::kRasterQ
   std::uint64_t seed = 1;               ///< random numbers (CounterRng.hpp): start points and randomization
   std::uint32_t passes = 6;             ///< progressive refinement, 1 … 30
   std::uint32_t chunkSteps = 8192;      ///< points per orbit per chunk, 1 … 2^20: the cancellation latency

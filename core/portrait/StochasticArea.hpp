@@ -34,8 +34,8 @@ namespace archipelago {
 struct StochasticAreaRequest {
   MapParameters map;                       ///< default: the paper's K = 0.1 box
   double Xr = 0.02;                        ///< randomizing zone in unit X, [0, 1)
-  std::uint32_t q = 16;                    ///< steps of N⁻¹ per block, 1 … 4096
-  std::uint32_t orbits = 64;               ///< orbits in parallel, 1 … 65536
+  std::uint32_t q = 16;                    ///< steps of N⁻¹ per block, 1 … limits::kRasterQ
+  std::uint32_t orbits = 64;               ///< orbits in parallel, 1 … limits::kRasterOrbits
   std::uint64_t seed = 1;                  ///< CounterRng seed of the randomization
   std::uint64_t iterations = 1ULL << 28;   ///< total steps, all orbits (rounded up to whole blocks per orbit)
   std::uint64_t firstCheckpoint = 1ULL << 20;  ///< total steps at the first point of the convergence curve

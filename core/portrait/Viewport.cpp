@@ -5,7 +5,14 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/io/NumberText.hpp"
+
 namespace archipelago {
+
+PhysicalRect parsePhysicalRect(const std::string& text, const std::string& option) {
+  const auto v = io::parseNumbers<long double>(option, text, ',', 4, "four finite numbers x0,x1,y0,y1 (physical coordinates)");
+  return {v[0], v[1], v[2], v[3]};
+}
 
 namespace {
 constexpr long double kOneUnits = Viewport::kMaxSizeUnits;  // 2^52

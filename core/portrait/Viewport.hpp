@@ -29,6 +29,11 @@ struct PhysicalRect {
   long double y1 = 0;
 };
 
+/// A view typed as text, "x0,x1,y0,y1" in physical coordinates (issue 35: one parser for the CLI's --view of
+/// portrait, indicator and manifold and the GUI's --view).  Throws std::invalid_argument "<option> '<text>' must be
+/// four finite numbers x0,x1,y0,y1 (physical coordinates)"; the bounds' rules are fromPhysical()'s.
+[[nodiscard]] PhysicalRect parsePhysicalRect(const std::string& text, const std::string& option = "--view");
+
 class Viewport {
  public:
   /// The smallest width and height, in grid units (2^10; L·2^−42 in physical length).

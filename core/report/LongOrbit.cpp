@@ -3,10 +3,13 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "core/paper/PaperTable.hpp"
+
 namespace archipelago::report {
 
 bool isChain138(const IslandChain& chain) noexcept {
-  return chain.period == 138 || std::find(chain.hierarchy.begin(), chain.hierarchy.end(), 138) != chain.hierarchy.end();
+  return chain.period == paper::kChain138Period ||
+         std::find(chain.hierarchy.begin(), chain.hierarchy.end(), paper::kChain138Period) != chain.hierarchy.end();
 }
 
 namespace {

@@ -32,7 +32,7 @@ std::optional<long double> fixedPointResidue(long double K) {
 
 std::optional<PeriodicOrbit> chain138Orbit() {
   PeriodicOrbitSearch s;
-  s.period = 138;
+  s.period = paper::kChain138Period;
   s.near = {kChain138X, kChain138Y};
   s.stableOnly = true;
   try {

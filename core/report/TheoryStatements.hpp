@@ -7,6 +7,7 @@
 #include <optional>
 #include <vector>
 
+#include "core/paper/PaperTable.hpp"
 #include "core/periodic/PeriodicOrbit.hpp"
 #include "core/report/ReportItem.hpp"
 
@@ -18,8 +19,8 @@ namespace archipelago::report {
 
 /// The member of the period-138 = 6 × 23 chain the paper names (§7: "at x + √K ≈ 0.352 and y ≈ 0.034"): where the
 /// report looks for it, and the elliptic orbit the periodic-orbit finder converges to from there.
-inline constexpr double kChain138X = 0.352 - 0.31622776601683794;  // x, not x + √K
-inline constexpr double kChain138Y = 0.034;
+inline constexpr double kChain138X = paper::kChain138XPlusRootK - 0.31622776601683794;  // x, not x + √K (√0.1)
+inline constexpr double kChain138Y = paper::kChain138Y;
 [[nodiscard]] std::optional<PeriodicOrbit> chain138Orbit();
 
 /// Appendix C: the Markov model's ε(τ) for one segment of m = 20 points among N = 1000, τ = 0 … 200 (the report's

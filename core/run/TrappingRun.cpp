@@ -22,10 +22,16 @@ double TrappingState::stepsDone() const noexcept {
   return static_cast<double>(orbitEnd - orbitBegin) * static_cast<double>(blocksDone) * params.q;
 }
 
+std::optional<std::string> orbitRangeError(std::uint64_t M, std::uint64_t begin, std::uint64_t end) {
+  if (begin < end && end <= M) return std::nullopt;
+  return "orbits [" + std::to_string(begin) + ", " + std::to_string(end) + ") must satisfy begin < end ≤ M = " +
+         std::to_string(M);
+}
+
 TrappingState startTrapping(const TrappingParameters& params, std::uint64_t orbitBegin, std::uint64_t orbitEnd) {
   validate(params);
-  orbitEnd = std::min(orbitEnd, params.M);
-  if (orbitBegin >= orbitEnd) throw std::invalid_argument("the orbit range is empty");
+  if (orbitEnd == kAllOrbits) orbitEnd = params.M;
+  if (auto e = orbitRangeError(params.M, orbitBegin, orbitEnd)) throw std::invalid_argument(*e);
   TrappingState s;
   s.params = params;
   s.coefficients = computeCoefficients(params.map);

@@ -44,9 +44,18 @@ struct TrappingState {
   [[nodiscard]] double stepsDone() const noexcept;
 };
 
-/// A fresh run over orbits [orbitBegin, orbitEnd) (default: all M); validates the parameters.
+/// orbitEnd of startTrapping(): all M orbits.
+inline constexpr std::uint64_t kAllOrbits = UINT64_MAX;
+
+/// The rule of an orbit range [begin, end) of a run of M orbits (issue 35: the one rule, and its one message, for the
+/// CLI's --orbits, Python's start_range and the MPI ranks): "orbits [begin, end) must satisfy begin < end ≤ M = …",
+/// or nothing.
+[[nodiscard]] std::optional<std::string> orbitRangeError(std::uint64_t M, std::uint64_t begin, std::uint64_t end);
+
+/// A fresh run over orbits [orbitBegin, orbitEnd) (kAllOrbits: all M); validates the parameters and the range
+/// (orbitRangeError: a range beyond M is refused, never cut silently).
 [[nodiscard]] TrappingState startTrapping(const TrappingParameters& params, std::uint64_t orbitBegin = 0,
-                                          std::uint64_t orbitEnd = UINT64_MAX);
+                                          std::uint64_t orbitEnd = kAllOrbits);
 
 /// Merges two states of the same run (same parameters, same blocksDone) over adjacent orbit ranges.
 /// Throws std::invalid_argument when they do not fit together.

@@ -39,9 +39,9 @@ const json& field(const json& j, const char* key) {
 
 std::uint64_t u64(const json& j, const char* key) {
   const json& v = field(j, key);
-  if (!v.is_number_unsigned() && !(v.is_number_integer() && v.get<std::int64_t>() >= 0))
-    corrupt(std::string("field '") + key + "' must be a non-negative integer");
-  return v.get<std::uint64_t>();
+  const std::optional<std::uint64_t> n = io::wholeJson(v);  // the documents' one rule of whole numbers
+  if (!n) corrupt(std::string("field '") + key + "' must be a non-negative integer");
+  return *n;
 }
 
 std::int64_t i64(const json& j, const char* key) {

@@ -112,9 +112,9 @@ using json = nlohmann::json;
 
 std::uint64_t manifestU64(const json& j, const char* key, const std::string& name) {
   const auto it = j.find(key);
-  if (it == j.end() || !it->is_number_unsigned())
-    throw std::runtime_error(name + ": field '" + key + "' is missing or not a whole number (corrupt manifest)");
-  return it->get<std::uint64_t>();
+  const std::optional<std::uint64_t> n = it == j.end() ? std::nullopt : io::wholeJson(*it);  // the one rule
+  if (!n) throw std::runtime_error(name + ": field '" + key + "' is missing or not a whole number (corrupt manifest)");
+  return *n;
 }
 }  // namespace
 

@@ -34,9 +34,9 @@ double finite(const json& v, const std::string& key) {
 }
 
 std::uint64_t whole(const json& v, const std::string& key, std::uint64_t max) {
-  if (!v.is_number_unsigned() || v.get<std::uint64_t>() > max)
-    bad(key + " = " + io::describeJson(v) + " must be a whole number in [0, " + std::to_string(max) + "]");
-  return v.get<std::uint64_t>();
+  const std::optional<std::uint64_t> n = io::wholeJson(v, max);  // the documents' one rule of whole numbers
+  if (!n) bad(key + " = " + io::describeJson(v) + " must be a whole number in [0, " + std::to_string(max) + "]");
+  return *n;
 }
 
 std::string string(const json& v, const std::string& key, std::size_t maxLength = 256) {

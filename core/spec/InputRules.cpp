@@ -12,7 +12,7 @@ const std::array<ParameterRule, 1> kSettings{{
     {"threads", "worker threads (0: one per core); results do not depend on it", true, 0,
      static_cast<std::uint64_t>(kMaxThreads), "[0, 256] (0: one per core)"},
 }};
-static_assert(kMaxThreads == 256, "the range text of kSettings says 256");
+static_assert(limits::kThreads == 256, "the range text of kSettings says 256");
 }  // namespace
 
 std::span<const ParameterRule> settingRules() noexcept { return kSettings; }
@@ -41,11 +41,6 @@ ParameterValue readInput(std::string_view key, std::string_view text) {
   const std::optional<double> v = io::toNumber<double>(text);
   if (!v) throw std::invalid_argument(std::string(key) + " = " + io::shortText(text) + " must be a finite number");
   return *v;
-}
-
-std::optional<std::string> threadsError(std::int64_t threads) {
-  if (threads >= 0 && threads <= kMaxThreads) return std::nullopt;
-  return "threads = " + std::to_string(threads) + " must lie in " + std::string(kSettings[0].range);
 }
 
 int readThreads(std::string_view text) { return static_cast<int>(std::get<std::uint64_t>(readInput("threads", text))); }

@@ -15,12 +15,13 @@
 #include <string>
 #include <string_view>
 
+#include "core/limits/Limits.hpp"  // limits::kThreads, threadsError
 #include "core/trapping/TrappingParameters.hpp"
 
 namespace archipelago {
 
-/// The largest thread count anything accepts (each thread holds its own histograms while a chunk runs).
-inline constexpr int kMaxThreads = 256;
+/// The largest thread count anything accepts: the one table's (core/limits/Limits.hpp).
+inline constexpr int kMaxThreads = limits::kThreads;
 
 /// The settings a person types besides the parameters: "threads" (0: one per core).
 [[nodiscard]] std::span<const ParameterRule> settingRules() noexcept;
@@ -34,9 +35,6 @@ inline constexpr int kMaxThreads = 256;
 /// here ("threads = 300 must lie in [0, 256] …"); a parameter's range and the rules between parameters (q ≥ 1,
 /// xmin < −√K, subsets ≤ M, …) are validationErrors()'s, so each has one message.
 [[nodiscard]] ParameterValue readInput(std::string_view key, std::string_view text);
-
-/// The thread count's rule, or nothing when `threads` lies in [0, kMaxThreads].
-[[nodiscard]] std::optional<std::string> threadsError(std::int64_t threads);
 
 /// readInput("threads", text) as an int.
 [[nodiscard]] int readThreads(std::string_view text);

@@ -3,15 +3,16 @@
 #include <cmath>
 
 #include "core/io/NumberText.hpp"
+#include "core/paper/PaperTable.hpp"
 
 namespace archipelago {
 
 const std::vector<ReferenceExponent>& referenceExponents() {
   static const std::vector<ReferenceExponent> table = {
-      {1.57, "Cristadoro & Ketzmerick 2008"},
-      {1.5, "Venegeroles 2009"},
-      {1.3, "Shepelyansky 2010"},
-      {3.0, "Chirikov & Shepelyansky 1999"},
+      {paper::kGammaCristadoroKetzmerick, "Cristadoro & Ketzmerick 2008"},
+      {paper::kGammaVenegeroles, "Venegeroles 2009"},
+      {paper::kGammaShepelyansky, "Shepelyansky 2010"},
+      {paper::kGammaChirikovShepelyansky, "Chirikov & Shepelyansky 1999"},
   };
   return table;
 }

@@ -50,9 +50,9 @@ std::optional<std::string> paperStochasticAreaComparison(const MapParameters& ma
   const std::string text = io::formatC(
                 "the paper (sec. 5, K = 0.1): b2 = %.3f in the box of its fig. 6 caption (not in our copy); this box "
                 "(xmin = %.6g, xmax = %.6g) gives %.4f, ratio %.3f; compare b2*D instead (eq. A3: the paper's "
-                                       "0.693 x 6400 = %.3g)",
+                "%.3g x %.4g = %.3g)",
                 kPaperStochasticArea, map.xmin, map.xmax, b2.area, b2.area / kPaperStochasticArea,
-                                       kPaperStochasticArea * kPaperDiffusion);
+                kPaperStochasticArea, kPaperDiffusion, kPaperStochasticArea * kPaperDiffusion);
   return std::string(text);
 }
 

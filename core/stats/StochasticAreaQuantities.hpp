@@ -22,15 +22,16 @@
 #include <string>
 
 #include "core/map/MapParameters.hpp"
+#include "core/paper/PaperTable.hpp"
 
 namespace archipelago {
 
 /// The paper's numbers at K = 0.1 (§5): b₂ (an area, in the box of the caption of fig. 6, which our copy lacks)
 /// and D = 6400 ± 800.
-inline constexpr double kPaperStochasticArea = 0.693;
-inline constexpr double kPaperDiffusion = 6400;
-inline constexpr double kPaperDiffusionError = 800;
-inline constexpr double kPaperK = 0.1;
+inline constexpr double kPaperStochasticArea = paper::kStochasticArea;  // core/paper holds the paper's numbers
+inline constexpr double kPaperDiffusion = paper::kDiffusion;
+inline constexpr double kPaperDiffusionError = paper::kDiffusionError;
+inline constexpr double kPaperK = paper::kK;
 
 /// b₂ of one box: the occupied fraction that the box counting measures, and the area it stands for.
 struct StochasticAreaValue {

@@ -27,8 +27,9 @@ const json& field(const json& j, const char* key) {
 }
 
 std::uint64_t valueU64(const json& v, const std::string& what) {
-  if (!v.is_number_unsigned()) corrupt(what + " must be a non-negative integer");
-  return v.get<std::uint64_t>();
+  const std::optional<std::uint64_t> n = io::wholeJson(v);  // the documents' one rule of whole numbers
+  if (!n) corrupt(what + " must be a non-negative integer");
+  return *n;
 }
 std::uint64_t u64(const json& j, const char* key) { return valueU64(field(j, key), std::string("field '") + key + "'"); }
 

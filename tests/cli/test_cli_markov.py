@@ -33,7 +33,7 @@ bad = [
     (["--m", "10", "--N", "11"], "--N = 11 must be"),
     (["--m", "10", "--N", "1.5e0"], "--N = 1.5e0 must be"),
     (["--m", "10", "--N", "100", "--tau-max", "-3"], "--tau-max = -3 must be"),
-    (["--m", "10", "--N", "100", "--tau-max", "999999999999"], "--tau-max = 999999999999 must be"),
+    (["--m", "10", "--N", "100", "--tau-max", "999999999999"], "tau_max = 999999999999 must lie in [0, 45454544]"),
     (["--m", "10", "--N", "100", "--csv", "/nonexistent-folder/x.csv"], "cannot write /nonexistent-folder/x.csv: the folder"),
 ]
 for args, message in bad:

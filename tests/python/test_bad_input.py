@@ -160,11 +160,12 @@ def test_involution_needs_integers_Issue23():
 
 
 def test_huge_requests_are_refused_before_work_Issue23():
-    # In a process limited to 4 GB of address space (RLIMIT_AS, which the check reads), as on a smaller machine:
-    # MemoryError naming the size at once, never an allocation that takes the machine down.
+    # In a process limited to 3 GB of address space (RLIMIT_AS, which the check reads), as on a smaller machine:
+    # MemoryError naming the size at once, never an allocation that takes the machine down.  The orbit asks for the
+    # longest the one table of limits allows (10^8 steps: 3.3 GB of arrays).
     code = """
 import archipelago as ap, time
-for name, call in [("orbit", lambda: ap.orbit(0.1, -0.8, 0.5, 0.0, 0.0, steps=2 ** 28)),
+for name, call in [("orbit", lambda: ap.orbit(0.1, -0.8, 0.5, 0.0, 0.0, steps=10 ** 8)),
                    ("markov", lambda: ap.markov([1], 1000, tau_max=249999999))]:
     t = time.monotonic()
     try:
@@ -173,7 +174,7 @@ for name, call in [("orbit", lambda: ap.orbit(0.1, -0.8, 0.5, 0.0, 0.0, steps=2 
     except MemoryError as e:
         print(name, "MemoryError", round(time.monotonic() - t, 2), str(e)[:80])
 """
-    limit = 4 << 30
+    limit = 3 << 30
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120,
                        preexec_fn=lambda: resource.setrlimit(resource.RLIMIT_AS, (limit, limit)))
     lines = r.stdout.splitlines()

@@ -14,6 +14,7 @@
 #include <exception>
 
 #include "core/kernels/KernelDispatch.hpp"
+#include "core/limits/Limits.hpp"
 #include "core/manifolds/HyperbolicOrbit.hpp"
 #include "core/map/FixedPointMap.hpp"
 #include "core/periodic/SegmentAnalysis.hpp"
@@ -294,7 +295,7 @@ quint64 PortraitController::launchOrbit(long double x, long double y, std::uint6
   orbit.id = ++nextOrbitId_;
   orbit.x = x;
   orbit.y = y;
-  orbit.steps = std::min<std::uint64_t>(steps, 100'000'000);
+  orbit.steps = std::min<std::uint64_t>(steps, limits::kOrbitLength);  // core's one table
   orbit.colour = launchedColour(orbit.id);
   orbits_.push_back(orbit);
   orbitItems_.push_back(nullptr);
@@ -337,12 +338,8 @@ void PortraitController::traceOrbit(const LaunchedOrbit& orbit) {
     // start's, then core's identification.
     ChainRequest& r = result->request;
     r.map = map;
-    MeasureSettings check;
-    check.map = map;
     try {
-      if (auto e = validationError(check)) throw std::invalid_argument(*e);
-      if (auto e = boxPointError("the start", map, {x, y})) throw std::invalid_argument(*e);
-      r.start = FixedPointMap(map).toUnit(x, y);
+      r = chainRequestAt(r, {x, y});  // core's recipe and messages, as the CLI's `rotation`
       result->chain = identifyChain(r, context.stopToken());
     } catch (const std::exception& e) {
       result->error = QString::fromUtf8(e.what());

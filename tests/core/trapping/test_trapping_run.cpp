@@ -92,6 +92,18 @@ TEST(TrappingRun, OrbitRangesRunAloneAndMergeExactly) {
   EXPECT_THROW((void)mergeTrapping(low, high), std::invalid_argument);  // not adjacent
 }
 
+// Issue 35: a range beyond M was cut to M silently by core (the CLI and Python refused it with their own words);
+// core's one rule refuses it, with one message.
+TEST(TrappingRun, OrbitRangeBeyondMIsRefusedNotCut) {
+  const TrappingParameters p = smallRun();
+  EXPECT_EQ(orbitRangeError(p.M, 0, p.M), std::nullopt);
+  EXPECT_EQ(orbitRangeError(64, 0, 65), "orbits [0, 65) must satisfy begin < end ≤ M = 64");
+  EXPECT_EQ(orbitRangeError(64, 3, 3), "orbits [3, 3) must satisfy begin < end ≤ M = 64");
+  EXPECT_THROW((void)startTrapping(p, 0, p.M + 1), std::invalid_argument);
+  EXPECT_THROW((void)startTrapping(p, 5, 2), std::invalid_argument);
+  EXPECT_EQ(startTrapping(p).orbitEnd, p.M);  // kAllOrbits: all of them
+}
+
 TEST(TrappingRun, LongestSegmentsReplayBitForBit) {
   const TrappingParameters p = smallRun();
   const TrappingState run = runWith(p, 2, 0);

@@ -1,0 +1,48 @@
+#include "core/limits/Limits.hpp"
+
+#include <array>
+#include <bit>
+
+namespace archipelago {
+
+namespace {
+const std::array<LimitInfo, 8> kTable{{
+    {"threads", "worker threads of any computation (0: one per core)", 0, limits::kThreads},
+    {"raster side", "pixels each way of a portrait, an indicator map or an export", 1, limits::kRasterSide},
+    {"indicator pixels", "pixels of an indicator map in all", 1, static_cast<long long>(limits::kIndicatorPixels)},
+    {"q", "steps of N⁻¹ per block of a trapping run or a tail", 1, static_cast<long long>(limits::kRunQ)},
+    {"raster q", "steps per block of a portrait's (stickiness) or b₂'s orbits", 1,
+     static_cast<long long>(limits::kRasterQ)},
+    {"raster orbits", "orbits in parallel of a portrait or of b₂", 1, static_cast<long long>(limits::kRasterOrbits)},
+    {"seed grid", "seeds each way of a portrait's seed grid", 1, static_cast<long long>(limits::kSeedGridSide)},
+    {"orbit length", "points of one orbit held in memory (orbit, launched orbits, overlays)", 1,
+     static_cast<long long>(limits::kOrbitLength)},
+}};
+}  // namespace
+
+std::span<const LimitInfo> limitsTable() noexcept { return kTable; }
+
+std::string limitsMarkdown() {
+  std::string s = "| limit | what | range |\n|---|---|---|\n";
+  for (const LimitInfo& l : kTable)
+    s += "| " + std::string(l.key) + " | " + std::string(l.what) + " | " + std::to_string(l.min) + " … " +
+         std::to_string(l.max) + " |\n";
+  return s;
+}
+
+std::optional<std::string> threadsError(std::int64_t threads) {
+  return rangeError("threads", threads, 0, limits::kThreads, "0: one per core");
+}
+
+std::optional<std::string> rasterSizeError(long long width, long long height, std::uint64_t maxPixels) {
+  if (width >= 1 && width <= limits::kRasterSide && height >= 1 && height <= limits::kRasterSide &&
+      static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height) <= maxPixels)
+    return std::nullopt;
+  std::string s = "raster size " + std::to_string(width) + "x" + std::to_string(height) + " must be 1 ... " +
+                  std::to_string(limits::kRasterSide) + " pixels each way";
+  if (maxPixels < static_cast<std::uint64_t>(limits::kRasterSide) * limits::kRasterSide)
+    s += " and at most 2^" + std::to_string(std::bit_width(maxPixels) - 1) + " in all";
+  return s;
+}
+
+}  // namespace archipelago

@@ -1,0 +1,74 @@
+#pragma once
+/// \file Limits.hpp
+/// \brief The one table of limits (issue 35, item 2; docs/design.md, "Front ends fill, call and format"): the
+/// largest thread count, raster, q, orbit length and seed grid that anything accepts, and the one wording of a
+/// value outside its range.  Every request's validation reads its bound here; `--help`, docs/cli.md and the
+/// Python module's messages come from the validations, so a limit is written once.  A test
+/// (architecture.limits) fails when one of these numbers appears as a bound outside this file.
+///
+/// Why each bound:
+///  - threads: each thread of a run holds its own histograms while a chunk runs; 256 is more than any one node
+///    had when this was written, and a larger machine runs ranks (archipelago-mpi).
+///  - raster side 16384: a portrait of 16384² pixels holds 2^28 counts (1 GiB), the most the GUI and the PNG
+///    writer hold at once; an indicator map measures one orbit per pixel and keeps a verdict and values per pixel:
+///    2^24 pixels in all.
+///  - q of a run 65536: the histograms count blocks in 32-bit bins per chunk; q of a portrait's or b₂'s blocks
+///    4096: a raster pass checks its stop token between blocks, and a block of 4096 steps keeps that under 1 ms.
+///  - orbit length 10^8 points: an orbit held in memory (X, Y, x, y and a flag per point: 33 bytes) is 3.3 GB.
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <utility>
+
+namespace archipelago {
+
+namespace limits {
+inline constexpr int kThreads = 256;                        ///< threads of any computation (0: one per core)
+inline constexpr int kRasterSide = 16384;                   ///< pixels each way of any raster
+inline constexpr std::uint64_t kIndicatorPixels = 1ULL << 24;  ///< pixels of an indicator map in all
+inline constexpr std::uint64_t kRunQ = 65536;               ///< steps of N⁻¹ per block of a run
+inline constexpr std::uint64_t kRasterQ = 4096;             ///< steps per block of a portrait's or b₂'s orbits
+inline constexpr std::uint64_t kRasterOrbits = 65536;       ///< orbits in parallel in a portrait or b₂
+inline constexpr std::uint64_t kSeedGridSide = 4096;        ///< seeds each way of a portrait's seed grid
+inline constexpr std::uint64_t kOrbitLength = 100'000'000;  ///< points of one orbit held in memory
+}  // namespace limits
+
+/// One row of the table, for `--help`, the docs and the tests.
+struct LimitInfo {
+  std::string_view key;      ///< the name a request and a front end give the value
+  std::string_view what;
+  long long min = 0, max = 0;
+};
+
+/// Every limit above, in the order of the table.
+[[nodiscard]] std::span<const LimitInfo> limitsTable() noexcept;
+
+/// The table as Markdown (docs/cli.md holds it between the markers `<!-- limits -->` and `<!-- /limits -->`;
+/// `archipelago-cli limits` prints it and ctest cli.limits checks that the two agree).
+[[nodiscard]] std::string limitsMarkdown();
+
+/// The one wording of a value outside its range: "<name> = <value> must lie in [<lo>, <hi>]" (and " (<note>)"
+/// when a note is given), or nothing when lo ≤ value ≤ hi.
+template <class T>
+[[nodiscard]] std::optional<std::string> rangeError(std::string_view name, T value, long long lo, long long hi,
+                                                    std::string_view note = {}) {
+  if (std::cmp_greater_equal(value, lo) && std::cmp_less_equal(value, hi)) return std::nullopt;
+  std::string s = std::string(name) + " = " + std::to_string(value) + " must lie in [" + std::to_string(lo) + ", " +
+                  std::to_string(hi) + "]";
+  if (!note.empty()) s += " (" + std::string(note) + ")";
+  return s;
+}
+
+/// The thread count's rule: "threads = <n> must lie in [0, 256] (0: one per core)", or nothing.
+[[nodiscard]] std::optional<std::string> threadsError(std::int64_t threads);
+
+/// A raster's size: "raster size <w>x<h> must be 1 ... 16384 pixels each way", and "… and at most 2^<k> in all"
+/// when `maxPixels` (a power of two) is below 16384², or nothing.
+[[nodiscard]] std::optional<std::string> rasterSizeError(
+    long long width, long long height,
+    std::uint64_t maxPixels = static_cast<std::uint64_t>(limits::kRasterSide) * limits::kRasterSide);
+
+}  // namespace archipelago

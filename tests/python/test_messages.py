@@ -1,0 +1,81 @@
+"""Issue 35: for a CLI command and its Python function, the same bad value gives the same message — core's, from
+the request's validation and the one table of limits (core/limits), never a second copy in a front end."""
+import subprocess
+
+import pytest
+
+import archipelago as ap
+
+TOO_MANY_THREADS = 257  # the table's limit is 256
+
+
+def cli_error(cli, args):
+    r = subprocess.run([cli, *args], capture_output=True, text=True, timeout=600)
+    assert r.returncode != 0, r.stdout
+    lines = [l for l in r.stderr.splitlines() if l.startswith("ERROR: ")]
+    assert len(lines) == 1, r.stderr
+    return lines[0][len("ERROR: "):]
+
+
+def py_error(call):
+    with pytest.raises(ValueError) as e:
+        call()
+    return str(e.value)
+
+
+def test_orbit_length(cli):
+    # One orbit loop, one length limit (it was 10^8 in core and the GUI, 2^28 in Python, none in the CLI).
+    steps = 100_000_001
+    c = cli_error(cli, ["orbit", "--K", "0.1", "--xmin", "-0.8", "--xmax", "0.5", "--x", "0", "--y", "0",
+                        "--steps", str(steps)])
+    p = py_error(lambda: ap.orbit(0.1, -0.8, 0.5, x0=0.0, y0=0.0, steps=steps))
+    assert c == p == "steps = 100000001 must lie in [0, 100000000]"
+
+
+def test_run_threads(cli, tmp_path):
+    c = cli_error(cli, ["run", "--preset", "k0.1-minute", "--threads", str(TOO_MANY_THREADS),
+                        "--out", str(tmp_path / "r.json")])
+    p = py_error(lambda: ap.start(ap.presets()["k0.1-minute"]).advance(threads=TOO_MANY_THREADS))
+    assert c == p == "threads = 257 must lie in [0, 256] (0: one per core)"
+
+
+def test_flux_threads(cli):
+    # The Kac check took 4096 threads, runs 256: one table now.
+    c = cli_error(cli, ["flux", "--K", "0.1", "--kac", "--threads", str(TOO_MANY_THREADS)])
+    p = py_error(lambda: ap.flux(0.1, kac=True, threads=TOO_MANY_THREADS))
+    assert c == p == "threads = 257 must lie in [0, 256] (0: one per core)"
+
+
+@pytest.mark.parametrize("cli_args, call, message", [
+    (["--branch", "sideways"], dict(branch="sideways"), "branch 'sideways' must be stable or unstable"),
+    (["--stable-from", "mirror"], dict(stable_from="mirror"), "stable_from 'mirror' must be inverse or symmetry"),
+])
+def test_manifold_enum_names(cli, cli_args, call, message):
+    # The branch and the stable construction are parsed by core's one table of names (two if/else copies before).
+    c = cli_error(cli, ["manifold", "--K", "0.1", *cli_args])
+    p = py_error(lambda: ap.manifold(0.1, **call))
+    assert c == p == message
+
+
+@pytest.mark.parametrize("begin, end", [(4, 2), (0, 65), (3, 3)])
+def test_orbit_range(cli, tmp_path, begin, end):
+    # Core clamped a range beyond M silently while the CLI and Python refused it with two wordings; one rule now.
+    c = cli_error(cli, ["run", "--preset", "k0.1-minute", "--M", "64", "--T", "10", "--orbits", f"{begin}:{end}",
+                        "--out", str(tmp_path / "r.json")])
+    p = py_error(lambda: ap.start_range(begin, end, ap.presets()["k0.1-minute"], M=64, T=10))
+    assert c == p == f"orbits [{begin}, {end}) must satisfy begin < end ≤ M = 64"
+
+
+def test_markov_tau_max(cli):
+    # Python accepted any tau_max >= 0 and failed later with core's "tauMax" words; the CLI had a third wording.
+    c = cli_error(cli, ["markov", "--m", "10", "--N", "100", "--tau-max", "999999999999"])
+    p = py_error(lambda: ap.markov([10], 100, tau_max=999999999999))
+    assert c == p == "tau_max = 999999999999 must lie in [0, 45454544] (5e8/(m + 1) - 1 for m = 10)"
+
+
+def test_rotation_start_outside_the_box(cli):
+    # The chain request's recipe (measure rules, then the start's) was written out by the CLI, Python and the GUI.
+    # 0.75 is exact in binary: the CLI reads a long double and Python a double, and both print it the same.
+    c = cli_error(cli, ["rotation", "--K", "0.1", "--x", "0.75", "--y", "0"])
+    p = py_error(lambda: ap.rotation(0.75, 0.0, 0.1))
+    assert c == p and c.startswith("the start (x, y) = (0.75, 0) must lie in the box")
