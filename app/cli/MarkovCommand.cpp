@@ -12,6 +12,7 @@
 
 #include "CliCommon.hpp"
 #include "core/io/AtomicFile.hpp"
+#include "core/io/CommandFiles.hpp"
 #include "core/markov/MarkovModel.hpp"
 
 namespace archipelago::cli {
@@ -69,7 +70,7 @@ int runMarkov(const MarkovOptions& o) {
       o.tauMax.empty() ? std::min(4 * m, tauLimit)
                        : parseWhole("--tau-max", o.tauMax, o.tauMax, 0, tauLimit,
                                     "a whole number 0 ... " + std::to_string(tauLimit) + " (5e8/(m + 1) - 1)");
-  if (!o.csv.empty()) io::checkWritableTarget(o.csv);  // before any work: a bad path fails at once
+  io::checkCommandFiles({{"--csv", o.csv, io::FileUse::Output}});  // before any work: a bad path fails at once
   markov::checkSeriesMemory(tauMax);  // the three series at once, before the first (issue #23)
 
   const markov::LumpedObservable h = markov::paperObservable(model);
