@@ -111,8 +111,8 @@ class OutputBatch {
 void checkWritableTarget(const std::filesystem::path& path);
 
 /// Removes the temporary files writeFileAtomically(path, …) leaves when its process is killed mid-write
-/// (".NAME.XXXXXX" beside NAME; none for a device or FIFO).  Call it only while holding the FileLock of `path`: no other writer can
-/// then be using one.  Returns how many were removed.
+/// (".NAME.XXXXXX" beside NAME; none for a device or FIFO).  Call it only while holding the FileLock of `path`: no
+/// other writer can then be using one.  Returns how many were removed.
 std::size_t removeStaleTemporaries(const std::filesystem::path& path);
 
 /// The same for every file of `folder` (a report's figures): call it only while holding a lock that keeps every
@@ -121,8 +121,8 @@ std::size_t removeStaleTemporariesIn(const std::filesystem::path& folder);
 
 /// An advisory lock (flock) that keeps two processes from writing the same file: held on ".NAME.lock" beside
 /// NAME (the file a link leads to) from acquire() until destruction; the lock file is removed then.  A device or
-/// FIFO is not locked (nothing is replaced there, and no lock file is made beside it, e.g. in /dev).  Released by the kernel when the
-/// process dies, even by SIGKILL, so a killed run never blocks the next one.
+/// FIFO is not locked (nothing is replaced there, and no lock file is made beside it, e.g. in /dev).  Released by
+/// the kernel when the process dies, even by SIGKILL, so a killed run never blocks the next one.
 class FileLock {
  public:
   /// Takes the lock of `path` or throws std::runtime_error naming the path ("in use by another process").
