@@ -10,6 +10,7 @@
 #include "CliCommon.hpp"
 #include "HyperbolicOrbitOptions.hpp"
 #include "core/io/AtomicFile.hpp"
+#include "core/io/CommandFiles.hpp"
 #include "core/manifolds/ManifoldExport.hpp"
 
 namespace archipelago::cli {
@@ -75,7 +76,7 @@ int runFlux(FluxOptions o) {
   if (auto e = validationError(r)) throw std::invalid_argument(*e);
   o.kacRequest.K = r.K;  // the Kac options are checked even without --kac: a bad value is never ignored silently
   if (auto e = validationError(o.kacRequest)) throw std::invalid_argument(*e);
-  if (!o.out.empty()) io::checkWritableTarget(o.out);
+  io::checkCommandFiles({{"--out", o.out, io::FileUse::Output}});
   const auto started = std::chrono::steady_clock::now();
   r.orbit = chosenOrbit(r.K, o.orbit);
   r.side = chosenSide(o.orbit, !r.orbit);

@@ -8,6 +8,7 @@
 #include "CliCommon.hpp"
 #include "PngWriter.hpp"
 #include "core/io/AtomicFile.hpp"
+#include "core/io/CommandFiles.hpp"
 #include "core/limits/Limits.hpp"
 #include "core/kernels/KernelDispatch.hpp"
 #include "core/measures/IndicatorMap.hpp"
@@ -52,12 +53,10 @@ int runIndicator(const IndicatorOptions& o) {
   if (o.out.empty() && o.npy.empty()) throw std::invalid_argument("give --out FILE.png and/or --npy FILE.npy");
   if (!o.verdicts.empty() && o.npy.empty()) throw std::invalid_argument("--verdicts needs --npy (the sidecar names it)");
   // Every output path before the work, not after it.
-  if (!o.out.empty()) io::checkWritableTarget(o.out);
-  if (!o.npy.empty()) {
-    io::checkWritableTarget(o.npy);
-    io::checkWritableTarget(sidecarPath(o.npy));
-  }
-  if (!o.verdicts.empty()) io::checkWritableTarget(o.verdicts);
+  io::checkCommandFiles({{"--out", o.out, io::FileUse::Output},
+                         {"--npy", o.npy, io::FileUse::Output},
+                         {"the sidecar of --npy", o.npy.empty() ? "" : sidecarPath(o.npy), io::FileUse::Output},
+                         {"--verdicts", o.verdicts, io::FileUse::Output}});
 
   const IndicatorResult result = computeIndicatorMap(req, [&](const IndicatorProgress& p) {
     if (!o.quiet && p.snapshot)
@@ -65,11 +64,13 @@ int runIndicator(const IndicatorOptions& o) {
                    static_cast<unsigned long long>(p.pixelsDone), static_cast<unsigned long long>(p.pixelsTotal));
   });
   const IndicatorRaster& raster = result.raster;
+  io::OutputBatch outputs;  // all or nothing: a full disk at the .npy leaves no PNG either (issue 36, class 5)
   if (!o.out.empty()) {
     const RasterImage image = colourizeIndicator(raster, *colours);
     writePng(o.out, image.width, image.height, image.rgb);
   }
   if (!o.npy.empty()) exportIndicatorNpy(o.npy, req, result, o.verdicts);
+  outputs.commit();
   const PhysicalRect b = req.view.physical(req.measure.map);
   const double steps = static_cast<double>(stepsPerOrbit(req.measure)) * static_cast<double>(raster.pixelsDone);
   std::printf("kind=%s view=[%.19Lg, %.19Lg] x [%.19Lg, %.19Lg] size=%dx%d iterations=%llu pixels=%llu regular=%zu "

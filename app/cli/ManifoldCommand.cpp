@@ -9,6 +9,7 @@
 #include "CliCommon.hpp"
 #include "HyperbolicOrbitOptions.hpp"
 #include "core/io/AtomicFile.hpp"
+#include "core/io/CommandFiles.hpp"
 #include "core/manifolds/ManifoldExport.hpp"
 
 namespace archipelago::cli {
@@ -51,7 +52,7 @@ int runManifold(ManifoldOptions o) {
     check.point = 0;
     if (auto e = validationError(check)) throw std::invalid_argument(*e);
   }
-  if (!o.out.empty()) io::checkWritableTarget(o.out);
+  io::checkCommandFiles({{"--out", o.out, io::FileUse::Output}});
   r.orbit = chosenOrbit(r.K, o.orbit);
   r.side = chosenSide(o.orbit, !r.orbit);
   if (auto e = validationError(r)) throw std::invalid_argument(*e);

@@ -13,6 +13,7 @@
 
 #include "CliCommon.hpp"
 #include "core/io/AtomicFile.hpp"
+#include "core/io/CommandFiles.hpp"
 #include "core/markov/MarkovModel.hpp"
 
 namespace archipelago::cli {
@@ -70,7 +71,7 @@ int runMarkov(const MarkovOptions& o) {
                        : parseWhole("--tau-max", o.tauMax, o.tauMax, 0, std::numeric_limits<std::int64_t>::max(),
                                     "a whole number");
   if (auto e = markov::seriesError(model, tauMax)) throw std::invalid_argument(*e);  // core's rule and message
-  if (!o.csv.empty()) io::checkWritableTarget(o.csv);  // before any work: a bad path fails at once
+  io::checkCommandFiles({{"--csv", o.csv, io::FileUse::Output}});  // before any work: a bad path fails at once
   markov::checkSeriesMemory(tauMax);  // the three series at once, before the first (issue #23)
 
   const markov::LumpedObservable h = markov::paperObservable(model);

@@ -9,6 +9,7 @@
 
 #include "RunSession.hpp"
 #include "core/io/AtomicFile.hpp"
+#include "core/io/CommandFiles.hpp"
 #include "core/runfile/RunFile.hpp"
 #include "core/runfile/RunFileMerge.hpp"
 #include "core/tail/TailFile.hpp"
@@ -23,11 +24,9 @@ struct MergeOptions {
 };
 
 int mergeCommand(const MergeOptions& o) {
-  io::checkWritableTarget(o.out);  // before reading the parts
-  for (const std::string& part : o.parts)
-    if (std::filesystem::exists(part) && std::filesystem::exists(o.out) &&
-        std::filesystem::equivalent(part, o.out))
-      throw std::invalid_argument("--out " + o.out + " is one of the parts: write the merged run to a new file");
+  std::vector<io::CommandFile> files{{"--out", o.out, io::FileUse::Output}};
+  for (const std::string& part : o.parts) files.push_back({"part", part, io::FileUse::Input});
+  io::checkCommandFiles(files);  // before reading the parts: --out is none of them, no part is given twice
   const std::vector<io::FileLock> locks = lockRunFiles(o.out, o.out, "");
   if (isTailFile(o.parts.front())) {
     // The slices of a distributed sampler run (tail --slice, archipelago-mpi tail).

@@ -10,6 +10,7 @@
 #include "CliCommon.hpp"
 #include "PngWriter.hpp"
 #include "core/io/AtomicFile.hpp"
+#include "core/io/CommandFiles.hpp"
 #include "core/limits/Limits.hpp"
 #include "core/kernels/KernelDispatch.hpp"
 #include "core/portrait/ColourMap.hpp"
@@ -60,11 +61,9 @@ int runPortrait(const PortraitOptions& o) {
   if (auto e = validationError(req)) throw std::invalid_argument(*e);
   if (o.out.empty() && o.npy.empty()) throw std::invalid_argument("give --out FILE.png and/or --npy FILE.npy");
   // Every output path before the work, not after it (issue #12, finding 7).
-  if (!o.out.empty()) io::checkWritableTarget(o.out);
-  if (!o.npy.empty()) {
-    io::checkWritableTarget(o.npy);
-    io::checkWritableTarget(sidecarPath(o.npy));
-  }
+  io::checkCommandFiles({{"--out", o.out, io::FileUse::Output},
+                         {"--npy", o.npy, io::FileUse::Output},
+                         {"the sidecar of --npy", o.npy.empty() ? "" : sidecarPath(o.npy), io::FileUse::Output}});
 
   const auto start = std::chrono::steady_clock::now();
   const PortraitResult result = renderPortrait(req, [&](const PortraitProgress& p) {
@@ -74,11 +73,13 @@ int runPortrait(const PortraitOptions& o) {
   });
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const PortraitRaster& raster = result.raster;
+  io::OutputBatch outputs;  // all or nothing (issue 36, class 5)
   if (!o.out.empty()) {
     const RasterImage image = colourize(raster, *colours);
     writePng(o.out, image.width, image.height, image.rgb);
   }
   if (!o.npy.empty()) exportPortraitNpy(o.npy, req, raster);
+  outputs.commit();
   const PhysicalRect b = req.view.physical(req.map);
   std::printf("mode=%s view=[%.19Lg, %.19Lg] x [%.19Lg, %.19Lg] size=%dx%d points=%llu binned=%llu "
               "nonempty=%zu seconds=%.3f rate=%.4g points/s\n",

@@ -7,6 +7,7 @@
 
 #include "CliCommon.hpp"
 #include "core/io/AtomicFile.hpp"
+#include "core/io/CommandFiles.hpp"
 #include "core/periodic/SegmentAnalysis.hpp"
 #include "core/runfile/RunFile.hpp"
 #include "core/run/TrappingRun.hpp"
@@ -29,7 +30,7 @@ int replayCommand(const ReplayOptions& o) {
     throw std::invalid_argument("--segment " + std::to_string(o.segment) + " is out of range: the run file keeps " +
                                 std::to_string(items.size()) + " segments (0 is the longest)");
   if (o.stride == 0) throw std::invalid_argument("--stride = 0 must be >= 1");
-  io::checkWritableTarget(o.out);  // before the replay, not after it
+  io::checkCommandFiles({{"run", o.runFile, io::FileUse::Input}, {"--out", o.out, io::FileUse::Output}});  // before the replay
   const SegmentRecord& rec = items[o.segment];
   // Streamed and atomic; bounded by the record: a segment that does not end where the run recorded it is a
   // "replay mismatch" error and --out is left untouched (issue #12, finding 5).

@@ -8,6 +8,7 @@
 
 #include "CliCommon.hpp"
 #include "core/io/AtomicFile.hpp"
+#include "core/io/CommandFiles.hpp"
 #include "core/kernels/KernelDispatch.hpp"
 #include "core/measures/ChainIdentification.hpp"
 #include "core/measures/MeasureExport.hpp"
@@ -66,7 +67,7 @@ int runProfile(const RotationOptions& o) {
   r.points = o.points;
   r.maxDenominator = o.maxDenominator;
   if (auto e = validationError(r)) throw std::invalid_argument(*e);
-  io::checkWritableTarget(o.csv);  // before the work
+  io::checkCommandFiles({{"--csv", o.csv, io::FileUse::Output}});  // before the work
   const RotationProfile profile = computeRotationProfile(r, [&](std::uint64_t done, std::uint64_t total) {
     if (!o.quiet) std::fprintf(stderr, "%llu/%llu points\n", static_cast<unsigned long long>(done),
                                static_cast<unsigned long long>(total));

@@ -18,6 +18,7 @@
 #include "CliCommon.hpp"
 #include "RunSession.hpp"
 #include "core/io/AtomicFile.hpp"
+#include "core/io/CommandFiles.hpp"
 #include "core/kernels/KernelDispatch.hpp"
 #include "core/runfile/RunFile.hpp"
 #include "core/spec/RunSpec.hpp"
@@ -46,8 +47,10 @@ int runCommand(const RunOptions& o, const std::vector<std::string>& explicitPara
   if (auto e = threadsError(o.threads)) throw std::invalid_argument("--" + *e);  // --resume skips the spec's check
   const std::string checkpoint = o.checkpoint.empty() ? o.out : o.checkpoint;
   // Every output path before any work (issue #12, finding 7): a typo fails now, not after the computation.
-  io::checkWritableTarget(o.out);
-  io::checkWritableTarget(checkpoint);
+  io::checkCommandFiles({{"--out", o.out, io::FileUse::SavedState},
+                         {"--checkpoint", checkpoint, io::FileUse::SavedState},
+                         {"--resume", o.resume, io::FileUse::ResumedState},
+                         {"--spec", o.specFile, io::FileUse::Input}});
   const std::vector<io::FileLock> locks = lockRunFiles(o.out, checkpoint, o.resume);
 
   TrappingState state;

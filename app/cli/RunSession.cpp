@@ -88,7 +88,9 @@ std::vector<io::FileLock> lockRunFiles(const std::string& out, const std::string
   const bool lockResume = !resume.empty() && ::access(resumeFolder.empty() ? "." : resumeFolder.c_str(), W_OK) == 0;
   for (const std::string& path : {out, checkpoint, lockResume ? resume : std::string()}) {
     if (path.empty()) continue;
-    const std::filesystem::path same = std::filesystem::weakly_canonical(path);  // one lock per file, however named
+    std::error_code ec;  // a link the system alone can follow (/proc/self/fd/1 of a pipe) has no canonical path
+    std::filesystem::path same = std::filesystem::weakly_canonical(path, ec);  // one lock per file, however named
+    if (ec) same = path;
     if (std::find(held.begin(), held.end(), same) != held.end()) continue;
     locks.push_back(io::FileLock::acquire(path));
     held.push_back(same);

@@ -15,6 +15,7 @@
 #include "core/export/StatisticsCsv.hpp"
 #include "core/export/TailCsv.hpp"
 #include "core/io/AtomicFile.hpp"
+#include "core/io/CommandFiles.hpp"
 #include "core/runfile/RunFile.hpp"
 #include "core/stats/RunEnsemble.hpp"
 #include "core/stats/RunStatistics.hpp"
@@ -176,6 +177,9 @@ void printVerdict(const TailAnalysis& a) {
 }
 
 int statsCommand(const StatsOptions& o) {
+  std::vector<io::CommandFile> files{{"--short", o.shortRun, io::FileUse::Input}};
+  for (const std::string& file : o.runFiles) files.push_back({"run", file, io::FileUse::Input});
+  io::checkCommandFiles(files);  // a run given twice would be pooled twice
   if (!o.csvDir.empty()) checkCsvFolder(o.csvDir);
   if (!o.tailCsvDir.empty()) checkCsvFolder(o.tailCsvDir);
   std::vector<TrappingState> states;
@@ -255,6 +259,7 @@ int statsCommand(const StatsOptions& o) {
   // --csv: the same files, byte for byte, as the GUI's "Export all" (export/StatisticsCsv.hpp) for one run; an
   // ensemble's carry a note naming its seeds.  --tail-csv: the tail's files (export/TailCsv.hpp), in a folder
   // of their own so that --csv stays the GUI's set.
+  io::OutputBatch outputs;  // every CSV or none (issue 36, class 5)
   if (!o.csvDir.empty())
     writeCsvFiles(o.csvDir, withNote(statisticsCsvFiles(state, s, theoryCurves(p, s)), state, ensembleNote(tail)));
   if (!o.csvDir.empty() && b2) {
@@ -266,6 +271,7 @@ int statsCommand(const StatsOptions& o) {
     }
   }
   if (!o.tailCsvDir.empty()) writeCsvFiles(o.tailCsvDir, tailCsvFiles(state, tail, s.P));
+  outputs.commit();
   return 0;
 }
 }  // namespace

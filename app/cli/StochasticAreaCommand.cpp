@@ -7,6 +7,7 @@
 
 #include "CliCommon.hpp"
 #include "core/io/AtomicFile.hpp"
+#include "core/io/CommandFiles.hpp"
 #include "core/kernels/KernelDispatch.hpp"
 #include "core/portrait/PortraitExport.hpp"  // stochasticAreaJson
 #include "core/portrait/StochasticArea.hpp"
@@ -24,7 +25,7 @@ struct AreaOptions {
 int runArea(AreaOptions o) {
   o.request.kernel = &selectKernel(o.kernel);
   if (auto e = validationError(o.request)) throw std::invalid_argument(*e);
-  if (!o.json.empty()) io::checkWritableTarget(o.json);  // before the work, not after it
+  io::checkCommandFiles({{"--json", o.json, io::FileUse::Output}});  // before the work, not after it
   // b₂ is an area (appendix A); the box counting measures the fraction of the box: both columns, by name.
   std::printf("iterations,boxes_visited,b2_area,b2_fraction\n");
   const MapParameters map = o.request.map;

@@ -16,6 +16,7 @@
 #include "CliCommon.hpp"
 #include "RunSession.hpp"
 #include "core/io/AtomicFile.hpp"
+#include "core/io/CommandFiles.hpp"
 #include "core/io/NumberText.hpp"
 #include "core/kernels/KernelDispatch.hpp"
 #include "core/runfile/RunFile.hpp"
@@ -104,8 +105,10 @@ int tailCommand(TailOptions& o, const CLI::App& cmd) {
                  checkpoint.c_str());
     return 130;
   }
+  io::OutputBatch outputs;  // the tail file and its CSVs: all or nothing (issue 36, class 5)
   saveTailOrSayWhere(o.out, state, lastCheckpoint);
   reportTail(state, o, job.runs);
+  outputs.commit();
   if (!o.quiet) {
     const TailResult result = tailResult(state);
     std::fprintf(stderr, "done: %zu levels, the largest reliable t = %.4g; %.3g steps in %.1f s (%s kernel); wrote %s\n",
@@ -157,13 +160,15 @@ TailJob prepareTail(TailOptions& o, const CLI::App& cmd, std::optional<ReplicaRa
     }
   }
   const std::string checkpoint = o.checkpoint.empty() ? o.out : o.checkpoint;
-  io::checkWritableTarget(o.out);
-  io::checkWritableTarget(checkpoint);
-  if (!o.csv.empty()) io::checkWritableTarget(o.csv);
-  if (!o.compareCsv.empty()) {
-    if (o.compare.empty()) throw std::invalid_argument("--compare-csv needs --compare RUN.json");
-    io::checkWritableTarget(o.compareCsv);
-  }
+  if (!o.compareCsv.empty() && o.compare.empty()) throw std::invalid_argument("--compare-csv needs --compare RUN.json");
+  std::vector<io::CommandFile> files{{"--out", o.out, io::FileUse::SavedState},
+                                     {"--checkpoint", checkpoint, io::FileUse::SavedState},
+                                     {"--resume", resume, io::FileUse::ResumedState},
+                                     {"--csv", o.csv, io::FileUse::Output},
+                                     {"--compare-csv", o.compareCsv, io::FileUse::Output},
+                                     {"--spec", o.specFile, io::FileUse::Input}};
+  for (const std::string& run : o.compare) files.push_back({"--compare", run, io::FileUse::Input});
+  io::checkCommandFiles(files);  // no output over another or over an input; a run compared once
   if (!resume.empty()) {
     job.state = loadTailFile(resume);
     if (job.state.finished() && resumeFile.empty()) throw std::invalid_argument(resume + " is already finished");

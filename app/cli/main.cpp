@@ -4,8 +4,11 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <exception>
+#include <iostream>
 #include <string>
 
 #include "OrbitCommand.hpp"
@@ -25,6 +28,20 @@
 #include "ManifoldCommand.hpp"
 #include "FluxCommand.hpp"
 #include "TailCommand.hpp"
+
+namespace {
+/// Issue 36, class 2: what a command printed must have reached stdout, as a file's content must reach the disk (a
+/// full disk, a closed pipe's reader, /dev/full): else one ERROR and a non-zero exit, never a silent 0.
+int checkedStandardOutput(int status) {
+  errno = 0;
+  std::cout.flush();
+  const bool failed = std::fflush(stdout) != 0 || std::ferror(stdout) != 0 || !std::cout;
+  if (!failed) return status;
+  const int error = errno;
+  std::fprintf(stderr, "ERROR: writing standard output: %s\n", error != 0 ? std::strerror(error) : "a write failed");
+  return status != 0 ? status : 1;
+}
+}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"archipelago-cli " ARCHIPELAGO_VERSION
@@ -64,11 +81,11 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
+    return checkedStandardOutput(app.exit(e));
   } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
+    return checkedStandardOutput(app.exit(e));
   } catch (const CLI::CallForVersion& e) {
-    return app.exit(e);
+    return checkedStandardOutput(app.exit(e));
   } catch (const CLI::ParseError& e) {
     std::fprintf(stderr, "ERROR: %s\n", e.what());
     return e.get_exit_code() != 0 ? e.get_exit_code() : 2;
@@ -76,5 +93,5 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "ERROR: %s\n", e.what());
     return 1;
   }
-  return status;
+  return checkedStandardOutput(status);
 }

@@ -95,7 +95,7 @@ run("run", *params[:-6], "--T", "20000", "--M", "8", "--subsets", "4", "--seed",
 r = run("stats", files[0], other)
 check(one_error(r) and "differ in T" in r.stderr, f"runs of different T are refused ({r.stderr.strip()})")
 r = run("stats", files[0], files[0])
-check(one_error(r) and "same seed" in r.stderr, f"the same seed twice is refused ({r.stderr.strip()})")
+check(one_error(r) and "give each input once" in r.stderr, f"the same file twice is refused ({r.stderr.strip()})")
 r = run("stats", files[0], "--bootstrap", "5")
 check(one_error(r) and "replicates" in r.stderr, f"too few bootstrap replicates are refused ({r.stderr.strip()})")
 

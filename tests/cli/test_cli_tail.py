@@ -143,7 +143,7 @@ with tempfile.TemporaryDirectory() as d:
     r = run("merge", slices[2], slices[0], slices[1], "--out", merged)
     check(r.returncode == 0 and results(merged) == results(out), f"the merged slices are the whole run ({r.stderr.strip()})")
     for parts, mention in [([slices[0], slices[1]], "replicas [2, 3) are in no slice"),
-                           ([slices[0], slices[0], slices[1], slices[2]], "overlaps"),
+                           ([slices[0], slices[0], slices[1], slices[2]], "give each input once"),
                            ([slices[1], slices[2]], "no slice holds replica 0"),
                            ([out, slices[1]], "overlaps"),
                            ([slices[0], os.path.join(d, "tail.csv")], "tail.csv")]:

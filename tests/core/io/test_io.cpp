@@ -4,13 +4,19 @@
 
 #include <sys/resource.h>
 #include <sys/stat.h>
+#include <sys/sysmacros.h>
 #include <unistd.h>
+
+#include <fcntl.h>
 
 #include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <thread>
 
 #include "core/io/AtomicFile.hpp"
+#include "core/io/CommandFiles.hpp"
 #include "core/io/Sha256.hpp"
 
 namespace archipelago::io {
@@ -179,6 +185,161 @@ TEST_F(IoFiles, StaleTemporariesOfTheSameFileAreRemoved) {
   EXPECT_TRUE(std::filesystem::exists(dir / ".run.json.lock"));
   EXPECT_TRUE(std::filesystem::exists(dir / ".other.json.a1B2c3"));
   EXPECT_TRUE(std::filesystem::exists(dir / "run.json"));
+}
+
+
+// ---- Issue 36: outputs that fail loudly and never clobber -----------------------------------------------------
+
+bool isCharacterDevice(const std::filesystem::path& p) {
+  struct stat st {};
+  return ::lstat(p.c_str(), &st) == 0 && S_ISCHR(st.st_mode);
+}
+
+// Class 1: an output path that is a link was replaced by a file (the link gone, its target unchanged).  The file it
+// leads to is replaced atomically and the link stays; a dangling link creates the file it names.
+TEST_F(IoFiles, Issue36Class1ALinkIsFollowedNotReplaced) {
+  std::filesystem::create_directories(dir / "real");
+  writeFileAtomically(dir / "real" / "a.json", "old");
+  std::filesystem::create_symlink("real/a.json", dir / "link.json");
+  writeFileAtomically(dir / "link.json", "new");
+  EXPECT_TRUE(std::filesystem::is_symlink(dir / "link.json"));
+  EXPECT_EQ(readRegularFile(dir / "real" / "a.json", 100), "new");
+  EXPECT_EQ(filesIn(dir / "real"), 1);  // no temporary left beside the target
+  std::filesystem::create_symlink("real/b.json", dir / "dangling.json");
+  writeFileAtomically(dir / "dangling.json", "created");
+  EXPECT_TRUE(std::filesystem::is_symlink(dir / "dangling.json"));
+  EXPECT_EQ(readRegularFile(dir / "real" / "b.json", 100), "created");
+  std::filesystem::create_symlink("loop2", dir / "loop1");
+  std::filesystem::create_symlink("loop1", dir / "loop2");
+  EXPECT_THROW(checkWritableTarget(dir / "loop1"), std::runtime_error);
+}
+
+// Class 1: as root, `--out /dev/null` and `--out /dev/full` renamed a regular file over the device node.  A device is
+// written through: /dev/null takes the bytes, /dev/full reports its error, and both stay devices.  A link to them in
+// a private folder is used, so that a regression replaces the link, never the real node.
+TEST_F(IoFiles, Issue36Class1ADeviceIsWrittenThroughNeverReplaced) {
+  std::filesystem::create_symlink("/dev/null", dir / "null.npy");
+  writeFileAtomically(dir / "null.npy", std::string(100000, 'x'));
+  EXPECT_TRUE(std::filesystem::is_symlink(dir / "null.npy"));
+  EXPECT_TRUE(isCharacterDevice("/dev/null"));
+  EXPECT_EQ(filesIn(dir), 1);
+  {
+    FileLock lock = FileLock::acquire(dir / "null.npy");  // no lock file beside a device (none in /dev)
+    EXPECT_EQ(removeStaleTemporaries(dir / "null.npy"), 0u);
+  }
+  EXPECT_NO_THROW(checkWritableTarget(dir / "null.npy"));
+  if (std::filesystem::exists("/dev/full")) {
+    std::filesystem::create_symlink("/dev/full", dir / "full.json");
+    try {
+      writeFileAtomically(dir / "full.json", "{}");
+      ADD_FAILURE() << "a write to /dev/full succeeded";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("No space left"), std::string::npos) << e.what();
+    }
+    EXPECT_TRUE(std::filesystem::is_symlink(dir / "full.json"));
+    EXPECT_TRUE(isCharacterDevice("/dev/full"));
+  }
+  // A private device node (root only: mknod), named directly.
+  if (::mknod((dir / "private-null").c_str(), S_IFCHR | 0666, makedev(1, 3)) == 0) {
+    writeFileAtomically(dir / "private-null", "x");
+    EXPECT_TRUE(isCharacterDevice(dir / "private-null"));
+  }
+}
+
+// Class 1: a FIFO is written through to its reader, never replaced by a file.
+TEST_F(IoFiles, Issue36Class1AFifoIsWrittenThrough) {
+  const auto fifo = dir / "fifo.csv";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  std::string received;
+  std::thread reader([&] {
+    std::ifstream in(fifo, std::ios::binary);  // opening waits for the writer
+    received.assign(std::istreambuf_iterator<char>(in), {});
+  });
+  const std::string content(200000, 'y');  // more than a pipe's buffer
+  writeFileAtomically(fifo, content);
+  struct stat st {};
+  if (::lstat(fifo.c_str(), &st) != 0 || !S_ISFIFO(st.st_mode)) {
+    reader.detach();  // blocked for ever on the FIFO that was renamed over: the regression this test guards
+    FAIL() << fifo << " was replaced by a file";
+  }
+  reader.join();
+  EXPECT_EQ(received, content);
+}
+
+// Class 9: `tail --out` with a 255-byte file name failed on its lock file's name (".NAME.lock" is 261 bytes); the
+// temporary ".NAME.XXXXXX" too.  Long names get a short hashed lock and temporary name beside them.
+TEST_F(IoFiles, Issue36Class9AFileNameOf255Bytes) {
+  const auto target = dir / (std::string(250, 'n') + ".json");
+  const auto other = dir / (std::string(250, 'n') + ".jsom");  // the same first 200 bytes: its own names
+  ASSERT_EQ(target.filename().string().size(), 255u);
+  writeFileAtomically(target, "first");
+  EXPECT_EQ(readRegularFile(target, 100), "first");
+  {
+    FileLock lock = FileLock::acquire(target);
+    FileLock otherLock = FileLock::acquire(other);
+    EXPECT_THROW((void)FileLock::acquire(target), std::runtime_error);
+    AtomicOutputFile abandoned(target);  // a temporary of the long name, as a killed writer leaves it
+    abandoned.stream() << "partial";
+    abandoned.stream().flush();
+    EXPECT_EQ(filesIn(dir), 4);  // the file, two locks, the temporary
+    EXPECT_EQ(removeStaleTemporaries(other), 0u);
+    EXPECT_EQ(removeStaleTemporaries(target), 1u);  // found by its hashed name
+  }
+  EXPECT_EQ(filesIn(dir), 1);
+}
+
+// Class 5: indicator on a nearly full disk reported an ERROR for the .npy but left the PNG written before it.  In
+// a batch, nothing is published until every output is written.
+TEST_F(IoFiles, Issue36Class5OutputsOfABatchAreAllOrNothing) {
+  writeFileAtomically(dir / "a.png", "old a");
+  {
+    OutputBatch batch;
+    writeFileAtomically(dir / "a.png", "new a");
+    EXPECT_EQ(readRegularFile(dir / "a.png", 100), "old a");  // not yet published
+    EXPECT_THROW(writeFileAtomically(dir / "missing" / "b.npy", "b"), std::runtime_error);  // the second fails
+  }  // the batch is dropped: the first's temporary removed, the old file kept
+  EXPECT_EQ(readRegularFile(dir / "a.png", 100), "old a");
+  EXPECT_EQ(filesIn(dir), 1);
+  {
+    OutputBatch batch;
+    writeFileAtomically(dir / "a.png", "new a");
+    writeFileAtomically(dir / "b.npy", "new b");
+    EXPECT_FALSE(std::filesystem::exists(dir / "b.npy"));
+    batch.commit();
+  }
+  EXPECT_EQ(readRegularFile(dir / "a.png", 100), "new a");
+  EXPECT_EQ(readRegularFile(dir / "b.npy", 100), "new b");
+  EXPECT_EQ(filesIn(dir), 2);
+  writeFileAtomically(dir / "c.csv", "c");  // no batch open: published at once
+  EXPECT_EQ(readRegularFile(dir / "c.csv", 100), "c");
+}
+
+// Class 3: `tail --out o.json --csv o.json` lost the tail file; `tail --compare R --out R` destroyed the run R;
+// `tail --compare R R` counted R twice.  One policy for every command: outputs are distinct files, none is an input,
+// an input is named once; one run's state files may coincide; devices may be named twice.
+TEST_F(IoFiles, Issue36Class3NoOutputOverAnotherOrOverAnInput) {
+  writeFileAtomically(dir / "R.json", "{}");
+  std::filesystem::create_symlink("R.json", dir / "link.json");
+  std::filesystem::create_directories(dir / "sub");
+  const auto error = [](const std::vector<CommandFile>& files) { return commandFilesError(files).value_or(""); };
+  const auto out = [](std::string option, std::filesystem::path p) { return CommandFile{option, p, FileUse::Output}; };
+  const auto in = [](std::string option, std::filesystem::path p) { return CommandFile{option, p, FileUse::Input}; };
+  EXPECT_NE(error({out("--out", dir / "o.json"), out("--csv", dir / "o.json")}).find("are one file"), std::string::npos);
+  EXPECT_NE(error({out("--out", dir / "o.json"), out("--csv", dir / "sub" / ".." / "o.json")}), "");  // not yet existing
+  EXPECT_NE(error({in("--compare", dir / "R.json"), out("--out", dir / "R.json")}).find("is also an input"), std::string::npos);
+  EXPECT_NE(error({in("--compare", dir / "R.json"), out("--out", dir / "link.json")}), "");  // through a link
+  EXPECT_NE(error({in("--compare", dir / "R.json"), in("--compare", dir / "link.json")}).find("give each input once"),
+            std::string::npos);
+  EXPECT_EQ(error({in("--compare", dir / "R.json"), out("--out", dir / "T.json"), out("--csv", dir / "T.csv")}), "");
+  EXPECT_EQ(error({CommandFile{"--out", dir / "R.json", FileUse::SavedState},
+                   CommandFile{"--checkpoint", dir / "link.json", FileUse::SavedState},
+                   CommandFile{"--resume", dir / "R.json", FileUse::ResumedState}}), "");  // a run goes on in its file
+  EXPECT_NE(error({CommandFile{"--resume", dir / "R.json", FileUse::ResumedState}, out("--csv", dir / "R.json")}), "");
+  std::filesystem::create_symlink("/dev/null", dir / "null1");
+  EXPECT_EQ(error({out("--out", dir / "null1"), out("--npy", dir / "null1")}), "");  // nothing replaced there
+  EXPECT_NE(error({out("--out", dir / "missing" / "o.json")}).find("does not exist"), std::string::npos);
+  EXPECT_EQ(error({out("--out", ""), out("--csv", "")}), "");  // options not given
+  EXPECT_THROW(checkCommandFiles({out("--out", dir / "x"), out("--csv", dir / "x")}), std::invalid_argument);
 }
 
 }  // namespace
