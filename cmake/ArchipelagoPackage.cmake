@@ -57,3 +57,11 @@ set(CPACK_ARCHIPELAGO_SOURCE_DIR "${PROJECT_SOURCE_DIR}")
 set(CPACK_PRE_BUILD_SCRIPTS "${PROJECT_SOURCE_DIR}/cmake/DebianLayout.cmake")
 include(CPack)
 
+# package.deb: the package built, installed with apt-get, used from PATH, checked by lintian and purged (issue 42).
+# It installs into the system (root only), so it has the label `package`, which the test presets leave out:
+#   ctest --test-dir build/default -L package --output-on-failure        (.ci/run does, after the Qt 6 suite)
+if(ARCHIPELAGO_BUILD_TESTS AND NOT CMAKE_CXX_FLAGS MATCHES "-fsanitize")
+  add_test(NAME package.deb COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tests/package/test_package.py
+    ${CMAKE_CPACK_COMMAND} ${CMAKE_BINARY_DIR} "${installed_programs}" "${ARCHIPELAGO_MAN_PAGES}")
+  set_tests_properties(package.deb PROPERTIES LABELS package TIMEOUT 1800 RUN_SERIAL ON)
+endif()
