@@ -85,4 +85,8 @@ if(ARCHIPELAGO_BUILD_TESTS)
     ${CMAKE_COMMAND} ${CMAKE_BINARY_DIR} "${installed_programs}" "${ARCHIPELAGO_MAN_PAGES}" "${python_dir}"
     "${python_interpreter}")
   set_tests_properties(install.prefix PROPERTIES LABELS install TIMEOUT 300)
+  # CITATION.cff: the format's fields, the version of project(), the paper as a reference (issue 42).
+  add_test(NAME install.citation COMMAND ${Python3_EXECUTABLE} ${PROJECT_SOURCE_DIR}/tests/install/test_citation.py
+    ${PROJECT_SOURCE_DIR})
+  set_tests_properties(install.citation PROPERTIES LABELS install)
 endif()
