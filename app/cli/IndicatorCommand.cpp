@@ -6,8 +6,8 @@
 #include <string>
 
 #include "CliCommon.hpp"
-#include "PngWriter.hpp"
 #include "core/io/AtomicFile.hpp"
+#include "core/io/Png.hpp"
 #include "core/kernels/KernelDispatch.hpp"
 #include "core/measures/IndicatorMap.hpp"
 #include "core/measures/MeasureExport.hpp"
@@ -66,7 +66,7 @@ int runIndicator(const IndicatorOptions& o) {
   const IndicatorRaster& raster = result.raster;
   if (!o.out.empty()) {
     const RasterImage image = colourizeIndicator(raster, *colours);
-    writePng(o.out, image.width, image.height, image.rgb);
+    io::writePng(o.out, image.width, image.height, image.rgb, indicatorProvenance(req).fields);
   }
   if (!o.npy.empty()) exportIndicatorNpy(o.npy, req, result, o.verdicts);
   const PhysicalRect b = req.view.physical(req.measure.map);

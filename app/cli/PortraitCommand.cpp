@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "CliCommon.hpp"
-#include "PngWriter.hpp"
 #include "core/io/AtomicFile.hpp"
+#include "core/io/Png.hpp"
 #include "core/kernels/KernelDispatch.hpp"
 #include "core/portrait/ColourMap.hpp"
 #include "core/portrait/PortraitExport.hpp"
@@ -75,7 +75,7 @@ int runPortrait(const PortraitOptions& o) {
   const PortraitRaster& raster = result.raster;
   if (!o.out.empty()) {
     const RasterImage image = colourize(raster, *colours);
-    writePng(o.out, image.width, image.height, image.rgb);
+    io::writePng(o.out, image.width, image.height, image.rgb, portraitProvenance(req).fields);
   }
   if (!o.npy.empty()) exportPortraitNpy(o.npy, req, raster);
   const PhysicalRect b = req.view.physical(req.map);
