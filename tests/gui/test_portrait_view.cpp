@@ -220,7 +220,7 @@ class TestPortraitView : public QObject {
       QVERIFY(archipelago::io::parseLongDoubleC(fields["View x1"]) == b.x1);
       QVERIFY(archipelago::io::parseLongDoubleC(fields["View y0"]) == b.y0);
       QVERIFY(archipelago::io::parseLongDoubleC(fields["View y1"]) == b.y1);
-      QCOMPARE(QString::fromStdString(fields["Image"]), QStringLiteral("phase portrait, density"));
+      QCOMPARE(QString::fromStdString(fields["Image"]), QStringLiteral("phase portrait, orbits"));  // the GUI's default
     }
     QVERIFY(p.view->exportNpy(npy));
     QVERIFY(QFileInfo(npy).size() > 128);
