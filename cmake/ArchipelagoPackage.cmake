@@ -50,7 +50,9 @@ if(TARGET archipelago_python)
     "python3 (>= ${python_version}), python3 (<< ${CMAKE_MATCH_1}.${next_minor}), python3-numpy")
   get_property(CPACK_ARCHIPELAGO_PYTHON_DIR GLOBAL PROPERTY ARCHIPELAGO_PYTHON_INSTALL_DIR)
 endif()
-set(CPACK_DEBIAN_PACKAGE_CONTROL_EXTRA "${PROJECT_SOURCE_DIR}/resources/debian/prerm")  # removes Python's bytecode
+# Maintainer scripts: the module byte-compiled (postinst) and its bytecode removed (prerm, postrm on purge).
+set(CPACK_DEBIAN_PACKAGE_CONTROL_EXTRA "${PROJECT_SOURCE_DIR}/resources/debian/postinst"
+  "${PROJECT_SOURCE_DIR}/resources/debian/prerm" "${PROJECT_SOURCE_DIR}/resources/debian/postrm")
 set(CPACK_DEBIAN_PACKAGE_CONTROL_STRICT_PERMISSION ON)
 # For cmake/DebianLayout.cmake, run by cpack on the staging tree before it packs.
 set(CPACK_ARCHIPELAGO_SOURCE_DIR "${PROJECT_SOURCE_DIR}")
