@@ -8,6 +8,8 @@
 #      3. the prefix that scripts/build-qwt-qt6.sh built and checked last:
 #         ${ARCHIPELAGO_CACHE:-${XDG_CACHE_HOME:-$HOME/.cache}/archipelago}/qwt-qt6-current.
 #  * Otherwise Qt 5.15 with Debian's libqwt-qt5-dev (headers in /usr/include/qwt, library libqwt-qt5).
+# A Qwt for Qt 6 that is not packaged (1 or 3) is private to Archipelago: copied into <build>/lib/archipelago,
+# linked from there, and installed into <prefix>/lib/archipelago (ARCHIPELAGO_PRIVATE_QWT_FILES; issue 36 class 9).
 # -DARCHIPELAGO_QT_MAJOR=5|6 forces a choice, and configuring fails when the forced Qt or its Qwt is missing.
 # The configure log names the Qt and Qwt versions and where the Qwt came from.
 
@@ -69,6 +71,34 @@ function(_archipelago_find_qwt6 label include_hints library_hints)
   set(_qwt6_why "" PARENT_SCOPE)
 endfunction()
 
+# A private Qwt: copies `library` (libqwt.so), the links to its SONAME and the file they name into
+# <build>/lib/archipelago; sets _qwt6_library to the copy (so that the build tree's run path names that folder)
+# and ARCHIPELAGO_PRIVATE_QWT_FILES to the SONAME link and its file (what `cmake --install` installs).
+set(ARCHIPELAGO_PRIVATE_QWT_FILES "")
+set(ARCHIPELAGO_PRIVATE_LIBDIR lib/archipelago)  # relative to the prefix, and to the build tree
+function(_archipelago_private_qwt library)
+  find_program(ARCHIPELAGO_READELF NAMES readelf REQUIRED)
+  execute_process(COMMAND ${ARCHIPELAGO_READELF} -d "${library}" OUTPUT_VARIABLE _dynamic RESULT_VARIABLE _bad)
+  string(REGEX MATCH "Library soname: \\[([^]]+)\\]" _match "${_dynamic}")
+  set(_soname "${CMAKE_MATCH_1}")
+  if(_bad OR NOT _soname)
+    message(FATAL_ERROR "${library}: no SONAME in readelf -d (${_bad})")
+  endif()
+  get_filename_component(_dir "${library}" DIRECTORY)
+  get_filename_component(_real "${library}" REALPATH)
+  get_filename_component(_real_name "${_real}" NAME)
+  set(_to "${CMAKE_BINARY_DIR}/${ARCHIPELAGO_PRIVATE_LIBDIR}")
+  file(MAKE_DIRECTORY "${_to}")
+  file(COPY "${library}" "${_dir}/${_soname}" DESTINATION "${_to}" FOLLOW_SYMLINK_CHAIN)
+  get_filename_component(_name "${library}" NAME)
+  set(_qwt6_library "${_to}/${_name}" PARENT_SCOPE)
+  set(_files "${_to}/${_soname}")
+  if(NOT _real_name STREQUAL _soname)
+    list(APPEND _files "${_to}/${_real_name}")
+  endif()
+  set(ARCHIPELAGO_PRIVATE_QWT_FILES "${_files}" PARENT_SCOPE)
+endfunction()
+
 set(_qt_major "${ARCHIPELAGO_QT_MAJOR}")
 set(_qwt_source "")
 set(_not_found "")
@@ -117,11 +147,18 @@ if(NOT _qt_major STREQUAL "5")
     endif()
     if(Qt6_FOUND)
       set(_qt_major 6)
+      set(_qwt_source "${_qwt_source}: ${_qwt6_library}")
+      if(NOT _qwt_source MATCHES "^packaged")
+        # A Qwt outside the system's folders (QWT_ROOT, or the one build-qwt-qt6.sh built in the building user's
+        # ~/.cache, which no other user can read: issue 36 class 9) is private to Archipelago: copied into the
+        # build tree's lib/archipelago (the build tree's programs load it from there, whoever runs them), and
+        # installed beside the programs, <prefix>/lib/archipelago (ArchipelagoInstall.cmake).
+        _archipelago_private_qwt("${_qwt6_library}")
+      endif()
       add_library(Qwt::Qwt UNKNOWN IMPORTED)
       set_target_properties(Qwt::Qwt PROPERTIES IMPORTED_LOCATION "${_qwt6_library}"
         INTERFACE_INCLUDE_DIRECTORIES "${_qwt6_include}")
       set(ARCHIPELAGO_QWT_INCLUDE_DIRS "${_qwt6_include}")
-      set(_qwt_source "${_qwt_source}: ${_qwt6_library}")
     else()
       message(WARNING "A Qwt for Qt 6 was found (${_qwt6_library}) but Qt 6 was not "
         "(install qt6-base-dev and qt6-svg-dev): using Qt 5")

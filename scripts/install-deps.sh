@@ -25,6 +25,8 @@ packages=(
   slurm-wlm munge  # slurm.guide: the cluster guide's batch scripts on a one-node Slurm of the test's own (issue 31)
   python3-nbclient python3-ipykernel  # examples/*.ipynb executed by a test (issue 31)
   help2man appstream desktop-file-utils  # cmake --install: man pages; the metainfo and desktop entry validated
+  python3-yaml  # install.citation reads CITATION.cff (issue 42)
+  dpkg-dev lintian file  # the Debian package: cpack's DEB generator (dpkg-shlibdeps, file), checked by lintian (issue 42)
   ccache  # .ci/run: its Qt 5 build reuses the Qt 6 build's objects of core and the CLI (optional elsewhere)
   locales  # localedef: the tests write and read files under a decimal-comma locale (issue #23)
 )

@@ -6,9 +6,9 @@
 #include <string>
 
 #include "CliCommon.hpp"
-#include "PngWriter.hpp"
 #include "core/io/AtomicFile.hpp"
 #include "core/io/CommandFiles.hpp"
+#include "core/io/Png.hpp"
 #include "core/limits/Limits.hpp"
 #include "core/kernels/KernelDispatch.hpp"
 #include "core/measures/IndicatorMap.hpp"
@@ -67,7 +67,7 @@ int runIndicator(const IndicatorOptions& o) {
   io::OutputBatch outputs;  // all or nothing: a full disk at the .npy leaves no PNG either (issue 36, class 5)
   if (!o.out.empty()) {
     const RasterImage image = colourizeIndicator(raster, *colours);
-    writePng(o.out, image.width, image.height, image.rgb);
+    io::writePng(o.out, image.width, image.height, image.rgb, indicatorProvenance(req).fields);
   }
   if (!o.npy.empty()) exportIndicatorNpy(o.npy, req, result, o.verdicts);
   outputs.commit();

@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "CliCommon.hpp"
-#include "PngWriter.hpp"
 #include "core/io/AtomicFile.hpp"
 #include "core/io/CommandFiles.hpp"
+#include "core/io/Png.hpp"
 #include "core/limits/Limits.hpp"
 #include "core/kernels/KernelDispatch.hpp"
 #include "core/portrait/ColourMap.hpp"
@@ -76,7 +76,7 @@ int runPortrait(const PortraitOptions& o) {
   io::OutputBatch outputs;  // all or nothing (issue 36, class 5)
   if (!o.out.empty()) {
     const RasterImage image = colourize(raster, *colours);
-    writePng(o.out, image.width, image.height, image.rgb);
+    io::writePng(o.out, image.width, image.height, image.rgb, portraitProvenance(req).fields);
   }
   if (!o.npy.empty()) exportPortraitNpy(o.npy, req, raster);
   outputs.commit();

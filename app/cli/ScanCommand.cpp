@@ -15,8 +15,9 @@
 #include <vector>
 
 #include "CliCommon.hpp"
-#include "PngWriter.hpp"
 #include "RunSession.hpp"
+#include "core/io/Png.hpp"
+#include "core/provenance/Provenance.hpp"
 #include "core/scan/ScanHeatMap.hpp"
 #include "core/scan/ScanRun.hpp"
 #include "core/kernels/KernelDispatch.hpp"
@@ -67,7 +68,9 @@ void writeHeatMapPng(const std::filesystem::path& path, const ScanHeatMap& map) 
       px[2] = c.b;
     }
   }
-  writePng(path.string(), width, height, rgb);
+  Provenance provenance = programProvenance();
+  provenance.add("Image", "K scan: local exponent over K and tau").add("K first", map.K.front()).add("K last", map.K.back());
+  io::writePng(path.string(), width, height, rgb, provenance.fields);
 }
 
 int scanCommand(const ScanOptions& o, const RunSpec& base, const std::vector<double>& Ks) {

@@ -6,6 +6,7 @@
 #include <system_error>
 
 #include "core/io/AtomicFile.hpp"
+#include "core/provenance/Provenance.hpp"
 #include "core/spec/RunSpecJson.hpp"
 
 namespace archipelago {
@@ -51,7 +52,7 @@ std::string csvMetadataHeader(const TrappingState& state) {
   const TrappingParameters& p = state.params;
   const MapCoefficients& c = state.coefficients;
   std::string out;
-  line(out, "program", std::string("archipelago ") + ARCHIPELAGO_VERSION);
+  line(out, "program", programDescription());
   // The parameters as the run-spec codec writes them (spec/RunSpec.hpp): same keys, same digits.
   const nlohmann::json parameters = spec::parametersJson(p);
   for (const ParameterRule& rule : parameterRules()) line(out, rule.key, parameters.at(std::string(rule.key)).dump());

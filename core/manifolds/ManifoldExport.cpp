@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/io/AtomicFile.hpp"
+#include "core/provenance/Provenance.hpp"
 
 namespace archipelago {
 
@@ -75,6 +76,7 @@ void writeManifoldCsv(std::ostream& out, const ManifoldCurveRequest& r, const Ma
       << (r.orbit ? "a hyperbolic periodic orbit of period " + std::to_string(r.orbit->period)
                   : std::string("the hyperbolic fixed point (sqrt K, 0)"))
       << " of Q (eq. qu): y' = y + 2(x^2 - K), x' = x + y'\n";
+  out << "# program: " << programDescription() << "\n";
   out << "# K: " << number(r.K) << "\n";
   out << "# map: "
       << (r.box ? "Q* in the box [" + number(r.box->xmin, 17) + ", " + number(r.box->xmax, 17) + ") x [-L/2, L/2)"

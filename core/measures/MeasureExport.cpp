@@ -43,12 +43,23 @@ std::string indicatorQuantity(IndicatorKind kind) {
   return "";
 }
 
+Provenance indicatorProvenance(const IndicatorRequest& r) {
+  Provenance p = mapProvenance(r.measure.map);
+  addView(p, r.measure.map, r.view);
+  p.add("Image", "indicator map, " + std::string(toString(r.measure.kind)));
+  p.add("Size", std::to_string(r.width) + "x" + std::to_string(r.height));
+  p.add("Iterations", std::to_string(r.measure.iterations));
+  p.add("Digits threshold", r.measure.digitsThreshold);
+  return p;
+}
+
 std::string indicatorMetadataJson(const IndicatorRequest& r, const IndicatorResult& result, const std::string& verdictsFile) {
   using nlohmann::json;
   const IndicatorRaster& raster = result.raster;
   json j;
   j["format"] = "archipelago indicator raster";
   j["version"] = ARCHIPELAGO_VERSION;
+  j["program"] = programDescription();
   j["kind"] = std::string(toString(r.measure.kind));
   j["array"] = indicatorQuantity(r.measure.kind);
   j["rows"] = "row 0 is the top of the view (largest y); column 0 its left edge (smallest x)";
@@ -133,6 +144,7 @@ std::string rotationReportJson(const ChainRequest& r, const ChainIdentification&
   json j;
   j["format"] = "archipelago rotation report";
   j["version"] = ARCHIPELAGO_VERSION;
+  j["program"] = programDescription();
   j["map"] = mapWithCoefficientsJson(r.map);
   j["start"] = {{"x", static_cast<double>(p.x)}, {"y", static_cast<double>(p.y)}, {"X", r.start.X}, {"Y", r.start.Y}};
   j["iterations"] = r.iterations;

@@ -14,12 +14,17 @@
 #include "core/measures/ChainIdentification.hpp"
 #include "core/measures/IndicatorMap.hpp"
 #include "core/portrait/ColourMap.hpp"
+#include "core/provenance/Provenance.hpp"
 
 namespace archipelago {
 
 /// What the values of a kind mean, with units: e.g. "rotation number about (-sqrt K, 0), turns per step,
 /// positive clockwise; NaN: chaotic or escaping (see verdicts)".
 [[nodiscard]] std::string indicatorQuantity(IndicatorKind kind);
+
+/// Where an indicator map came from (its PNG's text, the CLI's and the GUI's): the program, the map, the view
+/// (PortraitExport.hpp's addView), the kind, the size, the iterations and the digits threshold.
+[[nodiscard]] Provenance indicatorProvenance(const IndicatorRequest& request);
 
 /// The sidecar's JSON text (pretty-printed).  `verdictsFile`: the name of the verdicts array written beside it,
 /// if any.

@@ -7,6 +7,7 @@
 
 #include "core/limits/Limits.hpp"
 #include "core/io/AtomicFile.hpp"
+#include "core/provenance/Provenance.hpp"
 
 namespace archipelago {
 
@@ -85,7 +86,7 @@ void writeRotationProfileCsv(const std::string& path, const RotationProfileReque
                 shortestDecimal(r.measure.map.xmax).c_str(), static_cast<unsigned long long>(r.measure.iterations),
                 shortestDecimal(r.measure.digitsThreshold).c_str(), r.from.x, r.from.y, r.to.x, r.to.y, r.points,
                 static_cast<long long>(r.maxDenominator));
-  out << line << "index,x,y,rotation,digits,verdict,rational\n";
+  out << line << "# program: " << programDescription() << "\n" << "index,x,y,rotation,digits,verdict,rational\n";
   for (std::size_t i = 0; i < profile.points.size(); ++i) {
     const RotationProfilePoint& p = profile.points[i];
     std::snprintf(line, sizeof line, "%zu,%.19Lg,%.19Lg,", i, p.point.x, p.point.y);

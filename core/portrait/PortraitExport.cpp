@@ -47,6 +47,26 @@ std::string sidecarPath(const std::string& npyPath) {
   return npyPath + ".json";
 }
 
+void addView(Provenance& provenance, const MapParameters& map, const Viewport& view) {
+  const PhysicalRect b = view.physical(map);
+  provenance.add("View x0", b.x0).add("View x1", b.x1).add("View y0", b.y0).add("View y1", b.y1);
+}
+
+Provenance portraitProvenance(const PortraitRequest& r) {
+  Provenance p = mapProvenance(r.map);
+  addView(p, r.map, r.view);
+  p.add("Image", "phase portrait, " + std::string(toString(r.mode)));
+  p.add("Size", std::to_string(r.width) + "x" + std::to_string(r.height));
+  p.add("Points", std::to_string(r.points));
+  if (r.mode == PortraitMode::Orbits)
+    p.add("Seed grid", std::to_string(r.seedColumns) + "x" + std::to_string(r.seedRows));
+  else
+    p.add("Orbits", std::to_string(r.orbits));
+  if (r.mode == PortraitMode::Stickiness) p.add("Xr", r.Xr).add("q", std::to_string(r.q));
+  p.add("Seed", std::to_string(r.seed));
+  return p;
+}
+
 std::string portraitMetadataJson(const PortraitRequest& r, const PortraitRaster& raster, const std::string& arrayName) {
   using nlohmann::json;
   std::uint64_t maxCount = 0;
@@ -54,6 +74,7 @@ std::string portraitMetadataJson(const PortraitRequest& r, const PortraitRaster&
   json j;
   j["format"] = "archipelago portrait raster";
   j["version"] = ARCHIPELAGO_VERSION;
+  j["program"] = programDescription();
   j["array"] = arrayName;
   j["rows"] = "row 0 is the top of the view (largest y); column 0 its left edge (smallest x)";
   j["shape"] = {raster.height, raster.width};

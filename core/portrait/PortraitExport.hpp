@@ -12,12 +12,21 @@
 
 #include "core/io/Npy.hpp"
 #include "core/portrait/PortraitRenderer.hpp"
+#include "core/provenance/Provenance.hpp"
 #include "core/portrait/StochasticArea.hpp"
 
 namespace archipelago {
 
 /// The sidecar's path: FILE.npy → FILE.json (any other name: name + ".json").
 [[nodiscard]] std::string sidecarPath(const std::string& npyPath);
+
+/// The view's edges as the fields "View x0", "View x1", "View y0", "View y1" (physical coordinates, shortest exact
+/// text of the long doubles): the view of every image of the phase plane.
+void addView(Provenance& provenance, const MapParameters& map, const Viewport& view);
+
+/// Where a portrait came from (its PNG's text, the CLI's and the GUI's): the program, the map, the view, the mode,
+/// the size, the points, the orbits (or seed grid), Xr and q in Stickiness mode, the seed.
+[[nodiscard]] Provenance portraitProvenance(const PortraitRequest& request);
 
 /// The JSON text of the sidecar (pretty-printed).
 [[nodiscard]] std::string portraitMetadataJson(const PortraitRequest& request, const PortraitRaster& raster,

@@ -6,6 +6,7 @@
 
 #include "core/io/AtomicFile.hpp"
 #include "core/io/Json.hpp"
+#include "core/provenance/Provenance.hpp"
 #include "core/run/StateValidation.hpp"
 #include "core/spec/RunSpecJson.hpp"
 
@@ -100,7 +101,7 @@ std::string runFileText(const TrappingState& s) {
   json j;
   j["format"] = kRunFileFormatName;
   j["version"] = kRunFileFormatVersion;
-  j["program"] = std::string("archipelago ") + ARCHIPELAGO_VERSION;
+  j["program"] = programDescription();
   j["parameters"] = spec::parametersJson(p);
   j["coefficients"] = {{"A", s.coefficients.A}, {"B", s.coefficients.B}, {"C", s.coefficients.C},
                        {"m", s.coefficients.m}};

@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "core/export/StatisticsCsv.hpp"
+#include "core/provenance/Provenance.hpp"
 #include "core/scan/ScanHeatMap.hpp"
 
 namespace archipelago {
@@ -26,7 +27,7 @@ void line(std::string& out, std::string_view name, const std::string& value) { c
 /// What every scan file opens with: the program, the box rule and the settings the K share.
 std::string scanHeader(const std::vector<ScanRunSummary>& runs) {
   std::string out;
-  line(out, "program", std::string("archipelago ") + ARCHIPELAGO_VERSION);
+  line(out, "program", programDescription());
   line(out, "scan", "trapping statistics over K (Karney 1983, sec. 5); box of each K: xmin = -2 sqrt(K) - " +
                         shortest(kScanBoxMargin) + ", xmax = sqrt(K) + " + shortest(kScanBoxMargin));
   if (!runs.empty()) {

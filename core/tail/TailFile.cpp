@@ -7,6 +7,7 @@
 
 #include "core/io/AtomicFile.hpp"
 #include "core/io/Json.hpp"
+#include "core/provenance/Provenance.hpp"
 #include "core/spec/RunSpecJson.hpp"
 
 namespace archipelago {
@@ -85,7 +86,7 @@ std::string tailFileText(const TailState& s) {
   json j;
   j["format"] = kTailFileFormatName;
   j["version"] = kTailFileFormatVersion;
-  j["program"] = std::string("archipelago ") + ARCHIPELAGO_VERSION;
+  j["program"] = programDescription();
   j["parameters"] = spec::parametersJson(s.request.run);
   j["coefficients"] = {{"A", s.coefficients.A}, {"B", s.coefficients.B}, {"C", s.coefficients.C},
                        {"m", s.coefficients.m}};
@@ -280,7 +281,7 @@ std::string csvNumber(double v) {
 std::string tailCsvText(const TailState& s, const TailResult& result) {
   std::string out;
   const auto line = [&](const std::string& key, const std::string& value) { out += "# " + key + ": " + value + "\n"; };
-  line("program", std::string("archipelago ") + ARCHIPELAGO_VERSION);
+  line("program", programDescription());
   const json parameters = spec::parametersJson(s.request.run);
   for (const char* key : {"K", "xmin", "xmax", "Xr", "q", "seed"}) line(key, parameters.at(key).dump());
   const json sampler = samplerJson(s.request);

@@ -5,7 +5,7 @@
 ///
 /// Format "archipelago-tail", version 1:
 ///
-///     {"format": "archipelago-tail", "version": 1, "program": "archipelago 0.1.0",
+///     {"format": "archipelago-tail", "version": 1, "program": "archipelago 0.1.0 (commit 0123456789ab)",
 ///      "parameters": {…the run spec's parameters…}, "coefficients": {"A", "B", "C", "m"},
 ///      "sampler": {"population", "replicas", "first", "t_max", "level_bins", "epsilon", "clones",
 ///                  "metropolis_steps", "warmup", "min_ancestors"},

@@ -12,9 +12,13 @@
 #include <QtTest>
 
 #include <cmath>
+#include <map>
 #include <memory>
+#include <string>
 
 #include "GuiTestSupport.hpp"
+#include "core/io/NumberText.hpp"
+#include "core/io/Png.hpp"
 #include "core/portrait/MapOverlays.hpp"
 #include "ui/portrait/PortraitController.hpp"
 #include "ui/portrait/PortraitPanel.hpp"
@@ -199,6 +203,25 @@ class TestPortraitView : public QObject {
     // At most the size asked, cut to the view's aspect (equal aspect: the whole box is square).
     QCOMPARE(written.height(), 400);
     QVERIFY(written.width() <= 500 && written.width() > 300);
+    // Issue 42: the PNG says where it came from, in tEXt chunks (read from the file's bytes, not through Qt):
+    // the program, its version and commit, K and the view exported.
+    {
+      QFile file(png);
+      QVERIFY(file.open(QIODevice::ReadOnly));
+      const QByteArray bytes = file.readAll();
+      const auto text = archipelago::io::readPngText(std::vector<std::uint8_t>(bytes.begin(), bytes.end()));
+      std::map<std::string, std::string> fields(text.begin(), text.end());
+      QCOMPARE(QString::fromStdString(fields["Version"]), QStringLiteral(ARCHIPELAGO_VERSION));
+      QCOMPARE(QString::fromStdString(fields["Software"]), QStringLiteral("archipelago " ARCHIPELAGO_VERSION));
+      QVERIFY(!fields["Commit"].empty());
+      QCOMPARE(QString::fromStdString(fields["K"]), QStringLiteral("0.1"));
+      const PhysicalRect b = p.controller->viewport().physical(p.controller->map());
+      QVERIFY(archipelago::io::parseLongDoubleC(fields["View x0"]) == b.x0);
+      QVERIFY(archipelago::io::parseLongDoubleC(fields["View x1"]) == b.x1);
+      QVERIFY(archipelago::io::parseLongDoubleC(fields["View y0"]) == b.y0);
+      QVERIFY(archipelago::io::parseLongDoubleC(fields["View y1"]) == b.y1);
+      QCOMPARE(QString::fromStdString(fields["Image"]), QStringLiteral("phase portrait, orbits"));  // the GUI's default
+    }
     QVERIFY(p.view->exportNpy(npy));
     QVERIFY(QFileInfo(npy).size() > 128);
     QVERIFY(QFileInfo::exists(dir.filePath(QStringLiteral("portrait.json"))));

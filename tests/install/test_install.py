@@ -4,7 +4,10 @@ bin/ answers --version and --help (the GUI with QT_QPA_PLATFORM=offscreen, and w
 a small run, no installed program depends on the build tree; the desktop entry, icon and AppStream metainfo in
 share/ agree with each other and with bin/ (and pass desktop-file-validate and appstreamcli validate where those
 are installed); a manual page per program (help2man); the Python package imports from PYTHONPATH=PREFIX/<its
-folder>, not from the build tree, and runs; nothing is installed outside bin/, share/ and that folder.
+folder>, not from the build tree, and runs; nothing is installed outside bin/, share/, that folder and
+lib/archipelago/ (the private Qwt). Issue 36 class 9: the run paths are relative to the program ($ORIGIN), and as
+root the programs installed (and the build tree's GUI) start as another user, nobody (they failed to load a Qwt
+in the building user's ~/.cache).
 Arguments: cmake, the build folder, the programs expected (;-separated), the manual pages expected, the Python
 package's folder relative to the prefix and the interpreter to import it with (both empty without the module)."""
 import json, os, re, shutil, subprocess, sys, tempfile
@@ -26,7 +29,7 @@ r = subprocess.run([cmake, "--install", build, "--prefix", prefix], capture_outp
 check(r.returncode == 0, f"cmake --install {build} --prefix {prefix} " + r.stderr.strip()[-500:])
 files = sorted(os.path.relpath(os.path.join(d, f), prefix) for d, _, fs in os.walk(prefix) for f in fs)
 print("     installed: " + ", ".join(files))
-allowed = ("bin/", "share/") + ((pydir.rstrip("/") + "/",) if pydir else ())
+allowed = ("bin/", "share/", "lib/archipelago/") + ((pydir.rstrip("/") + "/",) if pydir else ())
 check(all(f.startswith(allowed) for f in files), f"everything under {', '.join(allowed)} "
       f"(not: {[f for f in files if not f.startswith(allowed)]})")
 
@@ -50,13 +53,54 @@ for name in programs:
               f": {out.strip().splitlines()[0] if out.strip() else '(nothing)'}")
     dynamic = subprocess.run(["readelf", "-d", exe], capture_output=True, text=True).stdout
     paths = re.findall(r"\((?:RPATH|RUNPATH)\)\s+Library r(?:un)?path: \[(.*)\]", dynamic)
-    check(not any(os.path.realpath(build) in os.path.realpath(p) for p in ":".join(paths).split(":") if p),
+    check(not any(os.path.realpath(build) in os.path.realpath(p) for p in ":".join(paths).split(":")
+                  if p and not p.startswith("$ORIGIN")),
           f"bin/{name}: no run path into the build tree ({paths or 'none'})")
+    # Issue 36 class 9: a run path to an absolute folder (the building user's ~/.cache) fails for other users
+    # and other prefixes; a private library is found relative to the program.
+    check(all(p.startswith("$ORIGIN") for p in ":".join(paths).split(":") if p),
+          f"bin/{name}: every run path relative to the program ({paths or 'none'})")
+    needed = re.findall(r"\(NEEDED\)\s+Shared library: \[(libqwt[^]]*)\]", dynamic)
+    private = os.path.join(prefix, "lib/archipelago")
+    if needed and os.path.isdir(private):
+        check(all(os.path.exists(os.path.join(private, n)) for n in needed) and
+              any(p == "$ORIGIN/../lib/archipelago" for p in ":".join(paths).split(":")),
+              f"bin/{name}: its Qwt {needed} installed in lib/archipelago/, and found there")
 cli = os.path.join(prefix, "bin", "archipelago-cli")
 r = subprocess.run([cli, "run", "--K", "0.1", "--M", "16", "--q", "4", "--T", "1000", "--quiet", "--out",
                     os.path.join(prefix, "run.json")], capture_output=True, text=True, timeout=60)
 check(r.returncode == 0 and json.load(open(os.path.join(prefix, "run.json")))["finished"],
       "bin/archipelago-cli run: a small run finished " + r.stderr.strip())
+
+# --- as another user (issue 36 class 9) --------------------------------------------------------------------------
+def readable_by_others(path):
+    """Whether every folder above `path` can be traversed, and `path` read, by a user who is not its owner."""
+    path = os.path.realpath(path)
+    parts = [path] + [os.path.dirname(path)]
+    while parts[-1] != "/":
+        parts.append(os.path.dirname(parts[-1]))
+    return all(os.stat(p).st_mode & 0o005 == 0o005 for p in parts[1:]) and os.stat(path).st_mode & 0o004
+
+
+runuser = shutil.which("runuser")
+if os.geteuid() == 0 and runuser:
+    os.chmod(prefix, 0o755)  # mkdtemp makes it 0700
+    as_nobody = dict(no_display, QT_QPA_PLATFORM="offscreen", HOME="/nonexistent")
+    targets = [(f"bin/{n}", os.path.join(prefix, "bin", n)) for n in programs]
+    gui = os.path.join(build, "app/gui/archipelago")
+    if os.path.exists(gui):
+        targets.append(("the build tree's app/gui/archipelago", gui))
+    for label, exe in targets:
+        if not readable_by_others(exe):
+            print(f"     not run as nobody: {exe} cannot be reached by other users (a folder above it is private)")
+            continue
+        r = subprocess.run([runuser, "-u", "nobody", "--", exe, "--version"], capture_output=True, text=True,
+                           env=as_nobody, cwd="/", timeout=60)
+        out = (r.stdout + r.stderr).strip()
+        check(r.returncode == 0 and version in out,
+              f"{label} --version as the user nobody: {out.splitlines()[0] if out else '(nothing)'}")
+else:
+    print("     not run as another user: needs root and runuser (CI runs as root)")
 
 # --- share/: the desktop entry, its icon, the metainfo -----------------------------------------------------------
 if "archipelago" in programs:

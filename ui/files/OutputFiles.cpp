@@ -20,11 +20,14 @@ bool publishBytes(const QByteArray& bytes, const QString& path, QString* error) 
   return true;
 }
 
-bool writePngFile(const QImage& image, const QString& path, QString* error) {
+bool writePngFile(const QImage& image, const QString& path, QString* error, const Provenance& provenance) {
   QByteArray bytes;
   QBuffer buffer(&bytes);
   buffer.open(QIODevice::WriteOnly);
-  if (image.isNull() || !image.save(&buffer, "PNG") || bytes.isEmpty()) {
+  QImage annotated = image;
+  for (const auto& [key, value] : provenance.fields)
+    annotated.setText(QString::fromStdString(key), QString::fromStdString(value));  // Qt writes them as tEXt chunks
+  if (annotated.isNull() || !annotated.save(&buffer, "PNG") || bytes.isEmpty()) {
     if (error) *error = QStringLiteral("cannot encode %1 as PNG").arg(path);
     return false;
   }

@@ -8,6 +8,8 @@
 #include <QByteArray>
 #include <QString>
 
+#include "core/provenance/Provenance.hpp"
+
 class QImage;
 
 namespace archipelago::ui {
@@ -15,8 +17,11 @@ namespace archipelago::ui {
 /// Writes `bytes` to `path` atomically.  False, with the reason in *error, when it cannot.
 bool publishBytes(const QByteArray& bytes, const QString& path, QString* error);
 
-/// Encodes `image` as PNG in memory and publishes it.  False, with the reason, when encoding or writing fails.
-bool writePngFile(const QImage& image, const QString& path, QString* error);
+/// Encodes `image` as PNG in memory, with the fields of `provenance` as its text chunks (where it came from: the
+/// program, version and commit at least; issue 42), and publishes it.  False, with the reason, when encoding or
+/// writing fails.
+bool writePngFile(const QImage& image, const QString& path, QString* error,
+                  const Provenance& provenance = programProvenance());
 
 /// Whether `bytes` look like a whole PDF document: "%PDF-" at the start and "%%EOF" in its last 1024 bytes.
 [[nodiscard]] bool isCompletePdf(const QByteArray& bytes);

@@ -715,7 +715,8 @@ bool PortraitView::exportPng(const QString& path, const QSize& requested) {
   plot_->enableAxis(QwtPlot::yRight, hadBar);
   plot_->replot();
   QString writeError;
-  const bool ok = writePngFile(image, path, &writeError);
+  const bool ok = writePngFile(image, path, &writeError,
+                               indicator ? indicatorProvenance(*indicator) : portraitProvenance(request));
   Q_EMIT statusMessage(ok ? tr("Exported %1 (%2 × %3, its raster %4 × %5)").arg(path).arg(size.width()).arg(size.height()).arg(w).arg(h)
                           : writeError);
   return ok;

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/export/StatisticsCsv.hpp"
+#include "core/provenance/Provenance.hpp"
 #include "core/stats/RunStatistics.hpp"
 #include "core/run/TrappingRun.hpp"
 
@@ -74,7 +75,10 @@ TEST(StatisticsCsv, MetadataHeaderRecordsTheRun) {
   ASSERT_FALSE(lines.empty());
   for (const std::string& l : lines) EXPECT_EQ(l.rfind("# ", 0), 0u) << l;
   EXPECT_EQ(header.back(), '\n');
-  EXPECT_EQ(lines.front(), std::string("# program: archipelago ") + ARCHIPELAGO_VERSION);
+  // The program, its version and the commit it was built from (issue 42).
+  EXPECT_EQ(lines.front().rfind(std::string("# program: archipelago ") + ARCHIPELAGO_VERSION + " (commit ", 0), 0u)
+      << lines.front();
+  EXPECT_EQ(lines.front(), "# program: " + archipelago::programDescription());
   // The parameters as the run-spec codec writes them: the shortest decimals that read back exactly.
   EXPECT_TRUE(contains(lines, "# K: 0.1"));
   EXPECT_TRUE(contains(lines, "# xmin: -0.8"));
