@@ -8,6 +8,7 @@
 #include <exception>
 #include <string>
 
+#include "CliCommon.hpp"
 #include "OrbitCommand.hpp"
 #include "RunCommand.hpp"
 #include "ScanCommand.hpp"
@@ -61,15 +62,8 @@ int main(int argc, char** argv) {
   }
   try {
     app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForVersion& e) {
-    return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "ERROR: %s\n", e.what());
-    return e.get_exit_code() != 0 ? e.get_exit_code() : 2;
+    return archipelago::cli::parseErrorStatus(app, e);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "ERROR: %s\n", e.what());
     return 1;
