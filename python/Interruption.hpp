@@ -9,10 +9,13 @@
 // the token.  Core answers a stop by returning a consistent state (a run, a tail sampler, a map) or by throwing (a
 // periodic-orbit search, a manifold); either way the kept exception is raised once the work has returned, after the
 // caller saved what it must (a checkpoint).  Two ways to call check():
-//   - at core's progress points, on the calling thread, where a Python progress callback must run too (Run.advance,
-//     tail, indicator): the observer calls check(progress, report);
-//   - every 50 ms from the calling thread while the work runs on a worker thread, for work with no Python callback
-//     (stochastic_area, portrait, periodic_orbit, manifold, flux, rotation_profile, orbit_measures): interruptible().
+//   - at core's progress points, where a Python progress callback must run too (Run.advance, tail, indicator): the
+//     observer calls check(progress, report);
+//   - every 50 ms from the calling thread while the work runs on a worker thread (withoutGilPolled()): for work with
+//     no Python callback (stochastic_area, portrait, periodic_orbit, manifold, flux, rotation, rotation_profile,
+//     orbit_measures: interruptible()), and for work whose progress points are far apart (tail, indicator: a unit of
+//     stage 0 or a round of pixels lasted up to 70 s, and Ctrl-C waited for it, issue 36), whose observer then
+//     runs check(progress, report) on the worker thread.
 
 #pragma once
 
@@ -71,6 +74,17 @@ class Interruption {
     return std::move(*result);
   }
 
+  /// withoutGil(), the work running on a worker thread as work(token()) while this thread checks for Ctrl-C every
+  /// 50 ms: a stop is requested within 50 ms of the signal, and core honours it at its next look at the token.
+  template <class Work>
+  auto withoutGilPolled(Work&& work) -> std::invoke_result_t<Work&, std::stop_token> {
+    return withoutGil([&] {
+      auto done = std::async(std::launch::async, [&] { return work(token()); });
+      while (done.wait_for(std::chrono::milliseconds(50)) != std::future_status::ready) check();
+      return done.get();
+    });
+  }
+
   /// With the GIL held: raises the exception that stopped the work, if any.
   void raisePending() {
     if (!pending_) return;
@@ -98,11 +112,9 @@ class Interruption {
 template <class Work>
 auto interruptible(Work work) -> std::invoke_result_t<Work&, std::stop_token> {
   Interruption interruption;
-  return interruption.run([&] {
-    auto done = std::async(std::launch::async, [&] { return work(interruption.token()); });
-    while (done.wait_for(std::chrono::milliseconds(50)) != std::future_status::ready) interruption.check();
-    return done.get();
-  });
+  auto result = interruption.withoutGilPolled(work);
+  interruption.raisePending();
+  return result;
 }
 
 }  // namespace archipelago::bindings

@@ -1,7 +1,8 @@
 // The Python module `archipelago` (issue 18): core's public API as NumPy arrays, for notebooks and scripts.
 // No maths here: every number comes from core (Karney 1983, Physica D 8; see the C++ headers cited in each
 // docstring).  Errors: std::invalid_argument -> ValueError (core's messages, the CLI's), file errors -> OSError,
-// a wrong type -> TypeError, too little memory -> MemoryError.  Long calls release the GIL and stop on Ctrl-C
+// a wrong type -> TypeError, too little memory -> MemoryError, no answer for the input (NotFound: no orbit near the
+// guess, a lobe not resolved) -> archipelago.NotFoundError, a ValueError.  Long calls release the GIL and stop on Ctrl-C
 // (python/Interruption.hpp); arguments and results are converted by python/Conversions.hpp.
 //
 // One file per topic, as core's modules: each bind_<topic>.cpp defines bind<Topic>(m).
@@ -11,6 +12,7 @@
 #include <exception>
 
 #include "core/io/Memory.hpp"
+#include "core/periodic/PeriodicOrbitFinder.hpp"  // NotFound
 
 namespace py = pybind11;
 using namespace archipelago;
@@ -41,6 +43,10 @@ PYBIND11_MODULE(_archipelago, m) {
       PyErr_SetString(PyExc_MemoryError, e.what());
     }
   });
+  // A computation with no answer for an input in range (no orbit near the guess, a lobe not resolved): its own
+  // class, a ValueError, so that a script can tell it from a crash of the program (issue 36).  Registered after the
+  // translator above, so tried before it.
+  py::register_exception<NotFound>(m, "NotFoundError", PyExc_ValueError);
   bindMap(m);
   bindRun(m);  // before every binding that takes a Run (scan_point), so that their signatures name it
   bindPortrait(m);

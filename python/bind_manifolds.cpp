@@ -70,6 +70,7 @@ py::dict manifold(double K, const std::string& branch, const std::string& side, 
     ManifoldCurveRequest check = r;  // every range before the orbit search
     check.point = 0;
     if (auto e = validationError(check)) throw std::invalid_argument(*e);
+    checkManifoldMemory(check);
   }
   const std::optional<PhysicalPoint> at = guess(near);
   const ManifoldCurve c = interruptible([&](std::stop_token stop) {

@@ -1,8 +1,8 @@
 // The orbit measures of core/measures as NumPy arrays: rotation numbers and island chains of single orbits,
 // rotation profiles, indicator maps (dig, rotation, fli, megno, lyapunov) and measures of arbitrary starts.
 // No maths here: every number comes from core (the same functions as archipelago-cli's `rotation` and
-// `indicator`).  Long calls release the GIL and stop on Ctrl-C (python/Interruption.hpp): the indicator map at its
-// next round of pixels, where it also calls the progress callback, the others within 50 ms.
+// `indicator`).  Long calls release the GIL and stop on Ctrl-C (python/Interruption.hpp) at core's next look at the
+// stop token (every 2^14 steps of a group of orbits); the indicator map calls the progress callback between rounds.
 
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -73,12 +73,9 @@ void bindMeasures(py::module_& m) {
           r.digitsThreshold = threshold;
           r.maxPeriod = maxPeriod;
           r = chainRequestAt(r, {x, y});  // core's recipe and messages, as the CLI's `rotation`
-          std::string json;
-          {
-            py::gil_scoped_release release;
-            json = rotationReportJson(r, identifyChain(r));
-          }
-          return py::module_::import("json").attr("loads")(json); },
+          // Stopped by Ctrl-C within a block of steps of its measurements (issue 36: it ran on for 42 s).
+          const ChainIdentification chain = interruptible([&](std::stop_token stop) { return identifyChain(r, stop); });
+          return py::module_::import("json").attr("loads")(rotationReportJson(r, chain)); },
         py::arg("x"), py::arg("y"), py::arg("K") = kDefaultMap.K, py::arg("xmin") = kDefaultMap.xmin, py::arg("xmax") = kDefaultMap.xmax, py::kw_only(),
         py::arg("iterations") = kDefaultIterations, py::arg("threshold") = kDefaultDigitsThreshold,
         py::arg("max_period") = ChainRequest{}.maxPeriod,
@@ -143,8 +140,8 @@ void bindMeasures(py::module_& m) {
           r.threads = threads;
           r.roundPixels = 4096;  // Ctrl-C and progress between rounds
           if (auto e = validationError(r)) throw std::invalid_argument(*e);
-          Interruption interruption;
-          const IndicatorResult result = interruption.run([&] {
+          Interruption interruption;  // Ctrl-C every 50 ms, not only between rounds of pixels (issue 36)
+          const IndicatorResult result = interruption.withoutGilPolled([&](std::stop_token stop) {
             return computeIndicatorMap(r, [&](const IndicatorProgress& p) {
               interruption.check(progress, [&p] {
                 py::dict d;
@@ -155,8 +152,9 @@ void bindMeasures(py::module_& m) {
                 d["stride"] = p.stride;
                 return d;
               });
-            }, interruption.token());
+            }, stop);
           });
+          interruption.raisePending();
           const IndicatorRaster& ras = result.raster;
           const py::ssize_t rows = ras.height, cols = ras.width;
           py::dict d;

@@ -107,8 +107,8 @@ py::dict resultDict(const TailState& s) {
   return d;
 }
 
-// Runs the sampler with the GIL released; between chunks the observer takes the GIL to check for Ctrl-C and call
-// progress(dict).  A pending Python exception stops the sampler at a consistent point: the state is saved to `out`
+// Runs the sampler on a worker thread with the GIL released, this thread checking for Ctrl-C every 50 ms; between
+// chunks the observer takes the GIL to call progress(dict).  A pending Python exception stops the sampler at a consistent point: the state is saved to `out`
 // (when given) and the exception raised.
 py::dict runAndReport(TailState state, int threads, const std::string& kernelName, const py::object& progress,
                       const std::optional<std::string>& out) {
@@ -132,8 +132,8 @@ py::dict runAndReport(TailState state, int threads, const std::string& kernelNam
   };
   // Saved (when `out` is given) before the exception that stopped the sampler is raised: the state is resumable.
   std::string saveError;
-  state = interruption.withoutGil([&] {
-    TailState done = runTail(std::move(state), options, observer, interruption.token());
+  state = interruption.withoutGilPolled([&](std::stop_token stop) {
+    TailState done = runTail(std::move(state), options, observer, stop);
     if (out) {
       try {
         saveTailFile(*out, done);

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Fuzzes the readers of untrusted input with libFuzzer (clang, ASan + UBSan): run files, run specs, CLI numbers, sessions, run manifests, tail files.
+# Fuzzes the readers of untrusted input with libFuzzer (clang, ASan + UBSan): run files, run specs, CLI numbers, sessions, run manifests, tail files and their state behind a valid checksum.
 #   bash scripts/fuzz.sh [SECONDS]     # each target for SECONDS (default 300); findings in build/fuzz/findings/
 # A crash leaves its reproducer in build/fuzz/findings/<target>/; copy it into tests/fuzz/corpus/<target>/
 # once fixed, so that the ordinary test suite replays it for ever (fuzz.corpus.<target>).
@@ -10,7 +10,7 @@ bash scripts/install-deps.sh
 cmake --preset fuzz
 cmake --build --preset fuzz --parallel "$(nproc)"
 status=0
-for target in runfile runspec numbers session manifest tail; do
+for target in runfile runspec numbers session manifest tail tail_state; do
   work="build/fuzz/findings/$target"
   mkdir -p "$work/corpus" "$work/artifacts"
   cp -n tests/fuzz/corpus/"$target"/* "$work/corpus/" 2>/dev/null || true

@@ -1,6 +1,7 @@
 #include "CliCommon.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 
 #include "core/kernels/KernelDispatch.hpp"
@@ -83,6 +84,14 @@ std::pair<std::uint64_t, std::uint64_t> orbitRange(const std::string& text, std:
   const std::vector<std::uint64_t> v = parseNumbers<std::uint64_t>("--orbits", text, ':', 2, rule);
   if (auto e = orbitRangeError(M, v[0], v[1])) throw std::invalid_argument(*e);  // core's rule and message
   return {v[0], v[1]};
+}
+
+int parseErrorStatus(const CLI::App& app, const CLI::ParseError& e) {
+  if (dynamic_cast<const CLI::CallForHelp*>(&e) || dynamic_cast<const CLI::CallForAllHelp*>(&e) ||
+      dynamic_cast<const CLI::CallForVersion*>(&e))
+    return app.exit(e);
+  std::fprintf(stderr, "ERROR: %s\n", io::shortText(e.what(), 400).c_str());
+  return e.get_exit_code() != 0 ? e.get_exit_code() : 2;
 }
 
 }  // namespace archipelago::cli

@@ -85,4 +85,9 @@ void addMapOptions(CLI::App& command, MapParameters& params);
 /// The command passes the name to selectKernel() (kernels/KernelDispatch.hpp), which validates it.
 void addKernelOption(CLI::App& command, std::string& name);
 
+/// What a tool does with CLI11's parse exception: --help and --version print as CLI11 prints them (status 0); an
+/// error is one line "ERROR: <what>" on stderr (not CLI11's message and banner over several lines), status 2 or
+/// CLI11's.  archipelago-cli and archipelago-mpi (issue 36) both end their parse with it.
+int parseErrorStatus(const CLI::App& app, const CLI::ParseError& e);
+
 }  // namespace archipelago::cli

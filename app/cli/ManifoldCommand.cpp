@@ -51,6 +51,7 @@ int runManifold(ManifoldOptions o) {
     ManifoldCurveRequest check = r;  // every range before the orbit search and before the work
     check.point = 0;
     if (auto e = validationError(check)) throw std::invalid_argument(*e);
+    checkManifoldMemory(check);
   }
   io::checkCommandFiles({{"--out", o.out, io::FileUse::Output}});
   r.orbit = chosenOrbit(r.K, o.orbit);
@@ -82,12 +83,12 @@ void addManifoldCommand(CLI::App& app, int& status) {
                   "stable branch from the inverse map (inverse) or by the reversing symmetry (symmetry)")
       ->default_str("inverse");
   addNumberOption(*cmd, "--length", o->request.length, "arc length to draw (physical units), (0, 1e6]");
-  addNumberOption(*cmd, "--spacing", o->request.maxSpacing, "largest chord between neighbours, (0, 1]");
+  addNumberOption(*cmd, "--spacing", o->request.maxSpacing, "largest chord between neighbours, [1e-14, 1]");
   addNumberOption(*cmd, "--angle", o->request.maxAngle, "largest turning angle between neighbours (radians), (0, 1]");
   addNumberOption(*cmd, "--domains", o->request.maxDomains, "fundamental domains at most, [1, 10000]");
   addNumberOption(*cmd, "--initial-points", o->request.initialPoints, "points per domain before refinement");
   addNumberOption(*cmd, "--escape", o->request.escapeRadius, "plane map: drop points farther than this from the origin");
-  addNumberOption(*cmd, "--max-points", o->maxPoints, "points at most, [16, 1e8]");
+  addNumberOption(*cmd, "--max-points", o->maxPoints, "points at most, [16, 1e8] (and ~128 bytes each must be free)");
   cmd->add_option("--view", o->view, "x0,x1,y0,y1: refine finely only in this rectangle (a zoomed view)");
   cmd->add_flag("--box", o->box, "the manifold of the torus map Q* in the box --xmin, --xmax (default: Q in the plane)");
   cmd->add_option("--out", o->out, "write the CSV here (atomically) instead of stdout");

@@ -86,6 +86,9 @@ int runProfile(const RotationOptions& o) {
 
 int runOrbit(const RotationOptions& o) {
   validate(o.map);
+  // One orbit runs on the scalar path, whatever the kernel; a name that is not one (or one the CPU lacks) is still
+  // an error, as for every command that takes --kernel (issue 36).
+  (void)selectKernel(o.kernel);
   ChainRequest r;
   r.map = o.map;
   r.iterations = o.iterations;

@@ -89,7 +89,8 @@ ReplicaRange sliceOption(const std::string& text, std::uint32_t replicas) {
 
 int tailCommand(TailOptions& o, const CLI::App& cmd) {
   std::optional<ReplicaRange> slice;
-  if (!o.slice.empty()) {
+  const CLI::Option* sliceGiven = cmd.get_option_no_throw("--slice");
+  if (sliceGiven && sliceGiven->count() > 0) {  // given empty is an error too, not the whole run (issue 36)
     if (!o.resume.empty()) throw std::invalid_argument("--resume takes the slice from the tail file; do not also give --slice");
     slice = sliceOption(o.slice, o.request.replicas);
   }

@@ -11,6 +11,7 @@
 #include <iostream>
 #include <string>
 
+#include "CliCommon.hpp"
 #include "OrbitCommand.hpp"
 #include "RunCommand.hpp"
 #include "ScanCommand.hpp"
@@ -87,8 +88,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return checkedStandardOutput(app.exit(e));
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "ERROR: %s\n", e.what());
-    return e.get_exit_code() != 0 ? e.get_exit_code() : 2;
+    return archipelago::cli::parseErrorStatus(app, e);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "ERROR: %s\n", e.what());
     return 1;

@@ -22,7 +22,9 @@
 #include <QTimer>
 #include <qwt_global.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <memory>
 #include <optional>
@@ -129,6 +131,29 @@ std::optional<std::string> numberError(int argc, char** argv) {
   return std::nullopt;
 }
 
+/// Whether the window system Qt will load needs a display that the environment does not name: the platform given by
+/// -platform or QT_QPA_PLATFORM (a list "a;b" is tried in order) is xcb or wayland, or none is given (the default is
+/// one of them), and neither DISPLAY nor WAYLAND_DISPLAY is set.  Qt's xcb plugin aborts the process (SIGABRT) when
+/// it finds no display (issue 36); offscreen, minimal, vnc, eglfs, linuxfb … need none.
+bool displayMissing(int argc, char** argv) {
+  const auto set = [](const char* name) {
+    const char* v = std::getenv(name);
+    return v != nullptr && *v != '\0';
+  };
+  if (set("DISPLAY") || set("WAYLAND_DISPLAY")) return false;
+  std::string platform = set("QT_QPA_PLATFORM") ? std::getenv("QT_QPA_PLATFORM") : "";
+  for (int i = 1; i + 1 < argc; ++i)
+    if (std::strcmp(argv[i], "-platform") == 0 || std::strcmp(argv[i], "--platform") == 0) platform = argv[i + 1];
+  if (platform.empty()) return true;
+  for (std::size_t from = 0; from <= platform.size();) {
+    const std::size_t end = std::min(platform.find(';', from), platform.size());
+    const std::string name = platform.substr(from, std::min(platform.find(':', from), end) - from);  // "xcb:arg"
+    if (name != "xcb" && name.rfind("wayland", 0) != 0) return false;  // one that needs no display
+    from = end + 1;
+  }
+  return true;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -137,6 +162,10 @@ int main(int argc, char** argv) {
   if (!onlyInformation(argc, argv)) {
     if (const auto e = numberError(argc, argv)) {
       std::fprintf(stderr, "ERROR: %s\n", e->c_str());
+      return 2;
+    }
+    if (displayMissing(argc, argv)) {
+      std::fprintf(stderr, "ERROR: no display: set DISPLAY, or run with -platform offscreen\n");
       return 2;
     }
   }

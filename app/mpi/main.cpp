@@ -13,6 +13,7 @@
 
 #include "MpiRun.hpp"
 #include "MpiTail.hpp"
+#include "CliCommon.hpp"
 #include "RunSession.hpp"
 
 int main(int argc, char** argv) {
@@ -37,8 +38,8 @@ int main(int argc, char** argv) {
     status = tailCmd->parsed() ? archipelago::mpi::mpiTail(tail, *tailCmd)
                                : archipelago::mpi::mpiRun(o, archipelago::cli::givenSpecOptions(app), app);
   } catch (const CLI::ParseError& e) {
-    if (rank == 0) status = app.exit(e);
-    else status = e.get_exit_code();
+    if (rank == 0) status = archipelago::cli::parseErrorStatus(app, e);  // one "ERROR:" line, as archipelago-cli
+    else status = e.get_exit_code() != 0 ? e.get_exit_code() : 2;
   } catch (const std::exception& e) {
     if (rank == 0) std::fprintf(stderr, "ERROR: %s\n", e.what());
     status = 1;

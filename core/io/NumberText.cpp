@@ -113,10 +113,21 @@ std::optional<WholeNumberText> parseWholeNumber(std::string_view text) {
 }
 
 std::string shortText(std::string_view text, std::size_t maxBytes) {
-  if (text.size() <= maxBytes) return std::string(text);
-  std::size_t cut = maxBytes;  // never inside a UTF-8 sequence
-  while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut;
-  return std::string(text.substr(0, cut)) + "…";
+  std::size_t cut = text.size();
+  if (cut > maxBytes) {
+    cut = maxBytes;  // never inside a UTF-8 sequence
+    while (cut > 0 && (static_cast<unsigned char>(text[cut]) & 0xC0) == 0x80) --cut;
+  }
+  std::string out;
+  for (const char c : text.substr(0, cut)) {
+    const auto u = static_cast<unsigned char>(c);
+    if (c == '\n') out += "\\n";
+    else if (c == '\r') out += "\\r";
+    else if (c == '\t') out += "\\t";
+    else if (u < 0x20 || u == 0x7F) out += formatC("\\x%02X", u);  // one line, whatever was typed (issue 36)
+    else out += c;
+  }
+  return cut < text.size() ? out + "…" : out;
 }
 
 }  // namespace archipelago::io

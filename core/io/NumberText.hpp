@@ -98,8 +98,9 @@ template <class T>
     return "a finite number";
 }
 
-/// `text` cut to at most `maxBytes` bytes at a UTF-8 character boundary, with "…" when cut: what a person
-/// typed, or a key or a name read from a file, quoted in a one-line error message.
+/// `text` cut to at most `maxBytes` bytes at a UTF-8 character boundary, with "…" when cut, and its control
+/// characters written as escapes (\n, \r, \t, \xHH): what a person typed, or a key or a name read from a file or
+/// the environment, quoted in a one-line error message.
 [[nodiscard]] std::string shortText(std::string_view text, std::size_t maxBytes = 40);
 
 /// The value of `name` given as `text`; throws std::invalid_argument "<name> = <text> must be <numberRule<T>()>"

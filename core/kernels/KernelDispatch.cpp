@@ -5,6 +5,8 @@
 #include <cstdlib>
 #include <stdexcept>
 
+#include "core/io/NumberText.hpp"
+
 namespace archipelago {
 
 namespace {
@@ -71,11 +73,11 @@ const KernelInfo& kernelByName(std::string_view name, const CpuFeatures& cpu) {
   for (const auto& k : kKernels) {
     if (k.name != name) continue;
     if (!supports(cpu, k.kind))
-      throw std::invalid_argument("kernel '" + std::string(name) + "' is not supported by this CPU (supported: " +
+      throw std::invalid_argument("kernel '" + io::shortText(name) + "' is not supported by this CPU (supported: " +
                                   supportedKernelNames() + ")");
     return k;
   }
-  throw std::invalid_argument("unknown kernel '" + std::string(name) + "' (known: " + knownNames() + ")");
+  throw std::invalid_argument("unknown kernel '" + io::shortText(name) + "' (known: " + knownNames() + ")");
 }
 
 const KernelInfo& selectKernel(std::string_view requested) {

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/manifolds/GeneratingFunction.hpp"
+#include "core/periodic/PeriodicOrbitFinder.hpp"  // NotFound
 
 namespace archipelago {
 
@@ -255,10 +256,10 @@ PrimaryIntersections primaryHeteroclinicPoints(const ManifoldParameterization& u
   }
   const std::vector<Candidate> distinct = distinctOrbits(candidates);
   if (distinct.empty())
-    throw std::runtime_error("no symmetric heteroclinic point found within " + std::to_string(maxDomains) +
+    throw NotFound("no symmetric heteroclinic point found within " + std::to_string(maxDomains) +
                              " fundamental domains of the " + toString(side) + " branch");
   if (!pair)
-    throw std::runtime_error("only one symmetric heteroclinic orbit found on the " + std::string(toString(side)) +
+    throw NotFound("only one symmetric heteroclinic orbit found on the " + std::string(toString(side)) +
                              " branch (a turnstile needs two)");
 
   // Refine in __float128 the distinct orbits up to the pair's second point.

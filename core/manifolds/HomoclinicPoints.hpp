@@ -66,7 +66,7 @@ struct PrimaryIntersections {
 /// must be mapped onto itself by I₁ (and so by I₂) and have λ > 0.  At most `maxDomains` fundamental domains are
 /// scanned (0: automatic, ⌈30/ln Λ⌉ capped at 1000 — a multiplier near 1, at small K, needs many to reach the
 /// intersections; the scan stops as soon as the pair is found).  Throws std::invalid_argument for an orbit that is not symmetric or has λ < 0, and
-/// std::runtime_error when fewer than two suitable crossings are found.
+/// NotFound (PeriodicOrbitFinder.hpp) when fewer than two suitable crossings are found.
 [[nodiscard]] PrimaryIntersections primaryHeteroclinicPoints(const ManifoldParameterization& unstable,
                                                              const ManifoldParameterization& stable, BranchSide side,
                                                              int maxDomains = 0, std::stop_token stop = {});

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/io/Memory.hpp"
 #include "core/io/NumberText.hpp"  // shortText
 #include "core/random/CounterRng.hpp"  // mix64, for the wrap signatures
 
@@ -135,7 +136,7 @@ class Builder {
     open_.parameter.push_back(s.t);
     ++curve.points;
     broken_ = false;
-    if (curve.points >= request_.maxPoints) throw Full{};
+    checkBudget();
   }
 
   void cut() {
@@ -161,7 +162,10 @@ class Builder {
     if (b.t - a.t <= resolution) {
       // Still too coarse at the resolution of t (the branch runs off to infinity here, or rounding dominates), or
       // discontinuous: cut rather than draw a chord that is not the curve.
-      if (continuous) ++curve.unresolved;
+      if (continuous) {
+        ++curve.unresolved;
+        checkBudget();  // a region unresolved all through emits nothing: without this it split for hours (issue 36)
+      }
       cut();
       emit(b);
       return;
@@ -192,6 +196,10 @@ class Builder {
   ManifoldCurve curve;
 
  private:
+  void checkBudget() const {
+    if (curve.points + curve.unresolved >= request_.maxPoints) throw Full{};
+  }
+
   [[nodiscard]] bool acceptable(const Sample& a, const Sample& m, const Sample& b) const {
     long double spacing = request_.maxSpacing, angle = request_.maxAngle;
     if (request_.view) {
@@ -231,8 +239,9 @@ std::optional<std::string> validationError(const ManifoldCurveRequest& r) {
   if (!(r.length > 0) || !(r.length <= 1e6L))
     return "length = " + shortestDecimal(static_cast<double>(r.length)) + " must be in (0, 1e6] (physical units)";
   if (r.maxDomains < 1 || r.maxDomains > 10000) return "domains = " + std::to_string(r.maxDomains) + " must be in [1, 10000]";
-  if (!(r.maxSpacing > 0) || !(r.maxSpacing <= 1))
-    return "spacing = " + shortestDecimal(static_cast<double>(r.maxSpacing)) + " must be in (0, 1]";
+  if (!(r.maxSpacing >= kMinManifoldSpacing) || !(r.maxSpacing <= 1))
+    return "spacing = " + shortestDecimal(static_cast<double>(r.maxSpacing)) + " must be in [" +
+           shortestDecimal(static_cast<double>(kMinManifoldSpacing)) + ", 1]";
   if (!(r.maxAngle > 0) || !(r.maxAngle <= 1))
     return "angle = " + shortestDecimal(static_cast<double>(r.maxAngle)) + " must be in (0, 1] (radians)";
   if (r.initialPoints < 2 || r.initialPoints > 1000000)
@@ -253,9 +262,15 @@ std::optional<std::string> validationError(const ManifoldCurveRequest& r) {
   return std::nullopt;
 }
 
+void checkManifoldMemory(const ManifoldCurveRequest& r) {
+  io::checkMemory(r.maxPoints * kManifoldBytesPerPoint,
+                  "a manifold branch of up to " + std::to_string(r.maxPoints) + " points (maximum points)");
+}
+
 ManifoldCurve computeManifoldCurve(const ManifoldCurveRequest& request, const ManifoldProgressCallback& progress,
                                    std::stop_token stop) {
   if (auto e = validationError(request)) throw std::invalid_argument(*e);
+  checkManifoldMemory(request);
   const HyperbolicOrbit orbit = request.orbit ? hyperbolicOrbitOf(*request.orbit) : hyperbolicFixedPoint(request.K);
   const ManifoldParameterization unstable(orbit, ManifoldKind::Unstable);
   const ManifoldParameterization stable(orbit, ManifoldKind::Stable);

@@ -50,6 +50,14 @@ namespace archipelago {
 /// How a stable branch is computed.
 enum class StableConstruction { InverseMap, ReversingSymmetry };
 
+/// The finest chord bound: 10⁵ units in the last place of a long double coordinate of order 1.  Below it the chord
+/// bound asks for more than the points' own precision, and the refinement runs down to the parameter resolution
+/// everywhere: `--spacing 1e-17` recursed for hours (issue 36).  A zoomed portrait's spacing is clamped to it.
+inline constexpr long double kMinManifoldSpacing = 1e-14L;
+/// The memory a point of the branch may take while it is built: x, y, s and t in long double (64 bytes), twice for
+/// the vectors' growth.  maxPoints of them must fit the machine before work starts (io::checkMemory).
+inline constexpr std::size_t kManifoldBytesPerPoint = 2 * (sizeof(PhysicalPoint) + 2 * sizeof(long double));
+
 struct ManifoldCurveRequest {
   long double K = 0.1L;                        ///< (0, 1]
   std::optional<PeriodicOrbit> orbit;          ///< a hyperbolic periodic orbit; none: the fixed point (√K, 0)
@@ -59,17 +67,22 @@ struct ManifoldCurveRequest {
   StableConstruction stableFrom = StableConstruction::InverseMap;
   long double length = 4;                      ///< arc length to draw (physical units), (0, 10⁶]
   int maxDomains = 40;                         ///< fundamental domains at most, [1, 10⁴]
-  long double maxSpacing = 2e-3L;              ///< chord bound (physical units), (0, 1]
+  long double maxSpacing = 2e-3L;              ///< chord bound (physical units), [kMinManifoldSpacing, 1]
   long double maxAngle = 0.1L;                 ///< turning-angle bound (radians), (0, 1]
   int initialPoints = 32;                      ///< points per domain before refinement, [2, 10⁶]
   std::optional<PhysicalRect> view;            ///< refine finely only here (x0 < x1, y0 < y1)
   std::optional<MapParameters> box;            ///< draw the manifold of Q* in this box; none: Q in the plane
   long double escapeRadius = 3;                ///< plane only: points farther from the origin are dropped, [0.1, 10⁶]
-  std::size_t maxPoints = 4'000'000;           ///< [16, 10⁸]
+  std::size_t maxPoints = 4'000'000;           ///< [16, 10⁸], and maxPoints·kManifoldBytesPerPoint available
 };
 
-/// The first invalid field, named, or nothing.
+/// The first invalid field, named, or nothing.  (The memory for maxPoints is checked by computeManifoldCurve().)
 [[nodiscard]] std::optional<std::string> validationError(const ManifoldCurveRequest& r);
+
+/// Throws io::NotEnoughMemory ("… needs about N MiB of memory but only M MiB are available") when the request's
+/// maxPoints may not fit the memory available: computeManifoldCurve() checks it first; front ends that search for
+/// the orbit before call it with their other checks, before that work.
+void checkManifoldMemory(const ManifoldCurveRequest& r);
 
 /// One unbroken polyline of the branch.
 struct ManifoldPiece {
@@ -84,7 +97,8 @@ struct ManifoldCurve {
   long double length = 0;              ///< arc length drawn
   int domains = 0;                     ///< fundamental domains computed
   std::size_t points = 0;
-  std::size_t unresolved = 0;          ///< intervals still coarser than the bounds at the parameter resolution (cut)
+  std::size_t unresolved = 0;          ///< intervals still coarser than the bounds at the parameter resolution (cut);
+                                       ///< they count against maxPoints, so that the work is bounded
   std::size_t breaks = 0;              ///< cuts (escapes to infinity, wraps of the torus)
   std::string stoppedBy;               ///< "length", "domains", "points" or "escaped"
 };
@@ -97,7 +111,8 @@ struct ManifoldCurve {
 
 /// Computes the branch.  Throws std::invalid_argument for an invalid request (or an orbit that is not hyperbolic, a
 /// point out of range, a box that does not contain the orbit point, a reversing symmetry that does not map the
-/// orbit onto itself); std::runtime_error("stopped") when stopped.  progress is called after each domain.
+/// orbit onto itself); io::NotEnoughMemory when maxPoints·kManifoldBytesPerPoint exceeds the memory available,
+/// before any work; std::runtime_error("stopped") when stopped.  progress is called after each domain.
 [[nodiscard]] ManifoldCurve computeManifoldCurve(const ManifoldCurveRequest& request,
                                                  const ManifoldProgressCallback& progress = {},
                                                  std::stop_token stop = {});

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/manifolds/GeneratingFunction.hpp"
+#include "core/periodic/PeriodicOrbitFinder.hpp"  // NotFound
 #include "core/manifolds/ManifoldExport.hpp"  // quadText
 
 namespace archipelago {
@@ -173,7 +174,7 @@ TurnstileFlux computeTurnstileFlux(const TurnstileRequest& request, const Manifo
   out.lobeActionError = h.actionError + h2.actionError;
   out.lobeArea = std::fabs(static_cast<long double>(out.lobeAction));
   if (!(out.lobeActionError <= quad(1e-9L) * smooth::absolute(out.lobeAction)))
-    throw std::runtime_error("the lobe's area (" + quadText(smooth::absolute(out.lobeAction), 3) +
+    throw NotFound("the lobe's area (" + quadText(smooth::absolute(out.lobeAction), 3) +
                              ") is not resolved by __float128: the rounding of the two actions is ~" +
                              quadText(out.lobeActionError, 2) + " (K too small: the lobe is exponentially small, "
                              "A ~ 3.9e5 exp(-2 pi^2 / ln lambda))");

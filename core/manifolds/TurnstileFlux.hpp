@@ -118,8 +118,8 @@ struct TurnstileFlux {
 };
 
 /// Computes everything above.  Throws std::invalid_argument for an invalid request (validationError), an orbit that is
-/// not hyperbolic or not symmetric; std::runtime_error when the primary points are not found, when the lobe is not
-/// resolved by __float128 (its action error above 1e−9 of it: K below ≈ 3e−4 for the fixed point, where the lobe is
+/// not hyperbolic or not symmetric; NotFound (PeriodicOrbitFinder.hpp) when the primary points are not found, when
+/// the lobe is not resolved by __float128 (its action error above 1e−9 of it: K below ≈ 3e−4 for the fixed point, where the lobe is
 /// below 1e−25 of the zone), or when stopped.
 /// progress (if set) is called between stages on the calling thread; `stop` is checked between stages and levels.
 [[nodiscard]] TurnstileFlux computeTurnstileFlux(const TurnstileRequest& request,

@@ -16,7 +16,7 @@ double birkhoffWeight(double s) noexcept {
   return std::exp(-1 / (s * (1 - s)));
 }
 
-BirkhoffWeights birkhoffWeights(std::uint64_t T) {
+BirkhoffWeights birkhoffWeights(std::uint64_t T, std::stop_token stop) {
   if (T < kMinIterations || T > kMaxIterations)
     throw std::invalid_argument("iterations = " + std::to_string(T) + " must be " + std::to_string(kMinIterations) +
                                 " ... " + std::to_string(kMaxIterations));
@@ -24,6 +24,7 @@ BirkhoffWeights birkhoffWeights(std::uint64_t T) {
   w.g.resize(static_cast<std::size_t>(T));
   double hi = 0, lo = 0;
   for (std::uint64_t n = 0; n < T; ++n) {
+    if (n % 65536 == 0 && stop.stop_requested()) return w;
     w.g[n] = birkhoffWeight(static_cast<double>(n) / static_cast<double>(T));
     twoSumAdd(hi, lo, w.g[n]);
   }

@@ -21,6 +21,7 @@
 
 #include <cstdint>
 #include <span>
+#include <stop_token>
 #include <vector>
 
 namespace archipelago {
@@ -47,7 +48,9 @@ inline constexpr double kMaxDigits = 16;
 inline constexpr double kDefaultDigitsThreshold = 9;
 
 /// The weights for blocks of T terms; throws std::invalid_argument unless kMinIterations ≤ T ≤ kMaxIterations.
-[[nodiscard]] BirkhoffWeights birkhoffWeights(std::uint64_t T);
+/// A stop request (looked at every 2^16 weights: 10⁷ of them take ~1.6 s) returns them unfinished, which the caller
+/// must not use (issue 36: Ctrl-C waited for them).
+[[nodiscard]] BirkhoffWeights birkhoffWeights(std::uint64_t T, std::stop_token stop = {});
 
 /// −log₁₀ |a − b|, capped at kMaxDigits (and kMaxDigits when a = b); NaN when a or b is NaN.
 [[nodiscard]] double convergenceDigits(double a, double b) noexcept;

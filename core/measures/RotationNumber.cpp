@@ -38,7 +38,8 @@ RotationMeasurement measureRotation(const RotationRequest& r, std::stop_token st
     throw std::invalid_argument("the rotation centre must be finite");
   if (!(r.digitsThreshold >= 0 && r.digitsThreshold <= kMaxDigits))
     throw std::invalid_argument("digits threshold = " + shortestDecimal(r.digitsThreshold) + " must be in [0, 16]");
-  const BirkhoffWeights w = birkhoffWeights(r.iterations);  // validates the iterations
+  const BirkhoffWeights w = birkhoffWeights(r.iterations, stop);  // validates the iterations
+  if (stop.stop_requested()) return {};
   const MapCoefficients k = computeCoefficients(r.map);
   const SplitCentre c(r.centre.units);
   const std::uint64_t T = r.iterations;

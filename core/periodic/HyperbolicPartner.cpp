@@ -123,7 +123,7 @@ PeriodicOrbit findHyperbolicOrbit(long double K, const PeriodicOrbitSearch& requ
       return general->rotatedToStart(general->nearestIndex(search.near));
   char where[96];
   std::snprintf(where, sizeof where, "(%.10Lg, %.10Lg)", search.near.x, search.near.y);
-  throw std::runtime_error("no hyperbolic periodic orbit of period " + std::to_string(search.period) + " found near " +
+  throw NotFound("no hyperbolic periodic orbit of period " + std::to_string(search.period) + " found near " +
                            where + " within search radius " + std::to_string(static_cast<double>(search.searchRadius)));
 }
 

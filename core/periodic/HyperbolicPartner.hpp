@@ -34,7 +34,7 @@ namespace archipelago {
 /// the symmetric search finds from the guess decides — unstable, it is returned; elliptic (the guess is inside one of
 /// its islands), its hyperbolic partner is; else damped Newton from the guess.  Relabelled
 /// so that z_0 is the point nearest to the guess.  Throws std::invalid_argument for invalid input (validate()) and
-/// std::runtime_error "no hyperbolic periodic orbit of period n found near (x, y) …" when none is found.
+/// NotFound "no hyperbolic periodic orbit of period n found near (x, y) …" when none is found.
 [[nodiscard]] PeriodicOrbit findHyperbolicOrbit(long double K, const PeriodicOrbitSearch& search);
 
 }  // namespace archipelago

@@ -276,7 +276,7 @@ PeriodicOrbit findPeriodicOrbit(long double K, const PeriodicOrbitSearch& search
   if (std::optional<PeriodicOrbit> general = refinePeriodicOrbit(K, search.period, search.near)) {
     if (!search.stableOnly || general->stable()) return general->rotatedToStart(general->nearestIndex(search.near));
   }
-  throw std::runtime_error("no " + std::string(search.stableOnly ? "stable " : "") + "periodic orbit of period " +
+  throw NotFound("no " + std::string(search.stableOnly ? "stable " : "") + "periodic orbit of period " +
                            std::to_string(search.period) + " found near (" + formatNumber(search.near.x) + ", " +
                            formatNumber(search.near.y) + ") within search radius " +
                            formatNumber(search.searchRadius) + " (Newton did not converge)");

@@ -69,10 +69,19 @@ void validate(long double K, const PeriodicOrbitSearch& search);
                                                                      int maxIterations = 100);
 
 /// The orbit nearest to the guess: the nearest symmetric one, else the general Newton result from the guess.
-/// Throws std::invalid_argument for invalid input and std::runtime_error ("no periodic orbit of period n found
-/// near (x, y) ...") when neither method succeeds.
+/// Throws std::invalid_argument for invalid input and NotFound ("no periodic orbit of period n found near (x, y)
+/// ...") when neither method succeeds.
 /// Throws OperationStopped when `stop` is requested.
 [[nodiscard]] PeriodicOrbit findPeriodicOrbit(long double K, const PeriodicOrbitSearch& search, std::stop_token stop = {});
+
+/// What a search or a computation throws when it ran to its end without an answer for this input, which was in
+/// range: no periodic orbit of the period near the guess, no symmetric homoclinic crossing within the domains, a
+/// turnstile lobe below the resolution of __float128 (K too small).  Another guess, period or K may have one.  The
+/// front ends print it as any error; Python raises archipelago.NotFoundError, a ValueError (issue 36: it was a bare
+/// RuntimeError).
+struct NotFound : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
 
 /// What a search stopped through its std::stop_token throws (not an error of the search: the caller asked).
 struct OperationStopped : std::runtime_error {

@@ -28,6 +28,8 @@ constexpr int kLevelReplicaShift = 24;
 constexpr std::uint64_t kEntryOrbitsPerUnit = 64;
 constexpr std::size_t kEntryGroup = 32;  // orbits the block kernel advances together
 constexpr std::uint64_t kEntryGroupMinLevel = 8;  // below, entry orbits are followed one block at a time
+// Steps a group of entry orbits computes between two looks at the stop token (~10 ms on the scalar path).
+constexpr std::uint64_t kStopCheckSteps = std::uint64_t{1} << 22;
 // A chunk of splitting lasts at most age/16 blocks (a walker that dies in it is iterated at most 1/16 of its age
 // in vain) and at most 2^20 steps per walker (a stop is honoured within a second or two at N·R = 800).
 constexpr std::uint64_t kChunkAgeDivisor = 16;
@@ -79,11 +81,12 @@ UnitState moved(const UnitState& z, std::uint64_t key, std::uint64_t& counter, s
 }  // namespace
 
 EntryOrbitResult entryOrbitTrials(const KernelSettings& k, std::uint64_t orbit, std::uint64_t warmupBlocks,
-                                  std::uint64_t level) {
+                                  std::uint64_t level, std::stop_token stop) {
   EntryOrbitResult out;
   OrbitState s;  // (0, 0): appendix B, step 2
   const std::uint64_t end = warmupBlocks + kEntryWindowBlocks;
   for (std::uint64_t b = 0; b < end; ++b) {
+    if (stop.stop_requested()) return out;  // a block is at most 65536 steps: the caller discards the part
     const bool ended = advanceOneBlock(k, orbit, s, nullptr);
     if (ended && b >= warmupBlocks) ++out.trials;  // the next segment starts at block b + 1, inside the window
     if (!ended && s.start.block > warmupBlocks && s.length == level) out.successes.push_back(s);
@@ -92,6 +95,7 @@ EntryOrbitResult entryOrbitTrials(const KernelSettings& k, std::uint64_t orbit, 
   // The trial still open when the window closes is followed until it ends or reaches the level.
   if (s.start.block > warmupBlocks && s.length < level) {
     for (;;) {
+      if (stop.stop_requested()) return out;
       const bool ended = advanceOneBlock(k, orbit, s, nullptr);
       ++out.blocks;
       if (ended) break;
@@ -271,10 +275,39 @@ std::optional<std::string> tailStateError(const TailState& s) {
           return who + "a stage-0 walker is inconsistent";
       continue;
     }
+    // What closeLevel() and propagateChunk() leave (issue 36: a re-signed file whose replica had 28 survivors and
+    // no walkers was resumed, and its P beyond that level was wrong).  Under way to level `next`: the walkers are
+    // the resampled survivors of level next − 1 (N of them, or none when none survived), each alive exactly when
+    // it has the walkers' age (a walker whose segment ended keeps its state at an earlier chunk's start).  Finished:
+    // the walkers that set out for the last level are kept, with its counts.
+    if (x.orbitsDone != s.entryOrbits) return who + "stage 0's entry orbits are not all examined";
     if (x.alive.size() != x.walkers.size()) return who + "expected one alive flag per walker";
-    if (x.walkers.size() != 0 && x.walkers.size() != N) return who + "the population is not N";
-    for (std::size_t w = 0; w < x.walkers.size(); ++w)
-      if (x.alive[w] && x.walkers[w].state.length != s.age) return who + "a live walker's age differs from the level's";
+    const TailLevelCount& last = x.levels.back();
+    const bool onlyStageZero = s.finished() && s.next == 1;  // level 0 was the last: its successes are the walkers
+    const std::uint64_t expectedWalkers = !s.finished() ? (last.survivors > 0 ? N : 0)
+                                          : onlyStageZero ? last.survivors
+                                                          : last.population;
+    if (x.walkers.size() != expectedWalkers)
+      return who + "holds " + std::to_string(x.walkers.size()) + " walkers where its counts give " +
+             std::to_string(expectedWalkers);
+    const std::uint64_t lowest = s.levels[s.finished() && s.next > 1 ? s.next - 2 : s.next - 1];
+    std::vector<std::uint32_t> lineages;
+    std::uint64_t alive = 0;
+    for (std::size_t w = 0; w < x.walkers.size(); ++w) {
+      const TailWalker& walker = x.walkers[w];
+      if (x.alive[w] > 1) return who + "an alive flag is neither 0 nor 1";
+      if (walker.ancestor >= x.levels[0].survivors) return who + "a walker's lineage is not one of stage 0's successes";
+      if (x.alive[w] != (walker.state.length == s.age ? 1 : 0) || walker.state.length < lowest ||
+          walker.state.length > s.age)
+        return who + "a walker's age does not match its alive flag and the level";
+      alive += x.alive[w];
+      if (!s.finished() || x.alive[w] != 0) lineages.push_back(walker.ancestor);
+    }
+    std::sort(lineages.begin(), lineages.end());
+    const auto distinct = static_cast<std::uint64_t>(std::unique(lineages.begin(), lineages.end()) - lineages.begin());
+    // Resampling keeps every lineage of the survivors, but stage 0 may have had more than N (then N of them, once).
+    if (s.finished() ? (alive != last.survivors || distinct != last.ancestors) : distinct != std::min(last.ancestors, N))
+      return who + "the walkers' lineages or survivors differ from the level's counts";
   }
   return std::nullopt;
 }
@@ -334,12 +367,26 @@ std::uint64_t segmentAgesAreExactly(const KernelSettings& k, std::span<UnitState
 // blocks, which says whether it reaches the level and gives the state there.
 std::vector<EntryOrbitResult> entryGroupTrials(const KernelSettings& k, const KernelInfo& kernel,
                                                std::uint64_t firstOrbit, std::size_t n, std::uint64_t warmupBlocks,
-                                               std::uint64_t level) {
+                                               std::uint64_t level, std::stop_token stop) {
   std::vector<EntryOrbitResult> out(n);
   std::vector<OrbitState> lanes(n);  // (0, 0): appendix B, step 2
   SegmentSink sink(static_cast<std::uint32_t>(n), 0);  // one histogram per lane: lane i is subset (firstOrbit + i) % n
   const auto segmentsOf = [&](std::size_t i) { return sink.subsets()[(firstOrbit + i) % n].segments(); };
-  kernel.blocks(k, lanes, firstOrbit, warmupBlocks, sink);
+  // The lanes advanced by `blocks`, in calls of at most kStopCheckSteps steps with a look at the stop token
+  // between them (the lanes carry the orbits' whole state, so the calls add up to one: the results are the same).
+  // False when stopped: the caller discards the group (issue 36: at q = 65536 a group's 1088 blocks ran 68 s
+  // between checks).
+  const std::uint64_t perCall = std::max<std::uint64_t>(1, kStopCheckSteps / (n * k.q));
+  const auto advance = [&](std::uint64_t blocks) {
+    for (std::uint64_t done = 0; done < blocks;) {
+      if (stop.stop_requested()) return false;
+      const std::uint64_t b = std::min(perCall, blocks - done);
+      kernel.blocks(k, lanes, firstOrbit, b, sink);
+      done += b;
+    }
+    return true;
+  };
+  if (!advance(warmupBlocks)) return out;
   std::vector<std::uint64_t> before(n);
   for (std::size_t i = 0; i < n; ++i) before[i] = segmentsOf(i);
   const std::uint64_t chunk = std::max<std::uint64_t>(1, std::min<std::uint64_t>(level / 4, 64));
@@ -352,7 +399,7 @@ std::vector<EntryOrbitResult> entryGroupTrials(const KernelSettings& k, const Ke
       candidate[i] = s.start.block > warmupBlocks && s.length < level && s.length + c >= level ? 1 : 0;
       if (candidate[i]) saved[i] = s;
     }
-    kernel.blocks(k, lanes, firstOrbit, c, sink);
+    if (!advance(c)) return out;
     done += c;
     for (std::size_t i = 0; i < n; ++i) {
       if (!candidate[i]) continue;
@@ -370,6 +417,7 @@ std::vector<EntryOrbitResult> entryGroupTrials(const KernelSettings& k, const Ke
     OrbitState s = lanes[i];
     if (!(s.start.block > warmupBlocks && s.length < level)) continue;
     for (;;) {  // the trial still open when the window closes
+      if (stop.stop_requested()) return out;
       const bool ended = advanceOneBlock(k, firstOrbit + i, s, nullptr);
       ++out[i].blocks;
       if (ended) break;
@@ -415,15 +463,15 @@ class Sampler {
             // A first level of a few blocks makes every open trial a candidate in every chunk of one block: the
             // block-at-a-time reference is then the faster way to the same results.
             for (std::size_t i = 0; i < n; ++i)
-              results[j + i] = entryOrbitTrials(k_, orbit + i, s_.request.warmupBlocks, s_.levels[0]);
+              results[j + i] = entryOrbitTrials(k_, orbit + i, s_.request.warmupBlocks, s_.levels[0], stop_);
             return;
           }
           std::vector<EntryOrbitResult> r =
-              entryGroupTrials(k_, kernel_, orbit, n, s_.request.warmupBlocks, s_.levels[0]);
+              entryGroupTrials(k_, kernel_, orbit, n, s_.request.warmupBlocks, s_.levels[0], stop_);
           std::move(r.begin(), r.end(), results.begin() + static_cast<std::ptrdiff_t>(j));
         },
         stop_, threads_);
-    if (!complete) return std::nullopt;
+    if (!complete || stop_.stop_requested()) return std::nullopt;  // a group may have returned a part
     for (const EntryOrbitResult& r : results) s_.steps += r.blocks * s_.request.run.q;
     return results;
   }

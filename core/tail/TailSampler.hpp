@@ -253,8 +253,10 @@ struct EntryOrbitResult {
 /// The reference definition, one block at a time (advanceOneBlock()): orbit `orbit` of the run process (settings:
 /// its map, Xr, q, seed) from (0, 0), warmupBlocks blocks, then its window (see "entry orbit" above).  The sampler
 /// computes the same with the block kernel, 32 orbits at a time (a test checks them equal, on every kernel).
+/// A stop request (looked at every block) returns at once with what was found so far, which the sampler discards.
 [[nodiscard]] EntryOrbitResult entryOrbitTrials(const KernelSettings& settings, std::uint64_t orbit,
-                                                std::uint64_t warmupBlocks, std::uint64_t level);
+                                                std::uint64_t warmupBlocks, std::uint64_t level,
+                                                std::stop_token stop = {});
 /// The entry orbits each replica examines: ⌈kEntrySuccessTarget·N·pilotOrbits/pilotSuccesses⌉.
 [[nodiscard]] std::uint64_t entryOrbitsPerReplica(std::uint32_t population, std::uint64_t pilotOrbits,
                                                   std::uint64_t pilotSuccesses);

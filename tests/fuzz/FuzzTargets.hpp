@@ -8,7 +8,9 @@
 #include <cstddef>
 #include <cstdint>
 #include <stdexcept>
+#include <stop_token>
 #include <string>
+#include <vector>
 
 #include "core/runfile/RunFile.hpp"
 #include "core/io/Json.hpp"
@@ -17,6 +19,7 @@
 #include "core/session/SessionFile.hpp"
 #include "core/spec/RunSpec.hpp"
 #include "core/tail/TailFile.hpp"
+#include "core/tail/TailSampler.hpp"
 
 namespace archipelago::fuzz {
 
@@ -126,6 +129,112 @@ inline void tailFile(const std::uint8_t* data, std::size_t size) {
     if (tailFileText(parseTailFile(again)) != again) throw std::logic_error("tail file round trip changed it");
   } catch (const std::runtime_error&) {
   }
+}
+
+/// Tail files' state behind a valid checksum (issue 36: a re-signed file whose replica had survivors and no
+/// walkers was resumed, and its P was wrong).  The input is a program of edits to the JSON "state" of a sampler
+/// run — walkers removed, duplicated or cleared, alive flags, lineages and ages, a level's counts, stage 0's —
+/// applied to one of the states a small run passes through; the file is signed again and read.  It must be
+/// refused, or be a state that holds the sampler's invariants (checked here in their own words, not by
+/// tailStateError()), round-trips, and resumes one step into a state that reads back.
+namespace detail {
+inline const std::vector<std::string>& tailStates() {
+  static const std::vector<std::string> texts = [] {
+    TailRequest r;  // the process of `run` at K = 0.1, q = 16: levels 112 … 1168 steps, N = 4, R = 2
+    r.population = 4;
+    r.replicas = 2;
+    r.firstSteps = 100;
+    r.maxSteps = 1000;
+    r.binsPerLevel = 10;
+    r.warmupBlocks = 4;
+    r.minAncestors = 1;
+    std::vector<std::string> out{tailFileText(startTail(r))};
+    TailRunOptions o;
+    o.threads = 1;
+    const TailState end = runTail(startTail(r), o, [&](const TailState& s, const TailProgress&) {
+      out.push_back(tailFileText(s));
+    });
+    out.push_back(tailFileText(end));
+    return out;
+  }();
+  return texts;
+}
+
+/// The invariants a state of the sampler holds between two of its steps (TailSampler.cpp), stated independently.
+inline void checkTailInvariants(const TailState& s) {
+  const std::uint64_t N = s.request.population;
+  for (const TailReplica& x : s.replicas) {
+    if (x.levels.size() != s.next || x.alive.size() != (s.next == 0 && s.age == 0 ? 0 : x.walkers.size()))
+      throw std::logic_error("levels or alive flags per replica");
+    for (const TailLevelCount& c : x.levels)
+      if (c.survivors > c.population || c.ancestors > c.survivors) throw std::logic_error("a level's counts");
+    if (s.next == 0) continue;
+    const TailLevelCount& last = x.levels.back();
+    if (!s.finished() && x.walkers.size() != (last.survivors > 0 ? N : 0))
+      throw std::logic_error("walkers under way differ from N or none");
+    std::uint64_t alive = 0;
+    for (std::size_t w = 0; w < x.walkers.size(); ++w) {
+      if (x.alive[w] && x.walkers[w].state.length != s.age) throw std::logic_error("a live walker of another age");
+      if (x.walkers[w].ancestor >= x.levels[0].survivors) throw std::logic_error("a lineage from nowhere");
+      alive += x.alive[w] != 0;
+    }
+    if (s.finished() && alive != last.survivors) throw std::logic_error("survivors of the last level");
+  }
+}
+}  // namespace detail
+
+inline void tailState(const std::uint8_t* data, std::size_t size) {
+  if (size == 0) return;
+  const std::vector<std::string>& bases = detail::tailStates();
+  if (size == 1) {  // no edit: every state of the run is read back as written (no false refusal)
+    for (const std::string& text : bases) {
+      const TailState s = parseTailFile(text);
+      detail::checkTailInvariants(s);
+      if (tailFileText(s) != text) throw std::logic_error("a state of the run did not read back as written");
+    }
+    return;
+  }
+  nlohmann::json j = nlohmann::json::parse(bases[data[0] % bases.size()]);
+  nlohmann::json& state = j["state"];
+  nlohmann::json& replicas = state["replicas"];
+  const auto number = [](std::uint8_t v) -> std::int64_t { return v < 200 ? v : std::int64_t{v} * 1000; };
+  for (std::size_t i = 1; i + 3 < size; i += 4) {
+    const std::uint8_t op = data[i], a = data[i + 1], b = data[i + 2], v = data[i + 3];
+    nlohmann::json& x = replicas[a % replicas.size()];
+    nlohmann::json& walkers = x["walkers"];
+    nlohmann::json& levels = x["levels"];
+    const std::size_t w = walkers.empty() ? 0 : b % walkers.size();
+    switch (op % 12) {
+      case 0: if (!walkers.empty()) walkers.erase(w); break;
+      case 1: if (!walkers.empty()) walkers.push_back(walkers[w]); break;
+      case 2: walkers = nlohmann::json::array(); break;
+      case 3: if (!walkers.empty()) walkers[w][10] = v % 3; break;                  // alive
+      case 4: if (!walkers.empty()) walkers[w][9] = number(v); break;               // ancestor
+      case 5: if (!walkers.empty()) walkers[w][4] = number(v); break;               // length (age)
+      case 6: if (!levels.empty()) levels[b % levels.size()][v % 5] = number(a); break;  // a level's count
+      case 7: x[v % 2 ? "orbits_done" : "trials"] = number(b); break;
+      case 8: state[v % 2 ? "next" : "age"] = number(b); break;
+      case 9: if (!levels.empty()) levels.erase(b % levels.size()); break;
+      case 10: if (!walkers.empty()) walkers[w][b % 4] = walkers[(w + 1) % walkers.size()][b % 4]; break;
+      case 11: if (replicas.size() > 1) replicas.erase(a % replicas.size()); break;
+    }
+  }
+  j.erase("checksum");
+  j["checksum"] = io::jsonChecksum(j);
+  TailState s;
+  try {
+    s = parseTailFile(j.dump(1));
+  } catch (const std::runtime_error&) {
+    return;  // refused: what an inconsistent state must be
+  }
+  detail::checkTailInvariants(s);
+  const std::string again = tailFileText(s);
+  if (!(parseTailFile(again) == s)) throw std::logic_error("tail state round trip changed it");
+  std::stop_source stop;
+  TailRunOptions o;
+  o.threads = 1;
+  const TailState next = runTail(s, o, [&](const TailState&, const TailProgress&) { stop.request_stop(); }, stop.get_token());
+  detail::checkTailInvariants(parseTailFile(tailFileText(next)));
 }
 
 }  // namespace archipelago::fuzz

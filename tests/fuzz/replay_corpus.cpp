@@ -12,7 +12,7 @@
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(stderr, "usage: replay_corpus runfile|runspec|numbers|session|manifest|tail PATH…\n");
+    std::fprintf(stderr, "usage: replay_corpus runfile|runspec|numbers|session|manifest|tail|tail_state PATH…\n");
     return 2;
   }
   const std::string target = argv[1];
@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
                                                     : target == "session" ? archipelago::fuzz::session
                                                     : target == "manifest" ? archipelago::fuzz::manifest
                                                     : target == "tail"    ? archipelago::fuzz::tailFile
+                                                    : target == "tail_state" ? archipelago::fuzz::tailState
                                                                           : nullptr;
   if (!entry) {
     std::fprintf(stderr, "unknown target %s\n", target.c_str());

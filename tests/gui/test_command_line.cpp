@@ -1,7 +1,7 @@
 // The desktop application's command line: `archipelago --help` and `--version` work without a display (issue 25,
 // deliverable 7), and every number it reads goes through core's one reader, with one `ERROR:` line and a non-zero
 // status for a bad one (issue #23, finding 9: --after nan|-5|1e12 never quit; --segment abc silently meant 0,
-// -1 and 99999 were ignored).
+// -1 and 99999 were ignored); without a display it says so in one line (issue 36).
 #include <QProcess>
 #include <QProcessEnvironment>
 #include <QTemporaryDir>
@@ -22,13 +22,14 @@ struct Outcome {
   QString err;
 };
 
-Outcome run(const QStringList& arguments, bool display, const QString& home) {
+Outcome run(const QStringList& arguments, bool display, const QString& home, const QString& platform = {}) {
   QProcess p;
   QProcessEnvironment env = QProcessEnvironment::systemEnvironment();
   env.remove(QStringLiteral("DISPLAY"));
   env.remove(QStringLiteral("WAYLAND_DISPLAY"));
   env.remove(QStringLiteral("QT_QPA_PLATFORM"));
   if (display) env.insert(QStringLiteral("QT_QPA_PLATFORM"), QStringLiteral("offscreen"));
+  else if (!platform.isEmpty()) env.insert(QStringLiteral("QT_QPA_PLATFORM"), platform);
   env.insert(QStringLiteral("XDG_CONFIG_HOME"), home + QStringLiteral("/config"));
   env.insert(QStringLiteral("XDG_DATA_HOME"), home + QStringLiteral("/data"));
   env.insert(QStringLiteral("XDG_RUNTIME_DIR"), home);  // a private folder: Qt says nothing about it
@@ -78,6 +79,17 @@ class TestCommandLine : public QObject {
     for (const QStringList& args : cases) {
       const Outcome o = run(args, false, home.path());  // no display: refused before any window
       QVERIFY2(o.status == 2 && oneErrorLine(o.err), qPrintable(args.join(QLatin1Char(' ')) + QStringLiteral(": ") + o.err));
+    }
+  }
+
+  // Issue 36 class 8b: with QT_QPA_PLATFORM=xcb (or none: the default) and no DISPLAY, Qt's xcb plugin aborted the
+  // process (SIGABRT, status -1 here) instead of saying what to do.
+  void issue36_noDisplayIsOneErrorLine() {
+    QTemporaryDir home;
+    for (const QString& platform : {QStringLiteral("xcb"), QString(), QStringLiteral("wayland;xcb")}) {
+      const Outcome o = run({}, false, home.path(), platform);
+      QVERIFY2(o.status == 2 && oneErrorLine(o.err) && o.err.contains(QStringLiteral("no display")),
+               qPrintable(platform + QStringLiteral(": status ") + QString::number(o.status) + QStringLiteral(", ") + o.err));
     }
   }
 

@@ -132,3 +132,86 @@ def test_an_interrupted_call_leaves_the_module_usable():
         ap.portrait(points=2 ** 49, width=64, height=64)
     small = ap.portrait(points=100000, width=32, height=32)
     assert small["points_iterated"] >= 100000
+
+
+# Issue 36 class 8: Ctrl-C 1 s into rotation(iterations=10**7, max_period=100000) raised KeyboardInterrupt only when
+# the call returned, 42 s later; indicator (2048 x 2048 at 10**6 iterations) after 74 s; tail at q = 65536 after
+# 68 s (a unit of stage 0).  No wall-clock bound here: each call's work is sized from a small call measured on this
+# machine, so that uninterrupted it would last SCALE times the small one (whose duration is the wait before Ctrl-C);
+# the interrupted call must end within a quarter of that, whatever the machine's speed (and at least the wait plus
+# 0.25 s is allowed: the binding looks for Ctrl-C every 50 ms, so a machine fast enough to make the small call last
+# a few ms weakens the test rather than failing it).
+SCALE = 32
+
+
+def _bound(t):
+    return max(SCALE * t / 4, t + 0.25)
+
+
+def _seconds(call):
+    start = time.monotonic()
+    call()
+    return time.monotonic() - start
+
+
+def _calibrated(small_of, at_least=0.15, most=2 ** 20):
+    """The smallest n of 1, 2, 4, … (at most `most`) whose small_of(n)() lasts at_least seconds, and that duration."""
+    n = 1
+    while True:
+        t = _seconds(small_of(n))
+        if t >= at_least or 2 * n > most:
+            return n, t
+        n *= 2
+
+
+def _interrupted_after(wait, call):
+    timer = threading.Timer(wait, _thread.interrupt_main)
+    start = time.monotonic()
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            call()
+    finally:
+        timer.cancel()
+    return time.monotonic() - start
+
+
+def test_rotation_stops_on_ctrl_c_Issue36():
+    # A chaotic orbit: its identification is the rotation measurement alone, whose work is proportional to iterations.
+    x, y = 0.3, 0.0
+    assert ap.rotation(x, y, iterations=1000)["verdict"] != "regular"
+    n, t = _calibrated(lambda n: lambda: ap.rotation(x, y, iterations=1000 * n),
+                       most=10 ** 7 // (1000 * SCALE))  # iterations at most 10^7 (MeasureSettings)
+    elapsed = _interrupted_after(t, lambda: ap.rotation(x, y, iterations=1000 * n * SCALE, max_period=100000))
+    assert elapsed < _bound(t), f"stopped after {elapsed:.2f} s; uninterrupted ~{SCALE * t:.1f} s"
+
+
+def test_indicator_stops_on_ctrl_c_within_a_round_Issue36():
+    # One round of pixels (the binding's 4096) SCALE times as many pixels as the small map, at the same iterations.
+    n, t = _calibrated(lambda n: lambda: ap.indicator("dig", width=8, height=16, iterations=1000 * n, threads=1))
+    assert 8 * 16 * SCALE <= 4096
+    elapsed = _interrupted_after(t, lambda: ap.indicator("dig", width=8 * SCALE, height=16, iterations=1000 * n,
+                                                         threads=1))
+    assert elapsed < _bound(t), f"stopped after {elapsed:.2f} s; uninterrupted ~{SCALE * t:.1f} s"
+
+
+def test_tail_stops_on_ctrl_c_within_a_unit_of_stage_0_Issue36():
+    # The pilot's first unit (64 entry orbits of 1088 blocks of q steps, a first level of 100 blocks on both sides):
+    # its duration at q is measured up to the first progress call, then the sampler at SCALE q is interrupted.
+    def first_unit(q):
+        def call():
+            def progress(d):
+                raise StopIteration
+
+            with pytest.raises(StopIteration):
+                ap.tail(K=0.1, q=q, first=100 * q, t_max=200 * q, population=4, replicas=1, min_ancestors=1, threads=1,
+                        progress=progress)
+        return call
+
+    q, t = _calibrated(lambda n: first_unit(4 * n))
+    q *= 4
+    assert q * SCALE <= 65536
+    elapsed = _interrupted_after(t, lambda: ap.tail(K=0.1, q=q * SCALE, first=100 * q * SCALE,
+                                                    t_max=200 * q * SCALE, population=4, replicas=1,
+                                                    min_ancestors=1, threads=1))
+    assert elapsed < _bound(t), f"stopped after {elapsed:.2f} s; uninterrupted unit ~{SCALE * t:.1f} s"

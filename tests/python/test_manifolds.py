@@ -3,7 +3,9 @@ that make sense, bad input as ValueError, and Ctrl-C stops a long branch."""
 import _thread
 import json
 import math
+import resource
 import subprocess
+import sys
 import threading
 import time
 
@@ -85,6 +87,41 @@ def test_flux_bad_input():
         ap.flux(2.0)
     with pytest.raises(ValueError, match="entry samples = 0"):
         ap.flux(0.1, kac=True, kac_samples=0)
+
+
+# Issue 36 class 4: --spacing 1e-17 (down to 1e-300) recursed for hours, 1e-16 ran to max_points; 10^8 points
+# took ~12 GB unchecked.  Refused before work: the bound each exceeds (MemoryError under a 4 GiB address space).
+@pytest.mark.parametrize("spacing", [1e-17, 1e-16, 1e-300])
+def test_manifold_spacing_below_the_points_precision_is_refused_Issue36(spacing):
+    with pytest.raises(ValueError, match=r"spacing = .* must be in \[1e-14, 1\]"):
+        ap.manifold(0.1, length=1, spacing=spacing)
+
+
+def test_manifold_points_beyond_the_memory_are_refused_Issue36():
+    code = """
+import archipelago as ap, time
+t = time.monotonic()
+try:
+    ap.manifold(0.1, length=1e6, spacing=1e-9, max_points=10 ** 8)
+    print("no error")
+except MemoryError as e:
+    print("MemoryError", round(time.monotonic() - t, 2), str(e)[:120])
+"""
+    limit = 4 << 30
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120,
+                       preexec_fn=lambda: resource.setrlimit(resource.RLIMIT_AS, (limit, limit)))
+    assert r.stdout.startswith("MemoryError") and "needs about" in r.stdout, r.stdout + r.stderr
+    assert float(r.stdout.split()[1]) < 5  # before the work (which would take minutes)
+
+
+# Issue 36 class 7: "lobe not resolved" and "no orbit found" were bare RuntimeErrors: now archipelago.NotFoundError,
+# a ValueError (the input was in range, but has no answer).
+def test_no_answer_is_not_found_error_Issue36():
+    assert issubclass(ap.NotFoundError, ValueError)
+    with pytest.raises(ap.NotFoundError, match="not resolved by __float128"):
+        ap.flux(3e-4)
+    with pytest.raises(ap.NotFoundError, match="no hyperbolic periodic orbit of period 7"):
+        ap.manifold(0.1, period=7, near=(-0.3, 0.0), radius=1e-6, length=1)
 
 
 def test_kac_from_python():

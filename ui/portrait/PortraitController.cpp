@@ -631,7 +631,7 @@ void PortraitController::requestManifolds() {
           r.kind = kind;
           r.side = side;
           r.length = orbit ? 2.0L : 8.0L;
-          r.maxSpacing = std::clamp(width / 400, 1e-14L, 2e-3L);
+          r.maxSpacing = std::clamp(width / 400, kMinManifoldSpacing, 2e-3L);
           r.view = view;
           r.box = box;
           r.maxPoints = kMaxManifoldPoints / static_cast<std::size_t>(2 * sides.size() * static_cast<std::size_t>(points));

@@ -58,6 +58,14 @@ TEST(NumberText, MessagesNameTheInputShortly) {
   }
 }
 
+// Issue 36 class 6: ARCHIPELAGO_KERNEL='scalar\n' was quoted with its newline raw, breaking the one-line message.
+TEST(NumberText, QuotedTextStaysOnOneLine) {
+  EXPECT_EQ(shortText("scalar\n"), "scalar\\n");
+  EXPECT_EQ(shortText(std::string("a\tb\rc\x01\x7F", 7)), "a\\tb\\rc\\x01\\x7F");
+  EXPECT_EQ(shortText("d\u00e9j\u00e0 vu"), "d\u00e9j\u00e0 vu");  // UTF-8 is text, not a control character
+  EXPECT_EQ(shortText(std::string(50, '\n'), 4), "\\n\\n\\n\\n\u2026");
+}
+
 using testing::DecimalCommaLocale;
 
 TEST_F(DecimalCommaLocale, FormatAndParseIgnoreIt_Issue23) {

@@ -377,6 +377,47 @@ TEST(TailFile, RefusesEditsAndInconsistentStates) {
   EXPECT_TRUE(tailStateError(s) == std::nullopt);
 }
 
+// Issue 36 class 6: the checksum is no proof of consistency.  A state re-signed after an edit of its walkers
+// (replica 0 with survivors and no walkers was resumed, and its P beyond that level was wrong) is refused; every
+// state a run passes through (between any two of its steps, metropolis clones too) is accepted.
+TEST(TailFile, Issue36RefusesWalkersThatContradictTheCounts) {
+  for (const CloneRule rule : {CloneRule::perturb, CloneRule::metropolis}) {
+    TailRequest r = smallRequest();
+    r.maxSteps = 1000;
+    r.clones = rule;
+    std::vector<TailState> seen;
+    const TailState end = runTail(startTail(r), {}, [&](const TailState& st, const TailProgress&) { seen.push_back(st); });
+    seen.push_back(end);
+    std::size_t midLevel = 0;
+    for (const TailState& st : seen) {
+      ASSERT_FALSE(tailStateError(st)) << *tailStateError(st) << " at level " << st.next << ", age " << st.age;
+      if (st.next > 0 && !st.finished() && st.age > st.levels[st.next - 1]) midLevel += 1;
+    }
+    ASSERT_GT(midLevel, 0u);  // states within a level (some walkers dead) were among them
+    for (const TailState& st : seen) {
+      if (st.next == 0) continue;
+      const auto refused = [&](auto edit, const char* what) {
+        TailState broken = st;
+        edit(broken.replicas[0]);
+        EXPECT_THROW((void)parseTailFile(tailFileText(broken)), std::runtime_error)
+            << what << " at level " << st.next << ", age " << st.age;
+      };
+      if (!st.replicas[0].walkers.empty()) {
+        refused([](TailReplica& x) { x.walkers.clear(), x.alive.clear(); }, "no walkers");
+        refused([](TailReplica& x) { x.walkers.pop_back(), x.alive.pop_back(); }, "a walker less");
+        refused([](TailReplica& x) { x.alive[0] ^= 1; }, "an alive flag flipped");
+        refused([&](TailReplica& x) { x.walkers[0].ancestor = static_cast<std::uint32_t>(x.levels[0].survivors); },
+                "a lineage beyond stage 0's");
+      } else if (!st.replicas[1].walkers.empty()) {
+        refused([&](TailReplica& x) { x.walkers.assign(r.population, st.replicas[1].walkers.at(0)),
+                                      x.alive.assign(r.population, 1); }, "walkers where none survived");
+      }
+      refused([](TailReplica& x) { x.levels.back().survivors += 1, x.levels.back().population += 1; },
+              "a survivor more");
+    }
+  }
+}
+
 // The brute-force P at a level is core/stats' P_t at t = qL (its grid holds t for L ≤ 50 when q ≤ 81).
 TEST(BruteForceSurvival, IsTheStatisticsEstimatorAtHistogramEdges) {
   TrappingParameters p;
