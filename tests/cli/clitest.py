@@ -38,7 +38,7 @@ def wait_for_file(path, process, seconds=60):
     return os.path.exists(path)
 
 
-def interrupt(process, timeout=60):
+def interrupt(process, timeout=600):
     """SIGINT (a clean stop at a chunk boundary), then (stdout, stderr); killed and (None, None) after timeout."""
     if process.poll() is None:
         process.send_signal(signal.SIGINT)

@@ -345,11 +345,11 @@ def killed_and_resumed():
             break
         os.remove(out)
     ref = os.path.join(d, "ref.json")
-    rc, _, err = invoke(["run", *params, "--out", ref, "--quiet"], timeout=120)
+    rc, _, err = invoke(["run", *params, "--out", ref, "--quiet"], timeout=1200)
     results = []
     for name in (".killed.json.Ab12Cd", ".killed.json.zz99ZZ"):  # as a kill mid-write leaves them
         open(os.path.join(d, name), "w").write("partial")
-    rc, _, err = invoke(["run", "--resume", out, "--out", out, "--quiet"], timeout=60)
+    rc, _, err = invoke(["run", "--resume", out, "--out", out, "--quiet"], timeout=600)
 
     def same():
         a, b = json.load(open(ref)), json.load(open(out))

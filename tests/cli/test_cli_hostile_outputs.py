@@ -66,7 +66,7 @@ invoke(["run", *RUN_PARAMS, "--orbits", "0:4", "--out", part_a, "--quiet"])
 invoke(["run", *RUN_PARAMS, "--orbits", "4:8", "--out", part_b, "--quiet"])
 # A run of the tail's process (the spec's defaults), for tail --compare.
 brute = os.path.join(base, "brute.json")
-rc, _, err = invoke(["run", "--M", "16", "--T", "20000", "--out", brute, "--quiet"], timeout=120)
+rc, _, err = invoke(["run", "--M", "16", "--T", "20000", "--out", brute, "--quiet"], timeout=1200)
 check(rc == 0, f"a brute-force run for tail --compare ({err.strip()})")
 
 
@@ -166,7 +166,7 @@ def device_cases():
             args = [a.replace("{}", target) for a in writers(d)[index][1]]
             reader = FifoReader(target) if attack == "a FIFO" else None
             start = time.monotonic()
-            rc, out, err = invoke(args, timeout=60)
+            rc, out, err = invoke(args, timeout=600)
             seconds = time.monotonic() - start
             if reader:
                 reader.stop()
@@ -208,7 +208,7 @@ def full_stdout_cases():
         with open("/dev/full", "w") as full:
             try:
                 r = subprocess.run([cli, *args], stdout=full, stderr=subprocess.PIPE, text=True, errors="replace",
-                                   timeout=60, stdin=subprocess.DEVNULL)
+                                   timeout=600, stdin=subprocess.DEVNULL)
                 rc, err = r.returncode, r.stderr
             except subprocess.TimeoutExpired:
                 rc, err = None, ""
@@ -266,7 +266,7 @@ def alias_cases():
         shutil.copy(part_b, os.path.join(d, "B.json"))
         open(os.path.join(d, "S.json"), "w").write(spec)
         before = snapshot(d)
-        rc, out, err = invoke([a.replace("{d}", d) for a in template], timeout=120)
+        rc, out, err = invoke([a.replace("{d}", d) for a in template], timeout=1200)
         outcome = classify(rc, err, True, lambda: False)
         if outcome == "clean error" and (snapshot(d) != before or leftovers(d)):
             outcome = "silent wrong"  # refused, but a file was written or changed
@@ -285,7 +285,7 @@ def alias_cases():
     ]
     for index, (name, template, made) in enumerate(valid):
         d = make_dir(f"alias-valid-{index}")
-        rc, out, err = invoke([a.replace("{d}", d) for a in template], timeout=120)
+        rc, out, err = invoke([a.replace("{d}", d) for a in template], timeout=1200)
         outcome = classify(rc, err, False, lambda: all(os.path.getsize(os.path.join(d, n)) > 0 for n in made)
                            and not leftovers(d))
         results.append(("aliases", name + " (allowed)", outcome, err.strip()[:200]))
@@ -310,7 +310,7 @@ def all_or_nothing_cases():
     for name, args, made in commands:
         d = make_dir("whole-" + name.split()[0])
         outputs = ["--out", os.path.join(d, "i.png"), "--npy", os.path.join(d, "i.npy")]
-        rc, _, err = invoke([*args, *outputs], timeout=60)  # unlimited: the sizes of the files
+        rc, _, err = invoke([*args, *outputs], timeout=600)  # unlimited: the sizes of the files
         sizes = {n: os.path.getsize(os.path.join(d, n)) for n in made if os.path.exists(os.path.join(d, n))}
         if rc != 0 or len(sizes) != len(made):
             results.append(("all or nothing", name + " (unlimited)", "silent wrong", err.strip()[:160]))
@@ -321,7 +321,7 @@ def all_or_nothing_cases():
         if limit >= sizes["i.npy"]:
             print(f"{name}: skipped (the PNG, {sizes['i.png']} B, is not smaller than the .npy)")
             continue
-        rc, _, err = invoke([*args, *outputs], timeout=60, preexec_fn=file_size_limit(limit))
+        rc, _, err = invoke([*args, *outputs], timeout=600, preexec_fn=file_size_limit(limit))
         outcome = classify(rc, err, True, lambda: False)
         written = [n for n in os.listdir(d)]
         if outcome == "clean error" and written:
@@ -343,7 +343,7 @@ def long_name_cases():
     results = []
     for label, args, path in cases:
         assert len(os.path.basename(path)) == 255
-        rc, out, err = invoke(args, timeout=60)
+        rc, out, err = invoke(args, timeout=600)
         outcome = classify(rc, err, False, lambda: os.path.getsize(path) > 0 and not leftovers(d))
         results.append(("long names", f"{label} <a 255-byte name>", outcome, err.strip()[:160]))
     return results

@@ -5,7 +5,7 @@ import subprocess
 import sys
 
 cli = sys.argv[1]
-printed = subprocess.run([cli, "limits"], capture_output=True, text=True, timeout=60, check=True).stdout
+printed = subprocess.run([cli, "limits"], capture_output=True, text=True, timeout=600, check=True).stdout
 doc = (pathlib.Path(__file__).resolve().parents[2] / "docs" / "cli.md").read_text(encoding="utf-8")
 begin, end = "<!-- limits -->\n", "<!-- /limits -->"
 assert begin in doc and end in doc, "docs/cli.md has no limits table between its markers"

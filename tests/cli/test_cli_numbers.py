@@ -41,7 +41,7 @@ cases = [
     (["portrait", "--seeds", "24x24.5", "--mode", "orbits", "--out", os.path.join(tmp, "p.png")], "--seeds '24x24.5' must be WxH"),
 ]
 for args, mention in cases:
-    r = run(*args, timeout=30)
+    r = run(*args, timeout=300)
     lines = r.stderr.strip().splitlines()
     check(r.returncode > 0 and len(lines) == 1 and lines[0].startswith("ERROR: ") and mention in lines[0],
           f"{' '.join(args[:4])} -> {r.returncode}: {r.stderr.strip()}")

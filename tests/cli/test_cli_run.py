@@ -49,7 +49,7 @@ deadline = time.monotonic() + 60
 while not os.path.exists(out2) and time.monotonic() < deadline and p.poll() is None:
     time.sleep(0.05)
 p.send_signal(signal.SIGINT)
-_, err = p.communicate(timeout=60)
+_, err = p.communicate(timeout=600)
 check(p.returncode == 130 and "checkpoint written" in err, f"SIGINT writes a checkpoint (exit {p.returncode}: {err.strip()})")
 r = run("stats", out2)
 check(r.returncode == 0 and "in progress" in r.stdout, f"the checkpoint loads as a run in progress ({r.stderr.strip()})")
@@ -114,10 +114,10 @@ check(len(results) >= 1 and all(v == results["scalar"] for v in results.values()
       f"kernels {sorted(results)} agree bit for bit")
 env_path = os.path.join(tmp, "kernel-env.json")
 r = subprocess.run([cli, "run", *short, "--out", env_path], capture_output=True, text=True,
-                   env={**os.environ, "ARCHIPELAGO_KERNEL": "scalar"}, timeout=60)
+                   env={**os.environ, "ARCHIPELAGO_KERNEL": "scalar"}, timeout=600)
 check(r.returncode == 0 and json.load(open(env_path))["kernel"] == "scalar", "ARCHIPELAGO_KERNEL=scalar is obeyed")
 r = subprocess.run([cli, "run", *short, "--out", env_path], capture_output=True, text=True,
-                   env={**os.environ, "ARCHIPELAGO_KERNEL": "vax"}, timeout=60)
+                   env={**os.environ, "ARCHIPELAGO_KERNEL": "vax"}, timeout=600)
 check(r.returncode > 0 and r.stderr.startswith("ERROR: ARCHIPELAGO_KERNEL"), f"a bad ARCHIPELAGO_KERNEL is an error ({r.stderr.strip()})")
 
 # portrait takes --kernel like run (issue #11, item 6): every path writes the same raster; a bad name is an error.

@@ -53,7 +53,8 @@ struct Portrait {
 };
 
 /// Waits until the view's render ends by itself (budget or no sea).
-bool waitFinished(PortraitView* view, int ms = 60000) {
+// A hang bound (issue 36, class 10: 60 s was crossed by the 10⁸-point deep zoom beside two busy loops).
+bool waitFinished(PortraitView* view, int ms = 900000) {
   QSignalSpy finished(view, &PortraitView::renderFinished);
   return finished.wait(ms);
 }

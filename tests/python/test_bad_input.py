@@ -175,7 +175,7 @@ for name, call in [("orbit", lambda: ap.orbit(0.1, -0.8, 0.5, 0.0, 0.0, steps=10
         print(name, "MemoryError", round(time.monotonic() - t, 2), str(e)[:80])
 """
     limit = 3 << 30
-    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120,
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=1200,
                        preexec_fn=lambda: resource.setrlimit(resource.RLIMIT_AS, (limit, limit)))
     lines = r.stdout.splitlines()
     assert len(lines) == 2 and all(" MemoryError " in line and "needs about" in line for line in lines), r.stdout + r.stderr

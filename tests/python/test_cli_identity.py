@@ -30,7 +30,7 @@ def test_run_file_matches_cli(tmp_path, cli):
     spec.write_text(json.dumps(SPEC))
     cli_out = tmp_path / "cli.json"
     subprocess.run([cli, "run", "--spec", str(spec), "--out", str(cli_out), "--quiet", "--threads", "2"],
-                   check=True, timeout=60)
+                   check=True, timeout=600)
     # Python: another kernel, another thread count, small chunks, stopped nowhere: the result must not change.
     run = ap.start(json.dumps(SPEC))
     run.advance(threads=1, kernel="scalar", max_chunk=250)
@@ -106,7 +106,7 @@ def test_D_error_is_the_supported_error_of_cli_stats(tmp_path, cli, K, dominated
     path = tmp_path / "run.json"
     run.save(path)
     subprocess.run([cli, "stats", str(path), "--csv", str(tmp_path / "csv"), "--tail-csv", str(tmp_path / "tail")],
-                   check=True, timeout=120, stdout=subprocess.DEVNULL)
+                   check=True, timeout=1200, stdout=subprocess.DEVNULL)
     tail = _csv_values(tmp_path / "tail" / "tail_summary.csv")
     summary = _csv_values(tmp_path / "csv" / "summary.csv")
     s = run.statistics()
@@ -133,7 +133,7 @@ def test_spliced_statistics_are_the_cli_stats_short(tmp_path, cli):
     short = tmp_path / "k01.short.json"
     assert short.exists(), "run writes the preset's companion beside the run"
     subprocess.run([cli, "stats", str(out), "--short", str(short), "--csv", str(tmp_path / "csv")],
-                   check=True, timeout=120, stdout=subprocess.DEVNULL)
+                   check=True, timeout=1200, stdout=subprocess.DEVNULL)
     run = ap.load(out)
     spliced = run.statistics(short=short)
     for other in (run.statistics(short=str(short)), run.statistics(short=ap.load(short))):

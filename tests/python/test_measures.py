@@ -17,7 +17,7 @@ P138 = (0.0360286533088399281481 + 1e-6, 0.0341809124510989600403)  # next to th
 @pytest.mark.parametrize("x, y", [P138, (-0.3, 0.0), (0.3, 0.3)])
 def test_rotation_equals_cli_json(cli, x, y):
     out = subprocess.run([cli, "rotation", "--x", repr(x), "--y", repr(y), "--json"], capture_output=True, text=True,
-                         check=True, timeout=120).stdout
+                         check=True, timeout=1200).stdout
     assert ap.rotation(x, y) == json.loads(out)
 
 
@@ -35,7 +35,7 @@ def test_indicator_equals_cli_npy(cli, tmp_path):
     npy, verdicts = tmp_path / "r.npy", tmp_path / "v.npy"
     subprocess.run([cli, "indicator", "--kind", "rotation", f"--view={','.join(map(repr, view))}", "--size", "12x9",
                     "--iterations", "1000", "--npy", str(npy), "--verdicts", str(verdicts), "--quiet"],
-                   check=True, timeout=120)
+                   check=True, timeout=1200)
     d = ap.indicator("rotation", view=view, width=12, height=9, iterations=1000, passes=3, kernel="scalar", threads=1)
     values = np.load(npy)
     assert d["values"].shape == (9, 12)
@@ -48,7 +48,7 @@ def test_indicator_equals_cli_npy(cli, tmp_path):
 def test_profile_equals_cli_csv_and_orbit_measures(cli, tmp_path):
     path = tmp_path / "p.csv"
     subprocess.run([cli, "rotation", "--line=-0.31,0:0.25,0.05", "--points", "25", "--iterations", "1500", "--csv",
-                    str(path), "--quiet"], check=True, timeout=120)
+                    str(path), "--quiet"], check=True, timeout=1200)
     rows = list(csv.DictReader(io.StringIO("\n".join(l for l in path.read_text().splitlines() if not l.startswith("#")))))
     p = ap.rotation_profile((-0.31, 0.0), (0.25, 0.05), 25, iterations=1500)
     assert len(rows) == 25

@@ -74,7 +74,7 @@ def test_notebook_runs(tmp_path, monkeypatch):
     monkeypatch.setenv("PYTHONPATH", str(pathlib.Path(ap.__file__).resolve().parents[1]))
     monkeypatch.setenv("PYDEVD_DISABLE_FILE_VALIDATION", "1")  # ipykernel's debugger warns about frozen modules
     monkeypatch.setenv("MPLBACKEND", "module://matplotlib_inline.backend_inline")
-    client = nbclient.NotebookClient(nb, kernel_name="archipelago-test", timeout=120,
+    client = nbclient.NotebookClient(nb, kernel_name="archipelago-test", timeout=1200,
                                      resources={"metadata": {"path": str(tmp_path)}})
     started = time.monotonic()
     try:

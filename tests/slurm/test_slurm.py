@@ -145,7 +145,9 @@ def start(name, *argv):
 
 
 def run(*argv, cwd=None, check_ok=True):
-    r = subprocess.run(list(argv), capture_output=True, text=True, env=env, cwd=cwd or tmp, timeout=60)
+    # A hang bound, not a speed bound (issue 36, class 10: the reference run exceeded a fixed 60 s on a busy machine
+    # without IFMA): ten times what the slowest of these commands takes on the scalar kernel of a loaded machine.
+    r = subprocess.run(list(argv), capture_output=True, text=True, env=env, cwd=cwd or tmp, timeout=900)
     if check_ok and r.returncode != 0:
         raise RuntimeError(f"{' '.join(argv)}: status {r.returncode}: {r.stderr.strip()}")
     return r
@@ -215,6 +217,9 @@ try:
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
     rate = spec_steps(small) / cpu
+    # The jobs' deadline grows with this machine's time for the small run (issue 36, class 10): the MPI and array jobs
+    # run it, and the scalar kernel or a loaded machine makes it several times slower than where 210 s was measured.
+    DEADLINE = max(DEADLINE, 210 + 20 * cpu)
     cpu_seconds = 30 * (os.cpu_count() or 1)
     long = spec(max(1000, round(cpu_seconds * rate / (16 * 16))))
     json.dump(long, open(p("timelimit", "k01.spec.json"), "w"), indent=2)
