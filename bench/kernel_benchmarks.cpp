@@ -284,6 +284,13 @@ void registerPaired() {
   }
   const KernelInfo* avx2 = find(KernelKind::avx2);
   const KernelInfo* scalar = find(KernelKind::scalar);
+  // Issue 41: the AVX-512F path against the AVX2 one it replaces on CPUs without IFMA (target: 1.5x at q = 16, 100).
+  if (const KernelInfo* f = find(KernelKind::avx512f); f && avx2) {
+    add("avx512f_vs_avx2/bare", bareWork(f->orbits, bareSteps(*f)), bareWork(avx2->orbits, bareSteps(*avx2)));
+    for (const std::uint32_t q : {1u, 16u, 100u})
+      add("avx512f_vs_avx2/q:" + std::to_string(q), pipelineWork(f, q, 1, T(*f, q, 1)),
+          pipelineWork(avx2, q, 1, T(*avx2, q, 1)));
+  }
   if (avx2 && scalar) {
     add("avx2_vs_scalar/bare", bareWork(avx2->orbits, bareSteps(*avx2)), bareWork(scalar->orbits, bareSteps(*scalar)));
     for (const std::uint32_t q : {1u, 16u, 100u})

@@ -94,7 +94,7 @@ reps = sorted({len(r["wall"]) for r in runs.values()} | {len(v) for v in paired.
 print(f"\nMedians of {'/'.join(map(str, reps))} repetitions per benchmark, randomly interleaved; "
       "[min–max] of the repetitions; G = 10^9 steps of N^-1 per second.")
 
-order = ["avx512ifma", "avx2", "scalar"]
+order = ["avx512ifma", "avx512f", "avx2", "scalar"]
 kernels = [k for k in order if f"bare_step/{k}" in runs or any(n.startswith(f"pipeline/{k}/") for n in runs)]
 
 print("\n== Bare step of N^-1 (48 orbits per thread, no bookkeeping) ==")
@@ -133,7 +133,8 @@ for k in kernels:
 
 print("\n== Path ratios (pipeline, 1 thread) ==")
 for q in (1, 16, 100):
-    for a, b in [("avx2", "scalar"), ("avx512ifma", "scalar"), ("avx512ifma", "avx2")]:
+    for a, b in [("avx2", "scalar"), ("avx512ifma", "scalar"), ("avx512ifma", "avx2"), ("avx512f", "avx2"),
+                 ("avx512ifma", "avx512f")]:
         na, nb = f"pipeline/{a}/q:{q}/threads:1", f"pipeline/{b}/q:{q}/threads:1"
         if na in runs and nb in runs:
             print(f"  q={q:3d}  {a:10s} / {b:10s}: {ratio(na, nb):6.2f}x wall, {ratio(na, nb, 'cpu'):6.2f}x CPU")
@@ -257,4 +258,21 @@ if all(s == s for s in av.values()):
     print(f"  avx2 pipeline >= 3x scalar (1 thread, per CPU s), q = 1 / 16 / 100:  "
           f"{' / '.join(f'{s:.2f}x' for s in av.values())}   {verdict(min(av.values()) >= 3)}"
           f"   (bare step {ratio('bare_step/avx2', 'bare_step/scalar', 'cpu'):.2f}x)")
+# Issue 41: the AVX-512F path (CPUs without IFMA) against AVX2, paired; and the rotation measure against the bare step.
+print("\n== Targets of issue 41, medians ==")
+f512 = [pm("avx512f_vs_avx2/bare")] + [pm(f"avx512f_vs_avx2/q:{q}") for q in (1, 16, 100)]
+if all(x == x for x in f512):
+    ifma = "bare_step/avx512ifma" in runs
+    print(f"  avx512f / avx2 (paired, 1 thread), bare step / pipeline q = 1 / 16 / 100:  "
+          f"{' / '.join(f'{x:.2f}x' for x in f512)};  pipeline >= 1.5x at q = 16 and 100: {verdict(min(f512[2:]) >= 1.5)}"
+          + ("   (measured on an IFMA CPU, by forcing the AVX-512F path)" if ifma else ""))
+else:
+    print("  avx512f / avx2: not measured: this CPU has no AVX-512F (see its flags above); its bit identity is tested"
+          " (core_tests, on SIMDe where there is no AVX-512F)")
+for k in kernels:
+    n, bare = f"measure/rotation/{k}", f"bare_step/{k}"
+    if n in runs and bare in runs:
+        r = ratio(n, bare, "cpu")
+        print(f"  rotation measure / bare step, {k:10s} (per CPU s) >= 0.15:  {r:5.3f} ({ratio(n, bare):.3f} wall)   {verdict(r >= 0.15)}")
+print("  GUI: the run's rate with the segment panel identifying chains / alone >= 0.80: scripts/gui-portrait-yield.py --chains")
 PY

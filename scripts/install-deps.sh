@@ -18,6 +18,7 @@ packages=(
   qt6-base-dev qt6-base-dev-tools qt6-svg-dev qmake6 bzip2 binutils
   libgomp1 nlohmann-json3-dev libcli11-dev zlib1g-dev
   libgtest-dev libgmock-dev googletest libbenchmark-dev
+  libsimde-dev  # core_tests: the AVX-512F kernel compiled on SIMDe, bit-identity tests on CPUs without AVX-512 (issue 41)
   xvfb xauth python3
   clang libclang-rt-14-dev libomp-dev
   pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib  # the Python module (python/), its tests, examples/

@@ -13,6 +13,7 @@
 
 #include "ui/portrait/PortraitPanel.hpp"
 #include "ui/portrait/PortraitView.hpp"
+#include "ui/segments/LongSegmentsPanel.hpp"
 #include "ui/window/MainWindow.hpp"
 #include "ui/window/StatisticsView.hpp"
 
@@ -68,6 +69,7 @@ void LatencyProbe::customEvent(QEvent* event) {
   if (event->type() != kProbeEvent || !measuring_) return;
   const auto* probe = static_cast<ProbeEvent*>(event);
   latenciesMs_.push_back(static_cast<double>(clock_.nsecsElapsed() - probe->postedNs) / 1e6);
+  if (!window_.longSegments()->idle()) ++segmentJobsBusy_;  // sampled every 20 ms
 }
 
 void LatencyProbe::finish() {
@@ -83,6 +85,8 @@ void LatencyProbe::finish() {
   const std::uint64_t portraitNow = window_.portraitPanel()->view()->pointsSoFar();
   o[QStringLiteral("portrait_points_added")] =
       static_cast<double>(portraitNow >= portraitAtStart_ ? portraitNow - portraitAtStart_ : portraitNow);
+  o[QStringLiteral("segment_jobs_busy")] =
+      latenciesMs_.empty() ? 0.0 : static_cast<double>(segmentJobsBusy_) / static_cast<double>(latenciesMs_.size());
   o[QStringLiteral("portrait_visible")] = window_.portraitPanel()->view()->isVisible();
   o[QStringLiteral("seconds")] = elapsed;
   o[QStringLiteral("events")] = static_cast<int>(latenciesMs_.size());

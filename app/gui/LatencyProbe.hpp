@@ -6,13 +6,16 @@
 // delay a key press or a click would see.  Refresh rate: the
 // number of plot redraws (StatisticsView::refreshCount) per second of the measurement.  Run rate: the run's steps
 // per second over the measurement, and the points the phase portrait added meanwhile (scripts/gui-portrait-yield.py
-// compares the rate with the portrait accumulating beside the run and with it hidden, issue 25, finding 15).
+// compares the rate with the portrait accumulating beside the run and with it hidden, issue 25, finding 15, and
+// with the segment panel identifying chains or not, issue 41), and the fraction of the probe events that found
+// the segment panel's jobs (its chain identifications) running.
 
 #include <QElapsedTimer>
 #include <QObject>
 #include <QTimer>
 
 #include <atomic>
+#include <cstddef>
 #include <cstdint>
 #include <thread>
 
@@ -52,6 +55,7 @@ class LatencyProbe : public QObject {
   double stepsAtStart_ = 0;             // the run's steps done when the measure starts
   std::uint64_t portraitAtStart_ = 0;   // the portrait's points so far then
   bool measuring_ = false;
+  std::size_t segmentJobsBusy_ = 0;     // probe events that found the segment panel's jobs running (chains)
 };
 
 }  // namespace archipelago::app

@@ -11,6 +11,8 @@
 //   --segment N          select the long segment of rank N (0: the longest) of the opened run file (a rank
 //                        beyond the segments it keeps is an error: one ERROR line, status 2)
 //   --island             and zoom to one island of its chain once it is identified
+//   --chains ROWS        the top ROWS segments get their island chain identified as they appear (default 10;
+//                        0: none; scripts/gui-portrait-yield.py --chains compares the run's rate with and without)
 //   FILE.json            open a run file
 //   FILE.archipelago     open a session (the window as it was saved)
 #include <QAction>
@@ -54,7 +56,7 @@ bool onlyInformation(int argc, char** argv) {
       if (std::strcmp(argv[i], option) == 0) return true;
     for (const char* withValue :
          {"--preset", "--threads", "--screenshot", "--after", "--measure", "--tab", "--segment", "--mode", "--view",
-          "--budget"})
+          "--budget", "--chains"})
       if (std::strcmp(argv[i], withValue) == 0) ++i;
   }
   return false;
@@ -79,6 +81,14 @@ int readRank(const QString& text) {
   if (v < 0 || v > 1'000'000)
     throw std::invalid_argument("--segment = " + archipelago::io::shortText(text.toStdString()) +
                                 " must be a rank in [0, the number of longest segments the run keeps)");
+  return static_cast<int>(v);
+}
+
+/// --chains ROWS: the rows of the segment table whose chain is identified automatically, 0 … 1000.
+int readChainRows(const QString& text) {
+  const auto v = archipelago::io::parseNumber<std::uint32_t>("--chains", text.toStdString());
+  if (v > 1000)
+    throw std::invalid_argument("--chains = " + archipelago::io::shortText(text.toStdString()) + " must lie in [0, 1000] rows");
   return static_cast<int>(v);
 }
 
@@ -110,7 +120,7 @@ std::optional<std::string> numberError(int argc, char** argv) {
   try {
     for (int i = 1; i < argc; ++i) {
       const QString arg = QString::fromLocal8Bit(argv[i]);
-      for (const char* name : {"after", "measure", "segment", "threads", "view", "budget", "mode"}) {
+      for (const char* name : {"after", "measure", "segment", "threads", "view", "budget", "mode", "chains"}) {
         const QString option = QStringLiteral("--") + QLatin1String(name);
         QString value;
         if (arg == option && i + 1 < argc) value = QString::fromLocal8Bit(argv[i + 1]);
@@ -122,6 +132,7 @@ std::optional<std::string> numberError(int argc, char** argv) {
         else if (std::strcmp(name, "view") == 0) (void)readView(value);
         else if (std::strcmp(name, "budget") == 0) (void)readBudget(value);
         else if (std::strcmp(name, "mode") == 0) (void)readMode(value);
+        else if (std::strcmp(name, "chains") == 0) (void)readChainRows(value);
         else (void)archipelago::readThreads(value.toStdString());
       }
     }
@@ -211,8 +222,11 @@ int main(int argc, char** argv) {
                                   QStringLiteral("POINTS"));
   const QCommandLineOption manifolds(QStringLiteral("manifolds"),
                                      QStringLiteral("Draw the manifolds of the hyperbolic fixed point and the flux."));
+  const QCommandLineOption chains(QStringLiteral("chains"),
+                                  QStringLiteral("Identify the island chains of the top ROWS segments (default 10)."),
+                                  QStringLiteral("ROWS"));
   parser.addOptions({version, preset, run, threads, screenshot, after, measure, tab, segment, island, mode, view, budget,
-                     manifolds});
+                     manifolds, chains});
   parser.addPositionalArgument(QStringLiteral("file"), QStringLiteral("A run file (.json) or a session (.archipelago) to open."),
                                QStringLiteral("[file.json|file.archipelago]"));
   parser.process(app);
@@ -251,6 +265,7 @@ int main(int argc, char** argv) {
                  qPrintable(panel->presetNames().join(QStringLiteral(", "))));
     return 1;
   }
+  if (parser.isSet(chains)) window.longSegments()->setAutoIdentifiedRows(readChainRows(parser.value(chains)));
   if (parser.isSet(threads)) window.setThreads(archipelago::readThreads(parser.value(threads).toStdString()));
   window.show();
   if (parser.isSet(tab)) {

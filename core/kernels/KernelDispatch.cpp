@@ -10,9 +10,12 @@
 namespace archipelago {
 
 namespace {
-const std::array<KernelInfo, 3> kKernels = {{
+// The one table of paths, fastest first: names, --help texts, dispatch and validation all read it.
+const std::array<KernelInfo, 4> kKernels = {{
     {KernelKind::avx512ifma, "avx512ifma", "AVX-512 IFMA, 8 orbits per vector (vpmadd52huq)",
      &advanceBlocksAvx512Ifma, &iterateOrbitsAvx512Ifma, &binDensityAvx512Ifma, kAvx512IfmaBlockOrbits},
+    {KernelKind::avx512f, "avx512f", "AVX-512F, 8 orbits per vector (the avx2 method: exact integer-valued doubles)",
+     &advanceBlocksAvx512F, &iterateOrbitsAvx512F, &binDensityAvx512F, kAvx512FBlockOrbits},
     {KernelKind::avx2, "avx2", "AVX2 + FMA, 4 orbits per vector (exact integer-valued doubles, rounding down)", &advanceBlocksAvx2,
      &iterateOrbitsAvx2, &binDensityAvx2, kAvx2BlockOrbits},
     {KernelKind::scalar, "scalar", "portable C++ with 128-bit products (the reference)", &advanceBlocksScalar,
@@ -33,6 +36,7 @@ CpuFeatures CpuFeatures::detect() noexcept {
   f.avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");  // the AVX2 path needs both
   f.avx512ifma = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
                  __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512ifma");
+  f.avx512f = __builtin_cpu_supports("avx512f") && f.avx2;
   return f;
 #else
   return {};
@@ -45,6 +49,7 @@ bool supports(const CpuFeatures& cpu, KernelKind kind) noexcept {
   switch (kind) {
     case KernelKind::scalar: return true;
     case KernelKind::avx2: return cpu.avx2;
+    case KernelKind::avx512f: return cpu.avx512f;
     case KernelKind::avx512ifma: return cpu.avx512ifma;
   }
   return false;

@@ -1,9 +1,9 @@
 #pragma once
 /// \file KernelDispatch.hpp
-/// \brief Chooses the instruction-set path (scalar, AVX2, AVX-512 IFMA) at run time, by CPU features.
+/// \brief Chooses the instruction-set path (scalar, AVX2, AVX-512F, AVX-512 IFMA) at run time, by CPU features.
 ///
 /// Every path computes bit-identical results (VectorKernels.hpp), so the choice changes only the speed.
-/// The order of preference is avx512ifma, avx2, scalar; scalar runs everywhere.  A path may be forced:
+/// The order of preference is avx512ifma, avx512f, avx2, scalar; scalar runs everywhere.  A path may be forced:
 ///   - by name, kernelByName("avx2") (the CLI/GUI option), or
 ///   - by the environment variable ARCHIPELAGO_KERNEL=<name>, which selectKernel() honours when no name is
 ///     given;
@@ -19,13 +19,13 @@
 
 namespace archipelago {
 
-enum class KernelKind { scalar, avx2, avx512ifma };
+enum class KernelKind { scalar, avx2, avx512f, avx512ifma };
 
 /// One path: its name (as the CLI, run files and the GUI show it) and its entry points.  The table of paths
 /// (allKernels()) has static storage: a `const KernelInfo*` into it stays valid for the program's life.
 struct KernelInfo {
   KernelKind kind;
-  std::string_view name;         ///< "scalar", "avx2", "avx512ifma"
+  std::string_view name;         ///< "scalar", "avx2", "avx512f", "avx512ifma"
   std::string_view description;  ///< one line for --help and the About box
   BlockKernel blocks;            ///< the trapping block kernel (BlockKernel.hpp)
   OrbitKernel orbits;            ///< plain orbit iteration (portraits)
@@ -38,6 +38,7 @@ struct KernelInfo {
 struct CpuFeatures {
   bool avx2 = false;        ///< AVX2 and FMA together
   bool avx512ifma = false;  ///< AVX-512 F, VL, DQ and IFMA together
+  bool avx512f = false;     ///< AVX-512 F, with AVX2 and FMA (every such CPU has them; the measures use them)
   /// The features of the CPU this program runs on.
   [[nodiscard]] static CpuFeatures detect() noexcept;
 };
@@ -72,7 +73,7 @@ struct CpuFeatures {
 /// groups (multiples of 8, at least min(8, blockOrbits)) so that every thread gets several tasks.
 [[nodiscard]] std::size_t orbitsPerTask(const KernelInfo& kernel, std::size_t orbits, int threads) noexcept;
 
-/// "avx512ifma, avx2, scalar": the supported names, for help texts and error messages.
+/// "avx512ifma, avx512f, avx2, scalar": the supported names, for help texts and error messages.
 [[nodiscard]] std::string supportedKernelNames();
 
 }  // namespace archipelago

@@ -8,12 +8,13 @@
 ///   - scalar     : portable C++ with 128-bit products (the reference, advanceBlocksScalar in trapping/);
 ///   - avx2       : 4 orbits per 256-bit vector; X and Y as integer-valued doubles, every floor division one
 ///                  FMA rounded toward −∞ (KernelAvx2.cpp);
+///   - avx512f    : 8 orbits per 512-bit vector, the avx2 method with AVX-512 Foundation only (KernelAvx512F.inl);
 ///   - avx512ifma : 8 orbits per 512-bit vector; ⌊a·b/2^52⌋ is one vpmadd52huq, exact for a, b < 2^52.
 /// Each vector path advances several vectors of orbits in lockstep (a step's chain of dependent operations is
 /// long, so independent vectors fill the pipeline): a block kernel keeps k…BlockOrbits orbits in flight, and
 /// a call with fewer runs at a fraction of the speed, so callers hand it multiples of that (TrappingRun).
 ///
-/// The avx2 and avx512ifma functions are compiled for those instruction sets only (function target
+/// The avx2, avx512f and avx512ifma functions are compiled for those instruction sets only (function target
 /// attributes; the rest of the program stays generic), so they may be called only when the CPU has them:
 /// use KernelDispatch.hpp, which checks cpuid, rather than calling them directly.
 ///
@@ -74,6 +75,8 @@ std::uint64_t binDensityScalar(const MapCoefficients& coefficients, std::span<Un
                                const RasterGrid& grid, std::uint8_t* counts, std::vector<std::uint32_t>& carries);
 std::uint64_t binDensityAvx2(const MapCoefficients& coefficients, std::span<UnitState> orbits, std::uint64_t steps,
                              const RasterGrid& grid, std::uint8_t* counts, std::vector<std::uint32_t>& carries);
+std::uint64_t binDensityAvx512F(const MapCoefficients& coefficients, std::span<UnitState> orbits, std::uint64_t steps,
+                                const RasterGrid& grid, std::uint8_t* counts, std::vector<std::uint32_t>& carries);
 std::uint64_t binDensityAvx512Ifma(const MapCoefficients& coefficients, std::span<UnitState> orbits,
                                    std::uint64_t steps, const RasterGrid& grid, std::uint8_t* counts,
                                    std::vector<std::uint32_t>& carries);
@@ -83,6 +86,7 @@ void iterateOrbitsScalar(const MapCoefficients& coefficients, MapDirection direc
 
 /// Orbits the block kernels of the vector paths keep in flight (KernelInfo::blockOrbits).
 inline constexpr std::size_t kAvx2BlockOrbits = 24;        ///< 6 vectors of 4
+inline constexpr std::size_t kAvx512FBlockOrbits = 32;     ///< 4 vectors of 8
 inline constexpr std::size_t kAvx512IfmaBlockOrbits = 32;  ///< 4 vectors of 8
 
 /// AVX2 path (requires AVX2 and FMA).
@@ -90,6 +94,13 @@ void advanceBlocksAvx2(const KernelSettings& settings, std::span<OrbitState> orb
                        std::uint64_t blocks, SegmentSink& sink);
 void iterateOrbitsAvx2(const MapCoefficients& coefficients, MapDirection direction, std::span<UnitState> orbits,
                        std::uint64_t steps, UnitState* trace);
+
+/// AVX-512F path (requires AVX-512 F; CpuFeatures::avx512f also asks for AVX2 and FMA, which the measure
+/// kernels' accumulation uses).
+void advanceBlocksAvx512F(const KernelSettings& settings, std::span<OrbitState> orbits, std::uint64_t firstOrbit,
+                          std::uint64_t blocks, SegmentSink& sink);
+void iterateOrbitsAvx512F(const MapCoefficients& coefficients, MapDirection direction, std::span<UnitState> orbits,
+                          std::uint64_t steps, UnitState* trace);
 
 /// AVX-512 IFMA path (requires AVX-512 F, VL, DQ and IFMA).
 void advanceBlocksAvx512Ifma(const KernelSettings& settings, std::span<OrbitState> orbits,

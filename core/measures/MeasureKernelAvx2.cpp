@@ -94,7 +94,7 @@ struct Avx2 {
 
     Stepper(const MeasureSetup& s, const std::uint64_t* xs, const std::uint64_t* ys, std::uint64_t steps,
             bool trackWraps)
-        : coefficients_(s.coefficients), remaining_(steps), trackWraps_(trackWraps),
+        : coefficients_(s.coefficients), iterate_(s.trace ? s.trace : &iterateOrbitsAvx2), remaining_(steps), trackWraps_(trackWraps),
           xmin_(s.xmin), unit_(s.unit), K_(s.K), gScale_(2.0 / s.unit),
           trace_(static_cast<std::size_t>(std::min(steps, kTraceRows)) * kOrbits) {
       for (std::size_t l = 0; l < kOrbits; ++l) orbits_[l] = {xs[l], ys[l]};
@@ -148,11 +148,12 @@ struct Avx2 {
       remaining_ -= rows_;
       row_ = 0;
       // The orbit kernel sets and restores the rounding mode itself; it advances orbits_ to the chunk's end.
-      iterateOrbitsAvx2(coefficients_, MapDirection::forward, std::span<UnitState>(orbits_, kOrbits), rows_,
+      iterate_(coefficients_, MapDirection::forward, std::span<UnitState>(orbits_, kOrbits), rows_,
                         trace_.data());
     }
 
     MapCoefficients coefficients_;
+    OrbitKernel iterate_;  // the path's orbit kernel (MeasureSetup::trace)
     std::uint64_t remaining_;
     bool trackWraps_;
     double xmin_, unit_, K_, gScale_;

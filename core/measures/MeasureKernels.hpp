@@ -11,6 +11,7 @@
 ///   - avx2       : the AVX2 orbit kernel (iterateOrbitsAvx2, unchanged) fills a trace of a chunk of steps,
 ///                  which 256-bit double arithmetic then accumulates (the AVX2 step runs in round-down mode, the
 ///                  accumulation in round-to-nearest, so they cannot share a loop);
+///   - avx512f    : the avx2 accumulation, on the trace of the AVX-512F orbit kernel (MeasureSetup::trace);
 ///   - avx512ifma : fused: the IFMA step (KernelAvx512Ifma.cpp's arithmetic) and 512-bit accumulation in one
 ///                  loop, the orbits' X, Y never leaving registers.
 /// Steps, with n = 0, 1, … the step index of the orbit (all orbits of a call are at the same n) and
@@ -32,6 +33,7 @@
 #include <cstdint>
 #include <span>
 
+#include "core/kernels/VectorKernels.hpp"
 #include "core/map/FixedPointMap.hpp"
 #include "core/measures/OrbitMeasures.hpp"
 
@@ -49,6 +51,9 @@ struct MeasureSetup {
   /// The rotation centre in grid units, split into an integer (exact as a double) and a fraction in [0, 1):
   /// z − c = ((X − centreX) − centreFracX, (Y − centreY) − centreFracY), the first difference exact.
   double centreX = 0, centreY = 0, centreFracX = 0, centreFracY = 0;
+  /// The orbit kernel whose trace the avx2 accumulation reads (the path's KernelInfo::orbits: iterateOrbitsAvx2,
+  /// or iterateOrbitsAvx512F on the avx512f path); null: iterateOrbitsAvx2.
+  OrbitKernel trace = nullptr;
 };
 
 /// One orbit's state between calls (see the file comment for the fields' meaning).

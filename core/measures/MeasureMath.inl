@@ -22,7 +22,8 @@
 // types call separate multiply and add intrinsics.
 //
 // Accuracy (checked against long double in tests/core/measures, bounds derived there): clockwiseAngle within
-// 5.75·10⁻¹⁶ rad of atan2 of its rounded arguments, lnPositive within 2.5 ulp.  Both are piecewise polynomials (a Taylor series after an exact-enough range reduction), smooth
+// 5.75·10⁻¹⁶ rad of atan2 of its rounded arguments, lnPositive within 2.5 ulp.  Both are piecewise polynomials
+// (after an exact-enough range reduction: a Taylor series for ln, a near-minimax polynomial for atan), smooth
 // inside each piece, so a weighted Birkhoff average of them converges as fast as one of the true functions (the
 // pieces meet within the same 10⁻¹⁶).
 //
@@ -52,12 +53,22 @@ constexpr double kPi4Hi = 0x1.921fb54442d18p-1, kPi4Lo = 0x1.1a62633145c07p-55;
 constexpr double kPi2Hi = 0x1.921fb54442d18p+0, kPi2Lo = 0x1.1a62633145c07p-54;
 constexpr double kPiHi = 0x1.921fb54442d18p+1, kPiLo = 0x1.1a62633145c07p-53;
 constexpr double kTanPi8 = 0x1.a827999fcef32p-2;  // tan(π/8) = √2 − 1, rounded
+// atan(kTanPi8) (π/8 − 1.2·10⁻¹⁷, as kTanPi8 is rounded) as a double plus its rounding error.
+constexpr double kAtanTanPi8Hi = 0x1.921fb54442d18p-2, kAtanTanPi8Lo = 0x1.c398861b78b55p-59;
+constexpr double kTanPi16 = 0x1.975f5e0553158p-3, kTan3Pi16 = 0x1.561b82ab7f990p-1;  // the reduction's thresholds
 constexpr double kSqrt2 = 0x1.6a09e667f3bcdp+0;
 // ln 2 split so that e·kLn2Hi is exact for |e| < 2^11 (fdlibm's constants).
 constexpr double kLn2Hi = 6.93147180369123816490e-01, kLn2Lo = 1.90821492927058770002e-10;
 
-/// Terms of the Taylor series of atan u = u Σ (−1)^k u^{2k}/(2k+1) used for |u| ≤ tan(π/8): u^{2·21}/43 < 3·10⁻¹⁸.
-constexpr int kAtanTerms = 21;
+/// atan u / u ≈ Σ_{k<8} kAtanCoefficients[k] u^{2k} for |u| ≤ tan(π/16): Chebyshev interpolation of atan u / u
+/// in u² on [0, tan²(π/16)] at 8 nodes (near-minimax), computed at 60 digits by scripts/atan-coefficients.py and
+/// rounded to double; with these rounded coefficients |u Σ c_k u^{2k} − atan u| < 3.5·10⁻¹⁸ on the range (the
+/// 21 terms of the Taylor series that reached 3·10⁻¹⁸ on |u| ≤ tan(π/8) before issue 41 cost twice as much).
+constexpr int kAtanTerms = 8;
+constexpr double kAtanCoefficients[kAtanTerms] = {
+    0x1.0000000000000p+0,  -0x1.5555555555333p-2, 0x1.999999990bbe4p-3,  -0x1.249248b4394c3p-3,
+    0x1.c71c1a3a671a8p-4,  -0x1.744a82d0e4f2cp-4, 0x1.38e13ef8bb64cp-4,  -0x1.dbe17a0683168p-5,
+};
 /// Terms of ln m = 2 s Σ s^{2k}/(2k+1), s = (m − 1)/(m + 1), |s| ≤ (√2 − 1)/(√2 + 1): s^{2·11}/23 < 10⁻¹⁸.
 constexpr int kLogTerms = 11;
 
@@ -86,8 +97,8 @@ template <int N, class V>
   return estrinPart<N>(c, pow2);
 }
 
-/// The coefficients (−1)^k/(2k + 1) of atan u / u in powers of u², and 1/(2k + 1) of atanh s / s in powers of
-/// s², each correctly rounded (the compiler folds the divisions exactly).
+/// The coefficients 1/(2k + 1) of atanh s / s in powers of s² (and (−1)^k/(2k + 1) of atan u / u with
+/// kAlternating), each correctly rounded (the compiler folds the divisions exactly).
 template <int N, bool kAlternating>
 struct OddSeries {
   double c[N];
@@ -95,27 +106,31 @@ struct OddSeries {
     for (int k = 0; k < N; ++k) c[k] = (kAlternating && k % 2 ? -1.0 : 1.0) / (2 * k + 1);
   }
 };
-constexpr OddSeries<kAtanTerms, true> kAtanSeries;
 constexpr OddSeries<kLogTerms, false> kAtanhSeries;
 
-/// atan u for |u| ≤ tan(π/8): u · Σ (−1)^k u^{2k}/(2k + 1).
+/// atan u for |u| ≤ tan(π/16) (and a little beyond): u · Σ c_k u^{2k} (kAtanCoefficients).
 template <class V>
 [[nodiscard]] inline V atanReduced(V u) noexcept {
-  return u * estrin(u * u, kAtanSeries.c);
+  return u * estrin(u * u, kAtanCoefficients);
 }
 
-/// atan2(s, c) in (−π, π]: 0 for s = c = 0.  The octant is reduced exactly (absolute values, min, max); the
-/// ratio min/max above tan(π/8) becomes (min − max)/(min + max) = tan(atan(min/max) − π/4), so one division
-/// brings every argument into |u| ≤ tan(π/8).
+/// atan2(s, c) in (−π, π]: 0 for s = c = 0.  The octant is reduced exactly (absolute values, min, max) to the
+/// angle β = atan(t) ∈ [0, π/4], t = min/max; then β − α for the nearest α of 0, α₁ = atan(τ), τ = kTanPi8, and
+/// π/4, as tan(β − α) = (t − tan α)/(1 + t tan α) = (min − max·tan α)/(max + min·tan α) with tan α = 0, τ or 1
+/// (exact products for 0 and 1), so one division brings every argument into |u| ≤ tan(π/16) (issue 41: eight
+/// polynomial terms instead of 21).  For α₁ the product max·τ adds half an ulp of 0.42·max to the numerator:
+/// 0.21ε in u, less than the 3ε|u| ≤ 1.24ε that the ratio's other roundings cost at the old bound |u| ≤ tan(π/8).
 template <class V>
 [[nodiscard]] inline V atan2Portable(V s, V c) noexcept {
   const V as = absValue(s), ac = absValue(c);
   const V hi = maxValue(as, ac), lo = minValue(as, ac);
-  const auto reduce = lo > hi * kTanPi8;
-  const V num = select(reduce, lo - hi, lo);
-  const V den = select(hi > 0.0, select(reduce, lo + hi, hi), V(1.0));
+  const auto far = lo > hi * kTan3Pi16;  // β > 3π/16: about π/4
+  const auto mid = lo > hi * kTanPi16;   // β > π/16: about α₁ (unless far)
+  const V tanAlpha = select(far, V(1.0), select(mid, V(kTanPi8), V(0.0)));
+  const V num = lo - hi * tanAlpha;
+  const V den = select(hi > 0.0, hi + lo * tanAlpha, V(1.0));
   V a = atanReduced(num / den);
-  a = select(reduce, (a + kPi4Lo) + kPi4Hi, a);
+  a = select(far, (a + kPi4Lo) + kPi4Hi, select(mid, (a + kAtanTanPi8Lo) + kAtanTanPi8Hi, a));
   a = select(as > ac, (kPi2Lo - a) + kPi2Hi, a);
   a = select(c < 0.0, (kPiLo - a) + kPiHi, a);
   return select(s < 0.0, -a, a);

@@ -100,6 +100,7 @@ std::uint64_t totalSteps(IndicatorKind kind, std::uint64_t T) noexcept { return 
 MeasurePath measurePath(KernelKind kind) noexcept {
   switch (kind) {
     case KernelKind::avx512ifma: return {&measureKernelAvx512Ifma, 32};
+    case KernelKind::avx512f:  // the avx2 accumulation on the AVX-512F trace (MeasureSetup::trace): 3 vectors of 8
     case KernelKind::avx2: return {&measureKernelAvx2, 24};
     case KernelKind::scalar: break;
   }
@@ -119,6 +120,7 @@ measures::MeasureSetup makeSetup(const MeasureSettings& s, const MapCoefficients
   setup.xmin = s.map.xmin;
   setup.unit = std::ldexp(s.map.width(), -FixedPointMap::kBits);
   setup.K = s.map.K;
+  setup.trace = kernelOrBest(s.kernel).orbits;
   if (s.kind == IndicatorKind::Rotation) {
     const PhysicalPoint c = rotationCentreUnits(s.map);
     const long double ix = std::floor(c.x), iy = std::floor(c.y);

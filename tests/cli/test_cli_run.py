@@ -119,6 +119,21 @@ check(r.returncode == 0 and json.load(open(env_path))["kernel"] == "scalar", "AR
 r = subprocess.run([cli, "run", *short, "--out", env_path], capture_output=True, text=True,
                    env={**os.environ, "ARCHIPELAGO_KERNEL": "vax"}, timeout=600)
 check(r.returncode > 0 and r.stderr.startswith("ERROR: ARCHIPELAGO_KERNEL"), f"a bad ARCHIPELAGO_KERNEL is an error ({r.stderr.strip()})")
+# Issue 41: the AVX-512F path.  Where the CPU has it, the loop above ran it and found its run file byte-identical
+# to avx2's and scalar's; where it lacks it (no AVX-512F: this check's branch), forcing it is one ERROR line.
+if "avx512f" in names:
+    print("note: this CPU has AVX-512F: --kernel avx512f was compared bit for bit above")
+else:
+    print("note: no AVX-512F here: --kernel avx512f is checked to be a clear error (its bit identity: core_tests, emulated)")
+    bad = os.path.join(tmp, "kernel-avx512f.json")
+    r = run("run", *short, "--kernel", "avx512f", "--out", bad)
+    check(r.returncode > 0 and r.stderr.startswith("ERROR: ") and "kernel 'avx512f' is not supported by this CPU" in r.stderr
+          and len(r.stderr.strip().splitlines()) == 1 and not os.path.exists(bad),
+          f"--kernel avx512f without AVX-512F is one ERROR line and no file ({r.stderr.strip()})")
+    r = subprocess.run([cli, "run", *short, "--out", bad], capture_output=True, text=True,
+                       env={**os.environ, "ARCHIPELAGO_KERNEL": "avx512f"}, timeout=60)
+    check(r.returncode > 0 and r.stderr.startswith("ERROR: ARCHIPELAGO_KERNEL: kernel 'avx512f' is not supported"),
+          f"ARCHIPELAGO_KERNEL=avx512f without AVX-512F is an error ({r.stderr.strip()})")
 
 # portrait takes --kernel like run (issue #11, item 6): every path writes the same raster; a bad name is an error.
 rasters = {}

@@ -100,6 +100,7 @@ class TestJobs : public QObject {
   void destroyingTheMechanismMidJob();
   void channelsRunIndependently();
   void backgroundPriorityNicesTheThreads();
+  void channelPrioritiesNiceEachChannel();
   void runWorkerLatestRunWinsAndPauseKeepsTheState();
   void durationsAsText();
   void pauseGateHoldsAJobUntilResumedOrStopped();
@@ -483,6 +484,35 @@ void TestJobs::backgroundPriorityNicesTheThreads() {
     else
       QCOMPARE(*seen, std::min(ours + 10, 19));  // RunWorker's runs, which use every core
   }
+#else
+  QSKIP("thread nice values are Linux's");
+#endif
+}
+
+void TestJobs::channelPrioritiesNiceEachChannel() {
+  // Issue 41: the segment panel's chain identifications (channel 1) yield to a run at the portrait's idle
+  // priority, while its replays (channel 0), which the user waits for, keep the GUI's.
+#if defined(__linux__)
+  const auto niceOfThisThread = []() -> std::optional<int> {
+    errno = 0;
+    const int nice = getpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)));
+    if (errno != 0) return std::nullopt;
+    return nice;
+  };
+  const int ours = *niceOfThisThread();
+  QObject receiver;
+  BackgroundJobs jobs(&receiver, std::vector<JobPriority>{JobPriority::normal, JobPriority::idle});
+  std::optional<int> seen[2];
+  for (int channel : {0, 1}) {
+    Job<int> job;
+    job.channel = channel;
+    job.work = [niceOfThisThread](JobContext<NoProgress>&) { return niceOfThisThread(); };
+    job.done = [&seen, channel](const JobResult<int>& r) { seen[channel] = r.value; };
+    jobs.submit(std::move(job));
+  }
+  QTRY_VERIFY(seen[0].has_value() && seen[1].has_value());
+  QCOMPARE(*seen[0], ours);
+  QCOMPARE(*seen[1], 19);  // the lowest: what the portrait's accumulation gets
 #else
   QSKIP("thread nice values are Linux's");
 #endif

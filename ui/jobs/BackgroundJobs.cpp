@@ -9,6 +9,7 @@
 #include <unistd.h>
 #endif
 
+#include <algorithm>
 #include <new>
 #include <stdexcept>
 
@@ -93,11 +94,16 @@ QString jobFailureMessage(const std::exception_ptr& failure) {
 }
 
 BackgroundJobs::BackgroundJobs(QObject* receiver, int channels, JobPriority priority)
-    : receiver_(receiver), priority_(priority) {
-  if (channels < 1) throw std::invalid_argument("BackgroundJobs: at least one channel");
+    : BackgroundJobs(receiver, std::vector<JobPriority>(static_cast<std::size_t>(std::max(channels, 0)), priority)) {}
+
+BackgroundJobs::BackgroundJobs(QObject* receiver, std::vector<JobPriority> priorities) : receiver_(receiver) {
+  if (priorities.empty()) throw std::invalid_argument("BackgroundJobs: at least one channel");
   (void)Mailbox::wakeType();  // registered once, on the receiver's thread
   mailbox_ = std::make_unique<Mailbox>(this);
-  for (int c = 0; c < channels; ++c) channels_.push_back(std::make_unique<Channel>());
+  for (const JobPriority priority : priorities) {
+    channels_.push_back(std::make_unique<Channel>());
+    channels_.back()->priority = priority;
+  }
 }
 
 BackgroundJobs::~BackgroundJobs() {
@@ -192,9 +198,9 @@ bool BackgroundJobs::idle() const {
 }
 
 void BackgroundJobs::workerLoop(int channel) {
-  if (priority_ == JobPriority::background) lowerComputePriority(kComputeNice);
-  if (priority_ == JobPriority::idle) lowerComputePriority(kIdleNice);
   Channel& ch = channelAt(channel);
+  if (ch.priority == JobPriority::background) lowerComputePriority(kComputeNice);
+  if (ch.priority == JobPriority::idle) lowerComputePriority(kIdleNice);
   for (;;) {
     std::shared_ptr<Task> task;
     {

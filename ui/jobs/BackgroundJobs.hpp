@@ -7,8 +7,9 @@
 /// QObject of the thread that creates it (the GUI thread), and owns one worker thread per *channel*, started
 /// at the channel's first job; with JobPriority::background the threads are niced so that the GUI thread keeps
 /// the upper hand over long computations (the OpenMP team a job starts inherits the nice value), and with
-/// JobPriority::idle niced further, so that a background run keeps most of the cores too.  Only the
-/// receiver's thread calls submit(), cancel() and requestStop().
+/// JobPriority::idle niced further, so that a background run keeps most of the cores too (the priority may
+/// differ by channel: interactive work and idle work of one panel).  Only the receiver's thread calls
+/// submit(), cancel() and requestStop().
 ///
 /// A job is a callable that computes from the values it captured (calling core; it never touches a GUI
 /// object) and returns its result as a value.  Every submit() gets a new request id, unique in this object:
@@ -156,6 +157,8 @@ class BackgroundJobs {
  public:
   /// Jobs for `receiver` (which lives on the calling thread), on `channels` worker threads.
   explicit BackgroundJobs(QObject* receiver, int channels = 1, JobPriority priority = JobPriority::normal);
+  /// Jobs for `receiver` on one channel per entry of `priorities`, channel c's thread at priorities[c].
+  BackgroundJobs(QObject* receiver, std::vector<JobPriority> priorities);
   ~BackgroundJobs();
   BackgroundJobs(const BackgroundJobs&) = delete;
   BackgroundJobs& operator=(const BackgroundJobs&) = delete;
@@ -185,6 +188,7 @@ class BackgroundJobs {
     std::shared_ptr<Task> running;            // guarded by mutex_
     std::condition_variable wake;
     std::thread thread;                       // started by the receiver's thread, joined by the destructor
+    JobPriority priority = JobPriority::normal;  // of `thread`; set before it starts
     quint64 validFrom = 0;                    // receiver's thread only: older deliveries are stale
   };
   struct Delivery {
@@ -206,7 +210,6 @@ class BackgroundJobs {
   std::unique_ptr<Mailbox> mailbox_;
   mutable std::mutex mutex_;
   std::vector<std::unique_ptr<Channel>> channels_;
-  JobPriority priority_;
   bool quitting_ = false;                   // guarded by mutex_
   quint64 nextId_ = 0;                      // receiver's thread only
   std::mutex outboxMutex_;

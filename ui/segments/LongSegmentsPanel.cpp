@@ -32,7 +32,8 @@ namespace archipelago::ui {
 namespace {
 /// Play through a segment in about this many timer ticks (30 Hz: ~15 s), whatever its length.
 constexpr std::size_t kPlayTicks = 450;
-/// The job channels: replays (the latest selection wins) and chain identifications (a queue, urgent first).
+/// The job channels: replays (the latest selection wins) and chain identifications (a queue, urgent first),
+/// in the order of the priorities given to jobs_.
 constexpr int kReplayChannel = 0;
 constexpr int kChainChannel = 1;
 }  // namespace
@@ -41,7 +42,10 @@ LongSegmentsPanel::LongSegmentsPanel(QWidget* parent) : QWidget(parent) {
   qRegisterMetaType<SegmentReplayPtr>();
   qRegisterMetaType<ChainResultPtr>();
   model_ = new LongestSegmentsModel(this);
-  jobs_ = std::make_unique<BackgroundJobs>(this, 2);
+  // Replays at normal priority (the user waits for the one selected); chain identifications, which run beside
+  // a live run for every new top segment, at the portrait's idle priority, so that the run keeps the cores
+  // (issue 41: at normal priority they took half the CPU of two cores from a run at nice 10).
+  jobs_ = std::make_unique<BackgroundJobs>(this, std::vector<JobPriority>{JobPriority::normal, JobPriority::idle});
 
   table_ = new QTableView(this);
   table_->setModel(model_);

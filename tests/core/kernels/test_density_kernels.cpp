@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/kernels/KernelDispatch.hpp"
+#include "tests/core/kernels/KernelsUnderTest.hpp"
 
 namespace archipelago {
 namespace {
@@ -59,7 +60,7 @@ TEST(DensityKernels, MatchScalarTraceBinning) {
       {one / 10, one - 5, 7.0 / (static_cast<double>(one) / 3), 5.0 / (static_cast<double>(one) / 2), 3.5, 2.5, 7, 5,
        7, 5},
   };
-  for (const auto& kernel : supportedKernels()) {
+  for (const auto& kernel : kerneltests::kernelsUnderTest()) {
     for (std::size_t g = 0; g < grids.size(); ++g) {
       std::uint64_t pointsInGrid = 0;  // the comparison means something only when points land in the grid
       for (const std::size_t n : {1u, 5u, 8u, 13u, 32u, 45u}) {
@@ -84,7 +85,7 @@ TEST(DensityKernels, CarriesCountEveryWrap) {
   const std::uint64_t one = fixedpoint::kOne;
   const RasterGrid whole{one / 2, one / 2, 1.0 / static_cast<double>(one), 1.0 / static_cast<double>(one),
                          0.5, 0.5, 1, 1, 1, 1};
-  for (const auto& kernel : supportedKernels()) {
+  for (const auto& kernel : kerneltests::kernelsUnderTest()) {
     std::vector<UnitState> orbits(9, UnitState{12345, 678});
     for (std::size_t i = 0; i < orbits.size(); ++i) orbits[i].X += i * 1000;
     const Binned got = runDensity(kernel.density, c, orbits, 1000, whole, 1);

@@ -5,6 +5,8 @@
 #include <cstdlib>
 #include <stdexcept>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "core/kernels/KernelDispatch.hpp"
 
@@ -49,7 +51,12 @@ TEST(KernelDispatch, ScalarIsAlwaysSupportedAndLast) {
 TEST(KernelDispatch, PreferenceOrderFollowsTheCpuFeatures) {
   EXPECT_EQ(kernelByName("auto", CpuFeatures{false, false}).kind, KernelKind::scalar);
   EXPECT_EQ(kernelByName("auto", CpuFeatures{true, false}).kind, KernelKind::avx2);
-  EXPECT_EQ(kernelByName("auto", CpuFeatures{true, true}).kind, KernelKind::avx512ifma);
+  EXPECT_EQ(kernelByName("auto", CpuFeatures{true, true, true}).kind, KernelKind::avx512ifma);
+  // Issue 41: AVX-512F without IFMA (Skylake-SP, Cascade Lake) takes the AVX-512F path, between IFMA and AVX2.
+  EXPECT_EQ(kernelByName("auto", CpuFeatures{true, false, true}).kind, KernelKind::avx512f);
+  std::vector<std::string_view> order;
+  for (const auto& k : allKernels()) order.push_back(k.name);
+  EXPECT_EQ(order, (std::vector<std::string_view>{"avx512ifma", "avx512f", "avx2", "scalar"}));
   EXPECT_EQ(kernelByName("auto").kind, bestKernel().kind);
   const CpuFeatures cpu = CpuFeatures::detect();
   for (const auto& k : allKernels())  // by name: found exactly when this CPU supports it
@@ -58,7 +65,7 @@ TEST(KernelDispatch, PreferenceOrderFollowsTheCpuFeatures) {
 
 TEST(KernelDispatch, EveryKernelIsFoundByName) {
   for (const auto& k : allKernels()) {
-    const auto& found = kernelByName(k.name, CpuFeatures{true, true});
+    const auto& found = kernelByName(k.name, CpuFeatures{true, true, true});
     EXPECT_EQ(found.kind, k.kind);
     EXPECT_EQ(found.name, k.name);
   }
@@ -71,6 +78,9 @@ TEST(KernelDispatch, UnknownOrUnsupportedKernelIsAClearError) {
 
   const std::string noIfma = errorOf([] { (void)kernelByName("avx512ifma", CpuFeatures{true, false}); });
   EXPECT_NE(noIfma.find("kernel 'avx512ifma' is not supported by this CPU"), std::string::npos) << noIfma;
+  // Issue 41: forcing the AVX-512F path on a CPU without it (this machine, CI) is an error, never a crash.
+  const std::string noAvx512F = errorOf([] { (void)kernelByName("avx512f", CpuFeatures{true, false, false}); });
+  EXPECT_NE(noAvx512F.find("kernel 'avx512f' is not supported by this CPU"), std::string::npos) << noAvx512F;
   const std::string noAvx2 = errorOf([] { (void)kernelByName("avx2", CpuFeatures{false, false}); });
   EXPECT_NE(noAvx2.find("kernel 'avx2' is not supported by this CPU"), std::string::npos) << noAvx2;
 }
@@ -101,7 +111,8 @@ TEST(KernelDispatch, EnvironmentVariableOverridesTheDefault) {
 TEST(KernelDispatch, EveryPathNamesTheOrbitsItKeepsInFlight) {
   for (const auto& k : allKernels()) {
     SCOPED_TRACE(k.name);
-    const std::size_t width = k.kind == KernelKind::avx512ifma ? 8 : k.kind == KernelKind::avx2 ? 4 : 1;
+    const std::size_t width =
+        k.kind == KernelKind::avx512ifma || k.kind == KernelKind::avx512f ? 8 : k.kind == KernelKind::avx2 ? 4 : 1;
     EXPECT_GE(k.blockOrbits, 2 * width);
     EXPECT_EQ(k.blockOrbits % width, 0u);
     // Tasks are whole groups of what the path keeps in flight when there are enough orbits …

@@ -9,6 +9,7 @@
 
 #include "core/kernels/KernelDispatch.hpp"
 #include "core/run/TrappingRun.hpp"
+#include "tests/core/kernels/KernelsUnderTest.hpp"
 
 namespace archipelago {
 namespace {
@@ -25,7 +26,7 @@ const std::vector<std::size_t> kOrbitCounts = {1, 3, 7, 13, 32, 45, 64};
 
 std::vector<KernelInfo> vectorKernels() {
   std::vector<KernelInfo> v;
-  for (const auto& k : supportedKernels())
+  for (const auto& k : kerneltests::kernelsUnderTest())
     if (k.kind != KernelKind::scalar) v.push_back(k);
   return v;
 }
@@ -134,7 +135,7 @@ TEST(VectorKernels, LongestSegmentsBornDuringALongCallAreKept) {
 }
 
 TEST(VectorKernels, OrbitIterationMatchesScalarWithTrace) {
-  for (const auto& kernel : supportedKernels()) {
+  for (const auto& kernel : kerneltests::kernelsUnderTest()) {
     for (std::size_t set = 0; set < kParameterSets.size(); ++set) {
       const MapCoefficients coefficients = computeCoefficients(kParameterSets[set]);
       for (const auto direction : {MapDirection::forward, MapDirection::backward}) {
@@ -227,7 +228,7 @@ TEST(VectorKernels, KernelsLeaveTheRoundingModeAsTheyFoundIt) {
   const MapCoefficients c = computeCoefficients({0.1, -0.8, 0.5});
   for (const int mode : {FE_TONEAREST, FE_UPWARD}) {
     ASSERT_EQ(std::fesetround(mode), 0);
-    for (const auto& kernel : supportedKernels()) {
+    for (const auto& kernel : kerneltests::kernelsUnderTest()) {
       std::vector<UnitState> orbits = {{123, 456}, {fixedpoint::kMask, 0}};
       kernel.orbits(c, MapDirection::backward, orbits, 10, nullptr);
       SegmentSink sink(1, 1);
@@ -244,7 +245,7 @@ TEST(VectorKernels, KernelsLeaveTheRoundingModeAsTheyFoundIt) {
 // gets its results: the AVX2 path masks them while it runs, and the traps are back afterwards.
 TEST(VectorKernels, KernelsRunUnderTrappedFloatingPointExceptions) {
   const MapCoefficients c = computeCoefficients({0.1, -0.8, 0.5});
-  const auto kernels = supportedKernels();
+  const auto kernels = kerneltests::kernelsUnderTest();
   std::vector<UnitState> orbits = {{123, 456}, {fixedpoint::kMask, 0}};
   std::vector<UnitState> expected = orbits;
   iterateOrbitsScalar(c, MapDirection::backward, expected, 50, nullptr);

@@ -10,6 +10,7 @@
 #include "core/measures/IndicatorMap.hpp"
 #include "core/portrait/PortraitRenderer.hpp"
 #include "core/portrait/StochasticArea.hpp"
+#include "tests/core/kernels/KernelsUnderTest.hpp"
 
 namespace archipelago {
 namespace {
@@ -47,7 +48,7 @@ TEST(IndicatorMap, PassesThreadsAndPathsDoNotChangeAPixel) {
     const IndicatorResult reference = computeIndicatorMap(one);
     EXPECT_EQ(reference.raster.pixelsDone, reference.raster.pixelCount());
     EXPECT_EQ(reference.raster.count(OrbitVerdict::NotComputed), 0u);
-    for (const KernelInfo& k : supportedKernels()) {
+    for (const KernelInfo& k : kerneltests::kernelsUnderTest()) {
       IndicatorRequest many = small(kind);
       many.passes = 4;
       many.threads = 2;

@@ -17,6 +17,7 @@
 #include "core/measures/RotationNumber.hpp"
 #include "core/periodic/PeriodicOrbitFinder.hpp"
 #include "core/periodic/SmoothQuadraticMap.hpp"
+#include "tests/core/kernels/KernelsUnderTest.hpp"
 
 namespace archipelago {
 namespace {
@@ -164,7 +165,7 @@ TEST(RotationNumber, TheRotationIndicatorIsTheLevelZeroMeasurementBitForBit) {
   r.map = box;
   r.centre = centralFixedPoint(box);
   r.iterations = s.iterations;
-  for (const KernelInfo& k : supportedKernels()) {
+  for (const KernelInfo& k : kerneltests::kernelsUnderTest()) {
     s.kernel = &k;
     const OrbitMeasurer measurer(s);
     for (long double x = -0.62L; x < 0.3L; x += 0.0713L) {

@@ -19,6 +19,7 @@
 #include "core/portrait/PortraitRenderer.hpp"
 #include "core/random/CounterRng.hpp"
 #include "core/run/TrappingRun.hpp"
+#include "tests/core/kernels/KernelsUnderTest.hpp"
 
 namespace archipelago {
 namespace {
@@ -433,7 +434,7 @@ TEST(PortraitRenderer, EveryKernelPassedInTheRequestGivesTheSameRaster) {
     req.kernel = &kernelByName("scalar");
     const PortraitRaster scalar = renderPortrait(req).raster;
     ASSERT_GT(scalar.nonEmptyPixels(), 0u) << toString(mode);
-    for (const auto& kernel : supportedKernels()) {
+    for (const auto& kernel : kerneltests::kernelsUnderTest()) {
       req.kernel = &kernel;
       const PortraitRaster raster = renderPortrait(req).raster;
       SCOPED_TRACE(std::string(toString(mode)) + " " + std::string(kernel.name));

@@ -10,6 +10,7 @@
 #include "core/map/FixedPointMap.hpp"
 #include "core/portrait/StochasticArea.hpp"
 #include "core/random/CounterRng.hpp"
+#include "tests/core/kernels/KernelsUnderTest.hpp"
 
 namespace archipelago {
 namespace {
@@ -104,7 +105,7 @@ TEST(StochasticArea, EveryKernelVisitsTheBoxesOfTheTrappingOrbits) {
       }
     }
   }
-  for (const auto& kernel : supportedKernels()) {
+  for (const auto& kernel : kerneltests::kernelsUnderTest()) {
     SCOPED_TRACE(kernel.name);
     req.kernel = &kernel;
     const StochasticAreaResult res = computeStochasticArea(req);

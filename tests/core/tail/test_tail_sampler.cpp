@@ -17,6 +17,7 @@
 #include "core/tail/TailFile.hpp"
 #include "core/trapping/BlockKernel.hpp"
 #include "core/trapping/TrappingHistogram.hpp"
+#include "tests/core/kernels/KernelsUnderTest.hpp"
 
 namespace archipelago {
 namespace {
@@ -127,7 +128,7 @@ TEST(TailSampler, StageZeroIsTheReferenceEntryOrbits) {
       for (const OrbitState& w : e.successes)
         successes[rep].push_back({w, static_cast<std::uint32_t>(successes[rep].size())});
     }
-  for (const KernelInfo& kernel : supportedKernels()) {
+  for (const KernelInfo& kernel : kerneltests::kernelsUnderTest()) {
     TailRunOptions o;
     o.kernel = &kernel;
     std::stop_source stopper;
