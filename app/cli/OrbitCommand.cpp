@@ -1,10 +1,10 @@
 #include "OrbitCommand.hpp"
 
-#include <cstdio>
+#include <iostream>
 #include <memory>
 
 #include "CliCommon.hpp"
-#include "core/map/FixedPointMap.hpp"
+#include "core/portrait/MapOverlays.hpp"
 
 namespace archipelago::cli {
 
@@ -18,19 +18,8 @@ struct OrbitOptions {
 };
 
 int runOrbit(const OrbitOptions& o) {
-  const FixedPointMap map(o.map);  // throws std::invalid_argument with the rule that failed
-  UnitState z = map.toUnit(o.x, o.y);
-  std::printf("step,x,y,X,Y,wrapped\n");
-  auto print = [&](std::uint64_t step, bool wrapped) {
-    const PhysicalPoint p = map.toPhysical(z);
-    std::printf("%llu,%.21Lg,%.21Lg,%llu,%llu,%d\n", static_cast<unsigned long long>(step), p.x, p.y,
-                static_cast<unsigned long long>(z.X), static_cast<unsigned long long>(z.Y), wrapped ? 1 : 0);
-  };
-  print(0, false);
-  for (std::uint64_t i = 1; i <= o.steps; ++i) {
-    const bool wrapped = o.backward ? map.backward(z) : map.forward(z);
-    print(i, wrapped);
-  }
+  writeOrbitCsv(std::cout, o.map, o.x, o.y, o.steps, o.backward);  // throws std::invalid_argument (the failed rule)
+  std::cout.flush();
   return 0;
 }
 }  // namespace

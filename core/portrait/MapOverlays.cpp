@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <ostream>
 #include <stdexcept>
 
 namespace archipelago {
@@ -25,7 +27,8 @@ std::vector<FixedPoint> fixedPoints(const MapParameters& map) {
   return points;
 }
 
-std::vector<PhysicalPoint> traceOrbit(const MapParameters& map, long double x, long double y, std::uint64_t steps) {
+std::vector<PhysicalPoint> traceOrbit(const MapParameters& map, long double x, long double y, std::uint64_t steps,
+                                      bool backward) {
   if (steps > 100'000'000) throw std::invalid_argument("traceOrbit: steps must be <= 10^8");
   const FixedPointMap N(map);
   UnitState z = N.toUnit(x, y);
@@ -33,10 +36,27 @@ std::vector<PhysicalPoint> traceOrbit(const MapParameters& map, long double x, l
   points.reserve(static_cast<std::size_t>(steps) + 1);
   points.push_back(N.toPhysical(z));
   for (std::uint64_t i = 0; i < steps; ++i) {
-    N.forward(z);
+    if (backward) N.backward(z);
+    else N.forward(z);
     points.push_back(N.toPhysical(z));
   }
   return points;
+}
+
+void writeOrbitCsv(std::ostream& out, const MapParameters& map, long double x, long double y, std::uint64_t steps,
+                   bool backward) {
+  const FixedPointMap N(map);  // throws std::invalid_argument with the rule that failed
+  UnitState z = N.toUnit(x, y);
+  out << "step,x,y,X,Y,wrapped\n";
+  char line[160];
+  const auto row = [&](std::uint64_t step, bool wrapped) {
+    const PhysicalPoint p = N.toPhysical(z);
+    std::snprintf(line, sizeof line, "%llu,%.21Lg,%.21Lg,%llu,%llu,%d\n", static_cast<unsigned long long>(step), p.x,
+                  p.y, static_cast<unsigned long long>(z.X), static_cast<unsigned long long>(z.Y), wrapped ? 1 : 0);
+    out << line;
+  };
+  row(0, false);
+  for (std::uint64_t i = 1; i <= steps; ++i) row(i, backward ? N.backward(z) : N.forward(z));
 }
 
 }  // namespace archipelago
