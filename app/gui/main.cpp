@@ -35,6 +35,7 @@
 #include "ui/window/MainWindow.hpp"
 #include "core/measures/OrbitMeasures.hpp"
 #include "core/portrait/Viewport.hpp"
+#include "ui/portrait/OrbitListPanel.hpp"
 #include "ui/portrait/PortraitController.hpp"
 #include "ui/portrait/PortraitPanel.hpp"
 #include "ui/segments/LongSegmentsPanel.hpp"
@@ -87,6 +88,13 @@ archipelago::PhysicalRect readView(const QString& text) {
   return {v[0], v[1], v[2], v[3]};
 }
 
+/// --orbit X,Y: the start of an orbit to launch and select (physical coordinates).
+archipelago::PhysicalPoint readOrbit(const QString& text) {
+  const auto v = archipelago::io::parseNumbers<long double>("--orbit", text.toStdString(), ',', 2,
+                                                           "two finite numbers x,y (physical coordinates)");
+  return {v[0], v[1]};
+}
+
 /// --budget N: the portrait's points budget, 10⁶ … 10¹².
 std::uint64_t readBudget(const QString& text) {
   const auto v = archipelago::io::parseNumber<std::uint64_t>("--budget", text.toStdString());
@@ -110,7 +118,7 @@ std::optional<std::string> numberError(int argc, char** argv) {
   try {
     for (int i = 1; i < argc; ++i) {
       const QString arg = QString::fromLocal8Bit(argv[i]);
-      for (const char* name : {"after", "measure", "segment", "threads", "view", "budget", "mode"}) {
+      for (const char* name : {"after", "measure", "segment", "threads", "view", "budget", "mode", "orbit"}) {
         const QString option = QStringLiteral("--") + QLatin1String(name);
         QString value;
         if (arg == option && i + 1 < argc) value = QString::fromLocal8Bit(argv[i + 1]);
@@ -122,6 +130,7 @@ std::optional<std::string> numberError(int argc, char** argv) {
         else if (std::strcmp(name, "view") == 0) (void)readView(value);
         else if (std::strcmp(name, "budget") == 0) (void)readBudget(value);
         else if (std::strcmp(name, "mode") == 0) (void)readMode(value);
+        else if (std::strcmp(name, "orbit") == 0) (void)readOrbit(value);
         else (void)archipelago::readThreads(value.toStdString());
       }
     }
@@ -184,8 +193,11 @@ int main(int argc, char** argv) {
                                   QStringLiteral("POINTS"));
   const QCommandLineOption manifolds(QStringLiteral("manifolds"),
                                      QStringLiteral("Draw the manifolds of the hyperbolic fixed point and the flux."));
+  const QCommandLineOption orbit(QStringLiteral("orbit"),
+                                 QStringLiteral("Launch an orbit from (X, Y) and select it (its chain's centres drawn)."),
+                                 QStringLiteral("X,Y"));
   parser.addOptions({version, preset, run, threads, screenshot, after, measure, tab, segment, island, mode, view, budget,
-                     manifolds});
+                     manifolds, orbit});
   parser.addPositionalArgument(QStringLiteral("file"), QStringLiteral("A run file (.json) or a session (.archipelago) to open."),
                                QStringLiteral("[file.json|file.archipelago]"));
   parser.process(app);
@@ -268,6 +280,15 @@ int main(int argc, char** argv) {
     portrait->controller()->setViewport(archipelago::Viewport::fromPhysical(map, r));
   }
   if (parser.isSet(manifolds)) portrait->manifoldsAction()->setChecked(true);
+  if (parser.isSet(orbit)) {
+    const archipelago::PhysicalPoint start = readOrbit(parser.value(orbit));
+    if (const auto e = archipelago::boxPointError("--orbit", portrait->controller()->map(), start)) {
+      std::fprintf(stderr, "ERROR: %s\n", e->c_str());
+      return 2;
+    }
+    portrait->controller()->highlightOrbit(portrait->controller()->launchOrbit(start.x, start.y));
+    portrait->sidePages()->setCurrentWidget(portrait->orbitList());
+  }
   // A screenshot shows a run only when asked (--run); the latency measure always runs one.
   if (parser.isSet(run) || parser.isSet(measure)) QTimer::singleShot(0, &window, [&window] { window.startRun(); });
 
