@@ -27,6 +27,7 @@ packages=(
   help2man appstream desktop-file-utils  # cmake --install: man pages; the metainfo and desktop entry validated
   ccache  # .ci/run: its Qt 5 build reuses the Qt 6 build's objects of core and the CLI (optional elsewhere)
   locales  # localedef: the tests write and read files under a decimal-comma locale (issue #23)
+  imagemagick  # scripts/gui-screenshots.sh: convert makes the docs/images screenshots 256-colour PNGs
 )
 
 SUDO=""
