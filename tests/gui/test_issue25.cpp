@@ -21,6 +21,7 @@
 #include <QTreeWidget>
 #include <QVBoxLayout>
 #include <QtTest>
+#include <qwt_abstract_legend.h>
 #include <qwt_plot_curve.h>
 #include <qwt_text.h>
 
