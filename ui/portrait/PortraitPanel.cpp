@@ -184,6 +184,7 @@ PortraitPanel::PortraitPanel(QWidget* parent) : QWidget(parent) {
   hint->setWordWrap(true);
   hint->setText(tr("○ elliptic, × hyperbolic fixed point · click: launch an orbit · drag: zoom · wheel: zoom at "
                    "the cursor · middle-drag or arrows: pan"));
+  hint->setToolTip(hint->text());
   hint->setStyleSheet(QStringLiteral("color: palette(mid);"));
 
   // The side pages: launched orbits, manifolds and flux, rotation profile (and the window's own).
