@@ -3,7 +3,8 @@
 # the first screen at 1280×800 and 1920×1080, each chaos-indicator mode, the manifolds layer with its turnstile and
 # a deep zoom into its tangle, and the Statistics tab after a run (issues 25, 27, 28).  Look at them before
 # committing: only a person can judge a picture.
-#   bash scripts/gui-screenshots.sh [OUT_DIR]        (default docs/images; APP=… for another build)
+#   bash scripts/gui-screenshots.sh [OUT_DIR]        (default docs/images; APP=… for another build;
+#                                                     ONLY=REGEX makes only the shots whose name matches)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 app="${APP:-build/default/app/gui/archipelago}"
@@ -18,6 +19,7 @@ chmod 700 "$home"
 shot() {
   local screen="$1" name="$2" seconds="$3"
   shift 3
+  [[ -z "${ONLY:-}" || "$name" =~ $ONLY ]] || return 0
   local w="${screen%x*}" h="${screen#*x}"
   XDG_CONFIG_HOME="$home/config" XDG_DATA_HOME="$home/data" XDG_RUNTIME_DIR="$home" \
     xvfb-run -a -s "-screen 0 ${screen}x24" "$app" -qwindowgeometry "${w}x$((h - 30))+0+0" \
@@ -38,3 +40,9 @@ shot 1280x800 gui-manifolds-1280x800 10 --manifolds
 shot 1280x800 gui-manifolds-zoom-1280x800 10 --manifolds --view=-0.80,-0.40,-0.46,0.14
 shot 1280x800 gui-manifolds-tangle-1280x800 10 --manifolds --view=-0.688,-0.674,-0.371,-0.357
 shot 1280x800 gui-statistics-1280x800 40 --run --tab Statistics
+# Issue 37: a view 6.4·10⁻⁹ wide about x = −0.15 (findings 2 and 18: the axes name the reference once, the ticks
+# are offsets); an orbit selected at the full view, its chain's centres ringed (finding 9) and the Orbits page's
+# steps, N⁻¹ and typed start (finding 15).  The statistics shot above shows P_t's legend (finding 5), the first
+# screen the Run page following the run (finding 1).
+shot 1280x800 gui-deep-axes-1280x800 10 --view=-0.1500000032,-0.1499999968,-0.0000000025,0.0000000025
+shot 1280x800 gui-orbit-chain-1280x800 10 --orbit=0.0609,0.0974

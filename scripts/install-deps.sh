@@ -30,6 +30,7 @@ packages=(
   dpkg-dev lintian file  # the Debian package: cpack's DEB generator (dpkg-shlibdeps, file), checked by lintian (issue 42)
   ccache  # .ci/run: its Qt 5 build reuses the Qt 6 build's objects of core and the CLI (optional elsewhere)
   locales  # localedef: the tests write and read files under a decimal-comma locale (issue #23)
+  imagemagick  # scripts/gui-screenshots.sh: convert makes the docs/images screenshots 256-colour PNGs
 )
 
 SUDO=""

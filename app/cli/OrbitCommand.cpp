@@ -1,13 +1,14 @@
 #include "OrbitCommand.hpp"
 
 #include <cstdio>
+#include <iostream>
 #include <string>
 #include <memory>
 #include <stdexcept>
 
 #include "CliCommon.hpp"
-#include "core/map/FixedPointMap.hpp"
-#include "core/map/OrbitIterator.hpp"
+#include "core/limits/Limits.hpp"
+#include "core/portrait/MapOverlays.hpp"
 
 namespace archipelago::cli {
 
@@ -21,16 +22,8 @@ struct OrbitOptions {
 };
 
 int runOrbit(const OrbitOptions& o) {
-  // core's one orbit loop and its rules (the map's, the length limit): checked before the header is printed.
-  const OrbitRequest r = orbitRequestAt(o.map, o.x, o.y, o.steps, o.backward);
-  if (auto e = validationError(r)) throw std::invalid_argument(*e);
-  const FixedPointMap map(o.map);
-  std::printf("step,x,y,X,Y,wrapped\n");
-  iterateOrbit(r, [&](std::uint64_t step, const UnitState& z, bool wrapped) {
-    const PhysicalPoint p = map.toPhysical(z);
-    std::printf("%llu,%.21Lg,%.21Lg,%llu,%llu,%d\n", static_cast<unsigned long long>(step), p.x, p.y,
-                static_cast<unsigned long long>(z.X), static_cast<unsigned long long>(z.Y), wrapped ? 1 : 0);
-  });
+  writeOrbitCsv(std::cout, o.map, o.x, o.y, o.steps, o.backward);  // throws std::invalid_argument (the failed rule)
+  std::cout.flush();
   return 0;
 }
 }  // namespace

@@ -39,6 +39,7 @@
 #include "ui/window/MainWindow.hpp"
 #include "core/measures/OrbitMeasures.hpp"
 #include "core/portrait/Viewport.hpp"
+#include "ui/portrait/OrbitListPanel.hpp"
 #include "ui/portrait/PortraitController.hpp"
 #include "ui/portrait/PortraitPanel.hpp"
 #include "ui/segments/LongSegmentsPanel.hpp"
@@ -56,7 +57,7 @@ bool onlyInformation(int argc, char** argv) {
       if (std::strcmp(argv[i], option) == 0) return true;
     for (const char* withValue :
          {"--preset", "--threads", "--screenshot", "--after", "--measure", "--tab", "--segment", "--mode", "--view",
-          "--budget", "--chains"})
+          "--budget", "--chains", "--orbit"})
       if (std::strcmp(argv[i], withValue) == 0) ++i;
   }
   return false;
@@ -97,6 +98,13 @@ archipelago::PhysicalRect readView(const QString& text) {
   return archipelago::parsePhysicalRect(text.toStdString(), "--view");  // core's one parser of a typed view
 }
 
+/// --orbit X,Y: the start of an orbit to launch and select (physical coordinates).
+archipelago::PhysicalPoint readOrbit(const QString& text) {
+  const auto v = archipelago::io::parseNumbers<long double>("--orbit", text.toStdString(), ',', 2,
+                                                           "two finite numbers x,y (physical coordinates)");
+  return {v[0], v[1]};
+}
+
 /// --budget N: the portrait's points budget, 10⁶ … 10¹².
 std::uint64_t readBudget(const QString& text) {
   const auto v = archipelago::io::parseNumber<std::uint64_t>("--budget", text.toStdString());
@@ -120,7 +128,7 @@ std::optional<std::string> numberError(int argc, char** argv) {
   try {
     for (int i = 1; i < argc; ++i) {
       const QString arg = QString::fromLocal8Bit(argv[i]);
-      for (const char* name : {"after", "measure", "segment", "threads", "view", "budget", "mode", "chains"}) {
+      for (const char* name : {"after", "measure", "segment", "threads", "view", "budget", "mode", "chains", "orbit"}) {
         const QString option = QStringLiteral("--") + QLatin1String(name);
         QString value;
         if (arg == option && i + 1 < argc) value = QString::fromLocal8Bit(argv[i + 1]);
@@ -133,6 +141,7 @@ std::optional<std::string> numberError(int argc, char** argv) {
         else if (std::strcmp(name, "budget") == 0) (void)readBudget(value);
         else if (std::strcmp(name, "mode") == 0) (void)readMode(value);
         else if (std::strcmp(name, "chains") == 0) (void)readChainRows(value);
+        else if (std::strcmp(name, "orbit") == 0) (void)readOrbit(value);
         else (void)archipelago::readThreads(value.toStdString());
       }
     }
@@ -222,11 +231,14 @@ int main(int argc, char** argv) {
                                   QStringLiteral("POINTS"));
   const QCommandLineOption manifolds(QStringLiteral("manifolds"),
                                      QStringLiteral("Draw the manifolds of the hyperbolic fixed point and the flux."));
+  const QCommandLineOption orbit(QStringLiteral("orbit"),
+                                 QStringLiteral("Launch an orbit from (X, Y) and select it (its chain's centres drawn)."),
+                                 QStringLiteral("X,Y"));
   const QCommandLineOption chains(QStringLiteral("chains"),
                                   QStringLiteral("Identify the island chains of the top ROWS segments (default 10)."),
                                   QStringLiteral("ROWS"));
   parser.addOptions({version, preset, run, threads, screenshot, after, measure, tab, segment, island, mode, view, budget,
-                     manifolds, chains});
+                     manifolds, chains, orbit});
   parser.addPositionalArgument(QStringLiteral("file"), QStringLiteral("A run file (.json) or a session (.archipelago) to open."),
                                QStringLiteral("[file.json|file.archipelago]"));
   parser.process(app);
@@ -310,6 +322,15 @@ int main(int argc, char** argv) {
     portrait->controller()->setViewport(archipelago::Viewport::fromPhysical(map, r));
   }
   if (parser.isSet(manifolds)) portrait->manifoldsAction()->setChecked(true);
+  if (parser.isSet(orbit)) {
+    const archipelago::PhysicalPoint start = readOrbit(parser.value(orbit));
+    if (const auto e = archipelago::boxPointError("--orbit", portrait->controller()->map(), start)) {
+      std::fprintf(stderr, "ERROR: %s\n", e->c_str());
+      return 2;
+    }
+    portrait->controller()->highlightOrbit(portrait->controller()->launchOrbit(start.x, start.y));
+    portrait->sidePages()->setCurrentWidget(portrait->orbitList());
+  }
   // A screenshot shows a run only when asked (--run); the latency measure always runs one.
   if (parser.isSet(run) || parser.isSet(measure)) QTimer::singleShot(0, &window, [&window] { window.startRun(); });
 

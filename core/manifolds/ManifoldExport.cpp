@@ -41,6 +41,13 @@ nlohmann::ordered_json areaJson(quad action, const PolygonArea& polygon, long do
 
 }  // namespace
 
+std::string quadCoordinateText(quad v, quad other, int digits) {
+  const quad a = v < 0 ? -v : v, b = other < 0 ? -other : other;
+  quad below = a > b ? a : b;
+  for (int i = 0; i < digits; ++i) below /= 10;
+  return a < below ? std::string("0") : quadText(v, digits);
+}
+
 std::string quadText(quad v, int digits) {
   // Exact decimal expansion by repeated multiplication: libquadmath is not linked (GCC's libgcc gives the
   // arithmetic only).  |v| < 1e300 here; digits ≤ 36.

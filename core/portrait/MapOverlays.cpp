@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <ostream>
 #include <stdexcept>
 
 #include "core/map/OrbitIterator.hpp"
@@ -36,6 +38,22 @@ std::vector<PhysicalPoint> traceOrbit(const MapParameters& map, long double x, l
   points.reserve(static_cast<std::size_t>(steps) + 1);
   iterateOrbit(r, [&](std::uint64_t, const UnitState& z, bool) { points.push_back(N.toPhysical(z)); });
   return points;
+}
+
+void writeOrbitCsv(std::ostream& out, const MapParameters& map, long double x, long double y, std::uint64_t steps,
+                   bool backward) {
+  // core's one orbit loop and its rules (the map's, the length limit), checked before the header is written.
+  const OrbitRequest r = orbitRequestAt(map, x, y, steps, backward);
+  if (auto e = validationError(r)) throw std::invalid_argument(*e);
+  const FixedPointMap N(map);
+  out << "step,x,y,X,Y,wrapped\n";
+  char line[160];
+  iterateOrbit(r, [&](std::uint64_t step, const UnitState& z, bool wrapped) {
+    const PhysicalPoint p = N.toPhysical(z);
+    std::snprintf(line, sizeof line, "%llu,%.21Lg,%.21Lg,%llu,%llu,%d\n", static_cast<unsigned long long>(step), p.x,
+                  p.y, static_cast<unsigned long long>(z.X), static_cast<unsigned long long>(z.Y), wrapped ? 1 : 0);
+    out << line;
+  });
 }
 
 }  // namespace archipelago

@@ -3,6 +3,7 @@
 /// \brief What a portrait view draws over the raster: the fixed points of Q* and single orbits.
 
 #include <cstdint>
+#include <iosfwd>
 #include <vector>
 
 #include "core/map/FixedPointMap.hpp"
@@ -25,5 +26,11 @@ struct FixedPoint {
 /// limits::kOrbitLength).
 [[nodiscard]] std::vector<PhysicalPoint> traceOrbit(const MapParameters& map, long double x, long double y,
                                                     std::uint64_t steps, bool backward = false);
+
+/// The same orbit as CSV, `archipelago-cli orbit`'s output: "step,x,y,X,Y,wrapped" and one row per point (step 0
+/// is the start; x, y physical to 21 digits, X, Y the exact grid state, wrapped = 1 when that step wrapped around
+/// the box).  One writer for the CLI and the GUI's Export CSV of a launched orbit (issue 37, finding 20).
+void writeOrbitCsv(std::ostream& out, const MapParameters& map, long double x, long double y, std::uint64_t steps,
+                   bool backward = false);
 
 }  // namespace archipelago

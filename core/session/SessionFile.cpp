@@ -132,6 +132,8 @@ std::string sessionText(const Session& s) {
   portrait["periodic"] = json::array();
   for (const SessionPeriodicOverlay& o : s.portrait.periodic)
     portrait["periodic"].push_back({{"label", o.label}, {"points", pointsJson(o.points)}});
+  if (s.portrait.manifolds)
+    portrait["manifolds"] = {{"orbit", s.portrait.manifoldOrbit.empty() ? json(nullptr) : pointsJson(s.portrait.manifoldOrbit)}};
   j["portrait"] = portrait;
   j["segment"] = s.segmentRank < 0 ? json(nullptr) : json{{"rank", s.segmentRank}, {"position", s.segmentPosition}};
   j["plots"] = json::array();
@@ -177,7 +179,17 @@ Session sessionFromJson(json j) {
   if (const auto tab = j.find("tab"); tab != j.end()) s.tab = string(*tab, "tab");
 
   if (const auto p = j.find("portrait"); p != j.end()) {
-    onlyKeys(*p, "portrait", {"history", "current", "mode", "colours", "budget", "orbits", "periodic"});
+    onlyKeys(*p, "portrait", {"history", "current", "mode", "colours", "budget", "orbits", "periodic", "manifolds"});
+    if (const auto m = p->find("manifolds"); m != p->end() && !m->is_null()) {
+      onlyKeys(*m, "portrait.manifolds", {"orbit"});
+      s.portrait.manifolds = true;
+      if (const auto o = m->find("orbit"); o != m->end() && !o->is_null()) {
+        array(*o, "portrait.manifolds.orbit", kMaxSessionPeriodicPoints);
+        if (o->empty()) bad("portrait.manifolds.orbit must hold the orbit's points (null: the fixed point)");
+        for (std::size_t i = 0; i < o->size(); ++i)
+          s.portrait.manifoldOrbit.push_back(point((*o)[i], "portrait.manifolds.orbit[" + std::to_string(i) + "]"));
+      }
+    }
     if (const auto h = p->find("history"); h != p->end()) {
       array(*h, "portrait.history", kMaxSessionHistory);
       for (std::size_t i = 0; i < h->size(); ++i)

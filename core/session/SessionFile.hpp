@@ -17,7 +17,8 @@
 ///    "tab": "Phase portrait",
 ///    "portrait": {"history": [{"centre": [X, Y], "size": ["w", "h"]}, …], "current": 0, "mode": "density",
 ///                 "colours": "inferno", "budget": 100000000, "orbits": [[x, y], …],
-///                 "periodic": [{"label": "7/20", "points": [[x, y], …]}, …]},
+///                 "periodic": [{"label": "7/20", "points": [[x, y], …]}, …],
+///                 "manifolds": {"orbit": null | [[x, y], …]}},   (only when the manifolds are shown)
 ///    "segment": {"rank": 0, "position": 1234},
 ///    "plots": [{"name": "f_t", "zoom": [xmin, xmax, ymin, ymax]}, …]}
 
@@ -74,6 +75,10 @@ struct SessionPortrait {
   std::uint64_t budget = 0;                     ///< points budget of deep zoom (0: the panel's default)
   std::vector<std::array<double, 2>> orbits;    ///< orbits the user launched, by start point
   std::vector<SessionPeriodicOverlay> periodic;
+  /// The manifolds layer (issue 37, finding 4): shown or not, and of which hyperbolic orbit — its points, period
+  /// = their number (empty: the fixed point (√K, 0)).  Written only when shown ("manifolds": {"orbit": …}).
+  bool manifolds = false;
+  std::vector<std::array<double, 2>> manifoldOrbit;
   friend bool operator==(const SessionPortrait&, const SessionPortrait&) = default;
 };
 

@@ -13,6 +13,8 @@
 #include <QSvgGenerator>
 #include <QTextDocument>
 #include <qwt_interval_symbol.h>
+#include <QLayout>
+#include <qwt_legend.h>
 #include <qwt_plot_canvas.h>
 #include <qwt_plot_curve.h>
 #include <qwt_plot_grid.h>
@@ -83,6 +85,14 @@ QString plainText(const QString& rich) {
 
 bool usable(double x, double y, bool logY) {
   return std::isfinite(x) && std::isfinite(y) && x > 0 && (!logY || y > 0);
+}
+
+void setLegendCorner(QwtPlotLegendItem* legend, Qt::Alignment corner) {
+#if QWT_VERSION >= 0x060200
+  legend->setAlignmentInCanvas(corner);
+#else
+  legend->setAlignment(corner);
+#endif
 }
 
 class Zoomer : public QwtPlotZoomer {
@@ -180,11 +190,7 @@ StatisticsPlot::StatisticsPlot(Statistic statistic, QWidget* parent) : QwtPlot(p
   const Qt::Alignment corner = statistic == Statistic::S || statistic == Statistic::Dt ? Qt::AlignBottom | Qt::AlignRight
                                : statistic == Statistic::localExponent ? Qt::AlignTop | Qt::AlignLeft
                                                                        : Qt::AlignBottom | Qt::AlignLeft;
-#if QWT_VERSION >= 0x060200
-  legend->setAlignmentInCanvas(corner);
-#else
-  legend->setAlignment(corner);
-#endif
+  setLegendCorner(legend, corner);
   legend->setMaxColumns(1);
   legend->setBackgroundMode(QwtPlotLegendItem::LegendBackground);
   legend->setBackgroundBrush(QColor(255, 255, 255, 220));
@@ -197,7 +203,21 @@ StatisticsPlot::StatisticsPlot(Statistic statistic, QWidget* parent) : QwtPlot(p
   legendFont.setPointSizeF(legendFont.pointSizeF() * 0.8);
   legendPointSize_ = legendFont.pointSizeF();
   legend->setFont(legendFont);
-  legend->attach(this);
+  if (statistic == Statistic::P) {
+    // P_t's legend is below the plot, in two columns (issue 37, finding 5): its seven entries (the data, four
+    // reference slopes, theory, a tail estimate) covered the 10⁴–10⁷ tail, the slopes and the estimate's levels
+    // in any corner of a plot a few hundred pixels wide, and the estimate's entry was cut off.
+    auto* below = new QwtLegend;
+    below->setMaxColumns(2);
+    QFont small = legendFont;
+    small.setPointSizeF(legendFont.pointSizeF() * 0.88);  // two columns in a plot 330 pixels wide
+    below->setFont(small);
+    if (QLayout* grid = below->contentsWidget()->layout()) grid->setSpacing(0);
+    insertLegend(below, QwtPlot::BottomLegend);
+    below->setVisible(false);  // until there is data (showPlaceholder)
+  } else {
+    legend->attach(this);
+  }
 
   zoomer_ = new Zoomer(canvas());
   auto* panner = new QwtPlotPanner(canvas());
@@ -222,7 +242,9 @@ StatisticsPlot::StatisticsPlot(Statistic statistic, QWidget* parent) : QwtPlot(p
   setMinimumSize(200, 160);  // three columns and the parameter dock fit a 1024-pixel-wide window
 }
 
-StatisticsPlot::~StatisticsPlot() = default;
+StatisticsPlot::~StatisticsPlot() {
+  if (!legend_->plot()) delete legend_;  // P_t's, never attached (its legend is below the plot)
+}
 
 QString StatisticsPlot::fileName() const { return fromTable(statisticInfo(statistic_).fileStem); }
 QString StatisticsPlot::displayName() const {
@@ -370,6 +392,10 @@ void StatisticsPlot::setData(const Series& data, const std::vector<TheoryCurve>&
 }
 
 void StatisticsPlot::clearData() {
+  // Another run's data follows: the user's zoom of this one does not apply to it, and the placeholder's fixed
+  // axes (showPlaceholder) must not pass for a zoom (issue 37, finding 1: the Run page's f_t and C_τ kept
+  // t 1…10⁴ after File ▸ Open or F5).
+  forceFollow_ = true;
   setData(Series{}, {});
   setBlockAffectedBelow(0);
   setEstimate(Series{}, QString());
@@ -379,13 +405,17 @@ bool StatisticsPlot::isEmpty() const { return curve_->dataSize() == 0; }
 
 bool StatisticsPlot::placeholderShown() const { return placeholder_->isVisible(); }
 
-bool StatisticsPlot::legendShown() const { return legend_->isVisible(); }
+bool StatisticsPlot::legendShown() const { return legend() ? legend()->isVisibleTo(this) : legend_->isVisible(); }
 
 bool StatisticsPlot::crosshairEnabled() const { return crosshair_->isEnabled(); }
 
 void StatisticsPlot::showPlaceholder(bool empty) {
   placeholder_->setVisible(empty);
   legend_->setVisible(!empty);
+  if (legend()) {
+    legend()->setVisible(!empty);
+    updateLayout();
+  }
   crosshair_->setEnabled(!empty);
   if (!empty) return;
   // Axes of a typical run: t from 1 to 10⁴ steps; falling statistics from 10⁻⁶ to 1, rising ones (S_t, D_t)
@@ -442,7 +472,7 @@ std::vector<const QwtPlotCurve*> StatisticsPlot::referenceCurves() const {
 }
 
 QRectF StatisticsPlot::legendRect() const {
-  return legend_->isVisible() ? legend_->geometry(canvas()->contentsRect()) : QRectF();
+  return legend_->isVisible() && legend_->plot() ? legend_->geometry(canvas()->contentsRect()) : QRectF();
 }
 
 void StatisticsPlot::fitLegend() {

@@ -81,7 +81,8 @@ class StatisticsPlot : public QwtPlot {
   [[nodiscard]] bool placeholderShown() const;
   [[nodiscard]] bool legendShown() const;
   [[nodiscard]] bool crosshairEnabled() const;
-  /// Where the legend is drawn, in canvas coordinates (empty when hidden): always inside the canvas.
+  /// Where the legend is drawn, in canvas coordinates (empty when hidden, or outside the canvas: P_t's is below the
+  /// plot, issue 37, finding 5): always inside the canvas.
   [[nodiscard]] QRectF legendRect() const;
   /// The reference slopes drawn (P_t only): one curve each, with its own pen (tests).
   [[nodiscard]] std::vector<const QwtPlotCurve*> referenceCurves() const;

@@ -42,6 +42,7 @@ struct LaunchedOrbit {
   long double x = 0;              ///< the start as given (physical)
   long double y = 0;
   std::uint64_t steps = 0;
+  bool backward = false;          ///< traced with N⁻¹ (its past); measured forward from the same start, like the CLI
   QColor colour;
   std::shared_ptr<const std::vector<QPointF>> points;  ///< null while computing
   OrbitMeasuresPtr measures;                           ///< null while measuring

@@ -21,6 +21,11 @@ namespace archipelago::ui {
 
 namespace {
 QString quad(archipelago::quad v, int digits = 15) { return QString::fromStdString(quadText(v, digits)); }
+/// A coordinate beside the point's other one (core's quadCoordinateText: a round-off zero is "0", issue 37,
+/// finding 14).
+QString coordinate(archipelago::quad v, archipelago::quad other, int digits) {
+  return QString::fromStdString(quadCoordinateText(v, other, digits));
+}
 QString ld(long double v, int digits = 15) { return QString::number(static_cast<double>(v), 'g', digits); }
 QString agreeing(long double d) {
   return std::isfinite(static_cast<double>(d)) ? QString::number(static_cast<double>(d), 'f', 1) : QObject::tr("all");
@@ -99,7 +104,7 @@ void ManifoldsPanel::refresh() {
   export_->setEnabled(false);
   if (!controller_->manifoldsShown()) {
     numbers_->setText(tr("The stable and unstable manifolds of a hyperbolic orbit form turnstiles: lobes of equal "
-                         "area that carry orbits into and out of a resonance zone each step (MacKay, Meiss &amp; "
+                         "area that carry orbits into and out of a resonance zone each step (MacKay, Meiss & "
                          "Percival 1984). Tick the box to draw them and measure the flux."));
     return;
   }
@@ -133,7 +138,8 @@ void ManifoldsPanel::refresh() {
                .arg(ld(f.orbit.K, 12))
                .arg(quad(f.orbit.multiplier, 12))
                .arg(kind)
-               .arg(quad(h.point.x, 12), quad(h.point.y, 12), quad(h2.point.x, 12), quad(h2.point.y, 12))
+               .arg(coordinate(h.point.x, h.point.y, 12), coordinate(h.point.y, h.point.x, 12),
+                    coordinate(h2.point.x, h2.point.y, 12), coordinate(h2.point.y, h2.point.x, 12))
                .arg(quad(f.lobeAction < 0 ? -f.lobeAction : f.lobeAction, 16))
                .arg(ld(std::fabs(f.lobePolygon.area), 16))
                .arg(ld(f.lobePolygon.error, 2))

@@ -1,6 +1,11 @@
 #include "ui/portrait/OrbitListPanel.hpp"
 
+#include <QCheckBox>
+#include <QFileDialog>
+#include <QFormLayout>
 #include <QHBoxLayout>
+#include <QLineEdit>
+#include <QSpinBox>
 #include <QHeaderView>
 #include <QLabel>
 #include <QLocale>
@@ -15,6 +20,8 @@
 
 #include <cmath>
 
+#include "core/io/NumberText.hpp"
+#include "core/measures/OrbitMeasures.hpp"
 #include "ui/portrait/PortraitController.hpp"
 
 namespace archipelago::ui {
@@ -66,6 +73,44 @@ OrbitListPanel::OrbitListPanel(PortraitController* controller, QWidget* parent)
     if (QTreeWidgetItem* item = list_->currentItem()) controller_->removeOrbit(item->data(0, Qt::UserRole).toULongLong());
   });
   connect(clear_, &QPushButton::clicked, controller_, &PortraitController::clearOrbits);
+  csv_ = new QPushButton(tr("CSV…"), this);
+  csv_->setToolTip(tr("Write the selected orbit's points as CSV (as archipelago-cli orbit writes them)"));
+  connect(csv_, &QPushButton::clicked, this, [this] {
+    const QString path = QFileDialog::getSaveFileName(this, tr("Export the orbit as CSV"), QString(), tr("CSV (*.csv)"));
+    if (path.isEmpty()) return;
+    QString error;
+    if (!exportSelectedCsv(path, &error)) Q_EMIT statusMessage(tr("Export failed: %1").arg(error));
+    else Q_EMIT statusMessage(tr("Wrote %1").arg(path));
+  });
+
+  // What a click launches, and a start typed exactly (issue 37, finding 15).
+  steps_ = new QSpinBox(this);
+  steps_->setObjectName(QStringLiteral("orbitSteps"));
+  steps_->setRange(1, 100'000'000);
+  steps_->setValue(static_cast<int>(controller_->clickSteps()));
+  steps_->setGroupSeparatorShown(true);
+  steps_->setToolTip(tr("Steps of each launched orbit (a click or Launch)"));
+  backward_ = new QCheckBox(tr("backward (N⁻¹)"), this);
+  backward_->setObjectName(QStringLiteral("orbitBackward"));
+  backward_->setToolTip(tr("Iterate the inverse map: the orbit's past"));
+  const auto applyClick = [this] {
+    controller_->setClickOrbit(static_cast<std::uint64_t>(steps_->value()), backward_->isChecked());
+  };
+  connect(steps_, qOverload<int>(&QSpinBox::valueChanged), this, applyClick);
+  connect(backward_, &QCheckBox::toggled, this, applyClick);
+  startX_ = new QLineEdit(this);
+  startX_->setObjectName(QStringLiteral("orbitStartX"));
+  startX_->setPlaceholderText(QStringLiteral("x"));
+  startY_ = new QLineEdit(this);
+  startY_->setObjectName(QStringLiteral("orbitStartY"));
+  startY_->setPlaceholderText(QStringLiteral("y"));
+  for (QLineEdit* e : {startX_, startY_}) {
+    e->setToolTip(tr("The start, physical coordinates, as many digits as you like"));
+    connect(e, &QLineEdit::returnPressed, this, &OrbitListPanel::launchTyped);
+  }
+  auto* launch = new QPushButton(tr("Launch"), this);
+  launch->setToolTip(tr("Launch an orbit from the typed start"));
+  connect(launch, &QPushButton::clicked, this, &OrbitListPanel::launchTyped);
   connect(list_, &QTreeWidget::currentItemChanged, this, [this](QTreeWidgetItem* item) {
     controller_->highlightOrbit(item ? item->data(0, Qt::UserRole).toULongLong() : 0);
   });
@@ -82,8 +127,21 @@ OrbitListPanel::OrbitListPanel(PortraitController* controller, QWidget* parent)
   buttons->addWidget(undo_);
   buttons->addWidget(remove_);
   buttons->addWidget(clear_);
+  buttons->addWidget(csv_);
+  auto* launchRow = new QHBoxLayout;
+  launchRow->addWidget(steps_, 1);
+  launchRow->addWidget(backward_);
+  auto* startRow = new QHBoxLayout;
+  startRow->addWidget(startX_, 1);
+  startRow->addWidget(startY_, 1);
+  startRow->addWidget(launch);
+  auto* form = new QFormLayout;
+  form->setContentsMargins(0, 0, 0, 0);
+  form->addRow(tr("Steps"), launchRow);
+  form->addRow(tr("Start"), startRow);
   auto* layout = new QVBoxLayout(this);
   layout->setContentsMargins(2, 4, 2, 2);
+  layout->addLayout(form);
   layout->addWidget(empty_);
   layout->addWidget(list_, 1);
   layout->addWidget(details_);
@@ -111,7 +169,7 @@ void OrbitListPanel::refresh() {
       item->setIcon(0, swatch(o.colour));
       item->setText(0, QString::number(o.id));
       item->setText(1, QStringLiteral("%1, %2").arg(static_cast<double>(o.x), 0, 'g', 6).arg(static_cast<double>(o.y), 0, 'g', 6));
-      item->setText(2, locale.toString(static_cast<qulonglong>(o.steps)));
+      item->setText(2, locale.toString(static_cast<qulonglong>(o.steps)) + (o.backward ? tr(" (N⁻¹)") : QString()));
       list_->insertTopLevelItem(static_cast<int>(i), item);
     }
     const QString rotation = !o.error.isEmpty() ? tr("failed")
@@ -127,13 +185,34 @@ void OrbitListPanel::refresh() {
   if (controller_->highlightedOrbit() == 0) list_->clearSelection(), list_->setCurrentItem(nullptr);
   const bool any = !orbits.empty();
   empty_->setVisible(!any);
-  undo_->setEnabled(any);
+  undo_->setEnabled(any || controller_->canUndoClear());
+  undo_->setToolTip(!any && controller_->canUndoClear() ? tr("Bring back the cleared orbits (Ctrl+Z)")
+                                                        : tr("Remove the orbit launched last (Ctrl+Z)"));
   clear_->setEnabled(any);
   remove_->setEnabled(controller_->highlightedOrbit() != 0);
+  csv_->setEnabled(controller_->highlightedOrbit() != 0);
   updateDetails();
 }
 
 QString OrbitListPanel::detailsText() const { return details_->text(); }
+
+bool OrbitListPanel::launchTyped() {
+  const auto x = io::parseLongDoubleC(startX_->text().trimmed().toStdString());
+  const auto y = io::parseLongDoubleC(startY_->text().trimmed().toStdString());
+  if (!x || !y) {
+    Q_EMIT statusMessage(tr("The start's %1 is not a number").arg(!x ? QStringLiteral("x") : QStringLiteral("y")));
+    return false;
+  }
+  if (const auto e = boxPointError("the start", controller_->map(), {*x, *y})) {
+    Q_EMIT statusMessage(QString::fromStdString(*e));
+    return false;
+  }
+  return controller_->launchOrbit(*x, *y, static_cast<std::uint64_t>(steps_->value()), backward_->isChecked()) != 0;
+}
+
+bool OrbitListPanel::exportSelectedCsv(const QString& path, QString* error) {
+  return controller_->exportOrbitCsv(controller_->highlightedOrbit(), path, error);
+}
 
 void OrbitListPanel::updateDetails() {
   const quint64 id = controller_->highlightedOrbit();
@@ -144,10 +223,11 @@ void OrbitListPanel::updateDetails() {
     details_->setText(controller_->launchedOrbits().empty() ? QString() : tr("Select an orbit for its details."));
     return;
   }
-  QString text = tr("<b>Orbit %1</b> from (%2, %3), %4 steps")
+  QString text = tr("<b>Orbit %1</b> from (%2, %3), %4 steps%5")
                      .arg(orbit->id)
                      .arg(number(orbit->x), number(orbit->y))
-                     .arg(QLocale().toString(static_cast<qulonglong>(orbit->steps)));
+                     .arg(QLocale().toString(static_cast<qulonglong>(orbit->steps)))
+                     .arg(orbit->backward ? tr(" of N⁻¹ (measured forward from its start)") : QString());
   if (!orbit->measures) {
     text += tr("<br>Measuring its rotation number and chain…");
   } else if (!orbit->measures->error.isEmpty()) {

@@ -10,8 +10,11 @@
 
 #include <QWidget>
 
+class QCheckBox;
 class QLabel;
+class QLineEdit;
 class QPushButton;
+class QSpinBox;
 class QTimer;
 class QTreeWidget;
 
@@ -28,6 +31,16 @@ class OrbitListPanel : public QWidget {
   /// The details of the selected orbit, as shown under the list (rich text).
   [[nodiscard]] QString detailsText() const;
   [[nodiscard]] QSize sizeHint() const override { return {300, 400}; }
+  /// What a click launches, and a typed start (issue 37, finding 15): the steps, N⁻¹, the start's fields.
+  [[nodiscard]] QSpinBox* stepsBox() const noexcept { return steps_; }
+  [[nodiscard]] QCheckBox* backwardBox() const noexcept { return backward_; }
+  [[nodiscard]] QLineEdit* startXField() const noexcept { return startX_; }
+  [[nodiscard]] QLineEdit* startYField() const noexcept { return startY_; }
+  /// Launches an orbit from the typed start with the steps and direction shown; false (the reason in the status
+  /// bar) when a coordinate is not a number or the point is not in the box.
+  bool launchTyped();
+  /// Writes the selected orbit as CSV (the CLI's `orbit` output; issue 37, finding 20).
+  bool exportSelectedCsv(const QString& path, QString* error = nullptr);
 
  Q_SIGNALS:
   void statusMessage(const QString& text);
@@ -43,6 +56,11 @@ class OrbitListPanel : public QWidget {
   QPushButton* remove_ = nullptr;
   QPushButton* clear_ = nullptr;
   QPushButton* undo_ = nullptr;
+  QPushButton* csv_ = nullptr;
+  QSpinBox* steps_ = nullptr;
+  QCheckBox* backward_ = nullptr;
+  QLineEdit* startX_ = nullptr;
+  QLineEdit* startY_ = nullptr;
   QTimer* refreshTimer_ = nullptr;
 };
 

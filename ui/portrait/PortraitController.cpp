@@ -12,11 +12,16 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <sstream>
+#include <utility>
 
+#include "core/io/AtomicFile.hpp"
 #include "core/kernels/KernelDispatch.hpp"
 #include "core/limits/Limits.hpp"
 #include "core/manifolds/HyperbolicOrbit.hpp"
 #include "core/map/FixedPointMap.hpp"
+#include "core/measures/OrbitMeasures.hpp"
+#include "core/periodic/PeriodicOrbitFinder.hpp"
 #include "core/periodic/SegmentAnalysis.hpp"
 #include "core/portrait/MapOverlays.hpp"
 #include "ui/jobs/BackgroundJobs.hpp"
@@ -60,7 +65,12 @@ PortraitController::PortraitController(QWidget* viewParent) : QObject(viewParent
   connect(v, &PortraitView::zoomRequested, this, &PortraitController::zoomAt);
   connect(v, &PortraitView::panRequested, this, &PortraitController::panBy);
   connect(v, &PortraitView::cropRequested, this, &PortraitController::crop);
-  connect(v, &PortraitView::clicked, this, [this](long double x, long double y) { launchOrbit(x, y); });
+  // A click launches an orbit and ends the selection: the new orbit is drawn in full, as are the others (issue 37,
+  // finding 8: orbits clicked while one was selected were drawn dimmed, nearly invisible).
+  connect(v, &PortraitView::clicked, this, [this](long double x, long double y) {
+    highlightOrbit(0);
+    launchOrbit(x, y, clickSteps_, clickBackward_);
+  });
   connect(v, &PortraitView::backRequested, this, &PortraitController::back);
   connect(v, &PortraitView::forwardRequested, this, &PortraitController::forward);
   connect(v, &PortraitView::resetRequested, this, &PortraitController::resetView);
@@ -86,11 +96,25 @@ bool PortraitController::setMap(const MapParameters& map, double Xr) {
     Xr_ = Xr;  // the portrait does not depend on Xr (only the b₂ dialog does)
     return true;
   }
+  // Returning to the map left last brings its work back; leaving a map with work keeps it (one map deep).
+  std::optional<KeptWork> back;
+  if (kept_ && kept_->map == map) back = std::exchange(kept_, std::nullopt);
+  if (hasWork()) {
+    const int orbits = orbitCount();
+    kept_ = KeptWork{map_, sessionState()};
+    if (!back)
+      Q_EMIT statusMessage(tr("A new map: the %1 launched orbits and %2 views of K = %3 are kept; set K = %3 again "
+                              "to have them back")
+                               .arg(orbits)
+                               .arg(history_.size())
+                               .arg(static_cast<double>(map_.K), 0, 'g', 17));
+  }
   map_ = map;
   Xr_ = Xr;
   history_.assign(1, Viewport());
   historyIndex_ = 0;
-  clearOrbits();
+  discardOrbits();
+  cleared_.clear();
   clearSegment();
   clearPeriodicOrbit();
   showProfileLine(std::nullopt);
@@ -105,8 +129,21 @@ bool PortraitController::setMap(const MapParameters& map, double Xr) {
   }
   Q_EMIT manifoldsChanged();
   Q_EMIT mapChanged();
+  if (back) {
+    restoreWork(back->portrait, map_);
+    Q_EMIT statusMessage(tr("K = %1 again: its %2 launched orbits and %3 views are back")
+                             .arg(static_cast<double>(map_.K), 0, 'g', 17)
+                             .arg(back->portrait.orbits.size())
+                             .arg(back->portrait.history.size()));
+  }
   Q_EMIT viewportChanged();
   return true;
+}
+
+bool PortraitController::hasWork() const { return !orbits_.empty() || history_.size() > 1 || periodic_.has_value(); }
+
+std::optional<MapParameters> PortraitController::keptMap() const {
+  return kept_ ? std::optional<MapParameters>(kept_->map) : std::nullopt;
 }
 
 void PortraitController::setViewport(const Viewport& view) { show(true, view); }
@@ -162,6 +199,16 @@ bool PortraitController::zoomToRegion(const SegmentRegion& region) {
     return false;  // a region outside this map's box: leave the view alone
   }
   return true;
+}
+
+bool PortraitController::goTo(long double x, long double y, long double width, QString* error) {
+  QString why;
+  if (!(width > 0) || !std::isfinite(width)) why = tr("the width must be a number > 0");
+  else if (const auto e = boxPointError("the centre", map_, {x, y})) why = QString::fromStdString(*e);
+  else if (!zoomToRegion(SegmentRegion{x - width / 2, x + width / 2, y, y, 0})) why = tr("the view does not fit the box");
+  if (why.isEmpty()) return true;
+  if (error) *error = why;
+  return false;
 }
 
 bool PortraitController::shows(long double x, long double y) const noexcept {
@@ -284,7 +331,30 @@ std::vector<PhysicalPoint> PortraitController::launchedOrbitStarts() const {
   return starts;
 }
 
-quint64 PortraitController::launchOrbit(long double x, long double y, std::uint64_t steps) {
+void PortraitController::setClickOrbit(std::uint64_t steps, bool backward) {
+  clickSteps_ = std::clamp<std::uint64_t>(steps, 1, limits::kOrbitLength);
+  clickBackward_ = backward;
+}
+
+bool PortraitController::exportOrbitCsv(quint64 id, const QString& path, QString* error) const {
+  const auto it = std::find_if(orbits_.begin(), orbits_.end(), [id](const LaunchedOrbit& o) { return o.id == id; });
+  if (it == orbits_.end()) {
+    if (error) *error = tr("there is no orbit %1").arg(id);
+    return false;
+  }
+  try {
+    std::ostringstream csv;
+    writeOrbitCsv(csv, map_, it->x, it->y, it->steps, it->backward);
+    const std::string text = csv.str();
+    io::writeFileAtomically(path.toStdString(), text);
+  } catch (const std::exception& e) {
+    if (error) *error = QString::fromStdString(e.what());
+    return false;
+  }
+  return true;
+}
+
+quint64 PortraitController::launchOrbit(long double x, long double y, std::uint64_t steps, bool backward) {
   if (orbits_.size() >= kMaxLaunchedOrbits) {
     Q_EMIT statusMessage(tr("%1 orbits are launched already, the most the portrait keeps: remove some (Ctrl+Z, "
                             "Clear orbits) first")
@@ -295,16 +365,19 @@ quint64 PortraitController::launchOrbit(long double x, long double y, std::uint6
   orbit.id = ++nextOrbitId_;
   orbit.x = x;
   orbit.y = y;
-  orbit.steps = std::min<std::uint64_t>(steps, limits::kOrbitLength);  // core's one table
+  orbit.steps = std::clamp<std::uint64_t>(steps, 1, limits::kOrbitLength);  // core's one table
+  orbit.backward = backward;
   orbit.colour = launchedColour(orbit.id);
+  cleared_.clear();  // a new orbit: Ctrl+Z now removes it, no longer undoes a Clear
   orbits_.push_back(orbit);
   orbitItems_.push_back(nullptr);
   traceOrbit(orbits_.back());
-  Q_EMIT statusMessage(tr("Orbit %1 from (%2, %3): %4 steps; measuring its rotation number and chain…")
+  Q_EMIT statusMessage(tr("Orbit %1 from (%2, %3): %4 steps%5; measuring its rotation number and chain…")
                            .arg(orbit.id)
                            .arg(static_cast<double>(x), 0, 'g', 17)
                            .arg(static_cast<double>(y), 0, 'g', 17)
-                           .arg(orbit.steps));
+                           .arg(orbit.steps)
+                           .arg(backward ? tr(" backward (N⁻¹)") : QString()));
   Q_EMIT orbitsChanged();
   return orbit.id;
 }
@@ -316,11 +389,12 @@ void PortraitController::traceOrbit(const LaunchedOrbit& orbit) {
   const quint64 id = orbit.id, generation = orbitGeneration_;
   const long double x = orbit.x, y = orbit.y;
   const std::uint64_t steps = orbit.steps;
+  const bool backward = orbit.backward;
   Job<std::shared_ptr<const std::vector<QPointF>>> trace;
   trace.channel = kTraceChannel;
   trace.order = JobOrder::queued;
-  trace.work = [map, x, y, steps](JobContext<NoProgress>&) -> std::optional<std::shared_ptr<const std::vector<QPointF>>> {
-    return std::make_shared<const std::vector<QPointF>>(toQt(archipelago::traceOrbit(map, x, y, steps)));
+  trace.work = [map, x, y, steps, backward](JobContext<NoProgress>&) -> std::optional<std::shared_ptr<const std::vector<QPointF>>> {
+    return std::make_shared<const std::vector<QPointF>>(toQt(archipelago::traceOrbit(map, x, y, steps, backward)));
   };
   trace.done = [this, id, generation](JobResult<std::shared_ptr<const std::vector<QPointF>>> r) {
     if (generation != orbitGeneration_) return;
@@ -423,6 +497,13 @@ bool PortraitController::removeOrbit(quint64 id) {
 }
 
 bool PortraitController::undoLastOrbit() {
+  if (orbits_.empty() && !cleared_.empty()) {
+    // Undo Clear Orbits: the same starts, steps and directions, traced and measured again (new ids).
+    const std::vector<LaunchedOrbit> back = std::exchange(cleared_, {});
+    for (const LaunchedOrbit& o : back) launchOrbit(o.x, o.y, o.steps, o.backward);
+    Q_EMIT statusMessage(tr("%1 cleared orbits are back").arg(back.size()));
+    return true;
+  }
   if (orbits_.empty()) {
     Q_EMIT statusMessage(tr("No launched orbit to remove"));
     return false;
@@ -434,6 +515,14 @@ bool PortraitController::undoLastOrbit() {
 }
 
 void PortraitController::clearOrbits() {
+  if (orbits_.empty()) return;
+  cleared_ = orbits_;  // before the lists' refresh (orbitsChanged): their Undo offers to bring them back
+  for (LaunchedOrbit& o : cleared_) o.points.reset(), o.measures.reset();  // traced again if they come back
+  discardOrbits();
+  Q_EMIT statusMessage(tr("%1 orbits cleared; Ctrl+Z brings them back").arg(cleared_.size()));
+}
+
+void PortraitController::discardOrbits() {
   ++orbitGeneration_;
   if (jobs_) jobs_->cancel(kTraceChannel);
   if (measureJobs_) measureJobs_->cancel();
@@ -747,17 +836,44 @@ SessionPortrait PortraitController::sessionState() const {
       overlay.points.push_back({static_cast<double>(p.x), static_cast<double>(p.y)});
     state.periodic.push_back(std::move(overlay));
   }
+  state.manifolds = manifoldsShown_;
+  if (manifoldsShown_ && manifoldOrbit_)
+    for (const PhysicalPoint& p : manifoldOrbit_->points)
+      state.manifoldOrbit.push_back({static_cast<double>(p.x), static_cast<double>(p.y)});
   return state;
 }
 
 void PortraitController::restoreSession(const SessionPortrait& state, const MapParameters& map, double Xr) {
   setMap(map, Xr);
-  clearOrbits();
+  discardOrbits();
+  cleared_.clear();
   clearSegment();
   clearPeriodicOrbit();
   setMode(state.mode);
   setColourMap(state.colours);
   if (state.budget > 0) setPointBudget(state.budget);
+  restoreWork(state, map);
+  // The manifolds layer (issue 37, finding 4): of the fixed point, or of the orbit found again by core's Newton
+  // from its first point (the session keeps double coordinates; the manifolds need the orbit to quad precision).
+  if (!state.manifolds) {
+    setManifoldsShown(false);
+  } else if (state.manifoldOrbit.empty()) {
+    setManifoldOrbit(std::nullopt);
+  } else {
+    const auto& z = state.manifoldOrbit.front();
+    const int period = static_cast<int>(state.manifoldOrbit.size());
+    if (auto orbit = refinePeriodicOrbit(map.K, period, PhysicalPoint{z[0], z[1]})) {
+      setManifoldOrbit(std::move(orbit));
+    } else {
+      setManifoldsShown(false);
+      Q_EMIT statusMessage(tr("The session's manifolds are of a period-%1 orbit that is not found at K = %2: not drawn")
+                               .arg(period)
+                               .arg(static_cast<double>(map.K), 0, 'g', 17));
+    }
+  }
+}
+
+void PortraitController::restoreWork(const SessionPortrait& state, const MapParameters& map) {
   if (!state.history.empty()) restoreHistory(state.history, std::min(state.current, state.history.size() - 1));
   // Each orbit is traced and measured once, in the background (the codec bounds them by kMaxSessionOrbits,
   // which is kMaxLaunchedOrbits).

@@ -92,6 +92,10 @@ class PortraitController : public QObject {
   /// Frames `region` to the canvas's aspect ratio inside the box (core's framedInBox) and shows it.
   /// False when the region does not fit this map (the view is left alone).
   bool zoomToRegion(const SegmentRegion& region);
+  /// Shows the view of centre (x, y) and width `width` (physical), its height from the canvas's aspect, inside the
+  /// box (issue 37, finding 18: typed view coordinates).  False with the reason when the centre is not in the box
+  /// or the width is not > 0.
+  bool goTo(long double x, long double y, long double width, QString* error = nullptr);
   /// Re-centres the view on (x, y) when that point lies outside it (the zoom stays; the move replaces the
   /// current history entry, so that following a moving point does not fill the history).
   void ensureVisible(long double x, long double y);
@@ -130,14 +134,24 @@ class PortraitController : public QObject {
   /// Launches an orbit of N from the physical point (x, y), `steps` long, drawn in its own colour as soon as it
   /// is traced (off the GUI thread), then measured (rotation number, digits, chain).  Returns its id, or 0 when
   /// refused: kMaxLaunchedOrbits are shown already (statusMessage says so).
-  quint64 launchOrbit(long double x, long double y, std::uint64_t steps = kLaunchedOrbitSteps);
+  quint64 launchOrbit(long double x, long double y, std::uint64_t steps = kLaunchedOrbitSteps, bool backward = false);
+  /// What a click on the portrait launches (issue 37, finding 15): `steps` steps (1 … 10⁸) of N, or of N⁻¹.
+  void setClickOrbit(std::uint64_t steps, bool backward);
+  [[nodiscard]] std::uint64_t clickSteps() const noexcept { return clickSteps_; }
+  [[nodiscard]] bool clickBackward() const noexcept { return clickBackward_; }
+  /// Writes one launched orbit as CSV (core's writeOrbitCsv: `archipelago-cli orbit --x X --y Y --steps N
+  /// [--backward]` writes the same bytes).  False with the reason when there is no such orbit or the file fails.
+  bool exportOrbitCsv(quint64 id, const QString& path, QString* error = nullptr) const;
   [[nodiscard]] int orbitCount() const noexcept { return static_cast<int>(orbits_.size()); }
   [[nodiscard]] const std::vector<LaunchedOrbit>& launchedOrbits() const noexcept { return orbits_; }
   /// The physical start points of the launched orbits, in launch order.
   [[nodiscard]] std::vector<PhysicalPoint> launchedOrbitStarts() const;
-  /// Removes one orbit; the last one launched (Ctrl+Z).  False when there is none.
+  /// Removes one orbit; the last one launched (Ctrl+Z), or, right after Clear Orbits, brings the cleared orbits
+  /// back (issue 37, finding 20).  False when there is nothing to undo.
   bool removeOrbit(quint64 id);
   bool undoLastOrbit();
+  /// True when Ctrl+Z would bring back the orbits Clear Orbits removed.
+  [[nodiscard]] bool canUndoClear() const noexcept { return !cleared_.empty(); }
   /// Highlights one orbit (0: none): drawn wider, the others dimmed, its chain's elliptic orbit drawn.
   void highlightOrbit(quint64 id);
   [[nodiscard]] quint64 highlightedOrbit() const noexcept { return highlighted_; }
@@ -178,12 +192,15 @@ class PortraitController : public QObject {
   [[nodiscard]] SessionPortrait sessionState() const;
   /// Shows `state` for this map: the map first (a new map clears), then the views, orbits and overlay.
   void restoreSession(const SessionPortrait& state, const MapParameters& map, double Xr);
+  /// The map whose views and orbits a change of map kept (issue 37, finding 3): setting it again restores them.
+  [[nodiscard]] std::optional<MapParameters> keptMap() const;
 
  public Q_SLOTS:
   void back();
   void forward();
   /// The whole box; when the view is already the whole box, renders it again.
   void resetView();
+  /// Removes every launched orbit; Ctrl+Z (undoLastOrbit) brings them back until another orbit is launched.
   void clearOrbits();
   void zoomIn() { zoomAt(0.5, 0.5, 2.0); }
   void zoomOut() { zoomAt(0.5, 0.5, 0.5); }
@@ -206,6 +223,8 @@ class PortraitController : public QObject {
   void updateFixedPoints();
   void updateLegend();
   void traceOrbit(const LaunchedOrbit& orbit);
+  /// Removes every launched orbit without an undo (a new map, a session).
+  void discardOrbits();
   void onOrbitTraced(quint64 id, std::shared_ptr<const std::vector<QPointF>> points, const QString& error);
   void onOrbitMeasured(quint64 id, const OrbitMeasuresPtr& measures);
   void redrawOrbit(std::size_t index);
@@ -214,6 +233,9 @@ class PortraitController : public QObject {
   void requestManifolds();
   void requestFlux();
   void drawManifolds();
+  /// The views, launched orbits and periodic overlay of `state` (after a map change cleared them).
+  void restoreWork(const SessionPortrait& state, const MapParameters& map);
+  [[nodiscard]] bool hasWork() const;
 
   QPointer<PortraitView> view_;
   MapParameters map_;
@@ -224,11 +246,21 @@ class PortraitController : public QObject {
   std::vector<QwtPlotItem*> orbitItems_;            // orbitItems_[i] draws orbits_[i] (owned by the view), or null
   quint64 nextOrbitId_ = 0;
   quint64 highlighted_ = 0;
+  std::vector<LaunchedOrbit> cleared_;              // what Clear Orbits removed (undoLastOrbit brings it back)
+  std::uint64_t clickSteps_ = kLaunchedOrbitSteps;
+  bool clickBackward_ = false;
   quint64 orbitGeneration_ = 0;                     // bumped by clear and by a new map: older results are dropped
   SegmentReplayPtr replay_;
   ChainResultPtr chain_;
   int periodicPeriod_ = 0;
   std::optional<PeriodicOrbit> periodic_;           // the overlay from the periodic-orbit dialog
+  // The work of the last map left (views, orbits, overlay): a change of map keeps it, and setting that map again
+  // brings it back (issue 37, finding 3: typing in K discarded it without a word).
+  struct KeptWork {
+    MapParameters map;
+    SessionPortrait portrait;
+  };
+  std::optional<KeptWork> kept_;
   bool manifoldsShown_ = false;
   std::optional<PeriodicOrbit> manifoldOrbit_;
   ManifoldsPtr manifolds_;

@@ -109,7 +109,16 @@ void PointsItem::draw(QPainter* painter, const QwtScaleMap& xMap, const QwtScale
         const QPointF q = toCanvas(p);
         if (!clip.contains(q)) continue;
         if (discs) {
-          painter->drawEllipse(q, 5.5, 5.5);
+          // A ring about a small dot: the island around a chain's centre stays visible inside it at any zoom
+          // (issue 37, finding 9: filled discs of 11 px hid the six islands at the full view).
+          painter->setBrush(Qt::NoBrush);
+          painter->setPen(QPen(QColor(0, 0, 0, 200), 3));
+          painter->drawEllipse(q, kRingRadius, kRingRadius);
+          painter->setPen(QPen(colour_, 1.5));
+          painter->drawEllipse(q, kRingRadius, kRingRadius);
+          painter->setPen(Qt::NoPen);
+          painter->setBrush(colour_);
+          painter->drawEllipse(q, 1.5, 1.5);
         } else {
           const QPointF d[4] = {q + QPointF(0, -7), q + QPointF(7, 0), q + QPointF(0, 7), q + QPointF(-7, 0)};
           painter->drawPolygon(d, 4);

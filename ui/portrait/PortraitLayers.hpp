@@ -29,13 +29,15 @@ enum class PortraitLayer {
 };
 
 /// Points in physical coordinates: dots in one colour, dots coloured by their position in the list (time),
-/// a trail of growing dots ending in a ring, discs, diamonds, a polyline (a manifold's piece), or a closed
-/// polygon filled with a translucent colour (a lobe).  (A plain QwtPlotItem: Qwt 6.1's curve
+/// a trail of growing dots ending in a ring, discs (a ring about a dot: the island inside stays visible),
+/// diamonds, a polyline (a manifold's piece), or a closed polygon filled with a translucent colour (a lobe).  (A plain QwtPlotItem: Qwt 6.1's curve
 /// headers are not C++20, and only the points inside the canvas need drawing.)
 class PointsItem : public QwtPlotItem {
  public:
   enum class Style { dots, timeDots, trail, discs, diamonds, polyline, polygon };
   static constexpr int kRtti = QwtPlotItem::Rtti_PlotUserItem + 40;
+  /// Discs: the radius (pixels) of the ring about a chain's centre; inside it only a dot of 1.5 px is drawn.
+  static constexpr double kRingRadius = 7;
 
   PointsItem(Style style, std::vector<QPointF> points, QColor colour = Qt::white);
   /// Dots and polylines: the pen width (highlighted launched orbits are drawn wider).

@@ -3,6 +3,10 @@
 #include <QAction>
 #include <QActionGroup>
 #include <QComboBox>
+#include <QDialog>
+#include <QDialogButtonBox>
+#include <QFormLayout>
+#include <QLineEdit>
 #include <QDir>
 #include <QFileDialog>
 #include <QFontMetrics>
@@ -19,6 +23,7 @@
 
 #include <algorithm>
 
+#include "core/io/NumberText.hpp"
 #include "core/portrait/ColourMap.hpp"
 #include "core/portrait/StochasticArea.hpp"
 #include "ui/portrait/ManifoldsPanel.hpp"
@@ -172,9 +177,14 @@ PortraitPanel::PortraitPanel(QWidget* parent) : QWidget(parent) {
   connect(c, &PortraitController::orbitsChanged, this, &PortraitPanel::updateActions);
   connect(c, &PortraitController::manifoldsChanged, this, &PortraitPanel::updateActions);
 
-  auto* hint = new ElidedLabel(this);
-  hint->setFullText(tr("○ elliptic, × hyperbolic fixed point · click: launch an orbit · drag: zoom · wheel: zoom at "
-                       "the cursor · middle-drag or arrows: pan"));
+  // The legend of the marks and the mouse: wrapped, never elided (issue 37, finding 13: at the window's first size
+  // it read "○ elliptic, × hyperbolic fixed point · cl…").
+  auto* hint = new QLabel(this);
+  hint->setObjectName(QStringLiteral("portraitHint"));
+  hint->setWordWrap(true);
+  hint->setText(tr("○ elliptic, × hyperbolic fixed point · click: launch an orbit · drag: zoom · wheel: zoom at "
+                   "the cursor · middle-drag or arrows: pan"));
+  hint->setToolTip(hint->text());
   hint->setStyleSheet(QStringLiteral("color: palette(mid);"));
 
   // The side pages: launched orbits, manifolds and flux, rotation profile (and the window's own).
@@ -201,10 +211,8 @@ PortraitPanel::PortraitPanel(QWidget* parent) : QWidget(parent) {
   leftLayout->setSpacing(2);
   leftLayout->addWidget(view(), 1);
   leftLayout->addWidget(readout_);
-  auto* footer = new QHBoxLayout;
-  footer->addWidget(cursor_, 1);
-  footer->addWidget(hint, 1);
-  leftLayout->addLayout(footer);
+  leftLayout->addWidget(cursor_);
+  leftLayout->addWidget(hint);
   splitter_ = new QSplitter(Qt::Horizontal, this);
   splitter_->setObjectName(QStringLiteral("portraitSplitter"));
   splitter_->setChildrenCollapsible(true);
@@ -238,7 +246,9 @@ QAction* PortraitPanel::viewAction(const QString& text, const QList<QKeySequence
 void PortraitPanel::createActions() {
   PortraitController* c = controller_;
   PortraitView* v = view();
-  stop_ = viewAction(tr("Stop"), {QKeySequence(Qt::Key_Escape)}, tr("Stop accumulating points; the portrait so far stays"));
+  // "Stop Drawing": the run's Stop is on the window's tool bar beside it (issue 37, finding 6).
+  stop_ = viewAction(tr("Stop Drawing"), {QKeySequence(Qt::Key_Escape)},
+                     tr("Stop accumulating the portrait's points (the run goes on); the portrait so far stays"));
   back_ = viewAction(tr("◀ Back"), {QKeySequence(Qt::ALT | Qt::Key_Left), QKeySequence(Qt::Key_Backspace)}, tr("Previous view"));
   forward_ = viewAction(tr("Forward ▶"), {QKeySequence(Qt::ALT | Qt::Key_Right)}, tr("Next view"));
   reset_ = viewAction(tr("Reset"), {QKeySequence(Qt::Key_Home)}, tr("The whole box, drawn anew"));
@@ -278,6 +288,29 @@ void PortraitPanel::createActions() {
   raiseBudget_->setStatusTip(tr("Ten times more points for this view (a deep, sparse view fills in)"));
   connect(raiseBudget_, &QAction::triggered, this, [c] {
     c->setPointBudget(std::min<std::uint64_t>(c->pointBudget() * 10, kMaxBudget));
+  });
+
+  goTo_ = new QAction(tr("&Go to View…"), this);
+  goTo_->setShortcut(QKeySequence(QStringLiteral("Ctrl+G")));
+  goTo_->setStatusTip(tr("Type the view's centre and width"));
+  connect(goTo_, &QAction::triggered, this, [this] {
+    // The fields start at the current view, with every digit of its centre.
+    const PhysicalRect r = controller_->viewport().physical(controller_->map());
+    const PhysicalPoint centre = controller_->viewport().physicalCentre(controller_->map());
+    QDialog dialog(this);
+    dialog.setWindowTitle(tr("Go to View"));
+    auto* form = new QFormLayout(&dialog);
+    auto* x = new QLineEdit(QString::number(static_cast<double>(centre.x), 'g', 17), &dialog);
+    auto* y = new QLineEdit(QString::number(static_cast<double>(centre.y), 'g', 17), &dialog);
+    auto* width = new QLineEdit(QString::number(static_cast<double>(r.x1 - r.x0), 'g', 6), &dialog);
+    form->addRow(tr("Centre x"), x);
+    form->addRow(tr("Centre y"), y);
+    form->addRow(tr("Width"), width);
+    auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel, &dialog);
+    form->addRow(buttons);
+    connect(buttons, &QDialogButtonBox::accepted, &dialog, &QDialog::accept);
+    connect(buttons, &QDialogButtonBox::rejected, &dialog, &QDialog::reject);
+    if (dialog.exec() == QDialog::Accepted) goTo(x->text(), y->text(), width->text());
   });
 
   undoOrbit_ = new QAction(tr("Undo Last Orbit"), this);
@@ -372,6 +405,7 @@ void PortraitPanel::createMenu() {
   menu_->addAction(reset_);
   menu_->addAction(zoomIn_);
   menu_->addAction(zoomOut_);
+  menu_->addAction(goTo_);
   QMenu* pan = menu_->addMenu(tr("P&an"));
   for (QAction* a : {panLeft_, panRight_, panUp_, panDown_}) pan->addAction(a);
   menu_->addAction(equalAspect_);
@@ -387,6 +421,17 @@ void PortraitPanel::createMenu() {
 }
 
 PortraitView* PortraitPanel::view() const noexcept { return controller_->view(); }
+
+bool PortraitPanel::goTo(const QString& x, const QString& y, const QString& width) {
+  const auto cx = io::parseLongDoubleC(x.trimmed().toStdString());
+  const auto cy = io::parseLongDoubleC(y.trimmed().toStdString());
+  const auto w = io::parseLongDoubleC(width.trimmed().toStdString());
+  QString error;
+  if (!cx || !cy || !w) error = tr("%1 is not a number").arg(!cx ? tr("the centre's x") : !cy ? tr("the centre's y") : tr("the width"));
+  else if (controller_->goTo(*cx, *cy, *w, &error)) return true;
+  Q_EMIT statusMessage(tr("Go to View: %1").arg(error));
+  return false;
+}
 
 QString PortraitPanel::readoutText() const { return static_cast<ElidedLabel*>(readout_)->fullText(); }
 
@@ -417,7 +462,9 @@ void PortraitPanel::updateActions() {
   stop_->setEnabled(view()->isRendering());
   back_->setEnabled(controller_->canGoBack());
   forward_->setEnabled(controller_->canGoForward());
-  undoOrbit_->setEnabled(controller_->orbitCount() > 0);
+  undoOrbit_->setEnabled(controller_->orbitCount() > 0 || controller_->canUndoClear());
+  undoOrbit_->setText(controller_->orbitCount() == 0 && controller_->canUndoClear() ? tr("Undo Clear Orbits")
+                                                                                   : tr("Undo Last Orbit"));
   clearOrbits_->setEnabled(controller_->orbitCount() > 0);
   const bool indicator = controller_->indicator().has_value();
   raiseBudget_->setEnabled(!indicator && controller_->pointBudget() < kMaxBudget);

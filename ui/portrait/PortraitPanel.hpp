@@ -68,6 +68,11 @@ class PortraitPanel : public QWidget {
   [[nodiscard]] QAction* exportNpyAction() const noexcept { return exportNpy_; }
   [[nodiscard]] QAction* stochasticAreaAction() const noexcept { return b2_; }
   [[nodiscard]] QAction* undoOrbitAction() const noexcept { return undoOrbit_; }
+  /// Portrait ▸ Go to View… (Ctrl+G): a view typed as centre and width (issue 37, finding 18).
+  [[nodiscard]] QAction* goToAction() const noexcept { return goTo_; }
+  /// What the dialog does with its three fields (decimal text, every digit kept): false, with the reason in the
+  /// status bar, when one is not a number or the view is refused.
+  bool goTo(const QString& x, const QString& y, const QString& width);
   [[nodiscard]] QAction* clearOrbitsAction() const noexcept { return clearOrbits_; }
   [[nodiscard]] QAction* raiseBudgetAction() const noexcept { return raiseBudget_; }
   [[nodiscard]] QAction* equalAspectAction() const noexcept { return equalAspect_; }
@@ -131,6 +136,7 @@ class PortraitPanel : public QWidget {
   QActionGroup* colourGroup_ = nullptr;
   QActionGroup* budgetGroup_ = nullptr;
   QAction* stop_ = nullptr;
+  QAction* goTo_ = nullptr;
   QAction* back_ = nullptr;
   QAction* forward_ = nullptr;
   QAction* reset_ = nullptr;

@@ -38,6 +38,7 @@
 #include <limits>
 
 #include "core/measures/MeasureExport.hpp"
+#include "core/portrait/AxisLabels.hpp"
 #include "core/portrait/PortraitExport.hpp"
 #include "ui/jobs/BackgroundJobs.hpp"
 #include "ui/portrait/PortraitWorker.hpp"
@@ -75,14 +76,19 @@ class PortraitImageItem : public QwtPlotItem {
   QRectF rect_;  // physical: x0..x1, y0..y1 (top() = y0)
 };
 
-/// Axis labels with as many digits as the view's width needs (the default 6 run out below ~10^-5).
+/// Axis labels at any depth: core's AxisLabels (plain with the digits the view needs, or offsets from the view's
+/// reference point, which the axis title names).
 class PrecisionScaleDraw : public QwtScaleDraw {
  public:
-  void setDigits(int digits) { digits_ = digits; }
-  QwtText label(double value) const override { return QString::number(value, 'g', digits_); }
+  void setLabels(const AxisLabels& labels) {
+    labels_ = labels;
+    invalidateCache();
+  }
+  [[nodiscard]] const AxisLabels& labels() const noexcept { return labels_; }
+  QwtText label(double value) const override { return QString::fromStdString(axisTickLabel(labels_, value)); }
 
  private:
-  int digits_ = 6;
+  AxisLabels labels_;
 };
 
 /// core's ColourMap for Qwt's colour bar.
@@ -110,12 +116,6 @@ QRectF physicalRect(const Viewport& view, const MapParameters& map) {
   const PhysicalRect r = view.physical(map);
   return QRectF(QPointF(static_cast<double>(r.x0), static_cast<double>(r.y0)),
                 QPointF(static_cast<double>(r.x1), static_cast<double>(r.y1)));
-}
-
-int digitsFor(double a, double b) {
-  const double width = std::fabs(b - a), magnitude = std::max(std::fabs(a), std::fabs(b));
-  if (!(width > 0)) return 6;
-  return std::clamp(static_cast<int>(std::ceil(std::log10(std::max(magnitude, width) / width))) + 3, 3, 19);
 }
 
 QPointF mousePosition(const QMouseEvent* e) {
@@ -369,8 +369,10 @@ void PortraitView::layoutPlot() {
 
 void PortraitView::updateAxes() {
   const QRectF r = physicalRect(view_, map_);
-  xScale_->setDigits(digitsFor(r.left(), r.right()));
-  yScale_->setDigits(digitsFor(r.top(), r.bottom()));
+  xScale_->setLabels(axisLabelsFor(r.left(), r.right()));
+  yScale_->setLabels(axisLabelsFor(r.top(), r.bottom()));
+  plot_->setAxisTitle(QwtPlot::xBottom, QStringLiteral("x") + QString::fromStdString(axisTitleSuffix(xScale_->labels())));
+  plot_->setAxisTitle(QwtPlot::yLeft, QStringLiteral("y") + QString::fromStdString(axisTitleSuffix(yScale_->labels())));
   plot_->setAxisScale(QwtPlot::xBottom, r.left(), r.right());
   plot_->setAxisScale(QwtPlot::yLeft, r.top(), r.bottom());
   plot_->replot();
@@ -760,7 +762,7 @@ QString PortraitView::cursorText(const QPointF& pos) const {
   const long double x = b.x0 + fx * (b.x1 - b.x0), y = b.y0 + fy * (b.y1 - b.y0);
   const long double X = static_cast<long double>(view_.centre().X) + (fx - 0.5) * view_.widthUnits();
   const long double Y = static_cast<long double>(view_.centre().Y) + (fy - 0.5) * view_.heightUnits();
-  const int digits = digitsFor(static_cast<double>(b.x0), static_cast<double>(b.x1)) + 2;
+  const int digits = axisDigits(static_cast<double>(b.x0), static_cast<double>(b.x1)) + 2;
   return tr("x = %1, y = %2   X = %3, Y = %4 (unit)")
       .arg(static_cast<double>(x), 0, 'g', digits)
       .arg(static_cast<double>(y), 0, 'g', digits)

@@ -35,6 +35,11 @@ struct RunSnapshot {
   /// The run's finished q = 1 companion (issue #26), when it has one: `statistics` are then the spliced ones
   /// (splicedStatisticsOf), and saving the run writes it beside the run file (companionRunFile).
   std::shared_ptr<const TrappingState> companion;
+  /// The run has finished and its q = 1 companion is running (issue 37, finding 7: at 100 % the window said
+  /// nothing while it ran): `state` and `statistics` are the finished run's, companionFraction the companion's part
+  /// done (0 … 1).
+  bool companionRunning = false;
+  double companionFraction = 0;
   std::string kernel;               ///< the kernel that computed the last chunk
   /// D's honest error and the tail's verdict (core/stats/TailAnalysis: a bootstrap over segments), computed
   /// when a session ends (finished, paused, stopped, an opened file) — not at every chunk: it takes a second.

@@ -145,8 +145,23 @@ void RunWorker::submit(std::uint64_t runId, TrappingState state, const RunSettin
     if (how == RunEnd::finished) lastProgress.etaSeconds = 0;
     // The q = 1 companion (issue #26), a small fraction of the run's steps, once the run is finished.
     if (how == RunEnd::finished && settings.companion > 0 && ended.params.q > 1) {
+      // The window says that the companion runs, and how far it is (the run itself is at 100 %).
+      auto base = std::make_shared<RunSnapshot>(*makeSnapshot(runId, ended, lastProgress));
+      base->companionRunning = true;
+      inFlight_.fetch_add(1);
+      context.post(base);
+      const auto companionObserver = [&](const TrappingState&, const TrappingProgress& progress) {
+        if (inFlight_.load() >= kMaxSnapshotsInFlight) {
+          skipped_.fetch_add(1);
+          return;
+        }
+        auto now = std::make_shared<RunSnapshot>(*base);
+        now->companionFraction = progress.fraction;
+        inFlight_.fetch_add(1);
+        context.post(std::move(now));
+      };
       TrappingState short1 = runTrapping(startTrapping(companionParameters(ended.params, settings.companion)),
-                                         coreOptions(settings), {}, context.stopToken());
+                                         coreOptions(settings), companionObserver, context.stopToken());
       if (short1.finished()) companion = std::make_shared<const TrappingState>(std::move(short1));
     }
     return Ended{makeSnapshot(runId, ended, lastProgress, true, companion), how};

@@ -120,6 +120,8 @@ KScanDialog::KScanDialog(const RunSpec& base, QWidget* parent) : QDialog(parent)
 
   // The results: KScanPlots (the report draws its figures with it too).
   plots_ = new KScanPlots(this);
+  plots_->clear();  // the fixed typical ranges until a K finishes (issue 37, finding 12: an empty log axis spanned
+                    // 10⁻¹⁵⁰ … 1)
   auto* left = new QVBoxLayout;
   left->addWidget(settings);
   left->addStretch(1);

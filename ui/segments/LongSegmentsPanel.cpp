@@ -415,8 +415,16 @@ void LongSegmentsPanel::advancePlay() {
   const std::size_t n = replay_->trace.states.size();
   const double speed = speedBox_->currentData().toDouble();
   const auto advance = static_cast<std::size_t>(std::max(1.0, speed * static_cast<double>(n) / kPlayTicks));
-  const std::size_t next = index_ + advance;
-  setCurrentIndex(std::min(next, n - 1));
+  std::size_t next = std::min(index_ + advance, n - 1);
+  if (portrait_ && islandView_ && portrait_->viewport() == *islandView_) {
+    // The next step shown on the island in view, if the segment comes back to it; else the view widens
+    // (setCurrentIndex) as before.
+    const auto& points = replay_->trace.points;
+    std::size_t i = next;
+    while (i < n && !portrait_->shows(points[i].x, points[i].y)) ++i;
+    if (i < n) next = i;
+  }
+  setCurrentIndex(next);
   if (index_ + 1 >= n) togglePlay();
 }
 
@@ -490,6 +498,7 @@ void LongSegmentsPanel::zoomToIsland() {
     portrait_->zoomToRegion(chain_->island);
   else
     portrait_->zoomToRegion(replay_->region);
+  islandView_ = portrait_->viewport();
 }
 
 }  // namespace archipelago::ui

@@ -17,11 +17,13 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 
 #include "ui/jobs/BackgroundJobs.hpp"
 #include "ui/segments/LongestSegmentsModel.hpp"
 #include "ui/portrait/SegmentResults.hpp"
 #include "core/periodic/PeriodicOrbit.hpp"
+#include "core/portrait/Viewport.hpp"
 #include "core/trapping/LongestSegments.hpp"
 
 class QComboBox;
@@ -140,6 +142,9 @@ class LongSegmentsPanel : public QWidget {
   SegmentReplayPtr replay_;
   ChainResultPtr chain_;
   std::size_t index_ = 0;
+  // The view "Zoom to island" chose: while the portrait shows it, Play steps through the segment's visits to that
+  // island and keeps the view (issue 37, finding 11: Play widened it at once).
+  std::optional<Viewport> islandView_;
   std::uint64_t maxReplayPoints_ = 1'000'000;
   std::uint64_t chainPoints_ = kChainIdentificationPoints;
   int autoRows_ = 10;

@@ -45,7 +45,7 @@ ExportResult exportPlot(StatisticsPlot& plot, const RunSnapshotPtr& snapshot, co
 }
 
 ExportResult exportAll(const QList<StatisticsPlot*>& plots, const RunSnapshotPtr& snapshot, const QString& folder,
-                       PortraitView* portrait) {
+                       PortraitView* portrait, const std::optional<RunSpec>& spec) {
   ExportResult result;
   if (!QDir().mkpath(folder)) {
     result.error = QObject::tr("could not create the folder %1").arg(folder);
@@ -82,10 +82,11 @@ ExportResult exportAll(const QList<StatisticsPlot*>& plots, const RunSnapshotPtr
     for (const auto& p : writeStatisticsCsv(folder.toStdString(), snapshot->state, snapshot->statistics,
                                             snapshot->theory))
       result.written << fromPath(p);
-    RunSpec spec;
-    spec.parameters = snapshot->state.params;
+    RunSpec written;
+    if (spec && spec->parameters == snapshot->state.params) written = *spec;
+    else written.parameters = snapshot->state.params;
     const std::filesystem::path specPath = dir.filePath(QLatin1String(kRunSpecJsonName)).toStdString();
-    io::writeFileAtomically(specPath, runSpecJson(spec));
+    io::writeFileAtomically(specPath, runSpecJson(written));
     result.written << fromPath(specPath);
   } catch (const std::exception& e) {
     fail(QString::fromStdString(e.what()));

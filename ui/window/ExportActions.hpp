@@ -10,6 +10,9 @@
 #include <QString>
 #include <QStringList>
 
+#include <optional>
+
+#include "core/spec/RunSpec.hpp"
 #include "ui/run/RunSnapshot.hpp"
 
 namespace archipelago::ui {
@@ -32,9 +35,12 @@ struct ExportResult {
 /// `snapshot` (each statistic, its theory curves, summary.csv) and its longest segments (longest_segments.csv)
 /// as core's writer names them; the run's parameters as run_spec.json (core's spec codec: `archipelago-cli run
 /// --spec` reads it back); and, when `portrait` is given, the phase portrait as portrait.png with, once it has
-/// a raster, portrait.npy and its JSON sidecar (PortraitView's own exports).
+/// a raster, portrait.npy and its JSON sidecar (PortraitView's own exports).  The run spec is `spec` (the preset's
+/// name, description, threads and q = 1 companion: issue 37, finding 14) when its parameters are the snapshot's,
+/// else the snapshot's parameters alone.
 [[nodiscard]] ExportResult exportAll(const QList<StatisticsPlot*>& plots, const RunSnapshotPtr& snapshot,
-                                     const QString& folder, PortraitView* portrait = nullptr);
+                                     const QString& folder, PortraitView* portrait = nullptr,
+                                     const std::optional<RunSpec>& spec = std::nullopt);
 
 /// The file names exportAll() gives the portrait, the segments table and the run spec.
 inline constexpr const char* kPortraitPngName = "portrait.png";

@@ -241,7 +241,9 @@ void MainWindow::createActions() {
   resumeAction_->setStatusTip(tr("Continue the paused, stopped or opened run where it ended"));
   connect(resumeAction_, &QAction::triggered, this, &MainWindow::resumeRun);
 
-  stopAction_ = new QAction(QIcon::fromTheme(QStringLiteral("media-playback-stop")), tr("&Stop"), this);
+  stopAction_ = new QAction(QIcon::fromTheme(QStringLiteral("media-playback-stop")), tr("&Stop Run"), this);
+  stopAction_->setIconText(tr("Stop"));  // beside Run, Pause, Resume; the menu and tooltip say "Stop Run"
+  stopAction_->setToolTip(tr("Stop Run (Shift+F5): end the run; the portrait's drawing has its own Stop Drawing"));
   stopAction_->setShortcut(QKeySequence(QStringLiteral("Shift+F5")));
   stopAction_->setStatusTip(tr("End the run at the next chunk boundary; its state can still be saved"));
   connect(stopAction_, &QAction::triggered, this, &MainWindow::stopRun);
@@ -251,6 +253,7 @@ void MainWindow::createActions() {
   resetZoomAction_->setStatusTip(tr("Let every plot follow its data again"));
   connect(resetZoomAction_, &QAction::triggered, this, [this] {
     for (StatisticsPlot* p : statistics_->plots()) p->resetZoom();
+    for (StatisticsPlot* p : {glance_->fPlot(), glance_->cPlot()}) p->resetZoom();  // the Run page's too
   });
 }
 
@@ -545,12 +548,25 @@ void MainWindow::showKScanDialog() {
 }
 
 void MainWindow::showProgress(const RunSnapshot& s) {
-  progress_->setValue(static_cast<int>(1000 * s.progress.fraction + 0.5));
   const QLocale c = QLocale::c();
+  const bool live = isLive(run_->status());
+  if (s.companionRunning && live) {
+    // The run is done; its q = 1 companion gives the statistics below 10 q steps (issue 37, finding 7).
+    progress_->setValue(static_cast<int>(1000 * s.companionFraction + 0.5));
+    progress_->setFormat(tr("q = 1 companion run: %p % · then t < %1 steps come from it").arg(10 * s.state.params.q));
+    progress_->setToolTip(tr("The run has finished; its q = 1 companion (a fraction of its steps) now runs, so that "
+                             "the statistics below 10 q steps are not those of blocks of q steps. When it ends, the "
+                             "plots and α show the spliced statistics."));
+    rateLabel_->setText(QString());
+    etaLabel_->setText(tr("companion run"));
+    if (!s.kernel.empty()) kernelLabel_->setText(tr("kernel: %1").arg(QString::fromStdString(s.kernel)));
+    return;
+  }
+  progress_->setToolTip(tr("Blocks done / T"));
+  progress_->setValue(static_cast<int>(1000 * s.progress.fraction + 0.5));
   progress_->setFormat(tr("%p % · block %1 of %2")
                            .arg(c.toString(static_cast<double>(s.state.blocksDone), 'g', 3),
                                 c.toString(static_cast<double>(s.state.params.T), 'g', 3)));
-  const bool live = isLive(run_->status());
   rateLabel_->setText(live && s.progress.stepsPerSecond > 0 ? formatRate(s.progress.stepsPerSecond) : QString());
   etaLabel_->setText(live && s.progress.stepsPerSecond > 0 ? tr("ETA %1").arg(formatDuration(s.progress.etaSeconds))
                                                            : QString());
@@ -600,18 +616,21 @@ bool MainWindow::openTailEstimate(const QString& path, QString* error) {
         if (levels.x.empty()) {
           why = tr("it has no reliable level yet");
         } else if (StatisticsPlot* p = statistics_->plot(Statistic::P)) {
-          QString title = tr("P_t by splitting (tail, %1 × %2), %3 reliable levels")
-                              .arg(tail.request.population)
-                              .arg(tail.request.replicas)
-                              .arg(levels.x.size());
+          // A short legend entry (issue 37, finding 5: the whole description was cut off at the canvas' edge);
+          // the details go to the status bar.
+          QString details = tr("tail %1 × %2, %3 reliable levels")
+                                .arg(tail.request.population)
+                                .arg(tail.request.replicas)
+                                .arg(levels.x.size());
           if (factor != 1)  // spliced statistics count the q = 1 process's segments
-            title += tr(", × %1 (α₁/α_q)").arg(QLocale::c().toString(factor, 'g', 3));
-          p->setEstimate(levels, title);
+            details += tr(", × %1 (α₁/α_q)").arg(QLocale::c().toString(factor, 'g', 3));
+          p->setEstimate(levels, tr("P_t by splitting (tail)"));
           p->refresh();
-          message(tr("Drew %1 levels of %2 to t = %3 steps on P_t")
+          message(tr("Drew %1 levels of %2 to t = %3 steps on P_t (%4)")
                       .arg(levels.x.size())
                       .arg(QFileInfo(path).fileName())
-                      .arg(QLocale::c().toString(largestReliableT(result), 'g', 3)));
+                      .arg(QLocale::c().toString(largestReliableT(result), 'g', 3))
+                      .arg(details));
           return true;
         }
       }
@@ -669,7 +688,7 @@ bool MainWindow::saveSessionDialog() {
 
 bool MainWindow::exportAllTo(const QString& folder, QString* error) {
   refreshView();  // export what the newest snapshot holds
-  const ExportResult r = exportAll(statistics_->plots(), shown_, folder, portrait_->view());
+  const ExportResult r = exportAll(statistics_->plots(), shown_, folder, portrait_->view(), panel_->spec());
   if (!r.ok()) {
     if (error) *error = r.error;
     message(tr("Export failed: %1").arg(r.error), 0);

@@ -163,8 +163,10 @@ void ParameterPanel::addField(QFormLayout* form, const QString& name, const QStr
   form->addRow(caption, edit);
   fields_.insert(name, edit);
   connect(edit, &QLineEdit::textEdited, this, [this] {
-    showPreset(nullptr);  // edited by hand: no longer a preset
+    // Edited by hand: the preset these parameters are, or Custom (issue 37, finding 3: typing a preset's value
+    // back left "Custom" although every field held the preset).
     revalidate();
+    showPreset(matchingPreset());
   });
 }
 
@@ -195,11 +197,16 @@ void ParameterPanel::setParameters(const TrappingParameters& p, int threads) {
   fields_[QStringLiteral("subsets")]->setText(QString::number(p.subsets));
   fields_[QStringLiteral("threads")]->setText(QString::number(threads));
   revalidate();
+  showPreset(matchingPreset());
+}
+
+const Preset* ParameterPanel::matchingPreset() const {
   // The preset box names the preset these parameters are, or Custom: never a preset the fields have left.
+  if (!parsed_) return nullptr;
   const Preset* match = nullptr;
   for (const Preset& preset : presets())
-    if (preset.spec.parameters == p) match = &preset;
-  showPreset(match);
+    if (preset.spec.parameters == *parsed_) match = &preset;
+  return match;
 }
 
 std::optional<RunSpec> ParameterPanel::spec() const {

@@ -69,6 +69,8 @@ class ParameterPanel : public QWidget {
   void markField(const QString& name, const QString& error);
   void showDerived(const std::optional<TrappingParameters>& p);
   void showPreset(const Preset* preset);
+  /// The preset whose parameters the fields hold (nullptr: none, or the fields are invalid).
+  [[nodiscard]] const Preset* matchingPreset() const;
 
   QComboBox* presetBox_ = nullptr;
   QLabel* presetDescription_ = nullptr;

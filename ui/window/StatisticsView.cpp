@@ -65,11 +65,18 @@ void StatisticsView::showSnapshot(const RunSnapshot& snapshot) {
   ++refreshes_;
   refreshSeconds_ += static_cast<double>(clock.nsecsElapsed()) * 1e-9;
   const QLocale c = QLocale::c();
-  summary_->setText(tr("<b>α</b> (mean segment) = %1 steps &nbsp;&nbsp; <b>D</b> = %2 &nbsp;&nbsp; "
+  // Spliced statistics (the q = 1 companion below 10 q) say so: α changes when they replace the run's own (issue 37,
+  // finding 7: it fell from 18.9 to 2.72 with no word why).
+  const QString spliced = snapshot.companion
+                              ? tr(" <i>(spliced: t &lt; %1 steps from the q = 1 companion run)</i>")
+                                    .arg(10 * snapshot.state.params.q)
+                              : QString();
+  summary_->setText(tr("<b>α</b> (mean segment) = %1 steps%6 &nbsp;&nbsp; <b>D</b> = %2 &nbsp;&nbsp; "
                        "Σ t f<sub>t</sub> = %3 &nbsp;&nbsp; segments: %4 &nbsp;&nbsp; longest: %5 steps")
                         .arg(withError(s.alpha, s.alphaError), dText(snapshot),
                              QString::number(s.sumTf, 'f', 4), c.toString(static_cast<qulonglong>(s.segments)),
-                             longestText(snapshot)));
+                             longestText(snapshot))
+                        .arg(spliced));
 }
 
 QString StatisticsView::longestText(const RunSnapshot& snapshot) {

@@ -58,6 +58,10 @@ Session fullSession(std::mt19937_64& rng) {
   s.portrait.budget = 123'456'789'012;
   s.portrait.orbits = {{unit(rng), -unit(rng)}, {1e-300, -0.0}};
   s.portrait.periodic = {{"7/20", {{0.1 * unit(rng), 0.2}, {0.3, 0.4}}}, {"", {{0, 0}}}};
+  // The manifolds layer (issue 37, finding 4): off, of the fixed point, or of an orbit.
+  const auto manifolds = rng() % 3;
+  s.portrait.manifolds = manifolds > 0;
+  if (manifolds == 2) s.portrait.manifoldOrbit = {{0.05 * unit(rng), 0.1}, {-0.2, 0.3 * unit(rng)}};
   s.segmentRank = 3;
   s.segmentPosition = 987654321;
   s.plots = {{"f_t", {1, 1e6, 1e-12, 1}}, {"C_tau", {1, 1e4, 1e-5, 0.5 * unit(rng) + 0.6}}};
@@ -201,6 +205,10 @@ TEST(SessionFile, BadAndForeignDocumentsAreRefusedWithTheKeyNamed) {
   expectRejected(edited("portrait.budget", "1e300"), "portrait.budget");
   expectRejected(edited("portrait.orbits", "[[0]]"), "portrait.orbits[0]");
   expectRejected(edited("portrait.periodic", R"([{"label": "x"}])"), "no 'points'");
+  expectRejected(edited("portrait.manifolds", R"({"orbit": [], "x": 1})"), "unknown key 'x' in portrait.manifolds");
+  expectRejected(edited("portrait.manifolds", R"({"orbit": []})"), "portrait.manifolds.orbit must hold");
+  expectRejected(edited("portrait.manifolds", R"({"orbit": [[0.1]]})"), "portrait.manifolds.orbit[0]");
+  expectRejected(edited("portrait.manifolds", "3"), "portrait.manifolds must be");
   expectRejected(edited("segment.rank", "-1"), "segment.rank");
   expectRejected(edited("segment.rank", "100000"), "segment.rank");
   expectRejected(edited("plots", R"([{"name": "f_t", "zoom": [1, 2, 1, 2]}, {"name": "f_t", "zoom": [1, 2, 1, 2]}])"),
