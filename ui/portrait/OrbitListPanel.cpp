@@ -21,6 +21,7 @@
 #include <cmath>
 
 #include "core/io/NumberText.hpp"
+#include "core/limits/Limits.hpp"
 #include "core/measures/OrbitMeasures.hpp"
 #include "ui/portrait/PortraitController.hpp"
 
@@ -86,7 +87,7 @@ OrbitListPanel::OrbitListPanel(PortraitController* controller, QWidget* parent)
   // What a click launches, and a start typed exactly (issue 37, finding 15).
   steps_ = new QSpinBox(this);
   steps_->setObjectName(QStringLiteral("orbitSteps"));
-  steps_->setRange(1, 100'000'000);
+  steps_->setRange(1, static_cast<int>(limits::kOrbitLength));  // core's one table
   steps_->setValue(static_cast<int>(controller_->clickSteps()));
   steps_->setGroupSeparatorShown(true);
   steps_->setToolTip(tr("Steps of each launched orbit (a click or Launch)"));
