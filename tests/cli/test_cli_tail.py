@@ -115,7 +115,7 @@ with tempfile.TemporaryDirectory() as d:
         (["--resume", os.path.join(bad, "missing.json")], "missing.json"),
         (["--resume", out, "--K", "0.2"], "--resume takes the spec from the tail file; do not also give --K"),
         (["--resume", out, "--population", "5"], "do not also give --population"),
-        (["--threads", "-1"], "--threads"),
+        (["--threads", "-1"], "threads = -1 must lie in [0, 256]"),  # the one table's rule and words (issue 35)
         (["--kernel", "quantum"], "quantum"),
         (["--slice", "3/3"], "--slice '3/3' must be I/N, whole numbers with I < N <= R = 3"),
         (["--slice", "0/4"], "--slice '0/4' must be I/N"),
