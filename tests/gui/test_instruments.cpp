@@ -66,7 +66,7 @@ class TestInstruments : public QObject {
     PortraitController& c = *panel.controller();
     const double starts[][2] = {{0.06, 0.0974}, {-0.2, 0.0}};
     for (const auto& s : starts) QVERIFY(c.launchOrbit(s[0], s[1]) != 0);
-    QTRY_VERIFY_WITH_TIMEOUT(c.orbitsSettled(), 60000);
+    QTRY_VERIFY_WITH_TIMEOUT(c.orbitsSettled(), 900000);
     for (std::size_t i = 0; i < 2; ++i) {
       const auto& orbit = c.launchedOrbits()[i];
       QVERIFY(orbit.measures && orbit.measures->error.isEmpty());

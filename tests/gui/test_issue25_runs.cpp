@@ -89,7 +89,7 @@ class TestIssue25Runs : public QObject {
       finishedRun(w);
       QCOMPARE(w.parametersDock()->width(), width);
       w.showLongSegment(0, false);
-      QTRY_VERIFY_WITH_TIMEOUT(w.longSegments()->currentReplay() != nullptr, 20000);
+      QTRY_VERIFY_WITH_TIMEOUT(w.longSegments()->currentReplay() != nullptr, 900000);
       QCoreApplication::processEvents();
       QCOMPARE(w.segmentsDock()->width(), width);
       // Play (and its "Pause" label) does not widen it either; the speed multiplies the pace.
@@ -136,7 +136,7 @@ class TestIssue25Runs : public QObject {
     QVERIFY(QTest::qWaitForWindowExposed(&w));
     QCOMPARE(w.tabs()->currentWidget(), static_cast<QWidget*>(w.portraitPanel()));
     PortraitView* view = w.portraitPanel()->view();
-    QTRY_VERIFY_WITH_TIMEOUT(view->currentFrame() != nullptr, 20000);
+    QTRY_VERIFY_WITH_TIMEOUT(view->currentFrame() != nullptr, 900000);
     QVERIFY(view->currentFrame()->nonEmptyPixels() > 0);
     QCOMPARE(w.portraitPanel()->sidePages()->currentWidget(), static_cast<QWidget*>(w.runGlance()));
     QVERIFY(w.runGlance()->fPlot()->isVisible() && w.runGlance()->cPlot()->isVisible());

@@ -542,11 +542,11 @@ void TestJobs::runWorkerLatestRunWinsAndPauseKeepsTheState() {
   const archipelago::TrappingParameters endless = archipelago::test::endlessRun();
   worker.startRun(1, archipelago::startTrapping(endless), settings);
   worker.startRun(2, archipelago::startTrapping(endless), settings);  // replaces run 1 before or while it runs
-  QTRY_VERIFY_WITH_TIMEOUT(!snapshotRuns.empty(), 60000);
+  QTRY_VERIFY_WITH_TIMEOUT(!snapshotRuns.empty(), 900000);
   QVERIFY(worker.busy());
   worker.requestEnd(1, RunEnd::paused);  // not the session's run: ignored
   worker.requestEnd(2, RunEnd::paused);
-  QTRY_VERIFY_WITH_TIMEOUT(!ended.empty(), 60000);
+  QTRY_VERIFY_WITH_TIMEOUT(!ended.empty(), 900000);
   QTRY_VERIFY(!worker.busy());
   QCOMPARE(ended.size(), std::size_t{1});
   QCOMPARE(ended[0].runId, quint64{2});
@@ -563,13 +563,13 @@ void TestJobs::runWorkerLatestRunWinsAndPauseKeepsTheState() {
   ended.clear();
   worker.startRun(3, archipelago::startTrapping(shortParams), settings);
   worker.requestEnd(3, RunEnd::paused);  // before or during its first chunk
-  QTRY_VERIFY_WITH_TIMEOUT(!ended.empty(), 60000);
+  QTRY_VERIFY_WITH_TIMEOUT(!ended.empty(), 900000);
   QCOMPARE(ended[0].runId, quint64{3});
   QVERIFY(ended[0].how == RunEnd::paused || ended[0].how == RunEnd::finished);
   const archipelago::TrappingState midway = ended[0].last->state;
   ended.clear();
   worker.startRun(4, midway, settings);
-  QTRY_VERIFY_WITH_TIMEOUT(!ended.empty(), 60000);
+  QTRY_VERIFY_WITH_TIMEOUT(!ended.empty(), 900000);
   QCOMPARE(ended[0].runId, quint64{4});
   QCOMPARE(ended[0].how, RunEnd::finished);
   const archipelago::TrappingState& resumed = ended[0].last->state;
@@ -579,7 +579,7 @@ void TestJobs::runWorkerLatestRunWinsAndPauseKeepsTheState() {
   // Analysing a state answers with its snapshot and does not advance it.
   ended.clear();
   worker.analyse(5, paused);
-  QTRY_VERIFY_WITH_TIMEOUT(!ended.empty(), 60000);
+  QTRY_VERIFY_WITH_TIMEOUT(!ended.empty(), 900000);
   QCOMPARE(ended[0].runId, quint64{5});
   QCOMPARE(ended[0].how, RunEnd::finished);
   QCOMPARE(ended[0].last->state.blocksDone, paused.blocksDone);

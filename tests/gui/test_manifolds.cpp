@@ -72,7 +72,7 @@ class TestManifolds : public QObject {
     PortraitController& c = *panel.controller();
     panel.manifoldsAction()->trigger();
     QVERIFY(c.manifoldsShown());
-    QTRY_VERIFY_WITH_TIMEOUT(c.manifoldsSettled() && c.flux() && c.manifolds(), 60000);
+    QTRY_VERIFY_WITH_TIMEOUT(c.manifoldsSettled() && c.flux() && c.manifolds(), 900000);
     QVERIFY2(c.flux()->flux.has_value(), qPrintable(c.flux()->error));
     const archipelago::TurnstileFlux& f = *c.flux()->flux;
     const QJsonObject json = cliJson({QStringLiteral("flux"), QStringLiteral("--K"), QStringLiteral("0.1"), QStringLiteral("--json")});
@@ -113,12 +113,12 @@ class TestManifolds : public QObject {
     QVERIFY(QTest::qWaitForWindowExposed(&panel));
     PortraitController& c = *panel.controller();
     c.setManifoldsShown(true);
-    QTRY_VERIFY_WITH_TIMEOUT(c.manifoldsSettled() && c.manifolds(), 60000);
+    QTRY_VERIFY_WITH_TIMEOUT(c.manifoldsSettled() && c.manifolds(), 900000);
     const auto whole = c.manifolds();
     // A 0.002-wide view at the first homoclinic point, in the tangle.
     const archipelago::PhysicalRect view{-0.682L, -0.680L, -0.3648L, -0.3628L};
     c.setViewport(archipelago::Viewport::fromPhysical(c.map(), view));
-    QTRY_VERIFY_WITH_TIMEOUT(c.manifoldsSettled() && c.manifolds() != whole, 60000);
+    QTRY_VERIFY_WITH_TIMEOUT(c.manifoldsSettled() && c.manifolds() != whole, 900000);
     const double refined = largestStepInside(*c.manifolds(), view);
     QVERIFY(refined > 0);
     QVERIFY2(refined <= 0.002 / 100, qPrintable(QString::number(refined)));
@@ -154,7 +154,7 @@ class TestManifolds : public QObject {
     QCOMPARE(manifolds.count(), 1);
     QVERIFY(panel.controller()->manifoldsShown());
     QCOMPARE(panel.controller()->manifoldOrbit()->period, 6);
-    QTRY_VERIFY_WITH_TIMEOUT(panel.controller()->manifoldsSettled() && panel.controller()->flux(), 60000);
+    QTRY_VERIFY_WITH_TIMEOUT(panel.controller()->manifoldsSettled() && panel.controller()->flux(), 900000);
     QVERIFY2(panel.controller()->flux()->flux.has_value(), qPrintable(panel.controller()->flux()->error));
   }
 };

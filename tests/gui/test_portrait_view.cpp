@@ -318,7 +318,7 @@ class TestPortraitView : public QObject {
     QVERIFY(QTest::qWaitForWindowExposed(&panel));
     QTRY_VERIFY_WITH_TIMEOUT(panel.readoutText().contains(QStringLiteral("accumulating")) ||
                                  panel.view()->renderState() == RenderState::done,
-                             20000);
+                             900000);
     QVERIFY(waitFinished(panel.view()));
     QCOMPARE(panel.view()->renderState(), RenderState::done);
     QVERIFY2(points.size() >= 3, qPrintable(QString::number(points.size())));

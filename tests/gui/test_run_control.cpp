@@ -144,7 +144,7 @@ class TestRunControl : public QObject {
       QVERIFY(window.startRun());
       QVERIFY(waitForProgress(window, 0));
       QVERIFY(!window.close());  // it stops at the next chunk boundary first
-      QTRY_VERIFY_WITH_TIMEOUT(!window.isVisible(), 10000);
+      QTRY_VERIFY_WITH_TIMEOUT(!window.isVisible(), 900000);
       QCOMPARE(window.runStatus(), RunStatus::stopped);
     }
     QVERIFY(QFileInfo::exists(MainWindow::checkpointPath()));

@@ -112,7 +112,7 @@ class TestRunController : public QObject {
     window.close();
     QCOMPARE(script.asked.size(), std::size_t{1});
     QCOMPARE(script.asked.front(), RunQuestion::Kind::quitWhileLive);
-    QTRY_VERIFY_WITH_TIMEOUT(!window.isVisible(), 5000);
+    QTRY_VERIFY_WITH_TIMEOUT(!window.isVisible(), 900000);
     QVERIFY(QFileInfo::exists(MainWindow::checkpointPath()));
     QVERIFY(archipelago::loadRunFile(MainWindow::checkpointPath().toStdString()).finished());
   }
@@ -134,7 +134,7 @@ class TestRunController : public QObject {
     QVERIFY(!window.close());  // stops first
     QVERIFY(!window.close());  // Ctrl+Q again while stopping: no second question
     QCOMPARE(script.asked.size(), std::size_t{2});
-    QTRY_VERIFY_WITH_TIMEOUT(!window.isVisible(), 10000);
+    QTRY_VERIFY_WITH_TIMEOUT(!window.isVisible(), 900000);
     QCOMPARE(window.runStatus(), RunStatus::stopped);
     QVERIFY(QFileInfo::exists(MainWindow::checkpointPath()));
   }
@@ -312,7 +312,7 @@ class TestRunController : public QObject {
       QVERIFY(window.startRun());
       QVERIFY(waitForProgress(window));
       window.close();
-      QTRY_VERIFY_WITH_TIMEOUT(!window.isVisible(), 10000);
+      QTRY_VERIFY_WITH_TIMEOUT(!window.isVisible(), 900000);
     }
     QVERIFY(QFileInfo::exists(MainWindow::checkpointPath()));
     const std::uint64_t kept = archipelago::loadRunFile(MainWindow::checkpointPath().toStdString()).blocksDone;

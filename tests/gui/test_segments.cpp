@@ -93,7 +93,7 @@ void TestSegments::tableFillsFromAFinishedRun() {
   // Longest first.
   QVERIFY(items[0].length >= items[1].length);
   // The top rows get their chains in the background; the others are not touched.
-  QTRY_VERIFY_WITH_TIMEOUT(panel.idle(), 20000);
+  QTRY_VERIFY_WITH_TIMEOUT(panel.idle(), 900000);
   QCoreApplication::processEvents();  // the last job's result is posted just before the thread goes idle
   for (int row = 0; row < 3; ++row) {
     const SegmentKey key = SegmentKey::of(items[static_cast<std::size_t>(row)]);
@@ -139,7 +139,7 @@ void TestSegments::selectingARowReplaysTheSegmentBitForBit() {
   QVERIFY(replay->region.fraction >= 0.9);
   QVERIFY(replay->region.width() > 0 && replay->region.height() > 0);
   // Its chain is identified for the selected row even with no automatic rows.
-  QTRY_VERIFY_WITH_TIMEOUT(panel.currentChain() != nullptr, 20000);
+  QTRY_VERIFY_WITH_TIMEOUT(panel.currentChain() != nullptr, 900000);
   QVERIFY(chains.count() >= 1);
   // Stepping moves through the exact states.
   panel.setCurrentIndex(17);
@@ -157,7 +157,7 @@ void TestSegments::onlyTheLatestSelectionIsShown() {
   panel.selectRow(0);
   panel.selectRow(3);
   panel.selectRow(2);
-  QTRY_VERIFY_WITH_TIMEOUT(panel.idle() && replays.count() >= 1, 20000);
+  QTRY_VERIFY_WITH_TIMEOUT(panel.idle() && replays.count() >= 1, 900000);
   QCoreApplication::processEvents();
   // Stale replays (rows 0 and 3) were cancelled or dropped: every replay shown is row 2's.
   for (const QList<QVariant>& args : replays) {
@@ -261,7 +261,7 @@ void TestSegments::drawsTheSegmentZoomedOnThePortrait() {
   QCOMPARE(view.layerItems(PortraitLayer::segment).size(), std::size_t{1});
   QCOMPARE(view.layerItems(PortraitLayer::segmentStep).size(), std::size_t{1});
   // Once the chain is known the view can zoom to one island of it, which lies inside the segment's region.
-  QTRY_VERIFY_WITH_TIMEOUT(panel.currentChain() != nullptr, 20000);
+  QTRY_VERIFY_WITH_TIMEOUT(panel.currentChain() != nullptr, 900000);
   QVERIFY(panel.currentChain()->chain.has_value());
   QCOMPARE(panel.currentChain()->chain->period, 6);
   QCOMPARE(view.layerItems(PortraitLayer::segmentChain).size(), std::size_t{1});
@@ -305,7 +305,7 @@ void TestSegments::playKeepsTheStepShownInView() {
   QSignalSpy replays(&panel, &LongSegmentsPanel::replayReady);
   panel.selectRow(panel.model()->rowOf(SegmentKey::of(inside)));
   QVERIFY(replays.wait(20000));
-  QTRY_VERIFY_WITH_TIMEOUT(panel.currentChain() != nullptr && panel.currentChain()->chain.has_value(), 20000);
+  QTRY_VERIFY_WITH_TIMEOUT(panel.currentChain() != nullptr && panel.currentChain()->chain.has_value(), 900000);
   panel.zoomToIsland();
   QToolButton* play = nullptr;
   for (QToolButton* b : panel.findChildren<QToolButton*>())
@@ -318,7 +318,7 @@ void TestSegments::playKeepsTheStepShownInView() {
     if (!controller.shows(points[index].x, points[index].y)) ++outside;
   });
   play->click();
-  QTRY_VERIFY_WITH_TIMEOUT(checked >= 12, 10000);
+  QTRY_VERIFY_WITH_TIMEOUT(checked >= 12, 900000);
   play->click();  // pause
   QCOMPARE(outside, 0);
   QVERIFY(controller.viewport() == portrait.view()->viewport());
@@ -357,7 +357,7 @@ void TestSegments::columnsFitTheDockAndTheHintHides() {
   QTRY_VERIFY(panel.isVisible());
   QVERIFY(hint->isVisible());
   QVERIFY(window.openRunFile(file));
-  QTRY_VERIFY_WITH_TIMEOUT(panel.model()->rowCount() > 0, 20000);
+  QTRY_VERIFY_WITH_TIMEOUT(panel.model()->rowCount() > 0, 900000);
   QTRY_VERIFY(!hint->isVisible());
   QTableView* table = panel.table();
   QCoreApplication::processEvents();
