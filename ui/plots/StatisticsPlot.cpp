@@ -213,9 +213,10 @@ StatisticsPlot::StatisticsPlot(Statistic statistic, QWidget* parent) : QwtPlot(p
     small.setPointSizeF(legendFont.pointSizeF() * 0.88);  // two columns in a plot 330 pixels wide
     below->setFont(small);
     if (QLayout* grid = below->contentsWidget()->layout()) grid->setSpacing(0);
-    // Up to half the plot's height (Qwt's default is a third): at Qt 5's 12-point default font the seven entries
-    // of a plot 260 pixels high took four rows, and a third of its height clipped the last (gui.issue37 under Qt 5).
-    insertLegend(below, QwtPlot::BottomLegend, 0.5);
+    // Up to 0.7 of the plot's height (Qwt's default is a third), taken only when needed: at Qt 5's 12-point font
+    // the seven entries of a plot 260 pixels high took more rows than a third or a half of it holds, and the last
+    // were clipped (gui.issue37 under Qt 5).
+    insertLegend(below, QwtPlot::BottomLegend, 0.7);
     below->setVisible(false);  // until there is data (showPlaceholder)
   } else {
     legend->attach(this);
