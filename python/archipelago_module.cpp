@@ -27,6 +27,7 @@ void bindPeriodic(py::module_& m);   // bind_periodic.cpp: periodic orbits and i
 void bindManifolds(py::module_& m);  // bind_manifolds.cpp: stable and unstable manifolds, the turnstile flux
 void bindMeasures(py::module_& m);   // bind_measures.cpp: rotation numbers, island chains, indicator maps
 void bindTail(py::module_& m);       // bind_tail.cpp: the tail of P_t beyond brute force
+void bindAtlas(py::module_& m);      // bind_atlas.cpp: the atlas of the islands around islands
 
 PYBIND11_MODULE(_archipelago, m) {
   m.doc() = "Archipelago: stickiness of islands around islands in area-preserving maps "
@@ -57,4 +58,5 @@ PYBIND11_MODULE(_archipelago, m) {
   bindManifolds(m);
   bindMeasures(m);
   bindTail(m);
+  bindAtlas(m);
 }

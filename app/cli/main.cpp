@@ -27,6 +27,7 @@
 #include "RotationCommand.hpp"
 #include "IndicatorCommand.hpp"
 #include "ManifoldCommand.hpp"
+#include "AtlasCommand.hpp"
 #include "FluxCommand.hpp"
 #include "TailCommand.hpp"
 
@@ -66,6 +67,7 @@ int main(int argc, char** argv) {
   archipelago::cli::addIndicatorCommand(app, status);
   archipelago::cli::addManifoldCommand(app, status);
   archipelago::cli::addFluxCommand(app, status);
+  archipelago::cli::addAtlasCommand(app, status);
   archipelago::cli::addTailCommand(app, status);
   if (argc > 1 && argv[1][0] != '-') {  // name an unknown command instead of CLI11's generic message
     std::string names;

@@ -122,7 +122,6 @@ ChainIdentification identifyChain(const ChainRequest& r, std::stop_token stop) {
   if (r.maxLevels < 0 || r.maxLevels > 16)
     throw std::invalid_argument("maxLevels = " + std::to_string(r.maxLevels) + " must be 0 ... 16");
   const auto K = static_cast<long double>(r.map.K);
-  const long double unitLength = (static_cast<long double>(r.map.xmax) - r.map.xmin) / FixedPointMap::kOne;
 
   ChainIdentification out;
   RotationRequest measure;
@@ -174,9 +173,8 @@ ChainIdentification identifyChain(const ChainRequest& r, std::stop_token stop) {
       break;
     }
     const std::uint64_t n = out.period * static_cast<std::uint64_t>(current.rational->q);
-    const SubsequenceCloud cloud = subsequenceCloud(r.map, r.start, n, std::min<std::uint64_t>(r.iterations, 4096));
-    const PhysicalPoint guess = toPhysical(r.map, cloud.centroid);
-    const std::optional<PeriodicOrbit> orbit = ellipticOrbitNear(K, n, guess, 2 * cloud.radius * unitLength);
+    const EllipticOrbitGuess guess = ellipticOrbitAround(r.map, r.start, n, r.iterations);
+    const std::optional<PeriodicOrbit>& orbit = guess.orbit;
     if (stop.stop_requested()) {
       out.cancelled = true;
       ending = "stopped";
@@ -189,10 +187,10 @@ ChainIdentification identifyChain(const ChainRequest& r, std::stop_token stop) {
     }
     ChainLevel next;
     next.power = n;
-    next.orbit = orbit->rotatedToStart(orbit->nearestIndex(guess));
+    next.orbit = orbit->rotatedToStart(orbit->nearestIndex(guess.centroid));
     next.centre = next.orbit->points.front();
-    next.sense = senseOf(K, next.centre, n);
-    measure.centre = {toUnits(r.map, next.centre), next.sense};
+    next.sense = rotationSense(K, next.centre, n);
+    measure.centre = rotationCentreAt(r.map, next.centre, next.sense);
     measure.power = n;
     next.rotation = measureRotation(measure, stop);
     out.levels.push_back(next);
@@ -215,6 +213,25 @@ ChainIdentification identifyChain(const ChainRequest& r, std::stop_token stop) {
   }
   s << ending;
   out.summary = s.str();
+  return out;
+}
+
+int rotationSense(long double K, PhysicalPoint z, std::uint64_t n) { return senseOf(K, z, n); }
+
+RotationCentre rotationCentreAt(const MapParameters& map, PhysicalPoint centre, int sense) {
+  return {toUnits(map, centre), sense};
+}
+
+EllipticOrbitGuess ellipticOrbitAround(const MapParameters& map, UnitState start, std::uint64_t n,
+                                       std::uint64_t iterations) {
+  const auto K = static_cast<long double>(map.K);
+  const long double unitLength = (static_cast<long double>(map.xmax) - map.xmin) / FixedPointMap::kOne;
+  const SubsequenceCloud cloud = subsequenceCloud(map, start, n, std::min<std::uint64_t>(iterations, 4096));
+  EllipticOrbitGuess out;
+  out.centroid = toPhysical(map, cloud.centroid);
+  out.radius = cloud.radius * unitLength;
+  if (cloud.wrapped) return out;
+  out.orbit = ellipticOrbitNear(K, n, out.centroid, 2 * out.radius);
   return out;
 }
 

@@ -95,6 +95,26 @@ struct ChainIdentification {
   bool cancelled = false;
 };
 
+/// Step 3 of the recursion on its own (core/atlas finds each chain's orbit with it): the centroid of z_0, z_n, z_2n, …
+/// (at most min(iterations, 4096) of them) of the exact orbit from `start`, their largest distance from it (physical
+/// units), and the elliptic periodic orbit of minimal period n about the centroid (Newton from it, else the symmetric
+/// search within twice that distance for n ≤ kMaxSymmetricSearchPeriod); no orbit when none was found or the orbit
+/// wrapped (left the box).
+struct EllipticOrbitGuess {
+  PhysicalPoint centroid;
+  long double radius = 0;
+  std::optional<PeriodicOrbit> orbit;
+};
+[[nodiscard]] EllipticOrbitGuess ellipticOrbitAround(const MapParameters& map, UnitState start, std::uint64_t n,
+                                                     std::uint64_t iterations);
+
+/// The sense in which DQⁿ turns points about the elliptic point z of period n: +1 clockwise in the (x, y) plane (as
+/// DQ does at the centre), −1 counter-clockwise.
+[[nodiscard]] int rotationSense(long double K, PhysicalPoint z, std::uint64_t n);
+
+/// A rotation centre at the physical point `centre` (unit coordinates as long doubles, not rounded to the lattice).
+[[nodiscard]] RotationCentre rotationCentreAt(const MapParameters& map, PhysicalPoint centre, int sense);
+
 /// `request` started at the physical point `start` (issue 35: the recipe the CLI's `rotation`, Python's rotation()
 /// and the GUI's launched orbits each wrote out): the measure's rules (0 < K < 1, iterations, threshold), then the
 /// start's ("the start (x, y) = … must lie in the box …"), then the start placed on the lattice.  Throws

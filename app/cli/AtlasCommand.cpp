@@ -1,0 +1,109 @@
+#include "AtlasCommand.hpp"
+
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <stdexcept>
+#include <stop_token>
+#include <string>
+#include <thread>
+
+#include "CliCommon.hpp"
+#include "RunSession.hpp"
+#include "core/atlas/AtlasExport.hpp"
+#include "core/io/CommandFiles.hpp"
+
+namespace archipelago::cli {
+
+namespace {
+struct AtlasOptions {
+  MapParameters map;
+  AtlasRequest request;
+  std::string json;
+  std::string csv;
+  bool quiet = false;
+};
+
+void printTable(const Atlas& a) {
+  std::printf("# atlas of the islands around islands, K = %s (Karney 1983, section 6)\n", shortestDecimal(a.request.map.K).c_str());
+  std::printf("# %-14s %6s %7s %12s %10s %12s %12s %12s\n", "island", "period", "p/q", "area", "area_err", "flux/step",
+              "layer_area", "residence");
+  for (std::size_t i = 0; i < a.nodes.size(); ++i) {
+    const AtlasNode& n = a.nodes[i];
+    const std::string path = std::string(static_cast<std::size_t>(2 * n.level), ' ') + atlasPath(a, static_cast<int>(i));
+    std::printf("  %-14s %6llu %7s", path.c_str(), static_cast<unsigned long long>(n.period),
+                n.aboutParent ? toString(*n.aboutParent).c_str() : "-");
+    if (n.boundaryFound) std::printf(" %12.6Le %10.2Le", n.area, n.areaError);
+    else std::printf(" %12s %10s", "-", "-");
+    if (n.flux.found) std::printf(" %12.6Le %12.6Le %12.6g", n.flux.flux, n.flux.layerArea, n.flux.residence);
+    else std::printf(" %12s %12s %12s", "-", "-", "-");
+    std::printf("%s%s\n", n.note.empty() ? "" : "  # ", n.note.c_str());
+  }
+  std::printf("# %zu islands in %.1f s%s\n", a.nodes.size(), a.seconds, a.cancelled ? " (stopped: the rest not computed)" : "");
+}
+
+int runAtlas(AtlasOptions o) {
+  o.request.map = o.map;
+  if (auto e = validationError(o.request)) throw std::invalid_argument(*e);
+  io::checkCommandFiles({{"--json", o.json, io::FileUse::Output}, {"--csv", o.csv, io::FileUse::Output}});
+  installInterruptHandlers();
+  std::stop_source stop;
+  std::atomic<bool> finished{false};
+  std::thread watcher([&] {  // Ctrl-C: stop the computation, keep what is finished
+    while (!finished.load()) {
+      if (interruptRequested()) {
+        stop.request_stop();
+        return;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+  });
+  const auto started = std::chrono::steady_clock::now();
+  AtlasProgress progress;
+  if (!o.quiet)
+    progress = [&](int done, int known, const std::string& stage) {
+      const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+      std::fprintf(stderr, "atlas: %d of %d islands known done, %s elapsed: %s\n", done, known, clockText(s).c_str(),
+                   stage.c_str());
+    };
+  Atlas atlas;
+  try {
+    atlas = computeAtlas(o.request, progress, stop.get_token());
+  } catch (...) {
+    finished = true;
+    watcher.join();
+    throw;
+  }
+  finished = true;
+  watcher.join();
+  if (!o.json.empty()) writeAtlasJson(o.json, atlas);
+  if (!o.csv.empty()) writeAtlasCsv(o.csv, atlas);
+  if (!o.quiet) printTable(atlas);
+  return atlas.cancelled ? 130 : 0;
+}
+}  // namespace
+
+void addAtlasCommand(CLI::App& app, int& status) {
+  auto o = std::make_shared<AtlasOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "atlas", "the hierarchy of islands around islands from the centre (-sqrt K, 0): each chain's period, p/q about its "
+               "parent, island area, turnstile flux, zone area and mean residence time (docs/atlas.md)");
+  addMapOptions(*cmd, o->map);
+  addNumberOption(*cmd, "--depth", o->request.depth, "levels of chains below the central island");
+  addNumberOption(*cmd, "--max-period", o->request.maxPeriod, "largest period of a chain (the product of its q's)");
+  addNumberOption(*cmd, "--min-area", o->request.minArea, "islands of smaller area are listed but not followed");
+  addNumberOption(*cmd, "--iterations", o->request.iterations, "T of each rotation measurement (2T n steps)");
+  addNumberOption(*cmd, "--threshold", o->request.digitsThreshold, "regular when the rotation has this many digits");
+  addNumberOption(*cmd, "--scan-points", o->request.scanPoints, "points of the symmetry line on each side of an island");
+  addNumberOption(*cmd, "--scan-steps", o->request.scanSteps,
+                  "more scan points where this many steps of the map allow (islands of short period scanned finely)");
+  addNumberOption(*cmd, "--bisections", o->request.bisections, "halvings of the boundary circle's bracket");
+  addNumberOption(*cmd, "--threads", o->request.threads, "threads (0: one per core)");
+  cmd->add_option("--json", o->json, "write the tree as JSON here (atomically)");
+  cmd->add_option("--csv", o->csv, "write one row per island here (atomically)");
+  cmd->add_flag("--quiet", o->quiet, "no progress and no table");
+  cmd->callback([o, &status] { status = runAtlas(*o); });
+}
+
+}  // namespace archipelago::cli

@@ -1,0 +1,542 @@
+#include "core/atlas/Atlas.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <deque>
+#include <map>
+#include <stdexcept>
+
+#include "core/limits/Limits.hpp"
+#include "core/manifolds/HyperbolicOrbit.hpp"
+#include "core/manifolds/ManifoldParameterization.hpp"
+#include "core/manifolds/TurnstileFlux.hpp"
+#include "core/map/FixedPointMap.hpp"
+#include "core/measures/BirkhoffAverage.hpp"
+#include "core/measures/OrbitMeasures.hpp"
+#include "core/measures/RotationNumber.hpp"
+#include "core/parallel/ParallelFor.hpp"
+#include "core/periodic/HyperbolicPartner.hpp"
+#include "core/periodic/PeriodicOrbitFinder.hpp"
+#include "core/periodic/SmoothQuadraticMap.hpp"
+
+namespace archipelago {
+
+namespace {
+
+enum class PointKind { Circle, Chain, Outside };
+
+/// The largest denominator a scan point's rotation is named by (ChainIdentification.hpp's accuracy): an invariant
+/// circle's rotation lies within 8 × 10^−digits of such a rational with a probability of a few 10^−3 at 10 digits.
+constexpr std::int64_t kClassifyDenominator = 2000;
+
+/// Fundamental domains searched for a chain's primary heteroclinic points (TurnstileRequest::maxDomains): the search
+/// of a long chain that has none near its orbit went on for minutes through the automatic limit (a period-150 chain
+/// about the island of six); a flux not found within these is reported as such.
+constexpr int kFluxDomains = 100;
+/// A flux is accepted when its two methods agree to this many digits and the lobe is below this share of the area
+/// its barrier encloses (the measured ones: 10⁻² at the centre's loop, below 10⁻³ for the chains).
+constexpr int kFluxDigits = 6;
+constexpr long double kMaxLobeShare = 0.1L;
+
+struct ScanPoint {
+  PhysicalPoint point;
+  PointKind kind = PointKind::Outside;
+  double rotation = 0;
+  double digits = 0;
+  Rational rational;
+};
+
+/// An island to scan: the member c of an elliptic orbit of period n, on a symmetry line.
+struct Island {
+  PhysicalPoint centre;
+  std::uint64_t n = 1;
+  int sense = 1;
+  smooth::SymmetryLine line = smooth::SymmetryLine::S2;
+  long double range = 0;  ///< R: how far along the line (in x) to scan on each side
+  long double reach = 0;  ///< how far from c a circle about c may reach (half the distance to the chain's next point)
+};
+
+class Classifier {
+ public:
+  Classifier(const AtlasRequest& r, const Island& island)
+      : request_(r), island_(island), map_(r.map), centre_(rotationCentreAt(r.map, island.centre, island.sense)) {}
+
+  [[nodiscard]] PhysicalPoint at(long double x) const {
+    const auto p = smooth::onLine(island_.line, static_cast<long double>(request_.map.K), x);
+    return {p.x, p.y};
+  }
+
+  [[nodiscard]] ScanPoint classify(long double x, std::stop_token stop) const {
+    ScanPoint s;
+    s.point = at(x);
+    if (boxPointError("p", request_.map, s.point)) return s;  // outside the box: outside every island
+    RotationRequest m;
+    m.map = request_.map;
+    m.start = map_.toUnit(s.point.x, s.point.y);
+    m.centre = centre_;
+    m.power = island_.n;
+    m.iterations = request_.iterations;
+    m.digitsThreshold = request_.digitsThreshold;
+    const RotationMeasurement r = measureRotation(m, stop);
+    s.rotation = r.rotation;
+    s.digits = r.digits;
+    if (r.verdict != OrbitVerdict::Regular) return s;
+    const double delta = std::max(kAccuracyFactor * r.difference, 0x1p-50);
+    // Rationals up to kClassifyDenominator name chain points whatever the period limit (an orbit of a chain of long
+    // period must not pass for a circle); only chains within maxPeriod are followed.
+    const auto maxQ = std::max<std::int64_t>(static_cast<std::int64_t>(request_.maxPeriod / island_.n), kClassifyDenominator);
+    const std::optional<Rational> q = smallestDenominatorRational(r.rotation - delta, r.rotation + delta, maxQ);
+    if (!q) {
+      s.kind = PointKind::Circle;
+    } else if (q->p != 0) {
+      s.kind = PointKind::Chain;
+      s.rational = *q;
+    }
+    return s;
+  }
+
+  [[nodiscard]] const FixedPointMap& map() const { return map_; }
+
+ private:
+  const AtlasRequest& request_;
+  Island island_;
+  FixedPointMap map_;
+  RotationCentre centre_;
+};
+
+/// The area enclosed by the invariant circle through `start` (Green's theorem on its orbit under Qⁿ ordered by
+/// k·ω mod 1), with half the points for the error; wrapped or not winding about the centre: nothing.
+struct CircleArea {
+  long double area = 0;
+  long double error = 0;
+  int points = 0;
+};
+
+long double shoelace(const std::vector<PhysicalPoint>& p, std::size_t stride) {
+  // About the first vertex, in long double (the areas here are ≥ 1e−12 and the coordinates ≤ 1).
+  long double twice = 0;
+  const std::size_t m = p.size() / stride;
+  for (std::size_t i = 0; i < m; ++i) {
+    const PhysicalPoint& a = p[i * stride];
+    const PhysicalPoint& b = p[((i + 1) % m) * stride];
+    twice += (a.x - p[0].x) * (b.y - p[0].y) - (b.x - p[0].x) * (a.y - p[0].y);
+  }
+  return std::fabs(twice) / 2;
+}
+
+std::optional<CircleArea> circleArea(const FixedPointMap& N, const Island& island, PhysicalPoint start, double omega,
+                                     int log2Points) {
+  const std::size_t m = std::size_t{1} << log2Points;
+  std::vector<std::pair<long double, PhysicalPoint>> points;
+  points.reserve(m);
+  UnitState z = N.toUnit(start.x, start.y);
+  for (std::size_t k = 0; k < m; ++k) {
+    const long double turns = static_cast<long double>(k) * static_cast<long double>(omega);
+    points.emplace_back(turns - std::floor(turns), N.toPhysical(z));
+    for (std::uint64_t j = 0; j < island.n; ++j)
+      if (N.forward(z)) return std::nullopt;
+  }
+  std::sort(points.begin(), points.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<PhysicalPoint> curve;
+  curve.reserve(m);
+  for (const auto& p : points) curve.push_back(p.second);
+  if (clockwiseTurns(curve, island.centre.x, island.centre.y) == 0) return std::nullopt;
+  for (const PhysicalPoint& p : curve)  // an island lies within half the distance to the next island of its chain
+    if (std::hypot(p.x - island.centre.x, p.y - island.centre.y) > island.reach) return std::nullopt;
+  CircleArea a;
+  a.area = shoelace(curve, 1);
+  a.error = std::fabs(a.area - shoelace(curve, 2));
+  a.points = static_cast<int>(m);
+  return a;
+}
+
+/// One side of the scan: the classified points, the boundary's bracket and the chains beyond it.
+struct SideScan {
+  std::vector<ScanPoint> points;
+  int lastCircle = -1;  ///< index of the outermost circle point (−1: none)
+};
+
+std::string number(long double v) { return shortestDecimal(v); }
+
+/// The member of `orbit` on a symmetry line nearest to p (offset below 1e−9), or nothing.
+std::optional<std::pair<std::size_t, smooth::SymmetryLine>> memberOnLine(const PeriodicOrbit& orbit, PhysicalPoint p) {
+  std::optional<std::pair<std::size_t, smooth::SymmetryLine>> best;
+  long double bestDistance = 0;
+  for (std::size_t i = 0; i < orbit.points.size(); ++i) {
+    const smooth::Point<long double> z{orbit.points[i].x, orbit.points[i].y};
+    for (smooth::SymmetryLine line : {smooth::SymmetryLine::S2, smooth::SymmetryLine::S1}) {
+      if (std::fabs(smooth::offsetFromLine(line, orbit.K, z)) > 1e-9L) continue;
+      const long double d = std::hypot(z.x - p.x, z.y - p.y);
+      if (!best || d < bestDistance) {
+        best = std::pair{i, line};
+        bestDistance = d;
+      }
+    }
+  }
+  return best;
+}
+
+/// Half the distance from point i of the orbit to the nearest other point.
+long double halfSpacing(const PeriodicOrbit& orbit, std::size_t i) {
+  long double d = std::numeric_limits<long double>::infinity();
+  for (std::size_t j = 0; j < orbit.points.size(); ++j)
+    if (j != i) d = std::min(d, std::hypot(orbit.points[j].x - orbit.points[i].x, orbit.points[j].y - orbit.points[i].y));
+  return d / 2;
+}
+
+AtlasFlux chainFlux(long double K, const std::optional<PeriodicOrbit>& chain, std::stop_token stop) {
+  AtlasFlux f;
+  try {
+    TurnstileRequest t;
+    t.K = K;
+    if (chain) {
+      if (chain->period > kMaxManifoldPeriod) {
+        f.failure = "period " + std::to_string(chain->period) + " above the manifolds' limit " +
+                    std::to_string(kMaxManifoldPeriod);
+        return f;
+      }
+      f.partner = findHyperbolicPartner(*chain);
+      if (!f.partner) {
+        f.failure = "no hyperbolic partner found between the islands";
+        return f;
+      }
+      t.orbit = f.partner;
+    }
+    t.side = parseBranchSide("auto", !chain);
+    t.maxDomains = kFluxDomains;
+    const TurnstileFlux flux = computeTurnstileFlux(t, {}, stop);
+    f.flux = flux.lobeArea;
+    f.zoneArea = flux.zoneArea;
+    f.fluxDigits = flux.lobeDigits();
+    f.zoneDigits = flux.zoneDigits();
+    f.residence = static_cast<double>(f.zoneArea / f.flux);
+    // No silent wrong answer: the two methods must agree and the lobe must be a small part of what it encloses (a
+    // partner whose primary points were found far along its manifolds gave a "flux" of half the zone per step).
+    if (!(f.flux > 0)) f.failure = "zero lobe area";
+    else if (f.fluxDigits < kFluxDigits || f.zoneDigits < kFluxDigits)
+      f.failure = "the action and the polygon agree to " + number(std::min(f.fluxDigits, f.zoneDigits)) +
+                  " digits only (fewer than " + std::to_string(kFluxDigits) + ")";
+    else if (!(f.flux < kMaxLobeShare * f.zoneArea))
+      f.failure = "lobe area " + number(f.flux) + " is not small against the area it encloses, " + number(f.zoneArea);
+    f.found = f.failure.empty();
+  } catch (const std::exception& e) {
+    f.failure = e.what();
+  }
+  return f;
+}
+
+/// Candidate circles tried inwards on a ray before giving up, and the largest relative change of the area between
+/// 4096 and 8192 points that a circle's polygon may show (a converged invariant circle changes by ~1e−9).
+constexpr int kBoundaryTries = 8;
+constexpr long double kQuickTolerance = 1e-2L;
+constexpr int kZooms = 4;
+constexpr int kMaxScanPoints = 10000;
+constexpr long double kCircleTolerance = 1e-4L;
+
+class AtlasBuilder {
+ public:
+  AtlasBuilder(const AtlasRequest& r, const AtlasProgress& progress, std::stop_token stop)
+      : r_(r), progress_(progress), stop_(std::move(stop)), K_(static_cast<long double>(r.map.K)) {}
+
+  Atlas build() {
+    const auto started = std::chrono::steady_clock::now();
+    Atlas atlas;
+    atlas.request = r_;
+    // The central island: the elliptic fixed point (−√K, 0), on both lines; scanned along S₂.
+    AtlasNode root;
+    root.orbit = analysePeriodicOrbit(K_, 1, static_cast<quad>(-std::sqrt(K_)), 0, OrbitSymmetry::LineS2);
+    root.centre = {-std::sqrt(K_), 0};
+    root.sense = 1;
+    atlas.nodes.push_back(root);
+    std::deque<int> queue{0};
+    int done = 0;
+    while (!queue.empty()) {
+      if (stop_.stop_requested()) {
+        atlas.cancelled = true;
+        break;
+      }
+      const int i = queue.front();
+      queue.pop_front();
+      if (progress_) progress_(done, static_cast<int>(atlas.nodes.size()), "island " + atlasPath(atlas, i));
+      const std::vector<AtlasNode> children = expand(atlas, i);
+      if (stop_.stop_requested()) {
+        atlas.cancelled = true;
+        break;
+      }
+      for (const AtlasNode& child : children) {
+        atlas.nodes[i].children.push_back(static_cast<int>(atlas.nodes.size()));
+        atlas.nodes.push_back(child);
+        queue.push_back(static_cast<int>(atlas.nodes.size()) - 1);
+      }
+      ++done;
+    }
+    if (progress_) progress_(done, static_cast<int>(atlas.nodes.size()), atlas.cancelled ? "stopped" : "done");
+    atlas.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    return atlas;
+  }
+
+ private:
+  /// The points of one ray, from the centre outwards, classified in parallel.
+  SideScan scanSide(const Classifier& c, const Island& island, int direction, int points) {
+    SideScan s;
+    const auto n = static_cast<std::size_t>(points);
+    s.points.resize(n);
+    parallelFor(
+        n,
+        [&](std::size_t i, int) {
+          const long double x = island.centre.x + direction * island.range * static_cast<long double>(i + 1) /
+                                                      static_cast<long double>(n);
+          s.points[i] = c.classify(x, stop_);
+        },
+        stop_, r_.threads);
+    for (std::size_t i = 0; i < n; ++i)
+      if (s.points[i].kind == PointKind::Circle) s.lastCircle = static_cast<int>(i);
+    return s;
+  }
+
+  /// Points a side: at the last level a quarter of the request's (only the boundary is wanted there), else the
+  /// request's or as many as `scanSteps` steps of the map allow over all sides, up to kMaxScanPoints: the chains around
+  /// an island of short period can be narrow (the 138-chain's islands cross S₁ over 4·10⁻⁵ around the island of six).
+  [[nodiscard]] int scanPoints(const AtlasNode& node, std::size_t sides) const {
+    if (node.level >= r_.depth) return std::max(16, r_.scanPoints / 4);
+    const double perPoint = 2.0 * static_cast<double>(r_.iterations) * static_cast<double>(node.period) *
+                            static_cast<double>(std::max<std::size_t>(sides, 1));
+    return static_cast<int>(std::clamp(r_.scanSteps / perPoint, static_cast<double>(r_.scanPoints),
+                                       static_cast<double>(kMaxScanPoints)));
+  }
+
+  /// The lines an island is scanned along: at the centre S₂ and S₁ (both pass through it), else every member of the
+  /// chain's orbit on a symmetry line (its islands are images of each other: any of them is the island).
+  std::vector<Island> scanOrigins(const AtlasNode& node, int index) const {
+    std::vector<Island> out;
+    if (index == 0) {
+      for (smooth::SymmetryLine line : {smooth::SymmetryLine::S2, smooth::SymmetryLine::S1})
+        out.push_back({node.centre, 1, 1, line, 2 * std::sqrt(K_), 2 * std::sqrt(K_)});
+      return out;
+    }
+    for (std::size_t i = 0; i < node.orbit.points.size(); ++i) {
+      const PhysicalPoint z = node.orbit.points[i];
+      for (smooth::SymmetryLine line : {smooth::SymmetryLine::S2, smooth::SymmetryLine::S1})
+        if (std::fabs(smooth::offsetFromLine(line, K_, smooth::Point<long double>{z.x, z.y})) <= 1e-9L)
+          out.push_back({z, node.period, rotationSense(K_, z, node.period), line, halfSpacing(node.orbit, i),
+                         halfSpacing(node.orbit, i)});
+    }
+    return out;
+  }
+
+  /// Fills the island's boundary circle, area and flux, and returns the chains outside it as children.
+  std::vector<AtlasNode> expand(Atlas& atlas, int index) {
+    AtlasNode& node = atlas.nodes[static_cast<std::size_t>(index)];
+    struct Ray {
+      Island island;
+      int direction = 1;
+      SideScan scan;
+    };
+    std::vector<Ray> rays;
+    const std::vector<Island> origins = scanOrigins(node, index);
+    const int points = scanPoints(node, 2 * origins.size());
+    for (const Island& island : origins)
+      for (int direction : {+1, -1}) {
+        const Classifier c(r_, island);
+        rays.push_back({island, direction, scanSide(c, island, direction, points)});
+        if (stop_.stop_requested()) return {};
+      }
+
+    for (const Ray& ray : rays) node.scanRange = std::max(node.scanRange, ray.island.range);
+    // An island narrower than the scan's first step shows no circle: the rays are scanned again over their first
+    // two steps, up to kZooms times, for its boundary (the chains outside come from the full rays).
+    std::vector<Ray> boundaryRays = rays;
+    bool zoomed = false;
+    for (int zoom = 0; zoom < kZooms && !stop_.stop_requested(); ++zoom) {
+      if (std::any_of(boundaryRays.begin(), boundaryRays.end(), [](const Ray& r) { return r.scan.lastCircle >= 0; })) break;
+      zoomed = true;
+      for (Ray& ray : boundaryRays) {
+        ray.island.range = 2 * ray.island.range / static_cast<long double>(ray.scan.points.size());
+        ray.scan = scanSide(Classifier(r_, ray.island), ray.island, ray.direction, points);
+      }
+    }
+    if (stop_.stop_requested()) return {};
+    // The boundary circle on each ray: the outermost circle point, bisected against its outer neighbour, whose orbit
+    // closes into a converged curve about the centre (a sticky chaotic orbit that passed for regular does not: the
+    // next circle inwards is tried); of all rays the largest area is the outermost circle.
+    for (Ray& ray : boundaryRays) {
+      SideScan& s = ray.scan;
+      const Classifier c(r_, ray.island);
+      const auto step = ray.island.range / static_cast<long double>(s.points.size());
+      for (int candidate = s.lastCircle, tries = 0; candidate >= 0 && tries < kBoundaryTries;) {
+        // A quick look first (1024 points: a circle's polygon is already within 1e−5 of its area there): sticky
+        // chaotic orbits beyond the island that passed for regular are dropped without a bisection.
+        const ScanPoint& at = s.points[static_cast<std::size_t>(candidate)];
+        if (const auto quick = circleArea(c.map(), ray.island, at.point, at.rotation, 10);
+            !quick || quick->error > kQuickTolerance * quick->area) {
+          s.points[static_cast<std::size_t>(candidate)].kind = PointKind::Outside;
+          do --candidate;
+          while (candidate >= 0 && s.points[static_cast<std::size_t>(candidate)].kind != PointKind::Circle);
+          s.lastCircle = candidate;
+          continue;
+        }
+        ++tries;
+        long double lo = ray.island.centre.x + ray.direction * step * (candidate + 1);
+        long double hi = lo + ray.direction * step;
+        ScanPoint inner = s.points[static_cast<std::size_t>(candidate)];
+        const bool lastPoint = candidate + 1 == static_cast<int>(s.points.size());  // circles to the end of the ray: no bracket
+        for (int b = 0; b < r_.bisections && !lastPoint && !stop_.stop_requested(); ++b) {
+          const long double mid = (lo + hi) / 2;
+          const ScanPoint p = c.classify(mid, stop_);
+          if (p.kind == PointKind::Circle) {
+            lo = mid;
+            inner = p;
+          } else {
+            hi = mid;
+          }
+        }
+        const std::optional<CircleArea> a = circleArea(c.map(), ray.island, inner.point, inner.rotation, 13);
+        if (!a || a->error > kCircleTolerance * a->area) {
+          s.points[static_cast<std::size_t>(candidate)].kind = PointKind::Outside;  // not a circle after all
+          do --candidate;
+          while (candidate >= 0 && s.points[static_cast<std::size_t>(candidate)].kind != PointKind::Circle);
+          s.lastCircle = candidate;
+          continue;
+        }
+        s.lastCircle = candidate;
+        if (!node.boundaryFound || a->area > node.area) {
+          node.boundaryFound = true;
+          node.boundaryPoint = inner.point;
+          node.boundaryRotation = inner.rotation;
+          node.boundaryDigits = inner.digits;
+          node.gap = lastPoint ? 0 : std::fabs(hi - lo);
+          node.area = a->area;
+          node.areaError = a->error;
+          node.areaPoints = a->points;
+          if (lastPoint) node.note = "the island reaches the end of the scan (" + number(ray.island.range) + ")";
+          else node.note.clear();
+        }
+        break;
+      }
+      if (stop_.stop_requested()) return {};
+    }
+    if (stop_.stop_requested()) return {};
+    if (!zoomed) rays = boundaryRays;  // the circles found false are outside for the chains too
+
+    // The flux through the chain's separatrix (at the centre: the fixed point (√K, 0)'s loop).  Its zone encloses
+    // the islands of the parent (one per closed curve) or, at the centre, the central island: the layer between is
+    // what an orbit that crossed the barrier moves in.
+    node.flux = chainFlux(K_, index == 0 ? std::nullopt : std::optional<PeriodicOrbit>(node.orbit), stop_);
+    if (node.flux.found) {
+      const AtlasNode& enclosed = index == 0 ? node : atlas.nodes[static_cast<std::size_t>(node.parent)];
+      node.flux.enclosedIslands = static_cast<long double>(enclosed.period) * enclosed.area;
+      node.flux.layerArea = node.flux.zoneArea - node.flux.enclosedIslands;
+      node.flux.residence = static_cast<double>(node.flux.layerArea / node.flux.flux);
+    }
+
+    if (!node.boundaryFound) {
+      node.boundaryFailure = "no invariant circle about the centre within the scan's first step: the island is below "
+                             "the scan's resolution";
+      node.note = "not followed: no boundary circle";
+      return {};
+    }
+    // Rationals inside a ray's last circle: internal chains, listed; beyond it: the chains outside.
+    std::map<std::pair<std::int64_t, std::int64_t>, std::pair<std::size_t, int>> outside;  // p/q → (ray, index)
+    for (std::size_t k = 0; k < rays.size(); ++k) {
+      const SideScan& s = rays[k].scan;
+      for (std::size_t i = 0; i < s.points.size(); ++i) {
+        const ScanPoint& p = s.points[i];
+        if (p.kind != PointKind::Chain || p.rational.q < 2) continue;
+        // A chain about c turns in the sense its circles do (an orbit of a ring that encloses c, around the parent,
+        // turns the other way about c).
+        if ((p.rational.p > 0) != (node.boundaryRotation > 0)) continue;
+        if (node.period * static_cast<std::uint64_t>(p.rational.q) > r_.maxPeriod) continue;  // beyond the tree's periods
+        if (static_cast<int>(i) < s.lastCircle) {
+          if (std::find(node.internal.begin(), node.internal.end(), p.rational) == node.internal.end())
+            node.internal.push_back(p.rational);
+        } else {
+          outside.try_emplace({p.rational.p, p.rational.q}, k, static_cast<int>(i));
+        }
+      }
+    }
+    std::sort(node.internal.begin(), node.internal.end(),
+              [](const Rational& a, const Rational& b) { return a.q != b.q ? a.q < b.q : a.p < b.p; });
+    if (node.level >= r_.depth) {
+      node.note = outside.empty() ? "" : "not followed: depth " + std::to_string(r_.depth) + " reached";
+      return {};
+    }
+    if (node.area < r_.minArea) {
+      node.note = "not followed: area below " + number(r_.minArea);
+      return {};
+    }
+
+    // The chains outside: the middle of each rational's run of points gives its elliptic orbit.
+    std::vector<AtlasNode> children;
+    const FixedPointMap N(r_.map);
+    for (const auto& [pq, where] : outside) {
+      if (stop_.stop_requested()) return {};
+      const auto& [k, first] = where;
+      const SideScan& s = rays[k].scan;
+      int last = first;
+      while (last + 1 < static_cast<int>(s.points.size()) && s.points[last + 1].kind == PointKind::Chain &&
+             s.points[last + 1].rational == s.points[first].rational)
+        ++last;
+      const PhysicalPoint start = s.points[static_cast<std::size_t>((first + last) / 2)].point;
+      const std::uint64_t period = node.period * static_cast<std::uint64_t>(pq.second);
+      AtlasNode child;
+      child.parent = index;
+      child.level = node.level + 1;
+      child.period = period;
+      child.aboutParent = Rational{pq.first, pq.second};
+      const EllipticOrbitGuess guess = ellipticOrbitAround(r_.map, N.toUnit(start.x, start.y), period, r_.iterations);
+      if (!guess.orbit || !guess.orbit->stable()) continue;  // not an island chain (a chaotic band's mean, a saddle)
+      const auto member = memberOnLine(*guess.orbit, start);
+      if (!member) continue;  // not symmetric: the scan cannot measure it (docs/atlas.md)
+      child.orbit = guess.orbit->rotatedToStart(member->first);
+      child.centre = child.orbit.points.front();
+      child.onS1 = member->second == smooth::SymmetryLine::S1;
+      child.sense = rotationSense(K_, child.centre, period);
+      children.push_back(std::move(child));
+    }
+    return children;
+  }
+
+  const AtlasRequest& r_;
+  const AtlasProgress& progress_;
+  std::stop_token stop_;
+  long double K_;
+};
+
+}  // namespace
+
+std::optional<std::string> validationError(const AtlasRequest& r) {
+  MeasureSettings measure;  // the map's and the rotation measurements' rules (0 < K < 1, iterations, threshold)
+  measure.map = r.map;
+  measure.iterations = r.iterations;
+  measure.digitsThreshold = r.digitsThreshold;
+  if (auto e = validationError(measure)) return e;
+  if (auto e = rangeError("depth", r.depth, 0, kMaxAtlasDepth)) return e;
+  if (auto e = rangeError("max period", r.maxPeriod, 1, PeriodicOrbitSearch::kMaxPeriod)) return e;
+  if (!(r.minArea >= 0) || !std::isfinite(r.minArea))
+    return "min area = " + shortestDecimal(r.minArea) + " must be a finite number ≥ 0";
+  if (auto e = rangeError("scan points", r.scanPoints, 16, kMaxScanPoints)) return e;
+  if (!(r.scanSteps >= 0 && r.scanSteps <= 1e13))
+    return "scan steps = " + shortestDecimal(r.scanSteps) + " must lie in [0, 1e13]";
+  if (auto e = rangeError("bisections", r.bisections, 0, 60)) return e;
+  if (auto e = threadsError(r.threads)) return e;
+  return std::nullopt;
+}
+
+Atlas computeAtlas(const AtlasRequest& request, const AtlasProgress& progress, std::stop_token stop) {
+  if (auto e = validationError(request)) throw std::invalid_argument(*e);
+  return AtlasBuilder(request, progress, std::move(stop)).build();
+}
+
+std::string atlasPath(const Atlas& atlas, int node) {
+  std::vector<std::uint64_t> periods;
+  for (int i = node; i > 0; i = atlas.nodes.at(static_cast<std::size_t>(i)).parent)
+    periods.push_back(atlas.nodes[static_cast<std::size_t>(i)].period);
+  if (periods.empty()) return "centre";
+  std::string s;
+  for (auto it = periods.rbegin(); it != periods.rend(); ++it) s += (s.empty() ? "" : " > ") + std::to_string(*it);
+  return s;
+}
+
+}  // namespace archipelago

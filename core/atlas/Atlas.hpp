@@ -1,0 +1,136 @@
+#pragma once
+/// \file Atlas.hpp
+/// \brief The atlas of the archipelago (issue 38): the hierarchy of islands around islands of Q — which chains
+/// surround which island, each island's area, the flux into each chain's resonance zone and the mean residence time
+/// there — found from the elliptic fixed point down to a depth, a largest period and a smallest area.
+///
+/// Karney (1983), §6 and fig. 8: the central island at K = 0.1 is surrounded by a chain of six islands (rotation
+/// 1/6 about the centre), each of those by 23 (2/23 about it: the chain of order 138), and so on.  The tree is what
+/// the models of the tail are built from (Meiss & Ott, Physica D 20 (1986) 387; Alus, Fishman & Meiss, PRE 90 (2014)
+/// 054102).  The method (docs/atlas.md says why, and what it misses):
+///
+///  1. An island is a member c of an elliptic orbit of period n that lies on a symmetry line S (S₁: y = K − x², S₂:
+///     y = 0; the centre (−√K, 0) lies on both; every member of a chain on a line is scanned).  Points p_i = (c.x ± R i/N, y_S) of S on
+///     both sides of c (i = 1 … N; R = 2√K at the centre, else half the distance from c to the nearest other point of
+///     its orbit) are classified by their rotation number about c under Qⁿ (RotationNumber.hpp, T iterations per
+///     block, in the sense DQⁿ turns there): a **circle** is regular with no rational p/q (q ≤ maxPeriod/n) within
+///     its measured accuracy; a **chain** point regular at such a p/q ≠ 0; anything else (chaotic, escaping, not
+///     turning about c) is **outside**.
+///  2. The boundary circle on one side is the outermost circle point (a circle about c lies in c's island: orbits
+///     of the chains and circles outside it turn at a rational or not at all about c), bisected against its outer
+///     neighbour (`bisections` halvings).  Its orbit under Qⁿ (8192 points), ordered by the angle k·ω mod 1 that
+///     the conjugacy to the rotation ω gives each point, is a polygon whose shoelace area is the island's area
+///     (Green's theorem); the area with half the points gives its error.  A candidate whose polygon does not wind
+///     about c or has not converged (a sticky chaotic orbit that passed for regular) is dropped and the next circle
+///     inwards tried.  Of all sides the largest area is kept (the outermost circle).
+///  3. The chains: the chain points beyond the boundary (turning about c in the sense of its circles), grouped by p/q, each group's middle point giving the
+///     elliptic orbit of period n·q (ChainIdentification.hpp, ellipticOrbitAround); kept when it is stable.  Chain
+///     points inside the boundary are listed as internal rationals and not followed.
+///  4. For each chain: its hyperbolic partner (HyperbolicPartner.hpp) and the turnstile flux through its separatrix
+///     and the area the separatrix encloses (TurnstileFlux.hpp's zone: around the parent island, or around each of the
+///     parent chain's islands).  The layer is that area less the parent islands it encloses, and the mean residence
+///     time inside the barrier is layer / flux (steps; Kac's lemma, as the Kac check of KacCheck.hpp measures it,
+///     with the smaller islands inside the layer not subtracted).  At the centre the barrier is the fixed point
+///     (√K, 0)'s loop around the central island.
+///  5. Recursively, for one island of each chain (the member on a symmetry line nearest the scan; the others are its
+///     images under Q and have the same area), to `depth` levels below the centre; an island of area below minArea
+///     is listed and not followed.
+///
+/// Cost: level k scans 2N points of 2T·n steps each (scalar, in parallel) and a few Newton solves and flux
+/// computations of period n; at K = 0.1 depth 2 takes seconds to a minute on two cores (docs/atlas.md).
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <stop_token>
+#include <string>
+#include <vector>
+
+#include "core/map/MapParameters.hpp"
+#include "core/measures/ChainIdentification.hpp"
+#include "core/periodic/PeriodicOrbit.hpp"
+
+namespace archipelago {
+
+/// What to map.  Plain values; validationError() checks them.
+struct AtlasRequest {
+  MapParameters map;                                 ///< K in (0, 1) and the box Q* must stay in (orbits leaving it are outside)
+  int depth = 2;                                     ///< levels of chains below the centre, 0 … kMaxAtlasDepth
+  std::uint64_t maxPeriod = 1000;                    ///< largest period of a chain (the product of the q's), 1 … 100000
+  double minArea = 1e-7;                             ///< islands of smaller area are listed, not followed; ≥ 0
+  std::uint64_t iterations = 4000;                   ///< T of each rotation measurement (kMinIterations … kMaxIterations)
+  double digitsThreshold = kDefaultDigitsThreshold;  ///< regular when digits ≥ this
+  int scanPoints = 1000;                             ///< N: points of a symmetry line on each side of an island, 16 … 10000
+  double scanSteps = 2e9;                            ///< more points (up to 10000) where this many steps of the map allow:
+                                                     ///< islands of short period are scanned finely, 0 … 1e13
+  int bisections = 20;                               ///< halvings of the boundary's bracket, 0 … 60
+  int threads = 0;                                   ///< 0: one per core
+};
+
+inline constexpr int kMaxAtlasDepth = 6;
+
+/// The first violated rule, naming the field, or nothing.
+[[nodiscard]] std::optional<std::string> validationError(const AtlasRequest& r);
+
+/// The flux through a chain's separatrix (the fixed point (√K, 0)'s loop at the centre).
+struct AtlasFlux {
+  bool found = false;
+  std::string failure;            ///< why not, when not found
+  std::optional<PeriodicOrbit> partner;  ///< the hyperbolic partner (none at the centre: the fixed point (√K, 0))
+  long double flux = 0;           ///< lobe area: area crossing into the zone per step
+  long double zoneArea = 0;       ///< the area the barrier encloses (TurnstileFlux.hpp's zone: all its curves)
+  long double fluxDigits = 0;     ///< digits on which the action and the polygon agree for the lobe
+  long double zoneDigits = 0;     ///< the same for the zone
+  long double enclosedIslands = 0; ///< the islands the barrier encloses: the parent's (period × area; at the centre its own)
+  long double layerArea = 0;      ///< zoneArea − enclosedIslands: the layer an orbit that crossed the barrier moves in
+  double residence = 0;           ///< layerArea / flux: the mean residence time inside the barrier, in steps (Kac)
+};
+
+/// One island of the tree (with its chain: all the islands that are its images).
+struct AtlasNode {
+  int parent = -1;                       ///< index of the parent island, −1 at the centre
+  int level = 0;                         ///< 0: the central island
+  std::uint64_t period = 1;              ///< n: the chain's period (its number of islands)
+  std::optional<Rational> aboutParent;   ///< p/q about the parent island (q islands of this chain around each)
+  PeriodicOrbit orbit;                   ///< the elliptic orbit of the chain (the fixed point at the centre)
+  PhysicalPoint centre;                  ///< the member whose island was measured
+  bool onS1 = false;                     ///< its symmetry line: S₁ (else S₂)
+  int sense = 1;                         ///< +1: DQⁿ turns clockwise about it
+
+  long double scanRange = 0;             ///< R: how far along the line it was scanned (0 until scanned; set for the
+                                         ///< last level from the run of the parent's scan that found it)
+  bool boundaryFound = false;
+  std::string boundaryFailure;           ///< why not, when not found
+  PhysicalPoint boundaryPoint;           ///< a point of the boundary circle, on the symmetry line
+  double boundaryRotation = 0;           ///< its rotation number about `centre` (turns per Qⁿ)
+  double boundaryDigits = 0;
+  long double gap = 0;                   ///< width of the final bracket: the circle's distance to an outside point
+  long double area = 0;                  ///< one island's area (the boundary circle's)
+  long double areaError = 0;             ///< |area − area with half the points|
+  int areaPoints = 0;                    ///< points of the polygon
+
+  AtlasFlux flux;                        ///< through the chain's separatrix (the central island's loop at level 0)
+  std::vector<Rational> internal;        ///< rationals about `centre` found inside the boundary circle
+  std::vector<int> children;             ///< chains just outside, by index
+  std::string note;                      ///< why the recursion stopped here, when it did
+};
+
+struct Atlas {
+  AtlasRequest request;
+  std::vector<AtlasNode> nodes;          ///< nodes[0] is the central island; parents precede children
+  bool cancelled = false;
+  double seconds = 0;
+};
+
+/// Progress on the calling thread: nodes finished, nodes known so far, and what is being done.
+using AtlasProgress = std::function<void(int done, int known, const std::string& stage)>;
+
+/// Computes the atlas, the first levels first.  Throws std::invalid_argument when validationError(request) is set; a
+/// stop request returns what is finished (cancelled set).
+[[nodiscard]] Atlas computeAtlas(const AtlasRequest& request, const AtlasProgress& progress = {},
+                                 std::stop_token stop = {});
+
+/// "centre", "6", "6 > 138": the periods from the centre down to node i.
+[[nodiscard]] std::string atlasPath(const Atlas& atlas, int node);
+
+}  // namespace archipelago

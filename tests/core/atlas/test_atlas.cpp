@@ -1,0 +1,195 @@
+// The atlas (issue 38, core/atlas/Atlas.hpp): the paper's own example (§6: the chain of six islands, 1/6 about the
+// centre, just outside the central island at K = 0.1), each island's area by Green's theorem against an independent
+// measurement (the regular pixels of a Dig indicator map connected to the island's centre), the request's rules, and
+// a stop that keeps what is finished.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <algorithm>
+#include <cstdio>
+
+#include "core/atlas/AtlasExport.hpp"
+#include "core/manifolds/TurnstileFlux.hpp"
+#include "core/map/FixedPointMap.hpp"
+#include "core/measures/RotationNumber.hpp"
+#include "core/parallel/ParallelFor.hpp"
+
+namespace archipelago {
+namespace {
+
+AtlasRequest depthOne() {
+  AtlasRequest r;  // K = 0.1 in the paper's box
+  r.depth = 1;
+  r.maxPeriod = 200;
+  r.scanSteps = 0;  // 1000 points a side: enough for the island of six and its boundary, and quick under ASan
+  return r;
+}
+
+const Atlas& atlasK01() {
+  static const Atlas atlas = computeAtlas(depthOne());
+  return atlas;
+}
+
+const AtlasNode* chainOf(const Atlas& a, int parent, std::int64_t p, std::int64_t q) {
+  for (const AtlasNode& n : a.nodes)
+    if (n.parent == parent && n.aboutParent && n.aboutParent->p == p && n.aboutParent->q == q) return &n;
+  return nullptr;
+}
+
+/// The area of the pixels of a square of half-width `half` about the island's centre (cut to the box) whose orbits
+/// are regular and turn about the centre under Qⁿ at least as fast as its boundary circle: the island seen on a grid
+/// (pixel by pixel, over the whole square) instead of along a line with Green's theorem.  Chains outside turn slower
+/// (the twist), the parent's circles and other islands not at all; what the island's own thin chaotic layers hold is
+/// missed.
+double fasterArea(const AtlasNode& island, long double half, int size, double& pixelSize) {
+  const MapParameters map;
+  const long double L = static_cast<long double>(map.width());
+  const PhysicalPoint c = island.centre;
+  const long double x0 = std::max<long double>(c.x - half, map.xmin), x1 = std::min<long double>(c.x + half, map.xmax);
+  const long double y0 = std::max<long double>(c.y - half, -L / 2), y1 = std::min<long double>(c.y + half, L / 2);
+  const FixedPointMap N(map);
+  std::vector<char> inside(static_cast<std::size_t>(size) * size, 0);
+  parallelFor(inside.size(), [&](std::size_t i, int) {
+    const long double x = x0 + (x1 - x0) * (static_cast<long double>(i % size) + 0.5L) / size;
+    const long double y = y0 + (y1 - y0) * (static_cast<long double>(i / size) + 0.5L) / size;
+    RotationRequest m;
+    m.map = map;
+    m.start = N.toUnit(x, y);
+    m.centre = rotationCentreAt(map, c, island.sense);
+    m.power = island.period;
+    m.iterations = 2000;
+    m.digitsThreshold = 6;  // an orbit near a resonance inside the island converges more slowly than a circle
+    const RotationMeasurement r = measureRotation(m);
+    inside[i] = r.verdict == OrbitVerdict::Regular && r.rotation >= island.boundaryRotation - 1e-9;
+  });
+  const double dx = static_cast<double>((x1 - x0) / size), dy = static_cast<double>((y1 - y0) / size);
+  pixelSize = std::max(dx, dy);
+  return static_cast<double>(std::count(inside.begin(), inside.end(), 1)) * dx * dy;
+}
+
+TEST(Atlas, HoldsThePapersChainOfSixAroundTheCentreAtK01) {
+  const Atlas& a = atlasK01();
+  ASSERT_FALSE(a.nodes.empty());
+  const AtlasNode& root = a.nodes[0];
+  EXPECT_EQ(root.period, 1u);
+  ASSERT_TRUE(root.boundaryFound) << root.boundaryFailure;
+  // The boundary circle's rotation lies between the chain of six's 1/6 and the centre's linear ω₀ (cos 2πω₀ = 1 − 2√K).
+  const double omega0 = std::acos(1 - 2 * std::sqrt(0.1)) / (2 * std::acos(-1.0));
+  EXPECT_GT(root.boundaryRotation, 1.0 / 6);
+  EXPECT_LT(root.boundaryRotation, omega0);
+  const AtlasNode* six = chainOf(a, 0, 1, 6);
+  ASSERT_NE(six, nullptr) << "no chain 1/6 about the centre";
+  EXPECT_EQ(six->period, 6u);
+  EXPECT_TRUE(six->orbit.stable());
+  EXPECT_EQ(six->orbit.windingTurns, 1);
+  ASSERT_TRUE(six->boundaryFound);
+  // Every chain found outside the central island turns about it slower than its boundary circle (the twist).
+  for (int i : root.children) EXPECT_LT(static_cast<double>(a.nodes[i].orbit.rotationNumber), root.boundaryRotation);
+  // The six's separatrix is the one of docs/manifolds.md's table (its outer side): its flux and residence exist.
+  ASSERT_TRUE(six->flux.found) << six->flux.failure;
+  EXPECT_GT(six->flux.layerArea, 0);
+  EXPECT_NEAR(six->flux.residence, static_cast<double>(six->flux.layerArea / six->flux.flux), 1e-9 * six->flux.residence);
+}
+
+TEST(Atlas, IslandAreasAgreeWithTheFasterTurningPixelsAroundThem) {
+  const Atlas& a = atlasK01();
+  const AtlasNode* six = chainOf(a, 0, 1, 6);
+  ASSERT_NE(six, nullptr);
+  for (const AtlasNode* n : {&a.nodes[0], six}) {
+    ASSERT_TRUE(n->boundaryFound);
+    const long double radius = std::sqrt(n->area / std::acos(-1.0L));
+    double pixel = 0;
+    const double pixels = fasterArea(*n, 2.2L * radius, n->period == 1 ? 200 : 150, pixel);
+    // The pixels along the boundary may fall either way: a band one pixel wide around a curve no longer than
+    // twice the circle of the same area.
+    const double tolerance = 2 * 2 * std::acos(-1.0) * static_cast<double>(radius) * pixel;
+    std::printf("period %llu: Green %.6g, pixels %.6g (tolerance %.2g)\n", static_cast<unsigned long long>(n->period),
+                static_cast<double>(n->area), pixels, tolerance);
+    EXPECT_NEAR(pixels, static_cast<double>(n->area), tolerance) << "period " << n->period;
+    EXPECT_LT(static_cast<double>(n->areaError), 1e-3 * static_cast<double>(n->area));
+  }
+}
+
+TEST(Atlas, TheCentralIslandEndsJustInsideTheSeparatrixOfTheChainOfSix) {
+  // At K = 0.1 the chaotic layer between the central island and the six islands is thin (the inner turnstile's lobe
+  // is 2.1e−8 per step, docs/manifolds.md): the boundary circle lies inside the region the inner separatrix of the
+  // period-6 hyperbolic orbit encloses (the action sums of TurnstileFlux: another instrument), and close to it.
+  const Atlas& a = atlasK01();
+  const AtlasNode* six = chainOf(a, 0, 1, 6);
+  ASSERT_NE(six, nullptr);
+  ASSERT_TRUE(six->flux.partner);
+  TurnstileRequest t;
+  t.K = static_cast<long double>(MapParameters{}.K);
+  t.orbit = six->flux.partner;
+  t.side = BranchSide::Inward;
+  const TurnstileFlux inner = computeTurnstileFlux(t);
+  EXPECT_LT(a.nodes[0].area, inner.zoneArea);
+  EXPECT_GT(a.nodes[0].area, 0.99L * inner.zoneArea);
+}
+
+TEST(Atlas, RefusesBadRequestsNamingTheField) {
+  auto message = [](AtlasRequest r) { return validationError(r).value_or(""); };
+  AtlasRequest r = depthOne();
+  r.depth = kMaxAtlasDepth + 1;
+  EXPECT_NE(message(r).find("depth"), std::string::npos);
+  r = depthOne();
+  r.minArea = std::nan("");
+  EXPECT_NE(message(r).find("min area"), std::string::npos);
+  r = depthOne();
+  r.minArea = -1;
+  EXPECT_NE(message(r).find("min area"), std::string::npos);
+  r = depthOne();
+  r.map.K = 1.5;
+  EXPECT_NE(message(r).find("K"), std::string::npos);
+  r = depthOne();
+  r.maxPeriod = 0;
+  EXPECT_NE(message(r).find("max period"), std::string::npos);
+  r = depthOne();
+  r.scanPoints = 3;
+  EXPECT_NE(message(r).find("scan points"), std::string::npos);
+  r = depthOne();
+  r.threads = 100000;
+  EXPECT_NE(message(r).find("threads"), std::string::npos);
+  r = depthOne();
+  r.iterations = 1;
+  EXPECT_NE(message(r).find("iterations"), std::string::npos);
+  EXPECT_THROW((void)computeAtlas(r), std::invalid_argument);
+  EXPECT_EQ(validationError(depthOne()), std::nullopt);
+}
+
+TEST(Atlas, AStopKeepsTheIslandsFinished) {
+  std::stop_source stop;
+  AtlasRequest r = depthOne();
+  const Atlas a = computeAtlas(
+      r, [&](int done, int, const std::string&) {
+        if (done >= 1) stop.request_stop();
+      },
+      stop.get_token());
+  EXPECT_TRUE(a.cancelled);
+  ASSERT_FALSE(a.nodes.empty());
+  EXPECT_TRUE(a.nodes[0].boundaryFound);
+  EXPECT_LT(a.nodes.size(), atlasK01().nodes.size() + 1);
+}
+
+TEST(Atlas, JsonAndCsvCarryTheTreeAndItsParameters) {
+  const Atlas& a = atlasK01();
+  const auto j = nlohmann::json::parse(atlasJson(a));
+  EXPECT_EQ(j["format"], "archipelago atlas");
+  ASSERT_EQ(j["nodes"].size(), a.nodes.size());
+  EXPECT_EQ(j["provenance"]["K"], "0.1");
+  EXPECT_EQ(j["request"]["depth"], 1);
+  for (std::size_t i = 1; i < a.nodes.size(); ++i) {
+    const auto& n = j["nodes"][i];
+    EXPECT_EQ(n["parent"].get<int>(), a.nodes[i].parent);
+    EXPECT_EQ(n["about_parent"], toString(*a.nodes[i].aboutParent));
+  }
+  const std::string csv = atlasCsv(a);
+  std::size_t rows = 0;
+  for (std::size_t p = 0; (p = csv.find('\n', p)) != std::string::npos; ++p)
+    if (p + 1 < csv.size() && csv[p + 1] != '#') ++rows;
+  EXPECT_EQ(rows, a.nodes.size() + 1);  // the header and one row per island (the last newline ends the file)
+}
+
+}  // namespace
+}  // namespace archipelago
