@@ -17,6 +17,7 @@
 #include "core/measures/OrbitMeasures.hpp"
 #include "core/measures/RotationNumber.hpp"
 #include "core/parallel/ParallelFor.hpp"
+#include "core/provenance/Provenance.hpp"
 #include "core/periodic/HyperbolicPartner.hpp"
 #include "core/periodic/PeriodicOrbitFinder.hpp"
 #include "core/periodic/SmoothQuadraticMap.hpp"
