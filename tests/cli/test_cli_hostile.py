@@ -99,6 +99,8 @@ def baseline(command, d):
         "manifold": ["manifold", "--length", "0.5", "--out", os.path.join(d, "w.csv")],
         "flux": ["flux", "--vertices", "64", "--kac-samples", "50", "--kac-zone-samples", "50", "--kac-steps", "100",
                  "--out", os.path.join(d, "f.json")],
+        "atlas": ["atlas", "--depth", "0", "--scan-points", "16", "--scan-steps", "0", "--iterations", "100",
+                  "--json", os.path.join(d, "at.json"), "--quiet"],
         "tail": ["tail", "--first", "16", "--t-max", "100", "--population", "4", "--replicas", "2", "--warmup", "8",
                  "--min-ancestors", "1", "--out", os.path.join(d, "t.json"), "--quiet", "--threads", "1"],
     }.get(command)
