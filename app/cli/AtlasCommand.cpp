@@ -62,10 +62,14 @@ int runAtlas(AtlasOptions o) {
   const auto started = std::chrono::steady_clock::now();
   AtlasProgress progress;
   if (!o.quiet)
-    progress = [&](int done, int known, const std::string& stage) {
+    progress = [&](const Atlas& sofar, int done, const std::string& stage) {
       const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-      std::fprintf(stderr, "atlas: %d of %d islands known done, %s elapsed: %s\n", done, known, clockText(s).c_str(),
-                   stage.c_str());
+      const int known = static_cast<int>(sofar.nodes.size());
+      // The islands known so far at the mean time per island finished: a lower bound (deeper levels add islands).
+      const std::string eta =
+          done > 0 && known > done ? ", at least " + clockText(s / done * (known - done)) + " left" : "";
+      std::fprintf(stderr, "atlas: %d of %d islands known done, %s elapsed%s: %s\n", done, known,
+                   clockText(s).c_str(), eta.c_str(), stage.c_str());
     };
   Atlas atlas;
   try {

@@ -260,7 +260,7 @@ class AtlasBuilder {
       }
       const int i = queue.front();
       queue.pop_front();
-      if (progress_) progress_(done, static_cast<int>(atlas.nodes.size()), "island " + atlasPath(atlas, i));
+      if (progress_) progress_(atlas, done, "island " + atlasPath(atlas, i));
       const std::vector<AtlasNode> children = expand(atlas, i);
       if (stop_.stop_requested()) {
         atlas.cancelled = true;
@@ -273,8 +273,8 @@ class AtlasBuilder {
       }
       ++done;
     }
-    if (progress_) progress_(done, static_cast<int>(atlas.nodes.size()), atlas.cancelled ? "stopped" : "done");
     atlas.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    if (progress_) progress_(atlas, done, atlas.cancelled ? "stopped" : "done");
     return atlas;
   }
 

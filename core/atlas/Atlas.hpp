@@ -122,8 +122,10 @@ struct Atlas {
   double seconds = 0;
 };
 
-/// Progress on the calling thread: nodes finished, nodes known so far, and what is being done.
-using AtlasProgress = std::function<void(int done, int known, const std::string& stage)>;
+/// Progress on the calling thread, before each island and at the end: the atlas so far (its finished islands and
+/// those known but not yet measured: `known` = sofar.nodes.size()), how many are finished, and what is being done.
+/// A front end may copy `sofar` to show the tree as it grows (the first levels first).
+using AtlasProgress = std::function<void(const Atlas& sofar, int done, const std::string& stage)>;
 
 /// Computes the atlas, the first levels first.  Throws std::invalid_argument when validationError(request) is set; a
 /// stop request returns what is finished (cancelled set).

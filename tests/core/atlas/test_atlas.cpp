@@ -162,8 +162,11 @@ TEST(Atlas, AStopKeepsTheIslandsFinished) {
   std::stop_source stop;
   AtlasRequest r = depthOne();
   const Atlas a = computeAtlas(
-      r, [&](int done, int, const std::string&) {
-        if (done >= 1) stop.request_stop();
+      r, [&](const Atlas& sofar, int done, const std::string&) {
+        if (done >= 1) {
+          EXPECT_TRUE(sofar.nodes[0].boundaryFound);  // the atlas so far holds the finished islands
+          stop.request_stop();
+        }
       },
       stop.get_token());
   EXPECT_TRUE(a.cancelled);
