@@ -1,11 +1,17 @@
 #include "core/atlas/AtlasExport.hpp"
 
+#include <charconv>
 #include <cmath>
+#include <limits>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <sstream>
+#include <stdexcept>
 
 #include "core/io/AtomicFile.hpp"
+#include "core/io/Json.hpp"
 #include "core/io/NumberText.hpp"
+#include "core/periodic/PeriodicOrbitFinder.hpp"
 #include "core/provenance/Provenance.hpp"
 
 namespace archipelago {
@@ -133,6 +139,263 @@ std::string atlasCsv(const Atlas& a) {
         << (n.flux.found ? text(n.flux.residence, 6) : "") << ",\"" << n.note << "\"\n";
   }
   return out.str();
+}
+
+// ------------------------------------------------------------------------------------------------------ reading
+
+namespace {
+
+using rjson = nlohmann::json;
+
+[[noreturn]] void refuse(const std::string& what) { throw std::runtime_error(what); }
+
+/// The object's keys: every one of `required` present, none outside `required` and `optional`.
+void keys(const rjson& j, const std::string& where, std::initializer_list<const char*> required,
+          std::initializer_list<const char*> optional = {}) {
+  if (!j.is_object()) refuse(where + " must be a JSON object, not " + io::describeJson(j));
+  std::set<std::string> known(required.begin(), required.end());
+  known.insert(optional.begin(), optional.end());
+  for (auto it = j.begin(); it != j.end(); ++it)
+    if (!known.count(it.key())) refuse("unknown key '" + io::shortText(it.key()) + "' in " + where);
+  for (const char* k : required)
+    if (!j.contains(k)) refuse(where + " has no '" + k + "'");
+}
+
+
+double finite(const rjson& v, const std::string& key) {
+  if (!v.is_number()) refuse(key + " must be a number, not " + io::describeJson(v));
+  const double d = v.get<double>();
+  if (!std::isfinite(d)) refuse(key + " must be finite");
+  return d;
+}
+
+double nonNegative(const rjson& v, const std::string& key) {
+  const double d = finite(v, key);
+  if (!(d >= 0)) refuse(key + " = " + io::describeJson(v) + " must be ≥ 0");
+  return d;
+}
+
+/// A number, or null for the non-finite value the writer writes as null.
+double finiteOr(const rjson& v, const std::string& key, double null) { return v.is_null() ? null : finite(v, key); }
+
+std::uint64_t whole(const rjson& v, const std::string& key, std::uint64_t min, std::uint64_t max) {
+  const std::optional<std::uint64_t> n = io::wholeJson(v, max);
+  if (!n || *n < min)
+    refuse(key + " = " + io::describeJson(v) + " must be a whole number in [" + std::to_string(min) + ", " +
+           std::to_string(max) + "]");
+  return *n;
+}
+
+bool boolean(const rjson& v, const std::string& key) {
+  if (!v.is_boolean()) refuse(key + " must be true or false, not " + io::describeJson(v));
+  return v.get<bool>();
+}
+
+std::string string(const rjson& v, const std::string& key) {
+  if (!v.is_string()) refuse(key + " must be a string, not " + io::describeJson(v));
+  return v.get<std::string>();
+}
+
+PhysicalPoint point(const rjson& v, const std::string& key) {
+  if (!v.is_array() || v.size() != 2) refuse(key + " must be [x, y], not " + io::describeJson(v));
+  return {finite(v[0], key + "[0]"), finite(v[1], key + "[1]")};
+}
+
+/// "p/q": integers, q ≥ 1 (toString(Rational)'s text).
+Rational rational(const rjson& v, const std::string& key) {
+  const std::string s = string(v, key);
+  const auto slash = s.find('/');
+  Rational r;
+  const char* end = s.data() + s.size();
+  const bool ok = slash != std::string::npos && slash > 0 &&
+                  std::from_chars(s.data(), s.data() + slash, r.p).ptr == s.data() + slash &&
+                  slash + 1 < s.size() && s[slash + 1] != '-' && s[slash + 1] != '+' &&
+                  std::from_chars(s.data() + slash + 1, end, r.q).ptr == end && r.q >= 1;
+  if (!ok) refuse(key + " = " + io::describeJson(v) + " must be a fraction p/q with q ≥ 1");
+  return r;
+}
+
+/// An int in [min, max] (parents, senses): a JSON integer, signed or not.
+long long integer(const rjson& v, const std::string& key, long long min, long long max) {
+  if (!v.is_number_integer() || (v.is_number_unsigned() && v.get<std::uint64_t>() > static_cast<std::uint64_t>(max)) ||
+      v.get<long long>() < min || v.get<long long>() > max)
+    refuse(key + " = " + io::describeJson(v) + " must be an integer in [" + std::to_string(min) + ", " +
+           std::to_string(max) + "]");
+  return v.get<long long>();
+}
+
+AtlasRequest requestFrom(const rjson& j) {
+  AtlasRequest r;
+  const rjson& map = j.at("map");
+  keys(map, "map", {"K", "xmin", "xmax"});
+  r.map.K = finite(map.at("K"), "map.K");
+  r.map.xmin = finite(map.at("xmin"), "map.xmin");
+  r.map.xmax = finite(map.at("xmax"), "map.xmax");
+  const rjson& q = j.at("request");
+  keys(q, "request", {"depth", "max_period", "min_area", "iterations", "digits_threshold", "scan_points", "scan_steps",
+                      "bisections"});
+  r.depth = static_cast<int>(whole(q.at("depth"), "request.depth", 0, kMaxAtlasDepth));
+  r.maxPeriod = whole(q.at("max_period"), "request.max_period", 1, PeriodicOrbitSearch::kMaxPeriod);
+  r.minArea = finite(q.at("min_area"), "request.min_area");
+  r.iterations = whole(q.at("iterations"), "request.iterations", 0, std::numeric_limits<std::uint64_t>::max());
+  r.digitsThreshold = finite(q.at("digits_threshold"), "request.digits_threshold");
+  r.scanPoints = static_cast<int>(whole(q.at("scan_points"), "request.scan_points", 0, std::numeric_limits<int>::max()));
+  r.scanSteps = finite(q.at("scan_steps"), "request.scan_steps");
+  r.bisections = static_cast<int>(whole(q.at("bisections"), "request.bisections", 0, std::numeric_limits<int>::max()));
+  if (auto e = validationError(r)) refuse("request: " + *e);
+  return r;
+}
+
+AtlasNode nodeFrom(const rjson& o, const std::string& key, std::size_t index, const Atlas& atlas) {
+  keys(o, key, {"index", "parent", "level", "path", "period", "about_parent", "centre", "symmetry_line", "residue",
+                "sense", "scan_range", "boundary", "area", "area_error", "area_points", "islands_area", "flux",
+                "internal", "children", "note"});
+  const long double K = static_cast<long double>(atlas.request.map.K);
+  AtlasNode n;
+  if (whole(o.at("index"), key + ".index", 0, kMaxAtlasNodes) != index)
+    refuse(key + ".index = " + io::describeJson(o.at("index")) + " must be its position, " + std::to_string(index));
+  const long long maxParent = static_cast<long long>(index) - 1;
+  n.parent = static_cast<int>(integer(o.at("parent"), key + ".parent", index == 0 ? -1 : 0, maxParent));
+  if (index > 0 && n.parent < 0) refuse(key + ".parent must name an island before it");
+  const AtlasNode* parent = n.parent >= 0 ? &atlas.nodes[static_cast<std::size_t>(n.parent)] : nullptr;
+  n.level = static_cast<int>(whole(o.at("level"), key + ".level", 0, static_cast<std::uint64_t>(atlas.request.depth)));
+  if (n.level != (parent ? parent->level + 1 : 0))
+    refuse(key + ".level = " + std::to_string(n.level) + " must be " + std::to_string(parent ? parent->level + 1 : 0) +
+           (parent ? " (its parent's plus one)" : " (the centre)"));
+  (void)string(o.at("path"), key + ".path");  // written anew from the periods
+  n.period = whole(o.at("period"), key + ".period", 1, PeriodicOrbitSearch::kMaxPeriod);
+  if (o.at("about_parent").is_null()) {
+    if (parent) refuse(key + ".about_parent must be p/q about its parent island");
+  } else {
+    if (!parent) refuse(key + ".about_parent must be null at the centre");
+    n.aboutParent = rational(o.at("about_parent"), key + ".about_parent");
+    if (n.aboutParent->q > PeriodicOrbitSearch::kMaxPeriod)
+      refuse(key + ".about_parent = " + toString(*n.aboutParent) + ": q above the largest period");
+  }
+  const std::uint64_t expected = parent ? parent->period * static_cast<std::uint64_t>(n.aboutParent->q) : 1;
+  if (n.period != expected)
+    refuse(key + ".period = " + std::to_string(n.period) + " must be " + std::to_string(expected) +
+           (parent ? " (its parent's period times q of its p/q)" : " (the centre)"));
+  n.centre = point(o.at("centre"), key + ".centre");
+  const std::string line = string(o.at("symmetry_line"), key + ".symmetry_line");
+  if (line != "S1" && line != "S2") refuse(key + ".symmetry_line = " + io::describeJson(o.at("symmetry_line")) + " must be \"S1\" or \"S2\"");
+  n.onS1 = line == "S1";
+  n.orbit.K = K;
+  n.orbit.period = static_cast<int>(n.period);
+  n.orbit.points = {n.centre};
+  n.orbit.residue = finiteOr(o.at("residue"), key + ".residue", std::numeric_limits<double>::quiet_NaN());
+  n.orbit.symmetry = n.onS1 ? OrbitSymmetry::LineS1 : OrbitSymmetry::LineS2;
+  n.sense = static_cast<int>(integer(o.at("sense"), key + ".sense", -1, 1));
+  if (n.sense == 0) refuse(key + ".sense must be 1 or -1");
+  n.scanRange = nonNegative(o.at("scan_range"), key + ".scan_range");
+
+  const std::string bkey = key + ".boundary";
+  const rjson& b = o.at("boundary");
+  if (!b.is_object() || !b.contains("found")) refuse(bkey + " must be an object with 'found'");
+  n.boundaryFound = boolean(b.at("found"), bkey + ".found");
+  if (n.boundaryFound) {
+    keys(b, bkey, {"found", "point", "rotation", "digits", "bracket"});
+    n.boundaryPoint = point(b.at("point"), bkey + ".point");
+    n.boundaryRotation = finite(b.at("rotation"), bkey + ".rotation");
+    n.boundaryDigits = finite(b.at("digits"), bkey + ".digits");
+    n.gap = nonNegative(b.at("bracket"), bkey + ".bracket");
+  } else {
+    keys(b, bkey, {"found", "failure"});
+    n.boundaryFailure = string(b.at("failure"), bkey + ".failure");
+  }
+  n.area = nonNegative(o.at("area"), key + ".area");
+  n.areaError = nonNegative(o.at("area_error"), key + ".area_error");
+  n.areaPoints = static_cast<int>(whole(o.at("area_points"), key + ".area_points", 0, std::numeric_limits<int>::max()));
+  (void)finite(o.at("islands_area"), key + ".islands_area");  // written anew: period × area
+
+  const std::string fkey = key + ".flux";
+  const rjson& f = o.at("flux");
+  if (!f.is_object() || !f.contains("found")) refuse(fkey + " must be an object with 'found'");
+  n.flux.found = boolean(f.at("found"), fkey + ".found");
+  if (n.flux.found) {
+    keys(f, fkey, {"found", "flux_per_step", "zone_area", "enclosed_islands_area", "layer_area", "flux_agreeing_digits",
+                   "zone_agreeing_digits", "residence"},
+         {"partner"});
+    n.flux.flux = finite(f.at("flux_per_step"), fkey + ".flux_per_step");
+    if (!(n.flux.flux > 0)) refuse(fkey + ".flux_per_step must be > 0");
+    n.flux.zoneArea = nonNegative(f.at("zone_area"), fkey + ".zone_area");
+    n.flux.enclosedIslands = nonNegative(f.at("enclosed_islands_area"), fkey + ".enclosed_islands_area");
+    n.flux.layerArea = finite(f.at("layer_area"), fkey + ".layer_area");
+    const double all = std::numeric_limits<double>::infinity();  // null: every digit agrees
+    n.flux.fluxDigits = finiteOr(f.at("flux_agreeing_digits"), fkey + ".flux_agreeing_digits", all);
+    n.flux.zoneDigits = finiteOr(f.at("zone_agreeing_digits"), fkey + ".zone_agreeing_digits", all);
+    n.flux.residence = finite(f.at("residence"), fkey + ".residence");
+  } else {
+    keys(f, fkey, {"found", "failure"}, {"partner"});
+    n.flux.failure = string(f.at("failure"), fkey + ".failure");
+  }
+  if (const auto p = f.find("partner"); p != f.end()) {
+    if (!parent) refuse(fkey + ".partner: the centre's barrier is the fixed point's loop, it has none");
+    keys(*p, fkey + ".partner", {"point", "residue"});
+    PeriodicOrbit partner;
+    partner.K = K;
+    partner.period = static_cast<int>(n.period);
+    partner.points = {point(p->at("point"), fkey + ".partner.point")};
+    partner.residue = finiteOr(p->at("residue"), fkey + ".partner.residue", std::numeric_limits<double>::quiet_NaN());
+    n.flux.partner = std::move(partner);
+  }
+
+  const rjson& internal = o.at("internal");
+  if (!internal.is_array()) refuse(key + ".internal must be an array of p/q");
+  for (std::size_t k = 0; k < internal.size(); ++k)
+    n.internal.push_back(rational(internal[k], key + ".internal[" + std::to_string(k) + "]"));
+  const rjson& children = o.at("children");
+  if (!children.is_array()) refuse(key + ".children must be an array of indices");
+  for (std::size_t k = 0; k < children.size(); ++k) {
+    const std::uint64_t c = whole(children[k], key + ".children[" + std::to_string(k) + "]", index + 1, kMaxAtlasNodes);
+    if (!n.children.empty() && c <= static_cast<std::uint64_t>(n.children.back()))
+      refuse(key + ".children must be increasing indices");
+    n.children.push_back(static_cast<int>(c));
+  }
+  n.note = string(o.at("note"), key + ".note");
+  return n;
+}
+
+Atlas atlasFrom(const rjson& j) {
+  keys(j, "the atlas", {"format", "program", "provenance", "map", "request", "cancelled", "seconds", "nodes"});
+  if (!j.at("format").is_string() || j.at("format").get<std::string>() != "archipelago atlas")
+    refuse("format = " + io::describeJson(j.at("format")) + ": not an atlas (\"archipelago atlas\")");
+  (void)string(j.at("program"), "program");  // written anew
+  if (!j.at("provenance").is_object()) refuse("provenance must be a JSON object");
+  Atlas a;
+  a.request = requestFrom(j);
+  a.cancelled = boolean(j.at("cancelled"), "cancelled");
+  a.seconds = nonNegative(j.at("seconds"), "seconds");
+  const rjson& nodes = j.at("nodes");
+  if (!nodes.is_array()) refuse("nodes must be an array");
+  if (nodes.empty()) refuse("nodes must hold the central island at least");
+  if (nodes.size() > kMaxAtlasNodes)
+    refuse("nodes has " + std::to_string(nodes.size()) + " entries; at most " + std::to_string(kMaxAtlasNodes));
+  a.nodes.reserve(nodes.size());
+  std::size_t links = 0;
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    a.nodes.push_back(nodeFrom(nodes[i], "nodes[" + std::to_string(i) + "]", i, a));
+    links += a.nodes.back().children.size();
+  }
+  // Each child names its parent, and every island but the centre is a child once.
+  for (std::size_t i = 0; i < a.nodes.size(); ++i)
+    for (const int c : a.nodes[i].children)
+      if (static_cast<std::size_t>(c) >= a.nodes.size() || a.nodes[static_cast<std::size_t>(c)].parent != static_cast<int>(i))
+        refuse("nodes[" + std::to_string(i) + "].children names " + std::to_string(c) + ", which is not its child");
+  if (links != a.nodes.size() - 1) refuse("nodes: some island is missing from its parent's children");
+  return a;
+}
+
+}  // namespace
+
+Atlas atlasFromJson(const std::string& text) {
+  try {
+    return atlasFrom(io::parseJson(text));
+  } catch (const std::runtime_error&) {
+    throw;
+  } catch (const std::exception& e) {  // parseJson's std::invalid_argument; nlohmann's own, should one escape
+    throw std::runtime_error(e.what());
+  }
 }
 
 void writeAtlasJson(const std::filesystem::path& path, const Atlas& atlas) { io::writeFileAtomically(path, atlasJson(atlas)); }
