@@ -6,6 +6,7 @@
 #include <set>
 #include <stdexcept>
 
+#include "core/atlas/AtlasExport.hpp"
 #include "core/io/AtomicFile.hpp"
 #include "core/io/Json.hpp"
 #include "core/runfile/RunFile.hpp"
@@ -138,13 +139,14 @@ std::string sessionText(const Session& s) {
   j["segment"] = s.segmentRank < 0 ? json(nullptr) : json{{"rank", s.segmentRank}, {"position", s.segmentPosition}};
   j["plots"] = json::array();
   for (const SessionPlotZoom& z : s.plots) j["plots"].push_back({{"name", z.name}, {"zoom", rectJson(z.zoom)}});
+  if (s.atlas) j["atlas"] = json::parse(atlasJson(*s.atlas));
   return j.dump(1) + "\n";
 }
 
 namespace {
 Session sessionFromJson(json j) {
   spec::checkVersionedDocument(j, kSessionFormatName, kSessionFormatVersion, "an", "Archipelago session");
-  onlyKeys(j, "the session", {"format", "version", "spec", "run", "tab", "portrait", "segment", "plots"});
+  onlyKeys(j, "the session", {"format", "version", "spec", "run", "tab", "portrait", "segment", "plots", "atlas"});
 
   Session s;
   const auto spec = j.find("spec");
@@ -261,6 +263,20 @@ Session sessionFromJson(json j) {
       if (!seen.insert(z.name).second) bad("plot '" + z.name + "' is zoomed twice");
       s.plots.push_back(std::move(z));
     }
+  }
+
+  // The atlas of the islands, as core/atlas writes and reads it (no recomputation), of the map the session shows.
+  if (const auto a = j.find("atlas"); a != j.end()) {
+    try {
+      s.atlas = atlasFromJson(a->dump());
+    } catch (const std::exception& e) {
+      bad(std::string("atlas: ") + e.what());
+    }
+    const MapParameters& map = s.embeddedRun ? s.embeddedRun->params.map : s.spec.parameters.map;
+    if (!(s.atlas->request.map == map))
+      bad("atlas: of K = " + shortestDecimal(s.atlas->request.map.K) + " in [" + shortestDecimal(s.atlas->request.map.xmin) +
+          ", " + shortestDecimal(s.atlas->request.map.xmax) + "), not the session's map (K = " + shortestDecimal(map.K) +
+          " in [" + shortestDecimal(map.xmin) + ", " + shortestDecimal(map.xmax) + "))");
   }
   return s;
 }

@@ -20,7 +20,11 @@
 ///                 "periodic": [{"label": "7/20", "points": [[x, y], …]}, …],
 ///                 "manifolds": {"orbit": null | [[x, y], …]}},   (only when the manifolds are shown)
 ///    "segment": {"rank": 0, "position": 1234},
-///    "plots": [{"name": "f_t", "zoom": [xmin, xmax, ymin, ymax]}, …]}
+///    "plots": [{"name": "f_t", "zoom": [xmin, xmax, ymin, ymax]}, …],
+///    "atlas": {…atlas…}}   (only when the window holds one)
+///
+/// The atlas of the islands (issue 38, the Atlas page) is core/atlas's document as atlasJson() writes it, read back by
+/// atlasFromJson() (no recomputation); it must be of the session's map (its K and box), else the session is refused.
 
 #include <array>
 #include <cstdint>
@@ -30,6 +34,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/atlas/Atlas.hpp"
 #include "core/portrait/ColourMap.hpp"
 #include "core/portrait/PortraitRaster.hpp"
 #include "core/portrait/Viewport.hpp"
@@ -98,6 +103,7 @@ struct Session {
   int segmentRank = -1;                          ///< the selected long segment (−1: none)
   std::uint64_t segmentPosition = 0;             ///< its replay position (index of the current point)
   std::vector<SessionPlotZoom> plots;            ///< plots the user zoomed (others follow their data)
+  std::optional<Atlas> atlas;                    ///< the atlas of the islands shown (of the session's map)
 };
 
 /// The document's text (embedding the run when `embeddedRun` is set).

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <fstream>
 #include <limits>
 #include <random>
@@ -12,6 +13,7 @@
 #include <nlohmann/json.hpp>
 #include <unistd.h>
 
+#include "core/atlas/AtlasExport.hpp"
 #include "core/runfile/RunFile.hpp"
 #include "core/session/SessionFile.hpp"
 #include "tests/core/DecimalCommaLocale.hpp"
@@ -267,6 +269,68 @@ TEST(SessionFile, FilesAreBoundedAndRegular) {
   EXPECT_THROW((void)loadSession("/dev/zero"), std::invalid_argument);          // not a regular file
   std::ofstream(dir.path / "truncated.archipelago") << R"({"format": "archipelago-session", "vers)";
   EXPECT_THROW((void)loadSession(dir.path / "truncated.archipelago"), std::invalid_argument);
+}
+
+// Issue 38, deliverable 3: the Atlas page's atlas is kept in the session as core/atlas's document (read back, not
+// recomputed); a session without one opens as before, a corrupted one or one of another map is refused by name.
+Atlas smallAtlas(const MapParameters& map) {
+  Atlas a;
+  a.request.map = map;
+  a.request.depth = 1;
+  a.seconds = 3.25;
+  AtlasNode centre;
+  centre.centre = {-std::sqrt(map.K), 0};
+  centre.orbit.period = 1;
+  centre.orbit.points = {centre.centre};
+  centre.orbit.residue = std::sqrt(map.K);
+  centre.boundaryFound = true;
+  centre.boundaryPoint = {-0.08, 0};
+  centre.boundaryRotation = 0.17;
+  centre.boundaryDigits = 14;
+  centre.area = 0.2391965;
+  centre.areaError = 2e-7;
+  centre.areaPoints = 8192;
+  centre.children = {1};
+  AtlasNode six;
+  six.parent = 0;
+  six.level = 1;
+  six.period = 6;
+  six.aboutParent = Rational{1, 6};
+  six.centre = {0.0157, 0};
+  six.orbit.period = 6;
+  six.orbit.points = {six.centre};
+  six.boundaryFailure = "below the scan's resolution";
+  six.flux.failure = "no hyperbolic partner found between the islands";
+  a.nodes = {centre, six};
+  return a;
+}
+
+TEST(SessionFile, KeepsTheAtlasOfItsMap_Issue38) {
+  std::mt19937_64 rng(38);
+  Session s = fullSession(rng);
+  EXPECT_EQ(sessionText(s).find("\"atlas\""), std::string::npos);  // written only when there is one
+  EXPECT_FALSE(parseSession(sessionText(s)).atlas.has_value());    // and a session without it opens as before
+  s.atlas = smallAtlas(s.spec.parameters.map);
+  const std::string text = sessionText(s);
+  const Session back = parseSession(text);
+  expectSame(s, back);
+  ASSERT_TRUE(back.atlas.has_value());
+  EXPECT_EQ(atlasJson(*back.atlas), atlasJson(*s.atlas));
+  EXPECT_EQ(sessionText(back), text);
+
+  const auto withAtlas = [&](const std::function<void(nlohmann::json&)>& edit) {
+    nlohmann::json j = nlohmann::json::parse(text);
+    edit(j["atlas"]);
+    return j.dump();
+  };
+  expectRejected(withAtlas([](nlohmann::json& a) { a["nodes"][1]["period"] = -1; }), "atlas: nodes[1].period");
+  expectRejected(withAtlas([](nlohmann::json& a) { a["nodes"][1]["area"] = nullptr; }), "atlas: nodes[1].area");
+  expectRejected(withAtlas([](nlohmann::json& a) { a.erase("nodes"); }), "atlas: the atlas has no 'nodes'");
+  expectRejected(withAtlas([](nlohmann::json& a) { a = 3; }), "atlas: the atlas must be a JSON object");
+  expectRejected(withAtlas([](nlohmann::json& a) { a["map"]["K"] = 0.2; }), "not the session's map");
+  std::string truncated = text;
+  truncated.resize(text.find("\"nodes\"") + 20);
+  expectRejected(truncated, "");
 }
 
 }  // namespace
