@@ -36,6 +36,11 @@ namespace {
 constexpr int kTraceChannel = 0;     // a queue: each launched orbit once, in launch order
 constexpr int kManifoldChannel = 1;  // latest wins: the manifolds of the view shown
 constexpr int kFluxChannel = 2;      // latest wins: the flux of the orbit shown
+constexpr int kAtlasChannel = 3;     // latest wins: the atlas island selected
+
+/// Points drawn of an atlas island's boundary circle, per island of its chain, and in all.
+constexpr std::uint64_t kAtlasPointsPerIsland = 2000;
+constexpr std::uint64_t kMaxAtlasBoundaryPoints = 2'000'000;
 
 /// The smallest view aspect (and its inverse the largest) a rectangle zoom gives with equal aspect.
 constexpr double kMinCropAspect = 0.25;
@@ -75,7 +80,7 @@ PortraitController::PortraitController(QWidget* viewParent) : QObject(viewParent
   connect(v, &PortraitView::forwardRequested, this, &PortraitController::forward);
   connect(v, &PortraitView::resetRequested, this, &PortraitController::resetView);
   connect(v, &PortraitView::statusMessage, this, &PortraitController::statusMessage);
-  jobs_ = std::make_unique<BackgroundJobs>(this, 3);
+  jobs_ = std::make_unique<BackgroundJobs>(this, 4);
   measureJobs_ = std::make_unique<BackgroundJobs>(this, 1, JobPriority::background);
   updateFixedPoints();
   view_->display(map_, viewport());
@@ -117,6 +122,7 @@ bool PortraitController::setMap(const MapParameters& map, double Xr) {
   cleared_.clear();
   clearSegment();
   clearPeriodicOrbit();
+  clearAtlasIsland();
   showProfileLine(std::nullopt);
   manifoldOrbit_.reset();  // an orbit of another K
   flux_.reset();
@@ -630,6 +636,8 @@ void PortraitController::showProfileLine(std::optional<std::pair<PhysicalPoint, 
 
 void PortraitController::updateLegend() {
   QStringList lines = SegmentOverlay::legendLines(replay_, chain_, periodicPeriod_);
+  if (!atlasLabel_.isEmpty())
+    lines << tr("<span style='color:#78ff50'>●</span> boundary circle of the atlas island %1").arg(atlasLabel_.toHtmlEscaped());
   if (manifoldsShown_ && manifolds_)
     lines << tr("<span style='color:#ff5050'>━</span> unstable, <span style='color:#50a0ff'>━</span> stable manifold "
                 "of %1")
@@ -818,6 +826,81 @@ void PortraitController::drawManifolds() {
   view_->setLayer(PortraitLayer::lobes, std::move(lobes));
 }
 
+// ----------------------------------------------------------------------------------------------------- atlas
+
+void PortraitController::showAtlasIsland(const AtlasNode& node, const QString& label) {
+  const MapParameters map = map_;
+  const bool centre = node.parent < 0;
+  Job<AtlasIslandPtr> job;
+  job.channel = kAtlasChannel;  // latest wins: another island replaces this one
+  job.work = [map, node](JobContext<NoProgress>&) -> std::optional<AtlasIslandPtr> {
+    auto result = std::make_shared<AtlasIslandResult>();
+    const long double K = static_cast<long double>(map.K);
+    const int period = static_cast<int>(node.period);
+    // An orbit the atlas keeps whole is drawn as it is; one kept as a point (read from JSON) is found again from it.
+    const auto whole = [&](const PeriodicOrbit& orbit) -> std::optional<PeriodicOrbit> {
+      if (static_cast<int>(orbit.points.size()) == orbit.period && orbit.period > 0) return orbit;
+      if (orbit.points.empty()) return std::nullopt;
+      return refinePeriodicOrbit(K, orbit.period, orbit.points.front());
+    };
+    QStringList missing;
+    try {
+      if (node.boundaryFound) {
+        const std::uint64_t steps = std::clamp<std::uint64_t>(node.period * kAtlasPointsPerIsland, kLaunchedOrbitSteps,
+                                                              std::min(kMaxAtlasBoundaryPoints, limits::kOrbitLength));
+        result->boundary = toQt(archipelago::traceOrbit(map, node.boundaryPoint.x, node.boundaryPoint.y, steps, false));
+      }
+    } catch (const std::exception& e) {
+      missing << QObject::tr("the boundary circle (%1)").arg(QString::fromUtf8(e.what()));
+    }
+    result->chain = whole(node.orbit);
+    if (!result->chain) missing << QObject::tr("the chain's orbit of period %1 (not found again)").arg(period);
+    if (node.flux.partner) {
+      result->partner = whole(*node.flux.partner);
+      if (!result->partner) missing << QObject::tr("the hyperbolic partner (not found again)");
+    }
+    result->error = missing.join(QStringLiteral(", "));
+    return result;
+  };
+  job.done = [this, label, centre](JobResult<AtlasIslandPtr> r) {
+    atlasRequest_ = 0;
+    if (!r.ok()) {
+      Q_EMIT statusMessage(tr("Atlas island %1: %2").arg(label, r.error));
+      return;
+    }
+    atlasIsland_ = *r.value;
+    atlasLabel_ = atlasIsland_->boundary.empty() ? QString() : label;
+    if (view_) {
+      std::vector<QwtPlotItem*> items;
+      if (!atlasIsland_->boundary.empty()) {
+        auto* item = new PointsItem(PointsItem::Style::dots, atlasIsland_->boundary, QColor(120, 255, 80));
+        item->setTitle(tr("boundary circle of %1").arg(label));
+        items.push_back(item);
+      }
+      view_->setLayer(PortraitLayer::atlasIsland, std::move(items));
+    }
+    if (atlasIsland_->chain) showPeriodicOrbit(*atlasIsland_->chain);
+    // The barrier about the island's chain: the partner's manifolds (at the centre, the fixed point's loop).
+    if (centre) setManifoldOrbit(std::nullopt);
+    else if (atlasIsland_->partner) setManifoldOrbit(atlasIsland_->partner);
+    else setManifoldsShown(false);
+    updateLegend();
+    if (!atlasIsland_->error.isEmpty())
+      Q_EMIT statusMessage(tr("Atlas island %1: not drawn: %2").arg(label, atlasIsland_->error));
+    Q_EMIT atlasIslandShown();
+  };
+  atlasRequest_ = jobs_->submit(std::move(job));
+}
+
+void PortraitController::clearAtlasIsland() {
+  if (jobs_) jobs_->cancel(kAtlasChannel);
+  atlasRequest_ = 0;
+  atlasIsland_.reset();
+  atlasLabel_.clear();
+  if (view_) view_->setLayer(PortraitLayer::atlasIsland, {});
+  updateLegend();
+}
+
 // ------------------------------------------------------------------------------------------------- sessions
 
 SessionPortrait PortraitController::sessionState() const {
@@ -849,6 +932,7 @@ void PortraitController::restoreSession(const SessionPortrait& state, const MapP
   cleared_.clear();
   clearSegment();
   clearPeriodicOrbit();
+  clearAtlasIsland();
   setMode(state.mode);
   setColourMap(state.colours);
   if (state.budget > 0) setPointBudget(state.budget);

@@ -14,7 +14,9 @@
 /// Background work (ui/jobs/BackgroundJobs, values tagged with their request): launched orbits are traced on one
 /// channel (a queue: each orbit once, drawn as it arrives, never recomputing the earlier ones — issue #23, finding
 /// 5) and measured on a niced one (the rotation number and chain, issue #27); the manifolds of the visible view
-/// (latest request wins: a zoom refines them anew) and the turnstile flux (once per orbit) on their own channels.
+/// (latest request wins: a zoom refines them anew) and the turnstile flux (once per orbit) on their own channels; the
+/// island the Atlas page selected (its boundary circle traced, its orbits found again when the atlas came from a file)
+/// on one more.
 
 #include <QObject>
 #include <QPointer>
@@ -24,6 +26,7 @@
 #include <optional>
 #include <vector>
 
+#include "core/atlas/Atlas.hpp"
 #include "core/manifolds/ManifoldCurve.hpp"
 #include "core/manifolds/TurnstileFlux.hpp"
 #include "core/map/MapParameters.hpp"
@@ -58,6 +61,16 @@ struct FluxResult {
   double seconds = 0;
 };
 using FluxPtr = std::shared_ptr<const FluxResult>;
+
+/// What the portrait draws of an island of the atlas (the Atlas page, issue 38): its boundary circle, the orbit of its
+/// boundary point under Q (every island of its chain), and the chain's and its partner's orbits whole.
+struct AtlasIslandResult {
+  std::vector<QPointF> boundary;            ///< empty when the island has no boundary circle
+  std::optional<PeriodicOrbit> chain;       ///< the chain's elliptic orbit (the fixed point at the centre)
+  std::optional<PeriodicOrbit> partner;     ///< its hyperbolic partner (none at the centre, or when there is none)
+  QString error;                            ///< what could not be drawn, if anything
+};
+using AtlasIslandPtr = std::shared_ptr<const AtlasIslandResult>;
 
 class PortraitController : public QObject {
   Q_OBJECT
@@ -186,6 +199,19 @@ class PortraitController : public QObject {
   /// Nothing computing for the manifolds layer (tests).
   [[nodiscard]] bool manifoldsSettled() const;
 
+  // --- The atlas (issue 38) -------------------------------------------------------------------------------
+  /// Draws an island of an atlas of this map: its boundary circle (the orbit of node.boundaryPoint under Q, about
+  /// 2000 points per island of the chain, in its own layer), its chain as the periodic-orbit overlay and its partner's
+  /// manifolds (the fixed point (√K, 0)'s at the centre; the layer off when the chain has no partner), in the
+  /// background.  An orbit the atlas keeps as one point (an atlas read from JSON) is found again by core's Newton.
+  /// The view is the caller's (zoomToRegion).  `label` names the island in the legend ("6 > 138").
+  void showAtlasIsland(const AtlasNode& node, const QString& label);
+  /// Removes the boundary circle (the overlay and the manifolds stay).
+  void clearAtlasIsland();
+  /// What the last showAtlasIsland() drew (null: none yet, or cleared), and whether it is still computing (tests).
+  [[nodiscard]] AtlasIslandPtr atlasIsland() const noexcept { return atlasIsland_; }
+  [[nodiscard]] bool atlasIslandSettled() const noexcept { return atlasRequest_ == 0; }
+
   // --- Sessions (core/session) -------------------------------------------------------------------------
   /// The portrait's part of a session: the view history and its current entry, mode, colour map, points
   /// budget, the start points of launched orbits and the periodic-orbit overlay.
@@ -217,6 +243,8 @@ class PortraitController : public QObject {
   void orbitsChanged();
   /// The manifolds or the flux changed (computed, cleared).
   void manifoldsChanged();
+  /// An island of the atlas is drawn (showAtlasIsland's result arrived).
+  void atlasIslandShown();
 
  private:
   void show(bool record, const Viewport& view);
@@ -267,8 +295,12 @@ class PortraitController : public QObject {
   FluxPtr flux_;
   quint64 manifoldsRequest_ = 0;
   quint64 fluxRequest_ = 0;
+  AtlasIslandPtr atlasIsland_;
+  QString atlasLabel_;                              // the island whose boundary is drawn ("" : none)
+  quint64 atlasRequest_ = 0;
   // Last members: destroyed first, they stop the jobs and join their threads while everything they use lives.
-  std::unique_ptr<BackgroundJobs> jobs_;            // channels: kTraceChannel, kManifoldChannel, kFluxChannel
+  std::unique_ptr<BackgroundJobs> jobs_;            // channels: kTraceChannel, kManifoldChannel, kFluxChannel,
+                                                    // kAtlasChannel
   std::unique_ptr<BackgroundJobs> measureJobs_;     // niced: the measures of launched orbits, a queue
 };
 

@@ -24,6 +24,7 @@ enum class PortraitLayer {
   segment,         ///< the selected long segment (dots coloured by time)
   segmentChain,    ///< the centre orbit of its island chain
   segmentStep,     ///< the step of the segment shown, with a trail of the steps before it
+  atlasIsland,     ///< the boundary circle of the island selected on the Atlas page (every island of its chain)
   periodicOrbits,  ///< orbits from the "Find periodic orbit" dialog
   profileLine,     ///< the segment of the rotation-profile tool
 };

@@ -26,6 +26,7 @@
 #include "core/io/NumberText.hpp"
 #include "core/portrait/ColourMap.hpp"
 #include "core/portrait/StochasticArea.hpp"
+#include "ui/portrait/AtlasPanel.hpp"
 #include "ui/portrait/ManifoldsPanel.hpp"
 #include "ui/portrait/OrbitListPanel.hpp"
 #include "ui/portrait/OverflowToolBar.hpp"
@@ -187,19 +188,22 @@ PortraitPanel::PortraitPanel(QWidget* parent) : QWidget(parent) {
   hint->setToolTip(hint->text());
   hint->setStyleSheet(QStringLiteral("color: palette(mid);"));
 
-  // The side pages: launched orbits, manifolds and flux, rotation profile (and the window's own).
+  // The side pages: launched orbits, manifolds and flux, rotation profile, the atlas (and the window's own).
   side_ = new QTabWidget(this);
   side_->setObjectName(QStringLiteral("portraitSidePages"));
   side_->setDocumentMode(true);
   orbitList_ = new OrbitListPanel(c, side_);
   manifoldsPanel_ = new ManifoldsPanel(c, side_);
   profilePanel_ = new RotationProfilePanel(c, side_);
+  atlasPanel_ = new AtlasPanel(c, side_);
   side_->addTab(orbitList_, tr("Orbits"));
   side_->addTab(manifoldsPanel_, tr("Manifolds"));
   side_->addTab(profilePanel_, tr("Profile"));
+  side_->addTab(atlasPanel_, tr("Atlas"));
   connect(orbitList_, &OrbitListPanel::statusMessage, this, &PortraitPanel::statusMessage);
   connect(manifoldsPanel_, &ManifoldsPanel::statusMessage, this, &PortraitPanel::statusMessage);
   connect(profilePanel_, &RotationProfilePanel::statusMessage, this, &PortraitPanel::statusMessage);
+  connect(atlasPanel_, &AtlasPanel::statusMessage, this, &PortraitPanel::statusMessage);
   connect(profilePanel_, &RotationProfilePanel::toolChanged, this, [this](bool on) {
     const QSignalBlocker block(profileTool_);
     profileTool_->setChecked(on);

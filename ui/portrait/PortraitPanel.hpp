@@ -33,6 +33,7 @@ class QToolButton;
 
 namespace archipelago::ui {
 
+class AtlasPanel;
 class ManifoldsPanel;
 class OrbitListPanel;
 class OverflowToolBar;
@@ -84,12 +85,14 @@ class PortraitPanel : public QWidget {
   [[nodiscard]] PortraitDisplay display() const;
   void setDisplay(const PortraitDisplay& display);
 
-  /// The side pages beside the portrait: launched orbits, manifolds and flux, rotation profile; the window adds
-  /// its own (the live f_t and C_τ of the run).
+  /// The side pages beside the portrait: launched orbits, manifolds and flux, rotation profile, the atlas of the
+  /// islands; the window adds its own (the live f_t and C_τ of the run).
   [[nodiscard]] QTabWidget* sidePages() const noexcept { return side_; }
   [[nodiscard]] OrbitListPanel* orbitList() const noexcept { return orbitList_; }
   [[nodiscard]] ManifoldsPanel* manifoldsPanel() const noexcept { return manifoldsPanel_; }
   [[nodiscard]] RotationProfilePanel* profilePanel() const noexcept { return profilePanel_; }
+  /// The Atlas page (issue 38): its atlas is part of a session (SessionController saves and restores it).
+  [[nodiscard]] AtlasPanel* atlasPanel() const noexcept { return atlasPanel_; }
   /// The splitter between the portrait and the side pages.
   [[nodiscard]] QSplitter* splitter() const noexcept { return splitter_; }
 
@@ -131,6 +134,7 @@ class PortraitPanel : public QWidget {
   OrbitListPanel* orbitList_ = nullptr;
   ManifoldsPanel* manifoldsPanel_ = nullptr;
   RotationProfilePanel* profilePanel_ = nullptr;
+  AtlasPanel* atlasPanel_ = nullptr;
 
   QActionGroup* modeGroup_ = nullptr;
   QActionGroup* colourGroup_ = nullptr;

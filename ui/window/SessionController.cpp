@@ -12,6 +12,7 @@
 #include "ui/run/RunController.hpp"
 #include "ui/window/StatisticsView.hpp"
 #include "ui/plots/StatisticsPlot.hpp"
+#include "ui/portrait/AtlasPanel.hpp"
 #include "ui/portrait/PortraitController.hpp"
 #include "ui/portrait/PortraitPanel.hpp"
 #include "ui/segments/LongSegmentsPanel.hpp"
@@ -44,6 +45,11 @@ Session SessionController::capture(const QString& sessionPath) const {
 
   s.tab = parts_.tabs->tabText(parts_.tabs->currentIndex()).remove(QLatin1Char('&')).toStdString();
   s.portrait = parts_.portrait->sessionState();
+  // The Atlas page's atlas, when it is of the map the session opens with (core refuses another map's).
+  if (auto atlas = parts_.portrait->atlasPanel()->sessionAtlas()) {
+    const MapParameters& map = s.embeddedRun ? s.embeddedRun->params.map : s.spec.parameters.map;
+    if (atlas->request.map == map) s.atlas = std::move(atlas);
+  }
 
   const LongSegmentsPanel& segments = *parts_.segments;
   if (run.latest() && segments.selectedRow() >= 0) {
@@ -147,6 +153,7 @@ void SessionController::applyViews(const Session& s) {
   const TrappingParameters& p =
       s.embeddedRun ? s.embeddedRun->params : s.spec.parameters;
   parts_.portrait->restoreSessionState(s.portrait, p.map, p.Xr);
+  parts_.portrait->atlasPanel()->restoreAtlas(s.atlas);  // read back by core, not recomputed; none clears the page
 }
 
 void SessionController::applyRunDependent(const Session& s) {

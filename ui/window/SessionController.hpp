@@ -4,8 +4,8 @@
 ///
 /// A session holds the parameters, the run (referenced when it is saved in a file and unchanged since, else
 /// embedded), the portrait's exact view with its history, mode, colour map, points budget, launched orbits and
-/// periodic-orbit overlays, the selected long segment with its replay position, the plots the user zoomed, and
-/// the active tab.  Opening reads and validates the whole file first (core), then checks what only the window
+/// periodic-orbit overlays, the selected long segment with its replay position, the plots the user zoomed, the
+/// active tab, and the Atlas page's atlas (of the session's map; while it computes, the islands finished so far).  Opening reads and validates the whole file first (core), then checks what only the window
 /// knows (plot and tab names): a bad or foreign file changes nothing and the reason is returned.  Discarding
 /// unsaved work asks (the run controller).  What depends on the run (the segment table, plot ranges) is applied
 /// when its analysis has come back.

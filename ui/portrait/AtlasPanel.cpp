@@ -1,0 +1,526 @@
+#include "ui/portrait/AtlasPanel.hpp"
+
+#include <QDir>
+#include <QElapsedTimer>
+#include <QFileDialog>
+#include <QFont>
+#include <QFormLayout>
+#include <QHBoxLayout>
+#include <QHeaderView>
+#include <QLabel>
+#include <QPushButton>
+#include <QScrollArea>
+#include <QSpinBox>
+#include <QSplitter>
+#include <QStringList>
+#include <QTimer>
+#include <QTreeWidget>
+#include <QVBoxLayout>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "core/atlas/AtlasExport.hpp"
+#include "core/periodic/PeriodicOrbitFinder.hpp"
+#include "core/periodic/SegmentAnalysis.hpp"
+#include "ui/jobs/BackgroundJobs.hpp"
+#include "ui/jobs/DurationText.hpp"
+#include "ui/portrait/PortraitController.hpp"
+#include "ui/settings/SettingsController.hpp"
+
+namespace archipelago::ui {
+
+/// One step of the computation: the atlas so far, how many islands are finished, what core does next.
+struct AtlasPanel::Snapshot {
+  std::shared_ptr<const Atlas> atlas;
+  int done = 0;
+  std::string stage;
+};
+
+namespace {
+
+/// The deepest level the page offers: each level multiplies the islands and the time (depth 2 at K = 0.1 takes
+/// minutes on two cores, docs/atlas.md); deeper trees are `archipelago-cli atlas`'s.
+constexpr int kPageMaxDepth = std::min(3, kMaxAtlasDepth);
+
+/// The view of an island: a square about its centre of half-width this many times the radius of a disc of its area
+/// (the whole island, elongated or not, and the chains about it).
+constexpr long double kViewRadii = 1.75L;
+
+QString number(long double v, int digits = 4) {
+  return std::isfinite(v) ? QString::number(static_cast<double>(v), 'g', digits) : QStringLiteral("–");
+}
+
+QString point(PhysicalPoint p) {
+  return QStringLiteral("(%1, %2)").arg(number(p.x, 12), number(p.y, 12));
+}
+
+/// Measured: its boundary circle found or refused (an island known but not reached yet has neither).
+bool measured(const AtlasNode& n) { return n.boundaryFound || !n.boundaryFailure.empty(); }
+
+QString path(const Atlas& a, int i) { return QString::fromStdString(atlasPath(a, i)); }
+
+QString rotationText(const AtlasNode& n) {
+  return n.aboutParent ? QString::fromStdString(toString(*n.aboutParent)) : QStringLiteral("–");
+}
+
+/// Why the recursion stopped there, and what failed (the boundary, the flux).
+QString noteText(const AtlasNode& n) {
+  QStringList parts;
+  if (!n.note.empty()) parts << QString::fromStdString(n.note);
+  if (!n.boundaryFound && !n.boundaryFailure.empty()) parts << QString::fromStdString(n.boundaryFailure);
+  if (measured(n) && !n.flux.found && !n.flux.failure.empty())
+    parts << QObject::tr("flux: %1").arg(QString::fromStdString(n.flux.failure));
+  return parts.join(QStringLiteral("; "));
+}
+}  // namespace
+
+AtlasPanel::AtlasPanel(PortraitController* controller, QWidget* parent)
+    : QWidget(parent),
+      controller_(controller),
+      elapsed_(std::make_unique<QElapsedTimer>()),
+      jobs_(std::make_unique<BackgroundJobs>(this, 1, JobPriority::background)) {
+  const AtlasRequest defaults;  // core's
+  depth_ = new QSpinBox(this);
+  depth_->setObjectName(QStringLiteral("atlasDepth"));
+  depth_->setRange(0, kPageMaxDepth);
+  depth_->setValue(std::min(defaults.depth, kPageMaxDepth));
+  depth_->setToolTip(tr("Levels of chains below the centre (1: the chains about the central island, seconds; 2: the "
+                        "chains about those, minutes); deeper trees: archipelago-cli atlas"));
+  maxPeriod_ = new QSpinBox(this);
+  maxPeriod_->setObjectName(QStringLiteral("atlasMaxPeriod"));
+  maxPeriod_->setRange(1, PeriodicOrbitSearch::kMaxPeriod);
+  maxPeriod_->setValue(static_cast<int>(defaults.maxPeriod));
+  maxPeriod_->setGroupSeparatorShown(true);
+  maxPeriod_->setToolTip(tr("The largest period of a chain (the product of the q's from the centre)"));
+  compute_ = new QPushButton(tr("Compute"), this);
+  compute_->setToolTip(tr("The atlas of the portrait's K, the first levels first (the tree fills as each island is "
+                          "measured)"));
+  stop_ = new QPushButton(tr("Stop"), this);
+  stop_->setToolTip(tr("Stop: the islands measured so far stay"));
+  connect(compute_, &QPushButton::clicked, this, [this] { compute(request()); });
+  connect(stop_, &QPushButton::clicked, this, &AtlasPanel::stop);
+
+  progress_ = new QLabel(this);
+  progress_->setObjectName(QStringLiteral("atlasProgress"));
+  progress_->setWordWrap(true);
+
+  tree_ = new QTreeWidget(this);
+  tree_->setObjectName(QStringLiteral("atlasTree"));
+  tree_->setColumnCount(columns);
+  tree_->setHeaderLabels({tr("island"), tr("period"), tr("p/q"), tr("area ± error"), tr("flux/step"), tr("layer"),
+                          tr("residence"), tr("note")});
+  tree_->headerItem()->setToolTip(island, tr("The periods from the centre down (core's atlasPath)"));
+  tree_->headerItem()->setToolTip(rotation, tr("The chain's rotation about its parent island"));
+  tree_->headerItem()->setToolTip(area, tr("One island's area (Green's theorem on its boundary circle) ± the change "
+                                           "with half the points"));
+  tree_->headerItem()->setToolTip(flux, tr("The turnstile's lobe area: the area crossing the chain's barrier per step"));
+  tree_->headerItem()->setToolTip(layer, tr("The area inside the barrier less the islands in it"));
+  tree_->headerItem()->setToolTip(residence, tr("Mean residence time inside the barrier: layer / flux, in steps (Kac)"));
+  tree_->header()->setSectionResizeMode(QHeaderView::ResizeToContents);
+  tree_->header()->setStretchLastSection(false);
+  tree_->setUniformRowHeights(true);
+  tree_->setAlternatingRowColors(true);
+  tree_->setSelectionMode(QAbstractItemView::SingleSelection);
+  tree_->setToolTip(tr("Click an island: the portrait zooms to it and draws its boundary circle, its chain and its "
+                       "partner's manifolds"));
+  const auto clicked = [this](QTreeWidgetItem* item) {
+    if (item) showIsland(item->data(island, Qt::UserRole).toInt());
+  };
+  connect(tree_, &QTreeWidget::itemClicked, this, clicked);
+  connect(tree_, &QTreeWidget::itemActivated, this, clicked);
+  connect(tree_, &QTreeWidget::currentItemChanged, this, &AtlasPanel::updateDetails);
+
+  details_ = new QLabel(this);
+  details_->setObjectName(QStringLiteral("atlasDetails"));
+  details_->setWordWrap(true);
+  details_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  details_->setAlignment(Qt::AlignTop | Qt::AlignLeft);
+
+  json_ = new QPushButton(tr("Export JSON…"), this);
+  json_->setToolTip(tr("The atlas as `archipelago-cli atlas --json` writes it"));
+  csv_ = new QPushButton(tr("Export CSV…"), this);
+  csv_->setToolTip(tr("One row per island, as `archipelago-cli atlas --csv` writes it"));
+  const auto exportDialog = [this](bool json) {
+    const QString name = json ? QStringLiteral("atlas.json") : QStringLiteral("atlas.csv");
+    const QString path = QFileDialog::getSaveFileName(
+        this, json ? tr("Export the atlas as JSON") : tr("Export the atlas as CSV"),
+        QDir(SettingsController::lastFolder()).filePath(name), json ? tr("JSON files (*.json)") : tr("CSV files (*.csv)"));
+    if (path.isEmpty()) return;
+    SettingsController::rememberFolder(path);
+    QString error;
+    const bool ok = json ? exportJson(path, &error) : exportCsv(path, &error);
+    Q_EMIT statusMessage(ok ? tr("Wrote %1").arg(path) : tr("Export failed: %1").arg(error));
+  };
+  connect(json_, &QPushButton::clicked, this, [exportDialog] { exportDialog(true); });
+  connect(csv_, &QPushButton::clicked, this, [exportDialog] { exportDialog(false); });
+
+  clock_ = new QTimer(this);
+  clock_->setInterval(1000);
+  connect(clock_, &QTimer::timeout, this, &AtlasPanel::updateProgress);
+  // A new map keeps the atlas (a change of K loses no work); it says whose it is, and draws nothing of another map.
+  connect(controller_, &PortraitController::mapChanged, this, [this] {
+    updateProgress();
+    updateButtons();
+  });
+
+  auto* form = new QFormLayout;
+  form->setContentsMargins(0, 0, 0, 0);
+  auto* numbers = new QHBoxLayout;
+  numbers->addWidget(depth_);
+  numbers->addWidget(new QLabel(tr("max period"), this));
+  numbers->addWidget(maxPeriod_, 1);
+  form->addRow(tr("Depth"), numbers);
+  auto* buttons = new QHBoxLayout;
+  buttons->addWidget(compute_);
+  buttons->addWidget(stop_);
+  auto* exports = new QHBoxLayout;
+  exports->addWidget(json_);
+  exports->addWidget(csv_);
+  // The tree above the selected island's numbers, the split movable; the numbers scroll (a long note never sets the
+  // page's, hence the window's, minimum height).
+  auto* detailsArea = new QScrollArea(this);
+  detailsArea->setWidget(details_);
+  detailsArea->setWidgetResizable(true);
+  detailsArea->setFrameShape(QFrame::NoFrame);
+  detailsArea->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+  detailsArea->setMinimumHeight(40);
+  tree_->setMinimumHeight(80);
+  auto* split = new QSplitter(Qt::Vertical, this);
+  split->setObjectName(QStringLiteral("atlasSplitter"));
+  split->setChildrenCollapsible(false);
+  split->addWidget(tree_);
+  split->addWidget(detailsArea);
+  split->setStretchFactor(0, 3);
+  split->setStretchFactor(1, 2);
+  auto* layout = new QVBoxLayout(this);
+  layout->setContentsMargins(2, 4, 2, 2);
+  layout->addLayout(form);
+  layout->addLayout(buttons);
+  layout->addWidget(progress_);
+  layout->addWidget(split, 1);
+  layout->addLayout(exports);
+  updateProgress();
+  updateDetails();
+  updateButtons();
+}
+
+AtlasPanel::~AtlasPanel() { jobs_.reset(); }
+
+QTreeWidgetItem* AtlasPanel::item(int index) const {
+  return index >= 0 && index < static_cast<int>(items_.size()) ? items_[static_cast<std::size_t>(index)] : nullptr;
+}
+
+QString AtlasPanel::progressText() const { return progress_->text(); }
+QString AtlasPanel::detailsText() const { return details_->text(); }
+
+AtlasRequest AtlasPanel::request() const {
+  AtlasRequest r;
+  r.map = controller_->map();
+  r.depth = depth_->value();
+  r.maxPeriod = static_cast<std::uint64_t>(maxPeriod_->value());
+  return r;
+}
+
+bool AtlasPanel::compute(const AtlasRequest& r) {
+  if (const auto e = validationError(r)) {
+    Q_EMIT statusMessage(tr("Atlas: %1").arg(QString::fromStdString(*e)));
+    return false;
+  }
+  jobs_->cancel();
+  tree_->clear();
+  items_.clear();
+  atlas_.reset();
+  restored_ = false;
+  done_ = 0;
+  stage_ = tr("starting");
+  elapsed_->start();
+  clock_->start();
+  Job<std::shared_ptr<const Atlas>, Snapshot> job;  // latest wins: Compute again replaces this one
+  job.work = [r](JobContext<Snapshot>& context) -> std::optional<std::shared_ptr<const Atlas>> {
+    // Before each island core hands the atlas so far: a copy goes to the page, which shows the tree as it grows.
+    Atlas atlas = computeAtlas(
+        r,
+        [&context](const Atlas& sofar, int done, const std::string& stage) {
+          context.post(Snapshot{std::make_shared<const Atlas>(sofar), done, stage});
+        },
+        context.stopToken());
+    return std::make_shared<const Atlas>(std::move(atlas));
+  };
+  job.progress = [this](quint64 id, Snapshot s) {
+    if (id != request_) return;
+    show(std::move(s.atlas), s.done, QString::fromStdString(s.stage));
+  };
+  job.done = [this](JobResult<std::shared_ptr<const Atlas>> result) {
+    if (result.id != request_) return;
+    request_ = 0;
+    clock_->stop();
+    if (!result.ok()) {
+      Q_EMIT statusMessage(tr("Atlas failed: %1").arg(result.error));
+      std::shared_ptr<Atlas> sofar;  // what was finished stays, marked incomplete
+      if (atlas_) {
+        sofar = std::make_shared<Atlas>(*atlas_);
+        sofar->cancelled = true;
+        sofar->seconds = static_cast<double>(elapsed_->elapsed()) / 1000;
+      }
+      show(sofar, -1, QString());
+    } else {
+      const std::shared_ptr<const Atlas> atlas = *result.value;
+      show(atlas, -1, QString());
+      Q_EMIT statusMessage(atlas->cancelled ? tr("Atlas stopped: the islands measured so far are kept")
+                                            : tr("Atlas of %1 islands in %2")
+                                                  .arg(atlas->nodes.size())
+                                                  .arg(formatDuration(atlas->seconds)));
+    }
+    Q_EMIT computationEnded();
+  };
+  request_ = jobs_->submit(std::move(job));
+  updateProgress();
+  updateButtons();
+  updateDetails();
+  Q_EMIT statusMessage(tr("Computing the atlas of K = %1 to depth %2…").arg(r.map.K, 0, 'g', 17).arg(r.depth));
+  return true;
+}
+
+void AtlasPanel::stop() {
+  if (!request_) return;
+  jobs_->requestStop(request_);
+  stage_ = tr("stopping (the island under way ends first)");
+  updateProgress();
+}
+
+std::optional<Atlas> AtlasPanel::sessionAtlas() const {
+  if (!atlas_) return std::nullopt;
+  Atlas a = *atlas_;
+  if (busy()) {  // the atlas so far: incomplete, as a stopped one
+    a.cancelled = true;
+    a.seconds = static_cast<double>(elapsed_->elapsed()) / 1000;
+  }
+  return a;
+}
+
+void AtlasPanel::restoreAtlas(const std::optional<Atlas>& atlas) {
+  jobs_->cancel();
+  request_ = 0;
+  clock_->stop();
+  tree_->clear();
+  items_.clear();
+  restored_ = atlas.has_value();
+  show(atlas ? std::make_shared<const Atlas>(*atlas) : nullptr, -1, QString());
+}
+
+void AtlasPanel::show(std::shared_ptr<const Atlas> atlas, int done, const QString& stage) {
+  atlas_ = std::move(atlas);
+  done_ = done;
+  stage_ = stage;
+  fillTree();
+  updateProgress();
+  updateDetails();
+  updateButtons();
+  Q_EMIT atlasChanged();
+}
+
+void AtlasPanel::fillTree() {
+  if (!atlas_) {
+    tree_->clear();
+    items_.clear();
+    return;
+  }
+  const std::vector<AtlasNode>& nodes = atlas_->nodes;
+  if (nodes.size() < items_.size()) {  // another atlas
+    tree_->clear();
+    items_.clear();
+  }
+  const QFont plain = tree_->font();
+  QFont italic = plain;
+  italic.setItalic(true);
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const AtlasNode& n = nodes[i];
+    const int index = static_cast<int>(i);
+    if (i >= items_.size()) {
+      QTreeWidgetItem* parent = item(n.parent);
+      auto* row = parent ? new QTreeWidgetItem(parent) : new QTreeWidgetItem(tree_);
+      row->setData(island, Qt::UserRole, index);
+      for (int c = period; c < note; ++c) row->setTextAlignment(c, Qt::AlignRight | Qt::AlignVCenter);
+      items_.push_back(row);
+      if (parent && n.level == 1) parent->setExpanded(true);  // the first level shows; deeper ones on demand
+    }
+    QTreeWidgetItem* row = items_[i];
+    row->setText(island, path(*atlas_, index));
+    row->setText(period, QString::number(n.period));
+    row->setText(rotation, rotationText(n));
+    const bool done = measured(n);
+    row->setText(area, n.boundaryFound ? tr("%1 ± %2").arg(number(n.area), number(n.areaError, 2)) : QStringLiteral("–"));
+    row->setText(flux, n.flux.found ? number(n.flux.flux) : QStringLiteral("–"));
+    row->setText(layer, n.flux.found ? number(n.flux.layerArea) : QStringLiteral("–"));
+    row->setText(residence, n.flux.found ? number(n.flux.residence) : QStringLiteral("–"));
+    QString noteShown = noteText(n);
+    if (!done) {
+      noteShown = busy() && index == done_ ? tr("measuring…") : busy() ? tr("waiting") : tr("not measured (stopped)");
+    }
+    row->setText(note, noteShown);
+    row->setToolTip(note, noteShown);
+    for (int c = 0; c < columns; ++c) row->setFont(c, done ? plain : italic);
+  }
+}
+
+bool AtlasPanel::ofPortraitMap() const { return atlas_ && atlas_->request.map == controller_->map(); }
+
+void AtlasPanel::updateProgress() {
+  QString text;
+  if (!atlas_ && !busy()) {
+    text = tr("The islands around islands of the portrait's K, from the central island down (docs/atlas.md): each "
+              "island's area, the flux through its chain's barrier and the mean residence time inside. Compute fills "
+              "the tree level by level; click an island to see it.");
+  } else if (busy()) {
+    const int known = atlas_ ? static_cast<int>(atlas_->nodes.size()) : 0;
+    const QString stage = stage_.isEmpty() ? tr("starting") : stage_;
+    text = tr("%1: %2 of %3 known islands measured · %4")
+               .arg(stage)
+               .arg(std::max(done_, 0))
+               .arg(known)
+               .arg(formatDuration(static_cast<double>(elapsed_->elapsed()) / 1000));
+  } else {
+    const Atlas& a = *atlas_;
+    const auto finished = std::count_if(a.nodes.begin(), a.nodes.end(), measured);
+    text = a.cancelled ? tr("Stopped: %1 of %2 known islands measured in %3").arg(finished).arg(a.nodes.size())
+                             .arg(formatDuration(a.seconds))
+                       : tr("%1 islands in %2").arg(a.nodes.size()).arg(formatDuration(a.seconds));
+    text += tr(" (depth %1, periods ≤ %2)").arg(a.request.depth).arg(a.request.maxPeriod);
+    if (restored_) text = tr("From the session: %1").arg(text);
+  }
+  if (atlas_ && !ofPortraitMap())
+    text += tr(". This atlas is of K = %1; the portrait shows K = %2: set K = %1 again to draw its islands")
+                .arg(atlas_->request.map.K, 0, 'g', 17)
+                .arg(controller_->map().K, 0, 'g', 17);
+  progress_->setText(text);
+}
+
+void AtlasPanel::updateDetails() {
+  QTreeWidgetItem* current = tree_->currentItem();
+  const int index = current ? current->data(island, Qt::UserRole).toInt() : -1;
+  if (!atlas_ || index < 0 || index >= static_cast<int>(atlas_->nodes.size())) {
+    details_->setText(atlas_ ? tr("Click an island for its numbers.") : QString());
+    return;
+  }
+  const Atlas& a = *atlas_;
+  const AtlasNode& n = a.nodes[static_cast<std::size_t>(index)];
+  QStringList lines;
+  const QString about = n.aboutParent ? tr(", %1 about %2").arg(rotationText(n), n.parent == 0 ? tr("the centre")
+                                                                                                  : path(a, n.parent))
+                                      : QString();
+  lines << tr("<b>%1</b>: period %2%3, centre %4 on %5, residue %6")
+               .arg(index == 0 ? tr("The central island") : tr("Island %1").arg(path(a, index)))
+               .arg(n.period)
+               .arg(about)
+               .arg(point(n.centre))
+               .arg(n.onS1 ? tr("S₁") : tr("S₂"))
+               .arg(number(n.orbit.residue, 6));
+  if (!measured(n)) {
+    lines << (busy() ? tr("Not measured yet.") : tr("Not measured (the computation was stopped)."));
+  } else if (n.boundaryFound) {
+    lines << tr("Boundary circle through %1, rotation %2 about the centre per Qⁿ (%3 digits), bracket %4")
+                 .arg(point(n.boundaryPoint))
+                 .arg(n.boundaryRotation, 0, 'g', 10)
+                 .arg(n.boundaryDigits, 0, 'f', 1)
+                 .arg(number(n.gap, 2));
+    lines << tr("<b>Area</b> %1 ± %2 (%3 points); the chain's %4 islands: %5")
+                 .arg(number(n.area, 10), number(n.areaError, 2))
+                 .arg(n.areaPoints)
+                 .arg(n.period)
+                 .arg(number(n.area * static_cast<long double>(n.period), 10));
+  } else {
+    lines << tr("No boundary circle: %1").arg(QString::fromStdString(n.boundaryFailure).toHtmlEscaped());
+  }
+  if (n.flux.found) {
+    lines << tr("<b>Flux</b> %1 per step (%2 digits agree), zone %3, islands inside %4, <b>layer</b> %5, "
+                "<b>residence</b> %6 steps")
+                 .arg(number(n.flux.flux, 10))
+                 .arg(std::isfinite(static_cast<double>(n.flux.fluxDigits)) ? number(n.flux.fluxDigits, 3) : tr("all"))
+                 .arg(number(n.flux.zoneArea, 8), number(n.flux.enclosedIslands, 8), number(n.flux.layerArea, 8))
+                 .arg(number(n.flux.residence, 6));
+  } else if (measured(n) && !n.flux.failure.empty()) {
+    lines << tr("No flux: %1").arg(QString::fromStdString(n.flux.failure).toHtmlEscaped());
+  }
+  if (n.flux.partner)
+    lines << tr("Barrier: the manifolds of the hyperbolic orbit through %1 (residue %2)")
+                 .arg(point(n.flux.partner->points.front()))
+                 .arg(number(n.flux.partner->residue, 6));
+  else if (index == 0)
+    lines << tr("Barrier: the loop of the hyperbolic fixed point (√K, 0)");
+  if (!n.internal.empty()) {
+    QStringList r;
+    for (const Rational& q : n.internal) r << QString::fromStdString(toString(q));
+    lines << tr("Chains inside its boundary: %1").arg(r.join(QStringLiteral(", ")));
+  }
+  if (!n.note.empty()) lines << QString::fromStdString(n.note).toHtmlEscaped();
+  details_->setText(lines.join(QStringLiteral("<br>")));
+}
+
+void AtlasPanel::updateButtons() {
+  compute_->setEnabled(!busy());
+  stop_->setEnabled(busy());
+  json_->setEnabled(atlas_ && !busy());
+  csv_->setEnabled(atlas_ && !busy());
+}
+
+bool AtlasPanel::showIsland(int index) {
+  if (!atlas_ || index < 0 || index >= static_cast<int>(atlas_->nodes.size())) {
+    Q_EMIT statusMessage(tr("Atlas: there is no island %1").arg(index));
+    return false;
+  }
+  if (!ofPortraitMap()) {
+    Q_EMIT statusMessage(tr("This atlas is of K = %1: set K = %1 again to see its islands")
+                             .arg(atlas_->request.map.K, 0, 'g', 17));
+    return false;
+  }
+  const AtlasNode& n = atlas_->nodes[static_cast<std::size_t>(index)];
+  // A square about the island's centre: kViewRadii times the radius of a disc of its area; without a boundary, its
+  // scan's range (or a tenth of its parent's square).
+  long double half = 0;
+  if (n.boundaryFound && n.area > 0) half = kViewRadii * std::sqrt(n.area / std::numbers::pi_v<long double>);
+  else if (n.scanRange > 0) half = n.scanRange;
+  else if (n.parent >= 0 && atlas_->nodes[static_cast<std::size_t>(n.parent)].area > 0)
+    half = kViewRadii * std::sqrt(atlas_->nodes[static_cast<std::size_t>(n.parent)].area / std::numbers::pi_v<long double>) / 10;
+  else half = controller_->map().width() / 100;
+  const SegmentRegion region{n.centre.x - half, n.centre.x + half, n.centre.y - half, n.centre.y + half, 1.0};
+  if (!controller_->zoomToRegion(region)) {
+    Q_EMIT statusMessage(tr("Atlas: island %1 is outside the portrait's box").arg(path(*atlas_, index)));
+    return false;
+  }
+  controller_->showAtlasIsland(n, path(*atlas_, index));
+  Q_EMIT statusMessage(tr("Island %1: period %2, area %3").arg(path(*atlas_, index)).arg(n.period).arg(
+      n.boundaryFound ? number(n.area, 6) : tr("not found")));
+  return true;
+}
+
+bool AtlasPanel::exportJson(const QString& path, QString* error) {
+  if (!atlas_ || busy()) {
+    if (error) *error = busy() ? tr("the atlas is still being computed (Stop keeps what is finished)") : tr("no atlas yet");
+    return false;
+  }
+  try {
+    writeAtlasJson(path.toStdString(), *atlas_);
+  } catch (const std::exception& e) {
+    if (error) *error = QString::fromUtf8(e.what());
+    return false;
+  }
+  return true;
+}
+
+bool AtlasPanel::exportCsv(const QString& path, QString* error) {
+  if (!atlas_ || busy()) {
+    if (error) *error = busy() ? tr("the atlas is still being computed (Stop keeps what is finished)") : tr("no atlas yet");
+    return false;
+  }
+  try {
+    writeAtlasCsv(path.toStdString(), *atlas_);
+  } catch (const std::exception& e) {
+    if (error) *error = QString::fromUtf8(e.what());
+    return false;
+  }
+  return true;
+}
+
+}  // namespace archipelago::ui

@@ -1,0 +1,121 @@
+#pragma once
+/// \file AtlasPanel.hpp
+/// \brief The "Atlas" page beside the portrait (issue 38, deliverable 3): the hierarchy of islands around islands of
+/// the portrait's map as an expandable tree — each island's path, period, p/q about its parent, area (± error), the
+/// flux through its chain's barrier, the layer and the mean residence time there — computed in the background,
+/// the first levels first, the tree filling as each island is measured.
+///
+/// Everything is core's (core/atlas: computeAtlas with its progress and stop token, atlasPath, atlasJson/atlasCsv,
+/// writeAtlasJson/writeAtlasCsv; docs/atlas.md): this page fills the request (depth, largest period; the rest is
+/// core's default), runs it on a background job (ui/jobs: each island's progress posts a copy of the atlas so far;
+/// Stop keeps what is finished, as `archipelago-cli atlas` does on Ctrl-C), and formats.  A click on an island zooms
+/// the portrait to it (a square about its centre twice the radius of a disc of its area) and asks the
+/// PortraitController to draw its boundary circle, its chain (the periodic-orbit overlay) and its partner's manifolds
+/// (the Manifolds page's mechanism).  The atlas is kept in sessions (core/session: its JSON, read back, not
+/// recomputed).  An atlas of another map than the portrait's stays listed (a change of K loses nothing) but its
+/// islands are not drawn until that map is shown again.
+
+#include <QString>
+#include <QWidget>
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/atlas/Atlas.hpp"
+
+class QElapsedTimer;
+class QLabel;
+class QPushButton;
+class QSpinBox;
+class QTimer;
+class QTreeWidget;
+class QTreeWidgetItem;
+
+namespace archipelago::ui {
+
+class BackgroundJobs;
+class PortraitController;
+
+class AtlasPanel : public QWidget {
+  Q_OBJECT
+ public:
+  /// The tree's columns.
+  enum Column { island, period, rotation, area, flux, layer, residence, note, columns };
+
+  AtlasPanel(PortraitController* controller, QWidget* parent = nullptr);
+  ~AtlasPanel() override;
+
+  [[nodiscard]] QSpinBox* depthBox() const noexcept { return depth_; }
+  [[nodiscard]] QSpinBox* maxPeriodBox() const noexcept { return maxPeriod_; }
+  [[nodiscard]] QPushButton* computeButton() const noexcept { return compute_; }
+  [[nodiscard]] QPushButton* stopButton() const noexcept { return stop_; }
+  [[nodiscard]] QTreeWidget* tree() const noexcept { return tree_; }
+  /// The tree's row of island `index` (null when it is not listed).
+  [[nodiscard]] QTreeWidgetItem* item(int index) const;
+  /// The progress line and the selected island's details, as shown.
+  [[nodiscard]] QString progressText() const;
+  [[nodiscard]] QString detailsText() const;
+
+  /// The request the controls describe, for the portrait's map (core's defaults for the rest).
+  [[nodiscard]] AtlasRequest request() const;
+  /// Computes the atlas of `request` in the background (its map should be the portrait's), replacing the one shown;
+  /// false, with core's reason in the status bar, when core refuses the request.
+  bool compute(const AtlasRequest& request);
+  /// Stops the computation: the islands finished stay (the atlas is marked cancelled).
+  void stop();
+  /// True while an atlas is being computed.
+  [[nodiscard]] bool busy() const noexcept { return request_ != 0; }
+  /// The atlas shown (null: none): while computing, the atlas so far.
+  [[nodiscard]] std::shared_ptr<const Atlas> atlas() const noexcept { return atlas_; }
+  /// What a session keeps: the atlas shown, or while computing a copy of the atlas so far marked cancelled (it is
+  /// incomplete); nothing without one.
+  [[nodiscard]] std::optional<Atlas> sessionAtlas() const;
+  /// Shows `atlas` (a session's; nothing clears the page), stopping any computation.
+  void restoreAtlas(const std::optional<Atlas>& atlas);
+  /// Zooms the portrait to island `index` and draws its boundary, chain and partner's manifolds (a click on its row);
+  /// false, with the reason in the status bar, when there is no such island or the atlas is of another map.
+  bool showIsland(int index);
+  /// Core's JSON / CSV of the atlas shown (writeAtlasJson / writeAtlasCsv, atomic).  False with the reason.
+  bool exportJson(const QString& path, QString* error = nullptr);
+  bool exportCsv(const QString& path, QString* error = nullptr);
+
+ Q_SIGNALS:
+  void statusMessage(const QString& text);
+  /// The atlas shown changed: a step of the computation, its end, a restore.
+  void atlasChanged();
+  /// The computation ended (finished or stopped) or failed.
+  void computationEnded();
+
+ private:
+  struct Snapshot;
+  void show(std::shared_ptr<const Atlas> atlas, int done, const QString& stage);
+  void fillTree();
+  void updateProgress();
+  void updateDetails();
+  void updateButtons();
+  [[nodiscard]] bool ofPortraitMap() const;
+
+  PortraitController* controller_;
+  QSpinBox* depth_ = nullptr;
+  QSpinBox* maxPeriod_ = nullptr;
+  QPushButton* compute_ = nullptr;
+  QPushButton* stop_ = nullptr;
+  QLabel* progress_ = nullptr;
+  QTreeWidget* tree_ = nullptr;
+  QLabel* details_ = nullptr;
+  QPushButton* json_ = nullptr;
+  QPushButton* csv_ = nullptr;
+  QTimer* clock_ = nullptr;
+  std::unique_ptr<QElapsedTimer> elapsed_;
+  std::vector<QTreeWidgetItem*> items_;   // items_[i] shows atlas_->nodes[i]
+  std::shared_ptr<const Atlas> atlas_;
+  int done_ = -1;                         // islands finished while computing (−1: not computing)
+  QString stage_;                         // what core is doing ("island 6 > 138")
+  bool restored_ = false;                 // atlas_ came from a session
+  quint64 request_ = 0;
+  std::unique_ptr<BackgroundJobs> jobs_;  // last: stopped and joined first
+};
+
+}  // namespace archipelago::ui
