@@ -6,11 +6,13 @@
 #include <cmath>
 #include <deque>
 #include <map>
+#include <numbers>
 #include <stdexcept>
 
 #include "core/limits/Limits.hpp"
 #include "core/manifolds/HyperbolicOrbit.hpp"
 #include "core/manifolds/ManifoldParameterization.hpp"
+#include "core/manifolds/PolygonRegion.hpp"
 #include "core/manifolds/TurnstileFlux.hpp"
 #include "core/map/FixedPointMap.hpp"
 #include "core/measures/BirkhoffAverage.hpp"
@@ -35,7 +37,12 @@ constexpr std::int64_t kClassifyDenominator = 2000;
 /// Fundamental domains searched for a chain's primary heteroclinic points (TurnstileRequest::maxDomains): the search
 /// of a long chain that has none near its orbit went on for minutes through the automatic limit (a period-150 chain
 /// about the island of six); a flux not found within these is reported as such.
-constexpr int kFluxDomains = 100;
+constexpr int kFluxDomains = 25;
+/// The longest chain whose flux the atlas computes: the search for the primary points costs ~n²·domains² steps of the
+/// map (a point of domain k is carried from the series over k·n steps), minutes for n ~ 1000; below the manifolds'
+/// own limit.
+constexpr int kMaxFluxPeriod = 400;
+static_assert(kMaxFluxPeriod <= kMaxManifoldPeriod);
 /// A flux is accepted when its two methods agree to this many digits and the lobe is below this share of the area
 /// its barrier encloses (the measured ones: 10⁻² at the centre's loop, below 10⁻³ for the chains).
 constexpr int kFluxDigits = 6;
@@ -193,9 +200,9 @@ AtlasFlux chainFlux(long double K, const std::optional<PeriodicOrbit>& chain, st
     TurnstileRequest t;
     t.K = K;
     if (chain) {
-      if (chain->period > kMaxManifoldPeriod) {
-        f.failure = "period " + std::to_string(chain->period) + " above the manifolds' limit " +
-                    std::to_string(kMaxManifoldPeriod);
+      if (chain->period > kMaxFluxPeriod) {
+        f.failure = "not computed: period " + std::to_string(chain->period) + " above the atlas's flux limit " +
+                    std::to_string(kMaxFluxPeriod) + " (archipelago-cli flux --period computes it)";
         return f;
       }
       f.partner = findHyperbolicPartner(*chain);
@@ -212,6 +219,8 @@ AtlasFlux chainFlux(long double K, const std::optional<PeriodicOrbit>& chain, st
     f.zoneArea = flux.zoneArea;
     f.fluxDigits = flux.lobeDigits();
     f.zoneDigits = flux.zoneDigits();
+    f.zone = flux.zoneBoundary;
+    f.layerArea = f.zoneArea;  // until settleLayers subtracts the islands inside
     f.residence = static_cast<double>(f.zoneArea / f.flux);
     // No silent wrong answer: the two methods must agree and the lobe must be a small part of what it encloses (a
     // partner whose primary points were found far along its manifolds gave a "flux" of half the zone per step).
@@ -233,6 +242,26 @@ AtlasFlux chainFlux(long double K, const std::optional<PeriodicOrbit>& chain, st
 constexpr int kBoundaryTries = 8;
 constexpr long double kQuickTolerance = 1e-2L;
 constexpr int kZooms = 4;
+/// Each barrier's layer: its zone less the atlas's islands inside its curves (each island counted by its centre, a
+/// member of its chain's elliptic orbit: an island never crosses a separatrix), and the residence time layer / flux.
+/// `zones` holds each flux's zone as a region, by node (built once: a zone of a long chain has ~10⁵ vertices).
+void settleLayers(Atlas& atlas, const std::map<int, PolygonRegion>& zones) {
+  for (const auto& [index, zone] : zones) {
+    AtlasFlux& f = atlas.nodes[static_cast<std::size_t>(index)].flux;
+    f.enclosedIslands = 0;
+    f.enclosedCount = 0;
+    for (const AtlasNode& other : atlas.nodes) {
+      if (!other.boundaryFound) continue;
+      int inside = 0;
+      for (const PhysicalPoint& p : other.orbit.points) inside += zone.contains(p.x, p.y) ? 1 : 0;
+      f.enclosedIslands += static_cast<long double>(inside) * other.area;
+      f.enclosedCount += inside;
+    }
+    f.layerArea = f.zoneArea - f.enclosedIslands;
+    f.residence = static_cast<double>(f.layerArea / f.flux);
+  }
+}
+
 constexpr int kMaxScanPoints = 10000;
 constexpr long double kCircleTolerance = 1e-4L;
 
@@ -260,7 +289,10 @@ class AtlasBuilder {
       }
       const int i = queue.front();
       queue.pop_front();
-      if (progress_) progress_(atlas, done, "island " + atlasPath(atlas, i));
+      if (progress_) {
+        settleLayers(atlas, zones_);
+        progress_(atlas, done, "island " + atlasPath(atlas, i));
+      }
       const std::vector<AtlasNode> children = expand(atlas, i);
       if (stop_.stop_requested()) {
         atlas.cancelled = true;
@@ -274,6 +306,7 @@ class AtlasBuilder {
       ++done;
     }
     atlas.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    settleLayers(atlas, zones_);
     if (progress_) progress_(atlas, done, atlas.cancelled ? "stopped" : "done");
     return atlas;
   }
@@ -346,91 +379,86 @@ class AtlasBuilder {
       }
 
     for (const Ray& ray : rays) node.scanRange = std::max(node.scanRange, ray.island.range);
-    // An island narrower than the scan's first step shows no circle: the rays are scanned again over their first
-    // two steps, up to kZooms times, for its boundary (the chains outside come from the full rays).
-    std::vector<Ray> boundaryRays = rays;
-    bool zoomed = false;
-    for (int zoom = 0; zoom < kZooms && !stop_.stop_requested(); ++zoom) {
-      if (std::any_of(boundaryRays.begin(), boundaryRays.end(), [](const Ray& r) { return r.scan.lastCircle >= 0; })) break;
-      zoomed = true;
-      for (Ray& ray : boundaryRays) {
-        ray.island.range = 2 * ray.island.range / static_cast<long double>(ray.scan.points.size());
-        ray.scan = scanSide(Classifier(r_, ray.island), ray.island, ray.direction, points);
-      }
-    }
-    if (stop_.stop_requested()) return {};
     // The boundary circle on each ray: the outermost circle point, bisected against its outer neighbour, whose orbit
     // closes into a converged curve about the centre (a sticky chaotic orbit that passed for regular does not: the
     // next circle inwards is tried); of all rays the largest area is the outermost circle.
-    for (Ray& ray : boundaryRays) {
-      SideScan& s = ray.scan;
-      const Classifier c(r_, ray.island);
-      const auto step = ray.island.range / static_cast<long double>(s.points.size());
-      for (int candidate = s.lastCircle, tries = 0; candidate >= 0 && tries < kBoundaryTries;) {
-        // A quick look first (1024 points: a circle's polygon is already within 1e−5 of its area there): sticky
-        // chaotic orbits beyond the island that passed for regular are dropped without a bisection.
-        const ScanPoint& at = s.points[static_cast<std::size_t>(candidate)];
-        if (const auto quick = circleArea(c.map(), ray.island, at.point, at.rotation, 10);
-            !quick || quick->error > kQuickTolerance * quick->area) {
-          s.points[static_cast<std::size_t>(candidate)].kind = PointKind::Outside;
-          do --candidate;
-          while (candidate >= 0 && s.points[static_cast<std::size_t>(candidate)].kind != PointKind::Circle);
-          s.lastCircle = candidate;
-          continue;
-        }
-        ++tries;
-        long double lo = ray.island.centre.x + ray.direction * step * (candidate + 1);
-        long double hi = lo + ray.direction * step;
-        ScanPoint inner = s.points[static_cast<std::size_t>(candidate)];
-        const bool lastPoint = candidate + 1 == static_cast<int>(s.points.size());  // circles to the end of the ray: no bracket
-        for (int b = 0; b < r_.bisections && !lastPoint && !stop_.stop_requested(); ++b) {
-          const long double mid = (lo + hi) / 2;
-          const ScanPoint p = c.classify(mid, stop_);
-          if (p.kind == PointKind::Circle) {
-            lo = mid;
-            inner = p;
-          } else {
-            hi = mid;
+    auto findBoundary = [&](std::vector<Ray>& set) {
+      for (Ray& ray : set) {
+        SideScan& s = ray.scan;
+        const Classifier c(r_, ray.island);
+        const auto step = ray.island.range / static_cast<long double>(s.points.size());
+        for (int candidate = s.lastCircle, tries = 0; candidate >= 0 && tries < kBoundaryTries;) {
+          // A quick look first (1024 points: a circle's polygon is already within 1e−5 of its area there): sticky
+          // chaotic orbits beyond the island that passed for regular are dropped without a bisection.
+          const ScanPoint& at = s.points[static_cast<std::size_t>(candidate)];
+          if (const auto quick = circleArea(c.map(), ray.island, at.point, at.rotation, 10);
+              !quick || quick->error > kQuickTolerance * quick->area) {
+            s.points[static_cast<std::size_t>(candidate)].kind = PointKind::Outside;
+            do --candidate;
+            while (candidate >= 0 && s.points[static_cast<std::size_t>(candidate)].kind != PointKind::Circle);
+            s.lastCircle = candidate;
+            continue;
           }
-        }
-        const std::optional<CircleArea> a = circleArea(c.map(), ray.island, inner.point, inner.rotation, 13);
-        if (!a || a->error > kCircleTolerance * a->area) {
-          s.points[static_cast<std::size_t>(candidate)].kind = PointKind::Outside;  // not a circle after all
-          do --candidate;
-          while (candidate >= 0 && s.points[static_cast<std::size_t>(candidate)].kind != PointKind::Circle);
+          ++tries;
+          long double lo = ray.island.centre.x + ray.direction * step * (candidate + 1);
+          long double hi = lo + ray.direction * step;
+          ScanPoint inner = s.points[static_cast<std::size_t>(candidate)];
+          const bool lastPoint = candidate + 1 == static_cast<int>(s.points.size());  // circles to the end of the ray: no bracket
+          for (int b = 0; b < r_.bisections && !lastPoint && !stop_.stop_requested(); ++b) {
+            const long double mid = (lo + hi) / 2;
+            const ScanPoint p = c.classify(mid, stop_);
+            if (p.kind == PointKind::Circle) {
+              lo = mid;
+              inner = p;
+            } else {
+              hi = mid;
+            }
+          }
+          const std::optional<CircleArea> a = circleArea(c.map(), ray.island, inner.point, inner.rotation, 13);
+          if (!a || a->error > kCircleTolerance * a->area) {
+            s.points[static_cast<std::size_t>(candidate)].kind = PointKind::Outside;  // not a circle after all
+            do --candidate;
+            while (candidate >= 0 && s.points[static_cast<std::size_t>(candidate)].kind != PointKind::Circle);
+            s.lastCircle = candidate;
+            continue;
+          }
           s.lastCircle = candidate;
-          continue;
+          if (!node.boundaryFound || a->area > node.area) {
+            node.boundaryFound = true;
+            node.boundaryPoint = inner.point;
+            node.boundaryRotation = inner.rotation;
+            node.boundaryDigits = inner.digits;
+            node.gap = lastPoint ? 0 : std::fabs(hi - lo);
+            node.area = a->area;
+            node.areaError = a->error;
+            node.areaPoints = a->points;
+            if (lastPoint) node.note = "the island reaches the end of the scan (" + number(ray.island.range) + ")";
+            else node.note.clear();
+          }
+          break;
         }
-        s.lastCircle = candidate;
-        if (!node.boundaryFound || a->area > node.area) {
-          node.boundaryFound = true;
-          node.boundaryPoint = inner.point;
-          node.boundaryRotation = inner.rotation;
-          node.boundaryDigits = inner.digits;
-          node.gap = lastPoint ? 0 : std::fabs(hi - lo);
-          node.area = a->area;
-          node.areaError = a->error;
-          node.areaPoints = a->points;
-          if (lastPoint) node.note = "the island reaches the end of the scan (" + number(ray.island.range) + ")";
-          else node.note.clear();
-        }
-        break;
+        if (stop_.stop_requested()) return;
       }
-      if (stop_.stop_requested()) return {};
+    };
+    findBoundary(rays);  // the circles found false are outside for the chains too
+    // An island narrower than the scan's first step shows no circle (or only false ones, orbits of the layer that
+    // passed for regular): the rays are scanned again over their first two steps, up to kZooms times, for its
+    // boundary (the chains outside come from the full rays).
+    std::vector<Ray> zoomRays = rays;
+    for (int zoom = 0; zoom < kZooms && !node.boundaryFound && !stop_.stop_requested(); ++zoom) {
+      for (Ray& ray : zoomRays) {
+        ray.island.range = 2 * ray.island.range / static_cast<long double>(ray.scan.points.size());
+        ray.scan = scanSide(Classifier(r_, ray.island), ray.island, ray.direction, points);
+      }
+      findBoundary(zoomRays);
     }
     if (stop_.stop_requested()) return {};
-    if (!zoomed) rays = boundaryRays;  // the circles found false are outside for the chains too
 
     // The flux through the chain's separatrix (at the centre: the fixed point (√K, 0)'s loop).  Its zone encloses
     // the islands of the parent (one per closed curve) or, at the centre, the central island: the layer between is
     // what an orbit that crossed the barrier moves in.
     node.flux = chainFlux(K_, index == 0 ? std::nullopt : std::optional<PeriodicOrbit>(node.orbit), stop_);
-    if (node.flux.found) {
-      const AtlasNode& enclosed = index == 0 ? node : atlas.nodes[static_cast<std::size_t>(node.parent)];
-      node.flux.enclosedIslands = static_cast<long double>(enclosed.period) * enclosed.area;
-      node.flux.layerArea = node.flux.zoneArea - node.flux.enclosedIslands;
-      node.flux.residence = static_cast<double>(node.flux.layerArea / node.flux.flux);
-    }
+    if (node.flux.found && !node.flux.zone.empty()) zones_.emplace(index, PolygonRegion(node.flux.zone));
 
     if (!node.boundaryFound) {
       node.boundaryFailure = "no invariant circle about the centre within the scan's first step: the island is below "
@@ -438,7 +466,19 @@ class AtlasBuilder {
       node.note = "not followed: no boundary circle";
       return {};
     }
-    // Rationals inside a ray's last circle: internal chains, listed; beyond it: the chains outside.
+    // Rationals inside a ray's last circle, or whose rotation is not beyond the boundary circle's (counted from the
+    // centre's linear rotation ν₀, R = sin²(πν₀): the twist carries the rotation from ν₀ through the boundary's, so a
+    // chain between the two lies inside the boundary even where a ray's own last circle is further in): internal
+    // chains, listed; beyond it: the chains outside.
+    const long double centreRotation =
+        std::asin(std::sqrt(std::clamp(node.orbit.residue, 0.0L, 1.0L))) / std::numbers::pi_v<long double>;
+    const long double boundaryRotation = std::fabs(static_cast<long double>(node.boundaryRotation));
+    const long double outwards = boundaryRotation - centreRotation;  // the sign of the twist, outwards
+    auto beyondBoundary = [&](const Rational& r) {
+      if (!(std::fabs(outwards) > 1e-9L)) return true;  // no measurable twist: the rays decide
+      const long double rotation = std::fabs(static_cast<long double>(r.p) / static_cast<long double>(r.q));
+      return (rotation - boundaryRotation) * outwards > 0;
+    };
     std::map<std::pair<std::int64_t, std::int64_t>, std::pair<std::size_t, int>> outside;  // p/q → (ray, index)
     for (std::size_t k = 0; k < rays.size(); ++k) {
       const SideScan& s = rays[k].scan;
@@ -449,7 +489,7 @@ class AtlasBuilder {
         // turns the other way about c).
         if ((p.rational.p > 0) != (node.boundaryRotation > 0)) continue;
         if (node.period * static_cast<std::uint64_t>(p.rational.q) > r_.maxPeriod) continue;  // beyond the tree's periods
-        if (static_cast<int>(i) < s.lastCircle) {
+        if (static_cast<int>(i) < s.lastCircle || !beyondBoundary(p.rational)) {
           if (std::find(node.internal.begin(), node.internal.end(), p.rational) == node.internal.end())
             node.internal.push_back(p.rational);
         } else {
@@ -501,6 +541,7 @@ class AtlasBuilder {
 
   const AtlasRequest& r_;
   const AtlasProgress& progress_;
+  std::map<int, PolygonRegion> zones_;  ///< each found flux's zone, by node (settleLayers)
   std::stop_token stop_;
   long double K_;
 };

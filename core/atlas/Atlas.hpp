@@ -81,8 +81,14 @@ struct AtlasFlux {
   long double zoneArea = 0;       ///< the area the barrier encloses (TurnstileFlux.hpp's zone: all its curves)
   long double fluxDigits = 0;     ///< digits on which the action and the polygon agree for the lobe
   long double zoneDigits = 0;     ///< the same for the zone
-  long double enclosedIslands = 0; ///< the islands the barrier encloses: the parent's (period × area; at the centre its own)
+  std::vector<std::vector<PhysicalPoint>> zone;  ///< the zone's closed curves (TurnstileFlux::zoneBoundary; not exported)
+  long double enclosedIslands = 0; ///< the atlas's islands inside the zone: Σ over its nodes of (members of the node's
+                                   ///< orbit inside the zone's curves) × the node's area — the parent's islands, the
+                                   ///< chain's own, its descendants' and those of the chains between (settled when
+                                   ///< the atlas is complete; islands below the cut-offs are not known, not subtracted)
+  int enclosedCount = 0;          ///< how many islands that is
   long double layerArea = 0;      ///< zoneArea − enclosedIslands: the layer an orbit that crossed the barrier moves in
+                                  ///< (Kac's transit area, KacCheck.hpp), an upper bound by the islands not found
   double residence = 0;           ///< layerArea / flux: the mean residence time inside the barrier, in steps (Kac)
 };
 

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/manifolds/GeneratingFunction.hpp"
+#include "core/parallel/ParallelFor.hpp"
 #include "core/periodic/PeriodicOrbitFinder.hpp"  // NotFound
 
 namespace archipelago {
@@ -211,9 +212,14 @@ PrimaryIntersections primaryHeteroclinicPoints(const ManifoldParameterization& u
   const int domains = maxDomains + kScanInsideDomains;
   for (int k = 0; k < domains && !pair; ++k) {
     if (stop.stop_requested()) throw std::runtime_error("stopped");
-    for (int j = 0; j < n; ++j) {
-      for (SymmetryLine line : {SymmetryLine::S1, SymmetryLine::S2}) {
-        Track& t = tracks[static_cast<std::size_t>(2 * j + (line == SymmetryLine::S1 ? 0 : 1))];
+    // The 2n tracks (branch j, line) are independent: scanned in parallel, each into its own list, the lists then
+    // appended in the serial order (j, then S₁, S₂), so that the result does not depend on the threads.
+    std::vector<std::vector<Candidate>> found(tracks.size());
+    (void)parallelFor(tracks.size(), [&](std::size_t track, int) {
+      {
+        const int j = static_cast<int>(track / 2);
+        const SymmetryLine line = track % 2 == 0 ? SymmetryLine::S1 : SymmetryLine::S2;
+        Track& t = tracks[track];
         const long double scale = toBranch[static_cast<std::size_t>(j)];
         const long double branchSign = (sign > 0) == (scale > 0) ? 1.0L : -1.0L;
         auto offsetAt = [&](long double sigma0) {
@@ -242,13 +248,15 @@ PrimaryIntersections primaryHeteroclinicPoints(const ManifoldParameterization& u
               }
             }
             const std::optional<int> image = reversedIndex(orbit, reversorOf(line), j);  // I(z_j) = z_b
-            candidates.push_back({j, line, sign * (a + (b - a) / 2), a, b, modulo(*image - j, n)});
+            found[track].push_back({j, line, sign * (a + (b - a) / 2), a, b, modulo(*image - j, n)});
           }
           t.sigma0 = sigma0;
           t.offset = f;
         }
       }
-    }
+    }, stop);
+    if (stop.stop_requested()) throw std::runtime_error("stopped");
+    for (const std::vector<Candidate>& list : found) candidates.insert(candidates.end(), list.begin(), list.end());
     // Every crossing with |σ₀| < s₀Λ^{k+1} is known: the pair is certain once its second point is below that.
     std::vector<Candidate> distinct = distinctOrbits(candidates);
     if (auto found = primaryPair(distinct); found && std::fabs(found->second.sigma0) < start * std::exp(logFactor * (k + 1)))

@@ -111,6 +111,48 @@ TEST(Atlas, IslandAreasAgreeWithTheFasterTurningPixelsAroundThem) {
   }
 }
 
+TEST(Atlas, ALayerIsItsZoneLessEveryIslandInsideIt) {
+  // Kac's lemma: the orbits entering a zone stay (zone − its invariant islands) / flux steps on average.  The zone of
+  // the six (inside the outer separatrix of their hyperbolic partners) holds the central island and the six islands
+  // themselves; the chains outside the six (2/13, 3/19, … about the centre turn slower) lie outside it.  (Counting
+  // only the parent's islands, as the first version did, gave the six a residence of 3533 steps instead of ~1500.)
+  const Atlas& a = atlasK01();
+  const AtlasNode& root = a.nodes[0];
+  const AtlasNode* six = chainOf(a, 0, 1, 6);
+  ASSERT_NE(six, nullptr);
+  ASSERT_TRUE(six->flux.found) << six->flux.failure;
+  EXPECT_EQ(six->flux.enclosedCount, 7);
+  EXPECT_NEAR(static_cast<double>(six->flux.enclosedIslands), static_cast<double>(root.area + 6 * six->area), 1e-15);
+  EXPECT_NEAR(static_cast<double>(six->flux.layerArea),
+              static_cast<double>(six->flux.zoneArea - root.area - 6 * six->area), 1e-15);
+  // The fixed point's loop encloses the whole tree: every island found at depth 1 is inside it.
+  ASSERT_TRUE(root.flux.found) << root.flux.failure;
+  int islands = 0;
+  long double area = 0;
+  for (const AtlasNode& n : a.nodes)
+    if (n.boundaryFound) {
+      islands += static_cast<int>(n.period);
+      area += static_cast<long double>(n.period) * n.area;
+    }
+  EXPECT_EQ(root.flux.enclosedCount, islands);
+  EXPECT_NEAR(static_cast<double>(root.flux.enclosedIslands), static_cast<double>(area), 1e-15);
+  // No layer is negative (an island counted twice, or a chain inside its parent's boundary taken for one outside).
+  for (std::size_t i = 0; i < a.nodes.size(); ++i) {
+    if (a.nodes[i].flux.found) EXPECT_GT(a.nodes[i].flux.layerArea, 0) << atlasPath(a, static_cast<int>(i));
+  }
+  // The chains outside an island turn beyond its boundary circle, counted from the centre's linear rotation.
+  for (const AtlasNode& n : a.nodes) {
+    if (n.children.empty()) continue;
+    const long double nu0 = std::asin(std::sqrt(n.orbit.residue)) / std::acos(-1.0L);
+    const long double boundary = std::fabs(static_cast<long double>(n.boundaryRotation));
+    for (int c : n.children) {
+      const Rational r = *a.nodes[static_cast<std::size_t>(c)].aboutParent;
+      const long double rotation = std::fabs(static_cast<long double>(r.p) / static_cast<long double>(r.q));
+      EXPECT_GT((rotation - boundary) * (boundary - nu0), 0) << atlasPath(a, c);
+    }
+  }
+}
+
 TEST(Atlas, TheCentralIslandEndsJustInsideTheSeparatrixOfTheChainOfSix) {
   // At K = 0.1 the chaotic layer between the central island and the six islands is thin (the inner turnstile's lobe
   // is 2.1e−8 per step, docs/manifolds.md): the boundary circle lies inside the region the inner separatrix of the
