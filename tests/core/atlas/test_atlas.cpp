@@ -138,7 +138,9 @@ TEST(Atlas, ALayerIsItsZoneLessEveryIslandInsideIt) {
   EXPECT_NEAR(static_cast<double>(root.flux.enclosedIslands), static_cast<double>(area), 1e-15);
   // No layer is negative (an island counted twice, or a chain inside its parent's boundary taken for one outside).
   for (std::size_t i = 0; i < a.nodes.size(); ++i) {
-    if (a.nodes[i].flux.found) EXPECT_GT(a.nodes[i].flux.layerArea, 0) << atlasPath(a, static_cast<int>(i));
+    if (a.nodes[i].flux.found) {
+      EXPECT_GT(a.nodes[i].flux.layerArea, 0) << atlasPath(a, static_cast<int>(i));
+    }
   }
   // The chains outside an island turn beyond its boundary circle, counted from the centre's linear rotation.
   for (const AtlasNode& n : a.nodes) {
