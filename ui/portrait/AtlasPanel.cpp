@@ -44,10 +44,6 @@ namespace {
 /// minutes on two cores, docs/atlas.md); deeper trees are `archipelago-cli atlas`'s.
 constexpr int kPageMaxDepth = std::min(3, kMaxAtlasDepth);
 
-/// The view of an island: a square about its centre of half-width this many times the radius of a disc of its area
-/// (the whole island, elongated or not, and the chains about it).
-constexpr long double kViewRadii = 1.75L;
-
 QString number(long double v, int digits = 4) {
   return std::isfinite(v) ? QString::number(static_cast<double>(v), 'g', digits) : QStringLiteral("–");
 }
@@ -194,6 +190,7 @@ AtlasPanel::AtlasPanel(PortraitController* controller, QWidget* parent)
   split->addWidget(detailsArea);
   split->setStretchFactor(0, 3);
   split->setStretchFactor(1, 2);
+  split->setSizes({300, 200});
   auto* layout = new QVBoxLayout(this);
   layout->setContentsMargins(2, 4, 2, 2);
   layout->addLayout(form);
@@ -233,8 +230,9 @@ bool AtlasPanel::compute(const AtlasRequest& r) {
   items_.clear();
   atlas_.reset();
   restored_ = false;
+  stopping_ = false;
   done_ = 0;
-  stage_ = tr("starting");
+  stage_.clear();
   elapsed_->start();
   clock_->start();
   Job<std::shared_ptr<const Atlas>, Snapshot> job;  // latest wins: Compute again replaces this one
@@ -255,6 +253,7 @@ bool AtlasPanel::compute(const AtlasRequest& r) {
   job.done = [this](JobResult<std::shared_ptr<const Atlas>> result) {
     if (result.id != request_) return;
     request_ = 0;
+    stopping_ = false;
     clock_->stop();
     if (!result.ok()) {
       Q_EMIT statusMessage(tr("Atlas failed: %1").arg(result.error));
@@ -286,7 +285,7 @@ bool AtlasPanel::compute(const AtlasRequest& r) {
 void AtlasPanel::stop() {
   if (!request_) return;
   jobs_->requestStop(request_);
-  stage_ = tr("stopping (the island under way ends first)");
+  stopping_ = true;
   updateProgress();
 }
 
@@ -303,6 +302,7 @@ std::optional<Atlas> AtlasPanel::sessionAtlas() const {
 void AtlasPanel::restoreAtlas(const std::optional<Atlas>& atlas) {
   jobs_->cancel();
   request_ = 0;
+  stopping_ = false;
   clock_->stop();
   tree_->clear();
   items_.clear();
@@ -351,14 +351,14 @@ void AtlasPanel::fillTree() {
     row->setText(period, QString::number(n.period));
     row->setText(rotation, rotationText(n));
     const bool done = measured(n);
-    row->setText(area, n.boundaryFound ? tr("%1 ± %2").arg(number(n.area), number(n.areaError, 2)) : QStringLiteral("–"));
+    // An island not measured says so where its area would be (the first columns are the ones in sight).
+    const QString state = busy() && index == done_ ? tr("measuring…") : busy() ? tr("waiting") : tr("not measured");
+    row->setText(area, n.boundaryFound ? tr("%1 ± %2").arg(number(n.area), number(n.areaError, 1))
+                                       : done ? QStringLiteral("–") : state);
     row->setText(flux, n.flux.found ? number(n.flux.flux) : QStringLiteral("–"));
     row->setText(layer, n.flux.found ? number(n.flux.layerArea) : QStringLiteral("–"));
     row->setText(residence, n.flux.found ? number(n.flux.residence) : QStringLiteral("–"));
-    QString noteShown = noteText(n);
-    if (!done) {
-      noteShown = busy() && index == done_ ? tr("measuring…") : busy() ? tr("waiting") : tr("not measured (stopped)");
-    }
+    const QString noteShown = done ? noteText(n) : busy() ? state : tr("not measured (stopped)");
     row->setText(note, noteShown);
     row->setToolTip(note, noteShown);
     for (int c = 0; c < columns; ++c) row->setFont(c, done ? plain : italic);
@@ -375,9 +375,10 @@ void AtlasPanel::updateProgress() {
               "the tree level by level; click an island to see it.");
   } else if (busy()) {
     const int known = atlas_ ? static_cast<int>(atlas_->nodes.size()) : 0;
-    const QString stage = stage_.isEmpty() ? tr("starting") : stage_;
-    text = tr("%1: %2 of %3 known islands measured · %4")
-               .arg(stage)
+    const QString doing = stopping_ ? tr("Stopping (the island under way ends first)")
+                                    : tr("Measuring %1").arg(stage_.isEmpty() ? tr("the centre") : stage_);
+    text = tr("%1 · %2 of %3 known islands done · %4")
+               .arg(doing)
                .arg(std::max(done_, 0))
                .arg(known)
                .arg(formatDuration(static_cast<double>(elapsed_->elapsed()) / 1000));
@@ -476,20 +477,15 @@ bool AtlasPanel::showIsland(int index) {
     return false;
   }
   const AtlasNode& n = atlas_->nodes[static_cast<std::size_t>(index)];
-  // A square about the island's centre: kViewRadii times the radius of a disc of its area; without a boundary, its
-  // scan's range (or a tenth of its parent's square).
+  // The view: the island's boundary circle with a margin (the controller frames it once traced); without one, a
+  // square about its centre of its scan's range, else a tenth of its parent's disc of equal area.
   long double half = 0;
-  if (n.boundaryFound && n.area > 0) half = kViewRadii * std::sqrt(n.area / std::numbers::pi_v<long double>);
-  else if (n.scanRange > 0) half = n.scanRange;
+  if (n.scanRange > 0) half = n.scanRange;
   else if (n.parent >= 0 && atlas_->nodes[static_cast<std::size_t>(n.parent)].area > 0)
-    half = kViewRadii * std::sqrt(atlas_->nodes[static_cast<std::size_t>(n.parent)].area / std::numbers::pi_v<long double>) / 10;
+    half = std::sqrt(atlas_->nodes[static_cast<std::size_t>(n.parent)].area / std::numbers::pi_v<long double>) / 10;
   else half = controller_->map().width() / 100;
-  const SegmentRegion region{n.centre.x - half, n.centre.x + half, n.centre.y - half, n.centre.y + half, 1.0};
-  if (!controller_->zoomToRegion(region)) {
-    Q_EMIT statusMessage(tr("Atlas: island %1 is outside the portrait's box").arg(path(*atlas_, index)));
-    return false;
-  }
-  controller_->showAtlasIsland(n, path(*atlas_, index));
+  const SegmentRegion fallback{n.centre.x - half, n.centre.x + half, n.centre.y - half, n.centre.y + half, 1.0};
+  controller_->showAtlasIsland(n, path(*atlas_, index), fallback);
   Q_EMIT statusMessage(tr("Island %1: period %2, area %3").arg(path(*atlas_, index)).arg(n.period).arg(
       n.boundaryFound ? number(n.area, 6) : tr("not found")));
   return true;

@@ -8,10 +8,9 @@
 /// Everything is core's (core/atlas: computeAtlas with its progress and stop token, atlasPath, atlasJson/atlasCsv,
 /// writeAtlasJson/writeAtlasCsv; docs/atlas.md): this page fills the request (depth, largest period; the rest is
 /// core's default), runs it on a background job (ui/jobs: each island's progress posts a copy of the atlas so far;
-/// Stop keeps what is finished, as `archipelago-cli atlas` does on Ctrl-C), and formats.  A click on an island zooms
-/// the portrait to it (a square about its centre twice the radius of a disc of its area) and asks the
-/// PortraitController to draw its boundary circle, its chain (the periodic-orbit overlay) and its partner's manifolds
-/// (the Manifolds page's mechanism).  The atlas is kept in sessions (core/session: its JSON, read back, not
+/// Stop keeps what is finished, as `archipelago-cli atlas` does on Ctrl-C), and formats.  A click on an island asks
+/// the PortraitController to zoom to it (its boundary circle with a margin) and draw its boundary circle, its chain
+/// (the periodic-orbit overlay) and its partner's manifolds (the Manifolds page's mechanism).  The atlas is kept in sessions (core/session: its JSON, read back, not
 /// recomputed).  An atlas of another map than the portrait's stays listed (a change of K loses nothing) but its
 /// islands are not drawn until that map is shown again.
 
@@ -74,8 +73,9 @@ class AtlasPanel : public QWidget {
   [[nodiscard]] std::optional<Atlas> sessionAtlas() const;
   /// Shows `atlas` (a session's; nothing clears the page), stopping any computation.
   void restoreAtlas(const std::optional<Atlas>& atlas);
-  /// Zooms the portrait to island `index` and draws its boundary, chain and partner's manifolds (a click on its row);
-  /// false, with the reason in the status bar, when there is no such island or the atlas is of another map.
+  /// Zooms the portrait to island `index` and draws its boundary, chain and partner's manifolds (a click on its row;
+  /// the zoom comes with the traced boundary, PortraitController::showAtlasIsland); false, with the reason in the
+  /// status bar, when there is no such island or the atlas is of another map.
   bool showIsland(int index);
   /// Core's JSON / CSV of the atlas shown (writeAtlasJson / writeAtlasCsv, atomic).  False with the reason.
   bool exportJson(const QString& path, QString* error = nullptr);
@@ -114,6 +114,7 @@ class AtlasPanel : public QWidget {
   int done_ = -1;                         // islands finished while computing (−1: not computing)
   QString stage_;                         // what core is doing ("island 6 > 138")
   bool restored_ = false;                 // atlas_ came from a session
+  bool stopping_ = false;                 // Stop was asked; the island under way ends first
   quint64 request_ = 0;
   std::unique_ptr<BackgroundJobs> jobs_;  // last: stopped and joined first
 };

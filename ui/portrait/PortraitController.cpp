@@ -41,6 +41,8 @@ constexpr int kAtlasChannel = 3;     // latest wins: the atlas island selected
 /// Points drawn of an atlas island's boundary circle, per island of its chain, and in all.
 constexpr std::uint64_t kAtlasPointsPerIsland = 2000;
 constexpr std::uint64_t kMaxAtlasBoundaryPoints = 2'000'000;
+/// The margin about an atlas island's boundary circle in its view, in parts of its size on each side.
+constexpr double kAtlasViewMargin = 0.25;
 
 /// The smallest view aspect (and its inverse the largest) a rectangle zoom gives with equal aspect.
 constexpr double kMinCropAspect = 0.25;
@@ -828,7 +830,7 @@ void PortraitController::drawManifolds() {
 
 // ----------------------------------------------------------------------------------------------------- atlas
 
-void PortraitController::showAtlasIsland(const AtlasNode& node, const QString& label) {
+void PortraitController::showAtlasIsland(const AtlasNode& node, const QString& label, const SegmentRegion& fallback) {
   const MapParameters map = map_;
   const bool centre = node.parent < 0;
   Job<AtlasIslandPtr> job;
@@ -848,7 +850,13 @@ void PortraitController::showAtlasIsland(const AtlasNode& node, const QString& l
       if (node.boundaryFound) {
         const std::uint64_t steps = std::clamp<std::uint64_t>(node.period * kAtlasPointsPerIsland, kLaunchedOrbitSteps,
                                                               std::min(kMaxAtlasBoundaryPoints, limits::kOrbitLength));
-        result->boundary = toQt(archipelago::traceOrbit(map, node.boundaryPoint.x, node.boundaryPoint.y, steps, false));
+        const std::vector<PhysicalPoint> orbit =
+            archipelago::traceOrbit(map, node.boundaryPoint.x, node.boundaryPoint.y, steps, false);
+        // The island's own circle: every n-th point (its orbit under Qⁿ); framed whole, elongated or not.
+        std::vector<PhysicalPoint> own;
+        for (std::size_t k = 0; k < orbit.size(); k += std::max<std::size_t>(node.period, 1)) own.push_back(orbit[k]);
+        if (!own.empty()) result->island = dwellRegion(own, 1.0, 64, kAtlasViewMargin);
+        result->boundary = toQt(orbit);
       }
     } catch (const std::exception& e) {
       missing << QObject::tr("the boundary circle (%1)").arg(QString::fromUtf8(e.what()));
@@ -862,13 +870,15 @@ void PortraitController::showAtlasIsland(const AtlasNode& node, const QString& l
     result->error = missing.join(QStringLiteral(", "));
     return result;
   };
-  job.done = [this, label, centre](JobResult<AtlasIslandPtr> r) {
+  job.done = [this, label, centre, fallback](JobResult<AtlasIslandPtr> r) {
     atlasRequest_ = 0;
     if (!r.ok()) {
+      zoomToRegion(fallback);
       Q_EMIT statusMessage(tr("Atlas island %1: %2").arg(label, r.error));
       return;
     }
     atlasIsland_ = *r.value;
+    zoomToRegion(atlasIsland_->island.value_or(fallback));
     atlasLabel_ = atlasIsland_->boundary.empty() ? QString() : label;
     if (view_) {
       std::vector<QwtPlotItem*> items;

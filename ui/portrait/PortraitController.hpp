@@ -32,6 +32,7 @@
 #include "core/map/MapParameters.hpp"
 #include "core/measures/OrbitMeasures.hpp"
 #include "core/periodic/PeriodicOrbit.hpp"
+#include "core/periodic/SegmentAnalysis.hpp"
 #include "core/portrait/ColourMap.hpp"
 #include "core/portrait/PortraitRaster.hpp"
 #include "core/portrait/Viewport.hpp"
@@ -66,6 +67,7 @@ using FluxPtr = std::shared_ptr<const FluxResult>;
 /// boundary point under Q (every island of its chain), and the chain's and its partner's orbits whole.
 struct AtlasIslandResult {
   std::vector<QPointF> boundary;            ///< empty when the island has no boundary circle
+  std::optional<SegmentRegion> island;      ///< the island's own circle (every n-th point) with a margin: its view
   std::optional<PeriodicOrbit> chain;       ///< the chain's elliptic orbit (the fixed point at the centre)
   std::optional<PeriodicOrbit> partner;     ///< its hyperbolic partner (none at the centre, or when there is none)
   QString error;                            ///< what could not be drawn, if anything
@@ -200,12 +202,14 @@ class PortraitController : public QObject {
   [[nodiscard]] bool manifoldsSettled() const;
 
   // --- The atlas (issue 38) -------------------------------------------------------------------------------
-  /// Draws an island of an atlas of this map: its boundary circle (the orbit of node.boundaryPoint under Q, about
-  /// 2000 points per island of the chain, in its own layer), its chain as the periodic-orbit overlay and its partner's
-  /// manifolds (the fixed point (√K, 0)'s at the centre; the layer off when the chain has no partner), in the
-  /// background.  An orbit the atlas keeps as one point (an atlas read from JSON) is found again by core's Newton.
-  /// The view is the caller's (zoomToRegion).  `label` names the island in the legend ("6 > 138").
-  void showAtlasIsland(const AtlasNode& node, const QString& label);
+  /// Shows an island of an atlas of this map, in the background: zooms to it — its own boundary circle (the orbit
+  /// of node.boundaryPoint under Qⁿ) framed with a margin of a quarter of its size on every side by core's
+  /// dwellRegion and framedInBox, or `fallback` when it has no boundary circle — and draws its boundary circle (the
+  /// orbit under Q, about 2000 points per island of the chain, in its own layer), its chain as the periodic-orbit
+  /// overlay and its partner's manifolds (the fixed point (√K, 0)'s at the centre; the layer off when the chain has no
+  /// partner).  An orbit the atlas keeps as one point (an atlas read from JSON) is found again by core's Newton.
+  /// `label` names the island in the legend ("6 > 138").
+  void showAtlasIsland(const AtlasNode& node, const QString& label, const SegmentRegion& fallback);
   /// Removes the boundary circle (the overlay and the manifolds stay).
   void clearAtlasIsland();
   /// What the last showAtlasIsland() drew (null: none yet, or cleared), and whether it is still computing (tests).
