@@ -214,7 +214,7 @@ PrimaryIntersections primaryHeteroclinicPoints(const ManifoldParameterization& u
     if (stop.stop_requested()) throw std::runtime_error("stopped");
     // The 2n tracks (branch j, line) are independent: scanned in parallel, each into its own list, the lists then
     // appended in the serial order (j, then S₁, S₂), so that the result does not depend on the threads.
-    std::vector<std::vector<Candidate>> found(tracks.size());
+    std::vector<std::vector<Candidate>> perTrack(tracks.size());
     (void)parallelFor(tracks.size(), [&](std::size_t track, int) {
       {
         const int j = static_cast<int>(track / 2);
@@ -248,7 +248,7 @@ PrimaryIntersections primaryHeteroclinicPoints(const ManifoldParameterization& u
               }
             }
             const std::optional<int> image = reversedIndex(orbit, reversorOf(line), j);  // I(z_j) = z_b
-            found[track].push_back({j, line, sign * (a + (b - a) / 2), a, b, modulo(*image - j, n)});
+            perTrack[track].push_back({j, line, sign * (a + (b - a) / 2), a, b, modulo(*image - j, n)});
           }
           t.sigma0 = sigma0;
           t.offset = f;
@@ -256,7 +256,7 @@ PrimaryIntersections primaryHeteroclinicPoints(const ManifoldParameterization& u
       }
     }, stop);
     if (stop.stop_requested()) throw std::runtime_error("stopped");
-    for (const std::vector<Candidate>& list : found) candidates.insert(candidates.end(), list.begin(), list.end());
+    for (const std::vector<Candidate>& list : perTrack) candidates.insert(candidates.end(), list.begin(), list.end());
     // Every crossing with |σ₀| < s₀Λ^{k+1} is known: the pair is certain once its second point is below that.
     std::vector<Candidate> distinct = distinctOrbits(candidates);
     if (auto found = primaryPair(distinct); found && std::fabs(found->second.sigma0) < start * std::exp(logFactor * (k + 1)))
