@@ -11,7 +11,6 @@
 #include <QPushButton>
 #include <QScrollArea>
 #include <QSpinBox>
-#include <QSplitter>
 #include <QStringList>
 #include <QTimer>
 #include <QTreeWidget>
@@ -22,6 +21,7 @@
 #include <numbers>
 
 #include "core/atlas/AtlasExport.hpp"
+#include "core/manifolds/ManifoldExport.hpp"
 #include "core/periodic/PeriodicOrbitFinder.hpp"
 #include "core/periodic/SegmentAnalysis.hpp"
 #include "ui/jobs/BackgroundJobs.hpp"
@@ -48,8 +48,16 @@ QString number(long double v, int digits = 4) {
   return std::isfinite(v) ? QString::number(static_cast<double>(v), 'g', digits) : QStringLiteral("–");
 }
 
+/// A number of steps: whole from 100 on ("15200", not "1.52e+04"), one decimal below.
+QString steps(double v) {
+  return std::isfinite(v) ? QString::number(v, 'f', std::fabs(v) < 100 ? 1 : 0) : QStringLiteral("–");
+}
+
+/// A point, a coordinate that is round-off beside the other shown as 0 (core's quadCoordinateText, as the Manifolds
+/// page shows them).
 QString point(PhysicalPoint p) {
-  return QStringLiteral("(%1, %2)").arg(number(p.x, 12), number(p.y, 12));
+  return QStringLiteral("(%1, %2)").arg(QString::fromStdString(quadCoordinateText(p.x, p.y, 12)),
+                                        QString::fromStdString(quadCoordinateText(p.y, p.x, 12)));
 }
 
 /// Measured: its boundary circle found or refused (an island known but not reached yet has neither).
@@ -174,8 +182,8 @@ AtlasPanel::AtlasPanel(PortraitController* controller, QWidget* parent)
   auto* exports = new QHBoxLayout;
   exports->addWidget(json_);
   exports->addWidget(csv_);
-  // The tree above the selected island's numbers, the split movable; the numbers scroll (a long note never sets the
-  // page's, hence the window's, minimum height).
+  // The tree above the selected island's numbers, which scroll (a long note never sets the page's, hence the
+  // window's, minimum height).
   auto* detailsArea = new QScrollArea(this);
   detailsArea->setWidget(details_);
   detailsArea->setWidgetResizable(true);
@@ -183,20 +191,13 @@ AtlasPanel::AtlasPanel(PortraitController* controller, QWidget* parent)
   detailsArea->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
   detailsArea->setMinimumHeight(40);
   tree_->setMinimumHeight(80);
-  auto* split = new QSplitter(Qt::Vertical, this);
-  split->setObjectName(QStringLiteral("atlasSplitter"));
-  split->setChildrenCollapsible(false);
-  split->addWidget(tree_);
-  split->addWidget(detailsArea);
-  split->setStretchFactor(0, 3);
-  split->setStretchFactor(1, 2);
-  split->setSizes({300, 200});
   auto* layout = new QVBoxLayout(this);
   layout->setContentsMargins(2, 4, 2, 2);
   layout->addLayout(form);
   layout->addLayout(buttons);
   layout->addWidget(progress_);
-  layout->addWidget(split, 1);
+  layout->addWidget(tree_, 3);
+  layout->addWidget(detailsArea, 2);
   layout->addLayout(exports);
   updateProgress();
   updateDetails();
@@ -307,6 +308,10 @@ void AtlasPanel::restoreAtlas(const std::optional<Atlas>& atlas) {
   tree_->clear();
   items_.clear();
   restored_ = atlas.has_value();
+  if (atlas) {  // the controls say what it was computed with (Compute again gives the same atlas)
+    depth_->setValue(std::min(atlas->request.depth, depth_->maximum()));
+    maxPeriod_->setValue(static_cast<int>(std::min<std::uint64_t>(atlas->request.maxPeriod, maxPeriod_->maximum())));
+  }
   show(atlas ? std::make_shared<const Atlas>(*atlas) : nullptr, -1, QString());
 }
 
@@ -357,7 +362,7 @@ void AtlasPanel::fillTree() {
                                        : done ? QStringLiteral("–") : state);
     row->setText(flux, n.flux.found ? number(n.flux.flux) : QStringLiteral("–"));
     row->setText(layer, n.flux.found ? number(n.flux.layerArea) : QStringLiteral("–"));
-    row->setText(residence, n.flux.found ? number(n.flux.residence) : QStringLiteral("–"));
+    row->setText(residence, n.flux.found ? steps(n.flux.residence) : QStringLiteral("–"));
     const QString noteShown = done ? noteText(n) : busy() ? state : tr("not measured (stopped)");
     row->setText(note, noteShown);
     row->setToolTip(note, noteShown);

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <limits>
 #include <sstream>
 #include <utility>
 
@@ -39,7 +40,7 @@ constexpr int kFluxChannel = 2;      // latest wins: the flux of the orbit shown
 constexpr int kAtlasChannel = 3;     // latest wins: the atlas island selected
 
 /// Points drawn of an atlas island's boundary circle, per island of its chain, and in all.
-constexpr std::uint64_t kAtlasPointsPerIsland = 2000;
+constexpr std::uint64_t kAtlasPointsPerIsland = 4000;
 constexpr std::uint64_t kMaxAtlasBoundaryPoints = 2'000'000;
 /// The margin about an atlas island's boundary circle in its view, in parts of its size on each side.
 constexpr double kAtlasViewMargin = 0.25;
@@ -852,9 +853,18 @@ void PortraitController::showAtlasIsland(const AtlasNode& node, const QString& l
                                                               std::min(kMaxAtlasBoundaryPoints, limits::kOrbitLength));
         const std::vector<PhysicalPoint> orbit =
             archipelago::traceOrbit(map, node.boundaryPoint.x, node.boundaryPoint.y, steps, false);
-        // The island's own circle: every n-th point (its orbit under Qⁿ); framed whole, elongated or not.
+        // The circle of the island about node.centre: every n-th point (an orbit under Qⁿ) from the first n's point
+        // nearest that centre (the boundary point may lie on another island of the chain: 6 > 138's at K = 0.1);
+        // framed whole, elongated or not.
+        const std::size_t n = std::max<std::size_t>(node.period, 1);
+        std::size_t phase = 0;
+        long double nearest = std::numeric_limits<long double>::infinity();
+        for (std::size_t k = 0; k < std::min(n, orbit.size()); ++k) {
+          const long double d = std::hypot(orbit[k].x - node.centre.x, orbit[k].y - node.centre.y);
+          if (d < nearest) nearest = d, phase = k;
+        }
         std::vector<PhysicalPoint> own;
-        for (std::size_t k = 0; k < orbit.size(); k += std::max<std::size_t>(node.period, 1)) own.push_back(orbit[k]);
+        for (std::size_t k = phase; k < orbit.size(); k += n) own.push_back(orbit[k]);
         if (!own.empty()) result->island = dwellRegion(own, 1.0, 64, kAtlasViewMargin);
         result->boundary = toQt(orbit);
       }
@@ -884,6 +894,7 @@ void PortraitController::showAtlasIsland(const AtlasNode& node, const QString& l
       std::vector<QwtPlotItem*> items;
       if (!atlasIsland_->boundary.empty()) {
         auto* item = new PointsItem(PointsItem::Style::dots, atlasIsland_->boundary, QColor(120, 255, 80));
+        item->setPenWidth(3);  // a solid ring, thicker than the portrait's orbits about it
         item->setTitle(tr("boundary circle of %1").arg(label));
         items.push_back(item);
       }

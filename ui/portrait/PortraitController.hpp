@@ -67,7 +67,7 @@ using FluxPtr = std::shared_ptr<const FluxResult>;
 /// boundary point under Q (every island of its chain), and the chain's and its partner's orbits whole.
 struct AtlasIslandResult {
   std::vector<QPointF> boundary;            ///< empty when the island has no boundary circle
-  std::optional<SegmentRegion> island;      ///< the island's own circle (every n-th point) with a margin: its view
+  std::optional<SegmentRegion> island;      ///< the circle of the island about the node's centre, with a margin
   std::optional<PeriodicOrbit> chain;       ///< the chain's elliptic orbit (the fixed point at the centre)
   std::optional<PeriodicOrbit> partner;     ///< its hyperbolic partner (none at the centre, or when there is none)
   QString error;                            ///< what could not be drawn, if anything
@@ -202,10 +202,10 @@ class PortraitController : public QObject {
   [[nodiscard]] bool manifoldsSettled() const;
 
   // --- The atlas (issue 38) -------------------------------------------------------------------------------
-  /// Shows an island of an atlas of this map, in the background: zooms to it — its own boundary circle (the orbit
-  /// of node.boundaryPoint under Qⁿ) framed with a margin of a quarter of its size on every side by core's
+  /// Shows an island of an atlas of this map, in the background: zooms to it — the boundary circle of the island
+  /// about node.centre (the orbit under Qⁿ of the point of node.boundaryPoint's orbit nearest that centre) framed with a margin of a quarter of its size on every side by core's
   /// dwellRegion and framedInBox, or `fallback` when it has no boundary circle — and draws its boundary circle (the
-  /// orbit under Q, about 2000 points per island of the chain, in its own layer), its chain as the periodic-orbit
+  /// orbit under Q, about 4000 points per island of the chain, in its own layer), its chain as the periodic-orbit
   /// overlay and its partner's manifolds (the fixed point (√K, 0)'s at the centre; the layer off when the chain has no
   /// partner).  An orbit the atlas keeps as one point (an atlas read from JSON) is found again by core's Newton.
   /// `label` names the island in the legend ("6 > 138").
