@@ -4,6 +4,7 @@
 
 #include <pybind11/pybind11.h>
 
+#include <optional>
 #include <stdexcept>
 #include <stop_token>
 #include <string>
@@ -22,7 +23,7 @@ const AtlasRequest kAtlas{};
 
 py::dict atlas(double K, double xmin, double xmax, int depth, std::uint64_t maxPeriod, double minArea,
                std::uint64_t iterations, double threshold, int scanPoints, double scanSteps, int bisections,
-               int threads) {
+               int threads, double timeBudget, const py::object& resume) {
   AtlasRequest r;
   r.map = mapOf(K, xmin, xmax);
   r.depth = depth;
@@ -34,8 +35,21 @@ py::dict atlas(double K, double xmin, double xmax, int depth, std::uint64_t maxP
   r.scanSteps = scanSteps;
   r.bisections = bisections;
   r.threads = threads;
+  r.timeBudget = timeBudget;
   if (auto e = validationError(r)) throw std::invalid_argument(*e);
-  const std::string json = interruptible([&](std::stop_token stop) { return atlasJson(computeAtlas(r, {}, stop)); });
+  // resume: an atlas dict stopped early (its 'cancelled' true), continued by core from its finished islands.
+  std::optional<Atlas> previous;
+  if (!resume.is_none()) {
+    const std::string text = py::str(py::module_::import("json").attr("dumps")(resume));
+    try {
+      previous = atlasFromJson(text);
+    } catch (const std::exception& e) {
+      throw std::invalid_argument(std::string("resume: ") + e.what());
+    }
+    if (auto e = resumeError(r, *previous)) throw std::invalid_argument("resume: " + *e);
+  }
+  const std::string json = interruptible(
+      [&](std::stop_token stop) { return atlasJson(computeAtlas(r, {}, stop, previous ? &*previous : nullptr)); });
   return py::module_::import("json").attr("loads")(json);
 }
 }  // namespace
@@ -47,8 +61,11 @@ void bindAtlas(py::module_& m) {
         py::arg("threshold") = kAtlas.digitsThreshold, py::arg("scan_points") = kAtlas.scanPoints,
         py::arg("scan_steps") = kAtlas.scanSteps,
         py::arg("bisections") = kAtlas.bisections, py::arg("threads") = kAtlas.threads,
+        py::arg("time_budget") = kAtlas.timeBudget, py::arg("resume") = py::none(),
         "The atlas of the islands around islands from the centre (-sqrt K, 0) (core/atlas/Atlas.hpp, docs/atlas.md):\n"
         "each island's boundary circle and area, the chains just outside it with their period, p/q about the parent,\n"
         "turnstile flux, zone and layer areas and mean residence time, to `depth` levels.  The same dict as\n"
-        "`archipelago-cli atlas --json`: 'nodes' is the tree (each with its 'parent' index).  ValueError for bad input.");
+        "`archipelago-cli atlas --json`: 'nodes' is the tree (each with its 'parent' index).  time_budget (seconds, 0:\n"
+        "none) stops it keeping the finished islands ('cancelled', 'stop_reason'); resume=<such a dict> continues it\n"
+        "with the same arguments.  ValueError for bad input.");
 }

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <stop_token>
 #include <string>
@@ -12,6 +13,7 @@
 #include "CliCommon.hpp"
 #include "RunSession.hpp"
 #include "core/atlas/AtlasExport.hpp"
+#include "core/io/AtomicFile.hpp"
 #include "core/io/CommandFiles.hpp"
 
 namespace archipelago::cli {
@@ -22,6 +24,7 @@ struct AtlasOptions {
   AtlasRequest request;
   std::string json;
   std::string csv;
+  std::string resume;
   bool quiet = false;
 };
 
@@ -38,15 +41,27 @@ void printTable(const Atlas& a) {
     else std::printf(" %12s %10s", "-", "-");
     if (n.flux.found) std::printf(" %12.6Le %12.6Le %12.6g", n.flux.flux, n.flux.layerArea, n.flux.residence);
     else std::printf(" %12s %12s %12s", "-", "-", "-");
-    std::printf("%s%s\n", n.note.empty() ? "" : "  # ", n.note.c_str());
+    const std::string note = n.measured ? n.note : "not measured yet";
+    std::printf("%s%s\n", note.empty() ? "" : "  # ", note.c_str());
   }
-  std::printf("# %zu islands in %.1f s%s\n", a.nodes.size(), a.seconds, a.cancelled ? " (stopped: the rest not computed)" : "");
+  std::printf("# %zu islands in %.1f s%s\n", a.nodes.size(), a.seconds, a.cancelled ? (" (" + a.stopReason + ": the rest not computed)").c_str() : "");
 }
 
 int runAtlas(AtlasOptions o) {
   o.request.map = o.map;
   if (auto e = validationError(o.request)) throw std::invalid_argument(*e);
-  io::checkCommandFiles({{"--json", o.json, io::FileUse::Output}, {"--csv", o.csv, io::FileUse::Output}});
+  io::checkCommandFiles({{"--resume", o.resume, io::FileUse::ResumedState},
+                         {"--json", o.json, io::FileUse::SavedState},
+                         {"--csv", o.csv, io::FileUse::Output}});
+  std::optional<Atlas> previous;
+  if (!o.resume.empty()) {
+    try {
+      previous = atlasFromJson(io::readRegularFile(o.resume, kMaxAtlasFileBytes));
+    } catch (const std::exception& e) {
+      throw std::runtime_error("--resume " + o.resume + ": " + e.what());
+    }
+    if (auto e = resumeError(o.request, *previous)) throw std::invalid_argument("--resume " + o.resume + ": " + *e);
+  }
   installInterruptHandlers();
   std::stop_source stop;
   std::atomic<bool> finished{false};
@@ -73,7 +88,7 @@ int runAtlas(AtlasOptions o) {
     };
   Atlas atlas;
   try {
-    atlas = computeAtlas(o.request, progress, stop.get_token());
+    atlas = computeAtlas(o.request, progress, stop.get_token(), previous ? &*previous : nullptr);
   } catch (...) {
     finished = true;
     watcher.join();
@@ -84,7 +99,11 @@ int runAtlas(AtlasOptions o) {
   if (!o.json.empty()) writeAtlasJson(o.json, atlas);
   if (!o.csv.empty()) writeAtlasCsv(o.csv, atlas);
   if (!o.quiet) printTable(atlas);
-  return atlas.cancelled ? 130 : 0;
+  if (atlas.cancelled && !o.quiet)
+    std::fprintf(stderr, "atlas: %s: %s; --resume with the JSON file continues it\n", atlas.stopReason.c_str(),
+                 o.json.empty() ? "nothing saved (no --json)" : ("the finished islands are in " + o.json).c_str());
+  // Ctrl-C: 130 as every command; a time budget reached is the request's own end: 0.
+  return atlas.cancelled && atlas.stopReason == "stopped" ? 130 : 0;
 }
 }  // namespace
 
@@ -104,6 +123,11 @@ void addAtlasCommand(CLI::App& app, int& status) {
                   "more scan points where this many steps of the map allow (islands of short period scanned finely)");
   addNumberOption(*cmd, "--bisections", o->request.bisections, "halvings of the boundary circle's bracket");
   addNumberOption(*cmd, "--threads", o->request.threads, "threads (0: one per core)");
+  addNumberOption(*cmd, "--time-budget", o->request.timeBudget,
+                  "seconds: then stop as Ctrl-C does, keeping the finished islands (0: none)");
+  cmd->add_option("--resume", o->resume,
+                  "continue the atlas in this JSON file (one stopped early), with the same options; its finished "
+                  "islands are kept");
   cmd->add_option("--json", o->json, "write the tree as JSON here (atomically)");
   cmd->add_option("--csv", o->csv, "write one row per island here (atomically)");
   cmd->add_flag("--quiet", o->quiet, "no progress and no table");

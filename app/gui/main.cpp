@@ -79,7 +79,7 @@ double readSeconds(const char* option, const QString& text, double lo) {
 /// The rank given to --segment: a whole number ≥ 0 (core's reader: "abc", "1.5", "-1" are errors).
 int readRank(const QString& text) {
   const auto v = archipelago::io::parseNumber<std::uint32_t>("--segment", text.toStdString());
-  if (v < 0 || v > 1'000'000)
+  if (v > 1'000'000)
     throw std::invalid_argument("--segment = " + archipelago::io::shortText(text.toStdString()) +
                                 " must be a rank in [0, the number of longest segments the run keeps)");
   return static_cast<int>(v);

@@ -194,7 +194,9 @@ long double halfSpacing(const PeriodicOrbit& orbit, std::size_t i) {
   return d / 2;
 }
 
-AtlasFlux chainFlux(long double K, const std::optional<PeriodicOrbit>& chain, std::stop_token stop) {
+/// `zone`: where the zone's closed curves go (TurnstileFlux::zoneBoundary), for the layers (settleLayers).
+AtlasFlux chainFlux(long double K, const std::optional<PeriodicOrbit>& chain, std::stop_token stop,
+                    std::vector<std::vector<PhysicalPoint>>& zone) {
   AtlasFlux f;
   try {
     TurnstileRequest t;
@@ -219,7 +221,7 @@ AtlasFlux chainFlux(long double K, const std::optional<PeriodicOrbit>& chain, st
     f.zoneArea = flux.zoneArea;
     f.fluxDigits = flux.lobeDigits();
     f.zoneDigits = flux.zoneDigits();
-    f.zone = flux.zoneBoundary;
+    zone = flux.zoneBoundary;
     f.layerArea = f.zoneArea;  // until settleLayers subtracts the islands inside
     f.residence = static_cast<double>(f.zoneArea / f.flux);
     // No silent wrong answer: the two methods must agree and the lobe must be a small part of what it encloses (a
@@ -241,7 +243,7 @@ AtlasFlux chainFlux(long double K, const std::optional<PeriodicOrbit>& chain, st
 /// 4096 and 8192 points that a circle's polygon may show (a converged invariant circle changes by ~1e−9).
 constexpr int kBoundaryTries = 8;
 constexpr long double kQuickTolerance = 1e-2L;
-constexpr int kZooms = 4;
+constexpr int kZooms = 2;
 /// Each barrier's layer: its zone less the atlas's islands inside its curves (each island counted by its centre, a
 /// member of its chain's elliptic orbit: an island never crosses a separatrix), and the residence time layer / flux.
 /// `zones` holds each flux's zone as a region, by node (built once: a zone of a long chain has ~10⁵ vertices).
@@ -265,49 +267,123 @@ void settleLayers(Atlas& atlas, const std::map<int, PolygonRegion>& zones) {
 constexpr int kMaxScanPoints = 10000;
 constexpr long double kCircleTolerance = 1e-4L;
 
+/// Whether `chain` (period n·q) surrounds the island of period n at c as p/q: its points z_0, z_n, …, z_{(q−1)n} (the
+/// images under Qⁿ, which fixes c) lie within `reach` of c and their angles about c advance by |p| turns in all.
+bool surrounds(const PeriodicOrbit& chain, PhysicalPoint c, std::uint64_t n, const Rational& pq, long double reach) {
+  const std::size_t size = chain.points.size();
+  if (n == 0 || size % n != 0 || size / n != static_cast<std::size_t>(pq.q)) return false;
+  const long double pi = std::numbers::pi_v<long double>;
+  long double turns = 0;
+  for (std::size_t k = 0; k < static_cast<std::size_t>(pq.q); ++k) {
+    const PhysicalPoint a = chain.points[(k * n) % size], b = chain.points[((k + 1) * n) % size];
+    if (std::hypot(a.x - c.x, a.y - c.y) > reach) return false;
+    long double d = std::atan2(b.y - c.y, b.x - c.x) - std::atan2(a.y - c.y, a.x - c.x);
+    if (d > pi) d -= 2 * pi;
+    if (d <= -pi) d += 2 * pi;
+    turns += d;
+  }
+  turns = std::fabs(turns) / (2 * pi);
+  return std::fabs(turns - static_cast<long double>(std::llabs(pq.p))) < 1e-6L;
+}
+
+/// A node as its parent's expansion made it (before its own expansion, stopped midway, filled part of it).
+AtlasNode unmeasured(const AtlasNode& n) {
+  AtlasNode m;
+  m.parent = n.parent;
+  m.level = n.level;
+  m.period = n.period;
+  m.aboutParent = n.aboutParent;
+  m.orbit = n.orbit;
+  m.centre = n.centre;
+  m.onS1 = n.onS1;
+  m.sense = n.sense;
+  return m;
+}
+
 class AtlasBuilder {
  public:
   AtlasBuilder(const AtlasRequest& r, const AtlasProgress& progress, std::stop_token stop)
       : r_(r), progress_(progress), stop_(std::move(stop)), K_(static_cast<long double>(r.map.K)) {}
 
-  Atlas build() {
+  Atlas build(const Atlas* resume) {
     const auto started = std::chrono::steady_clock::now();
+    auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count(); };
     Atlas atlas;
     atlas.request = r_;
-    // The central island: the elliptic fixed point (−√K, 0), on both lines; scanned along S₂.
-    AtlasNode root;
-    root.orbit = analysePeriodicOrbit(K_, 1, static_cast<quad>(-std::sqrt(K_)), 0, OrbitSymmetry::LineS2);
-    root.centre = {-std::sqrt(K_), 0};
-    root.sense = 1;
-    atlas.nodes.push_back(root);
-    std::deque<int> queue{0};
+    std::deque<int> queue;
     int done = 0;
-    while (!queue.empty()) {
-      if (stop_.stop_requested()) {
-        atlas.cancelled = true;
-        break;
+    if (resume) {
+      // The measured islands are kept; their barriers' zones (not in the files) are computed again for the layers.
+      atlas.nodes = resume->nodes;
+      for (std::size_t i = 0; i < atlas.nodes.size(); ++i) {
+        AtlasNode& node = atlas.nodes[i];
+        // A file keeps each chain's measured member only: the orbit is found again from it (Newton in __float128).
+        if (i == 0) {
+          node.orbit = analysePeriodicOrbit(K_, 1, static_cast<quad>(-std::sqrt(K_)), 0, OrbitSymmetry::LineS2);
+        } else if (node.orbit.points.size() != node.period) {
+          PeriodicOrbitSearch search;
+          search.period = static_cast<int>(node.period);
+          search.near = node.centre;
+          PeriodicOrbit found = findPeriodicOrbit(K_, search, stop_);
+          if (found.distanceTo(node.centre) > 1e-9L)
+            throw std::invalid_argument("the atlas to resume: node " + std::to_string(i) + "'s orbit (period " +
+                                        std::to_string(node.period) + ") is not found again from its centre");
+          node.orbit = found.rotatedToStart(found.nearestIndex(node.centre));
+        }
+        if (!node.measured) {
+          queue.push_back(static_cast<int>(i));
+          continue;
+        }
+        ++done;
+        if (!node.flux.found) continue;
+        std::vector<std::vector<PhysicalPoint>> zone;
+        const AtlasFlux again =
+            chainFlux(K_, i == 0 ? std::nullopt : std::optional<PeriodicOrbit>(node.orbit), stop_, zone);
+        if (stop_.stop_requested()) break;
+        if (again.found && !zone.empty()) zones_.emplace(static_cast<int>(i), PolygonRegion(zone));
       }
+    } else {
+      // The central island: the elliptic fixed point (−√K, 0), on both lines; scanned along S₂.
+      AtlasNode root;
+      root.orbit = analysePeriodicOrbit(K_, 1, static_cast<quad>(-std::sqrt(K_)), 0, OrbitSymmetry::LineS2);
+      root.centre = {-std::sqrt(K_), 0};
+      root.sense = 1;
+      atlas.nodes.push_back(root);
+      queue.push_back(0);
+    }
+    const int doneBefore = done;
+    while (!queue.empty()) {
+      // The budget is checked between islands, after at least one: every computation (a resumed one too) progresses.
+      if (r_.timeBudget > 0 && done > doneBefore && elapsed() >= r_.timeBudget)
+        atlas.stopReason = "time budget of " + shortestDecimal(r_.timeBudget) + " s reached";
+      if (stop_.stop_requested()) atlas.stopReason = "stopped";
+      if (!atlas.stopReason.empty()) break;
       const int i = queue.front();
-      queue.pop_front();
       if (progress_) {
         settleLayers(atlas, zones_);
         progress_(atlas, done, "island " + atlasPath(atlas, i));
       }
-      const std::vector<AtlasNode> children = expand(atlas, i);
+      std::vector<AtlasNode> children = expand(atlas, i);
       if (stop_.stop_requested()) {
-        atlas.cancelled = true;
+        atlas.stopReason = "stopped";
+        atlas.nodes[static_cast<std::size_t>(i)] = unmeasured(atlas.nodes[static_cast<std::size_t>(i)]);
+        zones_.erase(i);
         break;
       }
-      for (const AtlasNode& child : children) {
-        atlas.nodes[i].children.push_back(static_cast<int>(atlas.nodes.size()));
-        atlas.nodes.push_back(child);
+      queue.pop_front();
+      atlas.nodes[static_cast<std::size_t>(i)].measured = true;
+      for (AtlasNode& child : children) {
+        atlas.nodes[static_cast<std::size_t>(i)].children.push_back(static_cast<int>(atlas.nodes.size()));
+        atlas.nodes.push_back(std::move(child));
         queue.push_back(static_cast<int>(atlas.nodes.size()) - 1);
       }
       ++done;
     }
-    atlas.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    atlas.cancelled = !queue.empty();
+    if (atlas.cancelled && atlas.stopReason.empty()) atlas.stopReason = "stopped";
+    atlas.seconds = elapsed();
     settleLayers(atlas, zones_);
-    if (progress_) progress_(atlas, done, atlas.cancelled ? "stopped" : "done");
+    if (progress_) progress_(atlas, done, atlas.cancelled ? atlas.stopReason : "done");
     return atlas;
   }
 
@@ -330,13 +406,17 @@ class AtlasBuilder {
     return s;
   }
 
-  /// Points a side: at the last level a quarter of the request's (only the boundary is wanted there), else the
+  /// Points a side: at the last level a quarter of the request's (only the boundary is wanted there; fewer, down to
+  /// 16, where `scanSteps` is short for a long period), else the
   /// request's or as many as `scanSteps` steps of the map allow over all sides, up to kMaxScanPoints: the chains around
   /// an island of short period can be narrow (the 138-chain's islands cross S₁ over 4·10⁻⁵ around the island of six).
   [[nodiscard]] int scanPoints(const AtlasNode& node, std::size_t sides) const {
-    if (node.level >= r_.depth) return std::max(16, r_.scanPoints / 4);
     const double perPoint = 2.0 * static_cast<double>(r_.iterations) * static_cast<double>(node.period) *
                             static_cast<double>(std::max<std::size_t>(sides, 1));
+    if (node.level >= r_.depth) {  // a quarter of the request's, fewer where the step budget is short (long periods)
+      const double quarter = std::max(16.0, r_.scanPoints / 4.0);
+      return static_cast<int>(r_.scanSteps > 0 ? std::clamp(r_.scanSteps / perPoint, 16.0, quarter) : quarter);
+    }
     return static_cast<int>(std::clamp(r_.scanSteps / perPoint, static_cast<double>(r_.scanPoints),
                                        static_cast<double>(kMaxScanPoints)));
   }
@@ -425,6 +505,8 @@ class AtlasBuilder {
           s.lastCircle = candidate;
           if (!node.boundaryFound || a->area > node.area) {
             node.boundaryFound = true;
+            node.centre = ray.island.centre;  // the member whose island holds the circle, z₀ of the orbit
+            node.orbit = node.orbit.rotatedToStart(node.orbit.nearestIndex(ray.island.centre));
             node.boundaryPoint = inner.point;
             node.boundaryRotation = inner.rotation;
             node.boundaryDigits = inner.digits;
@@ -457,8 +539,9 @@ class AtlasBuilder {
     // The flux through the chain's separatrix (at the centre: the fixed point (√K, 0)'s loop).  Its zone encloses
     // the islands of the parent (one per closed curve) or, at the centre, the central island: the layer between is
     // what an orbit that crossed the barrier moves in.
-    node.flux = chainFlux(K_, index == 0 ? std::nullopt : std::optional<PeriodicOrbit>(node.orbit), stop_);
-    if (node.flux.found && !node.flux.zone.empty()) zones_.emplace(index, PolygonRegion(node.flux.zone));
+    std::vector<std::vector<PhysicalPoint>> zone;
+    node.flux = chainFlux(K_, index == 0 ? std::nullopt : std::optional<PeriodicOrbit>(node.orbit), stop_, zone);
+    if (node.flux.found && !zone.empty()) zones_.emplace(index, PolygonRegion(zone));
 
     if (!node.boundaryFound) {
       node.boundaryFailure = "no invariant circle about the centre within the scan's first step: the island is below "
@@ -532,6 +615,18 @@ class AtlasBuilder {
       if (!member) continue;  // not symmetric: the scan cannot measure it (docs/atlas.md)
       child.orbit = guess.orbit->rotatedToStart(member->first);
       child.centre = child.orbit.points.front();
+      // The orbit must be a chain about this island: its points in the island's cell, Qⁿ-images of each other,
+      // turn p times about the island's member in q steps (a chaotic band's elliptic orbit of the same period that
+      // the scan's rotation named p/q does not), and it must not be a chain already in the atlas (the same
+      // period-247 orbit was named 2/19 and 7/19 about the island of 13 and 1/13 about the island of 19).
+      if (!surrounds(child.orbit, rays[k].island.centre, node.period, *child.aboutParent, 2 * rays[k].island.reach))
+        continue;
+      auto same = [&](const AtlasNode& other) {
+        return other.period == child.period && other.orbit.distanceTo(child.centre) < 1e-9L;
+      };
+      if (std::any_of(atlas.nodes.begin(), atlas.nodes.end(), same) ||
+          std::any_of(children.begin(), children.end(), same))
+        continue;
       child.onS1 = member->second == smooth::SymmetryLine::S1;
       child.sense = rotationSense(K_, child.centre, period);
       children.push_back(std::move(child));
@@ -563,12 +658,45 @@ std::optional<std::string> validationError(const AtlasRequest& r) {
     return "scan steps = " + shortestDecimal(r.scanSteps) + " must lie in [0, 1e13]";
   if (auto e = rangeError("bisections", r.bisections, 0, 60)) return e;
   if (auto e = threadsError(r.threads)) return e;
+  if (!(r.timeBudget >= 0 && r.timeBudget <= 1e7))
+    return "time budget = " + shortestDecimal(r.timeBudget) + " must lie in [0, 1e7] seconds (0: none)";
   return std::nullopt;
 }
 
-Atlas computeAtlas(const AtlasRequest& request, const AtlasProgress& progress, std::stop_token stop) {
+std::optional<std::string> resumeError(const AtlasRequest& r, const Atlas& a) {
+  const AtlasRequest& q = a.request;
+  auto differs = [](const char* field, const std::string& was, const std::string& is) {
+    return std::optional<std::string>(std::string("the atlas to resume was computed with ") + field + " = " + was +
+                                      ", this request has " + is);
+  };
+  if (q.map.K != r.map.K || q.map.xmin != r.map.xmin || q.map.xmax != r.map.xmax)
+    return differs("the map (K, xmin, xmax)",
+                   shortestDecimal(q.map.K) + ", " + shortestDecimal(q.map.xmin) + ", " + shortestDecimal(q.map.xmax),
+                   shortestDecimal(r.map.K) + ", " + shortestDecimal(r.map.xmin) + ", " + shortestDecimal(r.map.xmax));
+  if (q.depth != r.depth) return differs("depth", std::to_string(q.depth), std::to_string(r.depth));
+  if (q.maxPeriod != r.maxPeriod) return differs("max period", std::to_string(q.maxPeriod), std::to_string(r.maxPeriod));
+  if (q.minArea != r.minArea) return differs("min area", shortestDecimal(q.minArea), shortestDecimal(r.minArea));
+  if (q.iterations != r.iterations) return differs("iterations", std::to_string(q.iterations), std::to_string(r.iterations));
+  if (q.digitsThreshold != r.digitsThreshold)
+    return differs("threshold", shortestDecimal(q.digitsThreshold), shortestDecimal(r.digitsThreshold));
+  if (q.scanPoints != r.scanPoints) return differs("scan points", std::to_string(q.scanPoints), std::to_string(r.scanPoints));
+  if (q.scanSteps != r.scanSteps) return differs("scan steps", shortestDecimal(q.scanSteps), shortestDecimal(r.scanSteps));
+  if (q.bisections != r.bisections) return differs("bisections", std::to_string(q.bisections), std::to_string(r.bisections));
+  if (a.nodes.empty() || a.nodes[0].parent != -1) return "the atlas to resume has no central island";
+  for (std::size_t i = 1; i < a.nodes.size(); ++i) {
+    const AtlasNode& n = a.nodes[i];
+    if (n.parent < 0 || static_cast<std::size_t>(n.parent) >= i || !a.nodes[static_cast<std::size_t>(n.parent)].measured)
+      return "the atlas to resume is not a tree of measured parents (node " + std::to_string(i) + ")";
+  }
+  return std::nullopt;
+}
+
+Atlas computeAtlas(const AtlasRequest& request, const AtlasProgress& progress, std::stop_token stop,
+                   const Atlas* resume) {
   if (auto e = validationError(request)) throw std::invalid_argument(*e);
-  return AtlasBuilder(request, progress, std::move(stop)).build();
+  if (resume)
+    if (auto e = resumeError(request, *resume)) throw std::invalid_argument(*e);
+  return AtlasBuilder(request, progress, std::move(stop)).build(resume);
 }
 
 std::string atlasPath(const Atlas& atlas, int node) {

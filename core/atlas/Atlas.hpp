@@ -65,9 +65,14 @@ struct AtlasRequest {
                                                      ///< islands of short period are scanned finely, 0 … 1e13
   int bisections = 20;                               ///< halvings of the boundary's bracket, 0 … 60
   int threads = 0;                                   ///< 0: one per core
+  double timeBudget = 0;                             ///< seconds, 0 … 1e7 (0: none): reached, the atlas stops as on a
+                                                     ///< stop request, keeping what is finished (Atlas::stopReason);
+                                                     ///< checked between islands, after the first of the computation
 };
 
 inline constexpr int kMaxAtlasDepth = 6;
+/// The largest atlas file read back (--resume, sessions hold theirs): a depth-3 tree is a few megabytes.
+inline constexpr std::uintmax_t kMaxAtlasFileBytes = std::uintmax_t{1} << 28;
 
 /// The first violated rule, naming the field, or nothing.
 [[nodiscard]] std::optional<std::string> validationError(const AtlasRequest& r);
@@ -81,7 +86,6 @@ struct AtlasFlux {
   long double zoneArea = 0;       ///< the area the barrier encloses (TurnstileFlux.hpp's zone: all its curves)
   long double fluxDigits = 0;     ///< digits on which the action and the polygon agree for the lobe
   long double zoneDigits = 0;     ///< the same for the zone
-  std::vector<std::vector<PhysicalPoint>> zone;  ///< the zone's closed curves (TurnstileFlux::zoneBoundary; not exported)
   long double enclosedIslands = 0; ///< the atlas's islands inside the zone: Σ over its nodes of (members of the node's
                                    ///< orbit inside the zone's curves) × the node's area — the parent's islands, the
                                    ///< chain's own, its descendants' and those of the chains between (settled when
@@ -107,7 +111,7 @@ struct AtlasNode {
                                          ///< last level from the run of the parent's scan that found it)
   bool boundaryFound = false;
   std::string boundaryFailure;           ///< why not, when not found
-  PhysicalPoint boundaryPoint;           ///< a point of the boundary circle, on the symmetry line
+  PhysicalPoint boundaryPoint;           ///< a point of the boundary circle about `centre`, on a symmetry line
   double boundaryRotation = 0;           ///< its rotation number about `centre` (turns per Qⁿ)
   double boundaryDigits = 0;
   long double gap = 0;                   ///< width of the final bracket: the circle's distance to an outside point
@@ -117,6 +121,8 @@ struct AtlasNode {
 
   AtlasFlux flux;                        ///< through the chain's separatrix (the central island's loop at level 0)
   std::vector<Rational> internal;        ///< rationals about `centre` found inside the boundary circle
+  bool measured = false;                 ///< its island scanned and its barrier computed (false: known, not yet
+                                         ///< measured — an atlas stopped early; computeAtlas resumes there)
   std::vector<int> children;             ///< chains just outside, by index
   std::string note;                      ///< why the recursion stopped here, when it did
 };
@@ -124,8 +130,9 @@ struct AtlasNode {
 struct Atlas {
   AtlasRequest request;
   std::vector<AtlasNode> nodes;          ///< nodes[0] is the central island; parents precede children
-  bool cancelled = false;
-  double seconds = 0;
+  bool cancelled = false;                ///< stopped before the end: the nodes not `measured` are to do
+  std::string stopReason;                ///< why: "stopped" (a stop request) or "time budget of … s reached"
+  double seconds = 0;                    ///< of this computation (a resumed one: of its last part)
 };
 
 /// Progress on the calling thread, before each island and at the end: the atlas so far (its finished islands and
@@ -134,9 +141,16 @@ struct Atlas {
 using AtlasProgress = std::function<void(const Atlas& sofar, int done, const std::string& stage)>;
 
 /// Computes the atlas, the first levels first.  Throws std::invalid_argument when validationError(request) is set; a
-/// stop request returns what is finished (cancelled set).
+/// stop request or the time budget returns what is finished (cancelled set).  With `resume` (an atlas stopped early,
+/// e.g. read back by atlasFromJson), its measured islands are kept and the others measured: the result is the
+/// atlas an uninterrupted computation gives (the barriers' zones, which the files do not hold, are computed again
+/// for the layers: seconds each).  Throws std::invalid_argument when `resume` was computed with another request
+/// (its threads and time budget aside) or is not a tree this request could have made.
 [[nodiscard]] Atlas computeAtlas(const AtlasRequest& request, const AtlasProgress& progress = {},
-                                 std::stop_token stop = {});
+                                 std::stop_token stop = {}, const Atlas* resume = nullptr);
+
+/// Why `resume` cannot continue `request` (the first field that differs), or nothing.
+[[nodiscard]] std::optional<std::string> resumeError(const AtlasRequest& request, const Atlas& resume);
 
 /// "centre", "6", "6 > 138": the periods from the centre down to node i.
 [[nodiscard]] std::string atlasPath(const Atlas& atlas, int node);

@@ -35,6 +35,7 @@ Provenance atlasProvenance(const Atlas& a) {
   p.add("Scan points", std::to_string(a.request.scanPoints));
   p.add("Scan steps", a.request.scanSteps);
   p.add("Bisections", std::to_string(a.request.bisections));
+  if (a.request.timeBudget > 0) p.add("Time budget (s)", a.request.timeBudget);
   return p;
 }
 
@@ -61,8 +62,10 @@ std::string atlasJson(const Atlas& a) {
                   {"digits_threshold", a.request.digitsThreshold},
                   {"scan_points", a.request.scanPoints},
                   {"scan_steps", a.request.scanSteps},
-                  {"bisections", a.request.bisections}};
+                  {"bisections", a.request.bisections},
+                  {"time_budget", a.request.timeBudget}};
   j["cancelled"] = a.cancelled;
+  j["stop_reason"] = a.stopReason;
   j["seconds"] = a.seconds;
   json nodes = json::array();
   for (std::size_t i = 0; i < a.nodes.size(); ++i) {
@@ -78,6 +81,7 @@ std::string atlasJson(const Atlas& a) {
     o["symmetry_line"] = n.onS1 ? "S1" : "S2";
     o["residue"] = num(n.orbit.residue);
     o["sense"] = n.sense;
+    o["measured"] = n.measured;
     o["scan_range"] = num(n.scanRange);
     json b;
     b["found"] = n.boundaryFound;
@@ -103,6 +107,7 @@ std::string atlasJson(const Atlas& a) {
       f["flux_per_step"] = num(n.flux.flux);
       f["zone_area"] = num(n.flux.zoneArea);
       f["enclosed_islands_area"] = num(n.flux.enclosedIslands);
+      f["enclosed_islands"] = n.flux.enclosedCount;
       f["layer_area"] = num(n.flux.layerArea);
       f["flux_agreeing_digits"] = num(n.flux.fluxDigits);
       f["zone_agreeing_digits"] = num(n.flux.zoneDigits);
@@ -233,7 +238,8 @@ AtlasRequest requestFrom(const rjson& j) {
   r.map.xmax = finite(map.at("xmax"), "map.xmax");
   const rjson& q = j.at("request");
   keys(q, "request", {"depth", "max_period", "min_area", "iterations", "digits_threshold", "scan_points", "scan_steps",
-                      "bisections"});
+                      "bisections"},
+       {"time_budget"});  // absent in the first files
   r.depth = static_cast<int>(whole(q.at("depth"), "request.depth", 0, kMaxAtlasDepth));
   r.maxPeriod = whole(q.at("max_period"), "request.max_period", 1, PeriodicOrbitSearch::kMaxPeriod);
   r.minArea = finite(q.at("min_area"), "request.min_area");
@@ -242,6 +248,7 @@ AtlasRequest requestFrom(const rjson& j) {
   r.scanPoints = static_cast<int>(whole(q.at("scan_points"), "request.scan_points", 0, std::numeric_limits<int>::max()));
   r.scanSteps = finite(q.at("scan_steps"), "request.scan_steps");
   r.bisections = static_cast<int>(whole(q.at("bisections"), "request.bisections", 0, std::numeric_limits<int>::max()));
+  if (const auto t = q.find("time_budget"); t != q.end()) r.timeBudget = nonNegative(*t, "request.time_budget");
   if (auto e = validationError(r)) refuse("request: " + *e);
   return r;
 }
@@ -249,7 +256,8 @@ AtlasRequest requestFrom(const rjson& j) {
 AtlasNode nodeFrom(const rjson& o, const std::string& key, std::size_t index, const Atlas& atlas) {
   keys(o, key, {"index", "parent", "level", "path", "period", "about_parent", "centre", "symmetry_line", "residue",
                 "sense", "scan_range", "boundary", "area", "area_error", "area_points", "islands_area", "flux",
-                "internal", "children", "note"});
+                "internal", "children", "note"},
+       {"measured"});  // absent in the first files: every island of a finished atlas was measured
   const long double K = static_cast<long double>(atlas.request.map.K);
   AtlasNode n;
   if (whole(o.at("index"), key + ".index", 0, kMaxAtlasNodes) != index)
@@ -288,6 +296,9 @@ AtlasNode nodeFrom(const rjson& o, const std::string& key, std::size_t index, co
   n.sense = static_cast<int>(integer(o.at("sense"), key + ".sense", -1, 1));
   if (n.sense == 0) refuse(key + ".sense must be 1 or -1");
   n.scanRange = nonNegative(o.at("scan_range"), key + ".scan_range");
+  const auto measured = o.find("measured");
+  n.measured = measured != o.end() ? boolean(*measured, key + ".measured") : !atlas.cancelled;
+  if (n.measured && parent && !parent->measured) refuse(key + ".measured: its parent island is not");
 
   const std::string bkey = key + ".boundary";
   const rjson& b = o.at("boundary");
@@ -315,7 +326,9 @@ AtlasNode nodeFrom(const rjson& o, const std::string& key, std::size_t index, co
   if (n.flux.found) {
     keys(f, fkey, {"found", "flux_per_step", "zone_area", "enclosed_islands_area", "layer_area", "flux_agreeing_digits",
                    "zone_agreeing_digits", "residence"},
-         {"partner"});
+         {"partner", "enclosed_islands"});
+    if (const auto c = f.find("enclosed_islands"); c != f.end())
+      n.flux.enclosedCount = static_cast<int>(whole(*c, fkey + ".enclosed_islands", 0, std::numeric_limits<int>::max()));
     n.flux.flux = finite(f.at("flux_per_step"), fkey + ".flux_per_step");
     if (!(n.flux.flux > 0)) refuse(fkey + ".flux_per_step must be > 0");
     n.flux.zoneArea = nonNegative(f.at("zone_area"), fkey + ".zone_area");
@@ -353,11 +366,13 @@ AtlasNode nodeFrom(const rjson& o, const std::string& key, std::size_t index, co
     n.children.push_back(static_cast<int>(c));
   }
   n.note = string(o.at("note"), key + ".note");
+  if (!n.measured && !n.children.empty()) refuse(key + ".children: an island not measured has none yet");
   return n;
 }
 
 Atlas atlasFrom(const rjson& j) {
-  keys(j, "the atlas", {"format", "program", "provenance", "map", "request", "cancelled", "seconds", "nodes"});
+  keys(j, "the atlas", {"format", "program", "provenance", "map", "request", "cancelled", "seconds", "nodes"},
+       {"stop_reason"});
   if (!j.at("format").is_string() || j.at("format").get<std::string>() != "archipelago atlas")
     refuse("format = " + io::describeJson(j.at("format")) + ": not an atlas (\"archipelago atlas\")");
   (void)string(j.at("program"), "program");  // written anew
@@ -365,6 +380,7 @@ Atlas atlasFrom(const rjson& j) {
   Atlas a;
   a.request = requestFrom(j);
   a.cancelled = boolean(j.at("cancelled"), "cancelled");
+  if (const auto r = j.find("stop_reason"); r != j.end()) a.stopReason = string(*r, "stop_reason");
   a.seconds = nonNegative(j.at("seconds"), "seconds");
   const rjson& nodes = j.at("nodes");
   if (!nodes.is_array()) refuse("nodes must be an array");
@@ -383,6 +399,9 @@ Atlas atlasFrom(const rjson& j) {
       if (static_cast<std::size_t>(c) >= a.nodes.size() || a.nodes[static_cast<std::size_t>(c)].parent != static_cast<int>(i))
         refuse("nodes[" + std::to_string(i) + "].children names " + std::to_string(c) + ", which is not its child");
   if (links != a.nodes.size() - 1) refuse("nodes: some island is missing from its parent's children");
+  if (!a.cancelled)
+    for (std::size_t i = 0; i < a.nodes.size(); ++i)
+      if (!a.nodes[i].measured) refuse("nodes[" + std::to_string(i) + "] is not measured in an atlas not cancelled");
   return a;
 }
 

@@ -34,6 +34,40 @@ with tempfile.TemporaryDirectory() as d:
         lines = r.stderr.strip().splitlines()
         check(r.returncode == 1 and len(lines) == 1 and "ERROR" in lines[0] and word in lines[0] and not os.path.exists(out),
               f"atlas {' '.join(args)}: one ERROR line naming {word!r}, nothing written ({r.returncode}: {r.stderr.strip()[:160]})")
+    # A time budget stops it as Ctrl-C does (exit 0: the request's own end), keeping the finished islands; --resume
+    # continues from the file and ends where the uninterrupted run ended.
+    t = os.path.join(d, "t.json")
+    r = run("atlas", "--K", "0.1", "--depth", "1", "--max-period", "200", "--time-budget", "0.001", "--json", t)
+    part = json.load(open(t)) if os.path.exists(t) else {}
+    check(r.returncode == 0 and part.get("cancelled") is True and "time budget" in part.get("stop_reason", "")
+          and "--resume" in r.stderr, f"--time-budget 0.001 stops after the first island, keeping it ({r.returncode}, {r.stderr[-200:]})")
+    measured = [n.get("measured") for n in part.get("nodes", [])]
+    check(measured[:1] == [True] and measured.count(True) == 1, f"the centre is measured, its chains not yet ({measured})")
+    r = run("atlas", "--K", "0.1", "--depth", "1", "--max-period", "200", "--resume", t, "--json", t)
+    done = json.load(open(t))
+    check(r.returncode == 0 and done["cancelled"] is False and all(n["measured"] for n in done["nodes"]),
+          f"--resume finishes it ({r.returncode}: {r.stderr[-200:]})")
+    same = len(done["nodes"]) == len(nodes) and all(
+        x["path"] == y["path"] and x["about_parent"] == y["about_parent"] and x["area"] == y["area"]
+        and x["flux"].get("flux_per_step") == y["flux"].get("flux_per_step")
+        and abs((x["flux"].get("residence") or 0) - (y["flux"].get("residence") or 0)) <= 1e-9 * abs(y["flux"].get("residence") or 1)
+        for x, y in zip(done["nodes"], nodes))
+    check(same, "the resumed atlas is the uninterrupted one (islands, areas, fluxes, residences)")
+    for args, word in [(["--depth", "2"], "depth"), (["--depth", "1", "--K", "0.2"], "map"),
+                       (["--depth", "1", "--max-period", "300"], "max period")]:
+        r = run("atlas", "--max-period", "200", *args, "--resume", t, "--quiet") if "--max-period" not in args else \
+            run("atlas", *args, "--resume", t, "--quiet")
+        check(r.returncode == 1 and "ERROR" in r.stderr and word in r.stderr,
+              f"--resume with another {word}: refused ({r.returncode}: {r.stderr.strip()[:200]})")
+    bad = os.path.join(d, "bad-resume.json")
+    with open(bad, "w") as f:
+        f.write(open(t).read()[:-40])
+    r = run("atlas", "--depth", "1", "--max-period", "200", "--resume", bad, "--quiet")
+    check(r.returncode == 1 and "ERROR" in r.stderr and "--resume" in r.stderr,
+          f"a truncated --resume file: refused ({r.returncode}: {r.stderr.strip()[:200]})")
+    r = run("atlas", "--time-budget", "-1", "--quiet")
+    check(r.returncode == 1 and "time budget" in r.stderr, f"--time-budget -1 refused ({r.stderr.strip()[:120]})")
+
     r = run("atlas", "--depth", "0", "--quiet", "--json", "/dev/full")
     check(r.returncode != 0 and "ERROR" in r.stderr, f"--json /dev/full fails loudly ({r.returncode})")
 

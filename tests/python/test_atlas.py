@@ -26,3 +26,19 @@ def test_atlas_equals_cli(cli):
 def test_atlas_refuses_bad_input(kwargs, word):
     with pytest.raises(ValueError, match=word):
         ap.atlas(0.1, **kwargs)
+
+
+def test_atlas_time_budget_and_resume():
+    # A budget reached keeps the finished islands ('cancelled', 'stop_reason'); resume= continues to the end, the
+    # same islands as an uninterrupted computation.
+    part = ap.atlas(0.1, depth=1, max_period=40, scan_points=200, scan_steps=0, time_budget=1e-3)
+    assert part["cancelled"] and "time budget" in part["stop_reason"]
+    assert part["nodes"][0]["measured"] and not all(n["measured"] for n in part["nodes"])
+    done = ap.atlas(0.1, depth=1, max_period=40, scan_points=200, scan_steps=0, resume=part)
+    whole = ap.atlas(0.1, depth=1, max_period=40, scan_points=200, scan_steps=0)
+    assert not done["cancelled"] and [n["path"] for n in done["nodes"]] == [n["path"] for n in whole["nodes"]]
+    assert [n["area"] for n in done["nodes"]] == [n["area"] for n in whole["nodes"]]
+    with pytest.raises(ValueError, match="depth"):
+        ap.atlas(0.1, depth=2, max_period=40, scan_points=200, scan_steps=0, resume=part)
+    with pytest.raises(ValueError, match="resume"):
+        ap.atlas(0.1, depth=1, max_period=40, scan_points=200, scan_steps=0, resume={"format": "no"})

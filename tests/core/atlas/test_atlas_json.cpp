@@ -38,6 +38,8 @@ Atlas handBuilt() {
   a.request.maxPeriod = 200;
   a.request.scanSteps = 0;
   a.cancelled = true;
+  a.stopReason = "stopped";
+  a.request.timeBudget = 600;
   a.seconds = 12.5;
 
   AtlasNode centre;
@@ -62,6 +64,7 @@ Atlas handBuilt() {
   centre.flux.residence = 71.4;
   centre.internal = {{2, 11}, {3, 17}};
   centre.children = {1, 2};
+  centre.measured = true;
 
   AtlasNode six;
   six.parent = 0;
@@ -90,6 +93,7 @@ Atlas handBuilt() {
   six.flux.layerArea = 0.072085;
   six.flux.residence = 3533;
   six.children = {3};
+  six.measured = true;
 
   AtlasNode thirteen;
   thirteen.parent = 0;
@@ -151,6 +155,8 @@ TEST(AtlasJson, ReadsBackToTheSameText) {
   EXPECT_EQ(atlasJson(b), text);
   ASSERT_EQ(b.nodes.size(), a.nodes.size());
   EXPECT_TRUE(b.cancelled);
+  EXPECT_EQ(b.stopReason, "stopped");
+  EXPECT_EQ(b.request.timeBudget, 600);
   EXPECT_EQ(b.seconds, 12.5);
   EXPECT_EQ(b.request.map, a.request.map);
   EXPECT_EQ(b.request.depth, 2);
@@ -164,6 +170,7 @@ TEST(AtlasJson, ReadsBackToTheSameText) {
     EXPECT_EQ(y.period, x.period);
     EXPECT_EQ(y.aboutParent, x.aboutParent);
     EXPECT_EQ(y.children, x.children);
+    EXPECT_EQ(y.measured, x.measured);
     EXPECT_EQ(y.internal, x.internal);
     EXPECT_EQ(y.centre.x, x.centre.x);
     EXPECT_EQ(y.boundaryFound, x.boundaryFound);
@@ -266,6 +273,16 @@ TEST(AtlasJson, RefusesEditedTrees) {
   says([](ojson& j) { j["nodes"][3]["parent"] = 2; }, "nodes[3].period");
   says([](ojson& j) { j["nodes"][3]["parent"] = 3; }, "nodes[3].parent");
   says([](ojson& j) { j["nodes"][0]["children"] = ojson::array({1}); }, "missing from its parent's children");
+  // What a resumed computation relies on: an island is measured only under a measured parent, one not measured has
+  // no children yet, and a finished atlas has every island measured.
+  says([](ojson& j) { j["nodes"][1]["measured"] = false; }, "nodes[1].children");
+  says([](ojson& j) { j["nodes"][3]["measured"] = "yes"; }, "nodes[3].measured");
+  says([](ojson& j) {
+    j["nodes"][0]["measured"] = false;
+    j["nodes"][0]["children"] = ojson::array();
+  }, "nodes[1].measured");
+  says([](ojson& j) { j["cancelled"] = false; }, "not measured in an atlas not cancelled");
+  says([](ojson& j) { j["request"]["time_budget"] = -1; }, "request.time_budget");
   says([](ojson& j) { j["nodes"][0]["children"] = ojson::array({2, 1}); }, "increasing");
   says([](ojson& j) { j["nodes"][0]["children"] = ojson::array({1, 3}); }, "not its child");
   says([](ojson& j) { j["nodes"][1]["symmetry_line"] = "S3"; }, "nodes[1].symmetry_line");

@@ -291,6 +291,7 @@ Atlas smallAtlas(const MapParameters& map) {
   centre.areaError = 2e-7;
   centre.areaPoints = 8192;
   centre.children = {1};
+  centre.measured = true;
   AtlasNode six;
   six.parent = 0;
   six.level = 1;
@@ -301,6 +302,7 @@ Atlas smallAtlas(const MapParameters& map) {
   six.orbit.points = {six.centre};
   six.boundaryFailure = "below the scan's resolution";
   six.flux.failure = "no hyperbolic partner found between the islands";
+  six.measured = true;
   a.nodes = {centre, six};
   return a;
 }
