@@ -43,6 +43,8 @@ namespace {
 /// The deepest level the page offers: each level multiplies the islands and the time (depth 2 at K = 0.1 takes
 /// minutes on two cores, docs/atlas.md); deeper trees are `archipelago-cli atlas`'s.
 constexpr int kPageMaxDepth = std::min(3, kMaxAtlasDepth);
+/// The width the page asks of the side column: what the Orbits page asks (its hint is 300 px).
+constexpr int kSideHintWidth = 300;
 
 QString number(long double v, int digits = 4) {
   return std::isfinite(v) ? QString::number(static_cast<double>(v), 'g', digits) : QStringLiteral("–");
@@ -202,6 +204,11 @@ AtlasPanel::AtlasPanel(PortraitController* controller, QWidget* parent)
   updateProgress();
   updateDetails();
   updateButtons();
+}
+
+QSize AtlasPanel::sizeHint() const {
+  const QSize hint = QWidget::sizeHint();
+  return {std::min(hint.width(), kSideHintWidth), hint.height()};
 }
 
 AtlasPanel::~AtlasPanel() { jobs_.reset(); }

@@ -46,6 +46,10 @@ class AtlasPanel : public QWidget {
   AtlasPanel(PortraitController* controller, QWidget* parent = nullptr);
   ~AtlasPanel() override;
 
+  /// No wider than the other side pages ask: the tree's eight columns would otherwise widen the side column and
+  /// narrow the portrait (the tree scrolls sideways instead; gui.issue25's equal aspect ratio).
+  [[nodiscard]] QSize sizeHint() const override;
+
   [[nodiscard]] QSpinBox* depthBox() const noexcept { return depth_; }
   [[nodiscard]] QSpinBox* maxPeriodBox() const noexcept { return maxPeriod_; }
   [[nodiscard]] QPushButton* computeButton() const noexcept { return compute_; }
