@@ -503,13 +503,14 @@ bool AtlasPanel::showIsland(int index) {
   return true;
 }
 
-bool AtlasPanel::exportJson(const QString& path, QString* error) {
+bool AtlasPanel::exportWith(void (*write)(const std::filesystem::path&, const Atlas&), const QString& path,
+                            QString* error) {
   if (!atlas_ || busy()) {
     if (error) *error = busy() ? tr("the atlas is still being computed (Stop keeps what is finished)") : tr("no atlas yet");
     return false;
   }
   try {
-    writeAtlasJson(path.toStdString(), *atlas_);
+    write(path.toStdString(), *atlas_);
   } catch (const std::exception& e) {
     if (error) *error = QString::fromUtf8(e.what());
     return false;
@@ -517,18 +518,7 @@ bool AtlasPanel::exportJson(const QString& path, QString* error) {
   return true;
 }
 
-bool AtlasPanel::exportCsv(const QString& path, QString* error) {
-  if (!atlas_ || busy()) {
-    if (error) *error = busy() ? tr("the atlas is still being computed (Stop keeps what is finished)") : tr("no atlas yet");
-    return false;
-  }
-  try {
-    writeAtlasCsv(path.toStdString(), *atlas_);
-  } catch (const std::exception& e) {
-    if (error) *error = QString::fromUtf8(e.what());
-    return false;
-  }
-  return true;
-}
+bool AtlasPanel::exportJson(const QString& path, QString* error) { return exportWith(&writeAtlasJson, path, error); }
+bool AtlasPanel::exportCsv(const QString& path, QString* error) { return exportWith(&writeAtlasCsv, path, error); }
 
 }  // namespace archipelago::ui

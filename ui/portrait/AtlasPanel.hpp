@@ -17,6 +17,7 @@
 #include <QString>
 #include <QWidget>
 
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
@@ -93,6 +94,9 @@ class AtlasPanel : public QWidget {
   void computationEnded();
 
  private:
+  /// An export by core's writer (`write`: writeAtlasJson or writeAtlasCsv); false with the reason.
+  bool exportWith(void (*write)(const std::filesystem::path&, const Atlas&), const QString& path, QString* error);
+
   struct Snapshot;
   void show(std::shared_ptr<const Atlas> atlas, int done, const QString& stage);
   void fillTree();
