@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -60,9 +61,11 @@ long double turnsAboutMedian(const std::vector<PhysicalPoint>& points) {
   const PhysicalPoint m = coordinateMedian(points);
   const long double pi = std::numbers::pi_v<long double>;
   long double total = 0;
+  long double previous = points.empty() ? 0 : std::atan2(points[0].y - m.y, points[0].x - m.x);
   for (std::size_t i = 1; i < points.size(); ++i) {
-    long double d = std::atan2(points[i].y - m.y, points[i].x - m.x) -
-                    std::atan2(points[i - 1].y - m.y, points[i - 1].x - m.x);
+    const long double angle = std::atan2(points[i].y - m.y, points[i].x - m.x);  // each point's angle once
+    long double d = angle - previous;
+    previous = angle;
     if (d > pi) d -= 2 * pi;
     if (d <= -pi) d += 2 * pi;
     total += d;
@@ -99,10 +102,14 @@ LevelTest testLevel(std::span<const PhysicalPoint> segment, std::size_t parent, 
                     const IslandChainOptions& o) {
   const auto limit = static_cast<std::size_t>(o.pointsPerPhase);
   std::vector<long double> ratios, turns, spreads;
+  std::map<std::size_t, long double> parentSpreads;  // by the parent's phase, which several phases share
   for (std::size_t phase : sampledPhases(child, o)) {
     const std::vector<PhysicalPoint> points = subsequence(segment, child, phase, limit);
     const long double spread = spreadOf(points);
-    const long double parentSpread = spreadOf(subsequence(segment, parent, phase % parent, limit));
+    auto known = parentSpreads.find(phase % parent);
+    if (known == parentSpreads.end())
+      known = parentSpreads.emplace(phase % parent, spreadOf(subsequence(segment, parent, phase % parent, limit))).first;
+    const long double parentSpread = known->second;
     spreads.push_back(spread);
     ratios.push_back(parentSpread > 0 ? spread / parentSpread : 1);
     turns.push_back(turnsAboutMedian(consecutiveSubsequence(segment, child, phase, limit)));

@@ -32,9 +32,29 @@ struct SlopeFit {
 /// (valid() false) with fewer than 3 grid points.
 [[nodiscard]] SlopeFit logLogSlope(const Series& s, double from, double to, int perDecade = kLogGridPerDecade);
 
+/// A series' usable points (x > 0, y > 0 and finite) as logarithms, taken once for several fits of the same series
+/// (the tail analysis fits every window of the running exponent in each bootstrap replicate).  With a range, only
+/// the points fits inside [from, to] read: fits of windows outside it are not those of the series.
+class LogSeries {
+ public:
+  explicit LogSeries(const Series& s);
+  LogSeries(const Series& s, double from, double to);
+  struct Point {
+    long double u, v, sigma;  ///< ln x, ln y, σ(y)/y
+  };
+  [[nodiscard]] const std::vector<Point>& points() const noexcept { return points_; }
+
+ private:
+  std::vector<Point> points_;
+};
+
+/// logLogSlope() of the series the LogSeries holds: the same numbers, to the last bit (for a window inside its range).
+[[nodiscard]] SlopeFit logLogSlope(const LogSeries& s, double from, double to, int perDecade = kLogGridPerDecade);
+
 /// −d log y / d log x (a decay exponent, positive for a decaying power law): −logLogSlope().slope, NaN when the
 /// fit is not valid.  `points` receives the number of grid points.
 [[nodiscard]] double fitLogSlope(const Series& s, double from, double to, std::size_t* points = nullptr);
+[[nodiscard]] double fitLogSlope(const LogSeries& s, double from, double to, std::size_t* points = nullptr);
 
 /// d ln y / d x over the series' points in [from, to] with y > 0 (an exponential's rate, negative for a decay),
 /// weighted least squares with weights (y/σ)² (σ the point's error; points with σ = 0 are left out unless every

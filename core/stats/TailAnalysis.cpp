@@ -148,12 +148,18 @@ TailAnalysis analyseTail(const Ensemble& e, const TailOptions& options) {
   // The bootstrap: D and every window's exponents in each replicate.
   std::vector<double> Ds(bo.replicates);
   std::vector<std::vector<double>> gP(a.windows.size(), std::vector<double>(bo.replicates)), gC = gP;
+  double windowsFrom = kTailUndefined, windowsTo = kTailUndefined;  // the range every window lies in
+  for (const TailWindow& w : a.windows) {
+    windowsFrom = std::isnan(windowsFrom) ? w.from : std::min(windowsFrom, w.from);
+    windowsTo = std::isnan(windowsTo) ? w.to : std::max(windowsTo, w.to);
+  }
   for (std::uint32_t r = 0; r < bo.replicates; ++r) {
     const TrappingStatistics s = computeStatistics(resampleHistogram(total, bo.seed, r), shape);
     Ds[r] = s.D;
+    const LogSeries P(s.P, windowsFrom, windowsTo), C(s.C, windowsFrom, windowsTo);  // logarithms once for all windows
     for (std::size_t w = 0; w < a.windows.size(); ++w) {
-      gP[w][r] = fitLogSlope(s.P, a.windows[w].from, a.windows[w].to);
-      gC[w][r] = fitLogSlope(s.C, a.windows[w].from, a.windows[w].to);
+      gP[w][r] = fitLogSlope(P, a.windows[w].from, a.windows[w].to);
+      gC[w][r] = fitLogSlope(C, a.windows[w].from, a.windows[w].to);
     }
   }
   a.DBootstrapError = standardDeviation(Ds);
