@@ -140,7 +140,7 @@ inline MapParameters mapOf(double K, double xmin, double xmax) {
 
 /// The visited fraction stochastic_area() returns (a number in [0, 1]), given back to compute b2 in a box.
 inline double fractionArgument(double fraction) {
-  if (!(fraction >= 0 && fraction <= 1)) throw std::invalid_argument("fraction must lie in [0, 1]");
+  if (auto e = visitedFractionError("fraction", fraction)) throw std::invalid_argument(*e);  // core's rule
   return fraction;
 }
 

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -28,10 +29,10 @@ std::uint64_t unitCoordinate(const py::object& v, const char* name) {
   if (!py::isinstance<py::int_>(v) || py::isinstance<py::bool_>(v))
     throw std::invalid_argument(std::string(name) + " must be an integer in [0, 2^52) (unit coordinates)");
   const py::int_ i = py::reinterpret_borrow<py::int_>(v);
-  if (i < py::int_(0) || i >= py::int_(FixedPointMap::kOne))
-    throw std::invalid_argument(std::string(name) + " = " + std::string(py::str(py::handle(i))) +
-                                " must lie in [0, 2^52) (unit coordinates)");
-  return i.cast<std::uint64_t>();
+  const bool whole64 = i >= py::int_(0) && i <= py::int_(std::numeric_limits<std::uint64_t>::max());
+  const std::optional<std::uint64_t> value = whole64 ? std::optional(i.cast<std::uint64_t>()) : std::nullopt;
+  if (auto e = unitCoordinateError(name, value, std::string(py::str(py::handle(i))))) throw std::invalid_argument(*e);
+  return *value;
 }
 
 // A one-dimensional array of unit coordinates from Python: integers only (a float array was once truncated to
@@ -43,8 +44,11 @@ py::array_t<std::uint64_t> unitArray(const py::object& values, const char* name)
     throw py::type_error(std::string(name) + " must hold integers (unit coordinates in [0, 2^52)), not dtype " +
                          std::string(py::str(a.dtype())));
   if (a.ndim() != 1) throw std::invalid_argument(std::string(name) + " must be one-dimensional");
-  if (kind == 'i' && a.size() > 0 && py::module_::import("numpy").attr("any")(a.attr("__lt__")(0)).cast<bool>())
-    throw std::invalid_argument(std::string(name) + " must lie in [0, 2^52) (unit coordinates)");
+  const py::object numpy = py::module_::import("numpy");
+  if (kind == 'i' && a.size() > 0 && numpy.attr("any")(a.attr("__lt__")(0)).cast<bool>()) {
+    const py::object first = a.attr("__getitem__")(numpy.attr("argmin")(a));  // the most negative: not 64-bit whole
+    if (auto e = unitCoordinateError(name, std::nullopt, std::string(py::str(first)))) throw std::invalid_argument(*e);
+  }
   return py::array_t<std::uint64_t>::ensure(a.attr("astype")("uint64"));
 }
 
@@ -90,8 +94,8 @@ py::tuple involution(const py::object& Xin, const py::object& Yin) {
   py::array_t<std::uint64_t> oX(X.size()), oY(Y.size());
   for (py::ssize_t i = 0; i < X.size(); ++i) {
     UnitState z{X.at(i), Y.at(i)};
-    if (z.X >= FixedPointMap::kOne || z.Y >= FixedPointMap::kOne)
-      throw std::invalid_argument("X and Y must lie in [0, 2^52) (unit coordinates)");
+    if (auto e = unitCoordinateError("X", z.X, std::to_string(z.X))) throw std::invalid_argument(*e);
+    if (auto e = unitCoordinateError("Y", z.Y, std::to_string(z.Y))) throw std::invalid_argument(*e);
     FixedPointMap::involution(z);
     oX.mutable_at(i) = z.X;
     oY.mutable_at(i) = z.Y;

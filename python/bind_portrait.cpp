@@ -64,7 +64,7 @@ py::dict stochasticArea(double K, double xmin, double xmax, double Xr, std::uint
 
 py::dict boxInvariant(double K, double xmin, double xmax, double fraction, double D, double DError) {
   const double f = fractionArgument(fraction);
-  if (!std::isfinite(D) || !std::isfinite(DError)) throw std::invalid_argument("D and D_error must be finite");
+  if (auto e = diffusionInputError(D, DError)) throw std::invalid_argument(*e);
   const BoxInvariantQuantities b = boxInvariantQuantities(stochasticAreaOf(mapOf(K, xmin, xmax), f), D, DError);
   py::dict d;
   d["b2"] = b.b2.area;

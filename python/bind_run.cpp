@@ -17,6 +17,7 @@
 
 #include "core/kernels/KernelDispatch.hpp"
 #include "core/run/TrappingRun.hpp"
+#include "core/trapping/LongestSegments.hpp"
 #include "core/runfile/RunFile.hpp"
 #include "core/spec/RunSpec.hpp"
 #include "core/stats/RunEnsemble.hpp"
@@ -89,8 +90,7 @@ void advanceRun(Run& run, int threads, const std::string& kernelName, const py::
   const std::optional<std::string> checkpointPath =
       checkpoint.is_none() ? std::nullopt : std::optional<std::string>(pathArgument(checkpoint, "checkpoint"));
   if (auto e = threadsError(threads)) throw std::invalid_argument(*e);
-  if (!(std::isfinite(chunkSeconds) && chunkSeconds > 0 && chunkSeconds <= 3600))
-    throw std::invalid_argument("chunk_seconds must lie in (0, 3600]");
+  if (auto e = chunkSecondsError(chunkSeconds)) throw std::invalid_argument(*e);
   if (auto e = memoryError(run.state.params, threads)) throw std::invalid_argument(*e);
   const KernelInfo& kernel = selectKernel(kernelName);
   TrappingRunOptions options;
@@ -134,7 +134,7 @@ py::dict histogramDict(const Run& r, const py::object& subset) {
   r.check();
   const TrappingHistogram h = subset.is_none() ? r.state.total() : [&] {
     const auto i = subset.cast<std::size_t>();
-    if (i >= r.state.subsets.size()) throw std::invalid_argument("subset out of range");
+    if (auto e = subsetIndexError(i, r.state.subsets.size())) throw std::invalid_argument(*e);
     return r.state.subsets[i]; }();
   const int n = TrappingHistogram::kBins;
   py::array_t<std::uint64_t> counts(n), sums(n), lower(n), upper(n);
@@ -188,9 +188,7 @@ py::dict longestDict(const Run& r) {
 
 py::dict replay(const Run& r, std::size_t rank) {
   r.check();
-  if (rank >= r.state.longest.items().size())
-    throw std::invalid_argument("rank out of range (longest segments kept: " +
-                                std::to_string(r.state.longest.items().size()) + ")");
+  if (auto e = longestRankError("rank", rank, r.state.longest.items().size())) throw std::invalid_argument(*e);
   const TrappingParameters params = r.state.params;  // copies: the replay runs without the GIL
   const SegmentRecord rec = r.state.longest.items()[rank];
   const std::uint64_t n = rec.length * params.q + 1;

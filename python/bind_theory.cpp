@@ -15,10 +15,9 @@ using namespace archipelago;
 
 namespace {
 
-// The theory curves are functions of a time t >= 0 (steps) and a finite K: anything else is an error, not NaN.
+// The theory curves' arguments: core's rule (a time t >= 0 and a finite K; anything else is an error, not NaN).
 void checkShapeArguments(double t, double K) {
-  if (!(std::isfinite(t) && t >= 0)) throw std::invalid_argument("t = " + shortestDecimal(t) + " must be a finite time >= 0 (steps)");
-  if (!std::isfinite(K)) throw std::invalid_argument("K = " + shortestDecimal(K) + " must be a finite number");
+  if (auto e = smallk::shapeArgumentError(t, K)) throw std::invalid_argument(*e);
 }
 
 }  // namespace

@@ -23,13 +23,6 @@ void addMapOptions(CLI::App& command, MapParameters& params) {
 
 PhysicalRect parseView(const std::string& text) { return parsePhysicalRect(text, "--view"); }
 
-std::pair<int, int> parseSize(const std::string& text, const std::string& option, int limit) {
-  const std::string rule = "WxH with whole numbers 1 ... " + std::to_string(limit);
-  const auto v = parseNumbers<int>(option, text, 'x', 2, rule);
-  if (v[0] < 1 || v[1] < 1 || v[0] > limit || v[1] > limit)
-    throw std::invalid_argument(option + " '" + text + "' must be " + rule);
-  return {v[0], v[1]};
-}
 
 PhysicalPoint parsePoint(const std::string& option, const std::string& text) {
   const auto v = parseNumbers<long double>(option, text, ',', 2, "two finite numbers x,y");

@@ -72,8 +72,7 @@ inline constexpr std::size_t kMaxSeeds = 1000;
 /// std::invalid_argument "--view '<text>' must be four finite numbers x0,x1,y0,y1 (physical coordinates)".
 [[nodiscard]] PhysicalRect parseView(const std::string& text);
 
-/// "WxH" with whole numbers 1 … limit (--size, --seeds); throws std::invalid_argument naming `option` otherwise.
-[[nodiscard]] std::pair<int, int> parseSize(const std::string& text, const std::string& option, int limit);
+using io::parseSize;  // "WxH" (--size, --seeds): core's reader
 
 /// "x,y" → the physical point; throws std::invalid_argument "<option> '<text>' must be two finite numbers x,y".
 [[nodiscard]] PhysicalPoint parsePoint(const std::string& option, const std::string& text);

@@ -21,9 +21,7 @@ void addHyperbolicOrbitOptions(CLI::App& command, HyperbolicOrbitOptions& o) {
 }
 
 std::optional<PeriodicOrbit> chosenOrbit(long double K, const HyperbolicOrbitOptions& o) {
-  if (o.period < 1 || o.period > kMaxManifoldPeriod)
-    throw std::invalid_argument("--period = " + std::to_string(o.period) + " must be in [1, " +
-                                std::to_string(kMaxManifoldPeriod) + "]");
+  if (auto e = manifoldPeriodError(o.period)) throw std::invalid_argument(*e);
   if (o.near.empty() && o.period != 1)
     throw std::invalid_argument("--near x,y is required with --period " + std::to_string(o.period));
   std::optional<PhysicalPoint> near;

@@ -41,12 +41,8 @@ int runManifold(ManifoldOptions o) {
   }
   r.maxPoints = static_cast<std::size_t>(o.maxPoints);
   if (auto e = manifoldKError(r.K)) throw std::invalid_argument(*e);
-  if (o.orbit.period < 1 || o.orbit.period > kMaxManifoldPeriod)
-    throw std::invalid_argument("--period = " + std::to_string(o.orbit.period) + " must be in [1, " +
-                                std::to_string(kMaxManifoldPeriod) + "]");
-  if (r.point < 0 || r.point >= o.orbit.period)
-    throw std::invalid_argument("--point = " + std::to_string(r.point) + " must be in [0, " +
-                                std::to_string(o.orbit.period - 1) + "] (a point of the orbit)");
+  if (auto e = manifoldPeriodError(o.orbit.period)) throw std::invalid_argument(*e);
+  if (auto e = orbitPointError(r.point, o.orbit.period)) throw std::invalid_argument(*e);
   {
     ManifoldCurveRequest check = r;  // every range before the orbit search and before the work
     check.point = 0;

@@ -11,6 +11,7 @@
 #include "core/periodic/SegmentAnalysis.hpp"
 #include "core/runfile/RunFile.hpp"
 #include "core/run/TrappingRun.hpp"
+#include "core/trapping/LongestSegments.hpp"
 
 namespace archipelago::cli {
 
@@ -26,10 +27,8 @@ struct ReplayOptions {
 int replayCommand(const ReplayOptions& o) {
   const TrappingState state = loadRunFile(o.runFile);
   const auto& items = state.longest.items();
-  if (o.segment >= items.size())
-    throw std::invalid_argument("--segment " + std::to_string(o.segment) + " is out of range: the run file keeps " +
-                                std::to_string(items.size()) + " segments (0 is the longest)");
-  if (o.stride == 0) throw std::invalid_argument("--stride = 0 must be >= 1");
+  if (auto e = longestRankError("--segment", o.segment, items.size())) throw std::invalid_argument(*e);
+  if (auto e = strideError(o.stride)) throw std::invalid_argument(*e);
   io::checkCommandFiles({{"run", o.runFile, io::FileUse::Input}, {"--out", o.out, io::FileUse::Output}});  // before the replay
   const SegmentRecord& rec = items[o.segment];
   // Streamed and atomic; bounded by the record: a segment that does not end where the run recorded it is a

@@ -16,6 +16,7 @@
 
 #include "CliCommon.hpp"
 #include "RunSession.hpp"
+#include "core/runfile/CheckpointedRun.hpp"
 #include "core/io/Png.hpp"
 #include "core/provenance/Provenance.hpp"
 #include "core/scan/ScanHeatMap.hpp"
@@ -161,7 +162,7 @@ void addScanCommand(CLI::App& app, int& status) {
   cmd->add_flag("--quiet", o->quiet, "no progress");
   cmd->callback([o, cmd, &status] {
     const std::vector<double> Ks = parseKList(o->K);
-    if (!(o->checkpointSeconds >= 0)) throw std::invalid_argument("--checkpoint-interval must not be negative");
+    if (auto e = checkpointIntervalError("--checkpoint-interval", o->checkpointSeconds)) throw std::invalid_argument(*e);
     if (cmd->count("--dir") > 0 && o->dir.empty()) throw std::invalid_argument("--dir is empty: give a folder");
     RunSpec base = resolveSpec(*o, *cmd);
     if (!o->kernel.empty() || base.kernel != "auto") o->kernel = base.kernel == "auto" ? std::string() : base.kernel;

@@ -34,18 +34,16 @@ struct StatsOptions {
   std::string tailCsvDir;             // --tail-csv: D's errors and the tail (export/TailCsv.hpp)
   bool allowModified = false;
   BootstrapOptions bootstrap;         // --bootstrap, --bootstrap-seed
-  double b2 = -1;                     // --b2 AREA; negative: not given
+  double b2 = 0;                      // --b2 AREA
+  bool b2Given = false;               // core's rule checks it when given (any value)
   std::string shortRun;               // --short: the run's q = 1 companion (issue #26)
 };
 
 /// --b2 AREA: b₂ as an area in the run's box (appendix A), its fraction of L², the box-invariant b₂·D (eq. A3)
 /// and the §6 figures; box_invariant.csv beside the other files with --csv.
 StochasticAreaValue checkedStochasticArea(const MapParameters& map, double area) {
-  const double boxArea = map.width() * map.width();
-  if (!(area > 0 && area <= boxArea))
-    throw std::invalid_argument("--b2 = " + formatNumber(area) + " must be an area in (0, L^2 = " +
-                                formatNumber(boxArea) + "] of the run's box (stochastic-area prints it)");
-  return stochasticAreaOf(map, area / boxArea);
+  if (auto e = stochasticAreaError("--b2", map, area)) throw std::invalid_argument(*e);
+  return stochasticAreaOf(map, area / (map.width() * map.width()));
 }
 
 void printBoxInvariant(const MapParameters& map, const StochasticAreaValue& b2, const TrappingStatistics& s,
@@ -185,7 +183,7 @@ int statsCommand(const StatsOptions& o) {
   std::vector<TrappingState> states;
   for (const std::string& file : o.runFiles) states.push_back(loadRunFile(file, {.allowModified = o.allowModified}));
   std::optional<StochasticAreaValue> b2;
-  if (o.b2 >= 0) b2 = checkedStochasticArea(states.front().params.map, o.b2);
+  if (o.b2Given) b2 = checkedStochasticArea(states.front().params.map, o.b2);
   if (o.allowModified) std::fprintf(stderr, "warning: --allow-modified: a file edited after it was written is read\n");
   const Ensemble ensemble = ensembleOf(states, o.runFiles);  // one run, or seeds checked to differ only in the seed
   const TrappingState& state = states.front();
@@ -298,7 +296,7 @@ void addStatsCommand(CLI::App& app, int& status) {
                   "b2 as an AREA in the run's box (appendix A; stochastic-area prints it): adds b2*D (eq. A3) and "
                   "the sec. 6 figures, and box_invariant.csv, b2_f_t.csv with --csv")->default_str("");
   cmd->callback([o, cmd, &status] {
-    if (cmd->count("--b2") > 0 && o->b2 < 0) throw std::invalid_argument("--b2 must be a positive area");
+    o->b2Given = cmd->count("--b2") > 0;
     status = statsCommand(*o);
   });
 }

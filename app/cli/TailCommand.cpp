@@ -15,6 +15,7 @@
 
 #include "CliCommon.hpp"
 #include "RunSession.hpp"
+#include "core/runfile/CheckpointedRun.hpp"
 #include "core/io/AtomicFile.hpp"
 #include "core/io/CommandFiles.hpp"
 #include "core/io/NumberText.hpp"
@@ -139,7 +140,7 @@ TailJob prepareTail(TailOptions& o, const CLI::App& cmd, std::optional<ReplicaRa
     if (o.printLevels) throw std::invalid_argument("--print-levels prints a new run's levels; do not give --resume");
   }
   if (auto e = threadsError(o.threads)) throw std::invalid_argument(*e);  // the one table's rule and wording
-  if (!(o.checkpointSeconds >= 0)) throw std::invalid_argument("--checkpoint-interval must be >= 0");
+  if (auto e = checkpointIntervalError("--checkpoint-interval", o.checkpointSeconds)) throw std::invalid_argument(*e);
 
   TailJob job;
   if (o.resume.empty()) {

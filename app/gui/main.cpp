@@ -35,6 +35,8 @@
 
 #include "LatencyProbe.hpp"
 #include "core/io/NumberText.hpp"
+#include "core/limits/Limits.hpp"
+#include "core/trapping/LongestSegments.hpp"
 #include "core/spec/InputRules.hpp"
 #include "ui/window/MainWindow.hpp"
 #include "core/measures/OrbitMeasures.hpp"
@@ -63,33 +65,32 @@ bool onlyInformation(int argc, char** argv) {
   return false;
 }
 
-/// The longest a scripted run may wait before its screenshot or measure (a day): anything longer is a typo.
-constexpr double kMaxScriptSeconds = 86400;
+/// Throws std::invalid_argument with core's message, if there is one.
+void refuse(const std::optional<std::string>& error) {
+  if (error) throw std::invalid_argument(*error);
+}
 
-/// A number of seconds given to `option` (`text`), read by core's one reader: finite, in [lo, kMaxScriptSeconds]
+/// A number of seconds given to `option` (`text`), read by core's one reader, in [lo, the table's script seconds]
 /// (issue #23, finding 9: --after nan|-5|1e12 never quit).  Throws std::invalid_argument with the message.
 double readSeconds(const char* option, const QString& text, double lo) {
-  const double v = archipelago::io::parseNumber<double>(std::string("--") + option, text.toStdString());
-  if (!(v >= lo && v <= kMaxScriptSeconds))
-    throw std::invalid_argument(std::string("--") + option + " = " + archipelago::io::shortText(text.toStdString()) +
-                                " must lie in [" + archipelago::io::shortestText(lo) + ", 86400] seconds");
+  const std::string name = std::string("--") + option;
+  const double v = archipelago::io::parseNumber<double>(name, text.toStdString());
+  refuse(archipelago::realRangeError(name, v, lo, archipelago::limits::kScriptSeconds, "seconds"));
   return v;
 }
 
-/// The rank given to --segment: a whole number ≥ 0 (core's reader: "abc", "1.5", "-1" are errors).
+/// The rank given to --segment: a whole number (core's reader: "abc", "1.5", "-1" are errors) below the most longest
+/// segments a run keeps.
 int readRank(const QString& text) {
   const auto v = archipelago::io::parseNumber<std::uint32_t>("--segment", text.toStdString());
-  if (v > 1'000'000)
-    throw std::invalid_argument("--segment = " + archipelago::io::shortText(text.toStdString()) +
-                                " must be a rank in [0, the number of longest segments the run keeps)");
+  refuse(archipelago::longestRankError("--segment", v));
   return static_cast<int>(v);
 }
 
-/// --chains ROWS: the rows of the segment table whose chain is identified automatically, 0 … 1000.
+/// --chains ROWS: the rows of the segment table whose chain is identified automatically.
 int readChainRows(const QString& text) {
   const auto v = archipelago::io::parseNumber<std::uint32_t>("--chains", text.toStdString());
-  if (v > 1000)
-    throw std::invalid_argument("--chains = " + archipelago::io::shortText(text.toStdString()) + " must lie in [0, 1000] rows");
+  refuse(archipelago::rangeError("--chains", v, 0, archipelago::limits::kChainRows, "rows"));
   return static_cast<int>(v);
 }
 
@@ -105,11 +106,11 @@ archipelago::PhysicalPoint readOrbit(const QString& text) {
   return {v[0], v[1]};
 }
 
-/// --budget N: the portrait's points budget, 10⁶ … 10¹².
+/// --budget N: the portrait's points budget (the table's portrait budget).
 std::uint64_t readBudget(const QString& text) {
   const auto v = archipelago::io::parseNumber<std::uint64_t>("--budget", text.toStdString());
-  if (v < 1'000'000 || v > 1'000'000'000'000)
-    throw std::invalid_argument("--budget = " + archipelago::io::shortText(text.toStdString()) + " must lie in [1e6, 1e12] points");
+  refuse(archipelago::rangeError("--budget", v, archipelago::limits::kPortraitBudgetMin,
+                                 archipelago::limits::kPortraitBudget, "points"));
   return v;
 }
 
@@ -299,10 +300,10 @@ int main(int argc, char** argv) {
     QObject::connect(&window, &archipelago::ui::MainWindow::runStatusChanged, &window, [&window, segmentRank](auto status) {
       if (archipelago::ui::isLive(status) || !window.latestSnapshot()) return;
       window.refreshNow();
-      const int kept = window.longSegments()->model()->rowCount();
-      if (segmentRank < kept) return;
-      std::fprintf(stderr, "ERROR: --segment = %d: the run keeps %d longest segments (ranks 0 to %d)\n", segmentRank,
-                   kept, kept - 1);
+      const auto kept = static_cast<std::uint64_t>(window.longSegments()->model()->rowCount());
+      const auto error = archipelago::longestRankError("--segment", static_cast<std::uint64_t>(segmentRank), kept);
+      if (!error) return;
+      std::fprintf(stderr, "ERROR: %s\n", error->c_str());
       std::fflush(stderr);
       QTimer::singleShot(0, [] { QApplication::exit(2); });
     });

@@ -16,6 +16,7 @@
 #include "CliCommon.hpp"
 #include "MpiCommon.hpp"
 #include "RunSession.hpp"
+#include "core/runfile/CheckpointedRun.hpp"
 #include "core/io/AtomicFile.hpp"
 #include "core/kernels/KernelDispatch.hpp"
 #include "core/runfile/RunFile.hpp"
@@ -141,8 +142,7 @@ int mpiRun(const cli::RunOptions& o, const std::vector<std::string>& explicitPar
     throw std::invalid_argument("--resume takes the parameters from the run file; do not also give " +
                                 explicitParameters.front());
   if (auto e = threadsError(o.threads)) throw std::invalid_argument("--" + *e);  // --resume skips the spec's check
-  if (!(o.checkpointSeconds >= 0))
-    throw std::invalid_argument("--checkpoint-interval must be a number of seconds >= 0");
+  if (auto e = checkpointIntervalError("--checkpoint-interval", o.checkpointSeconds)) throw std::invalid_argument(*e);
   cli::RunOptions run = o;
   if (o.resume.empty()) {
     const RunSpec spec = cli::resolveSpec(o, cmd);

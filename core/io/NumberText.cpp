@@ -130,4 +130,12 @@ std::string shortText(std::string_view text, std::size_t maxBytes) {
   return cut < text.size() ? out + "…" : out;
 }
 
+std::pair<int, int> parseSize(const std::string& text, const std::string& option, int limit) {
+  const std::string rule = "WxH with whole numbers 1 ... " + std::to_string(limit);
+  const auto v = parseNumbers<int>(option, text, 'x', 2, rule);
+  if (v[0] < 1 || v[1] < 1 || v[0] > limit || v[1] > limit)
+    throw std::invalid_argument(option + " '" + text + "' must be " + rule);
+  return {v[0], v[1]};
+}
+
 }  // namespace archipelago::io

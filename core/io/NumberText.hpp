@@ -32,6 +32,7 @@
 #include <string>
 #include <string_view>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace archipelago::io {
@@ -129,6 +130,10 @@ template <class T>
   }
   throw std::invalid_argument(name + " '" + shortText(text) + "' must be " + what);
 }
+
+/// "WxH" with whole numbers 1 … limit (a raster's --size, a seed grid's --seeds; the limit from core/limits' table);
+/// throws std::invalid_argument "<option> '<text>' must be WxH with whole numbers 1 ... <limit>" otherwise.
+[[nodiscard]] std::pair<int, int> parseSize(const std::string& text, const std::string& option, int limit);
 
 /// The shortest text that reads back as `value` exactly (std::to_chars: never the locale).
 template <class T>

@@ -2,11 +2,13 @@
 
 #include <array>
 #include <bit>
+#include <charconv>
+#include <cmath>
 
 namespace archipelago {
 
 namespace {
-const std::array<LimitInfo, 8> kTable{{
+const std::array<LimitInfo, 11> kTable{{
     {"threads", "worker threads of any computation (0: one per core)", 0, limits::kThreads},
     {"raster side", "pixels each way of a portrait, an indicator map or an export", 1, limits::kRasterSide},
     {"indicator pixels", "pixels of an indicator map in all", 1, static_cast<long long>(limits::kIndicatorPixels)},
@@ -17,7 +19,19 @@ const std::array<LimitInfo, 8> kTable{{
     {"seed grid", "seeds each way of a portrait's seed grid", 1, static_cast<long long>(limits::kSeedGridSide)},
     {"orbit length", "points of one orbit held in memory (orbit, launched orbits, overlays)", 1,
      static_cast<long long>(limits::kOrbitLength)},
+    {"portrait budget", "points a portrait accumulates (the GUI's budget, --budget)",
+     static_cast<long long>(limits::kPortraitBudgetMin), static_cast<long long>(limits::kPortraitBudget)},
+    {"chain rows", "rows of the GUI's segment table whose chain is named by itself (--chains)", 0, limits::kChainRows},
+    {"script seconds", "the longest a scripted GUI run waits (--after, --measure)", 0,
+     static_cast<long long>(limits::kScriptSeconds)},
 }};
+
+/// The shortest text that reads back as v ("0.5", "86400", "1e+12").
+std::string shortest(double v) {
+  char buffer[32];
+  const auto end = std::to_chars(buffer, buffer + sizeof buffer, v).ptr;
+  return std::string(buffer, end);
+}
 }  // namespace
 
 std::span<const LimitInfo> limitsTable() noexcept { return kTable; }
@@ -27,6 +41,15 @@ std::string limitsMarkdown() {
   for (const LimitInfo& l : kTable)
     s += "| " + std::string(l.key) + " | " + std::string(l.what) + " | " + std::to_string(l.min) + " … " +
          std::to_string(l.max) + " |\n";
+  return s;
+}
+
+std::optional<std::string> realRangeError(std::string_view name, double value, double lo, double hi,
+                                          std::string_view note) {
+  if (value >= lo && value <= hi) return std::nullopt;
+  std::string s = std::string(name) + " = " + shortest(value) + " must lie in [" + shortest(lo) + ", " + shortest(hi) +
+                  "]";
+  if (!note.empty()) s += " (" + std::string(note) + ")";
   return s;
 }
 

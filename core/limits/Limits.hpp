@@ -34,6 +34,10 @@ inline constexpr std::uint64_t kRasterQ = 4096;             ///< steps per block
 inline constexpr std::uint64_t kRasterOrbits = 65536;       ///< orbits in parallel in a portrait or b₂
 inline constexpr std::uint64_t kSeedGridSide = 4096;        ///< seeds each way of a portrait's seed grid
 inline constexpr std::uint64_t kOrbitLength = 100'000'000;  ///< points of one orbit held in memory
+inline constexpr std::uint64_t kPortraitBudgetMin = 1'000'000;      ///< points a portrait accumulates: the least
+inline constexpr std::uint64_t kPortraitBudget = 1'000'000'000'000;  ///< … and the most (hours of accumulation)
+inline constexpr int kChainRows = 1000;        ///< rows of the GUI's segment table whose chain is named by itself
+inline constexpr double kScriptSeconds = 86400;  ///< the longest a scripted GUI run waits (a day: more is a typo)
 }  // namespace limits
 
 /// One row of the table, for `--help`, the docs and the tests.
@@ -61,6 +65,10 @@ template <class T>
   if (!note.empty()) s += " (" + std::string(note) + ")";
   return s;
 }
+
+/// The same for a real value (bounds written shortest): NaN and infinities are outside every range.
+[[nodiscard]] std::optional<std::string> realRangeError(std::string_view name, double value, double lo, double hi,
+                                                        std::string_view note = {});
 
 /// The thread count's rule: "threads = <n> must lie in [0, 256] (0: one per core)", or nothing.
 [[nodiscard]] std::optional<std::string> threadsError(std::int64_t threads);

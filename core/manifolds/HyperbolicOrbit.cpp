@@ -1,5 +1,7 @@
 #include "core/manifolds/HyperbolicOrbit.hpp"
 
+#include "core/limits/Limits.hpp"
+
 #include <cmath>
 #include <optional>
 #include <stdexcept>
@@ -88,12 +90,18 @@ HyperbolicOrbit hyperbolicOrbitOf(const PeriodicOrbit& periodic) {
   return orbit;
 }
 
+std::optional<std::string> manifoldPeriodError(long long period) {
+  return rangeError("period", period, 1, kMaxManifoldPeriod);
+}
+
+std::optional<std::string> orbitPointError(long long point, long long period) {
+  return rangeError("point", point, 0, period - 1, "a point of the orbit");
+}
+
 std::optional<PeriodicOrbit> hyperbolicOrbitNear(long double K, int period, std::optional<PhysicalPoint> near,
                                                  long double radius) {
   if (auto e = manifoldKError(K)) throw std::invalid_argument(*e);
-  if (period < 1 || period > kMaxManifoldPeriod)
-    throw std::invalid_argument("period = " + std::to_string(period) + " must be in [1, " +
-                                std::to_string(kMaxManifoldPeriod) + "]");
+  if (auto e = manifoldPeriodError(period)) throw std::invalid_argument(*e);
   if (!near) {
     if (period != 1)
       throw std::invalid_argument("a guess near a point of the orbit is needed for period " + std::to_string(period));

@@ -45,6 +45,13 @@ struct HyperbolicOrbit {
   [[nodiscard]] std::vector<PhysicalPoint> physicalPoints() const;
 };
 
+/// The rule of a manifold's orbit period: "period = <n> must lie in [1, kMaxManifoldPeriod]", or nothing.
+[[nodiscard]] std::optional<std::string> manifoldPeriodError(long long period);
+
+/// The rule of a point of an orbit of that period: "point = <k> must lie in [0, period − 1] (a point of the orbit)",
+/// or nothing.
+[[nodiscard]] std::optional<std::string> orbitPointError(long long point, long long period);
+
 /// The message for a K outside (0, 1] or not finite, naming it; nothing when K is valid.
 [[nodiscard]] std::optional<std::string> manifoldKError(long double K);
 

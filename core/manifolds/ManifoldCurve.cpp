@@ -234,8 +234,7 @@ std::optional<std::string> validationError(const ManifoldCurveRequest& r) {
     return "the orbit's K = " + shortestDecimal(static_cast<double>(r.orbit->K)) + " differs from K = " +
            shortestDecimal(static_cast<double>(r.K));
   const int period = r.orbit ? r.orbit->period : 1;
-  if (r.point < 0 || r.point >= period)
-    return "point = " + std::to_string(r.point) + " must be in [0, " + std::to_string(period - 1) + "] (a point of the orbit)";
+  if (auto e = orbitPointError(r.point, period)) return e;
   if (!(r.length > 0) || !(r.length <= 1e6L))
     return "length = " + shortestDecimal(static_cast<double>(r.length)) + " must be in (0, 1e6] (physical units)";
   if (r.maxDomains < 1 || r.maxDomains > 10000) return "domains = " + std::to_string(r.maxDomains) + " must be in [1, 10000]";

@@ -80,4 +80,10 @@ PhysicalPoint FixedPointMap::toPhysical(const UnitState& z) const noexcept {
           -L / 2 + L * std::ldexp(static_cast<long double>(z.Y), -kBits)};
 }
 
+std::optional<std::string> unitCoordinateError(std::string_view name, std::optional<std::uint64_t> value,
+                                               std::string_view text) {
+  if (value && *value < fixedpoint::kOne) return std::nullopt;
+  return std::string(name) + " = " + std::string(text) + " must lie in [0, 2^52) (unit coordinates)";
+}
+
 }  // namespace archipelago

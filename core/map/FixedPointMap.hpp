@@ -20,6 +20,9 @@
 /// 2^−52 (that bounds how far the fixed points move, see tests/core/test_fixed_point_map.cpp).
 
 #include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
 
 #include "core/map/MapParameters.hpp"
 
@@ -142,5 +145,10 @@ class FixedPointMap {
   MapParameters params_;
   MapCoefficients coef_;
 };
+
+/// The rule of a unit coordinate a front end gives (an integer in [0, 2^52)): "<name> = <text> must lie in [0, 2^52)
+/// (unit coordinates)", or nothing.  `value`: nothing when the text is not a 64-bit whole number (negative, too large).
+[[nodiscard]] std::optional<std::string> unitCoordinateError(std::string_view name, std::optional<std::uint64_t> value,
+                                                             std::string_view text);
 
 }  // namespace archipelago

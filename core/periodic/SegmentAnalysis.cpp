@@ -194,9 +194,14 @@ void writeSegmentCsv(const std::string& path, const SegmentTrace& trace) {
   file.commit();
 }
 
+std::optional<std::string> strideError(std::uint64_t stride) {
+  if (stride == 0) return std::string("stride = 0 must be >= 1");
+  return std::nullopt;
+}
+
 std::uint64_t writeSegmentCsv(const std::string& path, const TrappingParameters& params, const SegmentRecord& record,
                               std::uint64_t stride) {
-  if (stride == 0) throw std::invalid_argument("stride = 0 must be >= 1");
+  if (auto e = strideError(stride)) throw std::invalid_argument(*e);
   validate(params);
   const FixedPointMap map(params.map);
   // Streamed into a temporary beside `path`, published only when the replay ended where the record says: a

@@ -122,6 +122,9 @@ struct SegmentChain {
 /// naming the file on failure.
 void writeSegmentCsv(const std::string& path, const SegmentTrace& trace);
 
+/// The rule of a replay's stride (every stride-th step kept): "stride = 0 must be >= 1", or nothing.
+[[nodiscard]] std::optional<std::string> strideError(std::uint64_t stride);
+
 /// Replays `record` exactly and streams the same CSV as above for steps 0, stride, 2·stride, … and the last
 /// step, holding one state at a time (memory independent of the segment's length), into a temporary file that
 /// is published only when the replay ended where the record says (io::AtomicOutputFile).  stride ≥ 1.

@@ -6,7 +6,9 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/io/NumberText.hpp"
 #include "core/kernels/KernelDispatch.hpp"
+#include "core/limits/Limits.hpp"
 #include "core/parallel/ParallelFor.hpp"
 
 
@@ -188,6 +190,16 @@ std::uint64_t replaySegment(const TrappingParameters& params, const SegmentRecor
     if (visit) visit(step, z);
     return true;
   });
+}
+
+std::optional<std::string> chunkSecondsError(double chunkSeconds) {
+  if (std::isfinite(chunkSeconds) && chunkSeconds > 0 && chunkSeconds <= 3600) return std::nullopt;
+  return "chunk_seconds = " + io::shortestText(chunkSeconds) + " must lie in (0, 3600]";
+}
+
+std::optional<std::string> subsetIndexError(std::uint64_t index, std::uint64_t count) {
+  if (index < count) return std::nullopt;
+  return rangeError("subset", index, 0, static_cast<long long>(count) - 1);
 }
 
 }  // namespace archipelago

@@ -91,6 +91,12 @@ struct TrappingRunOptions {
   const KernelInfo* kernel = nullptr;
 };
 
+/// The rule of a chunk's target wall time: "chunk_seconds = <s> must lie in (0, 3600]", or nothing.
+[[nodiscard]] std::optional<std::string> chunkSecondsError(double chunkSeconds);
+
+/// The rule of a subset's index among a run's `count` subsets: "subset = <i> must lie in [0, count − 1]", or nothing.
+[[nodiscard]] std::optional<std::string> subsetIndexError(std::uint64_t index, std::uint64_t count);
+
 /// Advances `state` until it is finished or `stop` is requested (checked at chunk boundaries: a chunk always
 /// completes, so that every orbit has done the same number of blocks).  An exception thrown while computing
 /// (e.g. std::bad_alloc from a thread's longest-segment list) is rethrown here after the parallel region; the

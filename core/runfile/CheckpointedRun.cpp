@@ -1,5 +1,7 @@
 #include "core/runfile/CheckpointedRun.hpp"
 
+#include "core/io/NumberText.hpp"
+
 #include <unistd.h>
 
 #include <chrono>
@@ -97,6 +99,11 @@ RunFileOutcome runOrResumeFile(const std::filesystem::path& file, const Trapping
   outcome.state = runWithCheckpoints(std::move(outcome.state), options, last, progress, stop);
   saveRunFileOrSayWhere(file, outcome.state, last);
   return outcome;
+}
+
+std::optional<std::string> checkpointIntervalError(std::string_view name, double seconds) {
+  if (seconds >= 0) return std::nullopt;  // NaN is refused too
+  return std::string(name) + " = " + io::shortestText(seconds) + " must be a number of seconds >= 0";
 }
 
 }  // namespace archipelago

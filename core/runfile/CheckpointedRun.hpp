@@ -9,6 +9,8 @@
 /// reported and the write retried at the next interval (not at every chunk).  No checkpoint is written once the
 /// run is finished: the caller's final write follows.
 
+#include <string_view>
+#include <optional>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -34,6 +36,10 @@ struct CheckpointedRunOptions {
   /// A checkpoint that could not be written: the reason, and the seconds until the next attempt.  Empty: silent.
   std::function<void(const std::string& reason, double retrySeconds)> warning;
 };
+
+/// The rule of a time between checkpoints (run, scan, tail and archipelago-mpi's --checkpoint-interval):
+/// "<name> = <s> must be a number of seconds >= 0" (0: at every chunk), or nothing.
+[[nodiscard]] std::optional<std::string> checkpointIntervalError(std::string_view name, double seconds);
 
 /// Advances `state` until it is finished, `stop` is requested or options.stopRequested() says so, writing
 /// options.checkpoint every checkpointSeconds and calling `progress` at every chunk.  `last` is updated at each

@@ -56,4 +56,22 @@ std::optional<std::string> paperStochasticAreaComparison(const MapParameters& ma
   return std::string(text);
 }
 
+std::optional<std::string> stochasticAreaError(std::string_view name, const MapParameters& map, double area) {
+  const double boxArea = map.width() * map.width();
+  if (area > 0 && area <= boxArea) return std::nullopt;
+  return std::string(name) + " = " + io::shortestText(area) + " must be an area in (0, L^2 = " +
+         io::shortestText(boxArea) + "] of the run's box (stochastic-area prints it)";
+}
+
+std::optional<std::string> visitedFractionError(std::string_view name, double fraction) {
+  if (fraction >= 0 && fraction <= 1) return std::nullopt;
+  return std::string(name) + " = " + io::shortestText(fraction) +
+         " must lie in [0, 1] (the visited fraction stochastic_area gives)";
+}
+
+std::optional<std::string> diffusionInputError(double D, double DError) {
+  if (std::isfinite(D) && std::isfinite(DError)) return std::nullopt;
+  return std::string("D and D_error must be finite");
+}
+
 }  // namespace archipelago

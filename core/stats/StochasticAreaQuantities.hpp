@@ -43,6 +43,13 @@ struct StochasticAreaValue {
 /// b₂ of the box of `map` from its occupied fraction.  NaN fields for a fraction outside [0, 1] or an invalid box.
 [[nodiscard]] StochasticAreaValue stochasticAreaOf(const MapParameters& map, double fraction) noexcept;
 
+/// The rules of b₂ given back to a front end (`stats --b2 AREA`, Python's box_invariant and scan b2 fraction):
+/// "<name> = <area> must be an area in (0, L^2 = <L²>] of the run's box (stochastic-area prints it)";
+/// "<name> = <fraction> must lie in [0, 1] (the visited fraction stochastic_area gives)"; or nothing.
+[[nodiscard]] std::optional<std::string> stochasticAreaError(std::string_view name, const MapParameters& map,
+                                                             double area);
+[[nodiscard]] std::optional<std::string> visitedFractionError(std::string_view name, double fraction);
+
 /// The factor 2h²(γ/A₁) b₂ = (8/π²) b₂ of §6 for the first-order accelerator modes of the standard map (any n).
 [[nodiscard]] double acceleratorModeFactor(double b2Area) noexcept;
 
@@ -59,6 +66,10 @@ struct BoxInvariantQuantities {
   double enhancementN1 = 0;           ///< (8/π²) b₂ D / π²: the enhancement for n = 1 (divide by n² for n)
 };
 [[nodiscard]] BoxInvariantQuantities boxInvariantQuantities(const StochasticAreaValue& b2, double D, double DError) noexcept;
+
+/// The rule of the D and its error given to boxInvariantQuantities by a front end: "D and D_error must be finite", or
+/// nothing.
+[[nodiscard]] std::optional<std::string> diffusionInputError(double D, double DError);
 
 /// One line describing b₂ for people: "b2 = 1.3706 (area; fraction 0.81100 of the box L^2 = 1.69 for
 /// xmin = -0.8, xmax = 0.5)".  Plain ASCII, for the CLI and the GUI alike.

@@ -15,6 +15,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "core/io/NumberText.hpp"
+
 namespace archipelago::smallk {
 
 namespace {
@@ -369,6 +371,12 @@ AmplitudeFit fitAmplitude(std::span<const double> t, std::span<const double> f, 
   fit.points = logRatio.size();
   fit.rmsLogResidual = std::sqrt(squares / static_cast<double>(logRatio.size()));
   return fit;
+}
+
+std::optional<std::string> shapeArgumentError(double t, double K) {
+  if (!(std::isfinite(t) && t >= 0)) return "t = " + io::shortestText(t) + " must be a finite time >= 0 (steps)";
+  if (!std::isfinite(K)) return "K = " + io::shortestText(K) + " must be a finite number";
+  return std::nullopt;
 }
 
 }  // namespace archipelago::smallk

@@ -33,6 +33,8 @@
 /// Inputs outside a function's domain give NaN (GeographicLib's convention), never an exception, so a plot
 /// can sample freely; fitAmplitude() is the exception (mismatched array sizes are a programming error).
 
+#include <optional>
+#include <string>
 #include <cstddef>
 #include <functional>
 #include <limits>
@@ -131,6 +133,10 @@ struct TrappingTimeBranches {
 
 // ---------------------------------------------------------------------------------------------------------
 // Any small K
+
+/// The rule of the shapes' arguments (a time t ≥ 0 in steps and a finite K; anything else is an error, not NaN):
+/// "t = <t> must be a finite time >= 0 (steps)", "K = <K> must be a finite number", or nothing.
+[[nodiscard]] std::optional<std::string> shapeArgumentError(double t, double K);
 
 /// The shape of f_t for this K: negativeKSegmentShape, zeroKSegmentShape or positiveKSegmentShape.
 [[nodiscard]] double segmentShape(double t, double K);

@@ -6,6 +6,10 @@
 /// kept set does not depend on the order of insertion or merging (threads, ranks, checkpoints).
 
 #include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/trapping/TrappingParameters.hpp"
@@ -38,5 +42,11 @@ class LongestSegments {
   std::size_t capacity_;
   std::vector<SegmentRecord> items_;
 };
+
+/// The rule of a rank among a run's longest segments (0 is the longest), for `replay --segment`, Python's
+/// Run.replay(rank) and the GUI's --segment: "<name> = <rank> must lie in [0, kept − 1] (...)", or nothing.  `kept`:
+/// the segments the run keeps, or, before its file is read, the most any run keeps (kMaxLongestKept).
+[[nodiscard]] std::optional<std::string> longestRankError(std::string_view name, std::uint64_t rank,
+                                                          std::uint64_t kept = kMaxLongestKept);
 
 }  // namespace archipelago

@@ -337,7 +337,7 @@ class ScanDialogTest : public QObject {
         {QStringLiteral("T"), QString(), QStringLiteral("T =  must be a whole number")},
         {QStringLiteral("q"), QStringLiteral("1.5"), QStringLiteral("q = 1.5 must be a whole number")},
         {QStringLiteral("threads"), QStringLiteral("-1"), QStringLiteral("threads")},
-        {QStringLiteral("b2Iterations"), QStringLiteral("-5"), QStringLiteral("b₂ steps = -5 must be a whole number")},
+        {QStringLiteral("b2Iterations"), QStringLiteral("-5"), QStringLiteral("b₂ steps = -5 must be an integer in [0, ")},
         {QStringLiteral("b2Iterations"), QStringLiteral("2251799813685248"), QStringLiteral("b2 at K = 0.1")},
         {QStringLiteral("folder"), QString(), QStringLiteral("empty")},
         {QStringLiteral("folder"), plain.fileName(), QStringLiteral("not a folder")},

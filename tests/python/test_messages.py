@@ -79,3 +79,32 @@ def test_rotation_start_outside_the_box(cli):
     c = cli_error(cli, ["rotation", "--K", "0.1", "--x", "0.75", "--y", "0"])
     p = py_error(lambda: ap.rotation(0.75, 0.0, 0.1))
     assert c == p and c.startswith("the start (x, y) = (0.75, 0) must lie in the box")
+
+
+def test_replay_rank(cli, tmp_path):
+    # The rank of a longest segment: three wordings before (the CLI's "is out of range: the run file keeps", Python's
+    # "rank out of range (longest segments kept: …)", the GUI's own bound of 10^6 while a run keeps at most 10^5).
+    run = str(tmp_path / "r.json")
+    made = subprocess.run([cli, "run", "--T", "3000", "--M", "8", "--subsets", "2", "--q", "4", "--longest", "5",
+                           "--seed", "3", "--out", run, "--quiet"], capture_output=True, text=True, timeout=600)
+    assert made.returncode == 0, made.stderr
+    c = cli_error(cli, ["replay", run, "--segment", "7", "--out", str(tmp_path / "s.csv")])
+    p = py_error(lambda: ap.load(run).replay(7))
+    rule = "must lie in [0, 4] (a rank among the 5 longest segments the run keeps; 0 is the longest)"
+    assert c == "--segment = 7 " + rule and p == "rank = 7 " + rule
+
+
+def test_manifold_period_and_point(cli):
+    # The manifold's period and point: the CLI checked them with its own copies ("must be in"), core with another.
+    c = cli_error(cli, ["manifold", "--K", "0.1", "--period", "0"])
+    p = py_error(lambda: ap.manifold(0.1, period=0))
+    assert c == p == "period = 0 must lie in [1, 2000]"
+    c = cli_error(cli, ["manifold", "--K", "0.1", "--point", "3"])
+    p = py_error(lambda: ap.manifold(0.1, point=3))
+    assert c == p == "point = 3 must lie in [0, 0] (a point of the orbit)"
+
+
+def test_box_invariant_fraction(cli):
+    # The visited fraction given back to compute b2 (Python) and the area (the CLI's stats --b2): core's rules.
+    p = py_error(lambda: ap.box_invariant(0.1, -0.8, 0.5, 1.5, 100.0, 1.0))
+    assert p == "fraction = 1.5 must lie in [0, 1] (the visited fraction stochastic_area gives)"

@@ -24,6 +24,7 @@
 #include <algorithm>
 
 #include "core/io/NumberText.hpp"
+#include "core/limits/Limits.hpp"
 #include "core/portrait/ColourMap.hpp"
 #include "core/portrait/StochasticArea.hpp"
 #include "ui/portrait/AtlasPanel.hpp"
@@ -107,7 +108,7 @@ QString budgetLabel(std::uint64_t points) {
   return QLocale().toString(static_cast<double>(points), 'g', 3);
 }
 
-constexpr std::uint64_t kMaxBudget = 1'000'000'000'000;  // 10¹²: hours of accumulation, the most offered
+constexpr std::uint64_t kMaxBudget = limits::kPortraitBudget;  // the most offered (core's table)
 }  // namespace
 
 PortraitPanel::PortraitPanel(QWidget* parent) : QWidget(parent) {

@@ -170,9 +170,11 @@ std::optional<KScanRequest> KScanDialog::request(QString* error) const {
   const auto threads = input("threads", threads_);
   if (const QString* message = std::get_if<QString>(&threads)) return fail(*message);
   r.base.threads = static_cast<int>(std::get<std::uint64_t>(std::get<ParameterValue>(threads)));
-  const std::optional<std::uint64_t> b2 = io::toNumber<std::uint64_t>(b2Iterations_->text().trimmed().toStdString());
-  if (!b2) return fail(tr("b₂ steps = %1 must be a whole number ≥ 0").arg(b2Iterations_->text()));
-  r.b2Iterations = *b2;
+  try {  // core's reader and its message
+    r.b2Iterations = io::parseNumber<std::uint64_t>("b₂ steps", b2Iterations_->text().trimmed().toStdString());
+  } catch (const std::exception& e) {
+    return fail(QString::fromStdString(e.what()));
+  }
   r.dir = folder_->text().trimmed().toStdString();
   if (auto e = kScanValidationError(r)) return fail(QString::fromStdString(*e));
   if (auto e = scanFolderError(r.dir)) return fail(QString::fromStdString(*e));
