@@ -35,7 +35,7 @@
 
 #include "LatencyProbe.hpp"
 #include "core/io/NumberText.hpp"
-#include "core/spec/InputRules.hpp"
+#include "core/runspec/InputRules.hpp"
 #include "ui/window/MainWindow.hpp"
 #include "core/measures/OrbitMeasures.hpp"
 #include "core/portrait/Viewport.hpp"

@@ -8,7 +8,7 @@
 #include "core/io/AtomicFile.hpp"
 #include "core/map/FixedPointMap.hpp"
 #include "core/portrait/PortraitJson.hpp"
-#include "core/spec/RunSpecJson.hpp"
+#include "core/runspec/RunSpecJson.hpp"
 #include "core/stats/StochasticAreaQuantities.hpp"
 
 namespace archipelago {

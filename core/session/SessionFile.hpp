@@ -3,10 +3,10 @@
 /// \brief A session file (`.archipelago`): everything the window shows, as one JSON document, so that opening it
 /// restores the window as it was.
 ///
-/// One codec, strict like the run spec's (core/spec): unknown or repeated keys, wrong types, non-finite numbers,
+/// One codec, strict like the run spec's (core/runspec): unknown or repeated keys, wrong types, non-finite numbers,
 /// empty or inverted rectangles, unknown portrait modes or colour maps and oversized lists are errors naming the
 /// key; a file is parsed and validated whole before anything is applied, so a bad or foreign file changes
-/// nothing.  The parameters are a run spec (core/spec's codec); the run is either referenced (a run file's path,
+/// nothing.  The parameters are a run spec (core/runspec's codec); the run is either referenced (a run file's path,
 /// relative to the session file when it was saved beside it) or embedded (the run file's own document, with its
 /// checksum, read back through core/runfile's validation).  Reading is bounded (io::readRegularFile) and writing
 /// atomic (io::writeFileAtomically).
@@ -39,7 +39,7 @@
 #include "core/portrait/PortraitRaster.hpp"
 #include "core/portrait/Viewport.hpp"
 #include "core/run/TrappingRun.hpp"
-#include "core/spec/RunSpec.hpp"
+#include "core/runspec/RunSpec.hpp"
 
 namespace archipelago {
 
