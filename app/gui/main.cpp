@@ -38,7 +38,7 @@
 #include "core/runspec/InputRules.hpp"
 #include "ui/window/MainWindow.hpp"
 #include "core/measures/OrbitMeasures.hpp"
-#include "core/portrait/Viewport.hpp"
+#include "core/view/Viewport.hpp"
 #include "ui/portrait/OrbitListPanel.hpp"
 #include "ui/portrait/PortraitController.hpp"
 #include "ui/portrait/PortraitPanel.hpp"

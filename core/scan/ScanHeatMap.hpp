@@ -8,7 +8,7 @@
 #include <span>
 #include <vector>
 
-#include "core/portrait/ColourMap.hpp"
+#include "core/colour/ColourMap.hpp"
 #include "core/scan/ScanSummary.hpp"
 
 namespace archipelago {

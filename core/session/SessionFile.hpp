@@ -35,9 +35,9 @@
 #include <vector>
 
 #include "core/atlas/Atlas.hpp"
-#include "core/portrait/ColourMap.hpp"
+#include "core/colour/ColourMap.hpp"
 #include "core/portrait/PortraitRaster.hpp"
-#include "core/portrait/Viewport.hpp"
+#include "core/view/Viewport.hpp"
 #include "core/run/TrappingRun.hpp"
 #include "core/runspec/RunSpec.hpp"
 
@@ -56,7 +56,7 @@ inline constexpr std::size_t kMaxSessionOrbits = 500;
 inline constexpr std::size_t kMaxSessionPeriodicPoints = 1'000'000;  ///< over all periodic overlays
 inline constexpr std::size_t kMaxSessionPlots = 64;
 
-/// Portrait views are exact (core/portrait/Viewport): the centre as integer grid units, the size in grid units as
+/// Portrait views are exact (core/view/Viewport): the centre as integer grid units, the size in grid units as
 /// a decimal string of 21 significant digits (a long double's 64-bit mantissa round-trips), so a view 10⁻¹⁰ wide is
 /// restored to the bit.  Each is checked by Viewport::fromUnits (inside the box, not below the resolution).
 ///

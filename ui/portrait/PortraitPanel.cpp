@@ -24,8 +24,8 @@
 #include <algorithm>
 
 #include "core/io/NumberText.hpp"
-#include "core/portrait/ColourMap.hpp"
-#include "core/portrait/StochasticArea.hpp"
+#include "core/colour/ColourMap.hpp"
+#include "core/stochasticarea/StochasticArea.hpp"
 #include "ui/portrait/AtlasPanel.hpp"
 #include "ui/portrait/ManifoldsPanel.hpp"
 #include "ui/portrait/OrbitListPanel.hpp"
