@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "core/colour/ColourMap.hpp"
-#include "core/scan/ScanSummary.hpp"
+#include "core/scan/ScanRunSummary.hpp"
 
 namespace archipelago {
 
