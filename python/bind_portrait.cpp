@@ -16,7 +16,7 @@
 
 #include "core/kernels/KernelDispatch.hpp"
 #include "core/portrait/PortraitRenderer.hpp"
-#include "core/portrait/StochasticArea.hpp"
+#include "core/stochasticarea/StochasticArea.hpp"
 #include "core/stats/StochasticAreaQuantities.hpp"
 #include "python/Conversions.hpp"
 #include "python/Interruption.hpp"

@@ -1,4 +1,4 @@
-// Trapping runs (core/run, core/runfile, core/spec, core/stats; section 3 and appendix B) as archipelago.Run: start
+// Trapping runs (core/run, core/runfile, core/runspec, core/stats; section 3 and appendix B) as archipelago.Run: start
 // from a run spec or keyword parameters (core's one table of keys and ranges), advance with the GIL released and
 // Ctrl-C checked at each chunk, save and load run files, merge orbit ranges, read the histogram, the longest segments
 // (replayed bit for bit) and the statistics under the statistics table's keys.
@@ -19,7 +19,7 @@
 #include "core/run/TrappingRun.hpp"
 #include "core/trapping/LongestSegments.hpp"
 #include "core/runfile/RunFile.hpp"
-#include "core/spec/RunSpec.hpp"
+#include "core/runspec/RunSpec.hpp"
 #include "core/stats/RunEnsemble.hpp"
 #include "core/stats/RunStatistics.hpp"
 #include "core/stats/RunSummary.hpp"
@@ -293,7 +293,7 @@ void bindRun(py::module_& m) {
            "of q > 1 without its companion, else 0) carry the q-block artefact.  Lengths and times in steps of N.");
 
   m.def("start", &startRun, py::arg("spec") = py::none(),
-        "A fresh run from a run spec (JSON text or dict, format archipelago-spec: core/spec/RunSpec.hpp) and/or keyword\n"
+        "A fresh run from a run spec (JSON text or dict, format archipelago-spec: core/runspec/RunSpec.hpp) and/or keyword\n"
         "parameters K, xmin, xmax, Xr, q, T, M, seed, subsets, longestKept (defaults: the paper's K = 0.1 case, section 5).\n"
         "ValueError with the CLI's message for a bad parameter.");
   m.def("load", [](const py::object& path, bool allowModified) {

@@ -13,7 +13,7 @@
 
 #include "core/io/AtomicFile.hpp"
 #include "core/kernels/KernelDispatch.hpp"
-#include "core/spec/RunSpec.hpp"
+#include "core/runspec/RunSpec.hpp"
 #include "core/tail/TailFile.hpp"
 #include "python/Conversions.hpp"
 #include "python/Interruption.hpp"

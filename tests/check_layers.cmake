@@ -10,7 +10,7 @@ cmake_minimum_required(VERSION 3.21)  # policies of a script run with -P (IN_LIS
 #    a folder.
 # -DROOT=<project source dir>
 set(private_headers "core/kernels/VectorKernels.hpp" "core/kernels/SimdDriver.inl" "core/kernels/ScalarLanes.hpp"
-    "core/kernels/TracedBlocks.hpp" "core/spec/RunSpecJson.hpp" "core/portrait/PortraitJson.hpp"
+    "core/kernels/TracedBlocks.hpp" "core/runspec/RunSpecJson.hpp" "core/view/ViewJson.hpp"
     "core/measures/MeasureKernels.hpp"
     "core/measures/MeasureMath.inl" "core/measures/MeasureDriver.inl")
 set(offenders "")

@@ -25,7 +25,7 @@
 #include "core/io/NumberText.hpp"
 #include "core/map/FixedPointMap.hpp"  // PhysicalPoint
 #include "core/map/MapParameters.hpp"
-#include "core/portrait/Viewport.hpp"    // PhysicalRect
+#include "core/view/Viewport.hpp"    // PhysicalRect
 
 namespace archipelago::cli {
 

@@ -13,7 +13,7 @@
 #include "core/kernels/KernelDispatch.hpp"
 #include "core/measures/IndicatorMap.hpp"
 #include "core/measures/MeasureExport.hpp"
-#include "core/portrait/PortraitExport.hpp"  // sidecarPath
+#include "core/view/ViewExport.hpp"  // sidecarPath
 
 namespace archipelago::cli {
 

@@ -13,7 +13,7 @@
 #include "core/io/Png.hpp"
 #include "core/limits/Limits.hpp"
 #include "core/kernels/KernelDispatch.hpp"
-#include "core/portrait/ColourMap.hpp"
+#include "core/portrait/PortraitColours.hpp"
 #include "core/portrait/PortraitExport.hpp"
 #include "core/portrait/PortraitRenderer.hpp"
 

@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/spec/RunSpec.hpp"
+#include "core/runspec/RunSpec.hpp"
 
 namespace archipelago::cli {
 

@@ -1,5 +1,5 @@
 #pragma once
-// archipelago-cli presets [ID]: the paper's presets (core's spec/RunSpec.hpp), listed or printed as a run spec.
+// archipelago-cli presets [ID]: the paper's presets (core's runspec/RunSpec.hpp), listed or printed as a run spec.
 
 #include <CLI/CLI.hpp>
 

@@ -21,7 +21,7 @@
 #include "core/io/CommandFiles.hpp"
 #include "core/kernels/KernelDispatch.hpp"
 #include "core/runfile/RunFile.hpp"
-#include "core/spec/RunSpec.hpp"
+#include "core/runspec/RunSpec.hpp"
 #include "core/run/TrappingRun.hpp"
 
 namespace archipelago::cli {

@@ -18,7 +18,7 @@
 #include "core/io/AtomicFile.hpp"
 #include "core/run/TrappingRun.hpp"
 #include "core/runfile/CheckpointedRun.hpp"
-#include "core/spec/RunSpec.hpp"
+#include "core/runspec/RunSpec.hpp"
 
 namespace archipelago::cli {
 
@@ -39,7 +39,7 @@ void addSpecOptions(CLI::App& cmd, SpecOptions& o, std::initializer_list<std::st
 [[nodiscard]] std::vector<std::string> givenSpecOptions(const CLI::App& cmd);
 
 /// The run spec of the command line: a preset or a spec file (or the defaults), then every parameter given
-/// explicitly on top, --threads and --kernel when given; validated whole (spec/RunSpec.hpp), so a bad value is
+/// explicitly on top, --threads and --kernel when given; validated whole (runspec/RunSpec.hpp), so a bad value is
 /// named before any work starts.  Throws std::invalid_argument.
 [[nodiscard]] RunSpec resolveSpec(const SpecOptions& o, const CLI::App& cmd);
 

@@ -9,9 +9,9 @@
 #include "core/io/AtomicFile.hpp"
 #include "core/io/CommandFiles.hpp"
 #include "core/kernels/KernelDispatch.hpp"
-#include "core/portrait/PortraitExport.hpp"  // stochasticAreaJson
-#include "core/portrait/StochasticArea.hpp"
 #include "core/stats/StochasticAreaQuantities.hpp"
+#include "core/stochasticarea/StochasticArea.hpp"
+#include "core/stochasticarea/StochasticAreaExport.hpp"
 
 namespace archipelago::cli {
 

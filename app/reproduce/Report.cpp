@@ -17,7 +17,7 @@
 #include "core/io/AtomicFile.hpp"
 #include "core/io/NumberText.hpp"
 #include "core/paper/PaperTable.hpp"
-#include "core/portrait/ColourMap.hpp"
+#include "core/portrait/PortraitColours.hpp"
 #include "core/report/FigureRequests.hpp"
 #include "core/report/LongOrbit.hpp"
 #include "core/report/ReportPlan.hpp"

@@ -10,7 +10,7 @@
 
 #include "Report.hpp"
 #include "core/paper/PaperTable.hpp"
-#include "core/spec/InputRules.hpp"
+#include "core/runspec/InputRules.hpp"
 
 using namespace archipelago;
 

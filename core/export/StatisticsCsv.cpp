@@ -7,7 +7,7 @@
 
 #include "core/io/AtomicFile.hpp"
 #include "core/provenance/Provenance.hpp"
-#include "core/spec/RunSpecJson.hpp"
+#include "core/runspec/RunSpecJson.hpp"
 
 namespace archipelago {
 
@@ -53,7 +53,7 @@ std::string csvMetadataHeader(const TrappingState& state) {
   const MapCoefficients& c = state.coefficients;
   std::string out;
   line(out, "program", programDescription());
-  // The parameters as the run-spec codec writes them (spec/RunSpec.hpp): same keys, same digits.
+  // The parameters as the run-spec codec writes them (runspec/RunSpec.hpp): same keys, same digits.
   const nlohmann::json parameters = spec::parametersJson(p);
   for (const ParameterRule& rule : parameterRules()) line(out, rule.key, parameters.at(std::string(rule.key)).dump());
   line(out, "blocks_done", number(state.blocksDone));

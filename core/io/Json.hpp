@@ -49,7 +49,7 @@ inline constexpr std::uintmax_t kJsonBytesPerTextByte = 32;
 /// five readers had four rules): a JSON integer ≥ 0, whether nlohmann holds it signed or unsigned, and at most
 /// `max`; nothing for a negative integer, a real (even 2.0), a string or any other value.  Each reader words its
 /// own error around it (its file's name and field).  Hand-written run specs, which may say 2e7, read their whole
-/// numbers by their own documented rule (core/spec/RunSpec.cpp).
+/// numbers by their own documented rule (core/runspec/RunSpec.cpp).
 [[nodiscard]] std::optional<std::uint64_t> wholeJson(const nlohmann::json& value,
                                                      std::uint64_t max = UINT64_MAX) noexcept;
 

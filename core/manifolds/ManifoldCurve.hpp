@@ -43,7 +43,7 @@
 #include "core/manifolds/ManifoldParameterization.hpp"
 #include "core/manifolds/TurnstileFlux.hpp"  // ManifoldProgressCallback
 #include "core/map/MapParameters.hpp"
-#include "core/portrait/Viewport.hpp"        // PhysicalRect
+#include "core/view/Viewport.hpp"        // PhysicalRect
 
 namespace archipelago {
 

@@ -20,6 +20,7 @@
 
 #include "core/manifolds/KacCheck.hpp"
 #include "core/manifolds/ManifoldCurve.hpp"
+#include "core/manifolds/QuadText.hpp"  // quadText, quadCoordinateText: the actions and points its files write
 #include "core/manifolds/TurnstileFlux.hpp"
 
 namespace archipelago {
@@ -33,12 +34,5 @@ void writeManifoldCsv(const std::filesystem::path& path, const ManifoldCurveRequ
 [[nodiscard]] std::string turnstileJson(const TurnstileRequest& request, const TurnstileFlux& flux,
                                         const KacRequest* kac = nullptr, const KacResult* kacResult = nullptr,
                                         double seconds = -1);
-
-/// __float128 as text with `digits` significant digits (e.g. "0.003843389302547659406819825701782").
-[[nodiscard]] std::string quadText(quad v, int digits = 34);
-/// The coordinate `v` of a point whose other coordinate is `other`, to `digits` significant digits of the point:
-/// "0" when |v| is below max(|v|, |other|)·10⁻ᵈⁱᵍⁱᵗˢ (round-off of a zero, e.g. y = 7.2e-35 on the symmetry line
-/// y = 0: issue 37, finding 14), else quadText(v, digits).
-[[nodiscard]] std::string quadCoordinateText(quad v, quad other, int digits);
 
 }  // namespace archipelago

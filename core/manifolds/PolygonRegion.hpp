@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "core/map/FixedPointMap.hpp"  // PhysicalPoint
-#include "core/portrait/Viewport.hpp"  // PhysicalRect
+#include "core/view/Viewport.hpp"  // PhysicalRect
 
 namespace archipelago {
 

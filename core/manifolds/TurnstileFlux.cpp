@@ -8,7 +8,7 @@
 
 #include "core/manifolds/GeneratingFunction.hpp"
 #include "core/periodic/PeriodicOrbitFinder.hpp"  // NotFound
-#include "core/manifolds/ManifoldExport.hpp"  // quadText
+#include "core/manifolds/QuadText.hpp"
 
 namespace archipelago {
 

@@ -7,7 +7,7 @@
 #include <stdexcept>
 
 #include "core/limits/Limits.hpp"
-#include "core/portrait/PortraitRenderer.hpp"  // orbitSeed: the portraits' seed of a cell
+#include "core/view/Viewport.hpp"  // orbitSeed: the portraits' seed of a cell
 
 namespace archipelago {
 

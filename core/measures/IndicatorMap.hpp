@@ -29,7 +29,7 @@
 #include <vector>
 
 #include "core/measures/OrbitMeasures.hpp"
-#include "core/portrait/Viewport.hpp"
+#include "core/view/Viewport.hpp"
 
 namespace archipelago {
 

@@ -9,8 +9,8 @@
 
 #include "core/io/AtomicFile.hpp"
 #include "core/io/Npy.hpp"
-#include "core/portrait/PortraitExport.hpp"  // sidecarPath
-#include "core/portrait/PortraitJson.hpp"
+#include "core/view/ViewExport.hpp"  // sidecarPath
+#include "core/view/ViewJson.hpp"
 
 namespace archipelago {
 

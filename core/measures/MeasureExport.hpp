@@ -13,7 +13,7 @@
 
 #include "core/measures/ChainIdentification.hpp"
 #include "core/measures/IndicatorMap.hpp"
-#include "core/portrait/ColourMap.hpp"
+#include "core/colour/ColourMap.hpp"
 #include "core/provenance/Provenance.hpp"
 
 namespace archipelago {

@@ -33,9 +33,10 @@
 #include <cstdint>
 #include <span>
 
+#include "core/kernels/KernelDispatch.hpp"
 #include "core/kernels/VectorKernels.hpp"
 #include "core/map/FixedPointMap.hpp"
-#include "core/measures/OrbitMeasures.hpp"
+#include "core/measures/IndicatorKind.hpp"
 
 namespace archipelago::measures {
 

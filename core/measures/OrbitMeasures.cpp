@@ -14,37 +14,10 @@
 namespace archipelago {
 
 namespace {
-constexpr IndicatorKind kKinds[] = {IndicatorKind::Dig, IndicatorKind::Rotation, IndicatorKind::Fli,
-                                    IndicatorKind::Megno, IndicatorKind::Lyapunov};
 // Steps of a group between two checks of the stop token (the cancellation latency: ~1 ms per group with
 // AVX-512 IFMA, a few ms with the scalar path).
 constexpr std::uint64_t kChunkSteps = std::uint64_t{1} << 14;
 }  // namespace
-
-std::string_view toString(IndicatorKind kind) noexcept {
-  switch (kind) {
-    case IndicatorKind::Dig: return "dig";
-    case IndicatorKind::Rotation: return "rotation";
-    case IndicatorKind::Fli: return "fli";
-    case IndicatorKind::Megno: return "megno";
-    case IndicatorKind::Lyapunov: return "lyapunov";
-  }
-  return "unknown";
-}
-
-std::optional<IndicatorKind> parseIndicatorKind(std::string_view name) noexcept {
-  for (IndicatorKind k : kKinds)
-    if (name == toString(k)) return k;
-  return std::nullopt;
-}
-
-std::string indicatorKindNames() {
-  std::string s;
-  for (IndicatorKind k : kKinds) s += (s.empty() ? "" : ", ") + std::string(toString(k));
-  return s;
-}
-
-bool isBirkhoffKind(IndicatorKind kind) noexcept { return kind == IndicatorKind::Dig || kind == IndicatorKind::Rotation; }
 
 std::string_view toString(OrbitVerdict verdict) noexcept {
   switch (verdict) {

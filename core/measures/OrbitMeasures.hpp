@@ -45,19 +45,9 @@
 #include "core/kernels/KernelDispatch.hpp"
 #include "core/map/FixedPointMap.hpp"
 #include "core/measures/BirkhoffAverage.hpp"
+#include "core/measures/IndicatorKind.hpp"
 
 namespace archipelago {
-
-/// What an indicator measures (the file comment defines each).
-enum class IndicatorKind { Dig, Rotation, Fli, Megno, Lyapunov };
-
-/// "dig", "rotation", "fli", "megno", "lyapunov".
-[[nodiscard]] std::string_view toString(IndicatorKind kind) noexcept;
-[[nodiscard]] std::optional<IndicatorKind> parseIndicatorKind(std::string_view name) noexcept;
-/// "dig, rotation, fli, megno, lyapunov" (help texts, error messages).
-[[nodiscard]] std::string indicatorKindNames();
-/// Dig and Rotation: weighted Birkhoff averages over two blocks, with digits and a regular/chaotic verdict.
-[[nodiscard]] bool isBirkhoffKind(IndicatorKind kind) noexcept;
 
 /// What became of an orbit.
 enum class OrbitVerdict : std::uint8_t {

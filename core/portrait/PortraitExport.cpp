@@ -7,50 +7,13 @@
 
 #include "core/io/AtomicFile.hpp"
 #include "core/map/FixedPointMap.hpp"
-#include "core/portrait/PortraitJson.hpp"
-#include "core/spec/RunSpecJson.hpp"
-#include "core/stats/StochasticAreaQuantities.hpp"
+#include "core/view/ViewJson.hpp"  // the map and the viewport, as every raster of a view writes them
 
 namespace archipelago {
 
 namespace {
-std::string longDouble(long double v) {
-  std::ostringstream s;
-  s.precision(19);
-  s << v;
-  return s.str();
-}
-
 void writeText(const std::string& path, const std::string& text) { io::writeFileAtomically(path, text + '\n'); }
 }  // namespace
-
-nlohmann::json mapWithCoefficientsJson(const MapParameters& map) {
-  const MapCoefficients k = computeCoefficients(map);
-  nlohmann::json j = spec::mapJson(map);
-  j["coefficients"] = {{"A", k.A}, {"B", k.B}, {"C", k.C}, {"m", k.m}};
-  return j;
-}
-
-nlohmann::json viewportJson(const MapParameters& map, const Viewport& view) {
-  const PhysicalRect b = view.physical(map);
-  return {{"centre_unit", {{"X", view.centre().X}, {"Y", view.centre().Y}}},
-          {"width_units", longDouble(view.widthUnits())},
-          {"height_units", longDouble(view.heightUnits())},
-          {"physical", {{"x0", longDouble(b.x0)}, {"x1", longDouble(b.x1)}, {"y0", longDouble(b.y0)}, {"y1", longDouble(b.y1)}}},
-          {"unit", "physical x = xmin + L*X/2^52, y = -L/2 + L*Y/2^52, L = xmax - xmin"}};
-}
-
-std::string sidecarPath(const std::string& npyPath) {
-  const std::string ext = ".npy";
-  if (npyPath.size() > ext.size() && npyPath.compare(npyPath.size() - ext.size(), ext.size(), ext) == 0)
-    return npyPath.substr(0, npyPath.size() - ext.size()) + ".json";
-  return npyPath + ".json";
-}
-
-void addView(Provenance& provenance, const MapParameters& map, const Viewport& view) {
-  const PhysicalRect b = view.physical(map);
-  provenance.add("View x0", b.x0).add("View x1", b.x1).add("View y0", b.y0).add("View y1", b.y1);
-}
 
 Provenance portraitProvenance(const PortraitRequest& r) {
   Provenance p = mapProvenance(r.map);
@@ -109,31 +72,6 @@ void exportPortraitNpy(const std::string& npyPath, const PortraitRequest& reques
       break;
   }
   writeText(sidecarPath(npyPath), portraitMetadataJson(request, raster, name));
-}
-
-std::string stochasticAreaJson(const StochasticAreaRequest& r, const StochasticAreaResult& result) {
-  using nlohmann::json;
-  json curve = json::array();
-  // b₂ is an area (appendix A), the box counting measures the fraction of the box: both, by their names.
-  for (const auto& p : result.convergence)
-    curve.push_back({{"iterations", p.iterations}, {"boxes_visited", p.boxesVisited},
-                     {"b2_area", stochasticAreaOf(r.map, p.b2).area}, {"b2_fraction", p.b2}});
-  json j;
-  j["quantity"] = "b2: area of the chaotic sea of Q* in the box (Karney 1983, sec. 5 and appendix A: b0 = L^2), "
-                  "b2_fraction: the fraction of the boxes of the grid it visits";
-  j["map"] = spec::mapJson(r.map);
-  j["Xr"] = r.Xr;
-  j["q"] = r.q;
-  j["orbits"] = r.orbits;
-  j["seed"] = r.seed;
-  j["grid"] = std::uint64_t{1} << r.gridBits;
-  const StochasticAreaValue b2 = stochasticAreaOf(r.map, result.b2());
-  j["box_area"] = b2.boxArea;
-  j["b2_area"] = b2.area;
-  j["b2_fraction"] = b2.fraction;
-  j["cancelled"] = result.cancelled;
-  j["convergence"] = curve;
-  return j.dump(2);
 }
 
 }  // namespace archipelago

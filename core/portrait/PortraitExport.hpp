@@ -13,16 +13,9 @@
 #include "core/io/Npy.hpp"
 #include "core/portrait/PortraitRenderer.hpp"
 #include "core/provenance/Provenance.hpp"
-#include "core/portrait/StochasticArea.hpp"
+#include "core/view/ViewExport.hpp"  // sidecarPath, addView
 
 namespace archipelago {
-
-/// The sidecar's path: FILE.npy → FILE.json (any other name: name + ".json").
-[[nodiscard]] std::string sidecarPath(const std::string& npyPath);
-
-/// The view's edges as the fields "View x0", "View x1", "View y0", "View y1" (physical coordinates, shortest exact
-/// text of the long doubles): the view of every image of the phase plane.
-void addView(Provenance& provenance, const MapParameters& map, const Viewport& view);
 
 /// Where a portrait came from (its PNG's text, the CLI's and the GUI's): the program, the map, the view, the mode,
 /// the size, the points, the orbits (or seed grid), Xr and q in Stickiness mode, the seed.
@@ -35,8 +28,5 @@ void addView(Provenance& provenance, const MapParameters& map, const Viewport& v
 /// Writes the raster's main array — counts (<u8) in Density mode, labels (<u4) in Orbits mode, mean segment
 /// lengths in steps (<f8) in Stickiness mode — to npyPath and the sidecar to sidecarPath(npyPath).
 void exportPortraitNpy(const std::string& npyPath, const PortraitRequest& request, const PortraitRaster& raster);
-
-/// The convergence curve of b₂ as JSON text.
-[[nodiscard]] std::string stochasticAreaJson(const StochasticAreaRequest& request, const StochasticAreaResult& result);
 
 }  // namespace archipelago

@@ -10,7 +10,7 @@
 #include "core/limits/Limits.hpp"
 #include "core/kernels/ScalarLanes.hpp"
 #include "core/parallel/ParallelFor.hpp"
-#include "core/portrait/RangeCheck.hpp"
+#include "core/limits/RangeCheck.hpp"
 #include "core/random/CounterRng.hpp"
 #include "core/trapping/BlockKernel.hpp"
 
@@ -155,15 +155,6 @@ PixelMapping::PixelMapping(const Viewport& view, int width, int height) noexcept
             static_cast<double>(height),
             width,
             height} {}
-
-UnitState orbitSeed(const Viewport& view, std::uint32_t columns, std::uint32_t rows, std::uint32_t i,
-                    std::uint32_t j) noexcept {
-  const long double dx = ((i + 0.5L) / columns - 0.5L) * view.widthUnits();
-  const long double dy = ((j + 0.5L) / rows - 0.5L) * view.heightUnits();
-  const auto ox = static_cast<std::int64_t>(std::llround(dx)), oy = static_cast<std::int64_t>(std::llround(dy));
-  return {(view.centre().X + static_cast<std::uint64_t>(ox)) & FixedPointMap::kMask,
-          (view.centre().Y + static_cast<std::uint64_t>(oy)) & FixedPointMap::kMask};
-}
 
 namespace {
 

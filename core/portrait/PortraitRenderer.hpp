@@ -51,7 +51,7 @@
 #include "core/kernels/KernelDispatch.hpp"
 #include "core/map/FixedPointMap.hpp"
 #include "core/portrait/PortraitRaster.hpp"
-#include "core/portrait/Viewport.hpp"
+#include "core/view/Viewport.hpp"
 
 namespace archipelago {
 
@@ -147,9 +147,5 @@ class PixelMapping {
  private:
   RasterGrid grid_;
 };
-
-/// The unit state of the centre of seed cell (i, j) (i across, j up from the bottom) in Orbits mode.
-[[nodiscard]] UnitState orbitSeed(const Viewport& view, std::uint32_t columns, std::uint32_t rows, std::uint32_t i,
-                                  std::uint32_t j) noexcept;
 
 }  // namespace archipelago

@@ -5,7 +5,7 @@
 
 #include "core/io/NumberText.hpp"
 #include "core/scan/ScanBox.hpp"
-#include "core/spec/RunSpec.hpp"
+#include "core/runspec/RunSpec.hpp"
 
 namespace archipelago::report {
 

@@ -15,7 +15,7 @@
 #include <filesystem>
 #include <string>
 
-#include "core/portrait/StochasticArea.hpp"
+#include "core/stochasticarea/StochasticArea.hpp"
 #include "core/scan/ScanRun.hpp"
 #include "core/tail/TailSampler.hpp"
 #include "core/trapping/TrappingParameters.hpp"

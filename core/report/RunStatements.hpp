@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "core/portrait/StochasticArea.hpp"
+#include "core/stochasticarea/StochasticArea.hpp"
 #include "core/report/ReportItem.hpp"
 #include "core/report/ReportRuns.hpp"
 #include "core/run/TrappingRun.hpp"

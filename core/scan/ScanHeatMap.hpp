@@ -8,8 +8,8 @@
 #include <span>
 #include <vector>
 
-#include "core/portrait/ColourMap.hpp"
-#include "core/scan/ScanSummary.hpp"
+#include "core/colour/ColourMap.hpp"
+#include "core/scan/ScanRunSummary.hpp"
 
 namespace archipelago {
 

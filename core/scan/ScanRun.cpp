@@ -10,7 +10,7 @@
 #include <utility>
 
 #include "core/io/AtomicFile.hpp"
-#include "core/portrait/StochasticArea.hpp"
+#include "core/stochasticarea/StochasticArea.hpp"
 #include "core/runfile/CheckpointedRun.hpp"
 #include "core/runfile/RunFile.hpp"
 #include "core/stats/RunStatistics.hpp"

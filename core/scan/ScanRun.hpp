@@ -22,7 +22,7 @@
 #include "core/scan/ScanBox.hpp"
 #include "core/scan/ScanSummary.hpp"
 #include "core/kernels/KernelDispatch.hpp"
-#include "core/spec/RunSpec.hpp"
+#include "core/runspec/RunSpec.hpp"
 
 namespace archipelago {
 
@@ -44,7 +44,7 @@ struct KScanRequest {
 [[nodiscard]] TrappingParameters scanParameters(const KScanRequest& r, double K);
 
 /// Every check of the scan before any work, without touching the disk: the K list, the parameters of every K
-/// (spec/RunSpec.hpp rules), their memory, the b₂ request, the checkpoint interval.  The first problem as one
+/// (runspec/RunSpec.hpp rules), their memory, the b₂ request, the checkpoint interval.  The first problem as one
 /// line, or nothing.
 [[nodiscard]] std::optional<std::string> kScanValidationError(const KScanRequest& r);
 

@@ -1,6 +1,6 @@
 #pragma once
 /// \file ScanSummary.hpp
-/// \brief What a K scan (§5; ScanBox.hpp) reports per K, and its summary files.  Same conventions as
+/// \brief What a K scan (§5; ScanBox.hpp) reports per K (ScanRunSummary.hpp), and its summary files.  Same conventions as
 /// export/StatisticsCsv.hpp: "# " comment
 /// lines, one header row, 17 significant digits without the locale (K and the box: the shortest text that reads
 /// back exactly), '\n' line ends; empty cells where a value is undefined.
@@ -17,23 +17,13 @@
 #include <vector>
 
 #include "core/stats/StochasticAreaQuantities.hpp"
-#include "core/stats/TrappingStatistics.hpp"
-#include "core/scan/ScanPoint.hpp"
-#include "core/run/TrappingRun.hpp"
+#include "core/scan/ScanRunSummary.hpp"
 
 namespace archipelago {
 
 inline constexpr const char* scanFtCsvFileName = "scan_f_t.csv";
 inline constexpr const char* scanLocalExponentCsvFileName = "scan_local_exponent.csv";
 inline constexpr const char* scanSummaryCsvFileName = "scan_summary.csv";
-
-/// One K of a scan: its parameters (the box of scanBox(K) and the scan's common settings), the scan point and
-/// the statistics.
-struct ScanRunSummary {
-  TrappingParameters params;
-  ScanPoint point;
-  TrappingStatistics statistics;
-};
 
 [[nodiscard]] std::string scanFtCsv(const std::vector<ScanRunSummary>& runs);
 [[nodiscard]] std::string scanLocalExponentCsv(const std::vector<ScanRunSummary>& runs);

@@ -10,7 +10,7 @@
 #include "core/io/AtomicFile.hpp"
 #include "core/io/Json.hpp"
 #include "core/runfile/RunFile.hpp"
-#include "core/spec/RunSpecJson.hpp"
+#include "core/runspec/RunSpecJson.hpp"
 
 namespace archipelago {
 

@@ -3,10 +3,10 @@
 /// \brief A session file (`.archipelago`): everything the window shows, as one JSON document, so that opening it
 /// restores the window as it was.
 ///
-/// One codec, strict like the run spec's (core/spec): unknown or repeated keys, wrong types, non-finite numbers,
+/// One codec, strict like the run spec's (core/runspec): unknown or repeated keys, wrong types, non-finite numbers,
 /// empty or inverted rectangles, unknown portrait modes or colour maps and oversized lists are errors naming the
 /// key; a file is parsed and validated whole before anything is applied, so a bad or foreign file changes
-/// nothing.  The parameters are a run spec (core/spec's codec); the run is either referenced (a run file's path,
+/// nothing.  The parameters are a run spec (core/runspec's codec); the run is either referenced (a run file's path,
 /// relative to the session file when it was saved beside it) or embedded (the run file's own document, with its
 /// checksum, read back through core/runfile's validation).  Reading is bounded (io::readRegularFile) and writing
 /// atomic (io::writeFileAtomically).
@@ -35,11 +35,11 @@
 #include <vector>
 
 #include "core/atlas/Atlas.hpp"
-#include "core/portrait/ColourMap.hpp"
+#include "core/colour/ColourMap.hpp"
 #include "core/portrait/PortraitRaster.hpp"
-#include "core/portrait/Viewport.hpp"
+#include "core/view/Viewport.hpp"
 #include "core/run/TrappingRun.hpp"
-#include "core/spec/RunSpec.hpp"
+#include "core/runspec/RunSpec.hpp"
 
 namespace archipelago {
 
@@ -56,7 +56,7 @@ inline constexpr std::size_t kMaxSessionOrbits = 500;
 inline constexpr std::size_t kMaxSessionPeriodicPoints = 1'000'000;  ///< over all periodic overlays
 inline constexpr std::size_t kMaxSessionPlots = 64;
 
-/// Portrait views are exact (core/portrait/Viewport): the centre as integer grid units, the size in grid units as
+/// Portrait views are exact (core/view/Viewport): the centre as integer grid units, the size in grid units as
 /// a decimal string of 21 significant digits (a long double's 64-bit mantissa round-trips), so a view 10⁻¹⁰ wide is
 /// restored to the bit.  Each is checked by Viewport::fromUnits (inside the box, not below the resolution).
 ///

@@ -8,7 +8,7 @@
 #include "core/io/AtomicFile.hpp"
 #include "core/io/Json.hpp"
 #include "core/provenance/Provenance.hpp"
-#include "core/spec/RunSpecJson.hpp"
+#include "core/runspec/RunSpecJson.hpp"
 
 namespace archipelago {
 

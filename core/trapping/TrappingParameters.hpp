@@ -42,7 +42,7 @@ inline constexpr std::uint64_t kMaxSubsets = 1024;
 inline constexpr std::uint64_t kMaxLongestKept = 100'000;
 
 /// One parameter of TrappingParameters as files, the CLI and the GUI name it: the one table of keys,
-/// meanings and ranges.  The JSON codec (spec/RunSpec.hpp), the CLI's options (--key) and help texts, and
+/// meanings and ranges.  The JSON codec (runspec/RunSpec.hpp), the CLI's options (--key) and help texts, and
 /// validationError() read it.
 struct ParameterRule {
   std::string_view key;      ///< JSON key and CLI option --key

@@ -17,7 +17,7 @@
 #include "core/io/NumberText.hpp"
 #include "core/runfile/RunFileMerge.hpp"
 #include "core/session/SessionFile.hpp"
-#include "core/spec/RunSpec.hpp"
+#include "core/runspec/RunSpec.hpp"
 #include "core/tail/TailFile.hpp"
 #include "core/tail/TailSampler.hpp"
 

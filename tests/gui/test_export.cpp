@@ -16,7 +16,7 @@
 #include "ui/window/StatisticsView.hpp"
 #include "ui/plots/StatisticsPlot.hpp"
 #include "core/runfile/RunFile.hpp"
-#include "core/spec/RunSpec.hpp"
+#include "core/runspec/RunSpec.hpp"
 #include "ui/window/ExportActions.hpp"
 
 #include <QMessageBox>

@@ -27,7 +27,7 @@
 #include <set>
 
 #include "GuiTestSupport.hpp"
-#include "core/portrait/Viewport.hpp"
+#include "core/view/Viewport.hpp"
 #include "ui/periodic/PeriodicOrbitDialog.hpp"
 #include "ui/plots/StatisticsPlot.hpp"
 #include "ui/portrait/OrbitListPanel.hpp"

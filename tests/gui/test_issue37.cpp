@@ -41,7 +41,7 @@
 #include "core/periodic/PeriodicOrbitFinder.hpp"
 #include "core/run/TrappingRun.hpp"
 #include "core/session/SessionFile.hpp"
-#include "core/spec/RunSpec.hpp"
+#include "core/runspec/RunSpec.hpp"
 #include "ui/plots/StatisticsPlot.hpp"
 #include "ui/portrait/ManifoldsPanel.hpp"
 #include "ui/portrait/OrbitListPanel.hpp"

@@ -5,7 +5,7 @@
 #include <QLineEdit>
 
 #include "GuiTestSupport.hpp"
-#include "core/spec/RunSpec.hpp"
+#include "core/runspec/RunSpec.hpp"
 #include "ui/periodic/PeriodicOrbitDialog.hpp"
 
 using archipelago::ui::ParameterPanel;

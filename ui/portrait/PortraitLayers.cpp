@@ -7,7 +7,7 @@
 
 #include <algorithm>
 
-#include "core/portrait/ColourMap.hpp"
+#include "core/colour/ColourMap.hpp"
 
 namespace archipelago::ui {
 

@@ -24,9 +24,9 @@
 #include <algorithm>
 
 #include "core/io/NumberText.hpp"
+#include "core/colour/ColourMap.hpp"
 #include "core/limits/Limits.hpp"
-#include "core/portrait/ColourMap.hpp"
-#include "core/portrait/StochasticArea.hpp"
+#include "core/stochasticarea/StochasticArea.hpp"
 #include "ui/portrait/AtlasPanel.hpp"
 #include "ui/portrait/ManifoldsPanel.hpp"
 #include "ui/portrait/OrbitListPanel.hpp"

@@ -38,7 +38,7 @@
 #include <limits>
 
 #include "core/measures/MeasureExport.hpp"
-#include "core/portrait/AxisLabels.hpp"
+#include "core/view/AxisLabels.hpp"
 #include "core/portrait/PortraitExport.hpp"
 #include "ui/jobs/BackgroundJobs.hpp"
 #include "ui/portrait/PortraitWorker.hpp"

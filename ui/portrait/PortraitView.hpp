@@ -30,9 +30,9 @@
 
 #include "core/map/MapParameters.hpp"
 #include "core/measures/OrbitMeasures.hpp"
-#include "core/portrait/ColourMap.hpp"
+#include "core/colour/ColourMap.hpp"
 #include "core/portrait/PortraitRenderer.hpp"
-#include "core/portrait/Viewport.hpp"
+#include "core/view/Viewport.hpp"
 #include "ui/portrait/PortraitLayers.hpp"
 
 class QwtPlot;

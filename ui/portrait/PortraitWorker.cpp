@@ -9,6 +9,7 @@
 
 #include "core/kernels/KernelDispatch.hpp"
 #include "core/measures/MeasureExport.hpp"
+#include "core/portrait/PortraitColours.hpp"
 
 namespace archipelago::ui {
 

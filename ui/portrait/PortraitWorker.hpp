@@ -29,7 +29,7 @@
 #include <optional>
 
 #include "core/measures/IndicatorMap.hpp"
-#include "core/portrait/ColourMap.hpp"
+#include "core/colour/ColourMap.hpp"
 #include "core/portrait/PortraitRenderer.hpp"
 #include "ui/jobs/BackgroundJobs.hpp"
 

@@ -1,12 +1,12 @@
 #pragma once
 // The stochastic area b₂ (Karney 1983, §5, appendix A: an area, shown with the fraction of the 1024 × 1024 boxes
-// of the box visited by the chaotic sea), computed in the background (core/portrait/StochasticArea.hpp) as a job
+// of the box visited by the chaotic sea), computed in the background (core/stochasticarea/StochasticArea.hpp) as a job
 // of ui/jobs, with its convergence drawn as it grows.  Closing the dialog stops the computation.
 
 #include <QDialog>
 #include <QVector>
 
-#include "core/portrait/StochasticArea.hpp"
+#include "core/stochasticarea/StochasticArea.hpp"
 #include "ui/jobs/BackgroundJobs.hpp"
 
 class QLabel;

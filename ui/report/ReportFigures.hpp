@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "core/scan/ScanSummary.hpp"
-#include "core/portrait/ColourMap.hpp"
+#include "core/colour/ColourMap.hpp"
 #include "core/stats/StatisticsTable.hpp"
 #include "core/theory/TheoryCurves.hpp"
 

@@ -18,7 +18,7 @@
 #include "core/kernels/KernelDispatch.hpp"
 #include "ui/jobs/DurationText.hpp"
 #include "core/io/NumberText.hpp"
-#include "core/spec/InputRules.hpp"
+#include "core/runspec/InputRules.hpp"
 #include "ui/scan/KScanPlots.hpp"
 
 #include <variant>
@@ -27,7 +27,7 @@ namespace archipelago::ui {
 
 namespace {
 
-/// A field's number through core's one input layer (core/spec/InputRules.hpp): its value, or its message.
+/// A field's number through core's one input layer (core/runspec/InputRules.hpp): its value, or its message.
 std::variant<ParameterValue, QString> input(const char* key, const QLineEdit* edit) {
   try {
     return readInput(key, edit->text().trimmed().toStdString());

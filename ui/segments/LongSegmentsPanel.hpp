@@ -23,7 +23,7 @@
 #include "ui/segments/LongestSegmentsModel.hpp"
 #include "ui/portrait/SegmentResults.hpp"
 #include "core/periodic/PeriodicOrbit.hpp"
-#include "core/portrait/Viewport.hpp"
+#include "core/view/Viewport.hpp"
 #include "core/trapping/LongestSegments.hpp"
 
 class QComboBox;

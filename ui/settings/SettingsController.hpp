@@ -13,7 +13,7 @@
 
 #include <optional>
 
-#include "core/spec/RunSpec.hpp"
+#include "core/runspec/RunSpec.hpp"
 
 class QMainWindow;
 

@@ -8,7 +8,7 @@
 
 #include "core/export/StatisticsCsv.hpp"
 #include "core/io/AtomicFile.hpp"
-#include "core/spec/RunSpec.hpp"
+#include "core/runspec/RunSpec.hpp"
 #include "ui/plots/StatisticsPlot.hpp"
 #include "core/portrait/PortraitExport.hpp"
 #include "ui/portrait/PortraitView.hpp"

@@ -12,7 +12,7 @@
 
 #include <optional>
 
-#include "core/spec/RunSpec.hpp"
+#include "core/runspec/RunSpec.hpp"
 #include "ui/run/RunSnapshot.hpp"
 
 namespace archipelago::ui {

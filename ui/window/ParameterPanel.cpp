@@ -15,7 +15,7 @@
 #include <limits>
 #include <variant>
 
-#include "core/spec/InputRules.hpp"
+#include "core/runspec/InputRules.hpp"
 
 namespace archipelago::ui {
 
@@ -28,7 +28,7 @@ const QStringList kFieldOrder = {QStringLiteral("K"),    QStringLiteral("xmin"),
 
 const QLocale kNumbers = QLocale::c();  // the paper's notation: a point and an exponent, never a comma
 
-/// A field's value through core's one input layer (core/spec/InputRules.hpp, "2e7" an integer as everywhere), or
+/// A field's value through core's one input layer (core/runspec/InputRules.hpp, "2e7" an integer as everywhere), or
 /// its message; surrounding blanks are not part of a typed number.
 std::variant<ParameterValue, QString> input(const QString& key, const QString& text) {
   try {

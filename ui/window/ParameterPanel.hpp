@@ -16,7 +16,7 @@
 
 #include <optional>
 
-#include "core/spec/RunSpec.hpp"
+#include "core/runspec/RunSpec.hpp"
 
 class QComboBox;
 class QFormLayout;

@@ -1,6 +1,6 @@
 #pragma once
 /// \file Resources.hpp
-/// \brief The application's Qt resources (icon).  The paper's presets are core data (spec/RunSpec.hpp).
+/// \brief The application's Qt resources (icon).  The paper's presets are core data (runspec/RunSpec.hpp).
 
 namespace archipelago::ui {
 

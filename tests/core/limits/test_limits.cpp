@@ -8,8 +8,8 @@
 #include "core/measures/IndicatorMap.hpp"
 #include "core/measures/RotationProfile.hpp"
 #include "core/portrait/PortraitRenderer.hpp"
-#include "core/spec/InputRules.hpp"
-#include "core/spec/RunSpec.hpp"
+#include "core/runspec/InputRules.hpp"
+#include "core/runspec/RunSpec.hpp"
 
 namespace archipelago {
 namespace {

@@ -1,6 +1,6 @@
 // Indicator maps (core/measures/IndicatorMap.hpp): progressive passes, threads and stop requests do not change a
 // pixel; a pixel is its orbit's measure; and the chaotic share of a whole-box dig map agrees with the stochastic
-// area b₂ of stochastic-area (core/portrait/StochasticArea.hpp), an independent count by randomized orbits.
+// area b₂ of stochastic-area (core/stochasticarea/StochasticArea.hpp), an independent count by randomized orbits.
 #include <gtest/gtest.h>
 
 #include <bit>
@@ -9,7 +9,7 @@
 
 #include "core/measures/IndicatorMap.hpp"
 #include "core/portrait/PortraitRenderer.hpp"
-#include "core/portrait/StochasticArea.hpp"
+#include "core/stochasticarea/StochasticArea.hpp"
 #include "tests/core/kernels/KernelsUnderTest.hpp"
 
 namespace archipelago {

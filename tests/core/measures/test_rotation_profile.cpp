@@ -16,7 +16,7 @@
 #include "core/measures/MeasureExport.hpp"
 #include "core/measures/RotationProfile.hpp"
 #include "core/periodic/PeriodicOrbitFinder.hpp"
-#include "core/portrait/PortraitExport.hpp"
+#include "core/view/ViewExport.hpp"
 
 namespace archipelago {
 namespace {

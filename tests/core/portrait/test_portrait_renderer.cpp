@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "core/kernels/KernelDispatch.hpp"
-#include "core/portrait/ColourMap.hpp"
+#include "core/portrait/PortraitColours.hpp"
 #include "core/portrait/MapOverlays.hpp"
 #include "core/portrait/PortraitRenderer.hpp"
 #include "core/random/CounterRng.hpp"

@@ -6,8 +6,8 @@
 #include <regex>
 #include <string>
 
-#include "core/portrait/PortraitExport.hpp"
 #include "core/provenance/Provenance.hpp"
+#include "core/view/ViewExport.hpp"
 
 using namespace archipelago;
 

@@ -18,7 +18,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "core/portrait/StochasticArea.hpp"
+#include "core/stochasticarea/StochasticArea.hpp"
 #include "core/stats/RunStatistics.hpp"
 #include "core/stats/StochasticAreaQuantities.hpp"
 #include "core/theory/BoxExtension.hpp"

@@ -7,7 +7,7 @@
 #include <functional>
 #include <vector>
 
-#include "core/spec/RunSpec.hpp"
+#include "core/runspec/RunSpec.hpp"
 #include "core/stats/RunStatistics.hpp"
 #include "core/theory/SmallKTheory.hpp"
 #include "core/theory/TheoryCurves.hpp"

@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/portrait/Viewport.hpp"
+#include "core/view/Viewport.hpp"
 
 namespace archipelago {
 namespace {

@@ -1,17 +1,10 @@
 #pragma once
 /// \file ColourMap.hpp
-/// \brief Colour maps and the conversion of a PortraitRaster into RGB pixels, shared by the CLI and the GUI.
+/// \brief Colour maps and the RGB image of a raster of the phase plane, shared by the CLI and the GUI: portraits
+/// (portrait/PortraitColours.hpp) and indicator maps (measures/MeasureExport.hpp) are coloured with them.
 ///
 /// The perceptual maps are the matplotlib maps "inferno" and "viridis" (van der Walt & Smith, CC0),
-/// evaluated from degree-6 polynomial fits (max error < 1/255 per channel), plus a grey ramp.  Scales:
-///   - Density: t = (log c − log m)/(2w) + ½ clamped to [0, 1], m the median visited count and w the larger of
-///     log(m/c₅%) and log(c₉₉.₅%/m): the sea is nearly uniform, so a log scale centred on its bulk shows where
-///     sticky orbits linger (between its extremes the bulk saturated the top of the map: issue 25, finding 14);
-///   - Stickiness: t = (log10 L − log10 Lmin) / (log10 Lmax − log10 Lmin), L the mean segment length (§3);
-///   - Orbits: each label gets its own hue (golden-ratio steps around the colour wheel), not a scale;
-///     orbits that wrapped around the torus (the sea and accelerator modes) are shaded by log visits through
-///     the dim part [kSeaLowest, kSeaHighest] of the colour map, over the robust range of Density widened to
-///     at least [median/10, median·√10] (so that counting noise does not fill the scale).
+/// evaluated from degree-6 polynomial fits (max error < 1/255 per channel), plus a grey ramp.
 /// Non-empty pixels use t in [kLowest, 1] so that the faintest visit stays distinguishable from an empty
 /// pixel, which gets the map's colour at 0 (black for inferno) or the background of the Orbits mode.
 
@@ -21,8 +14,6 @@
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include "core/portrait/PortraitRaster.hpp"
 
 namespace archipelago {
 
@@ -70,8 +61,5 @@ inline constexpr double kLowest = 0.12;
 /// Orbits mode: the range of t that shades the sea, below the bright hues of the island orbits.
 inline constexpr double kSeaLowest = 0.15;
 inline constexpr double kSeaHighest = 0.55;
-
-/// Colours a raster as described above.
-[[nodiscard]] RasterImage colourize(const PortraitRaster& raster, ColourMapName map);
 
 }  // namespace archipelago

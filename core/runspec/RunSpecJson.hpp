@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <string_view>
 
-#include "core/spec/RunSpec.hpp"
+#include "core/runspec/RunSpec.hpp"
 
 namespace archipelago::spec {
 

@@ -1,4 +1,4 @@
-#include "core/portrait/Viewport.hpp"
+#include "core/view/Viewport.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -150,6 +150,15 @@ Viewport Viewport::panned(long double fx, long double fy) const noexcept {
 
 PhysicalPoint Viewport::unitOffset(const MapParameters& map, long double x, long double y) const noexcept {
   return {unitX(map, x) - static_cast<long double>(centre_.X), unitY(map, y) - static_cast<long double>(centre_.Y)};
+}
+
+UnitState orbitSeed(const Viewport& view, std::uint32_t columns, std::uint32_t rows, std::uint32_t i,
+                    std::uint32_t j) noexcept {
+  const long double dx = ((i + 0.5L) / columns - 0.5L) * view.widthUnits();
+  const long double dy = ((j + 0.5L) / rows - 0.5L) * view.heightUnits();
+  const auto ox = static_cast<std::int64_t>(std::llround(dx)), oy = static_cast<std::int64_t>(std::llround(dy));
+  return {(view.centre().X + static_cast<std::uint64_t>(ox)) & FixedPointMap::kMask,
+          (view.centre().Y + static_cast<std::uint64_t>(oy)) & FixedPointMap::kMask};
 }
 
 }  // namespace archipelago

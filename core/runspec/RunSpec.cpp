@@ -1,4 +1,4 @@
-#include "core/spec/RunSpec.hpp"
+#include "core/runspec/RunSpec.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -10,7 +10,7 @@
 #include "core/io/AtomicFile.hpp"
 #include "core/io/Json.hpp"
 #include "core/kernels/KernelDispatch.hpp"
-#include "core/spec/RunSpecJson.hpp"
+#include "core/runspec/RunSpecJson.hpp"
 
 namespace archipelago {
 

@@ -1,4 +1,4 @@
-#include "core/portrait/StochasticArea.hpp"
+#include "core/stochasticarea/StochasticArea.hpp"
 
 #include <algorithm>
 #include <bit>
@@ -8,7 +8,7 @@
 #include "core/limits/Limits.hpp"
 #include "core/map/FixedPointMap.hpp"
 #include "core/parallel/ParallelFor.hpp"
-#include "core/portrait/RangeCheck.hpp"
+#include "core/limits/RangeCheck.hpp"
 #include "core/kernels/TracedBlocks.hpp"
 
 namespace archipelago {

@@ -14,6 +14,7 @@
 /// the paper's box — below that the pixels of a 1024-pixel raster would be smaller than the grid.
 /// Zoom and pan clamp into that range; constructors reject views outside it with a clear message.
 
+#include <cstdint>
 #include <optional>
 #include <string>
 
@@ -92,5 +93,10 @@ class Viewport {
   long double width_ = kMaxSizeUnits;
   long double height_ = kMaxSizeUnits;
 };
+
+/// The unit state of the centre of seed cell (i, j) (i across, j up from the bottom) of a columns × rows grid over
+/// the view: the portraits' Orbits mode and the indicator maps seed their orbits there.
+[[nodiscard]] UnitState orbitSeed(const Viewport& view, std::uint32_t columns, std::uint32_t rows, std::uint32_t i,
+                                  std::uint32_t j) noexcept;
 
 }  // namespace archipelago

@@ -1,13 +1,13 @@
 #pragma once
-/// \file PortraitJson.hpp
-/// \brief Core-internal: the parts of a raster sidecar (PortraitExport.hpp) that every raster of a view shares —
+/// \file ViewJson.hpp
+/// \brief Core-internal: the parts of a raster sidecar (portrait/PortraitExport.hpp) that every raster of a view shares —
 /// the map with its exact integers and the viewport — as nlohmann::json values, so that the portrait and the
 /// indicator-map sidecars (measures/MeasureExport.hpp) describe them in one way.
 
 #include <nlohmann/json.hpp>
 
 #include "core/map/MapParameters.hpp"
-#include "core/portrait/Viewport.hpp"
+#include "core/view/Viewport.hpp"
 
 namespace archipelago {
 

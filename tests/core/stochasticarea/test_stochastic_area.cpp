@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "core/map/FixedPointMap.hpp"
-#include "core/portrait/StochasticArea.hpp"
+#include "core/stochasticarea/StochasticArea.hpp"
 #include "core/random/CounterRng.hpp"
 #include "tests/core/kernels/KernelsUnderTest.hpp"
 

@@ -30,7 +30,7 @@
 #include <string>
 #include <string_view>
 
-#include "core/spec/InputRules.hpp"  // kMaxThreads, threadsError
+#include "core/runspec/InputRules.hpp"  // kMaxThreads, threadsError
 #include "core/trapping/TrappingParameters.hpp"
 
 namespace archipelago {

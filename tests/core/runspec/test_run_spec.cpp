@@ -12,7 +12,7 @@
 #include <unistd.h>
 
 #include "core/runfile/RunFile.hpp"
-#include "core/spec/RunSpec.hpp"
+#include "core/runspec/RunSpec.hpp"
 
 namespace archipelago {
 namespace {

@@ -1,7 +1,7 @@
-// The portrait's axis labels at any depth (core/portrait/AxisLabels.hpp; issue 37, findings 2 and 18).
+// The portrait's axis labels at any depth (core/view/AxisLabels.hpp; issue 37, findings 2 and 18).
 #include <gtest/gtest.h>
 
-#include "core/portrait/AxisLabels.hpp"
+#include "core/view/AxisLabels.hpp"
 
 namespace archipelago {
 namespace {

@@ -1,4 +1,4 @@
-#include "core/portrait/AxisLabels.hpp"
+#include "core/view/AxisLabels.hpp"
 
 #include <algorithm>
 #include <cmath>

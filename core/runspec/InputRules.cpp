@@ -1,4 +1,4 @@
-#include "core/spec/InputRules.hpp"
+#include "core/runspec/InputRules.hpp"
 
 #include <array>
 #include <stdexcept>
