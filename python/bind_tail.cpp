@@ -15,6 +15,7 @@
 #include "core/kernels/KernelDispatch.hpp"
 #include "core/runspec/RunSpec.hpp"
 #include "core/tail/TailFile.hpp"
+#include "core/tail/TailPlan.hpp"
 #include "python/Conversions.hpp"
 #include "python/Interruption.hpp"
 
@@ -172,9 +173,7 @@ void bindTail(py::module_& m) {
         r.maxSteps = whole64(tMax, "t_max");
         r.binsPerLevel = whole32(levelBins, "level_bins");
         r.epsilon = whole64(epsilon, "epsilon");
-        const auto rule = cloneRuleByName(clones);
-        if (!rule) throw std::invalid_argument("clones must be 'perturb' or 'metropolis'");
-        r.clones = *rule;
+        r.clones = parseCloneRule(clones, "clones");  // the CLI's wording (core/tail/TailPlan.hpp)
         r.metropolisSteps = whole32(metropolisSteps, "metropolis_steps");
         r.warmupBlocks = whole64(warmup, "warmup");
         r.minAncestors = whole64(minAncestors, "min_ancestors");

@@ -15,14 +15,12 @@
 
 #include "CliCommon.hpp"
 #include "RunSession.hpp"
-#include "core/runfile/CheckpointedRun.hpp"
 #include "core/io/AtomicFile.hpp"
-#include "core/io/CommandFiles.hpp"
 #include "core/io/NumberText.hpp"
 #include "core/kernels/KernelDispatch.hpp"
-#include "core/runfile/RunFile.hpp"
 #include "core/tail/BruteForceSurvival.hpp"
 #include "core/tail/TailFile.hpp"
+#include "core/tail/TailPlan.hpp"
 
 namespace archipelago::cli {
 
@@ -127,61 +125,40 @@ int tailCommand(TailOptions& o, const CLI::App& cmd) {
 
 
 TailJob prepareTail(TailOptions& o, const CLI::App& cmd, std::optional<ReplicaRange> slice, const std::string& resumeFile) {
-  const std::string resume = resumeFile.empty() ? o.resume : resumeFile;
-  const std::vector<std::string> givenSpec = givenSpecOptions(cmd);
-  std::vector<std::string> givenSampler;
+  TailPlanOptions options;
+  options.request = o.request;
+  options.clones = o.clones;
+  options.spec = [&o, &cmd] { return resolveSpec(o, cmd); };
+  options.givenSpec = givenSpecOptions(cmd);
   for (const char* name : kSamplerOptions)
-    if (cmd.count(name) > 0) givenSampler.emplace_back(name);
-  if (!o.resume.empty()) {
-    if (!givenSpec.empty()) throw std::invalid_argument("--resume takes the spec from the tail file; do not also give " + givenSpec.front());
-    if (!givenSampler.empty())
-      throw std::invalid_argument("--resume takes the sampler's settings from the tail file; do not also give " +
-                                  givenSampler.front());
-    if (o.printLevels) throw std::invalid_argument("--print-levels prints a new run's levels; do not give --resume");
-  }
-  if (auto e = threadsError(o.threads)) throw std::invalid_argument(*e);  // the one table's rule and wording
-  if (auto e = checkpointIntervalError("--checkpoint-interval", o.checkpointSeconds)) throw std::invalid_argument(*e);
-
+    if (cmd.count(name) > 0) options.givenSampler.emplace_back(name);
+  options.threads = o.threads;
+  options.checkpointSeconds = o.checkpointSeconds;
+  options.printLevels = o.printLevels;
+  options.slice = slice;
+  options.resume = o.resume;
+  options.resumeFile = resumeFile;
+  options.out = o.out;
+  options.checkpoint = o.checkpoint;
+  options.csv = o.csv;
+  options.compareCsv = o.compareCsv;
+  options.specFile = o.specFile;
+  options.compare = o.compare;
+  TailPlan plan = planTail(options);
   TailJob job;
-  if (o.resume.empty()) {
-    const RunSpec spec = resolveSpec(o, cmd);
-    o.request.run = spec.parameters;
-    o.threads = spec.threads;
-    o.kernel = spec.kernel == "auto" ? std::string() : spec.kernel;
-    const auto rule = cloneRuleByName(o.clones);
-    if (!rule) throw std::invalid_argument("--clones '" + io::shortText(o.clones) + "' must be perturb or metropolis");
-    o.request.clones = *rule;
-    if (auto e = tailRequestError(o.request)) throw std::invalid_argument(*e);
-    job.state = slice ? startTailSlice(o.request, *slice) : startTail(o.request);
-    if (o.printLevels) {
-      std::printf("t (steps)\n");
-      for (const std::uint64_t L : job.state.levels)
-        std::printf("%llu\n", static_cast<unsigned long long>(L * o.request.run.q));
-      job.printedLevels = true;
-      return job;
-    }
+  job.state = std::move(plan.state);
+  job.runs = std::move(plan.runs);
+  if (o.resume.empty()) {  // the new run's settings, for the session that runs it
+    o.request = job.state.request;
+    o.threads = static_cast<int>(plan.threads);
+    o.kernel = plan.kernel;
   }
-  const std::string checkpoint = o.checkpoint.empty() ? o.out : o.checkpoint;
-  if (!o.compareCsv.empty() && o.compare.empty()) throw std::invalid_argument("--compare-csv needs --compare RUN.json");
-  std::vector<io::CommandFile> files{{"--out", o.out, io::FileUse::SavedState},
-                                     {"--checkpoint", checkpoint, io::FileUse::SavedState},
-                                     {"--resume", resume, io::FileUse::ResumedState},
-                                     {"--csv", o.csv, io::FileUse::Output},
-                                     {"--compare-csv", o.compareCsv, io::FileUse::Output},
-                                     {"--spec", o.specFile, io::FileUse::Input}};
-  for (const std::string& run : o.compare) files.push_back({"--compare", run, io::FileUse::Input});
-  io::checkCommandFiles(files);  // no output over another or over an input; a run compared once
-  if (!resume.empty()) {
-    job.state = loadTailFile(resume);
-    if (job.state.finished() && resumeFile.empty()) throw std::invalid_argument(resume + " is already finished");
+  if (plan.printLevelsOnly) {
+    std::printf("t (steps)\n");
+    for (const std::uint64_t L : job.state.levels)
+      std::printf("%llu\n", static_cast<unsigned long long>(L * o.request.run.q));
+    job.printedLevels = true;
   }
-  // The runs to compare with, read and checked before any work.
-  for (const std::string& path : o.compare) {
-    job.runs.push_back(loadRunFile(path));
-    if (auto e = tailRunMismatch(job.state.request, job.runs.back()))
-      throw std::invalid_argument(path + " is not a run of the sampler's process: " + *e);
-  }
-  if (!job.runs.empty()) (void)bruteForceSurvival(job.runs, job.state.levels);  // throws when the runs do not pool
   return job;
 }
 

@@ -44,7 +44,9 @@ struct TailJob {
   bool printedLevels = false;       // --print-levels: printed, nothing to run
 };
 /// A new run (the spec and the sampler's options; only the replicas `slice` when given) or the one in the tail
-/// file `resume` (o.resume when empty).  Throws std::invalid_argument / std::runtime_error for anything wrong.
+/// file `resume` (o.resume when empty): the options filled into core's planTail() (core/tail/TailPlan.hpp), which
+/// decides; a new run's request, threads and kernel are written back to `o`; --print-levels prints here.  Throws
+/// std::invalid_argument / std::runtime_error for anything wrong.
 [[nodiscard]] TailJob prepareTail(TailOptions& o, const CLI::App& cmd, std::optional<ReplicaRange> slice,
                                   const std::string& resume = {});
 

@@ -75,6 +75,13 @@ void saveRunFileOrSayWhere(const std::filesystem::path& path, const TrappingStat
   }
 }
 
+RunFileAction runFileAction(const std::filesystem::path& file, const TrappingState* held,
+                            const TrappingParameters& wanted) {
+  if (!held) return RunFileAction::start;
+  if (!(held->params == wanted)) throw std::runtime_error(file.string() + " holds a run of other parameters");
+  return held->finished() ? RunFileAction::reuse : RunFileAction::resume;
+}
+
 RunFileOutcome runOrResumeFile(const std::filesystem::path& file, const TrappingParameters& params,
                                CheckpointedRunOptions options, const TrappingObserver& progress, std::stop_token stop,
                                std::uint64_t orbitBegin, std::uint64_t orbitEnd) {
@@ -82,17 +89,18 @@ RunFileOutcome runOrResumeFile(const std::filesystem::path& file, const Trapping
   io::removeStaleTemporaries(file);
   RunFileOutcome outcome;
   std::error_code ec;
-  if (std::filesystem::exists(file, ec)) {
-    outcome.state = loadRunFile(file);
-    if (!(outcome.state.params == params))
-      throw std::runtime_error(file.string() + " holds a run of other parameters");
-    if (outcome.state.finished()) {
+  const bool exists = std::filesystem::exists(file, ec);
+  if (exists) outcome.state = loadRunFile(file);
+  switch (runFileAction(file, exists ? &outcome.state : nullptr, params)) {
+    case RunFileAction::reuse:
       outcome.reused = true;
       return outcome;
-    }
-    outcome.resumed = true;
-  } else {
-    outcome.state = startTrapping(params, orbitBegin, orbitEnd);
+    case RunFileAction::resume:
+      outcome.resumed = true;
+      break;
+    case RunFileAction::start:
+      outcome.state = startTrapping(params, orbitBegin, orbitEnd);
+      break;
   }
   options.checkpoint = file;
   LastCheckpoint last{outcome.resumed ? file.string() : std::string(), outcome.state.blocksDone};  // the file read

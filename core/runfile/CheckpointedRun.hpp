@@ -55,6 +55,19 @@ struct CheckpointedRunOptions {
 void saveRunFileOrSayWhere(const std::filesystem::path& path, const TrappingState& state, const LastCheckpoint& last,
                            const std::string& howToResume = {});
 
+/// What to do with a run file that should hold a run of some parameters (runOrResumeFile()'s plan; the report's
+/// "reusing …" and "resumed …").
+enum class RunFileAction {
+  start,   ///< no file: a fresh run
+  resume,  ///< an unfinished run of these parameters: continued
+  reuse,   ///< the finished run of these parameters: nothing to compute
+};
+
+/// The plan for `file` given what it holds (`held`: nullptr when it does not exist) and the parameters wanted.
+/// Pure.  Throws std::runtime_error "FILE holds a run of other parameters" when `held` is a run of others.
+[[nodiscard]] RunFileAction runFileAction(const std::filesystem::path& file, const TrappingState* held,
+                                          const TrappingParameters& wanted);
+
 /// What runOrResumeFile() found and did.
 struct RunFileOutcome {
   TrappingState state;      ///< the run as it is now (finished, or stopped and saved)

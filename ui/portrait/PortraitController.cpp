@@ -20,6 +20,7 @@
 #include "core/kernels/KernelDispatch.hpp"
 #include "core/limits/Limits.hpp"
 #include "core/manifolds/HyperbolicOrbit.hpp"
+#include "core/manifolds/ManifoldViewPlan.hpp"
 #include "core/map/FixedPointMap.hpp"
 #include "core/measures/OrbitMeasures.hpp"
 #include "core/periodic/PeriodicOrbitFinder.hpp"
@@ -47,9 +48,6 @@ constexpr double kAtlasViewMargin = 0.25;
 
 /// The smallest view aspect (and its inverse the largest) a rectangle zoom gives with equal aspect.
 constexpr double kMinCropAspect = 0.25;
-
-/// Orbit points drawn per branch piece at most: a manifold refined at a deep zoom stays drawable.
-constexpr std::size_t kMaxManifoldPoints = 1'500'000;
 
 std::vector<QPointF> toQt(const std::vector<PhysicalPoint>& points) {
   std::vector<QPointF> out;
@@ -713,31 +711,10 @@ void PortraitController::requestManifolds() {
     QElapsedTimer clock;
     clock.start();
     auto result = std::make_shared<ManifoldsResult>();
-    const int period = orbit ? orbit->period : 1;
-    // Every point of a short orbit (the six of the period-6 chain); only the first of a long one.  The fixed
-    // point's inward branches (the loop about the central island and its turnstile; the outward ones wrap around
-    // the torus into the sea); both sides of a periodic orbit's (the separatrices of its chain).
-    const int points = period <= 24 ? period : 1;
-    const long double width = std::max(view.x1 - view.x0, view.y1 - view.y0);
-    std::vector<BranchSide> sides{BranchSide::Inward};
-    if (orbit) sides.push_back(BranchSide::Outward);
-    for (ManifoldKind kind : {ManifoldKind::Unstable, ManifoldKind::Stable})
-      for (BranchSide side : sides)
-        for (int i = 0; i < points; ++i) {
-          ManifoldCurveRequest r;
-          r.K = box.K;
-          r.orbit = orbit;
-          r.point = i;
-          r.kind = kind;
-          r.side = side;
-          r.length = orbit ? 2.0L : 8.0L;
-          r.maxSpacing = std::clamp(width / 400, kMinManifoldSpacing, 2e-3L);
-          r.view = view;
-          r.box = box;
-          r.maxPoints = kMaxManifoldPoints / static_cast<std::size_t>(2 * sides.size() * static_cast<std::size_t>(points));
-          ManifoldCurve curve = computeManifoldCurve(r, {}, context.stopToken());
-          (kind == ManifoldKind::Unstable ? result->unstable : result->stable).push_back(std::move(curve));
-        }
+    for (const ManifoldCurveRequest& r : manifoldPlanForView(box, orbit, view)) {
+      ManifoldCurve curve = computeManifoldCurve(r, {}, context.stopToken());
+      (r.kind == ManifoldKind::Unstable ? result->unstable : result->stable).push_back(std::move(curve));
+    }
     result->seconds = static_cast<double>(clock.nsecsElapsed()) * 1e-9;
     return result;
   };

@@ -38,6 +38,7 @@
 #include <limits>
 
 #include "core/measures/MeasureExport.hpp"
+#include "core/portrait/ExportSizing.hpp"
 #include "core/view/AxisLabels.hpp"
 #include "core/portrait/PortraitExport.hpp"
 #include "ui/jobs/BackgroundJobs.hpp"
@@ -606,7 +607,7 @@ bool PortraitView::exportPng(const QString& path, const QSize& requested) {
     ~Done() { flag = false; }
   } done{exporting_};
   // The export's own layout: the canvas it gets in an image of that size (with equal aspect, the image is cut
-  // to the view's aspect), then a raster rendered at exactly that canvas size.
+  // to the view's aspect: core's exportImageSize), then a raster rendered at exactly that canvas size.
   QSize size = requested;
   QwtPlotLayout* layout = plot_->plotLayout();
   const auto canvasIn = [&](const QSize& s) {
@@ -615,17 +616,16 @@ bool PortraitView::exportPng(const QString& path, const QSize& requested) {
   };
   QRectF canvas = canvasIn(size);
   if (equalAspect_ && canvas.width() > 0 && canvas.height() > 0) {
-    const double aspect = static_cast<double>(view_.widthUnits() / view_.heightUnits());
-    if (canvas.width() > canvas.height() * aspect)
-      size.setWidth(static_cast<int>(std::lround(size.width() - (canvas.width() - canvas.height() * aspect))));
-    else
-      size.setHeight(static_cast<int>(std::lround(size.height() - (canvas.height() - canvas.width() / aspect))));
+    const PixelSize cut = exportImageSize({size.width(), size.height()}, canvas.width(), canvas.height(),
+                                          static_cast<double>(view_.widthUnits() / view_.heightUnits()));
+    size = QSize(cut.width, cut.height);
     canvas = canvasIn(size);
   }
   layout->invalidate();
   plot_->updateLayout();
-  const int w = std::clamp(static_cast<int>(std::lround(canvas.width())), 16, 8192);
-  const int h = std::clamp(static_cast<int>(std::lround(canvas.height())), 16, 8192);
+  const PixelSize raster = exportRasterSize(canvas.width(), canvas.height());
+  const int w = raster.width;
+  const int h = raster.height;
 
   PortraitRequest request;
   request.map = map_;
@@ -633,11 +633,7 @@ bool PortraitView::exportPng(const QString& path, const QSize& requested) {
   request.mode = mode_;
   request.width = w;
   request.height = h;
-  // As many points per pixel as the screen's raster has so far, at least 2^22 and at most 2^27 (about a second
-  // with two cores: an export after a long accumulation has fewer points per pixel than the screen, not more).
-  const double screenPixels = frame_ ? static_cast<double>(frame_->pixelCount()) : 1.0;
-  const double perPixel = static_cast<double>(std::max<std::uint64_t>(pointsSoFar_, 1)) / std::max(screenPixels, 1.0);
-  request.points = static_cast<std::uint64_t>(std::clamp(perPixel * w * h, 0x1p22, 0x1p27));
+  request.points = exportPoints(pointsSoFar_, frame_ ? frame_->pixelCount() : 0, raster);
   request.passes = 1;
   std::optional<IndicatorRequest> indicator;
   if (indicator_) {

@@ -44,6 +44,7 @@
 #include "core/tail/BruteForceSurvival.hpp"
 #include "core/tail/TailFile.hpp"
 #include "core/tail/TailResult.hpp"
+#include "ui/jobs/BackgroundJobs.hpp"
 #include "ui/jobs/DurationText.hpp"
 #include "ui/window/ExportActions.hpp"
 #include "ui/window/Resources.hpp"
@@ -599,48 +600,83 @@ bool MainWindow::openRunFile(const QString& path, QString* error) {
   return true;
 }
 
+namespace {
+/// What the tail estimate's job found (on a worker thread, from the file and the run's immutable snapshot).
+struct TailEstimate {
+  QString refusal;  // why it is not drawn (empty: drawn)
+  TailRequest request;
+  Series levels;    // the reliable levels, in the run's units
+  double factor = 1;
+  double largestReliableT = 0;
+};
+using TailEstimatePtr = std::shared_ptr<const TailEstimate>;
+}  // namespace
+
 bool MainWindow::openTailEstimate(const QString& path, QString* error) {
-  QString why;
-  const RunSnapshotPtr& shown = run_->latest();
+  const RunSnapshotPtr shown = run_->latest();
   if (!shown || !shown->hasStatistics) {
-    why = tr("there is no run to compare it with: open or start the run first");
-  } else {
-    try {
-      const TailState tail = loadTailFile(path.toStdString());
-      if (const auto mismatch = tailRunMismatch(tail.request, shown->state)) {
-        why = tr("it samples another process than the run's: %1").arg(QString::fromStdString(*mismatch));
-      } else {
-        const TailResult result = tailResult(tail);
-        double factor = 1;
-        const Series levels = reliableSurvivalIn(result, shown->state, shown->statistics, &factor);
-        if (levels.x.empty()) {
-          why = tr("it has no reliable level yet");
-        } else if (StatisticsPlot* p = statistics_->plot(Statistic::P)) {
-          // A short legend entry (issue 37, finding 5: the whole description was cut off at the canvas' edge);
-          // the details go to the status bar.
-          QString details = tr("tail %1 × %2, %3 reliable levels")
-                                .arg(tail.request.population)
-                                .arg(tail.request.replicas)
-                                .arg(levels.x.size());
-          if (factor != 1)  // spliced statistics count the q = 1 process's segments
-            details += tr(", × %1 (α₁/α_q)").arg(QLocale::c().toString(factor, 'g', 3));
-          p->setEstimate(levels, tr("P_t by splitting (tail)"));
-          p->refresh();
-          message(tr("Drew %1 levels of %2 to t = %3 steps on P_t (%4)")
-                      .arg(levels.x.size())
-                      .arg(QFileInfo(path).fileName())
-                      .arg(QLocale::c().toString(largestReliableT(result), 'g', 3))
-                      .arg(details));
-          return true;
-        }
-      }
-    } catch (const std::exception& e) {
-      why = QString::fromStdString(e.what());
-    }
+    const QString why = tr("there is no run to compare it with: open or start the run first");
+    if (error) *error = why;
+    showOpenError(tr("Cannot draw the tail estimate"), path, why);
+    return false;
   }
-  if (error) *error = why;
-  showOpenError(tr("Cannot draw the tail estimate"), path, why);
-  return false;
+  if (!jobs_) jobs_ = std::make_unique<BackgroundJobs>(this);
+  Job<TailEstimatePtr> job;  // latest wins: a second file replaces the first
+  const std::string file = path.toStdString();
+  job.work = [file, shown](JobContext<NoProgress>&) -> std::optional<TailEstimatePtr> {
+    auto e = std::make_shared<TailEstimate>();
+    const TailState tail = loadTailFile(file);  // throws: the failure's message is core's
+    e->request = tail.request;
+    if (const auto mismatch = tailRunMismatch(tail.request, shown->state)) {
+      e->refusal = MainWindow::tr("it samples another process than the run's: %1").arg(QString::fromStdString(*mismatch));
+      return e;
+    }
+    const TailResult result = tailResult(tail);
+    e->levels = reliableSurvivalIn(result, shown->state, shown->statistics, &e->factor);
+    e->largestReliableT = largestReliableT(result);
+    if (e->levels.x.empty()) e->refusal = MainWindow::tr("it has no reliable level yet");
+    return e;
+  };
+  job.done = [this, path](JobResult<TailEstimatePtr> r) {
+    tailRequest_ = 0;
+    openTailAction_->setEnabled(true);
+    QString why;
+    const RunSnapshotPtr now = run_->latest();
+    if (!r.ok()) {
+      why = r.error;
+    } else if (!(*r.value)->refusal.isEmpty()) {
+      why = (*r.value)->refusal;
+    } else if (!now || !now->hasStatistics) {  // the run was closed while the file was read
+      why = tr("there is no run to compare it with: open or start the run first");
+    } else if (const auto mismatch = tailRunMismatch((*r.value)->request, now->state)) {  // or another opened
+      why = tr("it samples another process than the run's: %1").arg(QString::fromStdString(*mismatch));
+    } else if (StatisticsPlot* p = statistics_->plot(Statistic::P)) {
+      const TailEstimate& e = **r.value;
+      // A short legend entry (issue 37, finding 5: the whole description was cut off at the canvas' edge);
+      // the details go to the status bar.
+      QString details = tr("tail %1 × %2, %3 reliable levels")
+                            .arg(e.request.population)
+                            .arg(e.request.replicas)
+                            .arg(e.levels.x.size());
+      if (e.factor != 1)  // spliced statistics count the q = 1 process's segments
+        details += tr(", × %1 (α₁/α_q)").arg(QLocale::c().toString(e.factor, 'g', 3));
+      p->setEstimate(e.levels, tr("P_t by splitting (tail)"));
+      p->refresh();
+      message(tr("Drew %1 levels of %2 to t = %3 steps on P_t (%4)")
+                  .arg(e.levels.x.size())
+                  .arg(QFileInfo(path).fileName())
+                  .arg(QLocale::c().toString(e.largestReliableT, 'g', 3))
+                  .arg(details));
+      Q_EMIT tailEstimateFinished(path, QString());
+      return;
+    }
+    showOpenError(tr("Cannot draw the tail estimate"), path, why);
+    Q_EMIT tailEstimateFinished(path, why);
+  };
+  tailRequest_ = jobs_->submit(std::move(job));
+  openTailAction_->setEnabled(false);
+  message(tr("Reading the tail estimate %1…").arg(QFileInfo(path).fileName()), 0);
+  return true;
 }
 
 bool MainWindow::saveRunFile(const QString& path, QString* error) { return run_->save(path, error); }

@@ -13,6 +13,7 @@
 #include <QPointer>
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 
 #include "ui/run/RunController.hpp"
@@ -30,6 +31,7 @@ class QTimer;
 
 namespace archipelago::ui {
 
+class BackgroundJobs;
 class LongSegmentsPanel;
 class PeriodicOrbitDialog;
 class KScanDialog;
@@ -57,9 +59,14 @@ class MainWindow : public QMainWindow {
   // Files.  Errors go to the status bar and, when `error` is given, to it.
   bool openRunFile(const QString& path, QString* error = nullptr);
   /// Draws P_t of a tail file (`archipelago-cli tail --out …`, core/tail) beside the run's own P_t, at its reliable
-  /// levels (issue #29).  Refused, with the reason, without a run or when the file's process is not the run's
-  /// (map, box, Xr, q: core's tailRunMismatch).
+  /// levels (issue #29).  The file is read and its levels computed off the GUI thread (a background job): true
+  /// when that started, and tailEstimateFinished() says how it ended; false at once, with the reason (in `error`
+  /// and a dialog), without a run.  Refused, with the reason, when the file's process is not the run's (map, box,
+  /// Xr, q: core's tailRunMismatch), the file cannot be read, or it has no reliable level.  A second file opened
+  /// before the first is drawn replaces it (latest wins).
   bool openTailEstimate(const QString& path, QString* error = nullptr);
+  /// A tail file is being read or its levels computed (the File menu's entry is disabled meanwhile).
+  [[nodiscard]] bool tailEstimatePending() const noexcept { return tailRequest_ != 0; }
   bool saveRunFile(const QString& path, QString* error = nullptr);
   /// Writes every plot (PNG, SVG, PDF) and every CSV file of the run on screen (as `stats --csv` does) into `folder`.
   bool exportAllTo(const QString& folder, QString* error = nullptr);
@@ -114,6 +121,9 @@ class MainWindow : public QMainWindow {
 
  Q_SIGNALS:
   void runStatusChanged(archipelago::ui::RunStatus status);
+  /// openTailEstimate()'s end: error is empty when the estimate is drawn, else the reason it was refused (also
+  /// shown in a dialog).
+  void tailEstimateFinished(const QString& path, const QString& error);
 
  protected:
   void closeEvent(QCloseEvent* event) override;
@@ -190,6 +200,9 @@ class MainWindow : public QMainWindow {
 
   RunSnapshotPtr shown_;       // the snapshot on screen
   bool confirmations_ = true;
+  quint64 tailRequest_ = 0;    // openTailEstimate()'s job in flight (0: none)
+  // Last: destroyed first, so that no job outlives what its handlers use (BackgroundJobs.hpp, "Lifetime").
+  std::unique_ptr<BackgroundJobs> jobs_;
 };
 
 }  // namespace archipelago::ui

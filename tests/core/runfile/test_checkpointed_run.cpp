@@ -142,5 +142,29 @@ TEST(CheckpointedRun, AFailedCheckpointWarnsAndTheRunGoesOn) {
   fs::remove_all(dir.parent_path());
 }
 
+// runOrResumeFile()'s plan, alone: start without a file, resume an unfinished run of the parameters, reuse a
+// finished one, and refuse a run of others (whatever its progress) with the one wording.
+TEST(RunFileAction, StartsResumesReusesOrRefuses) {
+  const TrappingParameters wanted = smallRun();
+  const fs::path file = "runs/a.json";
+  EXPECT_EQ(runFileAction(file, nullptr, wanted), RunFileAction::start);
+  const TrappingState fresh = startTrapping(wanted);
+  ASSERT_FALSE(fresh.finished());
+  EXPECT_EQ(runFileAction(file, &fresh, wanted), RunFileAction::resume);
+  const TrappingState done = runTrapping(fresh, TrappingRunOptions{});
+  ASSERT_TRUE(done.finished());
+  EXPECT_EQ(runFileAction(file, &done, wanted), RunFileAction::reuse);
+  TrappingParameters other = wanted;
+  other.seed += 1;
+  for (const TrappingState* held : {&fresh, &done}) {
+    try {
+      (void)runFileAction(file, held, other);
+      ADD_FAILURE() << "a run of other parameters was accepted";
+    } catch (const std::runtime_error& e) {
+      EXPECT_STREQ(e.what(), "runs/a.json holds a run of other parameters");
+    }
+  }
+}
+
 }  // namespace
 }  // namespace archipelago

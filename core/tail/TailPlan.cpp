@@ -1,0 +1,75 @@
+#include "core/tail/TailPlan.hpp"
+
+#include <stdexcept>
+
+#include "core/io/CommandFiles.hpp"
+#include "core/io/NumberText.hpp"
+#include "core/limits/Limits.hpp"
+#include "core/runfile/CheckpointedRun.hpp"
+#include "core/runfile/RunFile.hpp"
+#include "core/tail/BruteForceSurvival.hpp"
+#include "core/tail/TailFile.hpp"
+
+namespace archipelago {
+
+CloneRule parseCloneRule(const std::string& text, const std::string& option) {
+  const auto rule = cloneRuleByName(text);
+  if (!rule) throw std::invalid_argument(option + " '" + io::shortText(text) + "' must be perturb or metropolis");
+  return *rule;
+}
+
+TailPlan planTail(const TailPlanOptions& o) {
+  const std::string& resume = o.resumeFile.empty() ? o.resume : o.resumeFile;
+  if (!o.resume.empty()) {
+    if (!o.givenSpec.empty())
+      throw std::invalid_argument("--resume takes the spec from the tail file; do not also give " + o.givenSpec.front());
+    if (!o.givenSampler.empty())
+      throw std::invalid_argument("--resume takes the sampler's settings from the tail file; do not also give " +
+                                  o.givenSampler.front());
+    if (o.printLevels) throw std::invalid_argument("--print-levels prints a new run's levels; do not give --resume");
+  }
+  if (auto e = threadsError(o.threads)) throw std::invalid_argument(*e);  // the one table's rule and wording
+  if (auto e = checkpointIntervalError("--checkpoint-interval", o.checkpointSeconds)) throw std::invalid_argument(*e);
+
+  TailPlan plan;
+  plan.threads = o.threads;
+  if (o.resume.empty()) {
+    if (!o.spec) throw std::invalid_argument("a new tail run needs its spec");
+    const RunSpec spec = o.spec();
+    TailRequest request = o.request;
+    request.run = spec.parameters;
+    plan.threads = spec.threads;
+    plan.kernel = spec.kernel == "auto" ? std::string() : spec.kernel;
+    request.clones = parseCloneRule(o.clones);
+    if (auto e = tailRequestError(request)) throw std::invalid_argument(*e);
+    plan.state = o.slice ? startTailSlice(request, *o.slice) : startTail(request);
+    if (o.printLevels) {
+      plan.printLevelsOnly = true;
+      return plan;
+    }
+  }
+  const std::string checkpoint = o.checkpoint.empty() ? o.out : o.checkpoint;
+  if (!o.compareCsv.empty() && o.compare.empty()) throw std::invalid_argument("--compare-csv needs --compare RUN.json");
+  std::vector<io::CommandFile> files{{"--out", o.out, io::FileUse::SavedState},
+                                     {"--checkpoint", checkpoint, io::FileUse::SavedState},
+                                     {"--resume", resume, io::FileUse::ResumedState},
+                                     {"--csv", o.csv, io::FileUse::Output},
+                                     {"--compare-csv", o.compareCsv, io::FileUse::Output},
+                                     {"--spec", o.specFile, io::FileUse::Input}};
+  for (const std::string& run : o.compare) files.push_back({"--compare", run, io::FileUse::Input});
+  io::checkCommandFiles(files);  // no output over another or over an input; a run compared once
+  if (!resume.empty()) {
+    plan.state = loadTailFile(resume);
+    if (plan.state.finished() && o.resumeFile.empty()) throw std::invalid_argument(resume + " is already finished");
+  }
+  // The runs to compare with, read and checked before any work.
+  for (const std::string& path : o.compare) {
+    plan.runs.push_back(loadRunFile(path));
+    if (auto e = tailRunMismatch(plan.state.request, plan.runs.back()))
+      throw std::invalid_argument(path + " is not a run of the sampler's process: " + *e);
+  }
+  if (!plan.runs.empty()) (void)bruteForceSurvival(plan.runs, plan.state.levels);  // throws when the runs do not pool
+  return plan;
+}
+
+}  // namespace archipelago
