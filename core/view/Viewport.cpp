@@ -161,4 +161,9 @@ UnitState orbitSeed(const Viewport& view, std::uint32_t columns, std::uint32_t r
           (view.centre().Y + static_cast<std::uint64_t>(oy)) & FixedPointMap::kMask};
 }
 
+std::optional<std::string> viewWidthError(long double width) {
+  if (width > 0 && std::isfinite(width)) return std::nullopt;
+  return std::string("the width must be a number > 0");
+}
+
 }  // namespace archipelago
