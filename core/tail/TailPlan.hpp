@@ -32,7 +32,7 @@ struct TailPlanOptions {
   std::vector<std::string> givenSpec;
   std::vector<std::string> givenSampler;
   std::int64_t threads = 0;         ///< as given (--threads): checked by threadsError()
-  double checkpointSeconds = 60;    ///< >= 0
+  double checkpointSeconds = 60;    ///< checkpointIntervalError()'s rule
   bool printLevels = false;         ///< a new run's levels only: nothing read, nothing run
   std::optional<ReplicaRange> slice;  ///< a new run's replicas; none: all
   std::string resume;               ///< --resume as given: the tail file of the run to continue; empty: a new run

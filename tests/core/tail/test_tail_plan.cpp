@@ -66,7 +66,7 @@ TEST(TailPlan, TheSpecIsResolvedOnlyForANewRunAfterTheEarlierChecks) {
     throw std::invalid_argument("the front end's spec error");
   };
   o.checkpointSeconds = -1;
-  EXPECT_EQ(refusal(o), "--checkpoint-interval must be >= 0");
+  EXPECT_EQ(refusal(o), "--checkpoint-interval = -1 must be a number of seconds >= 0");
   EXPECT_FALSE(asked);
   o.checkpointSeconds = 60;
   EXPECT_EQ(refusal(o), "the front end's spec error");
