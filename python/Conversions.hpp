@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "core/map/FixedPointMap.hpp"
+#include "core/stats/StochasticAreaQuantities.hpp"
 
 namespace archipelago::bindings {
 
