@@ -159,7 +159,7 @@ cases = [
     (["flux", "--period", "6"], "--near x,y is required"),
     (["flux", "--period", "0"], "period = 0 must lie in [1, 2000]"),
     (["flux", "--period", "2.5", "--near", "0,0"], "--period = 2.5"),
-    (["flux", "--period", "100000", "--near", "0,0"], "--period = 100000"),
+    (["flux", "--period", "100000", "--near", "0,0"], "period = 100000 must lie in [1, 2000]"),
     (["flux", "--period", "6", "--near", "0.05"], "--near '0.05'"),
     (["flux", "--period", "6", "--near", "nan,0"], "--near 'nan,0'"),
     (["flux", "--period", "6", "--near", "a,b"], "--near 'a,b'"),
