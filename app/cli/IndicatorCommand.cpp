@@ -47,8 +47,7 @@ int runIndicator(const IndicatorOptions& o) {
   req.view = o.view.empty() ? Viewport::wholeBox() : Viewport::fromPhysical(o.map, parseView(o.view));
   std::tie(req.width, req.height) = parseSize(o.size, "--size", limits::kRasterSide);
   req.passes = o.passes;
-  const auto colours = parseColourMap(o.colourMap);
-  if (!colours) throw std::invalid_argument("--colormap '" + o.colourMap + "' must be inferno, viridis or grey");
+  const std::optional<ColourMapName> colours = colourMapNamed(o.colourMap, "--colormap");  // core's names
   if (auto e = validationError(req)) throw std::invalid_argument(*e);
   if (o.out.empty() && o.npy.empty()) throw std::invalid_argument("give --out FILE.png and/or --npy FILE.npy");
   if (!o.verdicts.empty() && o.npy.empty()) throw std::invalid_argument("--verdicts needs --npy (the sidecar names it)");

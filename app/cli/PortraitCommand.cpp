@@ -47,8 +47,7 @@ int runPortrait(const PortraitOptions& o) {
   const auto mode = parsePortraitMode(o.mode);
   if (!mode) throw std::invalid_argument("--mode '" + o.mode + "' must be density, orbits or stickiness");
   req.mode = *mode;
-  const auto colours = parseColourMap(o.colourMap);
-  if (!colours) throw std::invalid_argument("--colormap '" + o.colourMap + "' must be inferno, viridis or grey");
+  const std::optional<ColourMapName> colours = colourMapNamed(o.colourMap, "--colormap");  // core's names
   const auto [columns, rows] = parseSize(o.seeds, "--seeds", static_cast<int>(limits::kSeedGridSide));
   req.seedColumns = static_cast<std::uint32_t>(columns);
   req.seedRows = static_cast<std::uint32_t>(rows);

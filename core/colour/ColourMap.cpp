@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 #include <utility>
 
 namespace archipelago {
@@ -53,6 +55,15 @@ std::optional<ColourMapName> parseColourMap(std::string_view name) noexcept {
   for (ColourMapName m : allColourMaps())
     if (name == toString(m)) return m;
   return std::nullopt;
+}
+
+ColourMapName colourMapNamed(std::string_view name, std::string_view option) {
+  if (const auto known = parseColourMap(name)) return *known;
+  const std::vector<ColourMapName> all = allColourMaps();
+  std::string names;
+  for (std::size_t k = 0; k < all.size(); ++k)
+    names += std::string(k == 0 ? "" : k + 1 == all.size() ? " or " : ", ") + std::string(toString(all[k]));
+  throw std::invalid_argument(std::string(option) + " '" + std::string(name) + "' must be " + names);
 }
 
 std::vector<ColourMapName> allColourMaps() { return {ColourMapName::Inferno, ColourMapName::Viridis, ColourMapName::Grey}; }

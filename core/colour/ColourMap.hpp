@@ -29,6 +29,9 @@ enum class ColourMapName { Inferno, Viridis, Grey };
 [[nodiscard]] std::string_view toString(ColourMapName name) noexcept;
 [[nodiscard]] std::optional<ColourMapName> parseColourMap(std::string_view name) noexcept;
 [[nodiscard]] std::vector<ColourMapName> allColourMaps();
+/// The colour map of that name; throws std::invalid_argument "<option> '<name>' must be inferno, viridis or grey"
+/// (the names of allColourMaps()) for any other name.
+[[nodiscard]] ColourMapName colourMapNamed(std::string_view name, std::string_view option);
 
 /// A 256-entry table; at(t) picks the entry nearest t ∈ [0, 1] (clamped; NaN gives entry 0).
 class ColourMap {
