@@ -165,7 +165,7 @@ cases = [
     (["run", "--resume", ref], "already finished"),
     (["replay", "/nonexistent/run.json", "--out", csv], "cannot read"),
     (["stats", "/nonexistent/run.json"], "cannot read"),
-    (["replay", ref, "--segment", "100000", "--out", csv], "out of range"),
+    (["replay", ref, "--segment", "100000", "--out", csv], "--segment = 100000 must lie in [0, 99]"),
 ]
 for args, mention in cases:
     r = run(*args)

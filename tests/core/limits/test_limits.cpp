@@ -32,7 +32,7 @@ TEST(Limits, TheTableHoldsEveryLimitOnce) {
     for (std::string_view k : keys) EXPECT_NE(k, l.key);
     keys.push_back(l.key);
   }
-  EXPECT_EQ(keys.size(), 8u);
+  EXPECT_EQ(keys.size(), 11u);
   EXPECT_EQ(kMaxThreads, limits::kThreads);  // the run spec's settings read the table
   EXPECT_EQ(kMaxQ, limits::kRunQ);           // the run's parameter table too
 }
