@@ -111,7 +111,7 @@ class TestInstruments : public QObject {
                                 [&] { passes.push_back(panel.view()->currentFrame()->passesDone); });
       QSignalSpy finished(panel.view(), &PortraitView::renderFinished);
       panel.setDisplay({archipelago::PortraitMode::Orbits, kind});
-      QVERIFY(finished.wait(120000));
+      QVERIFY(finished.wait(900000));
       disconnect(connection);
       QVERIFY2(passes.size() >= 2 && passes.front() == 1, qPrintable(QString::number(passes.size())));
       const auto* frame = panel.view()->currentFrame();
@@ -154,12 +154,12 @@ class TestInstruments : public QObject {
     QTest::mouseMove(canvas, b);
     QTest::mouseRelease(canvas, Qt::LeftButton, Qt::NoModifier, b);
     QVERIFY(panel.controller()->viewport() == archipelago::Viewport());
-    QVERIFY(ready.wait(120000));
+    QVERIFY(ready.wait(900000));
     QVERIFY(profile.currentProfile() != nullptr);
     // The same line at 40 points through both front ends: the same table.
     const archipelago::PhysicalPoint from{-0.45L, 0.0L}, to{-0.1L, 0.0L};
     profile.profile(from, to, 40);
-    QVERIFY(ready.wait(120000));
+    QVERIFY(ready.wait(900000));
     QTemporaryDir dir;
     const QString gui = dir.filePath(QStringLiteral("gui.csv")), cliCsv = dir.filePath(QStringLiteral("cli.csv"));
     QVERIFY(profile.exportCsv(gui));

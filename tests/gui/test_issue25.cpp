@@ -225,7 +225,7 @@ class TestIssue25 : public QObject {
     panel.show();
     QVERIFY(QTest::qWaitForWindowExposed(&panel));
     QSignalSpy finished(panel.view(), &PortraitView::renderFinished);
-    QVERIFY(finished.wait(60000));
+    QVERIFY(finished.wait(900000));
     QVERIFY(panel.view()->sparse());
     QVERIFY2(panel.readoutText().contains(QStringLiteral("sparse")) && panel.readoutText().contains(QStringLiteral("Ctrl+B")),
              qPrintable(panel.readoutText()));
@@ -248,7 +248,7 @@ class TestIssue25 : public QObject {
     panel.show();
     QVERIFY(QTest::qWaitForWindowExposed(&panel));
     QSignalSpy finished(panel.view(), &PortraitView::renderFinished);
-    QVERIFY(finished.wait(60000));
+    QVERIFY(finished.wait(900000));
     const int screen = panel.view()->currentFrame()->request.width;
     QTemporaryDir dir;
     const QString png = dir.filePath(QStringLiteral("p.png"));

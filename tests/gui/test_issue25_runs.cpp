@@ -117,7 +117,7 @@ class TestIssue25Runs : public QObject {
     QVERIFY(QTest::qWaitForWindowExposed(&w));
     QSignalSpy restored(w.sessions(), &archipelago::ui::SessionController::restored);
     QVERIFY(w.openSession(path));
-    QVERIFY(restored.wait(30000) || restored.count() > 0);
+    QVERIFY(restored.wait(900000) || restored.count() > 0);
     w.segmentsDock()->raise();
     QTRY_VERIFY(w.longSegments()->isVisible());
     QCOMPARE(w.segmentsDock()->width(), width);
@@ -172,7 +172,7 @@ class TestIssue25Runs : public QObject {
     w.show();
     QSignalSpy restored(w.sessions(), &archipelago::ui::SessionController::restored);
     QVERIFY(w.openSession(path));
-    QVERIFY(restored.wait(30000) || restored.count() > 0);
+    QVERIFY(restored.wait(900000) || restored.count() > 0);
     QCOMPARE(w.runStatus(), RunStatus::stopped);
     QVERIFY(!w.resumeAction()->isEnabled());
     // A periodic orbit drawn from the dialog stays when a new run of the same map starts.
@@ -208,7 +208,7 @@ class TestIssue25Runs : public QObject {
     finishedRun(w);
     QSignalSpy finished(w.portraitPanel()->view(), &PortraitView::renderFinished);
     w.portraitPanel()->controller()->setPointBudget(1'000'000);
-    QVERIFY(finished.wait(60000));
+    QVERIFY(finished.wait(900000));
     QTemporaryDir dir;
     QVERIFY(w.exportAllTo(dir.path()));
     const int files = static_cast<int>(QDir(dir.path()).entryList(QDir::Files).size());

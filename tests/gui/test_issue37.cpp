@@ -410,7 +410,7 @@ class TestIssue37 : public QObject {
     panel.updateSegments(state.params, longest);
     QSignalSpy replays(&panel, &LongSegmentsPanel::replayReady);
     panel.selectRow(panel.model()->rowOf(SegmentKey::of(inside)));
-    QVERIFY(replays.wait(20000));
+    QVERIFY(replays.wait(900000));
     QTRY_VERIFY_WITH_TIMEOUT(panel.currentChain() != nullptr && panel.currentChain()->chain.has_value(), 900000);
     panel.zoomToIsland();
     const Viewport island = controller.viewport();

@@ -133,11 +133,11 @@ class TestManifolds : public QObject {
     dialog.setNear(0.0509, 0.0974);
     QSignalSpy done(&dialog, &archipelago::ui::PeriodicOrbitDialog::searchFinished);
     dialog.find();
-    QVERIFY(done.wait(60000));
+    QVERIFY(done.wait(900000));
     QVERIFY(done.last().first().toBool());
     QVERIFY(dialog.orbit()->classification().stable());
     dialog.findPartner();
-    QVERIFY(done.wait(60000));
+    QVERIFY(done.wait(900000));
     QVERIFY(done.last().first().toBool());
     const archipelago::PeriodicOrbit partner = *dialog.orbit();
     QCOMPARE(partner.period, 6);

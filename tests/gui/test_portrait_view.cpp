@@ -71,7 +71,7 @@ class TestPortraitView : public QObject {
     QSignalSpy finished(p.view, &PortraitView::renderFinished);
     p.host.show();
     QVERIFY(QTest::qWaitForWindowExposed(&p.host));
-    QVERIFY(finished.wait(60000));
+    QVERIFY(finished.wait(900000));
     const auto* frame = p.view->currentFrame();
     QVERIFY(frame != nullptr);
     QVERIFY(frame->final);
@@ -196,7 +196,7 @@ class TestPortraitView : public QObject {
     QCOMPARE(p.controller->orbitCount(), 0);
     QVERIFY(p.view->layerItems(PortraitLayer::launchedOrbits).empty());
 
-    QVERIFY(finished.wait(60000));
+    QVERIFY(finished.wait(900000));
     QTemporaryDir dir;
     const QString png = dir.filePath(QStringLiteral("portrait.png")), npy = dir.filePath(QStringLiteral("portrait.npy"));
     QVERIFY(p.view->exportPng(png, QSize(500, 400)));
@@ -356,7 +356,7 @@ class TestPortraitView : public QObject {
     QSignalSpy frames(panel.view(), &PortraitView::frameShown);
     panel.show();
     QVERIFY(QTest::qWaitForWindowExposed(&panel));
-    QVERIFY(frames.wait(30000));
+    QVERIFY(frames.wait(900000));
     QVERIFY(panel.view()->isRendering());
     QVERIFY(panel.stopButton()->isEnabled());
     panel.stopButton()->click();
@@ -371,7 +371,7 @@ class TestPortraitView : public QObject {
     // A new view starts again from nothing, and its frames are of the new view.
     c.zoomIn();
     QVERIFY(panel.view()->isRendering());
-    QVERIFY(frames.wait(30000));
+    QVERIFY(frames.wait(900000));
     QVERIFY(panel.view()->currentFrame()->request.view == c.viewport());
     QVERIFY(panel.view()->pointsSoFar() < stoppedAt || frames.count() == shown + 1);
     c.stopRendering();

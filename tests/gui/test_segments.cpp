@@ -125,7 +125,7 @@ void TestSegments::selectingARowReplaysTheSegmentBitForBit() {
   QSignalSpy replays(&panel, &LongSegmentsPanel::replayReady);
   QSignalSpy chains(&panel, &LongSegmentsPanel::chainReady);
   panel.selectRow(1);
-  QVERIFY(replays.wait(20000));
+  QVERIFY(replays.wait(900000));
   const SegmentReplayPtr replay = panel.currentReplay();
   QVERIFY(replay);
   const SegmentRecord& record = state.longest.items()[1];
@@ -185,7 +185,7 @@ void TestSegments::exportsTheReplay() {
   QVERIFY(!error.isEmpty());
   QSignalSpy replays(&panel, &LongSegmentsPanel::replayReady);
   panel.selectRow(0);
-  QVERIFY(replays.wait(20000));
+  QVERIFY(replays.wait(900000));
   const SegmentTrace& trace = panel.currentReplay()->trace;
   QVERIFY(trace.stride > 1);
   QVERIFY(trace.states.size() <= 1000);
@@ -245,7 +245,7 @@ void TestSegments::drawsTheSegmentZoomedOnThePortrait() {
   QSignalSpy maps(&controller, &PortraitController::mapChanged);
   QSignalSpy views(&controller, &PortraitController::viewportChanged);
   panel.selectRow(row);
-  QVERIFY(replays.wait(20000));
+  QVERIFY(replays.wait(900000));
   QCOMPARE(panel.currentReplay()->trace.blocks, inside.length);
   // The portrait switched to the run's map and zoomed to where the segment spent its time.
   QCOMPARE(maps.count(), 1);
@@ -304,7 +304,7 @@ void TestSegments::playKeepsTheStepShownInView() {
   panel.updateSegments(state.params, longest);
   QSignalSpy replays(&panel, &LongSegmentsPanel::replayReady);
   panel.selectRow(panel.model()->rowOf(SegmentKey::of(inside)));
-  QVERIFY(replays.wait(20000));
+  QVERIFY(replays.wait(900000));
   QTRY_VERIFY_WITH_TIMEOUT(panel.currentChain() != nullptr && panel.currentChain()->chain.has_value(), 900000);
   panel.zoomToIsland();
   QToolButton* play = nullptr;
@@ -433,7 +433,7 @@ void TestSegments::mainWindowShowsTheSegmentsOfAnOpenedRun() {
   window.showLongSegment(1, false);
   QVERIFY(window.openRunFile(file));
   // The table fills from the analysed run file's snapshot; the pending selection replays segment 1.
-  QVERIFY(replays.wait(30000));
+  QVERIFY(replays.wait(900000));
   QCOMPARE(panel.model()->rowCount(), static_cast<int>(state.longest.items().size()));
   QCOMPARE(panel.currentReplay()->trace.record, state.longest.items()[1]);
   QCOMPARE(window.tabs()->currentWidget(), static_cast<QWidget*>(window.portraitPanel()));

@@ -53,7 +53,7 @@ QString openAndWait(MainWindow& window, const QString& path) {
   }
   // Nothing is read on the GUI thread: the call returned with the job in flight, its result not drawn yet.
   if (!window.tailEstimatePending()) return QStringLiteral("(no job in flight after the call)");
-  if (!finished.wait(60000) && finished.isEmpty()) return QStringLiteral("(no tailEstimateFinished signal)");
+  if (!finished.wait(900000) && finished.isEmpty()) return QStringLiteral("(no tailEstimateFinished signal)");
   if (window.tailEstimatePending()) return QStringLiteral("(still pending after its signal)");
   const QList<QVariant> args = finished.takeFirst();
   if (args.at(0).toString() != path) return QStringLiteral("(the signal names another file)");
