@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "core/limits/Limits.hpp"
 #include "core/map/FixedPointMap.hpp"
 #include "core/stats/StochasticAreaQuantities.hpp"
 
@@ -109,12 +110,12 @@ inline py::int_ wholeArgument(py::handle v, const std::string& name) {
   throw py::type_error(name + " must be a whole number, not " + std::string(py::str(py::repr(v))));
 }
 
-/// wholeArgument(v, name) in [0, max]: ValueError "<name> = <v> must lie in <range>" outside.
+/// wholeArgument(v, name) in [0, max]: ValueError with core's wording (wholeRangeError) outside.
 inline std::uint64_t unsignedArgument(py::handle v, const std::string& name, std::uint64_t max,
                                       const std::string& range) {
   const py::int_ i = wholeArgument(v, name);
   if (i < py::int_(0) || i > py::int_(max))
-    throw std::invalid_argument(name + " = " + std::string(py::str(py::handle(i))) + " must lie in " + range);
+    throw std::invalid_argument(wholeRangeError(name, std::string(py::str(py::handle(i))), range));
   return i.cast<std::uint64_t>();
 }
 

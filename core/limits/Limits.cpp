@@ -53,6 +53,10 @@ std::optional<std::string> realRangeError(std::string_view name, double value, d
   return s;
 }
 
+std::string wholeRangeError(std::string_view name, std::string_view text, std::string_view range) {
+  return std::string(name) + " = " + std::string(text) + " must lie in " + std::string(range);
+}
+
 std::optional<std::string> threadsError(std::int64_t threads) {
   return rangeError("threads", threads, 0, limits::kThreads, "0: one per core");
 }

@@ -66,6 +66,10 @@ template <class T>
   return s;
 }
 
+/// The same for a whole number a front end holds only as text (a Python int of any size, before it is converted to a
+/// 64- or 32-bit integer): "<name> = <text> must lie in <range>".
+[[nodiscard]] std::string wholeRangeError(std::string_view name, std::string_view text, std::string_view range);
+
 /// The same for a real value (bounds written shortest): NaN and infinities are outside every range.
 [[nodiscard]] std::optional<std::string> realRangeError(std::string_view name, double value, double lo, double hi,
                                                         std::string_view note = {});
