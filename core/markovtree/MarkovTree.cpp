@@ -220,9 +220,8 @@ long double markovTreeEntryWeight(const MarkovTree& tree, double alpha, double b
 }
 
 MarkovTreeSurvival markovTreeSurvival(const MarkovTree& tree, const std::vector<std::uint64_t>& t) {
-  constexpr std::uint64_t kMaxT = std::uint64_t{1} << 62;
   for (std::uint64_t v : t)
-    if (v > kMaxT) throw std::invalid_argument("markov tree: t = " + std::to_string(v) + " must be at most 2^62");
+    if (v > kMarkovTreeMaxT) throw std::invalid_argument("markov tree: t = " + std::to_string(v) + " must be at most 2^62");
   const std::size_t n = tree.states.size();
   const QMatrix G = generator(tree);
   QMatrix M(n, std::vector<quad>(n, 0));

@@ -108,7 +108,10 @@ struct MarkovTreeSurvival {
   long double meanVisit = 0;                    ///< Σ_{t≥0} S(t) = e_top (I − M)⁻¹ 1, solved (Kac: the residence)
 };
 
-/// S(t) and where it sits, exactly, at each t of `t` (ascending or not; each at most 2⁶²).  Throws
+/// The largest t the survival is computed at.
+inline constexpr std::uint64_t kMarkovTreeMaxT = std::uint64_t{1} << 62;
+
+/// S(t) and where it sits, exactly, at each t of `t` (ascending or not; each at most kMarkovTreeMaxT).  Throws
 /// std::invalid_argument for a t beyond that.
 [[nodiscard]] MarkovTreeSurvival markovTreeSurvival(const MarkovTree& tree, const std::vector<std::uint64_t>& t);
 

@@ -46,7 +46,7 @@ std::optional<std::string> validationError(const MarkovTreeRequest& r) {
   if (!(std::isfinite(r.tMax) && r.tMax >= 1 && r.tMax <= 1e18)) return "t-max must be a number of steps 1 ... 1e18";
   if (r.perDecade < 1 || r.perDecade > 1000) return "points per decade must be a whole number 1 ... 1000";
   for (std::uint64_t t : r.at)
-    if (t > (std::uint64_t{1} << 62)) return "t = " + std::to_string(t) + " must be at most 2^62";
+    if (t > kMarkovTreeMaxT) return "t = " + std::to_string(t) + " must be at most 2^62";
   if (r.at.size() > 100000) return "at most 100000 extra t";
   const bool a = r.alpha != 0, b = r.b2 != 0;
   if (a != b) return "alpha and b2 go together: both (P_t = alpha flux / b2 S(t)) or neither (S(t) only)";
