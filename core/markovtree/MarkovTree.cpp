@@ -300,16 +300,14 @@ std::vector<std::uint64_t> markovTreeGrid(double tMax, int perDecade) {
   return t;
 }
 
-std::vector<MarkovTreeExponent> markovTreeExponents(const MarkovTreeSurvival& s, double lowest) {
+std::vector<MarkovTreeExponent> markovTreeExponents(const MarkovTreeSurvival& s, double lowest, double tEnd) {
   Series series;
-  double tEnd = 0;
   for (std::size_t i = 0; i < s.t.size(); ++i) {
     const auto v = static_cast<double>(s.S[i]);
     if (s.t[i] == 0 || !(v >= std::numeric_limits<double>::min())) continue;
     series.x.push_back(static_cast<double>(s.t[i]));
     series.value.push_back(v);
     series.error.push_back(0);
-    tEnd = std::max(tEnd, static_cast<double>(s.t[i]));
   }
   std::vector<MarkovTreeExponent> out;
   if (series.x.size() < 3) return out;

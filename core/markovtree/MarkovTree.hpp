@@ -119,11 +119,14 @@ inline constexpr std::uint64_t kMarkovTreeMaxT = std::uint64_t{1} << 62;
 /// std::invalid_argument unless 1 ≤ tMax ≤ 10¹⁸ and 1 ≤ perDecade ≤ 1000.
 [[nodiscard]] std::vector<std::uint64_t> markovTreeGrid(double tMax, int perDecade = 30);
 
-/// γ(t) of the model: fitLogSlope() of S (or P = w S: the same) over runningExponentWindows(t_end, lowest), the
-/// statistics' one definition (core/stats/LogFits.hpp); t_end the largest t with S(t) > 0 in double.
+/// γ(t) of the model: fitLogSlope() of S (or P = w S: the same) over runningExponentWindows(tEnd, lowest), the
+/// statistics' one definition (core/stats/LogFits.hpp): decades ending at tEnd·10^(−k/2) (the tail sampler's windows
+/// when tEnd is its last level).  S is fitted as a double: where it is below the smallest double (an exponential
+/// tail, S < 10⁻³⁰⁸) the points are left out, and a window with fewer than 3 grid points has no γ.
 struct MarkovTreeExponent {
   double from = 0, to = 0, gamma = 0;
 };
-[[nodiscard]] std::vector<MarkovTreeExponent> markovTreeExponents(const MarkovTreeSurvival& s, double lowest);
+[[nodiscard]] std::vector<MarkovTreeExponent> markovTreeExponents(const MarkovTreeSurvival& s, double lowest,
+                                                                  double tEnd);
 
 }  // namespace archipelago

@@ -70,7 +70,7 @@ MarkovTreeResult computeMarkovTree(const Atlas& atlas, const MarkovTreeRequest& 
   t.erase(std::unique(t.begin(), t.end()), t.end());
   r.survival = markovTreeSurvival(r.tree, t);
   if (request.alpha != 0) r.weight = markovTreeEntryWeight(r.tree, request.alpha, request.b2);
-  r.exponents = markovTreeExponents(r.survival, request.exponentFrom);
+  r.exponents = markovTreeExponents(r.survival, request.exponentFrom, request.tMax);
   return r;
 }
 

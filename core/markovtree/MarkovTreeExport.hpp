@@ -16,7 +16,7 @@ namespace archipelago {
 
 /// What to compute besides the tree.  Plain values; validationError() checks them.
 struct MarkovTreeRequest {
-  double tMax = 1e9;                 ///< the grid's last point (steps), 1 … 1e18
+  double tMax = 1e9;                 ///< the grid's last point (steps), 1 … 1e18; γ's windows end there
   int perDecade = 30;                ///< grid points per decade, 1 … 1000
   std::vector<std::uint64_t> at;     ///< more t (steps, each ≤ 2⁶²): e.g. the tail sampler's levels
   double alpha = 0;                  ///< the run's mean segment length α (steps); 0 with b2 = 0: no P_t, only S(t)
