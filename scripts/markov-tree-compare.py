@@ -2,9 +2,12 @@
 """The Markov tree's P_t against the measured tail at K = 0.1 (issue 40, docs/markov-tree.md): a Markdown table per
 decade (model, measured, ratio, local exponents, the level that holds the model's survivors) and a PNG figure.
 
+  scripts/markov-tree-compare.py --atlas a.json [--cli archipelago-cli] [--stats-csv DIR] [--out markov-tree-k0.1.png]
   scripts/markov-tree-compare.py model.json [--stats-csv DIR] [--out markov-tree-k0.1.png] [--table table.md]
 
-model.json: `archipelago-cli markov-tree --atlas a.json --alpha A --b2 B --at <the tail's levels> --json model.json`.
+--atlas: runs `archipelago-cli markov-tree --atlas a.json --alpha 18.9043 --b2 1.362484 --t-max 1009531200 --at <the
+tail's levels> --json <out>.model.json` first (alpha: `stats` of the k0.1-minute run, q = 16; b2: stochastic_area at
+4096^2, docs/atlas.md); model.json: such a file made by hand.
 The measured tail: the levels of the sampler's run to 10^9 (docs/tail.md, "The run toward t = 10^9": N = 800, R = 16,
 every level reliable) and its gamma over decade windows, as that document tabulates them (the run's file is not kept
 in the repository); --stats-csv: the folder `archipelago-cli stats RUN --short RUN.short --csv DIR` wrote (its P.csv:
@@ -27,11 +30,23 @@ TAIL_GAMMA = [((1e3, 1e4), 0.912, 0.008), ((3e3, 3e4), 1.073, 0.008), ((1e4, 1e5
               ((3e6, 3e7), 1.58, 0.05), ((1e7, 1e8), 2.32, 0.16), ((3e7, 3e8), 1.55, 0.22), ((1e8, 1e9), 1.15, 0.13)]
 
 p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-p.add_argument("model")
+p.add_argument("model", nargs="?")
+p.add_argument("--atlas", help="an atlas JSON (archipelago-cli atlas --K 0.1 --depth 2 --json a.json): run markov-tree on it")
+p.add_argument("--cli", default="build/default/app/archipelago-cli")
+p.add_argument("--alpha", default="18.9043", help="the run's mean segment length, steps (q = 16: the tail's process)")
+p.add_argument("--b2", default="1.362484", help="the stochastic area of the box")
 p.add_argument("--stats-csv", help="folder of `stats --csv`: its P.csv is the run's P_t")
 p.add_argument("--out", default="markov-tree-k0.1.png")
 p.add_argument("--table", help="write the Markdown table here too")
 a = p.parse_args()
+if a.atlas:
+    import subprocess
+    a.model = os.path.splitext(a.out)[0] + ".model.json"
+    levels = ",".join(str(x) for x, _, _ in TAIL + TAIL_VALIDATION)
+    subprocess.run([a.cli, "markov-tree", "--atlas", a.atlas, "--alpha", a.alpha, "--b2", a.b2, "--t-max",
+                    "1009531200", "--at", levels, "--quiet", "--json", a.model], check=True)
+elif not a.model:
+    raise SystemExit("give a model JSON or --atlas")
 m = json.load(open(a.model))
 S = m["survival"]
 t = S["t"]
