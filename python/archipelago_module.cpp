@@ -28,6 +28,7 @@ void bindManifolds(py::module_& m);  // bind_manifolds.cpp: stable and unstable 
 void bindMeasures(py::module_& m);   // bind_measures.cpp: rotation numbers, island chains, indicator maps
 void bindTail(py::module_& m);       // bind_tail.cpp: the tail of P_t beyond brute force
 void bindAtlas(py::module_& m);      // bind_atlas.cpp: the atlas of the islands around islands
+void bindMarkovTree(py::module_& m);  // bind_markov_tree.cpp: the Markov tree of an atlas
 
 PYBIND11_MODULE(_archipelago, m) {
   m.doc() = "Archipelago: stickiness of islands around islands in area-preserving maps "
@@ -59,4 +60,5 @@ PYBIND11_MODULE(_archipelago, m) {
   bindMeasures(m);
   bindTail(m);
   bindAtlas(m);
+  bindMarkovTree(m);
 }

@@ -28,6 +28,7 @@
 #include "IndicatorCommand.hpp"
 #include "ManifoldCommand.hpp"
 #include "AtlasCommand.hpp"
+#include "MarkovTreeCommand.hpp"
 #include "FluxCommand.hpp"
 #include "TailCommand.hpp"
 
@@ -68,6 +69,7 @@ int main(int argc, char** argv) {
   archipelago::cli::addManifoldCommand(app, status);
   archipelago::cli::addFluxCommand(app, status);
   archipelago::cli::addAtlasCommand(app, status);
+  archipelago::cli::addMarkovTreeCommand(app, status);
   archipelago::cli::addTailCommand(app, status);
   if (argc > 1 && argv[1][0] != '-') {  // name an unknown command instead of CLI11's generic message
     std::string names;

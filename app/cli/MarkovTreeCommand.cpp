@@ -1,0 +1,121 @@
+#include "MarkovTreeCommand.hpp"
+
+#include <cstdint>
+#include <cstdio>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "CliCommon.hpp"
+#include "core/atlas/AtlasExport.hpp"
+#include "core/io/AtomicFile.hpp"
+#include "core/io/CommandFiles.hpp"
+#include "core/markovtree/MarkovTreeExport.hpp"
+
+namespace archipelago::cli {
+
+namespace {
+struct MarkovTreeOptions {
+  std::string atlas;
+  std::string at;
+  std::string csv;
+  std::string json;
+  MarkovTreeRequest request;
+  bool quiet = false;
+};
+
+/// "1008,2160,…": each item a whole number read by the CLI's one parser (its range is core's rule).
+std::vector<std::uint64_t> parseTimes(const std::string& text) {
+  std::vector<std::uint64_t> t;
+  std::size_t begin = 0;
+  while (!text.empty()) {
+    const std::size_t comma = text.find(',', begin);
+    const std::string item = text.substr(begin, comma == std::string::npos ? std::string::npos : comma - begin);
+    const auto v = toNumber<std::uint64_t>(item);
+    if (!v) throw std::invalid_argument("--at: '" + item + "' is not a whole number of steps");
+    t.push_back(*v);
+    if (comma == std::string::npos) break;
+    begin = comma + 1;
+  }
+  return t;
+}
+
+void printTree(const MarkovTreeResult& r) {
+  const MarkovTree& t = r.tree;
+  std::printf("# Markov tree of %s (K = %s, depth %d, %zu islands): %zu states, Meiss & Ott (1986)\n",
+              r.request.atlasSource.c_str(), shortestDecimal(r.map.K).c_str(), r.atlasDepth, r.atlasIslands,
+              t.states.size());
+  std::printf("# %-3s %-12s %5s %9s %13s %13s %12s  %s\n", "st", "barrier", "level", "container", "flux", "area",
+              "area/flux", "area source");
+  for (std::size_t i = 0; i < t.states.size(); ++i) {
+    const MarkovTreeState& s = t.states[i];
+    std::printf("  %-3zu %-12s %5d %9d %13.6Le %13.6Le %12.6Lg  %s\n", i, s.path.c_str(), s.level, s.container, s.flux,
+                s.area, s.area / s.flux, s.source.c_str());
+  }
+  for (const MarkovTreeLumped& l : t.lumped)
+    std::printf("# lumped into state %d: %s (%s)\n", l.state, l.path.c_str(), l.reason.c_str());
+  std::printf("# mean visit: %.12Lg steps (Kac: layer / flux of the loop = %.12Lg)\n", r.survival.meanVisit,
+              t.residence);
+  if (r.weight)
+    std::printf("# entry: w = alpha * flux / b2 = %s * %.10Le / %s = %.10Lg visits per segment; P_t = w S(t)\n",
+                shortestDecimal(r.request.alpha).c_str(), t.entryFlux, shortestDecimal(r.request.b2).c_str(), *r.weight);
+  std::printf("# %12s %14s %14s", "t", "S(t)", "P_t");
+  for (std::size_t l = 0; l < r.survival.level.size(); ++l) std::printf("   level %zu", l);
+  std::printf("\n");
+  const MarkovTreeSurvival& s = r.survival;
+  for (std::size_t i = 0; i < s.t.size(); ++i) {
+    bool decade = s.t[i] == 1;
+    for (std::uint64_t p = 10; p <= s.t[i] && !decade; p *= 10) decade = s.t[i] == p;
+    if (!decade && i + 1 != s.t.size()) continue;
+    std::printf("  %12llu %14.6Le", static_cast<unsigned long long>(s.t[i]), s.S[i]);
+    if (r.weight) std::printf(" %14.6Le", *r.weight * s.S[i]);
+    else std::printf(" %14s", "-");
+    for (const auto& level : s.level) std::printf(" %9.3Lf", s.S[i] > 0 ? level[i] / s.S[i] : 0.0L);
+    std::printf("\n");
+  }
+  for (const MarkovTreeExponent& e : r.exponents)
+    std::printf("# gamma over [%g, %g]: %.4f\n", e.from, e.to, e.gamma);
+}
+
+int runMarkovTree(MarkovTreeOptions o) {
+  o.request.at = parseTimes(o.at);
+  o.request.atlasSource = o.atlas;
+  if (auto e = validationError(o.request)) throw std::invalid_argument(*e);
+  io::checkCommandFiles({{"--atlas", o.atlas, io::FileUse::Input},
+                         {"--csv", o.csv, io::FileUse::Output},
+                         {"--json", o.json, io::FileUse::Output}});
+  Atlas atlas;
+  try {
+    atlas = atlasFromJson(io::readRegularFile(o.atlas, kMaxAtlasFileBytes));
+  } catch (const std::exception& e) {
+    throw std::runtime_error("--atlas " + o.atlas + ": " + e.what());
+  }
+  const MarkovTreeResult r = computeMarkovTree(atlas, o.request);
+  if (!o.json.empty()) io::writeFileAtomically(o.json, markovTreeJson(r));
+  if (!o.csv.empty()) io::writeFileAtomically(o.csv, markovTreeCsv(r));
+  if (!o.quiet) printTree(r);
+  return 0;
+}
+}  // namespace
+
+void addMarkovTreeCommand(CLI::App& app, int& status) {
+  auto o = std::make_shared<MarkovTreeOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "markov-tree", "the Meiss-Ott Markov tree of an atlas (states between barriers, rates flux / area) and its exact "
+                     "survival S(t) and P_t = w S(t), with each level's share (docs/markov-tree.md)");
+  cmd->add_option("--atlas", o->atlas, "the atlas JSON (archipelago-cli atlas --json)")->required();
+  addNumberOption(*cmd, "--t-max", o->request.tMax, "the grid's last t (steps)");
+  addNumberOption(*cmd, "--per-decade", o->request.perDecade, "grid points per decade");
+  cmd->add_option("--at", o->at, "more t, comma-separated steps (e.g. the tail sampler's levels)");
+  addNumberOption(*cmd, "--alpha", o->request.alpha,
+                  "the run's mean segment length alpha (steps; archipelago-cli stats): with --b2, P_t = alpha flux / b2 S(t)");
+  addNumberOption(*cmd, "--b2", o->request.b2, "the stochastic area b2 of the run's box (archipelago-cli stochastic-area)");
+  addNumberOption(*cmd, "--exponent-from", o->request.exponentFrom, "gamma's windows start at or above this t (steps)");
+  cmd->add_option("--json", o->json, "write the tree, its rates' sources and the survival as JSON here");
+  cmd->add_option("--csv", o->csv, "write t, S, P, each level's and each state's share as CSV here");
+  cmd->add_flag("--quiet", o->quiet, "no table");
+  cmd->callback([o, &status] { status = runMarkovTree(*o); });
+}
+
+}  // namespace archipelago::cli

@@ -1,0 +1,134 @@
+#pragma once
+/// \file MarkovTree.hpp
+/// \brief The Meiss–Ott Markov tree of the island hierarchy, built from the atlas (issue 40): one state per region
+/// between successive barriers, transition probabilities per step = flux / area, and the survival P_t of the finite
+/// absorbing chain computed exactly (no simulation, no fitted parameter).  docs/markov-tree.md derives it.
+///
+/// Meiss & Ott, Physica D 20 (1986) 387; MacKay, Meiss & Percival, Physica D 13 (1984) 55; Meiss, RMP 64 (1992) 795.
+/// Karney's appendix-C model (core/markov) is another thing: a sea and segments of fixed lengths.
+///
+/// **The states.**  Each node of the atlas with a flux (AtlasFlux::found) is a barrier: the separatrix of its chain
+/// (the fixed point (√K, 0)'s loop at the centre), enclosing a zone whose layer ℓ (the zone less the atlas's islands
+/// inside it, AtlasFlux::layerArea) an orbit that crossed the barrier moves in.  The chains about one island nest: each
+/// one's zone encloses the island and every chain closer to it (at K = 0.1 the loop ⊃ 2/13 ⊃ 3/19 ⊃ 5/31 ⊃ 1/6 about
+/// the centre, and 1/12 ⊃ 2/23 ⊃ 3/34 ⊃ 5/54 ⊃ 4/43 about the island of six: docs/atlas.md), ordered by zone area and
+/// checked against the twist (the farther a chain's p/q from the island's boundary rotation, the farther out it lies).
+/// The children of a chain's own islands lie in the annulus between its barrier and the next inner one.  So the
+/// state of barrier c is its layer less the layer of the next chain inside it about the same island (its inner
+/// sibling) and less the layer of the outermost chain about its own islands (its outermost child):
+///     A_c = ℓ_c − ℓ_{inner sibling} − ℓ_{outermost child},
+/// and the state it opens onto (its container) is the state of its outer sibling, or its parent's state for the
+/// outermost chain about an island; the centre's loop opens onto the sea.  Every layer but the centre's is subtracted
+/// once, so Σ_c A_c = ℓ_centre.  (The literal tree — each island's layer less all its children's — would subtract
+/// the nested layers several times: at K = 0.1 the centre's would be negative.)
+///
+/// **The rates.**  Through barrier c (flux Φ_c, the turnstile lobe of its chain: area crossing per step each way):
+/// state c → its container with probability Φ_c / A_c per step, container → c with Φ_c / A_container; the top state
+/// → the sea with Φ_centre / A_centre.  Area is preserved, so the chain is reversible with the areas as its
+/// measure; the mean time to absorption from the top is ℓ_centre / Φ_centre (Kac), the atlas's residence of the loop.
+///
+/// **Left out.**  A chain without a flux (refused, period above the flux search's 400, no primary pair, not found)
+/// has no barrier: it and its whole subtree are lumped into the state around them (their layers are part of it, their
+/// islands were subtracted by the atlas); MarkovTree::lumped lists each with the atlas's reason.
+///
+/// **P_t.**  A visit to the loop's zone enters the top state (the entry lobe lies outside every inner barrier); its
+/// survival is S(t) = e_top · Mᵗ · 1, M the substochastic matrix of the rates.  The run process's segments start in
+/// the sea (after a wrap or a randomization, appendix B), enter the loop's zone Φ_centre / b₂ times per step (Kac:
+/// the process's invariant measure is uniform on the stochastic area b₂) and end 1/α times per step, so a segment
+/// makes w = α Φ_centre / b₂ visits on average, and for t well above the sea's time scale P_t = w · S(t) (docs).
+/// Mᵗ by binary powering in __float128 (M = I − G, G's entries 10⁻¹⁰ … 10⁻²: quad keeps 1 − g to 10⁻³⁴), at any t.
+/// Cost: n³ log₂(t_max) quad operations for the powers and n² log₂ t per t (n states: 10 at K = 0.1 depth 2, well
+/// under a second; a few hundred states would take minutes).
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/atlas/Atlas.hpp"
+#include "core/stats/LogFits.hpp"
+
+namespace archipelago {
+
+/// A state of the tree: the region inside barrier `node` less the zones of the barriers inside it.
+struct MarkovTreeState {
+  int node = 0;                 ///< the atlas node whose barrier bounds it (0: the centre's loop)
+  std::string path;             ///< its atlas path ("centre", "6 > 138")
+  int level = 0;                ///< that node's level in the atlas
+  int container = -1;           ///< the state beyond its barrier (−1: the sea)
+  long double flux = 0;         ///< Φ through its barrier: atlas nodes[node].flux.flux
+  long double layer = 0;        ///< ℓ: atlas nodes[node].flux.layerArea
+  std::vector<int> subtracted;  ///< atlas nodes whose layers are subtracted (inner sibling, outermost child)
+  long double area = 0;         ///< A = ℓ − Σ ℓ of `subtracted`
+  std::string source;           ///< "layer of 6 (2.9719e-02) − layer of 6 > 72 (7.853e-03)"
+};
+
+/// One transition probability per step, with its source.
+struct MarkovTreeRate {
+  int from = 0, to = -1;        ///< states (−1: the sea)
+  long double perStep = 0;      ///< flux / area of `from`
+  long double flux = 0;         ///< the barrier's flux
+  long double area = 0;         ///< the area of `from`
+  int fluxNode = 0;             ///< the atlas node whose flux it is
+  std::string source;           ///< "flux of 6 > 72 (8.377e-07) / area of 6 (2.187e-02)"
+};
+
+/// A node left out of the tree as a barrier, lumped into a state.
+struct MarkovTreeLumped {
+  int node = 0;
+  std::string path;
+  std::string reason;           ///< the atlas's failure, or "inside 29, which has no flux"
+  int state = 0;                ///< the state whose region holds it
+};
+
+struct MarkovTree {
+  std::vector<MarkovTreeState> states;  ///< states[0]: the top, inside the centre's loop
+  std::vector<MarkovTreeRate> rates;    ///< two per barrier (one at the top: to the sea)
+  std::vector<MarkovTreeLumped> lumped;
+  int levels = 0;                       ///< 1 + the deepest level among the states
+  long double entryFlux = 0;            ///< Φ_centre: the loop's flux, the visits' entry
+  long double residence = 0;            ///< ℓ_centre / Φ_centre: the mean visit (Kac)
+};
+
+/// The tree of `atlas`.  Throws std::invalid_argument with a clear message when the atlas cannot make one: empty,
+/// stopped before the end (nodes not measured), no flux through the centre's loop, a non-positive or non-finite
+/// flux or layer, chains about one island whose zones do not nest as their rotations say, a state of area ≤ 0.
+[[nodiscard]] MarkovTree markovTreeFromAtlas(const Atlas& atlas);
+
+/// The substochastic matrix M (row i: where state i goes), M[i][i] = 1 − Σ of its rates (the sea included).
+[[nodiscard]] std::vector<std::vector<long double>> markovTreeMatrix(const MarkovTree& tree);
+
+/// The entry weight w = α Φ_centre / b₂ (visits to the loop's zone per segment of the run process): α the run's mean
+/// segment length in steps, b₂ its stochastic area.  Throws std::invalid_argument unless both are finite and > 0.
+[[nodiscard]] long double markovTreeEntryWeight(const MarkovTree& tree, double alpha, double b2);
+
+struct MarkovTreeSurvival {
+  std::vector<std::uint64_t> t;                 ///< steps
+  std::vector<long double> S;                   ///< e_top Mᵗ 1: a visit still inside the loop's zone after t steps
+  std::vector<std::vector<long double>> state;  ///< [state][i]: the part of S(t_i) in that state
+  std::vector<std::vector<long double>> level;  ///< [level][i]: summed over the states of an atlas level
+  long double meanVisit = 0;                    ///< Σ_{t≥0} S(t) = e_top (I − M)⁻¹ 1, solved (Kac: the residence)
+};
+
+/// The largest t the survival is computed at.
+inline constexpr std::uint64_t kMarkovTreeMaxT = std::uint64_t{1} << 62;
+
+/// S(t) and where it sits, exactly, at each t of `t` (ascending or not; each at most kMarkovTreeMaxT).  Throws
+/// std::invalid_argument for a t beyond that.
+[[nodiscard]] MarkovTreeSurvival markovTreeSurvival(const MarkovTree& tree, const std::vector<std::uint64_t>& t);
+
+/// The default grid: 0 and every distinct ⌈10^(k/perDecade)⌉ up to the first at or above tMax.  Throws
+/// std::invalid_argument unless 1 ≤ tMax ≤ 10¹⁸ and 1 ≤ perDecade ≤ 1000.
+[[nodiscard]] std::vector<std::uint64_t> markovTreeGrid(double tMax, int perDecade = 30);
+
+/// γ(t) of the model: fitLogSlope() of S (or P = w S: the same) over runningExponentWindows(tEnd, lowest), the
+/// statistics' one definition (core/stats/LogFits.hpp): decades ending at tEnd·10^(−k/2) (the tail sampler's windows
+/// when tEnd is its last level).  S is fitted as a double: where it is below the smallest double (an exponential
+/// tail, S < 10⁻³⁰⁸) the points are left out, and a window with fewer than 3 grid points has no γ.
+struct MarkovTreeExponent {
+  double from = 0, to = 0, gamma = 0;
+};
+[[nodiscard]] std::vector<MarkovTreeExponent> markovTreeExponents(const MarkovTreeSurvival& s, double lowest,
+                                                                  double tEnd);
+
+}  // namespace archipelago

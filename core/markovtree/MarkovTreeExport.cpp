@@ -1,0 +1,176 @@
+#include "core/markovtree/MarkovTreeExport.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+#include "core/io/NumberText.hpp"
+#include "core/provenance/Provenance.hpp"
+
+namespace archipelago {
+
+namespace {
+using json = nlohmann::ordered_json;
+
+/// A long double as a JSON number: its double, or null when it does not fit (below the smallest normal double: the
+/// CSV keeps it).
+json number(long double v) {
+  const auto d = static_cast<double>(v);
+  if (!std::isfinite(d) || (v != 0 && std::fabs(d) < std::numeric_limits<double>::min())) return nullptr;
+  return d;
+}
+
+std::string text(long double v) { return io::formatC("%.12Lg", v); }
+
+Provenance provenanceOf(const MarkovTreeResult& r) {
+  Provenance p = mapProvenance(r.map);
+  p.add("Model", "Meiss-Ott Markov tree of the atlas (docs/markov-tree.md)");
+  p.add("Atlas", r.request.atlasSource.empty() ? std::string("(given)") : r.request.atlasSource);
+  p.add("Atlas depth", std::to_string(r.atlasDepth));
+  p.add("t max", r.request.tMax);
+  p.add("Points per decade", std::to_string(r.request.perDecade));
+  if (r.weight) {
+    p.add("alpha", r.request.alpha);
+    p.add("b2", r.request.b2);
+    p.add("Entry weight", *r.weight);
+  }
+  return p;
+}
+}  // namespace
+
+std::optional<std::string> validationError(const MarkovTreeRequest& r) {
+  if (!(std::isfinite(r.tMax) && r.tMax >= 1 && r.tMax <= 1e18)) return "t-max must be a number of steps 1 ... 1e18";
+  if (r.perDecade < 1 || r.perDecade > 1000) return "points per decade must be a whole number 1 ... 1000";
+  for (std::uint64_t t : r.at)
+    if (t > kMarkovTreeMaxT) return "t = " + std::to_string(t) + " must be at most 2^62";
+  if (r.at.size() > 100000) return "at most 100000 extra t";
+  const bool a = r.alpha != 0, b = r.b2 != 0;
+  if (a != b) return "alpha and b2 go together: both (P_t = alpha flux / b2 S(t)) or neither (S(t) only)";
+  if (a && !(std::isfinite(r.alpha) && r.alpha > 0)) return "alpha (the run's mean segment length, steps) must be > 0";
+  if (b && !(std::isfinite(r.b2) && r.b2 > 0)) return "b2 (the stochastic area) must be > 0";
+  if (!(std::isfinite(r.exponentFrom) && r.exponentFrom >= 1)) return "the exponent's first window must start at >= 1";
+  return std::nullopt;
+}
+
+MarkovTreeResult computeMarkovTree(const Atlas& atlas, const MarkovTreeRequest& request) {
+  if (auto e = validationError(request)) throw std::invalid_argument("markov tree: " + *e);
+  MarkovTreeResult r;
+  r.request = request;
+  r.map = atlas.request.map;
+  r.atlasDepth = atlas.request.depth;
+  r.atlasIslands = atlas.nodes.size();
+  r.tree = markovTreeFromAtlas(atlas);
+  std::vector<std::uint64_t> t = markovTreeGrid(request.tMax, request.perDecade);
+  t.insert(t.end(), request.at.begin(), request.at.end());
+  std::sort(t.begin(), t.end());
+  t.erase(std::unique(t.begin(), t.end()), t.end());
+  r.survival = markovTreeSurvival(r.tree, t);
+  if (request.alpha != 0) r.weight = markovTreeEntryWeight(r.tree, request.alpha, request.b2);
+  r.exponents = markovTreeExponents(r.survival, request.exponentFrom, request.tMax);
+  return r;
+}
+
+std::string markovTreeJson(const MarkovTreeResult& r) {
+  json j;
+  j["format"] = "archipelago markov tree";
+  j["program"] = programDescription();
+  json prov = json::object();
+  for (const auto& [k, v] : provenanceOf(r).fields) prov[k] = v;
+  j["provenance"] = prov;
+  j["map"] = {{"K", r.map.K}, {"xmin", r.map.xmin}, {"xmax", r.map.xmax}};
+  j["request"] = {{"t_max", r.request.tMax},
+                  {"per_decade", r.request.perDecade},
+                  {"alpha", r.request.alpha},
+                  {"b2", r.request.b2},
+                  {"exponent_from", r.request.exponentFrom}};
+  j["atlas"] = {{"source", r.request.atlasSource}, {"depth", r.atlasDepth}, {"islands", r.atlasIslands}};
+  if (r.weight)
+    j["entry"] = {{"state", 0},
+                  {"weight", static_cast<double>(*r.weight)},
+                  {"rule", "w = alpha * flux of the centre's loop / b2: visits to the loop's zone per segment"}};
+  else
+    j["entry"] = {{"state", 0}, {"weight", nullptr}, {"rule", "no alpha and b2: S(t) per visit only"}};
+  j["entry_flux"] = static_cast<double>(r.tree.entryFlux);
+  j["residence"] = static_cast<double>(r.tree.residence);
+  j["mean_visit"] = static_cast<double>(r.survival.meanVisit);
+  json states = json::array();
+  for (const MarkovTreeState& s : r.tree.states) {
+    json sub = json::array();
+    for (int d : s.subtracted) sub.push_back(d);
+    states.push_back({{"node", s.node},
+                      {"path", s.path},
+                      {"level", s.level},
+                      {"container", s.container},
+                      {"flux", static_cast<double>(s.flux)},
+                      {"layer", static_cast<double>(s.layer)},
+                      {"subtracted", sub},
+                      {"area", static_cast<double>(s.area)},
+                      {"source", s.source}});
+  }
+  j["states"] = states;
+  json rates = json::array();
+  for (const MarkovTreeRate& x : r.tree.rates)
+    rates.push_back({{"from", x.from},
+                     {"to", x.to},
+                     {"per_step", static_cast<double>(x.perStep)},
+                     {"flux_node", x.fluxNode},
+                     {"source", x.source}});
+  j["rates"] = rates;
+  json lumped = json::array();
+  for (const MarkovTreeLumped& l : r.tree.lumped)
+    lumped.push_back({{"node", l.node}, {"path", l.path}, {"reason", l.reason}, {"state", l.state}});
+  j["lumped"] = lumped;
+  json surv;
+  const MarkovTreeSurvival& s = r.survival;
+  json tj = json::array(), Sj = json::array(), Pj = json::array();
+  for (std::size_t i = 0; i < s.t.size(); ++i) {
+    tj.push_back(s.t[i]);
+    Sj.push_back(number(s.S[i]));
+    Pj.push_back(r.weight ? number(*r.weight * s.S[i]) : json(nullptr));
+  }
+  surv["t"] = tj;
+  surv["S"] = Sj;
+  surv["P"] = Pj;
+  json levels = json::array();
+  for (const auto& level : s.level) {
+    json l = json::array();
+    for (long double v : level) l.push_back(number(v));
+    levels.push_back(l);
+  }
+  surv["levels"] = levels;
+  json byState = json::array();
+  for (const auto& st : s.state) {
+    json l = json::array();
+    for (long double v : st) l.push_back(number(v));
+    byState.push_back(l);
+  }
+  surv["states"] = byState;
+  j["survival"] = surv;
+  json ex = json::array();
+  for (const MarkovTreeExponent& e : r.exponents) ex.push_back({{"from", e.from}, {"to", e.to}, {"gamma", e.gamma}});
+  j["exponents"] = ex;
+  return j.dump(2) + "\n";
+}
+
+std::string markovTreeCsv(const MarkovTreeResult& r) {
+  std::ostringstream out;
+  for (const auto& [k, v] : provenanceOf(r).fields) out << "# " << k << ": " << v << "\n";
+  out << "t,S,P";
+  for (std::size_t l = 0; l < r.survival.level.size(); ++l) out << ",level_" << l;
+  for (const MarkovTreeState& s : r.tree.states) out << ",state " << s.path;
+  out << "\n";
+  const MarkovTreeSurvival& s = r.survival;
+  for (std::size_t i = 0; i < s.t.size(); ++i) {
+    out << s.t[i] << "," << text(s.S[i]) << "," << (r.weight ? text(*r.weight * s.S[i]) : std::string());
+    for (const auto& level : s.level) out << "," << text(level[i]);
+    for (const auto& st : s.state) out << "," << text(st[i]);
+    out << "\n";
+  }
+  return out.str();
+}
+
+}  // namespace archipelago

@@ -1,0 +1,52 @@
+#pragma once
+/// \file MarkovTreeExport.hpp
+/// \brief The Markov tree's whole computation from a request (what `archipelago-cli markov-tree` and Python's
+/// markov_tree() run) and its outputs: JSON (the tree with every rate's source, the lumped chains, the survival on
+/// its grid, each level's share, γ(t)) and CSV, both with their provenance.  docs/markov-tree.md.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/atlas/Atlas.hpp"
+#include "core/markovtree/MarkovTree.hpp"
+
+namespace archipelago {
+
+/// What to compute besides the tree.  Plain values; validationError() checks them.
+struct MarkovTreeRequest {
+  double tMax = 1e9;                 ///< the grid's last point (steps), 1 … 1e18; γ's windows end there
+  int perDecade = 30;                ///< grid points per decade, 1 … 1000
+  std::vector<std::uint64_t> at;     ///< more t (steps, each ≤ 2⁶²): e.g. the tail sampler's levels
+  double alpha = 0;                  ///< the run's mean segment length α (steps); 0 with b2 = 0: no P_t, only S(t)
+  double b2 = 0;                     ///< the stochastic area b₂ of the run's box
+  double exponentFrom = 10;          ///< the running exponent's windows start at or above this (steps), ≥ 1
+  std::string atlasSource;           ///< where the atlas came from (a file name), recorded in the outputs
+};
+
+/// The first violated rule, naming the field, or nothing.
+[[nodiscard]] std::optional<std::string> validationError(const MarkovTreeRequest& r);
+
+struct MarkovTreeResult {
+  MarkovTreeRequest request;
+  MapParameters map;                         ///< the atlas's
+  int atlasDepth = 0;
+  std::size_t atlasIslands = 0;
+  MarkovTree tree;
+  MarkovTreeSurvival survival;               ///< on the grid, with request.at merged in (ascending, distinct)
+  std::optional<long double> weight;         ///< w = α Φ_centre / b₂ when α and b₂ are given: P_t = w S(t)
+  std::vector<MarkovTreeExponent> exponents;
+};
+
+/// The tree of `atlas` and its survival.  Throws std::invalid_argument for an invalid request or an atlas that
+/// cannot make a tree (markovTreeFromAtlas's message).
+[[nodiscard]] MarkovTreeResult computeMarkovTree(const Atlas& atlas, const MarkovTreeRequest& request);
+
+/// {"format": "archipelago markov tree", "program", "provenance", "map", "request", "atlas", "entry", "residence",
+///  "mean_visit", "states", "rates", "lumped", "survival": {"t", "S", "P", "levels", "states"}, "exponents"}.
+[[nodiscard]] std::string markovTreeJson(const MarkovTreeResult& r);
+/// "# key: value" provenance lines, then t,S,P,level_0,…,state_<path>,… one row per t.
+[[nodiscard]] std::string markovTreeCsv(const MarkovTreeResult& r);
+
+}  // namespace archipelago

@@ -1,0 +1,88 @@
+"""cli.markov_tree (issue 40): `archipelago-cli markov-tree` on an atlas the test computes (K = 0.1, depth 1, periods
+up to 40): every state's area is the atlas file's layer less the layers inside it, every rate the file's flux over
+that area, the mean visit the atlas's residence of the loop (Kac), P_t = alpha flux / b2 S(t); the CSV is the JSON's
+survival with its provenance; one flux edited in the atlas file changes exactly the two rates through that barrier;
+bad options and bad atlases are one ERROR line and nothing written."""
+import csv, io, json, os, tempfile
+from clitest import check, finish, run
+
+with tempfile.TemporaryDirectory() as d:
+    atlas = os.path.join(d, "a.json")
+    r = run("atlas", "--K", "0.1", "--depth", "1", "--max-period", "40", "--quiet", "--json", atlas)
+    check(r.returncode == 0, f"atlas exits 0 ({r.returncode}: {r.stderr[-300:]})")
+    a = json.load(open(atlas))
+    nodes = a["nodes"]
+    j, c = os.path.join(d, "m.json"), os.path.join(d, "m.csv")
+    r = run("markov-tree", "--atlas", atlas, "--alpha", "18.9043", "--b2", "1.362484", "--t-max", "1e6",
+            "--at", "1008,2160", "--json", j, "--csv", c)
+    check(r.returncode == 0, f"markov-tree exits 0 ({r.returncode}: {r.stderr[-300:]})")
+    m = json.load(open(j))
+    check(m["format"] == "archipelago markov tree" and m["map"]["K"] == 0.1, "the JSON names its format and map")
+    layer = {i: n["flux"]["layer_area"] for i, n in enumerate(nodes) if n["flux"]["found"]}
+    flux = {i: n["flux"]["flux_per_step"] for i, n in enumerate(nodes) if n["flux"]["found"]}
+    states = m["states"]
+    check(len(states) == len(layer), f"one state per chain with a flux ({len(states)} vs {len(layer)})")
+    # The chains about the centre nest: the outermost (largest zone) opens onto the top state, each next one onto it.
+    kids = sorted((i for i in layer if i > 0), key=lambda i: -nodes[i]["flux"]["zone_area"])
+    chain = [0] + kids
+    expected_area = {n: layer[n] - (layer[chain[k + 1]] if k + 1 < len(chain) else 0) for k, n in enumerate(chain)}
+    by_node = {s["node"]: i for i, s in enumerate(states)}
+    check(all(abs(states[by_node[n]]["area"] - A) <= 1e-14 * A for n, A in expected_area.items()),
+          "each state's area is its layer less the next inner layer (the file's numbers)")
+    check(all(states[by_node[chain[k + 1]]]["container"] == by_node[chain[k]] for k in range(len(chain) - 1)),
+          "each chain's state opens onto the next outer one")
+    ok = True
+    for rate in m["rates"]:
+        A = states[rate["from"]]["area"]
+        ok &= abs(rate["per_step"] - flux[rate["flux_node"]] / A) <= 1e-14 * rate["per_step"] and rate["source"] != ""
+    check(ok, "every rate is the file's flux of its barrier / the area it leaves, with its source")
+    residence = nodes[0]["flux"]["residence"]
+    check(abs(m["mean_visit"] - residence) <= 1e-9 * residence, f"mean visit {m['mean_visit']} = the loop's residence {residence} (Kac)")
+    w = 18.9043 * flux[0] / 1.362484
+    check(abs(m["entry"]["weight"] - w) <= 1e-14 * w, "entry weight = alpha flux / b2")
+    S, P, t = m["survival"]["S"], m["survival"]["P"], m["survival"]["t"]
+    check(1008 in t and 2160 in t and t[-1] == 1000000, "the grid holds --at and ends at --t-max")
+    check(all(abs(p - w * s) <= 1e-14 * w * s for p, s in zip(P, S) if s), "P = w S")
+    check(all(abs(sum(lv[i] or 0 for lv in m["survival"]["levels"]) - S[i]) <= 1e-12 * S[i] for i in range(len(t)) if S[i]),
+          "the levels' shares add up to S")
+    text = open(c).read()
+    rows = list(csv.DictReader(io.StringIO("\n".join(l for l in text.splitlines() if not l.startswith("#")))))
+    check(len(rows) == len(t) and all(abs(float(row["S"]) - s) <= 1e-11 * s for row, s in zip(rows, S) if s),
+          "the CSV's S is the JSON's")
+    check("# K: 0.1" in text and "# Software: archipelago" in text and "# Atlas: " + atlas in text,
+          "the CSV carries its provenance and the atlas it was built from")
+
+    # One flux edited: the two rates through that barrier change, no other.
+    edited = os.path.join(d, "edited.json")
+    target = kids[1]
+    a["nodes"][target]["flux"]["flux_per_step"] *= 3
+    json.dump(a, open(edited, "w"))
+    j2 = os.path.join(d, "m2.json")
+    r = run("markov-tree", "--atlas", edited, "--t-max", "1e6", "--json", j2, "--quiet")
+    m2 = json.load(open(j2))
+    changed = [x["flux_node"] for x, y in zip(m["rates"], m2["rates"]) if x["per_step"] != y["per_step"]]
+    check(r.returncode == 0 and changed == [target, target], f"editing the flux of node {target} changes its two rates ({changed})")
+    check(m2["entry"]["weight"] is None and m2["survival"]["P"][0] is None, "without --alpha and --b2 there is no P_t")
+
+    stopped = os.path.join(d, "stopped.json")
+    s = json.load(open(atlas))
+    s["cancelled"], s["stop_reason"] = True, "stopped"
+    json.dump(s, open(stopped, "w"))
+    for args, word in [(["--alpha", "18.9"], "alpha and b2 go together"), (["--alpha", "-1", "--b2", "1.3"], "alpha"),
+                       (["--t-max", "0"], "t-max"), (["--at", "12,x"], "--at"), (["--per-decade", "0"], "per decade"),
+                       (["--at", "9223372036854775807"], "2^62")]:
+        out = os.path.join(d, "bad.json")
+        r = run("markov-tree", "--atlas", atlas, *args, "--json", out)
+        lines = r.stderr.strip().splitlines()
+        check(r.returncode == 1 and len(lines) == 1 and "ERROR" in lines[0] and word in lines[0] and not os.path.exists(out),
+              f"markov-tree {' '.join(args)}: one ERROR line naming {word!r}, nothing written ({r.returncode}: {r.stderr.strip()[:160]})")
+    for path, word in [(stopped, "stopped before its end"), (os.path.join(d, "none.json"), "none.json"),
+                       (c, "--atlas " + c)]:
+        out = os.path.join(d, "bad.json")
+        r = run("markov-tree", "--atlas", path, "--json", out)
+        lines = r.stderr.strip().splitlines()
+        check(r.returncode == 1 and len(lines) == 1 and word in lines[0] and not os.path.exists(out),
+              f"atlas {os.path.basename(path)}: one ERROR line naming {word!r} ({r.returncode}: {r.stderr.strip()[:200]})")
+    r = run("markov-tree", "--atlas", atlas, "--csv", "/nonexistent-folder/x.csv")
+    check(r.returncode == 1 and "cannot write" in r.stderr, f"an unwritable --csv fails loudly ({r.stderr.strip()[:120]})")
+finish()

@@ -1,0 +1,294 @@
+// The Meiss–Ott Markov tree built from the atlas (core/markovtree/MarkovTree.hpp, issue 40): a two-state chain against
+// its closed form; the mean visit against Kac's lemma (the atlas's own residence of the loop); the tree recomputed
+// from an atlas JSON file with every rate = the file's flux / the file's layer difference; one flux changed changes
+// exactly the two rates through that barrier; bad or incomplete atlases refused with a clear message.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <stdexcept>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "core/atlas/AtlasExport.hpp"
+#include "core/io/AtomicFile.hpp"
+#include "core/markovtree/MarkovTree.hpp"
+
+namespace archipelago {
+namespace {
+
+AtlasNode node(int parent, int level, std::uint64_t period, std::optional<Rational> about, long double flux,
+               long double zone, long double layer, double boundaryRotation) {
+  AtlasNode n;
+  n.parent = parent;
+  n.level = level;
+  n.period = period;
+  n.aboutParent = about;
+  n.centre = {0.01 * static_cast<double>(period % 97), 0};
+  n.orbit.K = 0.1L;
+  n.orbit.period = static_cast<int>(period);
+  n.orbit.points = {n.centre};
+  n.orbit.residue = 0.25L;
+  n.boundaryFound = true;
+  n.boundaryPoint = {n.centre.x + 0.001, 0};
+  n.boundaryRotation = boundaryRotation;
+  n.boundaryDigits = 13;
+  n.area = 1e-6L;
+  n.areaPoints = 8192;
+  n.measured = true;
+  if (flux > 0) {
+    n.flux.found = true;
+    if (parent >= 0) {
+      PeriodicOrbit partner = n.orbit;
+      partner.residue = -0.5L;
+      n.flux.partner = partner;
+    }
+    n.flux.flux = flux;
+    n.flux.zoneArea = zone;
+    n.flux.enclosedIslands = zone - layer;
+    n.flux.layerArea = layer;
+    n.flux.fluxDigits = 12;
+    n.flux.zoneDigits = 10;
+    n.flux.residence = static_cast<double>(layer / flux);
+  } else {
+    n.flux.failure = "refused: the lobe is not small";
+  }
+  return n;
+}
+
+void link(Atlas& a) {
+  for (std::size_t i = 1; i < a.nodes.size(); ++i)
+    a.nodes[static_cast<std::size_t>(a.nodes[i].parent)].children.push_back(static_cast<int>(i));
+}
+
+/// The K = 0.1 atlas of docs/atlas.md (depth 2) in its numbers: fluxes and layers as the table gives them, zones
+/// nested, the 4/29 chain refused (with a child of its own), the 2/19 chain about 13 without a flux.
+Atlas k01() {
+  Atlas a;
+  a.request.depth = 2;
+  a.nodes = {
+      node(-1, 0, 1, std::nullopt, 3.843389e-3L, 0.5136L, 0.22957L, 0.1668),            // 0 centre
+      node(0, 1, 6, Rational{1, 6}, 2.040311e-5L, 0.3112L, 0.029719L, 0.09327),           // 1 six
+      node(0, 1, 13, Rational{2, 13}, 2.083998e-4L, 0.3900L, 0.093772L, 0.2),             // 2
+      node(0, 1, 19, Rational{3, 19}, 4.204463e-5L, 0.3700L, 0.066583L, 0.2),             // 3
+      node(0, 1, 29, Rational{4, 29}, 0, 0, 0, 0.2),                                      // 4 refused
+      node(0, 1, 31, Rational{5, 31}, 1.135358e-5L, 0.3400L, 0.042958L, 0.2),             // 5
+      node(1, 2, 72, Rational{1, 12}, 8.377229e-7L, 0.0190L, 7.853e-3L, 0.25),            // 6
+      node(1, 2, 138, Rational{2, 23}, 4.440813e-7L, 0.0170L, 6.869e-3L, 0.25),           // 7
+      node(1, 2, 204, Rational{3, 34}, 1.925387e-7L, 0.0150L, 4.994e-3L, 0.25),           // 8
+      node(1, 2, 258, Rational{4, 43}, 3.137311e-10L, 0.0030L, 1.319e-4L, 0.25),          // 9
+      node(1, 2, 324, Rational{5, 54}, 7.599679e-9L, 0.0040L, 4.785e-4L, 0.25),           // 10
+      node(2, 2, 247, Rational{2, 19}, 0, 0, 0, 0.25),                                    // 11 no flux
+      node(4, 2, 406, Rational{3, 14}, 1e-9L, 1e-5L, 1e-6L, 0.25),                        // 12 under 29
+  };
+  link(a);
+  return a;
+}
+
+/// Atlas index → state index.
+std::map<int, int> statesByNode(const MarkovTree& t) {
+  std::map<int, int> m;
+  for (std::size_t s = 0; s < t.states.size(); ++s) m[t.states[s].node] = static_cast<int>(s);
+  return m;
+}
+
+std::string refusal(const Atlas& a) {
+  try {
+    (void)markovTreeFromAtlas(a);
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "accepted";
+  return {};
+}
+
+TEST(MarkovTree, TwoStatesFollowTheirClosedForm) {
+  Atlas a;
+  const long double phi0 = 3.8e-3L, l0 = 0.23L, phi1 = 2.0e-5L, l1 = 0.03L;
+  a.nodes = {node(-1, 0, 1, std::nullopt, phi0, 0.5L, l0, 0.1668),
+             node(0, 1, 6, Rational{1, 6}, phi1, 0.3L, l1, 0.09)};
+  link(a);
+  const MarkovTree tree = markovTreeFromAtlas(a);
+  ASSERT_EQ(tree.states.size(), 2u);
+  // G = I − M = [[a + b, −b], [−c, c]]: a = Φ₀/A₀ to the sea, b = Φ₁/A₀ in, c = Φ₁/A₁ out; A₀ = ℓ₀ − ℓ₁, A₁ = ℓ₁.
+  const long double A0 = l0 - l1, ra = phi0 / A0, rb = phi1 / A0, rc = phi1 / l1;
+  const long double tr = ra + rb + rc, disc = std::sqrt(tr * tr - 4 * ra * rc);
+  const long double muSmall = 2 * ra * rc / (tr + disc), muLarge = (tr + disc) / 2;  // eigenvalues of G
+  // S(t) = A (1 − μ₋)ᵗ + B (1 − μ₊)ᵗ with S(0) = 1 and S(1) = 1 − a.
+  const long double A = (muLarge - ra) / (muLarge - muSmall), B = 1 - A;
+  const std::vector<std::uint64_t> t{0, 1, 2, 3, 10, 100, 1000, 10000, 100000, 1000000, 10000000};
+  const MarkovTreeSurvival s = markovTreeSurvival(tree, t);
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const auto ti = static_cast<long double>(t[i]);
+    const long double exact = A * std::exp(ti * std::log1p(-muSmall)) + B * std::exp(ti * std::log1p(-muLarge));
+    EXPECT_NEAR(static_cast<double>(s.S[i] / exact), 1.0, 1e-14) << "t = " << t[i];
+    EXPECT_NEAR(static_cast<double>((s.state[0][i] + s.state[1][i]) / s.S[i]), 1.0, 1e-15);
+    EXPECT_EQ(s.level[0][i], s.state[0][i]);
+    EXPECT_EQ(s.level[1][i], s.state[1][i]);
+  }
+  EXPECT_NEAR(static_cast<double>(s.S[1]), static_cast<double>(1 - ra), 1e-15);
+  // Kac: the mean visit is ℓ₀/Φ₀, whatever happens inside.
+  EXPECT_NEAR(static_cast<double>(s.meanVisit / (l0 / phi0)), 1.0, 1e-15);
+}
+
+TEST(MarkovTree, TheStatesOfTheK01AtlasNestAndTheMeanVisitIsTheLoopsResidence) {
+  const MarkovTree tree = markovTreeFromAtlas(k01());
+  const auto st = statesByNode(tree);
+  // Every chain with a flux has a state; 4/29 (refused), 2/19 about 13 (no flux) and 406 under 29 are lumped.
+  ASSERT_EQ(tree.states.size(), 10u);
+  ASSERT_EQ(tree.lumped.size(), 3u);
+  const std::map<int, int> nestedIn{{2, 0}, {3, 2}, {5, 3}, {1, 5}, {6, 1}, {7, 6}, {8, 7}, {10, 8}, {9, 10}};
+  for (const auto& [n, container] : nestedIn)
+    EXPECT_EQ(tree.states[static_cast<std::size_t>(st.at(n))].container, st.at(container)) << "node " << n;
+  // A = ℓ − ℓ(inner sibling) − ℓ(outermost child), by hand from the table.
+  const std::map<int, long double> area{{0, 0.22957L - 0.093772L},      {2, 0.093772L - 0.066583L},
+                                        {3, 0.066583L - 0.042958L},     {5, 0.042958L - 0.029719L},
+                                        {1, 0.029719L - 7.853e-3L},     {6, 7.853e-3L - 6.869e-3L},
+                                        {7, 6.869e-3L - 4.994e-3L},     {8, 4.994e-3L - 4.785e-4L},
+                                        {10, 4.785e-4L - 1.319e-4L},    {9, 1.319e-4L}};
+  long double total = 0;
+  for (const auto& [n, A] : area) {
+    EXPECT_NEAR(static_cast<double>(tree.states[static_cast<std::size_t>(st.at(n))].area / A), 1.0, 1e-15) << n;
+    total += tree.states[static_cast<std::size_t>(st.at(n))].area;
+  }
+  EXPECT_NEAR(static_cast<double>(total / 0.22957L), 1.0, 1e-15);
+  EXPECT_EQ(tree.levels, 3);
+  for (const MarkovTreeLumped& l : tree.lumped) {
+    if (l.node == 4) {
+      EXPECT_EQ(l.state, st.at(0));  // 4/29 lies outside 2/13: in the top state
+      EXPECT_NE(l.reason.find("the lobe is not small"), std::string::npos) << l.reason;
+    }
+    if (l.node == 12) {
+      EXPECT_NE(l.reason.find("inside 29"), std::string::npos) << l.reason;
+    }
+    if (l.node == 11) {
+      EXPECT_EQ(l.state, st.at(2));
+    }
+  }
+  const MarkovTreeSurvival s = markovTreeSurvival(tree, {0, 1, 1000, 1000000});
+  EXPECT_NEAR(static_cast<double>(s.meanVisit / (0.22957L / 3.843389e-3L)), 1.0, 1e-14);
+  EXPECT_EQ(s.S[0], 1);
+  EXPECT_NEAR(static_cast<double>(s.S[1]), static_cast<double>(1 - 3.843389e-3L / (0.22957L - 0.093772L)), 1e-15);
+  // After 10⁶ steps what survives sits at level 2 (the slowest states are about the island of six).
+  EXPECT_GT(s.level[2][3], 0.9L * s.S[3]);
+}
+
+TEST(MarkovTree, IsRecomputedFromAnAtlasFileWithEveryRateFromItsNumbers) {
+  const auto path = std::filesystem::temp_directory_path() / "archipelago-markov-tree-test.json";
+  writeAtlasJson(path, k01());
+  const std::string text = io::readRegularFile(path.string(), kMaxAtlasFileBytes);
+  std::filesystem::remove(path);
+  const MarkovTree tree = markovTreeFromAtlas(atlasFromJson(text));
+  // The file's own numbers, read here without the atlas's reader.
+  const nlohmann::json j = nlohmann::json::parse(text);
+  auto flux = [&](int n) { return j["nodes"][static_cast<std::size_t>(n)]["flux"]["flux_per_step"].get<double>(); };
+  auto layer = [&](int n) { return j["nodes"][static_cast<std::size_t>(n)]["flux"]["layer_area"].get<double>(); };
+  const auto st = statesByNode(tree);
+  auto areaOf = [&](int n) {
+    long double A = layer(n);
+    for (int d : tree.states[static_cast<std::size_t>(st.at(n))].subtracted) A -= layer(d);
+    return A;
+  };
+  ASSERT_EQ(tree.rates.size(), 2 * tree.states.size() - 1);
+  for (const MarkovTreeRate& r : tree.rates) {
+    const int from = tree.states[static_cast<std::size_t>(r.from)].node;
+    const long double expected = static_cast<long double>(flux(r.fluxNode)) / areaOf(from);
+    EXPECT_NEAR(static_cast<double>(r.perStep / expected), 1.0, 1e-15) << r.source;
+    EXPECT_FALSE(r.source.empty());
+    // The barrier crossed is the inner state's: its own node's flux.
+    const int inner = r.to >= 0 && tree.states[static_cast<std::size_t>(r.to)].container == r.from ? r.to : r.from;
+    EXPECT_EQ(r.fluxNode, tree.states[static_cast<std::size_t>(inner)].node);
+  }
+  EXPECT_EQ(tree.rates[0].to, -1);
+  EXPECT_NEAR(static_cast<double>(tree.rates[0].perStep), flux(0) / (layer(0) - layer(2)), 1e-15);
+}
+
+TEST(MarkovTree, ChangingOneFluxChangesTheRatesThroughThatBarrierOnly) {
+  const Atlas a = k01();
+  Atlas b = a;
+  b.nodes[7].flux.flux *= 2;  // the 2/23 chain about the six: the paper's 138
+  const MarkovTree x = markovTreeFromAtlas(a), y = markovTreeFromAtlas(b);
+  ASSERT_EQ(x.rates.size(), y.rates.size());
+  int changed = 0;
+  for (std::size_t i = 0; i < x.rates.size(); ++i) {
+    if (x.rates[i].fluxNode == 7) {
+      ++changed;
+      EXPECT_NEAR(static_cast<double>(y.rates[i].perStep / x.rates[i].perStep), 2.0, 1e-15);
+    } else {
+      EXPECT_EQ(y.rates[i].perStep, x.rates[i].perStep) << x.rates[i].source;
+    }
+  }
+  EXPECT_EQ(changed, 2);
+  const MarkovTreeSurvival sx = markovTreeSurvival(x, {1, 100000, 1000000}), sy = markovTreeSurvival(y, {1, 100000, 1000000});
+  EXPECT_EQ(sx.S[0], sy.S[0]);                           // one step: only the loop's rate acts
+  EXPECT_GT(std::fabs(sx.S[2] / sy.S[2] - 1), 1e-3L);    // 10⁶ steps: the deeper states' share moved
+  EXPECT_NEAR(static_cast<double>(sx.meanVisit / sy.meanVisit), 1.0, 1e-15);  // Kac: the mean does not move
+}
+
+TEST(MarkovTree, RefusesAnAtlasThatCannotMakeATree) {
+  EXPECT_NE(refusal(Atlas{}).find("no island"), std::string::npos);
+  {
+    Atlas a = k01();
+    a.cancelled = true;
+    a.stopReason = "time budget of 60 s reached";
+    EXPECT_NE(refusal(a).find("stopped before its end"), std::string::npos);
+  }
+  {
+    Atlas a = k01();
+    a.nodes[8].measured = false;
+    EXPECT_NE(refusal(a).find("6 > 204 is not measured"), std::string::npos);
+  }
+  {
+    Atlas a = k01();
+    a.nodes[0].flux = AtlasFlux{};
+    a.nodes[0].flux.failure = "no primary pair";
+    EXPECT_NE(refusal(a).find("no flux through the centre's loop (no primary pair)"), std::string::npos);
+  }
+  {
+    Atlas a = k01();  // 3/19's zone said larger than 2/13's: against the twist
+    std::swap(a.nodes[2].flux.zoneArea, a.nodes[3].flux.zoneArea);
+    const std::string e = refusal(a);
+    EXPECT_NE(e.find("the chains about centre do not nest"), std::string::npos) << e;
+  }
+  {
+    Atlas a = k01();  // the 1/12 chain's layer larger than the six's own: a negative state
+    a.nodes[6].flux.layerArea = 0.0297195L;
+    a.nodes[6].flux.zoneArea = 0.3L;
+    const std::string e = refusal(a);
+    EXPECT_NE(e.find("the state of 6 has area -"), std::string::npos) << e;
+  }
+  {
+    Atlas a = k01();
+    a.nodes[5].flux.flux = -1e-5L;
+    EXPECT_NE(refusal(a).find("the flux of 31"), std::string::npos);
+  }
+  {
+    Atlas a = k01();
+    a.nodes[5].flux.layerArea = std::nanl("");
+    EXPECT_NE(refusal(a).find("the layer of 31"), std::string::npos);
+  }
+  // Not an atlas at all: the reader's message.
+  EXPECT_THROW((void)atlasFromJson("{\"format\": \"archipelago tail\"}"), std::runtime_error);
+  EXPECT_THROW((void)markovTreeSurvival(markovTreeFromAtlas(k01()), {std::uint64_t{1} << 63}), std::invalid_argument);
+  EXPECT_THROW((void)markovTreeEntryWeight(markovTreeFromAtlas(k01()), 0, 1.36), std::invalid_argument);
+  EXPECT_THROW((void)markovTreeGrid(0.5), std::invalid_argument);
+}
+
+TEST(MarkovTree, GridAndEntryWeight) {
+  const std::vector<std::uint64_t> g = markovTreeGrid(1e9, 10);
+  EXPECT_EQ(g.front(), 1u);
+  EXPECT_EQ(g.back(), 1000000000u);
+  for (std::size_t i = 1; i < g.size(); ++i) EXPECT_LT(g[i - 1], g[i]);
+  for (std::uint64_t decade = 1; decade <= 1000000000u; decade *= 10)  // 10^k exactly on the grid
+    EXPECT_NE(std::find(g.begin(), g.end(), decade), g.end()) << decade;
+  EXPECT_NE(std::find(g.begin(), g.end(), 1585u), g.end());  // ⌈10^3.2⌉
+  const MarkovTree tree = markovTreeFromAtlas(k01());
+  EXPECT_NEAR(static_cast<double>(markovTreeEntryWeight(tree, 40.0, 1.36)), 40.0 * 3.843389e-3 / 1.36, 1e-16);
+}
+
+}  // namespace
+}  // namespace archipelago
