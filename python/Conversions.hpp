@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "core/atlas/BoxIslandCheck.hpp"
 #include "core/limits/Limits.hpp"
 #include "core/map/FixedPointMap.hpp"
 #include "core/stats/StochasticAreaQuantities.hpp"
@@ -141,6 +142,14 @@ inline MapParameters mapOf(double K, double xmin, double xmax) {
 }
 
 /// The visited fraction stochastic_area() returns (a number in [0, 1]), given back to compute b2 in a box.
+/// warnings.warn(core's text) when the box or its randomizing zone cuts the central island (checkBoxAgainstIsland,
+/// core/atlas/BoxIslandCheck.hpp: one message for every front end).  The run goes on; warnings.filterwarnings
+/// ("error", …) makes it a refusal, "ignore" quiets it.
+inline void warnIfBoxCutsIsland(const MapParameters& map, double Xr) {
+  if (const BoxIslandCheck c = checkBoxAgainstIsland(map, Xr); c.cuts())
+    py::module_::import("warnings").attr("warn")(c.warning, py::module_::import("builtins").attr("UserWarning"), 2);
+}
+
 inline double fractionArgument(double fraction) {
   if (auto e = visitedFractionError("fraction", fraction)) throw std::invalid_argument(*e);  // core's rule
   return fraction;

@@ -78,6 +78,7 @@ Run startRun(const py::object& spec, const py::kwargs& kwargs) {
   if (auto e = memoryError(params, 0)) throw std::invalid_argument(*e);
   Run r;
   r.state = startTrapping(params);
+  warnIfBoxCutsIsland(params.map, params.Xr);
   return r;
 }
 

@@ -178,6 +178,7 @@ void bindTail(py::module_& m) {
         r.warmupBlocks = whole64(warmup, "warmup");
         r.minAncestors = whole64(minAncestors, "min_ancestors");
         if (auto e = tailRequestError(r)) throw std::invalid_argument(*e);
+        warnIfBoxCutsIsland(r.run.map, r.run.Xr);
         const std::optional<std::string> path = out.is_none() ? std::nullopt : std::optional(pathArgument(out, "out"));
         if (path) checkWritable(*path);  // before the work, not after it
         if (slice.is_none()) return runAndReport(startTail(r), threads, kernel, progress, path);

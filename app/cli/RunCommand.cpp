@@ -61,6 +61,7 @@ int runCommand(const RunOptions& o, const std::vector<std::string>& explicitPara
   }
   const TrappingParameters& params = o.resume.empty() ? o.params : state.params;
   if (auto e = memoryError(params, o.threads)) throw std::runtime_error(*e);  // before allocating the orbits
+  warnIfBoxCutsIsland(params);
   if (o.resume.empty()) {
     const auto [begin, end] = orbitRange(o.orbits, o.params.M);
     state = startTrapping(o.params, begin, end);

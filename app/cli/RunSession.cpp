@@ -12,6 +12,7 @@
 #include <variant>
 
 #include "CliCommon.hpp"
+#include "core/atlas/BoxIslandCheck.hpp"
 #include "core/runfile/RunFile.hpp"
 
 namespace archipelago::cli {
@@ -79,6 +80,11 @@ RunSpec resolveSpec(const SpecOptions& o, const CLI::App& cmd) {
   if (cmd.count("--kernel") > 0) spec.kernel = o.kernel.empty() ? "auto" : o.kernel;
   if (auto e = validationError(spec)) throw std::invalid_argument(*e);
   return spec;
+}
+
+void warnIfBoxCutsIsland(const TrappingParameters& p) {
+  if (const BoxIslandCheck c = checkBoxAgainstIsland(p.map, p.Xr); c.cuts())
+    std::fprintf(stderr, "WARNING: %s\n", c.warning.c_str());
 }
 
 std::vector<io::FileLock> lockRunFiles(const std::string& out, const std::string& checkpoint, const std::string& resume) {

@@ -43,6 +43,10 @@ void addSpecOptions(CLI::App& cmd, SpecOptions& o, std::initializer_list<std::st
 /// named before any work starts.  Throws std::invalid_argument.
 [[nodiscard]] RunSpec resolveSpec(const SpecOptions& o, const CLI::App& cmd);
 
+/// Prints core's warning (checkBoxAgainstIsland, core/atlas/BoxIslandCheck.hpp) on stderr when the box or its
+/// randomizing zone cuts the central island: the run goes on, but it is not the paper's process (issue 39).
+void warnIfBoxCutsIsland(const TrappingParameters& p);
+
 /// The run's files, locked for the whole run (issue #12, finding 7): a second process on the same --out,
 /// checkpoint or resumed file is refused before it reads or writes anything, and the temporaries a killed
 /// writer left beside them are removed once the lock is held.  The resumed file is locked too (resuming the

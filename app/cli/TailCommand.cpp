@@ -128,7 +128,11 @@ TailJob prepareTail(TailOptions& o, const CLI::App& cmd, std::optional<ReplicaRa
   TailPlanOptions options;
   options.request = o.request;
   options.clones = o.clones;
-  options.spec = [&o, &cmd] { return resolveSpec(o, cmd); };
+  options.spec = [&o, &cmd] {
+    RunSpec spec = resolveSpec(o, cmd);
+    warnIfBoxCutsIsland(spec.parameters);
+    return spec;
+  };
   options.givenSpec = givenSpecOptions(cmd);
   for (const char* name : kSamplerOptions)
     if (cmd.count(name) > 0) options.givenSampler.emplace_back(name);

@@ -40,7 +40,9 @@ struct RotationCentre {
 /// One measured rotation number.
 struct RotationMeasurement {
   double rotation = std::nan("");  ///< turns per application of Qⁿ, in the centre's sense; NaN unless Regular
-  double digits = std::nan("");    ///< −log₁₀ |difference of the two block averages| (turns), ≤ kMaxDigits
+  double digits = std::nan("");    ///< −log₁₀ |difference of the two block averages| (turns), ≤ kMaxDigits: the
+                                   ///< convergence on the computed (52-bit grid) orbit, not the accuracy against Q
+                                   ///< (docs/instruments.md; issue 39: 11.3 digits, 10.1 against Q, at the 138-chain)
   double difference = std::nan("");  ///< that difference itself: the measured accuracy of `rotation`
   OrbitVerdict verdict = OrbitVerdict::NotComputed;  ///< Regular, Chaotic or Escaping (NotComputed if stopped)
 };

@@ -5,6 +5,7 @@
 /// is core/stats/LogFits' (equal weight per unit of log t; issue #26), every error the subsets' or the bootstrap's;
 /// no value compares theory with theory.
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -35,8 +36,11 @@ struct DecayFit {
                                                        const TrappingState& runC, const TrappingState& decay3,
                                                        const TrappingState& decay2, ReportSize size);
 
-/// §7 (later work, issue #29): tail-splitting, the largest |z| between the tail sampler's P_t and the run's at the
-/// sampler's reliable levels where the run has at least 10 segments beyond t (core/tail's compareWithRuns).
+/// §7 (later work, issue #29): tail-splitting, the tail sampler's P_t against the run's at the sampler's reliable
+/// levels where the run has at least kTailSplittingMinSegments segments beyond t (core/tail's compareWithRuns), pooled
+/// with their covariance (pooledBias, issue 39): the item is |z| of the pooled ln(P_split/P_run), and its note states
+/// the smallest uniform bias the test detects at the report's size.
+inline constexpr std::uint64_t kTailSplittingMinSegments = 10;
 [[nodiscard]] ReportItem tailSplittingStatement(const TailComparison& comparison, const std::string& command);
 
 /// §5 and §7 on the K = 0.1 run: alpha-quarter, p-five-quarters, alpha-min, alpha-max, S-superdiffusive, D,

@@ -1,5 +1,6 @@
 #include "core/tail/BruteForceSurvival.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -150,6 +151,7 @@ TailComparison compareWithRuns(const TailState& state, const TailResult& result,
     c.bruteError = b.PError;
     c.bruteSegments = b.segmentsBeyond;
     c.tailSteps = L.steps;
+    c.replicaP = L.replicaP;
     const double both = std::hypot(L.PError, b.PError);
     if (b.segmentsBeyond > 0 && std::isfinite(both) && both > 0) c.z = (L.P - b.P) / both;
     const double r = L.PError / L.P;
@@ -164,6 +166,73 @@ TailComparison compareWithRuns(const TailState& state, const TailResult& result,
     }
     out.levels.push_back(c);
   }
+  return out;
+}
+
+TailPooledBias pooledBias(const TailComparison& comparison, std::uint64_t minSegments) {
+  TailPooledBias out;
+  std::vector<const TailComparisonLevel*> used;
+  for (const TailComparisonLevel& l : comparison.levels) {
+    const bool finite = std::isfinite(l.P) && std::isfinite(l.PError) && std::isfinite(l.bruteP) &&
+                        std::isfinite(l.bruteError);
+    if (!l.reliable || l.bruteSegments < minSegments || !finite || !(l.P > 0 && l.bruteP > 0 && l.PError > 0 &&
+                                                                     l.bruteError > 0))
+      continue;
+    used.push_back(&l);
+  }
+  const std::size_t n = used.size();
+  out.levels = n;
+  if (n == 0) return out;
+  out.tFrom = used.front()->t;
+  out.tTo = used.back()->t;
+  // The replicas' correlation of P_r(t_i) and P_r(t_j): 1 where it cannot be measured (the conservative bound).
+  const auto rho = [&](const TailComparisonLevel& a, const TailComparisonLevel& b) {
+    const std::size_t R = a.replicaP.size();
+    if (&a == &b) return 1.0;
+    if (R < 3 || b.replicaP.size() != R) return 1.0;
+    double ma = 0, mb = 0;
+    for (std::size_t r = 0; r < R; ++r) ma += a.replicaP[r], mb += b.replicaP[r];
+    ma /= static_cast<double>(R), mb /= static_cast<double>(R);
+    double saa = 0, sbb = 0, sab = 0;
+    for (std::size_t r = 0; r < R; ++r) {
+      saa += (a.replicaP[r] - ma) * (a.replicaP[r] - ma);
+      sbb += (b.replicaP[r] - mb) * (b.replicaP[r] - mb);
+      sab += (a.replicaP[r] - ma) * (b.replicaP[r] - mb);
+    }
+    if (!(saa > 0 && sbb > 0)) return 1.0;
+    return std::clamp(sab / std::sqrt(saa * sbb), -1.0, 1.0);
+  };
+  std::vector<double> C(n * n), d(n), w(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const TailComparisonLevel& a = *used[i];
+    d[i] = std::log(a.P / a.bruteP);
+    for (std::size_t j = 0; j < n; ++j) {
+      const TailComparisonLevel& b = *used[j];
+      const double sampler = rho(a, b) * (a.PError / a.P) * (b.PError / b.P);
+      const TailComparisonLevel& earlier = a.t <= b.t ? a : b;
+      const double runs = (earlier.bruteError / earlier.bruteP) * (earlier.bruteError / earlier.bruteP);
+      C[i * n + j] = sampler + runs;
+    }
+  }
+  double sum = 0;
+  for (std::size_t i = 0; i < n; ++i) sum += w[i] = 1 / C[i * n + i];
+  double b = 0, var = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    w[i] /= sum;
+    b += w[i] * d[i];
+  }
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = 0; j < n; ++j) var += w[i] * C[i * n + j] * w[j];
+  if (!(var > 0)) {  // a correlation set to 1 beside measured ones can leave C short of positive: the bound ρ = 1
+    double bound = 0;
+    for (std::size_t i = 0; i < n; ++i) bound += w[i] * std::sqrt(C[i * n + i]);
+    var = bound * bound;
+  }
+  out.logRatio = b;
+  out.logRatioError = std::sqrt(var);
+  out.z = b / out.logRatioError;
+  out.detectable = std::expm1(5 * out.logRatioError);
+  out.detectableHalf = std::expm1(3 * out.logRatioError);
   return out;
 }
 

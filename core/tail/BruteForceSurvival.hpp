@@ -56,6 +56,7 @@ struct TailComparisonLevel {
   double tailSteps = 0;                       ///< the sampler's steps up to this level (all replicas)
   double bruteStepsSameError = std::numeric_limits<double>::quiet_NaN();  ///< see the file comment
   bool bruteStepsMeasured = false;            ///< from the runs' own error (else the count estimate)
+  std::vector<double> replicaP;               ///< the sampler's replicas' P_r(t) (TailLevelResult::replicaP)
 };
 
 struct TailComparison {
@@ -68,6 +69,29 @@ struct TailComparison {
 /// match: tailRunMismatch()).
 [[nodiscard]] TailComparison compareWithRuns(const TailState& state, const TailResult& result,
                                              const std::vector<TrappingState>& runs);
+
+/// The levels pooled with their covariance (issue 39, deliverable 2): one number that a uniform bias of the sampler
+/// (all levels scaled by 1 + β) moves, where the largest |z| of correlated levels could not see a 20–30 % bias.
+///
+/// At the levels compared (reliable, at least `minSegments` segments of the runs beyond t, both P and errors
+/// finite and positive), d_i = ln(P_i/B_i) (sampler over runs).  Its covariance is the sum of the two independent
+/// estimators': the sampler's C^s_ij = ρ_ij s_i s_j, s_i = PError_i/P_i and ρ_ij the correlation of the replicas'
+/// P_r(t_i), P_r(t_j) (1 with fewer than three replicas or a replica spread of zero: the conservative bound); the
+/// runs' C^b_ij = u_i² for t_i ≤ t_j, u_i = bruteError_i/B_i (an empirical survival function counts the segments
+/// beyond t_j among those beyond t_i: Cov(ln B_i, ln B_j) = Var(ln B_i), the earlier level's).  The pooled log-ratio
+/// b = Σ w_i d_i with inverse-variance weights w_i ∝ 1/C_ii, its error σ = √(wᵀCw) with the whole C, and
+/// z = b/σ.  A uniform bias β moves b by ln(1 + β): the test |z| ≤ 3 detects it with probability ½ at
+/// e^{3σ} − 1 and 97.7 % at e^{5σ} − 1 (`detectable`).
+struct TailPooledBias {
+  std::size_t levels = 0;   ///< levels pooled
+  double tFrom = 0, tTo = 0;  ///< the first and last of them, steps
+  double logRatio = std::numeric_limits<double>::quiet_NaN();       ///< b
+  double logRatioError = std::numeric_limits<double>::quiet_NaN();  ///< σ
+  double z = std::numeric_limits<double>::quiet_NaN();              ///< b/σ
+  double detectable = std::numeric_limits<double>::quiet_NaN();     ///< e^{5σ} − 1: a bias found 97.7 % of the time
+  double detectableHalf = std::numeric_limits<double>::quiet_NaN(); ///< e^{3σ} − 1: found half of the time
+};
+[[nodiscard]] TailPooledBias pooledBias(const TailComparison& comparison, std::uint64_t minSegments = 10);
 
 /// Nothing when `run` iterates the sampler's process (map, box, Xr, q); else which parameter differs.  (The seed,
 /// T, M, subsets and longestKept may differ.)

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "GuiTestSupport.hpp"
+#include "core/atlas/BoxIslandCheck.hpp"
 #include "core/runfile/RunFile.hpp"
 #include "core/run/TrappingRun.hpp"
 #include "ui/run/RunController.hpp"
@@ -328,6 +329,29 @@ class TestRunController : public QObject {
     QVERIFY(!next.statusBar()->currentMessage().startsWith(QStringLiteral("Paused")));
     QVERIFY(next.stopRun());
     QVERIFY(waitForStatus(next, RunStatus::stopped));
+  }
+
+  /// Issue 39, deliverable 4: a run whose box cuts the central island (K = 0.3 in the paper's K = 0.1 box: the
+  /// randomizing zone reaches into it) starts, and the status bar shows core's warning, word for word
+  /// (checkBoxAgainstIsland); the same box at K = 0.1 shows none.
+  void boxCuttingTheIslandWarns() {
+    MainWindow window;
+    window.setConfirmations(false);
+    window.show();
+    TrappingParameters p = archipelago::test::shortRun();
+    p.map.K = 0.3;
+    const std::string warning = archipelago::checkBoxAgainstIsland(p.map, p.Xr).warning;
+    QVERIFY(!warning.empty());
+    window.parameterPanel()->setParameters(p, 2);
+    QVERIFY(window.startRun());
+    QVERIFY2(window.statusBar()->currentMessage().contains(QString::fromStdString(warning)),
+             qPrintable(window.statusBar()->currentMessage()));
+    QVERIFY(waitForStatus(window, RunStatus::finished, 900000));
+    window.parameterPanel()->setParameters(archipelago::test::shortRun(), 2);
+    QVERIFY(window.startRun());
+    QVERIFY2(!window.statusBar()->currentMessage().contains(QStringLiteral("central island")),
+             qPrintable(window.statusBar()->currentMessage()));
+    QVERIFY(waitForStatus(window, RunStatus::finished, 900000));
   }
 };
 

@@ -4,6 +4,8 @@
 // cannot decide is marked so by the table (needsFullSize), not skipped here.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include "core/report/ReportRuns.hpp"
 #include "core/report/RunStatements.hpp"
 #include "core/stats/RunEnsemble.hpp"
@@ -38,6 +40,17 @@ TEST(K01Reproduction, QuickRunAgreesWithThePaperWithinTheTablesTolerances) {
     ++decided;
   }
   EXPECT_GE(decided, 4) << "alpha-quarter, p-five-quarters, alpha-min and S-superdiffusive at least";
+
+  // Issue 39: S-superdiffusive is two-sided against an independent implementation's 1.652 ± 0.002.  The q = 16 run
+  // without its q = 1 companion (the block artefact the item was written to catch: 1.576 at the paper's size) must
+  // fail it, while "> 3/2" alone let it pass.
+  for (const report::ReportItem& it : report::k01Statements(run, statisticsOf(run), tail, false, made.command)) {
+    if (it.id() != "S-superdiffusive") continue;
+    ASSERT_TRUE(it.ours.has_value());
+    std::printf("S-superdiffusive without the companion: %.4f ± %.4f\n", *it.ours, it.error);
+    EXPECT_GT(*it.ours, 1.5) << "the one-sided test of the paper's words passes the artefact";
+    EXPECT_EQ(it.mark, report::Mark::differs) << *it.ours << " ± " << it.error;
+  }
 
   // The same checks on a wrong run (fig. 3b's K = 0: f_t ~ t⁻⁷, no sticky tail) must fail: none may agree.
   const TrappingState wrong =

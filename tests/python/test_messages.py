@@ -108,3 +108,21 @@ def test_box_invariant_fraction(cli):
     # The visited fraction given back to compute b2 (Python) and the area (the CLI's stats --b2): core's rules.
     p = py_error(lambda: ap.box_invariant(0.1, -0.8, 0.5, 1.5, 100.0, 1.0))
     assert p == "fraction = 1.5 must lie in [0, 1] (the visited fraction stochastic_area gives)"
+
+
+def test_box_cutting_the_island_warns_with_cores_words(cli, tmp_path):
+    # Issue 39, deliverable 4: K = 0.3 in the paper's K = 0.1 box (-0.8, 0.5) cuts the central island.  Python warns
+    # (warnings.warn, UserWarning) with the text the CLI prints after "WARNING: "; K = 0.1 does not warn.
+    r = subprocess.run([cli, "run", "--K", "0.3", "--T", "100", "--M", "4", "--subsets", "4", "--quiet",
+                        "--out", str(tmp_path / "k03.json")], capture_output=True, text=True, timeout=600)
+    lines = [l[len("WARNING: "):] for l in r.stderr.splitlines() if l.startswith("WARNING: ")]
+    assert r.returncode == 0 and len(lines) == 1, r.stderr
+    with pytest.warns(UserWarning) as caught:
+        ap.start(K=0.3, T=100, M=4, subsets=4)
+    texts = [str(w.message) for w in caught]
+    assert texts == [lines[0]], texts
+    assert "central island at K = 0.3" in texts[0]
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # any warning fails
+        ap.start(K=0.1, T=100, M=4, subsets=4)

@@ -9,6 +9,7 @@
 
 #include <exception>
 
+#include "core/atlas/BoxIslandCheck.hpp"
 #include "core/runfile/RunFile.hpp"
 #include "ui/jobs/DurationText.hpp"
 
@@ -153,7 +154,12 @@ bool RunController::start(const TrappingParameters& parameters, const RunSetting
   Q_EMIT runReplaced();
   launch(std::move(state), settings);
   apply(RunEvent::start);
-  Q_EMIT message(tr("Running…"), false);
+  // Core's one message when the box or its randomizing zone cuts the central island (issue 39): the run goes on,
+  // the warning stays in the status bar until the next message.
+  if (const BoxIslandCheck check = checkBoxAgainstIsland(parameters.map, parameters.Xr); check.cuts())
+    Q_EMIT message(tr("Running. Warning: %1").arg(QString::fromStdString(check.warning)), true);
+  else
+    Q_EMIT message(tr("Running…"), false);
   return true;
 }
 
