@@ -21,6 +21,10 @@
 #include <clocale>
 #include <QTabWidget>
 #include <QCommandLineParser>
+#include <QComboBox>
+#include <QLineEdit>
+#include <QLocale>
+#include <QSpinBox>
 #include <QTimer>
 #include <qwt_global.h>
 
@@ -273,7 +277,7 @@ int main(int argc, char** argv) {
                                     QStringLiteral("Find the periodic orbit at (X, Y), as a Shift+click does."),
                                     QStringLiteral("X,Y"));
   const QCommandLineOption profile(QStringLiteral("profile"),
-                                   QStringLiteral("The rotation profile of the line from (X0, Y0) to (X1, Y1)."),
+                                   QStringLiteral("The rotation profile of the line from (X0, Y0) to (X1, Y1) (with --periodic: about that orbit)."),
                                    QStringLiteral("X0,Y0,X1,Y1"));
   parser.addOptions({version, preset, run, threads, screenshot, after, measure, tab, segment, island, mode, view, budget,
                      manifolds, chains, orbit, orbits, periodic, profile});
@@ -369,9 +373,18 @@ int main(int argc, char** argv) {
     portrait->controller()->highlightOrbit(portrait->controller()->launchOrbit(start.x, start.y));
     portrait->sidePages()->setCurrentWidget(portrait->orbitList());
   }
-  if (parser.isSet(orbits)) {
-    portrait->controller()->launchOrbitFamily(readOrbits(parser.value(orbits)));
-    portrait->sidePages()->setCurrentWidget(portrait->orbitList());
+  if (parser.isSet(orbits)) {  // typed into the Orbits page's fields, then Line/Grid, as a user does
+    const archipelago::OrbitFamily f = readOrbits(parser.value(orbits));
+    archipelago::ui::OrbitListPanel* list = portrait->orbitList();
+    const auto text = [](long double v) { return QString::number(static_cast<double>(v), 'g', QLocale::FloatingPointShortest); };
+    list->startXField()->setText(text(f.from.x));
+    list->startYField()->setText(text(f.from.y));
+    list->endXField()->setText(text(f.to.x));
+    list->endYField()->setText(text(f.to.y));
+    list->columnsBox()->setValue(static_cast<int>(f.columns));
+    list->rowsBox()->setValue(static_cast<int>(f.rows));
+    list->launchFamily();
+    portrait->sidePages()->setCurrentWidget(list);
   }
   if (parser.isSet(periodic)) {
     const archipelago::PhysicalPoint at = readOrbit(parser.value(periodic));
@@ -380,7 +393,18 @@ int main(int argc, char** argv) {
   if (parser.isSet(profile)) {
     const auto [from, to] = readProfile(parser.value(profile));
     portrait->sidePages()->setCurrentWidget(portrait->profilePanel());
-    portrait->profilePanel()->profile(from, to, 400);
+    archipelago::ui::RotationProfilePanel* panel = portrait->profilePanel();
+    if (!parser.isSet(periodic)) {
+      panel->profile(from, to, 400);
+    } else {  // with --periodic: about the orbit found there, once it is found (About: the periodic orbit drawn)
+      auto* once = new QObject(panel);
+      QObject::connect(portrait->controller(), &archipelago::ui::PortraitController::periodicOrbitFound, once,
+                       [panel, once, from = from, to = to] {
+                         panel->aboutBox()->setCurrentIndex(1);
+                         panel->profile(from, to, 400);
+                         once->deleteLater();
+                       });
+    }
   }
   // A screenshot shows a run only when asked (--run); the latency measure always runs one.
   if (parser.isSet(run) || parser.isSet(measure)) QTimer::singleShot(0, &window, [&window] { window.startRun(); });

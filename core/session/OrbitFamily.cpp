@@ -24,7 +24,9 @@ std::vector<PhysicalPoint> orbitFamilyStarts(const OrbitFamily& f, std::size_t l
                                     std::to_string(launched) + " launched already"))
     throw std::invalid_argument(*e);
   const auto at = [](long double a, long double b, std::uint64_t i, std::uint64_t n) {
-    return n == 1 ? a : a + (b - a) * static_cast<long double>(i) / static_cast<long double>(n - 1);
+    if (n == 1 || i == 0) return a;
+    if (i + 1 == n) return b;  // the far end exactly as typed
+    return a + (b - a) * static_cast<long double>(i) / static_cast<long double>(n - 1);
   };
   std::vector<PhysicalPoint> starts;
   starts.reserve(count);

@@ -21,7 +21,8 @@ struct OrbitFamily {
   std::uint64_t rows = 1;     ///< 1: a line from `from` to `to`
 };
 
-/// The starts, row by row: the i-th of n along an axis at from + (to − from)·i/(n − 1).  Throws
+/// The starts, row by row: the i-th of n along an axis at from + (to − from)·i/(n − 1), the ends exactly `from`
+/// and `to`.  Throws
 /// std::invalid_argument with core/limits' wording when a count is 0, when the family and the `launched` orbits
 /// already shown together exceed kMaxSessionOrbits, or when a coordinate is not finite.  Whether each start lies
 /// in the box is its own orbit's rule (it is measured, or says why not).

@@ -622,6 +622,7 @@ void PortraitController::showSegmentStep(std::size_t index) {
 }
 
 void PortraitController::showPeriodicOrbit(const PeriodicOrbit& orbit) {
+  if (clickedPeriodic_ && &orbit != &clickedPeriodic_->orbit) clickedPeriodic_.reset();  // another's overlay
   periodicPeriod_ = orbit.period;
   periodic_ = orbit;
   if (!view_) return;
@@ -708,6 +709,16 @@ void PortraitController::showProfileLine(std::optional<std::pair<PhysicalPoint, 
 
 void PortraitController::updateLegend() {
   QStringList lines = SegmentOverlay::legendLines(replay_, chain_, periodicPeriod_);
+  if (clickedPeriodic_) {  // the chain a click named (issue 37, finding 16), its phrases one per line
+    lines << tr("&nbsp;&nbsp;&nbsp;%1, residue %2, found at a click in the chain:")
+                 .arg(QString::fromLatin1(toString(clickedPeriodic_->orbit.classification().stability)))
+                 .arg(static_cast<double>(clickedPeriodic_->orbit.residue), 0, 'g', 6);
+    // Each phrase on a line of its own, a long one cut (the legend is not wrapped; the status bar has it whole).
+    for (QString phrase : QString::fromStdString(clickedPeriodic_->chain.summary).split(QStringLiteral("; "))) {
+      if (phrase.size() > 52) phrase = phrase.left(51) + QStringLiteral("…");
+      lines << QStringLiteral("&nbsp;&nbsp;&nbsp;") + phrase.toHtmlEscaped();
+    }
+  }
   if (!atlasLabel_.isEmpty())
     lines << tr("<span style='color:#78ff50'>●</span> boundary circle of the atlas island %1").arg(atlasLabel_.toHtmlEscaped());
   if (manifoldsShown_ && manifolds_)
