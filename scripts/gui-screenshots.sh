@@ -8,6 +8,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 app="${APP:-build/default/app/gui/archipelago}"
+cli="${CLI:-build/default/app/archipelago-cli}"
 out="${1:-docs/images}"
 command -v xvfb-run >/dev/null || { echo "gui-screenshots: xvfb-run is missing (apt-get install xvfb)" >&2; exit 1; }
 mkdir -p "$out"
@@ -46,3 +47,18 @@ shot 1280x800 gui-statistics-1280x800 40 --run --tab Statistics
 # screen the Run page following the run (finding 1).
 shot 1280x800 gui-deep-axes-1280x800 10 --view=-0.1500000032,-0.1499999968,-0.0000000025,0.0000000025
 shot 1280x800 gui-orbit-chain-1280x800 10 --orbit=0.0609,0.0974
+# Issue 37, the rest: a grid of 4 × 3 orbits launched at once from the Orbits page, each measured and listed
+# (finding 15); the periodic orbit a Shift+click at (0.06, 0.0974) finds, its chain named in the status bar (16); the
+# rotation profile from the centre's island into one of the six islands, its plateau labelled 1/6 (17); and the
+# Statistics tab of a finished run file (K = 0.1, q = 4, 16 × 200 000 blocks) with the tail's γ_P and verdict under
+# the summary, as `archipelago-cli stats` prints them (19).
+shot 1280x800 gui-orbit-grid-1280x800 20 --orbits=-0.25,-0.05,0.05,0.1,4,3
+shot 1280x800 gui-periodic-click-1280x800 15 --periodic=0.06,0.0974
+shot 1280x800 gui-profile-plateaus-1280x800 25 --profile=-0.25,0,0.06,0.0974
+# … and a profile across that island about its own centre (the period-6 orbit's member found there): the rotation of
+# Q⁶, its plateau the chain of 23 islands about it (17).
+shot 1280x800 gui-profile-island-1280x800 30 --periodic=0.06,0.0974 --profile=0.035,0.0974,0.075,0.0974 --view=0.0,0.1,0.06,0.14
+if [[ -z "${ONLY:-}" || gui-statistics-tail-1280x800 =~ $ONLY ]]; then
+  "$cli" run --K 0.1 --q 4 --T 200000 --M 16 --subsets 8 --seed 3 --out "$home/k01-q4.json" --quiet
+  shot 1280x800 gui-statistics-tail-1280x800 20 --tab Statistics "$home/k01-q4.json"
+fi

@@ -31,6 +31,8 @@ struct RotationOptions {
   std::uint32_t points = 1000;
   std::int64_t maxDenominator = RotationProfileRequest{}.maxDenominator;
   std::string csv;
+  std::string about;  // "X,Y": a point of an elliptic orbit of period `period` (issue 37, finding 17)
+  std::uint64_t period = 1;
   std::string kernel;
   bool quiet = false;
 };
@@ -66,6 +68,10 @@ int runProfile(const RotationOptions& o) {
   std::tie(r.from, r.to) = parseLine(o.line);
   r.points = o.points;
   r.maxDenominator = o.maxDenominator;
+  if (!o.about.empty()) {
+    r.about = parsePoint("--about", o.about);
+    r.power = o.period;
+  }
   if (auto e = validationError(r)) throw std::invalid_argument(*e);
   io::checkCommandFiles({{"--csv", o.csv, io::FileUse::Output}});  // before the work
   const RotationProfile profile = computeRotationProfile(r, [&](std::uint64_t done, std::uint64_t total) {
@@ -138,6 +144,7 @@ int runRotation(const RotationOptions& o) {
   if (o.xOption->count() == 0 || o.yOption->count() == 0)
     throw std::invalid_argument("give --x and --y (one orbit) or --line X0,Y0:X1,Y1 with --csv (a profile)");
   if (!o.csv.empty()) throw std::invalid_argument("--csv is for a profile (--line); one orbit prints to stdout");
+  if (!o.about.empty()) throw std::invalid_argument("--about is for a profile (--line); one orbit names its chain itself");
   return runOrbit(o);
 }
 }  // namespace
@@ -158,6 +165,10 @@ void addRotationCommand(CLI::App& app, int& status) {
   addNumberOption(*cmd, "--points", o->points, "profile: points along the segment, 1 ... 1000000");
   addNumberOption(*cmd, "--max-denominator", o->maxDenominator, "profile: largest q of the p/q shown, 1 ... 1000000");
   cmd->add_option("--csv", o->csv, "profile: CSV file to write");
+  cmd->add_option("--about", o->about,
+                  "profile: X,Y, a point of an elliptic periodic orbit of period --period (archipelago-cli periodic "
+                  "finds one): the rotation of Q^period about it instead of about (-sqrt K, 0) (use --about=-0.3,0)");
+  addNumberOption(*cmd, "--period", o->period, "profile with --about: the orbit's period n, 1 ... 100000");
   addKernelOption(*cmd, o->kernel);
   cmd->add_flag("--quiet", o->quiet, "no progress on stderr");
   cmd->callback([o, &status] { status = runRotation(*o); });

@@ -139,16 +139,14 @@ void printD(const TailAnalysis& a, const TrappingStatistics& s, const char* labe
 void printTail(const TailAnalysis& a) {
   const int percent = static_cast<int>(std::lround(100 * a.bootstrap.confidence));
   if (a.windows.empty()) {
-    std::printf("tail        too few long segments for a tail fit (fewer than 10 beyond 3 max(10, 2q) steps): the "
-                "data cannot decide the tail's exponent\n");
+    std::printf("tail        %s\n", std::string(kNoTailFit).c_str());
     return;
   }
   const TailWindow& f = a.tailFit;
   std::printf("tail end    t_end = %s steps: %llu segments are longer; beyond it the data decide nothing\n",
               g(a.tailEnd).c_str(), static_cast<unsigned long long>(f.segmentsBeyondTo));
-  std::printf("gamma_P     %s %s over %s <= t <= %s (P_t ~ t^-gamma; %d%% bootstrap interval, %llu segments beyond "
-              "%s)\n", g(f.gammaP).c_str(), interval(f.gammaPInterval).c_str(), g(f.from).c_str(), g(f.to).c_str(),
-              percent, static_cast<unsigned long long>(f.segmentsBeyondFrom), g(f.from).c_str());
+  std::printf("gamma_P     %s (P_t ~ t^-gamma; %d%% bootstrap interval, %llu segments beyond %s)\n",
+              gammaPText(f).c_str(), percent, static_cast<unsigned long long>(f.segmentsBeyondFrom), g(f.from).c_str());
   std::printf("exponent_C  %s %s over the same window (-dlog C/dlog tau; gamma_P - 1 for a power law)\n",
               g(f.exponentC).c_str(), interval(f.exponentCInterval).c_str());
   std::printf("windows:    from, to, gamma_P [interval], exponent_C [interval], segments beyond from, beyond to\n");
@@ -168,11 +166,7 @@ void printTail(const TailAnalysis& a) {
     std::printf("            t = %s, gamma = %s: %.2g steps\n", g(f.target).c_str(), g(f.gamma).c_str(), f.steps);
 }
 
-void printVerdict(const TailAnalysis& a) {
-  const std::string message = dominanceMessage(a);
-  std::printf("verdict     %s\n", message.empty() ? "the tail does not dominate D: its bootstrap error stands"
-                                                   : message.c_str());
-}
+void printVerdict(const TailAnalysis& a) { std::printf("verdict     %s\n", tailVerdictText(a).c_str()); }
 
 int statsCommand(const StatsOptions& o) {
   std::vector<io::CommandFile> files{{"--short", o.shortRun, io::FileUse::Input}};
@@ -229,8 +223,8 @@ int statsCommand(const StatsOptions& o) {
   if (companion) {
     const RunSummary summary = summarizeRun(s, &tail);
     if (std::isfinite(summary.DError))
-      std::printf("D           %.6g +- %.2g   (eq. ddef, spliced; the error: the %s of the spliced statistics; the run "
-                  "alone below)\n", summary.D, summary.DError, std::string(toString(summary.errorSource)).c_str());
+      std::printf("D           %.6g +- %.2g   (eq. ddef, %s; the run alone below)\n", summary.D, summary.DError,
+                  summary.DErrorNote.c_str());
     else
       std::printf("D           %.6g   (eq. ddef, spliced; %s)\n", summary.D, summary.DErrorNote.c_str());
   }

@@ -21,6 +21,10 @@
 #include <clocale>
 #include <QTabWidget>
 #include <QCommandLineParser>
+#include <QComboBox>
+#include <QLineEdit>
+#include <QLocale>
+#include <QSpinBox>
 #include <QTimer>
 #include <qwt_global.h>
 
@@ -41,7 +45,9 @@
 #include "ui/window/MainWindow.hpp"
 #include "core/measures/OrbitMeasures.hpp"
 #include "core/view/Viewport.hpp"
+#include "core/session/OrbitFamily.hpp"
 #include "ui/portrait/OrbitListPanel.hpp"
+#include "ui/portrait/RotationProfilePanel.hpp"
 #include "ui/portrait/PortraitController.hpp"
 #include "ui/portrait/PortraitPanel.hpp"
 #include "ui/segments/LongSegmentsPanel.hpp"
@@ -59,7 +65,7 @@ bool onlyInformation(int argc, char** argv) {
       if (std::strcmp(argv[i], option) == 0) return true;
     for (const char* withValue :
          {"--preset", "--threads", "--screenshot", "--after", "--measure", "--tab", "--segment", "--mode", "--view",
-          "--budget", "--chains", "--orbit"})
+          "--budget", "--chains", "--orbit", "--orbits", "--periodic", "--profile"})
       if (std::strcmp(argv[i], withValue) == 0) ++i;
   }
   return false;
@@ -106,6 +112,28 @@ archipelago::PhysicalPoint readOrbit(const QString& text) {
   return {v[0], v[1]};
 }
 
+/// --orbits X0,Y0,X1,Y1,N,M: a line (M = 1) or a grid of orbits (issue 37, finding 15); the counts' rule is core's
+/// (orbitFamilyStarts), applied when they are launched.
+archipelago::OrbitFamily readOrbits(const QString& text) {
+  const auto v = archipelago::io::parseNumbers<long double>("--orbits", text.toStdString(), ',', 6,
+                                                           "x0,y0,x1,y1,n,m: two points and the counts");
+  const auto whole = [](long double c) {
+    const auto n = static_cast<std::uint64_t>(c < 0 ? 0 : c);
+    if (static_cast<long double>(n) != c) throw std::invalid_argument("--orbits: the counts n,m must be whole numbers");
+    return n;
+  };
+  archipelago::OrbitFamily f{{v[0], v[1]}, {v[2], v[3]}, whole(v[4]), whole(v[5])};
+  (void)archipelago::orbitFamilyStarts(f);  // core's rule of the counts, before any window
+  return f;
+}
+
+/// --profile X0,Y0,X1,Y1: the rotation profile of the line between two points (physical coordinates).
+std::pair<archipelago::PhysicalPoint, archipelago::PhysicalPoint> readProfile(const QString& text) {
+  const auto v = archipelago::io::parseNumbers<long double>("--profile", text.toStdString(), ',', 4,
+                                                           "x0,y0,x1,y1: the line's two ends");
+  return {{v[0], v[1]}, {v[2], v[3]}};
+}
+
 /// --budget N: the portrait's points budget (the table's portrait budget).
 std::uint64_t readBudget(const QString& text) {
   const auto v = archipelago::io::parseNumber<std::uint64_t>("--budget", text.toStdString());
@@ -129,7 +157,8 @@ std::optional<std::string> numberError(int argc, char** argv) {
   try {
     for (int i = 1; i < argc; ++i) {
       const QString arg = QString::fromLocal8Bit(argv[i]);
-      for (const char* name : {"after", "measure", "segment", "threads", "view", "budget", "mode", "chains", "orbit"}) {
+      for (const char* name : {"after", "measure", "segment", "threads", "view", "budget", "mode", "chains", "orbit",
+                               "orbits", "periodic", "profile"}) {
         const QString option = QStringLiteral("--") + QLatin1String(name);
         QString value;
         if (arg == option && i + 1 < argc) value = QString::fromLocal8Bit(argv[i + 1]);
@@ -143,6 +172,9 @@ std::optional<std::string> numberError(int argc, char** argv) {
         else if (std::strcmp(name, "mode") == 0) (void)readMode(value);
         else if (std::strcmp(name, "chains") == 0) (void)readChainRows(value);
         else if (std::strcmp(name, "orbit") == 0) (void)readOrbit(value);
+        else if (std::strcmp(name, "orbits") == 0) (void)readOrbits(value);
+        else if (std::strcmp(name, "periodic") == 0) (void)readOrbit(value);
+        else if (std::strcmp(name, "profile") == 0) (void)readProfile(value);
         else (void)archipelago::readThreads(value.toStdString());
       }
     }
@@ -238,8 +270,17 @@ int main(int argc, char** argv) {
   const QCommandLineOption chains(QStringLiteral("chains"),
                                   QStringLiteral("Identify the island chains of the top ROWS segments (default 10)."),
                                   QStringLiteral("ROWS"));
+  const QCommandLineOption orbits(QStringLiteral("orbits"),
+                                  QStringLiteral("Launch a line (M = 1) or an N x M grid of orbits between two points."),
+                                  QStringLiteral("X0,Y0,X1,Y1,N,M"));
+  const QCommandLineOption periodic(QStringLiteral("periodic"),
+                                    QStringLiteral("Find the periodic orbit at (X, Y), as a Shift+click does."),
+                                    QStringLiteral("X,Y"));
+  const QCommandLineOption profile(QStringLiteral("profile"),
+                                   QStringLiteral("The rotation profile of the line from (X0, Y0) to (X1, Y1) (with --periodic: about that orbit)."),
+                                   QStringLiteral("X0,Y0,X1,Y1"));
   parser.addOptions({version, preset, run, threads, screenshot, after, measure, tab, segment, island, mode, view, budget,
-                     manifolds, chains, orbit});
+                     manifolds, chains, orbit, orbits, periodic, profile});
   parser.addPositionalArgument(QStringLiteral("file"), QStringLiteral("A run file (.json) or a session (.archipelago) to open."),
                                QStringLiteral("[file.json|file.archipelago]"));
   parser.process(app);
@@ -331,6 +372,39 @@ int main(int argc, char** argv) {
     }
     portrait->controller()->highlightOrbit(portrait->controller()->launchOrbit(start.x, start.y));
     portrait->sidePages()->setCurrentWidget(portrait->orbitList());
+  }
+  if (parser.isSet(orbits)) {  // typed into the Orbits page's fields, then Line/Grid, as a user does
+    const archipelago::OrbitFamily f = readOrbits(parser.value(orbits));
+    archipelago::ui::OrbitListPanel* list = portrait->orbitList();
+    const auto text = [](long double v) { return QString::number(static_cast<double>(v), 'g', QLocale::FloatingPointShortest); };
+    list->startXField()->setText(text(f.from.x));
+    list->startYField()->setText(text(f.from.y));
+    list->endXField()->setText(text(f.to.x));
+    list->endYField()->setText(text(f.to.y));
+    list->columnsBox()->setValue(static_cast<int>(f.columns));
+    list->rowsBox()->setValue(static_cast<int>(f.rows));
+    list->launchFamily();
+    portrait->sidePages()->setCurrentWidget(list);
+  }
+  if (parser.isSet(periodic)) {
+    const archipelago::PhysicalPoint at = readOrbit(parser.value(periodic));
+    portrait->controller()->findPeriodicOrbitAt(at.x, at.y);
+  }
+  if (parser.isSet(profile)) {
+    const auto [from, to] = readProfile(parser.value(profile));
+    portrait->sidePages()->setCurrentWidget(portrait->profilePanel());
+    archipelago::ui::RotationProfilePanel* panel = portrait->profilePanel();
+    if (!parser.isSet(periodic)) {
+      panel->profile(from, to, 400);
+    } else {  // with --periodic: about the orbit found there, once it is found (About: the periodic orbit drawn)
+      auto* once = new QObject(panel);
+      QObject::connect(portrait->controller(), &archipelago::ui::PortraitController::periodicOrbitFound, once,
+                       [panel, once, from = from, to = to] {
+                         panel->aboutBox()->setCurrentIndex(1);
+                         panel->profile(from, to, 400);
+                         once->deleteLater();
+                       });
+    }
   }
   // A screenshot shows a run only when asked (--run); the latency measure always runs one.
   if (parser.isSet(run) || parser.isSet(measure)) QTimer::singleShot(0, &window, [&window] { window.startRun(); });

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "core/limits/Limits.hpp"
+#include "core/parallel/ParallelFor.hpp"
 #include "core/io/AtomicFile.hpp"
 #include "core/provenance/Provenance.hpp"
 
@@ -14,6 +15,7 @@ namespace archipelago {
 namespace {
 constexpr std::uint32_t kMaxPoints = 1'000'000;
 constexpr std::size_t kRoundPoints = 4096;
+constexpr std::uint64_t kMaxPower = 100'000;  // measureRotation's power
 
 /// The rational a regular rotation names (RotationProfile.hpp).
 std::optional<Rational> rationalOf(const OrbitMeasure& m, std::int64_t maxDenominator) {
@@ -34,6 +36,10 @@ std::optional<std::string> validationError(const RotationProfileRequest& r) {
   if (auto e = boxPointError("from", r.measure.map, r.from)) return e;
   if (auto e = boxPointError("to", r.measure.map, r.to)) return e;
   if (auto e = threadsError(r.threads)) return e;
+  if (r.about) {
+    if (auto e = boxPointError("about", r.measure.map, *r.about)) return e;
+    if (auto e = rangeError("period", r.power, 1, kMaxPower)) return e;
+  }
   return std::nullopt;
 }
 
@@ -54,11 +60,30 @@ RotationProfile computeRotationProfile(const RotationProfileRequest& r, const Ro
     profile.points[i].start = starts[i];
     profile.points[i].point = map.toPhysical(starts[i]);
   }
+  std::optional<RotationCentre> centre;  // about an island's centre: Q^power about it, scalar per orbit
+  if (r.about) centre = rotationCentreAt(settings.map, *r.about,
+                                         rotationSense(static_cast<long double>(settings.map.K), *r.about, r.power));
   std::vector<OrbitMeasure> measured;
   for (std::size_t first = 0; first < starts.size(); first += kRoundPoints) {
     const std::size_t n = std::min(kRoundPoints, starts.size() - first);
     measured.assign(n, OrbitMeasure{});
-    const bool complete = measurer.measure(std::span<const UnitState>(starts.data() + first, n), measured, stop, r.threads);
+    bool complete = true;
+    if (!centre) {
+      complete = measurer.measure(std::span<const UnitState>(starts.data() + first, n), measured, stop, r.threads);
+    } else {
+      complete = parallelFor(n, [&](std::size_t i, int) {
+        RotationRequest q;
+        q.map = settings.map;
+        q.start = starts[first + i];
+        q.centre = *centre;
+        q.power = r.power;
+        q.iterations = settings.iterations;
+        q.digitsThreshold = settings.digitsThreshold;
+        const RotationMeasurement m = measureRotation(q, stop);
+        measured[i] = {m.rotation, m.digits, m.verdict};
+      }, stop, r.threads);
+      complete = complete && !stop.stop_requested();
+    }
     for (std::size_t i = 0; i < n; ++i) {
       RotationProfilePoint& p = profile.points[first + i];
       p.measure = measured[i];
@@ -86,7 +111,14 @@ void writeRotationProfileCsv(const std::string& path, const RotationProfileReque
                 shortestDecimal(r.measure.map.xmax).c_str(), static_cast<unsigned long long>(r.measure.iterations),
                 shortestDecimal(r.measure.digitsThreshold).c_str(), r.from.x, r.from.y, r.to.x, r.to.y, r.points,
                 static_cast<long long>(r.maxDenominator));
-  out << line << "# program: " << programDescription() << "\n" << "index,x,y,rotation,digits,verdict,rational\n";
+  out << line;
+  if (r.about) {  // issue 37, finding 17: the rotation of Q^n about an island's centre
+    std::snprintf(line, sizeof line, "# about: %.21Lg,%.21Lg (instead of (-sqrt K, 0): the rotation of Q^period about this "
+                  "point, turns per period)\n# period: %llu\n", r.about->x, r.about->y,
+                  static_cast<unsigned long long>(r.power));
+    out << line;
+  }
+  out << "# program: " << programDescription() << "\n" << "index,x,y,rotation,digits,verdict,rational\n";
   for (std::size_t i = 0; i < profile.points.size(); ++i) {
     const RotationProfilePoint& p = profile.points[i];
     std::snprintf(line, sizeof line, "%zu,%.19Lg,%.19Lg,", i, p.point.x, p.point.y);

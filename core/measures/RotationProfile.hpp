@@ -28,6 +28,13 @@ struct RotationProfileRequest {
   std::uint32_t points = 1000;           ///< N, 1 … 10⁶
   std::int64_t maxDenominator = 1000;    ///< largest q named, 1 … 10⁶
   int threads = 0;                       ///< 0: OpenMP's default
+  /// The centre (issue 37, finding 17: rotation about an island's own centre).  None: the centre (−√K, 0) and the
+  /// rotation of Q, as above.  Given: a point z of an elliptic periodic orbit of period `power` (e.g. the one a
+  /// click found, core/measures/PeriodicOrbitAt), and the rotation of Q^power about z, positive in the sense
+  /// DQ^power turns there — as identifyChain measures each island (RotationNumber.hpp, measureRotation: scalar,
+  /// one orbit per thread, 2T·power steps each).
+  std::optional<PhysicalPoint> about;
+  std::uint64_t power = 1;               ///< with `about`: the period n, 1 … 100000
 };
 
 /// The first violated rule, naming the field, or nothing (the measure's rules; N and maxDenominator in range;

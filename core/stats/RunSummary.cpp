@@ -29,6 +29,24 @@ std::string_view toString(DErrorSource source) noexcept { return namesOf(source)
 
 std::string_view keyOf(DErrorSource source) noexcept { return namesOf(source).key; }
 
+namespace {
+std::string g4(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.4g", v);
+  return buffer;
+}
+}  // namespace
+
+std::string gammaPText(const TailWindow& w) {
+  return g4(w.gammaP) + " [" + g4(w.gammaPInterval.lo) + ", " + g4(w.gammaPInterval.hi) + "] over " + g4(w.from) +
+         " <= t <= " + g4(w.to);
+}
+
+std::string tailVerdictText(const TailAnalysis& tail) {
+  const std::string message = dominanceMessage(tail);
+  return message.empty() ? "the tail does not dominate D: its bootstrap error stands" : message;
+}
+
 std::string RunSummary::DText() const {
   char buffer[64];
   std::snprintf(buffer, sizeof buffer, "%.6g", D);
@@ -60,6 +78,8 @@ RunSummary summarizeRun(const TrappingStatistics& s, const TailAnalysis* tail, s
   r.verdict = dominanceMessage(*tail);
   r.gammaP = tail->tailFit.gammaP;
   r.gammaPInterval = tail->tailFit.gammaPInterval;
+  r.gammaPText = tail->windows.empty() ? std::string(kNoTailFit) : gammaPText(tail->tailFit);
+  r.tailVerdict = tailVerdictText(*tail);
   r.runDError = supportedDError(*tail);
   if (r.dominated) {
     r.DErrorNote = "no error: " + r.verdict;

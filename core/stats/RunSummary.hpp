@@ -62,10 +62,26 @@ struct RunSummary {
 
   double gammaP = kTailUndefined; ///< −d log P/d log t over the tail fit's window [t_end/10, t_end]; NaN if none
   ConfidenceInterval gammaPInterval;
+  /// γ_P in words, as `stats` prints it after "gamma_P": "1.57 [1.41, 1.73] over 1000 <= t <= 1e+04"
+  /// (gammaPText), or why the data cannot decide it (kNoTailFit); empty when not judged.
+  std::string gammaPText;
+  /// The tail's verdict, as `stats` prints it after "verdict" (tailVerdictText); empty when not judged.
+  std::string tailVerdict;
 
   /// "6400 ± 800 (bootstrap over segments)"-like text: D with its error and source, or why there is none.
   [[nodiscard]] std::string DText() const;
 };
+
+/// `stats`'s words when the tail has too few long segments for a fit (no γ_P).
+inline constexpr std::string_view kNoTailFit =
+    "too few long segments for a tail fit (fewer than 10 beyond 3 max(10, 2q) steps): the data cannot decide the "
+    "tail's exponent";
+
+/// A window's γ_P with its interval and range, 4 significant digits: "1.57 [1.41, 1.73] over 1000 <= t <= 1e+04".
+[[nodiscard]] std::string gammaPText(const TailWindow& window);
+
+/// The tail's verdict: dominanceMessage(), or that the tail does not dominate D and its bootstrap error stands.
+[[nodiscard]] std::string tailVerdictText(const TailAnalysis& tail);
 
 /// The summary of statistics (spliced or not) with the tail analysis of the run alone (nullptr: not judged yet;
 /// `whyNotJudged` then says why, e.g. "its error is judged when the run pauses or ends").

@@ -1,7 +1,6 @@
 // Issue 37: what a new user hit with the new instruments (under Xvfb at 1280×800 and 1920×1080).  One test per
 // finding, named after it, on Qt's offscreen platform; each failed before its fix.  What only a picture can judge
 // (the deep-zoom axes, the P_t legend, the chain's rings) is in docs/images too (scripts/gui-screenshots.sh).
-// Finding 10 (the spliced D's error label) is the run summary's (StatisticsView::dText, the lead's part).
 #include <QAction>
 #include <QComboBox>
 #include <QFile>
@@ -14,6 +13,8 @@
 #include <QPainter>
 #include <QProcess>
 #include <QProgressBar>
+#include <QPushButton>
+#include <QTreeWidget>
 #include <QSpinBox>
 #include <QSignalSpy>
 #include <QTemporaryDir>
@@ -40,8 +41,16 @@
 #include "core/periodic/HyperbolicPartner.hpp"
 #include "core/periodic/PeriodicOrbitFinder.hpp"
 #include "core/run/TrappingRun.hpp"
+#include "core/session/OrbitFamily.hpp"
 #include "core/session/SessionFile.hpp"
+#include "core/measures/ChainIdentification.hpp"
+#include "core/measures/PeriodicOrbitAt.hpp"
+#include "core/measures/RotationProfile.hpp"
 #include "core/runspec/RunSpec.hpp"
+#include "core/runfile/RunFile.hpp"
+#include "core/stats/RunSummary.hpp"
+#include "core/trapping/TrappingParameters.hpp"
+#include "ui/run/RunWorker.hpp"
 #include "ui/plots/StatisticsPlot.hpp"
 #include "ui/portrait/ManifoldsPanel.hpp"
 #include "ui/portrait/OrbitListPanel.hpp"
@@ -49,6 +58,7 @@
 #include "ui/portrait/PortraitLayers.hpp"
 #include "ui/portrait/PortraitPanel.hpp"
 #include "ui/portrait/PortraitView.hpp"
+#include "ui/portrait/RotationProfilePanel.hpp"
 #include "ui/run/RunController.hpp"
 #include "ui/scan/KScanDialog.hpp"
 #include "ui/scan/KScanPlots.hpp"
@@ -102,6 +112,36 @@ SegmentRecord islandSegment(const TrappingState& state) {
   inside.length = 2000;
   inside.start = {map.toUnit(0.0609L, 0.0974L), state.params.T - inside.length, 0};
   return inside;
+}
+
+/// `archipelago-cli ARGS`' standard output (empty, with the failure in `error`, when it fails).
+QString cliOutput(const QStringList& args, QString* error) {
+  QProcess cli;
+  cli.start(QStringLiteral(ARCHIPELAGO_CLI), args);
+  if (!cli.waitForFinished(900000) || cli.exitStatus() != QProcess::NormalExit || cli.exitCode() != 0) {
+    *error = QString::fromUtf8(cli.readAllStandardError());
+    return {};
+  }
+  return QString::fromUtf8(cli.readAllStandardOutput());
+}
+
+/// printf's formatting of long doubles (QString::asprintf reads %Lg as a double: digits lost).
+QString longText(const char* format, long double a, long double b) {
+  char buffer[128];
+  std::snprintf(buffer, sizeof buffer, format, a, b);
+  return QString::fromLatin1(buffer);
+}
+QString longText(const char* format, long double a) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, format, a);
+  return QString::fromLatin1(buffer);
+}
+
+/// The rest of `text`'s line that starts with `label` (`stats`' columns: "gamma_P     …"), trimmed; empty if none.
+QString lineAfter(const QString& text, const QString& label) {
+  for (const QString& line : text.split(QLatin1Char('\n')))
+    if (line.startsWith(label)) return line.mid(label.size()).trimmed();
+  return {};
 }
 
 }  // namespace
@@ -536,6 +576,250 @@ class TestIssue37 : public QObject {
     QTRY_VERIFY_WITH_TIMEOUT(c.orbitsSettled(), 900000);
   }
 
+  // Finding 15's rest: a line or a grid of orbits launched at once from the Orbits page (two points and a count, or
+  // the rectangle they span and n × m), each measured and listed like a clicked one; an over-large count refused
+  // with core's words (orbitFamilyStarts), nothing launched.
+  void finding15_aLineAndAGridOfOrbits() {
+    PortraitPanel panel;
+    panel.resize(900, 600);
+    panel.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&panel));
+    PortraitController& c = *panel.controller();
+    c.setPointBudget(10000);
+    OrbitListPanel& list = *panel.orbitList();
+    list.stepsBox()->setValue(2000);
+    QPushButton* many = list.findChild<QPushButton*>(QStringLiteral("launchFamily"));
+    QVERIFY(many);
+    // A line of 5 from (−0.3, 0) to (−0.1, 0.04): the ends and three between, equally spaced.
+    list.startXField()->setText(QStringLiteral("-0.3"));
+    list.startYField()->setText(QStringLiteral("0"));
+    list.endXField()->setText(QStringLiteral("-0.1"));
+    list.endYField()->setText(QStringLiteral("0.04"));
+    list.columnsBox()->setValue(5);
+    list.rowsBox()->setValue(1);
+    QTest::mouseClick(many, Qt::LeftButton);
+    QCOMPARE(c.orbitCount(), 5);
+    for (int i = 0; i < 5; ++i) {
+      const LaunchedOrbit& o = c.launchedOrbits()[static_cast<std::size_t>(i)];
+      QVERIFY2(std::fabs(o.x - (-0.3L + 0.05L * i)) < 1e-18L, qPrintable(QString::number(static_cast<double>(o.x))));
+      QVERIFY(std::fabs(o.y - 0.01L * i) < 1e-18L);
+      QCOMPARE(o.steps, std::uint64_t{2000});
+    }
+    // A grid of 3 × 2 over the rectangle (0.05, 0.09) … (0.07, 0.1): rows at y = 0.09 and 0.1, columns 0.05 … 0.07.
+    list.startXField()->setText(QStringLiteral("0.05"));
+    list.startYField()->setText(QStringLiteral("0.09"));
+    list.endXField()->setText(QStringLiteral("0.07"));
+    list.endYField()->setText(QStringLiteral("0.1"));
+    list.columnsBox()->setValue(3);
+    list.rowsBox()->setValue(2);
+    QCOMPARE(list.launchFamily(), 6);
+    QCOMPARE(c.orbitCount(), 11);
+    const LaunchedOrbit& corner = c.launchedOrbits()[10];
+    QVERIFY(corner.x == 0.07L && corner.y == 0.1L);
+    QVERIFY(std::fabs(c.launchedOrbits()[6].x - 0.06L) < 1e-18L && c.launchedOrbits()[6].y == 0.09L);
+    // Each measured and listed as a clicked orbit is (core's identifyChain for its start).
+    QTRY_VERIFY_WITH_TIMEOUT(c.orbitsSettled(), 900000);
+    QTRY_COMPARE_WITH_TIMEOUT(list.list()->topLevelItemCount(), 11, 900000);
+    for (const LaunchedOrbit& o : c.launchedOrbits()) QVERIFY(o.measures && o.measures->error.isEmpty());
+    ChainRequest request;
+    request.map = c.map();
+    const ChainIdentification expected = identifyChain(chainRequestAt(request, {corner.x, corner.y}));
+    QCOMPARE(c.launchedOrbits()[10].measures->chain.summary, expected.summary);
+    // The list refreshes once the event loop is free (a burst of measures, one refresh): wait for it.
+    QTRY_COMPARE_WITH_TIMEOUT(list.list()->topLevelItem(10)->text(4), chainText(*c.launchedOrbits()[10].measures), 900000);
+    // Over-large: refused with core's message, nothing launched; a count of 0 likewise.
+    QSignalSpy messages(&c, &PortraitController::statusMessage);
+    list.columnsBox()->setValue(500);
+    list.rowsBox()->setValue(1);
+    QCOMPARE(list.launchFamily(), 0);
+    QCOMPARE(c.orbitCount(), 11);
+    QString why;
+    try {
+      (void)orbitFamilyStarts({{0.05L, 0.09L}, {0.07L, 0.1L}, 500, 1}, 11);
+    } catch (const std::invalid_argument& e) {
+      why = QString::fromUtf8(e.what());
+    }
+    QVERIFY(!why.isEmpty());
+    QVERIFY(!messages.isEmpty());
+    QCOMPARE(messages.last().first().toString(), why);
+    list.columnsBox()->setValue(0);
+    QCOMPARE(list.launchFamily(), 0);
+    QCOMPARE(c.orbitCount(), 11);
+    list.columnsBox()->setValue(3);
+    list.endXField()->setText(QStringLiteral("east"));
+    QCOMPARE(list.launchFamily(), 0);
+    QCOMPARE(c.orbitCount(), 11);
+  }
+
+  // Finding 16: a click could not find the periodic orbit there.  Shift+click (or a click in Portrait ▸ Click Finds
+  // Periodic Orbits) names the chain as the rotation instrument does and finds its elliptic orbit as
+  // `archipelago-cli periodic --period n --near X,Y --stable` does: the same residue and points, digit for digit.
+  void finding16_aClickFindsThePeriodicOrbitThere() {
+    PortraitPanel panel;
+    panel.resize(900, 600);
+    panel.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&panel));
+    PortraitController& c = *panel.controller();
+    c.setPointBudget(10000);
+    QSignalSpy found(&c, &PortraitController::periodicOrbitFound);
+    // The gesture: Shift+click on the canvas searches, it does not launch an orbit.
+    QWidget* canvas = panel.view()->canvas();
+    QTest::mouseClick(canvas, Qt::LeftButton, Qt::ShiftModifier, canvas->rect().center() + QPoint(40, 25));
+    QTRY_VERIFY_WITH_TIMEOUT(found.count() == 1 && !c.periodicSearchPending(), 900000);
+    QCOMPARE(c.orbitCount(), 0);
+    // The mode: a plain click searches too.
+    QVERIFY(panel.findPeriodicAction() && panel.findPeriodicAction()->isCheckable());
+    panel.findPeriodicAction()->setChecked(true);
+    QTest::mouseClick(canvas, Qt::LeftButton, Qt::NoModifier, canvas->rect().center() + QPoint(-30, 10));
+    QTRY_VERIFY_WITH_TIMEOUT(found.count() == 2 && !c.periodicSearchPending(), 900000);
+    QCOMPARE(c.orbitCount(), 0);
+    panel.findPeriodicAction()->setChecked(false);
+
+    // An exact point in one of the six islands (tests/gui/test_instruments): its chain and orbit against the CLI's.
+    c.findPeriodicOrbitAt(0.06L, 0.0974L);
+    QTRY_VERIFY_WITH_TIMEOUT(found.count() == 3 && !c.periodicSearchPending(), 900000);
+    const auto at = c.clickedPeriodicOrbit();
+    QVERIFY2(at, qPrintable(found.last().first().toString()));
+    QVERIFY(!panel.view()->layerItems(PortraitLayer::periodicOrbits).empty());
+    QVERIFY(found.last().first().toString().contains(QString::fromStdString(at->chain.summary)));
+    QString error;
+    const QString rotation = cliOutput({QStringLiteral("rotation"), QStringLiteral("--K"), QStringLiteral("0.1"),
+                                        QStringLiteral("--x=0.06"), QStringLiteral("--y=0.0974"), QStringLiteral("--json")},
+                                       &error);
+    QVERIFY2(!rotation.isEmpty(), qPrintable(error));
+    const QJsonObject chain = QJsonDocument::fromJson(rotation.toUtf8()).object()[QStringLiteral("chain")].toObject();
+    QCOMPARE(QString::fromStdString(at->chain.summary), chain[QStringLiteral("summary")].toString());
+    QCOMPARE(static_cast<qint64>(at->orbit.period), static_cast<qint64>(chain[QStringLiteral("period")].toDouble()));
+    QCOMPARE(at->orbit.period, 6);  // the paper's six islands (fig. 8)
+    const QString near = longText("--near=%.21Lg,%.21Lg", at->search.near.x, at->search.near.y);
+    const QString periodic = cliOutput({QStringLiteral("periodic"), QStringLiteral("--K"), QStringLiteral("0.1"),
+                                        QStringLiteral("--period"), QString::number(at->orbit.period), near,
+                                        QStringLiteral("--stable")},
+                                       &error);
+    QVERIFY2(!periodic.isEmpty(), qPrintable(error));
+    QCOMPARE(lineAfter(periodic, QStringLiteral("# residue:")), longText("%.18Lg", at->orbit.residue));
+    QCOMPARE(lineAfter(periodic, QStringLiteral("# class:")), QString::fromLatin1(toString(at->orbit.classification().stability)));
+    for (std::size_t k = 0; k < at->orbit.points.size(); ++k)
+      QVERIFY2(periodic.contains(QStringLiteral("\n%1,").arg(k) + longText("%.21Lg,%.21Lg\n", at->orbit.points[k].x, at->orbit.points[k].y)),
+               qPrintable(QString::number(k)));
+    // In the sea (here an orbit that leaves the box) there is no chain to find an orbit of: said in the chain's words.
+    c.findPeriodicOrbitAt(0.0079L, 0.081L);
+    QTRY_VERIFY_WITH_TIMEOUT(found.count() == 4 && !c.periodicSearchPending(), 900000);
+    QVERIFY2(!c.clickedPeriodicOrbit(), qPrintable(found.last().first().toString()));
+    ChainRequest sea;
+    sea.map = c.map();
+    const ChainIdentification seaChain = identifyChain(chainRequestAt(sea, {0.0079L, 0.081L}));
+    QVERIFY(seaChain.levels.front().rotation.verdict != OrbitVerdict::Regular);
+    QVERIFY2(found.last().first().toString().contains(QString::fromStdString(seaChain.summary)),
+             qPrintable(found.last().first().toString()));
+  }
+
+  // Finding 17: the rotation profile's plateaus had no p/q labels.  Core finds the plateaus (rotationPlateaus), the
+  // plot names each; here they equal the runs of equal rationals read independently from `rotation --line --csv`.
+  void finding17_theProfilesPlateausAreLabelled() {
+    PortraitPanel panel;
+    panel.resize(900, 600);
+    panel.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&panel));
+    panel.controller()->setPointBudget(10000);
+    RotationProfilePanel& profile = *panel.profilePanel();
+    QSignalSpy ready(&profile, &RotationProfilePanel::profileReady);
+    profile.profile({-0.25L, 0.0L}, {0.06L, 0.0974L}, 120);
+    QVERIFY(ready.wait(900000));
+    QTemporaryDir dir;
+    const QString csv = dir.filePath(QStringLiteral("cli.csv"));
+    QString error;
+    cliOutput({QStringLiteral("rotation"), QStringLiteral("--K"), QStringLiteral("0.1"),
+               QStringLiteral("--line=-0.25,0:0.06,0.0974"), QStringLiteral("--points"), QStringLiteral("120"),
+               QStringLiteral("--csv"), csv, QStringLiteral("--quiet")},
+              &error);
+    QFile file(csv);
+    QVERIFY2(file.open(QIODevice::ReadOnly), qPrintable(error));
+    QStringList rationals, verdicts;
+    QList<double> rotations;
+    for (const QByteArray& line : file.readAll().split('\n'))
+      if (!line.startsWith('#') && !line.startsWith("index") && !line.isEmpty()) {
+        const QList<QByteArray> f = line.split(',');  // index,x,y,rotation,digits,verdict,rational
+        rotations << (f[3].isEmpty() ? std::nan("") : f[3].toDouble());
+        verdicts << QString::fromUtf8(f[5]);
+        rationals << QString::fromUtf8(f[6]);
+      }
+    QCOMPARE(rationals.size(), 120);
+    // The plateaus read from the table: from a point naming p/q over the points that name it, or name nothing while
+    // regular within 10⁻⁹ of p/q (the 6 islands' sub-island orbits: 13 digits, no rational named), at least 3.
+    QStringList runs;
+    for (int i = 0; i < rationals.size();) {
+      if (rationals[i].isEmpty()) {
+        ++i;
+        continue;
+      }
+      const QStringList pq = rationals[i].split(QLatin1Char('/'));
+      const double value = pq[0].toDouble() / pq[1].toDouble();
+      int j = i;
+      while (j < rationals.size() &&
+             (rationals[j] == rationals[i] ||
+              (rationals[j].isEmpty() && verdicts[j] == QStringLiteral("regular") && std::fabs(rotations[j] - value) <= 1e-9)))
+        ++j;
+      if (j - i >= 3) runs << rationals[i];
+      i = j;
+    }
+    QVERIFY2(runs.contains(QStringLiteral("1/6")), qPrintable(runs.join(QLatin1Char(' '))));
+    QVERIFY2(profile.plateauLabels() == runs,
+             qPrintable(profile.plateauLabels().join(QLatin1Char(' ')) + QStringLiteral(" | ") + runs.join(QLatin1Char(' '))));
+
+    // About an island's own centre: the period-6 orbit a click found, its member nearest the line.  Measuring about
+    // the centre (−√K, 0) without an orbit drawn is the default; asking for an orbit before one is drawn is refused.
+    PortraitController& c = *panel.controller();
+    profile.aboutBox()->setCurrentIndex(1);
+    QVERIFY(!profile.profile({0.05L, 0.0974L}, {0.07L, 0.0974L}, 40));
+    QSignalSpy found(&c, &PortraitController::periodicOrbitFound);
+    c.findPeriodicOrbitAt(0.06L, 0.0974L);
+    QTRY_VERIFY_WITH_TIMEOUT(found.count() == 1 && !c.periodicSearchPending(), 900000);
+    QVERIFY(c.clickedPeriodicOrbit());
+    const PeriodicOrbit orbit = c.clickedPeriodicOrbit()->orbit;
+    QCOMPARE(orbit.period, 6);
+    const PhysicalPoint member = nearestMember(orbit, {0.06L, 0.0974L});
+    const PhysicalPoint from{member.x - 0.004L, member.y}, to{member.x + 0.004L, member.y};
+    QVERIFY(profile.profile(from, to, 40));
+    QVERIFY(ready.wait(900000));
+    QVERIFY(profile.lastRequest().about && profile.lastRequest().about->x == member.x &&
+            profile.lastRequest().about->y == member.y);
+    QCOMPARE(profile.lastRequest().power, std::uint64_t{6});
+    // Independently: a regular start's rotation about the island is the one identifyChain measures at its level 1
+    // (the rotation of Q⁶ about the chain's member), not the rotation about the centre (1/6 for the whole island).
+    const RotationProfile* island = profile.currentProfile();
+    QVERIFY(island && island->points.size() == 40);
+    const RotationProfilePoint& p = island->points[25];
+    QVERIFY(p.measure.verdict == OrbitVerdict::Regular);
+    ChainRequest request;
+    request.map = c.map();
+    request.start = p.start;
+    const ChainIdentification chain = identifyChain(request);
+    QVERIFY2(chain.levels.size() >= 2, chain.summary.c_str());
+    QVERIFY2(std::fabs(p.measure.value - chain.levels[1].rotation.rotation) < 1e-9,
+             qPrintable(QStringLiteral("%1 vs %2").arg(p.measure.value, 0, 'g', 17).arg(chain.levels[1].rotation.rotation, 0, 'g', 17)));
+    QVERIFY(std::fabs(p.measure.value - 1.0 / 6) > 1e-3);
+    // And the CLI's `rotation --line … --about X,Y --period 6 --csv` writes the same rows.
+    const QString gui = dir.filePath(QStringLiteral("gui-about.csv")), cliAbout = dir.filePath(QStringLiteral("cli-about.csv"));
+    QVERIFY(profile.exportCsv(gui));
+    const QString line = longText("--line=%.21Lg,%.21Lg", from.x, from.y) + longText(":%.21Lg,%.21Lg", to.x, to.y);
+    cliOutput({QStringLiteral("rotation"), QStringLiteral("--K"), QStringLiteral("0.1"), line, QStringLiteral("--points"),
+               QStringLiteral("40"), longText("--about=%.21Lg,%.21Lg", member.x, member.y),
+               QStringLiteral("--period"), QStringLiteral("6"), QStringLiteral("--csv"), cliAbout, QStringLiteral("--quiet")},
+              &error);
+    const auto rows = [](const QString& path) {
+      QFile f(path);
+      f.open(QIODevice::ReadOnly);
+      QStringList lines;
+      for (const QByteArray& l : f.readAll().split('\n'))
+        if ((!l.startsWith('#') || l.startsWith("# about") || l.startsWith("# period")) && !l.isEmpty())
+          lines << QString::fromUtf8(l);
+      return lines;
+    };
+    QCOMPARE(rows(gui).size(), 43);  // about, period, the header and 40 rows
+    QCOMPARE(rows(gui), rows(cliAbout));
+  }
+
   // Finding 18: at depth the axes name the view's centre once and label the ticks as offsets (finding 2), and a
   // view can be typed: its centre and width (Portrait ▸ Go to View…).
   void finding18_aTypedViewWithOffsetAxes() {
@@ -567,6 +851,83 @@ class TestIssue37 : public QObject {
     QVERIFY(!panel.goTo(QStringLiteral("0"), QStringLiteral("0"), QStringLiteral("0")));
     QCOMPARE(messages.count(), 3);
     QVERIFY(c.viewport() == before);
+  }
+
+  // Finding 10: the spliced D's error was labelled by the GUI's own words ("bootstrap over segments", later
+  // "spliced; subsets of orbits …") where `stats --short` names the subsets' error: both now print core's one
+  // run summary's note (RunSummary::DErrorNote), for the spliced statistics and for the run alone.
+  void finding10_theSplicedErrorIsNamedAsTheCliNamesIt() {
+    QTemporaryDir dir;
+    TrappingParameters p = archipelago::test::shortRun();
+    p.T = 200'000;
+    TrappingRunOptions o;
+    o.threads = 1;
+    const TrappingState run = runTrapping(startTrapping(p), o);
+    const auto companion =
+        std::make_shared<const TrappingState>(runTrapping(startTrapping(companionParameters(p, 1.0)), o));
+    const RunSnapshotPtr spliced = makeSnapshot(1, run, {}, true, companion);
+    QVERIFY2(spliced->companion, "the run and its companion did not splice");
+    QVERIFY(spliced->tail);
+    const RunSummary summary = summarizeRun(spliced->statistics, spliced->tail.get());
+    QVERIFY(summary.spliced);
+    StatisticsView view;
+    view.showSnapshot(*spliced);
+    QTextDocument shown;
+    shown.setHtml(view.summaryText());
+    const QString gui = shown.toPlainText();
+    const QString note = QString::fromStdString(summary.DErrorNote);
+    QVERIFY2(gui.contains(note), qPrintable(gui + QStringLiteral(" | ") + note));
+    if (summary.errorSource == DErrorSource::subsets)
+      QVERIFY2(!gui.contains(QStringLiteral("bootstrap")), qPrintable(gui));
+    // The CLI's D line for the same two files says the same words.
+    const std::string runFile = dir.filePath(QStringLiteral("run.json")).toStdString();
+    saveRunFile(runFile, run);
+    saveRunFile(companionRunFile(runFile), *companion);
+    QString error;
+    const QString out = cliOutput({QStringLiteral("stats"), QString::fromStdString(runFile), QStringLiteral("--short"),
+                                   QString::fromStdString(companionRunFile(runFile).string())}, &error);
+    QVERIFY2(!out.isEmpty(), qPrintable(error));
+    const QString dLine = lineAfter(out, QStringLiteral("D           "));
+    QVERIFY2(dLine.contains(note), qPrintable(dLine + QStringLiteral(" | ") + note));
+
+    // The run alone: the bootstrap's words, the same in both.
+    const RunSnapshotPtr alone = makeSnapshot(2, run, {}, true);
+    const RunSummary own = summarizeRun(alone->statistics, alone->tail.get());
+    view.showSnapshot(*alone);
+    shown.setHtml(view.summaryText());
+    QVERIFY2(shown.toPlainText().contains(QString::fromStdString(own.DErrorNote)), qPrintable(shown.toPlainText()));
+  }
+
+  // Finding 19: the Statistics page showed neither the fitted γ_P nor the tail's verdict, which `stats` prints.
+  // The same run file, opened in the window and given to the CLI: the same words and digits (one core summary).
+  void finding19_gammaPAndTheVerdictAsTheCliPrintsThem() {
+    QTemporaryDir dir;
+    TrappingParameters p = archipelago::test::shortRun();
+    p.T = 200'000;
+    TrappingRunOptions o;
+    o.threads = 1;
+    const QString runFile = dir.filePath(QStringLiteral("run.json"));
+    saveRunFile(runFile.toStdString(), runTrapping(startTrapping(p), o));
+    QString error;
+    const QString out = cliOutput({QStringLiteral("stats"), runFile}, &error);
+    QVERIFY2(!out.isEmpty(), qPrintable(error));
+    QString gamma = lineAfter(out, QStringLiteral("gamma_P     "));
+    QVERIFY2(!gamma.isEmpty(), qPrintable(out));  // this run has a tail fit
+    gamma = gamma.left(gamma.indexOf(QStringLiteral(" (P_t")));
+    const QString verdict = lineAfter(out, QStringLiteral("verdict     "));
+    QVERIFY(!verdict.isEmpty());
+
+    MainWindow w;
+    w.setConfirmations(false);
+    QVERIFY(w.statisticsView()->tailText().isEmpty());
+    QVERIFY2(w.openRunFile(runFile, &error), qPrintable(error));
+    QVERIFY(waitForStatus(w, RunStatus::finished, 900000));
+    QTRY_VERIFY_WITH_TIMEOUT(w.latestSnapshot() && w.latestSnapshot()->tail, 900000);
+    w.refreshNow();
+    const QString tail = w.statisticsView()->tailText();
+    QVERIFY2(tail.contains(QStringLiteral("γP")) || tail.contains(QStringLiteral("γ")), qPrintable(tail));
+    QVERIFY2(tail.contains(gamma), qPrintable(tail + QStringLiteral(" | CLI: ") + gamma));
+    QVERIFY2(tail.contains(verdict), qPrintable(tail + QStringLiteral(" | CLI: ") + verdict));
   }
 
   // Finding 20: no CSV of a single launched orbit, and no undo for Clear Orbits.

@@ -112,6 +112,35 @@ OrbitListPanel::OrbitListPanel(PortraitController* controller, QWidget* parent)
   auto* launch = new QPushButton(tr("Launch"), this);
   launch->setToolTip(tr("Launch an orbit from the typed start"));
   connect(launch, &QPushButton::clicked, this, &OrbitListPanel::launchTyped);
+  // A line or a grid at once (issue 37, finding 15): from the start above to this point; rows = 1 is a line.
+  endX_ = new QLineEdit(this);
+  endX_->setObjectName(QStringLiteral("orbitEndX"));
+  endX_->setPlaceholderText(tr("to x"));
+  endY_ = new QLineEdit(this);
+  endY_->setObjectName(QStringLiteral("orbitEndY"));
+  endY_->setPlaceholderText(tr("to y"));
+  for (QLineEdit* e : {endX_, endY_}) {
+    e->setToolTip(tr("The line's other end, or the grid's opposite corner (physical coordinates)"));
+    connect(e, &QLineEdit::returnPressed, this, &OrbitListPanel::launchFamily);
+  }
+  columns_ = new QSpinBox(this);
+  columns_->setObjectName(QStringLiteral("orbitColumns"));
+  rows_ = new QSpinBox(this);
+  rows_->setObjectName(QStringLiteral("orbitRows"));
+  for (QSpinBox* b : {columns_, rows_}) {
+    b->setRange(0, 99999);  // the field's width; the count's rule is core's (orbitFamilyStarts), its message shown
+    b->setValue(1);
+  }
+  columns_->setValue(10);
+  columns_->setToolTip(tr("Orbits along the line, or per row of the grid"));
+  rows_->setToolTip(tr("Rows of the grid (1: a line from the start to the other end)"));
+  columns_->setPrefix(QStringLiteral("n "));
+  rows_->setPrefix(QStringLiteral("× "));
+  auto* many = new QPushButton(tr("Line/Grid"), this);
+  many->setObjectName(QStringLiteral("launchFamily"));
+  many->setToolTip(tr("Launch n orbits on the line from the start to the other end, or n × rows over the rectangle "
+                      "the two span; each is measured and listed"));
+  connect(many, &QPushButton::clicked, this, &OrbitListPanel::launchFamily);
   connect(list_, &QTreeWidget::currentItemChanged, this, [this](QTreeWidgetItem* item) {
     controller_->highlightOrbit(item ? item->data(0, Qt::UserRole).toULongLong() : 0);
   });
@@ -136,10 +165,19 @@ OrbitListPanel::OrbitListPanel(PortraitController* controller, QWidget* parent)
   startRow->addWidget(startX_, 1);
   startRow->addWidget(startY_, 1);
   startRow->addWidget(launch);
+  auto* endRow = new QHBoxLayout;
+  endRow->addWidget(endX_, 1);
+  endRow->addWidget(endY_, 1);
+  auto* countRow = new QHBoxLayout;
+  countRow->addWidget(columns_, 1);
+  countRow->addWidget(rows_, 1);
+  countRow->addWidget(many);
   auto* form = new QFormLayout;
   form->setContentsMargins(0, 0, 0, 0);
   form->addRow(tr("Steps"), launchRow);
   form->addRow(tr("Start"), startRow);
+  form->addRow(tr("To"), endRow);
+  form->addRow(tr("Orbits"), countRow);
   auto* layout = new QVBoxLayout(this);
   layout->setContentsMargins(2, 4, 2, 2);
   layout->addLayout(form);
@@ -209,6 +247,24 @@ bool OrbitListPanel::launchTyped() {
     return false;
   }
   return controller_->launchOrbit(*x, *y, static_cast<std::uint64_t>(steps_->value()), backward_->isChecked()) != 0;
+}
+
+int OrbitListPanel::launchFamily() {
+  OrbitFamily family;
+  const QLineEdit* fields[] = {startX_, startY_, endX_, endY_};
+  long double* values[] = {&family.from.x, &family.from.y, &family.to.x, &family.to.y};
+  const QString names[] = {tr("start's x"), tr("start's y"), tr("other end's x"), tr("other end's y")};
+  for (int i = 0; i < 4; ++i) {
+    const auto v = io::parseLongDoubleC(fields[i]->text().trimmed().toStdString());
+    if (!v) {
+      Q_EMIT statusMessage(tr("The %1 is not a number").arg(names[i]));
+      return 0;
+    }
+    *values[i] = *v;
+  }
+  family.columns = static_cast<std::uint64_t>(columns_->value());
+  family.rows = static_cast<std::uint64_t>(rows_->value());
+  return controller_->launchOrbitFamily(family, static_cast<std::uint64_t>(steps_->value()), backward_->isChecked());
 }
 
 bool OrbitListPanel::exportSelectedCsv(const QString& path, QString* error) {

@@ -39,6 +39,15 @@ class OrbitListPanel : public QWidget {
   /// Launches an orbit from the typed start with the steps and direction shown; false (the reason in the status
   /// bar) when a coordinate is not a number or the point is not in the box.
   bool launchTyped();
+  /// A line or a grid of orbits (issue 37, finding 15): from the typed start to the "to" point, `columns`
+  /// orbits per row and `rows` rows (1: a line).
+  [[nodiscard]] QLineEdit* endXField() const noexcept { return endX_; }
+  [[nodiscard]] QLineEdit* endYField() const noexcept { return endY_; }
+  [[nodiscard]] QSpinBox* columnsBox() const noexcept { return columns_; }
+  [[nodiscard]] QSpinBox* rowsBox() const noexcept { return rows_; }
+  /// Launches the line or grid with the steps and direction shown; how many were launched (0: refused, the reason
+  /// in the status bar: a coordinate not a number, or core's rule of the count).
+  int launchFamily();
   /// Writes the selected orbit as CSV (the CLI's `orbit` output; issue 37, finding 20).
   bool exportSelectedCsv(const QString& path, QString* error = nullptr);
 
@@ -61,6 +70,10 @@ class OrbitListPanel : public QWidget {
   QCheckBox* backward_ = nullptr;
   QLineEdit* startX_ = nullptr;
   QLineEdit* startY_ = nullptr;
+  QLineEdit* endX_ = nullptr;
+  QLineEdit* endY_ = nullptr;
+  QSpinBox* columns_ = nullptr;
+  QSpinBox* rows_ = nullptr;
   QTimer* refreshTimer_ = nullptr;
 };
 

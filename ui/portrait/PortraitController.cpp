@@ -39,6 +39,7 @@ constexpr int kTraceChannel = 0;     // a queue: each launched orbit once, in la
 constexpr int kManifoldChannel = 1;  // latest wins: the manifolds of the view shown
 constexpr int kFluxChannel = 2;      // latest wins: the flux of the orbit shown
 constexpr int kAtlasChannel = 3;     // latest wins: the atlas island selected
+constexpr int kPeriodicChannel = 4;  // latest wins: the periodic orbit at the last click
 
 /// Points drawn of an atlas island's boundary circle, per island of its chain, and in all.
 constexpr std::uint64_t kAtlasPointsPerIsland = 4000;
@@ -73,7 +74,9 @@ PortraitController::PortraitController(QWidget* viewParent) : QObject(viewParent
   connect(v, &PortraitView::cropRequested, this, &PortraitController::crop);
   // A click launches an orbit and ends the selection: the new orbit is drawn in full, as are the others (issue 37,
   // finding 8: orbits clicked while one was selected were drawn dimmed, nearly invisible).
+  connect(v, &PortraitView::periodicOrbitRequested, this, &PortraitController::findPeriodicOrbitAt);
   connect(v, &PortraitView::clicked, this, [this](long double x, long double y) {
+    if (clickFindsPeriodic_) return findPeriodicOrbitAt(x, y);
     highlightOrbit(0);
     launchOrbit(x, y, clickSteps_, clickBackward_);
   });
@@ -81,7 +84,7 @@ PortraitController::PortraitController(QWidget* viewParent) : QObject(viewParent
   connect(v, &PortraitView::forwardRequested, this, &PortraitController::forward);
   connect(v, &PortraitView::resetRequested, this, &PortraitController::resetView);
   connect(v, &PortraitView::statusMessage, this, &PortraitController::statusMessage);
-  jobs_ = std::make_unique<BackgroundJobs>(this, 4);
+  jobs_ = std::make_unique<BackgroundJobs>(this, 5);
   measureJobs_ = std::make_unique<BackgroundJobs>(this, 1, JobPriority::background);
   updateFixedPoints();
   view_->display(map_, viewport());
@@ -389,6 +392,25 @@ quint64 PortraitController::launchOrbit(long double x, long double y, std::uint6
   return orbit.id;
 }
 
+int PortraitController::launchOrbitFamily(const OrbitFamily& family, std::uint64_t steps, bool backward) {
+  std::vector<PhysicalPoint> starts;
+  try {
+    starts = orbitFamilyStarts(family, orbits_.size());
+  } catch (const std::invalid_argument& e) {
+    Q_EMIT statusMessage(QString::fromStdString(e.what()));
+    return 0;
+  }
+  int launched = 0;
+  for (const PhysicalPoint& p : starts) launched += launchOrbit(p.x, p.y, steps, backward) != 0;
+  Q_EMIT statusMessage(tr("%1 orbits launched (%2 × %3), %4 steps each%5; measuring their rotation numbers and chains…")
+                           .arg(launched)
+                           .arg(family.columns)
+                           .arg(family.rows)
+                           .arg(std::clamp<std::uint64_t>(steps, 1, limits::kOrbitLength))
+                           .arg(backward ? tr(" backward (N⁻¹)") : QString()));
+  return launched;
+}
+
 void PortraitController::traceOrbit(const LaunchedOrbit& orbit) {
   // Each orbit once: traced on a queue (its points), then measured on the niced queue.  Nothing of the earlier
   // orbits is recomputed; the GUI thread only adds one plot item per orbit.
@@ -600,6 +622,7 @@ void PortraitController::showSegmentStep(std::size_t index) {
 }
 
 void PortraitController::showPeriodicOrbit(const PeriodicOrbit& orbit) {
+  if (clickedPeriodic_ && &orbit != &clickedPeriodic_->orbit) clickedPeriodic_.reset();  // another's overlay
   periodicPeriod_ = orbit.period;
   periodic_ = orbit;
   if (!view_) return;
@@ -616,8 +639,57 @@ void PortraitController::clearSegment() {
   updateLegend();
 }
 
+QString PortraitController::periodicOrbitText(const PeriodicOrbitAt& found) {
+  const PeriodicOrbit& o = found.orbit;
+  const OrbitClassification kind = o.classification();
+  return tr("Periodic orbit of period %1, %2 (residue %3), near (%4, %5): %6 — as archipelago-cli periodic --period "
+            "%1 --near=%4,%5 --stable finds it")
+      .arg(o.period)
+      .arg(QString::fromLatin1(toString(kind.stability)))
+      .arg(static_cast<double>(o.residue), 0, 'g', 10)
+      .arg(QString::number(static_cast<double>(found.search.near.x), 'g', 17),
+           QString::number(static_cast<double>(found.search.near.y), 'g', 17),
+           QString::fromStdString(found.chain.summary));
+}
+
+void PortraitController::findPeriodicOrbitAt(long double x, long double y) {
+  const MapParameters map = map_;
+  Job<std::shared_ptr<const PeriodicOrbitAt>> job;
+  job.channel = kPeriodicChannel;  // latest wins: another click replaces this search
+  job.order = JobOrder::latest;
+  job.work = [map, x, y](JobContext<NoProgress>& context) -> std::optional<std::shared_ptr<const PeriodicOrbitAt>> {
+    ChainRequest request;
+    request.map = map;
+    request = chainRequestAt(request, {x, y});  // the rotation instrument's request for this start
+    return std::make_shared<const PeriodicOrbitAt>(periodicOrbitAt(request, context.stopToken()));
+  };
+  job.done = [this, x, y](JobResult<std::shared_ptr<const PeriodicOrbitAt>> r) {
+    periodicRequest_ = 0;
+    if (!r.ok()) {
+      clickedPeriodic_.reset();
+      const QString text = tr("No periodic orbit found at (%1, %2): %3")
+                               .arg(static_cast<double>(x), 0, 'g', 10)
+                               .arg(static_cast<double>(y), 0, 'g', 10)
+                               .arg(r.error);
+      Q_EMIT statusMessage(text);
+      Q_EMIT periodicOrbitFound(text);
+      return;
+    }
+    clickedPeriodic_ = *r.value;
+    showPeriodicOrbit(clickedPeriodic_->orbit);
+    const QString text = periodicOrbitText(*clickedPeriodic_);
+    Q_EMIT statusMessage(text);
+    Q_EMIT periodicOrbitFound(text);
+  };
+  Q_EMIT statusMessage(tr("Finding the periodic orbit at (%1, %2): naming its chain, then Newton…")
+                           .arg(static_cast<double>(x), 0, 'g', 10)
+                           .arg(static_cast<double>(y), 0, 'g', 10));
+  periodicRequest_ = jobs_->submit(std::move(job));
+}
+
 void PortraitController::clearPeriodicOrbit() {
   periodicPeriod_ = 0;
+  clickedPeriodic_.reset();
   periodic_.reset();
   if (view_) view_->setLayer(PortraitLayer::periodicOrbits, {});
   updateLegend();
@@ -637,6 +709,16 @@ void PortraitController::showProfileLine(std::optional<std::pair<PhysicalPoint, 
 
 void PortraitController::updateLegend() {
   QStringList lines = SegmentOverlay::legendLines(replay_, chain_, periodicPeriod_);
+  if (clickedPeriodic_) {  // the chain a click named (issue 37, finding 16), its phrases one per line
+    lines << tr("&nbsp;&nbsp;&nbsp;%1, residue %2, found at a click in the chain:")
+                 .arg(QString::fromLatin1(toString(clickedPeriodic_->orbit.classification().stability)))
+                 .arg(static_cast<double>(clickedPeriodic_->orbit.residue), 0, 'g', 6);
+    // Each phrase on a line of its own, a long one cut (the legend is not wrapped; the status bar has it whole).
+    for (QString phrase : QString::fromStdString(clickedPeriodic_->chain.summary).split(QStringLiteral("; "))) {
+      if (phrase.size() > 52) phrase = phrase.left(51) + QStringLiteral("…");
+      lines << QStringLiteral("&nbsp;&nbsp;&nbsp;") + phrase.toHtmlEscaped();
+    }
+  }
   if (!atlasLabel_.isEmpty())
     lines << tr("<span style='color:#78ff50'>●</span> boundary circle of the atlas island %1").arg(atlasLabel_.toHtmlEscaped());
   if (manifoldsShown_ && manifolds_)

@@ -31,11 +31,13 @@
 #include "core/manifolds/TurnstileFlux.hpp"
 #include "core/map/MapParameters.hpp"
 #include "core/measures/OrbitMeasures.hpp"
+#include "core/measures/PeriodicOrbitAt.hpp"
 #include "core/periodic/PeriodicOrbit.hpp"
 #include "core/periodic/SegmentAnalysis.hpp"
 #include "core/colour/ColourMap.hpp"
 #include "core/portrait/PortraitRaster.hpp"
 #include "core/view/Viewport.hpp"
+#include "core/session/OrbitFamily.hpp"
 #include "core/session/SessionFile.hpp"
 #include "ui/portrait/LaunchedOrbits.hpp"
 #include "ui/portrait/PortraitView.hpp"
@@ -150,6 +152,10 @@ class PortraitController : public QObject {
   /// is traced (off the GUI thread), then measured (rotation number, digits, chain).  Returns its id, or 0 when
   /// refused: kMaxLaunchedOrbits are shown already (statusMessage says so).
   quint64 launchOrbit(long double x, long double y, std::uint64_t steps = kLaunchedOrbitSteps, bool backward = false);
+  /// Launches a line or a grid of orbits at once (issue 37, finding 15; core's orbitFamilyStarts), each like
+  /// launchOrbit().  Returns how many were launched: 0 when core refuses the family (statusMessage gives its
+  /// words: a count of 0, or more than the portrait keeps with those launched already).
+  int launchOrbitFamily(const OrbitFamily& family, std::uint64_t steps = kLaunchedOrbitSteps, bool backward = false);
   /// What a click on the portrait launches (issue 37, finding 15): `steps` steps (1 … 10⁸) of N, or of N⁻¹.
   void setClickOrbit(std::uint64_t steps, bool backward);
   [[nodiscard]] std::uint64_t clickSteps() const noexcept { return clickSteps_; }
@@ -180,9 +186,25 @@ class PortraitController : public QObject {
   void showSegmentStep(std::size_t index);
   /// A periodic orbit from the dialog (replacing the previous one).
   void showPeriodicOrbit(const PeriodicOrbit& orbit);
+  /// The periodic orbit drawn as the overlay (the dialog's, a click's, an atlas island's chain), if any.
+  [[nodiscard]] const std::optional<PeriodicOrbit>& shownPeriodicOrbit() const noexcept { return periodic_; }
   /// Removes the segment, its chain and its step (a new run: the periodic orbits of the same map stay, issue 25,
   /// finding 13).
   void clearSegment();
+  /// Finds the periodic orbit at the physical point (issue 37, finding 16: a Shift+click, or any click while
+  /// clickFindsPeriodicOrbit()): core's periodicOrbitAt off the GUI thread — the chain named as the rotation
+  /// instrument names it, its elliptic orbit found as `archipelago-cli periodic --period n --near X,Y --stable`
+  /// finds it — drawn as the periodic overlay; periodicOrbitFound() says what was found, or why nothing.
+  void findPeriodicOrbitAt(long double x, long double y);
+  /// A plain click finds the periodic orbit there instead of launching an orbit (Portrait ▸ Click Finds Periodic
+  /// Orbits).
+  void setClickFindsPeriodicOrbit(bool on) { clickFindsPeriodic_ = on; }
+  [[nodiscard]] bool clickFindsPeriodicOrbit() const noexcept { return clickFindsPeriodic_; }
+  /// The last orbit a click found (null: none yet, or the last search found nothing), and whether one is searched.
+  [[nodiscard]] std::shared_ptr<const PeriodicOrbitAt> clickedPeriodicOrbit() const noexcept { return clickedPeriodic_; }
+  [[nodiscard]] bool periodicSearchPending() const noexcept { return periodicRequest_ != 0; }
+  /// The words of what a click found: "Period 6, elliptic (residue 0.36): 1/6 about the centre; …".
+  [[nodiscard]] static QString periodicOrbitText(const PeriodicOrbitAt& found);
   /// Removes the periodic orbit of the dialog.
   void clearPeriodicOrbit();
   /// The rotation-profile line (none: hidden).
@@ -247,6 +269,8 @@ class PortraitController : public QObject {
   void orbitsChanged();
   /// The manifolds or the flux changed (computed, cleared).
   void manifoldsChanged();
+  /// A click's periodic-orbit search ended: `text` says what it found, or why nothing (findPeriodicOrbitAt).
+  void periodicOrbitFound(const QString& text);
   /// An island of the atlas is drawn (showAtlasIsland's result arrived).
   void atlasIslandShown();
 
@@ -286,6 +310,9 @@ class PortraitController : public QObject {
   ChainResultPtr chain_;
   int periodicPeriod_ = 0;
   std::optional<PeriodicOrbit> periodic_;           // the overlay from the periodic-orbit dialog
+  std::shared_ptr<const PeriodicOrbitAt> clickedPeriodic_;  // the last a click found
+  quint64 periodicRequest_ = 0;
+  bool clickFindsPeriodic_ = false;
   // The work of the last map left (views, orbits, overlay): a change of map keeps it, and setting that map again
   // brings it back (issue 37, finding 3: typing in K discarded it without a word).
   struct KeptWork {
@@ -304,7 +331,7 @@ class PortraitController : public QObject {
   quint64 atlasRequest_ = 0;
   // Last members: destroyed first, they stop the jobs and join their threads while everything they use lives.
   std::unique_ptr<BackgroundJobs> jobs_;            // channels: kTraceChannel, kManifoldChannel, kFluxChannel,
-                                                    // kAtlasChannel
+                                                    // kAtlasChannel, kPeriodicChannel
   std::unique_ptr<BackgroundJobs> measureJobs_;     // niced: the measures of launched orbits, a queue
 };
 

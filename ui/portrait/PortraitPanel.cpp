@@ -161,7 +161,7 @@ PortraitPanel::PortraitPanel(QWidget* parent) : QWidget(parent) {
   stopButton_ = bar_->addAction(stop_);
   for (QAction* a : {back_, forward_, reset_, zoomIn_, zoomOut_}) bar_->addAction(a);
   bar_->addSeparator();
-  for (QAction* a : {undoOrbit_, clearOrbits_, manifolds_, profileTool_}) bar_->addAction(a);
+  for (QAction* a : {undoOrbit_, clearOrbits_, manifolds_, profileTool_, findPeriodic_}) bar_->addAction(a);
   bar_->addSeparator();
   for (QAction* a : {exportPng_, exportNpy_, b2_}) bar_->addAction(a);
 
@@ -184,8 +184,8 @@ PortraitPanel::PortraitPanel(QWidget* parent) : QWidget(parent) {
   auto* hint = new QLabel(this);
   hint->setObjectName(QStringLiteral("portraitHint"));
   hint->setWordWrap(true);
-  hint->setText(tr("○ elliptic, × hyperbolic fixed point · click: launch an orbit · drag: zoom · wheel: zoom at "
-                   "the cursor · middle-drag or arrows: pan"));
+  hint->setText(tr("○ elliptic, × hyperbolic fixed point · click: launch an orbit · Shift+click: its periodic orbit · "
+                   "drag: zoom · wheel: zoom at the cursor · middle-drag or arrows: pan"));
   hint->setToolTip(hint->text());
   hint->setStyleSheet(QStringLiteral("color: palette(mid);"));
 
@@ -341,6 +341,13 @@ void PortraitPanel::createActions() {
     controller_->setManifoldsShown(on);
     if (on) side_->setCurrentWidget(manifoldsPanel_);
   });
+  // Issue 37, finding 16: the periodic orbit at a click (Shift+click always; a plain click in this mode).
+  findPeriodic_ = new QAction(tr("Click Finds Periodic Orbits"), this);
+  findPeriodic_->setCheckable(true);
+  findPeriodic_->setIconText(tr("Find orbit"));
+  findPeriodic_->setStatusTip(tr("A click (or Shift+click at any time) finds the periodic orbit there: its island chain "
+                                 "named, its elliptic orbit found by Newton and drawn"));
+  connect(findPeriodic_, &QAction::toggled, c, &PortraitController::setClickFindsPeriodicOrbit);
   profileTool_ = new QAction(tr("Rotation Profile Tool"), this);
   profileTool_->setCheckable(true);
   profileTool_->setShortcut(QKeySequence(QStringLiteral("Ctrl+L")));
@@ -419,6 +426,7 @@ void PortraitPanel::createMenu() {
   menu_->addAction(clearOrbits_);
   menu_->addAction(manifolds_);
   menu_->addAction(profileTool_);
+  menu_->addAction(findPeriodic_);
   menu_->addSeparator();
   menu_->addAction(exportPng_);
   menu_->addAction(exportNpy_);

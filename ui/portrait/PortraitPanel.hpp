@@ -79,6 +79,7 @@ class PortraitPanel : public QWidget {
   [[nodiscard]] QAction* equalAspectAction() const noexcept { return equalAspect_; }
   [[nodiscard]] QAction* manifoldsAction() const noexcept { return manifolds_; }
   [[nodiscard]] QAction* profileToolAction() const noexcept { return profileTool_; }
+  [[nodiscard]] QAction* findPeriodicAction() const noexcept { return findPeriodic_; }
   [[nodiscard]] QAction* resetAction() const noexcept { return reset_; }
   /// The modes offered (the mode box's order) and the one shown.
   [[nodiscard]] static std::vector<PortraitDisplay> displays();
@@ -156,6 +157,7 @@ class PortraitPanel : public QWidget {
   QAction* clearOrbits_ = nullptr;
   QAction* manifolds_ = nullptr;
   QAction* profileTool_ = nullptr;
+  QAction* findPeriodic_ = nullptr;
   QAction* exportPng_ = nullptr;
   QAction* exportNpy_ = nullptr;
   QAction* b2_ = nullptr;

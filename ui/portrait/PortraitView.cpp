@@ -796,6 +796,13 @@ bool PortraitView::eventFilter(QObject* watched, QEvent* event) {
         return true;
       }
       case QEvent::MouseButtonPress:
+        // Shift+click: the periodic orbit there (issue 37, finding 16); the picker takes unmodified drags only.
+        if (!lineTool_ && static_cast<QMouseEvent*>(event)->button() == Qt::LeftButton &&
+            (static_cast<QMouseEvent*>(event)->modifiers() & Qt::ShiftModifier)) {
+          const PhysicalPoint p = physicalAt(mousePosition(static_cast<QMouseEvent*>(event)));
+          Q_EMIT periodicOrbitRequested(p.x, p.y);
+          return true;
+        }
         if (lineTool_ && static_cast<QMouseEvent*>(event)->button() == Qt::LeftButton) {
           lineStart_ = mousePosition(static_cast<QMouseEvent*>(event));
           lineDragging_ = true;

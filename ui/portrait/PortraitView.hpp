@@ -139,6 +139,8 @@ class PortraitView : public QWidget {
   void cropRequested(double fx0, double fx1, double fy0, double fy1);
   void panRequested(double fx, double fy);
   void clicked(long double x, long double y);
+  /// A Shift+click: find the periodic orbit there (issue 37, finding 16).
+  void periodicOrbitRequested(long double x, long double y);
   void backRequested();
   void forwardRequested();
   void resetRequested();

@@ -1,5 +1,6 @@
 #include "ui/portrait/RotationProfilePanel.hpp"
 
+#include <QComboBox>
 #include <QDir>
 #include <QFileDialog>
 #include <QHBoxLayout>
@@ -11,6 +12,7 @@
 #include <qwt_plot.h>
 #include <qwt_plot_curve.h>
 #include <qwt_plot_grid.h>
+#include <qwt_plot_marker.h>
 #include <qwt_plot_renderer.h>
 #include <qwt_symbol.h>
 #include <qwt_text.h>
@@ -18,6 +20,8 @@
 #include <cmath>
 
 #include "core/kernels/KernelDispatch.hpp"
+#include "core/measures/PeriodicOrbitAt.hpp"
+#include "core/measures/RotationPlateaus.hpp"
 #include "ui/files/OutputFiles.hpp"
 #include "ui/jobs/BackgroundJobs.hpp"
 #include "ui/portrait/PortraitController.hpp"
@@ -35,6 +39,12 @@ RotationProfilePanel::RotationProfilePanel(PortraitController* controller, QWidg
   points_->setRange(2, 100000);
   points_->setValue(400);
   points_->setToolTip(tr("Orbits started along the line, each measured over 2 × 10⁴ steps"));
+  about_ = new QComboBox(this);
+  about_->setObjectName(QStringLiteral("profileAbout"));
+  about_->addItem(tr("the centre (−√K, 0)"));
+  about_->addItem(tr("the periodic orbit drawn (Shift+click an island)"));
+  about_->setToolTip(tr("The rotation about the central fixed point, or about an island's own centre: the member "
+                        "nearest the line of the elliptic periodic orbit drawn on the portrait (Qⁿ for period n)"));
   info_ = new QLabel(tr("The rotation number about the centre of orbits started along a line: plateaus are island "
                         "chains (p/q: a chain of period q)."),
                      this);
@@ -90,6 +100,9 @@ RotationProfilePanel::RotationProfilePanel(PortraitController* controller, QWidg
   auto* row = new QHBoxLayout;
   row->addWidget(new QLabel(tr("Orbits:"), this));
   row->addWidget(points_, 1);
+  auto* aboutRow = new QHBoxLayout;
+  aboutRow->addWidget(new QLabel(tr("About:"), this));
+  aboutRow->addWidget(about_, 1);
   auto* exports = new QHBoxLayout;
   exports->addWidget(csv_);
   exports->addWidget(png_);
@@ -97,6 +110,7 @@ RotationProfilePanel::RotationProfilePanel(PortraitController* controller, QWidg
   layout->setContentsMargins(2, 4, 2, 2);
   layout->addWidget(tool_);
   layout->addLayout(row);
+  layout->addLayout(aboutRow);
   layout->addWidget(info_);
   layout->addWidget(plot_, 1);
   layout->addLayout(exports);
@@ -117,16 +131,26 @@ void RotationProfilePanel::setToolActive(bool on) {
   Q_EMIT toolChanged(on);
 }
 
-void RotationProfilePanel::profile(PhysicalPoint from, PhysicalPoint to, std::uint32_t points) {
+bool RotationProfilePanel::profile(PhysicalPoint from, PhysicalPoint to, std::uint32_t points) {
   RotationProfileRequest r;
   r.measure.map = controller_->map();
   r.measure.kind = IndicatorKind::Rotation;
   r.from = from;
   r.to = to;
   r.points = points;
+  if (about_->currentIndex() == 1) {
+    const std::optional<PeriodicOrbit>& orbit = controller_->shownPeriodicOrbit();
+    if (!orbit || !orbit->classification().stable()) {
+      Q_EMIT statusMessage(tr("Rotation profile: no elliptic periodic orbit is drawn to measure about; Shift+click an "
+                              "island to find its orbit, or measure about the centre"));
+      return false;
+    }
+    r.about = nearestMember(*orbit, {(from.x + to.x) / 2, (from.y + to.y) / 2});
+    r.power = static_cast<std::uint64_t>(orbit->period);
+  }
   if (auto e = validationError(r)) {
     Q_EMIT statusMessage(tr("Rotation profile: %1").arg(QString::fromStdString(*e)));
-    return;
+    return false;
   }
   controller_->showProfileLine(std::make_pair(from, to));
   lastRequest_ = r;
@@ -155,6 +179,7 @@ void RotationProfilePanel::profile(PhysicalPoint from, PhysicalPoint to, std::ui
   };
   request_ = jobs_->submit(std::move(job));
   info_->setText(tr("Measuring…"));
+  return true;
 }
 
 void RotationProfilePanel::show() {
@@ -178,14 +203,55 @@ void RotationProfilePanel::show() {
                        .arg(static_cast<double>(lastRequest_.from.x), 0, 'g', 8)
                        .arg(static_cast<double>(lastRequest_.from.y), 0, 'g', 8)
                        .arg(static_cast<double>(lastRequest_.to.x), 0, 'g', 8)
-                       .arg(static_cast<double>(lastRequest_.to.y), 0, 'g', 8));
+                       .arg(static_cast<double>(lastRequest_.to.y), 0, 'g', 8) +
+                   (lastRequest_.about
+                        ? tr(" About the period-%1 orbit's point (%2, %3): the rotation of Q^%1, turns per %1 steps.")
+                              .arg(lastRequest_.power)
+                              .arg(static_cast<double>(lastRequest_.about->x), 0, 'g', 10)
+                              .arg(static_cast<double>(lastRequest_.about->y), 0, 'g', 10)
+                        : QString()));
   }
   curve_->setSamples(samples);
+  QwtText yTitle = plot_->axisTitle(QwtPlot::yLeft);
+  yTitle.setText(profile_ && lastRequest_.about ? tr("rotation of Q^%1 about the island (turns)").arg(lastRequest_.power)
+                                                : tr("rotation number (turns/step)"));
+  plot_->setAxisTitle(QwtPlot::yLeft, yTitle);
+  // The plateaus' p/q (issue 37, finding 17): core finds them, the plot names each above its middle.
+  for (QwtPlotMarker* m : plateauMarkers_) {
+    m->detach();
+    delete m;
+  }
+  plateauMarkers_.clear();
+  if (profile_) {
+    const std::size_t n = profile_->points.size();
+    for (const RotationPlateau& p : rotationPlateaus(*profile_)) {
+      auto* marker = new QwtPlotMarker;
+      QwtText label(QString::fromStdString(toString(p.rational)));
+      QFont font = plot_->font();
+      font.setBold(true);
+      font.setPointSizeF(font.pointSizeF() * 0.85);
+      label.setFont(font);
+      label.setColor(QColor(160, 30, 30));
+      marker->setLabel(label);
+      marker->setLabelAlignment(Qt::AlignHCenter | Qt::AlignTop);
+      const double mid = n > 1 ? 0.5 * static_cast<double>(p.first + p.last) / static_cast<double>(n - 1) : 0.0;
+      marker->setValue(mid, p.rotation);
+      marker->setSymbol(nullptr);
+      marker->attach(plot_);
+      plateauMarkers_.push_back(marker);
+    }
+  }
   csv_->setEnabled(profile_ != nullptr);
   png_->setEnabled(profile_ != nullptr);
   plot_->setAxisAutoScale(QwtPlot::yLeft, true);
   plot_->setAxisScale(QwtPlot::xBottom, 0, 1);
   plot_->replot();
+}
+
+QStringList RotationProfilePanel::plateauLabels() const {
+  QStringList labels;
+  for (const QwtPlotMarker* m : plateauMarkers_) labels << m->label().text();
+  return labels;
 }
 
 bool RotationProfilePanel::exportCsv(const QString& path, QString* error) {

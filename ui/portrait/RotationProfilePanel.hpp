@@ -13,14 +13,19 @@
 
 #include <memory>
 #include <optional>
+#include <vector>
+
+#include <QStringList>
 
 #include "core/measures/RotationProfile.hpp"
 
+class QComboBox;
 class QLabel;
 class QPushButton;
 class QSpinBox;
 class QwtPlot;
 class QwtPlotCurve;
+class QwtPlotMarker;
 
 namespace archipelago::ui {
 
@@ -36,12 +41,21 @@ class RotationProfilePanel : public QWidget {
   /// While active, a drag on the portrait draws a line and profiles it (instead of zooming).
   void setToolActive(bool on);
   [[nodiscard]] bool toolActive() const noexcept { return active_; }
-  /// Profiles the line from `from` to `to` (physical coordinates) with `points` starts.
-  void profile(PhysicalPoint from, PhysicalPoint to, std::uint32_t points);
+  /// Profiles the line from `from` to `to` (physical coordinates) with `points` starts, about the centre the
+  /// About box names: (−√K, 0), or the member nearest the line's middle of the elliptic periodic orbit drawn on the
+  /// portrait (a Shift+click finds one; issue 37, finding 17).  False (the reason in the status bar) when the
+  /// request is refused, e.g. no elliptic periodic orbit is drawn.
+  bool profile(PhysicalPoint from, PhysicalPoint to, std::uint32_t points);
+  /// The About box: 0 the centre (−√K, 0), 1 the periodic orbit drawn.
+  [[nodiscard]] QComboBox* aboutBox() const noexcept { return about_; }
+  /// The request of the profile shown or computing (its `about` and `power` when about an island).
+  [[nodiscard]] const RotationProfileRequest& lastRequest() const noexcept { return lastRequest_; }
   /// The profile shown (null while none), and whether a computation is running (tests).
   [[nodiscard]] const RotationProfile* currentProfile() const noexcept { return profile_.get(); }
   [[nodiscard]] bool busy() const noexcept { return request_ != 0; }
   [[nodiscard]] QwtPlot* plot() const noexcept { return plot_; }
+  /// The p/q labels drawn on the plateaus (core's rotationPlateaus; issue 37, finding 17), left to right.
+  [[nodiscard]] QStringList plateauLabels() const;
   bool exportCsv(const QString& path, QString* error = nullptr);
   bool exportPng(const QString& path, QString* error = nullptr);
 
@@ -57,9 +71,11 @@ class RotationProfilePanel : public QWidget {
   bool active_ = false;
   QPushButton* tool_ = nullptr;
   QSpinBox* points_ = nullptr;
+  QComboBox* about_ = nullptr;
   QLabel* info_ = nullptr;
   QwtPlot* plot_ = nullptr;
   QwtPlotCurve* curve_ = nullptr;
+  std::vector<QwtPlotMarker*> plateauMarkers_;  // owned by plot_
   QPushButton* csv_ = nullptr;
   QPushButton* png_ = nullptr;
   RotationProfileRequest lastRequest_;

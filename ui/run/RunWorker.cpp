@@ -55,9 +55,9 @@ RunSnapshotPtr makeSnapshot(std::uint64_t runId, const TrappingState& state, con
     snapshot->theory = theoryCurves(state.params, snapshot->statistics);
     if (judgeTail) {
       try {
-        TailOptions options;
-        options.bootstrap.replicates = 200;  // a fraction of a second; `stats --bootstrap` does more
-        snapshot->tail = std::make_shared<const TailAnalysis>(analyseTail(ensembleOf({state}), options));
+        // `stats`'s own options (the default seed and replicates): the Statistics page's D error, γ_P and
+        // verdict are the CLI's for the same run file (issue 37, finding 19).
+        snapshot->tail = std::make_shared<const TailAnalysis>(analyseTail(ensembleOf({state})));
       } catch (const std::exception&) {
         // Too few segments to judge: the view says the error is not known.
       }

@@ -4,6 +4,7 @@
 #include <QGridLayout>
 #include <QLabel>
 #include <QLocale>
+#include <QTextDocument>
 #include <QVBoxLayout>
 
 #include <cmath>
@@ -29,6 +30,13 @@ StatisticsView::StatisticsView(QWidget* parent) : QWidget(parent) {
   summary_->setWordWrap(true);  // a long summary wraps instead of widening the window
   summary_->setText(tr("No statistics yet: choose a preset and press Run (F5)."));
   layout->addWidget(summary_);
+  // The tail's γ_P and verdict (issue 37, finding 19): core's run summary, in `stats`'s words.
+  tail_ = new QLabel(this);
+  tail_->setObjectName(QStringLiteral("statisticsTail"));
+  tail_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  tail_->setWordWrap(true);
+  tail_->setVisible(false);
+  layout->addWidget(tail_);
   auto* grid = new QGridLayout;
   grid->setSpacing(6);
   // The table's order is the paper's reading order: fig. 6 (f, P, C, exponent), then fig. 7 (S, D_t).
@@ -77,6 +85,9 @@ void StatisticsView::showSnapshot(const RunSnapshot& snapshot) {
                              QString::number(s.sumTf, 'f', 4), c.toString(static_cast<qulonglong>(s.segments)),
                              longestText(snapshot))
                         .arg(spliced));
+  const QString tail = tailHtml(snapshot);
+  tail_->setText(tail);
+  tail_->setVisible(!tail.isEmpty());
 }
 
 QString StatisticsView::longestText(const RunSnapshot& snapshot) {
@@ -89,24 +100,25 @@ QString StatisticsView::longestText(const RunSnapshot& snapshot) {
   return tr("≤ %1").arg(c.toString(static_cast<double>(snapshot.statistics.longestBlocks) * snapshot.state.params.q, 'g', 4));
 }
 
+RunSummary StatisticsView::summaryOf(const RunSnapshot& snapshot) {
+  return summarizeRun(snapshot.statistics, snapshot.tail.get(), "its error is judged when the run pauses or ends");
+}
+
 QString StatisticsView::dText(const RunSnapshot& snapshot) {
-  // D, its error and the error's source from core's one run summary (issue 35): the bootstrap over segments for the
-  // run alone, the subsets of the spliced statistics with a companion, none when the longest segments dominate D.
-  const TailAnalysis* tail = snapshot.tail.get();
-  const RunSummary summary = summarizeRun(snapshot.statistics, tail);
-  const QString D = QString::number(summary.D, 'g', 4);
-  if (!tail) return tr("%1 <i>(its error is judged when the run pauses or ends)</i>").arg(D);
-  if (summary.dominated) {
-    QString share;
-    if (!tail->shares.empty())
-      share = tr("; the longest segment carries %1 % of it").arg(100 * tail->shares.front().share, 0, 'f', 0);
-    return tr("%1 <i>(dominated by its longest segments%2: no error can be estimated from this run)</i>").arg(D, share);
-  }
-  if (!std::isfinite(summary.DError)) return tr("%1 <i>(%2)</i>").arg(D, QString::fromStdString(summary.DErrorNote));
-  const QString source = QString::fromUtf8(toString(summary.errorSource).data(),
-                                           static_cast<qsizetype>(toString(summary.errorSource).size()));
-  return (summary.spliced ? tr("%1 ± %2 <i>(spliced; %3 of the spliced statistics)</i>") : tr("%1 ± %2 <i>(%3)</i>"))
-      .arg(D, QString::number(summary.DError, 'g', 2), source);
+  // D, its error and the error's words from core's one run summary (issue 35; issue 37, finding 10: the GUI once
+  // wrote its own label, "bootstrap over segments" beside the spliced D, where `stats` names the subsets' error).
+  const RunSummary summary = summaryOf(snapshot);
+  QString text = QString::number(summary.D, 'g', 4);
+  if (std::isfinite(summary.DError)) text += QStringLiteral(" ± ") + QString::number(summary.DError, 'g', 2);
+  return text + QStringLiteral(" <i>(%1)</i>").arg(QString::fromStdString(summary.DErrorNote).toHtmlEscaped());
+}
+
+QString StatisticsView::tailHtml(const RunSnapshot& snapshot) {
+  const RunSummary summary = summaryOf(snapshot);
+  if (!summary.judged) return {};
+  return tr("<b>γ<sub>P</sub></b> (tail, P<sub>t</sub> ~ t<sup>−γ</sup>) = %1 &nbsp;&nbsp; <b>verdict</b>: %2")
+      .arg(QString::fromStdString(summary.gammaPText).toHtmlEscaped(),
+           QString::fromStdString(summary.tailVerdict).toHtmlEscaped());
 }
 
 void StatisticsView::clear() {
@@ -115,8 +127,16 @@ void StatisticsView::clear() {
     plot->resetZoom();
   }
   summary_->setText(tr("No trapped segment has ended yet."));
+  tail_->clear();
+  tail_->setVisible(false);
 }
 
 QString StatisticsView::summaryText() const { return summary_->text(); }
+
+QString StatisticsView::tailText() const {
+  QTextDocument document;
+  document.setHtml(tail_->text());
+  return document.toPlainText();
+}
 
 }  // namespace archipelago::ui

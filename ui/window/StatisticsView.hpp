@@ -10,6 +10,7 @@
 #include <QWidget>
 
 #include "ui/run/RunSnapshot.hpp"
+#include "core/stats/RunSummary.hpp"
 #include "core/stats/StatisticsTable.hpp"
 
 class QLabel;
@@ -33,15 +34,22 @@ class StatisticsView : public QWidget {
   /// Wall time spent redrawing, summed over every refresh (the latency script reads it).
   [[nodiscard]] double refreshSeconds() const noexcept { return refreshSeconds_; }
   [[nodiscard]] QString summaryText() const;
+  /// The tail's line as plain text: γ_P and the verdict in `stats`'s words (empty until the tail is judged).
+  [[nodiscard]] QString tailText() const;
 
  private:
   /// The exact longest segment (the first kept record), in steps.
   [[nodiscard]] static QString longestText(const RunSnapshot& snapshot);
   /// D with the error the data supports (core's tail analysis of a finished or paused run).
   [[nodiscard]] static QString dText(const RunSnapshot& snapshot);
+  /// Core's run summary of the snapshot (its statistics and, once judged, the run's tail analysis).
+  [[nodiscard]] static RunSummary summaryOf(const RunSnapshot& snapshot);
+  /// γ_P and the verdict, or empty when the tail is not judged yet.
+  [[nodiscard]] static QString tailHtml(const RunSnapshot& snapshot);
 
   QList<StatisticsPlot*> plots_;
   QLabel* summary_ = nullptr;
+  QLabel* tail_ = nullptr;
   quint64 refreshes_ = 0;
   double refreshSeconds_ = 0;
 };

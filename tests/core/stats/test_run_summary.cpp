@@ -92,5 +92,23 @@ TEST(RunSummary, BootstrapThatCouldNotBeDoneGivesNoError) {
   EXPECT_EQ(r.errorSource, DErrorSource::none);
 }
 
+// Issue 37, finding 19: γ_P and the verdict in `stats`' words, from the summary (the GUI shows these strings).
+TEST(RunSummary, GammaPAndTheVerdictInTheCliWords) {
+  TailAnalysis t = tail(6400, 900, false);
+  t.tailFit.from = 1000;
+  t.tailFit.to = 12345;
+  t.tailFit.gammaPInterval = {1.41, 1.7333};
+  t.windows = {t.tailFit};
+  const RunSummary r = summarizeRun(statistics(6400, 80, 0), &t);
+  EXPECT_EQ(r.gammaPText, "1.57 [1.41, 1.733] over 1000 <= t <= 1.234e+04");
+  EXPECT_EQ(r.tailVerdict, "the tail does not dominate D: its bootstrap error stands");
+  const TailAnalysis d = tail(6400, 900, true);  // no windows: no fit
+  const RunSummary rd = summarizeRun(statistics(6400, 80, 0), &d);
+  EXPECT_EQ(rd.gammaPText, kNoTailFit);
+  EXPECT_EQ(rd.tailVerdict, dominanceMessage(d));
+  EXPECT_NE(rd.tailVerdict.find("dominated"), std::string::npos);
+  EXPECT_TRUE(summarizeRun(statistics(6400, 80, 0), nullptr).gammaPText.empty());
+}
+
 }  // namespace
 }  // namespace archipelago
