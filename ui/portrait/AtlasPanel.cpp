@@ -183,6 +183,7 @@ AtlasPanel::AtlasPanel(PortraitController* controller, QWidget* parent)
   modelText_ = new QLabel(this);
   modelText_->setObjectName(QStringLiteral("atlasMarkovTreeText"));
   modelText_->setWordWrap(true);
+  modelText_->hide();
   shares_ = new QTableWidget(this);
   shares_->setObjectName(QStringLiteral("atlasMarkovTreeShares"));
   shares_->setEditTriggers(QAbstractItemView::NoEditTriggers);
@@ -233,8 +234,9 @@ AtlasPanel::AtlasPanel(PortraitController* controller, QWidget* parent)
   layout->addWidget(detailsArea, 2);
   auto* model = new QHBoxLayout;
   model->addWidget(modelButton_);
-  model->addWidget(modelText_, 1);
+  model->addStretch(1);
   layout->addLayout(model);
+  layout->addWidget(modelText_);
   layout->addWidget(shares_);
   layout->addLayout(exports);
   updateProgress();
@@ -579,6 +581,7 @@ bool AtlasPanel::computeMarkovTree(double alpha, double b2, QString* error) {
   };
   treeRequest_ = jobs_->submit(std::move(job));
   modelText_->setText(tr("Computing the Markov tree…"));
+  modelText_->show();
   updateButtons();
   return true;
 }
@@ -590,10 +593,13 @@ void AtlasPanel::fillShares() {
   if (!model_) {
     shares_->hide();
     modelText_->setText(QString());
+    modelText_->hide();
     return;
   }
+  modelText_->show();
   const MarkovTreeResult& m = *model_;
-  modelText_->setText(tr("%1 states, %2 chains lumped; mean visit %3 steps; w = %4 visits per segment")
+  modelText_->setText(tr("Markov tree: %1 states (chains lumped: %2), mean visit %3 steps, w = %4 visits per segment. "
+                          "Each level's share of the survivors at t steps:")
                           .arg(m.tree.states.size())
                           .arg(m.tree.lumped.size())
                           .arg(number(m.survival.meanVisit, 6))
@@ -605,7 +611,7 @@ void AtlasPanel::fillShares() {
   QStringList heads, rows;
   static const QString powers[] = {QStringLiteral("10⁴"), QStringLiteral("10⁵"), QStringLiteral("10⁶")};
   for (std::size_t c = 0; c < times.size(); ++c)
-    heads << tr("share at t = %1").arg(c < 3 ? powers[c] : QString::number(times[c]));
+    heads << tr("t = %1").arg(c < 3 ? powers[c] : QString::number(times[c]));
   for (int l = 0; l < levels; ++l) rows << (l == 0 ? tr("level 0 (centre)") : tr("level %1").arg(l));
   shares_->setHorizontalHeaderLabels(heads);
   shares_->setVerticalHeaderLabels(rows);
