@@ -229,6 +229,39 @@ class TestMarkovTree : public QObject {
     QVERIFY(!panel_->sharesTable()->isVisible());
   }
 
+  // With a run shown, the entry's α is the run's mean segment length; a new run clears the curve with its other
+  // plots, and Model P_t draws it again with that α: P is linear in α, so each point is the CLI's (α = 18.9043)
+  // times α_run / 18.9043.
+  void withARunTheEntryIsTheRunsAlpha() {
+    w_->parameterPanel()->setParameters(archipelago::test::shortRun(), 2);
+    QVERIFY(w_->startRun());
+    QVERIFY(archipelago::test::waitForStatus(*w_, archipelago::ui::RunStatus::finished, kWait));
+    w_->refreshNow();
+    StatisticsPlot* p = w_->statisticsView()->plot(archipelago::Statistic::P);
+    QVERIFY(p->modelPoints().isEmpty());
+    const double runAlpha = w_->latestSnapshot()->statistics.alpha;
+    QVERIFY(runAlpha > 1 && runAlpha != kAlpha);
+    const MainWindow::MarkovTreeEntry e = w_->markovTreeEntry();
+    QCOMPARE(e.alpha, runAlpha);
+    QVERIFY2(e.alphaSource.contains(QStringLiteral("run")), qPrintable(e.alphaSource));
+    QCOMPARE(e.b2, kB2);
+    QCOMPARE(drawAndWait(e.alpha, e.b2), QString());
+    w_->refreshNow();
+    const QVector<QPointF> points = p->modelPoints();
+    const QJsonObject s = cliJson_.value(QStringLiteral("survival")).toObject();
+    const QJsonArray t = s.value(QStringLiteral("t")).toArray(), P = s.value(QStringLiteral("P")).toArray();
+    QVERIFY(points.size() > 100);
+    int checked = 0;
+    for (const QPointF& q : points)
+      for (int i = 0; i < t.size(); ++i)
+        if (t.at(i).toDouble() == q.x() && !P.at(i).isNull() && P.at(i).toDouble() > 1e-300) {
+          QVERIFY2(near(q.y(), P.at(i).toDouble() * runAlpha / kAlpha, 1e-13), qPrintable(QString::number(q.x())));
+          ++checked;
+        }
+    QVERIFY(checked > 100);
+    QCOMPARE(p->modelTitle(), QStringLiteral("Markov tree (atlas depth 1)"));
+  }
+
   void cleanupTestCase() { w_.reset(); }
 };
 
