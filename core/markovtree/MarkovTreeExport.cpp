@@ -74,6 +74,32 @@ MarkovTreeResult computeMarkovTree(const Atlas& atlas, const MarkovTreeRequest& 
   return r;
 }
 
+Series markovTreeCurve(const MarkovTreeResult& r) {
+  Series out;
+  if (!r.weight) return out;
+  const MarkovTreeSurvival& s = r.survival;
+  for (std::size_t i = 0; i < s.t.size() && i < s.S.size(); ++i) {
+    if (s.t[i] == 0) continue;
+    const long double P = *r.weight * s.S[i];
+    const auto d = static_cast<double>(P);
+    if (!(std::isfinite(d) && d >= std::numeric_limits<double>::min())) continue;  // 0, or the exponential tail
+    out.x.push_back(static_cast<double>(s.t[i]));
+    out.value.push_back(d);
+    out.error.push_back(0);
+  }
+  return out;
+}
+
+std::optional<std::vector<double>> markovTreeLevelShares(const MarkovTreeSurvival& s, std::uint64_t t) {
+  const auto at = std::find(s.t.begin(), s.t.end(), t);
+  if (at == s.t.end()) return std::nullopt;
+  const auto i = static_cast<std::size_t>(at - s.t.begin());
+  if (i >= s.S.size() || !(s.S[i] > 0)) return std::nullopt;
+  std::vector<double> shares;
+  for (const auto& level : s.level) shares.push_back(i < level.size() ? static_cast<double>(level[i] / s.S[i]) : 0.0);
+  return shares;
+}
+
 std::string markovTreeJson(const MarkovTreeResult& r) {
   json j;
   j["format"] = "archipelago markov tree";

@@ -11,6 +11,7 @@
 
 #include "core/atlas/Atlas.hpp"
 #include "core/markovtree/MarkovTree.hpp"
+#include "core/stats/TrappingStatistics.hpp"
 
 namespace archipelago {
 
@@ -24,6 +25,12 @@ struct MarkovTreeRequest {
   double exponentFrom = 10;          ///< the running exponent's windows start at or above this (steps), ≥ 1
   std::string atlasSource;           ///< where the atlas came from (a file name), recorded in the outputs
 };
+
+/// The entry numbers docs/markov-tree.md uses at K = 0.1 (the default box): α, the mean segment length of the q = 16
+/// `k0.1-minute` run the tail sampler samples (`archipelago-cli stats`), and b₂, `stochastic_area` on a 4096² grid.
+/// A front end with no run (no α of its own) offers them, saying where they come from; they hold for K = 0.1 only.
+inline constexpr double kMarkovTreeDocsAlpha = 18.9043;
+inline constexpr double kMarkovTreeDocsB2 = 1.362484;
 
 /// The first violated rule, naming the field, or nothing.
 [[nodiscard]] std::optional<std::string> validationError(const MarkovTreeRequest& r);
@@ -42,6 +49,15 @@ struct MarkovTreeResult {
 /// The tree of `atlas` and its survival.  Throws std::invalid_argument for an invalid request or an atlas that
 /// cannot make a tree (markovTreeFromAtlas's message).
 [[nodiscard]] MarkovTreeResult computeMarkovTree(const Atlas& atlas, const MarkovTreeRequest& request);
+
+/// The model's P_t = w S(t) on the survival's grid as a Series (x: t in steps, value: P as a double, no error):
+/// t = 0 and the points where P is 0 or below the smallest normal double (the exponential tail) are left out, as the
+/// JSON leaves them null.  Empty without w (no α and b₂ in the request).
+[[nodiscard]] Series markovTreeCurve(const MarkovTreeResult& r);
+
+/// Each atlas level's share of the survivors at t (its part of S(t) / S(t)), level 0 first, or nothing when t is
+/// not on the survival's grid or S(t) is 0.
+[[nodiscard]] std::optional<std::vector<double>> markovTreeLevelShares(const MarkovTreeSurvival& s, std::uint64_t t);
 
 /// {"format": "archipelago markov tree", "program", "provenance", "map", "request", "atlas", "entry", "residence",
 ///  "mean_visit", "states", "rates", "lumped", "survival": {"t", "S", "P", "levels", "states"}, "exponents"}.

@@ -48,6 +48,7 @@ namespace {
 const QColor kDataColor(31, 78, 154);
 const QColor kBandColor(31, 78, 154, 55);
 const QColor kEstimateColor(200, 70, 20);  // another method's estimate of the same statistic (setEstimate)
+const QColor kModelColor(20, 140, 120);    // a model of the same statistic (setModel): the Markov tree's P_t
 const QColor kTheoryColors[] = {QColor(214, 96, 18), QColor(160, 30, 60), QColor(40, 130, 60)};
 
 QString fromTable(std::string_view text) {
@@ -247,6 +248,7 @@ StatisticsPlot::StatisticsPlot(Statistic statistic, QWidget* parent) : QwtPlot(p
 
 StatisticsPlot::~StatisticsPlot() {
   if (!legend_->plot()) delete legend_;  // P_t's, never attached (its legend is below the plot)
+  if (model_ && !model_->plot()) delete model_;  // removed (an attached one is the plot's)
 }
 
 QString StatisticsPlot::fileName() const { return fromTable(statisticInfo(statistic_).fileStem); }
@@ -328,6 +330,36 @@ QVector<QPointF> StatisticsPlot::estimatePoints() const {
   return points;
 }
 
+void StatisticsPlot::setModel(const Series& model, const QString& title) {
+  const bool ly = logY();
+  QVector<QPointF> points;
+  for (std::size_t i = 0; i < model.x.size() && i < model.value.size(); ++i)
+    if (usable(model.x[i], model.value[i], ly)) points.append(QPointF(model.x[i], model.value[i]));
+  if (points.isEmpty()) {
+    if (model_) model_->detach();
+    return;
+  }
+  if (!model_) {
+    model_ = new QwtPlotCurve();
+    model_->setPen(QPen(kModelColor, 2.0, Qt::SolidLine));
+    model_->setRenderHint(QwtPlotItem::RenderAntialiased);
+    model_->setItemAttribute(QwtPlotItem::AutoScale, false);
+    model_->setZ(curve_->z() + 1);
+  }
+  model_->setTitle(title);
+  model_->setSamples(points);
+  if (!model_->plot()) model_->attach(this);
+}
+
+QVector<QPointF> StatisticsPlot::modelPoints() const {
+  QVector<QPointF> points;
+  if (model_ && model_->plot())
+    for (size_t i = 0; i < model_->dataSize(); ++i) points.append(model_->sample(static_cast<int>(i)));
+  return points;
+}
+
+QString StatisticsPlot::modelTitle() const { return model_ && model_->plot() ? model_->title().text() : QString(); }
+
 void StatisticsPlot::setData(const Series& data, const std::vector<TheoryCurve>& theory) {
   data_ = data;
   theory_.clear();
@@ -402,6 +434,7 @@ void StatisticsPlot::clearData() {
   setData(Series{}, {});
   setBlockAffectedBelow(0);
   setEstimate(Series{}, QString());
+  setModel(Series{}, QString());
 }
 
 bool StatisticsPlot::isEmpty() const { return curve_->dataSize() == 0; }

@@ -61,6 +61,13 @@ class StatisticsPlot : public QwtPlot {
   /// empty series removes it.  It takes part in the autoscale (the estimate reaches beyond the run's data).
   void setEstimate(const Series& estimate, const QString& title);
   [[nodiscard]] QVector<QPointF> estimatePoints() const;
+  /// Draws a model of the same statistic — P_t of the Markov tree of an atlas (core/markovtree, issue 40) — as a
+  /// line in a colour of its own, titled `title` in the legend; an empty series removes it.  It does not move the
+  /// ranges (the model's exponential tail reaches far below any measured P_t): it is drawn where the run's data,
+  /// a tail estimate or the user's zoom show.
+  void setModel(const Series& model, const QString& title);
+  [[nodiscard]] QVector<QPointF> modelPoints() const;
+  [[nodiscard]] QString modelTitle() const;
   void clearData();
   /// Replots, rescaling to the data unless the user has zoomed or panned.
   void refresh();
@@ -113,6 +120,7 @@ class StatisticsPlot : public QwtPlot {
   QwtPlotZoneItem* blockZone_ = nullptr;  ///< t < blockAffectedBelow_, shaded
   QwtPlotCurve* estimate_ = nullptr;                ///< setEstimate(): the points
   QwtPlotIntervalCurve* estimateBars_ = nullptr;    ///< … and their ±1σ bars
+  QwtPlotCurve* model_ = nullptr;                   ///< setModel(): the line
   double blockAffectedBelow_ = 0;
   std::vector<QwtPlotCurve*> theoryCurves_;
   std::vector<QwtPlotMarker*> theoryMarkers_;

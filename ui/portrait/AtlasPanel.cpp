@@ -3,6 +3,7 @@
 #include <QDir>
 #include <QElapsedTimer>
 #include <QFileDialog>
+#include <QFileInfo>
 #include <QFont>
 #include <QFormLayout>
 #include <QHBoxLayout>
@@ -12,6 +13,7 @@
 #include <QScrollArea>
 #include <QSpinBox>
 #include <QStringList>
+#include <QTableWidget>
 #include <QTimer>
 #include <QTreeWidget>
 #include <QVBoxLayout>
@@ -21,6 +23,7 @@
 #include <numbers>
 
 #include "core/atlas/AtlasExport.hpp"
+#include "core/io/AtomicFile.hpp"
 #include "core/manifolds/ManifoldExport.hpp"
 #include "core/periodic/PeriodicOrbitFinder.hpp"
 #include "core/periodic/SegmentAnalysis.hpp"
@@ -86,7 +89,7 @@ AtlasPanel::AtlasPanel(PortraitController* controller, QWidget* parent)
     : QWidget(parent),
       controller_(controller),
       elapsed_(std::make_unique<QElapsedTimer>()),
-      jobs_(std::make_unique<BackgroundJobs>(this, 1, JobPriority::background)) {
+      jobs_(std::make_unique<BackgroundJobs>(this, 2, JobPriority::background)) {  // 0: the atlas, 1: its tree
   const AtlasRequest defaults;  // core's
   depth_ = new QSpinBox(this);
   depth_->setObjectName(QStringLiteral("atlasDepth"));
@@ -162,6 +165,34 @@ AtlasPanel::AtlasPanel(PortraitController* controller, QWidget* parent)
   connect(json_, &QPushButton::clicked, this, [exportDialog] { exportDialog(true); });
   connect(csv_, &QPushButton::clicked, this, [exportDialog] { exportDialog(false); });
 
+  open_ = new QPushButton(tr("Open…"), this);
+  open_->setToolTip(tr("Show an atlas file (archipelago-cli atlas --json, Export JSON) instead of computing one"));
+  connect(open_, &QPushButton::clicked, this, [this] {
+    const QString path = QFileDialog::getOpenFileName(this, tr("Open an atlas"), SettingsController::lastFolder(),
+                                                      tr("Atlas files (*.json);;All files (*)"));
+    if (path.isEmpty()) return;
+    SettingsController::rememberFolder(path);
+    openAtlasFile(path);
+  });
+
+  modelButton_ = new QPushButton(tr("Model P_t…"), this);
+  modelButton_->setObjectName(QStringLiteral("atlasMarkovTree"));
+  modelButton_->setToolTip(tr("The Meiss–Ott Markov tree of this atlas (states between barriers, rates flux / area, "
+                              "docs/markov-tree.md): its P_t drawn on the P_t plot, each level's share below"));
+  connect(modelButton_, &QPushButton::clicked, this, &AtlasPanel::markovTreeAsked);
+  modelText_ = new QLabel(this);
+  modelText_->setObjectName(QStringLiteral("atlasMarkovTreeText"));
+  modelText_->setWordWrap(true);
+  modelText_->hide();
+  shares_ = new QTableWidget(this);
+  shares_->setObjectName(QStringLiteral("atlasMarkovTreeShares"));
+  shares_->setEditTriggers(QAbstractItemView::NoEditTriggers);
+  shares_->setSelectionMode(QAbstractItemView::NoSelection);
+  shares_->setToolTip(tr("Where the model's survivors sit: each atlas level's share of S(t) at t steps"));
+  shares_->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
+  shares_->verticalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
+  shares_->hide();
+
   clock_ = new QTimer(this);
   clock_->setInterval(1000);
   connect(clock_, &QTimer::timeout, this, &AtlasPanel::updateProgress);
@@ -181,6 +212,7 @@ AtlasPanel::AtlasPanel(PortraitController* controller, QWidget* parent)
   auto* buttons = new QHBoxLayout;
   buttons->addWidget(compute_);
   buttons->addWidget(stop_);
+  buttons->addWidget(open_);
   auto* exports = new QHBoxLayout;
   exports->addWidget(json_);
   exports->addWidget(csv_);
@@ -200,6 +232,12 @@ AtlasPanel::AtlasPanel(PortraitController* controller, QWidget* parent)
   layout->addWidget(progress_);
   layout->addWidget(tree_, 3);
   layout->addWidget(detailsArea, 2);
+  auto* model = new QHBoxLayout;
+  model->addWidget(modelButton_);
+  model->addStretch(1);
+  layout->addLayout(model);
+  layout->addWidget(modelText_);
+  layout->addWidget(shares_);
   layout->addLayout(exports);
   updateProgress();
   updateDetails();
@@ -315,6 +353,7 @@ void AtlasPanel::restoreAtlas(const std::optional<Atlas>& atlas) {
   tree_->clear();
   items_.clear();
   restored_ = atlas.has_value();
+  source_.clear();
   if (atlas) {  // the controls say what it was computed with (Compute again gives the same atlas)
     depth_->setValue(std::min(atlas->request.depth, depth_->maximum()));
     maxPeriod_->setValue(static_cast<int>(std::min<std::uint64_t>(atlas->request.maxPeriod, maxPeriod_->maximum())));
@@ -323,6 +362,12 @@ void AtlasPanel::restoreAtlas(const std::optional<Atlas>& atlas) {
 }
 
 void AtlasPanel::show(std::shared_ptr<const Atlas> atlas, int done, const QString& stage) {
+  if (atlas != atlas_ && (model_ || treeRequest_)) {  // the model was another atlas's
+    jobs_->cancel(1);
+    treeRequest_ = 0;
+    model_.reset();
+    fillShares();
+  }
   atlas_ = std::move(atlas);
   done_ = done;
   stage_ = stage;
@@ -401,7 +446,7 @@ void AtlasPanel::updateProgress() {
                              .arg(formatDuration(a.seconds))
                        : tr("%1 islands in %2").arg(a.nodes.size()).arg(formatDuration(a.seconds));
     text += tr(" (depth %1, periods ≤ %2)").arg(a.request.depth).arg(a.request.maxPeriod);
-    if (restored_) text = tr("From the session: %1").arg(text);
+    if (restored_) text = source_.isEmpty() ? tr("From the session: %1").arg(text) : tr("From %1: %2").arg(source_, text);
   }
   if (atlas_ && !ofPortraitMap())
     text += tr(". This atlas is of K = %1; the portrait shows K = %2: set K = %1 again to draw its islands")
@@ -476,6 +521,118 @@ void AtlasPanel::updateButtons() {
   stop_->setEnabled(busy());
   json_->setEnabled(atlas_ && !busy());
   csv_->setEnabled(atlas_ && !busy());
+  modelButton_->setEnabled(atlas_ && !busy() && !atlas_->cancelled && !markovTreePending());
+}
+
+bool AtlasPanel::openAtlasFile(const QString& path, QString* error) {
+  std::optional<Atlas> atlas;
+  try {
+    atlas = atlasFromJson(io::readRegularFile(path.toStdString(), kMaxAtlasFileBytes));
+  } catch (const std::exception& e) {
+    const QString why = QString::fromUtf8(e.what());
+    if (error) *error = why;
+    Q_EMIT statusMessage(tr("Cannot open the atlas %1: %2").arg(path, why));
+    return false;
+  }
+  restoreAtlas(atlas);
+  source_ = QFileInfo(path).fileName();
+  updateProgress();
+  Q_EMIT statusMessage(tr("Atlas of %1 islands read from %2").arg(atlas->nodes.size()).arg(path));
+  return true;
+}
+
+std::vector<std::uint64_t> AtlasPanel::shareTimes() { return {10'000, 100'000, 1'000'000}; }
+
+bool AtlasPanel::computeMarkovTree(double alpha, double b2, QString* error) {
+  QString why;
+  MarkovTreeRequest r;
+  r.alpha = alpha;
+  r.b2 = b2;
+  r.at = shareTimes();
+  r.atlasSource = "the Atlas page";
+  if (!atlas_) why = tr("there is no atlas: compute or open one first");
+  else if (busy()) why = tr("the atlas is still being computed");
+  else if (const auto e = validationError(r)) why = QString::fromStdString(*e);
+  if (!why.isEmpty()) {
+    if (error) *error = why;
+    Q_EMIT statusMessage(tr("Markov tree: %1").arg(why));
+    return false;
+  }
+  Job<std::shared_ptr<const MarkovTreeResult>> job;  // latest wins
+  job.channel = 1;
+  job.work = [atlas = atlas_, r](JobContext<NoProgress>&) -> std::optional<std::shared_ptr<const MarkovTreeResult>> {
+    return std::make_shared<const MarkovTreeResult>(archipelago::computeMarkovTree(*atlas, r));  // throws: core's reason
+  };
+  job.done = [this](JobResult<std::shared_ptr<const MarkovTreeResult>> result) {
+    if (result.id != treeRequest_) return;
+    treeRequest_ = 0;
+    QString failure;
+    if (result.ok()) {
+      model_ = *result.value;
+    } else {
+      failure = result.error;
+      model_.reset();
+    }
+    fillShares();
+    updateButtons();
+    Q_EMIT statusMessage(failure.isEmpty() ? tr("Markov tree of the atlas: %1 states").arg(model_->tree.states.size())
+                                           : tr("Markov tree: %1").arg(failure));
+    Q_EMIT markovTreeFinished(model_, failure);
+  };
+  treeRequest_ = jobs_->submit(std::move(job));
+  modelText_->setText(tr("Computing the Markov tree…"));
+  modelText_->show();
+  updateButtons();
+  return true;
+}
+
+QString AtlasPanel::markovTreeText() const { return modelText_->text(); }
+
+void AtlasPanel::fillShares() {
+  shares_->clear();
+  if (!model_) {
+    shares_->hide();
+    modelText_->setText(QString());
+    modelText_->hide();
+    return;
+  }
+  modelText_->show();
+  const MarkovTreeResult& m = *model_;
+  modelText_->setText(tr("Markov tree: %1 states (chains lumped: %2), mean visit %3 steps, w = %4 visits per segment. "
+                          "Each level's share of the survivors at t steps:")
+                          .arg(m.tree.states.size())
+                          .arg(m.tree.lumped.size())
+                          .arg(number(m.survival.meanVisit, 6))
+                          .arg(m.weight ? number(*m.weight, 4) : QStringLiteral("–")));
+  const std::vector<std::uint64_t> times = shareTimes();
+  const auto levels = static_cast<int>(m.survival.level.size());
+  shares_->setRowCount(levels);
+  shares_->setColumnCount(static_cast<int>(times.size()));
+  QStringList heads, rows;
+  static const QString powers[] = {QStringLiteral("10⁴"), QStringLiteral("10⁵"), QStringLiteral("10⁶")};
+  for (std::size_t c = 0; c < times.size(); ++c)
+    heads << tr("t = %1").arg(c < 3 ? powers[c] : QString::number(times[c]));
+  for (int l = 0; l < levels; ++l) rows << (l == 0 ? tr("level 0 (centre)") : tr("level %1").arg(l));
+  shares_->setHorizontalHeaderLabels(heads);
+  shares_->setVerticalHeaderLabels(rows);
+  for (std::size_t c = 0; c < times.size(); ++c) {
+    const auto shares = markovTreeLevelShares(m.survival, times[c]);
+    for (int l = 0; l < levels; ++l) {
+      auto* cell = new QTableWidgetItem;
+      cell->setTextAlignment(Qt::AlignRight | Qt::AlignVCenter);
+      if (shares && l < static_cast<int>(shares->size())) {
+        const double v = (*shares)[static_cast<std::size_t>(l)];
+        cell->setText(QStringLiteral("%1 %").arg(100 * v, 0, 'f', 1));
+        cell->setData(Qt::UserRole, v);
+      } else {
+        cell->setText(QStringLiteral("–"));
+      }
+      shares_->setItem(l, static_cast<int>(c), cell);
+    }
+  }
+  shares_->setFixedHeight(shares_->horizontalHeader()->sizeHint().height() +
+                          levels * shares_->verticalHeader()->defaultSectionSize() + 2 * shares_->frameWidth());
+  shares_->show();
 }
 
 bool AtlasPanel::showIsland(int index) {

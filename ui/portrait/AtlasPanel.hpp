@@ -13,10 +13,17 @@
 /// (the periodic-orbit overlay) and its partner's manifolds (the Manifolds page's mechanism).  The atlas is kept in sessions (core/session: its JSON, read back, not
 /// recomputed).  An atlas of another map than the portrait's stays listed (a change of K loses nothing) but its
 /// islands are not drawn until that map is shown again.
+///
+/// An atlas file (`archipelago-cli atlas --json`, Export JSON) can be opened instead of computed (openAtlasFile).
+/// Below the tree, the Meiss–Ott Markov tree of the atlas shown (core/markovtree, docs/markov-tree.md, issue 40):
+/// "Model P_t…" asks the window for the entry's α and b₂, computeMarkovTree() runs core's computeMarkovTree on a
+/// background job, and markovTreeFinished() hands the result on (the window draws its P_t on the P_t plot); the page
+/// shows each atlas level's share of the model's survivors at t = 10⁴, 10⁵, 10⁶ (core's markovTreeLevelShares).
 
 #include <QString>
 #include <QWidget>
 
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -24,11 +31,13 @@
 #include <vector>
 
 #include "core/atlas/Atlas.hpp"
+#include "core/markovtree/MarkovTreeExport.hpp"
 
 class QElapsedTimer;
 class QLabel;
 class QPushButton;
 class QSpinBox;
+class QTableWidget;
 class QTimer;
 class QTreeWidget;
 class QTreeWidgetItem;
@@ -85,8 +94,31 @@ class AtlasPanel : public QWidget {
   /// Core's JSON / CSV of the atlas shown (writeAtlasJson / writeAtlasCsv, atomic).  False with the reason.
   bool exportJson(const QString& path, QString* error = nullptr);
   bool exportCsv(const QString& path, QString* error = nullptr);
+  /// Reads an atlas file (`archipelago-cli atlas --json`, Export JSON: core's atlasFromJson) and shows it as a
+  /// session's atlas is shown, stopping any computation; false with core's reason (also in the status bar).
+  bool openAtlasFile(const QString& path, QString* error = nullptr);
+
+  /// The t (steps) at which the page shows each level's share of the model's survivors: 10⁴, 10⁵, 10⁶.
+  [[nodiscard]] static std::vector<std::uint64_t> shareTimes();
+  /// Computes the Markov tree of the atlas shown and its P_t = w S(t), w = α Φ_centre / b₂ (α the run's mean segment
+  /// length, b₂ its stochastic area), on a background job; markovTreeFinished() says how it ended.  False at once,
+  /// with the reason (core's for the numbers), when there is no finished atlas or the request is refused.  A second
+  /// request replaces the first (latest wins).
+  bool computeMarkovTree(double alpha, double b2, QString* error = nullptr);
+  [[nodiscard]] bool markovTreePending() const noexcept { return treeRequest_ != 0; }
+  /// The model shown (null: none; a new atlas removes it).
+  [[nodiscard]] std::shared_ptr<const MarkovTreeResult> markovTree() const noexcept { return model_; }
+  /// The shares: one row per atlas level, one column per shareTimes() (Qt::UserRole holds the share as a double).
+  [[nodiscard]] QTableWidget* sharesTable() const noexcept { return shares_; }
+  [[nodiscard]] QPushButton* markovTreeButton() const noexcept { return modelButton_; }
+  [[nodiscard]] QPushButton* openButton() const noexcept { return open_; }
+  [[nodiscard]] QString markovTreeText() const;
 
  Q_SIGNALS:
+  /// "Model P_t…" was pressed: the window asks α and b₂ and calls computeMarkovTree().
+  void markovTreeAsked();
+  /// computeMarkovTree()'s end: the model (null on failure) and the failure's reason (empty on success).
+  void markovTreeFinished(std::shared_ptr<const archipelago::MarkovTreeResult> model, const QString& error);
   void statusMessage(const QString& text);
   /// The atlas shown changed: a step of the computation, its end, a restore.
   void atlasChanged();
@@ -103,6 +135,7 @@ class AtlasPanel : public QWidget {
   void updateProgress();
   void updateDetails();
   void updateButtons();
+  void fillShares();
   [[nodiscard]] bool ofPortraitMap() const;
 
   PortraitController* controller_;
@@ -116,12 +149,19 @@ class AtlasPanel : public QWidget {
   QPushButton* json_ = nullptr;
   QPushButton* csv_ = nullptr;
   QTimer* clock_ = nullptr;
+  QPushButton* open_ = nullptr;
+  QPushButton* modelButton_ = nullptr;
+  QLabel* modelText_ = nullptr;
+  QTableWidget* shares_ = nullptr;
+  std::shared_ptr<const MarkovTreeResult> model_;
+  quint64 treeRequest_ = 0;
   std::unique_ptr<QElapsedTimer> elapsed_;
   std::vector<QTreeWidgetItem*> items_;   // items_[i] shows atlas_->nodes[i]
   std::shared_ptr<const Atlas> atlas_;
   int done_ = -1;                         // islands finished while computing (−1: not computing)
   QString stage_;                         // what core is doing ("island 6 > 138")
-  bool restored_ = false;                 // atlas_ came from a session
+  bool restored_ = false;                 // atlas_ came from a session or a file
+  QString source_;                        // … that file's name (openAtlasFile), empty for a session
   bool stopping_ = false;                 // Stop was asked; the island under way ends first
   quint64 request_ = 0;
   std::unique_ptr<BackgroundJobs> jobs_;  // last: stopped and joined first

@@ -27,6 +27,8 @@
 #include <QTableWidget>
 #include <QDialog>
 #include <QDialogButtonBox>
+#include <QFormLayout>
+#include <QLineEdit>
 #include <QTabBar>
 #include <QStandardPaths>
 #include <QStatusBar>
@@ -41,6 +43,7 @@
 #include <exception>
 #include <functional>
 
+#include "core/markovtree/MarkovTreeExport.hpp"
 #include "core/tail/BruteForceSurvival.hpp"
 #include "core/tail/TailFile.hpp"
 #include "core/tail/TailResult.hpp"
@@ -56,6 +59,7 @@
 #include "ui/periodic/PeriodicOrbitDialog.hpp"
 #include "ui/scan/KScanDialog.hpp"
 #include "ui/portrait/PortraitController.hpp"
+#include "ui/portrait/AtlasPanel.hpp"
 #include "ui/portrait/ManifoldsPanel.hpp"
 #include "ui/portrait/PortraitPanel.hpp"
 #include "ui/segments/LongSegmentsPanel.hpp"
@@ -159,6 +163,27 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
                                      [this](int rank) { showLongSegment(rank, false); }},
                                     this);
 
+  AtlasPanel* atlas = portrait_->atlasPanel();
+  connect(atlas, &AtlasPanel::markovTreeAsked, this, &MainWindow::askMarkovTree);
+  connect(atlas, &AtlasPanel::markovTreeFinished, this,
+          [this](std::shared_ptr<const MarkovTreeResult> model, const QString& error) {
+            StatisticsPlot* p = statistics_->plot(Statistic::P);
+            if (!model || !error.isEmpty() || !p) {
+              message(tr("Cannot draw the Markov tree: %1").arg(error), 0);
+              Q_EMIT markovTreeDrawn(error.isEmpty() ? tr("no model") : error);
+              return;
+            }
+            const Series curve = markovTreeCurve(*model);  // P_t = w S(t): core's
+            p->setModel(curve, tr("Markov tree (atlas depth %1)").arg(model->atlasDepth));
+            p->refresh();
+            message(tr("Drew the Markov tree's P_t (%1 states, w = %2 visits per segment, α = %3, b₂ = %4) on P_t")
+                        .arg(model->tree.states.size())
+                        .arg(QLocale::c().toString(static_cast<double>(model->weight.value_or(0)), 'g', 4))
+                        .arg(QLocale::c().toString(model->request.alpha, 'g', 6))
+                        .arg(QLocale::c().toString(model->request.b2, 'g', 7)));
+            Q_EMIT markovTreeDrawn(QString());
+          });
+
   connect(panel_, &ParameterPanel::validityChanged, this, [this] { updateActions(); });
   connect(panel_, &ParameterPanel::parametersChanged, this, [this] {
     if (const auto p = panel_->parameters()) portrait_->controller()->setMap(p->map, p->Xr);
@@ -200,6 +225,18 @@ void MainWindow::createActions() {
     const QString path = QFileDialog::getOpenFileName(this, tr("Open Tail Estimate"), QString(),
                                                       tr("Tail files (*.json);;All files (*)"));
     if (!path.isEmpty()) openTailEstimate(path);
+  });
+
+  openAtlasAction_ = new QAction(tr("Open &Atlas…"), this);
+  openAtlasAction_->setStatusTip(tr("Show an atlas file (archipelago-cli atlas --json) on the portrait's Atlas page; "
+                                    "its Markov tree draws a model of P_t"));
+  connect(openAtlasAction_, &QAction::triggered, this, [this] {
+    const QString path = QFileDialog::getOpenFileName(this, tr("Open Atlas"), SettingsController::lastFolder(),
+                                                      tr("Atlas files (*.json);;All files (*)"));
+    if (path.isEmpty()) return;
+    SettingsController::rememberFolder(path);
+    QString error;
+    if (!openAtlasFile(path, &error)) showOpenError(tr("Cannot open the atlas"), path, error);
   });
 
   saveAction_ = new QAction(QIcon::fromTheme(QStringLiteral("document-save")), tr("&Save Run File"), this);
@@ -262,6 +299,7 @@ void MainWindow::createMenus() {
   QMenu* file = menuBar()->addMenu(tr("&File"));
   file->addAction(openAction_);
   file->addAction(openTailAction_);
+  file->addAction(openAtlasAction_);
   recentMenu_ = file->addMenu(tr("Open &Recent"));
   connect(recentMenu_, &QMenu::aboutToShow, this, &MainWindow::fillRecentMenu);
   file->addAction(saveAction_);
@@ -677,6 +715,74 @@ bool MainWindow::openTailEstimate(const QString& path, QString* error) {
   openTailAction_->setEnabled(false);
   message(tr("Reading the tail estimate %1…").arg(QFileInfo(path).fileName()), 0);
   return true;
+}
+
+bool MainWindow::openAtlasFile(const QString& path, QString* error) {
+  AtlasPanel* atlas = portrait_->atlasPanel();
+  if (!atlas->openAtlasFile(path, error)) return false;
+  tabs_->setCurrentWidget(portrait_);
+  portrait_->sidePages()->setCurrentWidget(atlas);
+  return true;
+}
+
+MainWindow::MarkovTreeEntry MainWindow::markovTreeEntry() const {
+  MarkovTreeEntry e;
+  const RunSnapshotPtr shown = run_->latest();
+  if (shown && shown->hasStatistics && shown->statistics.alpha > 0) {
+    e.alpha = shown->statistics.alpha;
+    e.alphaSource = tr("the run's mean segment length");
+  } else {
+    e.alpha = kMarkovTreeDocsAlpha;
+    e.alphaSource = tr("docs/markov-tree.md's, K = 0.1 (no run is shown)");
+  }
+  e.b2 = kMarkovTreeDocsB2;
+  e.b2Source = tr("docs/markov-tree.md's, K = 0.1 (stochastic-area on a 4096² grid; the portrait's Stochastic Area b₂… measures it)");
+  return e;
+}
+
+bool MainWindow::drawMarkovTree(double alpha, double b2, QString* error) {
+  QString why;
+  if (!portrait_->atlasPanel()->computeMarkovTree(alpha, b2, &why)) {
+    if (error) *error = why;
+    message(tr("Cannot draw the Markov tree: %1").arg(why), 0);
+    return false;
+  }
+  message(tr("Computing the Markov tree of the atlas…"), 0);
+  return true;
+}
+
+void MainWindow::askMarkovTree() {
+  const MarkovTreeEntry e = markovTreeEntry();
+  QDialog dialog(this);
+  dialog.setWindowTitle(tr("Markov tree of the atlas"));
+  auto* intro = new QLabel(tr("The model's P_t = w S(t) with w = α Φ_centre / b₂ visits per segment "
+                              "(docs/markov-tree.md)."), &dialog);
+  intro->setWordWrap(true);
+  auto* alpha = new QLineEdit(QLocale::c().toString(e.alpha, 'g', 8), &dialog);
+  alpha->setToolTip(tr("α: %1").arg(e.alphaSource));
+  auto* b2 = new QLineEdit(QLocale::c().toString(e.b2, 'g', 8), &dialog);
+  b2->setToolTip(tr("b₂: %1").arg(e.b2Source));
+  auto* form = new QFormLayout;
+  form->addRow(tr("α (steps)"), alpha);
+  form->addRow(QString(), new QLabel(QStringLiteral("<small>%1</small>").arg(e.alphaSource.toHtmlEscaped()), &dialog));
+  form->addRow(tr("b₂ (area)"), b2);
+  form->addRow(QString(), new QLabel(QStringLiteral("<small>%1</small>").arg(e.b2Source.toHtmlEscaped()), &dialog));
+  auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel, &dialog);
+  connect(buttons, &QDialogButtonBox::accepted, &dialog, &QDialog::accept);
+  connect(buttons, &QDialogButtonBox::rejected, &dialog, &QDialog::reject);
+  auto* layout = new QVBoxLayout(&dialog);
+  layout->addWidget(intro);
+  layout->addLayout(form);
+  layout->addWidget(buttons);
+  if (dialog.exec() != QDialog::Accepted) return;
+  bool okA = false, okB = false;
+  const double a = QLocale::c().toDouble(alpha->text().trimmed(), &okA);
+  const double b = QLocale::c().toDouble(b2->text().trimmed(), &okB);
+  QString why;
+  if (!okA) why = tr("α '%1' is not a number").arg(alpha->text());
+  else if (!okB) why = tr("b₂ '%1' is not a number").arg(b2->text());
+  else if (drawMarkovTree(a, b, &why)) return;
+  QMessageBox::warning(this, tr("Markov tree"), tr("Cannot draw the Markov tree: %1").arg(why));
 }
 
 bool MainWindow::saveRunFile(const QString& path, QString* error) { return run_->save(path, error); }

@@ -67,6 +67,23 @@ class MainWindow : public QMainWindow {
   bool openTailEstimate(const QString& path, QString* error = nullptr);
   /// A tail file is being read or its levels computed (the File menu's entry is disabled meanwhile).
   [[nodiscard]] bool tailEstimatePending() const noexcept { return tailRequest_ != 0; }
+  /// File ▸ Open Atlas: shows an atlas file on the portrait's Atlas page (AtlasPanel::openAtlasFile).
+  bool openAtlasFile(const QString& path, QString* error = nullptr);
+  /// The entry's numbers offered for the Markov tree's P_t = w S(t) (issue 40): α the run's mean segment length where
+  /// a run with statistics is shown, else docs/markov-tree.md's (K = 0.1); b₂ docs/markov-tree.md's (core's
+  /// kMarkovTreeDocsB2: the GUI has no b₂ of the run's box without computing it), each with where it comes from.
+  struct MarkovTreeEntry {
+    double alpha = 0, b2 = 0;
+    QString alphaSource, b2Source;
+  };
+  [[nodiscard]] MarkovTreeEntry markovTreeEntry() const;
+  /// Draws P_t of the Markov tree of the Atlas page's atlas on the P_t plot, titled "Markov tree (atlas depth N)",
+  /// and fills the page's shares: computed by a background job (AtlasPanel::computeMarkovTree); true when that
+  /// started, and markovTreeDrawn() says how it ended; false at once with the reason (no finished atlas, α or b₂
+  /// refused by core).
+  bool drawMarkovTree(double alpha, double b2, QString* error = nullptr);
+  /// The Atlas page's "Model P_t…": a small dialog asking α and b₂, prefilled with markovTreeEntry().
+  void askMarkovTree();
   bool saveRunFile(const QString& path, QString* error = nullptr);
   /// Writes every plot (PNG, SVG, PDF) and every CSV file of the run on screen (as `stats --csv` does) into `folder`.
   bool exportAllTo(const QString& folder, QString* error = nullptr);
@@ -124,6 +141,8 @@ class MainWindow : public QMainWindow {
   /// openTailEstimate()'s end: error is empty when the estimate is drawn, else the reason it was refused (also
   /// shown in a dialog).
   void tailEstimateFinished(const QString& path, const QString& error);
+  /// drawMarkovTree()'s end: error is empty when the model's P_t is drawn, else the reason.
+  void markovTreeDrawn(const QString& error);
 
  protected:
   void closeEvent(QCloseEvent* event) override;
@@ -187,6 +206,7 @@ class MainWindow : public QMainWindow {
 
   QAction* openAction_ = nullptr;
   QAction* openTailAction_ = nullptr;
+  QAction* openAtlasAction_ = nullptr;
   QAction* saveAction_ = nullptr;
   QAction* saveAsAction_ = nullptr;
   QAction* exportAllAction_ = nullptr;

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <stdexcept>
 #include <string>
@@ -17,6 +18,7 @@
 #include "core/atlas/AtlasExport.hpp"
 #include "core/io/AtomicFile.hpp"
 #include "core/markovtree/MarkovTree.hpp"
+#include "core/markovtree/MarkovTreeExport.hpp"
 
 namespace archipelago {
 namespace {
@@ -288,6 +290,53 @@ TEST(MarkovTree, GridAndEntryWeight) {
   EXPECT_NE(std::find(g.begin(), g.end(), 1585u), g.end());  // ⌈10^3.2⌉
   const MarkovTree tree = markovTreeFromAtlas(k01());
   EXPECT_NEAR(static_cast<double>(markovTreeEntryWeight(tree, 40.0, 1.36)), 40.0 * 3.843389e-3 / 1.36, 1e-16);
+}
+
+// What the GUI draws and shows (issue 40, GUI): the curve is w S(t) of the two-state closed form at every t > 0 of the
+// grid where it is a double, and nothing else; the shares at t are each level's part / S and sum to 1.
+TEST(MarkovTree, CurveIsWTimesSAndSharesSumToOne) {
+  Atlas a;
+  const long double phi0 = 3.8e-3L, l0 = 0.23L, phi1 = 2.0e-5L, l1 = 0.03L;
+  a.nodes = {node(-1, 0, 1, std::nullopt, phi0, 0.5L, l0, 0.1668),
+             node(0, 1, 6, Rational{1, 6}, phi1, 0.3L, l1, 0.09)};
+  link(a);
+  MarkovTreeRequest r;
+  r.tMax = 1e7;
+  r.perDecade = 10;
+  r.alpha = 20;
+  r.b2 = 1.5;
+  r.at = {12345};
+  const MarkovTreeResult m = computeMarkovTree(a, r);
+  const long double A0 = l0 - l1, ra = phi0 / A0, rb = phi1 / A0, rc = phi1 / l1;  // as TwoStatesFollowTheirClosedForm
+  const long double tr = ra + rb + rc, disc = std::sqrt(tr * tr - 4 * ra * rc);
+  const long double muSmall = 2 * ra * rc / (tr + disc), muLarge = (tr + disc) / 2;
+  const long double A = (muLarge - ra) / (muLarge - muSmall), B = 1 - A;
+  const long double w = 20 * phi0 / 1.5L;
+  const Series curve = markovTreeCurve(m);
+  std::size_t expected = 0;
+  for (std::uint64_t t : m.survival.t) {
+    const auto ti = static_cast<long double>(t);
+    const long double P = w * (A * std::exp(ti * std::log1p(-muSmall)) + B * std::exp(ti * std::log1p(-muLarge)));
+    if (t == 0 || static_cast<double>(P) < std::numeric_limits<double>::min()) continue;  // S(10⁷) ≈ e⁻⁶⁴⁰⁰
+    ASSERT_LT(expected, curve.x.size()) << "t = " << t;
+    EXPECT_EQ(curve.x[expected], static_cast<double>(t));
+    EXPECT_NEAR(curve.value[expected] / static_cast<double>(P), 1.0, 1e-13) << "t = " << t;
+    ++expected;
+  }
+  EXPECT_EQ(curve.x.size(), expected);
+  EXPECT_LT(curve.x.back(), 1e7);  // the exponential tail is left out
+  EXPECT_GT(curve.x.size(), 40u);
+  for (std::uint64_t t : {std::uint64_t{1}, std::uint64_t{100}, std::uint64_t{12345}}) {
+    const auto shares = markovTreeLevelShares(m.survival, t);
+    ASSERT_TRUE(shares) << t;
+    ASSERT_EQ(shares->size(), 2u);
+    const auto i = static_cast<std::size_t>(std::find(m.survival.t.begin(), m.survival.t.end(), t) - m.survival.t.begin());
+    EXPECT_NEAR((*shares)[1], static_cast<double>(m.survival.state[1][i] / m.survival.S[i]), 1e-15);
+    EXPECT_NEAR((*shares)[0] + (*shares)[1], 1.0, 1e-15) << t;
+  }
+  EXPECT_FALSE(markovTreeLevelShares(m.survival, 12346));  // not on the grid
+  r.alpha = r.b2 = 0;  // no entry: no P_t to draw
+  EXPECT_TRUE(markovTreeCurve(computeMarkovTree(a, r)).x.empty());
 }
 
 }  // namespace
