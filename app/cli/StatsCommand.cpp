@@ -162,8 +162,9 @@ void printTail(const TailAnalysis& a) {
   std::printf("literature  asymptotic exponents (t -> infinity): %s; the windows above are finite t\n", literature.c_str());
   std::printf("forecast    steps for %g segments beyond t if P_t ~ t^-gamma past t_end (this sample: %.3g steps):\n",
               a.forecast.empty() ? 100.0 : a.forecast.front().segments, a.stepsDone);
-  for (const TailForecast& f : a.forecast)
-    std::printf("            t = %s, gamma = %s: %.2g steps\n", g(f.target).c_str(), g(f.gamma).c_str(), f.steps);
+  for (const TailForecast& forecast : a.forecast)
+    std::printf("            t = %s, gamma = %s: %.2g steps\n", g(forecast.target).c_str(), g(forecast.gamma).c_str(),
+                forecast.steps);
 }
 
 void printVerdict(const TailAnalysis& a) { std::printf("verdict     %s\n", tailVerdictText(a).c_str()); }

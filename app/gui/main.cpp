@@ -393,15 +393,15 @@ int main(int argc, char** argv) {
   if (parser.isSet(profile)) {
     const auto [from, to] = readProfile(parser.value(profile));
     portrait->sidePages()->setCurrentWidget(portrait->profilePanel());
-    archipelago::ui::RotationProfilePanel* panel = portrait->profilePanel();
+    archipelago::ui::RotationProfilePanel* profilePanel = portrait->profilePanel();
     if (!parser.isSet(periodic)) {
-      panel->profile(from, to, 400);
+      profilePanel->profile(from, to, 400);
     } else {  // with --periodic: about the orbit found there, once it is found (About: the periodic orbit drawn)
-      auto* once = new QObject(panel);
+      auto* once = new QObject(profilePanel);
       QObject::connect(portrait->controller(), &archipelago::ui::PortraitController::periodicOrbitFound, once,
-                       [panel, once, from = from, to = to] {
-                         panel->aboutBox()->setCurrentIndex(1);
-                         panel->profile(from, to, 400);
+                       [profilePanel, once, from = from, to = to] {
+                         profilePanel->aboutBox()->setCurrentIndex(1);
+                         profilePanel->profile(from, to, 400);
                          once->deleteLater();
                        });
     }

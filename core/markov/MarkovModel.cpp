@@ -111,7 +111,6 @@ namespace {
 // N·C(τ) (eq. cmark) by the lumped chain, in long double.
 std::vector<long double> scaledCorrelation(const MarkovModel& model, const LumpedObservable& h, std::int64_t tauMax) {
   validate(model, h);
-  const std::int64_t m = model.trappedPoints();
   if (auto e = seriesError(model, tauMax)) throw std::invalid_argument(*e);
   checkSeriesMemory(tauMax);
   const long double n = static_cast<long double>(model.seaPoints());

@@ -213,7 +213,7 @@ StatisticsPlot::StatisticsPlot(Statistic statistic, QWidget* parent) : QwtPlot(p
     QFont small = legendFont;
     small.setPointSizeF(legendFont.pointSizeF() * 0.88);  // two columns in a plot 330 pixels wide
     below->setFont(small);
-    if (QLayout* grid = below->contentsWidget()->layout()) grid->setSpacing(0);
+    if (QLayout* rows = below->contentsWidget()->layout()) rows->setSpacing(0);
     // Up to 0.7 of the plot's height (Qwt's default is a third), taken only when needed: at Qt 5's 12-point font
     // the seven entries of a plot 260 pixels high took more rows than a third or a half of it holds, and the last
     // were clipped (gui.issue37 under Qt 5).

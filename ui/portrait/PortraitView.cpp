@@ -664,15 +664,15 @@ bool PortraitView::exportPng(const QString& path, const QSize& requested) {
   progress.setAutoReset(false);
   progress.hide();
   const auto ready = connect(worker_, &PortraitWorker::exportReady, &loop,
-                             [&](quint64 request, std::shared_ptr<const PortraitFrame> f, const QString& e) {
-                               if (request != id) return;
+                             [&](quint64 answered, std::shared_ptr<const PortraitFrame> f, const QString& e) {
+                               if (answered != id) return;
                                frame = std::move(f);
                                error = e;
                                finished = true;
                                loop.quit();
                              });
-  const auto moved = connect(worker_, &PortraitWorker::exportProgress, &progress, [&](quint64 request, double f) {
-    if (request == id) progress.setValue(static_cast<int>(1000 * f));
+  const auto moved = connect(worker_, &PortraitWorker::exportProgress, &progress, [&](quint64 answered, double f) {
+    if (answered == id) progress.setValue(static_cast<int>(1000 * f));
   });
   connect(&progress, &QProgressDialog::canceled, &loop, [&] {
     worker_->cancelExport();
