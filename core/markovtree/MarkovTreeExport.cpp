@@ -49,7 +49,9 @@ std::optional<std::string> validationError(const MarkovTreeRequest& r) {
     if (t > kMarkovTreeMaxT) return "t = " + std::to_string(t) + " must be at most 2^62";
   if (r.at.size() > 100000) return "at most 100000 extra t";
   const bool a = r.alpha != 0, b = r.b2 != 0;
-  if (a != b) return "alpha and b2 go together: both (P_t = alpha flux / b2 S(t)) or neither (S(t) only)";
+  if (a != b)
+    return std::string(a ? "b2" : "alpha") + " is missing or 0, and must be > 0: alpha and b2 go together: both " +
+           "(P_t = alpha flux / b2 S(t)) or neither (S(t) only)";
   if (a && !(std::isfinite(r.alpha) && r.alpha > 0)) return "alpha (the run's mean segment length, steps) must be > 0";
   if (b && !(std::isfinite(r.b2) && r.b2 > 0)) return "b2 (the stochastic area) must be > 0";
   if (!(std::isfinite(r.exponentFrom) && r.exponentFrom >= 1)) return "the exponent's first window must start at >= 1";
