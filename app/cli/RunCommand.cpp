@@ -51,6 +51,9 @@ int runCommand(const RunOptions& o, const std::vector<std::string>& explicitPara
                          {"--checkpoint", checkpoint, io::FileUse::SavedState},
                          {"--resume", o.resume, io::FileUse::ResumedState},
                          {"--spec", o.specFile, io::FileUse::Input}});
+  // Ctrl-C and SIGTERM are caught before the files are locked: from here on they stop the run at a chunk boundary
+  // (or before it starts) and the locks are released, never left behind by the default action.
+  installInterruptHandlers();
   const std::vector<io::FileLock> locks = lockRunFiles(o.out, checkpoint, o.resume);
 
   TrappingState state;
@@ -68,7 +71,6 @@ int runCommand(const RunOptions& o, const std::vector<std::string>& explicitPara
   }
   const bool tty = ::isatty(STDERR_FILENO) != 0;
 
-  installInterruptHandlers();
   const KernelInfo& kernel = selectKernel(o.kernel);
   CheckpointedRunOptions options;
   options.run.kernel = &kernel;
