@@ -216,10 +216,15 @@ def test_tail_stops_on_ctrl_c_within_a_unit_of_stage_0_Issue36():
                         progress=progress)
         return call
 
-    q, t = _calibrated(lambda n: first_unit(4 * n))
+    q, t = _calibrated(lambda n: first_unit(4 * n), most=65536 // (4 * SCALE))  # q at most 65536 / SCALE
     q *= 4
     assert q * SCALE <= 65536
+    bound = _bound(t)
+    if t < 0.15:
+        # q's limit stopped the calibration short (an AVX-512 IFMA CPU reached 0.15 s only at q = 8192, and
+        # 8192 * SCALE is beyond the sampler's q): the big unit is measured instead, as for rotation above.
+        bound = max(bound, _seconds(first_unit(q * SCALE)) / 2)
     elapsed = _interrupted_after(t, lambda: ap.tail(K=0.1, q=q * SCALE, first=100 * q * SCALE,
                                                     t_max=200 * q * SCALE, population=4, replicas=1,
                                                     min_ancestors=1, threads=1))
-    assert elapsed < _bound(t), f"stopped after {elapsed:.2f} s; uninterrupted unit ~{SCALE * t:.1f} s"
+    assert elapsed < bound, f"stopped after {elapsed:.2f} s; bound {bound:.2f} s (uninterrupted unit ~{SCALE * t:.1f} s)"
