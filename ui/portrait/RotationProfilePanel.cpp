@@ -43,6 +43,10 @@ RotationProfilePanel::RotationProfilePanel(PortraitController* controller, QWidg
   about_->setObjectName(QStringLiteral("profileAbout"));
   about_->addItem(tr("the centre (−√K, 0)"));
   about_->addItem(tr("the periodic orbit drawn (Shift+click an island)"));
+  // Sized by a few characters, not by its longest item: the side column must not widen the window (gui.window at
+  // Qt 5's 12-point font: 1108 px with the item's length).
+  about_->setSizeAdjustPolicy(QComboBox::AdjustToMinimumContentsLengthWithIcon);
+  about_->setMinimumContentsLength(12);
   about_->setToolTip(tr("The rotation about the central fixed point, or about an island's own centre: the member "
                         "nearest the line of the elliptic periodic orbit drawn on the portrait (Qⁿ for period n)"));
   info_ = new QLabel(tr("The rotation number about the centre of orbits started along a line: plateaus are island "
