@@ -130,7 +130,7 @@ TailJob prepareTail(TailOptions& o, const CLI::App& cmd, std::optional<ReplicaRa
   options.clones = o.clones;
   options.spec = [&o, &cmd] {
     RunSpec spec = resolveSpec(o, cmd);
-    warnIfBoxCutsIsland(spec.parameters);
+    if (o.warnings) warnIfBoxCutsIsland(spec.parameters);
     return spec;
   };
   options.givenSpec = givenSpecOptions(cmd);

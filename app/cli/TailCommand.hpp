@@ -32,6 +32,7 @@ struct TailOptions : SpecOptions {
   std::string slice;       // "I/N": this process's slice of the replicas
   bool printLevels = false;
   bool quiet = false;
+  bool warnings = true;    // core's warnings about the run (the box and the island) on stderr: archipelago-mpi's rank 0 only
 };
 
 /// Every option of `tail` on `cmd` (`withSlice`: --slice too; archipelago-mpi takes the slice from its rank).

@@ -198,6 +198,7 @@ int mpiRun(const cli::RunOptions& o, const std::vector<std::string>& explicitPar
     }
   });
   if (root) removeStaleParts(manifest, previousParts);
+  if (root) cli::warnIfBoxCutsIsland(state.params);  // as archipelago-cli run says it (issue 39), once
 
   cli::installInterruptHandlers();
   const KernelInfo& kernel = selectKernel(run.kernel);

@@ -31,7 +31,10 @@ int mpiTail(cli::TailOptions& o, const CLI::App& cmd) {
     if (w.rank == 0) (void)cli::prepareTail(o, cmd, std::nullopt);
     return 0;
   }
-  if (w.rank != 0) o.quiet = true;  // rank 0 shows its own slice's progress and the merged result
+  if (w.rank != 0) {  // rank 0 shows its own slice's progress, the merged result and the warnings, once
+    o.quiet = true;
+    o.warnings = false;
+  }
   const std::string checkpointBase = o.checkpoint.empty() ? o.out : o.checkpoint;
   const std::string checkpoint = sliceName(checkpointBase, w.rank, w.size);
   const std::string resume = o.resume.empty() ? std::string() : sliceName(o.resume, w.rank, w.size);
