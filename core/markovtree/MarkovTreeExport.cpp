@@ -76,6 +76,34 @@ MarkovTreeResult computeMarkovTree(const Atlas& atlas, const MarkovTreeRequest& 
   return r;
 }
 
+MarkovTreeEntryOffer markovTreeEntryOffer(const MapParameters& atlasMap, const std::optional<MapParameters>& runMap,
+                                          double runAlpha) {
+  MarkovTreeEntryOffer o;
+  const bool docs = atlasMap == MapParameters{};
+  const std::string atlasK = "K = " + shortestDecimal(atlasMap.K);
+  const std::string box = " in the box (" + shortestDecimal(atlasMap.xmin) + ", " + shortestDecimal(atlasMap.xmax) + ")";
+  if (runMap && *runMap == atlasMap && std::isfinite(runAlpha) && runAlpha > 0) {
+    o.alpha = runAlpha;
+    o.alphaSource = "the run's mean segment length (" + atlasK + ", the atlas's map)";
+  } else if (docs) {
+    o.alpha = kMarkovTreeDocsAlpha;
+    o.alphaSource = runMap ? "docs/markov-tree.md's, K = 0.1 (the run shown is of another map: K = " +
+                                 shortestDecimal(runMap->K) + ")"
+                           : "docs/markov-tree.md's, K = 0.1 (no run is shown)";
+  } else {
+    o.alphaSource = "none for the atlas's " + atlasK + box +
+                    ": give the mean segment length alpha of a run of that map (archipelago-cli stats)";
+  }
+  if (docs) {
+    o.b2 = kMarkovTreeDocsB2;
+    o.b2Source = "docs/markov-tree.md's, K = 0.1 (stochastic-area on a 4096² grid)";
+  } else {
+    o.b2Source = "none for the atlas's " + atlasK + box +
+                 ": give the stochastic area b2 of that box (archipelago-cli stochastic-area)";
+  }
+  return o;
+}
+
 Series markovTreeCurve(const MarkovTreeResult& r) {
   Series out;
   if (!r.weight) return out;

@@ -32,6 +32,19 @@ struct MarkovTreeRequest {
 inline constexpr double kMarkovTreeDocsAlpha = 18.9043;
 inline constexpr double kMarkovTreeDocsB2 = 1.362484;
 
+/// The entry numbers a front end offers (prefills) for the Markov tree of an atlas of `atlasMap`, each with where it
+/// comes from, or 0 with why there is none — never a number of another map (a K = 0.1 α or b₂ offered for an atlas
+/// at K = 0.15 would give a model of the wrong size without a word):
+///  - α: the shown run's mean segment length (`runAlpha` > 0) when the run's map (K and box) is the atlas's; else
+///    kMarkovTreeDocsAlpha when the atlas's map is the docs' (K = 0.1 in the default box); else none;
+///  - b₂: kMarkovTreeDocsB2 when the atlas's map is the docs'; else none (measure it: `archipelago-cli stochastic-area`).
+struct MarkovTreeEntryOffer {
+  double alpha = 0, b2 = 0;  ///< 0: nothing to offer
+  std::string alphaSource, b2Source;
+};
+[[nodiscard]] MarkovTreeEntryOffer markovTreeEntryOffer(const MapParameters& atlasMap,
+                                                        const std::optional<MapParameters>& runMap, double runAlpha);
+
 /// The first violated rule, naming the field, or nothing.
 [[nodiscard]] std::optional<std::string> validationError(const MarkovTreeRequest& r);
 

@@ -262,8 +262,27 @@ class TestMarkovTree : public QObject {
     QCOMPARE(p->modelTitle(), QStringLiteral("Markov tree (atlas depth 1)"));
   }
 
+  // A run of another map (K = 0.15) beside the K = 0.1 atlas: its α is not offered (it would size the model of
+  // another map), the docs' is, saying why (core's markovTreeEntryOffer).
+  void aRunOfAnotherMapIsNotTheEntry() {
+    archipelago::TrappingParameters p = archipelago::test::shortRun();
+    p.map.K = 0.15;
+    w_->parameterPanel()->setParameters(p, 2);
+    QVERIFY(w_->startRun());
+    QVERIFY(archipelago::test::waitForStatus(*w_, archipelago::ui::RunStatus::finished, kWait));
+    w_->refreshNow();
+    const double runAlpha = w_->latestSnapshot()->statistics.alpha;
+    QVERIFY(runAlpha > 1 && runAlpha != kAlpha);
+    QVERIFY(panel_->atlas() && panel_->atlas()->request.map.K == 0.1);
+    const MainWindow::MarkovTreeEntry e = w_->markovTreeEntry();
+    QCOMPARE(e.alpha, kAlpha);
+    QCOMPARE(e.b2, kB2);
+    QVERIFY2(e.alphaSource.contains(QStringLiteral("another map: K = 0.15")), qPrintable(e.alphaSource));
+  }
+
   void cleanupTestCase() { w_.reset(); }
 };
 
 ARCHIPELAGO_GUI_TEST_MAIN(TestMarkovTree)
 #include "test_markov_tree.moc"
+

@@ -726,18 +726,20 @@ bool MainWindow::openAtlasFile(const QString& path, QString* error) {
 }
 
 MainWindow::MarkovTreeEntry MainWindow::markovTreeEntry() const {
-  MarkovTreeEntry e;
+  // The atlas's map (the one the parameters show when no atlas is on the page), the shown run's map and α: core
+  // decides what may be offered (markovTreeEntryOffer: never a number of another map).
+  const std::shared_ptr<const Atlas> atlas = portrait_->atlasPanel()->atlas();
+  const std::optional<TrappingParameters> given = panel_->parameters();
+  const MapParameters atlasMap = atlas ? atlas->request.map : given ? given->map : MapParameters{};
   const RunSnapshotPtr shown = run_->latest();
-  if (shown && shown->hasStatistics && shown->statistics.alpha > 0) {
-    e.alpha = shown->statistics.alpha;
-    e.alphaSource = tr("the run's mean segment length");
-  } else {
-    e.alpha = kMarkovTreeDocsAlpha;
-    e.alphaSource = tr("docs/markov-tree.md's, K = 0.1 (no run is shown)");
+  std::optional<MapParameters> runMap;
+  double runAlpha = 0;
+  if (shown && shown->hasStatistics) {
+    runMap = shown->state.params.map;
+    runAlpha = shown->statistics.alpha;
   }
-  e.b2 = kMarkovTreeDocsB2;
-  e.b2Source = tr("docs/markov-tree.md's, K = 0.1 (stochastic-area on a 4096² grid; the portrait's Stochastic Area b₂… measures it)");
-  return e;
+  const MarkovTreeEntryOffer o = markovTreeEntryOffer(atlasMap, runMap, runAlpha);
+  return {o.alpha, o.b2, QString::fromStdString(o.alphaSource), QString::fromStdString(o.b2Source)};
 }
 
 bool MainWindow::drawMarkovTree(double alpha, double b2, QString* error) {
@@ -758,9 +760,9 @@ void MainWindow::askMarkovTree() {
   auto* intro = new QLabel(tr("The model's P_t = w S(t) with w = α Φ_centre / b₂ visits per segment "
                               "(docs/markov-tree.md)."), &dialog);
   intro->setWordWrap(true);
-  auto* alpha = new QLineEdit(QLocale::c().toString(e.alpha, 'g', 8), &dialog);
+  auto* alpha = new QLineEdit(e.alpha > 0 ? QLocale::c().toString(e.alpha, 'g', 8) : QString(), &dialog);
   alpha->setToolTip(tr("α: %1").arg(e.alphaSource));
-  auto* b2 = new QLineEdit(QLocale::c().toString(e.b2, 'g', 8), &dialog);
+  auto* b2 = new QLineEdit(e.b2 > 0 ? QLocale::c().toString(e.b2, 'g', 8) : QString(), &dialog);
   b2->setToolTip(tr("b₂: %1").arg(e.b2Source));
   auto* form = new QFormLayout;
   form->addRow(tr("α (steps)"), alpha);

@@ -69,9 +69,10 @@ class MainWindow : public QMainWindow {
   [[nodiscard]] bool tailEstimatePending() const noexcept { return tailRequest_ != 0; }
   /// File ▸ Open Atlas: shows an atlas file on the portrait's Atlas page (AtlasPanel::openAtlasFile).
   bool openAtlasFile(const QString& path, QString* error = nullptr);
-  /// The entry's numbers offered for the Markov tree's P_t = w S(t) (issue 40): α the run's mean segment length where
-  /// a run with statistics is shown, else docs/markov-tree.md's (K = 0.1); b₂ docs/markov-tree.md's (core's
-  /// kMarkovTreeDocsB2: the GUI has no b₂ of the run's box without computing it), each with where it comes from.
+  /// The entry's numbers offered for the Markov tree's P_t = w S(t) (issue 40), each with where it comes from, or 0
+  /// (an empty field) with why there is none: core's markovTreeEntryOffer for the Atlas page's atlas (the parameters'
+  /// map without one) and the shown run — α the run's mean segment length when its map is the atlas's, else
+  /// docs/markov-tree.md's for an atlas at K = 0.1 in the default box; b₂ docs/markov-tree.md's for that map only.
   struct MarkovTreeEntry {
     double alpha = 0, b2 = 0;
     QString alphaSource, b2Source;

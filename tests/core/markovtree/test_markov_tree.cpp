@@ -339,5 +339,35 @@ TEST(MarkovTree, CurveIsWTimesSAndSharesSumToOne) {
   EXPECT_TRUE(markovTreeCurve(computeMarkovTree(a, r)).x.empty());
 }
 
+// What a front end prefills for α and b₂ (issue 40, found by a session: the GUI offered K = 0.1's b₂ and the run's α
+// whatever the atlas's map): a number only of the atlas's own map, else nothing, saying why.
+TEST(MarkovTree, TheEntryOfferedIsNeverAnotherMapsNumber) {
+  const MapParameters docs;                                  // K = 0.1 in (−0.8, 0.5): the docs' map
+  const MapParameters k015{0.15, -0.8, 0.5}, wider{0.1, -0.8, 0.6};
+  MarkovTreeEntryOffer o = markovTreeEntryOffer(docs, std::nullopt, 0);
+  EXPECT_EQ(o.alpha, 18.9043);  // docs/markov-tree.md's numbers, typed from the page
+  EXPECT_EQ(o.b2, 1.362484);
+  EXPECT_NE(o.alphaSource.find("no run"), std::string::npos) << o.alphaSource;
+  o = markovTreeEntryOffer(docs, docs, 12.5);  // a run of the atlas's map: its α
+  EXPECT_EQ(o.alpha, 12.5);
+  EXPECT_EQ(o.b2, 1.362484);
+  EXPECT_NE(o.alphaSource.find("run's mean segment length"), std::string::npos) << o.alphaSource;
+  o = markovTreeEntryOffer(docs, k015, 12.5);  // a run of another K: not its α
+  EXPECT_EQ(o.alpha, 18.9043);
+  EXPECT_NE(o.alphaSource.find("another map: K = 0.15"), std::string::npos) << o.alphaSource;
+  o = markovTreeEntryOffer(docs, docs, std::numeric_limits<double>::quiet_NaN());  // no α yet
+  EXPECT_EQ(o.alpha, 18.9043);
+  for (const MapParameters& other : {k015, wider}) {  // an atlas of another K or box: no docs number
+    o = markovTreeEntryOffer(other, docs, 12.5);
+    EXPECT_EQ(o.alpha, 0.0);
+    EXPECT_EQ(o.b2, 0.0);
+    EXPECT_EQ(o.alphaSource.rfind("none for the atlas's K = " + shortestDecimal(other.K), 0), 0u) << o.alphaSource;
+    EXPECT_NE(o.b2Source.find("stochastic-area"), std::string::npos) << o.b2Source;
+    o = markovTreeEntryOffer(other, other, 20);  // its own run: its α, still no b₂
+    EXPECT_EQ(o.alpha, 20.0);
+    EXPECT_EQ(o.b2, 0.0);
+  }
+}
+
 }  // namespace
 }  // namespace archipelago
