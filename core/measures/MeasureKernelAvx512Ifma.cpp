@@ -65,6 +65,25 @@ inline D8 absValue(D8 a) { return _mm512_abs_pd(a.v); }
 inline D8 minValue(D8 a, D8 b) { return _mm512_min_pd(a.v, b.v); }  // a < b ? a : b
 inline D8 maxValue(D8 a, D8 b) { return _mm512_max_pd(a.v, b.v); }  // a > b ? a : b
 inline D8 select(Mask8 m, D8 a, D8 b) { return _mm512_mask_blend_pd(m.m, b.v, a.v); }
+inline D8 negateWhere(Mask8 m, D8 a) {
+  const __m512i bits = _mm512_castpd_si512(a.v);
+  return _mm512_castsi512_pd(_mm512_mask_xor_epi64(bits, m.m, bits, _mm512_set1_epi64(INT64_MIN)));
+}
+inline Mask8 maskXor(Mask8 a, Mask8 b) { return {static_cast<__mmask8>(a.m ^ b.m)}; }
+/// An index 0 … 15 per lane (MeasureMath.inl's offsetIndex).
+struct Index8 {
+  __m512i i;
+};
+inline Index8 offsetIndex(Mask8 mid, Mask8 far, Mask8 swapped, Mask8 cNegative) {
+  const __m512i one = _mm512_set1_epi64(1);
+  __m512i i = _mm512_maskz_mov_epi64(mid.m, one);
+  i = _mm512_mask_add_epi64(i, far.m, i, one);
+  i = _mm512_mask_or_epi64(i, swapped.m, i, _mm512_set1_epi64(4));
+  return {_mm512_mask_or_epi64(i, cNegative.m, i, _mm512_set1_epi64(8))};
+}
+inline D8 lookup(Index8 index, const double (&table)[16]) {
+  return _mm512_permutex2var_pd(_mm512_loadu_pd(table), index.i, _mm512_loadu_pd(table + 8));
+}
 /// For positive normal r: getexp gives ⌊log₂ r⌋, getmant the mantissa in [1, 2), both exact.
 inline D8 splitExponent(D8 r, D8& mantissa) {
   mantissa = _mm512_getmant_pd(r.v, _MM_MANT_NORM_1_2, _MM_MANT_SIGN_src);
