@@ -1,5 +1,5 @@
 // The AVX-512 IFMA orbit-measure kernel (MeasureKernels.hpp): the map and the accumulation fused in one loop,
-// 8 orbits per 512-bit vector, 4 vectors per group.
+// 8 orbits per 512-bit vector, 4 vectors per group (2 for the rotation measure).
 //
 // The step is N (forward) exactly as KernelAvx512Ifma.cpp computes it (vpmadd52huq gives ⌊a·b/2^52⌋ of 52-bit
 // words, i.e. fixedPointG of FixedPointMap.hpp), with the wrap accumulated as ScalarStep::forward does:
@@ -161,12 +161,17 @@ struct Avx512Ifma {
 // Four vectors (32 orbits): the step's latency chain (~13 cycles) is hidden by the other vectors' work and the
 // accumulation, as in the trapping kernel (KernelAvx512Ifma.cpp).
 constexpr int kVectors = 4;
+// The rotation measure: two vectors (16 orbits).  Its atan2 per step and lane is long enough to hide the step, and
+// with four vectors the loop's live values exceed the 32 zmm registers and spill every step; issue 41 measured two
+// vectors 4 % faster on a Zen 5 (7 alternated runs of bench/run-benchmarks.sh's rotation line; three vectors no
+// better than four).
+constexpr int kRotationVectors = 2;
 
 }  // namespace
 
 void measureKernelAvx512Ifma(const MeasureSetup& setup, std::span<MeasureLane> lanes, std::uint64_t first,
                              std::uint64_t steps) {
-  measureWith<Avx512Ifma, kVectors>(setup, lanes, first, steps);
+  measureWith<Avx512Ifma, kVectors, kRotationVectors>(setup, lanes, first, steps);
 }
 
 }  // namespace archipelago::measures
