@@ -55,7 +55,6 @@ inline D4 operator+(D4 a, D4 b) { return _mm256_add_pd(a.v, b.v); }
 inline D4 operator-(D4 a, D4 b) { return _mm256_sub_pd(a.v, b.v); }
 inline D4 operator*(D4 a, D4 b) { return _mm256_mul_pd(a.v, b.v); }
 inline D4 operator/(D4 a, D4 b) { return _mm256_div_pd(a.v, b.v); }
-inline D4 operator-(D4 a) { return _mm256_xor_pd(a.v, _mm256_set1_pd(-0.0)); }
 inline Mask4 operator>(D4 a, D4 b) { return {_mm256_cmp_pd(a.v, b.v, _CMP_GT_OQ)}; }
 inline Mask4 operator<(D4 a, D4 b) { return {_mm256_cmp_pd(a.v, b.v, _CMP_LT_OQ)}; }
 inline D4 absValue(D4 a) { return _mm256_andnot_pd(_mm256_set1_pd(-0.0), a.v); }

@@ -58,7 +58,6 @@ inline D8 operator+(D8 a, D8 b) { return _mm512_add_pd(a.v, b.v); }
 inline D8 operator-(D8 a, D8 b) { return _mm512_sub_pd(a.v, b.v); }
 inline D8 operator*(D8 a, D8 b) { return _mm512_mul_pd(a.v, b.v); }
 inline D8 operator/(D8 a, D8 b) { return _mm512_div_pd(a.v, b.v); }
-inline D8 operator-(D8 a) { return _mm512_castsi512_pd(_mm512_xor_si512(_mm512_castpd_si512(a.v), _mm512_set1_epi64(INT64_MIN))); }
 inline Mask8 operator>(D8 a, D8 b) { return {_mm512_cmp_pd_mask(a.v, b.v, _CMP_GT_OQ)}; }
 inline Mask8 operator<(D8 a, D8 b) { return {_mm512_cmp_pd_mask(a.v, b.v, _CMP_LT_OQ)}; }
 inline D8 absValue(D8 a) { return _mm512_abs_pd(a.v); }

@@ -41,7 +41,6 @@ struct Lane4 {
   friend Lane4 operator-(Lane4 a, Lane4 b) { return map([&](std::size_t l) { return a.v[l] - b.v[l]; }); }
   friend Lane4 operator*(Lane4 a, Lane4 b) { return map([&](std::size_t l) { return a.v[l] * b.v[l]; }); }
   friend Lane4 operator/(Lane4 a, Lane4 b) { return map([&](std::size_t l) { return a.v[l] / b.v[l]; }); }
-  friend Lane4 operator-(Lane4 a) { return map([&](std::size_t l) { return -a.v[l]; }); }
   friend Mask4 operator>(Lane4 a, Lane4 b) {
     Mask4 m;
     for (std::size_t l = 0; l < kWidth; ++l) m.b[l] = a.v[l] > b.v[l];

@@ -16,8 +16,9 @@
 //   - twoSumAdd(hi, lo, p): compensated summation (Knuth's TwoSum: hi + lo is the sum with the rounding error of
 //     every addition kept in lo), so that a Birkhoff sum of 10⁴–10⁷ terms keeps ~16 digits.
 // Every template takes a number type V: double, or a SIMD vector of doubles, constructible from a double (a
-// broadcast), whose operators and the functions absValue, minValue, maxValue, select, splitExponent (found by
-// argument-dependent lookup) act lane by lane with the same IEEE semantics as the double overloads below.
+// broadcast), whose operators and the functions absValue, minValue, maxValue, select, splitExponent,
+// negateWhere, maskXor, offsetIndex and lookup (found by argument-dependent lookup on V, its mask type and its
+// index type) act lane by lane with the same IEEE semantics as the double overloads below.
 // No expression may be contracted into an FMA: core modules are compiled with -ffp-contract=off, and the vector
 // types call separate multiply and add intrinsics.
 //
