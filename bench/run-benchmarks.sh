@@ -266,6 +266,8 @@ if all(x == x for x in f512):
     print(f"  avx512f / avx2 (paired, 1 thread), bare step / pipeline q = 1 / 16 / 100:  "
           f"{' / '.join(f'{x:.2f}x' for x in f512)};  pipeline >= 1.5x at q = 16 and 100: {verdict(min(f512[2:]) >= 1.5)}"
           + ("   (measured on an IFMA CPU, by forcing the AVX-512F path)" if ifma else ""))
+elif "avx512f" in str(c.get("cpu_flags", "")).split():
+    print("  avx512f / avx2: not measured in this run (no paired/avx512f_vs_avx2 benchmark passed the filter)")
 else:
     print("  avx512f / avx2: not measured: this CPU has no AVX-512F (see its flags above); its bit identity is tested"
           " (core_tests, on SIMDe where there is no AVX-512F)")

@@ -4,8 +4,9 @@
 atan u / u is interpolated in w = u^2 at the 8 Chebyshev nodes of [0, tan^2(pi/16)] (a near-minimax polynomial of
 degree 7 in w), at 60 significant digits (mpmath), and the coefficients rounded to double; the script prints them
 as C hexadecimal literals with the largest error of u * P(u^2) against atan u over the range, the rounded
-coefficients used as they are.  It also prints atan(kTanPi8) split into a double and its rounding error, and the
-thresholds tan(pi/16), tan(3 pi/16).  Needs python3-mpmath.
+coefficients used as they are.  It also prints the table of angle offsets (kAngleOffsetHi/Lo: alpha, pi/2 - alpha,
+pi - alpha, pi/2 + alpha for alpha = 0, atan(kTanPi8), pi/4, each split into a double and its rounding error) and
+the thresholds tan(pi/16), tan(3 pi/16).  Needs python3-mpmath.
 
 Usage: scripts/atan-coefficients.py [TERMS]     (TERMS: 8, the value MeasureMath.inl uses)
 """
@@ -38,9 +39,19 @@ def main() -> int:
     print(f"// {n} terms; |u P(u^2) - atan u| <= {mp.nstr(worst, 3)} for |u| <= tan(pi/16)")
     print("kAtanCoefficients = {" + ", ".join(hexd(x) for x in coefficients) + "}")
     tau = mp.mpf(float.fromhex("0x1.a827999fcef32p-2"))  # kTanPi8, tan(pi/8) rounded to double
-    a = mp.atan(tau)
-    hi = float(a)
-    print(f"kAtanTanPi8Hi = {hexd(hi)}, kAtanTanPi8Lo = {hexd(float(a - mp.mpf(hi)))}")
+    # atan2Portable's offsets K at index j + 4 swapped + 8 (c < 0): alpha, pi/2 - alpha, pi - alpha, pi/2 + alpha
+    # for alpha = 0, atan(kTanPi8), pi/4 (j = 0, 1, 2; j = 3 repeats j = 2), each a double and its rounding error.
+    alphas = [mp.mpf(0), mp.atan(tau), mp.pi / 4, mp.pi / 4]
+    his, los = [], []
+    for c_negative in (0, 1):
+        for swapped in (0, 1):
+            for alpha in alphas:
+                k = {(0, 0): alpha, (1, 0): mp.pi / 2 - alpha, (0, 1): mp.pi - alpha, (1, 1): mp.pi / 2 + alpha}
+                value = k[(swapped, c_negative)]
+                his.append(float(value))
+                los.append(float(value - mp.mpf(his[-1])))
+    print("kAngleOffsetHi = {" + ", ".join(hexd(x) for x in his) + "}")
+    print("kAngleOffsetLo = {" + ", ".join(hexd(x) for x in los) + "}")
     print(f"kTanPi16 = {hexd(float(mp.tan(mp.pi / 16)))}, kTan3Pi16 = {hexd(float(mp.tan(3 * mp.pi / 16)))}")
     return 0
 

@@ -190,12 +190,15 @@ void measureWithKind(const MeasureSetup& s, std::span<MeasureLane> lanes, std::u
   }
 }
 
-/// The kernel of MeasureKernels.hpp for the policy `Simd` with V vectors per group.
-template <class Simd, int V>
+/// The kernel of MeasureKernels.hpp for the policy `Simd` with V vectors per group (VRotation for the rotation
+/// measure, whose long per-step atan2 may want fewer vectors in flight than the map's latency alone).
+template <class Simd, int V, int VRotation = V>
 void measureWith(const MeasureSetup& s, std::span<MeasureLane> lanes, std::uint64_t first, std::uint64_t steps) {
   switch (s.kind) {
     case IndicatorKind::Dig: measureWithKind<Simd, IndicatorKind::Dig, V>(s, lanes, first, steps); break;
-    case IndicatorKind::Rotation: measureWithKind<Simd, IndicatorKind::Rotation, V>(s, lanes, first, steps); break;
+    case IndicatorKind::Rotation:
+      measureWithKind<Simd, IndicatorKind::Rotation, VRotation>(s, lanes, first, steps);
+      break;
     case IndicatorKind::Fli: measureWithKind<Simd, IndicatorKind::Fli, V>(s, lanes, first, steps); break;
     case IndicatorKind::Megno: measureWithKind<Simd, IndicatorKind::Megno, V>(s, lanes, first, steps); break;
     case IndicatorKind::Lyapunov: measureWithKind<Simd, IndicatorKind::Lyapunov, V>(s, lanes, first, steps); break;

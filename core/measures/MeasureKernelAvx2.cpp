@@ -55,13 +55,27 @@ inline D4 operator+(D4 a, D4 b) { return _mm256_add_pd(a.v, b.v); }
 inline D4 operator-(D4 a, D4 b) { return _mm256_sub_pd(a.v, b.v); }
 inline D4 operator*(D4 a, D4 b) { return _mm256_mul_pd(a.v, b.v); }
 inline D4 operator/(D4 a, D4 b) { return _mm256_div_pd(a.v, b.v); }
-inline D4 operator-(D4 a) { return _mm256_xor_pd(a.v, _mm256_set1_pd(-0.0)); }
 inline Mask4 operator>(D4 a, D4 b) { return {_mm256_cmp_pd(a.v, b.v, _CMP_GT_OQ)}; }
 inline Mask4 operator<(D4 a, D4 b) { return {_mm256_cmp_pd(a.v, b.v, _CMP_LT_OQ)}; }
 inline D4 absValue(D4 a) { return _mm256_andnot_pd(_mm256_set1_pd(-0.0), a.v); }
 inline D4 minValue(D4 a, D4 b) { return _mm256_min_pd(a.v, b.v); }  // a < b ? a : b
 inline D4 maxValue(D4 a, D4 b) { return _mm256_max_pd(a.v, b.v); }  // a > b ? a : b
 inline D4 select(Mask4 m, D4 a, D4 b) { return _mm256_blendv_pd(b.v, a.v, m.m); }
+inline D4 negateWhere(Mask4 m, D4 a) { return _mm256_xor_pd(a.v, _mm256_and_pd(m.m, _mm256_set1_pd(-0.0))); }
+inline Mask4 maskXor(Mask4 a, Mask4 b) { return {_mm256_xor_pd(a.m, b.m)}; }
+/// An index 0 … 15 per lane (MeasureMath.inl's offsetIndex).
+struct Index4 {
+  __m256i i;
+};
+inline Index4 offsetIndex(Mask4 mid, Mask4 far, Mask4 swapped, Mask4 cNegative) {
+  // A mask lane is −1 (all ones) or 0: 0 − mid − far is j.
+  const __m256i j = _mm256_sub_epi64(_mm256_sub_epi64(_mm256_setzero_si256(), _mm256_castpd_si256(mid.m)),
+                                     _mm256_castpd_si256(far.m));
+  const __m256i q = _mm256_or_si256(_mm256_and_si256(_mm256_castpd_si256(swapped.m), _mm256_set1_epi64x(4)),
+                                    _mm256_and_si256(_mm256_castpd_si256(cNegative.m), _mm256_set1_epi64x(8)));
+  return {_mm256_or_si256(j, q)};
+}
+inline D4 lookup(Index4 index, const double (&table)[16]) { return _mm256_i64gather_pd(table, index.i, 8); }
 /// For positive normal r: the exponent field minus 1023 and the mantissa with the exponent of 1.0 (exact).
 inline D4 splitExponent(D4 r, D4& mantissa) {
   const __m256i bits = _mm256_castpd_si256(r.v);

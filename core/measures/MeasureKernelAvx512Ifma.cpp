@@ -1,5 +1,5 @@
 // The AVX-512 IFMA orbit-measure kernel (MeasureKernels.hpp): the map and the accumulation fused in one loop,
-// 8 orbits per 512-bit vector, 4 vectors per group.
+// 8 orbits per 512-bit vector, 4 vectors per group (2 for the rotation measure).
 //
 // The step is N (forward) exactly as KernelAvx512Ifma.cpp computes it (vpmadd52huq gives ⌊a·b/2^52⌋ of 52-bit
 // words, i.e. fixedPointG of FixedPointMap.hpp), with the wrap accumulated as ScalarStep::forward does:
@@ -58,13 +58,31 @@ inline D8 operator+(D8 a, D8 b) { return _mm512_add_pd(a.v, b.v); }
 inline D8 operator-(D8 a, D8 b) { return _mm512_sub_pd(a.v, b.v); }
 inline D8 operator*(D8 a, D8 b) { return _mm512_mul_pd(a.v, b.v); }
 inline D8 operator/(D8 a, D8 b) { return _mm512_div_pd(a.v, b.v); }
-inline D8 operator-(D8 a) { return _mm512_castsi512_pd(_mm512_xor_si512(_mm512_castpd_si512(a.v), _mm512_set1_epi64(INT64_MIN))); }
 inline Mask8 operator>(D8 a, D8 b) { return {_mm512_cmp_pd_mask(a.v, b.v, _CMP_GT_OQ)}; }
 inline Mask8 operator<(D8 a, D8 b) { return {_mm512_cmp_pd_mask(a.v, b.v, _CMP_LT_OQ)}; }
 inline D8 absValue(D8 a) { return _mm512_abs_pd(a.v); }
 inline D8 minValue(D8 a, D8 b) { return _mm512_min_pd(a.v, b.v); }  // a < b ? a : b
 inline D8 maxValue(D8 a, D8 b) { return _mm512_max_pd(a.v, b.v); }  // a > b ? a : b
 inline D8 select(Mask8 m, D8 a, D8 b) { return _mm512_mask_blend_pd(m.m, b.v, a.v); }
+inline D8 negateWhere(Mask8 m, D8 a) {
+  const __m512i bits = _mm512_castpd_si512(a.v);
+  return _mm512_castsi512_pd(_mm512_mask_xor_epi64(bits, m.m, bits, _mm512_set1_epi64(INT64_MIN)));
+}
+inline Mask8 maskXor(Mask8 a, Mask8 b) { return {static_cast<__mmask8>(a.m ^ b.m)}; }
+/// An index 0 … 15 per lane (MeasureMath.inl's offsetIndex).
+struct Index8 {
+  __m512i i;
+};
+inline Index8 offsetIndex(Mask8 mid, Mask8 far, Mask8 swapped, Mask8 cNegative) {
+  const __m512i one = _mm512_set1_epi64(1);
+  __m512i i = _mm512_maskz_mov_epi64(mid.m, one);
+  i = _mm512_mask_add_epi64(i, far.m, i, one);
+  i = _mm512_mask_or_epi64(i, swapped.m, i, _mm512_set1_epi64(4));
+  return {_mm512_mask_or_epi64(i, cNegative.m, i, _mm512_set1_epi64(8))};
+}
+inline D8 lookup(Index8 index, const double (&table)[16]) {
+  return _mm512_permutex2var_pd(_mm512_loadu_pd(table), index.i, _mm512_loadu_pd(table + 8));
+}
 /// For positive normal r: getexp gives ⌊log₂ r⌋, getmant the mantissa in [1, 2), both exact.
 inline D8 splitExponent(D8 r, D8& mantissa) {
   mantissa = _mm512_getmant_pd(r.v, _MM_MANT_NORM_1_2, _MM_MANT_SIGN_src);
@@ -142,12 +160,17 @@ struct Avx512Ifma {
 // Four vectors (32 orbits): the step's latency chain (~13 cycles) is hidden by the other vectors' work and the
 // accumulation, as in the trapping kernel (KernelAvx512Ifma.cpp).
 constexpr int kVectors = 4;
+// The rotation measure: two vectors (16 orbits).  Its atan2 per step and lane is long enough to hide the step, and
+// with four vectors the loop's live values exceed the 32 zmm registers and spill every step; issue 41 measured two
+// vectors 4 % faster on a Zen 5 (7 alternated runs of bench/run-benchmarks.sh's rotation line; three vectors no
+// better than four).
+constexpr int kRotationVectors = 2;
 
 }  // namespace
 
 void measureKernelAvx512Ifma(const MeasureSetup& setup, std::span<MeasureLane> lanes, std::uint64_t first,
                              std::uint64_t steps) {
-  measureWith<Avx512Ifma, kVectors>(setup, lanes, first, steps);
+  measureWith<Avx512Ifma, kVectors, kRotationVectors>(setup, lanes, first, steps);
 }
 
 }  // namespace archipelago::measures

@@ -21,6 +21,9 @@ constexpr std::size_t kWidth = 4;
 struct Mask4 {
   bool b[kWidth];
 };
+struct Index4 {
+  unsigned i[kWidth];
+};
 
 /// Four doubles, operated on lane by lane.
 struct Lane4 {
@@ -38,7 +41,6 @@ struct Lane4 {
   friend Lane4 operator-(Lane4 a, Lane4 b) { return map([&](std::size_t l) { return a.v[l] - b.v[l]; }); }
   friend Lane4 operator*(Lane4 a, Lane4 b) { return map([&](std::size_t l) { return a.v[l] * b.v[l]; }); }
   friend Lane4 operator/(Lane4 a, Lane4 b) { return map([&](std::size_t l) { return a.v[l] / b.v[l]; }); }
-  friend Lane4 operator-(Lane4 a) { return map([&](std::size_t l) { return -a.v[l]; }); }
   friend Mask4 operator>(Lane4 a, Lane4 b) {
     Mask4 m;
     for (std::size_t l = 0; l < kWidth; ++l) m.b[l] = a.v[l] > b.v[l];
@@ -57,10 +59,29 @@ struct Lane4 {
     return map([&](std::size_t l) { return archipelago::measures::maxValue(a.v[l], b.v[l]); });
   }
   friend Lane4 select(Mask4 m, Lane4 a, Lane4 b) { return map([&](std::size_t l) { return m.b[l] ? a.v[l] : b.v[l]; }); }
+  friend Lane4 negateWhere(Mask4 m, Lane4 a) {
+    return map([&](std::size_t l) { return archipelago::measures::negateWhere(m.b[l], a.v[l]); });
+  }
   friend Lane4 splitExponent(Lane4 r, Lane4& mantissa) {
     return map([&](std::size_t l) { return archipelago::measures::splitExponent(r.v[l], mantissa.v[l]); });
   }
 };
+
+// Found by argument-dependent lookup on Mask4 and Index4 (not hidden friends of Lane4).
+Mask4 maskXor(Mask4 a, Mask4 b) {
+  Mask4 m;
+  for (std::size_t l = 0; l < kWidth; ++l) m.b[l] = a.b[l] != b.b[l];
+  return m;
+}
+Index4 offsetIndex(Mask4 mid, Mask4 far, Mask4 swapped, Mask4 cNegative) {
+  Index4 r;
+  for (std::size_t l = 0; l < kWidth; ++l)
+    r.i[l] = archipelago::measures::offsetIndex(mid.b[l], far.b[l], swapped.b[l], cNegative.b[l]);
+  return r;
+}
+Lane4 lookup(Index4 index, const double (&table)[16]) {
+  return Lane4::map([&](std::size_t l) { return table[index.i[l]]; });
+}
 
 struct Scalar {
   using D = Lane4;

@@ -16,13 +16,15 @@
 //   - twoSumAdd(hi, lo, p): compensated summation (Knuth's TwoSum: hi + lo is the sum with the rounding error of
 //     every addition kept in lo), so that a Birkhoff sum of 10⁴–10⁷ terms keeps ~16 digits.
 // Every template takes a number type V: double, or a SIMD vector of doubles, constructible from a double (a
-// broadcast), whose operators and the functions absValue, minValue, maxValue, select, splitExponent (found by
-// argument-dependent lookup) act lane by lane with the same IEEE semantics as the double overloads below.
+// broadcast), whose operators and the functions absValue, minValue, maxValue, select, splitExponent,
+// negateWhere, maskXor, offsetIndex and lookup (found by argument-dependent lookup on V, its mask type and its
+// index type) act lane by lane with the same IEEE semantics as the double overloads below.
 // No expression may be contracted into an FMA: core modules are compiled with -ffp-contract=off, and the vector
 // types call separate multiply and add intrinsics.
 //
 // Accuracy (checked against long double in tests/core/measures, bounds derived there): clockwiseAngle within
-// 5.75·10⁻¹⁶ rad of atan2 of its rounded arguments, lnPositive within 2.5 ulp.  Both are piecewise polynomials
+// 3.75·10⁻¹⁶ rad of atan2 of its rounded arguments (5.75·10⁻¹⁶ before issue 41's table of offsets), lnPositive
+// within 2.5 ulp.  Both are piecewise polynomials
 // (after an exact-enough range reduction: a Taylor series for ln, a near-minimax polynomial for atan), smooth
 // inside each piece, so a weighted Birkhoff average of them converges as fast as one of the true functions (the
 // pieces meet within the same 10⁻¹⁶).
@@ -40,6 +42,16 @@
 /// Like SSE/AVX max: a when a > b, else b.
 [[nodiscard]] inline double maxValue(double a, double b) noexcept { return a > b ? a : b; }
 [[nodiscard]] inline double select(bool m, double a, double b) noexcept { return m ? a : b; }
+/// −a where m (the sign bit flipped: exact), else a.
+[[nodiscard]] inline double negateWhere(bool m, double a) noexcept {
+  return std::bit_cast<double>(std::bit_cast<std::uint64_t>(a) ^ (m ? 0x8000000000000000ull : 0));
+}
+[[nodiscard]] inline bool maskXor(bool a, bool b) noexcept { return a != b; }
+/// atan2Portable's table index: j + 4·swapped + 8·cNegative, j = 2 where far, else 1 where mid, else 0.
+[[nodiscard]] inline unsigned offsetIndex(bool mid, bool far, bool swapped, bool cNegative) noexcept {
+  return (far ? 2u : mid ? 1u : 0u) + (swapped ? 4u : 0u) + (cNegative ? 8u : 0u);
+}
+[[nodiscard]] inline double lookup(unsigned index, const double (&table)[16]) noexcept { return table[index]; }
 /// r = m·2^e with m in [1, 2), for a positive normal r; returns e (exactly) and sets m (exactly).
 [[nodiscard]] inline double splitExponent(double r, double& mantissa) noexcept {
   const auto bits = std::bit_cast<std::uint64_t>(r);
@@ -48,13 +60,7 @@
 }
 
 // --- constants -----------------------------------------------------------------------------------------------
-// π/4, π/2 and π as a double plus its rounding error (Cody–Waite), so that π/2 − a keeps the bits of a.
-constexpr double kPi4Hi = 0x1.921fb54442d18p-1, kPi4Lo = 0x1.1a62633145c07p-55;
-constexpr double kPi2Hi = 0x1.921fb54442d18p+0, kPi2Lo = 0x1.1a62633145c07p-54;
-constexpr double kPiHi = 0x1.921fb54442d18p+1, kPiLo = 0x1.1a62633145c07p-53;
 constexpr double kTanPi8 = 0x1.a827999fcef32p-2;  // tan(π/8) = √2 − 1, rounded
-// atan(kTanPi8) (π/8 − 1.2·10⁻¹⁷, as kTanPi8 is rounded) as a double plus its rounding error.
-constexpr double kAtanTanPi8Hi = 0x1.921fb54442d18p-2, kAtanTanPi8Lo = 0x1.c398861b78b55p-59;
 constexpr double kTanPi16 = 0x1.975f5e0553158p-3, kTan3Pi16 = 0x1.561b82ab7f990p-1;  // the reduction's thresholds
 constexpr double kSqrt2 = 0x1.6a09e667f3bcdp+0;
 // ln 2 split so that e·kLn2Hi is exact for |e| < 2^11 (fdlibm's constants).
@@ -68,6 +74,21 @@ constexpr int kAtanTerms = 8;
 constexpr double kAtanCoefficients[kAtanTerms] = {
     0x1.0000000000000p+0,  -0x1.5555555555333p-2, 0x1.999999990bbe4p-3,  -0x1.249248b4394c3p-3,
     0x1.c71c1a3a671a8p-4,  -0x1.744a82d0e4f2cp-4, 0x1.38e13ef8bb64cp-4,  -0x1.dbe17a0683168p-5,
+};
+/// The offsets K of atan2Portable, indexed by offsetIndex: j + 4·swapped + 8·(c < 0), j = 0, 1, 2 for α = 0, α₁,
+/// π/4 (j = 3 is not used and repeats j = 2): α, π/2 − α, π − α and π/2 + α, each as a double (Hi) plus the
+/// double nearest its rounding error (Lo), computed at 60 digits by scripts/atan-coefficients.py.
+constexpr double kAngleOffsetHi[16] = {
+    0x0.0p+0,              0x1.921fb54442d18p-2, 0x1.921fb54442d18p-1, 0x1.921fb54442d18p-1,
+    0x1.921fb54442d18p+0,  0x1.2d97c7f3321d2p+0, 0x1.921fb54442d18p-1, 0x1.921fb54442d18p-1,
+    0x1.921fb54442d18p+1,  0x1.5fdbbe9bba775p+1, 0x1.2d97c7f3321d2p+1, 0x1.2d97c7f3321d2p+1,
+    0x1.921fb54442d18p+0,  0x1.f6a7a2955385ep+0, 0x1.2d97c7f3321d2p+1, 0x1.2d97c7f3321d2p+1,
+};
+constexpr double kAngleOffsetLo[16] = {
+    0x0.0p+0,              0x1.c398861b78b55p-59, 0x1.1a62633145c07p-55, 0x1.1a62633145c07p-55,
+    0x1.1a62633145c07p-54, 0x1.0c459f0069facp-54, 0x1.1a62633145c07p-55, 0x1.1a62633145c07p-55,
+    0x1.1a62633145c07p-53, 0x1.13540118d7ddap-53, 0x1.a79394c9e8a0ap-54, 0x1.a79394c9e8a0ap-54,
+    0x1.1a62633145c07p-54, 0x1.287f276221862p-54, 0x1.a79394c9e8a0ap-54, 0x1.a79394c9e8a0ap-54,
 };
 /// Terms of ln m = 2 s Σ s^{2k}/(2k+1), s = (m − 1)/(m + 1), |s| ≤ (√2 − 1)/(√2 + 1): s^{2·11}/23 < 10⁻¹⁸.
 constexpr int kLogTerms = 11;
@@ -120,20 +141,27 @@ template <class V>
 /// (exact products for 0 and 1), so one division brings every argument into |u| ≤ tan(π/16) (issue 41: eight
 /// polynomial terms instead of 21).  For α₁ the product max·τ adds half an ulp of 0.42·max to the numerator:
 /// 0.21ε in u, less than the 3ε|u| ≤ 1.24ε that the ratio's other roundings cost at the old bound |u| ≤ tan(π/8).
+/// The angle is then K ± a, a = atan u, with K = B ± α one of twelve constants (B = 0, π/2 or π from the quadrant
+/// and the swap of s and c; kAngleOffsetHi/Lo, as a double plus its rounding error) and the sign of a flipped
+/// where exactly one of "swapped" and "c < 0" holds; the sign of the whole where s < 0.  One rounding of
+/// (K_lo ± a) + K_hi instead of the three additions of α, π/2 and π before issue 41's third part: the table
+/// lookup and the sign flips cost fewer operations and a shorter dependency chain than three selects.
 template <class V>
 [[nodiscard]] inline V atan2Portable(V s, V c) noexcept {
   const V as = absValue(s), ac = absValue(c);
   const V hi = maxValue(as, ac), lo = minValue(as, ac);
   const auto far = lo > hi * kTan3Pi16;  // β > 3π/16: about π/4
   const auto mid = lo > hi * kTanPi16;   // β > π/16: about α₁ (unless far)
+  const auto swapped = as > ac;          // the angle from the y axis was reduced
+  const auto cNegative = c < V(0.0);
   const V tanAlpha = select(far, V(1.0), select(mid, V(kTanPi8), V(0.0)));
   const V num = lo - hi * tanAlpha;
-  const V den = select(hi > 0.0, hi + lo * tanAlpha, V(1.0));
-  V a = atanReduced(num / den);
-  a = select(far, (a + kPi4Lo) + kPi4Hi, select(mid, (a + kAtanTanPi8Lo) + kAtanTanPi8Hi, a));
-  a = select(as > ac, (kPi2Lo - a) + kPi2Hi, a);
-  a = select(c < 0.0, (kPiLo - a) + kPiHi, a);
-  return select(s < 0.0, -a, a);
+  const V den = select(hi > V(0.0), hi + lo * tanAlpha, V(1.0));
+  const V a = atanReduced(num / den);
+  const auto index = offsetIndex(mid, far, swapped, cNegative);
+  const V angle = (lookup(index, kAngleOffsetLo) + negateWhere(maskXor(swapped, cNegative), a)) +
+                  lookup(index, kAngleOffsetHi);
+  return negateWhere(s < V(0.0), angle);
 }
 
 /// The clockwise angle from the vector (ax, ay) to (bx, by), in (−π, π]: atan2(−(a × b), a · b).  Clockwise is

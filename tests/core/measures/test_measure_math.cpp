@@ -30,10 +30,12 @@ TEST(MeasureMath, Atan2MatchesLongDoubleWithinItsRoundingBound) {
     const long double reference = std::atan2(static_cast<long double>(s), static_cast<long double>(c));
     worst = std::max(worst, static_cast<double>(std::fabs(atan2Portable(s, c) - reference)));
   }
-  // The bound, with ε = 2^−53: the reduced argument u = (lo − hi)/(lo + hi) carries three roundings, 3ε|u| ≤
-  // 1.4·10⁻¹⁶ in atan; the polynomial ~0.5·10⁻¹⁶; then the roundings of π/4 + a, π/2 − a and π − a, half an ulp
-  // of values up to π/4, π/2 and π: 0.55 + 1.1 + 2.2 (·10⁻¹⁶).  In all 5.75·10⁻¹⁶.
-  EXPECT_LT(worst, 5.75e-16) << worst;
+  // The bound, with ε = 2^−53: the reduced argument u = (min − max·tan α)/(max + min·tan α), |u| ≤ tan(π/16),
+  // carries three roundings, 3ε|u| ≤ 0.66·10⁻¹⁶ in atan, and for tan α = τ the product max·τ 0.21ε = 0.23·10⁻¹⁶;
+  // the polynomial ~0.5·10⁻¹⁶; then K_lo ± a, below π/16 + 2^−52 < 1/4, half an ulp 2^−56 = 0.14·10⁻¹⁶, and the
+  // final sum with K_hi, half an ulp of a value up to π: 2^−52 = 2.22·10⁻¹⁶.  In all 3.75·10⁻¹⁶ (5.75·10⁻¹⁶ before
+  // issue 41, when α, π/2 and π were added one after another, each rounding).
+  EXPECT_LT(worst, 3.75e-16) << worst;
 }
 
 TEST(MeasureMath, Atan2SpecialValuesAndRange) {
@@ -42,6 +44,11 @@ TEST(MeasureMath, Atan2SpecialValuesAndRange) {
   EXPECT_EQ(atan2Portable(0.0, 1.0), 0.0);
   EXPECT_EQ(atan2Portable(0.0, -1.0), pi);   // (−π, π]: the negative axis is +π …
   EXPECT_EQ(atan2Portable(-0.0, -1.0), pi);  // … from either side of zero
+  EXPECT_EQ(atan2Portable(0.0, -0.0), 0.0);
+  EXPECT_EQ(atan2Portable(1.0, -0.0), pi / 2);
+  EXPECT_EQ(atan2Portable(-1.0, -0.0), -pi / 2);
+  EXPECT_EQ(atan2Portable(0.0, -1e-300), pi);
+  EXPECT_EQ(atan2Portable(-1e-300, -1.0), -pi);
   EXPECT_EQ(atan2Portable(1.0, 0.0), pi / 2);
   EXPECT_EQ(atan2Portable(-1.0, 0.0), -pi / 2);
   EXPECT_NEAR(atan2Portable(1.0, 1.0), pi / 4, 2e-16);
