@@ -2,7 +2,7 @@
 """Validation of `archipelago-cli tail` (issue 29, deliverable 2) against brute force, to t = 10^7 steps.
 
   scripts/tail-validate.py [--cli build/default/app/archipelago-cli] [--dir tail-validation] [--brute-steps 3e11]
-                           [--t-max 1e7] [--replicas 16] [--quick]
+                           [--t-max 1e7] [--replicas 16] [--seeds 0] [--quick]
 
 Everything at the paper's K = 0.1 box, Xr = 0.02, q = 16 (the default spec), niced:
 
@@ -16,6 +16,13 @@ Everything at the paper's K = 0.1 box, Xr = 0.02, q = 16 (the default spec), nic
  (c) the steps: the sampler's steps up to each level against the steps a brute-force run needs for the sampler's
      relative error there (tail --compare's brute_steps_same_error: from the run's own error where it has segments,
      else alpha/(P r^2)).
+ (d) --seeds S > 0 (issue 39, deliverable 1 (d)): S more runs of (a)'s sampler (N = 200, --replicas), seeds 101 …
+     100 + S, pooled with (a)'s seed 11: at each level the mean of the S + 1 estimates, its error from their spread
+     (the seeds are independent; each seed's own error is not used), z against brute force, and where seed 11 falls
+     among the seeds; then over the levels from 10^6 on (correlated: they share lineages, and the brute-force counts
+     beyond t are nested) each seed's mean ratio P_tail/P_brute, one number per seed, so that the spread of those S + 1
+     numbers carries the correlation: their mean and error.  The check: the pooled mean ratio within 3 sigma of 1, where
+     sigma combines the seeds' spread and the brute force's own error of the same mean.
 
 Runs already in DIR with the same settings are reused (delete DIR to start again).  --quick: 3·10^9 brute-force
 steps, t_max 10^5, 8 replicas (a few minutes).  Prints a table per check and a last line "tail validation: PASS" or
@@ -30,6 +37,7 @@ p.add_argument("--dir", default="tail-validation")
 p.add_argument("--brute-steps", type=float, default=3e11)
 p.add_argument("--t-max", type=float, default=1e7)
 p.add_argument("--replicas", type=int, default=16)
+p.add_argument("--seeds", type=int, default=0, help="(d): this many more seeds of (a)'s sampler, pooled")
 p.add_argument("--quick", action="store_true")
 a = p.parse_args()
 if a.quick:
@@ -131,6 +139,42 @@ for row in compared:
     bs, ts = num(row["brute_steps_same_error"]), num(row["tail_steps"])
     tag = "" if row["measured"] == "1" else " (alpha/(P r^2))"
     print(f"{t:10.0f} {e / P if P > 0 else float('nan'):10.3g} {ts:12.4g} {bs:12.4g} {bs / ts:8.3g}{tag}")
+
+# (d) more seeds of (a)'s sampler, pooled --------------------------------------------------------------------
+if a.seeds > 0:
+    seeds = [11] + [100 + i for i in range(1, a.seeds + 1)]
+    per = [compared] + [tail(f"seed{s}", "--population", 200, "--seed", s)[1] for s in seeds[1:]]
+    print(f"\n(d) {len(seeds)} seeds of (a)'s sampler (N = 200, R = {a.replicas}) pooled, against brute force")
+    print(f"{'t':>10} {'P pooled':>11} {'err':>9} {'P brute':>11} {'err':>9} {'z':>6} {'seed 11 / pooled':>16} "
+          f"{'seeds below 11':>14}")
+    ratios = {s: [] for s in seeds}  # each seed's P_tail / P_brute at the levels from 10^6 on
+    brute_rel = []
+    for i, row in enumerate(compared):
+        t, Pb, eb = num(row["t"]), num(row["brute_P"]), num(row["brute_error"])
+        Ps = [num(rows[i]["P"]) for rows in per]
+        mean = sum(Ps) / len(Ps)
+        sd = math.sqrt(sum((x - mean) ** 2 for x in Ps) / (len(Ps) - 1))
+        err = sd / math.sqrt(len(Ps))
+        z = (mean - Pb) / math.hypot(err, eb) if Pb > 0 and math.isfinite(eb) else float("nan")
+        below = sum(1 for x in Ps[1:] if x < Ps[0])
+        print(f"{t:10.0f} {mean:11.4g} {err:9.2g} {Pb:11.4g} {eb:9.2g} {z:6.2f} {Ps[0] / mean:16.3f} "
+              f"{below:8d} of {len(Ps) - 1}")
+        if t >= 1e6 and Pb > 0:
+            for s, x in zip(seeds, Ps):
+                ratios[s].append(x / Pb)
+            brute_rel.append(eb / Pb)
+    if brute_rel:
+        means = [sum(v) / len(v) for v in ratios.values()]
+        m = sum(means) / len(means)
+        e = math.sqrt(sum((x - m) ** 2 for x in means) / (len(means) - 1) / len(means))
+        # The brute force's error of the same mean ratio: its levels' relative errors, fully correlated (the
+        # nested counts beyond t) as the bound.
+        eb = m * sum(brute_rel) / len(brute_rel)
+        z = (m - 1) / math.hypot(e, eb)
+        print(f"levels from 10^6 on ({len(brute_rel)}): mean P_tail/P_brute per seed: seed 11 {means[0]:.3f}, "
+              f"the others {min(means[1:]):.3f} … {max(means[1:]):.3f}; pooled {m:.3f} ± {e:.3f} (seeds) "
+              f"± {eb:.3f} (brute force)")
+        check(abs(z) < 3, f"pooled mean ratio {m:.3f} within 3 sigma of 1 (z = {z:.2f})")
 
 print(f"\ntail validation: {'PASS' if failures == 0 else f'FAIL ({failures} checks)'}")
 sys.exit(1 if failures else 0)
