@@ -4,7 +4,7 @@
 /// p/q about the central island, and its limit over the convergents of a cantorus's rotation number.
 ///
 /// MacKay, Meiss & Percival, "Transport in Hamiltonian systems", Physica D 13 (1984) 55; Meiss, Rev. Mod. Phys. 64
-/// (1992) 795, §IV–V.  For every p/q in the twist interval an area-preserving twist map has (at least) two Birkhoff
+/// (1992) 795.  For every p/q in the twist interval an area-preserving twist map has (at least) two Birkhoff
 /// periodic orbits of type p/q — orbits that keep the cyclic order of their points, each point going p places on
 /// in the order of q — the minimizing one (Greene's residue R < 0) and the minimax one (R > 0; MacKay & Meiss,
 /// Phys. Lett. A 98 (1983) 92: the residue criterion).  A curve C through the points of both, alternately, and its
@@ -13,7 +13,7 @@
 ///     ΔW_{p/q} = W(minimax) − W(minimizing),       W = Σ_{k=0}^{q−1} L(x_k, x_{k+1}),  x_q = x_0,
 /// with L the generating function of Q (GeneratingFunction.hpp: the one definition).  For an irrational ω whose
 /// invariant circle is broken, the circle's remnant is a cantorus, and ΔW_{p_k/q_k} over the convergents p_k/q_k of ω
-/// tends to the flux through it (MMP 1984 §4: the minimax orbit tends to the minimax orbit homoclinic to the
+/// tends to the flux through it (MMP 1984: the minimax orbit tends to the minimax orbit homoclinic to the
 /// cantorus).  Here the map is not a twist map of a cylinder but turns points about the elliptic centre (−√K, 0):
 /// the "cyclic order" is the order of the angles about the centre (clockwise, as PeriodicOrbit.hpp measures the
 /// rotation number), and the p/q orbits are the symmetric orbits of the finder (PeriodicOrbitFinder.hpp) with p
@@ -21,7 +21,7 @@
 ///
 /// Sign.  ΔW is an area and does not depend on the coordinates, but its sign depends on the orientation: in the
 /// plane's (x, y) with this L, about the central island at K = 0.1 (orbits turning clockwise, ω falling outward), the
-/// orbit with R < 0 has the *larger* W (measured for every convergent below).  `planeDifference` is
+/// orbit with R < 0 has the *larger* W (measured for 1/6 … 118/729, docs/markov-tree.md).  `planeDifference` is
 /// W(R > 0) − W(R < 0) as the formula reads with the residue's labels, and `flux` = |planeDifference|.
 ///
 /// Method.
