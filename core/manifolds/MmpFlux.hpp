@@ -44,6 +44,7 @@
 #include <span>
 #include <stop_token>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/periodic/PeriodicOrbit.hpp"
@@ -51,6 +52,11 @@
 #include "core/periodic/SmoothQuadraticMap.hpp"
 
 namespace archipelago {
+
+/// The largest outer radius (physical; the central island's chains lie within 0.5 of the centre, orbits much farther
+/// out escape) and the most samples a window may take (each costs q/2 steps).
+inline constexpr long double kMaxMmpRadius = 10;
+inline constexpr long double kMaxMmpSamples = 1e9L;
 
 /// What to compute.  Plain values; validationError() checks them.
 struct MmpRequest {
@@ -121,5 +127,39 @@ struct ConvergentLimit {
 /// Throws std::invalid_argument for fewer than three terms, a term that is not finite, a zero difference d_{n−1}, or
 /// r ≥ 1 (not converging).
 [[nodiscard]] ConvergentLimit convergentLimit(std::span<const long double> sequence);
+
+/// The flux through a cantorus: ΔW over a list of its convergents (the caller names them: for a noble ω between two
+/// chains p₁/q₁ and p₂/q₂, the Farey mediants (p₁ + p₂)/(q₁ + q₂), …).  Each term after the first is sought
+/// first in windows of ±narrowHalfWidth about the previous term's points on the lines (both orbits) at narrowSpacing
+/// — the convergents' orbits converge to the cantorus's, so their points on the lines do; cheap, and where the
+/// windows hold no pair the annulus follows.  At large q the annulus misses the pair (its Birkhoff roots lie closer
+/// than the annulus's spacing to others: q = 729, 150 s for nothing).  The first term scans the annulus.
+struct CantorusRequest {
+  long double K = 0.1L;
+  std::vector<std::pair<long, int>> convergents;   ///< p/q, at least one; each as MmpRequest's p and q
+  long double innerRadius = 0.19L;
+  long double outerRadius = 0.44L;
+  long double spacing = 1e-6L;
+  long double narrowHalfWidth = 2e-6L;             ///< > 0
+  long double narrowSpacing = 1e-9L;               ///< > 0
+};
+
+[[nodiscard]] std::optional<std::string> validationError(const CantorusRequest& request);
+
+struct CantorusFlux {
+  std::vector<MmpActionDifference> terms;   ///< one per convergent, in the request's order
+  std::vector<bool> narrowed;               ///< the term came from the narrow windows
+  std::optional<ConvergentLimit> limit;     ///< convergentLimit of the fluxes, with three or more terms
+  std::string limitProblem;                 ///< why there is no limit (fewer than three terms, not converging)
+};
+
+/// Throws std::invalid_argument for an invalid request, NotFound (the term's p/q and both scans' messages) when a term
+/// is not found either way, OperationStopped when stopped.
+[[nodiscard]] CantorusFlux cantorusFlux(const CantorusRequest& request, std::stop_token stop = {});
+
+/// The request and result as JSON (indent 2): K, radii, spacings; per term p, q, flux (double and 30-digit text),
+/// its rounding bound, the plane's signed difference, both orbits (residue, line, z_0, action text, mismatch), the
+/// finder's counts and whether the narrow windows were used; the limit (value, uncertainty, ratio) or why there is none.
+[[nodiscard]] std::string cantorusFluxJson(const CantorusRequest& request, const CantorusFlux& result, double seconds = -1);
 
 }  // namespace archipelago

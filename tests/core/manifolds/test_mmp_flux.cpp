@@ -74,33 +74,23 @@ TEST(MmpFlux, ActionDifferencesAgreeWithAnIndependentMpmathComputation) {
 // 118/729, its tail bound 3e−18), 2.5e−10 apart; asserted 1e−9 (9 digits).  The separatrix facing away from the cantorus is another barrier: the chain 11/68's
 // outer lobe (1.157719e−5) is 0.5 % off — asserted to disagree, so that the agreement is not a generic closeness.
 TEST(MmpFlux, TheCantorusFluxAgreesWithTheTurnstileOfAConvergentsChainFacingIt) {
+  // 45/278 … 118/729 come from the narrow windows about the previous convergent's points (cantorusFlux): the whole
+  // annulus at 1e−6 misses 118/729's Birkhoff roots, which lie ~|λ|^(−1/2) ≈ 3e−8 from others.
+  CantorusRequest request;
+  request.convergents = {{17, 105}, {28, 173}, {45, 278}, {73, 451}, {118, 729}};
+  const CantorusFlux cantorus = cantorusFlux(request);
+  ASSERT_EQ(cantorus.terms.size(), 5u);
+  EXPECT_TRUE(cantorus.narrowed[4]);
   std::vector<long double> sequence;
-  MmpActionDifference d173, d451;
-  for (auto [p, q] : {std::pair{17L, 105}, std::pair{28L, 173}, std::pair{45L, 278}, std::pair{73L, 451}}) {
-    const MmpActionDifference d = at(p, q);
-    sequence.push_back(static_cast<long double>(d.flux));
-    if (q == 173) d173 = d;
-    if (q == 451) d451 = d;
-  }
-  // 118/729: the whole annulus at 1e−6 misses its Birkhoff roots (they lie ~|λ|^(−1/2) ≈ 3e−8 from others); narrow
-  // windows about 73/451's points on the lines, at 1e−9, find them (the convergents' points converge).
-  MmpRequest r729;
-  r729.p = 118;
-  r729.q = 729;
-  r729.spacing = 1e-9L;
-  for (const BirkhoffOrbit* o : {&d451.minimizing, &d451.minimax})
-    for (const PhysicalPoint& z : o->orbit.points)
-      for (smooth::SymmetryLine line : {smooth::SymmetryLine::S1, smooth::SymmetryLine::S2})
-        if (std::fabs(smooth::offsetFromLine(line, 0.1L, smooth::Point<long double>{z.x, z.y})) < 1e-15L)
-          r729.windows.push_back({line, z.x - 2e-6L, z.x + 2e-6L});
-  ASSERT_EQ(r729.windows.size(), 4u);
-  sequence.push_back(static_cast<long double>(mmpActionDifference(r729).flux));
+  for (const MmpActionDifference& t : cantorus.terms) sequence.push_back(static_cast<long double>(t.flux));
+  const MmpActionDifference& d173 = cantorus.terms[1];
   // Decreasing, each step at least 10 times smaller than the previous one.
   for (std::size_t k = 2; k < sequence.size(); ++k) {
     EXPECT_LT(sequence[k], sequence[k - 1]);
     EXPECT_LT(std::fabs(sequence[k] - sequence[k - 1]), 0.1L * std::fabs(sequence[k - 1] - sequence[k - 2])) << k;
   }
-  const ConvergentLimit limit = convergentLimit(sequence);
+  ASSERT_TRUE(cantorus.limit.has_value()) << cantorus.limitProblem;
+  const ConvergentLimit limit = *cantorus.limit;
   EXPECT_LT(limit.uncertainty, 1e-12L * limit.value);  // measured 3.1e−18, 2.7e−13 of it
 
   // The turnstile of 28/173, inner separatrix, from the minimizing orbit's point on S₁.
@@ -112,12 +102,12 @@ TEST(MmpFlux, TheCantorusFluxAgreesWithTheTurnstileOfAConvergentsChainFacingIt) 
         std::fabs(smooth::offsetFromLine(smooth::SymmetryLine::S1, 0.1L,
                                          smooth::Point<long double>{orbit.points[onS1].x, orbit.points[onS1].y})))
       onS1 = k;
-  TurnstileRequest request;
-  request.K = 0.1L;
-  request.orbit = orbit.rotatedToStart(onS1);
-  request.side = BranchSide::Inward;
-  request.maxVertices = 2048;  // the polygon check is not what is tested here (the action is)
-  const TurnstileFlux turnstile = computeTurnstileFlux(request);
+  TurnstileRequest turnstileRequest;
+  turnstileRequest.K = 0.1L;
+  turnstileRequest.orbit = orbit.rotatedToStart(onS1);
+  turnstileRequest.side = BranchSide::Inward;
+  turnstileRequest.maxVertices = 2048;  // the polygon check is not what is tested here (the action is)
+  const TurnstileFlux turnstile = computeTurnstileFlux(turnstileRequest);
   EXPECT_LT(std::fabs(turnstile.lobeArea - limit.value), 1e-9L * limit.value)
       << static_cast<double>(turnstile.lobeArea) << " vs " << static_cast<double>(limit.value);
 
@@ -127,10 +117,44 @@ TEST(MmpFlux, TheCantorusFluxAgreesWithTheTurnstileOfAConvergentsChainFacingIt) 
   std::size_t right = 0;  // its point on S₂ right of the centre (x ≈ 0.0341)
   for (std::size_t k = 0; k < o68.points.size(); ++k)
     if (std::fabs(o68.points[k].y) < 1e-15L && o68.points[k].x > 0) right = k;
-  request.orbit = o68.rotatedToStart(right);
-  request.side = BranchSide::Outward;
-  const TurnstileFlux away = computeTurnstileFlux(request);
+  turnstileRequest.orbit = o68.rotatedToStart(right);
+  turnstileRequest.side = BranchSide::Outward;
+  const TurnstileFlux away = computeTurnstileFlux(turnstileRequest);
   EXPECT_GT(std::fabs(away.lobeArea - limit.value), 1e-3L * limit.value) << static_cast<double>(away.lobeArea);
+}
+
+// cantorusFlux: each term is mmpActionDifference of its p/q (the annulus for the first; later ones from the narrow
+// windows where those hold the pair, else the annulus: 11/68's points lie 10⁻³ from 6/37's), the limit is
+// convergentLimit of the fluxes; 5/31, 6/37, 11/68 (differences −9.7e−6, −1.4e−5: ratio 1.48) and two terms give none,
+// with the reason.
+TEST(MmpFlux, ACantorusSequenceIsItsTermsAndTheirLimit) {
+  CantorusRequest request;
+  request.convergents = {{6, 37}, {11, 68}, {17, 105}};
+  const CantorusFlux c = cantorusFlux(request);
+  ASSERT_EQ(c.terms.size(), 3u);
+  EXPECT_FALSE(c.narrowed[0]);
+  EXPECT_FALSE(c.narrowed[1]);
+  std::vector<long double> fluxes;
+  for (std::size_t i = 0; i < 3; ++i) {
+    const MmpActionDifference one = at(request.convergents[i].first, request.convergents[i].second);
+    EXPECT_EQ(c.terms[i].flux, one.flux) << i;
+    fluxes.push_back(static_cast<long double>(one.flux));
+  }
+  ASSERT_TRUE(c.limit.has_value()) << c.limitProblem;
+  EXPECT_EQ(c.limit->value, convergentLimit(fluxes).value);
+  request.convergents = {{5, 31}, {6, 37}, {11, 68}};
+  const CantorusFlux early = cantorusFlux(request);
+  EXPECT_FALSE(early.limit.has_value());
+  EXPECT_NE(early.limitProblem.find("not converging"), std::string::npos) << early.limitProblem;
+  request.convergents.pop_back();
+  const CantorusFlux two = cantorusFlux(request);
+  EXPECT_FALSE(two.limit.has_value());
+  EXPECT_NE(two.limitProblem.find("three terms"), std::string::npos) << two.limitProblem;
+  request.convergents = {};
+  EXPECT_THROW((void)cantorusFlux(request), std::invalid_argument);
+  request.convergents = {{5, 31}};
+  request.narrowSpacing = 0;
+  EXPECT_THROW((void)cantorusFlux(request), std::invalid_argument);
 }
 
 TEST(MmpFlux, WellOrderedIsARotationOfTheCyclicOrder) {
