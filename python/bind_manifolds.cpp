@@ -17,6 +17,7 @@
 #include "core/manifolds/KacCheck.hpp"
 #include "core/manifolds/ManifoldCurve.hpp"
 #include "core/manifolds/ManifoldExport.hpp"
+#include "core/manifolds/MmpFlux.hpp"
 #include "core/manifolds/TurnstileFlux.hpp"
 #include "python/Conversions.hpp"
 #include "python/Interruption.hpp"
@@ -160,12 +161,29 @@ py::dict flux(double K, int period, const py::object& near, double radius, const
   return d;
 }
 
+py::dict cantorus(double K, const std::vector<std::pair<long, int>>& convergents, double inner, double outer,
+                  double spacing, double narrowWidth, double narrowSpacing) {
+  CantorusRequest r;
+  r.K = K;
+  r.convergents = convergents;
+  r.innerRadius = inner;
+  r.outerRadius = outer;
+  r.spacing = spacing;
+  r.narrowHalfWidth = narrowWidth;
+  r.narrowSpacing = narrowSpacing;
+  if (auto e = validationError(r)) throw std::invalid_argument(*e);
+  const std::string json =
+      interruptible([&](std::stop_token stop) { return cantorusFluxJson(r, cantorusFlux(r, stop)); });
+  return py::module_::import("json").attr("loads")(json);
+}
+
 }  // namespace
 
 // The defaults of manifold() and flux() are the requests' own (issue 35: a front end restates no default).
 const ManifoldCurveRequest kManifold{};
 const TurnstileRequest kTurnstile{};
 const KacRequest kKac{};
+const CantorusRequest kCantorus{};
 
 void bindManifolds(py::module_& m) {
   m.def("manifold", &manifold, py::arg("K") = kDefaultMap.K, py::kw_only(), py::arg("branch") = "unstable",
@@ -194,4 +212,15 @@ void bindManifolds(py::module_& m) {
         "orbits entering the zone against transit area / flux).  The same fields as `archipelago-cli flux --json`,\n"
         "plus the boundaries as x, y arrays: zone_boundary (a list of closed curves: one, or one around each island a\n"
         "sub-chain surrounds), lobe_boundary, entry_lobe and exit_lobe.");
+  m.def("cantorus", &cantorus, py::arg("K") = kDefaultMap.K, py::kw_only(), py::arg("convergents"),
+        py::arg("inner") = static_cast<double>(kCantorus.innerRadius),
+        py::arg("outer") = static_cast<double>(kCantorus.outerRadius),
+        py::arg("spacing") = static_cast<double>(kCantorus.spacing),
+        py::arg("narrow_width") = static_cast<double>(kCantorus.narrowHalfWidth),
+        py::arg("narrow_spacing") = static_cast<double>(kCantorus.narrowSpacing),
+        "The MacKay-Meiss-Percival flux through a cantorus about the central island (core/manifolds/MmpFlux.hpp):\n"
+        "|W(minimax) - W(minimizing)| of the two Birkhoff p/q orbits for each convergent (p, q) in `convergents`,\n"
+        "found on the symmetry lines between the distances `inner` and `outer` from (-sqrt K, 0), and the limit (the\n"
+        "last term with a bound on the tail).  The dict of `archipelago-cli cantorus --json`.  ValueError for bad\n"
+        "input or orbits not found.");
 }

@@ -30,6 +30,7 @@
 #include "AtlasCommand.hpp"
 #include "MarkovTreeCommand.hpp"
 #include "FluxCommand.hpp"
+#include "CantorusCommand.hpp"
 #include "TailCommand.hpp"
 
 namespace {
@@ -68,6 +69,7 @@ int main(int argc, char** argv) {
   archipelago::cli::addIndicatorCommand(app, status);
   archipelago::cli::addManifoldCommand(app, status);
   archipelago::cli::addFluxCommand(app, status);
+  archipelago::cli::addCantorusCommand(app, status);
   archipelago::cli::addAtlasCommand(app, status);
   archipelago::cli::addMarkovTreeCommand(app, status);
   archipelago::cli::addTailCommand(app, status);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -158,45 +159,81 @@ void validate(long double K, const PeriodicOrbitSearch& search) {
     throw std::invalid_argument("samples per window = " + std::to_string(search.samplesPerWindow) + " must be >= 8");
 }
 
+namespace {
+
+/// The scan of findSymmetricPeriodicOrbits() over given windows of one line: samples at spacing ≤ h, each sign change
+/// bisected, polished in quad, kept when its minimal period is n, it closes and it is new.
+void scanWindows(long double K, int n, SymmetryLine line, const std::vector<Window>& windows, long double h,
+                 bool stableOnly, std::vector<PeriodicOrbit>& found, std::stop_token stop,
+                 const std::function<bool(PhysicalPoint)>& accept = {}) {
+  const Shot shot = shotFor(line, n);
+  const OrbitSymmetry symmetry = line == SymmetryLine::S1 ? OrbitSymmetry::LineS1 : OrbitSymmetry::LineS2;
+  for (const Window& window : windows) {
+    const long samples = std::lround((window.hi - window.lo) / h) + 1;
+    long double sPrevious = window.lo;
+    long double fPrevious = shootOffset(shot, K, sPrevious);
+    for (long i = 1; i <= samples; ++i) {
+      if (stop.stop_requested()) throw OperationStopped();  // each sample costs n steps: checked every one
+      const long double s = window.lo + (window.hi - window.lo) * static_cast<long double>(i) / samples;
+      const long double f = shootOffset(shot, K, s);
+      const bool bracket = !std::isnan(f) && !std::isnan(fPrevious) && ((f < 0) != (fPrevious < 0) || f == 0);
+      if (bracket) {
+        const long double root = f == 0 ? s : bisect(shot, K, sPrevious, s, fPrevious);
+        const Point<long double> start = smooth::onLine(line, K, root);
+        if (accept && !accept(PhysicalPoint{start.x, start.y})) {
+          sPrevious = s;
+          fPrevious = f;
+          continue;
+        }
+        const quad polished = polishOnLine(shot, quad(K), quad(root), quad(s - sPrevious));
+        const Point<quad> z0 = smooth::onLine(line, quad(K), polished);
+        if (minimalPeriod(quad(K), z0, n) == n) {
+          PeriodicOrbit orbit = analysePeriodicOrbit(K, n, z0.x, z0.y, symmetry);
+          const bool duplicate = std::any_of(found.begin(), found.end(),
+                                             [&](const PeriodicOrbit& o) { return sameOrbit(o, orbit); });
+          if (orbit.closure <= kClosureTolerance && !duplicate && (!stableOnly || orbit.stable()))
+            found.push_back(std::move(orbit));
+        }
+      }
+      sPrevious = s;
+      fPrevious = f;
+    }
+  }
+}
+
+}  // namespace
+
 std::vector<PeriodicOrbit> findSymmetricPeriodicOrbits(long double K, const PeriodicOrbitSearch& search,
                                                        std::stop_token stop) {
   validate(K, search);
   const int n = search.period;
   std::vector<PeriodicOrbit> found;
-  for (SymmetryLine line : {SymmetryLine::S1, SymmetryLine::S2}) {
-    const Shot shot = shotFor(line, n);
-    const OrbitSymmetry symmetry = line == SymmetryLine::S1 ? OrbitSymmetry::LineS1 : OrbitSymmetry::LineS2;
-    const long double h = 2 * search.searchRadius / search.samplesPerWindow;
-    for (const Window& window : scanWindows(line, K, search)) {
-      const long samples = std::lround((window.hi - window.lo) / h) + 1;
-      long double sPrevious = window.lo;
-      long double fPrevious = shootOffset(shot, K, sPrevious);
-      for (long i = 1; i <= samples; ++i) {
-        if (stop.stop_requested()) throw OperationStopped();  // each sample costs n steps: checked every one
-        const long double s = window.lo + (window.hi - window.lo) * static_cast<long double>(i) / samples;
-        const long double f = shootOffset(shot, K, s);
-        const bool bracket = !std::isnan(f) && !std::isnan(fPrevious) && ((f < 0) != (fPrevious < 0) || f == 0);
-        if (bracket) {
-          const long double root = f == 0 ? s : bisect(shot, K, sPrevious, s, fPrevious);
-          const quad polished = polishOnLine(shot, quad(K), quad(root), quad(s - sPrevious));
-          const Point<quad> z0 = smooth::onLine(line, quad(K), polished);
-          if (minimalPeriod(quad(K), z0, n) == n) {
-            PeriodicOrbit orbit = analysePeriodicOrbit(K, n, z0.x, z0.y, symmetry);
-            const bool duplicate = std::any_of(found.begin(), found.end(),
-                                               [&](const PeriodicOrbit& o) { return sameOrbit(o, orbit); });
-            if (orbit.closure <= kClosureTolerance && !duplicate && (!search.stableOnly || orbit.stable()))
-              found.push_back(std::move(orbit));
-          }
-        }
-        sPrevious = s;
-        fPrevious = f;
-      }
-    }
-  }
+  const long double h = 2 * search.searchRadius / search.samplesPerWindow;
+  for (SymmetryLine line : {SymmetryLine::S1, SymmetryLine::S2})
+    scanWindows(K, n, line, scanWindows(line, K, search), h, search.stableOnly, found, stop);
   for (PeriodicOrbit& orbit : found) orbit = orbit.rotatedToStart(orbit.nearestIndex(search.near));
   std::stable_sort(found.begin(), found.end(), [&](const PeriodicOrbit& a, const PeriodicOrbit& b) {
     return a.distanceTo(search.near) < b.distanceTo(search.near);
   });
+  return found;
+}
+
+std::vector<PeriodicOrbit> findSymmetricPeriodicOrbitsIn(long double K, int period,
+                                                         std::span<const LineWindow> windows, long double spacing,
+                                                         std::stop_token stop,
+                                                         const std::function<bool(PhysicalPoint)>& accept) {
+  PeriodicOrbitSearch search;
+  search.period = period;
+  validate(K, search);
+  if (!(spacing > 0) || !std::isfinite(spacing))
+    throw std::invalid_argument("spacing = " + formatNumber(spacing) + " must be a positive number");
+  std::vector<PeriodicOrbit> found;
+  for (const LineWindow& w : windows) {
+    if (!std::isfinite(w.lo) || !std::isfinite(w.hi) || !(w.lo < w.hi))
+      throw std::invalid_argument("a window [" + formatNumber(w.lo) + ", " + formatNumber(w.hi) +
+                                  "] of a symmetry line must have finite ends, lo < hi");
+    scanWindows(K, period, w.line, {Window{w.lo, w.hi}}, spacing, false, found, stop, accept);
+  }
   return found;
 }
 
@@ -267,6 +304,11 @@ std::optional<smooth::Point<quad>> polishPeriodicPoint(long double K, int period
       !std::isfinite(static_cast<long double>(guess.y)))
     return std::nullopt;
   return newtonPeriodicPoint(quad(K), period, guess, maxIterations);
+}
+
+quad polishSymmetricPoint(long double K, int period, SymmetryLine line, quad s, quad maxStep) {
+  if (period < 1) throw std::invalid_argument("period = " + std::to_string(period) + " must be >= 1");
+  return polishOnLine(shotFor(line, period), quad(K), s, maxStep);
 }
 
 PeriodicOrbit findPeriodicOrbit(long double K, const PeriodicOrbitSearch& search, std::stop_token stop) {

@@ -20,7 +20,9 @@
 /// The general method (refinePeriodicOrbit) is damped Newton on Qⁿ(z) − z in __float128 with the exact
 /// Jacobian DQⁿ − I; it needs a guess within the basin of the orbit (which shrinks as |DQⁿ| grows).
 
+#include <functional>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include <stdexcept>
@@ -54,6 +56,27 @@ void validate(long double K, const PeriodicOrbitSearch& search);
 [[nodiscard]] std::vector<PeriodicOrbit> findSymmetricPeriodicOrbits(long double K, const PeriodicOrbitSearch& search,
                                                                      std::stop_token stop = {});
 
+/// A window lo ≤ x ≤ hi of a symmetry line (both lines are graphs over x).
+struct LineWindow {
+  smooth::SymmetryLine line = smooth::SymmetryLine::S2;
+  long double lo = 0;
+  long double hi = 0;
+};
+
+/// The same scan over given windows of the lines instead of those near a guess's iterates: every symmetric orbit of
+/// minimal period `period` with a point in a window whose shooting function changes sign between two samples
+/// `spacing` apart (found in the order of the windows, duplicates dropped; z_0 is the point on the line).  For
+/// callers that know where on the lines the orbits lie, e.g. between two radii about the centre (MmpFlux.hpp).
+/// `accept`, when set, sees each bracketed root (long double, on its line) before it is polished in quad and kept: a
+/// cheap test (e.g. the winding of its q steps in long double) that spares the quad work on roots the caller would
+/// drop (in a chaotic layer most of them: thousands at q ≈ 300).
+/// Throws std::invalid_argument for an invalid period or K, a spacing ≤ 0, or a window without lo < hi, and
+/// OperationStopped when `stop` is requested.
+[[nodiscard]] std::vector<PeriodicOrbit> findSymmetricPeriodicOrbitsIn(long double K, int period,
+                                                                       std::span<const LineWindow> windows,
+                                                                       long double spacing, std::stop_token stop = {},
+                                                                       const std::function<bool(PhysicalPoint)>& accept = {});
+
 /// General (not necessarily symmetric) periodic orbit: damped Newton on Qⁿ(z) − z from `guess`, in __float128.
 /// Returns the orbit (z_0 = the converged point) when Newton converged to a point of minimal period n,
 /// nothing otherwise.
@@ -67,6 +90,13 @@ void validate(long double K, const PeriodicOrbitSearch& search);
 [[nodiscard]] std::optional<smooth::Point<quad>> polishPeriodicPoint(long double K, int period,
                                                                      smooth::Point<quad> guess,
                                                                      int maxIterations = 100);
+
+/// The abscissa s of a symmetric orbit's point on `line` (a root of the shooting problem of period n that starts on
+/// `line`, SmoothQuadraticMap.hpp), polished by the finder's own Newton along the line in __float128 from `s`
+/// (steps above `maxStep` are refused: the result stays s).  For callers that need a symmetric orbit to quad precision
+/// (PeriodicOrbit keeps long double points; core/manifolds/MmpFlux.hpp rebuilds the orbit from this point, half
+/// forward and half by the reversor, so that rounding grows as √|λ|, not |λ|).
+[[nodiscard]] quad polishSymmetricPoint(long double K, int period, smooth::SymmetryLine line, quad s, quad maxStep);
 
 /// The orbit nearest to the guess: the nearest symmetric one, else the general Newton result from the guess.
 /// Throws std::invalid_argument for invalid input and NotFound ("no periodic orbit of period n found near (x, y)

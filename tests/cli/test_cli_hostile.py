@@ -97,6 +97,7 @@ def baseline(command, d):
         "indicator": ["indicator", "--kind", "dig", "--size", "4x4", "--iterations", "100",
                       "--npy", os.path.join(d, "i.npy"), "--quiet"],
         "manifold": ["manifold", "--length", "0.5", "--out", os.path.join(d, "w.csv")],
+        "cantorus": ["cantorus", "--convergents", "5/31", "--out", os.path.join(d, "c.json")],
         "flux": ["flux", "--vertices", "64", "--kac-samples", "50", "--kac-zone-samples", "50", "--kac-steps", "100",
                  "--out", os.path.join(d, "f.json")],
         "atlas": ["atlas", "--depth", "0", "--scan-points", "16", "--scan-steps", "0", "--iterations", "100",

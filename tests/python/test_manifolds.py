@@ -140,3 +140,17 @@ def test_ctrl_c_stops_a_long_branch():
     with pytest.raises(KeyboardInterrupt):
         ap.manifold(0.1, length=1e6, spacing=1e-5, domains=10000, max_points=100_000_000, box=(-0.8, 0.5))
     assert time.monotonic() - t0 < 30
+
+
+def test_cantorus_equals_cli(cli):
+    """cantorus() is the dict of `archipelago-cli cantorus --json` (issue 40: the MacKay-Meiss-Percival flux)."""
+    import json, subprocess
+    out = subprocess.run([cli, "cantorus", "--convergents", "6/37,11/68,17/105", "--json"], capture_output=True,
+                         text=True, check=True, timeout=600)
+    c = json.loads(out.stdout)
+    p = ap.cantorus(0.1, convergents=[(6, 37), (11, 68), (17, 105)])
+    c.pop("seconds", None)
+    assert p == c
+    assert p["limit"]["value"] == p["terms"][-1]["flux"]
+    with pytest.raises(ValueError, match="lowest terms"):
+        ap.cantorus(0.1, convergents=[(2, 12)])

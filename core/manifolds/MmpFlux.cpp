@@ -1,0 +1,373 @@
+#include "core/manifolds/MmpFlux.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include <nlohmann/json.hpp>
+
+#include "core/io/NumberText.hpp"
+#include "core/manifolds/GeneratingFunction.hpp"
+#include "core/manifolds/HyperbolicOrbit.hpp"
+#include "core/manifolds/ManifoldParameterization.hpp"  // reverse(), Reversor
+#include "core/manifolds/QuadText.hpp"
+
+namespace archipelago {
+
+namespace {
+
+using smooth::SymmetryLine;
+using QPoint = smooth::Point<quad>;
+
+std::string number(long double v) { return io::formatC("%.10Lg", v); }
+
+/// 2⁻¹¹², the unit roundoff of __float128.
+const quad kQuadEpsilon = quad(1) / (quad(1ULL << 56) * quad(1ULL << 56));
+
+/// The index of the orbit's point nearest to `line` (the finder's root lies on it to rounding).
+std::size_t pointOnLine(const PeriodicOrbit& orbit, SymmetryLine line) {
+  std::size_t best = 0;
+  long double bestOffset = -1;
+  for (std::size_t k = 0; k < orbit.points.size(); ++k) {
+    const smooth::Point<long double> z{orbit.points[k].x, orbit.points[k].y};
+    const long double offset = std::fabs(smooth::offsetFromLine(line, orbit.K, z));
+    if (bestOffset < 0 || offset < bestOffset) {
+      bestOffset = offset;
+      best = k;
+    }
+  }
+  return best;
+}
+
+/// The orbit in __float128 (MmpFlux.hpp, method 2) and its action (method 3).
+BirkhoffOrbit inQuad(const PeriodicOrbit& found) {
+  BirkhoffOrbit out;
+  out.line = found.symmetry == OrbitSymmetry::LineS1 ? SymmetryLine::S1 : SymmetryLine::S2;
+  const std::size_t onLine = pointOnLine(found, out.line);
+  out.orbit = found.rotatedToStart(onLine);
+  const int q = found.period;
+  const quad k = found.K;
+  const quad s = polishSymmetricPoint(found.K, q, out.line, quad(out.orbit.points.front().x), quad(1e-9L));
+  const Reversor reversor = out.line == SymmetryLine::S1 ? Reversor::I1 : Reversor::I2;
+  const int half = (q + 1) / 2;
+  std::vector<QPoint> forward(static_cast<std::size_t>(half) + 1);
+  forward[0] = smooth::onLine(out.line, k, s);
+  for (int i = 1; i <= half; ++i) forward[static_cast<std::size_t>(i)] = smooth::step(k, forward[static_cast<std::size_t>(i - 1)]);
+  out.points.resize(static_cast<std::size_t>(q));
+  for (int i = 0; i < q; ++i)
+    out.points[static_cast<std::size_t>(i)] =
+        2 * i <= q ? forward[static_cast<std::size_t>(i)] : reverse(reversor, k, forward[static_cast<std::size_t>(q - i)]);
+  const QPoint reversed = reverse(reversor, k, forward[static_cast<std::size_t>(q - half)]);
+  const QPoint direct = forward[static_cast<std::size_t>(half)];
+  const quad dx = direct.x - reversed.x, dy = direct.y - reversed.y;
+  out.mismatch = smooth::squareRoot(dx * dx + dy * dy);
+  quad sum = 0, magnitude = 0;
+  for (int i = 0; i < q; ++i) {
+    const quad term = generatingFunction(k, out.points[static_cast<std::size_t>(i)].x,
+                                         out.points[static_cast<std::size_t>((i + 1) % q)].x);
+    sum += term;
+    magnitude += smooth::absolute(term);
+  }
+  out.action = sum;
+  out.actionError = 4 * kQuadEpsilon * magnitude;
+  return out;
+}
+
+}  // namespace
+
+std::optional<std::string> validationError(const MmpRequest& r) {
+  if (auto e = manifoldKError(r.K)) return e;
+  if (r.q < 2 || r.q > PeriodicOrbitSearch::kMaxPeriod)
+    return "q = " + std::to_string(r.q) + " must lie in [2, " + std::to_string(PeriodicOrbitSearch::kMaxPeriod) + "]";
+  if (r.p < 1 || r.p >= r.q) return "p = " + std::to_string(r.p) + " must lie in [1, q − 1] (q = " + std::to_string(r.q) + ")";
+  if (std::gcd(r.p, static_cast<long>(r.q)) != 1)
+    return "p/q = " + std::to_string(r.p) + "/" + std::to_string(r.q) + " must be in lowest terms";
+  if (!std::isfinite(r.innerRadius) || !std::isfinite(r.outerRadius) || !(r.innerRadius > 0) ||
+      !(r.innerRadius < r.outerRadius))
+    return "the radii " + number(r.innerRadius) + " and " + number(r.outerRadius) + " must satisfy 0 < inner < outer";
+  if (!(r.spacing > 0) || !std::isfinite(r.spacing)) return "spacing = " + number(r.spacing) + " must be a positive number";
+  if (r.outerRadius > kMaxMmpRadius)
+    return "outer radius = " + number(r.outerRadius) + " must be at most " + number(kMaxMmpRadius) +
+           " (orbits beyond escape)";
+  if ((r.outerRadius - r.innerRadius) / r.spacing > kMaxMmpSamples)
+    return "the scan of " + number(r.outerRadius - r.innerRadius) + " at spacing " + number(r.spacing) +
+           " would take more than " + number(kMaxMmpSamples) + " samples per window";
+  for (const LineWindow& w : r.windows) {
+    if (!std::isfinite(w.lo) || !std::isfinite(w.hi) || !(w.lo < w.hi) || (w.hi - w.lo) / r.spacing > kMaxMmpSamples)
+      return "a window [" + number(w.lo) + ", " + number(w.hi) + "] must have finite ends, lo < hi, and at most " +
+             number(kMaxMmpSamples) + " samples at spacing " + number(r.spacing);
+  }
+  return std::nullopt;
+}
+
+bool wellOrdered(std::span<const PhysicalPoint> points, PhysicalPoint centre) {
+  const std::size_t q = points.size();
+  if (q < 1) return false;
+  std::vector<long double> angle(q);
+  const long double start = std::atan2(points[0].y - centre.y, points[0].x - centre.x);
+  constexpr long double kTwoPi = 6.283185307179586476925286766559L;
+  for (std::size_t k = 0; k < q; ++k) {
+    const long double dx = points[k].x - centre.x, dy = points[k].y - centre.y;
+    if (dx == 0 && dy == 0) return false;
+    long double a = -(std::atan2(dy, dx) - start);  // clockwise from z_0
+    a = std::fmod(a, kTwoPi);
+    if (a < 0) a += kTwoPi;
+    angle[k] = a;
+  }
+  std::vector<std::size_t> order(q);
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return angle[a] < angle[b]; });
+  std::vector<std::size_t> position(q);
+  for (std::size_t r = 0; r < q; ++r) {
+    if (r > 0 && angle[order[r]] == angle[order[r - 1]]) return false;
+    position[order[r]] = r;
+  }
+  const std::size_t shift = (position[1 % q] + q - position[0]) % q;
+  for (std::size_t k = 0; k < q; ++k)
+    if ((position[(k + 1) % q] + q - position[k]) % q != shift) return false;
+  return true;
+}
+
+std::vector<LineWindow> annulusWindows(long double K, long double inner, long double outer) {
+  if (auto e = manifoldKError(K)) throw std::invalid_argument(*e);
+  if (!std::isfinite(inner) || !std::isfinite(outer) || !(inner > 0) || !(inner < outer))
+    throw std::invalid_argument("the radii " + number(inner) + " and " + number(outer) + " must satisfy 0 < inner < outer");
+  const long double c = -std::sqrt(K);
+  // S₁: y = K − x² = (√K − x)(√K + x); with u = x + √K its distance from the centre is |u| √(1 + (2√K − u)²), which
+  // grows with |u| on each side for the radii of the central island (checked: bisection needs a bracket).
+  auto distanceS1 = [&](long double u) { return std::fabs(u) * std::sqrt(1 + (2 * std::sqrt(K) - u) * (2 * std::sqrt(K) - u)); };
+  auto solveS1 = [&](long double r, long double sign) {
+    long double lo = 0, hi = r;  // distance(u) ≥ |u|
+    if (!(distanceS1(sign * hi) >= r))
+      throw std::invalid_argument("radius " + number(r) + " is not reached on S1");
+    for (int i = 0; i < 200; ++i) {
+      const long double mid = (lo + hi) / 2;
+      if (!(mid > lo && mid < hi)) break;
+      (distanceS1(sign * mid) < r ? lo : hi) = mid;
+    }
+    return c + sign * hi;
+  };
+  std::vector<LineWindow> windows;
+  windows.push_back({smooth::SymmetryLine::S2, c - outer, c - inner});
+  windows.push_back({smooth::SymmetryLine::S2, c + inner, c + outer});
+  windows.push_back({smooth::SymmetryLine::S1, solveS1(outer, -1), solveS1(inner, -1)});
+  windows.push_back({smooth::SymmetryLine::S1, solveS1(inner, 1), solveS1(outer, 1)});
+  return windows;
+}
+
+MmpActionDifference mmpActionDifference(const MmpRequest& request, std::stop_token stop) {
+  if (auto e = validationError(request)) throw std::invalid_argument(*e);
+  const std::vector<LineWindow> windows =
+      request.windows.empty() ? annulusWindows(request.K, request.innerRadius, request.outerRadius) : request.windows;
+  // Roots with another number of turns are dropped before the finder polishes them in quad (most of the roots in a
+  // chaotic layer): q steps in long double, whose rounding (≈ 1e-19 |λ|) does not change the winding.
+  const long double centreX = -std::sqrt(request.K);
+  auto turnsP = [&](PhysicalPoint start) {
+    std::vector<PhysicalPoint> points(static_cast<std::size_t>(request.q));
+    smooth::Point<long double> z{start.x, start.y};
+    for (auto& point : points) {
+      if (!(std::fabs(z.x) < 1e3L && std::fabs(z.y) < 1e3L)) return false;
+      point = {z.x, z.y};
+      z = smooth::step(request.K, z);
+    }
+    return clockwiseTurns(points, centreX, 0) == request.p;
+  };
+  const std::vector<PeriodicOrbit> found =
+      findSymmetricPeriodicOrbitsIn(request.K, request.q, windows, request.spacing, stop, turnsP);
+  const PhysicalPoint centre{-std::sqrt(request.K), 0.0L};
+  MmpActionDifference out;
+  out.K = request.K;
+  out.p = request.p;
+  out.q = request.q;
+  std::vector<const PeriodicOrbit*> birkhoff;
+  for (const PeriodicOrbit& orbit : found) {
+    if (orbit.windingTurns != request.p) continue;
+    ++out.symmetricOrbits;
+    if (wellOrdered(orbit.points, centre)) birkhoff.push_back(&orbit);
+  }
+  out.birkhoffOrbits = static_cast<int>(birkhoff.size());
+  const auto negative = std::count_if(birkhoff.begin(), birkhoff.end(), [](const PeriodicOrbit* o) { return o->residue < 0; });
+  const auto positive = std::count_if(birkhoff.begin(), birkhoff.end(), [](const PeriodicOrbit* o) { return o->residue > 0; });
+  const std::string pq = std::to_string(request.p) + "/" + std::to_string(request.q);
+  if (negative != 1 || positive != 1 || birkhoff.size() != 2) {
+    std::string residues;
+    for (const PeriodicOrbit* o : birkhoff) residues += (residues.empty() ? "" : ", ") + number(o->residue);
+    throw NotFound("the Birkhoff orbits of type " + pq + " are not one with R < 0 and one with R > 0: the scan of " +
+                   (request.windows.empty() ? "the symmetry lines from " + number(request.innerRadius) + " to " +
+                                                  number(request.outerRadius) + " about the centre"
+                                            : std::to_string(request.windows.size()) + " windows of the symmetry lines") +
+                   " found " + std::to_string(found.size()) + " symmetric orbits of period " + std::to_string(request.q) +
+                   ", " + std::to_string(out.symmetricOrbits) + " with " + std::to_string(request.p) + " turns, " +
+                   std::to_string(birkhoff.size()) + " well ordered" + (residues.empty() ? "" : " (R = " + residues + ")") +
+                   "; other radii or a finer spacing may separate them");
+  }
+  const PeriodicOrbit& minimizing = *(birkhoff[0]->residue < 0 ? birkhoff[0] : birkhoff[1]);
+  const PeriodicOrbit& minimax = *(birkhoff[0]->residue < 0 ? birkhoff[1] : birkhoff[0]);
+  if (stop.stop_requested()) throw OperationStopped();
+  out.minimizing = inQuad(minimizing);
+  out.minimax = inQuad(minimax);
+  out.planeDifference = out.minimax.action - out.minimizing.action;
+  out.flux = smooth::absolute(out.planeDifference);
+  out.fluxError = out.minimizing.actionError + out.minimax.actionError;
+  return out;
+}
+
+ConvergentLimit convergentLimit(std::span<const long double> a) {
+  if (a.size() < 3) throw std::invalid_argument("a limit needs at least three terms, not " + std::to_string(a.size()));
+  for (long double v : a)
+    if (!std::isfinite(v)) throw std::invalid_argument("a term of the sequence is not finite");
+  const std::size_t n = a.size() - 1;
+  const long double last = a[n] - a[n - 1], previous = a[n - 1] - a[n - 2];
+  if (previous == 0) throw std::invalid_argument("the difference of the terms before the last is zero");
+  ConvergentLimit out;
+  out.terms = static_cast<int>(a.size());
+  out.value = a[n];
+  out.ratio = std::fabs(last / previous);
+  if (!(out.ratio < 1))
+    throw std::invalid_argument("the sequence is not converging: its last differences grow (ratio " + number(out.ratio) + ")");
+  out.uncertainty = std::fabs(last) * out.ratio / (1 - out.ratio);
+  return out;
+}
+
+std::optional<std::string> validationError(const CantorusRequest& r) {
+  if (r.convergents.empty()) return std::string("at least one convergent p/q is needed");
+  for (const auto& [p, q] : r.convergents) {
+    MmpRequest m;
+    m.K = r.K;
+    m.p = p;
+    m.q = q;
+    m.innerRadius = r.innerRadius;
+    m.outerRadius = r.outerRadius;
+    m.spacing = r.spacing;
+    if (auto e = validationError(m)) return e;
+  }
+  if (!(r.narrowHalfWidth > 0) || !std::isfinite(r.narrowHalfWidth))
+    return "narrow half-width = " + number(r.narrowHalfWidth) + " must be a positive number";
+  if (!(r.narrowSpacing > 0) || !std::isfinite(r.narrowSpacing))
+    return "narrow spacing = " + number(r.narrowSpacing) + " must be a positive number";
+  if (2 * r.narrowHalfWidth / r.narrowSpacing > kMaxMmpSamples)
+    return "the narrow windows (half-width " + number(r.narrowHalfWidth) + ", spacing " + number(r.narrowSpacing) +
+           ") would take more than " + number(kMaxMmpSamples) + " samples each";
+  return std::nullopt;
+}
+
+namespace {
+
+/// The points of a term's two orbits that lie on a symmetry line, with their lines.
+std::vector<LineWindow> linePoints(const MmpActionDifference& term, long double K) {
+  std::vector<LineWindow> points;
+  for (const BirkhoffOrbit* o : {&term.minimizing, &term.minimax})
+    for (const PhysicalPoint& z : o->orbit.points)
+      for (SymmetryLine line : {SymmetryLine::S1, SymmetryLine::S2})
+        if (std::fabs(smooth::offsetFromLine(line, K, smooth::Point<long double>{z.x, z.y})) < 1e-12L * (1 + std::fabs(z.x)))
+          points.push_back({line, z.x, z.x});
+  return points;
+}
+
+}  // namespace
+
+CantorusFlux cantorusFlux(const CantorusRequest& request, std::stop_token stop) {
+  if (auto e = validationError(request)) throw std::invalid_argument(*e);
+  CantorusFlux out;
+  for (const auto& [p, q] : request.convergents) {
+    MmpRequest wide;
+    wide.K = request.K;
+    wide.p = p;
+    wide.q = q;
+    wide.innerRadius = request.innerRadius;
+    wide.outerRadius = request.outerRadius;
+    wide.spacing = request.spacing;
+    MmpRequest narrow = wide;
+    narrow.spacing = request.narrowSpacing;
+    std::vector<LineWindow> previous;
+    if (!out.terms.empty()) {
+      previous = linePoints(out.terms.back(), request.K);
+      for (const LineWindow& z : previous)
+        narrow.windows.push_back({z.line, z.lo - request.narrowHalfWidth, z.lo + request.narrowHalfWidth});
+    }
+    // Narrow first when there is a previous term: it costs 4 × 2·halfWidth/spacing samples (a few ms where it finds
+    // nothing: early terms, whose points still move by 10⁻² from one convergent to the next), while the annulus costs
+    // 150 s at q = 729 and misses the pair there.
+    std::vector<std::pair<const MmpRequest*, bool>> attempts;
+    if (!previous.empty()) attempts = {{&narrow, true}, {&wide, false}};
+    else attempts = {{&wide, false}};
+    std::string failures;
+    bool done = false;
+    for (const auto& [attempt, isNarrow] : attempts) {
+      try {
+        out.terms.push_back(mmpActionDifference(*attempt, stop));
+        out.narrowed.push_back(isNarrow);
+        done = true;
+        break;
+      } catch (const NotFound& e) {
+        failures += (failures.empty() ? "" : "; ") + std::string(isNarrow ? "about the previous convergent's points: " : "") + e.what();
+      }
+    }
+    if (!done) throw NotFound(failures);
+  }
+  std::vector<long double> fluxes;
+  for (const MmpActionDifference& t : out.terms) fluxes.push_back(static_cast<long double>(t.flux));
+  try {
+    out.limit = convergentLimit(fluxes);
+  } catch (const std::invalid_argument& e) {
+    out.limitProblem = e.what();
+  }
+  return out;
+}
+
+std::string cantorusFluxJson(const CantorusRequest& request, const CantorusFlux& result, double seconds) {
+  using json = nlohmann::ordered_json;
+  json j;
+  j["K"] = static_cast<double>(request.K);
+  j["method"] = "MacKay-Meiss-Percival: flux = |W(minimax) - W(minimizing)| of the Birkhoff p/q orbits about (-sqrt K, 0)";
+  j["inner_radius"] = static_cast<double>(request.innerRadius);
+  j["outer_radius"] = static_cast<double>(request.outerRadius);
+  j["spacing"] = static_cast<double>(request.spacing);
+  j["narrow_half_width"] = static_cast<double>(request.narrowHalfWidth);
+  j["narrow_spacing"] = static_cast<double>(request.narrowSpacing);
+  auto orbitJson = [](const BirkhoffOrbit& o) {
+    json b;
+    b["residue"] = static_cast<double>(o.orbit.residue);
+    b["symmetry_line"] = o.line == SymmetryLine::S1 ? "S1: y = K - x^2" : "S2: y = 0";
+    b["point"] = json::array({static_cast<double>(o.points.front().x), static_cast<double>(o.points.front().y)});
+    b["action_text"] = quadText(o.action, 30);
+    b["halves_mismatch"] = static_cast<double>(o.mismatch);
+    return b;
+  };
+  json terms = json::array();
+  for (std::size_t i = 0; i < result.terms.size(); ++i) {
+    const MmpActionDifference& t = result.terms[i];
+    json e;
+    e["p"] = t.p;
+    e["q"] = t.q;
+    e["flux"] = static_cast<double>(t.flux);
+    e["flux_text"] = quadText(t.flux, 30);
+    e["flux_error"] = static_cast<double>(t.fluxError);
+    e["plane_difference_text"] = quadText(t.planeDifference, 30);
+    e["minimizing"] = orbitJson(t.minimizing);
+    e["minimax"] = orbitJson(t.minimax);
+    e["symmetric_orbits"] = t.symmetricOrbits;
+    e["birkhoff_orbits"] = t.birkhoffOrbits;
+    e["narrow_windows"] = static_cast<bool>(result.narrowed[i]);
+    terms.push_back(e);
+  }
+  j["terms"] = terms;
+  if (result.limit) {
+    json l;
+    l["value"] = static_cast<double>(result.limit->value);
+    l["uncertainty"] = static_cast<double>(result.limit->uncertainty);
+    l["ratio"] = static_cast<double>(result.limit->ratio);
+    l["terms"] = result.limit->terms;
+    j["limit"] = l;
+  } else {
+    j["limit"] = nullptr;
+    j["limit_problem"] = result.limitProblem;
+  }
+  if (seconds >= 0) j["seconds"] = seconds;
+  return j.dump(2);
+}
+
+}  // namespace archipelago
