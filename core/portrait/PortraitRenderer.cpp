@@ -103,10 +103,10 @@ std::optional<std::string> validationError(const PortraitRequest& r) {
       << " each way";
     return s.str();
   }
-  if (r.mode == PortraitMode::Stickiness) {
-    if (auto e = randomizingZoneError(r.Xr)) return e;
-    if (auto e = outsideRange("q", r.q, 1, limits::kRasterQ)) return e;
-  }
+  // Xr and q are checked in every mode (the renderer builds its block settings from them whatever the mode): a
+  // value given for a mode that does not use it is still refused, never carried as a silent nonsense.
+  if (auto e = randomizingZoneError(r.Xr)) return e;
+  if (auto e = outsideRange("q", r.q, 1, limits::kRasterQ)) return e;
   if (auto e = outsideRange("passes", r.passes, 1, 30)) return e;
   if (auto e = outsideRange("chunkSteps", r.chunkSteps, 1, 1u << 20, "2^20"))
     return e;

@@ -188,6 +188,11 @@ std::optional<std::string> randomizingZoneError(double Xr) {
 }
 
 std::uint64_t randomizingThreshold(double Xr) noexcept {
+  // Defined for every double: a NaN, negative or huge Xr converted to an integer is undefined behaviour (clang's
+  // UBSan found `portrait --Xr 1e308` in density mode, where Xr is not used, reaching this conversion).  Callers
+  // validate Xr (randomizingZoneError) first; here NaN and Xr ≤ 0 give 0, Xr ≥ 1 the whole unit 2^52.
+  if (!(Xr > 0)) return 0;
+  if (Xr >= 1) return std::uint64_t{1} << FixedPointMap::kBits;
   return static_cast<std::uint64_t>(std::floor(std::ldexp(Xr, FixedPointMap::kBits)));
 }
 

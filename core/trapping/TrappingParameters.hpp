@@ -103,7 +103,8 @@ inline constexpr double kSaveBytesPerOrbit = 800;
 [[nodiscard]] TrappingParameters companionParameters(const TrappingParameters& p, double fraction);
 inline constexpr std::uint64_t kCompanionSeedSalt = 0x436f6d70616e696fULL;  // "Companio"
 
-/// ⌊Xr·2^52⌋, the largest X inside the randomizing zone.
+/// ⌊Xr·2^52⌋, the largest X inside the randomizing zone, for a valid Xr (randomizingZoneError); defined for every
+/// double (NaN and Xr ≤ 0: 0; Xr ≥ 1: 2^52), never the undefined conversion of an out-of-range value.
 [[nodiscard]] std::uint64_t randomizingThreshold(double Xr) noexcept;
 
 /// The state of one orbit at the start of a trapped segment: enough to replay the segment bit for bit.

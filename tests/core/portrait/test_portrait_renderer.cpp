@@ -10,6 +10,7 @@
 #include <atomic>
 #include <thread>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <vector>
 
@@ -395,6 +396,26 @@ TEST(PortraitRenderer, StickinessMeansAreWholeBlocksAndLongestNearTheIslands) {
   ASSERT_GT(nFar, 10);
   // Segments passing close to the islands are longer (the stickiness, §5) than those near the box edge.
   EXPECT_GT(nearIslands / nNear, farAway / nFar + std::log(2.0));
+}
+
+// Xr and q are refused in every mode: in density mode the renderer still builds its block settings from them, and an
+// Xr of 1e308 reached an undefined float-to-integer conversion (clang's UBSan, cli.hostile's `portrait --Xr 1e308`).
+TEST(PortraitRenderer, XrAndQAreCheckedInEveryMode) {
+  for (PortraitMode mode : {PortraitMode::Density, PortraitMode::Orbits, PortraitMode::Stickiness}) {
+    PortraitRequest req;
+    req.mode = mode;
+    EXPECT_FALSE(validationError(req));
+    for (double Xr : {1e308, -1.0, std::numeric_limits<double>::quiet_NaN(), 1.0}) {
+      req.Xr = Xr;
+      ASSERT_TRUE(validationError(req)) << Xr;
+      EXPECT_EQ(validationError(req)->rfind("Xr = ", 0), 0u) << *validationError(req);
+    }
+    req = {};
+    req.mode = mode;
+    req.q = 0;
+    ASSERT_TRUE(validationError(req));
+    EXPECT_NE(validationError(req)->find("q"), std::string::npos) << *validationError(req);
+  }
 }
 
 TEST(PortraitRenderer, BadRequestsGiveClearErrors) {

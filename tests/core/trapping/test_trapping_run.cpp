@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <map>
 #include <stop_token>
 
@@ -225,4 +226,15 @@ TEST(TrappingRun, EveryViolatedParameterRuleIsReported) {
   EXPECT_NE(steps[0].message.find("≤ 2⁶²"), std::string::npos) << steps[0].message;
 }
 }  // namespace
+// ⌊Xr·2^52⌋ for a valid Xr, and defined (no undefined float-to-integer conversion) for every other double.
+TEST(RandomizingThreshold, IsFloorOfXrTimesTheUnitAndDefinedForEveryDouble) {
+  EXPECT_EQ(randomizingThreshold(0.02), 90071992547409u);  // python3 -c "print(int(0.02*2**52))"
+  EXPECT_EQ(randomizingThreshold(0.0), 0u);
+  const std::uint64_t unit = 4503599627370496u;  // 2^52
+  for (double Xr : {-1.0, -1e308, -std::numeric_limits<double>::infinity(), std::numeric_limits<double>::quiet_NaN()})
+    EXPECT_EQ(randomizingThreshold(Xr), 0u) << Xr;
+  for (double Xr : {1.0, 5.0, 1e308, std::numeric_limits<double>::infinity()})
+    EXPECT_EQ(randomizingThreshold(Xr), unit) << Xr;
+}
+
 }  // namespace archipelago
