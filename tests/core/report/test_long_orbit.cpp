@@ -45,7 +45,9 @@ TEST(LongOrbit, TheLongestSegmentIsReplayedFramedAndNamed) {
   EXPECT_GE(v.view.x1, v.chain.island.x1);
   EXPECT_NE(v.command.find("replay k01.json --segment " + std::to_string(v.rank) + " --identify"), std::string::npos);
   // No segment of so short a run reaches the 138-chain, and the search says how far it looked.
-  if (!f.chain138) EXPECT_EQ(f.examined, 3u);
+  if (!f.chain138) {
+    EXPECT_EQ(f.examined, 3u);
+  }
   EXPECT_THROW((void)longOrbitFigures(run, 3, 2, "k01.json"), std::invalid_argument);
 }
 

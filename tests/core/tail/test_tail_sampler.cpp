@@ -92,7 +92,9 @@ TEST(SegmentAge, EqualsTheAgeOfTheRunProcess) {
     const auto age = segmentAge(k, s.z, s.length + 3);
     ASSERT_TRUE(age) << "block " << b;
     ASSERT_EQ(*age, s.length) << "block " << b;
-    if (s.length > 0) EXPECT_FALSE(segmentAge(k, s.z, s.length - 1)) << "older than its maxBlocks";
+    if (s.length > 0) {
+      EXPECT_FALSE(segmentAge(k, s.z, s.length - 1)) << "older than its maxBlocks";
+    }
     ++checked;
     long_ += s.length >= 20 ? 1 : 0;
   }
