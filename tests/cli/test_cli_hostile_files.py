@@ -320,8 +320,16 @@ for name, text, spec_text in json_variants():
         record(*json_case(reader, name, text, spec_text, index))
 for result in locale_cases():
     record(*result)
+# libomp (clang's OpenMP runtime: the asan preset's tree) registers itself in a 1 KiB shared-memory file at its first
+# parallel region; under a file-size limit below that it aborts before the program's own code runs ("OMP: Error
+# #179: Can't set size of SHM").  Those cases are left out there, and said so; GCC's libgomp (the default tree) has
+# no such file and runs them all.
+uses_libomp = "libomp" in subprocess.run(["ldd", cli], capture_output=True, text=True).stdout
 for name, args_of, limit in FULL_DISK:
     index += 1
+    if uses_libomp and limit < 1024:
+        print(f"skipped with libomp: {name} (files ≤ {limit} B: libomp's own 1 KiB registration file cannot be made)")
+        continue
     record(*full_disk_case(name, args_of, limit, index))
 for result in downgrade_cases():
     record(*result)
