@@ -244,6 +244,13 @@ std::optional<std::string> validationError(const CantorusRequest& r) {
     m.spacing = r.spacing;
     if (auto e = validationError(m)) return e;
   }
+  // Convergents in order: each denominator larger than the one before (a repeated or reordered term would make a
+  // "limit" of a sequence that is not the cantorus's).
+  for (std::size_t i = 1; i < r.convergents.size(); ++i)
+    if (r.convergents[i].second <= r.convergents[i - 1].second)
+      return "the convergents must be in order of growing q: " + std::to_string(r.convergents[i].first) + "/" +
+             std::to_string(r.convergents[i].second) + " follows " + std::to_string(r.convergents[i - 1].first) +
+             "/" + std::to_string(r.convergents[i - 1].second);
   if (!(r.narrowHalfWidth > 0) || !std::isfinite(r.narrowHalfWidth))
     return "narrow half-width = " + number(r.narrowHalfWidth) + " must be a positive number";
   if (!(r.narrowSpacing > 0) || !std::isfinite(r.narrowSpacing))

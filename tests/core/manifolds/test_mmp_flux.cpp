@@ -227,4 +227,19 @@ TEST(MmpFlux, RefusesBadRequestsAndSaysWhatTheScanFound) {
 }
 
 }  // namespace
+// The convergents in order of growing q: a repeated or reordered term is refused, not made into a "limit" (found by
+// feeding `cantorus --convergents 5/31,5/31`, which returned a table).
+TEST(MmpFlux, ConvergentsOutOfOrderAreRefused) {
+  CantorusRequest r;
+  r.convergents = {{5, 31}, {6, 37}};
+  EXPECT_FALSE(validationError(r));
+  for (const auto& bad : {std::vector<std::pair<long, int>>{{5, 31}, {5, 31}},
+                          std::vector<std::pair<long, int>>{{6, 37}, {5, 31}}}) {
+    r.convergents = bad;
+    ASSERT_TRUE(validationError(r));
+    EXPECT_NE(validationError(r)->find("order of growing q"), std::string::npos) << *validationError(r);
+    EXPECT_THROW((void)cantorusFlux(r), std::invalid_argument);
+  }
+}
+
 }  // namespace archipelago
