@@ -262,6 +262,7 @@ void settleLayers(Atlas& atlas, const std::map<int, PolygonRegion>& zones) {
     }
     f.layerArea = f.zoneArea - f.enclosedIslands;
     f.residence = static_cast<double>(f.layerArea / f.flux);
+    refuseEmptyLayer(f);
   }
 }
 
@@ -649,6 +650,14 @@ class AtlasBuilder {
 };
 
 }  // namespace
+
+void refuseEmptyLayer(AtlasFlux& f) {
+  if (!f.found || f.layerArea > 0) return;
+  f.found = false;
+  f.failure = "its zone, " + number(f.zoneArea) + ", is no larger than the " + std::to_string(f.enclosedCount) +
+              " islands of the atlas inside it, " + number(f.enclosedIslands) +
+              ": the separatrix's curves do not enclose this chain's layer";
+}
 
 std::optional<std::string> validationError(const AtlasRequest& r) {
   MeasureSettings measure;  // the map's and the rotation measurements' rules (0 < K < 1, iterations, threshold)

@@ -338,6 +338,7 @@ AtlasNode nodeFrom(const rjson& o, const std::string& key, std::size_t index, co
     n.flux.fluxDigits = finiteOr(f.at("flux_agreeing_digits"), fkey + ".flux_agreeing_digits", all);
     n.flux.zoneDigits = finiteOr(f.at("zone_agreeing_digits"), fkey + ".zone_agreeing_digits", all);
     n.flux.residence = finite(f.at("residence"), fkey + ".residence");
+    refuseEmptyLayer(n.flux);  // a file written before the rule, or edited, obeys it as the computation does
   } else {
     keys(f, fkey, {"found", "failure"}, {"partner"});
     n.flux.failure = string(f.at("failure"), fkey + ".failure");

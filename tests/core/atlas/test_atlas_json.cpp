@@ -297,6 +297,51 @@ TEST(AtlasJson, RefusesEditedTrees) {
 
 // Random edits (a value replaced by another of any kind, a key removed, an entry duplicated): each document is either
 // refused with a std::runtime_error or read into an atlas that writes a text that reads back to itself.
+// A barrier whose zone is no larger than the islands found inside it has no layer (found at K = 0.15: the 1/5 chain
+// about the island of 21 gave a layer of −4.2e−4 and a residence of −1.5e9 steps, printed as numbers): the rule
+// refuses the flux, with the numbers in its reason, in the computation (settleLayers) and in a file read back.
+TEST(AtlasJson, ABarrierWhoseZoneIsNoLargerThanItsIslandsIsRefused) {
+  AtlasFlux f;
+  f.found = true;
+  f.flux = 2.7204031581282044e-13L;
+  f.zoneArea = 0.00045115427721225407L;
+  f.enclosedIslands = 0.0008689337652417415L;
+  f.enclosedCount = 126;
+  f.layerArea = f.zoneArea - f.enclosedIslands;
+  f.residence = static_cast<double>(f.layerArea / f.flux);
+  refuseEmptyLayer(f);
+  EXPECT_FALSE(f.found);
+  EXPECT_NE(f.failure.find("no larger than the 126 islands"), std::string::npos) << f.failure;
+  EXPECT_NE(f.failure.find("0.00045115427721225407"), std::string::npos) << f.failure;
+
+  AtlasFlux empty = f;  // a layer of exactly nothing is no layer either
+  empty.found = true;
+  empty.failure.clear();
+  empty.layerArea = 0;
+  refuseEmptyLayer(empty);
+  EXPECT_FALSE(empty.found);
+
+  AtlasFlux thin = f;  // the smallest positive layer is a layer: the rule refuses no more than it must
+  thin.found = true;
+  thin.failure.clear();
+  thin.layerArea = std::numeric_limits<long double>::denorm_min();
+  refuseEmptyLayer(thin);
+  EXPECT_TRUE(thin.found);
+  EXPECT_TRUE(thin.failure.empty());
+
+  // The file: the chain of six's layer and residence edited negative are read as a refused flux, and written so.
+  const Atlas a = atlasFromJson(edited([](ojson& j) {
+    j["nodes"][1]["flux"]["layer_area"] = -4.177795e-4;
+    j["nodes"][1]["flux"]["residence"] = -1.53573e9;
+  }));
+  EXPECT_FALSE(a.nodes[1].flux.found);
+  EXPECT_NE(a.nodes[1].flux.failure.find("no larger than"), std::string::npos) << a.nodes[1].flux.failure;
+  const ojson again = ojson::parse(atlasJson(a));
+  EXPECT_EQ(again["nodes"][1]["flux"]["found"], false);
+  EXPECT_FALSE(again["nodes"][1]["flux"].contains("residence"));
+  EXPECT_TRUE(atlasFromJson(atlasJson(handBuilt())).nodes[1].flux.found);  // the untouched file keeps it
+}
+
 TEST(AtlasJson, RandomEditsAreRefusedOrReadConsistently) {
   std::mt19937_64 rng(38);
   const ojson base = ojson::parse(atlasJson(handBuilt()));
