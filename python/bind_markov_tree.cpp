@@ -5,6 +5,7 @@
 #include <pybind11/stl.h>
 
 #include <cstdint>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -12,6 +13,7 @@
 #include "core/atlas/AtlasExport.hpp"
 #include "core/io/AtomicFile.hpp"
 #include "core/markovtree/MarkovTreeExport.hpp"
+#include "core/tail/TailFile.hpp"
 
 namespace py = pybind11;
 using namespace archipelago;
@@ -21,7 +23,7 @@ namespace {
 const MarkovTreeRequest kTree{};
 
 py::dict markovTree(const py::object& atlas, double alpha, double b2, double tMax, int perDecade,
-                    const std::vector<std::uint64_t>& at, double exponentFrom) {
+                    const std::vector<std::uint64_t>& at, double exponentFrom, const py::object& tail) {
   MarkovTreeRequest r;
   r.alpha = alpha;
   r.b2 = b2;
@@ -51,7 +53,18 @@ py::dict markovTree(const py::object& atlas, double alpha, double b2, double tMa
   } catch (const std::exception& e) {
     throw std::invalid_argument(std::string("atlas: ") + e.what());
   }
-  const std::string json = markovTreeJson(computeMarkovTree(a, r));
+  std::optional<TailState> sampled;
+  if (!tail.is_none()) {
+    if (!(py::isinstance<py::str>(tail) || py::hasattr(tail, "__fspath__")))
+      throw std::invalid_argument("tail must be the path of a tail sampler's file (archipelago-cli tail --out)");
+    r.tailSource = py::str(py::module_::import("os").attr("fspath")(tail));
+    try {
+      sampled = loadTailFile(r.tailSource);
+    } catch (const std::exception& e) {
+      throw std::invalid_argument("tail: " + std::string(e.what()));
+    }
+  }
+  const std::string json = markovTreeJson(computeMarkovTree(a, r, sampled ? &*sampled : nullptr));
   return py::module_::import("json").attr("loads")(json);
 }
 }  // namespace
@@ -60,10 +73,13 @@ void bindMarkovTree(py::module_& m) {
   m.def("markov_tree", &markovTree, py::arg("atlas"), py::kw_only(), py::arg("alpha") = kTree.alpha,
         py::arg("b2") = kTree.b2, py::arg("t_max") = kTree.tMax, py::arg("per_decade") = kTree.perDecade,
         py::arg("at") = std::vector<std::uint64_t>{}, py::arg("exponent_from") = kTree.exponentFrom,
+        py::arg("tail") = py::none(),
         "The Meiss-Ott Markov tree of an atlas (core/markovtree/MarkovTree.hpp, docs/markov-tree.md): `atlas` is an\n"
         "atlas dict (atlas()) or the path of an atlas JSON file.  States between successive barriers, rates flux / area\n"
         "(each with its source), chains without a flux lumped; S(t) exactly on a grid of per_decade points a decade to\n"
         "t_max and at the steps `at`, each level's share, gamma over decade windows; with alpha (the run's mean segment\n"
         "length, steps) and b2 (the stochastic area) also P_t = alpha flux / b2 S(t).  The same dict as\n"
-        "`archipelago-cli markov-tree --json`.  ValueError for bad input or an atlas that cannot make a tree.");
+        "`archipelago-cli markov-tree --json`; with `tail` (the path of a tail sampler's file of the atlas's map, and\n"
+        "alpha and b2) also \"comparison\": the model over each reliable level from 10^3 steps, and the reach (the last\n"
+        "t within a factor 3).  ValueError for bad input or an atlas that cannot make a tree.");
 }

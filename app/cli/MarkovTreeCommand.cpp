@@ -3,6 +3,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -12,12 +13,14 @@
 #include "core/io/AtomicFile.hpp"
 #include "core/io/CommandFiles.hpp"
 #include "core/markovtree/MarkovTreeExport.hpp"
+#include "core/tail/TailFile.hpp"
 
 namespace archipelago::cli {
 
 namespace {
 struct MarkovTreeOptions {
   std::string atlas;
+  std::string tail;
   std::string at;
   std::string csv;
   std::string json;
@@ -76,13 +79,25 @@ void printTree(const MarkovTreeResult& r) {
   }
   for (const MarkovTreeExponent& e : r.exponents)
     std::printf("# gamma over [%g, %g]: %.4f\n", e.from, e.to, e.gamma);
+  if (!r.comparison) return;
+  const MarkovTreeComparison& c = *r.comparison;
+  std::printf("# against the tail %s: model / measured within a factor %g last at t = %s\n",
+              r.request.tailSource.c_str(), c.factor, c.reach > 0 ? shortestDecimal(c.reach).c_str() : "(none)");
+  std::printf("# %12s %12s %10s %14s %12s  %s\n", "t", "measured", "error", "model", "ratio", "level holding (share)");
+  for (const MarkovTreeLevelComparison& m : c.levels) {
+    std::printf("  %12.0f %12.4e %10.2e %14.4Le %12.3Lg", m.t, m.measured, m.measuredError, m.model, m.ratio);
+    if (m.holdingLevel >= 0) std::printf("  %d (%.0f %%)", m.holdingLevel, 100 * m.holdingShare);
+    std::printf("\n");
+  }
 }
 
 int runMarkovTree(MarkovTreeOptions o) {
   o.request.at = parseTimes(o.at);
   o.request.atlasSource = o.atlas;
   if (auto e = validationError(o.request)) throw std::invalid_argument(*e);
+  o.request.tailSource = o.tail;
   io::checkCommandFiles({{"--atlas", o.atlas, io::FileUse::Input},
+                         {"--tail", o.tail, io::FileUse::Input},
                          {"--csv", o.csv, io::FileUse::Output},
                          {"--json", o.json, io::FileUse::Output}});
   Atlas atlas;
@@ -91,7 +106,15 @@ int runMarkovTree(MarkovTreeOptions o) {
   } catch (const std::exception& e) {
     throw std::runtime_error("--atlas " + o.atlas + ": " + e.what());
   }
-  const MarkovTreeResult r = computeMarkovTree(atlas, o.request);
+  std::optional<TailState> tail;
+  if (!o.tail.empty()) {
+    try {
+      tail = loadTailFile(o.tail);
+    } catch (const std::exception& e) {
+      throw std::runtime_error("--tail " + o.tail + ": " + e.what());
+    }
+  }
+  const MarkovTreeResult r = computeMarkovTree(atlas, o.request, tail ? &*tail : nullptr);
   if (!o.json.empty()) io::writeFileAtomically(o.json, markovTreeJson(r));
   if (!o.csv.empty()) io::writeFileAtomically(o.csv, markovTreeCsv(r));
   if (!o.quiet) printTree(r);
@@ -107,6 +130,9 @@ void addMarkovTreeCommand(CLI::App& app, int& status) {
   cmd->add_option("--atlas", o->atlas, "the atlas JSON (archipelago-cli atlas --json)")->required();
   addNumberOption(*cmd, "--t-max", o->request.tMax, "the grid's last t (steps)");
   addNumberOption(*cmd, "--per-decade", o->request.perDecade, "grid points per decade");
+  cmd->add_option("--tail", o->tail,
+                  "a tail sampler's file of the atlas's map (archipelago-cli tail --out): the model against its reliable "
+                  "levels from 10^3 steps (needs --alpha and --b2 of that run process)");
   cmd->add_option("--at", o->at, "more t, comma-separated steps (e.g. the tail sampler's levels)");
   addNumberOption(*cmd, "--alpha", o->request.alpha,
                   "the run's mean segment length alpha (steps; archipelago-cli stats): with --b2, P_t = alpha flux / b2 S(t)");

@@ -319,4 +319,37 @@ std::vector<MarkovTreeExponent> markovTreeExponents(const MarkovTreeSurvival& s,
   return out;
 }
 
+MarkovTreeComparison compareMarkovTreeWithTail(const MarkovTree& tree, double alpha, double b2, const TailResult& tail,
+                                               double from, double factor) {
+  if (!std::isfinite(from) || !std::isfinite(factor) || !(factor >= 1))
+    throw std::invalid_argument("the comparison needs a finite first t and a finite factor >= 1");
+  MarkovTreeComparison c;
+  c.weight = markovTreeEntryWeight(tree, alpha, b2);
+  c.factor = factor;
+  std::vector<std::uint64_t> ts;
+  for (const TailLevelResult& L : tail.levels) {
+    if (!L.reliable || !(L.P > 0) || !(L.t >= from) || !(L.t <= static_cast<double>(kMarkovTreeMaxT))) continue;
+    MarkovTreeLevelComparison m;
+    m.t = L.t;
+    m.measured = L.P;
+    m.measuredError = L.PError;
+    c.levels.push_back(m);
+    ts.push_back(static_cast<std::uint64_t>(std::llround(L.t)));
+  }
+  if (ts.empty()) return c;
+  const MarkovTreeSurvival s = markovTreeSurvival(tree, ts);
+  for (std::size_t i = 0; i < c.levels.size(); ++i) {
+    MarkovTreeLevelComparison& m = c.levels[i];
+    m.model = c.weight * s.S[i];
+    m.ratio = m.model / static_cast<long double>(m.measured);
+    for (std::size_t k = 0; k < s.level.size(); ++k)
+      if (s.S[i] > 0 && (m.holdingLevel < 0 || s.level[k][i] > s.level[static_cast<std::size_t>(m.holdingLevel)][i]))
+        m.holdingLevel = static_cast<int>(k);
+    if (m.holdingLevel >= 0)
+      m.holdingShare = static_cast<double>(s.level[static_cast<std::size_t>(m.holdingLevel)][i] / s.S[i]);
+    if (m.ratio >= 1 / static_cast<long double>(factor) && m.ratio <= factor) c.reach = m.t;
+  }
+  return c;
+}
+
 }  // namespace archipelago

@@ -38,6 +38,7 @@ Provenance provenanceOf(const MarkovTreeResult& r) {
     p.add("b2", r.request.b2);
     p.add("Entry weight", *r.weight);
   }
+  if (r.comparison) p.add("Tail", r.request.tailSource.empty() ? std::string("(given)") : r.request.tailSource);
   return p;
 }
 }  // namespace
@@ -58,7 +59,7 @@ std::optional<std::string> validationError(const MarkovTreeRequest& r) {
   return std::nullopt;
 }
 
-MarkovTreeResult computeMarkovTree(const Atlas& atlas, const MarkovTreeRequest& request) {
+MarkovTreeResult computeMarkovTree(const Atlas& atlas, const MarkovTreeRequest& request, const TailState* tail) {
   if (auto e = validationError(request)) throw std::invalid_argument("markov tree: " + *e);
   MarkovTreeResult r;
   r.request = request;
@@ -73,6 +74,16 @@ MarkovTreeResult computeMarkovTree(const Atlas& atlas, const MarkovTreeRequest& 
   r.survival = markovTreeSurvival(r.tree, t);
   if (request.alpha != 0) r.weight = markovTreeEntryWeight(r.tree, request.alpha, request.b2);
   r.exponents = markovTreeExponents(r.survival, request.exponentFrom, request.tMax);
+  if (tail) {
+    const MapParameters& m = tail->request.run.map;
+    if (!(m == r.map))
+      throw std::invalid_argument("the tail is of K = " + shortestDecimal(m.K) + " in the box (" +
+                                  shortestDecimal(m.xmin) + ", " + shortestDecimal(m.xmax) + "), the atlas of K = " +
+                                  shortestDecimal(r.map.K) + " in (" + shortestDecimal(r.map.xmin) + ", " +
+                                  shortestDecimal(r.map.xmax) + "): compare a tail of the atlas's map");
+    if (!r.weight) throw std::invalid_argument("a comparison with the tail needs alpha and b2 (the model's P_t)");
+    r.comparison = compareMarkovTreeWithTail(r.tree, request.alpha, request.b2, tailResult(*tail));
+  }
   return r;
 }
 
@@ -209,6 +220,21 @@ std::string markovTreeJson(const MarkovTreeResult& r) {
   json ex = json::array();
   for (const MarkovTreeExponent& e : r.exponents) ex.push_back({{"from", e.from}, {"to", e.to}, {"gamma", e.gamma}});
   j["exponents"] = ex;
+  if (r.comparison) {
+    const MarkovTreeComparison& c = *r.comparison;
+    json lv = json::array();
+    for (const MarkovTreeLevelComparison& m : c.levels)
+      lv.push_back({{"t", m.t},
+                    {"measured", m.measured},
+                    {"measured_error", number(m.measuredError)},
+                    {"model", number(m.model)},
+                    {"log10_model", m.model > 0 ? json(static_cast<double>(std::log10(m.model))) : json(nullptr)},
+                    {"ratio", number(m.ratio)},
+                    {"log10_ratio", m.ratio > 0 ? json(static_cast<double>(std::log10(m.ratio))) : json(nullptr)},
+                    {"holding_level", m.holdingLevel},
+                    {"holding_share", m.holdingShare}});
+    j["comparison"] = {{"tail", r.request.tailSource}, {"factor", c.factor}, {"reach", c.reach}, {"levels", lv}};
+  }
   return j.dump(2) + "\n";
 }
 

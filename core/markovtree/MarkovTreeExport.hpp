@@ -12,6 +12,7 @@
 #include "core/atlas/Atlas.hpp"
 #include "core/markovtree/MarkovTree.hpp"
 #include "core/stats/TrappingStatistics.hpp"
+#include "core/tail/TailSampler.hpp"
 
 namespace archipelago {
 
@@ -24,6 +25,7 @@ struct MarkovTreeRequest {
   double b2 = 0;                     ///< the stochastic area b₂ of the run's box
   double exponentFrom = 10;          ///< the running exponent's windows start at or above this (steps), ≥ 1
   std::string atlasSource;           ///< where the atlas came from (a file name), recorded in the outputs
+  std::string tailSource;            ///< where the tail compared with came from (computeMarkovTree's `tail`), if any
 };
 
 /// The entry numbers docs/markov-tree.md uses at K = 0.1 (the default box): α, the mean segment length of the q = 16
@@ -57,11 +59,15 @@ struct MarkovTreeResult {
   MarkovTreeSurvival survival;               ///< on the grid, with request.at merged in (ascending, distinct)
   std::optional<long double> weight;         ///< w = α Φ_centre / b₂ when α and b₂ are given: P_t = w S(t)
   std::vector<MarkovTreeExponent> exponents;
+  std::optional<MarkovTreeComparison> comparison;  ///< against the tail sampler's levels, when a tail was given
 };
 
-/// The tree of `atlas` and its survival.  Throws std::invalid_argument for an invalid request or an atlas that
-/// cannot make a tree (markovTreeFromAtlas's message).
-[[nodiscard]] MarkovTreeResult computeMarkovTree(const Atlas& atlas, const MarkovTreeRequest& request);
+/// The tree of `atlas` and its survival, and with `tail` (a tail sampler's state: its reliable levels) the comparison
+/// compareMarkovTreeWithTail from kMarkovTreeCompareFrom.  Throws std::invalid_argument for an invalid request, an
+/// atlas that cannot make a tree (markovTreeFromAtlas's message), a tail of another map (K and box) than the atlas's,
+/// or a tail without α and b₂ (no P_t to compare).
+[[nodiscard]] MarkovTreeResult computeMarkovTree(const Atlas& atlas, const MarkovTreeRequest& request,
+                                                 const TailState* tail = nullptr);
 
 /// The model's P_t = w S(t) on the survival's grid as a Series (x: t in steps, value: P as a double, no error):
 /// t = 0 and the points where P is 0 or below the smallest normal double (the exponential tail) are left out, as the
@@ -73,7 +79,10 @@ struct MarkovTreeResult {
 [[nodiscard]] std::optional<std::vector<double>> markovTreeLevelShares(const MarkovTreeSurvival& s, std::uint64_t t);
 
 /// {"format": "archipelago markov tree", "program", "provenance", "map", "request", "atlas", "entry", "residence",
-///  "mean_visit", "states", "rates", "lumped", "survival": {"t", "S", "P", "levels", "states"}, "exponents"}.
+///  "mean_visit", "states", "rates", "lumped", "survival": {"t", "S", "P", "levels", "states"}, "exponents"} and,
+///  with a tail, "comparison": {"tail", "factor", "reach", "levels": [{"t", "measured", "measured_error", "model",
+///  "log10_model", "ratio", "log10_ratio", "holding_level", "holding_share"}]} (model and ratio null below the
+///  smallest double, their log10 always finite).
 [[nodiscard]] std::string markovTreeJson(const MarkovTreeResult& r);
 /// "# key: value" provenance lines, then t,S,P,level_0,…,state_<path>,… one row per t.
 [[nodiscard]] std::string markovTreeCsv(const MarkovTreeResult& r);

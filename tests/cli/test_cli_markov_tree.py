@@ -2,7 +2,8 @@
 up to 40): every state's area is the atlas file's layer less the layers inside it, every rate the file's flux over
 that area, the mean visit the atlas's residence of the loop (Kac), P_t = alpha flux / b2 S(t); the CSV is the JSON's
 survival with its provenance; one flux edited in the atlas file changes exactly the two rates through that barrier;
-bad options and bad atlases are one ERROR line and nothing written."""
+bad options and bad atlases are one ERROR line and nothing written; --tail sets the model against a tail sampler's
+levels (ratio, reach) and refuses a tail of another map."""
 import csv, io, json, os, tempfile
 from clitest import check, finish, run
 
@@ -83,6 +84,43 @@ with tempfile.TemporaryDirectory() as d:
         lines = r.stderr.strip().splitlines()
         check(r.returncode == 1 and len(lines) == 1 and word in lines[0] and not os.path.exists(out),
               f"atlas {os.path.basename(path)}: one ERROR line naming {word!r} ({r.returncode}: {r.stderr.strip()[:200]})")
+    # Against a tail of the atlas's map (--tail): each level's model is w S(t) and its ratio model / measured; the
+    # reach is the last level whose ratio is within a factor 3; a tail of another map, a tail without
+    # alpha and b2 and a file that is no tail are one ERROR line each.
+    tail = os.path.join(d, "t.json")
+    r = run("tail", "--population", "40", "--replicas", "2", "--t-max", "2e4", "--quiet", "--out", tail)
+    check(r.returncode == 0, f"a small tail exits 0 ({r.returncode}: {r.stderr[-300:]})")
+    levels = [l for l in json.load(open(tail))["levels"] if l["reliable"] and l["P"] > 0 and l["t"] >= 1000]
+    jt = os.path.join(d, "mt.json")
+    r = run("markov-tree", "--atlas", atlas, "--alpha", "18.9043", "--b2", "1.362484", "--tail", tail,
+            "--at", ",".join(str(l["t"]) for l in levels), "--json", jt)
+    check(r.returncode == 0 and "against the tail" in r.stdout, f"markov-tree --tail exits 0 with its table ({r.returncode}: {r.stderr[-300:]})")
+    mt = json.load(open(jt))
+    comp, surv = mt.get("comparison", {}), mt["survival"]
+    Sat = dict(zip(surv["t"], surv["S"]))
+    lv = comp.get("levels", [])
+    check(len(lv) == len(levels) > 0 and all(x["t"] == l["t"] and x["measured"] == l["P"] for x, l in zip(lv, levels)),
+          f"one comparison per reliable level from 10^3 ({len(lv)} of {len(levels)})")
+    check(all(abs(x["model"] - w * Sat[int(x["t"])]) <= 1e-12 * x["model"] and
+              abs(x["ratio"] - x["model"] / x["measured"]) <= 1e-12 * x["ratio"] for x in lv),
+          "each level's model is w S(t), its ratio model / measured")
+    reach = max([x["t"] for x in lv if 1 / 3 <= x["ratio"] <= 3], default=0)
+    check(comp.get("factor") == 3 and comp.get("reach") == reach and comp.get("tail") == tail,
+          f"the reach is the last level within a factor 3 ({comp.get('reach')} vs {reach})")
+    other = os.path.join(d, "t15.json")
+    r = run("tail", "--K", "0.15", "--xmin=-0.9746", "--xmax", "0.5873", "--population", "20", "--replicas", "2",
+            "--t-max", "2e3", "--quiet", "--out", other)
+    notail = os.path.join(d, "notail.json")
+    json.dump(json.load(open(atlas)), open(notail, "w"))
+    for args, word in [(["--tail", other, "--alpha", "18.9", "--b2", "1.3"], "the tail is of K = 0.15"),
+                       (["--tail", tail], "needs alpha and b2"),
+                       (["--tail", notail, "--alpha", "18.9", "--b2", "1.3"], "--tail " + notail)]:
+        out = os.path.join(d, "bad.json")
+        r = run("markov-tree", "--atlas", atlas, *args, "--json", out)
+        lines = r.stderr.strip().splitlines()
+        check(r.returncode == 1 and len(lines) == 1 and word in lines[0] and not os.path.exists(out),
+              f"markov-tree {' '.join(args[:2])}: one ERROR line naming {word!r} ({r.returncode}: {r.stderr.strip()[:200]})")
+
     r = run("markov-tree", "--atlas", atlas, "--csv", "/nonexistent-folder/x.csv")
     check(r.returncode == 1 and "cannot write" in r.stderr, f"an unwritable --csv fails loudly ({r.stderr.strip()[:120]})")
 finish()

@@ -43,3 +43,21 @@ def test_markov_tree_refuses_a_stopped_atlas(atlas_file):
         ap.markov_tree(a)
     with pytest.raises(ValueError, match="atlas"):
         ap.markov_tree(42)
+
+
+def test_markov_tree_against_a_tail_equals_cli(cli, atlas_file, tmp_path):
+    tail = tmp_path / "t.json"
+    subprocess.run([cli, "tail", "--population", "40", "--replicas", "2", "--t-max", "2e4", "--quiet", "--out", str(tail)],
+                   capture_output=True, text=True, check=True, timeout=600)
+    out = subprocess.run([cli, "markov-tree", "--atlas", str(atlas_file), "--alpha", "18.9", "--b2", "1.36",
+                          "--tail", str(tail), "--quiet", "--json", "/dev/stdout"],
+                         capture_output=True, text=True, check=True, timeout=600)
+    c = json.loads(out.stdout)["comparison"]
+    p = ap.markov_tree(atlas_file, alpha=18.9, b2=1.36, tail=tail)["comparison"]
+    assert p["levels"] == c["levels"] and p["reach"] == c["reach"] and len(p["levels"]) > 0
+    with pytest.raises(ValueError, match="needs alpha and b2"):
+        ap.markov_tree(atlas_file, tail=tail)
+    with pytest.raises(ValueError, match="tail"):
+        ap.markov_tree(atlas_file, alpha=18.9, b2=1.36, tail=atlas_file)
+    with pytest.raises(ValueError, match="tail must be the path"):
+        ap.markov_tree(atlas_file, alpha=18.9, b2=1.36, tail=42)

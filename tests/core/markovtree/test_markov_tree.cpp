@@ -341,6 +341,60 @@ TEST(MarkovTree, CurveIsWTimesSAndSharesSumToOne) {
 
 // What a front end prefills for α and b₂ (issue 40, found by a session: the GUI offered K = 0.1's b₂ and the run's α
 // whatever the atlas's map): a number only of the atlas's own map, else nothing, saying why.
+// The comparison with a measured tail (issue 40: the report's item, markov-tree --tail): each ratio is w S(t) of the
+// two-state closed form over the level's P; the reach is the last level before the first ratio outside [1/3, 3];
+// unreliable levels, levels below 10³ and P = 0 are left out; a bad factor is refused.
+TEST(MarkovTree, TheComparisonWithATailIsTheModelOverEachReliableLevel) {
+  Atlas a;
+  const long double phi0 = 3.8e-3L, l0 = 0.23L, phi1 = 2.0e-5L, l1 = 0.03L;
+  a.nodes = {node(-1, 0, 1, std::nullopt, phi0, 0.5L, l0, 0.1668),
+             node(0, 1, 6, Rational{1, 6}, phi1, 0.3L, l1, 0.09)};
+  link(a);
+  const MarkovTree tree = markovTreeFromAtlas(a);
+  const double alpha = 20, b2 = 1.3;
+  const long double w = alpha * phi0 / b2;
+  const std::vector<std::uint64_t> ts{500, 1000, 3000, 10000, 30000, 100000};
+  const MarkovTreeSurvival s = markovTreeSurvival(tree, ts);
+  // The "measured" levels: the model times 1.5, 0.5, 2.9, 0.2 (outside), 1.0 at 10³ … 10⁵; 500 steps (below 10³)
+  // and an unreliable level at 3·10³ are not compared.
+  const double factors[] = {1.0, 1.5, 0.5, 2.9, 0.2, 1.0};
+  TailResult tail;
+  for (std::size_t i = 0; i < ts.size(); ++i) {
+    TailLevelResult L;
+    L.t = static_cast<double>(ts[i]);
+    L.P = static_cast<double>(w * s.S[i]) / factors[i];
+    L.PError = 0.1 * L.P;
+    L.reliable = true;
+    tail.levels.push_back(L);
+  }
+  TailLevelResult unreliable = tail.levels[2];
+  unreliable.reliable = false;
+  unreliable.t = 5000;
+  tail.levels.insert(tail.levels.begin() + 3, unreliable);
+  TailLevelResult zero = tail.levels[1];
+  zero.t = 7000;
+  zero.P = 0;
+  tail.levels.insert(tail.levels.begin() + 4, zero);
+
+  const MarkovTreeComparison c = compareMarkovTreeWithTail(tree, alpha, b2, tail);
+  ASSERT_EQ(c.levels.size(), 5u);
+  EXPECT_NEAR(static_cast<double>(c.weight / w), 1.0, 1e-15);
+  for (std::size_t k = 0; k < c.levels.size(); ++k) {
+    EXPECT_EQ(c.levels[k].t, static_cast<double>(ts[k + 1]));
+    EXPECT_NEAR(static_cast<double>(c.levels[k].ratio), factors[k + 1], 1e-12) << c.levels[k].t;
+    EXPECT_GE(c.levels[k].holdingLevel, 0);
+  }
+  EXPECT_EQ(c.reach, 100000);  // the last level within 3: 3·10⁴ (off by 5) lies before it
+  tail.levels.back().P *= 20;    // 10⁵ off by 20 (the exponential tail of a finite tree): the reach is 10⁴
+  EXPECT_EQ(compareMarkovTreeWithTail(tree, alpha, b2, tail).reach, 10000);
+  EXPECT_EQ(compareMarkovTreeWithTail(tree, alpha, b2, tail, 1e3, 25).reach, 100000);
+  EXPECT_EQ(compareMarkovTreeWithTail(tree, alpha, b2, tail, 1e3, 1.4).reach, 0);  // 1.5, 0.5, 2.9, 0.2, 0.05
+  EXPECT_TRUE(compareMarkovTreeWithTail(tree, alpha, b2, tail, 1e6).levels.empty());
+  EXPECT_THROW((void)compareMarkovTreeWithTail(tree, alpha, b2, tail, 1e3, 0.5), std::invalid_argument);
+  EXPECT_THROW((void)compareMarkovTreeWithTail(tree, alpha, b2, tail, std::nan(""), 3), std::invalid_argument);
+  EXPECT_THROW((void)compareMarkovTreeWithTail(tree, 0, b2, tail), std::invalid_argument);
+}
+
 TEST(MarkovTree, TheEntryOfferedIsNeverAnotherMapsNumber) {
   const MapParameters docs;                                  // K = 0.1 in (−0.8, 0.5): the docs' map
   const MapParameters k015{0.15, -0.8, 0.5}, wider{0.1, -0.8, 0.6};
