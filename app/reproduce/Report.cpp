@@ -8,10 +8,13 @@
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <optional>
 #include <set>
 #include <stop_token>
 #include <vector>
 
+#include "core/atlas/AtlasExport.hpp"
+#include "core/markovtree/MarkovTreeExport.hpp"
 #include "core/tail/BruteForceSurvival.hpp"
 #include "core/tail/TailResult.hpp"
 #include "core/io/AtomicFile.hpp"
@@ -30,6 +33,7 @@
 #include "core/stats/RunEnsemble.hpp"
 #include "core/stats/RunStatistics.hpp"
 #include "core/stats/StatisticsTable.hpp"
+#include "core/stats/StochasticAreaQuantities.hpp"
 #include "core/theory/TheoryCurves.hpp"
 #include "ui/report/ReportFigures.hpp"
 
@@ -143,7 +147,10 @@ class Report {
     stopIfInterrupted();
     if (needs.count(report::Need::smallK)) smallK();
     stopIfInterrupted();
-    if (needs.count(report::Need::k01) || needs.count(report::Need::b2)) k01(needs.count(report::Need::b2) > 0);
+    // The Markov tree's item needs the run (α), the run box's b₂ and the tail sampler, all made by k01.
+    const bool atlas = needs.count(report::Need::atlas) > 0;
+    if (needs.count(report::Need::k01) || needs.count(report::Need::b2) || atlas)
+      k01(needs.count(report::Need::b2) > 0 || atlas, atlas);
     stopIfInterrupted();
     if (needs.count(report::Need::scan)) scan();
     if (needs.count(report::Need::timing))
@@ -285,7 +292,7 @@ class Report {
   }
 
   // §5, §7: the K = 0.1 run with its q = 1 companion; figs. 6, 7, 8; b₂; the tail.
-  void k01(bool withB2) {
+  void k01(bool withB2, bool withAtlas) {
     const fs::path runs = o_.out / "runs";
     const ReportRun made = report::k01Run(o_.size);
     const TrappingState run = runOrReuse(made, runs, o_.threads);
@@ -316,16 +323,19 @@ class Report {
     const TailResult samplerResult = tailResult(sampled);
     items_.push_back(report::tailSplittingStatement(compareWithRuns(sampled, samplerResult, {run}),
                                                     report::tailSamplerCommand(o_.size)));
+    double runBoxB2 = 0;
     if (withB2) {
       const MapParameters paperBox = report::paperSizedBox();
       const StochasticAreaResult inPaperBox = computeStochasticArea(report::stochasticAreaRequest(o_.size, paperBox));
       const StochasticAreaResult inRunBox = computeStochasticArea(report::stochasticAreaRequest(o_.size, run.params.map));
+      runBoxB2 = stochasticAreaOf(run.params.map, inRunBox.b2()).area;  // b₂ the area (b2() is the fraction)
       const std::string command = report::cliCommand(io::formatC(
           "stochastic-area --xmin=%g --xmax %g --iterations %llu", paperBox.xmin, paperBox.xmax,
           static_cast<unsigned long long>(report::stochasticAreaRequest(o_.size, paperBox).iterations)));
       for (auto& it : report::stochasticAreaStatements(inPaperBox, paperBox, inRunBox, run, st, tail, full_, command))
         items_.push_back(std::move(it));
     }
+    if (withAtlas) markovTree(run, sampled, runBoxB2);
     if (!drawing_) return;
     const std::string steps = io::formatC(" at K = 0.1 (%.3g steps; below %.3g steps the q = 1 companion's)",
                                           run.stepsDone() + companion.stepsDone(), st.splicedAt);
@@ -457,6 +467,87 @@ class Report {
     figures_.push_back({"S4", "the longest segment and the fraction of the steps in segments ≥ 10<sup>4</sup> against "
                               "K: the slow algebraic decay of §5 shows as segments beyond 10<sup>4</sup> steps",
                         "kscan-long"});
+  }
+
+  // §7 (later work, issue 40): the atlas of the run's map (kept in runs/, resumed when stopped), its Markov tree and
+  // the tree's P_t against the tail sampler's levels.
+  void markovTree(const TrappingState& run, const TailState& sampled, double b2) {
+    const AtlasRequest request = report::k01AtlasRequest(o_.size);
+    const fs::path file = o_.out / "runs" / report::k01AtlasFile(o_.size);
+    std::optional<Atlas> previous;
+    if (fs::exists(file)) {
+      try {
+        previous = atlasFromJson(io::readRegularFile(file, kMaxAtlasFileBytes));
+        if (auto e = resumeError(request, *previous)) throw std::invalid_argument(*e);
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "WARNING: %s: %s; the atlas is computed again\n", file.c_str(), e.what());
+        previous.reset();
+      }
+    }
+    Atlas atlas;
+    if (previous && !previous->cancelled) {
+      std::fprintf(stderr, "reusing %s\n", file.c_str());
+      atlas = std::move(*previous);
+    } else {
+      std::stop_source stop;
+      auto last = std::chrono::steady_clock::now();
+      const AtlasProgress progress = [&](const Atlas& sofar, int done, const std::string& stage) {
+        if (gInterrupted) stop.request_stop();
+        const auto now = std::chrono::steady_clock::now();
+        if (now - last > std::chrono::seconds(60)) {
+          last = now;
+          std::fprintf(stderr, "atlas: %d of %zu islands known done: %s\n", done, sofar.nodes.size(), stage.c_str());
+        }
+      };
+      atlas = computeAtlas(request, progress, stop.get_token(), previous ? &*previous : nullptr);
+      writeAtlasJson(file, atlas);
+      if (atlas.cancelled) {
+        std::fprintf(stderr, "interrupted: the atlas is saved in %s\n", file.c_str());
+        throw Interrupted{};
+      }
+    }
+    const double alpha = statisticsOf(run).alpha;
+    const std::string command = report::markovTreeCommand(o_.size, alpha, b2);
+    MarkovTreeRequest mr;
+    mr.alpha = alpha;
+    mr.b2 = b2;
+    mr.tMax = static_cast<double>(sampled.request.maxSteps);
+    mr.atlasSource = file.filename().string();
+    mr.tailSource = "the report's tail sampler";
+    MarkovTreeResult tree;
+    try {
+      tree = computeMarkovTree(atlas, mr, &sampled);
+    } catch (const std::invalid_argument& e) {
+      items_.push_back(report::makeItem("markov-tree", std::nullopt, 0, full_, command,
+                                        std::string("no tree from the atlas: ") + e.what()));
+      return;
+    }
+    items_.push_back(report::markovTreeStatement(*tree.comparison, tree.tree, atlas.request.depth, alpha, b2, command));
+    if (!drawing_) return;
+    const Series model = markovTreeCurve(tree);
+    ui::report::FigureCurve line;
+    line.x = model.x;
+    line.y = model.value;
+    line.name = QStringLiteral("Markov tree of the atlas (depth %1), P_t = w S(t)").arg(atlas.request.depth);
+    ui::report::FigureCurve levels;
+    levels.symbols = true;
+    levels.name = QStringLiteral("tail sampler (reliable levels)");
+    for (const MarkovTreeLevelComparison& m : tree.comparison->levels) {
+      levels.x.push_back(m.t);
+      levels.y.push_back(m.measured);
+      levels.error.push_back(m.measuredError);
+    }
+    QString error;
+    check(ui::report::writeCurvesFigure({line, levels},
+                                        {QStringLiteral("P_t at K = 0.1: the Markov tree of the atlas against the tail"),
+                                         QStringLiteral("t (steps)"), QStringLiteral("P_t"), true, true},
+                                        base("markov-tree"), &error),
+          error);
+    figures_.push_back({"M", io::formatC("the Meiss–Ott Markov tree built from the atlas of depth %d (no fitted "
+                                         "parameter) against the tail sampler's P<sub>t</sub> (docs/markov-tree.md)",
+                                         atlas.request.depth) +
+                                 " (<code>" + report::html(command) + "</code>)",
+                        "markov-tree"});
   }
 
   // Appendix C, not drawn by the paper: the Markov model's ε(τ).

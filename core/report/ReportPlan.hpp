@@ -14,6 +14,7 @@ enum class Need {
   smallK,  ///< fig. 3's runs and the decay runs
   k01,     ///< the K = 0.1 run and its q = 1 companion (figs. 6–8)
   b2,      ///< b₂ of the paper-sized box and of the run's box (with the K = 0.1 run for b₂·D)
+  atlas,   ///< the atlas of the K = 0.1 run's map and its Markov tree, against the tail sampler (with k01 and b2)
   scan,    ///< §5's K scan
   timing,  ///< appendix B's timing
 };

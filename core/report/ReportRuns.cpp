@@ -70,6 +70,26 @@ std::string tailSamplerCommand(ReportSize size) {
                                 static_cast<unsigned long long>(r.maxSteps), k01Run(size).file.c_str()));
 }
 
+AtlasRequest k01AtlasRequest(ReportSize size) {
+  AtlasRequest r;
+  r.map = k01Run(size).params.map;
+  r.depth = size == ReportSize::full ? 2 : 1;
+  return r;
+}
+
+std::string k01AtlasFile(ReportSize size) { return std::string("atlas-") + sizeName(size) + ".json"; }
+
+std::string markovTreeCommand(ReportSize size, double alpha, double b2) {
+  const AtlasRequest a = k01AtlasRequest(size);
+  const std::string file = k01AtlasFile(size);
+  return cliCommand(io::formatC("atlas --K %s --xmin=%s --xmax %s --depth %d --json %s", io::shortestText(a.map.K).c_str(),
+                                io::shortestText(a.map.xmin).c_str(), io::shortestText(a.map.xmax).c_str(), a.depth,
+                                file.c_str())) +
+         " && " + tailSamplerCommand(size) + " && " +
+         cliCommand(io::formatC("markov-tree --atlas %s --tail tail.json --alpha %s --b2 %s", file.c_str(),
+                                io::shortestText(alpha).c_str(), io::shortestText(b2).c_str()));
+}
+
 ReportRun smallKRun(char panel, ReportSize size) {
   const char* id = panel == 'a' ? "small-k-negative" : panel == 'b' ? "small-k-zero" : "small-k-positive";
   TrappingParameters p = presetSpec(id).parameters;

@@ -10,11 +10,14 @@
 ///   decay      K = 10⁻³ and 10⁻² (§4: "similar agreement"): the small-k-positive preset at that K in the box
 ///              ±5√K (the preset's box is ±5√K at K = 10⁻⁴: the island of width 3√K inside, the same shape)
 ///   K scan     §5's 26 K (core/scan), q = 16, M = 64, T = 2·10⁵ (quick) or 5·10⁶ (full), seed 1983
+///   atlas      the islands around islands of the k01 run's map (core/atlas) for the Markov tree: depth 1 (quick,
+///              seconds) or 2 (full, minutes), file "atlas-SIZE.json"
 /// Run files are kept in OUTDIR/runs under the names below, so that a report resumes and reuses them.
 
 #include <filesystem>
 #include <string>
 
+#include "core/atlas/Atlas.hpp"
 #include "core/stochasticarea/StochasticArea.hpp"
 #include "core/scan/ScanRun.hpp"
 #include "core/tail/TailSampler.hpp"
@@ -42,6 +45,13 @@ struct ReportRun {
 [[nodiscard]] TailRequest tailSamplerRequest(ReportSize size);
 /// Its command line, for the item and the figure.
 [[nodiscard]] std::string tailSamplerCommand(ReportSize size);
+/// The atlas of the K = 0.1 run's map (its K and box), for the markov-tree item: depth 1 (quick) or 2 (full).
+[[nodiscard]] AtlasRequest k01AtlasRequest(ReportSize size);
+/// Its file under OUTDIR/runs: "atlas-SIZE.json".
+[[nodiscard]] std::string k01AtlasFile(ReportSize size);
+/// The commands that make the markov-tree item alone: the atlas, the tail (tailSamplerCommand) and markov-tree with
+/// the run's α and b₂.
+[[nodiscard]] std::string markovTreeCommand(ReportSize size, double alpha, double b2);
 /// The small-K run of fig. 3, panel 'a' (K = −10⁻⁴), 'b' (0) or 'c' (10⁻⁴).
 [[nodiscard]] ReportRun smallKRun(char panel, ReportSize size);
 /// A run at K = 10⁻³ or 10⁻² for §4's "similar agreement" (the K = 10⁻⁴ run is smallKRun('c')).

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
 #include "core/io/NumberText.hpp"
@@ -73,6 +74,27 @@ ReportItem tailSplittingStatement(const TailComparison& comparison, const std::s
                                       pooled.z, 100 * pooled.detectableHalf, 100 * pooled.detectable, worst, at,
                                       lastT)
                         : std::string("no level where both have data"));
+}
+
+ReportItem markovTreeStatement(const MarkovTreeComparison& c, const MarkovTree& tree, int atlasDepth, double alpha,
+                               double b2, const std::string& command) {
+  std::string note = io::formatC("the tree of a depth-%d atlas at the run's map: %zu states, %zu chains lumped (no "
+                                 "flux); w = α Φ/b₂ = %.4g visits per segment (α = %.6g steps, b₂ = %.6g); model / "
+                                 "sampler within a factor %g",
+                                 atlasDepth, tree.states.size(), tree.lumped.size(),
+                                 static_cast<double>(c.weight), alpha, b2, c.factor);
+  if (c.levels.empty()) return makeItem("markov-tree", std::nullopt, 0, false, command, note + "; no reliable level of the sampler from 10³ steps");
+  note += c.reach > 0 ? io::formatC(" at t = %.4g steps last", c.reach) : std::string(" at no level");
+  note += "; model / sampler (the atlas level holding the model's survivors):";
+  for (const MarkovTreeLevelComparison& m : c.levels) {
+    char ratio[64];
+    std::snprintf(ratio, sizeof ratio, "%.3Lg", m.ratio);
+    note += io::formatC(" %.3g: %s", m.t, ratio);
+    if (m.holdingLevel >= 0) note += io::formatC(" (%d, %.0f %%)", m.holdingLevel, 100 * m.holdingShare);
+    note += ";";
+  }
+  note.back() = '.';
+  return makeItem("markov-tree", c.reach, 0, false, command, note);
 }
 
 std::vector<ReportItem> smallKStatements(const TrappingState& runA, const TrappingState& runB,

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "core/markovtree/MarkovTree.hpp"
 #include "core/stochasticarea/StochasticArea.hpp"
 #include "core/report/ReportItem.hpp"
 #include "core/report/ReportRuns.hpp"
@@ -42,6 +43,14 @@ struct DecayFit {
 /// the smallest uniform bias the test detects at the report's size.
 inline constexpr std::uint64_t kTailSplittingMinSegments = 10;
 [[nodiscard]] ReportItem tailSplittingStatement(const TailComparison& comparison, const std::string& command);
+
+/// §7 (later work, issue 40): markov-tree, the Meiss–Ott tree of an atlas of the run's map (core/markovtree, no
+/// fitted parameter) against the tail sampler's reliable levels from 10³ steps: ours is the comparison's reach, the
+/// last level at which the tree's P_t is within kMarkovTreeAgreementFactor of the sampler's —
+/// reported, never marked; the note gives every level's ratio and the atlas level holding the model's survivors.
+/// `atlasDepth` and `states` describe the tree in the note.
+[[nodiscard]] ReportItem markovTreeStatement(const MarkovTreeComparison& comparison, const MarkovTree& tree,
+                                             int atlasDepth, double alpha, double b2, const std::string& command);
 
 /// §5 and §7 on the K = 0.1 run: alpha-quarter, p-five-quarters, alpha-min, alpha-max, S-superdiffusive, D,
 /// longest.  `stats` are the spliced statistics of the run and its companion (or the run's alone, when none);

@@ -40,7 +40,7 @@ with tempfile.TemporaryDirectory() as out:
     check("26 K" in items.get("kscan", {}).get("note", ""), "kscan covers the paper's 26 K")
     # Appendix B (a measured time per step, the paper's 65 hours projected) and the tail's open question: values,
     # never a verdict.
-    for key in ["cray-ns", "cray-hours", "tail-gamma", "tail-forecast"]:
+    for key in ["cray-ns", "cray-hours", "tail-gamma", "tail-forecast", "markov-tree"]:
         row = items.get(key, {})
         check(row.get("mark") == "reported (open question)" and float(row.get("ours") or 0) > 0,
               f"{key}: a value, reported ({row.get('ours')})")
@@ -52,7 +52,7 @@ with tempfile.TemporaryDirectory() as out:
     index = open(os.path.join(out, "index.html"), encoding="utf-8").read()
     check(len(index) > 5000 and "<table" in index, "index.html has the table")
     for fig in ["fig1", "fig2a", "fig2b", "fig8a", "fig8b", "kscan-ft", "kscan-heatmap", "kscan-d", "kscan-long", "tail-gamma",
-                "markov-epsilon", "fig4a", "fig4b", "fig3a", "fig3b", "fig3c", "fig5a", "fig5b", "fig6a", "fig6b", "fig6c", "fig6d", "fig7a", "fig7b", "fig7c", "tail-splitting"]:
+                "markov-epsilon", "fig4a", "fig4b", "fig3a", "fig3b", "fig3c", "fig5a", "fig5b", "fig6a", "fig6b", "fig6c", "fig6d", "fig7a", "fig7b", "fig7c", "tail-splitting", "markov-tree"]:
         png, svg = (os.path.join(out, "figures", fig + s) for s in (".png", ".svg"))
         check(os.path.exists(png) and os.path.getsize(png) > 10000 and open(png, "rb").read(8) == b"\x89PNG\r\n\x1a\n",
               f"{fig}.png is a non-trivial PNG")
@@ -68,9 +68,9 @@ with tempfile.TemporaryDirectory() as out:
     scan_files = {f: os.path.getmtime(f) for f in glob.glob(os.path.join(out, "runs", "kscan-quick", "K*.json"))}
     check(len(scan_files) == 26, f"the K scan kept a run file per K ({len(scan_files)})")
     r2 = subprocess.run([exe, "--quick", out], capture_output=True, text=True, timeout=900)
-    check(r2.returncode == 0 and r2.stderr.count("reusing ") == 7,
-          f"a second invocation reuses the seven runs (fig. 3's three, two decay runs, K = 0.1 and its companion: "
-          f"{r2.stderr.count('reusing ')})")
+    check(r2.returncode == 0 and r2.stderr.count("reusing ") == 8 and "atlas-quick.json" in r2.stderr,
+          f"a second invocation reuses the seven runs (fig. 3's three, two decay runs, K = 0.1 and its companion) "
+          f"and the atlas ({r2.stderr.count('reusing ')})")
     check(all(os.path.getmtime(f) == t for f, t in scan_files.items()), "... and the K scan's run files untouched")
 
     # Ctrl-C: the run in progress is saved, exit 130; the next invocation finishes with the same statements.

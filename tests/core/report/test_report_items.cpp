@@ -11,6 +11,7 @@
 #include "core/paper/PaperTable.hpp"
 #include "core/report/ReportItem.hpp"
 #include "core/report/ReportPlan.hpp"
+#include "core/report/RunStatements.hpp"
 #include "core/report/TheoryStatements.hpp"
 
 namespace archipelago::report {
@@ -108,6 +109,42 @@ TEST(ReportItems, OnlyADifferenceIsExplained) {
   EXPECT_EQ(differs.note, "fit; a reason");
 }
 
+// markov-tree (issue 40): a reported comparison, never a verdict — ours is the comparison's reach, the note carries
+// every level's ratio (one far below the smallest double too, as the exponential tail of a finite tree gives) and the
+// level that holds the model's survivors; no level, no value.
+TEST(ReportItems, TheMarkovTreeItemReportsTheReachWithEveryRatio) {
+  MarkovTree tree;
+  tree.states.resize(3);
+  tree.lumped.resize(2);
+  MarkovTreeComparison c;
+  c.weight = 0.0531L;
+  c.factor = 3;
+  c.reach = 21744;
+  const long double ratios[] = {1.12L, 0.437L, 1e-989L};
+  const double ts[] = {1008, 21744, 1e9};
+  for (int k = 0; k < 3; ++k) {
+    MarkovTreeLevelComparison m;
+    m.t = ts[k];
+    m.measured = 1e-6;
+    m.ratio = ratios[k];
+    m.holdingLevel = 1;
+    m.holdingShare = 0.97;
+    c.levels.push_back(m);
+  }
+  const ReportItem it = markovTreeStatement(c, tree, 1, 18.9242, 1.37005, "archipelago-cli markov-tree");
+  EXPECT_EQ(it.mark, Mark::reported);
+  ASSERT_TRUE(it.ours.has_value());
+  EXPECT_EQ(*it.ours, 21744);
+  for (const char* part : {"depth-1 atlas", "3 states, 2 chains lumped", "b₂ = 1.37005", "at t = 2.174e+04 steps last",
+                           "1.01e+03: 1.12 (1, 97 %)", "2.17e+04: 0.437", "1e+09: 1e-989"}) {
+    EXPECT_NE(it.note.find(part), std::string::npos) << part << " not in: " << it.note;
+  }
+  c.levels.clear();
+  const ReportItem none = markovTreeStatement(c, tree, 1, 18.9242, 1.37005, "archipelago-cli markov-tree");
+  EXPECT_FALSE(none.ours.has_value());
+  EXPECT_NE(none.note.find("no reliable level"), std::string::npos) << none.note;
+}
+
 TEST(ReportPlan, EveryStatementHasExactlyOneNeedAndNoOtherIdHasOne) {
   std::set<Need> used;
   for (const paper::Statement& s : paper::statements()) used.insert(needOf(s.id));
@@ -127,8 +164,11 @@ TEST(TheoryStatements, AgreeWithThePaper) {
     EXPECT_EQ(needOf(it.id()), Need::theory);
     EXPECT_FALSE(it.command.empty()) << "every item names a command that reproduces it";
   }
-  for (const paper::Statement& s : paper::statements())
-    if (needOf(s.id) == Need::theory) EXPECT_EQ(ids.count(std::string(s.id)), 1u) << s.id;
+  for (const paper::Statement& s : paper::statements()) {
+    if (needOf(s.id) == Need::theory) {
+      EXPECT_EQ(ids.count(std::string(s.id)), 1u) << s.id;
+    }
+  }
 }
 
 }  // namespace
