@@ -6,6 +6,7 @@
 #include <string>
 
 #include "CliCommon.hpp"
+#include "core/io/NumberText.hpp"
 #include "core/periodic/PeriodicOrbitFinder.hpp"
 
 namespace archipelago::cli {
@@ -30,7 +31,7 @@ int runPeriodic(const PeriodicOptions& o) {
   const PeriodicOrbit orbit = findPeriodicOrbit(K, search);  // throws with a one-line reason
 
   const OrbitClassification kind = orbit.classification();
-  std::printf("# periodic orbit of Q (eq. qu), K = %.17g\n", o.map.K);
+  std::printf("# periodic orbit of Q (eq. qu), K = %s\n", io::shortestText(o.map.K).c_str());
   std::printf("# period: %d\n", orbit.period);
   std::printf("# residue: %.18Lg\n", orbit.residue);
   std::printf("# trace: %.18Lg\n", orbit.trace);

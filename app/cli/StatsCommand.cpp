@@ -195,11 +195,12 @@ int statsCommand(const StatsOptions& o) {
   const TrappingParameters& p = state.params;
   for (std::size_t i = 0; i < states.size(); ++i)
     std::printf("run         %s (%s)\n", o.runFiles[i].c_str(), states[i].finished() ? "finished" : "in progress");
-  std::printf("map         K = %.17g, xmin = %.17g, xmax = %.17g;  A = %lld, B = %lld, C = %lld, m = %d\n", p.map.K,
-              p.map.xmin, p.map.xmax, static_cast<long long>(state.coefficients.A),
+  std::printf("map         K = %s, xmin = %s, xmax = %s;  A = %lld, B = %lld, C = %lld, m = %d\n",
+              io::shortestText(p.map.K).c_str(), io::shortestText(p.map.xmin).c_str(),
+              io::shortestText(p.map.xmax).c_str(), static_cast<long long>(state.coefficients.A),
               static_cast<long long>(state.coefficients.B), static_cast<long long>(state.coefficients.C),
               state.coefficients.m);
-  std::printf("run        Xr = %.17g, q = %u, T = %llu (done %llu), M = %llu, seed = %llu, subsets = %u\n", p.Xr, p.q,
+  std::printf("run        Xr = %s, q = %u, T = %llu (done %llu), M = %llu, seed = %llu, subsets = %u\n", io::shortestText(p.Xr).c_str(), p.q,
               static_cast<unsigned long long>(p.T), static_cast<unsigned long long>(state.blocksDone),
               static_cast<unsigned long long>(p.M), static_cast<unsigned long long>(p.seed), p.subsets);
   if (states.size() > 1) {

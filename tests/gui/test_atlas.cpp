@@ -328,7 +328,9 @@ class TestAtlas : public QObject {
     other.K = 0.11;
     QVERIFY(c->setMap(other, c->Xr()));
     QVERIFY(panel_->atlas());
-    QVERIFY(panel_->progressText().contains(QStringLiteral("This atlas is of K = 0.1")));
+    // Both K as they were typed (not 0.10000000000000001 and 0.11000000000000000).
+    QVERIFY2(panel_->progressText().contains(QStringLiteral("This atlas is of K = 0.1; the portrait shows K = 0.11:")),
+             qPrintable(panel_->progressText()));
     QVERIFY(!panel_->showIsland(0));
     QVERIFY(c->setMap(k01, c->Xr()));
     QVERIFY(!panel_->progressText().contains(QStringLiteral("This atlas is of")));

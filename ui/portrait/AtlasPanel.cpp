@@ -22,6 +22,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "core/io/NumberText.hpp"
 #include "core/atlas/AtlasExport.hpp"
 #include "core/io/AtomicFile.hpp"
 #include "core/manifolds/ManifoldExport.hpp"
@@ -324,7 +325,7 @@ bool AtlasPanel::compute(const AtlasRequest& r) {
   updateProgress();
   updateButtons();
   updateDetails();
-  Q_EMIT statusMessage(tr("Computing the atlas of K = %1 to depth %2…").arg(r.map.K, 0, 'g', 17).arg(r.depth));
+  Q_EMIT statusMessage(tr("Computing the atlas of K = %1 to depth %2…").arg(QString::fromStdString(io::shortestText(r.map.K))).arg(r.depth));
   return true;
 }
 
@@ -450,8 +451,8 @@ void AtlasPanel::updateProgress() {
   }
   if (atlas_ && !ofPortraitMap())
     text += tr(". This atlas is of K = %1; the portrait shows K = %2: set K = %1 again to draw its islands")
-                .arg(atlas_->request.map.K, 0, 'g', 17)
-                .arg(controller_->map().K, 0, 'g', 17);
+                .arg(QString::fromStdString(io::shortestText(atlas_->request.map.K)))
+                .arg(QString::fromStdString(io::shortestText(controller_->map().K)));
   progress_->setText(text);
 }
 
@@ -642,7 +643,7 @@ bool AtlasPanel::showIsland(int index) {
   }
   if (!ofPortraitMap()) {
     Q_EMIT statusMessage(tr("This atlas is of K = %1: set K = %1 again to see its islands")
-                             .arg(atlas_->request.map.K, 0, 'g', 17));
+                             .arg(QString::fromStdString(io::shortestText(atlas_->request.map.K))));
     return false;
   }
   const AtlasNode& n = atlas_->nodes[static_cast<std::size_t>(index)];

@@ -16,6 +16,7 @@
 #include <sstream>
 #include <utility>
 
+#include "core/io/NumberText.hpp"
 #include "core/io/AtomicFile.hpp"
 #include "core/kernels/KernelDispatch.hpp"
 #include "core/limits/Limits.hpp"
@@ -116,7 +117,7 @@ bool PortraitController::setMap(const MapParameters& map, double Xr) {
                               "to have them back")
                                .arg(orbits)
                                .arg(history_.size())
-                               .arg(static_cast<double>(map_.K), 0, 'g', 17));
+                               .arg(QString::fromStdString(io::shortestText(static_cast<double>(map_.K)))));
   }
   map_ = map;
   Xr_ = Xr;
@@ -142,7 +143,7 @@ bool PortraitController::setMap(const MapParameters& map, double Xr) {
   if (back) {
     restoreWork(back->portrait, map_);
     Q_EMIT statusMessage(tr("K = %1 again: its %2 launched orbits and %3 views are back")
-                             .arg(static_cast<double>(map_.K), 0, 'g', 17)
+                             .arg(QString::fromStdString(io::shortestText(static_cast<double>(map_.K))))
                              .arg(back->portrait.orbits.size())
                              .arg(back->portrait.history.size()));
   }
@@ -1032,7 +1033,7 @@ void PortraitController::restoreSession(const SessionPortrait& state, const MapP
       setManifoldsShown(false);
       Q_EMIT statusMessage(tr("The session's manifolds are of a period-%1 orbit that is not found at K = %2: not drawn")
                                .arg(period)
-                               .arg(static_cast<double>(map.K), 0, 'g', 17));
+                               .arg(QString::fromStdString(io::shortestText(static_cast<double>(map.K)))));
     }
   }
 }
