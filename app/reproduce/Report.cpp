@@ -525,9 +525,16 @@ class Report {
     items_.push_back(report::markovTreeStatement(*tree.comparison, tree.tree, atlas.request.depth, alpha, b2, command));
     if (!drawing_) return;
     const Series model = markovTreeCurve(tree);
+    // The model's exponential end is drawn down to a thousandth of the smallest level, not to 10⁻³⁰⁸ (the axis
+    // would hold nothing else).
+    double floor = 1;
+    for (const MarkovTreeLevelComparison& m : tree.comparison->levels) floor = std::min(floor, 1e-3 * m.measured);
     ui::report::FigureCurve line;
-    line.x = model.x;
-    line.y = model.value;
+    for (std::size_t i = 0; i < model.x.size(); ++i)
+      if (model.value[i] >= floor) {
+        line.x.push_back(model.x[i]);
+        line.y.push_back(model.value[i]);
+      }
     line.name = QStringLiteral("Markov tree of the atlas (depth %1), P_t = w S(t)").arg(atlas.request.depth);
     ui::report::FigureCurve levels;
     levels.symbols = true;
