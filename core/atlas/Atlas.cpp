@@ -383,7 +383,7 @@ class AtlasBuilder {
     }
     atlas.cancelled = !queue.empty();
     if (atlas.cancelled && atlas.stopReason.empty()) atlas.stopReason = "stopped";
-    atlas.seconds = elapsed();
+    atlas.seconds = (resume ? resume->seconds : 0) + elapsed();  // every part of a resumed atlas
     settleLayers(atlas, zones_);
     if (progress_) progress_(atlas, done, atlas.cancelled ? atlas.stopReason : "done");
     return atlas;

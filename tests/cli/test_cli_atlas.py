@@ -43,8 +43,11 @@ with tempfile.TemporaryDirectory() as d:
           and "--resume" in r.stderr, f"--time-budget 0.001 stops after the first island, keeping it ({r.returncode}, {r.stderr[-200:]})")
     measured = [n.get("measured") for n in part.get("nodes", [])]
     check(measured[:1] == [True] and measured.count(True) == 1, f"the centre is measured, its chains not yet ({measured})")
+    part["seconds"] = 2640.0  # as if the first part had taken 44 min: the resumed atlas's time includes it
+    json.dump(part, open(t, "w"))
     r = run("atlas", "--K", "0.1", "--depth", "1", "--max-period", "200", "--resume", t, "--json", t)
     done = json.load(open(t))
+    check(done.get("seconds", 0) > 2640.0, f"the resumed atlas's seconds count every part ({done.get('seconds')})")
     check(r.returncode == 0 and done["cancelled"] is False and all(n["measured"] for n in done["nodes"]),
           f"--resume finishes it ({r.returncode}: {r.stderr[-200:]})")
     same = len(done["nodes"]) == len(nodes) and all(
