@@ -108,12 +108,18 @@ std::string refusal(const Atlas& a) {
   return {};
 }
 
-TEST(MarkovTree, TwoStatesFollowTheirClosedForm) {
+/// The two-state tree of the closed-form tests: the centre's loop (Φ₀, ℓ₀) and one chain of six inside it (Φ₁, ℓ₁).
+constexpr long double phi0 = 3.8e-3L, l0 = 0.23L, phi1 = 2.0e-5L, l1 = 0.03L;
+Atlas twoStates() {
   Atlas a;
-  const long double phi0 = 3.8e-3L, l0 = 0.23L, phi1 = 2.0e-5L, l1 = 0.03L;
   a.nodes = {node(-1, 0, 1, std::nullopt, phi0, 0.5L, l0, 0.1668),
              node(0, 1, 6, Rational{1, 6}, phi1, 0.3L, l1, 0.09)};
   link(a);
+  return a;
+}
+
+TEST(MarkovTree, TwoStatesFollowTheirClosedForm) {
+  const Atlas a = twoStates();
   const MarkovTree tree = markovTreeFromAtlas(a);
   ASSERT_EQ(tree.states.size(), 2u);
   // G = I − M = [[a + b, −b], [−c, c]]: a = Φ₀/A₀ to the sea, b = Φ₁/A₀ in, c = Φ₁/A₁ out; A₀ = ℓ₀ − ℓ₁, A₁ = ℓ₁.
@@ -295,11 +301,7 @@ TEST(MarkovTree, GridAndEntryWeight) {
 // What the GUI draws and shows (issue 40, GUI): the curve is w S(t) of the two-state closed form at every t > 0 of the
 // grid where it is a double, and nothing else; the shares at t are each level's part / S and sum to 1.
 TEST(MarkovTree, CurveIsWTimesSAndSharesSumToOne) {
-  Atlas a;
-  const long double phi0 = 3.8e-3L, l0 = 0.23L, phi1 = 2.0e-5L, l1 = 0.03L;
-  a.nodes = {node(-1, 0, 1, std::nullopt, phi0, 0.5L, l0, 0.1668),
-             node(0, 1, 6, Rational{1, 6}, phi1, 0.3L, l1, 0.09)};
-  link(a);
+  const Atlas a = twoStates();
   MarkovTreeRequest r;
   r.tMax = 1e7;
   r.perDecade = 10;
@@ -345,11 +347,7 @@ TEST(MarkovTree, CurveIsWTimesSAndSharesSumToOne) {
 // two-state closed form over the level's P; the reach is the last level before the first ratio outside [1/3, 3];
 // unreliable levels, levels below 10³ and P = 0 are left out; a bad factor is refused.
 TEST(MarkovTree, TheComparisonWithATailIsTheModelOverEachReliableLevel) {
-  Atlas a;
-  const long double phi0 = 3.8e-3L, l0 = 0.23L, phi1 = 2.0e-5L, l1 = 0.03L;
-  a.nodes = {node(-1, 0, 1, std::nullopt, phi0, 0.5L, l0, 0.1668),
-             node(0, 1, 6, Rational{1, 6}, phi1, 0.3L, l1, 0.09)};
-  link(a);
+  const Atlas a = twoStates();
   const MarkovTree tree = markovTreeFromAtlas(a);
   const double alpha = 20, b2 = 1.3;
   const long double w = alpha * phi0 / b2;
