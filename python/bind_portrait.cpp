@@ -49,7 +49,7 @@ py::dict stochasticArea(double K, double xmin, double xmax, double Xr, std::uint
     boxes.push_back(p.boxesVisited);
     frac.push_back(p.b2);
   }
-  const StochasticAreaValue v = stochasticAreaOf(r.map, res.b2());
+  const StochasticAreaValue v = stochasticAreaOf(r.map, res.fraction());
   const auto side = py::ssize_t{1} << gridBits;
   py::dict d;
   d["fraction"] = v.fraction;

@@ -36,7 +36,7 @@ int runArea(AreaOptions o) {
   });
   if (!o.json.empty()) io::writeFileAtomically(o.json, stochasticAreaJson(o.request, result) + '\n');
   // The result for people on stderr (stdout stays CSV): the area, the §6 factor, the paper only at K = 0.1.
-  const StochasticAreaValue b2 = stochasticAreaOf(map, result.b2());
+  const StochasticAreaValue b2 = stochasticAreaOf(map, result.fraction());
   std::fprintf(stderr, "%s\n", stochasticAreaText(map, b2).c_str());
   std::fprintf(stderr, "sec. 6: accelerator-mode factor (8/pi^2) b2 = %.4f; with the D of a run in this box, "
                "stats --b2 %.6f gives b2*D (eq. A3)\n", acceleratorModeFactor(b2.area), b2.area);

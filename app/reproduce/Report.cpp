@@ -328,7 +328,7 @@ class Report {
       const MapParameters paperBox = report::paperSizedBox();
       const StochasticAreaResult inPaperBox = computeStochasticArea(report::stochasticAreaRequest(o_.size, paperBox));
       const StochasticAreaResult inRunBox = computeStochasticArea(report::stochasticAreaRequest(o_.size, run.params.map));
-      runBoxB2 = stochasticAreaOf(run.params.map, inRunBox.b2()).area;  // b₂ the area (b2() is the fraction)
+      runBoxB2 = stochasticAreaOf(run.params.map, inRunBox.fraction()).area;  // b₂: the area
       const std::string command = report::cliCommand(io::formatC(
           "stochastic-area --xmin=%g --xmax %g --iterations %llu", paperBox.xmin, paperBox.xmax,
           static_cast<unsigned long long>(report::stochasticAreaRequest(o_.size, paperBox).iterations)));

@@ -235,13 +235,13 @@ std::vector<ReportItem> stochasticAreaStatements(const StochasticAreaResult& pap
                                                  const TrappingStatistics& stats, const TailAnalysis& tail, bool full,
                                                  const std::string& b2Command) {
   std::vector<ReportItem> items;
-  const StochasticAreaValue paperArea = stochasticAreaOf(paperBoxMap, paperBox.b2());
+  const StochasticAreaValue paperArea = stochasticAreaOf(paperBoxMap, paperBox.fraction());
   items.push_back(makeItem("b2", paperArea.area, 0, true, b2Command,
                            io::formatC("b₂ = fraction %.4f × L² = %.4f of the box (%g, %g)", paperArea.fraction,
                                        paperArea.boxArea, paperBoxMap.xmin, paperBoxMap.xmax)));
   items.push_back(makeItem("factor056", acceleratorModeFactor(paperArea.area), 0, true, b2Command,
                            "(8/π²) b₂ with the b₂ above"));
-  const StochasticAreaValue runArea = stochasticAreaOf(run.params.map, runBox.b2());
+  const StochasticAreaValue runArea = stochasticAreaOf(run.params.map, runBox.fraction());
   const RunSummary summary = summarizeRun(stats, &tail);  // D and its error, as the D item gives them
   const BoxInvariantQuantities inv =
       boxInvariantQuantities(runArea, summary.D, std::isfinite(summary.DError) ? summary.DError : 0);

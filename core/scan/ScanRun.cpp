@@ -50,7 +50,7 @@ ScanRunSummary summaryOf(const TrappingState& state, const KScanRequest& r) {
   std::optional<StochasticAreaValue> b2;
   if (r.b2Iterations > 0) {
     const StochasticAreaRequest b = b2Request(state.params, r.b2Iterations, r.kernel);
-    b2 = stochasticAreaOf(b.map, computeStochasticArea(b).b2());
+    b2 = stochasticAreaOf(b.map, computeStochasticArea(b).fraction());
   }
   return {state.params, scanPointOf(state, statistics, b2), statistics};
 }

@@ -57,7 +57,8 @@ struct StochasticAreaResult {
   std::uint64_t boxes = 0;                       ///< 4^gridBits
   std::vector<std::uint8_t> visited;             ///< row-major (row = Y box, col = X box): 1 visited, 0 not
   bool cancelled = false;
-  [[nodiscard]] double b2() const noexcept { return convergence.empty() ? 0.0 : convergence.back().b2; }
+  /// The visited fraction of the box (not the area b₂: stochasticAreaOf(map, fraction()) gives that).
+  [[nodiscard]] double fraction() const noexcept { return convergence.empty() ? 0.0 : convergence.back().b2; }
 };
 
 /// Called on the calling thread at every checkpoint of the convergence curve.

@@ -23,7 +23,7 @@ std::string stochasticAreaJson(const StochasticAreaRequest& r, const StochasticA
   j["orbits"] = r.orbits;
   j["seed"] = r.seed;
   j["grid"] = std::uint64_t{1} << r.gridBits;
-  const StochasticAreaValue b2 = stochasticAreaOf(r.map, result.b2());
+  const StochasticAreaValue b2 = stochasticAreaOf(r.map, result.fraction());
   j["box_area"] = b2.boxArea;
   j["b2_area"] = b2.area;
   j["b2_fraction"] = b2.fraction;

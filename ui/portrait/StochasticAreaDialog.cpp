@@ -46,7 +46,7 @@ StochasticAreaDialog::StochasticAreaDialog(const StochasticAreaRequest& request,
     const StochasticAreaResult result = computeStochasticArea(
         withKernel, [&](const StochasticAreaPoint& p) { context.post(p); }, context.stopToken());
     if (result.cancelled) return std::nullopt;
-    return result.b2();
+    return result.fraction();
   };
   job.progress = [this](quint64, const StochasticAreaPoint& p) {
     addPoint(static_cast<double>(p.iterations), p.b2, false);

@@ -183,12 +183,12 @@ TEST(IndicatorMap, ChaoticShareOfTheWholeBoxAgreesWithTheStochasticArea) {
   // b₂ counts at island edges (regular pixels in visited boxes, measured 0.35 %), plus regular orbits that have
   // not converged to 9 digits at T = 2·10⁴ (chaotic pixels in boxes no sea orbit reached, measured 0.5 %), plus
   // what b₂ still lacks at 2^26 steps (0.14 %).
-  EXPECT_NEAR((chaotic + escapingVisited) / n, b2.b2(), 0.015);
+  EXPECT_NEAR((chaotic + escapingVisited) / n, b2.fraction(), 0.015);
   // Pixel by pixel, the two agree but for those thin layers.
   EXPECT_LT(chaoticUnvisited / n, 0.01);
   EXPECT_LT(regularVisited / n, 0.01);
   // Without the accelerator islands the chaotic share is smaller than b₂ (by 0.015 here).
-  EXPECT_LT(chaotic / n, b2.b2());
+  EXPECT_LT(chaotic / n, b2.fraction());
   EXPECT_GT(escapingVisited / n, 0.005);
 }
 

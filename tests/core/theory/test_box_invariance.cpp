@@ -64,7 +64,7 @@ double occupiedFraction(const MapParameters& map, std::uint32_t q) {
   r.map = map;
   r.q = q;
   r.iterations = std::uint64_t{1} << 27;  // converged to ~0.1 % at K = 0.1 (test_stochastic_area.cpp)
-  return computeStochasticArea(r).b2();
+  return computeStochasticArea(r).fraction();
 }
 
 // The boxes of issue #14: A = (−0.8, 0.5), the paper's K = 0.1 box, and B = (−0.65, 0.35).  In the band
