@@ -6,11 +6,14 @@
 #include <cmath>
 #include <deque>
 #include <map>
+#include <numeric>
+#include <tuple>
 #include <numbers>
 #include <stdexcept>
 
 #include "core/limits/Limits.hpp"
 #include "core/manifolds/HyperbolicOrbit.hpp"
+#include "core/manifolds/MmpFlux.hpp"
 #include "core/manifolds/ManifoldParameterization.hpp"
 #include "core/manifolds/PolygonRegion.hpp"
 #include "core/manifolds/TurnstileFlux.hpp"
@@ -33,6 +36,14 @@ enum class PointKind { Circle, Chain, Outside };
 /// The largest denominator a scan point's rotation is named by (ChainIdentification.hpp's accuracy): an invariant
 /// circle's rotation lies within 8 × 10^−digits of such a rational with a probability of a few 10^−3 at 10 digits.
 constexpr std::int64_t kClassifyDenominator = 2000;
+/// The largest denominator a boundary circle's rotation is proven irrational to (Classifier::rotationProven): at 4 T
+/// iterates a circle's rotation is known to ~10⁻¹⁴, and the rationals of denominator ≤ 10⁴ lie ~10⁻⁸ apart, so an
+/// invariant circle is taken for one of them with a probability of ~10⁻⁵.
+constexpr std::int64_t kProofDenominator = 10000;
+/// The largest period of the chains about the centre enumerated by their rotation (AtlasBuilder::addFareyChains), and
+/// the spacing of that search along the lines (the MMP code's: it brackets the roots of the chains to period 729).
+constexpr std::uint64_t kFareyPeriod = 50;
+constexpr long double kFareySpacing = 1e-6L;
 
 /// Fundamental domains searched for a chain's primary heteroclinic points (TurnstileRequest::maxDomains): the search
 /// of a long chain that has none near its orbit went on for minutes through the automatic limit (a period-150 chain
@@ -105,6 +116,45 @@ class Classifier {
     return s;
   }
 
+  /// The proof of a circle point's rotation (issue 50): measured again with 4 T iterates per block, it must be regular,
+  /// agree with `s`'s within their accuracies, and name no rational of denominator ≤ kProofDenominator within its
+  /// own accuracy (an orbit of a chain of long period, or a sticky one, converges slowly to a rational or not at all:
+  /// at K = 0.12 an orbit of the 25/143 chain passed the scan's test at T).
+  [[nodiscard]] bool rotationProven(const ScanPoint& s, std::stop_token stop) const {
+    RotationRequest m;
+    m.map = request_.map;
+    m.start = map_.toUnit(s.point.x, s.point.y);
+    m.centre = centre_;
+    m.power = island_.n;
+    m.iterations = std::min<std::uint64_t>(4 * request_.iterations, kMaxIterations);
+    m.digitsThreshold = request_.digitsThreshold;
+    const RotationMeasurement r = measureRotation(m, stop);
+    if (r.verdict != OrbitVerdict::Regular) return false;
+    const double delta = std::max(kAccuracyFactor * r.difference, 0x1p-50);
+    if (std::fabs(r.rotation - s.rotation) > delta + std::max(kAccuracyFactor * std::pow(10.0, -s.digits), 0x1p-50))
+      return false;
+    return !smallestDenominatorRational(r.rotation - delta, r.rotation + delta, kProofDenominator);
+  }
+
+  /// Whether the orbit of the line's point at x is proven to leave the island: within 2 T applications of Qⁿ it
+  /// leaves the box or goes farther from c than the nearest other member of c's orbit (no island of the chain reaches
+  /// another's centre; at the centre, twice the distance 2√K to the hyperbolic fixed point).  An orbit that stays is
+  /// not proven inside: it may be a sticky orbit of the layer.
+  [[nodiscard]] bool leavesIsland(long double x, std::stop_token stop) const {
+    const PhysicalPoint p = at(x);
+    if (boxPointError("p", request_.map, p)) return true;
+    UnitState z = map_.toUnit(p.x, p.y);
+    const long double far = 2 * island_.reach;
+    for (std::uint64_t k = 0; k < 2 * request_.iterations; ++k) {
+      if ((k & 1023) == 0 && stop.stop_requested()) return false;
+      for (std::uint64_t j = 0; j < island_.n; ++j)
+        if (map_.forward(z)) return true;
+      const PhysicalPoint q = map_.toPhysical(z);
+      if (std::hypot(q.x - island_.centre.x, q.y - island_.centre.y) > far) return true;
+    }
+    return false;
+  }
+
   [[nodiscard]] const FixedPointMap& map() const { return map_; }
 
  private:
@@ -118,8 +168,10 @@ class Classifier {
 /// k·ω mod 1), with half the points for the error; wrapped or not winding about the centre: nothing.
 struct CircleArea {
   long double area = 0;
-  long double error = 0;
+  long double error = 0;            ///< |area − area with every other point|
+  long double perimeterChange = 0;  ///< |perimeter − perimeter with every other point|, relative
   int points = 0;
+  std::vector<PhysicalPoint> curve;  ///< the ordered polygon
 };
 
 long double shoelace(const std::vector<PhysicalPoint>& p, std::size_t stride) {
@@ -132,6 +184,17 @@ long double shoelace(const std::vector<PhysicalPoint>& p, std::size_t stride) {
     twice += (a.x - p[0].x) * (b.y - p[0].y) - (b.x - p[0].x) * (a.y - p[0].y);
   }
   return std::fabs(twice) / 2;
+}
+
+long double perimeter(const std::vector<PhysicalPoint>& p, std::size_t stride) {
+  long double sum = 0;
+  const std::size_t m = p.size() / stride;
+  for (std::size_t i = 0; i < m; ++i) {
+    const PhysicalPoint& a = p[i * stride];
+    const PhysicalPoint& b = p[((i + 1) % m) * stride];
+    sum += std::hypot(b.x - a.x, b.y - a.y);
+  }
+  return sum;
 }
 
 std::optional<CircleArea> circleArea(const FixedPointMap& N, const Island& island, PhysicalPoint start, double omega,
@@ -156,7 +219,10 @@ std::optional<CircleArea> circleArea(const FixedPointMap& N, const Island& islan
   CircleArea a;
   a.area = shoelace(curve, 1);
   a.error = std::fabs(a.area - shoelace(curve, 2));
+  const long double length = perimeter(curve, 1);
+  a.perimeterChange = std::fabs(length - perimeter(curve, 2)) / length;
   a.points = static_cast<int>(m);
+  a.curve = std::move(curve);
   return a;
 }
 
@@ -192,6 +258,72 @@ long double halfSpacing(const PeriodicOrbit& orbit, std::size_t i) {
   for (std::size_t j = 0; j < orbit.points.size(); ++j)
     if (j != i) d = std::min(d, std::hypot(orbit.points[j].x - orbit.points[i].x, orbit.points[j].y - orbit.points[i].y));
   return d / 2;
+}
+
+long double distance(PhysicalPoint a, PhysicalPoint b) { return std::hypot(a.x - b.x, a.y - b.y); }
+
+/// The nearest point beyond the circle point at x = `circle` on a ray (towards `direction`) whose orbit is proven to
+/// leave the island (Classifier::leavesIsland): offsets doubling from 2^−20 of the ray's range until one leaves (the
+/// ray's end, the island's reach by construction, if none does), the stretch up to it sampled at kEscapeSamples
+/// points (in parallel) for the innermost that leaves, then bisected (kEscapeBisections) against its inner neighbour.
+/// Its distance from the island's centre.
+constexpr int kEscapeSamples = 64;
+constexpr int kEscapeBisections = 12;
+long double escapeRadius(const Classifier& c, const Island& island, int direction, long double circle,
+                         std::stop_token stop, int threads) {
+  const long double end = island.centre.x + direction * island.range;
+  long double reach = (end - circle) * direction;
+  for (long double d = island.range * 0x1p-20L; d < reach; d *= 2) {
+    if (stop.stop_requested()) break;
+    if (c.leavesIsland(circle + direction * d, stop)) {
+      reach = d;
+      break;
+    }
+  }
+  std::vector<char> leaves(kEscapeSamples, 0);
+  parallelFor(
+      leaves.size(),
+      [&](std::size_t i, int) {
+        leaves[i] = c.leavesIsland(circle + direction * reach * static_cast<long double>(i + 1) / kEscapeSamples, stop);
+      },
+      stop, threads);
+  const auto first = std::find(leaves.begin(), leaves.end(), 1);
+  const long double k = static_cast<long double>(first - leaves.begin());  // samples inside before it
+  long double inside = circle + direction * reach * k / kEscapeSamples;
+  long double outside = first == leaves.end() ? end : circle + direction * reach * (k + 1) / kEscapeSamples;
+  for (int b = 0; b < kEscapeBisections && first != leaves.end() && !stop.stop_requested(); ++b) {
+    const long double mid = (inside + outside) / 2;
+    (c.leavesIsland(mid, stop) ? outside : inside) = mid;
+  }
+  return distance(c.at(outside), island.centre);
+}
+
+/// Where the ordered polygon `curve` crosses the ray from c along `line` towards `direction`: the x of the crossing
+/// nearest c (the polygon's edges interpolated), or nothing.
+std::optional<long double> crossingX(const std::vector<PhysicalPoint>& curve, long double K, smooth::SymmetryLine line,
+                                     PhysicalPoint c, int direction) {
+  std::optional<long double> best;
+  for (std::size_t i = 0; i < curve.size(); ++i) {
+    const PhysicalPoint a = curve[i], b = curve[(i + 1) % curve.size()];
+    const long double fa = smooth::offsetFromLine(line, K, smooth::Point<long double>{a.x, a.y});
+    const long double fb = smooth::offsetFromLine(line, K, smooth::Point<long double>{b.x, b.y});
+    if ((fa > 0) == (fb > 0) || fa == fb) continue;
+    const long double x = a.x + (b.x - a.x) * fa / (fa - fb);
+    if ((x - c.x) * direction <= 0) continue;
+    if (!best || std::fabs(x - c.x) < std::fabs(*best - c.x)) best = x;
+  }
+  return best;
+}
+
+/// The island's area as an interval that holds the truth (issue 50): from below, the proven circle's polygon less its
+/// convergence; from above, that circle scaled about the centre by the widest ratio, over the rays, of the nearest
+/// escaping point's distance to the ray's own outermost circle's (the boundary lies between the two on every ray;
+/// the scaled circle holds it where the island's shape between the rays follows its circles').
+void settleAreaInterval(AtlasNode& node, long double widest) {
+  node.areaLower = std::max<long double>(node.circleArea - node.polygonError, 0);
+  node.areaUpper = widest * widest * node.circleArea + node.polygonError;
+  node.area = node.circleArea;
+  node.areaError = std::max(node.area - node.areaLower, node.areaUpper - node.area);
 }
 
 /// `zone`: where the zone's closed curves go (TurnstileFlux::zoneBoundary), for the layers (settleLayers).
@@ -449,8 +581,10 @@ class AtlasBuilder {
       Island island;
       int direction = 1;
       SideScan scan;
+      std::optional<long double> circleX;  ///< x of the ray's outermost proven circle point
     };
     std::vector<Ray> rays;
+    std::vector<PhysicalPoint> kept;  // the boundary circle's polygon
     const std::vector<Island> origins = scanOrigins(node, index);
     const int points = scanPoints(node, 2 * origins.size());
     for (const Island& island : origins)
@@ -497,7 +631,8 @@ class AtlasBuilder {
             }
           }
           const std::optional<CircleArea> a = circleArea(c.map(), ray.island, inner.point, inner.rotation, 13);
-          if (!a || a->error > kCircleTolerance * a->area) {
+          if (!a || a->error > kCircleTolerance * a->area || a->perimeterChange > kCircleTolerance ||
+              !c.rotationProven(inner, stop_)) {
             s.points[static_cast<std::size_t>(candidate)].kind = PointKind::Outside;  // not a circle after all
             do --candidate;
             while (candidate >= 0 && s.points[static_cast<std::size_t>(candidate)].kind != PointKind::Circle);
@@ -505,7 +640,9 @@ class AtlasBuilder {
             continue;
           }
           s.lastCircle = candidate;
-          if (!node.boundaryFound || a->area > node.area) {
+          ray.circleX = lo;
+          if (!node.boundaryFound || a->area > node.circleArea) {
+            kept = a->curve;
             node.boundaryFound = true;
             node.centre = ray.island.centre;  // the member whose island holds the circle, z₀ of the orbit
             node.orbit = node.orbit.rotatedToStart(node.orbit.nearestIndex(ray.island.centre));
@@ -513,8 +650,8 @@ class AtlasBuilder {
             node.boundaryRotation = inner.rotation;
             node.boundaryDigits = inner.digits;
             node.gap = lastPoint ? 0 : std::fabs(hi - lo);
-            node.area = a->area;
-            node.areaError = a->error;
+            node.circleArea = a->area;
+            node.polygonError = a->error;
             node.areaPoints = a->points;
             if (lastPoint) node.note = "the island reaches the end of the scan (" + number(ray.island.range) + ")";
             else node.note.clear();
@@ -543,6 +680,27 @@ class AtlasBuilder {
       findBoundary(zoomRays);
     }
     if (stop_.stop_requested()) return {};
+    if (node.boundaryFound) {
+      // The bracket's widest ratio over the rays (the kept circle's crossing, or on another member's ray its own
+      // outermost circle, which lies inside the boundary's image there; and the nearest escaping point beyond).
+      long double widest = 1;
+      std::vector<std::tuple<smooth::SymmetryLine, int, long double, long double>> done;  // line, direction, c.x, c.y
+      for (const std::vector<Ray>* set : {&rays, &zoomRays})
+        for (const Ray& ray : *set) {
+          if (!ray.circleX) continue;
+          const auto key = std::tuple{ray.island.line, ray.direction, ray.island.centre.x, ray.island.centre.y};
+          if (std::find(done.begin(), done.end(), key) != done.end()) continue;
+          done.push_back(key);
+          const Classifier c(r_, ray.island);
+          long double x = *ray.circleX;
+          if (distance(ray.island.centre, node.centre) == 0)
+            if (const auto cross = crossingX(kept, K_, ray.island.line, node.centre, ray.direction)) x = *cross;
+          const long double circle = distance(c.at(x), ray.island.centre);
+          const long double escape = escapeRadius(c, ray.island, ray.direction, x, stop_, r_.threads);
+          widest = std::max(widest, escape / circle);
+        }
+      settleAreaInterval(node, widest);
+    }
 
     // The flux through the chain's separatrix (at the centre: the fixed point (√K, 0)'s loop).  Its zone encloses
     // the islands of the parent (one per closed curve) or, at the centre, the central island: the layer between is
@@ -639,7 +797,61 @@ class AtlasBuilder {
       child.sense = rotationSense(K_, child.centre, period);
       children.push_back(std::move(child));
     }
+    if (index == 0) addFareyChains(atlas, node, rays.front().island.reach, children);
     return children;
+  }
+
+  /// Every symmetric chain about the centre of period ≤ kFareyPeriod whose rotation lies between the boundary circle's
+  /// and the slowest chain the scan found (issue 50): the Farey rationals p/q of that interval, each solved for its
+  /// symmetric orbits of period q on the lines between the boundary and the fixed point's distance (the MMP code's
+  /// scan, MmpFlux.hpp), kept when elliptic, well ordered about the centre with p turns, and not already found.  At
+  /// K = 0.1 the scan stepped over the 4/25 chain (islands ≈ 7·10⁻⁵ wide along S₁, the scan's step).
+  void addFareyChains(const Atlas& atlas, const AtlasNode& node, long double reach, std::vector<AtlasNode>& children) {
+    const long double hi = std::fabs(static_cast<long double>(node.boundaryRotation));
+    long double lo = hi;
+    for (const AtlasNode& c : children)
+      lo = std::min(lo, static_cast<long double>(c.aboutParent->p) / static_cast<long double>(c.aboutParent->q));
+    if (!(lo < hi)) return;
+    const long double inner = std::sqrt(node.areaLower / std::numbers::pi_v<long double>) / 2;
+    const std::vector<LineWindow> windows = annulusWindows(K_, inner, reach);
+    const std::uint64_t maxQ = std::min<std::uint64_t>(kFareyPeriod, r_.maxPeriod);
+    for (std::int64_t q = 2; q <= static_cast<std::int64_t>(maxQ); ++q) {
+      for (std::int64_t p = static_cast<std::int64_t>(std::ceil(lo * q)); p * hi > 0 && p < hi * q; ++p) {
+        if (stop_.stop_requested()) return;
+        if (std::gcd(p, q) != 1 || static_cast<long double>(p) < lo * q) continue;
+        const Rational pq{p, q};
+        auto known = [&](const AtlasNode& c) { return c.parent == 0 && c.aboutParent && *c.aboutParent == pq; };
+        if (std::any_of(children.begin(), children.end(), known)) continue;
+        std::vector<PeriodicOrbit> orbits;
+        try {
+          orbits = findSymmetricPeriodicOrbitsIn(K_, static_cast<int>(q), windows, kFareySpacing, stop_);
+        } catch (const OperationStopped&) {
+          return;
+        }
+        for (const PeriodicOrbit& orbit : orbits) {
+          if (orbit.windingTurns != p || !orbit.stable() || !wellOrdered(orbit.points, node.centre)) continue;
+          const auto member = memberOnLine(orbit, orbit.points.front());
+          if (!member) continue;
+          AtlasNode child;
+          child.parent = 0;
+          child.level = 1;
+          child.period = static_cast<std::uint64_t>(q);
+          child.aboutParent = pq;
+          child.orbit = orbit.rotatedToStart(member->first);
+          child.centre = child.orbit.points.front();
+          auto same = [&](const AtlasNode& other) {
+            return other.period == child.period && other.orbit.distanceTo(child.centre) < 1e-9L;
+          };
+          if (std::any_of(atlas.nodes.begin(), atlas.nodes.end(), same) ||
+              std::any_of(children.begin(), children.end(), same))
+            continue;
+          child.onS1 = member->second == smooth::SymmetryLine::S1;
+          child.sense = rotationSense(K_, child.centre, child.period);
+          children.push_back(std::move(child));
+          break;  // one elliptic orbit per p/q: its images are the chain
+        }
+      }
+    }
   }
 
   const AtlasRequest& r_;

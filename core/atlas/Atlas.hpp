@@ -20,12 +20,22 @@
 ///     of the chains and circles outside it turn at a rational or not at all about c), bisected against its outer
 ///     neighbour (`bisections` halvings).  Its orbit under Qⁿ (8192 points), ordered by the angle k·ω mod 1 that
 ///     the conjugacy to the rotation ω gives each point, is a polygon whose shoelace area is the island's area
-///     (Green's theorem); the area with half the points gives its error.  A candidate whose polygon does not wind
-///     about c or has not converged (a sticky chaotic orbit that passed for regular) is dropped and the next circle
-///     inwards tried.  Of all sides the largest area is kept (the outermost circle).
+///     (Green's theorem).  The circle is *proven* (issue 50): its polygon winds about c and its area and perimeter
+///     converge (4096 against 8192 points), and its rotation measured again with 4 T iterates agrees and names no
+///     rational of denominator ≤ 10⁴ (an orbit of a long chain, or a sticky chaotic orbit, passed the scan's test: at
+///     K = 0.12 one of the 25/143 chain did); a candidate that fails is dropped and the next circle inwards tried.  Of
+///     all sides the largest area is kept (the outermost circle).
+///     The other side of the bracket: on every ray, the nearest point beyond the circle whose orbit is proven to leave
+///     the island (farther from c than the next member of its orbit, or out of the box, within 2 T applications of
+///     Qⁿ).  The area is an interval: from below the circle's polygon less its convergence, from above the circle
+///     scaled about c by the widest ratio of those distances (AtlasNode::areaLower, areaUpper, areaError).
 ///  3. The chains: the chain points beyond the boundary (turning about c in the sense of its circles), grouped by p/q, each group's middle point giving the
 ///     elliptic orbit of period n·q (ChainIdentification.hpp, ellipticOrbitAround); kept when it is stable.  Chain
-///     points inside the boundary are listed as internal rationals and not followed.
+///     points inside the boundary are listed as internal rationals and not followed.  About the centre, every
+///     symmetric chain of period ≤ 50 whose rotation lies between the boundary's and the slowest chain found is
+///     sought by its rotation (the Farey rationals of that interval, each solved for its symmetric orbits on the
+///     lines, kept when elliptic and well ordered): the scan steps over chains whose islands are narrower than its
+///     step (the 4/25 chain at K = 0.1).
 ///  4. For each chain: its hyperbolic partner (HyperbolicPartner.hpp) and the turnstile flux through its separatrix
 ///     and the area the separatrix encloses (TurnstileFlux.hpp's zone: around the parent island, or around each of the
 ///     parent chain's islands).  The layer is that area less the parent islands it encloses, and the mean residence
@@ -120,9 +130,15 @@ struct AtlasNode {
   PhysicalPoint boundaryPoint;           ///< a point of the boundary circle about `centre`, on a symmetry line
   double boundaryRotation = 0;           ///< its rotation number about `centre` (turns per Qⁿ)
   double boundaryDigits = 0;
-  long double gap = 0;                   ///< width of the final bracket: the circle's distance to an outside point
-  long double area = 0;                  ///< one island's area (the boundary circle's)
-  long double areaError = 0;             ///< |area − area with half the points|
+  long double gap = 0;                   ///< the bisection's last step: the circle point's distance to the next point
+                                         ///< not proven a circle (a resolution of the bisection, not of the boundary)
+  long double area = 0;                  ///< one island's area: the outermost proven circle's (its polygon's)
+  long double areaError = 0;             ///< area ± areaError holds the island's true area: the larger distance from
+                                         ///< `area` to the ends of [areaLower, areaUpper]
+  long double areaLower = 0;             ///< the true area is at least this: the circle's area less polygonError
+  long double areaUpper = 0;             ///< and at most this: the circle scaled to the nearest escaping points
+  long double circleArea = 0;            ///< the proven circle's polygon area (= area)
+  long double polygonError = 0;          ///< |polygon area − with every other point|: the curve's convergence only
   int areaPoints = 0;                    ///< points of the polygon
 
   AtlasFlux flux;                        ///< through the chain's separatrix (the central island's loop at level 0)

@@ -95,6 +95,9 @@ std::string atlasJson(const Atlas& a) {
     o["boundary"] = b;
     o["area"] = num(n.area);
     o["area_error"] = num(n.areaError);
+    o["area_lower"] = num(n.areaLower);
+    o["area_upper"] = num(n.areaUpper);
+    o["polygon_error"] = num(n.polygonError);
     o["area_points"] = n.areaPoints;
     o["islands_area"] = num(n.area * static_cast<long double>(n.period));
     json f;
@@ -130,7 +133,7 @@ std::string atlasCsv(const Atlas& a) {
   for (const auto& [k, v] : atlasProvenance(a).fields) out << "# " << k << ": " << v << "\n";
   out << "# cancelled: " << (a.cancelled ? "yes" : "no") << "\n";
   out << "index,parent,level,path,period,about_parent,x,y,line,residue,boundary_rotation,boundary_digits,area,"
-         "area_error,islands_area,flux,zone_area,layer_area,residence,note\n";
+         "area_error,area_lower,area_upper,polygon_error,islands_area,flux,zone_area,layer_area,residence,note\n";
   for (std::size_t i = 0; i < a.nodes.size(); ++i) {
     const AtlasNode& n = a.nodes[i];
     out << i << "," << n.parent << "," << n.level << "," << atlasPath(a, static_cast<int>(i)) << "," << n.period << ","
@@ -138,6 +141,8 @@ std::string atlasCsv(const Atlas& a) {
         << (n.onS1 ? "S1" : "S2") << "," << text(n.orbit.residue) << ","
         << (n.boundaryFound ? text(n.boundaryRotation) : "") << "," << (n.boundaryFound ? text(n.boundaryDigits, 4) : "")
         << "," << (n.boundaryFound ? text(n.area) : "") << "," << (n.boundaryFound ? text(n.areaError, 3) : "") << ","
+        << (n.boundaryFound ? text(n.areaLower) : "") << "," << (n.boundaryFound ? text(n.areaUpper) : "") << ","
+        << (n.boundaryFound ? text(n.polygonError, 3) : "") << ","
         << (n.boundaryFound ? text(n.area * static_cast<long double>(n.period)) : "") << ","
         << (n.flux.found ? text(n.flux.flux) : "") << "," << (n.flux.found ? text(n.flux.zoneArea) : "") << ","
         << (n.flux.found ? text(n.flux.layerArea) : "") << ","
@@ -257,7 +262,8 @@ AtlasNode nodeFrom(const rjson& o, const std::string& key, std::size_t index, co
   keys(o, key, {"index", "parent", "level", "path", "period", "about_parent", "centre", "symmetry_line", "residue",
                 "sense", "scan_range", "boundary", "area", "area_error", "area_points", "islands_area", "flux",
                 "internal", "children", "note"},
-       {"measured"});  // absent in the first files: every island of a finished atlas was measured
+       {"measured",  // absent in the first files: every island of a finished atlas was measured
+        "area_lower", "area_upper", "polygon_error"});  // absent before issue 50: area_error was the polygon's
   const long double K = static_cast<long double>(atlas.request.map.K);
   AtlasNode n;
   if (whole(o.at("index"), key + ".index", 0, kMaxAtlasNodes) != index)
@@ -315,7 +321,31 @@ AtlasNode nodeFrom(const rjson& o, const std::string& key, std::size_t index, co
     n.boundaryFailure = string(b.at("failure"), bkey + ".failure");
   }
   n.area = nonNegative(o.at("area"), key + ".area");
-  n.areaError = nonNegative(o.at("area_error"), key + ".area_error");
+  n.circleArea = n.area;
+  if (o.contains("polygon_error")) {
+    n.polygonError = nonNegative(o.at("polygon_error"), key + ".polygon_error");
+    n.areaLower = nonNegative(o.at("area_lower"), key + ".area_lower");
+    if (o.at("area_upper").is_null()) {  // unknown: an island read from a file from before the interval, resumed
+      if (!o.at("area_error").is_null()) refuse(key + ".area_error must be null when area_upper is (not known)");
+      n.areaUpper = n.areaError = std::numeric_limits<long double>::quiet_NaN();
+      if (!(n.areaLower <= n.area)) refuse(key + ": area " + shortestDecimal(n.area) + " must be at least area_lower");
+    } else {
+      n.areaUpper = nonNegative(o.at("area_upper"), key + ".area_upper");
+      n.areaError = nonNegative(o.at("area_error"), key + ".area_error");
+    }
+    if (!std::isnan(n.areaUpper) && !(n.areaLower <= n.area && n.area <= n.areaUpper))
+      refuse(key + ": area " + shortestDecimal(n.area) + " must lie in [area_lower, area_upper] = [" +
+             shortestDecimal(n.areaLower) + ", " + shortestDecimal(n.areaUpper) + "]");
+    if (!std::isnan(n.areaUpper) && n.areaError < std::max(n.area - n.areaLower, n.areaUpper - n.area) * (1 - 1e-12L))
+      refuse(key + ".area_error = " + shortestDecimal(n.areaError) + " does not cover [area_lower, area_upper]");
+  } else {
+    // A file from before the interval: its area_error measured the polygon's convergence only, and the boundary's
+    // own uncertainty is not known — said as such (NaN: null in the JSON, blank in the CSV).
+    n.polygonError = nonNegative(o.at("area_error"), key + ".area_error");
+    n.areaLower = std::max<long double>(n.area - n.polygonError, 0);
+    n.areaUpper = std::numeric_limits<long double>::quiet_NaN();
+    n.areaError = std::numeric_limits<long double>::quiet_NaN();
+  }
   n.areaPoints = static_cast<int>(whole(o.at("area_points"), key + ".area_points", 0, std::numeric_limits<int>::max()));
   (void)finite(o.at("islands_area"), key + ".islands_area");  // written anew: period × area
 

@@ -479,14 +479,16 @@ void AtlasPanel::updateDetails() {
   if (!measured(n)) {
     lines << (busy() ? tr("Not measured yet.") : tr("Not measured (the computation was stopped)."));
   } else if (n.boundaryFound) {
-    lines << tr("Boundary circle through %1, rotation %2 about the centre per Qⁿ (%3 digits), bracket %4")
+    lines << tr("Boundary circle through %1, rotation %2 about the centre per Qⁿ (%3 digits; proven irrational "
+                "to denominators of 10⁴, its polygon converged)")
                  .arg(point(n.boundaryPoint))
                  .arg(n.boundaryRotation, 0, 'g', 10)
-                 .arg(n.boundaryDigits, 0, 'f', 1)
-                 .arg(number(n.gap, 2));
-    lines << tr("<b>Area</b> %1 ± %2 (%3 points); the chain's %4 islands: %5")
-                 .arg(number(n.area, 10), number(n.areaError, 2))
+                 .arg(n.boundaryDigits, 0, 'f', 1);
+    lines << tr("<b>Area</b> %1 ± %2: the true area lies in [%3, %4] (the circle's polygon of %5 points to %6; the "
+                "circle scaled to the nearest orbits that leave the island); the chain's %7 islands: %8")
+                 .arg(number(n.area, 10), number(n.areaError, 2), number(n.areaLower, 10), number(n.areaUpper, 10))
                  .arg(n.areaPoints)
+                 .arg(number(n.polygonError, 2))
                  .arg(n.period)
                  .arg(number(n.area * static_cast<long double>(n.period), 10));
   } else {

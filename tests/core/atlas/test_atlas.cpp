@@ -10,6 +10,7 @@
 #include <cstdio>
 
 #include "core/atlas/AtlasExport.hpp"
+#include "core/manifolds/MmpFlux.hpp"
 #include "core/manifolds/TurnstileFlux.hpp"
 #include "core/map/FixedPointMap.hpp"
 #include "core/measures/RotationNumber.hpp"
@@ -107,7 +108,7 @@ TEST(Atlas, IslandAreasAgreeWithTheFasterTurningPixelsAroundThem) {
     std::printf("period %llu: Green %.6g, pixels %.6g (tolerance %.2g)\n", static_cast<unsigned long long>(n->period),
                 static_cast<double>(n->area), pixels, tolerance);
     EXPECT_NEAR(pixels, static_cast<double>(n->area), tolerance) << "period " << n->period;
-    EXPECT_LT(static_cast<double>(n->areaError), 1e-3 * static_cast<double>(n->area));
+    EXPECT_LT(static_cast<double>(n->polygonError), 1e-3 * static_cast<double>(n->area));
   }
 }
 
@@ -170,6 +171,66 @@ TEST(Atlas, TheCentralIslandEndsJustInsideTheSeparatrixOfTheChainOfSix) {
   const TurnstileFlux inner = computeTurnstileFlux(t);
   EXPECT_LT(a.nodes[0].area, inner.zoneArea);
   EXPECT_GT(a.nodes[0].area, 0.99L * inner.zoneArea);
+}
+
+// Issue 50: the area of each island's last invariant circle measured by code that shares nothing with core
+// (scripts/atlas-validate.py: the map in float64 numpy, its own weighted Birkhoff rotation numbers, a rational test to
+// denominators of 4000, the polygon's area and perimeter converging, the stretch to the first escaping orbit scanned
+// finer four times):
+//   /usr/bin/python3 scripts/atlas-validate.py --K 0.1 --points 2000 --T 6000 --zooms 4               0.239266948
+//   /usr/bin/python3 scripts/atlas-validate.py --K 0.1 --chain 1/6 --points 1000 --T 3000 --zooms 3    0.00695058629
+// The atlas's area (0.2391965 ± 2.2e−7 and 0.006705 ± 2e−9 before: the polygon's convergence printed as the error)
+// must hold them in its interval, and its error must cover that interval.
+TEST(Atlas, IslandAreasAreIntervalsThatHoldTheIndependentlyMeasuredArea) {
+  const Atlas& a = atlasK01();
+  const AtlasNode* six = chainOf(a, 0, 1, 6);
+  ASSERT_NE(six, nullptr);
+  for (const auto& [n, reference] : {std::pair{&a.nodes[0], 0.239266948L}, std::pair{six, 0.00695058629L}}) {
+    ASSERT_TRUE(n->boundaryFound) << atlasPath(a, 0);
+    std::printf("period %llu: [%.9Lg, %.9Lg] (circle %.9Lg, polygon %.1Le), independent %.9Lg\n",
+                static_cast<unsigned long long>(n->period), n->areaLower, n->areaUpper, n->area, n->polygonError,
+                reference);
+    EXPECT_LE(n->areaLower, reference) << "period " << n->period;
+    EXPECT_GE(n->areaUpper, reference) << "period " << n->period;
+    EXPECT_GE(n->areaError, std::max(n->area - n->areaLower, n->areaUpper - n->area));
+    EXPECT_GT(n->areaError, n->polygonError);  // the polygon's convergence is one part, not the error
+  }
+}
+
+// Issue 50, finding 4: the 4/25 chain (period 25, between 3/19 and 5/31, elliptic orbit on S₁) has islands about as
+// wide along S₁ as the centre scan's step: the scan stepped over it.  The Farey rationals between the boundary's
+// rotation and the slowest chain found, each solved for its symmetric orbits, find it.
+TEST(Atlas, HoldsThePeriod25ChainAboutTheCentreThatTheScanStepsOver) {
+  const Atlas& a = atlasK01();
+  const AtlasNode* chain = chainOf(a, 0, 4, 25);
+  ASSERT_NE(chain, nullptr) << "no chain 4/25 about the centre";
+  EXPECT_EQ(chain->period, 25u);
+  EXPECT_TRUE(chain->orbit.stable());
+  EXPECT_EQ(chain->orbit.windingTurns, 4);
+  EXPECT_TRUE(wellOrdered(chain->orbit.points, a.nodes[0].centre));
+}
+
+// Issue 50, finding 2: at K = 0.12 (depth 1) the centre's "boundary circle" was an orbit of the 25/143 chain (its
+// rotation 0.1748251677 = 25/143; its polygon's area converged to 4e−5 and passed), with an area of 0.34259 against
+// the true last circle's 0.340245399 (scripts/atlas-validate.py --K 0.12 --points 2000 --T 6000 --zooms 4), and the
+// 7/40 chain outside the island listed as internal.  A boundary is now proven: its rotation measured again at 4 T
+// names no rational of denominator ≤ 10⁴, and its polygon's perimeter converges as well as its area.
+TEST(Atlas, TheCentralIslandAtK012IsBoundedByACircleNotAnOrbitOfThe25Over143Chain) {
+  AtlasRequest r;
+  r.map.K = 0.12;
+  r.depth = 1;       // the centre scanned as at depth 1 (10⁴ points a side)
+  r.maxPeriod = 40;  // and only the chains to period 40 followed (the 7/40 chain: seconds)
+  const Atlas a = computeAtlas(r);
+  const AtlasNode& root = a.nodes[0];
+  ASSERT_TRUE(root.boundaryFound) << root.boundaryFailure;
+  const double w = root.boundaryRotation;
+  EXPECT_FALSE(smallestDenominatorRational(w - 1e-12, w + 1e-12, 10000)) << w;
+  // Inside the boundary the rotation is faster (the twist): no rational listed as internal turns slower than it.
+  for (const Rational& q : root.internal)
+    EXPECT_GT(static_cast<double>(q.p) / static_cast<double>(q.q), w) << toString(q) << " listed inside";
+  ASSERT_NE(chainOf(a, 0, 7, 40), nullptr) << "the 7/40 chain, the lowest period outside the island";
+  EXPECT_LE(root.areaLower, 0.340245399L);
+  EXPECT_GE(root.areaUpper, 0.340245399L);
 }
 
 TEST(Atlas, RefusesBadRequestsNamingTheField) {

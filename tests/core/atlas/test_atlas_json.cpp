@@ -29,6 +29,16 @@ PeriodicOrbit orbitAt(PhysicalPoint p, int period, long double residue) {
   return o;
 }
 
+/// An island's area as computeAtlas() fills it: the proven circle's polygon area and convergence, and the interval
+/// that holds the true area (issue 50).
+void withInterval(AtlasNode& n, long double area, long double polygon, long double upper) {
+  n.area = n.circleArea = area;
+  n.polygonError = polygon;
+  n.areaLower = area - polygon;
+  n.areaUpper = upper;
+  n.areaError = std::max(n.area - n.areaLower, n.areaUpper - n.area);
+}
+
 /// A small tree as computeAtlas() would fill it (its numbers doubles, as the JSON keeps them): the centre, the chain
 /// of six with the 138-chain below it (its boundary not found), the chain of 13 (its flux refused, with a partner),
 /// every flux found with a partner's digits all agreeing (infinity: null in the JSON).
@@ -51,8 +61,7 @@ Atlas handBuilt() {
   centre.boundaryRotation = 0.1668;
   centre.boundaryDigits = 14.25;
   centre.gap = 1.2e-9;
-  centre.area = 0.2391965;
-  centre.areaError = 2.2e-7;
+  withInterval(centre, 0.2391965, 2.2e-7, 0.2406);
   centre.areaPoints = 8192;
   centre.flux.found = true;
   centre.flux.flux = 3.843389e-3;
@@ -80,8 +89,7 @@ Atlas handBuilt() {
   six.boundaryRotation = 0.0912;
   six.boundaryDigits = 13.5;
   six.gap = 3e-10;
-  six.area = 6.704824e-3;
-  six.areaError = 2.4e-9;
+  withInterval(six, 6.704824e-3, 2.4e-9, 7.1e-3);
   six.areaPoints = 8192;
   six.flux.found = true;
   six.flux.partner = orbitAt({0.2, -0.1}, 6, -0.5);
@@ -108,8 +116,7 @@ Atlas handBuilt() {
   thirteen.boundaryPoint = {0.111, 0.0931};
   thirteen.boundaryRotation = 0.03;
   thirteen.boundaryDigits = 12;
-  thirteen.area = 2.822e-5;
-  thirteen.areaError = 8e-12;
+  withInterval(thirteen, 2.822e-5, 8e-12, 6e-5);
   thirteen.areaPoints = 8192;
   thirteen.flux.failure = "lobe area 0.478 is not small against the area it encloses, 0.516";
   thirteen.flux.partner = orbitAt({0.12, 0.09}, 13, -0.01);
@@ -252,6 +259,44 @@ TEST(AtlasJson, RefusesHugeAndNegativeValuesNamingTheKey) {
   says([](ojson& j) { j["request"]["min_area"] = -1; }, "request");
   says([](ojson& j) { j["map"]["K"] = 1e308; }, "request");
   says([](ojson& j) { j["map"]["xmin"] = 0.9; }, "request");
+}
+
+TEST(AtlasJson, AnAreaOutsideItsIntervalOrAnErrorThatDoesNotCoverItIsRefused) {
+  // Issue 50: the interval [area_lower, area_upper] holds the true area and area ± area_error holds the interval.
+  const auto says = [](const std::function<void(ojson&)>& edit, const std::string& words) {
+    const std::string message = refusal(edited(edit));
+    EXPECT_NE(message.find(words), std::string::npos) << message;
+  };
+  says([](ojson& j) { j["nodes"][1]["area_upper"] = 6e-3; }, "must lie in [area_lower, area_upper]");
+  says([](ojson& j) { j["nodes"][1]["area_lower"] = 6.8e-3; }, "must lie in [area_lower, area_upper]");
+  says([](ojson& j) { j["nodes"][1]["area_error"] = 2.4e-9; }, "nodes[1].area_error");
+  says([](ojson& j) { j["nodes"][1]["polygon_error"] = -1; }, "nodes[1].polygon_error");
+  says([](ojson& j) { j["nodes"][1]["area_upper"] = nullptr; }, "nodes[1].area_error must be null");
+}
+
+TEST(AtlasJson, AFileFromBeforeTheIntervalReadsWithItsBoundaryUncertaintyUnknown) {
+  // Files of a2e223a and before: area_error was the polygon's convergence (2.4e-9 for the island of six, whose area
+  // was low by 3e-3 relative); read back, that number is the polygon's, and the interval's upper end is not known.
+  ojson j = ojson::parse(atlasJson(handBuilt()));
+  for (ojson& n : j["nodes"]) {
+    n["area_error"] = n["polygon_error"];
+    n.erase("area_lower");
+    n.erase("area_upper");
+    n.erase("polygon_error");
+  }
+  const Atlas a = atlasFromJson(j.dump(2));
+  const AtlasNode& six = a.nodes[1];
+  EXPECT_EQ(six.polygonError, static_cast<long double>(2.4e-9));
+  EXPECT_TRUE(std::isnan(six.areaUpper));
+  EXPECT_TRUE(std::isnan(six.areaError));
+  EXPECT_EQ(six.area, static_cast<long double>(6.704824e-3));
+  // Written again: the unknown upper end and error are null, not the polygon's number under their name.
+  const ojson again = ojson::parse(atlasJson(a));
+  EXPECT_TRUE(again["nodes"][1]["area_upper"].is_null());
+  EXPECT_TRUE(again["nodes"][1]["area_error"].is_null());
+  const Atlas b = atlasFromJson(again.dump(2));  // and reads back so (an old atlas resumed)
+  EXPECT_TRUE(std::isnan(b.nodes[1].areaUpper));
+  EXPECT_EQ(atlasJson(b), atlasJson(a));
 }
 
 TEST(AtlasJson, RefusesEditedTrees) {

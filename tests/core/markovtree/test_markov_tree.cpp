@@ -39,7 +39,7 @@ AtlasNode node(int parent, int level, std::uint64_t period, std::optional<Ration
   n.boundaryPoint = {n.centre.x + 0.001, 0};
   n.boundaryRotation = boundaryRotation;
   n.boundaryDigits = 13;
-  n.area = 1e-6L;
+  n.area = n.circleArea = n.areaLower = n.areaUpper = 1e-6L;  // an interval of no width (issue 50's fields)
   n.areaPoints = 8192;
   n.measured = true;
   if (flux > 0) {

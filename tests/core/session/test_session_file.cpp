@@ -287,8 +287,11 @@ Atlas smallAtlas(const MapParameters& map) {
   centre.boundaryPoint = {-0.08, 0};
   centre.boundaryRotation = 0.17;
   centre.boundaryDigits = 14;
-  centre.area = 0.2391965;
-  centre.areaError = 2e-7;
+  centre.area = centre.circleArea = 0.2391965;
+  centre.polygonError = 2e-7;
+  centre.areaLower = 0.2391963;
+  centre.areaUpper = 0.2406;  // issue 50: the interval that holds the true area
+  centre.areaError = centre.areaUpper - centre.area;
   centre.areaPoints = 8192;
   centre.children = {1};
   centre.measured = true;
