@@ -327,26 +327,17 @@ void settleAreaInterval(AtlasNode& node, long double widest) {
 }
 
 /// `zone`: where the zone's closed curves go (TurnstileFlux::zoneBoundary), for the layers (settleLayers).
-AtlasFlux chainFlux(long double K, const std::optional<PeriodicOrbit>& chain, std::stop_token stop,
-                    std::vector<std::vector<PhysicalPoint>>& zone) {
-  AtlasFlux f;
+/// One separatrix's turnstile (side `side` of the partner's manifolds, or the fixed point's loop), checked: the two
+/// methods agree and the lobe is a small part of what it encloses (a partner whose primary points were found far
+/// along its manifolds gave a "flux" of half the zone per step).  No silent wrong answer: a failure says why.
+SeparatrixFlux separatrixFlux(long double K, const std::optional<PeriodicOrbit>& partner, BranchSide side,
+                              std::stop_token stop, std::vector<std::vector<PhysicalPoint>>& zone) {
+  SeparatrixFlux f;
   try {
     TurnstileRequest t;
     t.K = K;
-    if (chain) {
-      if (chain->period > kMaxFluxPeriod) {
-        f.failure = "not computed: period " + std::to_string(chain->period) + " above the atlas's flux limit " +
-                    std::to_string(kMaxFluxPeriod) + " (archipelago-cli flux --period computes it)";
-        return f;
-      }
-      f.partner = findHyperbolicPartner(*chain);
-      if (!f.partner) {
-        f.failure = "no hyperbolic partner found between the islands";
-        return f;
-      }
-      t.orbit = f.partner;
-    }
-    t.side = parseBranchSide("auto", !chain);
+    t.orbit = partner;
+    t.side = side;
     t.maxDomains = kFluxDomains;
     const TurnstileFlux flux = computeTurnstileFlux(t, {}, stop);
     f.flux = flux.lobeArea;
@@ -354,10 +345,6 @@ AtlasFlux chainFlux(long double K, const std::optional<PeriodicOrbit>& chain, st
     f.fluxDigits = flux.lobeDigits();
     f.zoneDigits = flux.zoneDigits();
     zone = flux.zoneBoundary;
-    f.layerArea = f.zoneArea;  // until settleLayers subtracts the islands inside
-    f.residence = static_cast<double>(f.zoneArea / f.flux);
-    // No silent wrong answer: the two methods must agree and the lobe must be a small part of what it encloses (a
-    // partner whose primary points were found far along its manifolds gave a "flux" of half the zone per step).
     if (!(f.flux > 0)) f.failure = "zero lobe area";
     else if (f.fluxDigits < kFluxDigits || f.zoneDigits < kFluxDigits)
       f.failure = "the action and the polygon agree to " + number(std::min(f.fluxDigits, f.zoneDigits)) +
@@ -368,6 +355,50 @@ AtlasFlux chainFlux(long double K, const std::optional<PeriodicOrbit>& chain, st
   } catch (const std::exception& e) {
     f.failure = e.what();
   }
+  return f;
+}
+
+/// The flux into a chain's resonance zone through its separatrices (issue 50): both sides of the partner's manifolds
+/// are computed and the **outer** separatrix is the one that encloses the larger zone about the parent — decided by
+/// the zones, not by the label "outward" (at K = 0.12 the 11/63 chain's "outward" side gave the inner separatrix's
+/// lobe, zone 0.343767, and "inward" the outer one, zone 0.344536, with a lobe 2.5 times larger).  Where only one
+/// side is found it is taken with its label (`outerByZone` false).  At the centre the barrier is the fixed point's
+/// loop (no inner side).  `zone`: where the outer zone's closed curves go (TurnstileFlux::zoneBoundary), for the
+/// layers (settleLayers).
+AtlasFlux chainFlux(long double K, const std::optional<PeriodicOrbit>& chain, std::stop_token stop,
+                    std::vector<std::vector<PhysicalPoint>>& zone) {
+  AtlasFlux f;
+  SeparatrixFlux outer;
+  if (!chain) {
+    outer = separatrixFlux(K, std::nullopt, defaultSide(true), stop, zone);
+  } else {
+    if (chain->period > kMaxFluxPeriod) {
+      f.failure = "not computed: period " + std::to_string(chain->period) + " above the atlas's flux limit " +
+                  std::to_string(kMaxFluxPeriod) + " (archipelago-cli flux --period computes it)";
+      return f;
+    }
+    f.partner = findHyperbolicPartner(*chain);
+    if (!f.partner) {
+      f.failure = "no hyperbolic partner found between the islands";
+      return f;
+    }
+    std::vector<std::vector<PhysicalPoint>> outwardZone, inwardZone;
+    SeparatrixFlux outward = separatrixFlux(K, f.partner, BranchSide::Outward, stop, outwardZone);
+    SeparatrixFlux inward = separatrixFlux(K, f.partner, BranchSide::Inward, stop, inwardZone);
+    f.outerByZone = outward.found && inward.found;
+    const bool swap = f.outerByZone ? inward.zoneArea > outward.zoneArea : !outward.found && inward.found;
+    outer = swap ? inward : outward;
+    f.inner = swap ? outward : inward;
+    zone = swap ? inwardZone : outwardZone;
+  }
+  f.found = outer.found;
+  f.failure = outer.failure;
+  f.flux = outer.flux;
+  f.zoneArea = outer.zoneArea;
+  f.fluxDigits = outer.fluxDigits;
+  f.zoneDigits = outer.zoneDigits;
+  f.layerArea = f.zoneArea;  // until settleLayers subtracts the islands inside
+  f.residence = f.found ? static_cast<double>(f.zoneArea / f.flux) : 0;
   return f;
 }
 

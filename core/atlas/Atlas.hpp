@@ -87,6 +87,16 @@ inline constexpr std::uintmax_t kMaxAtlasFileBytes = std::uintmax_t{1} << 28;
 /// The first violated rule, naming the field, or nothing.
 [[nodiscard]] std::optional<std::string> validationError(const AtlasRequest& r);
 
+/// One separatrix's turnstile: the lobe area crossing it per step and the zone it encloses.
+struct SeparatrixFlux {
+  bool found = false;
+  std::string failure;            ///< why not, when not found
+  long double flux = 0;           ///< lobe area per step
+  long double zoneArea = 0;       ///< the area the separatrix encloses (all its closed curves)
+  long double fluxDigits = 0;     ///< digits on which the action and the polygon agree for the lobe
+  long double zoneDigits = 0;     ///< the same for the zone
+};
+
 /// The flux through a chain's separatrix (the fixed point (√K, 0)'s loop at the centre).
 struct AtlasFlux {
   bool found = false;
@@ -104,6 +114,10 @@ struct AtlasFlux {
   long double layerArea = 0;      ///< zoneArea − enclosedIslands: the layer an orbit that crossed the barrier moves in
                                   ///< (Kac's transit area, KacCheck.hpp), an upper bound by the islands not found
   double residence = 0;           ///< layerArea / flux: the mean residence time inside the barrier, in steps (Kac)
+  /// The fields above are the **outer** separatrix's: of the partner's two, the one enclosing the larger zone (issue
+  /// 50: decided by the zones, not by the label "outward").  `inner` is the other (not computed at the centre).
+  SeparatrixFlux inner;
+  bool outerByZone = false;       ///< both sides found and the outer chosen by its zone (else the label "outward")
 };
 
 /// No silent wrong answer: a barrier whose zone is no larger than the atlas's islands inside it has no layer (the

@@ -116,6 +116,19 @@ std::string atlasJson(const Atlas& a) {
       f["zone_agreeing_digits"] = num(n.flux.zoneDigits);
       f["residence"] = n.flux.residence;
     }
+    if (n.parent >= 0 && n.flux.partner) {  // both separatrices of a chain (issue 50)
+      f["outer_by"] = n.flux.outerByZone ? "zone" : "label";
+      json in;
+      in["found"] = n.flux.inner.found;
+      if (!n.flux.inner.found) in["failure"] = n.flux.inner.failure;
+      else {
+        in["flux_per_step"] = num(n.flux.inner.flux);
+        in["zone_area"] = num(n.flux.inner.zoneArea);
+        in["flux_agreeing_digits"] = num(n.flux.inner.fluxDigits);
+        in["zone_agreeing_digits"] = num(n.flux.inner.zoneDigits);
+      }
+      f["inner"] = in;
+    }
     o["flux"] = f;
     json internal = json::array();
     for (const Rational& r : n.internal) internal.push_back(toString(r));
@@ -356,7 +369,7 @@ AtlasNode nodeFrom(const rjson& o, const std::string& key, std::size_t index, co
   if (n.flux.found) {
     keys(f, fkey, {"found", "flux_per_step", "zone_area", "enclosed_islands_area", "layer_area", "flux_agreeing_digits",
                    "zone_agreeing_digits", "residence"},
-         {"partner", "enclosed_islands"});
+         {"partner", "enclosed_islands", "inner", "outer_by"});
     if (const auto c = f.find("enclosed_islands"); c != f.end())
       n.flux.enclosedCount = static_cast<int>(whole(*c, fkey + ".enclosed_islands", 0, std::numeric_limits<int>::max()));
     n.flux.flux = finite(f.at("flux_per_step"), fkey + ".flux_per_step");
@@ -370,8 +383,36 @@ AtlasNode nodeFrom(const rjson& o, const std::string& key, std::size_t index, co
     n.flux.residence = finite(f.at("residence"), fkey + ".residence");
     refuseEmptyLayer(n.flux);  // a file written before the rule, or edited, obeys it as the computation does
   } else {
-    keys(f, fkey, {"found", "failure"}, {"partner"});
+    keys(f, fkey, {"found", "failure"}, {"partner", "inner", "outer_by"});
     n.flux.failure = string(f.at("failure"), fkey + ".failure");
+  }
+  if (const auto by = f.find("outer_by"); by != f.end()) {  // absent before issue 50: the label's side, no inner
+    const std::string text = string(*by, fkey + ".outer_by");
+    if (text != "zone" && text != "label") refuse(fkey + ".outer_by = " + io::describeJson(*by) + " must be \"zone\" or \"label\"");
+    n.flux.outerByZone = text == "zone";
+  }
+  if (const auto in = f.find("inner"); in != f.end()) {
+    if (!parent) refuse(fkey + ".inner: the centre's barrier is the fixed point's loop, it has no inner side");
+    const std::string ikey = fkey + ".inner";
+    if (!in->is_object() || !in->contains("found")) refuse(ikey + " must be an object with 'found'");
+    SeparatrixFlux& inner = n.flux.inner;
+    inner.found = boolean(in->at("found"), ikey + ".found");
+    if (inner.found) {
+      keys(*in, ikey, {"found", "flux_per_step", "zone_area", "flux_agreeing_digits", "zone_agreeing_digits"});
+      inner.flux = finite(in->at("flux_per_step"), ikey + ".flux_per_step");
+      if (!(inner.flux > 0)) refuse(ikey + ".flux_per_step must be > 0");
+      inner.zoneArea = nonNegative(in->at("zone_area"), ikey + ".zone_area");
+      const double all = std::numeric_limits<double>::infinity();
+      inner.fluxDigits = finiteOr(in->at("flux_agreeing_digits"), ikey + ".flux_agreeing_digits", all);
+      inner.zoneDigits = finiteOr(in->at("zone_agreeing_digits"), ikey + ".zone_agreeing_digits", all);
+      if (n.flux.found && n.flux.outerByZone && !(inner.zoneArea <= n.flux.zoneArea))
+        refuse(ikey + ".zone_area = " + shortestDecimal(static_cast<double>(inner.zoneArea)) +
+               " exceeds the outer separatrix's " + shortestDecimal(static_cast<double>(n.flux.zoneArea)) +
+               ": the outer is the larger zone");
+    } else {
+      keys(*in, ikey, {"found", "failure"});
+      inner.failure = string(in->at("failure"), ikey + ".failure");
+    }
   }
   if (const auto p = f.find("partner"); p != f.end()) {
     if (!parent) refuse(fkey + ".partner: the centre's barrier is the fixed point's loop, it has none");

@@ -38,6 +38,13 @@ const AtlasNode* chainOf(const Atlas& a, int parent, std::int64_t p, std::int64_
   return nullptr;
 }
 
+void expectOuterIsTheLargerZone(const AtlasNode& n) {
+  ASSERT_TRUE(n.flux.found) << n.flux.failure;
+  ASSERT_TRUE(n.flux.inner.found) << n.flux.inner.failure;
+  EXPECT_TRUE(n.flux.outerByZone);
+  EXPECT_GT(n.flux.zoneArea, n.flux.inner.zoneArea);
+}
+
 /// The area of the pixels of a square of half-width `half` about the island's centre (cut to the box) whose orbits
 /// are regular and turn about the centre under Qⁿ at least as fast as its boundary circle: the island seen on a grid
 /// (pixel by pixel, over the whole square) instead of along a line with Green's theorem.  Chains outside turn slower
@@ -219,7 +226,7 @@ TEST(Atlas, TheCentralIslandAtK012IsBoundedByACircleNotAnOrbitOfThe25Over143Chai
   AtlasRequest r;
   r.map.K = 0.12;
   r.depth = 1;       // the centre scanned as at depth 1 (10⁴ points a side)
-  r.maxPeriod = 40;  // and only the chains to period 40 followed (the 7/40 chain: seconds)
+  r.maxPeriod = 63;  // and only the chains to period 63 followed (7/40 and 11/63: seconds)
   const Atlas a = computeAtlas(r);
   const AtlasNode& root = a.nodes[0];
   ASSERT_TRUE(root.boundaryFound) << root.boundaryFailure;
@@ -231,6 +238,33 @@ TEST(Atlas, TheCentralIslandAtK012IsBoundedByACircleNotAnOrbitOfThe25Over143Chai
   ASSERT_NE(chainOf(a, 0, 7, 40), nullptr) << "the 7/40 chain, the lowest period outside the island";
   EXPECT_LE(root.areaLower, 0.340245399L);
   EXPECT_GE(root.areaUpper, 0.340245399L);
+  // Issue 50, finding 3: the 11/63 chain's side labelled "outward" is its inner separatrix (zone 0.343767; the
+  // "inward" side's is 0.344536, with a lobe 2.5 times larger): the outer separatrix is the larger zone.
+  const AtlasNode* c63 = chainOf(a, 0, 11, 63);
+  ASSERT_NE(c63, nullptr) << "the 11/63 chain";
+  expectOuterIsTheLargerZone(*c63);
+  std::printf("11/63: outer zone %.9Lg flux %.6Lg, inner zone %.9Lg flux %.6Lg\n", c63->flux.zoneArea, c63->flux.flux,
+              c63->flux.inner.zoneArea, c63->flux.inner.flux);
+}
+
+// Issue 50, item 3: every chain carries both separatrices, the outer one enclosing the larger zone about the parent.
+TEST(Atlas, HoldsBothSeparatricesOfEveryChainTheOuterEnclosingTheLargerZone) {
+  const Atlas& a = atlasK01();
+  int both = 0;
+  for (std::size_t i = 1; i < a.nodes.size(); ++i) {
+    const AtlasNode& n = a.nodes[i];
+    if (!n.flux.found || !n.flux.inner.found) continue;
+    SCOPED_TRACE(atlasPath(a, static_cast<int>(i)));
+    expectOuterIsTheLargerZone(n);
+    ++both;
+  }
+  EXPECT_GE(both, 3);
+  // The six: the outer separatrix faces the sea (docs/manifolds.md), the inner one the central island, whose area it
+  // bounds from above (0.2393).
+  const AtlasNode* six = chainOf(a, 0, 1, 6);
+  ASSERT_NE(six, nullptr);
+  ASSERT_TRUE(six->flux.inner.found) << six->flux.inner.failure;
+  EXPECT_GT(six->flux.inner.zoneArea, a.nodes[0].areaLower);
 }
 
 TEST(Atlas, RefusesBadRequestsNamingTheField) {
