@@ -7,6 +7,7 @@
 #include <limits>
 #include <stdexcept>
 
+#include "core/io/NumberText.hpp"
 #include "core/limits/Limits.hpp"
 #include "core/periodic/PeriodicOrbitFinder.hpp"
 #include "core/stats/TrappingStatistics.hpp"
@@ -17,11 +18,7 @@ namespace {
 
 __extension__ typedef __float128 quad;
 
-std::string sci(long double v, int digits = 4) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.*Le", digits, v);
-  return buffer;
-}
+std::string sci(long double v, int digits = 4) { return io::formatC("%.*Le", digits, v); }  // C locale: the GUI's too
 
 bool positiveFinite(long double v) { return std::isfinite(v) && v > 0; }
 
@@ -93,7 +90,9 @@ MarkovTree markovTreeFromAtlas(const Atlas& a) {
   MarkovTree tree;
   tree.entryFlux = centre.flux.flux;
   tree.residence = centre.flux.layerArea / centre.flux.flux;
-  tree.boxArea = static_cast<long double>(a.request.map.width()) * a.request.map.width();
+  // L² to 12 digits (1.69, not 1.6900000000000002 of 1.3 · 1.3 in binary): the bound b₂'s rule states.
+  tree.boxArea =
+      io::parseLongDoubleC(sci(static_cast<long double>(a.request.map.width()) * a.request.map.width(), 11)).value_or(0);
   std::vector<int> stateOf(a.nodes.size(), -1);
 
   // The state of barrier c, opening onto `container`, with its inner sibling (or −1).
@@ -217,12 +216,10 @@ std::optional<std::string> markovTreeEntryError(double alpha, double b2, const M
   const long double w = static_cast<long double>(alpha) * tree->entryFlux / static_cast<long double>(b2);
   const long double S1 = 1 - tree->entryFlux / tree->states[0].area;
   const long double P1 = w * S1;
-  if (!(std::isfinite(P1) && P1 <= 1))
-    return realRangeError("P_1 = w S(1)", static_cast<double>(P1), 0, 1,
-                          "w = alpha flux / b2 = " + shortestDecimal(alpha) + " * " + sci(tree->entryFlux) + " / " +
-                              shortestDecimal(b2) + " = " + sci(w) +
-                              " visits per segment: a probability cannot exceed 1; alpha is too large or b2 too "
-                              "small for this atlas");
+  if (!(std::isfinite(P1) && P1 <= 1))  // realRangeError's words, the numbers in long double (w may pass 10^308)
+    return "P_1 = w S(1) = " + sci(P1) + " must lie in [0, 1] (w = alpha flux / b2 = " + shortestDecimal(alpha) + " * " +
+           sci(tree->entryFlux) + " / " + shortestDecimal(b2) + " = " + sci(w) +
+           " visits per segment: a probability cannot exceed 1; alpha is too large or b2 too small for this atlas)";
   return std::nullopt;
 }
 

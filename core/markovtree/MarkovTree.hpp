@@ -96,7 +96,7 @@ struct MarkovTree {
   int levels = 0;                       ///< 1 + the deepest level among the states
   long double entryFlux = 0;            ///< Φ_centre: the loop's flux, the visits' entry
   long double residence = 0;            ///< ℓ_centre / Φ_centre: the mean visit (Kac)
-  long double boxArea = 0;              ///< L² of the atlas's box (appendix A's b₀): the largest stochastic area b₂
+  long double boxArea = 0;              ///< L² of the atlas's box (appendix A's b₀) to 12 digits: the largest b₂
 };
 
 /// The tree of `atlas`.  Throws std::invalid_argument with a clear message when the atlas cannot make one: empty,
