@@ -13,7 +13,8 @@ silent wrong) and the table printed; the test fails unless every crash, hang and
                   and the JSON not written (item 4)
   state paths     `tail --checkpoint r.json` over a run file, `tail --out` over an atlas: refused, the file unchanged;
                   `tail --csv` with a name longer than the folder takes: refused before the tail runs (item 8)
-  messages        `cantorus --convergents '1/6\\n'`: one ERROR line (item 5)
+  messages        `cantorus --convergents '1/6\\n'` and an output folder whose name holds a newline: one ERROR line
+                  (item 5)
 
 The nesting atlases are built here from a computed depth-0 atlas (the centre and its flux), never checked in."""
 import copy, hashlib, json, os, shutil, tempfile, time
@@ -197,7 +198,13 @@ def state_path_cases():
 def message_cases():
     rc, _, err = invoke(["cantorus", "--K", "0.1", "--convergents", "1/6\n"])
     outcome = classify(rc, err, True, lambda: False)
-    return [("messages", "cantorus --convergents '1/6\\n'", outcome, err.strip()[:200])]
+    results = [("messages", "cantorus --convergents '1/6\\n'", outcome, err.strip()[:200])]
+    # An output folder whose name holds a newline (that does not exist): the message quotes it on one line.
+    out = os.path.join(make_dir("messages"), "new\nline", "m.json")
+    rc, _, err = invoke(["markov-tree", "--atlas", atlas, "--json", out, "--quiet"])
+    results.append(("messages", "markov-tree --json <a folder 'new\\nline'>", classify(rc, err, True, lambda: False),
+                    err.strip()[:200]))
+    return results
 
 
 # ------------------------------------------------------------------------------------------------------- main
