@@ -254,13 +254,15 @@ namespace {
 
 [[noreturn]] void stopped() { throw OperationStopped(); }
 
-/// Householder reduction of the symmetric n×n matrix `v` (row-major) to tridiagonal form, the transformations
-/// accumulated in `v`: d the diagonal, e the subdiagonal (e[0] unused).  EISPACK's tred2 (Wilkinson & Reinsch,
-/// Handbook for Automatic Computation II, 1971), as JAMA writes it.  About 8/3 n³ operations; the stop is checked
-/// once per row.
+/// Householder reduction of the symmetric n×n matrix `v` to tridiagonal form, the transformations accumulated in `v`
+/// (column k of the result stored as its k-th row): d the diagonal, e the subdiagonal (e[0] unused).  EISPACK's tred2
+/// (Wilkinson & Reinsch, Handbook for Automatic Computation II, 1971), as JAMA writes it.  About 8/3 n³ operations;
+/// the stop is checked once per row.
 void tred2(std::size_t n, std::vector<long double>& v, std::vector<long double>& d, std::vector<long double>& e,
            const std::stop_token& stop) {
-  auto V = [&](std::size_t i, std::size_t j) -> long double& { return v[i * n + j]; };
+  // Column-major (Fortran's order, EISPACK's): the inner loops run down columns, contiguous here; the eigenvectors
+  // end as columns, i.e. as rows of `v` read row-major, which is what tql2 wants.
+  auto V = [&](std::size_t i, std::size_t j) -> long double& { return v[j * n + i]; };
   for (std::size_t j = 0; j < n; ++j) d[j] = V(n - 1, j);
   for (std::size_t i = n - 1; i > 0; --i) {
     if (stop.stop_requested()) stopped();
@@ -428,9 +430,7 @@ MarkovTreeSurvival markovTreeSurvival(const MarkovTree& tree, const std::vector<
       v[from * n + to] = -r.flux / (root[from] * root[to]);
     }
   }
-  tred2(n, v, mu, e, stop);
-  for (std::size_t i = 0; i < n; ++i)  // rows become the columns: tql2 then runs along rows
-    for (std::size_t j = i + 1; j < n; ++j) std::swap(v[i * n + j], v[j * n + i]);
+  tred2(n, v, mu, e, stop);  // B is symmetric: its row-major and column-major layouts are one
   tql2(n, v, mu, e, stop);
   // Each eigenvalue again as its eigenvector's Rayleigh quotient written as the chain's Dirichlet form,
   // uᵀ B u = Σ_barriers Φ (x_i − x_j)² + Φ_centre x_top² with x = D^−½ u: a sum of positive terms, so a slow mode's μ
