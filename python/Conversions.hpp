@@ -30,6 +30,21 @@ namespace py = pybind11;
   throw py::error_already_set();
 }
 
+/// The JSON text of a dict given as an argument (an atlas, a run spec) for core's reader: ValueError naming `name`
+/// for what json.dumps cannot write — a dict nested too deeply (RecursionError: 100,000 levels, issue 54), a value
+/// that is not JSON (TypeError, ValueError: nan is not refused by dumps, core's reader refuses it).
+inline std::string jsonArgument(const py::object& value, const std::string& name) {
+  try {
+    return py::str(py::module_::import("json").attr("dumps")(value));
+  } catch (py::error_already_set& e) {
+    if (e.matches(PyExc_RecursionError))
+      throw std::invalid_argument(name + ": nested too deeply to be written as JSON (a forged or circular dict)");
+    if (e.matches(PyExc_TypeError) || e.matches(PyExc_ValueError))
+      throw std::invalid_argument(name + ": not a JSON document (" + std::string(py::str(e.value())) + ")");
+    throw;
+  }
+}
+
 /// A one-dimensional NumPy array holding a copy of v.
 template <class T>
 py::array_t<T> toArray(const std::vector<T>& v) {

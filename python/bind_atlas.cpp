@@ -40,7 +40,7 @@ py::dict atlas(double K, double xmin, double xmax, int depth, std::uint64_t maxP
   // resume: an atlas dict stopped early (its 'cancelled' true), continued by core from its finished islands.
   std::optional<Atlas> previous;
   if (!resume.is_none()) {
-    const std::string text = py::str(py::module_::import("json").attr("dumps")(resume));
+    const std::string text = jsonArgument(resume, "resume");
     try {
       previous = atlasFromJson(text);
     } catch (const std::exception& e) {

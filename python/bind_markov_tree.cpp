@@ -7,9 +7,12 @@
 #include <cstdint>
 #include <optional>
 #include <stdexcept>
+#include <stop_token>
 #include <string>
 #include <vector>
 
+#include "Conversions.hpp"
+#include "Interruption.hpp"
 #include "core/atlas/AtlasExport.hpp"
 #include "core/io/AtomicFile.hpp"
 #include "core/markovtree/MarkovTreeExport.hpp"
@@ -17,6 +20,7 @@
 
 namespace py = pybind11;
 using namespace archipelago;
+using namespace archipelago::bindings;
 
 namespace {
 // The defaults are the request's own (issue 35: a front end restates no default).
@@ -33,7 +37,7 @@ py::dict markovTree(const py::object& atlas, double alpha, double b2, double tMa
   r.exponentFrom = exponentFrom;
   std::string text;
   if (py::isinstance<py::dict>(atlas)) {
-    text = py::str(py::module_::import("json").attr("dumps")(atlas));
+    text = jsonArgument(atlas, "atlas");
     r.atlasSource = "(a dict)";
   } else if (py::isinstance<py::str>(atlas) || py::hasattr(atlas, "__fspath__")) {
     const std::string path = py::str(py::module_::import("os").attr("fspath")(atlas));
@@ -64,7 +68,11 @@ py::dict markovTree(const py::object& atlas, double alpha, double b2, double tMa
       throw std::invalid_argument("tail: " + std::string(e.what()));
     }
   }
-  const std::string json = markovTreeJson(computeMarkovTree(a, r, sampled ? &*sampled : nullptr));
+  // Without the GIL on a worker thread, Ctrl-C polled: KeyboardInterrupt within a second (issue 54: it was ignored
+  // for two minutes on a large atlas).
+  const std::string json = bindings::interruptible([&](std::stop_token stop) {
+    return markovTreeJson(computeMarkovTree(a, r, sampled ? &*sampled : nullptr, stop));
+  });
   return py::module_::import("json").attr("loads")(json);
 }
 }  // namespace

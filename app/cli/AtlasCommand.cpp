@@ -96,8 +96,10 @@ int runAtlas(AtlasOptions o) {
   }
   finished = true;
   watcher.join();
+  io::OutputBatch outputs;  // the JSON and the CSV: all or nothing (issue 54, item 4)
   if (!o.json.empty()) writeAtlasJson(o.json, atlas);
   if (!o.csv.empty()) writeAtlasCsv(o.csv, atlas);
+  outputs.commit();
   if (!o.quiet) printTable(atlas);
   if (atlas.cancelled && !o.quiet)
     std::fprintf(stderr, "atlas: %s: %s; --resume with the JSON file continues it\n", atlas.stopReason.c_str(),

@@ -35,7 +35,7 @@ std::vector<std::pair<long, int>> parseConvergents(const std::string& text) {
     const std::size_t slash = item.find('/');
     const auto p = slash == std::string::npos ? std::nullopt : toNumber<long>(item.substr(0, slash));
     const auto q = slash == std::string::npos ? std::nullopt : toNumber<int>(item.substr(slash + 1));
-    if (!p || !q) throw std::invalid_argument("--convergents: '" + item + "' is not p/q (two whole numbers)");
+    if (!p || !q) throw std::invalid_argument("--convergents: '" + io::shortText(item) + "' is not p/q (two whole numbers)");
     list.emplace_back(*p, *q);
     if (comma == std::string::npos) break;
     begin = comma + 1;

@@ -36,7 +36,7 @@ std::vector<std::uint64_t> parseTimes(const std::string& text) {
     const std::size_t comma = text.find(',', begin);
     const std::string item = text.substr(begin, comma == std::string::npos ? std::string::npos : comma - begin);
     const auto v = toNumber<std::uint64_t>(item);
-    if (!v) throw std::invalid_argument("--at: '" + item + "' is not a whole number of steps");
+    if (!v) throw std::invalid_argument("--at: '" + io::shortText(item) + "' is not a whole number of steps");
     t.push_back(*v);
     if (comma == std::string::npos) break;
     begin = comma + 1;
@@ -115,8 +115,10 @@ int runMarkovTree(MarkovTreeOptions o) {
     }
   }
   const MarkovTreeResult r = computeMarkovTree(atlas, o.request, tail ? &*tail : nullptr);
+  io::OutputBatch outputs;  // the JSON and the CSV: all or nothing (issue 54, item 4)
   if (!o.json.empty()) io::writeFileAtomically(o.json, markovTreeJson(r));
   if (!o.csv.empty()) io::writeFileAtomically(o.csv, markovTreeCsv(r));
+  outputs.commit();
   if (!o.quiet) printTree(r);
   return 0;
 }

@@ -96,7 +96,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return archipelago::cli::parseErrorStatus(app, e);
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "ERROR: %s\n", e.what());
+    // One line whatever a message quotes: a folder named with a newline gave two (issue 54, item 5); nothing is cut.
+    std::fprintf(stderr, "ERROR: %s\n", archipelago::io::shortText(e.what(), std::size_t{1} << 20).c_str());
     return 1;
   }
   return checkedStandardOutput(status);

@@ -272,6 +272,13 @@ void checkWritableTarget(const std::filesystem::path& given) {
   if (!std::filesystem::is_directory(dirStatus)) refuse(given, dir.string() + via + " is not a folder");
   if (::access(dir.c_str(), W_OK | X_OK) != 0)
     refuse(given, "the folder " + dir.string() + via + " is not writable (" + std::strerror(errno) + ")");
+  // A name longer than the folder's file system takes fails only when the file is written, after the command's work
+  // and its other outputs (issue 54, item 8: `tail --csv` with a 259-byte name failed at the end): say so now.
+  const std::string name = path.filename().string();
+  const long nameMax = ::pathconf(dir.c_str(), _PC_NAME_MAX);
+  if (nameMax > 0 && name.size() > static_cast<std::size_t>(nameMax))
+    refuse(given, "its name is " + std::to_string(name.size()) + " bytes, longer than the folder's file system takes (" +
+                      std::to_string(nameMax) + ")");
   const auto status = std::filesystem::status(path, ec);
   // A file nobody may write (mode 0444) was protected on purpose: refuse it even where the rename would
   // succeed (the folder is writable, or we are root).

@@ -8,7 +8,7 @@
 namespace archipelago {
 
 namespace {
-const std::array<LimitInfo, 11> kTable{{
+const std::array<LimitInfo, 13> kTable{{
     {"threads", "worker threads of any computation (0: one per core)", 0, limits::kThreads},
     {"raster side", "pixels each way of a portrait, an indicator map or an export", 1, limits::kRasterSide},
     {"indicator pixels", "pixels of an indicator map in all", 1, static_cast<long long>(limits::kIndicatorPixels)},
@@ -24,6 +24,10 @@ const std::array<LimitInfo, 11> kTable{{
     {"chain rows", "rows of the GUI's segment table whose chain is named by itself (--chains)", 0, limits::kChainRows},
     {"script seconds", "the longest a scripted GUI run waits (--after, --measure)", 0,
      static_cast<long long>(limits::kScriptSeconds)},
+    {"markov tree states", "states of a Markov tree whose survival is computed (markov-tree, the Atlas page's model)", 1,
+     limits::kMarkovTreeStates},
+    {"markov tree survival values", "states x times of a Markov tree's survival (each state's part at each t)", 1,
+     static_cast<long long>(limits::kMarkovTreeValues)},
 }};
 
 /// The shortest text that reads back as v ("0.5", "86400", "1e+12").
@@ -49,6 +53,18 @@ std::optional<std::string> realRangeError(std::string_view name, double value, d
   if (value >= lo && value <= hi) return std::nullopt;
   std::string s = std::string(name) + " = " + shortest(value) + " must lie in [" + shortest(lo) + ", " + shortest(hi) +
                   "]";
+  if (!note.empty()) s += " (" + std::string(note) + ")";
+  return s;
+}
+
+std::optional<std::string> realIntervalError(std::string_view name, double value, double lo, bool openLow, double hi,
+                                             std::string_view note) {
+  if (std::isfinite(value) && (openLow ? value > lo : value >= lo) && value <= hi) return std::nullopt;
+  std::string s = std::string(name) + " = " + shortest(value);
+  if (std::isinf(hi) && hi > 0)
+    s += std::string(" must be finite and ") + (openLow ? "above " : "at least ") + shortest(lo);
+  else
+    s += std::string(" must lie in ") + (openLow ? "(" : "[") + shortest(lo) + ", " + shortest(hi) + "]";
   if (!note.empty()) s += " (" + std::string(note) + ")";
   return s;
 }

@@ -15,6 +15,9 @@
 ///  - q of a run 65536: the histograms count blocks in 32-bit bins per chunk; q of a portrait's or b₂'s blocks
 ///    4096: a raster pass checks its stop token between blocks, and a block of 4096 steps keeps that under 1 ms.
 ///  - orbit length 10^8 points: an orbit held in memory (X, Y, x, y and a flag per point: 33 bytes) is 3.3 GB.
+///  - Markov tree 2048 states: its survival's eigen-decomposition holds n² long doubles (64 MiB) and takes about
+///    10 n³ operations (10¹¹: a minute or two); each state's part at each time is one value, 2^26 of them at most
+///    (1 GiB, and the JSON that writes them) — issue 54: an atlas of 20,000 chains asked 6.4 GB per matrix.
 
 #include <cstdint>
 #include <optional>
@@ -38,6 +41,8 @@ inline constexpr std::uint64_t kPortraitBudgetMin = 1'000'000;      ///< points 
 inline constexpr std::uint64_t kPortraitBudget = 1'000'000'000'000;  ///< … and the most (hours of accumulation)
 inline constexpr int kChainRows = 1000;        ///< rows of the GUI's segment table whose chain is named by itself
 inline constexpr double kScriptSeconds = 86400;  ///< the longest a scripted GUI run waits (a day: more is a typo)
+inline constexpr int kMarkovTreeStates = 2048;  ///< states of a Markov tree whose survival is computed
+inline constexpr std::uint64_t kMarkovTreeValues = 1ULL << 26;  ///< its survival's values: states × times
 }  // namespace limits
 
 /// One row of the table, for `--help`, the docs and the tests.
@@ -73,6 +78,13 @@ template <class T>
 /// The same for a real value (bounds written shortest): NaN and infinities are outside every range.
 [[nodiscard]] std::optional<std::string> realRangeError(std::string_view name, double value, double lo, double hi,
                                                         std::string_view note = {});
+
+/// The same for a real value whose lower bound may be open and whose upper bound may be absent (hi = +∞): "<name> =
+/// <value> must lie in (<lo>, <hi>]" (openLow) or "… in [<lo>, <hi>]", and without an upper bound "<name> = <value>
+/// must be finite and above <lo>" (openLow) or "… and at least <lo>" (and " (<note>)"), or nothing.  NaN and infinities
+/// are outside every range.
+[[nodiscard]] std::optional<std::string> realIntervalError(std::string_view name, double value, double lo, bool openLow,
+                                                           double hi, std::string_view note = {});
 
 /// The thread count's rule: "threads = <n> must lie in [0, 256] (0: one per core)", or nothing.
 [[nodiscard]] std::optional<std::string> threadsError(std::int64_t threads);

@@ -7,6 +7,9 @@
 #include <limits>
 #include <stdexcept>
 
+#include "core/io/NumberText.hpp"
+#include "core/limits/Limits.hpp"
+#include "core/periodic/PeriodicOrbitFinder.hpp"
 #include "core/stats/TrappingStatistics.hpp"
 
 namespace archipelago {
@@ -15,11 +18,7 @@ namespace {
 
 __extension__ typedef __float128 quad;
 
-std::string sci(long double v, int digits = 4) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.*Le", digits, v);
-  return buffer;
-}
+std::string sci(long double v, int digits = 4) { return io::formatC("%.*Le", digits, v); }  // C locale: the GUI's too
 
 bool positiveFinite(long double v) { return std::isfinite(v) && v > 0; }
 
@@ -91,6 +90,9 @@ MarkovTree markovTreeFromAtlas(const Atlas& a) {
   MarkovTree tree;
   tree.entryFlux = centre.flux.flux;
   tree.residence = centre.flux.layerArea / centre.flux.flux;
+  // L² to 12 digits (1.69, not 1.6900000000000002 of 1.3 · 1.3 in binary): the bound b₂'s rule states.
+  tree.boxArea =
+      io::parseLongDoubleC(sci(static_cast<long double>(a.request.map.width()) * a.request.map.width(), 11)).value_or(0);
   std::vector<int> stateOf(a.nodes.size(), -1);
 
   // The state of barrier c, opening onto `container`, with its inner sibling (or −1).
@@ -164,10 +166,10 @@ MarkovTree markovTreeFromAtlas(const Atlas& a) {
                           "flux of " + st.path + " (" + sci(st.flux) + ") / area of " + out.path + " (" +
                               sci(out.area) + ")"});
   }
+  std::vector<long double> outOf(tree.states.size(), 0);  // one pass: an atlas of 20,000 chains has 40,000 rates
+  for (const MarkovTreeRate& r : tree.rates) outOf[static_cast<std::size_t>(r.from)] += r.perStep;
   for (std::size_t s = 0; s < tree.states.size(); ++s) {
-    long double out = 0;
-    for (const MarkovTreeRate& r : tree.rates)
-      if (r.from == static_cast<int>(s)) out += r.perStep;
+    const long double out = outOf[s];
     if (!(out <= 1))
       refuse("the rates out of the state of " + tree.states[s].path + " sum to " + sci(out) +
              " per step: its barriers' fluxes exceed its area");
@@ -190,16 +192,6 @@ QMatrix generator(const MarkovTree& tree) {
   return G;
 }
 
-QMatrix multiply(const QMatrix& x, const QMatrix& y) {
-  const std::size_t n = x.size();
-  QMatrix z(n, std::vector<quad>(n, 0));
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t k = 0; k < n; ++k) {
-      if (x[i][k] == 0) continue;
-      for (std::size_t j = 0; j < n; ++j) z[i][j] += x[i][k] * y[k][j];
-    }
-  return z;
-}
 }  // namespace
 
 std::vector<std::vector<long double>> markovTreeMatrix(const MarkovTree& tree) {
@@ -211,78 +203,339 @@ std::vector<std::vector<long double>> markovTreeMatrix(const MarkovTree& tree) {
   return M;
 }
 
+std::optional<std::string> markovTreeEntryError(double alpha, double b2, const MarkovTree* tree) {
+  if (auto e = realIntervalError("alpha", alpha, 1, false, std::numeric_limits<double>::infinity(),
+                                 "the run's mean segment length in steps: a segment lasts at least one"))
+    return e;
+  const double box = tree ? static_cast<double>(tree->boxArea) : std::numeric_limits<double>::infinity();
+  if (auto e = realIntervalError("b2", b2, 0, true, box,
+                                 tree ? "the stochastic area: a part of the box, whose area is L^2"
+                                      : "the stochastic area"))
+    return e;
+  if (!tree || tree->states.empty()) return std::nullopt;
+  const long double w = static_cast<long double>(alpha) * tree->entryFlux / static_cast<long double>(b2);
+  const long double S1 = 1 - tree->entryFlux / tree->states[0].area;
+  const long double P1 = w * S1;
+  if (!(std::isfinite(P1) && P1 <= 1))  // realRangeError's words, the numbers in long double (w may pass 10^308)
+    return "P_1 = w S(1) = " + sci(P1) + " must lie in [0, 1] (w = alpha flux / b2 = " + shortestDecimal(alpha) + " * " +
+           sci(tree->entryFlux) + " / " + shortestDecimal(b2) + " = " + sci(w) +
+           " visits per segment: a probability cannot exceed 1; alpha is too large or b2 too small for this atlas)";
+  return std::nullopt;
+}
+
 long double markovTreeEntryWeight(const MarkovTree& tree, double alpha, double b2) {
-  if (!(std::isfinite(alpha) && alpha > 0))
-    throw std::invalid_argument("markov tree: alpha (the run's mean segment length, steps) must be finite and > 0");
-  if (!(std::isfinite(b2) && b2 > 0))
-    throw std::invalid_argument("markov tree: b2 (the stochastic area) must be finite and > 0");
+  if (auto e = markovTreeEntryError(alpha, b2, &tree)) throw std::invalid_argument("markov tree: " + *e);
   return static_cast<long double>(alpha) * tree.entryFlux / static_cast<long double>(b2);
 }
 
-MarkovTreeSurvival markovTreeSurvival(const MarkovTree& tree, const std::vector<std::uint64_t>& t) {
+MarkovTreeCost markovTreeCost(std::size_t states, std::size_t times) {
+  MarkovTreeCost c;
+  c.states = states;
+  c.times = times;
+  const auto n = static_cast<double>(states), m = static_cast<double>(times);
+  c.bytes = static_cast<double>(sizeof(long double)) * (n * n + n * m);
+  c.operations = 10 * n * n * n + 2 * n * n * m;
+  return c;
+}
+
+std::optional<std::string> markovTreeCostError(const MarkovTreeCost& c) {
+  const std::string cost = "its survival holds " + sci(c.bytes / 1e9L, 2) + " GB (" + std::to_string(sizeof(long double)) +
+                           " bytes x (n^2 + n m)) and takes about " + sci(c.operations, 1) +
+                           " operations (10 n^3 + 2 n^2 m) for n = " + std::to_string(c.states) + " states and m = " +
+                           std::to_string(c.times) + " times";
+  if (auto e = rangeError("markov tree states", c.states, 1, limits::kMarkovTreeStates, cost)) return e;
+  if (auto e = rangeError("markov tree survival values", c.states * c.times, 1,
+                          static_cast<long long>(limits::kMarkovTreeValues), cost))
+    return e;
+  return std::nullopt;
+}
+
+namespace {
+
+[[noreturn]] void stopped() { throw OperationStopped(); }
+
+/// Householder reduction of the symmetric n×n matrix `v` to tridiagonal form, the transformations accumulated in `v`
+/// (column k of the result stored as its k-th row): d the diagonal, e the subdiagonal (e[0] unused).  EISPACK's tred2
+/// (Wilkinson & Reinsch, Handbook for Automatic Computation II, 1971), as JAMA writes it.  About 8/3 n³ operations;
+/// the stop is checked once per row.
+void tred2(std::size_t n, std::vector<long double>& v, std::vector<long double>& d, std::vector<long double>& e,
+           const std::stop_token& stop) {
+  // Column-major (Fortran's order, EISPACK's): the inner loops run down columns, contiguous here; the eigenvectors
+  // end as columns, i.e. as rows of `v` read row-major, which is what tql2 wants.
+  auto V = [&](std::size_t i, std::size_t j) -> long double& { return v[j * n + i]; };
+  for (std::size_t j = 0; j < n; ++j) d[j] = V(n - 1, j);
+  for (std::size_t i = n - 1; i > 0; --i) {
+    if (stop.stop_requested()) stopped();
+    long double scale = 0, h = 0;
+    for (std::size_t k = 0; k < i; ++k) scale += std::fabs(d[k]);
+    if (scale == 0) {
+      e[i] = d[i - 1];
+      for (std::size_t j = 0; j < i; ++j) {
+        d[j] = V(i - 1, j);
+        V(i, j) = 0;
+        V(j, i) = 0;
+      }
+    } else {
+      for (std::size_t k = 0; k < i; ++k) {
+        d[k] /= scale;
+        h += d[k] * d[k];
+      }
+      long double f = d[i - 1];
+      long double g = std::sqrt(h);
+      if (f > 0) g = -g;
+      e[i] = scale * g;
+      h -= f * g;
+      d[i - 1] = f - g;
+      for (std::size_t j = 0; j < i; ++j) e[j] = 0;
+      for (std::size_t j = 0; j < i; ++j) {
+        f = d[j];
+        V(j, i) = f;
+        g = e[j] + V(j, j) * f;
+        for (std::size_t k = j + 1; k < i; ++k) {
+          g += V(k, j) * d[k];
+          e[k] += V(k, j) * f;
+        }
+        e[j] = g;
+      }
+      f = 0;
+      for (std::size_t j = 0; j < i; ++j) {
+        e[j] /= h;
+        f += e[j] * d[j];
+      }
+      const long double hh = f / (h + h);
+      for (std::size_t j = 0; j < i; ++j) e[j] -= hh * d[j];
+      for (std::size_t j = 0; j < i; ++j) {
+        f = d[j];
+        g = e[j];
+        for (std::size_t k = j; k < i; ++k) V(k, j) -= (f * e[k] + g * d[k]);
+        d[j] = V(i - 1, j);
+        V(i, j) = 0;
+      }
+    }
+    d[i] = h;
+  }
+  for (std::size_t i = 0; i + 1 < n; ++i) {
+    if (stop.stop_requested()) stopped();
+    V(n - 1, i) = V(i, i);
+    V(i, i) = 1;
+    const long double h = d[i + 1];
+    if (h != 0) {
+      for (std::size_t k = 0; k <= i; ++k) d[k] = V(k, i + 1) / h;
+      for (std::size_t j = 0; j <= i; ++j) {
+        long double g = 0;
+        for (std::size_t k = 0; k <= i; ++k) g += V(k, i + 1) * V(k, j);
+        for (std::size_t k = 0; k <= i; ++k) V(k, j) -= g * d[k];
+      }
+    }
+    for (std::size_t k = 0; k <= i; ++k) V(k, i + 1) = 0;
+  }
+  for (std::size_t j = 0; j < n; ++j) {
+    d[j] = V(n - 1, j);
+    V(n - 1, j) = 0;
+  }
+  V(n - 1, n - 1) = 1;
+  e[0] = 0;
+}
+
+/// The eigenvalues d and eigenvectors of the tridiagonal matrix (d, e) by the QL method with implicit shifts, the
+/// vectors accumulated into `w`, which holds tred2's transformations transposed (row k: the k-th column), so that row
+/// k ends as the eigenvector of d[k].  EISPACK's tql2, as JAMA writes it.  Eigenvalues to about ε ‖G‖ (ε = 2⁻⁶³).
+void tql2(std::size_t n, std::vector<long double>& w, std::vector<long double>& d, std::vector<long double>& e,
+          const std::stop_token& stop) {
+  for (std::size_t i = 1; i < n; ++i) e[i - 1] = e[i];
+  e[n - 1] = 0;
+  long double f = 0, tst1 = 0;
+  const long double eps = std::numeric_limits<long double>::epsilon();
+  for (std::size_t l = 0; l < n; ++l) {
+    tst1 = std::max(tst1, std::fabs(d[l]) + std::fabs(e[l]));
+    std::size_t m = l;
+    while (m < n && !(std::fabs(e[m]) <= eps * tst1)) ++m;
+    if (m == n) throw std::runtime_error("markov tree: the rate matrix's eigenvalues did not converge");
+    if (m > l) {
+      int iterations = 0;
+      do {
+        if (stop.stop_requested()) stopped();
+        if (++iterations > 100) throw std::runtime_error("markov tree: the rate matrix's eigenvalues did not converge");
+        long double g = d[l];
+        long double p = (d[l + 1] - g) / (2 * e[l]);
+        long double r = std::hypot(p, 1.0L);
+        if (p < 0) r = -r;
+        d[l] = e[l] / (p + r);
+        d[l + 1] = e[l] * (p + r);
+        const long double dl1 = d[l + 1];
+        long double h = g - d[l];
+        for (std::size_t i = l + 2; i < n; ++i) d[i] -= h;
+        f += h;
+        p = d[m];
+        long double c = 1, c2 = 1, c3 = 1, s = 0, s2 = 0;
+        const long double el1 = e[l + 1];
+        for (std::size_t i = m; i-- > l;) {
+          c3 = c2;
+          c2 = c;
+          s2 = s;
+          g = c * e[i];
+          h = c * p;
+          r = std::hypot(p, e[i]);
+          e[i + 1] = s * r;
+          s = e[i] / r;
+          c = p / r;
+          p = c * d[i] - s * g;
+          d[i + 1] = h + s * (c * g + s * d[i]);
+          long double* a = &w[i * n];
+          long double* b = &w[(i + 1) * n];
+          for (std::size_t k = 0; k < n; ++k) {
+            const long double bk = b[k];
+            b[k] = s * a[k] + c * bk;
+            a[k] = c * a[k] - s * bk;
+          }
+        }
+        p = -s * s2 * c3 * el1 * e[l] / dl1;
+        e[l] = s * p;
+        d[l] = c * p;
+      } while (std::fabs(e[l]) > eps * tst1);
+    }
+    d[l] += f;
+    e[l] = 0;
+  }
+}
+
+/// λᵗ for λ = 1 − μ, computed from μ (no cancellation against 1 for the slow modes, μ ~ 10⁻¹⁰).
+long double powerOfOneMinus(long double mu, std::uint64_t t) {
+  if (t == 0) return 1;
+  if (mu == 1) return 0;
+  const auto tt = static_cast<long double>(t);
+  if (mu < 1) return std::exp(tt * std::log1p(-mu));
+  const long double magnitude = std::exp(tt * std::log(mu - 1));  // λ < 0: its sign alternates
+  return (t & 1U) != 0 ? -magnitude : magnitude;
+}
+}  // namespace
+
+MarkovTreeSurvival markovTreeSurvival(const MarkovTree& tree, const std::vector<std::uint64_t>& t, std::stop_token stop) {
   for (std::uint64_t v : t)
     if (v > kMarkovTreeMaxT) throw std::invalid_argument("markov tree: t = " + std::to_string(v) + " must be at most 2^62");
   const std::size_t n = tree.states.size();
-  const QMatrix G = generator(tree);
-  QMatrix M(n, std::vector<quad>(n, 0));
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t j = 0; j < n; ++j) M[i][j] = (i == j ? quad(1) : quad(0)) - G[i][j];
-  std::uint64_t largest = 0;
-  for (std::uint64_t v : t) largest = std::max(largest, v);
-  std::vector<QMatrix> powers{M};  // M^(2^k)
-  while ((largest >> powers.size()) != 0) powers.push_back(multiply(powers.back(), powers.back()));
+  if (auto e = markovTreeCostError(markovTreeCost(n, t.size()))) throw std::invalid_argument("markov tree: " + *e);
+
+  // G = I − M is similar to the symmetric B = D^½ G D^−½ (D = the states' areas: the chain is reversible with the
+  // areas as its measure, A_i G_ij = A_j G_ji = −Φ), off the diagonal −Φ/√(A_i A_j), on it the rates out.  With
+  // B = U diag(μ) Uᵀ: e_top Mᵗ = A_top^−½ Σ_k U_top,k (1 − μ_k)ᵗ U_s,k A_s^½, state by state.  O(n³) once, O(n²) per t
+  // (the matrix is a tree's, but its powers are dense: issue 54 measured the binary powering of M in quad at n³ log t).
+  std::vector<long double> v(n * n, 0), mu(n, 0), e(n, 0), root(n, 0);
+  for (std::size_t s = 0; s < n; ++s) root[s] = std::sqrt(tree.states[s].area);
+  for (const MarkovTreeRate& r : tree.rates) {
+    const auto from = static_cast<std::size_t>(r.from);
+    v[from * n + from] += r.flux / r.area;
+    if (r.to >= 0) {
+      const auto to = static_cast<std::size_t>(r.to);
+      v[from * n + to] = -r.flux / (root[from] * root[to]);
+    }
+  }
+  tred2(n, v, mu, e, stop);  // B is symmetric: its row-major and column-major layouts are one
+  tql2(n, v, mu, e, stop);
+  // Each eigenvalue again as its eigenvector's Rayleigh quotient written as the chain's Dirichlet form,
+  // uᵀ B u = Σ_barriers Φ (x_i − x_j)² + Φ_centre x_top² with x = D^−½ u: a sum of positive terms, so a slow mode's μ
+  // (10⁻⁹) is good to its own rounding, not to 2⁻⁶³ ‖G‖ (10⁻²¹: at t = 10⁷ a relative 2·10⁻¹⁴ in S), and the quotient
+  // is stationary: the eigenvector's error enters squared.
+  {
+    std::vector<long double> x(n);
+    for (std::size_t k = 0; k < n; ++k) {
+      if (stop.stop_requested()) stopped();
+      const long double* u = &v[k * n];
+      long double norm = 0;
+      for (std::size_t s = 0; s < n; ++s) {
+        x[s] = u[s] / root[s];
+        norm += u[s] * u[s];
+      }
+      long double form = 0;
+      for (const MarkovTreeRate& r : tree.rates) {
+        const auto from = static_cast<std::size_t>(r.from);
+        if (r.to < 0) form += r.flux * x[from] * x[from];  // to the sea
+        else if (r.to == tree.states[from].container) {       // each barrier once
+          const long double d = x[from] - x[static_cast<std::size_t>(r.to)];
+          form += r.flux * d * d;
+        }
+      }
+      if (norm > 0) mu[k] = form / norm;
+    }
+  }
 
   MarkovTreeSurvival out;
   out.t = t;
   out.S.assign(t.size(), 0);
   out.state.assign(n, std::vector<long double>(t.size(), 0));
   out.level.assign(static_cast<std::size_t>(tree.levels), std::vector<long double>(t.size(), 0));
+  // Up to kMarkovTreeDirectSteps, e_top Mᵗ by t products with the sparse M in quad (its rates cross the states' tree
+  // edges only): exact, O(t n), and where the modes' sum cancels most (S ≈ 1, Σ_k |c_k| ≫ its terms' differences).
+  std::vector<std::size_t> order(t.size());
+  for (std::size_t i = 0; i < t.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return t[a] < t[b]; });
+  std::vector<bool> direct(t.size(), false);
+  {
+    std::vector<quad> state(n, 0), next(n, 0);
+    if (n > 0) state[0] = 1;
+    std::uint64_t done = 0;
+    for (std::size_t i : order) {
+      if (t[i] > kMarkovTreeDirectSteps) break;
+      for (; done < t[i]; ++done) {
+        if ((done & 63U) == 0 && stop.stop_requested()) stopped();
+        next = state;
+        for (const MarkovTreeRate& r : tree.rates) {
+          const quad moved = state[static_cast<std::size_t>(r.from)] * (static_cast<quad>(r.flux) / static_cast<quad>(r.area));
+          next[static_cast<std::size_t>(r.from)] -= moved;
+          if (r.to >= 0) next[static_cast<std::size_t>(r.to)] += moved;
+        }
+        state.swap(next);
+      }
+      quad total = 0;
+      for (std::size_t s = 0; s < n; ++s) {
+        total += state[s];
+        out.state[s][i] = static_cast<long double>(state[s]);
+        out.level[static_cast<std::size_t>(tree.states[s].level)][i] += static_cast<long double>(state[s]);
+      }
+      out.S[i] = static_cast<long double>(total);
+      direct[i] = true;
+    }
+  }
+  std::vector<long double> part(n);
   for (std::size_t i = 0; i < t.size(); ++i) {
-    std::vector<quad> v(n, 0);
-    v[0] = 1;
-    for (std::size_t k = 0; k < powers.size(); ++k) {
-      if (((t[i] >> k) & 1U) == 0) continue;
-      std::vector<quad> w(n, 0);
-      for (std::size_t a = 0; a < n; ++a)
-        if (v[a] != 0)
-          for (std::size_t b = 0; b < n; ++b) w[b] += v[a] * powers[k][a][b];
-      v = w;
+    if (direct[i]) continue;
+    if (stop.stop_requested()) stopped();
+    std::fill(part.begin(), part.end(), 0.0L);
+    for (std::size_t k = 0; k < n; ++k) {
+      const long double pk = v[k * n] * powerOfOneMinus(mu[k], t[i]);
+      if (pk == 0) continue;
+      const long double* row = &v[k * n];
+      for (std::size_t s = 0; s < n; ++s) part[s] += row[s] * pk;
     }
-    quad total = 0;
+    long double total = 0;
     for (std::size_t s = 0; s < n; ++s) {
-      total += v[s];
-      out.state[s][i] = static_cast<long double>(v[s]);
-      out.level[static_cast<std::size_t>(tree.states[s].level)][i] += static_cast<long double>(v[s]);
+      const long double x = part[s] * root[s] / root[0];
+      total += x;
+      out.state[s][i] = x;
+      out.level[static_cast<std::size_t>(tree.states[s].level)][i] += x;
     }
-    out.S[i] = static_cast<long double>(total);
+    out.S[i] = total;
   }
 
-  // Σ_{t≥0} S(t) = e_top (I − M)⁻¹ 1 = x₀ of G x = 1 (G = I − M), by elimination with partial pivoting in quad.
-  QMatrix A = G;
-  std::vector<quad> b(n, 1);
-  std::vector<std::size_t> order(n);
-  for (std::size_t i = 0; i < n; ++i) order[i] = i;
-  for (std::size_t c = 0; c < n; ++c) {
-    std::size_t pivot = c;
-    auto magnitude = [](quad x) { return x < 0 ? -x : x; };
-    for (std::size_t r = c + 1; r < n; ++r)
-      if (magnitude(A[r][c]) > magnitude(A[pivot][c])) pivot = r;
-    std::swap(A[c], A[pivot]);
-    std::swap(b[c], b[pivot]);
-    for (std::size_t r = c + 1; r < n; ++r) {
-      const quad f = A[r][c] / A[c][c];
-      if (f == 0) continue;
-      for (std::size_t k = c; k < n; ++k) A[r][k] -= f * A[c][k];
-      b[r] -= f * b[c];
-    }
+  // Σ_{t≥0} S(t) = e_top (I − M)⁻¹ 1 = x_top of G x = 1, by elimination in quad from the leaves up: each state's
+  // container comes before it (markovTreeFromAtlas), so eliminating the last state first creates no fill-in.  O(n).
+  std::vector<quad> diagonal(n, 0), rhs(n, 1), toContainer(n, 0), fromContainer(n, 0);
+  for (const MarkovTreeRate& r : tree.rates) {
+    const quad rate = static_cast<quad>(r.flux) / static_cast<quad>(r.area);
+    const auto from = static_cast<std::size_t>(r.from);
+    diagonal[from] += rate;
+    if (r.to < 0) continue;
+    const auto to = static_cast<std::size_t>(r.to);
+    if (tree.states[from].container == r.to) toContainer[from] = -rate;  // G[from][container]
+    else fromContainer[to] = -rate;                                       // G[container][to], to's container = from
   }
-  std::vector<quad> x(n, 0);
-  for (std::size_t c = n; c-- > 0;) {
-    quad s = b[c];
-    for (std::size_t k = c + 1; k < n; ++k) s -= A[c][k] * x[k];
-    x[c] = s / A[c][c];
+  for (std::size_t s = n; s-- > 1;) {
+    const auto c = static_cast<std::size_t>(tree.states[s].container);
+    const quad factor = fromContainer[s] / diagonal[s];
+    diagonal[c] -= factor * toContainer[s];
+    rhs[c] -= factor * rhs[s];
   }
-  out.meanVisit = static_cast<long double>(x[0]);
+  out.meanVisit = n > 0 ? static_cast<long double>(rhs[0] / diagonal[0]) : 0.0L;
   return out;
 }
 
@@ -320,7 +573,7 @@ std::vector<MarkovTreeExponent> markovTreeExponents(const MarkovTreeSurvival& s,
 }
 
 MarkovTreeComparison compareMarkovTreeWithTail(const MarkovTree& tree, double alpha, double b2, const TailResult& tail,
-                                               double from, double factor) {
+                                               double from, double factor, std::stop_token stop) {
   if (!std::isfinite(from) || !std::isfinite(factor) || !(factor >= 1))
     throw std::invalid_argument("the comparison needs a finite first t and a finite factor >= 1");
   MarkovTreeComparison c;
@@ -337,7 +590,7 @@ MarkovTreeComparison compareMarkovTreeWithTail(const MarkovTree& tree, double al
     ts.push_back(static_cast<std::uint64_t>(std::llround(L.t)));
   }
   if (ts.empty()) return c;
-  const MarkovTreeSurvival s = markovTreeSurvival(tree, ts);
+  const MarkovTreeSurvival s = markovTreeSurvival(tree, ts, stop);
   for (std::size_t i = 0; i < c.levels.size(); ++i) {
     MarkovTreeLevelComparison& m = c.levels[i];
     m.model = c.weight * s.S[i];

@@ -36,12 +36,19 @@
 /// the sea (after a wrap or a randomization, appendix B), enter the loop's zone Φ_centre / b₂ times per step (Kac:
 /// the process's invariant measure is uniform on the stochastic area b₂) and end 1/α times per step, so a segment
 /// makes w = α Φ_centre / b₂ visits on average, and for t well above the sea's time scale P_t = w · S(t) (docs).
-/// Mᵗ by binary powering in __float128 (M = I − G, G's entries 10⁻¹⁰ … 10⁻²: quad keeps 1 − g to 10⁻³⁴), at any t.
-/// Cost: n³ log₂(t_max) quad operations for the powers and n² log₂ t per t (n states: 10 at K = 0.1 depth 2, well
-/// under a second; a few hundred states would take minutes).
+/// Mᵗ from the eigen-decomposition of the symmetric matrix similar to G = I − M (the chain is reversible with the
+/// areas as its measure), in long double, at any t: each mode's (1 − μ)ᵗ from μ (no cancellation against 1 for the
+/// slow modes, μ ~ 10⁻¹⁰), each μ refined as its eigenvector's Dirichlet form (a sum of positive terms: good to its
+/// own rounding, not only to 2⁻⁶³ ‖G‖); up to t = kMarkovTreeDirectSteps by t products with M in quad instead, exact.
+/// Cost (markovTreeCost, issue 54): 16 (n² + n m) bytes and about 10 n³ + 2 n² m operations for n states and m times
+/// (10 states at K = 0.1 depth 2: a millisecond; 1000: seconds); past core/limits' "markov tree states" or "markov
+/// tree survival values" it is refused up front, with its cost.  (The binary powering of M in quad that came before
+/// cost n³ log₂ t quad operations and a matrix per power: a legal atlas of 1000 nesting chains ran past 360 s, one of
+/// 20,000 asked 6.4 GB per power.)
 
 #include <cstdint>
 #include <optional>
+#include <stop_token>
 #include <string>
 #include <vector>
 
@@ -89,6 +96,7 @@ struct MarkovTree {
   int levels = 0;                       ///< 1 + the deepest level among the states
   long double entryFlux = 0;            ///< Φ_centre: the loop's flux, the visits' entry
   long double residence = 0;            ///< ℓ_centre / Φ_centre: the mean visit (Kac)
+  long double boxArea = 0;              ///< L² of the atlas's box (appendix A's b₀) to 12 digits: the largest b₂
 };
 
 /// The tree of `atlas`.  Throws std::invalid_argument with a clear message when the atlas cannot make one: empty,
@@ -99,8 +107,18 @@ struct MarkovTree {
 /// The substochastic matrix M (row i: where state i goes), M[i][i] = 1 − Σ of its rates (the sea included).
 [[nodiscard]] std::vector<std::vector<long double>> markovTreeMatrix(const MarkovTree& tree);
 
+/// The rules of the model's entry (issue 54), one wording for every front end: α, the run's mean segment length, is
+/// finite and at least one step; b₂, the stochastic area, lies in (0, L²] (it is part of the box, b₀ = L²); and
+/// P₁ = w S(1), the model's probability that a segment lasts beyond one step, is at most 1 (w = α Φ_centre / b₂ and
+/// S(1) = 1 − Φ_centre / A_top: a larger w is more visits per segment than a segment has steps to make).  Without a
+/// tree (the request's check, before an atlas is read) only the first two, b₂ bounded by nothing but 0.  The first
+/// rule broken, naming "alpha" and "b2", or nothing.
+[[nodiscard]] std::optional<std::string> markovTreeEntryError(double alpha, double b2,
+                                                              const MarkovTree* tree = nullptr);
+
 /// The entry weight w = α Φ_centre / b₂ (visits to the loop's zone per segment of the run process): α the run's mean
-/// segment length in steps, b₂ its stochastic area.  Throws std::invalid_argument unless both are finite and > 0.
+/// segment length in steps, b₂ its stochastic area.  Throws std::invalid_argument with markovTreeEntryError's words
+/// when the entry breaks its rules.
 [[nodiscard]] long double markovTreeEntryWeight(const MarkovTree& tree, double alpha, double b2);
 
 struct MarkovTreeSurvival {
@@ -114,9 +132,26 @@ struct MarkovTreeSurvival {
 /// The largest t the survival is computed at.
 inline constexpr std::uint64_t kMarkovTreeMaxT = std::uint64_t{1} << 62;
 
-/// S(t) and where it sits, exactly, at each t of `t` (ascending or not; each at most kMarkovTreeMaxT).  Throws
-/// std::invalid_argument for a t beyond that.
-[[nodiscard]] MarkovTreeSurvival markovTreeSurvival(const MarkovTree& tree, const std::vector<std::uint64_t>& t);
+/// Up to this t the survival is t products of a vector with the sparse M in quad (exact; O(t n)), beyond it the modes.
+inline constexpr std::uint64_t kMarkovTreeDirectSteps = 1024;
+
+/// What markovTreeSurvival() of n states at m times costs: the bytes it holds (the eigenvectors, n² long doubles, and
+/// each state's part at each t, n m) and about how many operations it takes (10 n³ + 2 n² m).
+struct MarkovTreeCost {
+  std::size_t states = 0, times = 0;
+  long double bytes = 0, operations = 0;
+};
+[[nodiscard]] MarkovTreeCost markovTreeCost(std::size_t states, std::size_t times);
+/// The refusal of a cost past core/limits (limits::kMarkovTreeStates states, limits::kMarkovTreeValues values n m),
+/// naming the cost, or nothing.
+[[nodiscard]] std::optional<std::string> markovTreeCostError(const MarkovTreeCost& cost);
+
+/// S(t) and where it sits at each t of `t` (ascending or not; each at most kMarkovTreeMaxT), and the mean visit
+/// (exact: an elimination in quad along the tree).  Throws std::invalid_argument for a t beyond that or a cost past
+/// the limits (markovTreeCostError, before any work), OperationStopped (core/periodic) when `stop` is requested: it
+/// is checked at least once per row of the decomposition and per t, a few milliseconds apart at the limit.
+[[nodiscard]] MarkovTreeSurvival markovTreeSurvival(const MarkovTree& tree, const std::vector<std::uint64_t>& t,
+                                                    std::stop_token stop = {});
 
 /// The default grid: 0 and every distinct ⌈10^(k/perDecade)⌉ up to the first at or above tMax.  Throws
 /// std::invalid_argument unless 1 ≤ tMax ≤ 10¹⁸ and 1 ≤ perDecade ≤ 1000.
@@ -162,6 +197,7 @@ inline constexpr double kMarkovTreeCompareFrom = 1e3;
 [[nodiscard]] MarkovTreeComparison compareMarkovTreeWithTail(const MarkovTree& tree, double alpha, double b2,
                                                              const TailResult& tail,
                                                              double from = kMarkovTreeCompareFrom,
-                                                             double factor = kMarkovTreeAgreementFactor);
+                                                             double factor = kMarkovTreeAgreementFactor,
+                                                             std::stop_token stop = {});
 
 }  // namespace archipelago

@@ -50,16 +50,17 @@ std::optional<std::string> validationError(const MarkovTreeRequest& r) {
     if (t > kMarkovTreeMaxT) return "t = " + std::to_string(t) + " must be at most 2^62";
   if (r.at.size() > 100000) return "at most 100000 extra t";
   const bool a = r.alpha != 0, b = r.b2 != 0;
-  if (a != b)
+  if (a != b && !r.needsP)
     return std::string(a ? "b2" : "alpha") + " is missing or 0, and must be > 0: alpha and b2 go together: both " +
            "(P_t = alpha flux / b2 S(t)) or neither (S(t) only)";
-  if (a && !(std::isfinite(r.alpha) && r.alpha > 0)) return "alpha (the run's mean segment length, steps) must be > 0";
-  if (b && !(std::isfinite(r.b2) && r.b2 > 0)) return "b2 (the stochastic area) must be > 0";
+  if (a || b || r.needsP)
+    if (auto e = markovTreeEntryError(r.alpha, r.b2)) return e;
   if (!(std::isfinite(r.exponentFrom) && r.exponentFrom >= 1)) return "the exponent's first window must start at >= 1";
   return std::nullopt;
 }
 
-MarkovTreeResult computeMarkovTree(const Atlas& atlas, const MarkovTreeRequest& request, const TailState* tail) {
+MarkovTreeResult computeMarkovTree(const Atlas& atlas, const MarkovTreeRequest& request, const TailState* tail,
+                                   std::stop_token stop) {
   if (auto e = validationError(request)) throw std::invalid_argument("markov tree: " + *e);
   MarkovTreeResult r;
   r.request = request;
@@ -67,14 +68,8 @@ MarkovTreeResult computeMarkovTree(const Atlas& atlas, const MarkovTreeRequest& 
   r.atlasDepth = atlas.request.depth;
   r.atlasIslands = atlas.nodes.size();
   r.tree = markovTreeFromAtlas(atlas);
-  std::vector<std::uint64_t> t = markovTreeGrid(request.tMax, request.perDecade);
-  t.insert(t.end(), request.at.begin(), request.at.end());
-  std::sort(t.begin(), t.end());
-  t.erase(std::unique(t.begin(), t.end()), t.end());
-  r.survival = markovTreeSurvival(r.tree, t);
-  if (request.alpha != 0) r.weight = markovTreeEntryWeight(r.tree, request.alpha, request.b2);
-  r.exponents = markovTreeExponents(r.survival, request.exponentFrom, request.tMax);
-  if (tail) {
+  if (request.alpha != 0) r.weight = markovTreeEntryWeight(r.tree, request.alpha, request.b2);  // the entry's rules
+  if (tail) {  // checked before any work
     const MapParameters& m = tail->request.run.map;
     if (!(m == r.map))
       throw std::invalid_argument("the tail is of K = " + shortestDecimal(m.K) + " in the box (" +
@@ -82,8 +77,16 @@ MarkovTreeResult computeMarkovTree(const Atlas& atlas, const MarkovTreeRequest& 
                                   shortestDecimal(r.map.K) + " in (" + shortestDecimal(r.map.xmin) + ", " +
                                   shortestDecimal(r.map.xmax) + "): compare a tail of the atlas's map");
     if (!r.weight) throw std::invalid_argument("a comparison with the tail needs alpha and b2 (the model's P_t)");
-    r.comparison = compareMarkovTreeWithTail(r.tree, request.alpha, request.b2, tailResult(*tail));
   }
+  std::vector<std::uint64_t> t = markovTreeGrid(request.tMax, request.perDecade);
+  t.insert(t.end(), request.at.begin(), request.at.end());
+  std::sort(t.begin(), t.end());
+  t.erase(std::unique(t.begin(), t.end()), t.end());
+  r.survival = markovTreeSurvival(r.tree, t, stop);  // refuses a cost past the limits before it starts
+  r.exponents = markovTreeExponents(r.survival, request.exponentFrom, request.tMax);
+  if (tail)
+    r.comparison = compareMarkovTreeWithTail(r.tree, request.alpha, request.b2, tailResult(*tail),
+                                             kMarkovTreeCompareFrom, kMarkovTreeAgreementFactor, stop);
   return r;
 }
 

@@ -23,6 +23,7 @@ struct MarkovTreeRequest {
   std::vector<std::uint64_t> at;     ///< more t (steps, each ≤ 2⁶²): e.g. the tail sampler's levels
   double alpha = 0;                  ///< the run's mean segment length α (steps); 0 with b2 = 0: no P_t, only S(t)
   double b2 = 0;                     ///< the stochastic area b₂ of the run's box
+  bool needsP = false;               ///< P_t is what is asked for (the GUI's Model P_t): α and b₂ must be given
   double exponentFrom = 10;          ///< the running exponent's windows start at or above this (steps), ≥ 1
   std::string atlasSource;           ///< where the atlas came from (a file name), recorded in the outputs
   std::string tailSource;            ///< where the tail compared with came from (computeMarkovTree's `tail`), if any
@@ -47,7 +48,9 @@ struct MarkovTreeEntryOffer {
 [[nodiscard]] MarkovTreeEntryOffer markovTreeEntryOffer(const MapParameters& atlasMap,
                                                         const std::optional<MapParameters>& runMap, double runAlpha);
 
-/// The first violated rule, naming the field, or nothing.
+/// The first violated rule, naming the field, or nothing.  α and b₂ go together; when given (or needsP) they follow
+/// markovTreeEntryError's rules that need no atlas; computeMarkovTree checks the rest (b₂ ≤ the box's area,
+/// w S(1) ≤ 1) once the atlas's tree is built, before its survival.
 [[nodiscard]] std::optional<std::string> validationError(const MarkovTreeRequest& r);
 
 struct MarkovTreeResult {
@@ -65,9 +68,11 @@ struct MarkovTreeResult {
 /// The tree of `atlas` and its survival, and with `tail` (a tail sampler's state: its reliable levels) the comparison
 /// compareMarkovTreeWithTail from kMarkovTreeCompareFrom.  Throws std::invalid_argument for an invalid request, an
 /// atlas that cannot make a tree (markovTreeFromAtlas's message), a tail of another map (K and box) than the atlas's,
-/// or a tail without α and b₂ (no P_t to compare).
+/// or a tail without α and b₂ (no P_t to compare), an entry that breaks markovTreeEntryError's rules, or a survival
+/// whose cost is past the limits (markovTreeCostError: refused before the survival starts); OperationStopped when
+/// `stop` is requested (markovTreeSurvival: within milliseconds).
 [[nodiscard]] MarkovTreeResult computeMarkovTree(const Atlas& atlas, const MarkovTreeRequest& request,
-                                                 const TailState* tail = nullptr);
+                                                 const TailState* tail = nullptr, std::stop_token stop = {});
 
 /// The model's P_t = w S(t) on the survival's grid as a Series (x: t in steps, value: P as a double, no error):
 /// t = 0 and the points where P is 0 or below the smallest normal double (the exponential tail) are left out, as the

@@ -1,6 +1,9 @@
 #include "core/tail/TailPlan.hpp"
 
+#include <filesystem>
 #include <stdexcept>
+#include <string>
+#include <utility>
 
 #include "core/io/CommandFiles.hpp"
 #include "core/io/NumberText.hpp"
@@ -58,6 +61,19 @@ TailPlan planTail(const TailPlanOptions& o) {
                                      {"--spec", o.specFile, io::FileUse::Input}};
   for (const std::string& run : o.compare) files.push_back({"--compare", run, io::FileUse::Input});
   io::checkCommandFiles(files);  // no output over another or over an input; a run compared once
+  // A state path that holds a file of another format (a run file, an atlas, notes) is refused as an input of the wrong
+  // format is: the tail would write its state over it (issue 54, item 8: `--checkpoint r.json` replaced a run file).
+  // An empty file holds nothing to lose, and a tail file is the state this command writes.
+  for (const auto& [option, path] : {std::pair<const char*, const std::string&>{"--out", o.out},
+                                     std::pair<const char*, const std::string&>{"--checkpoint", checkpoint}}) {
+    std::error_code ec;
+    if (path.empty() || !std::filesystem::is_regular_file(path, ec) || std::filesystem::file_size(path, ec) == 0 || ec)
+      continue;
+    if (!isTailFile(path))
+      throw std::invalid_argument(std::string(option) + " " + path +
+                                  " holds a file that is not a tail file: the tail does not write its state over it "
+                                  "(name another file, or remove it)");
+  }
   if (!resume.empty()) {
     plan.state = loadTailFile(resume);
     if (plan.state.finished() && o.resumeFile.empty()) throw std::invalid_argument(resume + " is already finished");

@@ -493,14 +493,17 @@ class Sampler {
     } else if (s_.pilotTrials >= kPilotTrials && s_.pilotSuccesses < kPilotSuccesses / 8) {
       // P(t_0) below ~2·10^-7: stage 0 would need more than 10^7 N segments a replica (a map without sticky
       // islands, K ≤ 0, or a first level too high).  Said after a second or two, rather than after hours.
-      throw std::runtime_error("only " + std::to_string(s_.pilotSuccesses) + " of the pilot's " +
-                               std::to_string(s_.pilotTrials) + " segments lasted longer than the first level t = " +
-                               std::to_string(s_.levels[0] * s_.request.run.q) + " steps: give a lower --first");
+      // The request cannot start (its first level is out of this map's reach): invalid_argument, Python's ValueError
+      // (issue 54: it was a RuntimeError), named by its role, not a flag.
+      throw std::invalid_argument("only " + std::to_string(s_.pilotSuccesses) + " of the pilot's " +
+                                  std::to_string(s_.pilotTrials) + " segments lasted longer than the first level t = " +
+                                  std::to_string(s_.levels[0] * s_.request.run.q) +
+                                  " steps: give a lower first level (first)");
     } else if (s_.pilotOrbits >= kMaxPilotOrbits) {
-      throw std::runtime_error(
+      throw std::invalid_argument(
           "the pilot's " + std::to_string(s_.pilotTrials) + " segments of " + std::to_string(s_.pilotOrbits) +
           " entry orbits gave " + std::to_string(s_.pilotSuccesses) + " longer than the first level t = " +
-          std::to_string(s_.levels[0] * s_.request.run.q) + " steps: give a lower --first");
+          std::to_string(s_.levels[0] * s_.request.run.q) + " steps: give a lower first level (first)");
     }
     return true;
   }

@@ -154,6 +154,22 @@ class TestMarkovTree : public QObject {
     QVERIFY2(error.contains(QStringLiteral("alpha")), qPrintable(error));
     QVERIFY(!w_->drawMarkovTree(kAlpha, -1, &error));
     QVERIFY2(error.contains(QStringLiteral("b2")), qPrintable(error));
+    // Issue 53 finding 6, issue 54 item 2: α = β = 0 drew an empty "model", α below one step was taken; both are
+    // refused at once with core's words.
+    QVERIFY(!w_->drawMarkovTree(0, 0, &error));
+    QVERIFY2(error.contains(QStringLiteral("alpha = 0 must be finite and at least 1")), qPrintable(error));
+    QVERIFY(!w_->drawMarkovTree(1e-300, kB2, &error));
+    QVERIFY2(error.contains(QStringLiteral("alpha = 1e-300")), qPrintable(error));
+  }
+
+  // Issue 53 finding 6: α = 1e300 gave w = 2.8e297 visits per segment and a vertical line on P_t.  A P_1 above 1 (and
+  // a b₂ above the box's area) needs the atlas's tree: refused by the job with core's words, nothing drawn.
+  void refusesAnImpossibleEntry() {
+    const QString huge = drawAndWait(1e300, kB2);
+    QVERIFY2(huge.contains(QStringLiteral("P_1 = w S(1)")) && huge.contains(QStringLiteral("cannot exceed 1")),
+             qPrintable(huge));
+    const QString box = drawAndWait(kAlpha, 100);
+    QVERIFY2(box.contains(QStringLiteral("b2 = 100 must lie in (0, 1.69")), qPrintable(box));
   }
 
   // The curve: at every t of the CLI's grid where its P is a number, the plot has the point (t, P), the same double;

@@ -1,7 +1,10 @@
 """The Markov tree from Python (issue 40): markov_tree() gives the dict of `archipelago-cli markov-tree --json` (both
 format core's one JSON) from an atlas dict or an atlas file, and bad input is a ValueError in core's words."""
+import _thread
+import copy
 import json
 import subprocess
+import threading
 
 import pytest
 
@@ -61,3 +64,65 @@ def test_markov_tree_against_a_tail_equals_cli(cli, atlas_file, tmp_path):
         ap.markov_tree(atlas_file, alpha=18.9, b2=1.36, tail=atlas_file)
     with pytest.raises(ValueError, match="tail must be the path"):
         ap.markov_tree(atlas_file, alpha=18.9, b2=1.36, tail=42)
+
+
+# Issue 54, item 2 (and the GUI's finding 6 of issue 53): absurd entries were taken (alpha = 1e6 with b2 = 1e-3 gave
+# P_1 = 3.7e3; b2 = 1e-320 overflowed w to null; b2 = 100 is above the box's area; alpha = 1e-300 is below a step).
+@pytest.mark.parametrize("alpha, b2, word", [(1e6, 1e-3, r"P_1 = w S\(1\)"), (1e300, 1e-300, r"P_1 = w S\(1\)"),
+                                             (18.9, 1e-320, r"P_1 = w S\(1\)"), (18.9, 100, r"b2 = 100 must lie in \(0, 1.69"),
+                                             (1e-300, 1.36, "alpha = 1e-300 must be finite and at least 1")])
+def test_markov_tree_refuses_an_impossible_entry_Issue54(atlas_file, alpha, b2, word):
+    with pytest.raises(ValueError, match=word):
+        ap.markov_tree(atlas_file, alpha=alpha, b2=b2)
+
+
+def _nesting_chains(atlas, n):
+    """`atlas` (depth 0: the centre and its flux) with n chains about the centre whose zones nest (p/q = 1/(k + 6)
+    about the boundary rotation 0; each state of area l1/n and a flux of 10^-3 of it): tests/cli/test_cli_hostile_models.py's."""
+    a = copy.deepcopy(atlas)
+    a["request"]["depth"] = 1
+    c = a["nodes"][0]
+    c["boundary"]["rotation"] = 0.0
+    l1 = 0.5 * c["flux"]["layer_area"]
+    for k in range(1, n + 1):
+        node, q, layer = copy.deepcopy(c), k + 6, l1 * (n + 1 - k) / n
+        node.update({"index": k, "parent": 0, "level": 1, "path": str(q), "period": q, "about_parent": f"1/{q}",
+                     "children": [], "internal": [], "note": ""})
+        node["flux"].update({"flux_per_step": 1e-3 * l1 / n, "zone_area": layer * 1.01, "layer_area": layer,
+                             "enclosed_islands_area": layer * 0.01, "residence": n * 1e3})
+        a["nodes"].append(node)
+    c["children"] = list(range(1, n + 1))
+    return a
+
+
+# Issue 54, item 3: markov_tree ignored Ctrl-C for two minutes on a large atlas (the GIL held, no stop).  A tree near
+# the limit of states takes a minute or more on any machine (about 10 n^3 operations); Ctrl-C 0.5 s into it must end the call itself, not
+# arrive after it returned (then `finished` would be set: the signal's handler runs at the next check of the loop).
+def test_markov_tree_stops_on_ctrl_c_Issue54():
+    atlas = _nesting_chains(ap.atlas(0.1, depth=0), 2000)  # within the limit of states, 2048
+    finished = False
+    timer = threading.Timer(0.5, _thread.interrupt_main)
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            ap.markov_tree(atlas, t_max=1e3, per_decade=1)
+            finished = True
+    finally:
+        timer.cancel()
+    assert not finished
+
+
+def test_markov_tree_refuses_a_tree_past_its_cost_Issue54():
+    with pytest.raises(ValueError, match=r"markov tree states = 20001 must lie in .* GB "):
+        ap.markov_tree(_nesting_chains(ap.atlas(0.1, depth=0), 20000))
+
+
+# Issue 54, item 5: a dict nested 100,000 deep raised RecursionError from json.dumps, not ValueError.
+def test_a_deeply_nested_dict_is_a_value_error_Issue54():
+    deep = {}
+    for _ in range(100000):
+        deep = {"a": deep}
+    with pytest.raises(ValueError, match="nested too deeply"):
+        ap.atlas(0.1, depth=0, resume=deep)
+    with pytest.raises(ValueError, match="nested too deeply"):
+        ap.markov_tree(deep)

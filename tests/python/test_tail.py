@@ -105,3 +105,9 @@ def test_bad_input(tmp_path):
     with pytest.raises(OSError):
         ap.tail(**SMALL, out=tmp_path / "no-such-folder" / "t.json")
     assert r["finished"]
+
+
+# Issue 54, item 8: a tail that cannot start (no level between first and t_max) raised RuntimeError, not ValueError.
+def test_a_tail_that_cannot_start_is_a_value_error_Issue54():
+    with pytest.raises(ValueError):
+        ap.tail(first=10**7, t_max=10**7, threads=1)

@@ -551,6 +551,7 @@ bool AtlasPanel::computeMarkovTree(double alpha, double b2, QString* error) {
   MarkovTreeRequest r;
   r.alpha = alpha;
   r.b2 = b2;
+  r.needsP = true;  // the page draws P_t: core refuses a missing, impossible or absurd α or b₂ (issue 54)
   r.at = shareTimes();
   r.atlasSource = "the Atlas page";
   if (!atlas_) why = tr("there is no atlas: compute or open one first");
@@ -563,8 +564,14 @@ bool AtlasPanel::computeMarkovTree(double alpha, double b2, QString* error) {
   }
   Job<std::shared_ptr<const MarkovTreeResult>> job;  // latest wins
   job.channel = 1;
-  job.work = [atlas = atlas_, r](JobContext<NoProgress>&) -> std::optional<std::shared_ptr<const MarkovTreeResult>> {
-    return std::make_shared<const MarkovTreeResult>(archipelago::computeMarkovTree(*atlas, r));  // throws: core's reason
+  job.work = [atlas = atlas_, r](JobContext<NoProgress>& context)
+      -> std::optional<std::shared_ptr<const MarkovTreeResult>> {
+    try {  // throws: core's reason; Cancel or closing the window stops it within milliseconds (issue 54)
+      return std::make_shared<const MarkovTreeResult>(
+          archipelago::computeMarkovTree(*atlas, r, nullptr, context.stopToken()));
+    } catch (const OperationStopped&) {
+      return std::nullopt;
+    }
   };
   job.done = [this](JobResult<std::shared_ptr<const MarkovTreeResult>> result) {
     if (result.id != treeRequest_) return;

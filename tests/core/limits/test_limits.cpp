@@ -3,6 +3,8 @@
 // bounded by four bare literals.  Every request now reads the table and words the error one way.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "core/limits/Limits.hpp"
 #include "core/manifolds/KacCheck.hpp"
 #include "core/measures/IndicatorMap.hpp"
@@ -24,6 +26,18 @@ TEST(Limits, OneWordingOfARangeError) {
   EXPECT_EQ(threadsError(limits::kThreads + 1), "threads = 257 must lie in [0, 256] (0: one per core)");
 }
 
+// Issue 54: the Markov tree's entry (alpha >= 1 step, 0 < b2 <= the box's area) had no bound of its own wording.
+TEST(Limits, OneWordingOfAHalfOpenOrUnboundedRealRange) {
+  EXPECT_EQ(realIntervalError("b2", 0, 0, true, 1.69), "b2 = 0 must lie in (0, 1.69]");
+  EXPECT_EQ(realIntervalError("b2", 1.69, 0, true, 1.69), std::nullopt);
+  EXPECT_EQ(realIntervalError("b2", 2, 0, true, 1.69, "the area"), "b2 = 2 must lie in (0, 1.69] (the area)");
+  EXPECT_EQ(realIntervalError("alpha", 0.5, 1, false, INFINITY), "alpha = 0.5 must be finite and at least 1");
+  EXPECT_EQ(realIntervalError("alpha", 1, 1, false, INFINITY), std::nullopt);
+  EXPECT_EQ(realIntervalError("alpha", INFINITY, 1, false, INFINITY), "alpha = inf must be finite and at least 1");
+  EXPECT_EQ(realIntervalError("b2", -1, 0, true, INFINITY), "b2 = -1 must be finite and above 0");
+  EXPECT_NE(realIntervalError("b2", NAN, 0, true, 1.69), std::nullopt);
+}
+
 TEST(Limits, TheTableHoldsEveryLimitOnce) {
   std::vector<std::string_view> keys;
   for (const LimitInfo& l : limitsTable()) {
@@ -32,7 +46,7 @@ TEST(Limits, TheTableHoldsEveryLimitOnce) {
     for (std::string_view k : keys) EXPECT_NE(k, l.key);
     keys.push_back(l.key);
   }
-  EXPECT_EQ(keys.size(), 11u);
+  EXPECT_EQ(keys.size(), 13u);
   EXPECT_EQ(kMaxThreads, limits::kThreads);  // the run spec's settings read the table
   EXPECT_EQ(kMaxQ, limits::kRunQ);           // the run's parameter table too
 }

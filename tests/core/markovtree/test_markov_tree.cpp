@@ -10,6 +10,9 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <stop_token>
+#include <utility>
+#include <vector>
 #include <stdexcept>
 #include <string>
 
@@ -19,6 +22,8 @@
 #include "core/io/AtomicFile.hpp"
 #include "core/markovtree/MarkovTree.hpp"
 #include "core/markovtree/MarkovTreeExport.hpp"
+#include "core/limits/Limits.hpp"
+#include "core/periodic/PeriodicOrbitFinder.hpp"
 
 namespace archipelago {
 namespace {
@@ -89,6 +94,40 @@ Atlas k01() {
   };
   link(a);
   return a;
+}
+
+/// A legal atlas of `chains` chains about the centre whose zones nest (issue 54's hostile atlas: 1000 of them ran past
+/// 360 s, 20,000 asked 6.4 GB): chain k has p/q = 1/(k + 6) (farther from the boundary rotation 0 the farther out),
+/// layer ℓ₁ (chains + 1 − k)/chains, so that each state's area is ℓ₁/chains, and a flux of 10⁻³ of that area.
+Atlas nestingChains(int chains) {
+  Atlas a;
+  a.request.depth = 1;
+  const long double l1 = 0.1L, step = l1 / chains, flux = 1e-3L * step;
+  a.nodes.push_back(node(-1, 0, 1, std::nullopt, 3.8e-3L, 0.5L, 0.23L, 0.0));
+  for (int k = 1; k <= chains; ++k) {
+    const long double layer = l1 * static_cast<long double>(chains + 1 - k) / chains;
+    a.nodes.push_back(node(0, 1, static_cast<std::uint64_t>(k + 6), Rational{1, k + 6}, flux, layer + 0.01L, layer, 0.0));
+  }
+  link(a);
+  return a;
+}
+
+/// e_top Mᵗ by t products of a vector with M, row by row in quad (no eigen-decomposition): the survival's independent
+/// reference.
+std::vector<long double> survivalByProducts(const MarkovTree& tree, std::uint64_t t) {
+  __extension__ typedef __float128 quad;
+  std::vector<quad> v(tree.states.size(), 0);
+  v[0] = 1;
+  for (std::uint64_t step = 0; step < t; ++step) {
+    std::vector<quad> w = v;
+    for (const MarkovTreeRate& r : tree.rates) {
+      const quad moved = v[static_cast<std::size_t>(r.from)] * (static_cast<quad>(r.flux) / static_cast<quad>(r.area));
+      w[static_cast<std::size_t>(r.from)] -= moved;
+      if (r.to >= 0) w[static_cast<std::size_t>(r.to)] += moved;
+    }
+    v = w;
+  }
+  return {v.begin(), v.end()};
 }
 
 /// Atlas index → state index.
@@ -419,6 +458,116 @@ TEST(MarkovTree, TheEntryOfferedIsNeverAnotherMapsNumber) {
     EXPECT_EQ(o.alpha, 20.0);
     EXPECT_EQ(o.b2, 0.0);
   }
+}
+
+}  // namespace
+}  // namespace archipelago
+
+namespace archipelago {
+namespace {
+
+// Issue 54, item 2 (and the GUI's finding 6 of issue 53): α = 10⁶ with b₂ = 10⁻³ gave w = 3843 visits per segment
+// and P₁ = 3.7·10³; α = 10³⁰⁰ with b₂ = 10⁻³⁰⁰ and b₂ = 10⁻³²⁰ overflowed w (null in the JSON); b₂ = 100 is above the
+// box's area (L² = 1.69); α = 10⁻³⁰⁰ is below one step.  One rule, one wording, in core.
+TEST(MarkovTree, RefusesAnImpossibleEntryWithOneWording) {
+  const MarkovTree tree = markovTreeFromAtlas(k01());
+  EXPECT_EQ(markovTreeEntryError(18.9043, 1.362484, &tree), std::nullopt);  // docs/markov-tree.md's entry
+  const auto error = [&](double alpha, double b2) { return markovTreeEntryError(alpha, b2, &tree).value_or("(none)"); };
+  EXPECT_EQ(error(1e-300, 1.36).rfind("alpha = 1e-300 must be finite and at least 1", 0), 0u) << error(1e-300, 1.36);
+  EXPECT_EQ(error(0, 1.36).rfind("alpha = 0 must be finite and at least 1", 0), 0u);
+  EXPECT_EQ(error(INFINITY, 1.36).rfind("alpha = inf must be", 0), 0u);
+  EXPECT_EQ(error(18.9, 100).rfind("b2 = 100 must lie in (0, 1.69", 0), 0u) << error(18.9, 100);
+  EXPECT_EQ(error(18.9, 0).rfind("b2 = 0 must lie in (0, ", 0), 0u);
+  EXPECT_EQ(error(18.9, NAN).rfind("b2 = nan must lie in (0, ", 0), 0u);
+  for (const auto& [alpha, b2] : std::vector<std::pair<double, double>>{{1e6, 1e-3}, {1e300, 1e-300}, {18.9, 1e-320}}) {
+    const std::string e = error(alpha, b2);
+    EXPECT_EQ(e.rfind("P_1 = w S(1) = ", 0), 0u) << e;
+    EXPECT_NE(e.find("cannot exceed 1"), std::string::npos) << e;
+  }
+  // The boundary: w S(1) = 1 exactly is a probability; just above it is not.
+  const long double S1 = 1 - tree.entryFlux / tree.states[0].area;
+  const double alphaMax = static_cast<double>(1.36L / (tree.entryFlux * S1));
+  EXPECT_EQ(markovTreeEntryError(std::nextafter(alphaMax, 0.0), 1.36, &tree), std::nullopt);
+  EXPECT_NE(markovTreeEntryError(alphaMax * (1 + 1e-12), 1.36, &tree), std::nullopt);
+  // Without the atlas (the request's own check) only α and b₂ > 0: the box is not known yet.
+  EXPECT_EQ(markovTreeEntryError(18.9, 100), std::nullopt);
+  EXPECT_NE(markovTreeEntryError(0.5, 1.36), std::nullopt);
+  // Every front end's path: the request and computeMarkovTree say the same words.
+  MarkovTreeRequest r;
+  r.alpha = 1e6;
+  r.b2 = 1e-3;
+  EXPECT_EQ(validationError(r), std::nullopt);
+  try {
+    (void)computeMarkovTree(k01(), r);
+    ADD_FAILURE() << "accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()), "markov tree: " + error(1e6, 1e-3));
+  }
+  r.alpha = 1e-300;
+  EXPECT_EQ(validationError(r), error(1e-300, 1e-3));
+  // The GUI draws P_t: α = b₂ = 0 is no entry at all there (it drew an empty curve), and refused.
+  r = MarkovTreeRequest{};
+  EXPECT_EQ(validationError(r), std::nullopt);
+  r.needsP = true;
+  EXPECT_EQ(validationError(r).value_or("").rfind("alpha = 0 must be finite and at least 1", 0), 0u);
+}
+
+// Issue 54, item 3: the survival by an eigen-decomposition (the binary powering before cost n³ log t in quad) against
+// t products of a vector with M in quad, on the K = 0.1 atlas's 10 states and 40 nesting chains.
+TEST(MarkovTree, TheSurvivalIsThatOfTProductsWithM) {
+  for (const Atlas& a : {k01(), nestingChains(40)}) {
+    const MarkovTree tree = markovTreeFromAtlas(a);
+    const std::vector<std::uint64_t> t{0, 1, 2, 7, 100, 3000, 20000};
+    const MarkovTreeSurvival s = markovTreeSurvival(tree, t);
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      const std::vector<long double> v = survivalByProducts(tree, t[i]);
+      long double S = 0;
+      for (std::size_t st = 0; st < v.size(); ++st) {
+        S += v[st];
+        EXPECT_NEAR(static_cast<double>(s.state[st][i]), static_cast<double>(v[st]), 1e-15) << t[i] << " " << st;
+      }
+      EXPECT_NEAR(static_cast<double>(s.S[i] / S), 1.0, 1e-13) << "t = " << t[i] << ", " << tree.states.size();
+    }
+  }
+}
+
+// Issue 54, item 3: a legal atlas of nesting chains finishes (1000 of them ran past 360 s; cli.hostile_models runs the
+// 1000, 500 here keep the sanitizer presets' time), its mean visit Kac's; one of 20,000 is refused before any work with
+// its cost (it asked 6.4 GB per matrix power and was killed at 4 GiB); a stop requested is honoured (Ctrl-C,
+// KeyboardInterrupt, the GUI's Cancel all request it).
+TEST(MarkovTree, ALargeTreeFinishesOrIsRefusedWithItsCostAndStops) {
+  const Atlas nesting = nestingChains(500);
+  MarkovTreeRequest r;
+  r.tMax = 1e6;
+  r.perDecade = 5;
+  const MarkovTreeResult m = computeMarkovTree(nesting, r);
+  ASSERT_EQ(m.tree.states.size(), 501u);
+  EXPECT_NEAR(static_cast<double>(m.survival.meanVisit / m.tree.residence), 1.0, 1e-15);  // Kac
+  for (std::size_t i = 1; i < m.survival.S.size(); ++i) {
+    EXPECT_LE(m.survival.S[i], m.survival.S[i - 1]) << m.survival.t[i];
+    EXPECT_GT(m.survival.S[i], 0) << m.survival.t[i];
+  }
+
+  const auto states = static_cast<std::size_t>(limits::kMarkovTreeStates);  // the limit itself fits
+  EXPECT_EQ(markovTreeCostError(markovTreeCost(states, 31)), std::nullopt);
+  const Atlas large = nestingChains(20000);
+  try {
+    (void)computeMarkovTree(large, r);
+    ADD_FAILURE() << "accepted";
+  } catch (const std::invalid_argument& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("markov tree states = 20001 must lie in [1, " + std::to_string(states) + "]"), std::string::npos)
+        << what;
+    EXPECT_NE(what.find(" GB "), std::string::npos) << what;  // its cost
+  }
+  const MarkovTreeCost c = markovTreeCost(20001, 31);
+  EXPECT_GT(c.bytes, 6.4e9L);
+  // Past the values (states × times) too: the states fit, the times do not.
+  EXPECT_NE(markovTreeCostError(markovTreeCost(1000, limits::kMarkovTreeValues / 1000 + 1)), std::nullopt);
+
+  std::stop_source stop;
+  stop.request_stop();
+  EXPECT_THROW((void)computeMarkovTree(nesting, r, nullptr, stop.get_token()), OperationStopped);
 }
 
 }  // namespace
