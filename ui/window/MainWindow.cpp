@@ -548,6 +548,11 @@ void MainWindow::createLongSegmentsDock(QDockWidget* parametersDock) {
   addDockWidget(Qt::LeftDockWidgetArea, segmentsDock_);
   tabifyDockWidget(parametersDock, segmentsDock_);
   parametersDock->raise();
+  // The tab behind is moved off the window, not hidden: its widgets stayed in the Tab chain, and Tab from the last
+  // parameter went into the Long segments table unseen, replaying its rows (issue 53, finding 1).  A page behind is
+  // disabled, so that none of its widgets takes the focus (Qt says which page is shown by visibilityChanged).
+  for (QDockWidget* d : {parametersDock, segmentsDock_})
+    connect(d, &QDockWidget::visibilityChanged, d, [d](bool shown) { d->widget()->setEnabled(shown); });
 }
 
 void MainWindow::showLongSegment(int rank, bool island) {

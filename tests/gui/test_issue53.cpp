@@ -1,0 +1,147 @@
+// Issue 53: what a new user hit this time (Xvfb at 1280×800 and 1920×1080, a2e223a).  One test per finding, named
+// after it, on Qt's offscreen platform — here with a 1920×1080 screen (main() below), the size of finding 20; each
+// failed before its fix.  What only a picture can judge (the P_t export's legend, the shortcuts dialog) was looked
+// at too (the closing note of the issue).
+#include <QAbstractButton>
+#include <QApplication>
+#include <QDialog>
+#include <QDialogButtonBox>
+#include <QDockWidget>
+#include <QFile>
+#include <QHeaderView>
+#include <QImage>
+#include <QLabel>
+#include <QLineEdit>
+#include <QPushButton>
+#include <QScreen>
+#include <QSignalSpy>
+#include <QSpinBox>
+#include <QTableView>
+#include <QTableWidget>
+#include <QTemporaryDir>
+#include <QTimer>
+#include <QtTest>
+
+#include <cmath>
+
+#include "GuiTestSupport.hpp"
+#include "core/run/TrappingRun.hpp"
+#include "core/runfile/RunFile.hpp"
+#include "core/session/SessionFile.hpp"
+#include "ui/plots/StatisticsPlot.hpp"
+#include "ui/portrait/OrbitListPanel.hpp"
+#include "ui/portrait/PortraitController.hpp"
+#include "ui/portrait/PortraitPanel.hpp"
+#include "ui/portrait/PortraitView.hpp"
+#include "ui/segments/LongSegmentsPanel.hpp"
+#include "ui/window/StatisticsView.hpp"
+
+using namespace archipelago;
+using namespace archipelago::ui;
+using archipelago::test::typeInto;
+
+namespace {
+
+/// A finished K = 0.1 run of 16 × 20000 blocks: its long segments fill the table.
+const TrappingState& finishedRun() {
+  static const TrappingState state = [] {
+    TrappingParameters p;
+    p.M = 16;
+    p.T = 20000;
+    p.longestKept = 12;
+    TrappingRunOptions o;
+    o.threads = 1;
+    return runTrapping(startTrapping(p), o);
+  }();
+  return state;
+}
+
+/// True when `w` is `ancestor` or inside it.
+bool inside(const QWidget* w, const QWidget* ancestor) {
+  for (; w; w = w->parentWidget())
+    if (w == ancestor) return true;
+  return false;
+}
+
+/// Runs `act` on the next modal dialog once it is shown (Go to View… opens one with exec()).
+void onModal(std::function<void(QDialog&)> act) {
+  QTimer::singleShot(0, qApp, [act] {
+    QTRY_VERIFY(qobject_cast<QDialog*>(QApplication::activeModalWidget()));
+    act(*qobject_cast<QDialog*>(QApplication::activeModalWidget()));
+  });
+}
+
+}  // namespace
+
+class TestIssue53 : public QObject {
+  Q_OBJECT
+ private Q_SLOTS:
+  // Finding 1: with a run that has segments and the Parameters tab in front, Tab from "threads" went into the hidden
+  // Long segments table, and each further 7 Tabs replayed its next row (the status bar: "Replayed … steps bit for
+  // bit", the portrait jumping there).
+  void finding1_tabStaysOutOfTheHiddenSegmentsTable() {
+    QTemporaryDir dir;
+    const QString file = dir.filePath(QStringLiteral("run.json"));
+    saveRunFile(file.toStdString(), finishedRun());
+    MainWindow w;
+    w.setConfirmations(false);
+    w.portraitPanel()->controller()->setPointBudget(10000);
+    w.resize(1280, 760);
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    w.activateWindow();
+    QVERIFY(QTest::qWaitForWindowActive(&w));
+    LongSegmentsPanel& segments = *w.longSegments();
+    segments.setAutoIdentifiedRows(0);
+    QVERIFY(w.openRunFile(file));
+    QTRY_VERIFY_WITH_TIMEOUT(segments.model()->rowCount() > 0, 900000);
+    w.parametersDock()->raise();
+    QTRY_VERIFY(w.parametersDock()->isVisible());
+    QSignalSpy messages(&segments, &LongSegmentsPanel::statusMessage);
+    QLineEdit* threads = w.parameterPanel()->field(QStringLiteral("threads"));
+    QVERIFY(threads);
+    threads->setFocus(Qt::MouseFocusReason);
+    QTRY_VERIFY(threads->hasFocus());
+    for (int i = 0; i < 40; ++i) {
+      QWidget* focus = QApplication::focusWidget();
+      QVERIFY(focus);
+      QTest::keyClick(focus, Qt::Key_Tab);
+      QCoreApplication::processEvents();
+      focus = QApplication::focusWidget();
+      QVERIFY2(!inside(focus, &segments), qPrintable(QStringLiteral("Tab %1 went into the hidden segments table (%2)")
+                                                         .arg(i + 1)
+                                                         .arg(focus ? focus->metaObject()->className() : "none")));
+    }
+    QVERIFY(segments.table()->selectionModel()->selectedRows().isEmpty());
+    for (const QList<QVariant>& m : messages) QVERIFY2(!m.front().toString().startsWith(QStringLiteral("Replayed")), qPrintable(m.front().toString()));
+    // Shown, the table is reached by Tab, and Tab leaves it again without moving from cell to cell (a replay).
+    w.segmentsDock()->raise();
+    QTRY_VERIFY(segments.isVisible());
+    segments.table()->setFocus(Qt::TabFocusReason);
+    QTRY_VERIFY(segments.table()->hasFocus());
+    QTest::keyClick(segments.table(), Qt::Key_Tab);
+    QVERIFY(!segments.table()->hasFocus());
+    QVERIFY(segments.table()->selectionModel()->selectedRows().isEmpty());
+  }
+};
+
+// A 1920×1080 screen (finding 20): Qt's offscreen platform reads its screens from a file.
+int main(int argc, char** argv) {
+  archipelago::test::isolatedHome();
+  static QTemporaryDir screens;
+  const QString config = screens.filePath(QStringLiteral("screens.json"));
+  QFile file(config);
+  if (!file.open(QIODevice::WriteOnly)) return 1;
+  file.write(R"({"screens": [{"name": "1920x1080", "x": 0, "y": 0, "width": 1920, "height": 1080,
+                 "logicalDpi": 96, "logicalBaseDpi": 96, "dpr": 1}]})");
+  file.close();
+  if (qEnvironmentVariable("QT_QPA_PLATFORM", QStringLiteral("offscreen")).startsWith(QStringLiteral("offscreen")))
+    qputenv("QT_QPA_PLATFORM", ("offscreen:configfile=" + config).toUtf8());  // else (xcb under Xvfb) its screen
+  QApplication app(argc, argv);
+  QApplication::setOrganizationName(QStringLiteral("ArchipelagoTests"));
+  QApplication::setApplicationName(QStringLiteral("TestIssue53"));
+  TestIssue53 test;
+  return QTest::qExec(&test, argc, argv);
+}
+
+#include "test_issue53.moc"
