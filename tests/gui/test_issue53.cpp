@@ -123,6 +123,49 @@ class TestIssue53 : public QObject {
     QVERIFY(!segments.table()->hasFocus());
     QVERIFY(segments.table()->selectionModel()->selectedRows().isEmpty());
   }
+
+  // Finding 2: a session kept only each launched orbit's start: 100 000 steps backward came back as 20 000 forward,
+  // renumbered and recoloured.
+  void finding2_sessionsKeepStepsDirectionAndNumbers() {
+    QTemporaryDir dir;
+    const QString path = dir.filePath(QStringLiteral("orbits.archipelago"));
+    std::vector<LaunchedOrbit> launched;
+    {
+      MainWindow w;
+      w.setConfirmations(false);
+      PortraitController& c = *w.portraitPanel()->controller();
+      c.setPointBudget(10000);
+      QVERIFY(c.launchOrbit(0.0L, 0.01L));
+      QVERIFY(c.launchOrbit(0.06L, 0.0974L, 100000, true));
+      QVERIFY(c.launchOrbit(-0.2L, 0.01L, 777));
+      QVERIFY(c.removeOrbit(c.launchedOrbits().front().id));  // numbers 2 and 3 left
+      launched = c.launchedOrbits();
+      QString error;
+      QVERIFY2(w.saveSession(path, &error), qPrintable(error));
+      QTRY_VERIFY_WITH_TIMEOUT(c.orbitsSettled(), 900000);
+    }
+    MainWindow w;
+    w.setConfirmations(false);
+    QString error;
+    QVERIFY2(w.openSession(path, &error), qPrintable(error));
+    PortraitController& c = *w.portraitPanel()->controller();
+    const std::vector<LaunchedOrbit>& back = c.launchedOrbits();
+    QCOMPARE(back.size(), launched.size());
+    for (std::size_t i = 0; i < back.size(); ++i) {
+      QCOMPARE(back[i].id, launched[i].id);
+      QCOMPARE(back[i].steps, launched[i].steps);
+      QCOMPARE(back[i].backward, launched[i].backward);
+      QCOMPARE(back[i].colour, launched[i].colour);
+      QCOMPARE(static_cast<double>(back[i].x), static_cast<double>(launched[i].x));
+      QCOMPARE(static_cast<double>(back[i].y), static_cast<double>(launched[i].y));
+    }
+    QCOMPARE(back[0].id, quint64{2});
+    QCOMPARE(back[0].steps, std::uint64_t{100000});
+    QVERIFY(back[0].backward);
+    // A new orbit takes the next number, not one of theirs.
+    QCOMPARE(c.launchOrbit(0.01L, 0.01L), quint64{4});
+    QTRY_VERIFY_WITH_TIMEOUT(c.orbitsSettled(), 900000);
+  }
 };
 
 // A 1920×1080 screen (finding 20): Qt's offscreen platform reads its screens from a file.

@@ -365,7 +365,7 @@ bool PortraitController::exportOrbitCsv(quint64 id, const QString& path, QString
   return true;
 }
 
-quint64 PortraitController::launchOrbit(long double x, long double y, std::uint64_t steps, bool backward) {
+quint64 PortraitController::launchOrbit(long double x, long double y, std::uint64_t steps, bool backward, quint64 number) {
   if (orbits_.size() >= kMaxLaunchedOrbits) {
     Q_EMIT statusMessage(tr("%1 orbits are launched already, the most the portrait keeps: remove some (Ctrl+Z, "
                             "Clear orbits) first")
@@ -373,7 +373,9 @@ quint64 PortraitController::launchOrbit(long double x, long double y, std::uint6
     return 0;
   }
   LaunchedOrbit orbit;
-  orbit.id = ++nextOrbitId_;
+  const bool taken = number == 0 || findOrbit(number) != nullptr;
+  orbit.id = taken ? ++nextOrbitId_ : number;
+  nextOrbitId_ = std::max(nextOrbitId_, orbit.id);
   orbit.x = x;
   orbit.y = y;
   orbit.steps = std::clamp<std::uint64_t>(steps, 1, limits::kOrbitLength);  // core's one table
@@ -992,7 +994,7 @@ SessionPortrait PortraitController::sessionState() const {
   state.colours = view_ ? view_->colourMap() : ColourMapName::Inferno;
   state.budget = pointBudget();
   for (const LaunchedOrbit& orbit : orbits_)
-    state.orbits.push_back({static_cast<double>(orbit.x), static_cast<double>(orbit.y)});
+    state.orbits.push_back({{static_cast<double>(orbit.x), static_cast<double>(orbit.y)}, orbit.steps, orbit.backward, orbit.id});
   if (periodic_ && periodicPeriod_ > 0) {
     SessionPeriodicOverlay overlay;
     overlay.label = "period " + std::to_string(periodic_->period);
@@ -1042,7 +1044,7 @@ void PortraitController::restoreWork(const SessionPortrait& state, const MapPara
   if (!state.history.empty()) restoreHistory(state.history, std::min(state.current, state.history.size() - 1));
   // Each orbit is traced and measured once, in the background (the codec bounds them by kMaxSessionOrbits,
   // which is kMaxLaunchedOrbits).
-  for (const auto& start : state.orbits) launchOrbit(start[0], start[1]);
+  for (const SessionOrbit& o : state.orbits) launchOrbit(o.start[0], o.start[1], o.steps, o.backward, o.number);
   for (const SessionPeriodicOverlay& overlay : state.periodic) {
     PeriodicOrbit orbit;
     orbit.K = map.K;
