@@ -73,7 +73,12 @@ OrbitListPanel::OrbitListPanel(PortraitController* controller, QWidget* parent)
   connect(remove_, &QPushButton::clicked, this, [this] {
     if (QTreeWidgetItem* item = list_->currentItem()) controller_->removeOrbit(item->data(0, Qt::UserRole).toULongLong());
   });
-  connect(clear_, &QPushButton::clicked, controller_, &PortraitController::clearOrbits);
+  connect(clear_, &QPushButton::clicked, this, [this] {
+    // Undo takes the focus before Clear is disabled: else it fell to Steps, whose own undo took Ctrl+Z (issue 53,
+    // finding 10), and Ctrl+Z right after Clear did nothing.
+    if (clear_->hasFocus()) undo_->setFocus(Qt::OtherFocusReason);
+    controller_->clearOrbits();
+  });
   csv_ = new QPushButton(tr("CSV…"), this);
   csv_->setToolTip(tr("Write the selected orbit's points as CSV (as archipelago-cli orbit writes them)"));
   connect(csv_, &QPushButton::clicked, this, [this] {

@@ -530,9 +530,9 @@ bool PortraitController::removeOrbit(quint64 id) {
 
 bool PortraitController::undoLastOrbit() {
   if (orbits_.empty() && !cleared_.empty()) {
-    // Undo Clear Orbits: the same starts, steps and directions, traced and measured again (new ids).
+    // Undo Clear Orbits: the same starts, steps, directions and numbers (so colours), traced and measured again.
     const std::vector<LaunchedOrbit> back = std::exchange(cleared_, {});
-    for (const LaunchedOrbit& o : back) launchOrbit(o.x, o.y, o.steps, o.backward);
+    for (const LaunchedOrbit& o : back) launchOrbit(o.x, o.y, o.steps, o.backward, o.id);
     Q_EMIT statusMessage(tr("%1 cleared orbits are back").arg(back.size()));
     return true;
   }
