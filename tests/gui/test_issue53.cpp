@@ -167,6 +167,51 @@ class TestIssue53 : public QObject {
     QTRY_VERIFY_WITH_TIMEOUT(c.orbitsSettled(), 900000);
   }
 
+  // Finding 4: the exported P_t.png (945×650) wrapped the three "asymptotic (literature)" entries onto two lines,
+  // their exponents lost.
+  void finding4_theExportedPtLegendIsWhole() {
+    QTemporaryDir dir;
+    const QString file = dir.filePath(QStringLiteral("run.json"));
+    saveRunFile(file.toStdString(), finishedRun());
+    MainWindow w;
+    w.setConfirmations(false);
+    w.portraitPanel()->controller()->setPointBudget(10000);
+    w.resize(1280, 760);
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    QVERIFY(w.openRunFile(file));
+    QTRY_VERIFY_WITH_TIMEOUT(w.latestSnapshot(), 900000);
+    w.refreshNow();
+    QString error;
+    const QString out = qEnvironmentVariable("ARCHIPELAGO_SCREENSHOT_DIR", dir.filePath(QStringLiteral("export")));
+    QVERIFY2(w.exportAllTo(out, &error), qPrintable(error));
+    const QImage png = QImage(out + QStringLiteral("/P_t.png")).convertToFormat(QImage::Format_RGB32);
+    QVERIFY(!png.isNull());
+    // Each reference slope's legend entry: its icon (a swatch of the line's colour, below the plot) and, beside it,
+    // its text on one line, centred on the icon, so its middle row crosses the letters ("t⁻¹·⁵ a…").  Wrapped onto
+    // two lines, the gap between them lay there (the lines cut to the entry's height, the exponent lost).
+    const QColor colours[] = {QColor(140, 86, 75), QColor(148, 103, 189), QColor(23, 150, 170), QColor(110, 110, 110)};
+    const int legendTop = png.height() * 3 / 4;  // below the axis title
+    int entries = 0;
+    for (const QColor& colour : colours) {
+      QRect icon;
+      for (int y = legendTop; y < png.height(); ++y)  // runs of 12 pixels of the colour: the swatch, not text
+        for (int x = 0, run = 0; x < png.width(); ++x) {
+          run = png.pixel(x, y) == colour.rgb() ? run + 1 : 0;
+          if (run >= 12) icon |= QRect(x - run + 1, y, run, 1);
+        }
+      if (icon.isEmpty() || icon.width() < 10) continue;  // a slope the run's range leaves out
+      ++entries;
+      bool crossed = false;
+      for (int y = icon.center().y() - 1; y <= icon.center().y() + 1; ++y)
+        for (int x = icon.right() + 2; x < std::min(png.width(), icon.right() + 30); ++x)
+          crossed = crossed || qGray(png.pixel(x, y)) < 110;
+      QVERIFY2(crossed, qPrintable(QStringLiteral("the entry of colour %1 at (%2, %3) wraps in %4")
+                                       .arg(colour.name()).arg(icon.x()).arg(icon.y()).arg(out)));
+    }
+    QVERIFY(entries >= 3);
+  }
+
   // Finding 10: Ctrl+Z right after the Orbits page's Clear did nothing (the focus fell into Steps, which took the
   // key), and Undo brought the orbits back renumbered and recoloured.
   void finding10_undoRightAfterClearBringsTheSameOrbitsBack() {
