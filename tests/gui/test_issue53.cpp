@@ -249,6 +249,20 @@ class TestIssue53 : public QObject {
     }
     QTRY_VERIFY_WITH_TIMEOUT(c.orbitsSettled(), 900000);
   }
+
+  // Finding 17: K = 1e300 marked xmin red ("must be < −√K = -1e+150"), though no xmin can hold it: K is named.
+  void finding17_aKNoBoxHoldsMarksK() {
+    MainWindow w;
+    w.setConfirmations(false);
+    ParameterPanel& panel = *w.parameterPanel();
+    typeInto(panel, QStringLiteral("K"), QStringLiteral("1e300"));
+    QVERIFY(!panel.isValid());
+    QVERIFY2(panel.fieldError(QStringLiteral("K")).contains(QStringLiteral("K = 1e+300 is too large")),
+             qPrintable(panel.validationMessage()));
+    QVERIFY2(panel.fieldError(QStringLiteral("xmin")).isEmpty(), qPrintable(panel.fieldError(QStringLiteral("xmin"))));
+    typeInto(panel, QStringLiteral("K"), QStringLiteral("0.1"));
+    QVERIFY(panel.isValid());
+  }
 };
 
 // A 1920×1080 screen (finding 20): Qt's offscreen platform reads its screens from a file.
