@@ -263,6 +263,30 @@ class TestIssue53 : public QObject {
     typeInto(panel, QStringLiteral("K"), QStringLiteral("0.1"));
     QVERIFY(panel.isValid());
   }
+
+  // Finding 18: noise in messages: "must lie in the box [-0.8, 0.5) x [-0.65000000000000002, 0.65000000000000002)";
+  // an orbit typed at (0.06, 0.0974) announced as from (0.059999999999999998, …).
+  void finding18_messagesPrintShortestNumbers() {
+    PortraitPanel panel;
+    PortraitController& c = *panel.controller();
+    c.setPointBudget(10000);
+    QString error;
+    QVERIFY(!c.goTo(0.0L, 5.0L, 0.1L, &error));
+    QVERIFY2(error.contains(QStringLiteral("the centre = (0, 5) must lie in the box [-0.8, 0.5) x [-0.65, 0.65)")),
+             qPrintable(error));
+    QSignalSpy messages(&c, &PortraitController::statusMessage);
+    panel.orbitList()->startXField()->setText(QStringLiteral("0.06"));
+    panel.orbitList()->startYField()->setText(QStringLiteral("0.0974"));
+    QVERIFY(panel.orbitList()->launchTyped());
+    bool announced = false;
+    for (const QList<QVariant>& m : messages) {
+      const QString text = m.front().toString();
+      QVERIFY2(!text.contains(QStringLiteral("0000000")) && !text.contains(QStringLiteral("9999999")), qPrintable(text));
+      announced = announced || text.contains(QStringLiteral("from (0.06, 0.0974)"));
+    }
+    QVERIFY(announced);
+    QTRY_VERIFY_WITH_TIMEOUT(c.orbitsSettled(), 900000);
+  }
 };
 
 // A 1920×1080 screen (finding 20): Qt's offscreen platform reads its screens from a file.

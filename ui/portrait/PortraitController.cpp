@@ -387,8 +387,8 @@ quint64 PortraitController::launchOrbit(long double x, long double y, std::uint6
   traceOrbit(orbits_.back());
   Q_EMIT statusMessage(tr("Orbit %1 from (%2, %3): %4 steps%5; measuring its rotation number and chain…")
                            .arg(orbit.id)
-                           .arg(static_cast<double>(x), 0, 'g', 17)
-                           .arg(static_cast<double>(y), 0, 'g', 17)
+                           .arg(QString::fromStdString(io::shortestText(x)))  // every digit given, no noise (issue 53, finding 18)
+                           .arg(QString::fromStdString(io::shortestText(y)))
                            .arg(orbit.steps)
                            .arg(backward ? tr(" backward (N⁻¹)") : QString()));
   Q_EMIT orbitsChanged();
@@ -650,8 +650,8 @@ QString PortraitController::periodicOrbitText(const PeriodicOrbitAt& found) {
       .arg(o.period)
       .arg(QString::fromLatin1(toString(kind.stability)))
       .arg(static_cast<double>(o.residue), 0, 'g', 10)
-      .arg(QString::number(static_cast<double>(found.search.near.x), 'g', 17),
-           QString::number(static_cast<double>(found.search.near.y), 'g', 17),
+      .arg(QString::fromStdString(io::shortestText(static_cast<double>(found.search.near.x))),
+           QString::fromStdString(io::shortestText(static_cast<double>(found.search.near.y))),
            QString::fromStdString(found.chain.summary));
 }
 
