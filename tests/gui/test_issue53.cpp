@@ -299,6 +299,56 @@ class TestIssue53 : public QObject {
              qPrintable(QStringLiteral("%1 × %2").arg(w.width()).arg(w.height())));
     QVERIFY(available.contains(w.geometry()));
   }
+
+  // Finding 21: Go to View with a NaN or negative width closed the dialog and lost the typed values; a width of 1e300
+  // silently meant the whole box; Steps turned 999999999 into 99,999,999 without a word.
+  void finding21_goToViewKeepsARefusedViewAndSaysWhy() {
+    PortraitPanel panel;
+    panel.resize(900, 600);
+    panel.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&panel));
+    PortraitController& c = *panel.controller();
+    c.setPointBudget(10000);
+    const std::size_t views = c.history().size();
+    for (const QString& bad : {QStringLiteral("nan"), QStringLiteral("-0.1"), QStringLiteral("1e300")}) {
+      bool stillOpen = false;
+      QString reason;
+      onModal([&](QDialog& dialog) {
+        const auto fields = dialog.findChildren<QLineEdit*>();
+        QCOMPARE(fields.size(), 3);
+        fields[0]->setText(QStringLiteral("-0.15"));
+        fields[1]->setText(QStringLiteral("0.001"));
+        fields[2]->setText(bad);
+        dialog.findChild<QDialogButtonBox*>()->button(QDialogButtonBox::Ok)->click();
+        stillOpen = dialog.isVisible();
+        if (auto* label = dialog.findChild<QLabel*>(QStringLiteral("goToViewError"))) reason = label->isVisible() ? label->text() : QString();
+        QCOMPARE(fields[0]->text(), QStringLiteral("-0.15"));  // the typed values are kept
+        QCOMPARE(fields[2]->text(), bad);
+        dialog.reject();
+      });
+      panel.goToAction()->trigger();
+      QVERIFY2(stillOpen, qPrintable(bad));
+      QVERIFY2(reason.contains(QStringLiteral("the width = ")), qPrintable(bad + QStringLiteral(": ") + reason));
+      QCOMPARE(c.history().size(), views);
+    }
+    QString error;
+    QVERIFY(!c.goTo(-0.15L, 0.0L, 1e300L, &error));
+    QVERIFY2(error.contains(QStringLiteral("must be at most the box's width L = xmax − xmin = 1.3")), qPrintable(error));
+    QVERIFY(c.goTo(-0.15L, 0.0L, 1.3L, &error));  // the whole box's width is a view
+
+    // Steps: 999999999 typed is the largest, 10⁸, with core's reason.
+    QSpinBox* steps = panel.orbitList()->stepsBox();
+    QSignalSpy messages(panel.orbitList(), &OrbitListPanel::statusMessage);
+    steps->setFocus();
+    steps->selectAll();
+    QTest::keyClicks(steps, QStringLiteral("999999999"));
+    QTest::keyClick(steps, Qt::Key_Return);
+    QCOMPARE(steps->value(), 100'000'000);
+    bool said = false;
+    for (const QList<QVariant>& m : messages)
+      said = said || m.front().toString().contains(QStringLiteral("steps = 999999999 must lie in [1, 100000000]"));
+    QVERIFY(said);
+  }
 };
 
 // A 1920×1080 screen (finding 20): Qt's offscreen platform reads its screens from a file.

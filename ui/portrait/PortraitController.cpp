@@ -214,7 +214,7 @@ bool PortraitController::zoomToRegion(const SegmentRegion& region) {
 
 bool PortraitController::goTo(long double x, long double y, long double width, QString* error) {
   QString why;
-  if (const auto e = viewWidthError(width)) why = QString::fromStdString(*e);
+  if (const auto e = viewWidthError(width, map_)) why = QString::fromStdString(*e);
   else if (const auto f = boxPointError("the centre", map_, {x, y})) why = QString::fromStdString(*f);
   else if (!zoomToRegion(SegmentRegion{x - width / 2, x + width / 2, y, y, 0})) why = tr("the view does not fit the box");
   if (why.isEmpty()) return true;

@@ -111,7 +111,7 @@ class PortraitController : public QObject {
   bool zoomToRegion(const SegmentRegion& region);
   /// Shows the view of centre (x, y) and width `width` (physical), its height from the canvas's aspect, inside the
   /// box (issue 37, finding 18: typed view coordinates).  False with the reason when the centre is not in the box
-  /// or the width is not > 0.
+  /// or the width is not in (0, L] (core's viewWidthError).
   bool goTo(long double x, long double y, long double width, QString* error = nullptr);
   /// Re-centres the view on (x, y) when that point lies outside it (the zoom stays; the move replaces the
   /// current history entry, so that following a moving point does not fill the history).

@@ -73,7 +73,7 @@ class PortraitPanel : public QWidget {
   [[nodiscard]] QAction* goToAction() const noexcept { return goTo_; }
   /// What the dialog does with its three fields (decimal text, every digit kept): false, with the reason in the
   /// status bar, when one is not a number or the view is refused.
-  bool goTo(const QString& x, const QString& y, const QString& width);
+  bool goTo(const QString& x, const QString& y, const QString& width, QString* error = nullptr);
   [[nodiscard]] QAction* clearOrbitsAction() const noexcept { return clearOrbits_; }
   [[nodiscard]] QAction* raiseBudgetAction() const noexcept { return raiseBudget_; }
   [[nodiscard]] QAction* equalAspectAction() const noexcept { return equalAspect_; }
