@@ -349,6 +349,39 @@ class TestIssue53 : public QObject {
       said = said || m.front().toString().contains(QStringLiteral("steps = 999999999 must lie in [1, 100000000]"));
     QVERIFY(said);
   }
+
+  // Finding 23: Help ▸ Keyboard Shortcuts did not list Shift+click, and its Action column wrapped.
+  void finding23_theShortcutsListShiftClickAndFit() {
+    MainWindow w;
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    bool shiftClick = false;
+    for (const auto& row : w.keyboardShortcuts()) shiftClick = shiftClick || row.first.contains(QStringLiteral("Shift+click"));
+    QVERIFY(shiftClick);
+    w.showKeyboardShortcuts();
+    auto* dialog = w.findChild<QDialog*>(QStringLiteral("keyboardShortcutsDialog"));
+    QVERIFY(dialog);
+    QVERIFY(QTest::qWaitForWindowExposed(dialog));
+    auto* table = dialog->findChild<QTableWidget*>();
+    QVERIFY(table);
+    QCoreApplication::processEvents();
+    const QFontMetrics metrics(table->font());
+    for (int row = 0; row < table->rowCount(); ++row) {
+      const QString action = table->item(row, 0)->text();
+      QVERIFY2(table->columnWidth(0) >= metrics.horizontalAdvance(action), qPrintable(action));  // one line, whole
+      const QString keys = table->item(row, 1)->text();
+      const int room = std::max(1, table->columnWidth(1) - 12);  // the cell's margins
+      const int lines = (metrics.horizontalAdvance(keys) + room - 1) / room;
+      QVERIFY2(table->rowHeight(row) >= std::min(lines, 4) * metrics.lineSpacing(),
+               qPrintable(QStringLiteral("%1: row %2 px, %3 lines of %4 px, columns %5 + %6, text %7 px")
+                              .arg(keys).arg(table->rowHeight(row)).arg(lines).arg(metrics.lineSpacing())
+                              .arg(table->columnWidth(0)).arg(table->columnWidth(1)).arg(metrics.horizontalAdvance(keys))));
+    }
+    QVERIFY2(table->columnWidth(0) + table->columnWidth(1) <= table->viewport()->width() + 1, "no horizontal scrolling");
+    if (const QString shots = qEnvironmentVariable("ARCHIPELAGO_SCREENSHOT_DIR"); !shots.isEmpty())
+      QVERIFY(dialog->grab().save(shots + QStringLiteral("/keyboard-shortcuts.png")));
+    dialog->close();
+  }
 };
 
 // A 1920×1080 screen (finding 20): Qt's offscreen platform reads its screens from a file.
