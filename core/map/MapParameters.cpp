@@ -4,6 +4,8 @@
 #include <charconv>
 #include <stdexcept>
 
+#include "core/map/FixedPointMap.hpp"
+
 namespace archipelago {
 
 std::string shortestDecimal(double v) {
@@ -21,7 +23,15 @@ std::vector<ParameterError> validationErrors(const MapParameters& p) {
   if (!std::isfinite(p.xmin)) add({"xmin"}, "xmin = " + shortestDecimal(p.xmin) + " must be a finite number");
   if (!std::isfinite(p.xmax)) add({"xmax"}, "xmax = " + shortestDecimal(p.xmax) + " must be a finite number");
   if (std::isfinite(p.K) && std::isfinite(p.xmin)) {
-    if (p.K >= 0) {
+    // The largest K any box holds (issue 53, finding 17: K = 1e300 marked xmin, "must be < −√K = -1e+150", though
+    // no xmin could do): xmin < −√K, and the 64-bit map's −4 xmin < 2^kMaxShift, need √K < 2^(kMaxShift − 2).
+    const double maxK = std::ldexp(1.0, 2 * (FixedPointMap::kMaxShift - 2));
+    if (p.K >= maxK) {
+      add({"K"}, "K = " + shortestDecimal(p.K) + " is too large: it must be < " + shortestDecimal(maxK) +
+                     ", as the box must hold the elliptic fixed point (xmin < −√K) and the 64-bit fixed-point map "
+                     "holds only boxes with −4 xmin < " + shortestDecimal(std::ldexp(1.0, FixedPointMap::kMaxShift)) +
+                     " (appendix B)");
+    } else if (p.K >= 0) {
       const double edge = -std::sqrt(p.K);
       if (!(p.xmin < edge))
         add({"xmin"}, "xmin = " + shortestDecimal(p.xmin) + " must be < −√K = " + shortestDecimal(edge) +

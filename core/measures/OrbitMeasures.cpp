@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "core/io/NumberText.hpp"
 #include "core/measures/MeasureKernels.hpp"
 #include "core/parallel/ParallelFor.hpp"
 
@@ -51,10 +52,12 @@ std::optional<std::string> boxPointError(const std::string& name, const MapParam
   const long double L = static_cast<long double>(map.xmax) - map.xmin;
   if (!std::isfinite(p.x) || !std::isfinite(p.y)) return name + " must be two finite numbers x,y";
   if (!(p.x >= map.xmin && p.x < map.xmax && p.y >= -L / 2 && p.y < L / 2)) {
-    char text[320];
-    std::snprintf(text, sizeof text, "%s = (%.17Lg, %.17Lg) must lie in the box [%s, %s) x [%.17Lg, %.17Lg)", name.c_str(),
-                  p.x, p.y, shortestDecimal(map.xmin).c_str(), shortestDecimal(map.xmax).c_str(), -L / 2, L / 2);
-    return std::string(text);
+    // Shortest texts (issue 53, finding 18: %.17Lg printed the box as [-0.65000000000000002, 0.65000000000000002)):
+    // the point as given, the box's y edges as the map's own L = xmax − xmin (a double, appendix B) gives them.
+    const double half = map.width() / 2;
+    return name + " = (" + io::shortestText(p.x) + ", " + io::shortestText(p.y) + ") must lie in the box [" +
+           shortestDecimal(map.xmin) + ", " + shortestDecimal(map.xmax) + ") x [" + shortestDecimal(-half) + ", " +
+           shortestDecimal(half) + ")";
   }
   return std::nullopt;
 }

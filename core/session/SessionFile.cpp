@@ -9,6 +9,7 @@
 #include "core/atlas/AtlasExport.hpp"
 #include "core/io/AtomicFile.hpp"
 #include "core/io/Json.hpp"
+#include "core/limits/Limits.hpp"
 #include "core/runfile/RunFile.hpp"
 #include "core/runspec/RunSpecJson.hpp"
 
@@ -110,6 +111,33 @@ json pointsJson(const std::vector<std::array<double, 2>>& points) {
   return a;
 }
 
+json orbitJson(const SessionOrbit& o) {
+  return {{"start", json::array({o.start[0], o.start[1]})}, {"steps", o.steps}, {"backward", o.backward}, {"number", o.number}};
+}
+
+/// An entry of portrait.orbits: {"start", "steps", "backward", "number"}, or an old session's [x, y].
+SessionOrbit orbit(const json& v, const std::string& key) {
+  SessionOrbit o;
+  if (v.is_array()) {
+    o.start = point(v, key);
+    return o;
+  }
+  onlyKeys(v, key, {"start", "steps", "backward", "number"});
+  const auto start = v.find("start");
+  if (start == v.end()) bad(key + " has no 'start'");
+  o.start = point(*start, key + ".start");
+  if (const auto steps = v.find("steps"); steps != v.end()) {
+    o.steps = whole(*steps, key + ".steps", limits::kOrbitLength);
+    if (o.steps < 1) bad(key + ".steps = 0 must be a whole number in [1, " + std::to_string(limits::kOrbitLength) + "]");
+  }
+  if (const auto backward = v.find("backward"); backward != v.end()) {
+    if (!backward->is_boolean()) bad(key + ".backward must be true or false");
+    o.backward = backward->get<bool>();
+  }
+  if (const auto number = v.find("number"); number != v.end()) o.number = whole(*number, key + ".number", kMaxSessionOrbitNumber);
+  return o;
+}
+
 }  // namespace
 
 std::string sessionText(const Session& s) {
@@ -129,7 +157,8 @@ std::string sessionText(const Session& s) {
   portrait["mode"] = std::string(toString(s.portrait.mode));
   portrait["colours"] = std::string(toString(s.portrait.colours));
   portrait["budget"] = s.portrait.budget;
-  portrait["orbits"] = pointsJson(s.portrait.orbits);
+  portrait["orbits"] = json::array();
+  for (const SessionOrbit& o : s.portrait.orbits) portrait["orbits"].push_back(orbitJson(o));
   portrait["periodic"] = json::array();
   for (const SessionPeriodicOverlay& o : s.portrait.periodic)
     portrait["periodic"].push_back({{"label", o.label}, {"points", pointsJson(o.points)}});
@@ -217,8 +246,13 @@ Session sessionFromJson(json j) {
     if (const auto b = p->find("budget"); b != p->end()) s.portrait.budget = whole(*b, "portrait.budget", std::uint64_t{1} << 50);
     if (const auto o = p->find("orbits"); o != p->end()) {
       array(*o, "portrait.orbits", kMaxSessionOrbits);
-      for (std::size_t i = 0; i < o->size(); ++i)
-        s.portrait.orbits.push_back(point((*o)[i], "portrait.orbits[" + std::to_string(i) + "]"));
+      std::set<std::uint64_t> numbers;
+      for (std::size_t i = 0; i < o->size(); ++i) {
+        const std::string key = "portrait.orbits[" + std::to_string(i) + "]";
+        s.portrait.orbits.push_back(orbit((*o)[i], key));
+        const std::uint64_t n = s.portrait.orbits.back().number;
+        if (n > 0 && !numbers.insert(n).second) bad(key + ".number = " + std::to_string(n) + " is another orbit's number too");
+      }
     }
     if (const auto per = p->find("periodic"); per != p->end()) {
       array(*per, "portrait.periodic", kMaxSessionPeriodicPoints);

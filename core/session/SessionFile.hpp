@@ -16,12 +16,17 @@
 ///    "run": null | {"file": "run.json"} | {"embedded": {…run file…}},  (either may add "stopped": true)
 ///    "tab": "Phase portrait",
 ///    "portrait": {"history": [{"centre": [X, Y], "size": ["w", "h"]}, …], "current": 0, "mode": "density",
-///                 "colours": "inferno", "budget": 100000000, "orbits": [[x, y], …],
+///                 "colours": "inferno", "budget": 100000000,
+///                 "orbits": [{"start": [x, y], "steps": 20000, "backward": false, "number": 1}, …],
 ///                 "periodic": [{"label": "7/20", "points": [[x, y], …]}, …],
 ///                 "manifolds": {"orbit": null | [[x, y], …]}},   (only when the manifolds are shown)
 ///    "segment": {"rank": 0, "position": 1234},
 ///    "plots": [{"name": "f_t", "zoom": [xmin, xmax, ymin, ymax]}, …],
 ///    "atlas": {…atlas…}}   (only when the window holds one)
+///
+/// A launched orbit keeps its steps, direction and number (the number is its colour; issue 53, finding 2: sessions
+/// before kept only the start, `[x, y]`, and reopened 100 000 steps backward as 20 000 forward, renumbered and
+/// recoloured).  That old entry is still read: kSessionOrbitSteps forward, numbered in order.
 ///
 /// The atlas of the islands (issue 38, the Atlas page) is core/atlas's document as atlasJson() writes it, read back by
 /// atlasFromJson() (no recomputation); it must be of the session's map (its K and box), else the session is refused.
@@ -53,6 +58,10 @@ inline constexpr std::size_t kMaxSessionHistory = 1000;
 /// can hold is drawn and measured: 500 orbits of 20 000 steps are 10⁷ points (160 MB drawn), and each is
 /// measured once in the background (issue #23, finding 5: 10⁴ orbits once froze the GUI for an hour).
 inline constexpr std::size_t kMaxSessionOrbits = 500;
+/// Steps of a launched orbit whose entry does not say (an old session's `[x, y]`): the GUI's default too.
+inline constexpr std::uint64_t kSessionOrbitSteps = 20000;
+/// Numbers of launched orbits lie in [1, kMaxSessionOrbitNumber] (exact in a JSON double) and are distinct.
+inline constexpr std::uint64_t kMaxSessionOrbitNumber = std::uint64_t{1} << 53;
 inline constexpr std::size_t kMaxSessionPeriodicPoints = 1'000'000;  ///< over all periodic overlays
 inline constexpr std::size_t kMaxSessionPlots = 64;
 
@@ -64,6 +73,15 @@ inline constexpr std::size_t kMaxSessionPlots = 64;
 struct SessionRect {
   double xmin = 0, xmax = 1, ymin = 0, ymax = 1;
   friend bool operator==(const SessionRect&, const SessionRect&) = default;
+};
+
+/// One launched orbit: as the Orbits page launched it.
+struct SessionOrbit {
+  std::array<double, 2> start{};                ///< physical (x, y)
+  std::uint64_t steps = kSessionOrbitSteps;     ///< 1 … limits::kOrbitLength
+  bool backward = false;                        ///< traced with N⁻¹
+  std::uint64_t number = 0;                     ///< its number in the list, which picks its colour (0: the next)
+  friend bool operator==(const SessionOrbit&, const SessionOrbit&) = default;
 };
 
 struct SessionPeriodicOverlay {
@@ -78,7 +96,7 @@ struct SessionPortrait {
   PortraitMode mode = PortraitMode::Density;
   ColourMapName colours = ColourMapName::Inferno;
   std::uint64_t budget = 0;                     ///< points budget of deep zoom (0: the panel's default)
-  std::vector<std::array<double, 2>> orbits;    ///< orbits the user launched, by start point
+  std::vector<SessionOrbit> orbits;             ///< orbits the user launched, in order
   std::vector<SessionPeriodicOverlay> periodic;
   /// The manifolds layer (issue 37, finding 4): shown or not, and of which hyperbolic orbit — its points, period
   /// = their number (empty: the fixed point (√K, 0)).  Written only when shown ("manifolds": {"orbit": …}).

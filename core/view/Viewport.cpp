@@ -161,9 +161,14 @@ UnitState orbitSeed(const Viewport& view, std::uint32_t columns, std::uint32_t r
           (view.centre().Y + static_cast<std::uint64_t>(oy)) & FixedPointMap::kMask};
 }
 
-std::optional<std::string> viewWidthError(long double width) {
-  if (width > 0 && std::isfinite(width)) return std::nullopt;
-  return std::string("the width must be a number > 0");
+std::optional<std::string> viewWidthError(long double width, const MapParameters& map) {
+  const std::string box = shortestDecimal(map.width());
+  if (!(width > 0 && std::isfinite(width)))
+    return "the width = " + io::shortestText(width) + " must be a number in (0, " + box + "]";
+  if (width > static_cast<long double>(map.width()))
+    return "the width = " + io::shortestText(width) + " must be at most the box's width L = xmax − xmin = " + box +
+           " (Home shows the whole box)";
+  return std::nullopt;
 }
 
 }  // namespace archipelago

@@ -99,8 +99,8 @@ class Viewport {
 [[nodiscard]] UnitState orbitSeed(const Viewport& view, std::uint32_t columns, std::uint32_t rows, std::uint32_t i,
                                   std::uint32_t j) noexcept;
 
-/// The rule of a view's width asked for by a front end (the GUI's Go to): "the width must be a number > 0", or
-/// nothing.
-[[nodiscard]] std::optional<std::string> viewWidthError(long double width);
+/// The rule of a view's width asked for by a front end (the GUI's Go to): a number > 0 and at most the box's width
+/// L = xmax − xmin (issue 53, finding 21: 1e300 silently meant the whole box), or nothing.
+[[nodiscard]] std::optional<std::string> viewWidthError(long double width, const MapParameters& map);
 
 }  // namespace archipelago

@@ -15,6 +15,7 @@
 #include <qwt_interval_symbol.h>
 #include <QLayout>
 #include <qwt_legend.h>
+#include <qwt_legend_label.h>
 #include <qwt_plot_canvas.h>
 #include <qwt_plot_curve.h>
 #include <qwt_plot_grid.h>
@@ -129,6 +130,26 @@ void addReferenceSlopes(QwtPlot& plot, const Series& P, bool logY, std::vector<Q
     items.push_back(c);
   }
 }
+
+/// P_t's legend below the plot, its entries with room to spare: an entry measured to the pixel at the screen's
+/// resolution needs a few pixels more when an export draws it at 150 dpi, and "t⁻¹·⁵ asymptotic (literature)" wrapped
+/// onto two lines there, cut to its item's height, its exponent lost (issue 53, finding 4).
+class RoomyLegend : public QwtLegend {
+  class Label : public QwtLegendLabel {
+   public:
+    QSize sizeHint() const override {
+      const QSize s = QwtLegendLabel::sizeHint();
+      return {s.width() + s.width() / 16 + fontMetrics().averageCharWidth(), s.height()};
+    }
+  };
+
+ protected:
+  QWidget* createWidget(const QwtLegendData&) const override {
+    auto* label = new Label;
+    label->setItemMode(defaultItemMode());  // read-only (the default): no clicks to connect
+    return label;
+  }
+};
 }  // namespace
 
 StatisticsPlot::StatisticsPlot(Statistic statistic, QWidget* parent) : QwtPlot(parent), statistic_(statistic) {
@@ -208,7 +229,7 @@ StatisticsPlot::StatisticsPlot(Statistic statistic, QWidget* parent) : QwtPlot(p
     // P_t's legend is below the plot, in two columns (issue 37, finding 5): its seven entries (the data, four
     // reference slopes, theory, a tail estimate) covered the 10⁴–10⁷ tail, the slopes and the estimate's levels
     // in any corner of a plot a few hundred pixels wide, and the estimate's entry was cut off.
-    auto* below = new QwtLegend;
+    auto* below = new RoomyLegend;
     below->setMaxColumns(2);
     QFont small = legendFont;
     small.setPointSizeF(legendFont.pointSizeF() * 0.88);  // two columns in a plot 330 pixels wide
@@ -218,6 +239,10 @@ StatisticsPlot::StatisticsPlot(Statistic statistic, QWidget* parent) : QwtPlot(p
     // the seven entries of a plot 260 pixels high took more rows than a third or a half of it holds, and the last
     // were clipped (gui.issue37 under Qt 5).
     insertLegend(below, QwtPlot::BottomLegend, 0.7);
+    // After insertLegend(), which makes a legend below the plot as many columns as fit (Qwt sets maxColumns 0):
+    // the export's 945 pixels then took three, too narrow for "t⁻¹·³⁷ asymptotic (literature)", which wrapped and lost
+    // its exponent (issue 53, finding 4).
+    below->setMaxColumns(2);
     below->setVisible(false);  // until there is data (showPlaceholder)
   } else {
     legend->attach(this);

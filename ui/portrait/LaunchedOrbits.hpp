@@ -23,7 +23,7 @@
 namespace archipelago::ui {
 
 /// Steps of N drawn for a launched orbit.
-inline constexpr std::uint64_t kLaunchedOrbitSteps = 20000;
+inline constexpr std::uint64_t kLaunchedOrbitSteps = kSessionOrbitSteps;  // an old session's orbits have as many
 /// At most this many launched orbits at once: the session file's bound (core/session), so every session opens
 /// whole; with kLaunchedOrbitSteps each, the drawn points stay below 10⁷ (160 MB).
 inline constexpr std::size_t kMaxLaunchedOrbits = kMaxSessionOrbits;
@@ -38,7 +38,7 @@ struct OrbitMeasuresResult {
 using OrbitMeasuresPtr = std::shared_ptr<const OrbitMeasuresResult>;
 
 struct LaunchedOrbit {
-  quint64 id = 0;                 ///< unique in the controller, never reused
+  quint64 id = 0;                 ///< its number: unique among the orbits shown (a session or Undo Clear brings it back)
   long double x = 0;              ///< the start as given (physical)
   long double y = 0;
   std::uint64_t steps = 0;

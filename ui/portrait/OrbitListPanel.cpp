@@ -19,6 +19,8 @@
 #include <QVBoxLayout>
 
 #include <cmath>
+#include <functional>
+#include <optional>
 
 #include "core/io/NumberText.hpp"
 #include "core/limits/Limits.hpp"
@@ -40,6 +42,42 @@ QIcon swatch(const QColor& colour) {
 }
 
 QString number(long double v) { return QString::number(static_cast<double>(v), 'g', 9); }
+
+/// Steps: a whole number beyond the range is taken as typed, then set to the largest with core's reason (issue 53,
+/// finding 21: QSpinBox refused the ninth digit of 999999999, leaving 99,999,999 without a word).
+class StepsBox : public QSpinBox {
+ public:
+  using QSpinBox::QSpinBox;
+  std::function<void(const QString&)> onClamped;
+
+ protected:
+  QValidator::State validate(QString& text, int& pos) const override {
+    const QValidator::State state = QSpinBox::validate(text, pos);
+    if (state != QValidator::Invalid) return state;
+    return typedBeyond(text) ? QValidator::Intermediate : QValidator::Invalid;
+  }
+  void fixup(QString& text) const override {
+    if (const auto typed = typedBeyond(text)) {
+      text = locale().toString(maximum());
+      if (onClamped)
+        onClamped(QString::fromStdString(
+            rangeError("steps", *typed, minimum(), maximum(), "points of one orbit held in memory").value_or(std::string())));
+      return;
+    }
+    QSpinBox::fixup(text);
+  }
+
+ private:
+  /// The whole number typed (group separators allowed) when it is above the maximum.
+  std::optional<unsigned long long> typedBeyond(const QString& text) const {
+    QString digits = text;
+    digits.remove(locale().groupSeparator()).remove(QLatin1Char(',')).remove(QLatin1Char(' ')).remove(QChar(0x202F));
+    bool ok = false;
+    const unsigned long long v = digits.toULongLong(&ok);
+    if (!ok || v <= static_cast<unsigned long long>(maximum())) return std::nullopt;
+    return v;
+  }
+};
 }  // namespace
 
 OrbitListPanel::OrbitListPanel(PortraitController* controller, QWidget* parent)
@@ -73,7 +111,12 @@ OrbitListPanel::OrbitListPanel(PortraitController* controller, QWidget* parent)
   connect(remove_, &QPushButton::clicked, this, [this] {
     if (QTreeWidgetItem* item = list_->currentItem()) controller_->removeOrbit(item->data(0, Qt::UserRole).toULongLong());
   });
-  connect(clear_, &QPushButton::clicked, controller_, &PortraitController::clearOrbits);
+  connect(clear_, &QPushButton::clicked, this, [this] {
+    // Undo takes the focus before Clear is disabled: else it fell to Steps, whose own undo took Ctrl+Z (issue 53,
+    // finding 10), and Ctrl+Z right after Clear did nothing.
+    if (clear_->hasFocus()) undo_->setFocus(Qt::OtherFocusReason);
+    controller_->clearOrbits();
+  });
   csv_ = new QPushButton(tr("CSV…"), this);
   csv_->setToolTip(tr("Write the selected orbit's points as CSV (as archipelago-cli orbit writes them)"));
   connect(csv_, &QPushButton::clicked, this, [this] {
@@ -85,7 +128,12 @@ OrbitListPanel::OrbitListPanel(PortraitController* controller, QWidget* parent)
   });
 
   // What a click launches, and a start typed exactly (issue 37, finding 15).
-  steps_ = new QSpinBox(this);
+  auto* steps = new StepsBox(this);
+  steps->setCorrectionMode(QAbstractSpinBox::CorrectToNearestValue);
+  steps->onClamped = [this](const QString& why) {
+    Q_EMIT statusMessage(tr("%1: set to %2").arg(why, QLocale().toString(static_cast<qlonglong>(limits::kOrbitLength))));
+  };
+  steps_ = steps;
   steps_->setObjectName(QStringLiteral("orbitSteps"));
   steps_->setRange(1, static_cast<int>(limits::kOrbitLength));  // core's one table
   steps_->setValue(static_cast<int>(controller_->clickSteps()));

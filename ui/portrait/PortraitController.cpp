@@ -214,7 +214,7 @@ bool PortraitController::zoomToRegion(const SegmentRegion& region) {
 
 bool PortraitController::goTo(long double x, long double y, long double width, QString* error) {
   QString why;
-  if (const auto e = viewWidthError(width)) why = QString::fromStdString(*e);
+  if (const auto e = viewWidthError(width, map_)) why = QString::fromStdString(*e);
   else if (const auto f = boxPointError("the centre", map_, {x, y})) why = QString::fromStdString(*f);
   else if (!zoomToRegion(SegmentRegion{x - width / 2, x + width / 2, y, y, 0})) why = tr("the view does not fit the box");
   if (why.isEmpty()) return true;
@@ -365,7 +365,7 @@ bool PortraitController::exportOrbitCsv(quint64 id, const QString& path, QString
   return true;
 }
 
-quint64 PortraitController::launchOrbit(long double x, long double y, std::uint64_t steps, bool backward) {
+quint64 PortraitController::launchOrbit(long double x, long double y, std::uint64_t steps, bool backward, quint64 number) {
   if (orbits_.size() >= kMaxLaunchedOrbits) {
     Q_EMIT statusMessage(tr("%1 orbits are launched already, the most the portrait keeps: remove some (Ctrl+Z, "
                             "Clear orbits) first")
@@ -373,7 +373,9 @@ quint64 PortraitController::launchOrbit(long double x, long double y, std::uint6
     return 0;
   }
   LaunchedOrbit orbit;
-  orbit.id = ++nextOrbitId_;
+  const bool taken = number == 0 || findOrbit(number) != nullptr;
+  orbit.id = taken ? ++nextOrbitId_ : number;
+  nextOrbitId_ = std::max(nextOrbitId_, orbit.id);
   orbit.x = x;
   orbit.y = y;
   orbit.steps = std::clamp<std::uint64_t>(steps, 1, limits::kOrbitLength);  // core's one table
@@ -385,8 +387,8 @@ quint64 PortraitController::launchOrbit(long double x, long double y, std::uint6
   traceOrbit(orbits_.back());
   Q_EMIT statusMessage(tr("Orbit %1 from (%2, %3): %4 steps%5; measuring its rotation number and chain…")
                            .arg(orbit.id)
-                           .arg(static_cast<double>(x), 0, 'g', 17)
-                           .arg(static_cast<double>(y), 0, 'g', 17)
+                           .arg(QString::fromStdString(io::shortestText(x)))  // every digit given, no noise (issue 53, finding 18)
+                           .arg(QString::fromStdString(io::shortestText(y)))
                            .arg(orbit.steps)
                            .arg(backward ? tr(" backward (N⁻¹)") : QString()));
   Q_EMIT orbitsChanged();
@@ -528,9 +530,9 @@ bool PortraitController::removeOrbit(quint64 id) {
 
 bool PortraitController::undoLastOrbit() {
   if (orbits_.empty() && !cleared_.empty()) {
-    // Undo Clear Orbits: the same starts, steps and directions, traced and measured again (new ids).
+    // Undo Clear Orbits: the same starts, steps, directions and numbers (so colours), traced and measured again.
     const std::vector<LaunchedOrbit> back = std::exchange(cleared_, {});
-    for (const LaunchedOrbit& o : back) launchOrbit(o.x, o.y, o.steps, o.backward);
+    for (const LaunchedOrbit& o : back) launchOrbit(o.x, o.y, o.steps, o.backward, o.id);
     Q_EMIT statusMessage(tr("%1 cleared orbits are back").arg(back.size()));
     return true;
   }
@@ -648,8 +650,8 @@ QString PortraitController::periodicOrbitText(const PeriodicOrbitAt& found) {
       .arg(o.period)
       .arg(QString::fromLatin1(toString(kind.stability)))
       .arg(static_cast<double>(o.residue), 0, 'g', 10)
-      .arg(QString::number(static_cast<double>(found.search.near.x), 'g', 17),
-           QString::number(static_cast<double>(found.search.near.y), 'g', 17),
+      .arg(QString::fromStdString(io::shortestText(static_cast<double>(found.search.near.x))),
+           QString::fromStdString(io::shortestText(static_cast<double>(found.search.near.y))),
            QString::fromStdString(found.chain.summary));
 }
 
@@ -992,7 +994,7 @@ SessionPortrait PortraitController::sessionState() const {
   state.colours = view_ ? view_->colourMap() : ColourMapName::Inferno;
   state.budget = pointBudget();
   for (const LaunchedOrbit& orbit : orbits_)
-    state.orbits.push_back({static_cast<double>(orbit.x), static_cast<double>(orbit.y)});
+    state.orbits.push_back({{static_cast<double>(orbit.x), static_cast<double>(orbit.y)}, orbit.steps, orbit.backward, orbit.id});
   if (periodic_ && periodicPeriod_ > 0) {
     SessionPeriodicOverlay overlay;
     overlay.label = "period " + std::to_string(periodic_->period);
@@ -1042,7 +1044,7 @@ void PortraitController::restoreWork(const SessionPortrait& state, const MapPara
   if (!state.history.empty()) restoreHistory(state.history, std::min(state.current, state.history.size() - 1));
   // Each orbit is traced and measured once, in the background (the codec bounds them by kMaxSessionOrbits,
   // which is kMaxLaunchedOrbits).
-  for (const auto& start : state.orbits) launchOrbit(start[0], start[1]);
+  for (const SessionOrbit& o : state.orbits) launchOrbit(o.start[0], o.start[1], o.steps, o.backward, o.number);
   for (const SessionPeriodicOverlay& overlay : state.periodic) {
     PeriodicOrbit orbit;
     orbit.K = map.K;

@@ -111,7 +111,7 @@ class PortraitController : public QObject {
   bool zoomToRegion(const SegmentRegion& region);
   /// Shows the view of centre (x, y) and width `width` (physical), its height from the canvas's aspect, inside the
   /// box (issue 37, finding 18: typed view coordinates).  False with the reason when the centre is not in the box
-  /// or the width is not > 0.
+  /// or the width is not in (0, L] (core's viewWidthError).
   bool goTo(long double x, long double y, long double width, QString* error = nullptr);
   /// Re-centres the view on (x, y) when that point lies outside it (the zoom stays; the move replaces the
   /// current history entry, so that following a moving point does not fill the history).
@@ -150,8 +150,11 @@ class PortraitController : public QObject {
   // --- Launched orbits -----------------------------------------------------------------------------------
   /// Launches an orbit of N from the physical point (x, y), `steps` long, drawn in its own colour as soon as it
   /// is traced (off the GUI thread), then measured (rotation number, digits, chain).  Returns its id, or 0 when
-  /// refused: kMaxLaunchedOrbits are shown already (statusMessage says so).
-  quint64 launchOrbit(long double x, long double y, std::uint64_t steps = kLaunchedOrbitSteps, bool backward = false);
+  /// refused: kMaxLaunchedOrbits are shown already (statusMessage says so).  `number`: the number (and so the
+  /// colour) to give it, as a session or Undo Clear brings an orbit back (issue 53, finding 2); 0, or a number
+  /// another orbit shown has: the next.
+  quint64 launchOrbit(long double x, long double y, std::uint64_t steps = kLaunchedOrbitSteps, bool backward = false,
+                      quint64 number = 0);
   /// Launches a line or a grid of orbits at once (issue 37, finding 15; core's orbitFamilyStarts), each like
   /// launchOrbit().  Returns how many were launched: 0 when core refuses the family (statusMessage gives its
   /// words: a count of 0, or more than the portrait keeps with those launched already).

@@ -311,11 +311,24 @@ void PortraitPanel::createActions() {
     form->addRow(tr("Centre x"), x);
     form->addRow(tr("Centre y"), y);
     form->addRow(tr("Width"), width);
+    // A refused view keeps the dialog open with the reason and the typed values (issue 53, finding 21: a NaN or
+    // negative width closed it, the values lost, the reason only in the status bar).
+    auto* reason = new QLabel(&dialog);
+    reason->setObjectName(QStringLiteral("goToViewError"));
+    reason->setWordWrap(true);
+    reason->setStyleSheet(QStringLiteral("color: #b00020"));
+    reason->hide();
+    form->addRow(reason);
     auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel, &dialog);
     form->addRow(buttons);
-    connect(buttons, &QDialogButtonBox::accepted, &dialog, &QDialog::accept);
+    connect(buttons, &QDialogButtonBox::accepted, &dialog, [&] {
+      QString error;
+      if (goTo(x->text(), y->text(), width->text(), &error)) return dialog.accept();
+      reason->setText(error);
+      reason->show();
+    });
     connect(buttons, &QDialogButtonBox::rejected, &dialog, &QDialog::reject);
-    if (dialog.exec() == QDialog::Accepted) goTo(x->text(), y->text(), width->text());
+    dialog.exec();
   });
 
   undoOrbit_ = new QAction(tr("Undo Last Orbit"), this);
@@ -435,13 +448,14 @@ void PortraitPanel::createMenu() {
 
 PortraitView* PortraitPanel::view() const noexcept { return controller_->view(); }
 
-bool PortraitPanel::goTo(const QString& x, const QString& y, const QString& width) {
+bool PortraitPanel::goTo(const QString& x, const QString& y, const QString& width, QString* why) {
   const auto cx = io::parseLongDoubleC(x.trimmed().toStdString());
   const auto cy = io::parseLongDoubleC(y.trimmed().toStdString());
   const auto w = io::parseLongDoubleC(width.trimmed().toStdString());
   QString error;
   if (!cx || !cy || !w) error = tr("%1 is not a number").arg(!cx ? tr("the centre's x") : !cy ? tr("the centre's y") : tr("the width"));
   else if (controller_->goTo(*cx, *cy, *w, &error)) return true;
+  if (why) *why = error;
   Q_EMIT statusMessage(tr("Go to View: %1").arg(error));
   return false;
 }

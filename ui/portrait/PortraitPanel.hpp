@@ -72,8 +72,8 @@ class PortraitPanel : public QWidget {
   /// Portrait ▸ Go to View… (Ctrl+G): a view typed as centre and width (issue 37, finding 18).
   [[nodiscard]] QAction* goToAction() const noexcept { return goTo_; }
   /// What the dialog does with its three fields (decimal text, every digit kept): false, with the reason in the
-  /// status bar, when one is not a number or the view is refused.
-  bool goTo(const QString& x, const QString& y, const QString& width);
+  /// status bar and `error` (the dialog shows it and stays open), when one is not a number or the view is refused.
+  bool goTo(const QString& x, const QString& y, const QString& width, QString* error = nullptr);
   [[nodiscard]] QAction* clearOrbitsAction() const noexcept { return clearOrbits_; }
   [[nodiscard]] QAction* raiseBudgetAction() const noexcept { return raiseBudget_; }
   [[nodiscard]] QAction* equalAspectAction() const noexcept { return equalAspect_; }

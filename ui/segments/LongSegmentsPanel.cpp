@@ -52,6 +52,9 @@ LongSegmentsPanel::LongSegmentsPanel(QWidget* parent) : QWidget(parent) {
   table_->setSelectionBehavior(QAbstractItemView::SelectRows);
   table_->setSelectionMode(QAbstractItemView::SingleSelection);
   table_->setAlternatingRowColors(true);
+  // Tab leaves the table (one stop in the window's Tab chain): moving from cell to cell, it replayed a row every
+  // 7 presses (issue 53, finding 1).  The arrows move between rows.
+  table_->setTabKeyNavigation(false);
   table_->verticalHeader()->hide();
   // Compact columns that fit the dock (issue 13, finding 14): short headers and 6-decimal coordinates, every
   // column sized to its contents, so the table needs no horizontal scroll bar at the dock's default width.

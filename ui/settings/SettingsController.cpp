@@ -24,13 +24,25 @@ QRect SettingsController::clampToScreen(const QRect& wanted, const QRect& availa
   return r;
 }
 
+QRect SettingsController::firstGeometry(const QRect& available) {
+  const QSize size(std::min(available.width(), std::max(1200, available.width() * 9 / 10)),
+                   std::min(available.height(), std::max(760, available.height() * 9 / 10)));
+  QRect r(QPoint(0, 0), size);
+  r.moveCenter(available.center());
+  return r;
+}
+
 void SettingsController::restoreWindow(QMainWindow& window) {
   QSettings settings;
-  window.restoreGeometry(settings.value(QStringLiteral("window/geometry")).toByteArray());
+  const bool restored = window.restoreGeometry(settings.value(QStringLiteral("window/geometry")).toByteArray());
   window.restoreState(settings.value(QStringLiteral("window/state")).toByteArray());
   const QScreen* screen = window.screen() ? window.screen() : QGuiApplication::primaryScreen();
   if (!screen) return;
   const QRect available = screen->availableGeometry();
+  if (!restored) {
+    window.setGeometry(firstGeometry(available));
+    return;
+  }
   if (window.isMaximized() || window.isFullScreen()) return;
   const QRect clamped = clampToScreen(window.geometry(), available);
   if (clamped != window.geometry()) window.setGeometry(clamped);

@@ -23,8 +23,12 @@ class SettingsController {
  public:
   static constexpr int kMaxRecentFiles = 8;
 
-  /// Restores size, position and dock layout, clamped to the available area of the window's screen.
+  /// Restores size, position and dock layout, clamped to the available area of the window's screen; on a first
+  /// start (nothing saved), firstGeometry() of that area.
   static void restoreWindow(QMainWindow& window);
+  /// The window on a first start (issue 53, finding 20: 1200 × 760 in the middle of a 1920 × 1080 screen): nine
+  /// tenths of the available area each way, at least 1200 × 760 where the area holds it, centred.
+  [[nodiscard]] static QRect firstGeometry(const QRect& available);
   static void saveWindow(const QMainWindow& window);
   /// `wanted` moved and shrunk to fit inside `available` (both in global screen coordinates).
   [[nodiscard]] static QRect clampToScreen(const QRect& wanted, const QRect& available);

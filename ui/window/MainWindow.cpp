@@ -32,6 +32,7 @@
 #include <QTabBar>
 #include <QStandardPaths>
 #include <QStatusBar>
+#include <QScreen>
 #include <QTabWidget>
 #include <QTimer>
 #include <QToolBar>
@@ -548,6 +549,11 @@ void MainWindow::createLongSegmentsDock(QDockWidget* parametersDock) {
   addDockWidget(Qt::LeftDockWidgetArea, segmentsDock_);
   tabifyDockWidget(parametersDock, segmentsDock_);
   parametersDock->raise();
+  // The tab behind is moved off the window, not hidden: its widgets stayed in the Tab chain, and Tab from the last
+  // parameter went into the Long segments table unseen, replaying its rows (issue 53, finding 1).  A page behind is
+  // disabled, so that none of its widgets takes the focus (Qt says which page is shown by visibilityChanged).
+  for (QDockWidget* d : {parametersDock, segmentsDock_})
+    connect(d, &QDockWidget::visibilityChanged, d, [d](bool shown) { d->widget()->setEnabled(shown); });
 }
 
 void MainWindow::showLongSegment(int rank, bool island) {
@@ -1017,6 +1023,8 @@ QList<QPair<QString, QString>> MainWindow::keyboardShortcuts() const {
   for (QAction* a : menuBar()->actions())
     if (a->menu()) walk(a->menu(), QString(a->text()).remove(QLatin1Char('&')));
   rows.append({tr("Portrait: click"), tr("launch an orbit (listed under Orbits with its rotation number and chain)")});
+  rows.append({tr("Portrait: Shift+click"), tr("find the periodic orbit there: its island chain named, its elliptic orbit "
+                                                "drawn (Portrait ▸ Click Finds Periodic Orbits: a plain click too)")});
   rows.append({tr("Portrait: drag"), tr("zoom to the rectangle (with the profile tool: draw the line)")});
   rows.append({tr("Portrait: wheel"), tr("zoom about the cursor")});
   rows.append({tr("Portrait: middle-drag"), tr("pan")});
@@ -1038,14 +1046,22 @@ void MainWindow::showKeyboardShortcuts() {
     table->setItem(i, 0, new QTableWidgetItem(rows[i].first));
     table->setItem(i, 1, new QTableWidgetItem(rows[i].second));
   }
-  table->horizontalHeader()->setSectionResizeMode(0, QHeaderView::Stretch);
-  table->horizontalHeader()->setSectionResizeMode(1, QHeaderView::ResizeToContents);
+  // The Action column as wide as its longest entry, the Keys column the rest, its long entries (the mouse's) wrapped
+  // onto more lines (issue 53, finding 23: the Action column was squeezed and cut).
+  table->setWordWrap(true);
+  table->horizontalHeader()->setSectionResizeMode(0, QHeaderView::ResizeToContents);
+  table->horizontalHeader()->setSectionResizeMode(1, QHeaderView::Stretch);
+  table->verticalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
+  table->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
   auto* buttons = new QDialogButtonBox(QDialogButtonBox::Close, dialog);
   connect(buttons, &QDialogButtonBox::rejected, dialog, &QDialog::close);
   auto* layout = new QVBoxLayout(dialog);
   layout->addWidget(table);
   layout->addWidget(buttons);
-  dialog->resize(620, 560);
+  const int actions = static_cast<QAbstractItemView*>(table)->sizeHintForColumn(0);
+  const QRect screen = this->screen() ? this->screen()->availableGeometry() : QRect(0, 0, 1280, 800);
+  dialog->resize(std::min(actions + fontMetrics().horizontalAdvance(QLatin1Char('x')) * 50 + 60, screen.width() * 9 / 10),
+                 std::min(640, screen.height() * 8 / 10));
   dialog->show();
 }
 

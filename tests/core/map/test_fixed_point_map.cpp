@@ -239,6 +239,20 @@ TEST(FixedPointMap, HugeBoxOrKIsAnErrorNotAnEndlessLoop) {
 }
 
 
+// Issue 53, finding 17: K = 1e300 marked xmin ("must be < −√K = -1e+150") though no xmin could do; K is named.
+TEST(FixedPointMap, AKNoBoxHoldsIsKsError_Issue53) {
+  for (const double K : {1e300, 16384.0}) {
+    const std::vector<ParameterError> errors = mapErrors({K, -0.8, 0.5});
+    ASSERT_EQ(errors.size(), 1u) << errors.front().message;
+    EXPECT_EQ(errors[0].fields, std::vector<std::string>{"K"});
+    EXPECT_NE(errors[0].message.find("K = " + shortestDecimal(K) + " is too large: it must be < 16384"), std::string::npos)
+        << errors[0].message;
+  }
+  // Just below, a box holds it: xmin = −127.999 < −√K, and −4 xmin < 512.
+  EXPECT_TRUE(mapErrors({16383.0, -127.999, 0.0}).empty()) << mapErrors({16383.0, -127.999, 0.0}).front().message;
+  EXPECT_EQ(mapErrors({16383.0, -0.8, 0.5}).front().fields, std::vector<std::string>{"xmin"});
+}
+
 // Issue 13, finding 11: messages printed numbers with precision(17), so −0.8 showed as "-0.80000000000000004";
 // they now print the shortest text that reads back as the same double.
 TEST(FixedPointMap, MessagesPrintShortestRoundTripNumbers) {

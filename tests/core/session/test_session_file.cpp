@@ -58,7 +58,8 @@ Session fullSession(std::mt19937_64& rng) {
   s.portrait.mode = PortraitMode::Orbits;
   s.portrait.colours = ColourMapName::Viridis;
   s.portrait.budget = 123'456'789'012;
-  s.portrait.orbits = {{unit(rng), -unit(rng)}, {1e-300, -0.0}};
+  s.portrait.orbits = {{{unit(rng), -unit(rng)}, 1 + rng() % 100'000'000, rng() % 2 == 0, 7},
+                       {{1e-300, -0.0}, 20000, false, 0}};
   s.portrait.periodic = {{"7/20", {{0.1 * unit(rng), 0.2}, {0.3, 0.4}}}, {"", {{0, 0}}}};
   // The manifolds layer (issue 37, finding 4): off, of the fixed point, or of an orbit.
   const auto manifolds = rng() % 3;
@@ -206,6 +207,13 @@ TEST(SessionFile, BadAndForeignDocumentsAreRefusedWithTheKeyNamed) {
   expectRejected(edited("portrait.budget", "-1"), "portrait.budget");
   expectRejected(edited("portrait.budget", "1e300"), "portrait.budget");
   expectRejected(edited("portrait.orbits", "[[0]]"), "portrait.orbits[0]");
+  expectRejected(edited("portrait.orbits", R"([{"steps": 5}])"), "portrait.orbits[0] has no 'start'");
+  expectRejected(edited("portrait.orbits", R"([{"start": [0.1, 0.2], "steps": 0}])"), "portrait.orbits[0].steps = 0");
+  expectRejected(edited("portrait.orbits", R"([{"start": [0.1, 0.2], "steps": 100000001}])"), "portrait.orbits[0].steps");
+  expectRejected(edited("portrait.orbits", R"([{"start": [0.1, 0.2], "backward": 1}])"), "backward must be true or false");
+  expectRejected(edited("portrait.orbits", R"([{"start": [0.1, 0.2], "colour": 1}])"), "unknown key 'colour'");
+  expectRejected(edited("portrait.orbits", R"([{"start": [0.1, 0.2], "number": 3}, {"start": [0.1, 0.3], "number": 3}])"),
+                 "portrait.orbits[1].number = 3 is another orbit's number too");
   expectRejected(edited("portrait.periodic", R"([{"label": "x"}])"), "no 'points'");
   expectRejected(edited("portrait.manifolds", R"({"orbit": [], "x": 1})"), "unknown key 'x' in portrait.manifolds");
   expectRejected(edited("portrait.manifolds", R"({"orbit": []})"), "portrait.manifolds.orbit must hold");
@@ -223,6 +231,31 @@ TEST(SessionFile, BadAndForeignDocumentsAreRefusedWithTheKeyNamed) {
   nlohmann::json orbits = nlohmann::json::array();
   for (std::size_t i = 0; i <= kMaxSessionOrbits; ++i) orbits.push_back({0.1, 0.2});
   expectRejected(edited("portrait.orbits", orbits.dump()), "at most");
+}
+
+// Issue 53, finding 2: a session kept only each launched orbit's start ("orbits": [[x, y], …]), so 100 000 steps
+// backward came back as 20 000 forward, renumbered and recoloured.  Each keeps its steps, direction and number now;
+// an old session's entries still read, as what they meant: 20 000 steps forward, numbered in order.
+TEST(SessionFile, LaunchedOrbitsKeepStepsDirectionAndNumber_Issue53) {
+  std::mt19937_64 rng(53);
+  Session s = fullSession(rng);
+  s.portrait.orbits = {{{0.06, 0.0974}, 100000, true, 4}, {{-0.2, 0.01}, 1, false, 9}};
+  const Session back = parseSession(sessionText(s));
+  ASSERT_EQ(back.portrait.orbits.size(), 2u);
+  EXPECT_EQ(back.portrait.orbits[0].start, (std::array<double, 2>{0.06, 0.0974}));
+  EXPECT_EQ(back.portrait.orbits[0].steps, 100000u);
+  EXPECT_TRUE(back.portrait.orbits[0].backward);
+  EXPECT_EQ(back.portrait.orbits[0].number, 4u);
+  EXPECT_EQ(back.portrait.orbits[1].steps, 1u);
+  EXPECT_FALSE(back.portrait.orbits[1].backward);
+  EXPECT_EQ(back.portrait.orbits[1].number, 9u);
+
+  const Session old = parseSession(edited("portrait.orbits", "[[0.06, 0.0974], [-0.2, 0.01]]"));
+  ASSERT_EQ(old.portrait.orbits.size(), 2u);
+  EXPECT_EQ(old.portrait.orbits[1].start, (std::array<double, 2>{-0.2, 0.01}));
+  EXPECT_EQ(old.portrait.orbits[1].steps, kSessionOrbitSteps);
+  EXPECT_FALSE(old.portrait.orbits[1].backward);
+  EXPECT_EQ(old.portrait.orbits[1].number, 0u);
 }
 
 // Issue #23, finding 1: a deep value anywhere in a session (its version, spec, embedded run, a plot zoom, the

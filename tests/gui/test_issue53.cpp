@@ -1,0 +1,411 @@
+// Issue 53: what a new user hit this time (Xvfb at 1280×800 and 1920×1080, a2e223a).  One test per finding, named
+// after it, on Qt's offscreen platform — here with a 1920×1080 screen (main() below), the size of finding 20; each
+// failed before its fix.  What only a picture can judge (the P_t export's legend, the shortcuts dialog) was looked
+// at too (the closing note of the issue).
+#include <QAbstractButton>
+#include <QApplication>
+#include <QDialog>
+#include <QDialogButtonBox>
+#include <QDockWidget>
+#include <QFile>
+#include <QHeaderView>
+#include <QImage>
+#include <QLabel>
+#include <QLineEdit>
+#include <QPushButton>
+#include <QScreen>
+#include <QSignalSpy>
+#include <QSpinBox>
+#include <QTableView>
+#include <QTableWidget>
+#include <QTemporaryDir>
+#include <QTimer>
+#include <QtTest>
+
+#include <cmath>
+
+#include "GuiTestSupport.hpp"
+#include "core/run/TrappingRun.hpp"
+#include "core/runfile/RunFile.hpp"
+#include "core/session/SessionFile.hpp"
+#include "ui/plots/StatisticsPlot.hpp"
+#include "ui/portrait/OrbitListPanel.hpp"
+#include "ui/portrait/PortraitController.hpp"
+#include "ui/portrait/PortraitPanel.hpp"
+#include "ui/portrait/PortraitView.hpp"
+#include "ui/segments/LongSegmentsPanel.hpp"
+#include "ui/window/StatisticsView.hpp"
+
+using namespace archipelago;
+using namespace archipelago::ui;
+using archipelago::test::typeInto;
+
+namespace {
+
+/// A finished K = 0.1 run of 16 × 20000 blocks: its long segments fill the table.
+const TrappingState& finishedRun() {
+  static const TrappingState state = [] {
+    TrappingParameters p;
+    p.M = 16;
+    p.T = 20000;
+    p.longestKept = 12;
+    TrappingRunOptions o;
+    o.threads = 1;
+    return runTrapping(startTrapping(p), o);
+  }();
+  return state;
+}
+
+/// True when `w` is `ancestor` or inside it.
+bool inside(const QWidget* w, const QWidget* ancestor) {
+  for (; w; w = w->parentWidget())
+    if (w == ancestor) return true;
+  return false;
+}
+
+/// Runs `act` on the next modal dialog once it is shown (Go to View… opens one with exec()).
+void onModal(std::function<void(QDialog&)> act) {
+  QTimer::singleShot(0, qApp, [act] {
+    QTRY_VERIFY(qobject_cast<QDialog*>(QApplication::activeModalWidget()));
+    act(*qobject_cast<QDialog*>(QApplication::activeModalWidget()));
+  });
+}
+
+}  // namespace
+
+class TestIssue53 : public QObject {
+  Q_OBJECT
+ private Q_SLOTS:
+  // Finding 1: with a run that has segments and the Parameters tab in front, Tab from "threads" went into the hidden
+  // Long segments table, and each further 7 Tabs replayed its next row (the status bar: "Replayed … steps bit for
+  // bit", the portrait jumping there).
+  void finding1_tabStaysOutOfTheHiddenSegmentsTable() {
+    QTemporaryDir dir;
+    const QString file = dir.filePath(QStringLiteral("run.json"));
+    saveRunFile(file.toStdString(), finishedRun());
+    MainWindow w;
+    w.setConfirmations(false);
+    w.portraitPanel()->controller()->setPointBudget(10000);
+    w.resize(1280, 760);
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    w.activateWindow();
+    QVERIFY(QTest::qWaitForWindowActive(&w));
+    LongSegmentsPanel& segments = *w.longSegments();
+    segments.setAutoIdentifiedRows(0);
+    QVERIFY(w.openRunFile(file));
+    QTRY_VERIFY_WITH_TIMEOUT(segments.model()->rowCount() > 0, 900000);
+    w.parametersDock()->raise();
+    QTRY_VERIFY(w.parametersDock()->isVisible());
+    QSignalSpy messages(&segments, &LongSegmentsPanel::statusMessage);
+    QLineEdit* threads = w.parameterPanel()->field(QStringLiteral("threads"));
+    QVERIFY(threads);
+    threads->setFocus(Qt::MouseFocusReason);
+    QTRY_VERIFY(threads->hasFocus());
+    for (int i = 0; i < 40; ++i) {
+      QWidget* focus = QApplication::focusWidget();
+      QVERIFY(focus);
+      QTest::keyClick(focus, Qt::Key_Tab);
+      QCoreApplication::processEvents();
+      focus = QApplication::focusWidget();
+      QVERIFY2(!inside(focus, &segments), qPrintable(QStringLiteral("Tab %1 went into the hidden segments table (%2)")
+                                                         .arg(i + 1)
+                                                         .arg(focus ? focus->metaObject()->className() : "none")));
+    }
+    QVERIFY(segments.table()->selectionModel()->selectedRows().isEmpty());
+    for (const QList<QVariant>& m : messages) QVERIFY2(!m.front().toString().startsWith(QStringLiteral("Replayed")), qPrintable(m.front().toString()));
+    // Shown, the table is reached by Tab, and Tab leaves it again without moving from cell to cell (a replay).
+    w.segmentsDock()->raise();
+    QTRY_VERIFY(segments.isVisible());
+    segments.table()->setFocus(Qt::TabFocusReason);
+    QTRY_VERIFY(segments.table()->hasFocus());
+    QTest::keyClick(segments.table(), Qt::Key_Tab);
+    QVERIFY(!segments.table()->hasFocus());
+    QVERIFY(segments.table()->selectionModel()->selectedRows().isEmpty());
+  }
+
+  // Finding 2: a session kept only each launched orbit's start: 100 000 steps backward came back as 20 000 forward,
+  // renumbered and recoloured.
+  void finding2_sessionsKeepStepsDirectionAndNumbers() {
+    QTemporaryDir dir;
+    const QString path = dir.filePath(QStringLiteral("orbits.archipelago"));
+    std::vector<LaunchedOrbit> launched;
+    {
+      MainWindow w;
+      w.setConfirmations(false);
+      PortraitController& c = *w.portraitPanel()->controller();
+      c.setPointBudget(10000);
+      QVERIFY(c.launchOrbit(0.0L, 0.01L));
+      QVERIFY(c.launchOrbit(0.06L, 0.0974L, 100000, true));
+      QVERIFY(c.launchOrbit(-0.2L, 0.01L, 777));
+      QVERIFY(c.removeOrbit(c.launchedOrbits().front().id));  // numbers 2 and 3 left
+      launched = c.launchedOrbits();
+      QString error;
+      QVERIFY2(w.saveSession(path, &error), qPrintable(error));
+      QTRY_VERIFY_WITH_TIMEOUT(c.orbitsSettled(), 900000);
+    }
+    MainWindow w;
+    w.setConfirmations(false);
+    QString error;
+    QVERIFY2(w.openSession(path, &error), qPrintable(error));
+    PortraitController& c = *w.portraitPanel()->controller();
+    const std::vector<LaunchedOrbit>& back = c.launchedOrbits();
+    QCOMPARE(back.size(), launched.size());
+    for (std::size_t i = 0; i < back.size(); ++i) {
+      QCOMPARE(back[i].id, launched[i].id);
+      QCOMPARE(back[i].steps, launched[i].steps);
+      QCOMPARE(back[i].backward, launched[i].backward);
+      QCOMPARE(back[i].colour, launched[i].colour);
+      QCOMPARE(static_cast<double>(back[i].x), static_cast<double>(launched[i].x));
+      QCOMPARE(static_cast<double>(back[i].y), static_cast<double>(launched[i].y));
+    }
+    QCOMPARE(back[0].id, quint64{2});
+    QCOMPARE(back[0].steps, std::uint64_t{100000});
+    QVERIFY(back[0].backward);
+    // A new orbit takes the next number, not one of theirs.
+    QCOMPARE(c.launchOrbit(0.01L, 0.01L), quint64{4});
+    QTRY_VERIFY_WITH_TIMEOUT(c.orbitsSettled(), 900000);
+  }
+
+  // Finding 4: the exported P_t.png (945×650) wrapped the three "asymptotic (literature)" entries onto two lines,
+  // their exponents lost.
+  void finding4_theExportedPtLegendIsWhole() {
+    QTemporaryDir dir;
+    const QString file = dir.filePath(QStringLiteral("run.json"));
+    saveRunFile(file.toStdString(), finishedRun());
+    MainWindow w;
+    w.setConfirmations(false);
+    w.portraitPanel()->controller()->setPointBudget(10000);
+    w.resize(1280, 760);
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    QVERIFY(w.openRunFile(file));
+    QTRY_VERIFY_WITH_TIMEOUT(w.latestSnapshot(), 900000);
+    w.refreshNow();
+    QString error;
+    const QString out = qEnvironmentVariable("ARCHIPELAGO_SCREENSHOT_DIR", dir.filePath(QStringLiteral("export")));
+    QVERIFY2(w.exportAllTo(out, &error), qPrintable(error));
+    const QImage png = QImage(out + QStringLiteral("/P_t.png")).convertToFormat(QImage::Format_RGB32);
+    QVERIFY(!png.isNull());
+    // Each reference slope's legend entry: its icon (a swatch of the line's colour, below the plot) and, beside it,
+    // its text on one line, centred on the icon, so its middle row crosses the letters ("t⁻¹·⁵ a…").  Wrapped onto
+    // two lines, the gap between them lay there (the lines cut to the entry's height, the exponent lost).
+    const QColor colours[] = {QColor(140, 86, 75), QColor(148, 103, 189), QColor(23, 150, 170), QColor(110, 110, 110)};
+    const int legendTop = png.height() * 3 / 4;  // below the axis title
+    int entries = 0;
+    for (const QColor& colour : colours) {
+      QRect icon;
+      for (int y = legendTop; y < png.height(); ++y)  // runs of 12 pixels of the colour: the swatch, not text
+        for (int x = 0, run = 0; x < png.width(); ++x) {
+          run = png.pixel(x, y) == colour.rgb() ? run + 1 : 0;
+          if (run >= 12) icon |= QRect(x - run + 1, y, run, 1);
+        }
+      if (icon.isEmpty() || icon.width() < 10) continue;  // a slope the run's range leaves out
+      ++entries;
+      bool crossed = false;
+      for (int y = icon.center().y() - 1; y <= icon.center().y() + 1; ++y)
+        for (int x = icon.right() + 2; x < std::min(png.width(), icon.right() + 30); ++x)
+          crossed = crossed || qGray(png.pixel(x, y)) < 110;
+      QVERIFY2(crossed, qPrintable(QStringLiteral("the entry of colour %1 at (%2, %3) wraps in %4")
+                                       .arg(colour.name()).arg(icon.x()).arg(icon.y()).arg(out)));
+    }
+    QVERIFY(entries >= 3);
+  }
+
+  // Finding 10: Ctrl+Z right after the Orbits page's Clear did nothing (the focus fell into Steps, which took the
+  // key), and Undo brought the orbits back renumbered and recoloured.
+  void finding10_undoRightAfterClearBringsTheSameOrbitsBack() {
+    MainWindow w;
+    w.setConfirmations(false);
+    w.resize(1280, 760);
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    w.activateWindow();
+    QVERIFY(QTest::qWaitForWindowActive(&w));
+    PortraitPanel& portrait = *w.portraitPanel();
+    PortraitController& c = *portrait.controller();
+    c.setPointBudget(10000);
+    QVERIFY(c.launchOrbit(0.0L, 0.01L));
+    QVERIFY(c.launchOrbit(-0.2L, 0.01L, 300, true));
+    const std::vector<LaunchedOrbit> before = c.launchedOrbits();
+    portrait.sidePages()->setCurrentWidget(portrait.orbitList());
+    QPushButton* clear = nullptr;
+    for (QPushButton* b : portrait.orbitList()->findChildren<QPushButton*>())
+      if (b->text() == QStringLiteral("Clear")) clear = b;
+    QVERIFY(clear);
+    QTRY_VERIFY(clear->isVisible() && clear->isEnabled());
+    QTest::mouseClick(clear, Qt::LeftButton);
+    QCOMPARE(c.orbitCount(), 0);
+    QTest::qWait(100);  // the list's refresh (30 ms) disables Clear: where does the focus go?
+    QWidget* focus = QApplication::focusWidget();
+    QVERIFY(focus);
+    QTest::keyClick(focus, Qt::Key_Z, Qt::ControlModifier);
+    QCOMPARE(c.orbitCount(), 2);
+    for (std::size_t i = 0; i < before.size(); ++i) {
+      QCOMPARE(c.launchedOrbits()[i].id, before[i].id);
+      QCOMPARE(c.launchedOrbits()[i].colour, before[i].colour);
+      QCOMPARE(c.launchedOrbits()[i].steps, before[i].steps);
+      QCOMPARE(c.launchedOrbits()[i].backward, before[i].backward);
+    }
+    QTRY_VERIFY_WITH_TIMEOUT(c.orbitsSettled(), 900000);
+  }
+
+  // Finding 17: K = 1e300 marked xmin red ("must be < −√K = -1e+150"), though no xmin can hold it: K is named.
+  void finding17_aKNoBoxHoldsMarksK() {
+    MainWindow w;
+    w.setConfirmations(false);
+    ParameterPanel& panel = *w.parameterPanel();
+    typeInto(panel, QStringLiteral("K"), QStringLiteral("1e300"));
+    QVERIFY(!panel.isValid());
+    QVERIFY2(panel.fieldError(QStringLiteral("K")).contains(QStringLiteral("K = 1e+300 is too large")),
+             qPrintable(panel.validationMessage()));
+    QVERIFY2(panel.fieldError(QStringLiteral("xmin")).isEmpty(), qPrintable(panel.fieldError(QStringLiteral("xmin"))));
+    typeInto(panel, QStringLiteral("K"), QStringLiteral("0.1"));
+    QVERIFY(panel.isValid());
+  }
+
+  // Finding 18: noise in messages: "must lie in the box [-0.8, 0.5) x [-0.65000000000000002, 0.65000000000000002)";
+  // an orbit typed at (0.06, 0.0974) announced as from (0.059999999999999998, …).
+  void finding18_messagesPrintShortestNumbers() {
+    PortraitPanel panel;
+    PortraitController& c = *panel.controller();
+    c.setPointBudget(10000);
+    QString error;
+    QVERIFY(!c.goTo(0.0L, 5.0L, 0.1L, &error));
+    QVERIFY2(error.contains(QStringLiteral("the centre = (0, 5) must lie in the box [-0.8, 0.5) x [-0.65, 0.65)")),
+             qPrintable(error));
+    QSignalSpy messages(&c, &PortraitController::statusMessage);
+    panel.orbitList()->startXField()->setText(QStringLiteral("0.06"));
+    panel.orbitList()->startYField()->setText(QStringLiteral("0.0974"));
+    QVERIFY(panel.orbitList()->launchTyped());
+    bool announced = false;
+    for (const QList<QVariant>& m : messages) {
+      const QString text = m.front().toString();
+      QVERIFY2(!text.contains(QStringLiteral("0000000")) && !text.contains(QStringLiteral("9999999")), qPrintable(text));
+      announced = announced || text.contains(QStringLiteral("from (0.06, 0.0974)"));
+    }
+    QVERIFY(announced);
+    QTRY_VERIFY_WITH_TIMEOUT(c.orbitsSettled(), 900000);
+  }
+
+  // Finding 20: at 1920×1080 the window opened at 1200×760 in the middle of the screen.
+  void finding20_theFirstWindowTakesMostOfTheScreen() {
+    const QRect available = QGuiApplication::primaryScreen()->availableGeometry();
+    if (available.width() < 1600) QSKIP("a screen of 1920 × 1080 (main() gives the offscreen platform one)");
+    MainWindow w;
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    QVERIFY2(w.width() >= available.width() * 85 / 100 && w.height() >= available.height() * 85 / 100,
+             qPrintable(QStringLiteral("%1 × %2").arg(w.width()).arg(w.height())));
+    QVERIFY(available.contains(w.geometry()));
+  }
+
+  // Finding 21: Go to View with a NaN or negative width closed the dialog and lost the typed values; a width of 1e300
+  // silently meant the whole box; Steps turned 999999999 into 99,999,999 without a word.
+  void finding21_goToViewKeepsARefusedViewAndSaysWhy() {
+    PortraitPanel panel;
+    panel.resize(900, 600);
+    panel.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&panel));
+    PortraitController& c = *panel.controller();
+    c.setPointBudget(10000);
+    const std::size_t views = c.history().size();
+    for (const QString& bad : {QStringLiteral("nan"), QStringLiteral("-0.1"), QStringLiteral("1e300")}) {
+      bool stillOpen = false;
+      QString reason;
+      onModal([&](QDialog& dialog) {
+        const auto fields = dialog.findChildren<QLineEdit*>();
+        QCOMPARE(fields.size(), 3);
+        fields[0]->setText(QStringLiteral("-0.15"));
+        fields[1]->setText(QStringLiteral("0.001"));
+        fields[2]->setText(bad);
+        dialog.findChild<QDialogButtonBox*>()->button(QDialogButtonBox::Ok)->click();
+        stillOpen = dialog.isVisible();
+        if (auto* label = dialog.findChild<QLabel*>(QStringLiteral("goToViewError"))) reason = label->isVisible() ? label->text() : QString();
+        QCOMPARE(fields[0]->text(), QStringLiteral("-0.15"));  // the typed values are kept
+        QCOMPARE(fields[2]->text(), bad);
+        dialog.reject();
+      });
+      panel.goToAction()->trigger();
+      QVERIFY2(stillOpen, qPrintable(bad));
+      QVERIFY2(reason.contains(QStringLiteral("the width = ")), qPrintable(bad + QStringLiteral(": ") + reason));
+      QCOMPARE(c.history().size(), views);
+    }
+    QString error;
+    QVERIFY(!c.goTo(-0.15L, 0.0L, 1e300L, &error));
+    QVERIFY2(error.contains(QStringLiteral("must be at most the box's width L = xmax − xmin = 1.3")), qPrintable(error));
+    QVERIFY(c.goTo(-0.15L, 0.0L, 1.3L, &error));  // the whole box's width is a view
+
+    // Steps: 999999999 typed is the largest, 10⁸, with core's reason.
+    QSpinBox* steps = panel.orbitList()->stepsBox();
+    QSignalSpy messages(panel.orbitList(), &OrbitListPanel::statusMessage);
+    steps->setFocus();
+    steps->selectAll();
+    QTest::keyClicks(steps, QStringLiteral("999999999"));
+    QTest::keyClick(steps, Qt::Key_Return);
+    QCOMPARE(steps->value(), 100'000'000);
+    bool said = false;
+    for (const QList<QVariant>& m : messages)
+      said = said || m.front().toString().contains(QStringLiteral("steps = 999999999 must lie in [1, 100000000]"));
+    QVERIFY(said);
+  }
+
+  // Finding 23: Help ▸ Keyboard Shortcuts did not list Shift+click, and its Action column wrapped.
+  void finding23_theShortcutsListShiftClickAndFit() {
+    MainWindow w;
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    bool shiftClick = false;
+    for (const auto& row : w.keyboardShortcuts()) shiftClick = shiftClick || row.first.contains(QStringLiteral("Shift+click"));
+    QVERIFY(shiftClick);
+    w.showKeyboardShortcuts();
+    auto* dialog = w.findChild<QDialog*>(QStringLiteral("keyboardShortcutsDialog"));
+    QVERIFY(dialog);
+    QVERIFY(QTest::qWaitForWindowExposed(dialog));
+    auto* table = dialog->findChild<QTableWidget*>();
+    QVERIFY(table);
+    QCoreApplication::processEvents();
+    const QFontMetrics metrics(table->font());
+    for (int row = 0; row < table->rowCount(); ++row) {
+      const QString action = table->item(row, 0)->text();
+      QVERIFY2(table->columnWidth(0) >= metrics.horizontalAdvance(action), qPrintable(action));  // one line, whole
+      const QString keys = table->item(row, 1)->text();
+      const int room = std::max(1, table->columnWidth(1) - 12);  // the cell's margins
+      const int lines = (metrics.horizontalAdvance(keys) + room - 1) / room;
+      QVERIFY2(table->rowHeight(row) >= std::min(lines, 4) * metrics.lineSpacing(),
+               qPrintable(QStringLiteral("%1: row %2 px, %3 lines of %4 px, columns %5 + %6, text %7 px")
+                              .arg(keys).arg(table->rowHeight(row)).arg(lines).arg(metrics.lineSpacing())
+                              .arg(table->columnWidth(0)).arg(table->columnWidth(1)).arg(metrics.horizontalAdvance(keys))));
+    }
+    QVERIFY2(table->columnWidth(0) + table->columnWidth(1) <= table->viewport()->width() + 1, "no horizontal scrolling");
+    if (const QString shots = qEnvironmentVariable("ARCHIPELAGO_SCREENSHOT_DIR"); !shots.isEmpty())
+    {
+      QVERIFY(dialog->grab().save(shots + QStringLiteral("/keyboard-shortcuts.png")));
+      table->scrollToBottom();  // the mouse's rows
+      QCoreApplication::processEvents();
+      QVERIFY(dialog->grab().save(shots + QStringLiteral("/keyboard-shortcuts-mouse.png")));
+    }
+    dialog->close();
+  }
+};
+
+// A 1920×1080 screen (finding 20): Qt's offscreen platform reads its screens from a file.
+int main(int argc, char** argv) {
+  archipelago::test::isolatedHome();
+  static QTemporaryDir screens;
+  const QString config = screens.filePath(QStringLiteral("screens.json"));
+  QFile file(config);
+  if (!file.open(QIODevice::WriteOnly)) return 1;
+  file.write(R"({"screens": [{"name": "1920x1080", "x": 0, "y": 0, "width": 1920, "height": 1080,
+                 "logicalDpi": 96, "logicalBaseDpi": 96, "dpr": 1}]})");
+  file.close();
+  if (qEnvironmentVariable("QT_QPA_PLATFORM", QStringLiteral("offscreen")).startsWith(QStringLiteral("offscreen")))
+    qputenv("QT_QPA_PLATFORM", ("offscreen:configfile=" + config).toUtf8());  // else (xcb under Xvfb) its screen
+  QApplication app(argc, argv);
+  QApplication::setOrganizationName(QStringLiteral("ArchipelagoTests"));
+  QApplication::setApplicationName(QStringLiteral("TestIssue53"));
+  TestIssue53 test;
+  return QTest::qExec(&test, argc, argv);
+}
+
+#include "test_issue53.moc"
