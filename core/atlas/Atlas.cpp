@@ -621,7 +621,7 @@ class AtlasBuilder {
     for (const Island& island : origins)
       for (int direction : {+1, -1}) {
         const Classifier c(r_, island);
-        rays.push_back({island, direction, scanSide(c, island, direction, points)});
+        rays.push_back({island, direction, scanSide(c, island, direction, points), std::nullopt});
         if (stop_.stop_requested()) return {};
       }
 

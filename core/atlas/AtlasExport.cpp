@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
@@ -50,6 +51,7 @@ std::string text(long double v, int digits = 17) {
 std::string atlasJson(const Atlas& a) {
   json j;
   j["format"] = "archipelago atlas";
+  j["format_version"] = kAtlasFormatVersion;
   j["program"] = programDescription();
   json prov = json::object();
   for (const auto& [k, v] : atlasProvenance(a).fields) prov[k] = v;
@@ -138,6 +140,8 @@ std::string atlasJson(const Atlas& a) {
     nodes.push_back(o);
   }
   j["nodes"] = nodes;
+  // Signed as run and tail files are (issue 54): any edit of the file, consistent or not, is refused on load.
+  j["checksum"] = io::jsonChecksum(nlohmann::json::parse(j.dump()));
   return j.dump(2) + "\n";
 }
 
@@ -298,6 +302,12 @@ AtlasNode nodeFrom(const rjson& o, const std::string& key, std::size_t index, co
     n.aboutParent = rational(o.at("about_parent"), key + ".about_parent");
     if (n.aboutParent->q > PeriodicOrbitSearch::kMaxPeriod)
       refuse(key + ".about_parent = " + toString(*n.aboutParent) + ": q above the largest period");
+    const Rational& r = *n.aboutParent;
+    if (r.q < 2 || r.p == 0 || std::llabs(r.p) >= r.q || std::gcd(std::llabs(r.p), static_cast<long long>(r.q)) != 1)
+      refuse(key + ".about_parent = " + toString(r) + " must be p/q in lowest terms with 0 < |p| < q");
+    if (parent->boundaryFound && (r.p > 0) != (parent->boundaryRotation > 0))
+      refuse(key + ".about_parent = " + toString(r) + ": a chain turns about its parent in the sense of the parent's "
+             "circles (its boundary rotation is " + shortestDecimal(parent->boundaryRotation) + ")");
   }
   const std::uint64_t expected = parent ? parent->period * static_cast<std::uint64_t>(n.aboutParent->q) : 1;
   if (n.period != expected)
@@ -335,6 +345,10 @@ AtlasNode nodeFrom(const rjson& o, const std::string& key, std::size_t index, co
   }
   n.area = nonNegative(o.at("area"), key + ".area");
   n.circleArea = n.area;
+  const long double box = static_cast<long double>(atlas.request.map.width()) * atlas.request.map.width();
+  if (n.area * static_cast<long double>(n.period) > box)
+    refuse(key + ".area = " + shortestDecimal(n.area) + ": its chain's " + std::to_string(n.period) +
+           " islands would exceed the box's area " + shortestDecimal(static_cast<double>(box)));
   if (o.contains("polygon_error")) {
     n.polygonError = nonNegative(o.at("polygon_error"), key + ".polygon_error");
     n.areaLower = nonNegative(o.at("area_lower"), key + ".area_lower");
@@ -381,6 +395,16 @@ AtlasNode nodeFrom(const rjson& o, const std::string& key, std::size_t index, co
     n.flux.fluxDigits = finiteOr(f.at("flux_agreeing_digits"), fkey + ".flux_agreeing_digits", all);
     n.flux.zoneDigits = finiteOr(f.at("zone_agreeing_digits"), fkey + ".zone_agreeing_digits", all);
     n.flux.residence = finite(f.at("residence"), fkey + ".residence");
+    if (!(n.flux.zoneArea <= box))
+      refuse(fkey + ".zone_area = " + shortestDecimal(n.flux.zoneArea) + " exceeds the box's area " +
+             shortestDecimal(static_cast<double>(box)));
+    const long double layer = n.flux.zoneArea - n.flux.enclosedIslands;
+    if (std::fabs(n.flux.layerArea - layer) > 1e-9L * n.flux.zoneArea)
+      refuse(fkey + ".layer_area = " + shortestDecimal(n.flux.layerArea) + " must be zone_area − enclosed_islands_area = " +
+             shortestDecimal(layer));
+    if (n.flux.layerArea > 0 &&
+        std::fabs(n.flux.residence - static_cast<double>(n.flux.layerArea / n.flux.flux)) > 1e-9 * std::fabs(n.flux.residence))
+      refuse(fkey + ".residence = " + shortestDecimal(n.flux.residence) + " must be layer_area / flux_per_step");
     refuseEmptyLayer(n.flux);  // a file written before the rule, or edited, obeys it as the computation does
   } else {
     keys(f, fkey, {"found", "failure"}, {"partner", "inner", "outer_by"});
@@ -442,11 +466,23 @@ AtlasNode nodeFrom(const rjson& o, const std::string& key, std::size_t index, co
   return n;
 }
 
-Atlas atlasFrom(const rjson& j) {
+Atlas atlasFrom(rjson j) {
   keys(j, "the atlas", {"format", "program", "provenance", "map", "request", "cancelled", "seconds", "nodes"},
-       {"stop_reason"});
+       {"stop_reason", "format_version", "checksum"});
   if (!j.at("format").is_string() || j.at("format").get<std::string>() != "archipelago atlas")
     refuse("format = " + io::describeJson(j.at("format")) + ": not an atlas (\"archipelago atlas\")");
+  // Version 2 (issue 54) is signed; a file without a version is one from before (read as it was, unsigned).
+  if (j.contains("format_version")) {
+    if (whole(j.at("format_version"), "format_version", 2, 2) != kAtlasFormatVersion)
+      refuse("format_version must be " + std::to_string(kAtlasFormatVersion));
+    if (!j.contains("checksum") || !j.at("checksum").is_string()) refuse("checksum: a signed atlas (version 2) must have one");
+    const std::string sum = j.at("checksum").get<std::string>();
+    j.erase("checksum");
+    if (io::jsonChecksum(j) != sum)
+      refuse("the atlas was modified after it was written (its checksum does not match its content)");
+  } else if (j.contains("checksum")) {
+    refuse("checksum without format_version");
+  }
   (void)string(j.at("program"), "program");  // written anew
   if (!j.at("provenance").is_object()) refuse("provenance must be a JSON object");
   Atlas a;
@@ -481,7 +517,7 @@ Atlas atlasFrom(const rjson& j) {
 
 Atlas atlasFromJson(const std::string& text) {
   try {
-    return atlasFrom(io::parseJson(text));
+    return atlasFrom(io::parseJson(text));  // a copy: its checksum is taken out to verify the rest
   } catch (const std::runtime_error&) {
     throw;
   } catch (const std::exception& e) {  // parseJson's std::invalid_argument; nlohmann's own, should one escape

@@ -11,8 +11,11 @@
 
 namespace archipelago {
 
-/// The JSON text: {"format": "archipelago atlas", "program", "provenance", "map", "request", "cancelled", "seconds",
-/// "nodes": [...]} (docs/atlas.md lists the fields of a node).
+/// The JSON text: {"format": "archipelago atlas", "format_version": 2, "program", "provenance", "map", "request",
+/// "cancelled", "seconds", "nodes": [...], "checksum": "sha256:…"} (docs/atlas.md lists the fields of a node; the
+/// checksum is io::jsonChecksum's, as run and tail files have: any edit is refused on load).
+inline constexpr int kAtlasFormatVersion = 2;  ///< 2: signed (issue 54); files without a version are read unsigned
+[[nodiscard]] std::string atlasJson(const Atlas& atlas);
 [[nodiscard]] std::string atlasJson(const Atlas& atlas);
 
 /// The CSV text: "# key: value" provenance lines, then the header and one row per node (docs/atlas.md).

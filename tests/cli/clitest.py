@@ -1,6 +1,6 @@
 """What every archipelago-cli end-to-end test shares: the executable (argv[1]), checks that print ok/FAIL and
 are counted, running the tool, parsing its "# key: value" + CSV reports, and the exit status."""
-import csv, io, os, re, signal, subprocess, sys, time
+import csv, hashlib, io, json, os, re, signal, subprocess, sys, time
 
 cli = sys.argv[1]
 _failures = 0
@@ -57,3 +57,13 @@ def leftovers(folder):
 
 def finish():
     sys.exit(1 if _failures else 0)
+
+
+def signed(document):
+    """An edited run, tail or atlas document signed again (io::jsonChecksum: SHA-256 of the document without its
+    checksum, keys sorted, indent 1): a test that edits a file on purpose gets past the checksum to the rule it tests."""
+    d = dict(document)
+    d.pop("checksum", None)
+    text = json.dumps(d, indent=1, sort_keys=True, ensure_ascii=False)
+    d["checksum"] = "sha256:" + hashlib.sha256(text.encode()).hexdigest()
+    return d

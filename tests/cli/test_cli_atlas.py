@@ -2,7 +2,7 @@
 the paper's chain of six (1/6 about the centre); every bad option is one ERROR line and exit status 1 with nothing
 written; an output that cannot be written fails loudly."""
 import csv, io, json, os, tempfile
-from clitest import check, finish, run
+from clitest import check, finish, run, signed
 
 with tempfile.TemporaryDirectory() as d:
     j, c = os.path.join(d, "a.json"), os.path.join(d, "a.csv")
@@ -44,7 +44,7 @@ with tempfile.TemporaryDirectory() as d:
     measured = [n.get("measured") for n in part.get("nodes", [])]
     check(measured[:1] == [True] and measured.count(True) == 1, f"the centre is measured, its chains not yet ({measured})")
     part["seconds"] = 2640.0  # as if the first part had taken 44 min: the resumed atlas's time includes it
-    json.dump(part, open(t, "w"))
+    json.dump(signed(part), open(t, "w"))
     r = run("atlas", "--K", "0.1", "--depth", "1", "--max-period", "200", "--resume", t, "--json", t)
     done = json.load(open(t))
     check(done.get("seconds", 0) > 2640.0, f"the resumed atlas's seconds count every part ({done.get('seconds')})")

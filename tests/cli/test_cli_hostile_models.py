@@ -19,7 +19,7 @@ silent wrong) and the table printed; the test fails unless every crash, hang and
 The nesting atlases are built here from a computed depth-0 atlas (the centre and its flux), never checked in."""
 import copy, hashlib, json, os, shutil, tempfile, time
 
-from clitest import check, finish
+from clitest import check, finish, signed
 from hostile import classify, invoke, print_table, problems, record
 
 tmp = tempfile.mkdtemp(prefix="archipelago-hostile-models-")
@@ -47,10 +47,17 @@ def nesting_chains(n):
     the boundary rotation the farther out), layer l1 (n + 1 - k)/n (each state of area l1/n) and a flux of 10^-3 of
     that area; the centre's layer stays above l1."""
     a = copy.deepcopy(centre)
+    # Unsigned, as atlas files before issue 54 were (still read, every rule but the checksum checked): Python cannot
+    # sign a document of computed doubles as the C++ writer prints them (its shortest digits differ now and then).
+    a.pop("format_version", None)
+    a.pop("checksum", None)
     a["request"]["depth"] = 1
     c = a["nodes"][0]
-    c["boundary"]["rotation"] = 0.0
+    # The centre's boundary rotation below every 1/q (each chain then lies farther from it the farther out), and
+    # positive: a chain turns about its parent in the sense of the parent's circles (issue 54's reader checks it).
+    c["boundary"]["rotation"] = 1e-6
     l1 = 0.5 * c["flux"]["layer_area"]
+    short = lambda v: float(f"{v:.12g}")  # consistent to 1e-12: the reader's rules allow 1e-9
     for k in range(1, n + 1):
         node = copy.deepcopy(c)
         q = k + 6
@@ -58,16 +65,21 @@ def nesting_chains(n):
         node.update({"index": k, "parent": 0, "level": 1, "path": str(q), "period": q, "about_parent": f"1/{q}",
                      "children": [], "internal": [], "note": ""})
         node["boundary"]["rotation"] = 0.25
-        node["flux"].update({"flux_per_step": 1e-3 * l1 / n, "zone_area": layer * 1.01, "layer_area": layer,
-                             "enclosed_islands_area": layer * 0.01, "residence": n * 1e3})
+        # a small island (a copy of the centre's area times q would exceed the box: refused, issue 54)
+        node.update({"area": 1e-6, "area_lower": 1e-6, "area_upper": 1e-6, "area_error": 0.0, "polygon_error": 0.0})
+        layer, flux = short(layer), short(1e-3 * l1 / n)
+        node["flux"].update({"flux_per_step": flux, "zone_area": short(layer * 1.01), "layer_area": layer,
+                             "enclosed_islands_area": short(short(layer * 1.01) - layer),
+                             "residence": short(layer / flux)})
         a["nodes"].append(node)
     c["children"] = list(range(1, n + 1))
     return a
 
 
 def written(path, data):
+    """`data` written to `path`, signed again when it is a signed document (the cases test the rules past it)."""
     with open(path, "w") as f:
-        json.dump(data, f)
+        json.dump(signed(data) if isinstance(data, dict) and "format_version" in data else data, f)
     return path
 
 

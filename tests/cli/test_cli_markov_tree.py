@@ -5,7 +5,7 @@ survival with its provenance; one flux edited in the atlas file changes exactly 
 bad options and bad atlases are one ERROR line and nothing written; --tail sets the model against a tail sampler's
 levels (ratio, reach) and refuses a tail of another map."""
 import csv, io, json, os, tempfile
-from clitest import check, finish, run
+from clitest import check, finish, run, signed
 
 with tempfile.TemporaryDirectory() as d:
     atlas = os.path.join(d, "a.json")
@@ -56,8 +56,10 @@ with tempfile.TemporaryDirectory() as d:
     # One flux edited: the two rates through that barrier change, no other.
     edited = os.path.join(d, "edited.json")
     target = kids[1]
-    a["nodes"][target]["flux"]["flux_per_step"] *= 3
-    json.dump(a, open(edited, "w"))
+    f = a["nodes"][target]["flux"]
+    f["flux_per_step"] *= 3
+    f["residence"] = f["layer_area"] / f["flux_per_step"]  # kept consistent, and the file signed again
+    json.dump(signed(a), open(edited, "w"))
     j2 = os.path.join(d, "m2.json")
     r = run("markov-tree", "--atlas", edited, "--t-max", "1e6", "--json", j2, "--quiet")
     m2 = json.load(open(j2))
@@ -68,7 +70,7 @@ with tempfile.TemporaryDirectory() as d:
     stopped = os.path.join(d, "stopped.json")
     s = json.load(open(atlas))
     s["cancelled"], s["stop_reason"] = True, "stopped"
-    json.dump(s, open(stopped, "w"))
+    json.dump(signed(s), open(stopped, "w"))
     for args, word in [(["--alpha", "18.9"], "alpha and b2 go together"), (["--alpha", "-1", "--b2", "1.3"], "alpha"),
                        (["--t-max", "0"], "t-max"), (["--at", "12,x"], "--at"), (["--per-decade", "0"], "per decade"),
                        (["--at", "9223372036854775807"], "2^62")]:

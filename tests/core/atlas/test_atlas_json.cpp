@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/atlas/AtlasExport.hpp"
+#include "core/io/Json.hpp"
 
 namespace archipelago {
 namespace {
@@ -69,8 +70,8 @@ Atlas handBuilt() {
   centre.flux.fluxDigits = std::numeric_limits<long double>::infinity();
   centre.flux.zoneDigits = 9.5;
   centre.flux.enclosedIslands = 0.2391965;
-  centre.flux.layerArea = 0.2744;
-  centre.flux.residence = 71.4;
+  centre.flux.layerArea = centre.flux.zoneArea - centre.flux.enclosedIslands;  // the reader checks both (issue 54)
+  centre.flux.residence = static_cast<double>(centre.flux.layerArea / centre.flux.flux);
   centre.internal = {{2, 11}, {3, 17}};
   centre.children = {1, 2};
   centre.measured = true;
@@ -98,8 +99,8 @@ Atlas handBuilt() {
   six.flux.fluxDigits = 8.25;
   six.flux.zoneDigits = 7.5;
   six.flux.enclosedIslands = 0.2391965;
-  six.flux.layerArea = 0.072085;
-  six.flux.residence = 3533;
+  six.flux.layerArea = six.flux.zoneArea - six.flux.enclosedIslands;
+  six.flux.residence = static_cast<double>(six.flux.layerArea / six.flux.flux);
   six.children = {3};
   six.measured = true;
 
@@ -149,10 +150,18 @@ std::string refusal(const std::string& text) {
   return {};
 }
 
+/// `j` signed again after an edit (io::jsonChecksum, as the writer signs): the edit then meets the rule it tests.
+std::string signedAgain(ojson j) {
+  if (!j.is_object()) return j.dump(2);
+  j.erase("checksum");
+  if (j.contains("format_version")) j["checksum"] = io::jsonChecksum(nlohmann::json::parse(j.dump()));
+  return j.dump(2);
+}
+
 std::string edited(const std::function<void(ojson&)>& edit) {
   ojson j = ojson::parse(atlasJson(handBuilt()));
   edit(j);
-  return j.dump(2);
+  return signedAgain(j);
 }
 
 TEST(AtlasJson, ReadsBackToTheSameText) {
@@ -278,11 +287,15 @@ TEST(AtlasJson, AFileFromBeforeTheIntervalReadsWithItsBoundaryUncertaintyUnknown
   // Files of a2e223a and before: area_error was the polygon's convergence (2.4e-9 for the island of six, whose area
   // was low by 3e-3 relative); read back, that number is the polygon's, and the interval's upper end is not known.
   ojson j = ojson::parse(atlasJson(handBuilt()));
+  j.erase("format_version");  // and unsigned, as files were then
+  j.erase("checksum");
   for (ojson& n : j["nodes"]) {
     n["area_error"] = n["polygon_error"];
     n.erase("area_lower");
     n.erase("area_upper");
     n.erase("polygon_error");
+    if (n["flux"].contains("inner")) n["flux"].erase("inner");
+    if (n["flux"].contains("outer_by")) n["flux"].erase("outer_by");
   }
   const Atlas a = atlasFromJson(j.dump(2));
   const AtlasNode& six = a.nodes[1];
@@ -297,6 +310,37 @@ TEST(AtlasJson, AFileFromBeforeTheIntervalReadsWithItsBoundaryUncertaintyUnknown
   const Atlas b = atlasFromJson(again.dump(2));  // and reads back so (an old atlas resumed)
   EXPECT_TRUE(std::isnan(b.nodes[1].areaUpper));
   EXPECT_EQ(atlasJson(b), atlasJson(a));
+}
+
+// Issue 54, item 1: atlas files were trusted as written — an edited about_parent, an area of 1e308, an area doubled
+// consistently with its islands_area, a layer above zone − enclosed islands all read back (and resumed, and modelled)
+// with exit 0.  They are signed now, and their invariants checked when read.
+TEST(AtlasJson, AnEditedFileIsRefusedByItsChecksumAndAForgedOneByItsInvariants) {
+  // Any edit, consistent or not, breaks the checksum.
+  ojson j = ojson::parse(atlasJson(handBuilt()));
+  j["nodes"][0]["area"] = 2 * j["nodes"][0]["area"].get<double>();
+  EXPECT_NE(refusal(j.dump(2)).find("checksum does not match"), std::string::npos);
+  j.erase("checksum");
+  EXPECT_NE(refusal(j.dump(2)).find("checksum"), std::string::npos);
+  // Signed again (a forger who knows the checksum's rule), the invariants refuse what no computation writes.
+  const auto says = [](const std::function<void(ojson&)>& edit, const std::string& words) {
+    const std::string message = refusal(edited(edit));
+    EXPECT_NE(message.find(words), std::string::npos) << message;
+  };
+  says([](ojson& d) { d["nodes"][1]["about_parent"] = "-1/6"; }, "nodes[1].about_parent");
+  says([](ojson& d) { d["nodes"][1]["about_parent"] = "2/12"; }, "lowest terms");
+  says([](ojson& d) { d["nodes"][1]["about_parent"] = "7/6"; }, "0 < |p| < q");
+  says([](ojson& d) {
+    d["nodes"][0]["area"] = 1e308;
+    d["nodes"][0]["area_upper"] = 1e308;
+    d["nodes"][0]["area_error"] = 1e308;
+  }, "box's area");
+  says([](ojson& d) { d["nodes"][1]["flux"]["layer_area"] = 1.1 * d["nodes"][1]["flux"]["layer_area"].get<double>(); },
+       "must be zone_area − enclosed_islands_area");
+  says([](ojson& d) { d["nodes"][1]["flux"]["residence"] = 2 * d["nodes"][1]["flux"]["residence"].get<double>(); },
+       "layer_area / flux_per_step");
+  says([](ojson& d) { d["nodes"][0]["flux"]["zone_area"] = 1e308; }, "box's area");
+  says([](ojson& d) { d["format_version"] = 3; }, "format_version");
 }
 
 TEST(AtlasJson, RefusesEditedTrees) {
@@ -376,8 +420,10 @@ TEST(AtlasJson, ABarrierWhoseZoneIsNoLargerThanItsIslandsIsRefused) {
 
   // The file: the chain of six's layer and residence edited negative are read as a refused flux, and written so.
   const Atlas a = atlasFromJson(edited([](ojson& j) {
-    j["nodes"][1]["flux"]["layer_area"] = -4.177795e-4;
-    j["nodes"][1]["flux"]["residence"] = -1.53573e9;
+    ojson& g = j["nodes"][1]["flux"];  // the islands inside exceed the zone, as K = 0.15's 1/5 about 21's did
+    g["enclosed_islands_area"] = g["zone_area"].get<double>() + 4.177795e-4;
+    g["layer_area"] = g["zone_area"].get<double>() - g["enclosed_islands_area"].get<double>();
+    g["residence"] = g["layer_area"].get<double>() / g["flux_per_step"].get<double>();
   }));
   EXPECT_FALSE(a.nodes[1].flux.found);
   EXPECT_NE(a.nodes[1].flux.failure.find("no larger than"), std::string::npos) << a.nodes[1].flux.failure;
@@ -412,7 +458,7 @@ TEST(AtlasJson, RandomEditsAreRefusedOrReadConsistently) {
         case 2: if (v->is_array() && !v->empty()) v->push_back((*v)[0]); break;
       }
     }
-    const std::string text = j.dump(1);
+    const std::string text = signedAgain(j);  // past the checksum, to the rules (an unsigned edit is refused whole)
     try {
       const Atlas a = atlasFromJson(text);
       const std::string again = atlasJson(a);

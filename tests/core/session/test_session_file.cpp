@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include "core/atlas/AtlasExport.hpp"
+#include "core/io/Json.hpp"
 #include "core/runfile/RunFile.hpp"
 #include "core/session/SessionFile.hpp"
 #include "tests/core/DecimalCommaLocale.hpp"
@@ -358,7 +359,12 @@ TEST(SessionFile, KeepsTheAtlasOfItsMap_Issue38) {
 
   const auto withAtlas = [&](const std::function<void(nlohmann::json&)>& edit) {
     nlohmann::json j = nlohmann::json::parse(text);
-    edit(j["atlas"]);
+    nlohmann::json& a = j["atlas"];
+    edit(a);
+    if (a.is_object() && a.contains("format_version")) {  // signed again: the edit meets the rule it tests
+      a.erase("checksum");
+      a["checksum"] = io::jsonChecksum(a);
+    }
     return j.dump();
   };
   expectRejected(withAtlas([](nlohmann::json& a) { a["nodes"][1]["period"] = -1; }), "atlas: nodes[1].period");
