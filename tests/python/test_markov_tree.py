@@ -42,6 +42,7 @@ def test_markov_tree_refuses_bad_input(atlas_file, kwargs, word):
 def test_markov_tree_refuses_a_stopped_atlas(atlas_file):
     a = json.loads(atlas_file.read_text())
     a["cancelled"], a["stop_reason"] = True, "stopped"
+    a.pop("format_version"), a.pop("checksum")  # edited: read as an unsigned file (a signed one is refused whole)
     with pytest.raises(ValueError, match="stopped before its end"):
         ap.markov_tree(a)
     with pytest.raises(ValueError, match="atlas"):
@@ -78,18 +79,23 @@ def test_markov_tree_refuses_an_impossible_entry_Issue54(atlas_file, alpha, b2, 
 
 def _nesting_chains(atlas, n):
     """`atlas` (depth 0: the centre and its flux) with n chains about the centre whose zones nest (p/q = 1/(k + 6)
-    about the boundary rotation 0; each state of area l1/n and a flux of 10^-3 of it): tests/cli/test_cli_hostile_models.py's."""
+    about a boundary rotation below them; each state of area l1/n and a flux of 10^-3 of it): tests/cli/test_cli_hostile_models.py's."""
     a = copy.deepcopy(atlas)
+    a.pop("format_version", None), a.pop("checksum", None)  # an unsigned file, as cli.hostile_models' (it says why)
     a["request"]["depth"] = 1
     c = a["nodes"][0]
-    c["boundary"]["rotation"] = 0.0
+    c["boundary"]["rotation"] = 1e-6  # positive (the chains turn in its sense) and below every 1/q
     l1 = 0.5 * c["flux"]["layer_area"]
+    short = lambda v: float(f"{v:.12g}")
     for k in range(1, n + 1):
-        node, q, layer = copy.deepcopy(c), k + 6, l1 * (n + 1 - k) / n
+        node, q, layer = copy.deepcopy(c), k + 6, short(l1 * (n + 1 - k) / n)
+        flux = short(1e-3 * l1 / n)
         node.update({"index": k, "parent": 0, "level": 1, "path": str(q), "period": q, "about_parent": f"1/{q}",
-                     "children": [], "internal": [], "note": ""})
-        node["flux"].update({"flux_per_step": 1e-3 * l1 / n, "zone_area": layer * 1.01, "layer_area": layer,
-                             "enclosed_islands_area": layer * 0.01, "residence": n * 1e3})
+                     "children": [], "internal": [], "note": "", "area": 1e-6, "area_lower": 1e-6,
+                     "area_upper": 1e-6, "area_error": 0.0, "polygon_error": 0.0})
+        node["flux"].update({"flux_per_step": flux, "zone_area": short(layer * 1.01), "layer_area": layer,
+                             "enclosed_islands_area": short(short(layer * 1.01) - layer),
+                             "residence": short(layer / flux)})
         a["nodes"].append(node)
     c["children"] = list(range(1, n + 1))
     return a
