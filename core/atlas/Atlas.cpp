@@ -818,18 +818,24 @@ class AtlasBuilder {
       // period-247 orbit was named 2/19 and 7/19 about the island of 13 and 1/13 about the island of 19).
       if (!surrounds(child.orbit, rays[k].island.centre, node.period, *child.aboutParent, 2 * rays[k].island.reach))
         continue;
-      auto same = [&](const AtlasNode& other) {
-        return other.period == child.period && other.orbit.distanceTo(child.centre) < 1e-9L;
-      };
-      if (std::any_of(atlas.nodes.begin(), atlas.nodes.end(), same) ||
-          std::any_of(children.begin(), children.end(), same))
-        continue;
-      child.onS1 = member->second == smooth::SymmetryLine::S1;
-      child.sense = rotationSense(K_, child.centre, period);
-      children.push_back(std::move(child));
+      addChain(atlas, std::move(child), member->second, children);
     }
     if (index == 0) addFareyChains(atlas, node, rays.front().island.reach, children);
     return children;
+  }
+
+  /// Adds `child` (its orbit and centre set, its member on `line`) to `children` unless the same chain (its period and
+  /// an orbit through its centre) is already in the atlas or among them; whether it was added.
+  bool addChain(const Atlas& atlas, AtlasNode child, smooth::SymmetryLine line, std::vector<AtlasNode>& children) const {
+    auto same = [&](const AtlasNode& other) {
+      return other.period == child.period && other.orbit.distanceTo(child.centre) < 1e-9L;
+    };
+    if (std::any_of(atlas.nodes.begin(), atlas.nodes.end(), same) || std::any_of(children.begin(), children.end(), same))
+      return false;
+    child.onS1 = line == smooth::SymmetryLine::S1;
+    child.sense = rotationSense(K_, child.centre, child.period);
+    children.push_back(std::move(child));
+    return true;
   }
 
   /// Every symmetric chain about the centre of period ≤ kFareyPeriod whose rotation lies between the boundary circle's
@@ -870,16 +876,8 @@ class AtlasBuilder {
           child.aboutParent = pq;
           child.orbit = orbit.rotatedToStart(member->first);
           child.centre = child.orbit.points.front();
-          auto same = [&](const AtlasNode& other) {
-            return other.period == child.period && other.orbit.distanceTo(child.centre) < 1e-9L;
-          };
-          if (std::any_of(atlas.nodes.begin(), atlas.nodes.end(), same) ||
-              std::any_of(children.begin(), children.end(), same))
-            continue;
-          child.onS1 = member->second == smooth::SymmetryLine::S1;
-          child.sense = rotationSense(K_, child.centre, child.period);
-          children.push_back(std::move(child));
-          break;  // one elliptic orbit per p/q: its images are the chain
+          if (addChain(atlas, std::move(child), member->second, children))
+            break;  // one elliptic orbit per p/q: its images are the chain
         }
       }
     }
