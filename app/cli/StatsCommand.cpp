@@ -46,10 +46,8 @@ StochasticAreaValue checkedStochasticArea(const MapParameters& map, double area)
   return stochasticAreaOf(map, area / (map.width() * map.width()));
 }
 
-void printBoxInvariant(const MapParameters& map, const StochasticAreaValue& b2, const TrappingStatistics& s,
-                       const TailAnalysis& tail) {
+void printBoxInvariant(const MapParameters& map, const StochasticAreaValue& b2, const RunSummary& summary) {
   // b₂·D carries D's error as core's run summary gives it (issue 35), and none when the tail dominates D.
-  const RunSummary summary = summarizeRun(s, s.segments > 0 ? &tail : nullptr, "no segment yet");
   const bool errorKnown = std::isfinite(summary.DError);
   const BoxInvariantQuantities q = boxInvariantQuantities(b2, summary.D, errorKnown ? summary.DError : 0);
   std::printf("b2          %s\n", stochasticAreaText(map, b2).c_str());
@@ -192,6 +190,8 @@ int statsCommand(const StatsOptions& o) {
   TailOptions tailOptions;
   tailOptions.bootstrap = o.bootstrap;
   const TailAnalysis tail = analyseTail(ensemble, tailOptions);
+  // D and its error as every front end gives them: the D lines, b₂·D, summary.csv and box_invariant.csv (issue 51).
+  const RunSummary summary = summarizeRun(s, s.segments > 0 ? &tail : nullptr, "no segment yet");
   const TrappingParameters& p = state.params;
   for (std::size_t i = 0; i < states.size(); ++i)
     std::printf("run         %s (%s)\n", o.runFiles[i].c_str(), states[i].finished() ? "finished" : "in progress");
@@ -223,7 +223,6 @@ int statsCommand(const StatsOptions& o) {
   // Spliced, D is the composite statistics' with the error core's run summary gives it (the subsets' of the spliced
   // statistics); the tail below is the run's own: the longest segments, which carry D's error, are the run's.
   if (companion) {
-    const RunSummary summary = summarizeRun(s, &tail);
     if (std::isfinite(summary.DError))
       std::printf("D           %.6g +- %.2g   (eq. ddef, %s; the run alone below)\n", summary.D, summary.DError,
                   summary.DErrorNote.c_str());
@@ -233,7 +232,7 @@ int statsCommand(const StatsOptions& o) {
   if (s.segments > 0) printD(tail, companion ? statisticsOf(state) : s, companion ? "D (run)     " : "D           ");
   else std::printf("D           0   (no segment yet)\n");
   std::printf("sum t f_t   %.9f           (should be close to 1)\n", s.sumTf);
-  if (b2) printBoxInvariant(p.map, *b2, s, tail);
+  if (b2) printBoxInvariant(p.map, *b2, summary);
   if (s.segments > 0) {
     printTail(tail);
     printVerdict(tail);
@@ -255,9 +254,9 @@ int statsCommand(const StatsOptions& o) {
   // of their own so that --csv stays the GUI's set.
   io::OutputBatch outputs;  // every CSV or none (issue 36, class 5)
   if (!o.csvDir.empty())
-    writeCsvFiles(o.csvDir, withNote(statisticsCsvFiles(state, s, theoryCurves(p, s)), state, ensembleNote(tail)));
+    writeCsvFiles(o.csvDir, withNote(statisticsCsvFiles(state, s, theoryCurves(p, s), summary), state, ensembleNote(tail)));
   if (!o.csvDir.empty() && b2) {
-    for (const auto& [name, text] : {std::pair{boxInvariantCsvFileName, boxInvariantCsv(state, s, *b2, summarizeRun(s, &tail).DError)},
+    for (const auto& [name, text] : {std::pair{boxInvariantCsvFileName, boxInvariantCsv(state, s, *b2, summary.DError)},
                                      std::pair{boxInvariantFtCsvFileName, boxInvariantFtCsv(state, s, *b2)}}) {
       const std::filesystem::path path = std::filesystem::path(o.csvDir) / name;
       io::writeFileAtomically(path, text);

@@ -1,6 +1,7 @@
 #include "core/export/StatisticsCsv.hpp"
 
 #include <charconv>
+#include <cmath>
 #include <cstdint>
 #include <stdexcept>
 #include <system_error>
@@ -144,19 +145,35 @@ std::string theoryCsv(const TrappingState& state, const std::vector<TheoryCurve>
   return out;
 }
 
-std::string summaryCsv(const TrappingState& state, const TrappingStatistics& statistics) {
-  const TrappingStatistics& s = statistics;
+std::string summaryCsv(const TrappingState& state, const TrappingStatistics& statistics, const RunSummary& summary) {
+  // Every value and error is the run summary's (core/stats/RunSummary.hpp), which `stats`, Python and the GUI print:
+  // D's error is the one they give (none when the longest segments dominate D), never the subsets' standard error,
+  // which stands in a row of its own under its own name (issue 51: summary.csv once gave D = 1088 ± 487 where
+  // `stats` said D has no error).
+  const RunSummary& r = summary;
+  const auto optional = [](double v) { return std::isfinite(v) ? number(v) : std::string(); };
   std::string out = csvMetadataHeader(state);
   line(out, "summary", "alpha: mean segment length (steps); D: diffusion coefficient (section 3); "
-                       "sum_t_f_t: C_0 (close to 1); segments: recorded; longest_blocks: longest length the "
-                       "highest non-empty bin can hold (blocks of q steps)");
-  line(out, "error", "one sigma: standard error of the mean over the subsets of orbits (0: none)");
+                       "D_error_subsets: the standard error of D over the subsets of orbits, for reference only (the "
+                       "heavy tail makes it far too small, section 5); gamma_P: the tail's exponent, P_t ~ t^-gamma "
+                       "(gamma_P_low, gamma_P_high: its interval); sum_t_f_t: C_0 (close to 1); segments: recorded; "
+                       "longest_blocks: longest length the highest non-empty bin can hold (blocks of q steps)");
+  line(out, "error", "one sigma; empty: none can be given (see D_error and gamma_P below); 0: exact");
+  line(out, "D_error", r.DErrorNote);
+  if (r.judged) {
+    line(out, "gamma_P", r.gammaPText);
+    line(out, "verdict", r.tailVerdict);
+  }
   out += "quantity,value,error\n";
-  out += "alpha," + number(s.alpha) + ',' + number(s.alphaError) + '\n';
-  out += "D," + number(s.D) + ',' + number(s.DError) + '\n';
-  out += "sum_t_f_t," + number(s.sumTf) + ",0\n";
-  out += "segments," + number(s.segments) + ",0\n";
-  out += "longest_blocks," + number(s.longestBlocks) + ",0\n";
+  out += "alpha," + number(r.alpha) + ',' + number(r.alphaError) + '\n';
+  out += "D," + number(r.D) + ',' + optional(r.DError) + '\n';
+  out += "D_error_subsets," + number(r.DSubsetsError) + ",\n";
+  out += "gamma_P," + optional(r.gammaP) + ",\n";
+  out += "gamma_P_low," + optional(r.gammaPInterval.lo) + ",\n";
+  out += "gamma_P_high," + optional(r.gammaPInterval.hi) + ",\n";
+  out += "sum_t_f_t," + number(r.sumTf) + ",0\n";
+  out += "segments," + number(r.segments) + ",0\n";
+  out += "longest_blocks," + number(statistics.longestBlocks) + ",0\n";
   return out;
 }
 
@@ -179,26 +196,27 @@ std::string longestSegmentsCsv(const TrappingState& state) {
 }
 
 std::vector<CsvFile> statisticsCsvFiles(const TrappingState& state, const TrappingStatistics& statistics,
-                                        const std::vector<TheoryCurve>& theory) {
+                                        const std::vector<TheoryCurve>& theory, const RunSummary& summary) {
   std::vector<CsvFile> files;
   for (const StatisticInfo& info : statisticsTable()) {
     files.push_back({statisticCsvFileName(info.statistic), statisticCsv(state, statistics, info.statistic)});
     if (hasTheory(theory, info.statistic))
       files.push_back({theoryCsvFileName(info.statistic), theoryCsv(state, theory, info.statistic)});
   }
-  files.push_back({summaryCsvFileName, summaryCsv(state, statistics)});
+  files.push_back({summaryCsvFileName, summaryCsv(state, statistics, summary)});
   files.push_back({longestSegmentsCsvFileName, longestSegmentsCsv(state)});
   return files;
 }
 
 std::vector<std::filesystem::path> writeStatisticsCsv(const std::filesystem::path& dir, const TrappingState& state,
                                                       const TrappingStatistics& statistics,
-                                                      const std::vector<TheoryCurve>& theory) {
+                                                      const std::vector<TheoryCurve>& theory,
+                                                      const RunSummary& summary) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec) throw std::runtime_error("cannot create folder " + dir.string() + ": " + ec.message());
   std::vector<std::filesystem::path> written;
-  for (const CsvFile& f : statisticsCsvFiles(state, statistics, theory)) {
+  for (const CsvFile& f : statisticsCsvFiles(state, statistics, theory, summary)) {
     writeFile(dir / f.name, f.text);
     written.push_back(dir / f.name);
   }

@@ -7,14 +7,15 @@
 ///   <stem>.csv         one per statistic: f_t, p_t, P_t, C_tau, local_exponent, S_t, D_t
 ///   <stem>.theory.csv  the small-K theory curves over that statistic (theory/TheoryCurves.hpp), only when
 ///                      some apply
-///   summary.csv        α, D, Σ t f_t, segments, longest segment
+///   summary.csv        the run summary (stats/RunSummary.hpp): α, D with the error `stats` gives it, the
+///                      subsets' error of D for reference, γ_P and its interval, Σ t f_t, segments, longest segment
 ///   longest_segments.csv  the longest trapped segments with their start states (longestSegmentsCsv())
 /// Format: comment lines starting with "# " (csvMetadataHeader(): program, parameters, map coefficients,
 /// kernel; then lines about the file's content), one header row of descriptive column names, then rows.
 ///   <stem>.csv:         <abscissa>,<key>,<key>_error        e.g. t,f_t,f_t_error  (tau for C_τ)
 ///   <stem>.theory.csv:  curve,<abscissa>,<key>              one row per sampled point of each curve; a
 ///                       vertical line (t_max) is a comment line "# vertical_line: <label>; <abscissa> = <v>"
-///   summary.csv:        quantity,value,error
+///   summary.csv:        quantity,value,error   (error empty: none can be given; the comment lines say why)
 /// Numbers have 17 significant digits (round-trip exact for doubles) and are formatted without the locale
 /// (std::to_chars), so a GUI running in a locale with a decimal comma writes the same bytes as the CLI.
 /// Lines end with '\n'.
@@ -24,6 +25,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/stats/RunSummary.hpp"
 #include "core/stats/StatisticsTable.hpp"
 #include "core/stats/TrappingStatistics.hpp"
 #include "core/theory/TheoryCurves.hpp"
@@ -61,8 +63,10 @@ inline constexpr const char* longestSegmentsCsvFileName = "longest_segments.csv"
                                        Statistic s);
 /// The text of <stem>.theory.csv: the curves of `theory` that belong to `s`; empty when none does.
 [[nodiscard]] std::string theoryCsv(const TrappingState& state, const std::vector<TheoryCurve>& theory, Statistic s);
-/// The text of summary.csv.
-[[nodiscard]] std::string summaryCsv(const TrappingState& state, const TrappingStatistics& statistics);
+/// The text of summary.csv: `summary` (summarizeRun() of `statistics`, as every front end prints it) with
+/// `statistics`' longest bin.
+[[nodiscard]] std::string summaryCsv(const TrappingState& state, const TrappingStatistics& statistics,
+                                     const RunSummary& summary);
 
 /// The text of longest_segments.csv: the run's longest trapped segments (§6), longest first, with the
 /// metadata header and the columns rank, length_steps (q · blocks), length_blocks, orbit, start_block,
@@ -79,13 +83,15 @@ struct CsvFile {
 /// summary.csv and longest_segments.csv.
 [[nodiscard]] std::vector<CsvFile> statisticsCsvFiles(const TrappingState& state,
                                                       const TrappingStatistics& statistics,
-                                                      const std::vector<TheoryCurve>& theory);
+                                                      const std::vector<TheoryCurve>& theory,
+                                                      const RunSummary& summary);
 
 /// Writes statisticsCsvFiles() into `dir` (created when missing) and returns the paths written.
 /// Throws std::runtime_error naming the file or folder on failure.
 std::vector<std::filesystem::path> writeStatisticsCsv(const std::filesystem::path& dir, const TrappingState& state,
                                                       const TrappingStatistics& statistics,
-                                                      const std::vector<TheoryCurve>& theory);
+                                                      const std::vector<TheoryCurve>& theory,
+                                                      const RunSummary& summary);
 
 /// Writes one statistic to `path` and, when theory curves belong to it, those to the same path with the
 /// suffix ".csv" replaced by ".theory.csv" (".theory.csv" appended when the path has another suffix).

@@ -12,6 +12,7 @@
 #include "ui/plots/StatisticsPlot.hpp"
 #include "core/portrait/PortraitExport.hpp"
 #include "ui/portrait/PortraitView.hpp"
+#include "ui/window/StatisticsView.hpp"
 
 namespace archipelago::ui {
 
@@ -80,7 +81,7 @@ ExportResult exportAll(const QList<StatisticsPlot*>& plots, const RunSnapshotPtr
   }
   try {
     for (const auto& p : writeStatisticsCsv(folder.toStdString(), snapshot->state, snapshot->statistics,
-                                            snapshot->theory))
+                                            snapshot->theory, StatisticsView::summaryOf(*snapshot)))
       result.written << fromPath(p);
     RunSpec written;
     if (spec && spec->parameters == snapshot->state.params) written = *spec;

@@ -36,14 +36,15 @@ class StatisticsView : public QWidget {
   [[nodiscard]] QString summaryText() const;
   /// The tail's line as plain text: γ_P and the verdict in `stats`'s words (empty until the tail is judged).
   [[nodiscard]] QString tailText() const;
+  /// Core's run summary of the snapshot (its statistics and, once judged, the run's tail analysis): what the view
+  /// shows and what "Export all" writes in summary.csv.
+  [[nodiscard]] static RunSummary summaryOf(const RunSnapshot& snapshot);
 
  private:
   /// The exact longest segment (the first kept record), in steps.
   [[nodiscard]] static QString longestText(const RunSnapshot& snapshot);
   /// D with the error the data supports (core's tail analysis of a finished or paused run).
   [[nodiscard]] static QString dText(const RunSnapshot& snapshot);
-  /// Core's run summary of the snapshot (its statistics and, once judged, the run's tail analysis).
-  [[nodiscard]] static RunSummary summaryOf(const RunSnapshot& snapshot);
   /// γ_P and the verdict, or empty when the tail is not judged yet.
   [[nodiscard]] static QString tailHtml(const RunSnapshot& snapshot);
 

@@ -14,6 +14,7 @@
 #include "core/export/StatisticsCsv.hpp"
 #include "core/provenance/Provenance.hpp"
 #include "core/stats/RunStatistics.hpp"
+#include "core/stats/RunSummary.hpp"
 #include "core/run/TrappingRun.hpp"
 
 namespace archipelago {
@@ -147,15 +148,51 @@ TEST(StatisticsCsv, EachStatisticHasDescriptiveColumnsAndExactNumbers) {
 TEST(StatisticsCsv, SummaryKeepsAlphaDAndTheCounts) {
   const TrappingState state = smallRun();
   const TrappingStatistics stats = statisticsOf(state);
-  const Split s = split(summaryCsv(state, stats));
-  ASSERT_EQ(s.rows.size(), 6u);
+  const RunSummary summary = summarizeRun(state, stats);
+  const Split s = split(summaryCsv(state, stats, summary));
+  ASSERT_EQ(s.rows.size(), 10u);
   EXPECT_EQ(s.rows[0], "quantity,value,error");
-  const char* names[] = {"alpha", "D", "sum_t_f_t", "segments", "longest_blocks"};
-  for (int i = 0; i < 5; ++i) EXPECT_EQ(cells(s.rows[i + 1]).at(0), names[i]);
+  const char* names[] = {"alpha", "D", "D_error_subsets", "gamma_P", "gamma_P_low", "gamma_P_high",
+                         "sum_t_f_t", "segments", "longest_blocks"};
+  for (int i = 0; i < 9; ++i) EXPECT_EQ(cells(s.rows[i + 1]).at(0), names[i]);
   EXPECT_EQ(std::strtod(cells(s.rows[1]).at(1).c_str(), nullptr), stats.alpha);
   EXPECT_EQ(std::strtod(cells(s.rows[2]).at(1).c_str(), nullptr), stats.D);
-  EXPECT_EQ(std::strtod(cells(s.rows[2]).at(2).c_str(), nullptr), stats.DError);
-  EXPECT_EQ(cells(s.rows[4]).at(1), std::to_string(stats.segments));
+  EXPECT_EQ(std::strtod(cells(s.rows[3]).at(1).c_str(), nullptr), stats.DError);  // the subsets', named as such
+  EXPECT_EQ(cells(s.rows[8]).at(1), std::to_string(stats.segments));
+}
+
+// Issue 51, item 6: summary.csv's D error is the run summary's — what `stats` and Python's D_error give — never
+// the subsets' standard error (once D = 1088 ± 487 in the CSV where `stats` said D has no error).
+TEST(StatisticsCsv, SummaryDErrorIsTheRunSummarysAndEmptyWhenThereIsNone) {
+  const TrappingState state = smallRun();
+  const TrappingStatistics stats = statisticsOf(state);
+  const auto dRow = [&](const RunSummary& summary) {
+    const Split s = split(summaryCsv(state, stats, summary));
+    std::vector<std::string> row = cells(s.rows.at(2));
+    EXPECT_EQ(row.at(0), "D");
+    return row;
+  };
+  const auto commentOf = [&](const RunSummary& summary, const std::string& key) {
+    for (const std::string& c : split(summaryCsv(state, stats, summary)).comments)
+      if (c.rfind("# " + key + ": ", 0) == 0) return c.substr(key.size() + 4);
+    return std::string("(missing)");
+  };
+  RunSummary given = summarizeRun(stats, nullptr, "no tail analysis");
+  given.DError = 123.25;  // a value no statistics give: the CSV must take the summary's
+  given.DErrorNote = "one sigma of a bootstrap over segments";
+  EXPECT_EQ(dRow(given).at(2), "123.25");
+  EXPECT_EQ(commentOf(given, "D_error"), given.DErrorNote);
+  RunSummary none = given;
+  none.DError = kTailUndefined;  // dominated: no error
+  none.DErrorNote = "no error: D is dominated by its longest segments";
+  const std::vector<std::string> row = dRow(none);
+  EXPECT_TRUE(row.size() == 2 || row.at(2).empty()) << "D's error cell must be empty when D has none";
+  EXPECT_EQ(commentOf(none, "D_error"), none.DErrorNote);
+  // The computed summary of this run: the cell is its DError, whatever the subsets say.
+  const RunSummary computed = summarizeRun(state, stats);
+  const std::vector<std::string> r = dRow(computed);
+  if (std::isfinite(computed.DError)) EXPECT_EQ(std::strtod(r.at(2).c_str(), nullptr), computed.DError);
+  else EXPECT_TRUE(r.size() == 2 || r.at(2).empty());
 }
 
 TEST(StatisticsCsv, FileNamesForKPointOneHaveNoTheory) {
@@ -164,7 +201,7 @@ TEST(StatisticsCsv, FileNamesForKPointOneHaveNoTheory) {
   const auto theory = theoryCurves(state.params, stats);
   EXPECT_TRUE(theory.empty());
   std::vector<std::string> names;
-  for (const CsvFile& f : statisticsCsvFiles(state, stats, theory)) names.push_back(f.name);
+  for (const CsvFile& f : statisticsCsvFiles(state, stats, theory, summarizeRun(state, stats))) names.push_back(f.name);
   EXPECT_EQ(names, (std::vector<std::string>{"f_t.csv", "p_t_probability.csv", "P_t.csv", "C_tau.csv",
                                              "local_exponent.csv", "S_t.csv", "S_t_compensated.csv", "D_t.csv", "summary.csv",
                                              "longest_segments.csv"}));
@@ -177,7 +214,7 @@ TEST(StatisticsCsv, NegativeKWritesTheTheoryNextToItsStatistic) {
   const TrappingStatistics stats = statisticsOf(state);
   const auto theory = theoryCurves(state.params, stats);
   std::set<std::string> names;
-  for (const CsvFile& f : statisticsCsvFiles(state, stats, theory)) names.insert(f.name);
+  for (const CsvFile& f : statisticsCsvFiles(state, stats, theory, summarizeRun(state, stats))) names.insert(f.name);
   for (const char* n : {"f_t.theory.csv", "P_t.theory.csv", "C_tau.theory.csv"}) EXPECT_EQ(names.count(n), 1u) << n;
   EXPECT_EQ(names.count("S_t.theory.csv"), 0u);
   EXPECT_EQ(names.size(), 13u);
@@ -217,8 +254,8 @@ TEST(StatisticsCsv, WritersWriteExactlyTheTexts) {
   const auto theory = theoryCurves(state.params, stats);
   const auto dir = std::filesystem::temp_directory_path() / "archipelago_statistics_csv_test";
   std::filesystem::remove_all(dir);
-  const auto written = writeStatisticsCsv(dir / "all", state, stats, theory);
-  const auto files = statisticsCsvFiles(state, stats, theory);
+  const auto written = writeStatisticsCsv(dir / "all", state, stats, theory, summarizeRun(state, stats));
+  const auto files = statisticsCsvFiles(state, stats, theory, summarizeRun(state, stats));
   ASSERT_EQ(written.size(), files.size());
   for (std::size_t i = 0; i < files.size(); ++i) {
     EXPECT_EQ(written[i], dir / "all" / files[i].name);
@@ -231,7 +268,7 @@ TEST(StatisticsCsv, WritersWriteExactlyTheTexts) {
   EXPECT_EQ(slurp(dir / "mine.csv"), slurp(dir / "all" / "C_tau.csv"));
   EXPECT_EQ(slurp(dir / "mine.theory.csv"), slurp(dir / "all" / "C_tau.theory.csv"));
   EXPECT_EQ(writeStatisticCsv(dir / "S.csv", state, stats, theory, Statistic::S).size(), 1u);
-  EXPECT_THROW((void)writeStatisticsCsv("/proc/archipelago-no-such-folder/x", state, stats, theory),
+  EXPECT_THROW((void)writeStatisticsCsv("/proc/archipelago-no-such-folder/x", state, stats, theory, RunSummary{}),
                std::runtime_error);
   EXPECT_THROW((void)writeStatisticCsv("/nonexistent-folder/x.csv", state, stats, theory, Statistic::f),
                std::runtime_error);
