@@ -9,12 +9,14 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/io/AtomicFile.hpp"
 #include "core/kernels/KernelDispatch.hpp"
 #include "core/runspec/RunSpec.hpp"
 #include "core/tail/TailFile.hpp"
+#include "core/tail/TailJob.hpp"
 #include "core/tail/TailPlan.hpp"
 #include "python/Conversions.hpp"
 #include "python/Interruption.hpp"
@@ -48,6 +50,13 @@ void checkWritable(const std::string& path) {
   } catch (const std::exception& e) {
     raiseOSError(e.what());
   }
+}
+
+// Python's name of a setting core names by its role: the keyword ("compare-csv" → compare_csv).
+std::string keywordOf(std::string_view role) {
+  std::string keyword(role);
+  for (char& c : keyword) c = c == '-' ? '_' : c;
+  return keyword;
 }
 
 // A whole number of the request (an int, or a float such as 1e7: wholeArgument) that fits its field.
@@ -131,13 +140,17 @@ py::dict runAndReport(TailState state, int threads, const std::string& kernelNam
       return d;
     });
   };
-  // Saved (when `out` is given) before the exception that stopped the sampler is raised: the state is resumable.
+  // Core's tail job (core/tail/TailJob.hpp), as the CLI runs it.  Saved (when `out` is given) before the exception
+  // that stopped the sampler is raised: the state is resumable; a failing write rescues it and says where.
   std::string saveError;
   state = interruption.withoutGilPolled([&](std::stop_token stop) {
-    TailState done = runTail(std::move(state), options, observer, stop);
+    TailJobOptions job;
+    job.run = options;
+    LastCheckpoint last;
+    TailState done = runTailJob(std::move(state), job, last, observer, stop);
     if (out) {
       try {
-        saveTailFile(*out, done);
+        saveTailOrSayWhere(*out, done, last);
       } catch (const std::exception& e) {
         saveError = e.what();
       }
@@ -173,20 +186,33 @@ void bindTail(py::module_& m) {
         r.maxSteps = whole64(tMax, "t_max");
         r.binsPerLevel = whole32(levelBins, "level_bins");
         r.epsilon = whole64(epsilon, "epsilon");
-        r.clones = parseCloneRule(clones, "clones");  // the CLI's wording (core/tail/TailPlan.hpp)
         r.metropolisSteps = whole32(metropolisSteps, "metropolis_steps");
         r.warmupBlocks = whole64(warmup, "warmup");
         r.minAncestors = whole64(minAncestors, "min_ancestors");
-        if (auto e = tailRequestError(r)) throw std::invalid_argument(*e);
-        warnIfBoxCutsIsland(r.run.map, r.run.Xr);
         const std::optional<std::string> path = out.is_none() ? std::nullopt : std::optional(pathArgument(out, "out"));
         if (path) checkWritable(*path);  // before the work, not after it
-        if (slice.is_none()) return runAndReport(startTail(r), threads, kernel, progress, path);
-        if (!py::isinstance<py::tuple>(slice) || py::len(slice) != 2)
-          throw py::type_error("slice must be a tuple (i, n): slice i of n of the replicas");
-        const py::tuple in = slice.cast<py::tuple>();
-        const ReplicaRange range = replicaSlice(r.replicas, whole32(in[0], "slice i"), whole32(in[1], "slice n"));
-        return runAndReport(startTailSlice(r, range), threads, kernel, progress, path);
+        // The CLI's plan (core/tail/TailPlan.hpp) with Python's names: the same checks, in the same order and words.
+        TailPlanOptions plan;
+        plan.optionName = keywordOf;
+        plan.request = r;
+        plan.clones = clones;
+        plan.spec = [&r, threads] {
+          RunSpec spec;
+          spec.parameters = r.run;
+          spec.threads = threads;
+          return spec;
+        };
+        plan.threads = threads;
+        plan.out = path.value_or(std::string());
+        if (!slice.is_none()) {
+          if (!py::isinstance<py::tuple>(slice) || py::len(slice) != 2)
+            throw py::type_error("slice must be a tuple (i, n): slice i of n of the replicas");
+          const py::tuple in = slice.cast<py::tuple>();
+          plan.slice = replicaSlice(r.replicas, whole32(in[0], "slice i"), whole32(in[1], "slice n"));
+        }
+        TailPlan planned = planTail(plan);
+        warnIfBoxCutsIsland(r.run.map, r.run.Xr);
+        return runAndReport(std::move(planned.state), threads, kernel, progress, path);
       },
       py::arg("K") = kDefaultMap.K, py::arg("xmin") = kDefaultMap.xmin, py::arg("xmax") = kDefaultMap.xmax, py::arg("Xr") = kTail.run.Xr,
       py::arg("q") = kTail.run.q, py::arg("seed") = kTail.run.seed, py::arg("population") = kTail.population,

@@ -21,20 +21,11 @@
 #include "core/io/CommandFiles.hpp"
 #include "core/kernels/KernelDispatch.hpp"
 #include "core/runfile/RunFile.hpp"
+#include "core/runspec/InputRules.hpp"
 #include "core/runspec/RunSpec.hpp"
 #include "core/run/TrappingRun.hpp"
 
 namespace archipelago::cli {
-
-void drawProgress(const TrappingProgress& p, const std::string& kernel) {
-  constexpr int kWidth = 30;
-  const int filled = static_cast<int>(p.fraction * kWidth);
-  std::string bar(static_cast<std::size_t>(filled), '#');
-  bar.resize(kWidth, '.');
-  std::fprintf(stderr, "\r[%s] %5.1f%%  %.3g steps/s  ETA %s  (%s)   ", bar.c_str(), 100 * p.fraction,
-               p.stepsPerSecond, clockText(p.etaSeconds).c_str(), kernel.c_str());
-  std::fflush(stderr);
-}
 
 namespace {
 
@@ -78,7 +69,6 @@ int runCommand(const RunOptions& o, const std::vector<std::string>& explicitPara
   options.run.maxChunkBlocks = o.maxChunkBlocks;
   options.checkpoint = checkpoint;
   options.checkpointSeconds = o.checkpointSeconds;
-  options.stopRequested = [] { return interruptRequested(); };
   options.warning = [&](const std::string& reason, double retrySeconds) {
     if (tty && !o.quiet) std::fputc('\n', stderr);  // off the progress bar's line
     std::fprintf(stderr, "WARNING: checkpoint not written: %s; the run goes on and retries in %g s\n", reason.c_str(),
@@ -92,7 +82,7 @@ int runCommand(const RunOptions& o, const std::vector<std::string>& explicitPara
     if (!o.quiet)
       std::fprintf(stderr, "companion   q = 1, T = %llu steps (%.3g of the run's steps) -> %s\n",
                    static_cast<unsigned long long>(cp.T), o.companion, file.c_str());
-    const RunFileOutcome c = runOrResumeFile(file, cp, options);
+    const RunFileOutcome c = runOrResumeFile(file, cp, options, {}, interruptToken());
     if (!c.state.finished()) {
       std::fprintf(stderr, "interrupted: the companion is saved in %s (the same command resumes it)\n", file.c_str());
       return 130;
@@ -111,7 +101,7 @@ int runCommand(const RunOptions& o, const std::vector<std::string>& explicitPara
   };
   // The final write: when it fails, the ERROR says where the work done so far is kept.
   auto save = [&](const std::string& path) { saveRunFileOrSayWhere(path, state, last); };
-  state = runWithCheckpoints(std::move(state), options, last, progress);
+  state = runWithCheckpoints(std::move(state), options, last, progress, interruptToken());
   if (!o.quiet && tty) std::fputc('\n', stderr);
   if (!state.finished()) {
     save(checkpoint);
@@ -158,26 +148,6 @@ int runSeeds(const RunOptions& o, const std::vector<std::string>& given) {
 }
 
 }  // namespace
-
-void addRunOptions(CLI::App& cmd, RunOptions& o) {
-  addSpecOptions(cmd, o);
-  addNumberOption(cmd, "--threads", o.threads, "OpenMP threads (0: all cores; at most " + std::to_string(kMaxThreads) + ")");
-  cmd.add_option("--out", o.out, "run file written at the end")->capture_default_str();
-  cmd.add_option("--checkpoint", o.checkpoint, "checkpoint file (default: the --out file)");
-  addNumberOption(cmd, "--checkpoint-interval", o.checkpointSeconds, "seconds between checkpoints");
-  cmd.add_option("--resume", o.resume, "continue the run in this checkpoint or run file");
-  addNumberOption(cmd, "--max-chunk", o.maxChunkBlocks, "at most this many blocks between progress reports (0: adaptive)");
-  addKernelOption(cmd, o.kernel);
-  cmd.add_flag("--print-spec", o.printSpec, "print the run spec (JSON) these options make, and run nothing");
-  cmd.add_flag("--quiet", o.quiet, "no progress bar or summary");
-  cmd.add_option("--orbits", o.orbits,
-                  "run only orbits [BEGIN, END) of the M (e.g. 0:400): one part of the run, for a scheduler array job; "
-                  "`merge` joins the parts into the run file of the whole run");
-  cmd.add_option("--seeds", o.seeds,
-                  "a seed ensemble: one independent run per seed (e.g. 1..8 or 1,2,5..7, at most " +
-                      std::to_string(kMaxSeeds) + "), written to NAME.seed-K.json for --out NAME.json; "
-                      "`stats` combines the files");
-}
 
 void addRunCommand(CLI::App& app, int& status) {
   auto o = std::make_shared<RunOptions>();

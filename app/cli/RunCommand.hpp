@@ -1,35 +1,15 @@
 #pragma once
+/// \file RunCommand.hpp
+/// \brief `archipelago-cli run` (its options: app/shared/RunOptions.hpp, shared with archipelago-mpi).
 #include <CLI/CLI.hpp>
 
 #include <cstdint>
 #include <string>
 
-#include "RunSession.hpp"
+#include "RunOptions.hpp"
 #include "core/run/TrappingRun.hpp"
 
 namespace archipelago::cli {
-
-/// Every option of `run`: the spec options (RunSession.hpp), --threads, --kernel, the files, checkpoints,
-/// --orbits, --seeds.  archipelago-mpi (app/mpi) takes the same set.
-struct RunOptions : SpecOptions {
-  TrappingParameters params;      // the run's parameters once resolved (resolveSpec)
-  bool printSpec = false;
-  std::string out = "run.json";
-  std::string checkpoint;  // empty: the output file
-  double checkpointSeconds = 60;
-  std::string resume;
-  std::uint64_t maxChunkBlocks = 0;
-  bool quiet = false;
-  std::string orbits;  // --orbits BEGIN:END: only these orbits (a part for `merge`, issue #15)
-  std::string seeds;   // --seeds LIST: a seed ensemble, one run file per seed (issue #14, item 2)
-  double companion = 0;  // the spec's q = 1 companion (fraction of the steps; 0: none), written beside --out
-};
-
-/// Registers the options of `run` on `cmd`.
-void addRunOptions(CLI::App& cmd, RunOptions& o);
-
-/// The progress bar of a run on stderr (carriage return, no newline).
-void drawProgress(const TrappingProgress& p, const std::string& kernel);
 
 /// `archipelago-cli run`: a trapping-statistics run with checkpoints, resumable.
 /// Exit status to `status`: 0, or 130 when interrupted (SIGINT/SIGTERM) after writing a checkpoint.

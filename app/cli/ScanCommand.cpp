@@ -88,11 +88,9 @@ int scanCommand(const ScanOptions& o, const RunSpec& base, const std::vector<dou
   // The scan itself is core's (core/scan/ScanRun.hpp), shared with the GUI; here only its progress line.
   const bool tty = ::isatty(STDERR_FILENO) != 0;
   auto lastLine = std::chrono::steady_clock::now() - std::chrono::seconds(60);
-  std::stop_source stopper;
   bool lineOpen = false;
   KScanObserver observer;
   observer.progress = [&](const KScanProgress& p) {
-    if (interruptRequested()) stopper.request_stop();
     const auto now = std::chrono::steady_clock::now();
     if (o.quiet || (!tty && std::chrono::duration<double>(now - lastLine).count() < 10)) return;
     lastLine = now;
@@ -111,8 +109,7 @@ int scanCommand(const ScanOptions& o, const RunSpec& base, const std::vector<dou
     lineOpen = false;
     std::fprintf(stderr, "WARNING: %s\n", text.c_str());
   };
-  installInterruptHandlers();
-  const KScanOutcome outcome = runKScan(request, observer, stopper.get_token());
+  const KScanOutcome outcome = runKScan(request, observer, interruptToken());  // Ctrl-C: the program's one stop
   if (lineOpen) std::fputc('\n', stderr);
   if (!outcome.finished) {
     std::fprintf(stderr, "interrupted: K = %s checkpointed in %s; run the same scan again to resume\n",

@@ -16,7 +16,7 @@
 /// carries the statistics so far (sliceRun).  At the end rank 0 gathers the ranks' states, merges and writes
 /// --out.
 
-#include "RunCommand.hpp"
+#include "RunOptions.hpp"
 
 namespace archipelago::mpi {
 /// Runs on every rank (MPI initialized); returns the exit status (0, 1 or 130 when interrupted).

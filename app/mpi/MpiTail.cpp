@@ -38,7 +38,7 @@ int mpiTail(cli::TailOptions& o, const CLI::App& cmd) {
   const std::string checkpointBase = o.checkpoint.empty() ? o.out : o.checkpoint;
   const std::string checkpoint = sliceName(checkpointBase, w.rank, w.size);
   const std::string resume = o.resume.empty() ? std::string() : sliceName(o.resume, w.rank, w.size);
-  cli::TailJob job;
+  cli::PreparedTail job;
   std::vector<io::FileLock> locks;
   together(w, [&] {
     if (!resume.empty() && !std::filesystem::exists(resume))
@@ -56,10 +56,10 @@ int mpiTail(cli::TailOptions& o, const CLI::App& cmd) {
       throw std::invalid_argument(resume + " is not slice " + std::to_string(w.rank) + " of " + std::to_string(w.size));
     locks = cli::lockRunFiles(checkpoint, checkpoint, resume);
   });
-  std::string lastCheckpoint = resume;
-  TailState state = cli::runTailSession(std::move(job.state), o, checkpoint, lastCheckpoint);
+  LastCheckpoint last{resume, 0};
+  TailState state = cli::runTailSession(std::move(job.state), o, checkpoint, last);
   // Every rank writes its slice, finished or not: the resume point of an interrupted job, and safe until merged.
-  together(w, [&] { cli::saveTailOrSayWhere(checkpoint, state, lastCheckpoint); });
+  together(w, [&] { cli::saveTail(checkpoint, state, last); });
 
   int mine = state.finished() ? 1 : 0, all = 0;
   MPI_Request request = MPI_REQUEST_NULL;

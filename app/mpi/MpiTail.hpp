@@ -10,7 +10,7 @@
 /// --out and removes the slice files; otherwise it says how to resume: --resume NAME on the same number of ranks
 /// (each rank reads its own slice file; a finished slice is not run again).
 
-#include "TailCommand.hpp"
+#include "TailSession.hpp"
 
 namespace archipelago::mpi {
 /// Runs on every rank (MPI initialized); returns the exit status (0, 1 or 130 when interrupted).

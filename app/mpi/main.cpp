@@ -1,6 +1,6 @@
 // archipelago-mpi: `archipelago-cli run` over MPI ranks (issue #15, MpiRun.hpp), and with the subcommand tail,
 // `archipelago-cli tail` with its replicas over the ranks (issue #29, MpiTail.hpp).  The options are `run`'s
-// (cli/RunCommand.hpp) and `tail`'s (cli/TailCommand.hpp).  An error every rank finds alike (a bad option) is printed once, by rank 0; an error of
+// (shared/RunOptions.hpp) and `tail`'s (shared/TailSession.hpp).  An error every rank finds alike (a bad option) is printed once, by rank 0; an error of
 // one rank (its file) is printed by that rank and aborts the job.
 
 #include <mpi.h>

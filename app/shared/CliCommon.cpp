@@ -10,6 +10,8 @@
 
 namespace archipelago::cli {
 
+std::string flagOf(std::string_view role) { return "--" + std::string(role); }
+
 void addMapOptions(CLI::App& command, MapParameters& params) {
   // Names, meanings and ranges from core's one table of parameters (trapping/TrappingParameters.hpp).
   const auto help = [](const char* key) {
@@ -32,35 +34,6 @@ PhysicalPoint parsePoint(const std::string& option, const std::string& text) {
 void addKernelOption(CLI::App& command, std::string& name) {
   command.add_option("--kernel", name,
                      "instruction-set path: auto, " + supportedKernelNames() + " (default: $ARCHIPELAGO_KERNEL or auto)");
-}
-
-std::vector<std::uint64_t> parseSeedList(const std::string& option, const std::string& text) {
-  const ParameterRule* rule = findParameterRule("seed");
-  const std::string what = option + " = " + text + " must be seeds K or ranges A..B separated by commas, integers in [" +
-                           std::to_string(rule->min) + ", " + std::to_string(rule->max) + "]";
-  std::vector<std::uint64_t> seeds;
-  std::string_view rest = text;
-  while (true) {
-    const std::size_t comma = rest.find(',');
-    const std::string_view item = rest.substr(0, comma);
-    const std::size_t dots = item.find("..");
-    const std::optional<std::uint64_t> first = toNumber<std::uint64_t>(item.substr(0, dots));
-    const std::optional<std::uint64_t> last =
-        dots == std::string_view::npos ? first : toNumber<std::uint64_t>(item.substr(dots + 2));
-    if (!first || !last || *first < rule->min || *last > rule->max) throw std::invalid_argument(what);
-    if (*first > *last) throw std::invalid_argument(option + " = " + text + ": the range " + std::string(item) + " is reversed");
-    if (*last - *first >= kMaxSeeds || seeds.size() + (*last - *first) >= kMaxSeeds)
-      throw std::invalid_argument(option + " = " + text + " asks for more than " + std::to_string(kMaxSeeds) + " seeds");
-    for (std::uint64_t s = *first;; ++s) {
-      if (std::find(seeds.begin(), seeds.end(), s) != seeds.end())
-        throw std::invalid_argument(option + " = " + text + " gives seed " + std::to_string(s) + " twice");
-      seeds.push_back(s);
-      if (s == *last) break;
-    }
-    if (comma == std::string_view::npos) break;
-    rest.remove_prefix(comma + 1);
-  }
-  return seeds;
 }
 
 std::string seededPath(const std::string& path, std::uint64_t seed) {

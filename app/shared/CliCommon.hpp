@@ -29,6 +29,10 @@
 
 namespace archipelago::cli {
 
+/// The command line's name of a setting core names by its role (core/tail/TailPlan.hpp): "--" and the role
+/// ("checkpoint-interval" → "--checkpoint-interval"): the options are spelled as core's roles.
+[[nodiscard]] std::string flagOf(std::string_view role);
+
 using io::numberRule;
 using io::parseNumber;
 using io::parseNumbers;
@@ -52,18 +56,10 @@ CLI::Option* addNumberOption(CLI::App& command, const std::string& name, T& valu
   return option;
 }
 
-/// The most seeds one `run --seeds` makes (each is a whole run).
-inline constexpr std::size_t kMaxSeeds = 1000;
-
-/// The seeds of `--seeds TEXT`: comma-separated items, each a seed "K" or a range "A..B" (A ≤ B), every
-/// number read by toNumber<std::uint64_t> and within the seed parameter's range (parameterRules()).  Throws
-/// std::invalid_argument with one line naming `option` for anything else: an empty item, a sign, a fraction,
-/// nan or inf, a number too large, a reversed range, more than kMaxSeeds seeds, a seed given twice.
 /// The orbit range of `--orbits BEGIN:END` for a run of M orbits: [BEGIN, END) with BEGIN < END ≤ M; all M
 /// orbits when `text` is empty.  Throws std::invalid_argument naming --orbits otherwise.
 [[nodiscard]] std::pair<std::uint64_t, std::uint64_t> orbitRange(const std::string& text, std::uint64_t M);
 
-[[nodiscard]] std::vector<std::uint64_t> parseSeedList(const std::string& option, const std::string& text);
 
 /// The run file of one seed of an ensemble: "run.json" → "run.seed-3.json", "out/x" → "out/x.seed-3".
 [[nodiscard]] std::string seededPath(const std::string& path, std::uint64_t seed);

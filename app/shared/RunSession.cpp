@@ -5,10 +5,13 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cerrno>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
+#include <mutex>
 #include <stdexcept>
+#include <thread>
 #include <variant>
 
 #include "CliCommon.hpp"
@@ -19,7 +22,18 @@ namespace archipelago::cli {
 
 namespace {
 volatile std::sig_atomic_t gInterrupted = 0;
-extern "C" void onInterrupt(int) { gInterrupted = 1; }
+int gWakeFd = -1;  // the write end of the self-pipe that wakes the thread turning a signal into the program's stop
+extern "C" void onInterrupt(int) {
+  gInterrupted = 1;
+  if (gWakeFd >= 0) {
+    const char byte = 1;
+    [[maybe_unused]] const ssize_t n = ::write(gWakeFd, &byte, 1);  // async-signal-safe
+  }
+}
+std::stop_source& interruptSource() {
+  static std::stop_source source;
+  return source;
+}
 }  // namespace
 
 void addSpecOptions(CLI::App& cmd, SpecOptions& o, std::initializer_list<std::string_view> without) {
@@ -106,8 +120,27 @@ std::vector<io::FileLock> lockRunFiles(const std::string& out, const std::string
 }
 
 void installInterruptHandlers() {
-  std::signal(SIGINT, onInterrupt);
-  std::signal(SIGTERM, onInterrupt);
+  static std::once_flag once;
+  std::call_once(once, [] {
+    // A signal handler may not request a stop (stop_source is not async-signal-safe): it writes a byte that wakes
+    // a thread blocked on the pipe, and that thread requests it.  No polling, no fixed wait.
+    int fds[2];
+    if (::pipe(fds) != 0) throw std::runtime_error("cannot install the Ctrl-C handler: no pipe");
+    gWakeFd = fds[1];
+    std::thread([readEnd = fds[0]] {
+      char byte = 0;
+      while (::read(readEnd, &byte, 1) < 0 && errno == EINTR) {
+      }
+      interruptSource().request_stop();
+    }).detach();
+    std::signal(SIGINT, onInterrupt);
+    std::signal(SIGTERM, onInterrupt);
+  });
+}
+
+std::stop_token interruptToken() {
+  installInterruptHandlers();
+  return interruptSource().get_token();
 }
 
 bool interruptRequested() noexcept { return gInterrupted != 0; }
@@ -120,8 +153,12 @@ std::string clockText(double seconds) {
   return buf;
 }
 
+std::string howToResume(const LastCheckpoint& last) {
+  return last.path.empty() ? std::string() : ": resume with --resume " + last.path;
+}
+
 void saveRunFileOrSayWhere(const std::string& path, const TrappingState& state, const LastCheckpoint& last) {
-  archipelago::saveRunFileOrSayWhere(path, state, last, last.path.empty() ? "" : ": resume with --resume " + last.path);
+  archipelago::saveRunFileOrSayWhere(path, state, last, howToResume(last));
 }
 
 }  // namespace archipelago::cli

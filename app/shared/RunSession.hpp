@@ -11,6 +11,7 @@
 #include <functional>
 #include <initializer_list>
 #include <map>
+#include <stop_token>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -54,8 +55,11 @@ void warnIfBoxCutsIsland(const TrappingParameters& p);
 [[nodiscard]] std::vector<io::FileLock> lockRunFiles(const std::string& out, const std::string& checkpoint,
                                                      const std::string& resume);
 
-/// Installs SIGINT/SIGTERM handlers that set the interrupt flag; the flag stops the run loop at its next chunk.
+/// The program's one stop (issue 51): SIGINT/SIGTERM set the interrupt flag and request the stop of
+/// interruptToken(), which every job of core is given.  installInterruptHandlers() installs the handlers once (a
+/// second call does nothing); interruptToken() installs them too.
 void installInterruptHandlers();
+[[nodiscard]] std::stop_token interruptToken();
 [[nodiscard]] bool interruptRequested() noexcept;
 
 /// hh:mm:ss, or --:--:-- when unknown.
@@ -65,6 +69,8 @@ void installInterruptHandlers();
 /// runWithCheckpoints the commands call): when it fails, the error says where the last checkpoint is and how to
 /// resume it (--resume).
 using archipelago::LastCheckpoint;
+/// ": resume with --resume FILE" for the last checkpoint, or "" when there is none: how the command line resumes.
+[[nodiscard]] std::string howToResume(const LastCheckpoint& last);
 void saveRunFileOrSayWhere(const std::string& path, const TrappingState& state, const LastCheckpoint& last);
 
 }  // namespace archipelago::cli

@@ -8,7 +8,7 @@
 namespace archipelago {
 
 namespace {
-const std::array<LimitInfo, 13> kTable{{
+const std::array<LimitInfo, 14> kTable{{
     {"threads", "worker threads of any computation (0: one per core)", 0, limits::kThreads},
     {"raster side", "pixels each way of a portrait, an indicator map or an export", 1, limits::kRasterSide},
     {"indicator pixels", "pixels of an indicator map in all", 1, static_cast<long long>(limits::kIndicatorPixels)},
@@ -19,10 +19,11 @@ const std::array<LimitInfo, 13> kTable{{
     {"seed grid", "seeds each way of a portrait's seed grid", 1, static_cast<long long>(limits::kSeedGridSide)},
     {"orbit length", "points of one orbit held in memory (orbit, launched orbits, overlays)", 1,
      static_cast<long long>(limits::kOrbitLength)},
-    {"portrait budget", "points a portrait accumulates (the GUI's budget, --budget)",
+    {"portrait budget", "points a portrait accumulates (the GUI's portrait budget)",
      static_cast<long long>(limits::kPortraitBudgetMin), static_cast<long long>(limits::kPortraitBudget)},
-    {"chain rows", "rows of the GUI's segment table whose chain is named by itself (--chains)", 0, limits::kChainRows},
-    {"script seconds", "the longest a scripted GUI run waits (--after, --measure)", 0,
+    {"seeds", "runs of one seed ensemble (each a whole run)", 1, static_cast<long long>(limits::kSeeds)},
+    {"chain rows", "rows of the GUI's segment table whose chain is named by itself", 0, limits::kChainRows},
+    {"script seconds", "the longest a scripted GUI run waits (before it acts, or measures)", 0,
      static_cast<long long>(limits::kScriptSeconds)},
     {"markov tree states", "states of a Markov tree whose survival is computed (markov-tree, the Atlas page's model)", 1,
      limits::kMarkovTreeStates},

@@ -39,6 +39,7 @@ inline constexpr std::uint64_t kSeedGridSide = 4096;        ///< seeds each way 
 inline constexpr std::uint64_t kOrbitLength = 100'000'000;  ///< points of one orbit held in memory
 inline constexpr std::uint64_t kPortraitBudgetMin = 1'000'000;      ///< points a portrait accumulates: the least
 inline constexpr std::uint64_t kPortraitBudget = 1'000'000'000'000;  ///< … and the most (hours of accumulation)
+inline constexpr std::uint64_t kSeeds = 1000;   ///< seeds of one seed ensemble (each a whole run)
 inline constexpr int kChainRows = 1000;        ///< rows of the GUI's segment table whose chain is named by itself
 inline constexpr double kScriptSeconds = 86400;  ///< the longest a scripted GUI run waits (a day: more is a typo)
 inline constexpr int kMarkovTreeStates = 2048;  ///< states of a Markov tree whose survival is computed

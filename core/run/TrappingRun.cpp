@@ -30,6 +30,12 @@ std::optional<std::string> orbitRangeError(std::uint64_t M, std::uint64_t begin,
          std::to_string(M);
 }
 
+std::optional<std::string> orbitPartsError(std::uint64_t count, std::uint64_t M, std::string_view parts) {
+  if (count <= M) return std::nullopt;
+  return std::to_string(count) + " " + std::string(parts) + " for M = " + std::to_string(M) + " orbits: use at most M " +
+         std::string(parts);
+}
+
 TrappingState startTrapping(const TrappingParameters& params, std::uint64_t orbitBegin, std::uint64_t orbitEnd) {
   validate(params);
   if (orbitEnd == kAllOrbits) orbitEnd = params.M;

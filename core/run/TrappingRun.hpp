@@ -14,6 +14,7 @@
 #include <optional>
 #include <stop_token>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/kernels/KernelDispatch.hpp"
@@ -51,6 +52,10 @@ inline constexpr std::uint64_t kAllOrbits = UINT64_MAX;
 /// CLI's --orbits, Python's start_range and the MPI ranks): "orbits [begin, end) must satisfy begin < end ≤ M = …",
 /// or nothing.
 [[nodiscard]] std::optional<std::string> orbitRangeError(std::uint64_t M, std::uint64_t begin, std::uint64_t end);
+
+/// The rule of a run's M orbits split into `count` parts that each hold an orbit (archipelago-mpi's ranks):
+/// "<count> <parts> for M = <M> orbits: use at most M <parts>", or nothing.  `parts` names them ("ranks").
+[[nodiscard]] std::optional<std::string> orbitPartsError(std::uint64_t count, std::uint64_t M, std::string_view parts);
 
 /// A fresh run over orbits [orbitBegin, orbitEnd) (kAllOrbits: all M); validates the parameters and the range
 /// (orbitRangeError: a range beyond M is refused, never cut silently).

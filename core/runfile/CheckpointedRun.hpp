@@ -1,9 +1,9 @@
 #pragma once
 /// \file CheckpointedRun.hpp
-/// \brief The one loop that advances a run with periodic checkpoints into a run file, and the final write that
-/// says where the work is when it fails.  `archipelago-cli run` (app/cli/RunSession), the K scan
-/// (core/scan/ScanRun: the CLI's `scan` and the GUI's dialog) and the reproduction report all call it, so a
-/// checkpoint is written, retried and reported the same way everywhere.
+/// \brief The trapping run as a job (core/job/Job.hpp): the one loop that advances a run with periodic checkpoints
+/// into a run file, and the final write that rescues the work or says where it is when it fails.
+/// `archipelago-cli run` and archipelago-mpi, the K scan (core/scan/ScanRun: the CLI's `scan` and the GUI's dialog)
+/// and the reproduction report all call it, so a checkpoint is written, retried and reported the same way everywhere.
 ///
 /// A checkpoint that cannot be written (a full disk, a vanished folder) must not cost the run: the warning is
 /// reported and the write retried at the next interval (not at every chunk).  No checkpoint is written once the
@@ -17,15 +17,10 @@
 #include <stop_token>
 #include <string>
 
+#include "core/job/Job.hpp"
 #include "core/run/TrappingRun.hpp"
 
 namespace archipelago {
-
-/// Where the last good copy of a run's work is (the file resumed from, until a checkpoint is written).
-struct LastCheckpoint {
-  std::string path;
-  std::uint64_t blocks = 0;
-};
 
 struct CheckpointedRunOptions {
   TrappingRunOptions run;
@@ -36,10 +31,6 @@ struct CheckpointedRunOptions {
   /// A checkpoint that could not be written: the reason, and the seconds until the next attempt.  Empty: silent.
   std::function<void(const std::string& reason, double retrySeconds)> warning;
 };
-
-/// The rule of a time between checkpoints (run, scan, tail and archipelago-mpi's --checkpoint-interval):
-/// "<name> = <s> must be a number of seconds >= 0" (0: at every chunk), or nothing.
-[[nodiscard]] std::optional<std::string> checkpointIntervalError(std::string_view name, double seconds);
 
 /// Advances `state` until it is finished, `stop` is requested or options.stopRequested() says so, writing
 /// options.checkpoint every checkpointSeconds and calling `progress` at every chunk.  `last` is updated at each

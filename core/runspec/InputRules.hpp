@@ -14,6 +14,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "core/limits/Limits.hpp"  // limits::kThreads, threadsError
 #include "core/trapping/TrappingParameters.hpp"
@@ -35,6 +36,13 @@ inline constexpr int kMaxThreads = limits::kThreads;
 /// here ("threads = 300 must lie in [0, 256] …"); a parameter's range and the rules between parameters (q ≥ 1,
 /// xmin < −√K, subsets ≤ M, …) are validationErrors()'s, so each has one message.
 [[nodiscard]] ParameterValue readInput(std::string_view key, std::string_view text);
+
+/// The seeds of a seed list `text` (the CLI's --seeds): comma-separated items, each a seed "K" or a range "A..B"
+/// (A ≤ B), every number read by io::toNumber<std::uint64_t> and within the seed parameter's range
+/// (parameterRules()), at most limits::kSeeds in all.  Throws std::invalid_argument with one line naming `option`
+/// (the front end's name of the list) for anything else: an empty item, a sign, a fraction, nan or inf, a number
+/// too large, a reversed range, too many seeds, a seed given twice.
+[[nodiscard]] std::vector<std::uint64_t> parseSeedList(const std::string& option, const std::string& text);
 
 /// readInput("threads", text) as an int.
 [[nodiscard]] int readThreads(std::string_view text);

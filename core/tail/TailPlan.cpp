@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "core/io/CommandFiles.hpp"
 #include "core/io/NumberText.hpp"
@@ -21,18 +22,33 @@ CloneRule parseCloneRule(const std::string& text, const std::string& option) {
   return *rule;
 }
 
+ReplicaRange parseReplicaSlice(const std::string& option, const std::string& text, std::uint32_t replicas) {
+  const std::string rule = "I/N, whole numbers with I < N <= R = " + std::to_string(replicas) + " (slice I of N)";
+  const std::vector<std::uint32_t> v = io::parseNumbers<std::uint32_t>(option, text, '/', 2, rule);
+  if (!(v[0] < v[1] && v[1] <= replicas))
+    throw std::invalid_argument(option + " '" + io::shortText(text) + "' must be " + rule);
+  return replicaSlice(replicas, v[0], v[1]);
+}
+
+std::string TailPlanOptions::nameOf(std::string_view role) const {
+  return optionName ? optionName(role) : std::string(role);
+}
+
 TailPlan planTail(const TailPlanOptions& o) {
+  const auto name = [&o](std::string_view role) { return o.nameOf(role); };
   const std::string& resume = o.resumeFile.empty() ? o.resume : o.resumeFile;
   if (!o.resume.empty()) {
     if (!o.givenSpec.empty())
-      throw std::invalid_argument("--resume takes the spec from the tail file; do not also give " + o.givenSpec.front());
+      throw std::invalid_argument(name("resume") + " takes the spec from the tail file; do not also give " +
+                                  o.givenSpec.front());
     if (!o.givenSampler.empty())
-      throw std::invalid_argument("--resume takes the sampler's settings from the tail file; do not also give " +
+      throw std::invalid_argument(name("resume") + " takes the sampler's settings from the tail file; do not also give " +
                                   o.givenSampler.front());
-    if (o.printLevels) throw std::invalid_argument("--print-levels prints a new run's levels; do not give --resume");
+    if (o.printLevels)
+      throw std::invalid_argument(name("print-levels") + " prints a new run's levels; do not give " + name("resume"));
   }
   if (auto e = threadsError(o.threads)) throw std::invalid_argument(*e);  // the one table's rule and wording
-  if (auto e = checkpointIntervalError("--checkpoint-interval", o.checkpointSeconds)) throw std::invalid_argument(*e);
+  if (auto e = checkpointIntervalError(name("checkpoint-interval"), o.checkpointSeconds)) throw std::invalid_argument(*e);
 
   TailPlan plan;
   plan.threads = o.threads;
@@ -43,7 +59,7 @@ TailPlan planTail(const TailPlanOptions& o) {
     request.run = spec.parameters;
     plan.threads = spec.threads;
     plan.kernel = spec.kernel == "auto" ? std::string() : spec.kernel;
-    request.clones = parseCloneRule(o.clones);
+    request.clones = parseCloneRule(o.clones, name("clones"));
     if (auto e = tailRequestError(request)) throw std::invalid_argument(*e);
     plan.state = o.slice ? startTailSlice(request, *o.slice) : startTail(request);
     if (o.printLevels) {
@@ -52,25 +68,26 @@ TailPlan planTail(const TailPlanOptions& o) {
     }
   }
   const std::string checkpoint = o.checkpoint.empty() ? o.out : o.checkpoint;
-  if (!o.compareCsv.empty() && o.compare.empty()) throw std::invalid_argument("--compare-csv needs --compare RUN.json");
-  std::vector<io::CommandFile> files{{"--out", o.out, io::FileUse::SavedState},
-                                     {"--checkpoint", checkpoint, io::FileUse::SavedState},
-                                     {"--resume", resume, io::FileUse::ResumedState},
-                                     {"--csv", o.csv, io::FileUse::Output},
-                                     {"--compare-csv", o.compareCsv, io::FileUse::Output},
-                                     {"--spec", o.specFile, io::FileUse::Input}};
-  for (const std::string& run : o.compare) files.push_back({"--compare", run, io::FileUse::Input});
+  if (!o.compareCsv.empty() && o.compare.empty())
+    throw std::invalid_argument(name("compare-csv") + " needs " + name("compare") + " RUN.json");
+  std::vector<io::CommandFile> files{{name("out"), o.out, io::FileUse::SavedState},
+                                     {name("checkpoint"), checkpoint, io::FileUse::SavedState},
+                                     {name("resume"), resume, io::FileUse::ResumedState},
+                                     {name("csv"), o.csv, io::FileUse::Output},
+                                     {name("compare-csv"), o.compareCsv, io::FileUse::Output},
+                                     {name("spec"), o.specFile, io::FileUse::Input}};
+  for (const std::string& run : o.compare) files.push_back({name("compare"), run, io::FileUse::Input});
   io::checkCommandFiles(files);  // no output over another or over an input; a run compared once
   // A state path that holds a file of another format (a run file, an atlas, notes) is refused as an input of the wrong
   // format is: the tail would write its state over it (issue 54, item 8: `--checkpoint r.json` replaced a run file).
   // An empty file holds nothing to lose, and a tail file is the state this command writes.
-  for (const auto& [option, path] : {std::pair<const char*, const std::string&>{"--out", o.out},
-                                     std::pair<const char*, const std::string&>{"--checkpoint", checkpoint}}) {
+  for (const auto& [option, path] : {std::pair<std::string, const std::string&>{name("out"), o.out},
+                                     std::pair<std::string, const std::string&>{name("checkpoint"), checkpoint}}) {
     std::error_code ec;
     if (path.empty() || !std::filesystem::is_regular_file(path, ec) || std::filesystem::file_size(path, ec) == 0 || ec)
       continue;
     if (!isTailFile(path))
-      throw std::invalid_argument(std::string(option) + " " + path +
+      throw std::invalid_argument(option + " " + path +
                                   " holds a file that is not a tail file: the tail does not write its state over it "
                                   "(name another file, or remove it)");
   }

@@ -9,6 +9,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/run/TrappingRun.hpp"
@@ -17,11 +18,23 @@
 
 namespace archipelago {
 
-/// The inverse of cloneRuleName(); throws std::invalid_argument "<option> '<text>' must be perturb or metropolis".
-[[nodiscard]] CloneRule parseCloneRule(const std::string& text, const std::string& option = "--clones");
+/// The inverse of cloneRuleName(); throws std::invalid_argument "<option> '<text>' must be perturb or metropolis"
+/// (`option`: the front end's name of the setting).
+[[nodiscard]] CloneRule parseCloneRule(const std::string& text, const std::string& option = "clones");
 
-/// What a front end filled: its options as given, the files named as its options name them in errors.
+/// Slice I of N of the replicas from the text "I/N" (the CLI's --slice): whole numbers with I < N ≤ R = `replicas`.
+/// Throws std::invalid_argument "<option> '<text>' must be I/N, whole numbers with I < N <= R = <R> (slice I of N)".
+[[nodiscard]] ReplicaRange parseReplicaSlice(const std::string& option, const std::string& text, std::uint32_t replicas);
+
+/// What a front end filled: its options as given, and how it names them.  Core's messages name each setting and
+/// file by its role ("resume", "checkpoint-interval", "compare-csv", "out", "checkpoint", "csv", "spec", "compare",
+/// "print-levels", "clones"); `optionName` maps a role to the front end's own name (archipelago-cli: "--resume";
+/// Python: "resume"), so that nobody is told of an option their front end does not have.
 struct TailPlanOptions {
+  std::function<std::string(std::string_view role)> optionName;  ///< empty: the role itself
+  /// The front end's name of a role (optionName, or the role).
+  [[nodiscard]] std::string nameOf(std::string_view role) const;
+
   /// The sampler's settings of a new run (request.run is filled from `spec`, request.clones from `clones`).
   TailRequest request;
   std::string clones = "perturb";

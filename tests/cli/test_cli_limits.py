@@ -15,6 +15,6 @@ if documented != printed:
           "--- program\n" + printed)
     sys.exit(1)
 rows = [line for line in printed.splitlines() if line.startswith("| ") and not line.startswith("| limit")]
-assert len(rows) == 13, rows  # issue 54: the Markov tree's states and survival values
+assert len(rows) == 14, rows  # issue 54: the Markov tree's states and survival values; issue 51: the seeds
 assert "| threads | " in printed and "| 0 … 256 |" in printed, printed
 print(f"cli.limits: {len(rows)} limits, docs/cli.md agrees")

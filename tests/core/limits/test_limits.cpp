@@ -4,6 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "core/limits/Limits.hpp"
 #include "core/manifolds/KacCheck.hpp"
@@ -46,9 +49,22 @@ TEST(Limits, TheTableHoldsEveryLimitOnce) {
     for (std::string_view k : keys) EXPECT_NE(k, l.key);
     keys.push_back(l.key);
   }
-  EXPECT_EQ(keys.size(), 13u);
+  EXPECT_EQ(keys.size(), 14u);
   EXPECT_EQ(kMaxThreads, limits::kThreads);  // the run spec's settings read the table
   EXPECT_EQ(kMaxQ, limits::kRunQ);           // the run's parameter table too
+}
+
+// Issue 51: the seed ensemble's limit moved from the CLI into the table; the seed list reader is core's.
+TEST(Limits, ASeedListHoldsAtMostTheTablesSeeds) {
+  EXPECT_EQ(parseSeedList("--seeds", "1..1000").size(), limits::kSeeds);
+  try {
+    (void)parseSeedList("--seeds", "1..1001");
+    ADD_FAILURE() << "1001 seeds were read";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()), "--seeds = 1..1001 asks for more than 1000 seeds");
+  }
+  EXPECT_THROW((void)parseSeedList("seeds", "5..3"), std::invalid_argument);
+  EXPECT_EQ(parseSeedList("seeds", "3,1..2"), (std::vector<std::uint64_t>{3, 1, 2}));
 }
 
 TEST(Limits, EveryComputationTakesTheSameThreads) {

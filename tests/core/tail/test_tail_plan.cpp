@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 #include "core/tail/TailFile.hpp"
 #include "core/tail/TailPlan.hpp"
@@ -30,6 +31,7 @@ TailPlanOptions newRun() {
     return s;
   };
   o.out = (std::filesystem::temp_directory_path() / "archipelago_test_tail_plan.json").string();
+  o.optionName = [](std::string_view role) { return "--" + std::string(role); };  // archipelago-cli's names
   return o;
 }
 
@@ -113,6 +115,27 @@ TEST(TailPlan, EachRefusalHasItsOneWording) {
     o.csv = o.out;  // an output over another
     EXPECT_NE(refusal(o).find("--csv"), std::string::npos) << refusal(o);
   }
+}
+
+// Issue 51: core names each setting by its role and the front end by its own name; without a name the role itself
+// stands (Python's keywords), never a flag of another front end.
+TEST(TailPlan, TheFrontEndNamesItsOwnSettings) {
+  TailPlanOptions o = newRun();
+  o.optionName = {};
+  o.checkpointSeconds = -1;
+  EXPECT_EQ(refusal(o), "checkpoint-interval = -1 must be a number of seconds >= 0");
+  o.checkpointSeconds = 60;
+  o.compareCsv = "c.csv";
+  EXPECT_EQ(refusal(o), "compare-csv needs compare RUN.json");
+  o.optionName = [](std::string_view role) {
+    std::string keyword(role);
+    for (char& c : keyword) c = c == '-' ? '_' : c;
+    return "keyword " + keyword;
+  };
+  EXPECT_EQ(refusal(o), "keyword compare_csv needs keyword compare RUN.json");
+  o.compareCsv.clear();
+  o.clones = "magic";
+  EXPECT_EQ(refusal(o), "keyword clones 'magic' must be perturb or metropolis");
 }
 
 TEST(TailPlan, AFinishedFileIsNotResumedButARanksSliceIs) {
