@@ -12,6 +12,7 @@
 #include "Conversions.hpp"
 #include "Interruption.hpp"
 #include "core/atlas/AtlasExport.hpp"
+#include "core/atlas/AtlasJob.hpp"
 
 namespace py = pybind11;
 using namespace archipelago;
@@ -39,15 +40,7 @@ py::dict atlas(double K, double xmin, double xmax, int depth, std::uint64_t maxP
   if (auto e = validationError(r)) throw std::invalid_argument(*e);
   // resume: an atlas dict stopped early (its 'cancelled' true), continued by core from its finished islands.
   std::optional<Atlas> previous;
-  if (!resume.is_none()) {
-    const std::string text = jsonArgument(resume, "resume");
-    try {
-      previous = atlasFromJson(text);
-    } catch (const std::exception& e) {
-      throw std::invalid_argument(std::string("resume: ") + e.what());
-    }
-    if (auto e = resumeError(r, *previous)) throw std::invalid_argument("resume: " + *e);
-  }
+  if (!resume.is_none()) previous = atlasToResume(r, jsonArgument(resume, "resume"), "resume");
   const std::string json = interruptible(
       [&](std::stop_token stop) { return atlasJson(computeAtlas(r, {}, stop, previous ? &*previous : nullptr)); });
   return py::module_::import("json").attr("loads")(json);

@@ -13,6 +13,7 @@
 #include "CliCommon.hpp"
 #include "RunSession.hpp"
 #include "core/atlas/AtlasExport.hpp"
+#include "core/atlas/AtlasJob.hpp"
 #include "core/io/AtomicFile.hpp"
 #include "core/io/CommandFiles.hpp"
 
@@ -54,26 +55,8 @@ int runAtlas(AtlasOptions o) {
                          {"--json", o.json, io::FileUse::SavedState},
                          {"--csv", o.csv, io::FileUse::Output}});
   std::optional<Atlas> previous;
-  if (!o.resume.empty()) {
-    try {
-      previous = atlasFromJson(io::readRegularFile(o.resume, kMaxAtlasFileBytes));
-    } catch (const std::exception& e) {
-      throw std::runtime_error("--resume " + o.resume + ": " + e.what());
-    }
-    if (auto e = resumeError(o.request, *previous)) throw std::invalid_argument("--resume " + o.resume + ": " + *e);
-  }
-  installInterruptHandlers();
-  std::stop_source stop;
-  std::atomic<bool> finished{false};
-  std::thread watcher([&] {  // Ctrl-C: stop the computation, keep what is finished
-    while (!finished.load()) {
-      if (interruptRequested()) {
-        stop.request_stop();
-        return;
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    }
-  });
+  if (!o.resume.empty())
+    previous = atlasToResume(o.request, io::readRegularFile(o.resume, kMaxAtlasFileBytes), "--resume " + o.resume);
   const auto started = std::chrono::steady_clock::now();
   AtlasProgress progress;
   if (!o.quiet)
@@ -86,16 +69,8 @@ int runAtlas(AtlasOptions o) {
       std::fprintf(stderr, "atlas: %d of %d islands known done, %s elapsed%s: %s\n", done, known,
                    clockText(s).c_str(), eta.c_str(), stage.c_str());
     };
-  Atlas atlas;
-  try {
-    atlas = computeAtlas(o.request, progress, stop.get_token(), previous ? &*previous : nullptr);
-  } catch (...) {
-    finished = true;
-    watcher.join();
-    throw;
-  }
-  finished = true;
-  watcher.join();
+  // Ctrl-C stops the computation (the program's one stop, interruptToken()) and keeps what is finished.
+  const Atlas atlas = computeAtlas(o.request, progress, interruptToken(), previous ? &*previous : nullptr);
   io::OutputBatch outputs;  // the JSON and the CSV: all or nothing (issue 54, item 4)
   if (!o.json.empty()) writeAtlasJson(o.json, atlas);
   if (!o.csv.empty()) writeAtlasCsv(o.csv, atlas);

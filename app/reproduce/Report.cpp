@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/atlas/AtlasExport.hpp"
+#include "core/atlas/AtlasJob.hpp"
 #include "core/markovtree/MarkovTreeExport.hpp"
 #include "core/tail/BruteForceSurvival.hpp"
 #include "core/tail/TailResult.hpp"
@@ -474,38 +475,26 @@ class Report {
   void markovTree(const TrappingState& run, const TailState& sampled, double b2) {
     const AtlasRequest request = report::k01AtlasRequest(o_.size);
     const fs::path file = o_.out / "runs" / report::k01AtlasFile(o_.size);
-    std::optional<Atlas> previous;
-    if (fs::exists(file)) {
-      try {
-        previous = atlasFromJson(io::readRegularFile(file, kMaxAtlasFileBytes));
-        if (auto e = resumeError(request, *previous)) throw std::invalid_argument(*e);
-      } catch (const std::exception& e) {
-        std::fprintf(stderr, "WARNING: %s: %s; the atlas is computed again\n", file.c_str(), e.what());
-        previous.reset();
+    std::stop_source stop;
+    auto last = std::chrono::steady_clock::now();
+    const AtlasProgress progress = [&](const Atlas& sofar, int done, const std::string& stage) {
+      if (gInterrupted) stop.request_stop();
+      const auto now = std::chrono::steady_clock::now();
+      if (now - last > std::chrono::seconds(60)) {
+        last = now;
+        std::fprintf(stderr, "atlas: %d of %zu islands known done: %s\n", done, sofar.nodes.size(), stage.c_str());
       }
+    };
+    // Core's reuse-or-resume of the file (core/atlas/AtlasJob.hpp), written at the end.
+    const AtlasFileOutcome outcome = atlasOrResumeFile(file, request, progress, stop.get_token());
+    if (!outcome.discarded.empty())
+      std::fprintf(stderr, "WARNING: %s; the atlas was computed again\n", outcome.discarded.c_str());
+    if (outcome.reused) std::fprintf(stderr, "reusing %s\n", file.c_str());
+    if (outcome.atlas.cancelled) {
+      std::fprintf(stderr, "interrupted: the atlas is saved in %s\n", file.c_str());
+      throw Interrupted{};
     }
-    Atlas atlas;
-    if (previous && !previous->cancelled) {
-      std::fprintf(stderr, "reusing %s\n", file.c_str());
-      atlas = std::move(*previous);
-    } else {
-      std::stop_source stop;
-      auto last = std::chrono::steady_clock::now();
-      const AtlasProgress progress = [&](const Atlas& sofar, int done, const std::string& stage) {
-        if (gInterrupted) stop.request_stop();
-        const auto now = std::chrono::steady_clock::now();
-        if (now - last > std::chrono::seconds(60)) {
-          last = now;
-          std::fprintf(stderr, "atlas: %d of %zu islands known done: %s\n", done, sofar.nodes.size(), stage.c_str());
-        }
-      };
-      atlas = computeAtlas(request, progress, stop.get_token(), previous ? &*previous : nullptr);
-      writeAtlasJson(file, atlas);
-      if (atlas.cancelled) {
-        std::fprintf(stderr, "interrupted: the atlas is saved in %s\n", file.c_str());
-        throw Interrupted{};
-      }
-    }
+    const Atlas& atlas = outcome.atlas;
     const double alpha = statisticsOf(run).alpha;
     const std::string command = report::markovTreeCommand(o_.size, alpha, b2);
     MarkovTreeRequest mr;

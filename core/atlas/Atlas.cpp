@@ -18,6 +18,7 @@
 #include "core/manifolds/PolygonRegion.hpp"
 #include "core/manifolds/TurnstileFlux.hpp"
 #include "core/map/FixedPointMap.hpp"
+#include "core/map/OrbitIterator.hpp"
 #include "core/measures/BirkhoffAverage.hpp"
 #include "core/measures/OrbitMeasures.hpp"
 #include "core/measures/RotationNumber.hpp"
@@ -102,11 +103,10 @@ class Classifier {
     s.rotation = r.rotation;
     s.digits = r.digits;
     if (r.verdict != OrbitVerdict::Regular) return s;
-    const double delta = std::max(kAccuracyFactor * r.difference, 0x1p-50);
     // Rationals up to kClassifyDenominator name chain points whatever the period limit (an orbit of a chain of long
     // period must not pass for a circle); only chains within maxPeriod are followed.
     const auto maxQ = std::max<std::int64_t>(static_cast<std::int64_t>(request_.maxPeriod / island_.n), kClassifyDenominator);
-    const std::optional<Rational> q = smallestDenominatorRational(r.rotation - delta, r.rotation + delta, maxQ);
+    const std::optional<Rational> q = rationalOfRotation(r.rotation, r.difference, maxQ);
     if (!q) {
       s.kind = PointKind::Circle;
     } else if (q->p != 0) {
@@ -130,10 +130,9 @@ class Classifier {
     m.digitsThreshold = request_.digitsThreshold;
     const RotationMeasurement r = measureRotation(m, stop);
     if (r.verdict != OrbitVerdict::Regular) return false;
-    const double delta = std::max(kAccuracyFactor * r.difference, 0x1p-50);
-    if (std::fabs(r.rotation - s.rotation) > delta + std::max(kAccuracyFactor * std::pow(10.0, -s.digits), 0x1p-50))
+    if (std::fabs(r.rotation - s.rotation) > rotationAccuracy(r.difference) + rotationAccuracy(std::pow(10.0, -s.digits)))
       return false;
-    return !smallestDenominatorRational(r.rotation - delta, r.rotation + delta, kProofDenominator);
+    return !rationalOfRotation(r.rotation, r.difference, kProofDenominator);
   }
 
   /// Whether the orbit of the line's point at x is proven to leave the island: within 2 T applications of Qⁿ it
@@ -143,16 +142,17 @@ class Classifier {
   [[nodiscard]] bool leavesIsland(long double x, std::stop_token stop) const {
     const PhysicalPoint p = at(x);
     if (boxPointError("p", request_.map, p)) return true;
-    UnitState z = map_.toUnit(p.x, p.y);
+    if (stop.stop_requested()) return false;
     const long double far = 2 * island_.reach;
-    for (std::uint64_t k = 0; k < 2 * request_.iterations; ++k) {
-      if ((k & 1023) == 0 && stop.stop_requested()) return false;
-      for (std::uint64_t j = 0; j < island_.n; ++j)
-        if (map_.forward(z)) return true;
-      const PhysicalPoint q = map_.toPhysical(z);
-      if (std::hypot(q.x - island_.centre.x, q.y - island_.centre.y) > far) return true;
-    }
-    return false;
+    bool left = false;
+    const PowerOrbitEnd end =
+        iteratePower(map_, map_.toUnit(p.x, p.y), island_.n, 2 * request_.iterations, [&](std::uint64_t k, const UnitState& z) {
+          if ((k & 1023) == 0 && stop.stop_requested()) return false;
+          const PhysicalPoint q = map_.toPhysical(z);
+          left = std::hypot(q.x - island_.centre.x, q.y - island_.centre.y) > far;
+          return !left;
+        });
+    return end == PowerOrbitEnd::wrapped || left;
   }
 
   [[nodiscard]] const FixedPointMap& map() const { return map_; }
@@ -202,13 +202,18 @@ std::optional<CircleArea> circleArea(const FixedPointMap& N, const Island& islan
   const std::size_t m = std::size_t{1} << log2Points;
   std::vector<std::pair<long double, PhysicalPoint>> points;
   points.reserve(m);
-  UnitState z = N.toUnit(start.x, start.y);
-  for (std::size_t k = 0; k < m; ++k) {
+  const auto record = [&](std::size_t k, const UnitState& z) {
     const long double turns = static_cast<long double>(k) * static_cast<long double>(omega);
     points.emplace_back(turns - std::floor(turns), N.toPhysical(z));
-    for (std::uint64_t j = 0; j < island.n; ++j)
-      if (N.forward(z)) return std::nullopt;
-  }
+  };
+  const UnitState z0 = N.toUnit(start.x, start.y);
+  record(0, z0);
+  // Points 1 … m − 1, and the m-th application's wrap checked as well (an orbit that leaves is not a circle).
+  if (iteratePower(N, z0, island.n, m, [&](std::uint64_t k, const UnitState& z) {
+        if (k < m) record(k, z);
+        return true;
+      }) == PowerOrbitEnd::wrapped)
+    return std::nullopt;
   std::sort(points.begin(), points.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   std::vector<PhysicalPoint> curve;
   curve.reserve(m);
@@ -374,7 +379,7 @@ AtlasFlux chainFlux(long double K, const std::optional<PeriodicOrbit>& chain, st
   } else {
     if (chain->period > kMaxFluxPeriod) {
       f.failure = "not computed: period " + std::to_string(chain->period) + " above the atlas's flux limit " +
-                  std::to_string(kMaxFluxPeriod) + " (archipelago-cli flux --period computes it)";
+                  std::to_string(kMaxFluxPeriod) + " (the flux of that chain alone, computed on its own, has no such limit)";
       return f;
     }
     f.partner = findHyperbolicPartner(*chain);
@@ -605,100 +610,143 @@ class AtlasBuilder {
     return out;
   }
 
-  /// Fills the island's boundary circle, area and flux, and returns the chains outside it as children.
+  /// One ray of an island's scan: its line and direction, its classified points, its outermost proven circle.
+  struct Ray {
+    Island island;
+    int direction = 1;
+    SideScan scan;
+    std::optional<long double> circleX;  ///< x of the ray's outermost proven circle point
+  };
+  using OutsideChains = std::map<std::pair<std::int64_t, std::int64_t>, std::pair<std::size_t, int>>;  // p/q → (ray, index)
+
+  /// Fills the island's boundary circle, area and flux, and returns the chains outside it as children: the five steps
+  /// of the header (scan, boundary, area, flux, chains).
   std::vector<AtlasNode> expand(Atlas& atlas, int index) {
     AtlasNode& node = atlas.nodes[static_cast<std::size_t>(index)];
-    struct Ray {
-      Island island;
-      int direction = 1;
-      SideScan scan;
-      std::optional<long double> circleX;  ///< x of the ray's outermost proven circle point
-    };
-    std::vector<Ray> rays;
-    std::vector<PhysicalPoint> kept;  // the boundary circle's polygon
     const std::vector<Island> origins = scanOrigins(node, index);
     const int points = scanPoints(node, 2 * origins.size());
+    std::vector<Ray> rays = scanRays(origins, points);
+    if (stop_.stop_requested()) return {};
+    for (const Ray& ray : rays) node.scanRange = std::max(node.scanRange, ray.island.range);
+    std::vector<PhysicalPoint> kept;  // the boundary circle's polygon
+    findBoundary(rays, node, kept);  // the circles found false are outside for the chains too
+    const std::vector<Ray> zoomRays = zoomForBoundary(rays, points, node, kept);
+    if (stop_.stop_requested()) return {};
+    if (node.boundaryFound) settleAreaInterval(node, widestBracket(rays, zoomRays, node, kept));
+    measureFlux(node, index);
+    if (!node.boundaryFound) {
+      node.boundaryFailure = "no invariant circle about the centre within the scan's first step: the island is below "
+                             "the scan's resolution";
+      node.note = "not followed: no boundary circle";
+      return {};
+    }
+    const OutsideChains outside = sortChains(node, rays);
+    if (node.level >= r_.depth) {
+      node.note = outside.empty() ? "" : "not followed: depth " + std::to_string(r_.depth) + " reached";
+      return {};
+    }
+    if (node.area < r_.minArea) {
+      node.note = "not followed: area below " + number(r_.minArea);
+      return {};
+    }
+    std::vector<AtlasNode> children = chainsOutside(atlas, index, rays, outside);
+    if (index == 0 && !stop_.stop_requested()) addFareyChains(atlas, atlas.nodes[0], rays.front().island.reach, children);
+    return children;
+  }
+
+  /// Step 1: every origin's two rays, scanned.
+  std::vector<Ray> scanRays(const std::vector<Island>& origins, int points) {
+    std::vector<Ray> rays;
     for (const Island& island : origins)
       for (int direction : {+1, -1}) {
         const Classifier c(r_, island);
         rays.push_back({island, direction, scanSide(c, island, direction, points), std::nullopt});
-        if (stop_.stop_requested()) return {};
+        if (stop_.stop_requested()) return rays;
       }
+    return rays;
+  }
 
-    for (const Ray& ray : rays) node.scanRange = std::max(node.scanRange, ray.island.range);
-    // The boundary circle on each ray: the outermost circle point, bisected against its outer neighbour, whose orbit
-    // closes into a converged curve about the centre (a sticky chaotic orbit that passed for regular does not: the
-    // next circle inwards is tried); of all rays the largest area is the outermost circle.
-    auto findBoundary = [&](std::vector<Ray>& set) {
-      for (Ray& ray : set) {
-        SideScan& s = ray.scan;
-        const Classifier c(r_, ray.island);
-        const auto step = ray.island.range / static_cast<long double>(s.points.size());
-        for (int candidate = s.lastCircle, tries = 0; candidate >= 0 && tries < kBoundaryTries;) {
-          // A quick look first (1024 points: a circle's polygon is already within 1e−5 of its area there): sticky
-          // chaotic orbits beyond the island that passed for regular are dropped without a bisection.
-          const ScanPoint& at = s.points[static_cast<std::size_t>(candidate)];
-          if (const auto quick = circleArea(c.map(), ray.island, at.point, at.rotation, 10);
-              !quick || quick->error > kQuickTolerance * quick->area) {
-            s.points[static_cast<std::size_t>(candidate)].kind = PointKind::Outside;
-            do --candidate;
-            while (candidate >= 0 && s.points[static_cast<std::size_t>(candidate)].kind != PointKind::Circle);
-            s.lastCircle = candidate;
-            continue;
-          }
-          ++tries;
-          long double lo = ray.island.centre.x + ray.direction * step * (candidate + 1);
-          long double hi = lo + ray.direction * step;
-          ScanPoint inner = s.points[static_cast<std::size_t>(candidate)];
-          const bool lastPoint = candidate + 1 == static_cast<int>(s.points.size());  // circles to the end of the ray: no bracket
-          for (int b = 0; b < r_.bisections && !lastPoint && !stop_.stop_requested(); ++b) {
-            const long double mid = (lo + hi) / 2;
-            const ScanPoint p = c.classify(mid, stop_);
-            if (p.kind == PointKind::Circle) {
-              lo = mid;
-              inner = p;
-            } else {
-              hi = mid;
-            }
-          }
-          const std::optional<CircleArea> a = circleArea(c.map(), ray.island, inner.point, inner.rotation, 13);
-          if (!a || a->error > kCircleTolerance * a->area || a->perimeterChange > kCircleTolerance ||
-              !c.rotationProven(inner, stop_)) {
-            s.points[static_cast<std::size_t>(candidate)].kind = PointKind::Outside;  // not a circle after all
-            do --candidate;
-            while (candidate >= 0 && s.points[static_cast<std::size_t>(candidate)].kind != PointKind::Circle);
-            s.lastCircle = candidate;
-            continue;
-          }
-          s.lastCircle = candidate;
-          ray.circleX = lo;
-          if (!node.boundaryFound || a->area > node.circleArea) {
-            kept = a->curve;
-            node.boundaryFound = true;
-            node.centre = ray.island.centre;  // the member whose island holds the circle, z₀ of the orbit
-            node.orbit = node.orbit.rotatedToStart(node.orbit.nearestIndex(ray.island.centre));
-            node.boundaryPoint = inner.point;
-            node.boundaryRotation = inner.rotation;
-            node.boundaryDigits = inner.digits;
-            node.gap = lastPoint ? 0 : std::fabs(hi - lo);
-            node.circleArea = a->area;
-            node.polygonError = a->error;
-            node.areaPoints = a->points;
-            if (lastPoint) node.note = "the island reaches the end of the scan (" + number(ray.island.range) + ")";
-            else node.note.clear();
-          }
-          break;
+  /// Step 2: the boundary circle on each ray: the outermost circle point, bisected against its outer neighbour, whose
+  /// orbit closes into a converged curve about the centre (a sticky chaotic orbit that passed for regular does not:
+  /// the next circle inwards is tried); of all rays the largest area is the outermost circle, kept in `node`.
+  void findBoundary(std::vector<Ray>& set, AtlasNode& node, std::vector<PhysicalPoint>& kept) {
+    for (Ray& ray : set) {
+      SideScan& s = ray.scan;
+      const Classifier c(r_, ray.island);
+      const auto step = ray.island.range / static_cast<long double>(s.points.size());
+      for (int candidate = s.lastCircle, tries = 0; candidate >= 0 && tries < kBoundaryTries;) {
+        // A quick look first (1024 points: a circle's polygon is already within 1e−5 of its area there): sticky
+        // chaotic orbits beyond the island that passed for regular are dropped without a bisection.
+        const ScanPoint& at = s.points[static_cast<std::size_t>(candidate)];
+        if (const auto quick = circleArea(c.map(), ray.island, at.point, at.rotation, 10);
+            !quick || quick->error > kQuickTolerance * quick->area) {
+          candidate = dropCircle(s, candidate);
+          continue;
         }
-        if (stop_.stop_requested()) return;
+        ++tries;
+        long double lo = ray.island.centre.x + ray.direction * step * (candidate + 1);
+        long double hi = lo + ray.direction * step;
+        ScanPoint inner = s.points[static_cast<std::size_t>(candidate)];
+        const bool lastPoint = candidate + 1 == static_cast<int>(s.points.size());  // circles to the end of the ray: no bracket
+        for (int b = 0; b < r_.bisections && !lastPoint && !stop_.stop_requested(); ++b) {
+          const long double mid = (lo + hi) / 2;
+          const ScanPoint p = c.classify(mid, stop_);
+          if (p.kind == PointKind::Circle) {
+            lo = mid;
+            inner = p;
+          } else {
+            hi = mid;
+          }
+        }
+        const std::optional<CircleArea> a = circleArea(c.map(), ray.island, inner.point, inner.rotation, 13);
+        if (!a || a->error > kCircleTolerance * a->area || a->perimeterChange > kCircleTolerance ||
+            !c.rotationProven(inner, stop_)) {
+          candidate = dropCircle(s, candidate);  // not a circle after all
+          continue;
+        }
+        s.lastCircle = candidate;
+        ray.circleX = lo;
+        if (!node.boundaryFound || a->area > node.circleArea) keepBoundary(node, kept, ray, inner, *a, lastPoint, hi - lo);
+        break;
       }
-    };
-    findBoundary(rays);  // the circles found false are outside for the chains too
-    // An island narrower than the scan's first step shows no circle (or only false ones, orbits of the layer that
-    // passed for regular): the rays are scanned again over their first two steps, up to kZooms times, for its
-    // boundary (the chains outside come from the full rays).
-    // So is an island whose circles span fewer than kMinCircleSteps steps of every ray: its outermost circles lie
-    // between two points (the 138-chain's island: 3.9·10⁻⁷ at 1000 points a side, 7.7·10⁻⁷ looked at closer); the
-    // larger area is kept.
+      if (stop_.stop_requested()) return;
+    }
+  }
+
+  /// A candidate that is not a circle after all: marked outside; the next circle inwards (or −1).
+  static int dropCircle(SideScan& s, int candidate) {
+    s.points[static_cast<std::size_t>(candidate)].kind = PointKind::Outside;
+    do --candidate;
+    while (candidate >= 0 && s.points[static_cast<std::size_t>(candidate)].kind != PointKind::Circle);
+    s.lastCircle = candidate;
+    return candidate;
+  }
+
+  /// The proven circle `a` through `inner` on `ray` becomes the node's boundary circle.
+  void keepBoundary(AtlasNode& node, std::vector<PhysicalPoint>& kept, const Ray& ray, const ScanPoint& inner,
+                    const CircleArea& a, bool lastPoint, long double bracket) const {
+    kept = a.curve;
+    node.boundaryFound = true;
+    node.centre = ray.island.centre;  // the member whose island holds the circle, z₀ of the orbit
+    node.orbit = node.orbit.rotatedToStart(node.orbit.nearestIndex(ray.island.centre));
+    node.boundaryPoint = inner.point;
+    node.boundaryRotation = inner.rotation;
+    node.boundaryDigits = inner.digits;
+    node.gap = lastPoint ? 0 : std::fabs(bracket);
+    node.circleArea = a.area;
+    node.polygonError = a.error;
+    node.areaPoints = a.points;
+    if (lastPoint) node.note = "the island reaches the end of the scan (" + number(ray.island.range) + ")";
+    else node.note.clear();
+  }
+
+  /// Step 2b: an island narrower than the scan's first step shows no circle (or only false ones, orbits of the layer
+  /// that passed for regular): the rays are scanned again over their first two steps, up to kZooms times, for its
+  /// boundary (the chains outside come from the full rays).  So is an island whose circles span fewer than
+  /// kMinCircleSteps steps of every ray: its outermost circles lie between two points (the 138-chain's island:
+  /// 3.9·10⁻⁷ at 1000 points a side, 7.7·10⁻⁷ looked at closer); the larger area is kept.  Returns the last zoom's rays.
+  std::vector<Ray> zoomForBoundary(const std::vector<Ray>& rays, int points, AtlasNode& node,
+                                   std::vector<PhysicalPoint>& kept) {
     auto coarse = [](const std::vector<Ray>& set) {
       return std::all_of(set.begin(), set.end(), [](const Ray& r) { return r.scan.lastCircle + 1 < kMinCircleSteps; });
     };
@@ -708,48 +756,48 @@ class AtlasBuilder {
         ray.island.range = 2 * ray.island.range / static_cast<long double>(ray.scan.points.size());
         ray.scan = scanSide(Classifier(r_, ray.island), ray.island, ray.direction, points);
       }
-      findBoundary(zoomRays);
+      findBoundary(zoomRays, node, kept);
     }
-    if (stop_.stop_requested()) return {};
-    if (node.boundaryFound) {
-      // The bracket's widest ratio over the rays (the kept circle's crossing, or on another member's ray its own
-      // outermost circle, which lies inside the boundary's image there; and the nearest escaping point beyond).
-      long double widest = 1;
-      std::vector<std::tuple<smooth::SymmetryLine, int, long double, long double>> done;  // line, direction, c.x, c.y
-      for (const std::vector<Ray>* set : {&rays, &zoomRays})
-        for (const Ray& ray : *set) {
-          if (!ray.circleX) continue;
-          const auto key = std::tuple{ray.island.line, ray.direction, ray.island.centre.x, ray.island.centre.y};
-          if (std::find(done.begin(), done.end(), key) != done.end()) continue;
-          done.push_back(key);
-          const Classifier c(r_, ray.island);
-          long double x = *ray.circleX;
-          if (distance(ray.island.centre, node.centre) == 0)
-            if (const auto cross = crossingX(kept, K_, ray.island.line, node.centre, ray.direction)) x = *cross;
-          const long double circle = distance(c.at(x), ray.island.centre);
-          const long double escape = escapeRadius(c, ray.island, ray.direction, x, stop_, r_.threads);
-          widest = std::max(widest, escape / circle);
-        }
-      settleAreaInterval(node, widest);
-    }
+    return zoomRays;
+  }
 
-    // The flux through the chain's separatrix (at the centre: the fixed point (√K, 0)'s loop).  Its zone encloses
-    // the islands of the parent (one per closed curve) or, at the centre, the central island: the layer between is
-    // what an orbit that crossed the barrier moves in.
+  /// Step 3: the bracket's widest ratio over the rays (the kept circle's crossing, or on another member's ray its own
+  /// outermost circle, which lies inside the boundary's image there; and the nearest escaping point beyond).
+  long double widestBracket(const std::vector<Ray>& rays, const std::vector<Ray>& zoomRays, const AtlasNode& node,
+                            const std::vector<PhysicalPoint>& kept) {
+    long double widest = 1;
+    std::vector<std::tuple<smooth::SymmetryLine, int, long double, long double>> done;  // line, direction, c.x, c.y
+    for (const std::vector<Ray>* set : {&rays, &zoomRays})
+      for (const Ray& ray : *set) {
+        if (!ray.circleX) continue;
+        const auto key = std::tuple{ray.island.line, ray.direction, ray.island.centre.x, ray.island.centre.y};
+        if (std::find(done.begin(), done.end(), key) != done.end()) continue;
+        done.push_back(key);
+        const Classifier c(r_, ray.island);
+        long double x = *ray.circleX;
+        if (distance(ray.island.centre, node.centre) == 0)
+          if (const auto cross = crossingX(kept, K_, ray.island.line, node.centre, ray.direction)) x = *cross;
+        const long double circle = distance(c.at(x), ray.island.centre);
+        const long double escape = escapeRadius(c, ray.island, ray.direction, x, stop_, r_.threads);
+        widest = std::max(widest, escape / circle);
+      }
+    return widest;
+  }
+
+  /// Step 4: the flux through the chain's separatrix (at the centre: the fixed point (√K, 0)'s loop).  Its zone
+  /// encloses the islands of the parent (one per closed curve) or, at the centre, the central island: the layer
+  /// between is what an orbit that crossed the barrier moves in.
+  void measureFlux(AtlasNode& node, int index) {
     std::vector<std::vector<PhysicalPoint>> zone;
     node.flux = chainFlux(K_, index == 0 ? std::nullopt : std::optional<PeriodicOrbit>(node.orbit), stop_, zone);
     if (node.flux.found && !zone.empty()) zones_.emplace(index, PolygonRegion(zone));
+  }
 
-    if (!node.boundaryFound) {
-      node.boundaryFailure = "no invariant circle about the centre within the scan's first step: the island is below "
-                             "the scan's resolution";
-      node.note = "not followed: no boundary circle";
-      return {};
-    }
-    // Rationals inside a ray's last circle, or whose rotation is not beyond the boundary circle's (counted from the
-    // centre's linear rotation ν₀, R = sin²(πν₀): the twist carries the rotation from ν₀ through the boundary's, so a
-    // chain between the two lies inside the boundary even where a ray's own last circle is further in): internal
-    // chains, listed; beyond it: the chains outside.
+  /// Step 5a: the rationals the rays crossed.  Those inside a ray's last circle, or whose rotation is not beyond the
+  /// boundary circle's (counted from the centre's linear rotation ν₀, R = sin²(πν₀): the twist carries the rotation
+  /// from ν₀ through the boundary's, so a chain between the two lies inside the boundary even where a ray's own last
+  /// circle is further in), are internal chains, listed in the node; those beyond it are returned: the chains outside.
+  OutsideChains sortChains(AtlasNode& node, const std::vector<Ray>& rays) const {
     const long double centreRotation =
         std::asin(std::sqrt(std::clamp(node.orbit.residue, 0.0L, 1.0L))) / std::numbers::pi_v<long double>;
     const long double boundaryRotation = std::fabs(static_cast<long double>(node.boundaryRotation));
@@ -759,7 +807,7 @@ class AtlasBuilder {
       const long double rotation = std::fabs(static_cast<long double>(r.p) / static_cast<long double>(r.q));
       return (rotation - boundaryRotation) * outwards > 0;
     };
-    std::map<std::pair<std::int64_t, std::int64_t>, std::pair<std::size_t, int>> outside;  // p/q → (ray, index)
+    OutsideChains outside;
     for (std::size_t k = 0; k < rays.size(); ++k) {
       const SideScan& s = rays[k].scan;
       for (std::size_t i = 0; i < s.points.size(); ++i) {
@@ -779,16 +827,14 @@ class AtlasBuilder {
     }
     std::sort(node.internal.begin(), node.internal.end(),
               [](const Rational& a, const Rational& b) { return a.q != b.q ? a.q < b.q : a.p < b.p; });
-    if (node.level >= r_.depth) {
-      node.note = outside.empty() ? "" : "not followed: depth " + std::to_string(r_.depth) + " reached";
-      return {};
-    }
-    if (node.area < r_.minArea) {
-      node.note = "not followed: area below " + number(r_.minArea);
-      return {};
-    }
+    return outside;
+  }
 
-    // The chains outside: the middle of each rational's run of points gives its elliptic orbit.
+  /// Step 5b: the chains outside: the middle of each rational's run of points gives its elliptic orbit, kept when it
+  /// is a symmetric chain about this island not already in the atlas.
+  std::vector<AtlasNode> chainsOutside(const Atlas& atlas, int index, const std::vector<Ray>& rays,
+                                       const OutsideChains& outside) {
+    const AtlasNode& node = atlas.nodes[static_cast<std::size_t>(index)];
     std::vector<AtlasNode> children;
     const FixedPointMap N(r_.map);
     for (const auto& [pq, where] : outside) {
@@ -820,7 +866,6 @@ class AtlasBuilder {
         continue;
       addChain(atlas, std::move(child), member->second, children);
     }
-    if (index == 0) addFareyChains(atlas, node, rays.front().island.reach, children);
     return children;
   }
 

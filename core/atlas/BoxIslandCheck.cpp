@@ -6,6 +6,7 @@
 
 #include "core/io/NumberText.hpp"
 #include "core/map/FixedPointMap.hpp"
+#include "core/map/OrbitIterator.hpp"
 #include "core/measures/BirkhoffAverage.hpp"
 #include "core/measures/ChainIdentification.hpp"
 #include "core/measures/OrbitMeasures.hpp"
@@ -32,8 +33,7 @@ bool isCircle(const MapParameters& box, const FixedPointMap& N, double x) {
   r.digitsThreshold = kDefaultDigitsThreshold;
   const RotationMeasurement m = measureRotation(r);
   if (m.verdict != OrbitVerdict::Regular) return false;
-  const double delta = std::max(kAccuracyFactor * m.difference, 0x1p-50);
-  return !smallestDenominatorRational(m.rotation - delta, m.rotation + delta, kCircleDenominator);
+  return !rationalOfRotation(m.rotation, m.difference, kCircleDenominator);
 }
 
 /// The extent of the orbit through (x, 0), or nothing when it leaves the separatrix's box (a sticky chaotic orbit).
@@ -44,14 +44,14 @@ std::optional<CentralIslandExtent> extentOf(const MapParameters& box, const Fixe
   e.K = box.K;
   e.crossing = x;
   e.xLeft = e.xRight = x;
-  UnitState z = N.toUnit(x, 0);
-  for (std::size_t k = 0; k < kOrbitPoints; ++k) {
-    if (N.forward(z)) return std::nullopt;
+  const auto extend = [&](std::uint64_t, const UnitState& z) {
     const PhysicalPoint p = N.toPhysical(z);
     e.xLeft = std::min(e.xLeft, static_cast<double>(p.x));
     e.xRight = std::max(e.xRight, static_cast<double>(p.x));
     e.yMax = std::max(e.yMax, static_cast<double>(std::fabs(p.y)));
-  }
+    return true;
+  };
+  if (iteratePower(N, N.toUnit(x, 0), 1, kOrbitPoints, extend) == PowerOrbitEnd::wrapped) return std::nullopt;
   if (e.xLeft < -2 * rootK || e.xRight > rootK) return std::nullopt;  // outside the separatrix (eq. hamb)
   return e;
 }

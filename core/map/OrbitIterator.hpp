@@ -55,4 +55,25 @@ void iterateOrbit(const OrbitRequest& r, Visit&& visit) {
   }
 }
 
+/// How iteratePower() ended.
+enum class PowerOrbitEnd {
+  done,     ///< all `count` applications of Qⁿ
+  wrapped,  ///< a step wrapped around the torus (the orbit left the box, where Q* ≠ Q): z is not visited
+  stopped,  ///< visit returned false
+};
+
+/// The loop over a power of the map (issue 51: loops over the map stood in the atlas and the box check): applies
+/// Qⁿ (n = `power` ≥ 1 steps of N) `count` times from `start`, calling visit(k, z) after the k-th application
+/// (k = 1 … count) until visit returns false or a step wraps.  The rotation and trapping kernels keep their own
+/// vectorised loops (core/kernels, core/measures' drivers).
+template <class Visit>
+PowerOrbitEnd iteratePower(const FixedPointMap& N, UnitState z, std::uint64_t power, std::uint64_t count, Visit&& visit) {
+  for (std::uint64_t k = 1; k <= count; ++k) {
+    for (std::uint64_t j = 0; j < power; ++j)
+      if (N.forward(z)) return PowerOrbitEnd::wrapped;
+    if (!visit(k, static_cast<const UnitState&>(z))) return PowerOrbitEnd::stopped;
+  }
+  return PowerOrbitEnd::done;
+}
+
 }  // namespace archipelago

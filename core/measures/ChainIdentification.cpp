@@ -110,6 +110,13 @@ std::optional<Rational> smallestDenominatorRational(double lo, double hi, std::i
   return positiveSmallest(lo, hi, maxDenominator);
 }
 
+double rotationAccuracy(double difference) noexcept { return std::max(kAccuracyFactor * difference, 0x1p-50); }
+
+std::optional<Rational> rationalOfRotation(double rotation, double difference, std::int64_t maxDenominator) {
+  const double delta = rotationAccuracy(difference);
+  return smallestDenominatorRational(rotation - delta, rotation + delta, maxDenominator);
+}
+
 std::string toString(const Rational& r) { return std::to_string(r.p) + "/" + std::to_string(r.q); }
 
 ChainIdentification identifyChain(const ChainRequest& r, std::stop_token stop) {

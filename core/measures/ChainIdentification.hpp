@@ -53,6 +53,18 @@ struct Rational {
 /// maxDenominator (1 ≤ maxDenominator ≤ 2^31).  Throws std::invalid_argument for lo > hi or non-finite bounds.
 [[nodiscard]] std::optional<Rational> smallestDenominatorRational(double lo, double hi, std::int64_t maxDenominator);
 
+/// How far a measured rotation may be from p/q and still name it: kAccuracyFactor × `difference` (the difference
+/// of the measurement's two block averages, turns), at least 2^−50.
+[[nodiscard]] double rotationAccuracy(double difference) noexcept;
+
+/// The one step from a measured rotation number to the rational it names (issue 51: it stood in four files): the
+/// fraction of smallest denominator, at most maxDenominator, within rotationAccuracy(difference) of `rotation`
+/// (smallestDenominatorRational); nothing when there is none: at that accuracy the orbit lies on an invariant
+/// circle.  The chain identification, the rotation profile, the atlas's classifier and its proof, and the box
+/// check all call it.
+[[nodiscard]] std::optional<Rational> rationalOfRotation(double rotation, double difference,
+                                                         std::int64_t maxDenominator);
+
 /// "p/q", e.g. "2/23", "-1/6", "0/1".
 [[nodiscard]] std::string toString(const Rational& r);
 

@@ -20,8 +20,7 @@ constexpr std::uint64_t kMaxPower = 100'000;  // measureRotation's power
 /// The rational a regular rotation names (RotationProfile.hpp).
 std::optional<Rational> rationalOf(const OrbitMeasure& m, std::int64_t maxDenominator) {
   if (m.verdict != OrbitVerdict::Regular) return std::nullopt;
-  const double delta = std::max(kAccuracyFactor * std::pow(10.0, -m.digits), 0x1p-50);
-  return smallestDenominatorRational(m.value - delta, m.value + delta, maxDenominator);
+  return rationalOfRotation(m.value, std::pow(10.0, -m.digits), maxDenominator);
 }
 }  // namespace
 
