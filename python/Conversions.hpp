@@ -130,7 +130,7 @@ inline py::int_ wholeArgument(py::handle v, const std::string& name) {
 inline std::uint64_t unsignedArgument(py::handle v, const std::string& name, std::uint64_t max,
                                       const std::string& range) {
   const py::int_ i = wholeArgument(v, name);
-  if (i < py::int_(0) || i > py::int_(max))
+  if (i < py::int_(0) || i > py::int_(max))  // a conversion, not a range: a Python int has no bound (core's wording)
     throw std::invalid_argument(wholeRangeError(name, std::string(py::str(py::handle(i))), range));
   return i.cast<std::uint64_t>();
 }

@@ -5,8 +5,11 @@ its one wording); a front end parses text into a value, hands it to core and pri
 
 A range check here is either
   * a message of one: "must lie in [", "must be in (", "must be >= …", "out of range", or
-  * a throw whose condition (on its line or the line before) compares a value with a number: `if (v > 1000) throw …`.
-Comments are skipped, and so are throws of std::out_of_range and std::logic_error (a program's own invariant, not a
+  * a throw whose condition (on its line or the line before) compares a value with a number: `if (v > 1000) throw …`,
+    or with a name (issue 51: re-checks against names passed): `if (n > kMaxSeeds) throw …`, `v[1] <= replicas`,
+    `*last > rule->max` (a relational operator with spaces around it, its right side a name, not a template's <…>).
+Comments are skipped, and so is a line that says it is "a conversion, not a range" (a Python int bounded before it
+becomes a C++ integer, with core's wording), and so are throws of std::out_of_range and std::logic_error (a program's own invariant, not a
 user's value).  Usage: check_front_end_ranges.py ROOT [EXTRA_FILE]; EXTRA_FILE is scanned as well (the test's
 planted copy, which must make it fail)."""
 import pathlib, re, sys
@@ -17,6 +20,7 @@ files += [pathlib.Path(a) for a in sys.argv[2:]]
 
 MESSAGE = re.compile(r"must (lie|be) in [\[(]|must be (a number |a whole number )?(>=|<=|>|<|≥|≤)|out of range")
 THROW = re.compile(r"\bthrow\b|return fail\(|\bwhy = ")
+NAMED = re.compile(r"[\w\])]\s+(<|>|<=|>=)\s+(?![0-9])[A-Za-z_*]")
 COMPARE = re.compile(r"(?<![<>=!])(<|>|<=|>=)\s*-?[0-9][0-9'.eE+]*\b(?!\s*[>)]\s*\()|\b[0-9][0-9'.eE+]*\s*(<|>|<=|>=)(?![<>=])")
 
 
@@ -40,7 +44,9 @@ for path in files:
             offenders.append(where)
         elif THROW.search(code(line)) and not re.search(r"std::(out_of_range|logic_error)", line):
             condition = code(line) if "if" in code(line) else (code(lines[i - 1]) if i > 0 else "")
-            if re.search(r"\bif\b", condition) and COMPARE.search(condition):
+            if "a conversion, not a range" in line + (lines[i - 1] if i > 0 else ""):
+                continue
+            if re.search(r"\bif\b", condition) and (COMPARE.search(condition) or NAMED.search(condition)):
                 offenders.append(where)
 
 if offenders:

@@ -44,11 +44,11 @@ MarkovTree markovTreeFromAtlas(const Atlas& a) {
   if (a.nodes.empty()) refuse("the atlas has no island");
   if (a.cancelled)
     refuse("the atlas was stopped before its end (" + a.stopReason +
-           "): continue it (archipelago-cli atlas --resume) before building the tree");
+           "): resume the atlas to its end before building the tree");
   for (std::size_t i = 0; i < a.nodes.size(); ++i)
     if (!a.nodes[i].measured)
       refuse("island " + atlasPath(a, static_cast<int>(i)) +
-             " is not measured (an atlas stopped early): continue it (archipelago-cli atlas --resume) first");
+             " is not measured (an atlas stopped early): resume the atlas to its end first");
   const AtlasNode& centre = a.nodes[0];
   if (!centre.flux.found)
     refuse("the atlas has no flux through the centre's loop (" +

@@ -64,7 +64,7 @@ std::string indicatorMetadataJson(const IndicatorRequest& r, const IndicatorResu
   j["array"] = indicatorQuantity(r.measure.kind);
   j["rows"] = "row 0 is the top of the view (largest y); column 0 its left edge (smallest x)";
   j["shape"] = {raster.height, raster.width};
-  j["pixel_start"] = "the centre of the pixel's cell, rounded to the 52-bit grid (as portrait --mode orbits seeds)";
+  j["pixel_start"] = "the centre of the pixel's cell, rounded to the 52-bit grid (as the portrait's orbit mode seeds)";
   j["map"] = mapWithCoefficientsJson(r.measure.map);
   j["viewport"] = viewportJson(r.measure.map, r.view);
   j["request"] = {{"iterations", r.measure.iterations},

@@ -137,7 +137,7 @@ std::optional<std::string> memoryError(const TrappingParameters& p, int threads)
     s.precision(3);
     s << "M = " << p.M << " orbits would make a run file of up to " << fileBytes / 1e9 << " GB, more than the "
       << static_cast<double>(kMaxRunFileBytes) / 1e9
-      << " GB a run file may hold: split the orbits over several runs (--orbits) and merge their statistics";
+      << " GB a run file may hold: split the orbits over several runs (a range of orbits each) and merge their statistics";
     return s.str();
   }
   // What this process may still take (core/io's one definition: MemAvailable and what RLIMIT_AS leaves).
