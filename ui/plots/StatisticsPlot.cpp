@@ -85,6 +85,13 @@ QString plainText(const QString& rich) {
   return document.toPlainText();
 }
 
+/// `base` with its point size times `factor`.
+QFont scaledFont(const QFont& base, double factor) {
+  QFont scaled = base;
+  scaled.setPointSizeF(base.pointSizeF() * factor);
+  return scaled;
+}
+
 bool usable(double x, double y, bool logY) {
   return std::isfinite(x) && std::isfinite(y) && x > 0 && (!logY || y > 0);
 }
@@ -156,17 +163,24 @@ StatisticsPlot::StatisticsPlot(Statistic statistic, QWidget* parent) : QwtPlot(p
   const StatisticInfo& info = statisticInfo(statistic);
   setObjectName(QStringLiteral("plot_") + fromTable(info.fileStem));
   setAutoReplot(false);
+  setUpTitleAndAxes(info);
+  attachGridAndCurves();
+  createLegend();
+  createMouseTools();
+  createPlaceholder();
+  setMinimumSize(200, 160);  // three columns and the parameter dock fit a 1024-pixel-wide window
+}
+
+void StatisticsPlot::setUpTitleAndAxes(const StatisticInfo& info) {
   QwtText title(fromTable(info.symbolRich), QwtText::RichText);
-  QFont titleFont = font();
-  titleFont.setPointSizeF(titleFont.pointSizeF() * 1.1);
+  QFont titleFont = scaledFont(font(), 1.1);
   titleFont.setBold(true);
   title.setFont(titleFont);
   setTitle(title);
   setCanvasBackground(Qt::white);
   if (auto* c = qobject_cast<QwtPlotCanvas*>(canvas())) c->setFrameStyle(static_cast<int>(QFrame::Box) | static_cast<int>(QFrame::Plain));
 
-  QFont axisFont = font();
-  axisFont.setPointSizeF(axisFont.pointSizeF() * 0.9);
+  const QFont axisFont = scaledFont(font(), 0.9);
   QwtText xTitle(fromTable(info.abscissaLabelRich), QwtText::RichText);
   xTitle.setFont(axisFont);
   QwtText yTitle(fromTable(info.valueLabelRich), QwtText::RichText);
@@ -183,7 +197,9 @@ StatisticsPlot::StatisticsPlot(Statistic statistic, QWidget* parent) : QwtPlot(p
     setAxisScaleEngine(kAxisY, new QwtLogScaleEngine);
     setAxisScaleDraw(kAxisY, new LogScaleDraw);
   }
+}
 
+void StatisticsPlot::attachGridAndCurves() {
   auto* grid = new QwtPlotGrid;
   grid->enableXMin(true);
   grid->setMajorPen(QPen(QColor(200, 200, 200), 0, Qt::SolidLine));
@@ -204,14 +220,16 @@ StatisticsPlot::StatisticsPlot(Statistic statistic, QWidget* parent) : QwtPlot(p
   curve_->setRenderHint(QwtPlotItem::RenderAntialiased);
   curve_->setItemAttribute(QwtPlotItem::AutoScale, true);
   curve_->attach(this);
+}
 
+void StatisticsPlot::createLegend() {
   legend_ = new QwtPlotLegendItem;
   auto* legend = legend_;
   // Where the curve leaves room: f, P, C fall from the top left (the bottom left is empty; the top right
   // holds the t_max label of K < 0), S and D_t rise (bottom right is empty).
-  const Qt::Alignment corner = statistic == Statistic::S || statistic == Statistic::Dt ? Qt::AlignBottom | Qt::AlignRight
-                               : statistic == Statistic::localExponent ? Qt::AlignTop | Qt::AlignLeft
-                                                                       : Qt::AlignBottom | Qt::AlignLeft;
+  const Qt::Alignment corner = statistic_ == Statistic::S || statistic_ == Statistic::Dt ? Qt::AlignBottom | Qt::AlignRight
+                               : statistic_ == Statistic::localExponent ? Qt::AlignTop | Qt::AlignLeft
+                                                                        : Qt::AlignBottom | Qt::AlignLeft;
   setLegendCorner(legend, corner);
   legend->setMaxColumns(1);
   legend->setBackgroundMode(QwtPlotLegendItem::LegendBackground);
@@ -221,54 +239,55 @@ StatisticsPlot::StatisticsPlot(Statistic statistic, QWidget* parent) : QwtPlot(p
   legend->setMargin(2);
   legend->setSpacing(2);
   legend->setItemMargin(1);
-  QFont legendFont = font();
-  legendFont.setPointSizeF(legendFont.pointSizeF() * 0.8);
+  const QFont legendFont = scaledFont(font(), 0.8);
   legendPointSize_ = legendFont.pointSizeF();
   legend->setFont(legendFont);
-  if (statistic == Statistic::P) {
+  if (statistic_ == Statistic::P) {
     // P_t's legend is below the plot, in two columns (issue 37, finding 5): its seven entries (the data, four
     // reference slopes, theory, a tail estimate) covered the 10⁴–10⁷ tail, the slopes and the estimate's levels
     // in any corner of a plot a few hundred pixels wide, and the estimate's entry was cut off.
-    auto* below = new RoomyLegend;
-    below->setMaxColumns(2);
-    QFont small = legendFont;
-    small.setPointSizeF(legendFont.pointSizeF() * 0.88);  // two columns in a plot 330 pixels wide
-    below->setFont(small);
-    if (QLayout* rows = below->contentsWidget()->layout()) rows->setSpacing(0);
-    // Up to 0.7 of the plot's height (Qwt's default is a third), taken only when needed: at Qt 5's 12-point font
-    // the seven entries of a plot 260 pixels high took more rows than a third or a half of it holds, and the last
-    // were clipped (gui.issue37 under Qt 5).
-    insertLegend(below, QwtPlot::BottomLegend, 0.7);
-    // After insertLegend(), which makes a legend below the plot as many columns as fit (Qwt sets maxColumns 0):
-    // the export's 945 pixels then took three, too narrow for "t⁻¹·³⁷ asymptotic (literature)", which wrapped and lost
-    // its exponent (issue 53, finding 4).
-    below->setMaxColumns(2);
-    below->setVisible(false);  // until there is data (showPlaceholder)
+    insertLegendBelow(legendFont);
   } else {
     legend->attach(this);
   }
+}
 
+void StatisticsPlot::insertLegendBelow(const QFont& legendFont) {
+  auto* below = new RoomyLegend;
+  below->setMaxColumns(2);
+  below->setFont(scaledFont(legendFont, 0.88));  // two columns in a plot 330 pixels wide
+  if (QLayout* rows = below->contentsWidget()->layout()) rows->setSpacing(0);
+  // Up to 0.7 of the plot's height (Qwt's default is a third), taken only when needed: at Qt 5's 12-point font
+  // the seven entries of a plot 260 pixels high took more rows than a third or a half of it holds, and the last
+  // were clipped (gui.issue37 under Qt 5).
+  insertLegend(below, QwtPlot::BottomLegend, 0.7);
+  // After insertLegend(), which makes a legend below the plot as many columns as fit (Qwt sets maxColumns 0):
+  // the export's 945 pixels then took three, too narrow for "t⁻¹·³⁷ asymptotic (literature)", which wrapped and lost
+  // its exponent (issue 53, finding 4).
+  below->setMaxColumns(2);
+  below->setVisible(false);  // until there is data (showPlaceholder)
+}
+
+void StatisticsPlot::createMouseTools() {
   zoomer_ = new Zoomer(canvas());
   auto* panner = new QwtPlotPanner(canvas());
   panner->setMouseButton(Qt::MiddleButton);
   auto* magnifier = new QwtPlotMagnifier(canvas());
   magnifier->setMouseButton(Qt::NoButton);  // the wheel only; the right button belongs to the zoomer
   crosshair_ = new CrosshairPicker(canvas());
+}
 
+void StatisticsPlot::createPlaceholder() {
   // Before a run: a placeholder in the canvas, fixed sensible axes, no legend and no crosshair (an empty plot
   // with a legend and a readout looked like a broken one).
   QwtText hint(tr("No run yet — press Run (F5)"));
-  QFont hintFont = font();
-  hintFont.setPointSizeF(hintFont.pointSizeF() * 1.05);
-  hint.setFont(hintFont);
+  hint.setFont(scaledFont(font(), 1.05));
   hint.setColor(QColor(110, 110, 110));
   hint.setRenderFlags(Qt::AlignCenter);
   placeholder_ = new QwtPlotTextLabel;
   placeholder_->setText(hint);
   placeholder_->attach(this);
   showPlaceholder(true);
-
-  setMinimumSize(200, 160);  // three columns and the parameter dock fit a 1024-pixel-wide window
 }
 
 StatisticsPlot::~StatisticsPlot() {

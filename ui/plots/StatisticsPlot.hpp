@@ -27,6 +27,7 @@
 #include "core/stats/TrappingStatistics.hpp"
 #include "core/theory/TheoryCurves.hpp"
 
+class QFont;
 class QwtPlotCurve;
 class QwtPlotIntervalCurve;
 class QwtPlotMarker;
@@ -106,6 +107,15 @@ class StatisticsPlot : public QwtPlot {
   void resizeEvent(QResizeEvent* event) override;
 
  private:
+  /// The constructor's steps: the title and the axes (log where the statistic's table says); the grid, the ±1σ band
+  /// and the data curve; the legend (in a corner, or below the plot for P_t: insertLegendBelow); the zoomer, panner,
+  /// wheel and crosshair; the placeholder shown before a run.
+  void setUpTitleAndAxes(const StatisticInfo& info);
+  void attachGridAndCurves();
+  void createLegend();
+  void insertLegendBelow(const QFont& legendFont);
+  void createMouseTools();
+  void createPlaceholder();
   [[nodiscard]] bool logY() const noexcept;
   [[nodiscard]] bool followingData() const;
   void showPlaceholder(bool empty);

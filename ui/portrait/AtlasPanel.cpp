@@ -91,6 +91,27 @@ AtlasPanel::AtlasPanel(PortraitController* controller, QWidget* parent)
       controller_(controller),
       elapsed_(std::make_unique<QElapsedTimer>()),
       jobs_(std::make_unique<BackgroundJobs>(this, 2, JobPriority::background)) {  // 0: the atlas, 1: its tree
+  createRequestControls();
+  createIslandTree();
+  createFileButtons();
+  createMarkovTreeWidgets();
+
+  clock_ = new QTimer(this);
+  clock_->setInterval(1000);
+  connect(clock_, &QTimer::timeout, this, &AtlasPanel::updateProgress);
+  // A new map keeps the atlas (a change of K loses no work); it says whose it is, and draws nothing of another map.
+  connect(controller_, &PortraitController::mapChanged, this, [this] {
+    updateProgress();
+    updateButtons();
+  });
+
+  layOut();
+  updateProgress();
+  updateDetails();
+  updateButtons();
+}
+
+void AtlasPanel::createRequestControls() {
   const AtlasRequest defaults;  // core's
   depth_ = new QSpinBox(this);
   depth_->setObjectName(QStringLiteral("atlasDepth"));
@@ -115,7 +136,9 @@ AtlasPanel::AtlasPanel(PortraitController* controller, QWidget* parent)
   progress_ = new QLabel(this);
   progress_->setObjectName(QStringLiteral("atlasProgress"));
   progress_->setWordWrap(true);
+}
 
+void AtlasPanel::createIslandTree() {
   tree_ = new QTreeWidget(this);
   tree_->setObjectName(QStringLiteral("atlasTree"));
   tree_->setColumnCount(columns);
@@ -147,7 +170,9 @@ AtlasPanel::AtlasPanel(PortraitController* controller, QWidget* parent)
   details_->setWordWrap(true);
   details_->setTextInteractionFlags(Qt::TextSelectableByMouse);
   details_->setAlignment(Qt::AlignTop | Qt::AlignLeft);
+}
 
+void AtlasPanel::createFileButtons() {
   json_ = new QPushButton(tr("Export JSON…"), this);
   json_->setToolTip(tr("The atlas as `archipelago-cli atlas --json` writes it"));
   csv_ = new QPushButton(tr("Export CSV…"), this);
@@ -175,7 +200,9 @@ AtlasPanel::AtlasPanel(PortraitController* controller, QWidget* parent)
     SettingsController::rememberFolder(path);
     openAtlasFile(path);
   });
+}
 
+void AtlasPanel::createMarkovTreeWidgets() {
   modelButton_ = new QPushButton(tr("Model P_t…"), this);
   modelButton_->setObjectName(QStringLiteral("atlasMarkovTree"));
   modelButton_->setToolTip(tr("The Meiss–Ott Markov tree of this atlas (states between barriers, rates flux / area, "
@@ -193,16 +220,9 @@ AtlasPanel::AtlasPanel(PortraitController* controller, QWidget* parent)
   shares_->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
   shares_->verticalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
   shares_->hide();
+}
 
-  clock_ = new QTimer(this);
-  clock_->setInterval(1000);
-  connect(clock_, &QTimer::timeout, this, &AtlasPanel::updateProgress);
-  // A new map keeps the atlas (a change of K loses no work); it says whose it is, and draws nothing of another map.
-  connect(controller_, &PortraitController::mapChanged, this, [this] {
-    updateProgress();
-    updateButtons();
-  });
-
+void AtlasPanel::layOut() {
   auto* form = new QFormLayout;
   form->setContentsMargins(0, 0, 0, 0);
   auto* numbers = new QHBoxLayout;
@@ -240,9 +260,6 @@ AtlasPanel::AtlasPanel(PortraitController* controller, QWidget* parent)
   layout->addWidget(modelText_);
   layout->addWidget(shares_);
   layout->addLayout(exports);
-  updateProgress();
-  updateDetails();
-  updateButtons();
 }
 
 QSize AtlasPanel::sizeHint() const {

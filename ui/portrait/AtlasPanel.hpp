@@ -129,6 +129,15 @@ class AtlasPanel : public QWidget {
   /// An export by core's writer (`write`: writeAtlasJson or writeAtlasCsv); false with the reason.
   bool exportWith(void (*write)(const std::filesystem::path&, const Atlas&), const QString& path, QString* error);
 
+  /// The constructor's steps, in the order the widgets are made (the order of the Tab chain): depth, largest
+  /// period, Compute, Stop and the progress line; the tree and the selected island's details; Export JSON / CSV
+  /// and Open; "Model P_t…" with its text and shares; then the page's layout.
+  void createRequestControls();
+  void createIslandTree();
+  void createFileButtons();
+  void createMarkovTreeWidgets();
+  void layOut();
+
   struct Snapshot;
   void show(std::shared_ptr<const Atlas> atlas, int done, const QString& stage);
   void fillTree();

@@ -43,6 +43,14 @@ QIcon swatch(const QColor& colour) {
 
 QString number(long double v) { return QString::number(static_cast<double>(v), 'g', 9); }
 
+/// A field of a physical coordinate, typed as text (every digit kept): its object name and its placeholder.
+QLineEdit* coordinateField(QWidget* parent, const QString& name, const QString& placeholder) {
+  auto* field = new QLineEdit(parent);
+  field->setObjectName(name);
+  field->setPlaceholderText(placeholder);
+  return field;
+}
+
 /// Steps: a whole number beyond the range is taken as typed, then set to the largest with core's reason (issue 53,
 /// finding 21: QSpinBox refused the ninth digit of 999999999, leaving 99,999,999 without a word).
 class StepsBox : public QSpinBox {
@@ -82,6 +90,17 @@ class StepsBox : public QSpinBox {
 
 OrbitListPanel::OrbitListPanel(PortraitController* controller, QWidget* parent)
     : QWidget(parent), controller_(controller) {
+  createList();
+  createListButtons();
+  createClickControls();
+  createStartFields();
+  createFamilyControls();
+  connectList();
+  layOut();
+  refresh();
+}
+
+void OrbitListPanel::createList() {
   empty_ = new QLabel(tr("Click the portrait to launch an orbit: it is listed here with its rotation number about "
                          "the centre, the digits it converged to and its island chain."),
                       this);
@@ -101,6 +120,9 @@ OrbitListPanel::OrbitListPanel(PortraitController* controller, QWidget* parent)
   details_->setWordWrap(true);
   details_->setTextInteractionFlags(Qt::TextSelectableByMouse);
   details_->setObjectName(QStringLiteral("orbitDetails"));
+}
+
+void OrbitListPanel::createListButtons() {
   undo_ = new QPushButton(tr("Undo"), this);
   undo_->setToolTip(tr("Remove the orbit launched last (Ctrl+Z)"));
   remove_ = new QPushButton(tr("Remove"), this);
@@ -126,7 +148,9 @@ OrbitListPanel::OrbitListPanel(PortraitController* controller, QWidget* parent)
     if (!exportSelectedCsv(path, &error)) Q_EMIT statusMessage(tr("Export failed: %1").arg(error));
     else Q_EMIT statusMessage(tr("Wrote %1").arg(path));
   });
+}
 
+void OrbitListPanel::createClickControls() {
   // What a click launches, and a start typed exactly (issue 37, finding 15).
   auto* steps = new StepsBox(this);
   steps->setCorrectionMode(QAbstractSpinBox::CorrectToNearestValue);
@@ -147,26 +171,24 @@ OrbitListPanel::OrbitListPanel(PortraitController* controller, QWidget* parent)
   };
   connect(steps_, qOverload<int>(&QSpinBox::valueChanged), this, applyClick);
   connect(backward_, &QCheckBox::toggled, this, applyClick);
-  startX_ = new QLineEdit(this);
-  startX_->setObjectName(QStringLiteral("orbitStartX"));
-  startX_->setPlaceholderText(QStringLiteral("x"));
-  startY_ = new QLineEdit(this);
-  startY_->setObjectName(QStringLiteral("orbitStartY"));
-  startY_->setPlaceholderText(QStringLiteral("y"));
+}
+
+void OrbitListPanel::createStartFields() {
+  startX_ = coordinateField(this, QStringLiteral("orbitStartX"), QStringLiteral("x"));
+  startY_ = coordinateField(this, QStringLiteral("orbitStartY"), QStringLiteral("y"));
   for (QLineEdit* e : {startX_, startY_}) {
     e->setToolTip(tr("The start, physical coordinates, as many digits as you like"));
     connect(e, &QLineEdit::returnPressed, this, &OrbitListPanel::launchTyped);
   }
-  auto* launch = new QPushButton(tr("Launch"), this);
-  launch->setToolTip(tr("Launch an orbit from the typed start"));
-  connect(launch, &QPushButton::clicked, this, &OrbitListPanel::launchTyped);
+  launch_ = new QPushButton(tr("Launch"), this);
+  launch_->setToolTip(tr("Launch an orbit from the typed start"));
+  connect(launch_, &QPushButton::clicked, this, &OrbitListPanel::launchTyped);
+}
+
+void OrbitListPanel::createFamilyControls() {
   // A line or a grid at once (issue 37, finding 15): from the start above to this point; rows = 1 is a line.
-  endX_ = new QLineEdit(this);
-  endX_->setObjectName(QStringLiteral("orbitEndX"));
-  endX_->setPlaceholderText(tr("to x"));
-  endY_ = new QLineEdit(this);
-  endY_->setObjectName(QStringLiteral("orbitEndY"));
-  endY_->setPlaceholderText(tr("to y"));
+  endX_ = coordinateField(this, QStringLiteral("orbitEndX"), tr("to x"));
+  endY_ = coordinateField(this, QStringLiteral("orbitEndY"), tr("to y"));
   for (QLineEdit* e : {endX_, endY_}) {
     e->setToolTip(tr("The line's other end, or the grid's opposite corner (physical coordinates)"));
     connect(e, &QLineEdit::returnPressed, this, &OrbitListPanel::launchFamily);
@@ -184,11 +206,14 @@ OrbitListPanel::OrbitListPanel(PortraitController* controller, QWidget* parent)
   rows_->setToolTip(tr("Rows of the grid (1: a line from the start to the other end)"));
   columns_->setPrefix(QStringLiteral("n "));
   rows_->setPrefix(QStringLiteral("× "));
-  auto* many = new QPushButton(tr("Line/Grid"), this);
-  many->setObjectName(QStringLiteral("launchFamily"));
-  many->setToolTip(tr("Launch n orbits on the line from the start to the other end, or n × rows over the rectangle "
+  family_ = new QPushButton(tr("Line/Grid"), this);
+  family_->setObjectName(QStringLiteral("launchFamily"));
+  family_->setToolTip(tr("Launch n orbits on the line from the start to the other end, or n × rows over the rectangle "
                       "the two span; each is measured and listed"));
-  connect(many, &QPushButton::clicked, this, &OrbitListPanel::launchFamily);
+  connect(family_, &QPushButton::clicked, this, &OrbitListPanel::launchFamily);
+}
+
+void OrbitListPanel::connectList() {
   connect(list_, &QTreeWidget::currentItemChanged, this, [this](QTreeWidgetItem* item) {
     controller_->highlightOrbit(item ? item->data(0, Qt::UserRole).toULongLong() : 0);
   });
@@ -200,7 +225,9 @@ OrbitListPanel::OrbitListPanel(PortraitController* controller, QWidget* parent)
   connect(controller_, &PortraitController::orbitsChanged, this, [this] {
     if (!refreshTimer_->isActive()) refreshTimer_->start();
   });
+}
 
+void OrbitListPanel::layOut() {
   auto* buttons = new QHBoxLayout;
   buttons->addWidget(undo_);
   buttons->addWidget(remove_);
@@ -212,14 +239,14 @@ OrbitListPanel::OrbitListPanel(PortraitController* controller, QWidget* parent)
   auto* startRow = new QHBoxLayout;
   startRow->addWidget(startX_, 1);
   startRow->addWidget(startY_, 1);
-  startRow->addWidget(launch);
+  startRow->addWidget(launch_);
   auto* endRow = new QHBoxLayout;
   endRow->addWidget(endX_, 1);
   endRow->addWidget(endY_, 1);
   auto* countRow = new QHBoxLayout;
   countRow->addWidget(columns_, 1);
   countRow->addWidget(rows_, 1);
-  countRow->addWidget(many);
+  countRow->addWidget(family_);
   auto* form = new QFormLayout;
   form->setContentsMargins(0, 0, 0, 0);
   form->addRow(tr("Steps"), launchRow);
@@ -233,7 +260,6 @@ OrbitListPanel::OrbitListPanel(PortraitController* controller, QWidget* parent)
   layout->addWidget(list_, 1);
   layout->addWidget(details_);
   layout->addLayout(buttons);
-  refresh();
 }
 
 void OrbitListPanel::refresh() {

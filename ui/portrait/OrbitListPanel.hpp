@@ -55,6 +55,16 @@ class OrbitListPanel : public QWidget {
   void statusMessage(const QString& text);
 
  private:
+  /// The constructor's steps, in the order the widgets are made (the order of the Tab chain): the list and its
+  /// details; Undo, Remove, Clear and CSV; what a click launches (steps, N⁻¹); the typed start and Launch; the line
+  /// or grid's other end, its counts and Line/Grid; the list's connections; then the page's layout.
+  void createList();
+  void createListButtons();
+  void createClickControls();
+  void createStartFields();
+  void createFamilyControls();
+  void connectList();
+  void layOut();
   void refresh();
   void updateDetails();
 
@@ -74,6 +84,8 @@ class OrbitListPanel : public QWidget {
   QLineEdit* endY_ = nullptr;
   QSpinBox* columns_ = nullptr;
   QSpinBox* rows_ = nullptr;
+  QPushButton* launch_ = nullptr;
+  QPushButton* family_ = nullptr;
   QTimer* refreshTimer_ = nullptr;
 };
 

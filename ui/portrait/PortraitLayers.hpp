@@ -55,6 +55,15 @@ class PointsItem : public QwtPlotItem {
             const QRectF& canvasRect) const override;
 
  private:
+  /// The steps of draw(), one per style (discs and diamonds: drawMarks), between its save and restore.
+  struct Canvas;
+  void drawDots(QPainter* painter, const Canvas& canvas) const;
+  void drawTimeDots(QPainter* painter, const Canvas& canvas) const;
+  void drawTrail(QPainter* painter, const Canvas& canvas) const;
+  void drawMarks(QPainter* painter, const Canvas& canvas) const;
+  void drawPolyline(QPainter* painter, const Canvas& canvas) const;
+  void drawPolygon(QPainter* painter, const Canvas& canvas) const;
+
   Style style_;
   std::vector<QPointF> points_;
   QColor colour_;

@@ -113,10 +113,21 @@ constexpr std::uint64_t kMaxBudget = limits::kPortraitBudget;  // the most offer
 
 PortraitPanel::PortraitPanel(QWidget* parent) : QWidget(parent) {
   controller_ = new PortraitController(this);
-  PortraitController* c = controller_;
   createActions();
   createMenu();
+  createDisplayBoxes();
+  createToolBar();
+  createReadout();
+  connectController();
+  createHint();
+  createSidePages();
+  layOut();
+  syncControls();
+  updateReadout();
+  updateActions();
+}
 
+void PortraitPanel::createDisplayBoxes() {
   mode_ = new QComboBox(this);
   for (const DisplayInfo& d : displayTable()) {
     mode_->addItem(tr(d.label));
@@ -146,7 +157,9 @@ PortraitPanel::PortraitPanel(QWidget* parent) : QWidget(parent) {
                          "this many (or the view changes, or Stop)"));
   connect(budget_, qOverload<int>(&QComboBox::currentIndexChanged), this,
           [this] { controller_->setPointBudget(budget_->currentData().toULongLong()); });
+}
 
+void PortraitPanel::createToolBar() {
   // The tool bar: the same actions; what does not fit its width is behind », whose menu offers it.
   bar_ = new OverflowToolBar(this);
   bar_->setObjectName(QStringLiteral("portraitToolBar"));
@@ -164,7 +177,9 @@ PortraitPanel::PortraitPanel(QWidget* parent) : QWidget(parent) {
   for (QAction* a : {undoOrbit_, clearOrbits_, manifolds_, profileTool_, findPeriodic_}) bar_->addAction(a);
   bar_->addSeparator();
   for (QAction* a : {exportPng_, exportNpy_, b2_}) bar_->addAction(a);
+}
 
+void PortraitPanel::createReadout() {
   auto* readout = new ElidedLabel(this);
   readout_ = readout;
   readout->setObjectName(QStringLiteral("portraitReadout"));
@@ -173,22 +188,31 @@ PortraitPanel::PortraitPanel(QWidget* parent) : QWidget(parent) {
   cursor->setTextInteractionFlags(Qt::TextSelectableByMouse);
   connect(view(), &PortraitView::cursorMoved, this, [cursor](const QString& text) { cursor->setFullText(text); });
   connect(view(), &PortraitView::renderStateChanged, this, &PortraitPanel::updateReadout);
+}
+
+void PortraitPanel::connectController() {
+  PortraitController* c = controller_;
   connect(c, &PortraitController::statusMessage, this, &PortraitPanel::statusMessage);
   connect(c, &PortraitController::settingsChanged, this, &PortraitPanel::syncControls);
   connect(c, &PortraitController::viewportChanged, this, &PortraitPanel::updateActions);
   connect(c, &PortraitController::orbitsChanged, this, &PortraitPanel::updateActions);
   connect(c, &PortraitController::manifoldsChanged, this, &PortraitPanel::updateActions);
+}
 
+void PortraitPanel::createHint() {
   // The legend of the marks and the mouse: wrapped, never elided (issue 37, finding 13: at the window's first size
   // it read "○ elliptic, × hyperbolic fixed point · cl…").
-  auto* hint = new QLabel(this);
-  hint->setObjectName(QStringLiteral("portraitHint"));
-  hint->setWordWrap(true);
-  hint->setText(tr("○ elliptic, × hyperbolic fixed point · click: launch an orbit · Shift+click: its periodic orbit · "
-                   "drag: zoom · wheel: zoom at the cursor · middle-drag or arrows: pan"));
-  hint->setToolTip(hint->text());
-  hint->setStyleSheet(QStringLiteral("color: palette(mid);"));
+  hint_ = new QLabel(this);
+  hint_->setObjectName(QStringLiteral("portraitHint"));
+  hint_->setWordWrap(true);
+  hint_->setText(tr("○ elliptic, × hyperbolic fixed point · click: launch an orbit · Shift+click: its periodic orbit · "
+                    "drag: zoom · wheel: zoom at the cursor · middle-drag or arrows: pan"));
+  hint_->setToolTip(hint_->text());
+  hint_->setStyleSheet(QStringLiteral("color: palette(mid);"));
+}
 
+void PortraitPanel::createSidePages() {
+  PortraitController* c = controller_;
   // The side pages: launched orbits, manifolds and flux, rotation profile, the atlas (and the window's own).
   side_ = new QTabWidget(this);
   side_->setObjectName(QStringLiteral("portraitSidePages"));
@@ -209,7 +233,9 @@ PortraitPanel::PortraitPanel(QWidget* parent) : QWidget(parent) {
     const QSignalBlocker block(profileTool_);
     profileTool_->setChecked(on);
   });
+}
 
+void PortraitPanel::layOut() {
   auto* left = new QWidget(this);
   auto* leftLayout = new QVBoxLayout(left);
   leftLayout->setContentsMargins(0, 0, 0, 0);
@@ -217,7 +243,7 @@ PortraitPanel::PortraitPanel(QWidget* parent) : QWidget(parent) {
   leftLayout->addWidget(view(), 1);
   leftLayout->addWidget(readout_);
   leftLayout->addWidget(cursor_);
-  leftLayout->addWidget(hint);
+  leftLayout->addWidget(hint_);
   splitter_ = new QSplitter(Qt::Horizontal, this);
   splitter_->setObjectName(QStringLiteral("portraitSplitter"));
   splitter_->setChildrenCollapsible(true);
@@ -232,9 +258,6 @@ PortraitPanel::PortraitPanel(QWidget* parent) : QWidget(parent) {
   layout->setSpacing(2);
   layout->addWidget(bar_);
   layout->addWidget(splitter_, 1);
-  syncControls();
-  updateReadout();
-  updateActions();
 }
 
 QAction* PortraitPanel::viewAction(const QString& text, const QList<QKeySequence>& keys, const QString& tip) {
@@ -249,6 +272,15 @@ QAction* PortraitPanel::viewAction(const QString& text, const QList<QKeySequence
 }
 
 void PortraitPanel::createActions() {
+  createViewActions();
+  createViewOptionActions();
+  createOrbitActions();
+  createExportActions();
+  // Window-wide keys (not tied to the portrait's focus) need their actions in a visible widget too.
+  for (QAction* a : {raiseBudget_, undoOrbit_, clearOrbits_, manifolds_, profileTool_, exportPng_}) addAction(a);
+}
+
+void PortraitPanel::createViewActions() {
   PortraitController* c = controller_;
   PortraitView* v = view();
   // "Stop Drawing": the run's Stop is on the window's tool bar beside it (issue 37, finding 6).
@@ -281,7 +313,10 @@ void PortraitPanel::createActions() {
   connect(panRight_, &QAction::triggered, c, [c] { c->panBy(0.1, 0); });
   connect(panUp_, &QAction::triggered, c, [c] { c->panBy(0, 0.1); });
   connect(panDown_, &QAction::triggered, c, [c] { c->panBy(0, -0.1); });
+}
 
+void PortraitPanel::createViewOptionActions() {
+  PortraitController* c = controller_;
   equalAspect_ = new QAction(tr("Equal Aspect Ratio"), this);
   equalAspect_->setCheckable(true);
   equalAspect_->setChecked(true);
@@ -298,39 +333,44 @@ void PortraitPanel::createActions() {
   goTo_ = new QAction(tr("&Go to View…"), this);
   goTo_->setShortcut(QKeySequence(QStringLiteral("Ctrl+G")));
   goTo_->setStatusTip(tr("Type the view's centre and width"));
-  connect(goTo_, &QAction::triggered, this, [this] {
-    // The fields start at the current view, with every digit of its centre.
-    const PhysicalRect r = controller_->viewport().physical(controller_->map());
-    const PhysicalPoint centre = controller_->viewport().physicalCentre(controller_->map());
-    QDialog dialog(this);
-    dialog.setWindowTitle(tr("Go to View"));
-    auto* form = new QFormLayout(&dialog);
-    auto* x = new QLineEdit(QString::number(static_cast<double>(centre.x), 'g', 17), &dialog);
-    auto* y = new QLineEdit(QString::number(static_cast<double>(centre.y), 'g', 17), &dialog);
-    auto* width = new QLineEdit(QString::number(static_cast<double>(r.x1 - r.x0), 'g', 6), &dialog);
-    form->addRow(tr("Centre x"), x);
-    form->addRow(tr("Centre y"), y);
-    form->addRow(tr("Width"), width);
-    // A refused view keeps the dialog open with the reason and the typed values (issue 53, finding 21: a NaN or
-    // negative width closed it, the values lost, the reason only in the status bar).
-    auto* reason = new QLabel(&dialog);
-    reason->setObjectName(QStringLiteral("goToViewError"));
-    reason->setWordWrap(true);
-    reason->setStyleSheet(QStringLiteral("color: #b00020"));
-    reason->hide();
-    form->addRow(reason);
-    auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel, &dialog);
-    form->addRow(buttons);
-    connect(buttons, &QDialogButtonBox::accepted, &dialog, [&] {
-      QString error;
-      if (goTo(x->text(), y->text(), width->text(), &error)) return dialog.accept();
-      reason->setText(error);
-      reason->show();
-    });
-    connect(buttons, &QDialogButtonBox::rejected, &dialog, &QDialog::reject);
-    dialog.exec();
-  });
+  connect(goTo_, &QAction::triggered, this, &PortraitPanel::goToDialog);
+}
 
+void PortraitPanel::goToDialog() {
+  // The fields start at the current view, with every digit of its centre.
+  const PhysicalRect r = controller_->viewport().physical(controller_->map());
+  const PhysicalPoint centre = controller_->viewport().physicalCentre(controller_->map());
+  QDialog dialog(this);
+  dialog.setWindowTitle(tr("Go to View"));
+  auto* form = new QFormLayout(&dialog);
+  auto* x = new QLineEdit(QString::number(static_cast<double>(centre.x), 'g', 17), &dialog);
+  auto* y = new QLineEdit(QString::number(static_cast<double>(centre.y), 'g', 17), &dialog);
+  auto* width = new QLineEdit(QString::number(static_cast<double>(r.x1 - r.x0), 'g', 6), &dialog);
+  form->addRow(tr("Centre x"), x);
+  form->addRow(tr("Centre y"), y);
+  form->addRow(tr("Width"), width);
+  // A refused view keeps the dialog open with the reason and the typed values (issue 53, finding 21: a NaN or
+  // negative width closed it, the values lost, the reason only in the status bar).
+  auto* reason = new QLabel(&dialog);
+  reason->setObjectName(QStringLiteral("goToViewError"));
+  reason->setWordWrap(true);
+  reason->setStyleSheet(QStringLiteral("color: #b00020"));
+  reason->hide();
+  form->addRow(reason);
+  auto* buttons = new QDialogButtonBox(QDialogButtonBox::Ok | QDialogButtonBox::Cancel, &dialog);
+  form->addRow(buttons);
+  connect(buttons, &QDialogButtonBox::accepted, &dialog, [&] {
+    QString error;
+    if (goTo(x->text(), y->text(), width->text(), &error)) return dialog.accept();
+    reason->setText(error);
+    reason->show();
+  });
+  connect(buttons, &QDialogButtonBox::rejected, &dialog, &QDialog::reject);
+  dialog.exec();
+}
+
+void PortraitPanel::createOrbitActions() {
+  PortraitController* c = controller_;
   undoOrbit_ = new QAction(tr("Undo Last Orbit"), this);
   undoOrbit_->setShortcut(QKeySequence::Undo);
   undoOrbit_->setIconText(tr("Undo orbit"));
@@ -370,7 +410,9 @@ void PortraitPanel::createActions() {
     profilePanel_->setToolActive(on);
     if (on) side_->setCurrentWidget(profilePanel_);
   });
+}
 
+void PortraitPanel::createExportActions() {
   exportPng_ = new QAction(tr("Export PNG…"), this);
   exportPng_->setShortcut(QKeySequence(QStringLiteral("Ctrl+Shift+E")));
   exportPng_->setStatusTip(tr("The view with its axes and colour bar as PNG, rendered anew at the image's size"));
@@ -383,8 +425,6 @@ void PortraitPanel::createActions() {
   b2_->setIconText(tr("b₂…"));
   b2_->setStatusTip(tr("Stochastic area b₂ of the sea (§5), with its convergence"));
   connect(b2_, &QAction::triggered, this, &PortraitPanel::showStochasticArea);
-  // Window-wide keys (not tied to the portrait's focus) need their actions in a visible widget too.
-  for (QAction* a : {raiseBudget_, undoOrbit_, clearOrbits_, manifolds_, profileTool_, exportPng_}) addAction(a);
 }
 
 void PortraitPanel::createMenu() {

@@ -112,8 +112,27 @@ class PortraitPanel : public QWidget {
   void statusMessage(const QString& text);
 
  private:
+  /// The actions, by their use: the view's (Stop Drawing, Back/Forward, Reset, zoom, pan: keys of the portrait's
+  /// focus), the view's options (equal aspect, budget ×10, Go to View…), the launched orbits' and the tools' (Undo,
+  /// Clear, Manifolds, Click Finds Periodic Orbits, Rotation Profile), the exports (PNG, .npy, b₂).
   void createActions();
+  void createViewActions();
+  void createViewOptionActions();
+  void createOrbitActions();
+  void createExportActions();
+  /// Portrait ▸ Go to View…: the dialog of the view's centre and width (goTo() does what it asks).
+  void goToDialog();
   void createMenu();
+  /// The constructor's steps after the actions and the menu, in the order the widgets are made (the order of the
+  /// Tab chain): the mode, colour and budget boxes; the tool bar; the readout and the cursor position; the
+  /// controller's signals; the legend of the marks; the side pages; then the splitter and the layout.
+  void createDisplayBoxes();
+  void createToolBar();
+  void createReadout();
+  void connectController();
+  void createHint();
+  void createSidePages();
+  void layOut();
   void updateReadout();
   void updateColourControl();
   void updateActions();
@@ -130,6 +149,7 @@ class PortraitPanel : public QWidget {
   QToolButton* stopButton_ = nullptr;
   QLabel* readout_ = nullptr;
   QLabel* cursor_ = nullptr;
+  QLabel* hint_ = nullptr;
   QSplitter* splitter_ = nullptr;
   QTabWidget* side_ = nullptr;
   OrbitListPanel* orbitList_ = nullptr;

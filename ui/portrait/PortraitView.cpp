@@ -606,9 +606,39 @@ bool PortraitView::exportPng(const QString& path, const QSize& requested) {
     bool& flag;
     ~Done() { flag = false; }
   } done{exporting_};
+  QSize size = requested;
+  const QRectF canvas = layOutExport(size);
+  const PixelSize raster = exportRasterSize(canvas.width(), canvas.height());
+  const int w = raster.width;
+  const int h = raster.height;
+
+  const PortraitRequest request = exportRequest(raster);
+  const std::optional<IndicatorRequest> indicator = exportIndicatorRequest(raster);
+  if (auto e = indicator ? validationError(*indicator) : validationError(request)) {
+    Q_EMIT statusMessage(tr("Export failed: %1").arg(QString::fromStdString(*e)));
+    return false;
+  }
+
+  QString error;
+  const std::shared_ptr<const PortraitFrame> frame = waitForExportRender(request, indicator, path, &error);
+  if (!frame) {
+    Q_EMIT statusMessage(tr("Export failed: %1").arg(error.isEmpty() ? tr("no raster") : error));
+    return false;
+  }
+
+  lastExportRaster_ = QSize(frame->image.width(), frame->image.height());
+  const QImage image = plotImage(*frame, size);
+  QString writeError;
+  const bool ok = writePngFile(image, path, &writeError,
+                               indicator ? indicatorProvenance(*indicator) : portraitProvenance(request));
+  Q_EMIT statusMessage(ok ? tr("Exported %1 (%2 × %3, its raster %4 × %5)").arg(path).arg(size.width()).arg(size.height()).arg(w).arg(h)
+                          : writeError);
+  return ok;
+}
+
+QRectF PortraitView::layOutExport(QSize& size) {
   // The export's own layout: the canvas it gets in an image of that size (with equal aspect, the image is cut
   // to the view's aspect: core's exportImageSize), then a raster rendered at exactly that canvas size.
-  QSize size = requested;
   QwtPlotLayout* layout = plot_->plotLayout();
   const auto canvasIn = [&](const QSize& s) {
     layout->activate(plot_, QRectF(QPointF(0, 0), QSizeF(s)), QwtPlotLayout::IgnoreScrollbars);
@@ -623,37 +653,40 @@ bool PortraitView::exportPng(const QString& path, const QSize& requested) {
   }
   layout->invalidate();
   plot_->updateLayout();
-  const PixelSize raster = exportRasterSize(canvas.width(), canvas.height());
-  const int w = raster.width;
-  const int h = raster.height;
+  return canvas;
+}
 
+PortraitRequest PortraitView::exportRequest(const PixelSize& raster) const {
   PortraitRequest request;
   request.map = map_;
   request.view = view_;
   request.mode = mode_;
-  request.width = w;
-  request.height = h;
+  request.width = raster.width;
+  request.height = raster.height;
   request.points = exportPoints(pointsSoFar_, frame_ ? frame_->pixelCount() : 0, raster);
   request.passes = 1;
-  std::optional<IndicatorRequest> indicator;
-  if (indicator_) {
-    IndicatorRequest r;
-    r.measure.map = map_;
-    r.measure.kind = *indicator_;
-    r.view = view_;
-    r.width = w;
-    r.height = h;
-    r.passes = 1;
-    indicator = r;
-  }
-  if (auto e = indicator ? validationError(*indicator) : validationError(request)) {
-    Q_EMIT statusMessage(tr("Export failed: %1").arg(QString::fromStdString(*e)));
-    return false;
-  }
+  return request;
+}
 
+std::optional<IndicatorRequest> PortraitView::exportIndicatorRequest(const PixelSize& raster) const {
+  if (!indicator_) return std::nullopt;
+  IndicatorRequest r;
+  r.measure.map = map_;
+  r.measure.kind = *indicator_;
+  r.view = view_;
+  r.width = raster.width;
+  r.height = raster.height;
+  r.passes = 1;
+  return r;
+}
+
+std::shared_ptr<const PortraitFrame> PortraitView::waitForExportRender(const PortraitRequest& request,
+                                                                       const std::optional<IndicatorRequest>& indicator,
+                                                                       const QString& path, QString* error) {
+  const int w = request.width;
+  const int h = request.height;
   const quint64 id = worker_->renderForExport(request, indicator, colours_);
   std::shared_ptr<const PortraitFrame> frame;
-  QString error;
   bool finished = false;
   QEventLoop loop;
   QProgressDialog progress(tr("Rendering the portrait at %1 × %2 pixels for %3…").arg(w).arg(h).arg(path), tr("Cancel"),
@@ -667,7 +700,7 @@ bool PortraitView::exportPng(const QString& path, const QSize& requested) {
                              [&](quint64 answered, std::shared_ptr<const PortraitFrame> f, const QString& e) {
                                if (answered != id) return;
                                frame = std::move(f);
-                               error = e;
+                               *error = e;
                                finished = true;
                                loop.quit();
                              });
@@ -676,7 +709,7 @@ bool PortraitView::exportPng(const QString& path, const QSize& requested) {
   });
   connect(&progress, &QProgressDialog::canceled, &loop, [&] {
     worker_->cancelExport();
-    error = tr("cancelled");
+    *error = tr("cancelled");
     loop.quit();
   });
   // The first half second without user input (nothing can close the window under this wait); a longer render
@@ -691,16 +724,14 @@ bool PortraitView::exportPng(const QString& path, const QSize& requested) {
   disconnect(ready);
   disconnect(moved);
   progress.close();
-  if (!frame) {
-    Q_EMIT statusMessage(tr("Export failed: %1").arg(error.isEmpty() ? tr("no raster") : error));
-    return false;
-  }
+  return frame;
+}
 
-  lastExportRaster_ = QSize(frame->image.width(), frame->image.height());
+QImage PortraitView::plotImage(const PortraitFrame& frame, const QSize& size) {
   // The plot as on screen, with the export's raster under its axes.
   const QImage screenImage = frame_ ? frame_->image : QImage();
   const bool hadBar = plot_->axisEnabled(QwtPlot::yRight);
-  image_->setImage(frame->image, physicalRect(view_, map_));
+  image_->setImage(frame.image, physicalRect(view_, map_));
   QImage image(size, QImage::Format_ARGB32);
   image.fill(Qt::white);
   {
@@ -712,12 +743,7 @@ bool PortraitView::exportPng(const QString& path, const QSize& requested) {
   else image_->setImage(QImage(), QRectF());
   plot_->enableAxis(QwtPlot::yRight, hadBar);
   plot_->replot();
-  QString writeError;
-  const bool ok = writePngFile(image, path, &writeError,
-                               indicator ? indicatorProvenance(*indicator) : portraitProvenance(request));
-  Q_EMIT statusMessage(ok ? tr("Exported %1 (%2 × %3, its raster %4 × %5)").arg(path).arg(size.width()).arg(size.height()).arg(w).arg(h)
-                          : writeError);
-  return ok;
+  return image;
 }
 
 bool PortraitView::exportNpy(const QString& path) {

@@ -42,6 +42,11 @@ class QwtPanner;
 class QwtPlotTextLabel;
 class QTimer;
 
+namespace archipelago {
+struct IndicatorRequest;
+struct PixelSize;
+}  // namespace archipelago
+
 namespace archipelago::ui {
 
 class PauseGate;
@@ -188,6 +193,17 @@ class PortraitView : public QWidget {
   void layoutPlot();
   void replotSoon();
   [[nodiscard]] QString cursorText(const QPointF& canvasPos) const;
+  /// exportPng()'s steps: the plot laid out for an image of `size` (cut to the view's aspect with equal aspect:
+  /// `size` is changed) and its canvas; the requests of the export's raster (the indicator's when an indicator map
+  /// is shown); the render, waited for (a progress dialog after half a second, its Cancel stops it), null with the
+  /// reason in `error`; the plot drawn into an image of `size` with that raster under its axes (the screen's after).
+  QRectF layOutExport(QSize& size);
+  [[nodiscard]] PortraitRequest exportRequest(const PixelSize& raster) const;
+  [[nodiscard]] std::optional<IndicatorRequest> exportIndicatorRequest(const PixelSize& raster) const;
+  std::shared_ptr<const PortraitFrame> waitForExportRender(const PortraitRequest& request,
+                                                           const std::optional<IndicatorRequest>& indicator,
+                                                           const QString& path, QString* error);
+  QImage plotImage(const PortraitFrame& frame, const QSize& size);
 
   MapParameters map_;
   Viewport view_;

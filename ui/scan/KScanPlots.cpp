@@ -281,32 +281,13 @@ void KScanPlots::showRuns(const std::vector<ScanRunSummary>& runs) {
   showRuns(std::vector<std::optional<ScanRunSummary>>(runs.begin(), runs.end()));
 }
 
-void KScanPlots::showRuns(const std::vector<std::optional<ScanRunSummary>>& runs) {
-  for (QwtPlot* plot : {ftPlot_, dPlot_, exponentPlot_, longPlot_, b2Plot_})
-    plot->detachItems(QwtPlotItem::Rtti_PlotCurve, true);
-  dPlot_->detachItems(QwtPlotItem::Rtti_PlotIntervalCurve, true);
-  table_->setRowCount(0);
+/// The points against K of the K finished (the ScanPoint columns of scan_summary.csv): D and its bars, the longest
+/// segment, the steps in segments ≥ 10⁴, b₂.
+struct KScanPlots::AgainstK {
   QVector<QPointF> dPoints, longest, longFraction, b2Area, b2Fraction;
   QVector<QwtIntervalSample> dErrors;
-  std::vector<ScanRunSummary> done;  // the K finished so far, in the scan's order: the heat map's columns
-  for (std::size_t i = 0; i < runs.size(); ++i) {
-    if (!runs[i]) continue;
-    const ScanRunSummary& run = *runs[i];
-    done.push_back(run);
-    const QColor colour = colourOf(i, runs.size());
-    auto addCurve = [&](QwtPlot* plot, const Series& s) {
-      QVector<QPointF> points;
-      for (std::size_t j = 0; j < s.x.size(); ++j)
-        if (s.x[j] > 0 && std::isfinite(s.value[j]) && (plot != ftPlot_ || s.value[j] > 0))
-          points.append(QPointF(s.x[j], s.value[j]));
-      auto* curve = new QwtPlotCurve(QStringLiteral("K = %1").arg(kText(run.point.K)));
-      curve->setPen(colour, 1.5);
-      curve->setSamples(points);
-      curve->attach(plot);
-    };
-    addCurve(ftPlot_, run.statistics.f);
-    addCurve(exponentPlot_, run.statistics.localExponent);
-    const ScanPoint& p = run.point;
+
+  void add(const ScanPoint& p) {
     if (p.D > 0) {
       dPoints.append(QPointF(p.K, p.D));
       // No bar where the longest segments dominate D (DError NaN): the data support no error there.
@@ -319,57 +300,96 @@ void KScanPlots::showRuns(const std::vector<std::optional<ScanRunSummary>>& runs
       b2Area.append(QPointF(p.K, p.boxInvariant->b2.area));
       b2Fraction.append(QPointF(p.K, p.boxInvariant->b2.fraction));
     }
-    const int row = table_->rowCount();
-    table_->insertRow(row);
-    const QStringList cells = {kText(p.K), QString::number(p.box.xmin, 'g', 4), QString::number(p.box.xmax, 'g', 4),
-                               QStringLiteral("%1 / %2").arg(p.blocksDone).arg(p.blocksTotal),
-                               QString::number(p.segments),
-                               std::isfinite(p.DError)
-                                   ? QStringLiteral("%1 ± %2").arg(p.D, 0, 'g', 4).arg(p.DError, 0, 'g', 2)
-                                   : tr("%1 (tail dominates: no error)").arg(p.D, 0, 'g', 4),
-                               p.longestSteps > 0 ? QString::number(p.longestSteps) : QStringLiteral("—"),
-                               QString::number(p.longFraction, 'f', 3),
-                               p.boxInvariant ? QStringLiteral("%1 (%2)")
-                                                    .arg(p.boxInvariant->b2.area, 0, 'g', 5)
-                                                    .arg(p.boxInvariant->b2.fraction, 0, 'f', 4)
-                                              : tr("not computed")};
-    for (int c = 0; c < cells.size(); ++c) table_->setItem(row, c, new QTableWidgetItem(cells[c]));
-    if (!std::isfinite(p.DError))
-      table_->item(row, 5)->setToolTip(tr("D is dominated by its longest segments: the run supports no error of D "
-                                          "(archipelago-cli stats says why)"));
   }
+};
+
+namespace {
+/// Points against K, with a symbol, on `yAxis`.
+QwtPlotCurve* addPoints(QwtPlot* plot, const QString& title, const QVector<QPointF>& points, const QColor& colour,
+                        QwtSymbol::Style style, int yAxis) {
+  auto* curve = new QwtPlotCurve(title);
+  curve->setPen(colour, 1.5);
+  curve->setSymbol(new QwtSymbol(style, colour, colour, QSize(7, 7)));
+  curve->setSamples(points);
+  curve->setYAxis(yAxis);
+  curve->attach(plot);
+  return curve;
+}
+}  // namespace
+
+void KScanPlots::showRuns(const std::vector<std::optional<ScanRunSummary>>& runs) {
+  removeCurves();
+  AgainstK againstK;
+  std::vector<ScanRunSummary> done;  // the K finished so far, in the scan's order: the heat map's columns
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    if (!runs[i]) continue;
+    const ScanRunSummary& run = *runs[i];
+    done.push_back(run);
+    const QColor colour = colourOf(i, runs.size());
+    addCurve(ftPlot_, run, run.statistics.f, colour);
+    addCurve(exponentPlot_, run, run.statistics.localExponent, colour);
+    againstK.add(run.point);
+    addTableRow(run.point);
+  }
+  drawAgainstK(againstK, done);
+  showHeatMap(done);
+  rescale(done.empty());
+}
+
+void KScanPlots::removeCurves() {
+  for (QwtPlot* plot : {ftPlot_, dPlot_, exponentPlot_, longPlot_, b2Plot_})
+    plot->detachItems(QwtPlotItem::Rtti_PlotCurve, true);
+  dPlot_->detachItems(QwtPlotItem::Rtti_PlotIntervalCurve, true);
+  table_->setRowCount(0);
+}
+
+void KScanPlots::addCurve(QwtPlot* plot, const ScanRunSummary& run, const Series& s, const QColor& colour) {
+  QVector<QPointF> points;
+  for (std::size_t j = 0; j < s.x.size(); ++j)
+    if (s.x[j] > 0 && std::isfinite(s.value[j]) && (plot != ftPlot_ || s.value[j] > 0))
+      points.append(QPointF(s.x[j], s.value[j]));
+  auto* curve = new QwtPlotCurve(QStringLiteral("K = %1").arg(kText(run.point.K)));
+  curve->setPen(colour, 1.5);
+  curve->setSamples(points);
+  curve->attach(plot);
+}
+
+void KScanPlots::addTableRow(const ScanPoint& p) {
+  const int row = table_->rowCount();
+  table_->insertRow(row);
+  const QStringList cells = {kText(p.K), QString::number(p.box.xmin, 'g', 4), QString::number(p.box.xmax, 'g', 4),
+                             QStringLiteral("%1 / %2").arg(p.blocksDone).arg(p.blocksTotal),
+                             QString::number(p.segments),
+                             std::isfinite(p.DError)
+                                 ? QStringLiteral("%1 ± %2").arg(p.D, 0, 'g', 4).arg(p.DError, 0, 'g', 2)
+                                 : tr("%1 (tail dominates: no error)").arg(p.D, 0, 'g', 4),
+                             p.longestSteps > 0 ? QString::number(p.longestSteps) : QStringLiteral("—"),
+                             QString::number(p.longFraction, 'f', 3),
+                             p.boxInvariant ? QStringLiteral("%1 (%2)")
+                                                  .arg(p.boxInvariant->b2.area, 0, 'g', 5)
+                                                  .arg(p.boxInvariant->b2.fraction, 0, 'f', 4)
+                                            : tr("not computed")};
+  for (int c = 0; c < cells.size(); ++c) table_->setItem(row, c, new QTableWidgetItem(cells[c]));
+  if (!std::isfinite(p.DError))
+    table_->item(row, 5)->setToolTip(tr("D is dominated by its longest segments: the run supports no error of D "
+                                        "(archipelago-cli stats says why)"));
+}
+
+void KScanPlots::drawAgainstK(const AgainstK& k, const std::vector<ScanRunSummary>& done) {
   auto* bars = new QwtPlotIntervalCurve(tr("one sigma"));
   bars->setStyle(QwtPlotIntervalCurve::NoCurve);
   bars->setSymbol(new QwtIntervalSymbol(QwtIntervalSymbol::Bar));
-  bars->setSamples(dErrors);
+  bars->setSamples(k.dErrors);
   bars->attach(dPlot_);
-  auto addPoints = [](QwtPlot* plot, const QString& title, const QVector<QPointF>& points, const QColor& colour,
-                      QwtSymbol::Style style, int yAxis) {
-    auto* curve = new QwtPlotCurve(title);
-    curve->setPen(colour, 1.5);
-    curve->setSymbol(new QwtSymbol(style, colour, colour, QSize(7, 7)));
-    curve->setSamples(points);
-    curve->setYAxis(yAxis);
-    curve->attach(plot);
-    return curve;
-  };
   const QColor blue(31, 119, 180), orange(230, 120, 20);
-  addPoints(dPlot_, tr("D"), dPoints, blue, QwtSymbol::Ellipse, kAxisY);
-  addPoints(longPlot_, tr("longest segment (left)"), longest, blue, QwtSymbol::Ellipse, kAxisY);
-  addPoints(longPlot_, tr("steps in segments ≥ 10⁴, fraction (right)"), longFraction, orange, QwtSymbol::Rect,
+  addPoints(dPlot_, tr("D"), k.dPoints, blue, QwtSymbol::Ellipse, kAxisY);
+  addPoints(longPlot_, tr("longest segment (left)"), k.longest, blue, QwtSymbol::Ellipse, kAxisY);
+  addPoints(longPlot_, tr("steps in segments ≥ 10⁴, fraction (right)"), k.longFraction, orange, QwtSymbol::Rect,
             kAxisYRight);
-  addPoints(b2Plot_, tr("b₂, area (left)"), b2Area, blue, QwtSymbol::Ellipse, kAxisY);
-  addPoints(b2Plot_, tr("b₂ / L², fraction of the box (right)"), b2Fraction, orange, QwtSymbol::Rect, kAxisYRight);
-  b2Plot_->setFooter(b2Area.isEmpty() && !done.empty() ? tr("b₂ not computed: set b₂ steps > 0 and start again")
-                                                       : QString());
-
-  // The heat map: core's localExponentHeatMap of the K finished (the numbers of scan_local_exponent.csv).
-  auto* cells = new HeatMapData(localExponentHeatMap(done));
-  const bool mapEmpty = cells->empty();
-  heatMap_->setData(cells);
-
-  // Before any result, fixed ranges (an empty log axis would span hundreds of decades); then autoscale.
-  const bool empty = done.empty();
+  addPoints(b2Plot_, tr("b₂, area (left)"), k.b2Area, blue, QwtSymbol::Ellipse, kAxisY);
+  addPoints(b2Plot_, tr("b₂ / L², fraction of the box (right)"), k.b2Fraction, orange, QwtSymbol::Rect, kAxisYRight);
+  b2Plot_->setFooter(k.b2Area.isEmpty() && !done.empty() ? tr("b₂ not computed: set b₂ steps > 0 and start again")
+                                                         : QString());
   const auto noError = std::count_if(done.begin(), done.end(), [](const ScanRunSummary& r) {
     return r.point.D > 0 && !std::isfinite(r.point.DError);
   });
@@ -378,6 +398,27 @@ void KScanPlots::showRuns(const std::vector<std::optional<ScanRunSummary>>& runs
                                       .arg(noError)
                                       .arg(done.size())
                                 : QString());
+}
+
+void KScanPlots::showHeatMap(const std::vector<ScanRunSummary>& done) {
+  // The heat map: core's localExponentHeatMap of the K finished (the numbers of scan_local_exponent.csv).
+  auto* cells = new HeatMapData(localExponentHeatMap(done));
+  const bool mapEmpty = cells->empty();
+  heatMap_->setData(cells);
+  // The heat map spans its cells exactly (autoscale would pad them with no-data grey).
+  if (mapEmpty) {
+    heatMapPlot_->setAxisScale(kAxisX, 0, 1.3);
+    heatMapPlot_->setAxisScale(kAxisY, 1, 1e6);
+  } else {
+    const QwtInterval x = cells->interval(Qt::XAxis), y = cells->interval(Qt::YAxis);
+    heatMapPlot_->setAxisScale(kAxisX, x.minValue(), x.maxValue());
+    heatMapPlot_->setAxisScale(kAxisY, y.minValue(), y.maxValue());
+  }
+  heatMapPlot_->replot();
+}
+
+void KScanPlots::rescale(bool empty) {
+  // Before any result, fixed ranges (an empty log axis would span hundreds of decades); then autoscale.
   const std::pair<QwtPlot*, std::array<double, 4>> ranges[] = {
       {ftPlot_, {1, 1e6, 1e-8, 1}},   {dPlot_, {0, 1.3, 1, 1e4}},  {exponentPlot_, {1, 1e6, 0, 3}},
       {longPlot_, {0, 1.3, 1, 1e6}}, {b2Plot_, {0, 1.3, 0, 4}}};
@@ -393,16 +434,6 @@ void KScanPlots::showRuns(const std::vector<std::optional<ScanRunSummary>>& runs
     }
     plot->replot();
   }
-  // The heat map spans its cells exactly (autoscale would pad them with no-data grey).
-  if (mapEmpty) {
-    heatMapPlot_->setAxisScale(kAxisX, 0, 1.3);
-    heatMapPlot_->setAxisScale(kAxisY, 1, 1e6);
-  } else {
-    const QwtInterval x = cells->interval(Qt::XAxis), y = cells->interval(Qt::YAxis);
-    heatMapPlot_->setAxisScale(kAxisX, x.minValue(), x.maxValue());
-    heatMapPlot_->setAxisScale(kAxisY, y.minValue(), y.maxValue());
-  }
-  heatMapPlot_->replot();
 }
 
 }  // namespace archipelago::ui

@@ -59,6 +59,17 @@ class KScanPlots : public QWidget {
   [[nodiscard]] static QColor heatMapColour(double exponent);
 
  private:
+  /// showRuns()'s steps: the curves and rows of the runs shown before removed; a K's curve over τ (f_t, local
+  /// exponent), its point against K and its table row; the plots against K drawn with their footers; the heat map
+  /// of the K finished; the ranges (fixed before any K has finished, then autoscaled).
+  struct AgainstK;
+  void removeCurves();
+  void addCurve(QwtPlot* plot, const ScanRunSummary& run, const Series& s, const QColor& colour);
+  void addTableRow(const ScanPoint& p);
+  void drawAgainstK(const AgainstK& k, const std::vector<ScanRunSummary>& done);
+  void showHeatMap(const std::vector<ScanRunSummary>& done);
+  void rescale(bool empty);
+
   QwtPlot* ftPlot_ = nullptr;
   QwtPlot* dPlot_ = nullptr;
   QwtPlot* exponentPlot_ = nullptr;

@@ -47,6 +47,22 @@ LongSegmentsPanel::LongSegmentsPanel(QWidget* parent) : QWidget(parent) {
   // (issue 41: at normal priority they took half the CPU of two cores from a run at nice 10).
   jobs_ = std::make_unique<BackgroundJobs>(this, std::vector<JobPriority>{JobPriority::normal, JobPriority::idle});
 
+  createTable();
+  createInfoLabels();
+  createStepControls();
+  createExportButtons();
+  createSpeedBox();
+  QLayout* steps = layOutStepControls();
+  createZoomButtons();
+  layOut(steps);
+
+  playTimer_ = new QTimer(this);
+  playTimer_->setInterval(33);
+  connect(playTimer_, &QTimer::timeout, this, &LongSegmentsPanel::advancePlay);
+  updateStepControls();
+}
+
+void LongSegmentsPanel::createTable() {
   table_ = new QTableView(this);
   table_->setModel(model_);
   table_->setSelectionBehavior(QAbstractItemView::SelectRows);
@@ -64,14 +80,18 @@ LongSegmentsPanel::LongSegmentsPanel(QWidget* parent) : QWidget(parent) {
   table_->setToolTip(tr("Select a segment to replay it exactly from its recorded start state"));
   connect(table_->selectionModel(), &QItemSelectionModel::selectionChanged, this,
           &LongSegmentsPanel::onSelectionChanged);
+}
 
+void LongSegmentsPanel::createInfoLabels() {
   hint_ = new QLabel(tr("Run or open a run file; the longest trapped segments appear here."), this);
   hint_->setWordWrap(true);
   info_ = new QLabel(this);
   info_->setWordWrap(true);
   info_->hide();
   info_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+}
 
+void LongSegmentsPanel::createStepControls() {
   playButton_ = new QToolButton(this);
   playButton_->setText(tr("Play"));
   playButton_->setCheckable(true);
@@ -87,11 +107,16 @@ LongSegmentsPanel::LongSegmentsPanel(QWidget* parent) : QWidget(parent) {
     if (replay_) setCurrentIndex(replay_->trace.indexNear(static_cast<std::uint64_t>(std::max(step, 0))));
   });
   stepLabel_ = new QLabel(this);
+}
+
+void LongSegmentsPanel::createExportButtons() {
   csvButton_ = new QPushButton(tr("Export CSV\u2026"), this);
   npyButton_ = new QPushButton(tr("Export .npy\u2026"), this);
   connect(csvButton_, &QPushButton::clicked, this, [this] { exportDialog(false); });
   connect(npyButton_, &QPushButton::clicked, this, [this] { exportDialog(true); });
+}
 
+void LongSegmentsPanel::createSpeedBox() {
   // Replay speed: a multiple of the base pace (the whole segment in ~15 s); 64× is a glance, ¼× a close look.
   speedBox_ = new QComboBox(this);
   speedBox_->setObjectName(QStringLiteral("replaySpeed"));
@@ -100,6 +125,9 @@ LongSegmentsPanel::LongSegmentsPanel(QWidget* parent) : QWidget(parent) {
     speedBox_->addItem(QString::fromUtf8(label), factor);
   speedBox_->setCurrentIndex(2);
   speedBox_->setToolTip(tr("Replay speed (1×: the whole segment in about 15 s)"));
+}
+
+QLayout* LongSegmentsPanel::layOutStepControls() {
   // The slider has a row of its own, so that it keeps its length whatever the other controls show (issue 25,
   // finding 3: a restored session once squeezed it to a handle); the coordinates wrap below.
   playButton_->setMinimumWidth(playButton_->fontMetrics().horizontalAdvance(tr("Pause")) + 24);
@@ -117,12 +145,19 @@ LongSegmentsPanel::LongSegmentsPanel(QWidget* parent) : QWidget(parent) {
   steps->addLayout(playRow);
   steps->addLayout(stepRow);
   steps->addWidget(stepLabel_);
+  return steps;
+}
+
+void LongSegmentsPanel::createZoomButtons() {
   zoomSegmentButton_ = new QPushButton(tr("Zoom to segment"), this);
   zoomSegmentButton_->setToolTip(tr("Show the region where the segment spent 90 % of its time"));
   zoomIslandButton_ = new QPushButton(tr("Zoom to island"), this);
   zoomIslandButton_->setToolTip(tr("Show one island of its chain with the satellites the segment winds around"));
   connect(zoomSegmentButton_, &QPushButton::clicked, this, &LongSegmentsPanel::zoomToSegment);
   connect(zoomIslandButton_, &QPushButton::clicked, this, &LongSegmentsPanel::zoomToIsland);
+}
+
+void LongSegmentsPanel::layOut(QLayout* steps) {
   // Two rows of two: the dock (and so the window) stays narrow enough for a 1280 × 800 screen.
   auto* exports = new QGridLayout;
   exports->addWidget(zoomSegmentButton_, 0, 0);
@@ -136,11 +171,6 @@ LongSegmentsPanel::LongSegmentsPanel(QWidget* parent) : QWidget(parent) {
   layout->addWidget(info_);
   layout->addLayout(steps);
   layout->addLayout(exports);
-
-  playTimer_ = new QTimer(this);
-  playTimer_->setInterval(33);
-  connect(playTimer_, &QTimer::timeout, this, &LongSegmentsPanel::advancePlay);
-  updateStepControls();
 }
 
 QSize LongSegmentsPanel::sizeHint() const {

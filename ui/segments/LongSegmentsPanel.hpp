@@ -28,6 +28,7 @@
 
 class QComboBox;
 class QLabel;
+class QLayout;
 class QPushButton;
 class QSlider;
 class QSpinBox;
@@ -105,6 +106,17 @@ class LongSegmentsPanel : public QWidget {
   void statusMessage(const QString& text);
 
  private:
+  /// The constructor's steps, in the order the widgets are made (the order of the Tab chain): the table; the hint
+  /// and the segment's numbers; Play, the slider, the step and its label; Export CSV / .npy; the replay speed; the
+  /// rows of the replay's controls (returned, for layOut); Zoom to segment / island; then the panel's layout.
+  void createTable();
+  void createInfoLabels();
+  void createStepControls();
+  void createExportButtons();
+  void createSpeedBox();
+  QLayout* layOutStepControls();
+  void createZoomButtons();
+  void layOut(QLayout* steps);
   void onSelectionChanged();
   void requestReplay(const SegmentRecord& record);
   void requestChain(const SegmentRecord& record, bool urgent);

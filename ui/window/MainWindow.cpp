@@ -95,6 +95,37 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   setWindowIcon(QIcon(QStringLiteral(":/icons/archipelago.svg")));
   setAcceptDrops(true);
 
+  createRunController();
+  createTabs();
+  createCentralWidget();
+  panel_ = new ParameterPanel(this);
+  createActions();
+  createMenus();
+  createStatusBar();
+  createDocks();
+  sessions_ = new SessionController({panel_, run_, statistics_, portrait_, segments_, tabs_, [this] { refreshView(); },
+                                     [this](int rank) { showLongSegment(rank, false); }},
+                                    this);
+  connectAtlasPage();
+  connectParameterPanel();
+
+  refreshTimer_ = new QTimer(this);
+  refreshTimer_->setInterval(kRefreshIntervalMs);
+  connect(refreshTimer_, &QTimer::timeout, this, &MainWindow::refreshView);
+  refreshTimer_->start();
+
+  resize(1200, 760);
+  restoreSettings();
+  if (const auto p = panel_->parameters()) portrait_->controller()->setMap(p->map, p->Xr);
+  onStatusChanged(run_->status());
+  if (QFileInfo::exists(checkpointPath())) {
+    checkpointLabel_->setText(tr("An unfinished run was kept when the window closed: %1").arg(checkpointPath()));
+    checkpointBanner_->show();
+    message(tr("A checkpoint of an unfinished run is available: Run ▸ Resume checkpoint"), 0);
+  }
+}
+
+void MainWindow::createRunController() {
   run_ = new RunController(this);
   run_->setAsk([this](const RunQuestion& q) { return askUser(q); });
   run_->setSaveHandler([this] { return run_->currentFile().isEmpty() ? saveDialog() : saveRunFile(run_->currentFile()); });
@@ -114,7 +145,9 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
     glance_->clear();
     segments_->clear();
   });
+}
 
+void MainWindow::createTabs() {
   // The first screen is the phase portrait, accumulating, with f_t and C_τ of the run beside it (issue 25,
   // finding 5): what the program is about, seen at once; the Statistics tab has all six plots.
   tabs_ = new QTabWidget(this);
@@ -131,7 +164,9 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   connect(portrait_, &PortraitPanel::statusMessage, this, [this](const QString& text) {
     if (tabs_->currentWidget() == portrait_) statusBar()->showMessage(text, 5000);
   });
+}
 
+void MainWindow::createCentralWidget() {
   auto* central = new QWidget(this);
   auto* centralLayout = new QVBoxLayout(central);
   centralLayout->setContentsMargins(0, 0, 0, 0);
@@ -147,12 +182,9 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   centralLayout->addWidget(staleNote_);
   centralLayout->addWidget(tabs_, 1);
   setCentralWidget(central);
+}
 
-  panel_ = new ParameterPanel(this);
-  createActions();
-  createMenus();
-  createStatusBar();
-
+void MainWindow::createDocks() {
   auto* dock = new QDockWidget(tr("Parameters"), this);
   dock->setObjectName(QStringLiteral("parametersDock"));
   parametersDock_ = dock;
@@ -160,31 +192,33 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   dock->setWidget(createParameterDock());
   addDockWidget(Qt::LeftDockWidgetArea, dock);
   createLongSegmentsDock(dock);
-  sessions_ = new SessionController({panel_, run_, statistics_, portrait_, segments_, tabs_, [this] { refreshView(); },
-                                     [this](int rank) { showLongSegment(rank, false); }},
-                                    this);
+}
 
+void MainWindow::connectAtlasPage() {
   AtlasPanel* atlas = portrait_->atlasPanel();
   connect(atlas, &AtlasPanel::markovTreeAsked, this, &MainWindow::askMarkovTree);
-  connect(atlas, &AtlasPanel::markovTreeFinished, this,
-          [this](std::shared_ptr<const MarkovTreeResult> model, const QString& error) {
-            StatisticsPlot* p = statistics_->plot(Statistic::P);
-            if (!model || !error.isEmpty() || !p) {
-              message(tr("Cannot draw the Markov tree: %1").arg(error), 0);
-              Q_EMIT markovTreeDrawn(error.isEmpty() ? tr("no model") : error);
-              return;
-            }
-            const Series curve = markovTreeCurve(*model);  // P_t = w S(t): core's
-            p->setModel(curve, tr("Markov tree (atlas depth %1)").arg(model->atlasDepth));
-            p->refresh();
-            message(tr("Drew the Markov tree's P_t (%1 states, w = %2 visits per segment, α = %3, b₂ = %4) on P_t")
-                        .arg(model->tree.states.size())
-                        .arg(QLocale::c().toString(static_cast<double>(model->weight.value_or(0)), 'g', 4))
-                        .arg(QLocale::c().toString(model->request.alpha, 'g', 6))
-                        .arg(QLocale::c().toString(model->request.b2, 'g', 7)));
-            Q_EMIT markovTreeDrawn(QString());
-          });
+  connect(atlas, &AtlasPanel::markovTreeFinished, this, &MainWindow::onMarkovTreeFinished);
+}
 
+void MainWindow::onMarkovTreeFinished(std::shared_ptr<const MarkovTreeResult> model, const QString& error) {
+  StatisticsPlot* p = statistics_->plot(Statistic::P);
+  if (!model || !error.isEmpty() || !p) {
+    message(tr("Cannot draw the Markov tree: %1").arg(error), 0);
+    Q_EMIT markovTreeDrawn(error.isEmpty() ? tr("no model") : error);
+    return;
+  }
+  const Series curve = markovTreeCurve(*model);  // P_t = w S(t): core's
+  p->setModel(curve, tr("Markov tree (atlas depth %1)").arg(model->atlasDepth));
+  p->refresh();
+  message(tr("Drew the Markov tree's P_t (%1 states, w = %2 visits per segment, α = %3, b₂ = %4) on P_t")
+              .arg(model->tree.states.size())
+              .arg(QLocale::c().toString(static_cast<double>(model->weight.value_or(0)), 'g', 4))
+              .arg(QLocale::c().toString(model->request.alpha, 'g', 6))
+              .arg(QLocale::c().toString(model->request.b2, 'g', 7)));
+  Q_EMIT markovTreeDrawn(QString());
+}
+
+void MainWindow::connectParameterPanel() {
   connect(panel_, &ParameterPanel::validityChanged, this, [this] { updateActions(); });
   connect(panel_, &ParameterPanel::parametersChanged, this, [this] {
     if (const auto p = panel_->parameters()) portrait_->controller()->setMap(p->map, p->Xr);
@@ -192,21 +226,6 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
     else statusBar()->clearMessage();
     updateStaleNote();
   });
-
-  refreshTimer_ = new QTimer(this);
-  refreshTimer_->setInterval(kRefreshIntervalMs);
-  connect(refreshTimer_, &QTimer::timeout, this, &MainWindow::refreshView);
-  refreshTimer_->start();
-
-  resize(1200, 760);
-  restoreSettings();
-  if (const auto p = panel_->parameters()) portrait_->controller()->setMap(p->map, p->Xr);
-  onStatusChanged(run_->status());
-  if (QFileInfo::exists(checkpointPath())) {
-    checkpointLabel_->setText(tr("An unfinished run was kept when the window closed: %1").arg(checkpointPath()));
-    checkpointBanner_->show();
-    message(tr("A checkpoint of an unfinished run is available: Run ▸ Resume checkpoint"), 0);
-  }
 }
 
 MainWindow::~MainWindow() = default;  // the controller (a child) stops its worker before the views go

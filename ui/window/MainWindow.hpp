@@ -29,6 +29,10 @@ class QProgressBar;
 class QTabWidget;
 class QTimer;
 
+namespace archipelago {
+struct MarkovTreeResult;
+}  // namespace archipelago
+
 namespace archipelago::ui {
 
 class BackgroundJobs;
@@ -151,6 +155,18 @@ class MainWindow : public QMainWindow {
   void dropEvent(QDropEvent* event) override;
 
  private:
+  /// The constructor's steps: the run's controller and its signals; the tabs (the portrait with the Run page, the
+  /// statistics); the central widget (the checkpoint banner, the note of a stale run, the tabs); after the actions,
+  /// menus and status bar, the docks (parameters, long segments); the Atlas page's Markov tree; the parameters'
+  /// signals.
+  void createRunController();
+  void createTabs();
+  void createCentralWidget();
+  void createDocks();
+  void connectAtlasPage();
+  void connectParameterPanel();
+  /// The Atlas page's Markov tree computed (or failed): its P_t drawn on the P_t plot, markovTreeDrawn() emitted.
+  void onMarkovTreeFinished(std::shared_ptr<const MarkovTreeResult> model, const QString& error);
   void createActions();
   void createMenus();
   void createStatusBar();
