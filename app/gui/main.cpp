@@ -1,4 +1,5 @@
-// archipelago: the desktop application (Qt Widgets + Qwt).  A thin main(); the window lives in ui/.
+// archipelago: the desktop application (Qt Widgets + Qwt).  A thin main(); the window lives in ui/, the command line is
+// read whole, before any application object exists, by GuiOptions.
 //
 // Options for scripts (README screenshots, scripts/gui-latency.py):
 //   --preset NAME        load a preset instead of the last parameters
@@ -17,172 +18,46 @@
 //   FILE.archipelago     open a session (the window as it was saved)
 #include <QAction>
 #include <QApplication>
-
-#include <clocale>
-#include <QTabWidget>
-#include <QCommandLineParser>
 #include <QComboBox>
+#include <QCommandLineParser>
 #include <QLineEdit>
 #include <QLocale>
 #include <QSpinBox>
+#include <QTabWidget>
 #include <QTimer>
 #include <qwt_global.h>
 
 #include <algorithm>
+#include <clocale>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <memory>
 #include <optional>
-#include <stdexcept>
 #include <string>
+#include <utility>
+#include <variant>
 
+#include "GuiOptions.hpp"
 #include "LatencyProbe.hpp"
-#include "core/io/NumberText.hpp"
-#include "core/limits/Limits.hpp"
-#include "core/runspec/InputRules.hpp"
-#include "core/trapping/LongestSegments.hpp"
-#include "ui/window/MainWindow.hpp"
 #include "core/measures/OrbitMeasures.hpp"
-#include "core/view/Viewport.hpp"
 #include "core/session/OrbitFamily.hpp"
+#include "core/trapping/LongestSegments.hpp"
+#include "core/view/Viewport.hpp"
 #include "ui/portrait/OrbitListPanel.hpp"
-#include "ui/portrait/RotationProfilePanel.hpp"
 #include "ui/portrait/PortraitController.hpp"
 #include "ui/portrait/PortraitPanel.hpp"
+#include "ui/portrait/RotationProfilePanel.hpp"
 #include "ui/segments/LongSegmentsPanel.hpp"
+#include "ui/window/MainWindow.hpp"
 #include "ui/window/ParameterPanel.hpp"
 #include "ui/window/Resources.hpp"
 
 namespace {
 
-/// Whether the command line asks only for --help or --version: those are answered without a display (a
-/// QCoreApplication), so that they work on a server, in a package build (help2man) or over ssh.
-/// The scan skips the value of an option that takes one (`--preset -v` names a preset), as the parser does.
-bool onlyInformation(int argc, char** argv) {
-  for (int i = 1; i < argc; ++i) {
-    for (const char* option : {"-h", "--help", "--help-all", "-?", "-v", "--version"})
-      if (std::strcmp(argv[i], option) == 0) return true;
-    for (const char* withValue :
-         {"--preset", "--threads", "--screenshot", "--after", "--measure", "--tab", "--segment", "--mode", "--view",
-          "--budget", "--chains", "--orbit", "--orbits", "--periodic", "--profile"})
-      if (std::strcmp(argv[i], withValue) == 0) ++i;
-  }
-  return false;
-}
-
-/// Throws std::invalid_argument with core's message, if there is one.
-void refuse(const std::optional<std::string>& error) {
-  if (error) throw std::invalid_argument(*error);
-}
-
-/// A number of seconds given to `option` (`text`), read by core's one reader, in [lo, the table's script seconds]
-/// (issue #23, finding 9: --after nan|-5|1e12 never quit).  Throws std::invalid_argument with the message.
-double readSeconds(const char* option, const QString& text, double lo) {
-  const std::string name = std::string("--") + option;
-  const double v = archipelago::io::parseNumber<double>(name, text.toStdString());
-  refuse(archipelago::realRangeError(name, v, lo, archipelago::limits::kScriptSeconds, "seconds"));
-  return v;
-}
-
-/// The rank given to --segment: a whole number (core's reader: "abc", "1.5", "-1" are errors) below the most longest
-/// segments a run keeps.
-int readRank(const QString& text) {
-  const auto v = archipelago::io::parseNumber<std::uint32_t>("--segment", text.toStdString());
-  refuse(archipelago::longestRankError("--segment", v));
-  return static_cast<int>(v);
-}
-
-/// --chains ROWS: the rows of the segment table whose chain is identified automatically.
-int readChainRows(const QString& text) {
-  const auto v = archipelago::io::parseNumber<std::uint32_t>("--chains", text.toStdString());
-  refuse(archipelago::rangeError("--chains", v, 0, archipelago::limits::kChainRows, "rows"));
-  return static_cast<int>(v);
-}
-
-/// --view X0,X1,Y0,Y1: a rectangle of the portrait, physical coordinates (checked against the box later).
-archipelago::PhysicalRect readView(const QString& text) {
-  return archipelago::parsePhysicalRect(text.toStdString(), "--view");  // core's one parser of a typed view
-}
-
-/// --orbit X,Y: the start of an orbit to launch and select (physical coordinates).
-archipelago::PhysicalPoint readOrbit(const QString& text) {
-  const auto v = archipelago::io::parseNumbers<long double>("--orbit", text.toStdString(), ',', 2,
-                                                           "two finite numbers x,y (physical coordinates)");
-  return {v[0], v[1]};
-}
-
-/// --orbits X0,Y0,X1,Y1,N,M: a line (M = 1) or a grid of orbits (issue 37, finding 15); the counts' rule is core's
-/// (orbitFamilyStarts), applied when they are launched.
-archipelago::OrbitFamily readOrbits(const QString& text) {
-  const auto v = archipelago::io::parseNumbers<long double>("--orbits", text.toStdString(), ',', 6,
-                                                           "x0,y0,x1,y1,n,m: two points and the counts");
-  const auto whole = [](long double c) {
-    const auto n = static_cast<std::uint64_t>(c < 0 ? 0 : c);
-    if (static_cast<long double>(n) != c) throw std::invalid_argument("--orbits: the counts n,m must be whole numbers");
-    return n;
-  };
-  archipelago::OrbitFamily f{{v[0], v[1]}, {v[2], v[3]}, whole(v[4]), whole(v[5])};
-  (void)archipelago::orbitFamilyStarts(f);  // core's rule of the counts, before any window
-  return f;
-}
-
-/// --profile X0,Y0,X1,Y1: the rotation profile of the line between two points (physical coordinates).
-std::pair<archipelago::PhysicalPoint, archipelago::PhysicalPoint> readProfile(const QString& text) {
-  const auto v = archipelago::io::parseNumbers<long double>("--profile", text.toStdString(), ',', 4,
-                                                           "x0,y0,x1,y1: the line's two ends");
-  return {{v[0], v[1]}, {v[2], v[3]}};
-}
-
-/// --budget N: the portrait's points budget (the table's portrait budget).
-std::uint64_t readBudget(const QString& text) {
-  const auto v = archipelago::io::parseNumber<std::uint64_t>("--budget", text.toStdString());
-  refuse(archipelago::rangeError("--budget", v, archipelago::limits::kPortraitBudgetMin,
-                                 archipelago::limits::kPortraitBudget, "points"));
-  return v;
-}
-
-/// --mode NAME: a portrait mode (orbits, density, stickiness) or an indicator (dig, rotation, fli, megno, lyapunov).
-archipelago::ui::PortraitDisplay readMode(const QString& text) {
-  const std::string name = text.toStdString();
-  if (const auto mode = archipelago::parsePortraitMode(name)) return {*mode, std::nullopt};
-  if (const auto kind = archipelago::parseIndicatorKind(name)) return {archipelago::PortraitMode::Orbits, *kind};
-  throw std::invalid_argument("--mode = " + archipelago::io::shortText(name) +
-                              " must be orbits, density, stickiness, or an indicator: " + archipelago::indicatorKindNames());
-}
-
-/// The numbers of the command line checked before any window or display: the first error's message, if any.
-/// (The parser reads them again below, through the same functions.)
-std::optional<std::string> numberError(int argc, char** argv) {
-  try {
-    for (int i = 1; i < argc; ++i) {
-      const QString arg = QString::fromLocal8Bit(argv[i]);
-      for (const char* name : {"after", "measure", "segment", "threads", "view", "budget", "mode", "chains", "orbit",
-                               "orbits", "periodic", "profile"}) {
-        const QString option = QStringLiteral("--") + QLatin1String(name);
-        QString value;
-        if (arg == option && i + 1 < argc) value = QString::fromLocal8Bit(argv[i + 1]);
-        else if (arg.startsWith(option + QLatin1Char('='))) value = arg.mid(option.size() + 1);
-        else continue;
-        if (std::strcmp(name, "after") == 0) (void)readSeconds("after", value, 0);
-        else if (std::strcmp(name, "measure") == 0) (void)readSeconds("measure", value, 1);
-        else if (std::strcmp(name, "segment") == 0) (void)readRank(value);
-        else if (std::strcmp(name, "view") == 0) (void)readView(value);
-        else if (std::strcmp(name, "budget") == 0) (void)readBudget(value);
-        else if (std::strcmp(name, "mode") == 0) (void)readMode(value);
-        else if (std::strcmp(name, "chains") == 0) (void)readChainRows(value);
-        else if (std::strcmp(name, "orbit") == 0) (void)readOrbit(value);
-        else if (std::strcmp(name, "orbits") == 0) (void)readOrbits(value);
-        else if (std::strcmp(name, "periodic") == 0) (void)readOrbit(value);
-        else if (std::strcmp(name, "profile") == 0) (void)readProfile(value);
-        else (void)archipelago::readThreads(value.toStdString());
-      }
-    }
-  } catch (const std::exception& e) {
-    return std::string(e.what());
-  }
-  return std::nullopt;
-}
+using archipelago::app::GuiOptions;
+using archipelago::app::Refusal;
+using archipelago::ui::MainWindow;
+using archipelago::ui::PortraitPanel;
 
 /// Whether the window system Qt will load needs a display that the environment does not name: the platform given by
 /// -platform or QT_QPA_PLATFORM (a list "a;b" is tried in order) is xcb or wayland, or none is given (the default is
@@ -207,226 +82,219 @@ bool displayMissing(int argc, char** argv) {
   return true;
 }
 
-}  // namespace
+/// argv as text: what QCoreApplication::arguments() gives once the application is made.
+QStringList argumentsOf(int argc, char** argv) {
+  QStringList arguments;
+  for (int i = 0; i < argc; ++i) arguments.append(QString::fromLocal8Bit(argv[i]));
+  return arguments;
+}
 
-int main(int argc, char** argv) {
-  archipelago::ui::configureProcessMemory();
-  std::setlocale(LC_NUMERIC, "C");
-  if (!onlyInformation(argc, argv)) {
-    if (const auto e = numberError(argc, argv)) {
-      std::fprintf(stderr, "ERROR: %s\n", e->c_str());
-      return 2;
-    }
-    if (displayMissing(argc, argv)) {
-      std::fprintf(stderr, "ERROR: no display: set DISPLAY, or run with -platform offscreen\n");
-      return 2;
-    }
-  }
-  const std::unique_ptr<QCoreApplication> application =
-      onlyInformation(argc, argv) ? std::make_unique<QCoreApplication>(argc, argv)
-                                  : std::make_unique<QApplication>(argc, argv);
-  QCoreApplication& app = *application;
-  // Qt sets the user's locale for the C library; files and ids are never localised (issue #23: a decimal
-  // comma once made sessions unreadable in another locale).  The widgets' text uses QLocale, untouched here.
-  std::setlocale(LC_NUMERIC, "C");
-  QApplication::setApplicationName(QStringLiteral("Archipelago"));
-  QApplication::setOrganizationName(QStringLiteral("Archipelago"));
-  QApplication::setApplicationVersion(QStringLiteral(ARCHIPELAGO_VERSION));
+/// A refusal whose line is Qt text (a preset's or a tab's name), in the locale's encoding as qPrintable gives it.
+Refusal refusal(const QString& line, int status) { return {line.toLocal8Bit().toStdString(), status}; }
 
-  QCommandLineParser parser;
-  parser.setApplicationDescription(QStringLiteral("Long-time correlations in the stochastic regime (Karney 1983)"));
-  parser.addHelpOption();
-  // --version names the Qt (at run time, and at build time when they differ) and the Qwt in use.
-  const QCommandLineOption version({QStringLiteral("v"), QStringLiteral("version")},
-                                   QStringLiteral("Displays version information (with Qt and Qwt)."));
-  const QCommandLineOption preset(QStringLiteral("preset"), QStringLiteral("Load the preset NAME: its name or id (archipelago-cli presets lists them)."), QStringLiteral("NAME"));
-  const QCommandLineOption run(QStringLiteral("run"), QStringLiteral("Start the run at once."));
-  const QCommandLineOption threads(QStringLiteral("threads"), QStringLiteral("Worker threads (0 = all)."), QStringLiteral("N"));
-  const QCommandLineOption screenshot(QStringLiteral("screenshot"), QStringLiteral("Save the window as PATH and quit."),
-                                      QStringLiteral("PATH"));
-  const QCommandLineOption after(QStringLiteral("after"), QStringLiteral("Seconds before the screenshot (default 20)."),
-                                 QStringLiteral("SECONDS"), QStringLiteral("20"));
-  const QCommandLineOption measure(QStringLiteral("measure"),
-                                   QStringLiteral("Measure event latency and refresh rate for SECONDS, print JSON."),
-                                   QStringLiteral("SECONDS"));
-  const QCommandLineOption tab(QStringLiteral("tab"), QStringLiteral("Show the tab whose title starts with NAME."),
-                               QStringLiteral("NAME"));
-  const QCommandLineOption segment(QStringLiteral("segment"),
-                                   QStringLiteral("Select the long segment of rank N of the run file (0: the longest)."),
-                                   QStringLiteral("N"));
-  const QCommandLineOption island(QStringLiteral("island"), QStringLiteral("Zoom to one island of its chain."));
-  const QCommandLineOption mode(QStringLiteral("mode"),
-                                QStringLiteral("Portrait mode: orbits, density, stickiness, dig, rotation, fli, megno or lyapunov."),
-                                QStringLiteral("NAME"));
-  const QCommandLineOption view(QStringLiteral("view"), QStringLiteral("Show the portrait's rectangle x0,x1,y0,y1."),
-                                QStringLiteral("X0,X1,Y0,Y1"));
-  const QCommandLineOption budget(QStringLiteral("budget"), QStringLiteral("The portrait's points budget."),
-                                  QStringLiteral("POINTS"));
-  const QCommandLineOption manifolds(QStringLiteral("manifolds"),
-                                     QStringLiteral("Draw the manifolds of the hyperbolic fixed point and the flux."));
-  const QCommandLineOption orbit(QStringLiteral("orbit"),
-                                 QStringLiteral("Launch an orbit from (X, Y) and select it (its chain's centres drawn)."),
-                                 QStringLiteral("X,Y"));
-  const QCommandLineOption chains(QStringLiteral("chains"),
-                                  QStringLiteral("Identify the island chains of the top ROWS segments (default 10)."),
-                                  QStringLiteral("ROWS"));
-  const QCommandLineOption orbits(QStringLiteral("orbits"),
-                                  QStringLiteral("Launch a line (M = 1) or an N x M grid of orbits between two points."),
-                                  QStringLiteral("X0,Y0,X1,Y1,N,M"));
-  const QCommandLineOption periodic(QStringLiteral("periodic"),
-                                    QStringLiteral("Find the periodic orbit at (X, Y), as a Shift+click does."),
-                                    QStringLiteral("X,Y"));
-  const QCommandLineOption profile(QStringLiteral("profile"),
-                                   QStringLiteral("The rotation profile of the line from (X0, Y0) to (X1, Y1) (with --periodic: about that orbit)."),
-                                   QStringLiteral("X0,Y0,X1,Y1"));
-  parser.addOptions({version, preset, run, threads, screenshot, after, measure, tab, segment, island, mode, view, budget,
-                     manifolds, chains, orbit, orbits, periodic, profile});
-  parser.addPositionalArgument(QStringLiteral("file"), QStringLiteral("A run file (.json) or a session (.archipelago) to open."),
-                               QStringLiteral("[file.json|file.archipelago]"));
-  parser.process(app);
-  if (parser.isSet(version)) {
+/// Prints the refusal's line on stderr; its status.
+int report(const Refusal& refused) {
+  std::fprintf(stderr, "%s\n", refused.line.c_str());
+  return refused.status;
+}
+
+/// The application's names (its settings' folder, the parser's messages), given before it is made.
+void nameApplication() {
+  QCoreApplication::setApplicationName(QStringLiteral("Archipelago"));
+  QCoreApplication::setOrganizationName(QStringLiteral("Archipelago"));
+  QCoreApplication::setApplicationVersion(QStringLiteral(ARCHIPELAGO_VERSION));
+}
+
+/// --help, --help-all or --version, answered with a QCoreApplication: no display is needed, so that they work on a
+/// server, in a package build (help2man) or over ssh.  --version names the Qt (at run time, and at build time when
+/// they differ) and the Qwt in use.
+int answerInformation(int& argc, char** argv, GuiOptions::Information asked) {
+  QCoreApplication app(argc, argv);
+  if (asked == GuiOptions::Information::Version) {
     const QString built = QStringLiteral(QT_VERSION_STR);
     const QString qt = QString::fromLatin1(qVersion());
     std::printf("Archipelago %s (Qt %s%s, Qwt %s)\n", ARCHIPELAGO_VERSION, qPrintable(qt),
                 qt == built ? "" : qPrintable(QStringLiteral(", built with ") + built), QWT_VERSION_STR);
     return 0;
   }
+  QCommandLineParser parser;
+  archipelago::app::addGuiOptions(parser);
+  // Qt writes --help-all's text (with Qt's own options) only from process(), which prints the help and exits with 0.
+  const bool all = asked == GuiOptions::Information::HelpAll;
+  parser.process(QStringList{QCoreApplication::arguments().constFirst(),
+                             all ? QStringLiteral("--help-all") : QStringLiteral("--help")});
+  return 0;
+}
 
-  // Every number of the command line is read and checked before the window opens: one ERROR line and status 2.
-  double afterSeconds = 20, measureSeconds = 0;
-  int segmentRank = -1;
-  try {
-    if (parser.isSet(after)) afterSeconds = readSeconds("after", parser.value(after), 0);
-    if (parser.isSet(measure)) measureSeconds = readSeconds("measure", parser.value(measure), 1);
-    if (parser.isSet(segment)) {
-      segmentRank = readRank(parser.value(segment));
-      if (parser.positionalArguments().isEmpty())
-        throw std::invalid_argument("--segment needs a run file or a session to take the segment from");
+/// --preset NAME; an unknown name is refused with the presets' names (status 1).
+std::optional<Refusal> applyPreset(MainWindow& window, const QString& name) {
+  archipelago::ui::ParameterPanel* panel = window.parameterPanel();
+  if (panel->applyPreset(name)) return std::nullopt;
+  return refusal(QStringLiteral("ERROR: no preset named \"") + name + QStringLiteral("\"; presets: ") +
+                     panel->presetNames().join(QStringLiteral(", ")),
+                 1);
+}
+
+/// --tab NAME: the first tab whose title starts with NAME (in any case); none is refused (status 1).
+std::optional<Refusal> showTab(MainWindow& window, const QString& name) {
+  QTabWidget* tabs = window.tabs();
+  for (int i = 0; i < tabs->count(); ++i)
+    if (tabs->tabText(i).startsWith(name, Qt::CaseInsensitive)) {
+      tabs->setCurrentIndex(i);
+      return std::nullopt;
     }
-    if (parser.isSet(island) && !parser.isSet(segment)) throw std::invalid_argument("--island needs --segment N");
-    if (parser.isSet(threads)) (void)archipelago::readThreads(parser.value(threads).toStdString());  // core's rule
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "ERROR: %s\n", e.what());
-    return 2;
-  }
+  return refusal(QStringLiteral("ERROR: no tab named \"") + name + QStringLiteral("\""), 1);
+}
 
-  archipelago::ui::MainWindow window;
-  const bool scripted = parser.isSet(screenshot) || parser.isSet(measure);
-  window.setConfirmations(!scripted);
-  auto* panel = window.parameterPanel();
-  if (parser.isSet(preset) && !panel->applyPreset(parser.value(preset))) {
-    std::fprintf(stderr, "ERROR: no preset named \"%s\"; presets: %s\n", qPrintable(parser.value(preset)),
-                 qPrintable(panel->presetNames().join(QStringLiteral(", "))));
-    return 1;
+/// --segment N [--island]: the segment is selected once the opened run file is analysed; a rank beyond the segments
+/// the run keeps is an error known only then (one ERROR line, status 2).
+void selectSegment(MainWindow& window, int rank, bool island) {
+  window.showLongSegment(rank, island);
+  QObject::connect(&window, &MainWindow::runStatusChanged, &window, [&window, rank](auto status) {
+    if (archipelago::ui::isLive(status) || !window.latestSnapshot()) return;
+    window.refreshNow();
+    const auto kept = static_cast<std::uint64_t>(window.longSegments()->model()->rowCount());
+    const auto error = archipelago::longestRankError("--segment", static_cast<std::uint64_t>(rank), kept);
+    if (!error) return;
+    std::fprintf(stderr, "ERROR: %s\n", error->c_str());
+    std::fflush(stderr);
+    QTimer::singleShot(0, [] { QApplication::exit(2); });
+  });
+}
+
+/// The window as asked: no confirmations when a script drives it, the preset, the chains identified, the threads,
+/// then (shown) the tab, the file and its segment.  A screenshot of a segment shows the opened run: it starts none.
+std::optional<Refusal> applyWindowOptions(MainWindow& window, const GuiOptions& options) {
+  window.setConfirmations(!options.scripted());
+  if (options.preset) {
+    if (auto refused = applyPreset(window, *options.preset)) return refused;
   }
-  if (parser.isSet(chains)) window.longSegments()->setAutoIdentifiedRows(readChainRows(parser.value(chains)));
-  if (parser.isSet(threads)) window.setThreads(archipelago::readThreads(parser.value(threads).toStdString()));
+  if (options.chainRows) window.longSegments()->setAutoIdentifiedRows(*options.chainRows);
+  if (options.threads) window.setThreads(*options.threads);
   window.show();
-  if (parser.isSet(tab)) {
-    bool found = false;
-    for (int i = 0; i < window.tabs()->count() && !found; ++i)
-      if (window.tabs()->tabText(i).startsWith(parser.value(tab), Qt::CaseInsensitive)) {
-        window.tabs()->setCurrentIndex(i);
-        found = true;
-      }
-    if (!found) {
-      std::fprintf(stderr, "ERROR: no tab named \"%s\"\n", qPrintable(parser.value(tab)));
-      return 1;
-    }
+  if (options.tab) {
+    if (auto refused = showTab(window, *options.tab)) return refused;
   }
-  if (!parser.positionalArguments().isEmpty()) window.openInteractively(parser.positionalArguments().front());
-  if (segmentRank >= 0) {
-    window.showLongSegment(segmentRank, parser.isSet(island));
-    // A rank beyond the segments the run keeps is an error, known once the run file is analysed.
-    QObject::connect(&window, &archipelago::ui::MainWindow::runStatusChanged, &window, [&window, segmentRank](auto status) {
-      if (archipelago::ui::isLive(status) || !window.latestSnapshot()) return;
-      window.refreshNow();
-      const auto kept = static_cast<std::uint64_t>(window.longSegments()->model()->rowCount());
-      const auto error = archipelago::longestRankError("--segment", static_cast<std::uint64_t>(segmentRank), kept);
-      if (!error) return;
-      std::fprintf(stderr, "ERROR: %s\n", error->c_str());
-      std::fflush(stderr);
-      QTimer::singleShot(0, [] { QApplication::exit(2); });
-    });
-  }
-  // A screenshot of a segment shows the opened run, so it does not start a new one.
-  // The portrait as asked (README screenshots, docs/images).
-  archipelago::ui::PortraitPanel* portrait = window.portraitPanel();
-  if (parser.isSet(mode)) portrait->setDisplay(readMode(parser.value(mode)));
-  if (parser.isSet(budget)) portrait->controller()->setPointBudget(readBudget(parser.value(budget)));
-  if (parser.isSet(view)) {
-    const archipelago::PhysicalRect r = readView(parser.value(view));
-    const archipelago::MapParameters& map = portrait->controller()->map();
-    if (const auto e = archipelago::Viewport::validationError(map, r)) {
-      std::fprintf(stderr, "ERROR: --view: %s\n", e->c_str());
-      return 2;
-    }
-    portrait->controller()->setViewport(archipelago::Viewport::fromPhysical(map, r));
-  }
-  if (parser.isSet(manifolds)) portrait->manifoldsAction()->setChecked(true);
-  if (parser.isSet(orbit)) {
-    const archipelago::PhysicalPoint start = readOrbit(parser.value(orbit));
-    if (const auto e = archipelago::boxPointError("--orbit", portrait->controller()->map(), start)) {
-      std::fprintf(stderr, "ERROR: %s\n", e->c_str());
-      return 2;
-    }
-    portrait->controller()->highlightOrbit(portrait->controller()->launchOrbit(start.x, start.y));
-    portrait->sidePages()->setCurrentWidget(portrait->orbitList());
-  }
-  if (parser.isSet(orbits)) {  // typed into the Orbits page's fields, then Line/Grid, as a user does
-    const archipelago::OrbitFamily f = readOrbits(parser.value(orbits));
-    archipelago::ui::OrbitListPanel* list = portrait->orbitList();
-    const auto text = [](long double v) { return QString::number(static_cast<double>(v), 'g', QLocale::FloatingPointShortest); };
-    list->startXField()->setText(text(f.from.x));
-    list->startYField()->setText(text(f.from.y));
-    list->endXField()->setText(text(f.to.x));
-    list->endYField()->setText(text(f.to.y));
-    list->columnsBox()->setValue(static_cast<int>(f.columns));
-    list->rowsBox()->setValue(static_cast<int>(f.rows));
-    list->launchFamily();
-    portrait->sidePages()->setCurrentWidget(list);
-  }
-  if (parser.isSet(periodic)) {
-    const archipelago::PhysicalPoint at = readOrbit(parser.value(periodic));
-    portrait->controller()->findPeriodicOrbitAt(at.x, at.y);
-  }
-  if (parser.isSet(profile)) {
-    const auto [from, to] = readProfile(parser.value(profile));
-    portrait->sidePages()->setCurrentWidget(portrait->profilePanel());
-    archipelago::ui::RotationProfilePanel* profilePanel = portrait->profilePanel();
-    if (!parser.isSet(periodic)) {
-      profilePanel->profile(from, to, 400);
-    } else {  // with --periodic: about the orbit found there, once it is found (About: the periodic orbit drawn)
-      auto* once = new QObject(profilePanel);
-      QObject::connect(portrait->controller(), &archipelago::ui::PortraitController::periodicOrbitFound, once,
-                       [profilePanel, once, from = from, to = to] {
-                         profilePanel->aboutBox()->setCurrentIndex(1);
-                         profilePanel->profile(from, to, 400);
-                         once->deleteLater();
-                       });
-    }
-  }
-  // A screenshot shows a run only when asked (--run); the latency measure always runs one.
-  if (parser.isSet(run) || parser.isSet(measure)) QTimer::singleShot(0, &window, [&window] { window.startRun(); });
+  if (options.file) window.openInteractively(*options.file);
+  if (options.segment) selectSegment(window, *options.segment, options.island);
+  return std::nullopt;
+}
 
-  if (parser.isSet(screenshot)) {
-    const int ms = static_cast<int>(1000 * afterSeconds);
-    QTimer::singleShot(ms, &window, [&window, path = parser.value(screenshot)] {
-      const bool ok = window.grab().save(path);
-      std::printf("%s %s\n", ok ? "wrote" : "could not write", qPrintable(path));
-      window.stopRun();
-      QTimer::singleShot(0, [] { QApplication::exit(0); });
-    });
+/// --view: the portrait's rectangle; one outside the box of the loaded parameters is refused (status 2).
+std::optional<Refusal> applyView(PortraitPanel& portrait, const archipelago::PhysicalRect& r) {
+  const archipelago::MapParameters& map = portrait.controller()->map();
+  if (const auto e = archipelago::Viewport::validationError(map, r)) return Refusal{"ERROR: --view: " + *e, 2};
+  portrait.controller()->setViewport(archipelago::Viewport::fromPhysical(map, r));
+  return std::nullopt;
+}
+
+/// --orbit: the orbit launched and selected (its chain's centres drawn); a start outside the box is refused (status 2).
+std::optional<Refusal> launchOrbit(PortraitPanel& portrait, const archipelago::PhysicalPoint& start) {
+  if (const auto e = archipelago::boxPointError("--orbit", portrait.controller()->map(), start))
+    return Refusal{"ERROR: " + *e, 2};
+  portrait.controller()->highlightOrbit(portrait.controller()->launchOrbit(start.x, start.y));
+  portrait.sidePages()->setCurrentWidget(portrait.orbitList());
+  return std::nullopt;
+}
+
+/// --orbits: typed into the Orbits page's fields, then Line/Grid, as a user does.
+void launchOrbits(PortraitPanel& portrait, const archipelago::OrbitFamily& f) {
+  archipelago::ui::OrbitListPanel* list = portrait.orbitList();
+  const auto text = [](long double v) { return QString::number(static_cast<double>(v), 'g', QLocale::FloatingPointShortest); };
+  list->startXField()->setText(text(f.from.x));
+  list->startYField()->setText(text(f.from.y));
+  list->endXField()->setText(text(f.to.x));
+  list->endYField()->setText(text(f.to.y));
+  list->columnsBox()->setValue(static_cast<int>(f.columns));
+  list->rowsBox()->setValue(static_cast<int>(f.rows));
+  list->launchFamily();
+  portrait.sidePages()->setCurrentWidget(list);
+}
+
+/// --profile: the rotation profile of the line; with --periodic, about the orbit found there, once it is found
+/// (About: the periodic orbit drawn).
+void showProfile(PortraitPanel& portrait, std::pair<archipelago::PhysicalPoint, archipelago::PhysicalPoint> line,
+                 bool aboutPeriodic) {
+  archipelago::ui::RotationProfilePanel* profilePanel = portrait.profilePanel();
+  portrait.sidePages()->setCurrentWidget(profilePanel);
+  const auto [from, to] = line;
+  if (!aboutPeriodic) {
+    profilePanel->profile(from, to, 400);
+    return;
   }
-  if (parser.isSet(measure)) {
-    auto* probe = new archipelago::app::LatencyProbe(window, measureSeconds, &window);
-    QObject::connect(probe, &archipelago::app::LatencyProbe::done, &window, [&window](const QString& json) {
-      std::printf("%s\n", qPrintable(json));
-      std::fflush(stdout);
-      window.stopRun();
-      QTimer::singleShot(0, [] { QApplication::exit(0); });
-    });
-    probe->start();
+  auto* once = new QObject(profilePanel);
+  QObject::connect(portrait.controller(), &archipelago::ui::PortraitController::periodicOrbitFound, once,
+                   [profilePanel, once, from = from, to = to] {
+                     profilePanel->aboutBox()->setCurrentIndex(1);
+                     profilePanel->profile(from, to, 400);
+                     once->deleteLater();
+                   });
+}
+
+/// The portrait as asked (README screenshots, docs/images): its mode, budget, view, manifolds, orbits, periodic orbit
+/// and rotation profile.
+std::optional<Refusal> applyPortraitOptions(PortraitPanel& portrait, const GuiOptions& options) {
+  if (options.mode) portrait.setDisplay(*options.mode);
+  if (options.budget) portrait.controller()->setPointBudget(*options.budget);
+  if (options.view) {
+    if (auto refused = applyView(portrait, *options.view)) return refused;
   }
+  if (options.manifolds) portrait.manifoldsAction()->setChecked(true);
+  if (options.orbit) {
+    if (auto refused = launchOrbit(portrait, *options.orbit)) return refused;
+  }
+  if (options.orbits) launchOrbits(portrait, *options.orbits);
+  if (options.periodic) portrait.controller()->findPeriodicOrbitAt(options.periodic->x, options.periodic->y);
+  if (options.profile) showProfile(portrait, *options.profile, options.periodic.has_value());
+  return std::nullopt;
+}
+
+/// --screenshot PATH: after `seconds`, the window saved as PATH ("wrote PATH" or "could not write PATH"), then quit.
+void scheduleScreenshot(MainWindow& window, const QString& path, double seconds) {
+  QTimer::singleShot(static_cast<int>(1000 * seconds), &window, [&window, path] {
+    const bool ok = window.grab().save(path);
+    std::printf("%s %s\n", ok ? "wrote" : "could not write", qPrintable(path));
+    window.stopRun();
+    QTimer::singleShot(0, [] { QApplication::exit(0); });
+  });
+}
+
+/// --measure SECONDS: event latency and refresh rate measured during the run, printed as JSON, then quit.
+void scheduleMeasure(MainWindow& window, double seconds) {
+  auto* probe = new archipelago::app::LatencyProbe(window, seconds, &window);
+  QObject::connect(probe, &archipelago::app::LatencyProbe::done, &window, [&window](const QString& json) {
+    std::printf("%s\n", qPrintable(json));
+    std::fflush(stdout);
+    window.stopRun();
+    QTimer::singleShot(0, [] { QApplication::exit(0); });
+  });
+  probe->start();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  archipelago::ui::configureProcessMemory();
+  std::setlocale(LC_ALL, "");  // as QCoreApplication does when it is made: argv's text in the user's encoding
+  std::setlocale(LC_NUMERIC, "C");
+  nameApplication();
+  // Every option is read and checked before any application object: a bad one is one line, without a display.
+  const auto read = archipelago::app::readGuiOptions(argumentsOf(argc, argv));
+  if (const auto* refused = std::get_if<Refusal>(&read)) return report(*refused);
+  const GuiOptions& options = std::get<GuiOptions>(read);
+  if (options.information != GuiOptions::Information::None) return answerInformation(argc, argv, options.information);
+  if (displayMissing(argc, argv)) return report({"ERROR: no display: set DISPLAY, or run with -platform offscreen", 2});
+
+  QApplication app(argc, argv);
+  // Qt sets the user's locale for the C library; files and ids are never localised (issue #23: a decimal
+  // comma once made sessions unreadable in another locale).  The widgets' text uses QLocale, untouched here.
+  std::setlocale(LC_NUMERIC, "C");
+  MainWindow window;
+  if (const auto refused = applyWindowOptions(window, options)) return report(*refused);
+  if (const auto refused = applyPortraitOptions(*window.portraitPanel(), options)) return report(*refused);
+  // A screenshot shows a run only when asked (--run); the latency measure always runs one.
+  if (options.run || options.measureSeconds) QTimer::singleShot(0, &window, [&window] { window.startRun(); });
+  if (options.screenshot) scheduleScreenshot(window, *options.screenshot, options.afterSeconds);
+  if (options.measureSeconds) scheduleMeasure(window, *options.measureSeconds);
   return QApplication::exec();
 }

@@ -1,7 +1,9 @@
 // The desktop application's command line: `archipelago --help` and `--version` work without a display (issue 25,
 // deliverable 7), and every number it reads goes through core's one reader, with one `ERROR:` line and a non-zero
 // status for a bad one (issue #23, finding 9: --after nan|-5|1e12 never quit; --segment abc silently meant 0,
-// -1 and 99999 were ignored); without a display it says so in one line (issue 36).
+// -1 and 99999 were ignored); without a display it says so in one line (issue 36).  The options are read by one parse
+// before any application object, beside Qt's own (-platform, -style …), which it skips (issue 51).
+#include <QFile>
 #include <QProcess>
 #include <QProcessEnvironment>
 #include <QTemporaryDir>
@@ -105,6 +107,41 @@ class TestCommandLine : public QObject {
     QVERIFY2(beyond.err.contains(QStringLiteral("ERROR: --segment = 99999")), qPrintable(beyond.err));
     const Outcome none = run({QStringLiteral("--segment"), QStringLiteral("0")}, true, home.path());
     QVERIFY2(none.status == 2 && oneErrorLine(none.err), qPrintable(none.err));
+  }
+
+  // Issue 51: one parse, before any application object, skips Qt's own options (which QApplication takes out of argv
+  // only when it is made).  A bad number beside -platform is still one ERROR line without a display, and a screenshot
+  // asked beside it is still written.  --help and --version beside a Qt option failed with the two-pass code (its
+  // QCoreApplication left -platform to the parser: "Unknown options: p, l, a, t, f, o, r, m.", status 1), and
+  // --periodic's bad value was reported as --orbit's.
+  void issue51_qtOptionsBesideOurs() {
+    QTemporaryDir home;
+    const Outcome bad = run({QStringLiteral("-platform"), QStringLiteral("offscreen"), QStringLiteral("--after"),
+                             QStringLiteral("nan")}, false, home.path());
+    QVERIFY2(bad.status == 2 && oneErrorLine(bad.err) && bad.err.contains(QStringLiteral("--after")), qPrintable(bad.err));
+    const Outcome periodic = run({QStringLiteral("--periodic"), QStringLiteral("abc")}, false, home.path());
+    QVERIFY2(periodic.status == 2 && periodic.err.startsWith(QStringLiteral("ERROR: --periodic 'abc'")),
+             qPrintable(periodic.err));
+    const QList<QStringList> information = {
+        {QStringLiteral("--help"), QStringLiteral("-platform"), QStringLiteral("offscreen")},
+        {QStringLiteral("-style"), QStringLiteral("fusion"), QStringLiteral("--reverse"), QStringLiteral("--version")},
+    };
+    for (const QStringList& args : information) {
+      const Outcome o = run(args, false, home.path());
+      QVERIFY2(o.status == 0 && o.err.isEmpty(), qPrintable(args.join(QLatin1Char(' ')) + QStringLiteral(": ") + o.err));
+    }
+    // An option's missing value is the parser's one line (status 1): the two-pass code's scan for --help read past
+    // argv's end there and crashed (SIGSEGV).
+    for (const QString& option : {QStringLiteral("--after"), QStringLiteral("--preset")}) {
+      const Outcome o = run({option}, false, home.path());
+      QVERIFY2(o.status == 1 && o.err == QStringLiteral("Archipelago: Missing value after '") + option + QStringLiteral("'.\n"),
+               qPrintable(option + QStringLiteral(": status ") + QString::number(o.status) + QStringLiteral(", ") + o.err));
+    }
+    const QString shot = home.filePath(QStringLiteral("shot.png"));
+    const Outcome o = run({QStringLiteral("--after"), QStringLiteral("1"), QStringLiteral("-platform"),
+                           QStringLiteral("offscreen"), QStringLiteral("--screenshot"), shot}, false, home.path());
+    QVERIFY2(o.status == 0 && o.out.contains(QStringLiteral("wrote ") + shot) && QFile::exists(shot),
+             qPrintable(QString::number(o.status) + QStringLiteral(" ") + o.out + o.err));
   }
 };
 
