@@ -57,6 +57,124 @@ py::dict verdictNames() {
   return d;
 }
 
+py::object rotation(double x, double y, double K, double xmin, double xmax, std::uint64_t iterations, double threshold,
+                    std::uint64_t maxPeriod) {
+  if (!std::isfinite(x) || !std::isfinite(y)) throw std::invalid_argument("x and y must be finite");
+  ChainRequest r;
+  r.map = mapOf(K, xmin, xmax);
+  r.iterations = iterations;
+  r.digitsThreshold = threshold;
+  r.maxPeriod = maxPeriod;
+  r = chainRequestAt(r, {x, y});  // core's recipe and messages, as the CLI's `rotation`
+  // Stopped by Ctrl-C within a block of steps of its measurements (issue 36: it ran on for 42 s).
+  const ChainIdentification chain = interruptible([&](std::stop_token stop) { return identifyChain(r, stop); });
+  return py::module_::import("json").attr("loads")(rotationReportJson(r, chain));
+}
+
+py::dict rotationProfile(std::pair<double, double> start, std::pair<double, double> end, std::uint32_t points, double K,
+                         double xmin, double xmax, std::uint64_t iterations, double threshold,
+                         std::int64_t maxDenominator, const std::string& kernel) {
+  RotationProfileRequest r;
+  r.measure = settingsOf("rotation", K, xmin, xmax, iterations, threshold, kernel);
+  r.from = {start.first, start.second};
+  r.to = {end.first, end.second};
+  r.points = points;
+  r.maxDenominator = maxDenominator;
+  if (auto e = validationError(r)) throw std::invalid_argument(*e);
+  const RotationProfile profile =
+      interruptible([&](std::stop_token stop) { return computeRotationProfile(r, {}, stop); });
+  const auto n = static_cast<py::ssize_t>(profile.points.size());
+  py::array_t<double> x(n), y(n), rotation(n), digits(n);
+  py::array_t<std::uint8_t> verdict(n);
+  py::array_t<std::int64_t> p(n), q(n);
+  for (py::ssize_t i = 0; i < n; ++i) {
+    const RotationProfilePoint& pt = profile.points[static_cast<std::size_t>(i)];
+    x.mutable_at(i) = static_cast<double>(pt.point.x);
+    y.mutable_at(i) = static_cast<double>(pt.point.y);
+    rotation.mutable_at(i) = pt.measure.value;
+    digits.mutable_at(i) = pt.measure.digits;
+    verdict.mutable_at(i) = static_cast<std::uint8_t>(pt.measure.verdict);
+    p.mutable_at(i) = pt.rational ? pt.rational->p : 0;
+    q.mutable_at(i) = pt.rational ? pt.rational->q : 0;
+  }
+  py::dict d;
+  d["x"] = x; d["y"] = y; d["rotation"] = rotation; d["digits"] = digits; d["verdict"] = verdict;
+  d["p"] = p; d["q"] = q;
+  return d;
+}
+
+py::dict indicator(const std::string& kind, double K, double xmin, double xmax,
+                   std::optional<std::tuple<double, double, double, double>> view, int width, int height,
+                   std::uint64_t iterations, double threshold, std::uint32_t passes, const std::string& kernel,
+                   int threads, const py::object& progress) {
+  IndicatorRequest r;
+  r.measure = settingsOf(kind, K, xmin, xmax, iterations, threshold, kernel);
+  if (view) {
+    const auto [x0, x1, y0, y1] = *view;
+    r.view = Viewport::fromPhysical(r.measure.map, {x0, x1, y0, y1});
+  }
+  r.width = width;
+  r.height = height;
+  r.passes = passes;
+  r.threads = threads;
+  r.roundPixels = 4096;  // Ctrl-C and progress between rounds
+  if (auto e = validationError(r)) throw std::invalid_argument(*e);
+  Interruption interruption;  // Ctrl-C every 50 ms, not only between rounds of pixels (issue 36)
+  const IndicatorResult result = interruption.withoutGilPolled([&](std::stop_token stop) {
+    return computeIndicatorMap(r, [&](const IndicatorProgress& p) {
+      interruption.check(progress, [&p] {
+        py::dict d;
+        d["pixels_done"] = p.pixelsDone;
+        d["pixels_total"] = p.pixelsTotal;
+        d["pass"] = p.pass;
+        d["passes"] = p.passes;
+        d["stride"] = p.stride;
+        return d;
+      });
+    }, stop);
+  });
+  interruption.raisePending();
+  const IndicatorRaster& ras = result.raster;
+  const py::ssize_t rows = ras.height, cols = ras.width;
+  py::dict d;
+  d["kind"] = kind;
+  d["values"] = toArray(ras.values, rows, cols);
+  d["digits"] = toArray(ras.digits, rows, cols);
+  d["verdicts"] = verdictCodes(ras.verdicts, rows, cols);
+  d["seconds"] = result.seconds;
+  d["metadata"] = py::module_::import("json").attr("loads")(indicatorMetadataJson(r, result));
+  return d;
+}
+
+py::dict orbitMeasures(const std::string& kind, py::array_t<double> x, py::array_t<double> y, double K, double xmin,
+                       double xmax, std::uint64_t iterations, double threshold, const std::string& kernel,
+                       int threads) {
+  if (x.ndim() != 1 || y.ndim() != 1 || x.size() != y.size())
+    throw std::invalid_argument("x and y must be one-dimensional arrays of the same size");
+  const MeasureSettings s = settingsOf(kind, K, xmin, xmax, iterations, threshold, kernel);
+  const FixedPointMap map(s.map);
+  std::vector<UnitState> starts(static_cast<std::size_t>(x.size()));
+  for (py::ssize_t i = 0; i < x.size(); ++i) {
+    if (auto e = boxPointError("point " + std::to_string(i), s.map, {x.at(i), y.at(i)}))
+      throw std::invalid_argument(*e);
+    starts[static_cast<std::size_t>(i)] = map.toUnit(x.at(i), y.at(i));
+  }
+  const OrbitMeasurer measurer(s);
+  std::vector<OrbitMeasure> out(starts.size());
+  interruptible([&](std::stop_token stop) { return measurer.measure(starts, out, stop, threads); });
+  const auto n = static_cast<py::ssize_t>(out.size());
+  py::array_t<double> value(n), digits(n);
+  py::array_t<std::uint8_t> verdict(n);
+  for (py::ssize_t i = 0; i < n; ++i) {
+    value.mutable_at(i) = out[static_cast<std::size_t>(i)].value;
+    digits.mutable_at(i) = out[static_cast<std::size_t>(i)].digits;
+    verdict.mutable_at(i) = static_cast<std::uint8_t>(out[static_cast<std::size_t>(i)].verdict);
+  }
+  py::dict d;
+  d["value"] = value; d["digits"] = digits; d["verdict"] = verdict;
+  return d;
+}
+
 }  // namespace
 
 void bindMeasures(py::module_& m) {
@@ -64,18 +182,7 @@ void bindMeasures(py::module_& m) {
   m.attr("DEFAULT_ITERATIONS") = kDefaultIterations;
   m.attr("DEFAULT_DIGITS_THRESHOLD") = kDefaultDigitsThreshold;
 
-  m.def("rotation", [](double x, double y, double K, double xmin, double xmax, std::uint64_t iterations,
-                       double threshold, std::uint64_t maxPeriod) {
-          if (!std::isfinite(x) || !std::isfinite(y)) throw std::invalid_argument("x and y must be finite");
-          ChainRequest r;
-          r.map = mapOf(K, xmin, xmax);
-          r.iterations = iterations;
-          r.digitsThreshold = threshold;
-          r.maxPeriod = maxPeriod;
-          r = chainRequestAt(r, {x, y});  // core's recipe and messages, as the CLI's `rotation`
-          // Stopped by Ctrl-C within a block of steps of its measurements (issue 36: it ran on for 42 s).
-          const ChainIdentification chain = interruptible([&](std::stop_token stop) { return identifyChain(r, stop); });
-          return py::module_::import("json").attr("loads")(rotationReportJson(r, chain)); },
+  m.def("rotation", &rotation,
         py::arg("x"), py::arg("y"), py::arg("K") = kDefaultMap.K, py::arg("xmin") = kDefaultMap.xmin, py::arg("xmax") = kDefaultMap.xmax, py::kw_only(),
         py::arg("iterations") = kDefaultIterations, py::arg("threshold") = kDefaultDigitsThreshold,
         py::arg("max_period") = ChainRequest{}.maxPeriod,
@@ -85,36 +192,7 @@ void bindMeasures(py::module_& m) {
         "1/6 about the centre, 2/23 about its island; ...'.  The same dict as `archipelago-cli rotation --json`;\n"
         "rotation is None for a chaotic or escaping orbit.");
 
-  m.def("rotation_profile", [](std::pair<double, double> start, std::pair<double, double> end, std::uint32_t points,
-                               double K, double xmin, double xmax, std::uint64_t iterations, double threshold,
-                               std::int64_t maxDenominator, const std::string& kernel) {
-          RotationProfileRequest r;
-          r.measure = settingsOf("rotation", K, xmin, xmax, iterations, threshold, kernel);
-          r.from = {start.first, start.second};
-          r.to = {end.first, end.second};
-          r.points = points;
-          r.maxDenominator = maxDenominator;
-          if (auto e = validationError(r)) throw std::invalid_argument(*e);
-          const RotationProfile profile =
-              interruptible([&](std::stop_token stop) { return computeRotationProfile(r, {}, stop); });
-          const auto n = static_cast<py::ssize_t>(profile.points.size());
-          py::array_t<double> x(n), y(n), rotation(n), digits(n);
-          py::array_t<std::uint8_t> verdict(n);
-          py::array_t<std::int64_t> p(n), q(n);
-          for (py::ssize_t i = 0; i < n; ++i) {
-            const RotationProfilePoint& pt = profile.points[static_cast<std::size_t>(i)];
-            x.mutable_at(i) = static_cast<double>(pt.point.x);
-            y.mutable_at(i) = static_cast<double>(pt.point.y);
-            rotation.mutable_at(i) = pt.measure.value;
-            digits.mutable_at(i) = pt.measure.digits;
-            verdict.mutable_at(i) = static_cast<std::uint8_t>(pt.measure.verdict);
-            p.mutable_at(i) = pt.rational ? pt.rational->p : 0;
-            q.mutable_at(i) = pt.rational ? pt.rational->q : 0;
-          }
-          py::dict d;
-          d["x"] = x; d["y"] = y; d["rotation"] = rotation; d["digits"] = digits; d["verdict"] = verdict;
-          d["p"] = p; d["q"] = q;
-          return d; },
+  m.def("rotation_profile", &rotationProfile,
         py::arg("start"), py::arg("end"), py::arg("points") = 1000, py::arg("K") = kDefaultMap.K, py::arg("xmin") = kDefaultMap.xmin,
         py::arg("xmax") = kDefaultMap.xmax, py::kw_only(), py::arg("iterations") = kDefaultIterations,
         py::arg("threshold") = kDefaultDigitsThreshold, py::arg("max_denominator") = RotationProfileRequest{}.maxDenominator,
@@ -124,47 +202,7 @@ void bindMeasures(py::module_& m) {
         "(codes in VERDICTS), and p, q: the fraction of smallest denominator within the measured accuracy (q = 0:\n"
         "none), the chain's p/q on a plateau.  Same numbers as `archipelago-cli rotation --line ... --csv`.");
 
-  m.def("indicator", [](const std::string& kind, double K, double xmin, double xmax,
-                        std::optional<std::tuple<double, double, double, double>> view, int width, int height,
-                        std::uint64_t iterations, double threshold, std::uint32_t passes, const std::string& kernel,
-                        int threads, const py::object& progress) {
-          IndicatorRequest r;
-          r.measure = settingsOf(kind, K, xmin, xmax, iterations, threshold, kernel);
-          if (view) {
-            const auto [x0, x1, y0, y1] = *view;
-            r.view = Viewport::fromPhysical(r.measure.map, {x0, x1, y0, y1});
-          }
-          r.width = width;
-          r.height = height;
-          r.passes = passes;
-          r.threads = threads;
-          r.roundPixels = 4096;  // Ctrl-C and progress between rounds
-          if (auto e = validationError(r)) throw std::invalid_argument(*e);
-          Interruption interruption;  // Ctrl-C every 50 ms, not only between rounds of pixels (issue 36)
-          const IndicatorResult result = interruption.withoutGilPolled([&](std::stop_token stop) {
-            return computeIndicatorMap(r, [&](const IndicatorProgress& p) {
-              interruption.check(progress, [&p] {
-                py::dict d;
-                d["pixels_done"] = p.pixelsDone;
-                d["pixels_total"] = p.pixelsTotal;
-                d["pass"] = p.pass;
-                d["passes"] = p.passes;
-                d["stride"] = p.stride;
-                return d;
-              });
-            }, stop);
-          });
-          interruption.raisePending();
-          const IndicatorRaster& ras = result.raster;
-          const py::ssize_t rows = ras.height, cols = ras.width;
-          py::dict d;
-          d["kind"] = kind;
-          d["values"] = toArray(ras.values, rows, cols);
-          d["digits"] = toArray(ras.digits, rows, cols);
-          d["verdicts"] = verdictCodes(ras.verdicts, rows, cols);
-          d["seconds"] = result.seconds;
-          d["metadata"] = py::module_::import("json").attr("loads")(indicatorMetadataJson(r, result));
-          return d; },
+  m.def("indicator", &indicator,
         py::arg("kind"), py::arg("K") = kDefaultMap.K, py::arg("xmin") = kDefaultMap.xmin, py::arg("xmax") = kDefaultMap.xmax, py::kw_only(),
         py::arg("view") = py::none(), py::arg("width") = IndicatorRequest{}.width, py::arg("height") = IndicatorRequest{}.height,
         py::arg("iterations") = kDefaultIterations, py::arg("threshold") = kDefaultDigitsThreshold,
@@ -174,33 +212,7 @@ void bindMeasures(py::module_& m) {
         "Returns values, digits (float64) and verdicts (uint8, codes in VERDICTS) of shape (height, width), row 0 at\n"
         "the top, and the sidecar's metadata.  The same numbers as `archipelago-cli indicator` (its .npy).");
 
-  m.def("orbit_measures", [](const std::string& kind, py::array_t<double> x, py::array_t<double> y, double K,
-                             double xmin, double xmax, std::uint64_t iterations, double threshold,
-                             const std::string& kernel, int threads) {
-          if (x.ndim() != 1 || y.ndim() != 1 || x.size() != y.size())
-            throw std::invalid_argument("x and y must be one-dimensional arrays of the same size");
-          const MeasureSettings s = settingsOf(kind, K, xmin, xmax, iterations, threshold, kernel);
-          const FixedPointMap map(s.map);
-          std::vector<UnitState> starts(static_cast<std::size_t>(x.size()));
-          for (py::ssize_t i = 0; i < x.size(); ++i) {
-            if (auto e = boxPointError("point " + std::to_string(i), s.map, {x.at(i), y.at(i)}))
-              throw std::invalid_argument(*e);
-            starts[static_cast<std::size_t>(i)] = map.toUnit(x.at(i), y.at(i));
-          }
-          const OrbitMeasurer measurer(s);
-          std::vector<OrbitMeasure> out(starts.size());
-          interruptible([&](std::stop_token stop) { return measurer.measure(starts, out, stop, threads); });
-          const auto n = static_cast<py::ssize_t>(out.size());
-          py::array_t<double> value(n), digits(n);
-          py::array_t<std::uint8_t> verdict(n);
-          for (py::ssize_t i = 0; i < n; ++i) {
-            value.mutable_at(i) = out[static_cast<std::size_t>(i)].value;
-            digits.mutable_at(i) = out[static_cast<std::size_t>(i)].digits;
-            verdict.mutable_at(i) = static_cast<std::uint8_t>(out[static_cast<std::size_t>(i)].verdict);
-          }
-          py::dict d;
-          d["value"] = value; d["digits"] = digits; d["verdict"] = verdict;
-          return d; },
+  m.def("orbit_measures", &orbitMeasures,
         py::arg("kind"), py::arg("x"), py::arg("y"), py::arg("K") = kDefaultMap.K, py::arg("xmin") = kDefaultMap.xmin, py::arg("xmax") = kDefaultMap.xmax,
         py::kw_only(), py::arg("iterations") = kDefaultIterations, py::arg("threshold") = kDefaultDigitsThreshold,
         py::arg("kernel") = "auto", py::arg("threads") = 0,

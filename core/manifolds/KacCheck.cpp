@@ -71,6 +71,103 @@ void runChunks(std::uint64_t samples, int threads, std::vector<ChunkSums>& chunk
   }
 }
 
+/// The regions of the check and the map: orbits run in the zone Z until they enter the exit lobe X, at most T steps.
+struct KacRegions {
+  const PolygonRegion& zone;
+  const PolygonRegion& exit;
+  Step step;
+  std::uint64_t T;
+};
+
+/// Left side: τ of the orbit entering through E at p, capped at T, added to s.
+void addEntryResidence(const KacRegions& k, PhysicalPoint p, ChunkSums& s) {
+  double x = static_cast<double>(p.x), y = static_cast<double>(p.y);
+  k.step(x, y);  // now inside Z
+  std::uint64_t tau = 1;
+  bool capped = false;
+  for (;; ++tau) {
+    if (k.exit.contains(x, y)) break;
+    if (tau >= k.T) {
+      capped = true;
+      break;
+    }
+    if (tau % kZoneCheckInterval == 0 && !k.zone.contains(x, y)) {
+      ++s.inconsistent;
+      break;
+    }
+    k.step(x, y);
+  }
+  const auto t = static_cast<double>(tau);
+  s.sum += t;
+  s.sumSquares += t * t;
+  ++s.count;
+  s.capped += capped ? 1 : 0;
+  s.longest = std::max(s.longest, tau);
+  s.steps += tau;
+}
+
+/// Right side: whether the point p of Z leaves within T steps (τ_f ≤ T ⇔ Q^j w ∈ X for some j < T), added to s.
+void addZoneTransit(const KacRegions& k, PhysicalPoint p, ChunkSums& s) {
+  double x = static_cast<double>(p.x), y = static_cast<double>(p.y);
+  std::uint64_t j = 0;
+  bool leaves = false;
+  for (; j < k.T; ++j) {
+    if (k.exit.contains(x, y)) {
+      leaves = true;
+      break;
+    }
+    if (j > 0 && j % kZoneCheckInterval == 0 && !k.zone.contains(x, y)) {
+      ++s.inconsistent;
+      break;
+    }
+    k.step(x, y);
+  }
+  s.sum += leaves ? 1 : 0;
+  ++s.count;
+  s.steps += j + 1;
+}
+
+/// The chunks' sums in chunk order.
+ChunkSums sumOfChunks(const std::vector<ChunkSums>& chunks) {
+  ChunkSums total;
+  for (const ChunkSums& c : chunks) {
+    total.sum += c.sum;
+    total.sumSquares += c.sumSquares;
+    total.count += c.count;
+    total.capped += c.capped;
+    total.longest = std::max(total.longest, c.longest);
+    total.inconsistent += c.inconsistent;
+    total.steps += c.steps;
+  }
+  return total;
+}
+
+/// The left side of Kac's lemma from the entry orbits' sums: the mean residence and its standard error.
+void setMeanResidence(KacResult& out, const ChunkSums& left) {
+  const auto n = static_cast<double>(left.count);
+  out.entryOrbits = left.count;
+  out.meanResidence = left.sum / n;
+  const double variance = std::max(0.0, left.sumSquares / n - out.meanResidence * out.meanResidence);
+  out.meanResidenceError = left.count > 1 ? std::sqrt(variance / (n - 1)) : 0;
+  out.stillInside = left.capped;
+  out.longestResidence = left.longest;
+}
+
+/// The right side from the zone points' sums: the transit fraction, area, and the residence it predicts.
+void setPredictedResidence(KacResult& out, const ChunkSums& right, const TurnstileFlux& flux) {
+  const auto m = static_cast<double>(right.count);
+  const double p = right.sum / m;
+  const double area = static_cast<double>(flux.zoneArea), phi = static_cast<double>(flux.lobeArea);
+  out.zonePoints = right.count;
+  out.transitFraction = p;
+  out.transitFractionError = std::sqrt(p * (1 - p) / m);
+  out.transitArea = p * area;
+  out.transitAreaError = out.transitFractionError * area;
+  out.predictedResidence = out.transitArea / phi;
+  out.predictedResidenceError = out.transitAreaError / phi;
+  out.islandArea = (1 - p) * area;
+}
+
 }  // namespace
 
 std::optional<std::string> validationError(const KacRequest& r) {
@@ -104,105 +201,31 @@ KacResult runKacCheck(const KacRequest& request, const ManifoldProgressCallback&
   turnstile.maxVertices = 1 << 10;  // the areas come from the actions here; the polygons only draw the regions
   const TurnstileFlux flux = computeTurnstileFlux(turnstile, {}, stop);
   const PolygonRegion zone(flux.zoneBoundary), exit(flux.exitLobe), entry(flux.entryLobe);
-  const Step step{static_cast<double>(request.K)};
-  const std::uint64_t T = request.maxSteps;
+  const KacRegions regions{zone, exit, Step{static_cast<double>(request.K)}, request.maxSteps};
 
   KacResult out;
   out.flux = flux.lobeArea;
   out.zoneArea = flux.zoneArea;
-  out.maxSteps = T;
+  out.maxSteps = request.maxSteps;
 
-  // Left side: τ of orbits entering through E, capped at T.
   std::vector<ChunkSums> chunks;
   runChunks(
       request.entrySamples, request.threads, chunks,
       [&](std::uint64_t sample, ChunkSums& s) {
-        const PhysicalPoint p = uniformPoint(entry, request.seed, sample);
-        double x = static_cast<double>(p.x), y = static_cast<double>(p.y);
-        step(x, y);  // now inside Z
-        std::uint64_t tau = 1;
-        bool capped = false;
-        for (;; ++tau) {
-          if (exit.contains(x, y)) break;
-          if (tau >= T) {
-            capped = true;
-            break;
-          }
-          if (tau % kZoneCheckInterval == 0 && !zone.contains(x, y)) {
-            ++s.inconsistent;
-            break;
-          }
-          step(x, y);
-        }
-        const auto t = static_cast<double>(tau);
-        s.sum += t;
-        s.sumSquares += t * t;
-        ++s.count;
-        s.capped += capped ? 1 : 0;
-        s.longest = std::max(s.longest, tau);
-        s.steps += tau;
+        addEntryResidence(regions, uniformPoint(entry, request.seed, sample), s);
       },
       progress, 0.05, 0.5, "entry orbits", stop);
-  ChunkSums left;
-  for (const ChunkSums& c : chunks) {
-    left.sum += c.sum;
-    left.sumSquares += c.sumSquares;
-    left.count += c.count;
-    left.capped += c.capped;
-    left.longest = std::max(left.longest, c.longest);
-    left.inconsistent += c.inconsistent;
-    left.steps += c.steps;
-  }
-  const auto n = static_cast<double>(left.count);
-  out.entryOrbits = left.count;
-  out.meanResidence = left.sum / n;
-  const double variance = std::max(0.0, left.sumSquares / n - out.meanResidence * out.meanResidence);
-  out.meanResidenceError = left.count > 1 ? std::sqrt(variance / (n - 1)) : 0;
-  out.stillInside = left.capped;
-  out.longestResidence = left.longest;
-
-  // Right side: points of Z leaving within T steps (τ_f ≤ T ⇔ Q^j w ∈ X for some j < T).
+  const ChunkSums left = sumOfChunks(chunks);
+  setMeanResidence(out, left);
   runChunks(
       request.zoneSamples, request.threads, chunks,
       [&](std::uint64_t sample, ChunkSums& s) {
-        const PhysicalPoint p = uniformPoint(zone, request.seed ^ 0x5A4F4E45ULL, sample);  // "ZONE": other draws than E's
-        double x = static_cast<double>(p.x), y = static_cast<double>(p.y);
-        std::uint64_t j = 0;
-        bool leaves = false;
-        for (; j < T; ++j) {
-          if (exit.contains(x, y)) {
-            leaves = true;
-            break;
-          }
-          if (j > 0 && j % kZoneCheckInterval == 0 && !zone.contains(x, y)) {
-            ++s.inconsistent;
-            break;
-          }
-          step(x, y);
-        }
-        s.sum += leaves ? 1 : 0;
-        ++s.count;
-        s.steps += j + 1;
+        // "ZONE": other draws than E's
+        addZoneTransit(regions, uniformPoint(zone, request.seed ^ 0x5A4F4E45ULL, sample), s);
       },
       progress, 0.5, 1.0, "zone points", stop);
-  ChunkSums right;
-  for (const ChunkSums& c : chunks) {
-    right.sum += c.sum;
-    right.count += c.count;
-    right.inconsistent += c.inconsistent;
-    right.steps += c.steps;
-  }
-  const auto m = static_cast<double>(right.count);
-  const double p = right.sum / m;
-  const double area = static_cast<double>(flux.zoneArea), phi = static_cast<double>(flux.lobeArea);
-  out.zonePoints = right.count;
-  out.transitFraction = p;
-  out.transitFractionError = std::sqrt(p * (1 - p) / m);
-  out.transitArea = p * area;
-  out.transitAreaError = out.transitFractionError * area;
-  out.predictedResidence = out.transitArea / phi;
-  out.predictedResidenceError = out.transitAreaError / phi;
-  out.islandArea = (1 - p) * area;
+  const ChunkSums right = sumOfChunks(chunks);
+  setPredictedResidence(out, right, flux);
   out.inconsistent = left.inconsistent + right.inconsistent;
   out.steps = left.steps + right.steps;
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();

@@ -72,6 +72,138 @@ std::vector<Point<quad>> chainCentres(const HyperbolicOrbit& orbit) {
   return best;
 }
 
+using Coefficients = std::vector<std::vector<Point<quad>>>;  ///< [j][k]
+
+/// The point a step along the cycle leads to: j + 1 (unstable: Q) or j − 1 (stable: Q⁻¹).
+int nextPoint(int j, int n, bool unstable) { return unstable ? (j + 1) % n : (j - 1 + n) % n; }
+
+/// The linear maps of one step along the cycle: A_j = DQ(z_j) (unstable: point j → j+1) or DQ⁻¹(z_j) (stable:
+/// point j → j−1).
+std::vector<Matrix2<quad>> cycleSteps(const HyperbolicOrbit& orbit, bool unstable) {
+  std::vector<Matrix2<quad>> step(static_cast<std::size_t>(orbit.period));
+  for (int j = 0; j < orbit.period; ++j)
+    step[static_cast<std::size_t>(j)] = unstable ? smooth::jacobian(orbit.points[static_cast<std::size_t>(j)])
+                                                 : inverseJacobian(orbit.points[static_cast<std::size_t>(j)]);
+  return step;
+}
+
+/// A unit eigenvector at z_0 for λ (of DQⁿ for W^u, of DQ⁻ⁿ for W^s), oriented "outward": at the point of the orbit
+/// where the linear term is the most nearly radial (from that point's centre, chainCentres()), σ > 0 must point away
+/// from the centre.  Q maps a branch onto a branch, so the orientation carried around the cycle (positive stretches)
+/// is the same at every point: deciding where the geometry is clearest avoids the points of a distorted chain where
+/// both branches are nearly tangential.
+Point<quad> outwardTangent(const HyperbolicOrbit& orbit, const std::vector<Matrix2<quad>>& step, bool unstable) {
+  const int n = orbit.period;
+  const Matrix2<quad>& mono = orbit.monodromy;
+  const Matrix2<quad> inverseMono{mono.yy, -mono.xy, -mono.yx, mono.xx};  // det = 1
+  Point<quad> v0 = eigenvector(unstable ? mono : inverseMono, orbit.multiplier);
+  const std::vector<Point<quad>> centres = chainCentres(orbit);
+  Point<quad> v = v0;
+  int j = 0;
+  quad decisive = 0, sign = 1;
+  for (int s = 0; s < n; ++s) {
+    const auto uj = static_cast<std::size_t>(j);
+    const Point<quad> r{orbit.points[uj].x - centres[uj].x, orbit.points[uj].y - centres[uj].y};
+    const quad c = (v.x * r.x + v.y * r.y) / (norm(r) + quad(1e-300L));
+    if (smooth::absolute(c) > decisive) {
+      decisive = smooth::absolute(c);
+      sign = c < 0 ? -1 : 1;
+    }
+    const Point<quad> w = step[uj] * v;
+    const quad m = norm(w);
+    v = {w.x / m, w.y / m};
+    j = nextPoint(j, n, unstable);
+  }
+  if (sign < 0 || (decisive == 0 && v0.x < 0)) v0 = {-v0.x, -v0.y};
+  return v0;
+}
+
+/// The linear terms a_{j,1}: v0 carried around the cycle, each step's stretch μ_j the length it multiplies it by
+/// (negative at the last step when λ < 0: the cycle closes with a reflection).  Returns the stretches.
+std::vector<quad> carryLinearTerms(Point<quad> v0, const std::vector<Matrix2<quad>>& step, bool unstable,
+                                   Coefficients& coefficients) {
+  const int n = static_cast<int>(step.size());
+  std::vector<quad> stretch(step.size(), 0);
+  Point<quad> v = v0;
+  int j = 0;
+  for (int s = 0; s < n; ++s) {
+    coefficients[static_cast<std::size_t>(j)][1] = v;
+    const Point<quad> w = step[static_cast<std::size_t>(j)] * v;
+    quad mu = norm(w);
+    Point<quad> vNext{w.x / mu, w.y / mu};
+    if (s == n - 1 && vNext.x * v0.x + vNext.y * v0.y < 0) {  // λ < 0: the cycle closes with a reflection
+      mu = -mu;
+      vNext = {-vNext.x, -vNext.y};
+    }
+    stretch[static_cast<std::size_t>(j)] = mu;
+    v = vNext;
+    j = nextPoint(j, n, unstable);
+  }
+  return stretch;
+}
+
+/// Orders k ≥ 2: a_{next(j),k} = stretch_j^{−k} (A_j a_{j,k} + b_{j,k}); shoot around the cycle from point 0 with
+/// a_{j,k} = T_j a_{0,k} + r_j, then solve (I − T_n) a_{0,k} = r_n.
+void solveHigherOrders(const std::vector<Matrix2<quad>>& step, const std::vector<quad>& stretch, bool unstable,
+                       int order, Coefficients& coefficients) {
+  const int n = static_cast<int>(step.size());
+  const std::size_t un = step.size();
+  std::vector<quad> power(un, 1);  // stretch_j^{−k}
+  std::vector<Point<quad>> b(un);
+  for (int k = 2; k <= order; ++k) {
+    const auto uk = static_cast<std::size_t>(k);
+    for (std::size_t j = 0; j < un; ++j) {
+      power[j] = (k == 2 ? 1 / (stretch[j] * stretch[j]) : power[j] / stretch[j]);
+      quad c = 0;
+      const std::vector<Point<quad>>& a = coefficients[j];
+      for (int i = 1; i < k; ++i) {
+        const auto ui = static_cast<std::size_t>(i);
+        if (unstable) c += a[ui].x * a[uk - ui].x;
+        else c += (a[ui].x - a[ui].y) * (a[uk - ui].x - a[uk - ui].y);
+      }
+      b[j] = unstable ? Point<quad>{2 * c, 2 * c} : Point<quad>{0, -2 * c};
+    }
+    Matrix2<quad> T;  // identity
+    Point<quad> r{0, 0};
+    int j = 0;
+    for (int s = 0; s < n; ++s) {
+      const auto uj = static_cast<std::size_t>(j);
+      const Matrix2<quad> scaled{power[uj] * step[uj].xx, power[uj] * step[uj].xy, power[uj] * step[uj].yx,
+                                 power[uj] * step[uj].yy};
+      T = scaled * T;
+      const Point<quad> ar = scaled * r;
+      r = {ar.x + power[uj] * b[uj].x, ar.y + power[uj] * b[uj].y};
+      j = nextPoint(j, n, unstable);
+    }
+    const quad a11 = 1 - T.xx, a12 = -T.xy, a21 = -T.yx, a22 = 1 - T.yy;
+    const quad det = a11 * a22 - a12 * a21;
+    Point<quad> a{(a22 * r.x - a12 * r.y) / det, (-a21 * r.x + a11 * r.y) / det};
+    j = 0;
+    for (int s = 0; s < n; ++s) {
+      const auto uj = static_cast<std::size_t>(j);
+      coefficients[uj][uk] = a;
+      const Point<quad> image = step[uj] * a;
+      a = {power[uj] * (image.x + b[uj].x), power[uj] * (image.y + b[uj].y)};
+      j = nextPoint(j, n, unstable);
+    }
+  }
+}
+
+/// The radius of one point's series a_0 … a_order: the last three terms below kSeriesTolerance of the linear one
+/// (|a_1| = 1) and no term above it.
+long double seriesRadius(const std::vector<Point<quad>>& coefficients, int order) {
+  long double rho = kMaxRadius;
+  for (int k = 2; k <= order; ++k) {
+    const Point<quad>& a = coefficients[static_cast<std::size_t>(k)];
+    const long double size = static_cast<long double>(std::max(smooth::absolute(a.x), smooth::absolute(a.y)));
+    if (!(size > 0)) continue;
+    const long double e = 1.0L / (k - 1);
+    rho = std::min(rho, std::pow(1 / size, e));
+    if (k > order - 3) rho = std::min(rho, std::pow(kSeriesTolerance / (3 * size), e));
+  }
+  return rho;
+}
+
 template <class Real>
 bool escaped(const Point<Real>& z) {
   return !(smooth::absolute(z.x) < Real(kOverflow) && smooth::absolute(z.y) < Real(kOverflow));
@@ -106,120 +238,16 @@ ManifoldParameterization::ManifoldParameterization(HyperbolicOrbit orbit, Manifo
   const bool unstable = kind == ManifoldKind::Unstable;
   const auto un = static_cast<std::size_t>(n);
 
-  // The linear maps of one step along the cycle: A_j = DQ(z_j) (unstable: point j → j+1) or DQ⁻¹(z_j) (stable:
-  // point j → j−1).  `next(j)` is the point a step leads to.
-  auto next = [&](int j) { return unstable ? (j + 1) % n : (j - 1 + n) % n; };
-  std::vector<Matrix2<quad>> step(un);
-  for (int j = 0; j < n; ++j)
-    step[static_cast<std::size_t>(j)] = unstable ? smooth::jacobian(orbit_.points[static_cast<std::size_t>(j)])
-                                                 : inverseJacobian(orbit_.points[static_cast<std::size_t>(j)]);
-
-  // The linear terms: a unit eigenvector at z_0 for λ (of DQⁿ for W^u, of DQ⁻ⁿ for W^s), oriented outward from
-  // the central point (−√K, 0), carried around the cycle with its stretches.
-  const Matrix2<quad>& mono = orbit_.monodromy;
-  const Matrix2<quad> inverseMono{mono.yy, -mono.xy, -mono.yx, mono.xx};  // det = 1
-  Point<quad> v0 = eigenvector(unstable ? mono : inverseMono, orbit_.multiplier);
-  {
-    // Orient the branch "outward": at the point of the orbit where the linear term is the most nearly radial (from
-    // that point's centre, chainCentres()), σ > 0 must point away from the centre.  Q maps a branch onto a branch, so
-    // the orientation carried around the cycle (positive stretches) is the same at every point: deciding where the
-    // geometry is clearest avoids the points of a distorted chain where both branches are nearly tangential.
-    const std::vector<Point<quad>> centres = chainCentres(orbit_);
-    Point<quad> v = v0;
-    int j = 0;
-    quad decisive = 0, sign = 1;
-    for (int s = 0; s < n; ++s) {
-      const auto uj = static_cast<std::size_t>(j);
-      const Point<quad> r{orbit_.points[uj].x - centres[uj].x, orbit_.points[uj].y - centres[uj].y};
-      const quad c = (v.x * r.x + v.y * r.y) / (norm(r) + quad(1e-300L));
-      if (smooth::absolute(c) > decisive) {
-        decisive = smooth::absolute(c);
-        sign = c < 0 ? -1 : 1;
-      }
-      const Point<quad> w = step[uj] * v;
-      const quad m = norm(w);
-      v = {w.x / m, w.y / m};
-      j = next(j);
-    }
-    if (sign < 0 || (decisive == 0 && v0.x < 0)) v0 = {-v0.x, -v0.y};
-  }
-
+  const std::vector<Matrix2<quad>> step = cycleSteps(orbit_, unstable);
   coefficients_.assign(un, std::vector<Point<quad>>(static_cast<std::size_t>(order) + 1));
-  stretch_.assign(un, 0);
   for (int j = 0; j < n; ++j) coefficients_[static_cast<std::size_t>(j)][0] = orbit_.points[static_cast<std::size_t>(j)];
-  {
-    Point<quad> v = v0;
-    int j = 0;
-    for (int s = 0; s < n; ++s) {
-      coefficients_[static_cast<std::size_t>(j)][1] = v;
-      const Point<quad> w = step[static_cast<std::size_t>(j)] * v;
-      quad mu = norm(w);
-      Point<quad> vNext{w.x / mu, w.y / mu};
-      if (s == n - 1 && vNext.x * v0.x + vNext.y * v0.y < 0) {  // λ < 0: the cycle closes with a reflection
-        mu = -mu;
-        vNext = {-vNext.x, -vNext.y};
-      }
-      stretch_[static_cast<std::size_t>(j)] = mu;
-      v = vNext;
-      j = next(j);
-    }
-  }
+  stretch_ = carryLinearTerms(outwardTangent(orbit_, step, unstable), step, unstable, coefficients_);
+  solveHigherOrders(step, stretch_, unstable, order, coefficients_);
 
-  // Orders k ≥ 2: a_{next(j),k} = stretch_j^{−k} (A_j a_{j,k} + b_{j,k}); shoot around the cycle from point 0 with
-  // a_{j,k} = T_j a_{0,k} + r_j, then solve (I − T_n) a_{0,k} = r_n.
-  std::vector<quad> power(un, 1);  // stretch_j^{−k}
-  std::vector<Point<quad>> b(un);
-  for (int k = 2; k <= order; ++k) {
-    const auto uk = static_cast<std::size_t>(k);
-    for (std::size_t j = 0; j < un; ++j) {
-      power[j] = (k == 2 ? 1 / (stretch_[j] * stretch_[j]) : power[j] / stretch_[j]);
-      quad c = 0;
-      const std::vector<Point<quad>>& a = coefficients_[j];
-      for (int i = 1; i < k; ++i) {
-        const auto ui = static_cast<std::size_t>(i);
-        if (unstable) c += a[ui].x * a[uk - ui].x;
-        else c += (a[ui].x - a[ui].y) * (a[uk - ui].x - a[uk - ui].y);
-      }
-      b[j] = unstable ? Point<quad>{2 * c, 2 * c} : Point<quad>{0, -2 * c};
-    }
-    Matrix2<quad> T;  // identity
-    Point<quad> r{0, 0};
-    int j = 0;
-    for (int s = 0; s < n; ++s) {
-      const auto uj = static_cast<std::size_t>(j);
-      const Matrix2<quad> scaled{power[uj] * step[uj].xx, power[uj] * step[uj].xy, power[uj] * step[uj].yx,
-                                 power[uj] * step[uj].yy};
-      T = scaled * T;
-      const Point<quad> ar = scaled * r;
-      r = {ar.x + power[uj] * b[uj].x, ar.y + power[uj] * b[uj].y};
-      j = next(j);
-    }
-    const quad a11 = 1 - T.xx, a12 = -T.xy, a21 = -T.yx, a22 = 1 - T.yy;
-    const quad det = a11 * a22 - a12 * a21;
-    Point<quad> a{(a22 * r.x - a12 * r.y) / det, (-a21 * r.x + a11 * r.y) / det};
-    j = 0;
-    for (int s = 0; s < n; ++s) {
-      const auto uj = static_cast<std::size_t>(j);
-      coefficients_[uj][uk] = a;
-      const Point<quad> image = step[uj] * a;
-      a = {power[uj] * (image.x + b[uj].x), power[uj] * (image.y + b[uj].y)};
-      j = next(j);
-    }
-  }
-
-  // Radii: the last three terms below kSeriesTolerance of the linear one (|a_1| = 1) and no term above it.
   radius_.assign(un, 0);
   coefficientsLd_.assign(un, {});
   for (std::size_t j = 0; j < un; ++j) {
-    long double rho = kMaxRadius;
-    for (int k = 2; k <= order; ++k) {
-      const Point<quad>& a = coefficients_[j][static_cast<std::size_t>(k)];
-      const long double size = static_cast<long double>(std::max(smooth::absolute(a.x), smooth::absolute(a.y)));
-      if (!(size > 0)) continue;
-      const long double e = 1.0L / (k - 1);
-      rho = std::min(rho, std::pow(1 / size, e));
-      if (k > order - 3) rho = std::min(rho, std::pow(kSeriesTolerance / (3 * size), e));
-    }
+    const long double rho = seriesRadius(coefficients_[j], order);
     radius_[j] = rho;
     radiusLd_.push_back(rho);
     stretchLd_.push_back(static_cast<long double>(stretch_[j]));

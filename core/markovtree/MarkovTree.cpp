@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <functional>
 #include <limits>
 #include <stdexcept>
 
@@ -22,6 +21,9 @@ std::string sci(long double v, int digits = 4) { return io::formatC("%.*Le", dig
 
 bool positiveFinite(long double v) { return std::isfinite(v) && v > 0; }
 
+/// A rate's flux / area in quad.
+quad quadRate(const MarkovTreeRate& r) { return static_cast<quad>(r.flux) / static_cast<quad>(r.area); }
+
 [[noreturn]] void refuse(const std::string& why) { throw std::invalid_argument("markov tree: " + why); }
 
 /// Distance of a chain's rotation about its parent from the parent's boundary rotation: the twist puts the chains
@@ -38,9 +40,9 @@ std::string nameOf(const Atlas& a, int i) {
   return s;
 }
 
-}  // namespace
-
-MarkovTree markovTreeFromAtlas(const Atlas& a) {
+/// The atlas's rules for a tree: finished, every island measured, a flux through the centre's loop, and every
+/// flux, layer and zone found finite and positive.
+void checkAtlasForTree(const Atlas& a) {
   if (a.nodes.empty()) refuse("the atlas has no island");
   if (a.cancelled)
     refuse("the atlas was stopped before its end (" + a.stopReason +
@@ -63,40 +65,39 @@ MarkovTree markovTreeFromAtlas(const Atlas& a) {
       refuse("the layer of " + who + " = " + sci(f.layerArea) + " must be finite and > 0");
     if (!positiveFinite(f.zoneArea)) refuse("the zone of " + who + " = " + sci(f.zoneArea) + " must be finite and > 0");
   }
+}
 
-  // The chains about island i that are barriers, outermost first (by zone area), checked against the twist.
-  auto barrierChildren = [&](int i) {
-    const AtlasNode& p = a.nodes[static_cast<std::size_t>(i)];
-    std::vector<int> kids;
-    for (int c : p.children)
-      if (a.nodes[static_cast<std::size_t>(c)].flux.found) kids.push_back(c);
-    std::stable_sort(kids.begin(), kids.end(), [&](int x, int y) {
-      return a.nodes[static_cast<std::size_t>(x)].flux.zoneArea > a.nodes[static_cast<std::size_t>(y)].flux.zoneArea;
-    });
-    for (std::size_t k = 1; k < kids.size(); ++k) {
-      const AtlasNode& outer = a.nodes[static_cast<std::size_t>(kids[k - 1])];
-      const AtlasNode& inner = a.nodes[static_cast<std::size_t>(kids[k])];
-      if (!(outer.flux.zoneArea > inner.flux.zoneArea) || !(outer.flux.layerArea > inner.flux.layerArea) ||
-          !(twistDistance(p, outer) > twistDistance(p, inner)))
-        refuse("the chains about " + atlasPath(a, i) + " do not nest: " + nameOf(a, kids[k - 1]) + " (zone " +
-               sci(outer.flux.zoneArea) + ", layer " + sci(outer.flux.layerArea) + ") and " + nameOf(a, kids[k]) +
-               " (zone " + sci(inner.flux.zoneArea) + ", layer " + sci(inner.flux.layerArea) +
-               ") against the boundary rotation " + sci(p.boundaryRotation, 5) +
-               ": a larger zone must hold a larger layer and a rotation farther from the boundary's");
-    }
-    return kids;
-  };
+/// The chains about island i that are barriers, outermost first (by zone area), checked against the twist.
+std::vector<int> barrierChildren(const Atlas& a, int i) {
+  const AtlasNode& p = a.nodes[static_cast<std::size_t>(i)];
+  std::vector<int> kids;
+  for (int c : p.children)
+    if (a.nodes[static_cast<std::size_t>(c)].flux.found) kids.push_back(c);
+  std::stable_sort(kids.begin(), kids.end(), [&](int x, int y) {
+    return a.nodes[static_cast<std::size_t>(x)].flux.zoneArea > a.nodes[static_cast<std::size_t>(y)].flux.zoneArea;
+  });
+  for (std::size_t k = 1; k < kids.size(); ++k) {
+    const AtlasNode& outer = a.nodes[static_cast<std::size_t>(kids[k - 1])];
+    const AtlasNode& inner = a.nodes[static_cast<std::size_t>(kids[k])];
+    if (!(outer.flux.zoneArea > inner.flux.zoneArea) || !(outer.flux.layerArea > inner.flux.layerArea) ||
+        !(twistDistance(p, outer) > twistDistance(p, inner)))
+      refuse("the chains about " + atlasPath(a, i) + " do not nest: " + nameOf(a, kids[k - 1]) + " (zone " +
+             sci(outer.flux.zoneArea) + ", layer " + sci(outer.flux.layerArea) + ") and " + nameOf(a, kids[k]) +
+             " (zone " + sci(inner.flux.zoneArea) + ", layer " + sci(inner.flux.layerArea) +
+             ") against the boundary rotation " + sci(p.boundaryRotation, 5) +
+             ": a larger zone must hold a larger layer and a rotation farther from the boundary's");
+  }
+  return kids;
+}
 
-  MarkovTree tree;
-  tree.entryFlux = centre.flux.flux;
-  tree.residence = centre.flux.layerArea / centre.flux.flux;
-  // L² to 12 digits (1.69, not 1.6900000000000002 of 1.3 · 1.3 in binary): the bound b₂'s rule states.
-  tree.boxArea =
-      io::parseLongDoubleC(sci(static_cast<long double>(a.request.map.width()) * a.request.map.width(), 11)).value_or(0);
-  std::vector<int> stateOf(a.nodes.size(), -1);
+/// The tree's states, built from the atlas's barriers; stateOf[node] is the node's state (−1: none, lumped).
+struct TreeStates {
+  const Atlas& a;
+  MarkovTree& tree;
+  std::vector<int> stateOf;
 
-  // The state of barrier c, opening onto `container`, with its inner sibling (or −1).
-  std::function<void(int, int, int)> addState = [&](int c, int container, int innerSibling) {
+  /// The state of barrier c, opening onto `container`, with its inner sibling (or −1), and those of its barriers.
+  void addState(int c, int container, int innerSibling) {
     const AtlasNode& n = a.nodes[static_cast<std::size_t>(c)];
     MarkovTreeState s;
     s.node = c;
@@ -107,7 +108,7 @@ MarkovTree markovTreeFromAtlas(const Atlas& a) {
     s.layer = n.flux.layerArea;
     s.area = s.layer;
     s.source = "layer of " + s.path + " (" + sci(s.layer) + ")";
-    const std::vector<int> kids = barrierChildren(c);
+    const std::vector<int> kids = barrierChildren(a, c);
     if (innerSibling >= 0) s.subtracted.push_back(innerSibling);
     if (!kids.empty()) s.subtracted.push_back(kids.front());
     for (int d : s.subtracted) {
@@ -124,31 +125,38 @@ MarkovTree markovTreeFromAtlas(const Atlas& a) {
     for (std::size_t k = 0; k < kids.size(); ++k)
       addState(kids[k], k == 0 ? index : stateOf[static_cast<std::size_t>(kids[k - 1])],
                k + 1 < kids.size() ? kids[k + 1] : -1);
-  };
-  addState(0, -1, -1);
+  }
 
-  // Nodes without a barrier: lumped, with their subtree, into the state whose region holds them.
-  std::function<void(int, int, const std::string&)> lump = [&](int node, int state, const std::string& reason) {
+  /// A node without a barrier: lumped, with its subtree, into the state whose region holds it.
+  void lump(int node, int state, const std::string& reason) {
     tree.lumped.push_back({node, atlasPath(a, node), reason, state});
     for (int c : a.nodes[static_cast<std::size_t>(node)].children)
       lump(c, state, "inside " + atlasPath(a, node) + ", which has no barrier in the tree");
-  };
-  for (std::size_t i = 0; i < a.nodes.size(); ++i) {
-    if (stateOf[i] < 0) continue;  // lumped nodes' children are handled by lump()
-    const AtlasNode& p = a.nodes[i];
-    const std::vector<int> kids = barrierChildren(static_cast<int>(i));
-    for (int f : p.children) {
-      const AtlasNode& n = a.nodes[static_cast<std::size_t>(f)];
-      if (n.flux.found) continue;
-      // The innermost barrier about p that lies farther out than f holds it; none: p's own state.
-      int holder = stateOf[i];
-      for (int c : kids)
-        if (twistDistance(p, a.nodes[static_cast<std::size_t>(c)]) > twistDistance(p, n))
-          holder = stateOf[static_cast<std::size_t>(c)];
-      lump(f, holder, n.flux.failure.empty() ? std::string("no flux") : "no flux: " + n.flux.failure);
-    }
   }
 
+  /// Every node without a barrier whose parent has a state: into the innermost barrier about the parent that lies
+  /// farther out than it; none: the parent's own state.
+  void lumpNodesWithoutBarrier() {
+    for (std::size_t i = 0; i < a.nodes.size(); ++i) {
+      if (stateOf[i] < 0) continue;  // lumped nodes' children are handled by lump()
+      const AtlasNode& p = a.nodes[i];
+      const std::vector<int> kids = barrierChildren(a, static_cast<int>(i));
+      for (int f : p.children) {
+        const AtlasNode& n = a.nodes[static_cast<std::size_t>(f)];
+        if (n.flux.found) continue;
+        int holder = stateOf[i];
+        for (int c : kids)
+          if (twistDistance(p, a.nodes[static_cast<std::size_t>(c)]) > twistDistance(p, n))
+            holder = stateOf[static_cast<std::size_t>(c)];
+        lump(f, holder, n.flux.failure.empty() ? std::string("no flux") : "no flux: " + n.flux.failure);
+      }
+    }
+  }
+};
+
+/// The rates between the states: out of the centre to the sea, and both ways through every other state's barrier;
+/// and the tree's number of levels.
+void addRates(MarkovTree& tree) {
   for (std::size_t s = 0; s < tree.states.size(); ++s) {
     const MarkovTreeState& st = tree.states[s];
     tree.levels = std::max(tree.levels, st.level + 1);
@@ -166,6 +174,10 @@ MarkovTree markovTreeFromAtlas(const Atlas& a) {
                           "flux of " + st.path + " (" + sci(st.flux) + ") / area of " + out.path + " (" +
                               sci(out.area) + ")"});
   }
+}
+
+/// The rates out of each state sum to at most 1 per step.
+void checkRatesOut(const MarkovTree& tree) {
   std::vector<long double> outOf(tree.states.size(), 0);  // one pass: an atlas of 20,000 chains has 40,000 rates
   for (const MarkovTreeRate& r : tree.rates) outOf[static_cast<std::size_t>(r.from)] += r.perStep;
   for (std::size_t s = 0; s < tree.states.size(); ++s) {
@@ -174,6 +186,24 @@ MarkovTree markovTreeFromAtlas(const Atlas& a) {
       refuse("the rates out of the state of " + tree.states[s].path + " sum to " + sci(out) +
              " per step: its barriers' fluxes exceed its area");
   }
+}
+
+}  // namespace
+
+MarkovTree markovTreeFromAtlas(const Atlas& a) {
+  checkAtlasForTree(a);
+  const AtlasNode& centre = a.nodes[0];
+  MarkovTree tree;
+  tree.entryFlux = centre.flux.flux;
+  tree.residence = centre.flux.layerArea / centre.flux.flux;
+  // L² to 12 digits (1.69, not 1.6900000000000002 of 1.3 · 1.3 in binary): the bound b₂'s rule states.
+  tree.boxArea =
+      io::parseLongDoubleC(sci(static_cast<long double>(a.request.map.width()) * a.request.map.width(), 11)).value_or(0);
+  TreeStates states{a, tree, std::vector<int>(a.nodes.size(), -1)};
+  states.addState(0, -1, -1);
+  states.lumpNodesWithoutBarrier();
+  addRates(tree);
+  checkRatesOut(tree);
   return tree;
 }
 
@@ -185,7 +215,7 @@ QMatrix generator(const MarkovTree& tree) {
   const std::size_t n = tree.states.size();
   QMatrix G(n, std::vector<quad>(n, 0));
   for (const MarkovTreeRate& r : tree.rates) {
-    const quad rate = static_cast<quad>(r.flux) / static_cast<quad>(r.area);
+    const quad rate = quadRate(r);
     G[static_cast<std::size_t>(r.from)][static_cast<std::size_t>(r.from)] += rate;
     if (r.to >= 0) G[static_cast<std::size_t>(r.from)][static_cast<std::size_t>(r.to)] -= rate;
   }
@@ -408,20 +438,13 @@ long double powerOfOneMinus(long double mu, std::uint64_t t) {
   const long double magnitude = std::exp(tt * std::log(mu - 1));  // λ < 0: its sign alternates
   return (t & 1U) != 0 ? -magnitude : magnitude;
 }
-}  // namespace
 
-MarkovTreeSurvival markovTreeSurvival(const MarkovTree& tree, const std::vector<std::uint64_t>& t, std::stop_token stop) {
-  for (std::uint64_t v : t)
-    if (v > kMarkovTreeMaxT) throw std::invalid_argument("markov tree: t = " + std::to_string(v) + " must be at most 2^62");
+/// G = I − M is similar to the symmetric B = D^½ G D^−½ (D = the states' areas: the chain is reversible with the
+/// areas as its measure, A_i G_ij = A_j G_ji = −Φ), off the diagonal −Φ/√(A_i A_j), on it the rates out; n×n,
+/// root[s] = √A_s.
+std::vector<long double> symmetrizedGenerator(const MarkovTree& tree, const std::vector<long double>& root) {
   const std::size_t n = tree.states.size();
-  if (auto e = markovTreeCostError(markovTreeCost(n, t.size()))) throw std::invalid_argument("markov tree: " + *e);
-
-  // G = I − M is similar to the symmetric B = D^½ G D^−½ (D = the states' areas: the chain is reversible with the
-  // areas as its measure, A_i G_ij = A_j G_ji = −Φ), off the diagonal −Φ/√(A_i A_j), on it the rates out.  With
-  // B = U diag(μ) Uᵀ: e_top Mᵗ = A_top^−½ Σ_k U_top,k (1 − μ_k)ᵗ U_s,k A_s^½, state by state.  O(n³) once, O(n²) per t
-  // (the matrix is a tree's, but its powers are dense: issue 54 measured the binary powering of M in quad at n³ log t).
-  std::vector<long double> v(n * n, 0), mu(n, 0), e(n, 0), root(n, 0);
-  for (std::size_t s = 0; s < n; ++s) root[s] = std::sqrt(tree.states[s].area);
+  std::vector<long double> v(n * n, 0);
   for (const MarkovTreeRate& r : tree.rates) {
     const auto from = static_cast<std::size_t>(r.from);
     v[from * n + from] += r.flux / r.area;
@@ -430,72 +453,82 @@ MarkovTreeSurvival markovTreeSurvival(const MarkovTree& tree, const std::vector<
       v[from * n + to] = -r.flux / (root[from] * root[to]);
     }
   }
-  tred2(n, v, mu, e, stop);  // B is symmetric: its row-major and column-major layouts are one
-  tql2(n, v, mu, e, stop);
-  // Each eigenvalue again as its eigenvector's Rayleigh quotient written as the chain's Dirichlet form,
-  // uᵀ B u = Σ_barriers Φ (x_i − x_j)² + Φ_centre x_top² with x = D^−½ u: a sum of positive terms, so a slow mode's μ
-  // (10⁻⁹) is good to its own rounding, not to 2⁻⁶³ ‖G‖ (10⁻²¹: at t = 10⁷ a relative 2·10⁻¹⁴ in S), and the quotient
-  // is stationary: the eigenvector's error enters squared.
-  {
-    std::vector<long double> x(n);
-    for (std::size_t k = 0; k < n; ++k) {
-      if (stop.stop_requested()) stopped();
-      const long double* u = &v[k * n];
-      long double norm = 0;
-      for (std::size_t s = 0; s < n; ++s) {
-        x[s] = u[s] / root[s];
-        norm += u[s] * u[s];
-      }
-      long double form = 0;
-      for (const MarkovTreeRate& r : tree.rates) {
-        const auto from = static_cast<std::size_t>(r.from);
-        if (r.to < 0) form += r.flux * x[from] * x[from];  // to the sea
-        else if (r.to == tree.states[from].container) {       // each barrier once
-          const long double d = x[from] - x[static_cast<std::size_t>(r.to)];
-          form += r.flux * d * d;
-        }
-      }
-      if (norm > 0) mu[k] = form / norm;
-    }
-  }
+  return v;
+}
 
-  MarkovTreeSurvival out;
-  out.t = t;
-  out.S.assign(t.size(), 0);
-  out.state.assign(n, std::vector<long double>(t.size(), 0));
-  out.level.assign(static_cast<std::size_t>(tree.levels), std::vector<long double>(t.size(), 0));
-  // Up to kMarkovTreeDirectSteps, e_top Mᵗ by t products with the sparse M in quad (its rates cross the states' tree
-  // edges only): exact, O(t n), and where the modes' sum cancels most (S ≈ 1, Σ_k |c_k| ≫ its terms' differences).
+/// Each eigenvalue again as its eigenvector's (row k of v) Rayleigh quotient written as the chain's Dirichlet form,
+/// uᵀ B u = Σ_barriers Φ (x_i − x_j)² + Φ_centre x_top² with x = D^−½ u: a sum of positive terms, so a slow mode's μ
+/// (10⁻⁹) is good to its own rounding, not to 2⁻⁶³ ‖G‖ (10⁻²¹: at t = 10⁷ a relative 2·10⁻¹⁴ in S), and the quotient
+/// is stationary: the eigenvector's error enters squared.
+void eigenvaluesFromDirichletForm(const MarkovTree& tree, const std::vector<long double>& v,
+                                  const std::vector<long double>& root, std::vector<long double>& mu,
+                                  std::stop_token stop) {
+  const std::size_t n = tree.states.size();
+  std::vector<long double> x(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    if (stop.stop_requested()) stopped();
+    const long double* u = &v[k * n];
+    long double norm = 0;
+    for (std::size_t s = 0; s < n; ++s) {
+      x[s] = u[s] / root[s];
+      norm += u[s] * u[s];
+    }
+    long double form = 0;
+    for (const MarkovTreeRate& r : tree.rates) {
+      const auto from = static_cast<std::size_t>(r.from);
+      if (r.to < 0) form += r.flux * x[from] * x[from];  // to the sea
+      else if (r.to == tree.states[from].container) {       // each barrier once
+        const long double d = x[from] - x[static_cast<std::size_t>(r.to)];
+        form += r.flux * d * d;
+      }
+    }
+    if (norm > 0) mu[k] = form / norm;
+  }
+}
+
+/// Up to kMarkovTreeDirectSteps, e_top Mᵗ by t products with the sparse M in quad (its rates cross the states' tree
+/// edges only): exact, O(t n), and where the modes' sum cancels most (S ≈ 1, Σ_k |c_k| ≫ its terms' differences).
+/// Fills out's S, state and level at those t; returns which t it computed.
+std::vector<bool> directSurvival(const MarkovTree& tree, const std::vector<std::uint64_t>& t, MarkovTreeSurvival& out,
+                                 std::stop_token stop) {
+  const std::size_t n = tree.states.size();
   std::vector<std::size_t> order(t.size());
   for (std::size_t i = 0; i < t.size(); ++i) order[i] = i;
   std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return t[a] < t[b]; });
   std::vector<bool> direct(t.size(), false);
-  {
-    std::vector<quad> state(n, 0), next(n, 0);
-    if (n > 0) state[0] = 1;
-    std::uint64_t done = 0;
-    for (std::size_t i : order) {
-      if (t[i] > kMarkovTreeDirectSteps) break;
-      for (; done < t[i]; ++done) {
-        if ((done & 63U) == 0 && stop.stop_requested()) stopped();
-        next = state;
-        for (const MarkovTreeRate& r : tree.rates) {
-          const quad moved = state[static_cast<std::size_t>(r.from)] * (static_cast<quad>(r.flux) / static_cast<quad>(r.area));
-          next[static_cast<std::size_t>(r.from)] -= moved;
-          if (r.to >= 0) next[static_cast<std::size_t>(r.to)] += moved;
-        }
-        state.swap(next);
+  std::vector<quad> state(n, 0), next(n, 0);
+  if (n > 0) state[0] = 1;
+  std::uint64_t done = 0;
+  for (std::size_t i : order) {
+    if (t[i] > kMarkovTreeDirectSteps) break;
+    for (; done < t[i]; ++done) {
+      if ((done & 63U) == 0 && stop.stop_requested()) stopped();
+      next = state;
+      for (const MarkovTreeRate& r : tree.rates) {
+        const quad moved = state[static_cast<std::size_t>(r.from)] * quadRate(r);
+        next[static_cast<std::size_t>(r.from)] -= moved;
+        if (r.to >= 0) next[static_cast<std::size_t>(r.to)] += moved;
       }
-      quad total = 0;
-      for (std::size_t s = 0; s < n; ++s) {
-        total += state[s];
-        out.state[s][i] = static_cast<long double>(state[s]);
-        out.level[static_cast<std::size_t>(tree.states[s].level)][i] += static_cast<long double>(state[s]);
-      }
-      out.S[i] = static_cast<long double>(total);
-      direct[i] = true;
+      state.swap(next);
     }
+    quad total = 0;
+    for (std::size_t s = 0; s < n; ++s) {
+      total += state[s];
+      out.state[s][i] = static_cast<long double>(state[s]);
+      out.level[static_cast<std::size_t>(tree.states[s].level)][i] += static_cast<long double>(state[s]);
+    }
+    out.S[i] = static_cast<long double>(total);
+    direct[i] = true;
   }
+  return direct;
+}
+
+/// The other t by the modes of B = U diag(μ) Uᵀ (U's columns the rows of v): e_top Mᵗ = A_top^−½ Σ_k U_top,k
+/// (1 − μ_k)ᵗ U_s,k A_s^½, state by state, O(n²) per t.
+void modalSurvival(const MarkovTree& tree, const std::vector<std::uint64_t>& t, const std::vector<long double>& v,
+                   const std::vector<long double>& mu, const std::vector<long double>& root,
+                   const std::vector<bool>& direct, MarkovTreeSurvival& out, std::stop_token stop) {
+  const std::size_t n = tree.states.size();
   std::vector<long double> part(n);
   for (std::size_t i = 0; i < t.size(); ++i) {
     if (direct[i]) continue;
@@ -516,12 +549,15 @@ MarkovTreeSurvival markovTreeSurvival(const MarkovTree& tree, const std::vector<
     }
     out.S[i] = total;
   }
+}
 
-  // Σ_{t≥0} S(t) = e_top (I − M)⁻¹ 1 = x_top of G x = 1, by elimination in quad from the leaves up: each state's
-  // container comes before it (markovTreeFromAtlas), so eliminating the last state first creates no fill-in.  O(n).
+/// Σ_{t≥0} S(t) = e_top (I − M)⁻¹ 1 = x_top of G x = 1, by elimination in quad from the leaves up: each state's
+/// container comes before it (markovTreeFromAtlas), so eliminating the last state first creates no fill-in.  O(n).
+long double meanVisit(const MarkovTree& tree) {
+  const std::size_t n = tree.states.size();
   std::vector<quad> diagonal(n, 0), rhs(n, 1), toContainer(n, 0), fromContainer(n, 0);
   for (const MarkovTreeRate& r : tree.rates) {
-    const quad rate = static_cast<quad>(r.flux) / static_cast<quad>(r.area);
+    const quad rate = quadRate(r);
     const auto from = static_cast<std::size_t>(r.from);
     diagonal[from] += rate;
     if (r.to < 0) continue;
@@ -535,7 +571,33 @@ MarkovTreeSurvival markovTreeSurvival(const MarkovTree& tree, const std::vector<
     diagonal[c] -= factor * toContainer[s];
     rhs[c] -= factor * rhs[s];
   }
-  out.meanVisit = n > 0 ? static_cast<long double>(rhs[0] / diagonal[0]) : 0.0L;
+  return n > 0 ? static_cast<long double>(rhs[0] / diagonal[0]) : 0.0L;
+}
+}  // namespace
+
+MarkovTreeSurvival markovTreeSurvival(const MarkovTree& tree, const std::vector<std::uint64_t>& t, std::stop_token stop) {
+  for (std::uint64_t v : t)
+    if (v > kMarkovTreeMaxT) throw std::invalid_argument("markov tree: t = " + std::to_string(v) + " must be at most 2^62");
+  const std::size_t n = tree.states.size();
+  if (auto e = markovTreeCostError(markovTreeCost(n, t.size()))) throw std::invalid_argument("markov tree: " + *e);
+
+  // With B = U diag(μ) Uᵀ (symmetrizedGenerator()): O(n³) once, O(n²) per t (the matrix is a tree's, but its powers
+  // are dense: issue 54 measured the binary powering of M in quad at n³ log t).
+  std::vector<long double> mu(n, 0), e(n, 0), root(n, 0);
+  for (std::size_t s = 0; s < n; ++s) root[s] = std::sqrt(tree.states[s].area);
+  std::vector<long double> v = symmetrizedGenerator(tree, root);
+  tred2(n, v, mu, e, stop);  // B is symmetric: its row-major and column-major layouts are one
+  tql2(n, v, mu, e, stop);
+  eigenvaluesFromDirichletForm(tree, v, root, mu, stop);
+
+  MarkovTreeSurvival out;
+  out.t = t;
+  out.S.assign(t.size(), 0);
+  out.state.assign(n, std::vector<long double>(t.size(), 0));
+  out.level.assign(static_cast<std::size_t>(tree.levels), std::vector<long double>(t.size(), 0));
+  const std::vector<bool> direct = directSurvival(tree, t, out, stop);
+  modalSurvival(tree, t, v, mu, root, direct, out, stop);
+  out.meanVisit = meanVisit(tree);
   return out;
 }
 

@@ -119,7 +119,10 @@ std::optional<Rational> rationalOfRotation(double rotation, double difference, s
 
 std::string toString(const Rational& r) { return std::to_string(r.p) + "/" + std::to_string(r.q); }
 
-ChainIdentification identifyChain(const ChainRequest& r, std::stop_token stop) {
+namespace {
+
+/// The request's map and bounds, checked before any measurement (the rotation measurement validates the rest).
+void checkChainRequest(const ChainRequest& r) {
   if (auto e = mapError(r.map)) throw std::invalid_argument(*e);
   if (!(r.map.K > 0 && r.map.K < 1))
     throw std::invalid_argument("K = " + shortestDecimal(r.map.K) +
@@ -128,6 +131,81 @@ ChainIdentification identifyChain(const ChainRequest& r, std::stop_token stop) {
     throw std::invalid_argument("maxPeriod = " + std::to_string(r.maxPeriod) + " must be 1 ... 100000");
   if (r.maxLevels < 0 || r.maxLevels > 16)
     throw std::invalid_argument("maxLevels = " + std::to_string(r.maxLevels) + " must be 0 ... 16");
+}
+
+/// One step of the descent (the header): names the last level's rotation as a rational, confirms the island it
+/// turns about, and measures the rotation about the next level's elliptic orbit (`measure` set to it); or says how
+/// the chain ends.
+std::optional<std::string> descendOneLevel(ChainIdentification& out, const ChainRequest& r, RotationRequest& measure,
+                                           std::stop_token stop) {
+  ChainLevel& current = out.levels.back();
+  const RotationMeasurement& m = current.rotation;
+  const std::string around = out.levels.size() == 1 ? "the centre" : "the period-" + std::to_string(current.power) + " orbit";
+  if (m.verdict == OrbitVerdict::NotComputed) {
+    out.cancelled = true;
+    return "stopped";
+  }
+  if (m.verdict != OrbitVerdict::Regular)
+    return describeEnd(m, r.iterations) + (out.levels.size() > 1 ? " about " + around : "");
+  const double delta = std::max(kAccuracyFactor * m.difference, 0x1p-50);
+  const auto maxQ = std::max<std::int64_t>(static_cast<std::int64_t>(r.maxPeriod / current.power), 1);
+  current.rational = smallestDenominatorRational(m.rotation - delta, m.rotation + delta, maxQ);
+  if (out.levels.size() > 1 && (!current.rational || current.rational->p != 0)) {
+    // The orbit turns about this level's orbit: its island is confirmed.
+    out.factors.push_back(out.levels[out.levels.size() - 2].rational->q);
+    out.period = current.power;
+  }
+  if (!current.rational) return "an invariant curve of rotation " + fixed(m.rotation, 10) + " about " + around;
+  if (current.rational->p == 0)
+    return out.levels.size() > 1 ? "the orbit does not turn about " + around + ", so it is not in its island"
+                                 : "the orbit does not turn about the centre";
+  if (static_cast<int>(out.levels.size()) > r.maxLevels)
+    return "rotation " + toString(*current.rational) + " about " + around + ", not followed deeper (maxLevels)";
+  const std::uint64_t n = out.period * static_cast<std::uint64_t>(current.rational->q);
+  const EllipticOrbitGuess guess = ellipticOrbitAround(r.map, r.start, n, r.iterations);
+  const std::optional<PeriodicOrbit>& orbit = guess.orbit;
+  if (stop.stop_requested()) {
+    out.cancelled = true;
+    return "stopped";
+  }
+  if (!orbit)
+    return "rotation " + toString(*current.rational) + " about " + around + ", but no elliptic orbit of period " +
+           std::to_string(n) + " was found around the orbit's points";
+  ChainLevel next;
+  next.power = n;
+  next.orbit = orbit->rotatedToStart(orbit->nearestIndex(guess.centroid));
+  next.centre = next.orbit->points.front();
+  next.sense = rotationSense(static_cast<long double>(r.map.K), next.centre, n);
+  measure.centre = rotationCentreAt(r.map, next.centre, next.sense);
+  measure.power = n;
+  next.rotation = measureRotation(measure, stop);
+  out.levels.push_back(next);
+  return std::nullopt;
+}
+
+/// The summary: the chain's factors and rotations, then how it ends.
+std::string chainSummary(const ChainIdentification& out) {
+  std::ostringstream s;
+  if (!out.factors.empty()) {
+    for (std::size_t i = 0; i < out.factors.size(); ++i) s << (i ? " × " : "") << out.factors[i];
+    if (out.factors.size() > 1) s << " = " << out.period;
+    s << ", rotation ";
+    for (std::size_t i = 0; i < out.factors.size(); ++i) {
+      s << (i ? ", " : "") << toString(*out.levels[i].rational) << " about ";
+      if (i == 0) s << "the centre";
+      else if (i == 1) s << "its island";
+      else s << "the period-" << out.levels[i].power << " island";
+    }
+    s << "; ";
+  }
+  s << out.ending;
+  return s.str();
+}
+
+}  // namespace
+
+ChainIdentification identifyChain(const ChainRequest& r, std::stop_token stop) {
+  checkChainRequest(r);
   const auto K = static_cast<long double>(r.map.K);
 
   ChainIdentification out;
@@ -144,82 +222,11 @@ ChainIdentification identifyChain(const ChainRequest& r, std::stop_token stop) {
   level.sense = 1;
   level.rotation = measureRotation(measure, stop);  // validates the rest
   out.levels.push_back(level);
-  std::string ending;
-  for (;;) {
-    ChainLevel& current = out.levels.back();
-    const RotationMeasurement& m = current.rotation;
-    const std::string around = out.levels.size() == 1 ? "the centre" : "the period-" + std::to_string(current.power) + " orbit";
-    if (m.verdict == OrbitVerdict::NotComputed) {
-      out.cancelled = true;
-      ending = "stopped";
-      break;
-    }
-    if (m.verdict != OrbitVerdict::Regular) {
-      ending = describeEnd(m, r.iterations) + (out.levels.size() > 1 ? " about " + around : "");
-      break;
-    }
-    const double delta = std::max(kAccuracyFactor * m.difference, 0x1p-50);
-    const auto maxQ = std::max<std::int64_t>(static_cast<std::int64_t>(r.maxPeriod / current.power), 1);
-    current.rational = smallestDenominatorRational(m.rotation - delta, m.rotation + delta, maxQ);
-    if (out.levels.size() > 1 && (!current.rational || current.rational->p != 0)) {
-      // The orbit turns about this level's orbit: its island is confirmed.
-      out.factors.push_back(out.levels[out.levels.size() - 2].rational->q);
-      out.period = current.power;
-    }
-    if (!current.rational) {
-      ending = "an invariant curve of rotation " + fixed(m.rotation, 10) + " about " + around;
-      break;
-    }
-    if (current.rational->p == 0) {
-      ending = out.levels.size() > 1 ? "the orbit does not turn about " + around + ", so it is not in its island"
-                                     : "the orbit does not turn about the centre";
-      break;
-    }
-    if (static_cast<int>(out.levels.size()) > r.maxLevels) {
-      ending = "rotation " + toString(*current.rational) + " about " + around + ", not followed deeper (maxLevels)";
-      break;
-    }
-    const std::uint64_t n = out.period * static_cast<std::uint64_t>(current.rational->q);
-    const EllipticOrbitGuess guess = ellipticOrbitAround(r.map, r.start, n, r.iterations);
-    const std::optional<PeriodicOrbit>& orbit = guess.orbit;
-    if (stop.stop_requested()) {
-      out.cancelled = true;
-      ending = "stopped";
-      break;
-    }
-    if (!orbit) {
-      ending = "rotation " + toString(*current.rational) + " about " + around + ", but no elliptic orbit of period " +
-               std::to_string(n) + " was found around the orbit's points";
-      break;
-    }
-    ChainLevel next;
-    next.power = n;
-    next.orbit = orbit->rotatedToStart(orbit->nearestIndex(guess.centroid));
-    next.centre = next.orbit->points.front();
-    next.sense = rotationSense(K, next.centre, n);
-    measure.centre = rotationCentreAt(r.map, next.centre, next.sense);
-    measure.power = n;
-    next.rotation = measureRotation(measure, stop);
-    out.levels.push_back(next);
-  }
-  out.ending = ending;
-
-  // The summary: the chain's factors and rotations, then how it ends.
-  std::ostringstream s;
-  if (!out.factors.empty()) {
-    for (std::size_t i = 0; i < out.factors.size(); ++i) s << (i ? " × " : "") << out.factors[i];
-    if (out.factors.size() > 1) s << " = " << out.period;
-    s << ", rotation ";
-    for (std::size_t i = 0; i < out.factors.size(); ++i) {
-      s << (i ? ", " : "") << toString(*out.levels[i].rational) << " about ";
-      if (i == 0) s << "the centre";
-      else if (i == 1) s << "its island";
-      else s << "the period-" << out.levels[i].power << " island";
-    }
-    s << "; ";
-  }
-  s << ending;
-  out.summary = s.str();
+  std::optional<std::string> ending;
+  do ending = descendOneLevel(out, r, measure, stop);
+  while (!ending);
+  out.ending = *ending;
+  out.summary = chainSummary(out);
   return out;
 }
 

@@ -72,68 +72,57 @@ std::string format(const char* f, double v) {
   return buffer;
 }
 
-}  // namespace
-
-TailAnalysis analyseTail(const Ensemble& e, const TailOptions& options) {
+/// The ensemble and the bootstrap's options, checked before any work.
+void checkTailRequest(const Ensemble& e, const BootstrapOptions& bo) {
   if (e.members.empty()) throw std::invalid_argument("an ensemble needs at least one run");
-  const BootstrapOptions& bo = options.bootstrap;
   if (bo.replicates < 20 || bo.replicates > 100000)
     throw std::invalid_argument("a bootstrap needs 20 to 100000 replicates, not " + std::to_string(bo.replicates));
   if (!(bo.confidence > 0 && bo.confidence < 1)) throw std::invalid_argument("a confidence must lie in (0, 1)");
+}
 
-  TailAnalysis a;
-  a.bootstrap = bo;
-  const std::vector<TrappingHistogram> subsets = pooledSubsets(e);
-  const std::vector<std::uint64_t> orbitsPerSubset = pooledOrbitsPerSubset(e);
-  const TrappingStatistics stats = computeStatistics(subsets, orbitsPerSubset, e.blocks, e.q);
-  TrappingHistogram total;
-  for (const auto& h : subsets) total.merge(h);
-  const std::uint64_t orbits = sum(orbitsPerSubset);
-  const RecordShape shape{orbits, e.blocks, e.q};
-  a.D = stats.D;
-  a.DSubsetError = stats.DError;
-  if (stats.segments == 0) return a;
-
-  // Over seeds.
-  if (e.members.size() > 1) {
-    for (const EnsembleMember& m : e.members) {
-      a.seeds.push_back(m.seed);
-      a.seedD.push_back(computeStatistics(m.subsets, m.orbitsPerSubset, e.blocks, e.q).D);
-    }
-    std::vector<double> sorted = a.seedD;
-    std::sort(sorted.begin(), sorted.end());
-    Real mean = 0;
-    for (const double d : sorted) mean += d;
-    a.seedMean = static_cast<double>(mean / static_cast<Real>(sorted.size()));
-    a.seedMedian = percentile(sorted, 0.5);
-    a.seedMin = sorted.front();
-    a.seedMax = sorted.back();
-    a.seedError = standardDeviation(sorted) / std::sqrt(static_cast<double>(sorted.size()));
+/// D over seeds: each member's D, their mean, median, range and standard error (an ensemble of several runs).
+void addSeedSpread(TailAnalysis& a, const Ensemble& e) {
+  for (const EnsembleMember& m : e.members) {
+    a.seeds.push_back(m.seed);
+    a.seedD.push_back(computeStatistics(m.subsets, m.orbitsPerSubset, e.blocks, e.q).D);
   }
+  std::vector<double> sorted = a.seedD;
+  std::sort(sorted.begin(), sorted.end());
+  Real mean = 0;
+  for (const double d : sorted) mean += d;
+  a.seedMean = static_cast<double>(mean / static_cast<Real>(sorted.size()));
+  a.seedMedian = percentile(sorted, 0.5);
+  a.seedMin = sorted.front();
+  a.seedMax = sorted.back();
+  a.seedError = standardDeviation(sorted) / std::sqrt(static_cast<double>(sorted.size()));
+}
 
-  // The longest segments' share of D.
-  const std::vector<Mass> masses = massesOf(total, orbits, e.blocks, e.q);
+/// The longest segments' share of D: the 1, 2, 3, 5 and 10 longest (a bin's segments at its mean), longest first.
+std::vector<LongestShare> longestShares(const std::vector<Mass>& masses) {
   Real DofMasses = 0;
   for (const Mass& m : masses) DofMasses += m.perSegmentD * static_cast<Real>(m.n);
-  {
-    std::vector<const Mass*> top;  // the ten longest segments, longest first (a bin's segments at its mean)
-    for (auto it = masses.rbegin(); it != masses.rend() && top.size() < 10; ++it)
-      for (std::uint64_t j = 0; j < it->n && top.size() < 10; ++j) top.push_back(&*it);
-    Real carried = 0;
-    for (std::size_t k = 1; k <= top.size(); ++k) {
-      carried += top[k - 1]->perSegmentD;
-      if (k == 1 || k == 2 || k == 3 || k == 5 || k == 10)
-        a.shares.push_back({k, static_cast<double>(std::min<Real>(1, carried / DofMasses)), top[k - 1]->s});
-    }
+  std::vector<const Mass*> top;  // the ten longest segments, longest first (a bin's segments at its mean)
+  for (auto it = masses.rbegin(); it != masses.rend() && top.size() < 10; ++it)
+    for (std::uint64_t j = 0; j < it->n && top.size() < 10; ++j) top.push_back(&*it);
+  std::vector<LongestShare> shares;
+  Real carried = 0;
+  for (std::size_t k = 1; k <= top.size(); ++k) {
+    carried += top[k - 1]->perSegmentD;
+    if (k == 1 || k == 2 || k == 3 || k == 5 || k == 10)
+      shares.push_back({k, static_cast<double>(std::min<Real>(1, carried / DofMasses)), top[k - 1]->s});
   }
+  return shares;
+}
 
-  // Segments beyond each t, and the tail's end.
+/// Segments beyond each t, the tail's end (the last t with minTailSegments beyond it), and the windows of the
+/// running exponents up to it with their fits of P and C.
+void addTailWindows(TailAnalysis& a, const TrappingStatistics& stats, const std::vector<Mass>& masses,
+                    const TailOptions& options, double lowest) {
   for (std::size_t g = 0; g < stats.P.x.size(); ++g) {
     const std::uint64_t n = segmentsBeyond(masses, stats.P.x[g]);
     a.beyond.push_back({stats.P.x[g], stats.P.value[g], n});
     if (n >= options.minTailSegments) a.tailEnd = stats.P.x[g];
   }
-  const double lowest = std::max(10.0, 2.0 * e.q);
   for (const LogWindow& window : runningExponentWindows(a.tailEnd, lowest)) {
     TailWindow w;
     w.from = window.from;
@@ -144,8 +133,11 @@ TailAnalysis analyseTail(const Ensemble& e, const TailOptions& options) {
     w.segmentsBeyondTo = segmentsBeyond(masses, w.to);
     a.windows.push_back(w);
   }
+}
 
-  // The bootstrap: D and every window's exponents in each replicate.
+/// The bootstrap over segments: D and every window's exponents in each replicate, their spreads and intervals.
+void addBootstrap(TailAnalysis& a, const TrappingHistogram& total, const RecordShape& shape,
+                  const BootstrapOptions& bo) {
   std::vector<double> Ds(bo.replicates);
   std::vector<std::vector<double>> gP(a.windows.size(), std::vector<double>(bo.replicates)), gC = gP;
   double windowsFrom = kTailUndefined, windowsTo = kTailUndefined;  // the range every window lies in
@@ -168,45 +160,78 @@ TailAnalysis analyseTail(const Ensemble& e, const TailOptions& options) {
     a.windows[w].gammaPInterval = percentileInterval(gP[w], bo.confidence);
     a.windows[w].exponentCInterval = percentileInterval(gC[w], bo.confidence);
   }
-  if (!a.windows.empty()) a.tailFit = a.windows.front();
+}
 
-  // D against the steps sampled: the union of the first k subsets (seed after seed).
-  {
-    TrappingHistogram prefix;
-    std::uint64_t prefixOrbits = 0;
-    for (std::size_t i = 0; i < subsets.size(); ++i) {
-      prefix.merge(subsets[i]);
-      prefixOrbits += orbitsPerSubset[i];
-      if (prefix.segments() == 0) continue;
-      const TrappingStatistics s = computeStatistics(prefix, {prefixOrbits, e.blocks, e.q});
-      DPoint p;
-      p.orbits = prefixOrbits;
-      p.steps = static_cast<double>(prefixOrbits) * static_cast<double>(e.blocks) * e.q;
-      p.segments = s.segments;
-      p.D = s.D;
-      if (!a.windows.empty()) p.gammaTail = fitLogSlope(s.P, a.tailFit.from, a.tailFit.to);
-      p.longestSteps = s.f.x.empty() ? 0 : s.f.x.back();
-      a.DvsSteps.push_back(p);
+/// D against the steps sampled: the union of the first k subsets (seed after seed), with the tail fit's exponent.
+std::vector<DPoint> DAgainstSteps(const TailAnalysis& a, const std::vector<TrappingHistogram>& subsets,
+                                  const std::vector<std::uint64_t>& orbitsPerSubset, const Ensemble& e) {
+  std::vector<DPoint> points;
+  TrappingHistogram prefix;
+  std::uint64_t prefixOrbits = 0;
+  for (std::size_t i = 0; i < subsets.size(); ++i) {
+    prefix.merge(subsets[i]);
+    prefixOrbits += orbitsPerSubset[i];
+    if (prefix.segments() == 0) continue;
+    const TrappingStatistics s = computeStatistics(prefix, {prefixOrbits, e.blocks, e.q});
+    DPoint p;
+    p.orbits = prefixOrbits;
+    p.steps = static_cast<double>(prefixOrbits) * static_cast<double>(e.blocks) * e.q;
+    p.segments = s.segments;
+    p.D = s.D;
+    if (!a.windows.empty()) p.gammaTail = fitLogSlope(s.P, a.tailFit.from, a.tailFit.to);
+    p.longestSteps = s.f.x.empty() ? 0 : s.f.x.back();
+    points.push_back(p);
+  }
+  return points;
+}
+
+/// The forward estimate (the header): steps for N segments beyond each target under each literature exponent, at
+/// the rate of segments beyond the tail's end (none without a tail's end).
+std::vector<TailForecast> forecasts(const TailAnalysis& a, const TailOptions& options) {
+  std::vector<TailForecast> out;
+  if (!std::isfinite(a.tailEnd)) return out;
+  std::uint64_t beyondEnd = 0;
+  for (const SegmentsBeyond& b : a.beyond)
+    if (b.t == a.tailEnd) beyondEnd = b.segments;
+  const double rate = beyondEnd > 0 ? static_cast<double>(beyondEnd) / a.stepsDone : 0;
+  for (const double target : {1e8, 1e9, 1e10})
+    for (const ReferenceExponent& r : referenceExponents()) {
+      TailForecast f;
+      f.target = target;
+      f.gamma = r.gamma;
+      f.segments = options.forecastSegments;
+      if (rate > 0 && target > a.tailEnd) f.steps = f.segments / rate * std::pow(target / a.tailEnd, r.gamma);
+      out.push_back(f);
     }
-  }
+  return out;
+}
 
-  // The forward estimate (the header): steps for N segments beyond each target under each literature exponent.
+}  // namespace
+
+TailAnalysis analyseTail(const Ensemble& e, const TailOptions& options) {
+  const BootstrapOptions& bo = options.bootstrap;
+  checkTailRequest(e, bo);
+  TailAnalysis a;
+  a.bootstrap = bo;
+  const std::vector<TrappingHistogram> subsets = pooledSubsets(e);
+  const std::vector<std::uint64_t> orbitsPerSubset = pooledOrbitsPerSubset(e);
+  const TrappingStatistics stats = computeStatistics(subsets, orbitsPerSubset, e.blocks, e.q);
+  TrappingHistogram total;
+  for (const auto& h : subsets) total.merge(h);
+  const std::uint64_t orbits = sum(orbitsPerSubset);
+  a.D = stats.D;
+  a.DSubsetError = stats.DError;
+  if (stats.segments == 0) return a;
+
+  if (e.members.size() > 1) addSeedSpread(a, e);
+  const std::vector<Mass> masses = massesOf(total, orbits, e.blocks, e.q);
+  a.shares = longestShares(masses);
+  addTailWindows(a, stats, masses, options, std::max(10.0, 2.0 * e.q));
+  addBootstrap(a, total, RecordShape{orbits, e.blocks, e.q}, bo);
+  if (!a.windows.empty()) a.tailFit = a.windows.front();
+  a.DvsSteps = DAgainstSteps(a, subsets, orbitsPerSubset, e);
   a.stepsDone = static_cast<double>(orbits) * static_cast<double>(e.blocks) * e.q;
-  if (std::isfinite(a.tailEnd)) {
-    std::uint64_t beyondEnd = 0;
-    for (const SegmentsBeyond& b : a.beyond)
-      if (b.t == a.tailEnd) beyondEnd = b.segments;
-    const double rate = beyondEnd > 0 ? static_cast<double>(beyondEnd) / a.stepsDone : 0;
-    for (const double target : {1e8, 1e9, 1e10})
-      for (const ReferenceExponent& r : referenceExponents()) {
-        TailForecast f;
-        f.target = target;
-        f.gamma = r.gamma;
-        f.segments = options.forecastSegments;
-        if (rate > 0 && target > a.tailEnd) f.steps = f.segments / rate * std::pow(target / a.tailEnd, r.gamma);
-        a.forecast.push_back(f);
-      }
-  }
+  a.forecast = forecasts(a, options);
 
   // The verdict.
   a.shareDominates = !a.shares.empty() && a.shares.front().share > options.dominanceShare;

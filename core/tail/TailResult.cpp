@@ -8,67 +8,103 @@
 
 namespace archipelago {
 
-TailResult tailResult(const TailState& s) {
-  TailResult out;
-  out.steps = static_cast<double>(s.steps);
-  out.finished = s.finished();
+namespace {
+
+/// Level k pooled over the replicas: each replica's P the running product of its survival fractions (`running`,
+/// carried from level to level), P their mean, its errors (TailResult.hpp).  `binomialOfLevel` receives the level's
+/// (1 − p)/(n p) and `relative` their sum over the levels so far: the relative variance of P if every walker were
+/// independent (the binomial floor).
+TailLevelResult pooledLevel(const TailState& s, std::size_t k, double stepsNow, std::vector<double>& running,
+                            std::vector<double>& binomialOfLevel, double& relative) {
   const TailRequest& r = s.request;
   const std::size_t R = s.replicas.size();
-  std::size_t reached = SIZE_MAX;
-  for (const TailReplica& x : s.replicas) reached = std::min(reached, x.levels.size());
-  if (R == 0 || reached == SIZE_MAX) return out;
-  std::vector<double> running(R, 0);
-  // Σ_j (1 − p_j)/(n_j p_j) over the levels so far, pooled over the replicas: the relative variance of P if every
-  // walker were independent (the binomial floor, TailResult.hpp); binomial[k] after level k, and per level.
-  std::vector<double> binomial, binomialOfLevel;
-  double relative = 0;
-  for (std::size_t k = 0; k < reached; ++k) {
-    TailLevelResult L;
-    L.blocks = s.levels[k];
-    L.t = static_cast<double>(s.levels[k]) * r.run.q;
-    L.steps = k < s.stepsAtLevel.size() ? static_cast<double>(s.stepsAtLevel[k]) : out.steps;
-    L.fewestAncestors = UINT64_MAX;
-    std::uint64_t proposals = 0, accepted = 0;
-    for (std::size_t rep = 0; rep < R; ++rep) {
-      const TailLevelCount& c = s.replicas[rep].levels[k];
-      const double fraction =
-          c.population > 0 ? static_cast<double>(c.survivors) / static_cast<double>(c.population) : 0.0;
-      running[rep] = k == 0 ? fraction : running[rep] * fraction;
-      L.replicaP.push_back(running[rep]);
-      L.population += c.population;
-      L.survivors += c.survivors;
-      L.ancestors += c.ancestors;
-      L.fewestAncestors = std::min(L.fewestAncestors, c.ancestors);
-      proposals += c.proposals;
-      accepted += c.accepted;
-    }
-    double mean = 0;
-    for (double p : L.replicaP) mean += p;
-    mean /= static_cast<double>(R);
-    L.P = mean;
-    const double pooled = L.population > 0 ? static_cast<double>(L.survivors) / static_cast<double>(L.population) : 0;
-    binomialOfLevel.push_back(pooled > 0 ? (1 - pooled) / (static_cast<double>(L.population) * pooled) : 0);
-    relative += binomialOfLevel.back();
-    binomial.push_back(relative);
-    L.PErrorBinomial = mean * std::sqrt(relative);
-    if (R > 1) {
-      double ss = 0;
-      for (double p : L.replicaP) ss += (p - mean) * (p - mean);
-      L.PErrorReplicas = std::sqrt(ss / static_cast<double>(R - 1) / static_cast<double>(R));
-    }
-    L.PError = R > 1 ? std::max(L.PErrorReplicas, L.PErrorBinomial) : L.PErrorBinomial;
-    L.reliable = R > 1 && L.ancestors >= r.minAncestors;
-    if (proposals > 0) L.acceptance = static_cast<double>(accepted) / static_cast<double>(proposals);
-    out.levels.push_back(std::move(L));
+  TailLevelResult L;
+  L.blocks = s.levels[k];
+  L.t = static_cast<double>(s.levels[k]) * r.run.q;
+  L.steps = k < s.stepsAtLevel.size() ? static_cast<double>(s.stepsAtLevel[k]) : stepsNow;
+  L.fewestAncestors = UINT64_MAX;
+  std::uint64_t proposals = 0, accepted = 0;
+  for (std::size_t rep = 0; rep < R; ++rep) {
+    const TailLevelCount& c = s.replicas[rep].levels[k];
+    const double fraction =
+        c.population > 0 ? static_cast<double>(c.survivors) / static_cast<double>(c.population) : 0.0;
+    running[rep] = k == 0 ? fraction : running[rep] * fraction;
+    L.replicaP.push_back(running[rep]);
+    L.population += c.population;
+    L.survivors += c.survivors;
+    L.ancestors += c.ancestors;
+    L.fewestAncestors = std::min(L.fewestAncestors, c.ancestors);
+    proposals += c.proposals;
+    accepted += c.accepted;
   }
-  // The running exponent γ(t) (TailResult.hpp): over the windows of the statistics' own (runningExponentWindows),
-  // fitLogSlope() of P at the reliable levels.
+  double mean = 0;
+  for (double p : L.replicaP) mean += p;
+  mean /= static_cast<double>(R);
+  L.P = mean;
+  const double pooled = L.population > 0 ? static_cast<double>(L.survivors) / static_cast<double>(L.population) : 0;
+  binomialOfLevel.push_back(pooled > 0 ? (1 - pooled) / (static_cast<double>(L.population) * pooled) : 0);
+  relative += binomialOfLevel.back();
+  L.PErrorBinomial = mean * std::sqrt(relative);
+  if (R > 1) {
+    double ss = 0;
+    for (double p : L.replicaP) ss += (p - mean) * (p - mean);
+    L.PErrorReplicas = std::sqrt(ss / static_cast<double>(R - 1) / static_cast<double>(R));
+  }
+  L.PError = R > 1 ? std::max(L.PErrorReplicas, L.PErrorBinomial) : L.PErrorBinomial;
+  L.reliable = R > 1 && L.ancestors >= r.minAncestors;
+  if (proposals > 0) L.acceptance = static_cast<double>(accepted) / static_cast<double>(proposals);
+  return L;
+}
+
+/// The fit over window w is linear in ln P at the levels: γ = −Σ_j w_j ln P_j, w_j the fitted slope of ln y = [point j].
+std::vector<double> fitWeights(const Series& P, const LogWindow& w) {
+  std::vector<double> weight(P.x.size());
+  for (std::size_t j = 0; j < P.x.size(); ++j) {
+    Series unit = P;
+    for (std::size_t i = 0; i < unit.value.size(); ++i) unit.value[i] = i == j ? std::exp(1.0) : 1.0;
+    weight[j] = logLogSlope(unit, w.from, w.to).slope;
+  }
+  return weight;
+}
+
+/// The error of γ = −Σ_j w_j ln P_j over R > 1 replicas: the replicas' covariance of ln P_i and ln P_j, to first order
+/// C_ij/(P_i P_j); and the binomial floor: ln P_j is the sum of ln p over the levels up to j, independent binomial
+/// terms of variance b_k, so var = Σ_k b_k (Σ_{j: level(j) ≥ k} w_j)².  levelOf[j]: the level of point j.
+double exponentError(const TailResult& out, std::size_t R, const std::vector<std::size_t>& levelOf,
+                     const std::vector<double>& weight, const std::vector<double>& binomialOfLevel) {
+  const std::size_t points = levelOf.size();
+  const double norm = static_cast<double>(R) * static_cast<double>(R - 1);
+  double var = 0;
+  for (std::size_t i = 0; i < points; ++i)
+    for (std::size_t j = 0; j < points; ++j) {
+      if (weight[i] == 0 || weight[j] == 0) continue;
+      const TailLevelResult& a = out.levels[levelOf[i]];
+      const TailLevelResult& b = out.levels[levelOf[j]];
+      double c = 0;
+      for (std::size_t rep = 0; rep < R; ++rep) c += (a.replicaP[rep] - a.P) * (b.replicaP[rep] - b.P);
+      var += weight[i] * weight[j] * c / norm / (a.P * b.P);
+    }
+  double floor = 0;
+  for (std::size_t k = 0; k < binomialOfLevel.size(); ++k) {
+    double later = 0;
+    for (std::size_t j = 0; j < points; ++j)
+      if (levelOf[j] >= k) later += weight[j];
+    floor += binomialOfLevel[k] * later * later;
+  }
+  return std::sqrt(std::max(var, floor));
+}
+
+/// The running exponent γ(t) (TailResult.hpp): over the windows of the statistics' own (runningExponentWindows),
+/// fitLogSlope() of P at the reliable levels.
+std::vector<TailExponent> runningExponents(const TailResult& out, std::size_t R, std::uint32_t q,
+                                           const std::vector<double>& binomialOfLevel) {
+  std::vector<TailExponent> exponents;
   const Series P = reliableSurvival(out);
-  if (P.x.empty()) return out;
+  if (P.x.empty()) return exponents;
   std::vector<std::size_t> levelOf;  // the level of each point of P
   for (std::size_t k = 0; k < out.levels.size(); ++k)
     if (out.levels[k].reliable) levelOf.push_back(k);
-  const double lowest = std::max({P.x.front(), 10.0, 2.0 * r.run.q});
+  const double lowest = std::max({P.x.front(), 10.0, 2.0 * q});
   for (const LogWindow& w : runningExponentWindows(P.x.back(), lowest)) {
     TailExponent e;
     e.tFrom = w.from;
@@ -76,39 +112,29 @@ TailResult tailResult(const TailState& s) {
     e.t = std::sqrt(w.from * w.to);
     e.gamma = fitLogSlope(P, w.from, w.to, &e.points);
     if (!std::isfinite(e.gamma)) continue;
-    // The fit is linear in ln P at the levels: γ = −Σ_j w_j ln P_j, w_j the fitted slope of ln y = [point j].
-    std::vector<double> weight(P.x.size());
-    for (std::size_t j = 0; j < P.x.size(); ++j) {
-      Series unit = P;
-      for (std::size_t i = 0; i < unit.value.size(); ++i) unit.value[i] = i == j ? std::exp(1.0) : 1.0;
-      weight[j] = logLogSlope(unit, w.from, w.to).slope;
-    }
-    if (R > 1) {
-      // The replicas' covariance of ln P_i and ln P_j, to first order C_ij/(P_i P_j); and the binomial floor:
-      // ln P_j is the sum of ln p over the levels up to j, independent binomial terms of variance b_k, so
-      // var = Σ_k b_k (Σ_{j: level(j) ≥ k} w_j)².
-      const double norm = static_cast<double>(R) * static_cast<double>(R - 1);
-      double var = 0;
-      for (std::size_t i = 0; i < P.x.size(); ++i)
-        for (std::size_t j = 0; j < P.x.size(); ++j) {
-          if (weight[i] == 0 || weight[j] == 0) continue;
-          const TailLevelResult& a = out.levels[levelOf[i]];
-          const TailLevelResult& b = out.levels[levelOf[j]];
-          double c = 0;
-          for (std::size_t rep = 0; rep < R; ++rep) c += (a.replicaP[rep] - a.P) * (b.replicaP[rep] - b.P);
-          var += weight[i] * weight[j] * c / norm / (a.P * b.P);
-        }
-      double floor = 0;
-      for (std::size_t k = 0; k < binomialOfLevel.size(); ++k) {
-        double later = 0;
-        for (std::size_t j = 0; j < P.x.size(); ++j)
-          if (levelOf[j] >= k) later += weight[j];
-        floor += binomialOfLevel[k] * later * later;
-      }
-      e.gammaError = std::sqrt(std::max(var, floor));
-    }
-    out.exponents.push_back(e);
+    const std::vector<double> weight = fitWeights(P, w);
+    if (R > 1) e.gammaError = exponentError(out, R, levelOf, weight, binomialOfLevel);
+    exponents.push_back(e);
   }
+  return exponents;
+}
+
+}  // namespace
+
+TailResult tailResult(const TailState& s) {
+  TailResult out;
+  out.steps = static_cast<double>(s.steps);
+  out.finished = s.finished();
+  const std::size_t R = s.replicas.size();
+  std::size_t reached = SIZE_MAX;
+  for (const TailReplica& x : s.replicas) reached = std::min(reached, x.levels.size());
+  if (R == 0 || reached == SIZE_MAX) return out;
+  std::vector<double> running(R, 0);
+  std::vector<double> binomialOfLevel;
+  double relative = 0;
+  for (std::size_t k = 0; k < reached; ++k)
+    out.levels.push_back(pooledLevel(s, k, out.steps, running, binomialOfLevel, relative));
+  out.exponents = runningExponents(out, R, s.request.run.q, binomialOfLevel);
   return out;
 }
 
