@@ -49,21 +49,35 @@ bool hasTheory(const std::vector<TheoryCurve>& theory, Statistic s) {
 
 }  // namespace
 
-std::string csvMetadataHeader(const TrappingState& state) {
-  const TrappingParameters& p = state.params;
+Provenance runProvenance(const TrappingState& state) {
   const MapCoefficients& c = state.coefficients;
-  std::string out;
-  line(out, "program", programDescription());
+  Provenance p;
+  p.add("program", programDescription());
   // The parameters as the run-spec codec writes them (runspec/RunSpec.hpp): same keys, same digits.
-  const nlohmann::json parameters = spec::parametersJson(p);
-  for (const ParameterRule& rule : parameterRules()) line(out, rule.key, parameters.at(std::string(rule.key)).dump());
-  line(out, "blocks_done", number(state.blocksDone));
-  line(out, "orbits", number(state.orbitBegin) + " to " + number(state.orbitEnd) + " (exclusive)");
-  line(out, "A", number(std::int64_t{c.A}));
-  line(out, "B", number(std::int64_t{c.B}));
-  line(out, "C", number(std::int64_t{c.C}));
-  line(out, "m", std::to_string(c.m));
-  line(out, "kernel", state.kernel.empty() ? std::string("unknown") : state.kernel);
+  const nlohmann::json parameters = spec::parametersJson(state.params);
+  for (const ParameterRule& rule : parameterRules())
+    p.add(std::string(rule.key), parameters.at(std::string(rule.key)).dump());
+  p.add("blocks_done", number(state.blocksDone));
+  p.add("orbits", number(state.orbitBegin) + " to " + number(state.orbitEnd) + " (exclusive)");
+  p.add("A", number(std::int64_t{c.A}));
+  p.add("B", number(std::int64_t{c.B}));
+  p.add("C", number(std::int64_t{c.C}));
+  p.add("m", std::to_string(c.m));
+  p.add("kernel", state.kernel.empty() ? std::string("unknown") : state.kernel);
+  return p;
+}
+
+std::string runParametersLine(const TrappingState& state) {
+  const nlohmann::json parameters = spec::parametersJson(state.params);
+  std::string out;
+  for (const char* key : {"K", "xmin", "xmax", "Xr", "q", "T", "M", "seed"})
+    out += (out.empty() ? "" : ", ") + std::string(key) + " = " + parameters.at(key).dump();
+  return out + "; " + number(state.blocksDone) + " of " + number(state.params.T) + " blocks";
+}
+
+std::string csvMetadataHeader(const TrappingState& state) {
+  std::string out;
+  for (const auto& [key, value] : runProvenance(state).fields) line(out, key, value);
   return out;
 }
 

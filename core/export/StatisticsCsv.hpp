@@ -25,6 +25,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/provenance/Provenance.hpp"
 #include "core/stats/RunSummary.hpp"
 #include "core/stats/StatisticsTable.hpp"
 #include "core/stats/TrappingStatistics.hpp"
@@ -33,7 +34,16 @@
 
 namespace archipelago {
 
-/// The comment lines ("# name: value\n") that open every CSV file of a run: program and version, the
+/// What a run's outputs record of it, in order (one definition: the CSV files' comment lines and the statistics
+/// plots' PNG text chunks, issue 54 item 6): program, each parameter of the run spec (K, xmin, xmax, Xr, q, T, M, seed,
+/// subsets, longestKept) with the codec's digits, blocks_done, orbits, the map coefficients A, B, C, m, the kernel.
+[[nodiscard]] Provenance runProvenance(const TrappingState& state);
+
+/// One line of the run's parameters for a picture of its statistics: "K = 0.1, xmin = -0.8, xmax = 0.5, Xr = 0.02,
+/// q = 16, T = 62500, M = 64, seed = 1; 62500 of 62500 blocks".
+[[nodiscard]] std::string runParametersLine(const TrappingState& state);
+
+/// The comment lines ("# name: value\n") that open every CSV file of a run (runProvenance()'s fields): program and version, the
 /// parameters (K, xmin, xmax, Xr, q, T, blocks done, M, orbit range, seed, subsets), the integer map
 /// coefficients (A, B, C, m) that define the map exactly, and the kernel that computed the state last.
 [[nodiscard]] std::string csvMetadataHeader(const TrappingState& state);

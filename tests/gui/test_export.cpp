@@ -62,6 +62,17 @@ class TestExport : public QObject {
       QImage png;
       QVERIFY2(png.load(base + QStringLiteral(".png"), "PNG"), qPrintable(base));
       QVERIFY(png.width() > 500 && png.height() > 300);
+      // Issue 54, item 6: the run shown is in the PNG's text, each parameter as the CSV files' header gives it.
+      QFile header(QDir(folder).filePath(QStringLiteral("summary.csv")));
+      QVERIFY(header.open(QIODevice::ReadOnly | QIODevice::Text));
+      QHash<QString, QString> recorded;
+      for (const QString& line : QString::fromUtf8(header.readAll()).split(QLatin1Char('\n')))
+        if (line.startsWith(QStringLiteral("# ")) && line.contains(QStringLiteral(": ")))
+          recorded.insert(line.mid(2, line.indexOf(QStringLiteral(": ")) - 2), line.mid(line.indexOf(QStringLiteral(": ")) + 2));
+      for (const char* key : {"K", "xmin", "xmax", "Xr", "q", "T", "M", "seed", "blocks_done"})
+        QVERIFY2(!recorded.value(QLatin1String(key)).isEmpty() && png.text(QLatin1String(key)) == recorded.value(QLatin1String(key)),
+                 qPrintable(base + QStringLiteral(": ") + QLatin1String(key) + QStringLiteral(" = ") +
+                            png.text(QLatin1String(key))));
       // Not blank: the data curve's colour is somewhere in the image.
       bool hasCurveColour = false;
       for (int y = 0; y < png.height() && !hasCurveColour; y += 1)

@@ -630,7 +630,8 @@ QString StatisticsPlot::plainTitle() const {
   return plainText(fromTable(info.symbolRich)) + QStringLiteral(" — ") + fromTable(info.description);
 }
 
-bool StatisticsPlot::exportImage(const QString& path, QString* error) {
+bool StatisticsPlot::exportImage(const QString& path, QString* error, const Provenance& provenance,
+                                 const QString& footnote) {
   const QString format = QFileInfo(path).suffix().toLower();
   if (format != QLatin1String("png") && format != QLatin1String("svg") && format != QLatin1String("pdf")) {
     if (error) *error = tr("unknown image format \"%1\" (use .png, .svg or .pdf)").arg(format);
@@ -648,6 +649,21 @@ bool StatisticsPlot::exportImage(const QString& path, QString* error) {
   const double mmToInch = 1.0 / 25.4;
   const QRectF rect(0, 0, sizeMm.width() * mmToInch * dpi, sizeMm.height() * mmToInch * dpi);
   const QString title = plainTitle();
+  // The plot above a strip holding the footnote (the run's parameters), when there is one.
+  const auto render = [&](QPainter& painter) {
+    if (footnote.isEmpty()) {
+      renderer.render(this, &painter, rect);
+      return;
+    }
+    QFont font = painter.font();
+    font.setPixelSize(qRound(rect.height() / 45));
+    const qreal strip = 1.8 * font.pixelSize();
+    renderer.render(this, &painter, rect.adjusted(0, 0, 0, -strip));
+    painter.setFont(font);
+    painter.setPen(Qt::black);
+    painter.drawText(QRectF(rect.left(), rect.bottom() - strip, rect.width(), strip),
+                     Qt::AlignHCenter | Qt::AlignVCenter | Qt::TextSingleLine, footnote);
+  };
   if (format == QLatin1String("png")) {
     QImage image(rect.size().toSize(), QImage::Format_ARGB32);
     image.setDotsPerMeterX(qRound(dpi / 0.0254));
@@ -655,9 +671,10 @@ bool StatisticsPlot::exportImage(const QString& path, QString* error) {
     image.fill(Qt::white);
     image.setText(QStringLiteral("Title"), title);
     image.setText(QStringLiteral("Software"), QStringLiteral("Archipelago"));
+    for (const auto& [key, value] : provenance.fields) image.setText(QString::fromStdString(key), QString::fromStdString(value));
     {
       QPainter painter(&image);
-      renderer.render(this, &painter, rect);
+      render(painter);
     }
     return writePngFile(image, path, error);
   }
@@ -674,7 +691,7 @@ bool StatisticsPlot::exportImage(const QString& path, QString* error) {
     generator.setSize(rect.size().toSize());
     generator.setViewBox(rect);
     QPainter painter(&generator);
-    renderer.render(this, &painter, rect);
+    render(painter);
     ok = painter.end() && isCompleteSvg(bytes);
   } else {
     {
@@ -685,7 +702,7 @@ bool StatisticsPlot::exportImage(const QString& path, QString* error) {
       writer.setPageMargins(QMarginsF(0, 0, 0, 0));
       writer.setResolution(dpi);
       QPainter painter(&writer);
-      renderer.render(this, &painter, rect);
+      render(painter);
       ok = painter.end();
     }  // the writer finishes the document when it is destroyed
     ok = ok && isCompletePdf(bytes);

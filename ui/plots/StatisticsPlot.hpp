@@ -23,6 +23,7 @@
 #include <optional>
 #include <vector>
 
+#include "core/provenance/Provenance.hpp"
 #include "core/stats/StatisticsTable.hpp"
 #include "core/stats/TrappingStatistics.hpp"
 #include "core/theory/TheoryCurves.hpp"
@@ -98,9 +99,12 @@ class StatisticsPlot : public QwtPlot {
   [[nodiscard]] QString plainTitle() const;
 
   /// Writes the plot as PNG, SVG or PDF (chosen by the suffix) with QwtPlotRenderer; the document's title
-  /// (SVG <title>, PDF and PNG metadata) is plainTitle().  (Its numbers are written
-  /// by core's CSV writer: see ExportActions.hpp.)
-  bool exportImage(const QString& path, QString* error = nullptr);
+  /// (SVG <title>, PDF and PNG metadata) is plainTitle().  `provenance` (core's runProvenance() of the run shown)
+  /// goes into the PNG's text chunks, and `footnote` (its parameters in one line, runParametersLine()) is drawn
+  /// under the plot in every format (issue 54, item 6: the plots' PNGs carried no K, q, Xr, T or M).  (Its numbers
+  /// are written by core's CSV writer: see ExportActions.hpp.)
+  bool exportImage(const QString& path, QString* error = nullptr, const Provenance& provenance = {},
+                   const QString& footnote = {});
 
  protected:
   void contextMenuEvent(QContextMenuEvent* event) override;

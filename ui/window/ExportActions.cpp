@@ -27,7 +27,11 @@ ExportResult exportPlot(StatisticsPlot& plot, const RunSnapshotPtr& snapshot, co
   const bool csv = QFileInfo(path).suffix().compare(QLatin1String("csv"), Qt::CaseInsensitive) == 0;
   if (!csv) {
     QString error;
-    if (plot.exportImage(path, &error)) result.written << path;
+    // The run shown, recorded in the picture: its provenance in the PNG's text, its parameters drawn under the plot.
+    const bool run = snapshot != nullptr;
+    if (plot.exportImage(path, &error, run ? runProvenance(snapshot->state) : Provenance{},
+                         run ? QString::fromStdString(runParametersLine(snapshot->state)) : QString()))
+      result.written << path;
     else result.error = error;
     return result;
   }
