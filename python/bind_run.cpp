@@ -300,7 +300,7 @@ void bindRun(py::module_& m) {
   m.def("load", [](const py::object& path, bool allowModified) {
           Run r;
           const std::string file = pathArgument(path, "path");
-          try { r.state = loadRunFile(file, {allowModified}); }
+          try { r.state = loadRunFile(file, {allowModified, "allow_modified=True"}); }
           catch (const std::exception& e) { raiseOSError(e.what()); }
           return r; },
         py::arg("path"), py::arg("allow_modified") = false,

@@ -167,6 +167,25 @@ void printTail(const TailAnalysis& a) {
 
 void printVerdict(const TailAnalysis& a) { std::printf("verdict     %s\n", tailVerdictText(a).c_str()); }
 
+/// --csv: the same files, byte for byte, as the GUI's "Export all" (export/StatisticsCsv.hpp) for one run; an
+/// ensemble's carry a note naming its seeds.  --tail-csv: the tail's files (export/TailCsv.hpp), in a folder of their
+/// own so that --csv stays the GUI's set.
+void writeStatsCsv(const StatsOptions& o, const TrappingState& state, const TrappingStatistics& s,
+                   const TailAnalysis& tail, const RunSummary& summary, const std::optional<StochasticAreaValue>& b2) {
+  if (!o.csvDir.empty())
+    writeCsvFiles(o.csvDir, withNote(statisticsCsvFiles(state, s, theoryCurves(state.params, s), summary), state,
+                                     ensembleNote(tail)));
+  if (!o.csvDir.empty() && b2) {
+    for (const auto& [name, text] : {std::pair{boxInvariantCsvFileName, boxInvariantCsv(state, s, *b2, summary.DError)},
+                                     std::pair{boxInvariantFtCsvFileName, boxInvariantFtCsv(state, s, *b2)}}) {
+      const std::filesystem::path path = std::filesystem::path(o.csvDir) / name;
+      io::writeFileAtomically(path, text);
+      std::printf("wrote       %s\n", path.string().c_str());
+    }
+  }
+  if (!o.tailCsvDir.empty()) writeCsvFiles(o.tailCsvDir, tailCsvFiles(state, tail, s.P));
+}
+
 int statsCommand(const StatsOptions& o) {
   std::vector<io::CommandFile> files{{"--short", o.shortRun, io::FileUse::Input}};
   for (const std::string& file : o.runFiles) files.push_back({"run", file, io::FileUse::Input});
@@ -174,7 +193,7 @@ int statsCommand(const StatsOptions& o) {
   if (!o.csvDir.empty()) checkCsvFolder(o.csvDir);
   if (!o.tailCsvDir.empty()) checkCsvFolder(o.tailCsvDir);
   std::vector<TrappingState> states;
-  for (const std::string& file : o.runFiles) states.push_back(loadRunFile(file, {.allowModified = o.allowModified}));
+  for (const std::string& file : o.runFiles) states.push_back(loadRunFile(file, {.allowModified = o.allowModified, .allowModifiedName = "--allow-modified"}));
   std::optional<StochasticAreaValue> b2;
   if (o.b2Given) b2 = checkedStochasticArea(states.front().params.map, o.b2);
   if (o.allowModified) std::fprintf(stderr, "warning: --allow-modified: a file edited after it was written is read\n");
@@ -184,7 +203,7 @@ int statsCommand(const StatsOptions& o) {
   std::optional<TrappingState> companion;
   if (!o.shortRun.empty()) {
     if (states.size() > 1) throw std::invalid_argument("--short splices one run with its companion, not an ensemble");
-    companion = loadRunFile(o.shortRun, {.allowModified = o.allowModified});
+    companion = loadRunFile(o.shortRun, {.allowModified = o.allowModified, .allowModifiedName = "--allow-modified"});
   }
   const TrappingStatistics s = companion ? splicedStatisticsOf(state, *companion) : ensembleStatistics(ensemble);
   TailOptions tailOptions;
@@ -249,21 +268,8 @@ int statsCommand(const StatsOptions& o) {
     if (states.size() > 1) std::printf(", %llu", static_cast<unsigned long long>(longest[i].second));
     std::printf("\n");
   }
-  // --csv: the same files, byte for byte, as the GUI's "Export all" (export/StatisticsCsv.hpp) for one run; an
-  // ensemble's carry a note naming its seeds.  --tail-csv: the tail's files (export/TailCsv.hpp), in a folder
-  // of their own so that --csv stays the GUI's set.
   io::OutputBatch outputs;  // every CSV or none (issue 36, class 5)
-  if (!o.csvDir.empty())
-    writeCsvFiles(o.csvDir, withNote(statisticsCsvFiles(state, s, theoryCurves(p, s), summary), state, ensembleNote(tail)));
-  if (!o.csvDir.empty() && b2) {
-    for (const auto& [name, text] : {std::pair{boxInvariantCsvFileName, boxInvariantCsv(state, s, *b2, summary.DError)},
-                                     std::pair{boxInvariantFtCsvFileName, boxInvariantFtCsv(state, s, *b2)}}) {
-      const std::filesystem::path path = std::filesystem::path(o.csvDir) / name;
-      io::writeFileAtomically(path, text);
-      std::printf("wrote       %s\n", path.string().c_str());
-    }
-  }
-  if (!o.tailCsvDir.empty()) writeCsvFiles(o.tailCsvDir, tailCsvFiles(state, tail, s.P));
+  writeStatsCsv(o, state, s, tail, summary, b2);
   outputs.commit();
   return 0;
 }

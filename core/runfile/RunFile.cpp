@@ -91,12 +91,17 @@ TrappingHistogram histogram(const json& j) {
   return h;
 }
 
+/// "; <name> reads it anyway<how>" with the front end's name of allowModified, or nothing when it has none.
+std::string readAnyway(const RunFileReadOptions& options, const char* how) {
+  return options.allowModifiedName.empty() ? std::string() : "; " + options.allowModifiedName + " reads it anyway" + how;
+}
+
 }  // namespace
 
 std::string runFileText(const TrappingState& s) {
   if (s.unverified)
     throw std::runtime_error("this run was read from a file whose checksum did not match (or that had none, format "
-                             "version 1) with --allow-modified: it cannot be written as a verified run file");
+                             "version 1), for inspection: it cannot be written as a verified run file");
   const TrappingParameters& p = s.params;
   json j;
   j["format"] = kRunFileFormatName;
@@ -157,9 +162,9 @@ TrappingState runFileFromJson(nlohmann::json j, const RunFileReadOptions& option
   if (version == 1) {
     // Format 1 had no checksum: deleting the checksum and declaring version 1 must not bypass it (issue #23).
     if (!options.allowModified)
-      throw std::runtime_error("run file format version 1 has no checksum, so edits cannot be detected;"
-                               " --allow-modified reads it anyway (for inspection only: it cannot be resumed, merged"
-                               " or saved as a verified file)");
+      throw std::runtime_error("run file format version 1 has no checksum, so edits cannot be detected" +
+                               readAnyway(options, " (for inspection only: it cannot be resumed, merged or saved as a "
+                                                   "verified file)"));
   } else {
     const json& sum = field(j, "checksum");
     if (!sum.is_string()) corrupt("field 'checksum' must be a string");
@@ -167,8 +172,8 @@ TrappingState runFileFromJson(nlohmann::json j, const RunFileReadOptions& option
     j.erase("checksum");
     verified = stored == io::jsonChecksum(j);
     if (!verified && !options.allowModified)
-      throw std::runtime_error("run file was modified after it was written (its checksum does not match its content);"
-                               " --allow-modified reads it anyway, still checking its consistency");
+      throw std::runtime_error("run file was modified after it was written (its checksum does not match its content)" +
+                               readAnyway(options, ", still checking its consistency"));
   }
   const json& jp = field(j, "parameters");
   TrappingParameters p;

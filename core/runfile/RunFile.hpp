@@ -31,6 +31,10 @@ struct RunFileReadOptions {
   /// TrappingState::unverified: it can be analysed but never resumed into, merged into or saved as a
   /// checksummed run file.  Without it such files are refused.
   bool allowModified = false;
+  /// How the front end names allowModified ("--allow-modified", Python's "allow_modified=True"), said in the refusal
+  /// of an edited file; empty where the front end has no such setting (the GUI, a resume): the refusal then says
+  /// nothing of reading it anyway (issue 51: core named a flag of the CLI to every front end).
+  std::string allowModifiedName;
 };
 
 /// Parses run-file text and validates it whole: structure, parameters, the checksum (format version 2), and

@@ -1,5 +1,6 @@
 """Issue 35: for a CLI command and its Python function, the same bad value gives the same message — core's, from
 the request's validation and the one table of limits (core/limits), never a second copy in a front end."""
+import json
 import subprocess
 
 import pytest
@@ -126,3 +127,28 @@ def test_box_cutting_the_island_warns_with_cores_words(cli, tmp_path):
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # any warning fails
         ap.start(K=0.1, T=100, M=4, subsets=4)
+
+
+def test_each_front_end_names_its_own_setting(cli, tmp_path):
+    # Issue 51: core names a setting by its role and each front end by its own name.  The same bad clone rule gives
+    # the CLI's ERROR line with its flag and Python's ValueError with its keyword, in core's one wording (the tail's
+    # plan, core/tail/TailPlan.hpp); and an edited run file is refused with how that front end reads it anyway.
+    c = cli_error(cli, ["tail", "--clones", "magic", "--out", str(tmp_path / "t.json")])
+    p = py_error(lambda: ap.tail(clones="magic", t_max=100))
+    assert c == "--clones 'magic' must be perturb or metropolis", c
+    assert p == "clones 'magic' must be perturb or metropolis", p
+    run = ap.start(T=200, M=16)
+    run.advance(threads=1)
+    path = tmp_path / "run.json"
+    run.save(path)
+    document = json.loads(path.read_text())
+    document["parameters"]["seed"] += 1  # an edit: the checksum no longer matches
+    path.write_text(json.dumps(document, indent=1))
+    c = cli_error(cli, ["stats", str(path)])
+    assert "checksum does not match" in c and "; --allow-modified reads it anyway" in c, c
+    with pytest.raises(OSError) as e:
+        ap.load(path)
+    assert "; allow_modified=True reads it anyway" in str(e.value) and "--" not in str(e.value), str(e.value)
+    r = subprocess.run([cli, "replay", str(path), "--out", str(tmp_path / "r.csv")], capture_output=True, text=True,
+                       timeout=600)
+    assert r.returncode != 0 and "--allow-modified" not in r.stderr, r.stderr  # replay has no such option

@@ -146,11 +146,19 @@ TEST(RunFile, VersionDowngrade_Issue23_IsRefusedWithoutOptIn) {
   j["parameters"]["seed"] = 100;  // an edit a version-1 file cannot reveal
   const std::string text = j.dump(1);
   try {
-    (void)parseRunFile(text);
+    (void)parseRunFile(text, {.allowModifiedName = "--allow-modified"});
     ADD_FAILURE() << "a version-1 file was read without --allow-modified";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("version 1 has no checksum"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("--allow-modified"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("; --allow-modified reads it anyway"), std::string::npos) << e.what();
+  }
+  // A front end without the setting (the GUI, a resume) is told of none (issue 51: the CLI's flag reached them all).
+  try {
+    (void)parseRunFile(text);
+    ADD_FAILURE() << "a version-1 file was read without allowModified";
+  } catch (const std::runtime_error& e) {
+    EXPECT_EQ(std::string(e.what()).find("anyway"), std::string::npos) << e.what();
+    EXPECT_EQ(std::string(e.what()).find("--"), std::string::npos) << e.what();
   }
   // Inspection on request: read, validated, and marked unverified.
   const TrappingState read = parseRunFile(text, {.allowModified = true});
