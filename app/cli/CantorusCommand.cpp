@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "CliCommon.hpp"
+#include "RunSession.hpp"
+#include "core/periodic/PeriodicOrbitFinder.hpp"
 #include "core/io/AtomicFile.hpp"
 #include "core/io/CommandFiles.hpp"
 #include "core/manifolds/MmpFlux.hpp"
@@ -67,7 +69,13 @@ int runCantorus(CantorusOptions o) {
   if (auto e = validationError(r)) throw std::invalid_argument(*e);
   io::checkCommandFiles({{"--out", o.out, io::FileUse::Output}});
   const auto started = std::chrono::steady_clock::now();
-  const CantorusFlux result = cantorusFlux(r);
+  CantorusFlux result;
+  try {
+    result = cantorusFlux(r, interruptToken());  // Ctrl-C: the program's one stop, within a scan's chunk
+  } catch (const OperationStopped&) {
+    std::fprintf(stderr, "interrupted: no cantorus flux (nothing written)\n");
+    return 130;
+  }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   const std::string json = cantorusFluxJson(r, result, seconds) + "\n";
   if (!o.out.empty()) io::writeFileAtomically(o.out, json);

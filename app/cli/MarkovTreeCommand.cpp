@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "CliCommon.hpp"
+#include "RunSession.hpp"
+#include "core/periodic/PeriodicOrbitFinder.hpp"
 #include "core/atlas/AtlasExport.hpp"
 #include "core/io/AtomicFile.hpp"
 #include "core/io/CommandFiles.hpp"
@@ -114,7 +116,13 @@ int runMarkovTree(MarkovTreeOptions o) {
       throw std::runtime_error("--tail " + o.tail + ": " + e.what());
     }
   }
-  const MarkovTreeResult r = computeMarkovTree(atlas, o.request, tail ? &*tail : nullptr);
+  MarkovTreeResult r;
+  try {
+    r = computeMarkovTree(atlas, o.request, tail ? &*tail : nullptr, interruptToken());  // Ctrl-C: the one stop
+  } catch (const OperationStopped&) {
+    std::fprintf(stderr, "interrupted: no survival (nothing written)\n");
+    return 130;
+  }
   io::OutputBatch outputs;  // the JSON and the CSV: all or nothing (issue 54, item 4)
   if (!o.json.empty()) io::writeFileAtomically(o.json, markovTreeJson(r));
   if (!o.csv.empty()) io::writeFileAtomically(o.csv, markovTreeCsv(r));

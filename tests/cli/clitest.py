@@ -50,6 +50,22 @@ def interrupt(process, timeout=600):
         return None, None
 
 
+def wait_for_handler(process, signum=signal.SIGINT, seconds=120):
+    """Waits until `process` catches `signum` (its bit in SigCgt of /proc/PID/status: the handler is installed, the
+    event a test waits for before it interrupts) or has ended; whether it catches it."""
+    deadline = time.monotonic() + seconds
+    while time.monotonic() < deadline and process.poll() is None:
+        try:
+            with open(f"/proc/{process.pid}/status") as status:
+                caught = next(int(l.split()[1], 16) for l in status if l.startswith("SigCgt:"))
+        except (OSError, StopIteration):
+            return False
+        if caught >> (signum - 1) & 1:
+            return True
+        time.sleep(0.01)
+    return False
+
+
 def leftovers(folder):
     """What writers left in `folder`: temporaries ".NAME.XXXXXX" (io::AtomicOutputFile) and locks ".NAME.lock"."""
     return sorted(n for n in os.listdir(folder) if re.fullmatch(r"\..+\.(lock|[A-Za-z0-9]{6})", n))

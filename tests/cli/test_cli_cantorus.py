@@ -2,9 +2,9 @@
 orbits over a cantorus's convergents (core/manifolds/MmpFlux.hpp): the JSON's fluxes agree with the independent mpmath
 values of scripts/mmp-periodic-action.py (K = the double 0.1, as the CLI reads it) to 20 digits, its limit is the last
 term with the tail bound; bad options and a scan without the orbits are one ERROR line and nothing written."""
-import json, os, tempfile
+import json, os, subprocess, tempfile
 from decimal import Decimal
-from clitest import check, finish, run
+from clitest import check, cli, finish, interrupt, run, wait_for_handler
 
 # scripts/mmp-periodic-action.py --K 0.1000000000000000055511151231257827021181583404541015625 6/37 11/68 17/105
 # (mpmath, 60 digits, its own scan and Newton; K = the double nearest 0.1, which the CLI's --K 0.1 is)
@@ -55,4 +55,15 @@ with tempfile.TemporaryDirectory() as d:
         lines = [l for l in r.stderr.splitlines() if l.strip()]
         check(r.returncode != 0 and len(lines) == 1 and lines[0].startswith("ERROR:") and words in lines[0]
               and not os.path.exists(bad), f"{args}: one ERROR line with '{words}' ({r.stderr[-300:]})")
+    # Ctrl-C during a long scan (issue 54, item 5: SIGINT during 1/997 ended after 26 s with a message that was not one
+    # line): the program's one stop (interruptToken) ends it at the scan's next chunk with one line, status 130, and
+    # nothing written.  The signal is sent once the handler is installed (the event), never after a fixed wait.
+    stopped = os.path.join(d, "stopped.json")
+    p = subprocess.Popen([cli, "cantorus", "--convergents", "1/997", "--out", stopped], stdout=subprocess.PIPE,
+                         stderr=subprocess.PIPE, text=True)
+    handled = wait_for_handler(p)
+    out, err = interrupt(p, timeout=600)
+    lines = [l for l in (err or "").splitlines() if l.strip()]
+    check(handled and p.returncode == 130 and len(lines) == 1 and lines[0].startswith("interrupted:")
+          and not os.path.exists(stopped), f"SIGINT: one line, status 130, nothing written ({p.returncode}: {err})")
 finish()
