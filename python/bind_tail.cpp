@@ -162,6 +162,31 @@ py::dict runAndReport(TailState state, int threads, const std::string& kernelNam
   return resultDict(state);
 }
 
+// The CLI's plan (core/tail/TailPlan.hpp) filled with tail()'s arguments and Python's names: the same checks, in the
+// same order and words.
+TailPlanOptions pythonPlan(const TailRequest& r, const std::string& clones, int threads,
+                           const std::optional<std::string>& path, const py::object& slice) {
+  TailPlanOptions plan;
+  plan.optionName = keywordOf;
+  plan.request = r;
+  plan.clones = clones;
+  plan.spec = [run = r.run, threads] {
+    RunSpec spec;
+    spec.parameters = run;
+    spec.threads = threads;
+    return spec;
+  };
+  plan.threads = threads;
+  plan.out = path.value_or(std::string());
+  if (!slice.is_none()) {
+    if (!py::isinstance<py::tuple>(slice) || py::len(slice) != 2)
+      throw py::type_error("slice must be a tuple (i, n): slice i of n of the replicas");
+    const py::tuple in = slice.cast<py::tuple>();
+    plan.slice = replicaSlice(r.replicas, whole32(in[0], "slice i"), whole32(in[1], "slice n"));
+  }
+  return plan;
+}
+
 }  // namespace
 
 // The defaults are the request's own (issue 35: a front end restates no default).
@@ -191,26 +216,7 @@ void bindTail(py::module_& m) {
         r.minAncestors = whole64(minAncestors, "min_ancestors");
         const std::optional<std::string> path = out.is_none() ? std::nullopt : std::optional(pathArgument(out, "out"));
         if (path) checkWritable(*path);  // before the work, not after it
-        // The CLI's plan (core/tail/TailPlan.hpp) with Python's names: the same checks, in the same order and words.
-        TailPlanOptions plan;
-        plan.optionName = keywordOf;
-        plan.request = r;
-        plan.clones = clones;
-        plan.spec = [&r, threads] {
-          RunSpec spec;
-          spec.parameters = r.run;
-          spec.threads = threads;
-          return spec;
-        };
-        plan.threads = threads;
-        plan.out = path.value_or(std::string());
-        if (!slice.is_none()) {
-          if (!py::isinstance<py::tuple>(slice) || py::len(slice) != 2)
-            throw py::type_error("slice must be a tuple (i, n): slice i of n of the replicas");
-          const py::tuple in = slice.cast<py::tuple>();
-          plan.slice = replicaSlice(r.replicas, whole32(in[0], "slice i"), whole32(in[1], "slice n"));
-        }
-        TailPlan planned = planTail(plan);
+        TailPlan planned = planTail(pythonPlan(r, clones, threads, path, slice));
         warnIfBoxCutsIsland(r.run.map, r.run.Xr);
         return runAndReport(std::move(planned.state), threads, kernel, progress, path);
       },

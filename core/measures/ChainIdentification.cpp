@@ -147,9 +147,8 @@ std::optional<std::string> descendOneLevel(ChainIdentification& out, const Chain
   }
   if (m.verdict != OrbitVerdict::Regular)
     return describeEnd(m, r.iterations) + (out.levels.size() > 1 ? " about " + around : "");
-  const double delta = std::max(kAccuracyFactor * m.difference, 0x1p-50);
   const auto maxQ = std::max<std::int64_t>(static_cast<std::int64_t>(r.maxPeriod / current.power), 1);
-  current.rational = smallestDenominatorRational(m.rotation - delta, m.rotation + delta, maxQ);
+  current.rational = rationalOfRotation(m.rotation, m.difference, maxQ);
   if (out.levels.size() > 1 && (!current.rational || current.rational->p != 0)) {
     // The orbit turns about this level's orbit: its island is confirmed.
     out.factors.push_back(out.levels[out.levels.size() - 2].rational->q);
