@@ -15,6 +15,7 @@
 #include <variant>
 #include <vector>
 
+#include "core/io/BadFile.hpp"
 #include "core/kernels/KernelDispatch.hpp"
 #include "core/run/TrappingRun.hpp"
 #include "core/trapping/LongestSegments.hpp"
@@ -72,7 +73,11 @@ Run startRun(const py::object& spec, const py::kwargs& kwargs) {
     std::string text;
     if (py::isinstance<py::dict>(spec)) text = py::module_::import("json").attr("dumps")(spec).cast<std::string>();
     else text = spec.cast<std::string>();
-    params = parseRunSpec(text).parameters;
+    try {
+      params = parseRunSpec(text).parameters;
+    } catch (const io::BadFile& e) {
+      throw std::invalid_argument(e.what());  // a spec given as text or a dict: ValueError, as for its keywords
+    }
   }
   applyParameters(params, kwargs);
   if (auto e = memoryError(params, 0)) throw std::invalid_argument(*e);
@@ -156,12 +161,11 @@ py::dict histogramDict(const Run& r, const py::object& subset) {
 py::array_t<std::uint64_t> orbitStates(const Run& r) {
   r.check();
   const auto n = static_cast<py::ssize_t>(r.state.orbits.size());
-  py::array_t<std::uint64_t> a({n, py::ssize_t{9}});
+  constexpr auto columns = static_cast<py::ssize_t>(kOrbitStateRowSize);
+  py::array_t<std::uint64_t> a({n, columns});
   for (py::ssize_t i = 0; i < n; ++i) {
-    const OrbitState& o = r.state.orbits[static_cast<std::size_t>(i)];
-    const std::uint64_t row[9] = {o.z.X, o.z.Y, o.block, o.draws, o.length, o.start.z.X, o.start.z.Y,
-                                  o.start.block, o.start.draws};
-    for (py::ssize_t j = 0; j < 9; ++j) a.mutable_at(i, j) = row[j];
+    const OrbitStateRow row = orbitStateRow(r.state.orbits[static_cast<std::size_t>(i)]);  // core's one order
+    for (py::ssize_t j = 0; j < columns; ++j) a.mutable_at(i, j) = row[static_cast<std::size_t>(j)];
   }
   return a;
 }

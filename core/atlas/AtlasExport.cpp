@@ -5,7 +5,6 @@
 #include <limits>
 #include <numeric>
 #include <nlohmann/json.hpp>
-#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -173,64 +172,18 @@ std::string atlasCsv(const Atlas& a) {
 namespace {
 
 using rjson = nlohmann::json;
+using io::JsonField;
 
-[[noreturn]] void refuse(const std::string& what) { throw std::runtime_error(what); }
+[[noreturn]] void refuse(const std::string& what) { throw io::BadFile(what); }
 
-/// The object's keys: every one of `required` present, none outside `required` and `optional`.
-void keys(const rjson& j, const std::string& where, std::initializer_list<const char*> required,
-          std::initializer_list<const char*> optional = {}) {
-  if (!j.is_object()) refuse(where + " must be a JSON object, not " + io::describeJson(j));
-  std::set<std::string> known(required.begin(), required.end());
-  known.insert(optional.begin(), optional.end());
-  for (auto it = j.begin(); it != j.end(); ++it)
-    if (!known.count(it.key())) refuse("unknown key '" + io::shortText(it.key()) + "' in " + where);
-  for (const char* k : required)
-    if (!j.contains(k)) refuse(where + " has no '" + k + "'");
-}
-
-
-double finite(const rjson& v, const std::string& key) {
-  if (!v.is_number()) refuse(key + " must be a number, not " + io::describeJson(v));
-  const double d = v.get<double>();
-  if (!std::isfinite(d)) refuse(key + " must be finite");
-  return d;
-}
-
-double nonNegative(const rjson& v, const std::string& key) {
-  const double d = finite(v, key);
-  if (!(d >= 0)) refuse(key + " = " + io::describeJson(v) + " must be ≥ 0");
-  return d;
-}
-
-/// A number, or null for the non-finite value the writer writes as null.
-double finiteOr(const rjson& v, const std::string& key, double null) { return v.is_null() ? null : finite(v, key); }
-
-std::uint64_t whole(const rjson& v, const std::string& key, std::uint64_t min, std::uint64_t max) {
-  const std::optional<std::uint64_t> n = io::wholeJson(v, max);
-  if (!n || *n < min)
-    refuse(key + " = " + io::describeJson(v) + " must be a whole number in [" + std::to_string(min) + ", " +
-           std::to_string(max) + "]");
-  return *n;
-}
-
-bool boolean(const rjson& v, const std::string& key) {
-  if (!v.is_boolean()) refuse(key + " must be true or false, not " + io::describeJson(v));
-  return v.get<bool>();
-}
-
-std::string string(const rjson& v, const std::string& key) {
-  if (!v.is_string()) refuse(key + " must be a string, not " + io::describeJson(v));
-  return v.get<std::string>();
-}
-
-PhysicalPoint point(const rjson& v, const std::string& key) {
-  if (!v.is_array() || v.size() != 2) refuse(key + " must be [x, y], not " + io::describeJson(v));
-  return {finite(v[0], key + "[0]"), finite(v[1], key + "[1]")};
+PhysicalPoint point(const JsonField& v) {
+  v.tuple(2, "[x, y]");
+  return {v[0].real(), v[1].real()};
 }
 
 /// "p/q": integers, q ≥ 1 (toString(Rational)'s text).
-Rational rational(const rjson& v, const std::string& key) {
-  const std::string s = string(v, key);
+Rational rational(const JsonField& v) {
+  const std::string s = v.string();
   const auto slash = s.find('/');
   Rational r;
   const char* end = s.data() + s.size();
@@ -238,127 +191,128 @@ Rational rational(const rjson& v, const std::string& key) {
                   std::from_chars(s.data(), s.data() + slash, r.p).ptr == s.data() + slash &&
                   slash + 1 < s.size() && s[slash + 1] != '-' && s[slash + 1] != '+' &&
                   std::from_chars(s.data() + slash + 1, end, r.q).ptr == end && r.q >= 1;
-  if (!ok) refuse(key + " = " + io::describeJson(v) + " must be a fraction p/q with q ≥ 1");
+  if (!ok) v.refuseValue("must be a fraction p/q with q ≥ 1");
   return r;
 }
 
-/// An int in [min, max] (parents, senses): a JSON integer, signed or not.
-long long integer(const rjson& v, const std::string& key, long long min, long long max) {
-  if (!v.is_number_integer() || (v.is_number_unsigned() && v.get<std::uint64_t>() > static_cast<std::uint64_t>(max)) ||
-      v.get<long long>() < min || v.get<long long>() > max)
-    refuse(key + " = " + io::describeJson(v) + " must be an integer in [" + std::to_string(min) + ", " +
-           std::to_string(max) + "]");
-  return v.get<long long>();
-}
+constexpr std::uint64_t kIntMax = std::numeric_limits<int>::max();
 
-AtlasRequest requestFrom(const rjson& j) {
+AtlasRequest requestFrom(const JsonField& root) {
   AtlasRequest r;
-  const rjson& map = j.at("map");
-  keys(map, "map", {"K", "xmin", "xmax"});
-  r.map.K = finite(map.at("K"), "map.K");
-  r.map.xmin = finite(map.at("xmin"), "map.xmin");
-  r.map.xmax = finite(map.at("xmax"), "map.xmax");
-  const rjson& q = j.at("request");
-  keys(q, "request", {"depth", "max_period", "min_area", "iterations", "digits_threshold", "scan_points", "scan_steps",
-                      "bisections"},
-       {"time_budget"});  // absent in the first files
-  r.depth = static_cast<int>(whole(q.at("depth"), "request.depth", 0, kMaxAtlasDepth));
-  r.maxPeriod = whole(q.at("max_period"), "request.max_period", 1, PeriodicOrbitSearch::kMaxPeriod);
-  r.minArea = finite(q.at("min_area"), "request.min_area");
-  r.iterations = whole(q.at("iterations"), "request.iterations", 0, std::numeric_limits<std::uint64_t>::max());
-  r.digitsThreshold = finite(q.at("digits_threshold"), "request.digits_threshold");
-  r.scanPoints = static_cast<int>(whole(q.at("scan_points"), "request.scan_points", 0, std::numeric_limits<int>::max()));
-  r.scanSteps = finite(q.at("scan_steps"), "request.scan_steps");
-  r.bisections = static_cast<int>(whole(q.at("bisections"), "request.bisections", 0, std::numeric_limits<int>::max()));
-  if (const auto t = q.find("time_budget"); t != q.end()) r.timeBudget = nonNegative(*t, "request.time_budget");
+  const JsonField map = root["map"];
+  map.keys({"K", "xmin", "xmax"});
+  r.map.K = map["K"].real();
+  r.map.xmin = map["xmin"].real();
+  r.map.xmax = map["xmax"].real();
+  const JsonField q = root["request"];
+  q.keys({"depth", "max_period", "min_area", "iterations", "digits_threshold", "scan_points", "scan_steps", "bisections"},
+         {"time_budget"});  // absent in the first files
+  r.depth = static_cast<int>(q["depth"].whole(kMaxAtlasDepth));
+  r.maxPeriod = q["max_period"].whole(PeriodicOrbitSearch::kMaxPeriod, 1);
+  r.minArea = q["min_area"].real();
+  r.iterations = q["iterations"].whole();
+  r.digitsThreshold = q["digits_threshold"].real();
+  r.scanPoints = static_cast<int>(q["scan_points"].whole(kIntMax));
+  r.scanSteps = q["scan_steps"].real();
+  r.bisections = static_cast<int>(q["bisections"].whole(kIntMax));
+  if (const auto t = q.find("time_budget")) r.timeBudget = t->nonNegative();
   if (auto e = validationError(r)) refuse("request: " + *e);
   return r;
 }
 
-AtlasNode nodeFrom(const rjson& o, const std::string& key, std::size_t index, const Atlas& atlas) {
-  keys(o, key, {"index", "parent", "level", "path", "period", "about_parent", "centre", "symmetry_line", "residue",
-                "sense", "scan_range", "boundary", "area", "area_error", "area_points", "islands_area", "flux",
-                "internal", "children", "note"},
-       {"measured",  // absent in the first files: every island of a finished atlas was measured
-        "area_lower", "area_upper", "polygon_error"});  // absent before issue 50: area_error was the polygon's
-  const long double K = static_cast<long double>(atlas.request.map.K);
-  AtlasNode n;
-  if (whole(o.at("index"), key + ".index", 0, kMaxAtlasNodes) != index)
-    refuse(key + ".index = " + io::describeJson(o.at("index")) + " must be its position, " + std::to_string(index));
-  const long long maxParent = static_cast<long long>(index) - 1;
-  n.parent = static_cast<int>(integer(o.at("parent"), key + ".parent", index == 0 ? -1 : 0, maxParent));
-  if (index > 0 && n.parent < 0) refuse(key + ".parent must name an island before it");
+/// A node's place in the tree: its index, parent and level, its period and its p/q about its parent.
+void readPlace(const JsonField& o, std::size_t index, const Atlas& atlas, AtlasNode& n) {
+  if (o["index"].whole(kMaxAtlasNodes) != index) o["index"].refuseValue("must be its position, " + std::to_string(index));
+  const JsonField jp = o["parent"];
+  n.parent = static_cast<int>(jp.integer(index == 0 ? -1 : 0, static_cast<std::int64_t>(index) - 1));
+  if (index > 0 && n.parent < 0) jp.refuse("must name an island before it");
   const AtlasNode* parent = n.parent >= 0 ? &atlas.nodes[static_cast<std::size_t>(n.parent)] : nullptr;
-  n.level = static_cast<int>(whole(o.at("level"), key + ".level", 0, static_cast<std::uint64_t>(atlas.request.depth)));
+  n.level = static_cast<int>(o["level"].whole(static_cast<std::uint64_t>(atlas.request.depth)));
   if (n.level != (parent ? parent->level + 1 : 0))
-    refuse(key + ".level = " + std::to_string(n.level) + " must be " + std::to_string(parent ? parent->level + 1 : 0) +
-           (parent ? " (its parent's plus one)" : " (the centre)"));
-  (void)string(o.at("path"), key + ".path");  // written anew from the periods
-  n.period = whole(o.at("period"), key + ".period", 1, PeriodicOrbitSearch::kMaxPeriod);
-  if (o.at("about_parent").is_null()) {
-    if (parent) refuse(key + ".about_parent must be p/q about its parent island");
+    o["level"].refuseValue("must be " + std::to_string(parent ? parent->level + 1 : 0) +
+                           (parent ? " (its parent's plus one)" : " (the centre)"));
+  (void)o["path"].string();  // written anew from the periods
+  n.period = o["period"].whole(PeriodicOrbitSearch::kMaxPeriod, 1);
+  const JsonField about = o["about_parent"];
+  if (about.isNull()) {
+    if (parent) about.refuse("must be p/q about its parent island");
   } else {
-    if (!parent) refuse(key + ".about_parent must be null at the centre");
-    n.aboutParent = rational(o.at("about_parent"), key + ".about_parent");
-    if (n.aboutParent->q > PeriodicOrbitSearch::kMaxPeriod)
-      refuse(key + ".about_parent = " + toString(*n.aboutParent) + ": q above the largest period");
-    const Rational& r = *n.aboutParent;
+    if (!parent) about.refuse("must be null at the centre");
+    const Rational r = rational(about);
+    n.aboutParent = r;
+    const std::string named = about.name() + " = " + toString(r);
+    if (r.q > PeriodicOrbitSearch::kMaxPeriod) refuse(named + ": q above the largest period");
     if (r.q < 2 || r.p == 0 || std::llabs(r.p) >= r.q || std::gcd(std::llabs(r.p), static_cast<long long>(r.q)) != 1)
-      refuse(key + ".about_parent = " + toString(r) + " must be p/q in lowest terms with 0 < |p| < q");
+      refuse(named + " must be p/q in lowest terms with 0 < |p| < q");
     if (parent->boundaryFound && (r.p > 0) != (parent->boundaryRotation > 0))
-      refuse(key + ".about_parent = " + toString(r) + ": a chain turns about its parent in the sense of the parent's "
-             "circles (its boundary rotation is " + shortestDecimal(parent->boundaryRotation) + ")");
+      refuse(named + ": a chain turns about its parent in the sense of the parent's circles (its boundary rotation is " +
+             shortestDecimal(parent->boundaryRotation) + ")");
   }
   const std::uint64_t expected = parent ? parent->period * static_cast<std::uint64_t>(n.aboutParent->q) : 1;
   if (n.period != expected)
-    refuse(key + ".period = " + std::to_string(n.period) + " must be " + std::to_string(expected) +
-           (parent ? " (its parent's period times q of its p/q)" : " (the centre)"));
-  n.centre = point(o.at("centre"), key + ".centre");
-  const std::string line = string(o.at("symmetry_line"), key + ".symmetry_line");
-  if (line != "S1" && line != "S2") refuse(key + ".symmetry_line = " + io::describeJson(o.at("symmetry_line")) + " must be \"S1\" or \"S2\"");
-  n.onS1 = line == "S1";
-  n.orbit.K = K;
+    o["period"].refuseValue("must be " + std::to_string(expected) +
+                            (parent ? " (its parent's period times q of its p/q)" : " (the centre)"));
+}
+
+/// The island's centre, its symmetry line, residue and sense, scan range and whether it was measured.
+void readOrbit(const JsonField& o, const Atlas& atlas, AtlasNode& n) {
+  n.centre = point(o["centre"]);
+  const JsonField line = o["symmetry_line"];
+  const std::string name = line.string();
+  if (name != "S1" && name != "S2") line.refuseValue("must be \"S1\" or \"S2\"");
+  n.onS1 = name == "S1";
+  n.orbit.K = static_cast<long double>(atlas.request.map.K);
   n.orbit.period = static_cast<int>(n.period);
   n.orbit.points = {n.centre};
-  n.orbit.residue = finiteOr(o.at("residue"), key + ".residue", std::numeric_limits<double>::quiet_NaN());
+  n.orbit.residue = o["residue"].realOr(std::numeric_limits<double>::quiet_NaN());
   n.orbit.symmetry = n.onS1 ? OrbitSymmetry::LineS1 : OrbitSymmetry::LineS2;
-  n.sense = static_cast<int>(integer(o.at("sense"), key + ".sense", -1, 1));
-  if (n.sense == 0) refuse(key + ".sense must be 1 or -1");
-  n.scanRange = nonNegative(o.at("scan_range"), key + ".scan_range");
+  n.sense = static_cast<int>(o["sense"].integer(-1, 1));
+  if (n.sense == 0) o["sense"].refuse("must be 1 or -1");
+  n.scanRange = o["scan_range"].nonNegative();
   const auto measured = o.find("measured");
-  n.measured = measured != o.end() ? boolean(*measured, key + ".measured") : !atlas.cancelled;
-  if (n.measured && parent && !parent->measured) refuse(key + ".measured: its parent island is not");
+  n.measured = measured ? measured->boolean() : !atlas.cancelled;
+  if (n.measured && n.parent >= 0 && !atlas.nodes[static_cast<std::size_t>(n.parent)].measured)
+    refuse(o.name() + ".measured: its parent island is not");
+}
 
-  const std::string bkey = key + ".boundary";
-  const rjson& b = o.at("boundary");
-  if (!b.is_object() || !b.contains("found")) refuse(bkey + " must be an object with 'found'");
-  n.boundaryFound = boolean(b.at("found"), bkey + ".found");
+void readBoundary(const JsonField& b, AtlasNode& n) {
+  n.boundaryFound = b["found"].boolean();
   if (n.boundaryFound) {
-    keys(b, bkey, {"found", "point", "rotation", "digits", "bracket"});
-    n.boundaryPoint = point(b.at("point"), bkey + ".point");
-    n.boundaryRotation = finite(b.at("rotation"), bkey + ".rotation");
-    n.boundaryDigits = finite(b.at("digits"), bkey + ".digits");
-    n.gap = nonNegative(b.at("bracket"), bkey + ".bracket");
+    b.keys({"found", "point", "rotation", "digits", "bracket"});
+    n.boundaryPoint = point(b["point"]);
+    n.boundaryRotation = b["rotation"].real();
+    n.boundaryDigits = b["digits"].real();
+    n.gap = b["bracket"].nonNegative();
   } else {
-    keys(b, bkey, {"found", "failure"});
-    n.boundaryFailure = string(b.at("failure"), bkey + ".failure");
+    b.keys({"found", "failure"});
+    n.boundaryFailure = b["failure"].string();
   }
-  n.area = nonNegative(o.at("area"), key + ".area");
+}
+
+/// The box's area: no island chain and no zone exceeds it.
+long double boxArea(const Atlas& atlas) {
+  return static_cast<long double>(atlas.request.map.width()) * atlas.request.map.width();
+}
+
+/// The area, its interval [area_lower, area_upper] and its errors (a file from before the interval: its area_error).
+void readArea(const JsonField& o, const Atlas& atlas, AtlasNode& n) {
+  n.area = o["area"].nonNegative();
   n.circleArea = n.area;
-  const long double box = static_cast<long double>(atlas.request.map.width()) * atlas.request.map.width();
+  const long double box = boxArea(atlas);
   if (n.area * static_cast<long double>(n.period) > box)
-    refuse(key + ".area = " + shortestDecimal(n.area) + ": its chain's " + std::to_string(n.period) +
+    refuse(o["area"].name() + " = " + shortestDecimal(n.area) + ": its chain's " + std::to_string(n.period) +
            " islands would exceed the box's area " + shortestDecimal(static_cast<double>(box)));
+  const std::string key = o.name();
   if (o.contains("polygon_error")) {
-    n.polygonError = nonNegative(o.at("polygon_error"), key + ".polygon_error");
-    n.areaLower = nonNegative(o.at("area_lower"), key + ".area_lower");
-    if (o.at("area_upper").is_null()) {  // unknown: an island read from a file from before the interval, resumed
-      if (!o.at("area_error").is_null()) refuse(key + ".area_error must be null when area_upper is (not known)");
+    n.polygonError = o["polygon_error"].nonNegative();
+    n.areaLower = o["area_lower"].nonNegative();
+    if (o["area_upper"].isNull()) {  // unknown: an island read from a file from before the interval, resumed
+      if (!o["area_error"].isNull()) o["area_error"].refuse("must be null when area_upper is (not known)");
       n.areaUpper = n.areaError = std::numeric_limits<long double>::quiet_NaN();
       if (!(n.areaLower <= n.area)) refuse(key + ": area " + shortestDecimal(n.area) + " must be at least area_lower");
     } else {
-      n.areaUpper = nonNegative(o.at("area_upper"), key + ".area_upper");
-      n.areaError = nonNegative(o.at("area_error"), key + ".area_error");
+      n.areaUpper = o["area_upper"].nonNegative();
+      n.areaError = o["area_error"].nonNegative();
     }
     if (!std::isnan(n.areaUpper) && !(n.areaLower <= n.area && n.area <= n.areaUpper))
       refuse(key + ": area " + shortestDecimal(n.area) + " must lie in [area_lower, area_upper] = [" +
@@ -368,148 +322,180 @@ AtlasNode nodeFrom(const rjson& o, const std::string& key, std::size_t index, co
   } else {
     // A file from before the interval: its area_error measured the polygon's convergence only, and the boundary's
     // own uncertainty is not known — said as such (NaN: null in the JSON, blank in the CSV).
-    n.polygonError = nonNegative(o.at("area_error"), key + ".area_error");
+    n.polygonError = o["area_error"].nonNegative();
     n.areaLower = std::max<long double>(n.area - n.polygonError, 0);
     n.areaUpper = std::numeric_limits<long double>::quiet_NaN();
     n.areaError = std::numeric_limits<long double>::quiet_NaN();
   }
-  n.areaPoints = static_cast<int>(whole(o.at("area_points"), key + ".area_points", 0, std::numeric_limits<int>::max()));
-  (void)finite(o.at("islands_area"), key + ".islands_area");  // written anew: period × area
+  n.areaPoints = static_cast<int>(o["area_points"].whole(kIntMax));
+  (void)o["islands_area"].real();  // written anew: period × area
+}
 
-  const std::string fkey = key + ".flux";
-  const rjson& f = o.at("flux");
-  if (!f.is_object() || !f.contains("found")) refuse(fkey + " must be an object with 'found'");
-  n.flux.found = boolean(f.at("found"), fkey + ".found");
-  if (n.flux.found) {
-    keys(f, fkey, {"found", "flux_per_step", "zone_area", "enclosed_islands_area", "layer_area", "flux_agreeing_digits",
-                   "zone_agreeing_digits", "residence"},
+/// A separatrix's lobe: its flux per step (> 0), its zone (≥ 0) and their agreeing digits (null: every digit).
+void readLobe(const JsonField& f, long double& flux, long double& zoneArea, long double& fluxDigits,
+              long double& zoneDigits) {
+  flux = f["flux_per_step"].real();
+  if (!(flux > 0)) f["flux_per_step"].refuse("must be > 0");
+  zoneArea = f["zone_area"].nonNegative();
+  const double all = std::numeric_limits<double>::infinity();
+  fluxDigits = f["flux_agreeing_digits"].realOr(all);
+  zoneDigits = f["zone_agreeing_digits"].realOr(all);
+}
+
+/// The outer separatrix's flux, its zone, layer and residence, consistent with one another and the box.
+void readOuterFlux(const JsonField& f, const Atlas& atlas, AtlasFlux& flux) {
+  f.keys({"found", "flux_per_step", "zone_area", "enclosed_islands_area", "layer_area", "flux_agreeing_digits",
+          "zone_agreeing_digits", "residence"},
          {"partner", "enclosed_islands", "inner", "outer_by"});
-    if (const auto c = f.find("enclosed_islands"); c != f.end())
-      n.flux.enclosedCount = static_cast<int>(whole(*c, fkey + ".enclosed_islands", 0, std::numeric_limits<int>::max()));
-    n.flux.flux = finite(f.at("flux_per_step"), fkey + ".flux_per_step");
-    if (!(n.flux.flux > 0)) refuse(fkey + ".flux_per_step must be > 0");
-    n.flux.zoneArea = nonNegative(f.at("zone_area"), fkey + ".zone_area");
-    n.flux.enclosedIslands = nonNegative(f.at("enclosed_islands_area"), fkey + ".enclosed_islands_area");
-    n.flux.layerArea = finite(f.at("layer_area"), fkey + ".layer_area");
-    const double all = std::numeric_limits<double>::infinity();  // null: every digit agrees
-    n.flux.fluxDigits = finiteOr(f.at("flux_agreeing_digits"), fkey + ".flux_agreeing_digits", all);
-    n.flux.zoneDigits = finiteOr(f.at("zone_agreeing_digits"), fkey + ".zone_agreeing_digits", all);
-    n.flux.residence = finite(f.at("residence"), fkey + ".residence");
-    if (!(n.flux.zoneArea <= box))
-      refuse(fkey + ".zone_area = " + shortestDecimal(n.flux.zoneArea) + " exceeds the box's area " +
-             shortestDecimal(static_cast<double>(box)));
-    const long double layer = n.flux.zoneArea - n.flux.enclosedIslands;
-    if (std::fabs(n.flux.layerArea - layer) > 1e-9L * n.flux.zoneArea)
-      refuse(fkey + ".layer_area = " + shortestDecimal(n.flux.layerArea) + " must be zone_area − enclosed_islands_area = " +
-             shortestDecimal(layer));
-    if (n.flux.layerArea > 0 &&
-        std::fabs(n.flux.residence - static_cast<double>(n.flux.layerArea / n.flux.flux)) > 1e-9 * std::fabs(n.flux.residence))
-      refuse(fkey + ".residence = " + shortestDecimal(n.flux.residence) + " must be layer_area / flux_per_step");
-    refuseEmptyLayer(n.flux);  // a file written before the rule, or edited, obeys it as the computation does
-  } else {
-    keys(f, fkey, {"found", "failure"}, {"partner", "inner", "outer_by"});
-    n.flux.failure = string(f.at("failure"), fkey + ".failure");
+  if (const auto c = f.find("enclosed_islands")) flux.enclosedCount = static_cast<int>(c->whole(kIntMax));
+  readLobe(f, flux.flux, flux.zoneArea, flux.fluxDigits, flux.zoneDigits);
+  flux.enclosedIslands = f["enclosed_islands_area"].nonNegative();
+  flux.layerArea = f["layer_area"].real();
+  flux.residence = f["residence"].real();
+  const long double box = boxArea(atlas);
+  if (!(flux.zoneArea <= box))
+    refuse(f["zone_area"].name() + " = " + shortestDecimal(flux.zoneArea) + " exceeds the box's area " +
+           shortestDecimal(static_cast<double>(box)));
+  const long double layer = flux.zoneArea - flux.enclosedIslands;
+  if (std::fabs(flux.layerArea - layer) > 1e-9L * flux.zoneArea)
+    refuse(f["layer_area"].name() + " = " + shortestDecimal(flux.layerArea) +
+           " must be zone_area − enclosed_islands_area = " + shortestDecimal(layer));
+  if (flux.layerArea > 0 &&
+      std::fabs(flux.residence - static_cast<double>(flux.layerArea / flux.flux)) > 1e-9 * std::fabs(flux.residence))
+    refuse(f["residence"].name() + " = " + shortestDecimal(flux.residence) + " must be layer_area / flux_per_step");
+  refuseEmptyLayer(flux);  // a file written before the rule, or edited, obeys it as the computation does
+}
+
+/// The inner separatrix (issue 50), no larger a zone than the outer when the zones chose the outer.
+void readInnerFlux(const JsonField& in, AtlasFlux& flux) {
+  SeparatrixFlux& inner = flux.inner;
+  inner.found = in["found"].boolean();
+  if (!inner.found) {
+    in.keys({"found", "failure"});
+    inner.failure = in["failure"].string();
+    return;
   }
-  if (const auto by = f.find("outer_by"); by != f.end()) {  // absent before issue 50: the label's side, no inner
-    const std::string text = string(*by, fkey + ".outer_by");
-    if (text != "zone" && text != "label") refuse(fkey + ".outer_by = " + io::describeJson(*by) + " must be \"zone\" or \"label\"");
+  in.keys({"found", "flux_per_step", "zone_area", "flux_agreeing_digits", "zone_agreeing_digits"});
+  readLobe(in, inner.flux, inner.zoneArea, inner.fluxDigits, inner.zoneDigits);
+  if (flux.found && flux.outerByZone && !(inner.zoneArea <= flux.zoneArea))
+    refuse(in["zone_area"].name() + " = " + shortestDecimal(static_cast<double>(inner.zoneArea)) +
+           " exceeds the outer separatrix's " + shortestDecimal(static_cast<double>(flux.zoneArea)) +
+           ": the outer is the larger zone");
+}
+
+/// The flux through the chain's barrier: the outer separatrix, which side is outer, the inner one, the partner.
+void readFlux(const JsonField& f, const Atlas& atlas, AtlasNode& n) {
+  n.flux.found = f["found"].boolean();
+  if (n.flux.found) {
+    readOuterFlux(f, atlas, n.flux);
+  } else {
+    f.keys({"found", "failure"}, {"partner", "inner", "outer_by"});
+    n.flux.failure = f["failure"].string();
+  }
+  if (const auto by = f.find("outer_by")) {  // absent before issue 50: the label's side, no inner
+    const std::string text = by->string();
+    if (text != "zone" && text != "label") by->refuseValue("must be \"zone\" or \"label\"");
     n.flux.outerByZone = text == "zone";
   }
-  if (const auto in = f.find("inner"); in != f.end()) {
-    if (!parent) refuse(fkey + ".inner: the centre's barrier is the fixed point's loop, it has no inner side");
-    const std::string ikey = fkey + ".inner";
-    if (!in->is_object() || !in->contains("found")) refuse(ikey + " must be an object with 'found'");
-    SeparatrixFlux& inner = n.flux.inner;
-    inner.found = boolean(in->at("found"), ikey + ".found");
-    if (inner.found) {
-      keys(*in, ikey, {"found", "flux_per_step", "zone_area", "flux_agreeing_digits", "zone_agreeing_digits"});
-      inner.flux = finite(in->at("flux_per_step"), ikey + ".flux_per_step");
-      if (!(inner.flux > 0)) refuse(ikey + ".flux_per_step must be > 0");
-      inner.zoneArea = nonNegative(in->at("zone_area"), ikey + ".zone_area");
-      const double all = std::numeric_limits<double>::infinity();
-      inner.fluxDigits = finiteOr(in->at("flux_agreeing_digits"), ikey + ".flux_agreeing_digits", all);
-      inner.zoneDigits = finiteOr(in->at("zone_agreeing_digits"), ikey + ".zone_agreeing_digits", all);
-      if (n.flux.found && n.flux.outerByZone && !(inner.zoneArea <= n.flux.zoneArea))
-        refuse(ikey + ".zone_area = " + shortestDecimal(static_cast<double>(inner.zoneArea)) +
-               " exceeds the outer separatrix's " + shortestDecimal(static_cast<double>(n.flux.zoneArea)) +
-               ": the outer is the larger zone");
-    } else {
-      keys(*in, ikey, {"found", "failure"});
-      inner.failure = string(in->at("failure"), ikey + ".failure");
-    }
+  const bool centre = n.parent < 0;
+  if (const auto in = f.find("inner")) {
+    if (centre) in->refuseDocument(in->name() + ": the centre's barrier is the fixed point's loop, it has no inner side");
+    readInnerFlux(*in, n.flux);
   }
-  if (const auto p = f.find("partner"); p != f.end()) {
-    if (!parent) refuse(fkey + ".partner: the centre's barrier is the fixed point's loop, it has none");
-    keys(*p, fkey + ".partner", {"point", "residue"});
+  if (const auto p = f.find("partner")) {
+    if (centre) p->refuseDocument(p->name() + ": the centre's barrier is the fixed point's loop, it has none");
+    p->keys({"point", "residue"});
     PeriodicOrbit partner;
-    partner.K = K;
+    partner.K = static_cast<long double>(atlas.request.map.K);
     partner.period = static_cast<int>(n.period);
-    partner.points = {point(p->at("point"), fkey + ".partner.point")};
-    partner.residue = finiteOr(p->at("residue"), fkey + ".partner.residue", std::numeric_limits<double>::quiet_NaN());
+    partner.points = {point((*p)["point"])};
+    partner.residue = (*p)["residue"].realOr(std::numeric_limits<double>::quiet_NaN());
     n.flux.partner = std::move(partner);
   }
+}
 
-  const rjson& internal = o.at("internal");
-  if (!internal.is_array()) refuse(key + ".internal must be an array of p/q");
-  for (std::size_t k = 0; k < internal.size(); ++k)
-    n.internal.push_back(rational(internal[k], key + ".internal[" + std::to_string(k) + "]"));
-  const rjson& children = o.at("children");
-  if (!children.is_array()) refuse(key + ".children must be an array of indices");
-  for (std::size_t k = 0; k < children.size(); ++k) {
-    const std::uint64_t c = whole(children[k], key + ".children[" + std::to_string(k) + "]", index + 1, kMaxAtlasNodes);
+/// The rotation numbers inside the island and its children's indices (after it, increasing).
+void readLinks(const JsonField& o, std::size_t index, AtlasNode& n) {
+  const JsonField internal = o["internal"];
+  for (std::size_t k = 0, size = internal.array(); k < size; ++k) n.internal.push_back(rational(internal[k]));
+  const JsonField children = o["children"];
+  for (std::size_t k = 0, size = children.array(); k < size; ++k) {
+    const std::uint64_t c = children[k].whole(kMaxAtlasNodes, index + 1);
     if (!n.children.empty() && c <= static_cast<std::uint64_t>(n.children.back()))
-      refuse(key + ".children must be increasing indices");
+      children.refuse("must be increasing indices");
     n.children.push_back(static_cast<int>(c));
   }
-  n.note = string(o.at("note"), key + ".note");
-  if (!n.measured && !n.children.empty()) refuse(key + ".children: an island not measured has none yet");
+  if (!n.measured && !n.children.empty()) children.refuseDocument(children.name() + ": an island not measured has none yet");
+}
+
+AtlasNode nodeFrom(const JsonField& o, std::size_t index, const Atlas& atlas) {
+  o.keys({"index", "parent", "level", "path", "period", "about_parent", "centre", "symmetry_line", "residue", "sense",
+          "scan_range", "boundary", "area", "area_error", "area_points", "islands_area", "flux", "internal", "children",
+          "note"},
+         {"measured",  // absent in the first files: every island of a finished atlas was measured
+          "area_lower", "area_upper", "polygon_error"});  // absent before issue 50: area_error was the polygon's
+  AtlasNode n;
+  readPlace(o, index, atlas, n);
+  readOrbit(o, atlas, n);
+  readBoundary(o["boundary"], n);
+  readArea(o, atlas, n);
+  readFlux(o["flux"], atlas, n);
+  readLinks(o, index, n);
+  n.note = o["note"].string();
   return n;
 }
 
-Atlas atlasFrom(rjson j) {
-  keys(j, "the atlas", {"format", "program", "provenance", "map", "request", "cancelled", "seconds", "nodes"},
-       {"stop_reason", "format_version", "checksum"});
-  if (!j.at("format").is_string() || j.at("format").get<std::string>() != "archipelago atlas")
-    refuse("format = " + io::describeJson(j.at("format")) + ": not an atlas (\"archipelago atlas\")");
+/// The format, its version and, from version 2, the checksum over the rest (taken out of `j`).
+void checkSignature(rjson& j, const JsonField& root) {
+  const JsonField format = root["format"];
+  if (!format.value().is_string() || format.value().get<std::string>() != "archipelago atlas")
+    refuse("format = " + io::describeJson(format.value()) + ": not an atlas (\"archipelago atlas\")");
   // Version 2 (issue 54) is signed; a file without a version is one from before (read as it was, unsigned).
-  if (j.contains("format_version")) {
-    if (whole(j.at("format_version"), "format_version", 2, 2) != kAtlasFormatVersion)
-      refuse("format_version must be " + std::to_string(kAtlasFormatVersion));
-    if (!j.contains("checksum") || !j.at("checksum").is_string()) refuse("checksum: a signed atlas (version 2) must have one");
-    const std::string sum = j.at("checksum").get<std::string>();
+  if (const auto version = root.find("format_version")) {
+    (void)version->whole(kAtlasFormatVersion, kAtlasFormatVersion);
+    if (!root.contains("checksum") || !root["checksum"].value().is_string())
+      refuse("checksum: a signed atlas (version 2) must have one");
+    const std::string sum = root["checksum"].string();
     j.erase("checksum");
-    if (io::jsonChecksum(j) != sum)
-      refuse("the atlas was modified after it was written (its checksum does not match its content)");
-  } else if (j.contains("checksum")) {
+    if (io::jsonChecksum(j) != sum) refuse("the atlas was modified after it was written (its checksum does not match its content)");
+  } else if (root.contains("checksum")) {
     refuse("checksum without format_version");
   }
-  (void)string(j.at("program"), "program");  // written anew
-  if (!j.at("provenance").is_object()) refuse("provenance must be a JSON object");
-  Atlas a;
-  a.request = requestFrom(j);
-  a.cancelled = boolean(j.at("cancelled"), "cancelled");
-  if (const auto r = j.find("stop_reason"); r != j.end()) a.stopReason = string(*r, "stop_reason");
-  a.seconds = nonNegative(j.at("seconds"), "seconds");
-  const rjson& nodes = j.at("nodes");
-  if (!nodes.is_array()) refuse("nodes must be an array");
-  if (nodes.empty()) refuse("nodes must hold the central island at least");
-  if (nodes.size() > kMaxAtlasNodes)
-    refuse("nodes has " + std::to_string(nodes.size()) + " entries; at most " + std::to_string(kMaxAtlasNodes));
-  a.nodes.reserve(nodes.size());
+}
+
+/// Each child names its parent, every island but the centre is a child once, and a finished atlas measured them all.
+void checkTree(const Atlas& a) {
   std::size_t links = 0;
-  for (std::size_t i = 0; i < nodes.size(); ++i) {
-    a.nodes.push_back(nodeFrom(nodes[i], "nodes[" + std::to_string(i) + "]", i, a));
-    links += a.nodes.back().children.size();
-  }
-  // Each child names its parent, and every island but the centre is a child once.
-  for (std::size_t i = 0; i < a.nodes.size(); ++i)
+  for (std::size_t i = 0; i < a.nodes.size(); ++i) {
+    links += a.nodes[i].children.size();
     for (const int c : a.nodes[i].children)
       if (static_cast<std::size_t>(c) >= a.nodes.size() || a.nodes[static_cast<std::size_t>(c)].parent != static_cast<int>(i))
         refuse("nodes[" + std::to_string(i) + "].children names " + std::to_string(c) + ", which is not its child");
+  }
   if (links != a.nodes.size() - 1) refuse("nodes: some island is missing from its parent's children");
   if (!a.cancelled)
     for (std::size_t i = 0; i < a.nodes.size(); ++i)
       if (!a.nodes[i].measured) refuse("nodes[" + std::to_string(i) + "] is not measured in an atlas not cancelled");
+}
+
+Atlas atlasFrom(rjson j) {
+  const JsonField root(j, "the atlas");
+  root.keys({"format", "program", "provenance", "map", "request", "cancelled", "seconds", "nodes"},
+            {"stop_reason", "format_version", "checksum"});
+  checkSignature(j, root);
+  (void)root["program"].string();  // written anew
+  (void)root["provenance"].object();
+  Atlas a;
+  a.request = requestFrom(root);
+  a.cancelled = root["cancelled"].boolean();
+  if (const auto r = root.find("stop_reason")) a.stopReason = r->string();
+  a.seconds = root["seconds"].nonNegative();
+  const JsonField nodes = root["nodes"];
+  const std::size_t n = nodes.array(kMaxAtlasNodes);
+  if (n == 0) nodes.refuse("must hold the central island at least");
+  a.nodes.reserve(n);
+  for (std::size_t i = 0; i < n; ++i) a.nodes.push_back(nodeFrom(nodes[i], i, a));
+  checkTree(a);
   return a;
 }
 
@@ -518,10 +504,10 @@ Atlas atlasFrom(rjson j) {
 Atlas atlasFromJson(const std::string& text) {
   try {
     return atlasFrom(io::parseJson(text));  // a copy: its checksum is taken out to verify the rest
-  } catch (const std::runtime_error&) {
+  } catch (const io::BadFile&) {
     throw;
-  } catch (const std::exception& e) {  // parseJson's std::invalid_argument; nlohmann's own, should one escape
-    throw std::runtime_error(e.what());
+  } catch (const std::exception& e) {  // nlohmann's own, should one escape
+    throw io::BadFile(e.what());
   }
 }
 

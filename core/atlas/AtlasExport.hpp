@@ -32,8 +32,8 @@ inline constexpr std::size_t kMaxAtlasNodes = 1'000'000;
 /// request by validationError(AtlasRequest), every number finite and in its range (a null only where the writer
 /// writes one for a non-finite value: a residue (NaN) and the flux's agreeing digits (all digits agree: infinity)),
 /// and the tree's structure (node i at index i, parents before children, each level its parent's plus one, each
-/// period its parent's times q of its p/q, children lists that match the parents).  Throws std::runtime_error
-/// naming the first bad key ("nodes[3].period = -1 must be …"); never anything else.
+/// period its parent's times q of its p/q, children lists that match the parents).  Throws io::BadFile
+/// (a std::runtime_error) naming the first bad key ("nodes[3].period = -1 must be …"); never anything else.
 ///
 /// What the JSON does not keep is not invented: a node's `orbit` holds its centre as its one point (with its period,
 /// residue and symmetry line) and a flux's `partner` the point written (with its residue); refinePeriodicOrbit() finds

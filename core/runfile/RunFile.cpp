@@ -1,5 +1,6 @@
 #include "core/runfile/RunFile.hpp"
 
+#include <climits>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
@@ -27,68 +28,88 @@ json toJson(const TrappingHistogram& h) {
   return bins;
 }
 
-// --- reading, with one-line errors naming what is wrong -------------------------------------------------
+// --- reading, with one-line errors naming what is wrong (io::JsonField's wording) --------------------------
 
-[[noreturn]] void corrupt(const std::string& what) { throw std::runtime_error("corrupt run file: " + what); }
+constexpr std::string_view kCorrupt = "corrupt run file: ";
 
-const json& field(const json& j, const char* key) {
-  if (!j.is_object()) corrupt(std::string("expected an object holding '") + key + "'");
-  const auto it = j.find(key);
-  if (it == j.end()) corrupt(std::string("missing field '") + key + "'");
-  return *it;
+[[noreturn]] void refuse(const std::string& what) { throw io::BadFile(what); }
+[[noreturn]] void corrupt(const std::string& what) { refuse(std::string(kCorrupt) + what); }
+
+UnitState unitState(const io::JsonField& z) {
+  z.tuple(2, "[X, Y]");
+  return {z[0].whole(FixedPointMap::kOne - 1), z[1].whole(FixedPointMap::kOne - 1)};
 }
 
-std::uint64_t u64(const json& j, const char* key) {
-  const json& v = field(j, key);
-  const std::optional<std::uint64_t> n = io::wholeJson(v);  // the documents' one rule of whole numbers
-  if (!n) corrupt(std::string("field '") + key + "' must be a non-negative integer");
-  return *n;
-}
+SegmentStart segmentStart(const io::JsonField& s) { return {unitState(s["z"]), s["block"].whole(), s["draws"].whole()}; }
 
-std::int64_t i64(const json& j, const char* key) {
-  const json& v = field(j, key);
-  if (!v.is_number_integer()) corrupt(std::string("field '") + key + "' must be an integer");
-  return v.get<std::int64_t>();
-}
-
-double f64(const json& j, const char* key) {
-  const json& v = field(j, key);
-  if (!v.is_number()) corrupt(std::string("field '") + key + "' must be a number");
-  return v.get<double>();
-}
-
-UnitState unitState(const json& j) {
-  if (!j.is_array() || j.size() != 2 || !j[0].is_number_unsigned() || !j[1].is_number_unsigned())
-    corrupt("a state must be [X, Y] with non-negative integers");
-  const UnitState z{j[0].get<std::uint64_t>(), j[1].get<std::uint64_t>()};
-  if (z.X >= FixedPointMap::kOne || z.Y >= FixedPointMap::kOne) corrupt("a state lies outside [0, 2^52)");
-  return z;
-}
-
-SegmentStart segmentStart(const json& j) { return {unitState(field(j, "z")), u64(j, "block"), u64(j, "draws")}; }
-
-TrappingHistogram histogram(const json& j) {
-  if (!j.is_array()) corrupt("a histogram must be an array of [bin, count, lengthSum]");
-  TrappingHistogram h;
+TrappingHistogram histogram(const io::JsonField& h) {
+  TrappingHistogram t;
   std::uint64_t previousBin = 0;
-  for (const json& b : j) {
-    if (!b.is_array() || b.size() != 3 || !b[0].is_number_unsigned() || !b[1].is_number_unsigned() ||
-        !b[2].is_number_unsigned())
-      corrupt("a histogram bin must be [bin, count, lengthSum] with non-negative integers");
-    const auto i = b[0].get<std::uint64_t>();
-    if (i < 1 || i >= static_cast<std::uint64_t>(TrappingHistogram::kBins)) corrupt("histogram bin out of range");
+  for (std::size_t k = 0, n = h.array(); k < n; ++k) {
+    const io::JsonField b = h[k];
+    b.tuple(3, "[bin, count, lengthSum]");
+    const auto i = b[0].whole(TrappingHistogram::kBins - 1, 1);
     if (i <= previousBin) corrupt("histogram bins must be listed once each, in increasing order");
     previousBin = i;
-    const auto count = b[1].get<std::uint64_t>();
-    const auto sum = b[2].get<std::uint64_t>();
+    const std::uint64_t count = b[1].whole(), sum = b[2].whole();
     const int bin = static_cast<int>(i);
     // Every length in the bin lies in [lower, upper): the sum must be consistent with the count.
     if (count == 0 || sum / count < TrappingHistogram::binLower(bin) ||
         (bin + 1 < TrappingHistogram::kBins && sum / count >= TrappingHistogram::binUpper(bin)))
       corrupt("histogram bin " + std::to_string(bin) + " has inconsistent count and length sum");
-    h.setBin(bin, count, sum);
+    t.setBin(bin, count, sum);
   }
-  return h;
+  return t;
+}
+
+/// The checksum, format version 2: whether it matches the content (`j` without it).
+bool checksumMatches(json& j, const io::JsonField& root) {
+  const std::string stored = root["checksum"].string();
+  j.erase("checksum");
+  return stored == io::jsonChecksum(j);
+}
+
+TrappingParameters parameters(const io::JsonField& root) {
+  TrappingParameters p;
+  try {
+    p = spec::parametersFromJson(root["parameters"].value(), /*complete=*/true);
+  } catch (const io::BadFile& e) {
+    corrupt(std::string("parameters: ") + e.what());
+  }
+  if (auto e = validationError(p)) corrupt("invalid parameters: " + *e);
+  return p;
+}
+
+void checkCoefficientsAndBins(const io::JsonField& root, const MapCoefficients& derived) {
+  const io::JsonField jc = root["coefficients"];
+  const MapCoefficients stored{jc["A"].integer(), jc["B"].integer(), jc["C"].integer(),
+                               static_cast<int>(jc["m"].integer(INT_MIN, INT_MAX))};
+  if (!(stored == derived))
+    refuse("run file coefficients (A, B, C, m) differ from those this program derives from K, xmin, xmax;"
+           " the file was written by an incompatible program");
+  const io::JsonField bins = root["histogramBins"];
+  if (bins["exactMax"].integer() != TrappingHistogram::kExactMax ||
+      bins["binsPerDecade"].integer() != TrappingHistogram::kBinsPerDecade)
+    refuse("run file uses a different histogram binning");
+  const json& edges = bins["logBinLowerEdges"].value();
+  if (!edges.is_array() || edges.size() != static_cast<std::size_t>(TrappingHistogram::kBins - TrappingHistogram::kExactMax - 1))
+    refuse("run file uses a different histogram binning");
+  for (int i = TrappingHistogram::kExactMax + 1; i < TrappingHistogram::kBins; ++i)
+    if (edges[static_cast<std::size_t>(i - TrappingHistogram::kExactMax - 1)] != TrappingHistogram::binLower(i))
+      refuse("run file uses different histogram bin edges");
+}
+
+LongestSegments longestSegments(const io::JsonField& jl, std::uint32_t kept) {
+  LongestSegments longest(kept);
+  std::optional<SegmentRecord> previous;
+  for (std::size_t i = 0, n = jl.array(kept); i < n; ++i) {
+    const io::JsonField r = jl[i];
+    const SegmentRecord rec{r["orbit"].whole(), r["length"].whole(), segmentStart(r["start"])};
+    if (previous && !LongestSegments::ranksBefore(*previous, rec)) corrupt("the longest segments are not ranked");
+    longest.insert(rec);
+    previous = rec;
+  }
+  return longest;
 }
 
 /// "; <name> reads it anyway<how>" with the front end's name of allowModified, or nothing when it has none.
@@ -131,8 +152,7 @@ std::string runFileText(const TrappingState& s) {
   j["longest"] = longest;
   json orbits = json::array();
   for (const auto& o : s.orbits)
-    orbits.push_back(json::array({o.z.X, o.z.Y, o.block, o.draws, o.length, o.start.z.X, o.start.z.Y,
-                                  o.start.block, o.start.draws}));
+    orbits.push_back(orbitStateJson(o));
   j["orbits"] = orbits;
   // The checksum covers the document without itself, as dumped here: parse + dump reproduces those bytes
   // (sorted keys, exact integers, shortest round-trip reals), so any edit of a value is detected on reading.
@@ -144,106 +164,69 @@ TrappingState parseRunFile(const std::string& text, const RunFileReadOptions& op
   json j;
   try {
     j = io::parseJson(text);
-  } catch (const std::invalid_argument& e) {
-    throw std::runtime_error(std::string("corrupt or truncated run file: ") + e.what());
+  } catch (const io::BadFile& e) {
+    refuse(std::string("corrupt or truncated run file: ") + e.what());
   }
   return runFileFromJson(std::move(j), options);
 }
 
 TrappingState runFileFromJson(nlohmann::json j, const RunFileReadOptions& options) {
   if (!j.is_object() || !j.contains("format") || j["format"] != kRunFileFormatName)
-    throw std::runtime_error("not an Archipelago run file (missing \"format\": \"archipelago-run\")");
-  const std::int64_t version = i64(j, "version");
+    refuse("not an Archipelago run file (missing \"format\": \"archipelago-run\")");
+  const io::JsonField root(j, "the run file", kCorrupt);
+  const std::int64_t version = root["version"].integer();
   if (version != kRunFileFormatVersion && version != 1)
-    throw std::runtime_error("run file format version " + std::to_string(version) +
-                             " is not supported (this program reads versions 1 and " +
-                             std::to_string(kRunFileFormatVersion) + ")");
-  bool verified = false;
-  if (version == 1) {
-    // Format 1 had no checksum: deleting the checksum and declaring version 1 must not bypass it (issue #23).
-    if (!options.allowModified)
-      throw std::runtime_error("run file format version 1 has no checksum, so edits cannot be detected" +
-                               readAnyway(options, " (for inspection only: it cannot be resumed, merged or saved as a "
-                                                   "verified file)"));
-  } else {
-    const json& sum = field(j, "checksum");
-    if (!sum.is_string()) corrupt("field 'checksum' must be a string");
-    const std::string stored = sum.get<std::string>();
-    j.erase("checksum");
-    verified = stored == io::jsonChecksum(j);
-    if (!verified && !options.allowModified)
-      throw std::runtime_error("run file was modified after it was written (its checksum does not match its content)" +
-                               readAnyway(options, ", still checking its consistency"));
-  }
-  const json& jp = field(j, "parameters");
-  TrappingParameters p;
-  try {
-    p = spec::parametersFromJson(jp, /*complete=*/true);
-  } catch (const std::invalid_argument& e) {
-    corrupt(std::string("parameters: ") + e.what());
-  }
-  if (auto e = validationError(p)) corrupt("invalid parameters: " + *e);
+    refuse("run file format version " + std::to_string(version) + " is not supported (this program reads versions 1 and " +
+           std::to_string(kRunFileFormatVersion) + ")");
+  // Format 1 had no checksum: deleting the checksum and declaring version 1 must not bypass it (issue #23).
+  if (version == 1 && !options.allowModified)
+    refuse("run file format version 1 has no checksum, so edits cannot be detected" +
+           readAnyway(options, " (for inspection only: it cannot be resumed, merged or saved as a verified file)"));
+  const bool verified = version != 1 && checksumMatches(j, root);
+  if (version != 1 && !verified && !options.allowModified)
+    refuse("run file was modified after it was written (its checksum does not match its content)" +
+           readAnyway(options, ", still checking its consistency"));
 
   TrappingState s;
-  s.params = p;
+  s.params = parameters(root);
+  const TrappingParameters& p = s.params;
   s.coefficients = computeCoefficients(p.map);
-  const json& jc = field(j, "coefficients");
-  const MapCoefficients stored{i64(jc, "A"), i64(jc, "B"), i64(jc, "C"), static_cast<int>(i64(jc, "m"))};
-  if (!(stored == s.coefficients))
-    throw std::runtime_error("run file coefficients (A, B, C, m) differ from those this program derives from K, xmin, xmax;"
-                             " the file was written by an incompatible program");
-  const json& bins = field(j, "histogramBins");
-  if (i64(bins, "exactMax") != TrappingHistogram::kExactMax || i64(bins, "binsPerDecade") != TrappingHistogram::kBinsPerDecade)
-    throw std::runtime_error("run file uses a different histogram binning");
-  const json& edges = field(bins, "logBinLowerEdges");
-  if (!edges.is_array() || edges.size() != static_cast<std::size_t>(TrappingHistogram::kBins - TrappingHistogram::kExactMax - 1))
-    throw std::runtime_error("run file uses a different histogram binning");
-  for (int i = TrappingHistogram::kExactMax + 1; i < TrappingHistogram::kBins; ++i)
-    if (edges[static_cast<std::size_t>(i - TrappingHistogram::kExactMax - 1)] != TrappingHistogram::binLower(i))
-      throw std::runtime_error("run file uses different histogram bin edges");
-
-  s.orbitBegin = u64(j, "orbitBegin");
-  s.orbitEnd = u64(j, "orbitEnd");
+  checkCoefficientsAndBins(root, s.coefficients);
+  s.orbitBegin = root["orbitBegin"].whole();
+  s.orbitEnd = root["orbitEnd"].whole();
   if (s.orbitBegin >= s.orbitEnd || s.orbitEnd > p.M) corrupt("orbit range outside [0, M)");
-  s.blocksDone = u64(j, "blocksDone");
-  s.elapsedSeconds = f64(j, "elapsedSeconds");
-  const json& kernel = field(j, "kernel");
-  if (!kernel.is_string()) corrupt("field 'kernel' must be a string");
-  s.kernel = kernel.get<std::string>();
+  s.blocksDone = root["blocksDone"].whole();
+  s.elapsedSeconds = root["elapsedSeconds"].real();
+  s.kernel = root["kernel"].string();
 
-  const json& js = field(j, "subsets");
-  if (!js.is_array() || js.size() != p.subsets) corrupt("expected one histogram per subset");
-  for (const json& h : js) s.subsets.push_back(histogram(h));
+  const io::JsonField js = root["subsets"];
+  if (js.array() != p.subsets) corrupt("expected one histogram per subset");
+  for (std::size_t i = 0; i < p.subsets; ++i) s.subsets.push_back(histogram(js[i]));
+  s.longest = longestSegments(root["longest"], p.longestKept);
 
-  s.longest = LongestSegments(p.longestKept);
-  const json& jl = field(j, "longest");
-  if (!jl.is_array() || jl.size() > p.longestKept) corrupt("too many longest segments");
-  std::optional<SegmentRecord> previous;
-  for (const json& r : jl) {
-    const SegmentRecord rec{u64(r, "orbit"), u64(r, "length"), segmentStart(field(r, "start"))};
-    if (previous && !LongestSegments::ranksBefore(*previous, rec)) corrupt("the longest segments are not ranked");
-    s.longest.insert(rec);
-    previous = rec;
-  }
-
-  const json& jo = field(j, "orbits");
-  if (!jo.is_array() || jo.size() != s.orbitEnd - s.orbitBegin) corrupt("expected one state per orbit");
-  s.orbits.reserve(jo.size());
-  for (const json& o : jo) {
-    if (!o.is_array() || o.size() != 9) corrupt("an orbit state must have 9 integers");
-    for (const json& v : o)
-      if (!v.is_number_unsigned()) corrupt("an orbit state must have 9 non-negative integers");
-    OrbitState st;
-    st.z = unitState(json::array({o[0], o[1]}));
-    st.block = o[2].get<std::uint64_t>();
-    st.draws = o[3].get<std::uint64_t>();
-    st.length = o[4].get<std::uint64_t>();
-    st.start = {unitState(json::array({o[5], o[6]})), o[7].get<std::uint64_t>(), o[8].get<std::uint64_t>()};
-    s.orbits.push_back(st);
+  const io::JsonField jo = root["orbits"];
+  if (jo.array() != s.orbitEnd - s.orbitBegin) corrupt("expected one state per orbit");
+  s.orbits.reserve(s.orbitEnd - s.orbitBegin);
+  for (std::size_t i = 0; i < s.orbitEnd - s.orbitBegin; ++i) {
+    const io::JsonField o = jo[i];
+    o.tuple(kOrbitStateRowSize, "[X, Y, block, draws, length, start X, start Y, start block, start draws]");
+    s.orbits.push_back(orbitStateFromJson(o));
   }
   if (auto e = consistencyError(s)) corrupt(*e);
   s.unverified = !verified;
   return s;
+}
+
+json orbitStateJson(const OrbitState& state) { return orbitStateRow(state); }
+
+OrbitState orbitStateFromJson(const io::JsonField& row) {
+  OrbitStateRow r{};
+  for (std::size_t i = 0; i < kOrbitStateRowSize; ++i) {
+    // The whole-number rule on the value first: a run file holds millions of rows, and naming an entry builds its path.
+    const std::optional<std::uint64_t> n = io::wholeJson(row.value()[i], orbitStateRowMax(i));
+    r[i] = n ? *n : row[i].whole(orbitStateRowMax(i));  // the latter refuses, naming the entry
+  }
+  return orbitStateOfRow(r);
 }
 
 void saveRunFile(const std::filesystem::path& path, const TrappingState& state) {
@@ -253,14 +236,14 @@ void saveRunFile(const std::filesystem::path& path, const TrappingState& state) 
 TrappingState loadRunFile(const std::filesystem::path& path, const RunFileReadOptions& options) {
   json j;
   try {
-    j = io::loadJsonFile(path, kMaxRunFileBytes);
-  } catch (const std::invalid_argument& e) {
-    throw std::runtime_error(path.string() + ": corrupt or truncated run file: " + e.what());
+    j = io::loadJsonFile(path, kMaxRunFileBytes);  // a file that cannot be read: a std::runtime_error naming it
+  } catch (const io::BadFile& e) {
+    refuse(path.string() + ": corrupt or truncated run file: " + e.what());
   }
   try {
     return runFileFromJson(std::move(j), options);
   } catch (const std::exception& e) {
-    throw std::runtime_error(path.string() + ": " + e.what());
+    refuse(path.string() + ": " + e.what());
   }
 }
 

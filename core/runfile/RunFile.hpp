@@ -19,6 +19,10 @@
 
 namespace archipelago {
 
+namespace io {
+class JsonField;  // core/io/Json.hpp
+}
+
 inline constexpr int kRunFileFormatVersion = 2;  ///< 2: with a checksum; version 1 files are still read
 inline constexpr const char* kRunFileFormatName = "archipelago-run";
 // kMaxRunFileBytes, the largest run file read: core/trapping/TrappingParameters.hpp (it also bounds M).
@@ -38,7 +42,7 @@ struct RunFileReadOptions {
 };
 
 /// Parses run-file text and validates it whole: structure, parameters, the checksum (format version 2), and
-/// the state's consistency (trapping/StateValidation.hpp).  Throws std::runtime_error with a one-line
+/// the state's consistency (trapping/StateValidation.hpp).  Throws io::BadFile (a std::runtime_error) with a one-line
 /// message for corrupt, truncated, edited or inconsistent content, a different format or an unsupported
 /// version.
 [[nodiscard]] TrappingState parseRunFile(const std::string& text, const RunFileReadOptions& options = {});
@@ -48,8 +52,14 @@ struct RunFileReadOptions {
 /// Writes atomically (temp file + fsync + rename).  Throws std::runtime_error naming the path on failure.
 void saveRunFile(const std::filesystem::path& path, const TrappingState& state);
 /// Reads and validates a run file (a regular file of at most kMaxRunFileBytes).  Throws std::runtime_error
-/// naming the path on failure.
+/// naming the path on failure (io::BadFile for a file refused for its content).
 [[nodiscard]] TrappingState loadRunFile(const std::filesystem::path& path, const RunFileReadOptions& options = {});
+
+/// An orbit's state as run files and tail files write it: orbitStateRow()'s 9 numbers, a JSON array.
+[[nodiscard]] nlohmann::json orbitStateJson(const OrbitState& state);
+/// The state in the first 9 entries of `row`, an array of at least 9 (tuple() first): whole numbers, X and Y below
+/// 2^52 (orbitStateRowMax).  Throws io::BadFile naming the entry.
+[[nodiscard]] OrbitState orbitStateFromJson(const io::JsonField& row);
 
 /// The run file of a run's q = 1 companion (issue #26): "k01.json" → "k01.short.json" (`run` writes it beside the
 /// run when the spec asks for one; `stats RUN --short` reads it).

@@ -107,16 +107,7 @@ TrappingState sliceRun(const TrappingState& whole, std::uint64_t begin, std::uin
   return s;
 }
 
-namespace {
 using json = nlohmann::json;
-
-std::uint64_t manifestU64(const json& j, const char* key, const std::string& name) {
-  const auto it = j.find(key);
-  const std::optional<std::uint64_t> n = it == j.end() ? std::nullopt : io::wholeJson(*it);  // the one rule
-  if (!n) throw std::runtime_error(name + ": field '" + key + "' is missing or not a whole number (corrupt manifest)");
-  return *n;
-}
-}  // namespace
 
 std::string runManifestText(const RunManifest& m) {
   json parts = json::array();
@@ -137,25 +128,25 @@ RunManifest parseRunManifest(const std::string& text, const std::string& name) {
   try {
     j = io::parseJson(text);
   } catch (const std::exception& e) {
-    throw std::runtime_error(name + ": not a manifest of run parts (" + e.what() + ")");
+    throw io::BadFile(name + ": not a manifest of run parts (" + e.what() + ")");
   }
   // Compared as JSON: a "format" of another type (an array, found by the fuzzer) is a wrong format, not a type error.
   if (!j.is_object() || !j.contains("format") || j["format"] != kRunManifestFormatName)
-    throw std::runtime_error(name + ": field 'format' is not \"" + kRunManifestFormatName + "\"");
-  if (manifestU64(j, "version", name) != static_cast<std::uint64_t>(kRunManifestFormatVersion))
-    throw std::runtime_error(name + ": field 'version' is not " + std::to_string(kRunManifestFormatVersion));
+    throw io::BadFile(name + ": field 'format' is not \"" + kRunManifestFormatName + "\"");
+  const std::string prefix = name + ": corrupt manifest: ";
+  const io::JsonField root(j, "the manifest", prefix);
+  if (root["version"].whole() != static_cast<std::uint64_t>(kRunManifestFormatVersion))
+    throw io::BadFile(name + ": field 'version' is not " + std::to_string(kRunManifestFormatVersion));
   RunManifest m;
-  m.blocksDone = manifestU64(j, "blocksDone", name);
-  const auto parts = j.find("parts");
-  if (parts == j.end() || !parts->is_array() || parts->empty())
-    throw std::runtime_error(name + ": field 'parts' is missing or empty (corrupt manifest)");
-  for (const json& p : *parts) {
-    if (!p.is_object() || !p.contains("file") || !p["file"].is_string() || p["file"].get<std::string>().empty())
-      throw std::runtime_error(name + ": field 'parts[].file' is missing (corrupt manifest)");
-    m.parts.push_back({p["file"].get<std::string>(), manifestU64(p, "orbitBegin", name), manifestU64(p, "orbitEnd", name)});
+  m.blocksDone = root["blocksDone"].whole();
+  const io::JsonField parts = root["parts"];
+  if (parts.array() == 0) parts.refuse("is empty");
+  for (std::size_t i = 0; i < parts.value().size(); ++i) {
+    const io::JsonField p = parts[i];
+    m.parts.push_back({p["file"].string(), p["orbitBegin"].whole(), p["orbitEnd"].whole()});
     const std::string& file = m.parts.back().file;
-    if (file.find('/') != std::string::npos || file.find('\0') != std::string::npos || file == "." || file == "..")
-      throw std::runtime_error(name + ": field 'parts[].file' '" + io::shortText(file) + "' must be a file beside the manifest");
+    if (file.empty() || file.find('/') != std::string::npos || file.find('\0') != std::string::npos || file == "." || file == "..")
+      throw io::BadFile(name + ": field 'parts[].file' '" + io::shortText(file) + "' must be a file beside the manifest");
   }
   return m;
 }
@@ -167,10 +158,10 @@ TrappingState loadRunManifest(const std::filesystem::path& path) {
     const std::filesystem::path file = path.parent_path() / p.file;
     TrappingState s = loadRunFile(file);
     if (s.blocksDone != m.blocksDone)
-      throw std::runtime_error(file.string() + ": field 'blocksDone' is " + std::to_string(s.blocksDone) +
+      throw io::BadFile(file.string() + ": field 'blocksDone' is " + std::to_string(s.blocksDone) +
                                " but the manifest " + path.string() + " says " + std::to_string(m.blocksDone));
     if (s.orbitBegin != p.orbitBegin || s.orbitEnd != p.orbitEnd)
-      throw std::runtime_error(file.string() + ": field 'orbitBegin'/'orbitEnd' is " + rangeText(s) +
+      throw io::BadFile(file.string() + ": field 'orbitBegin'/'orbitEnd' is " + rangeText(s) +
                                " but the manifest " + path.string() + " says [" + std::to_string(p.orbitBegin) + ", " +
                                std::to_string(p.orbitEnd) + ")");
     parts.push_back({file.string(), std::move(s)});
@@ -178,7 +169,7 @@ TrappingState loadRunManifest(const std::filesystem::path& path) {
   try {
     return mergeRunParts(std::move(parts));
   } catch (const std::invalid_argument& e) {
-    throw std::runtime_error(path.string() + ": " + e.what());
+    throw io::BadFile(path.string() + ": " + e.what());
   }
 }
 

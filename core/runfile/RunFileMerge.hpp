@@ -54,7 +54,7 @@ struct RunManifest {
 };
 
 [[nodiscard]] std::string runManifestText(const RunManifest& manifest);
-/// Throws std::runtime_error "<name>: …" naming the field of a corrupt or truncated manifest.
+/// Throws io::BadFile "<name>: …" naming the field of a corrupt or truncated manifest.
 [[nodiscard]] RunManifest parseRunManifest(const std::string& text, const std::string& name);
 /// True when `text` claims to be a manifest (its "format" field), so a reader can tell it from a run file.
 [[nodiscard]] bool looksLikeRunManifest(const std::string& text);

@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "core/io/BadFile.hpp"
 #include "core/runspec/RunSpec.hpp"
 
 namespace archipelago {
@@ -20,7 +21,7 @@ std::span<const Preset> presets() {
     for (std::size_t i = 0; i < spec::kPresetCount; ++i) {
       try {
         v.push_back({spec::kPresetTexts[i].id, parseRunSpec(spec::kPresetTexts[i].json)});
-      } catch (const std::invalid_argument& e) {  // a defect of the build, caught by the tests
+      } catch (const io::BadFile& e) {  // a defect of the build, caught by the tests
         throw std::logic_error(std::string("preset ") + spec::kPresetTexts[i].id + ": " + e.what());
       }
     }

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <set>
 #include <stdexcept>
 #include <vector>
 
@@ -18,42 +17,7 @@ namespace {
 
 using nlohmann::json;
 
-[[noreturn]] void bad(const std::string& what) { throw std::invalid_argument(what); }
-
-/// A JSON value that is a whole number in [0, max]: an integer, or a real that is exactly such a number
-/// (hand-written specs may say 2e7).
-std::uint64_t wholeNumber(const json& v, std::string_view key, std::uint64_t max) {
-  std::uint64_t n = 0;
-  if (v.is_number_unsigned()) {
-    n = v.get<std::uint64_t>();
-  } else if (v.is_number_integer()) {
-    bad(std::string(key) + " = " + io::describeJson(v) + " must be a whole number in [0, " + std::to_string(max) + "]");
-  } else if (v.is_number_float()) {
-    const double d = v.get<double>();
-    // 2^64 is the first double past the range of std::uint64_t.
-    if (!(d >= 0 && d < 18446744073709551616.0) || std::floor(d) != d)
-      bad(std::string(key) + " = " + io::describeJson(v) + " must be a whole number in [0, " + std::to_string(max) + "]");
-    n = static_cast<std::uint64_t>(d);
-  } else {
-    bad(std::string(key) + " must be a number, not " + io::describeJson(v));
-  }
-  if (n > max) bad(std::string(key) + " = " + std::to_string(n) + " must be <= " + std::to_string(max));
-  return n;
-}
-
-double realNumber(const json& v, std::string_view key) {
-  if (!v.is_number()) bad(std::string(key) + " must be a number, not " + io::describeJson(v));
-  return v.get<double>();
-}
-
-std::string text(const json& j, const char* key, std::size_t maxBytes) {
-  const auto it = j.find(key);
-  if (it == j.end()) return {};
-  if (!it->is_string()) bad(std::string(key) + " must be a string, not " + io::describeJson(*it));
-  std::string s = it->get<std::string>();
-  if (s.size() > maxBytes) bad(std::string(key) + " is longer than " + std::to_string(maxBytes) + " bytes");
-  return s;
-}
+[[noreturn]] void bad(const std::string& what) { throw io::BadFile(what); }
 
 }  // namespace
 
@@ -72,22 +36,22 @@ json parametersJson(const TrappingParameters& p) {
 }
 
 TrappingParameters parametersFromJson(const json& j, bool complete, const TrappingParameters& defaults) {
-  if (!j.is_object()) bad("parameters must be a JSON object");
+  const io::JsonField parameters(j, "parameters");
+  parameters.object();
   for (auto it = j.begin(); it != j.end(); ++it)
     if (!findParameterRule(it.key())) bad("unknown parameter '" + io::shortText(it.key()) + "'");
   TrappingParameters p = defaults;
   for (const ParameterRule& r : parameterRules()) {
-    const std::string key(r.key);
-    const auto it = j.find(key);
-    if (it == j.end()) {
-      if (complete) bad("missing parameter '" + key + "'");
+    const auto v = parameters.find(r.key);
+    if (!v) {
+      if (complete) bad("missing parameter '" + std::string(r.key) + "'");
       continue;
     }
-    if (r.integer) {
-      const std::uint64_t v = wholeNumber(*it, key, std::numeric_limits<std::uint64_t>::max());
-      setParameterValue(p, r.key, v);  // throws "<key> = v must lie in <range>" outside the documented range
-    } else {
-      setParameterValue(p, r.key, realNumber(*it, key));
+    try {  // throws "<key> = v must lie in <range>" outside the documented range
+      if (r.integer) setParameterValue(p, r.key, v->wholeOrExactReal(std::numeric_limits<std::uint64_t>::max()));
+      else setParameterValue(p, r.key, v->real());
+    } catch (const std::invalid_argument& e) {
+      bad(e.what());
     }
   }
   return p;
@@ -149,19 +113,15 @@ std::string runSpecJson(const RunSpec& s) {
 
 RunSpec parseRunSpec(std::string_view textIn) {
   const json j = spec::parseVersionedDocument(textIn, kRunSpecFormatName, kRunSpecFormatVersion, "a", "run spec");
-  for (auto it = j.begin(); it != j.end(); ++it) {
-    static const std::set<std::string> known{"format", "version", "name", "description", "parameters", "kernel", "threads",
-                                             "companion"};
-    if (!known.count(it.key())) bad("unknown key '" + io::shortText(it.key()) + "'");
-  }
+  const io::JsonField root(j, "the run spec");
+  root.keys({}, {"format", "version", "name", "description", "parameters", "kernel", "threads", "companion"});
   RunSpec s;
-  s.name = text(j, "name", 200);
-  s.description = text(j, "description", 4000);
-  if (const auto p = j.find("parameters"); p != j.end()) s.parameters = spec::parametersFromJson(*p, false);
-  if (j.contains("kernel")) s.kernel = text(j, "kernel", 64);
-  if (const auto t = j.find("threads"); t != j.end())
-    s.threads = static_cast<int>(wholeNumber(*t, "threads", kMaxThreads));
-  if (const auto c = j.find("companion"); c != j.end()) s.companion = realNumber(*c, "companion");
+  if (const auto name = root.find("name")) s.name = name->string(200);
+  if (const auto description = root.find("description")) s.description = description->string(4000);
+  if (const auto p = root.find("parameters")) s.parameters = spec::parametersFromJson(p->value(), false);
+  if (const auto kernel = root.find("kernel")) s.kernel = kernel->string(64);
+  if (const auto t = root.find("threads")) s.threads = static_cast<int>(t->wholeOrExactReal(kMaxThreads));
+  if (const auto c = root.find("companion")) s.companion = c->real();
   if (auto e = validationError(s)) bad(*e);
   return s;
 }
@@ -171,12 +131,12 @@ RunSpec loadRunSpec(const std::filesystem::path& path) {
   std::string content;
   try {
     content = io::readRegularFile(path, kMaxSpecBytes);
-  } catch (const std::runtime_error& e) {
+  } catch (const std::runtime_error& e) {  // its message names the path
     bad(e.what());
   }
   try {
     return parseRunSpec(content);
-  } catch (const std::invalid_argument& e) {
+  } catch (const io::BadFile& e) {
     bad(path.string() + ": " + e.what());
   }
 }

@@ -61,12 +61,12 @@ struct RunSpec {
 /// The spec as JSON text (every field, two-space indent, a final newline).
 [[nodiscard]] std::string runSpecJson(const RunSpec& spec);
 
-/// Reads a spec from JSON text.  Throws std::invalid_argument with one line naming the key for bad content
+/// Reads a spec from JSON text.  Throws io::BadFile with one line naming the key for bad content
 /// (not JSON, wrong format, unknown or repeated key, wrong type, fractional or out-of-range integer) and for a
 /// spec that breaks a rule of validationError().
 [[nodiscard]] RunSpec parseRunSpec(std::string_view text);
 
-/// Reads a spec file.  Throws std::invalid_argument naming the path for a missing, unreadable or bad file.
+/// Reads a spec file.  Throws io::BadFile naming the path for a missing, unreadable or bad file.
 [[nodiscard]] RunSpec loadRunSpec(const std::filesystem::path& path);
 
 /// A preset: one of the paper's cases (resources/presets/*.json, compiled into core).

@@ -18,13 +18,13 @@ namespace archipelago::spec {
 [[nodiscard]] nlohmann::json parametersJson(const TrappingParameters& p);
 
 /// Reads a "parameters" object.  Missing keys keep the value in `defaults` unless `complete` is true, when
-/// they are errors.  Throws std::invalid_argument naming the key (unknown key, wrong type, fractional or
+/// they are errors.  Throws io::BadFile naming the key (unknown key, wrong type, fractional or
 /// out-of-range integer, missing key).  Does not check the parameters' rules (validationError does).
 [[nodiscard]] TrappingParameters parametersFromJson(const nlohmann::json& j, bool complete,
                                                     const TrappingParameters& defaults = {});
 
 /// Parses a versioned document (io::parseJson: depth-limited, strict about repeated keys): a JSON object whose "format" is `format` and whose "version" is `version`.
-/// Throws std::invalid_argument naming the document ("a" + " run spec", "an" + " Archipelago session") otherwise.
+/// Throws io::BadFile naming the document ("a" + " run spec", "an" + " Archipelago session") otherwise.
 /// The same check on a parsed document.
 void checkVersionedDocument(const nlohmann::json& document, const char* format, int version, const std::string& article,
                             const std::string& noun);

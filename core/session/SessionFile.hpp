@@ -126,13 +126,13 @@ struct Session {
 
 /// The document's text (embedding the run when `embeddedRun` is set).
 [[nodiscard]] std::string sessionText(const Session& session);
-/// Parses and validates a whole document.  Throws std::invalid_argument naming the first problem.
+/// Parses and validates a whole document.  Throws io::BadFile naming the first problem.
 [[nodiscard]] Session parseSession(std::string_view text);
 /// Writes atomically.  Throws std::runtime_error (with the path) when it cannot.
 void saveSession(const std::filesystem::path& path, const Session& session);
 /// Reads (bounded, regular files only), parses and validates; a referenced run file's relative path is
-/// resolved against the session file's folder and must exist.  Throws std::invalid_argument or
-/// std::runtime_error naming the file and the problem.
+/// resolved against the session file's folder and must exist.  Throws io::BadFile naming the file and the problem
+/// (a file that cannot be read included).
 [[nodiscard]] Session loadSession(const std::filesystem::path& path);
 
 }  // namespace archipelago

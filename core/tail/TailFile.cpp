@@ -1,6 +1,7 @@
 #include "core/tail/TailFile.hpp"
 
 #include <charconv>
+#include <climits>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
@@ -8,6 +9,7 @@
 #include "core/io/AtomicFile.hpp"
 #include "core/io/Json.hpp"
 #include "core/provenance/Provenance.hpp"
+#include "core/runfile/RunFile.hpp"
 #include "core/runspec/RunSpecJson.hpp"
 
 namespace archipelago {
@@ -18,27 +20,10 @@ namespace {
 
 json number(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
-[[noreturn]] void corrupt(const std::string& what) { throw std::runtime_error("corrupt tail file: " + what); }
+constexpr std::string_view kCorrupt = "corrupt tail file: ";
 
-const json& field(const json& j, const char* key) {
-  if (!j.is_object()) corrupt(std::string("expected an object holding '") + key + "'");
-  const auto it = j.find(key);
-  if (it == j.end()) corrupt(std::string("missing field '") + key + "'");
-  return *it;
-}
-
-std::uint64_t valueU64(const json& v, const std::string& what) {
-  const std::optional<std::uint64_t> n = io::wholeJson(v);  // the documents' one rule of whole numbers
-  if (!n) corrupt(what + " must be a non-negative integer");
-  return *n;
-}
-std::uint64_t u64(const json& j, const char* key) { return valueU64(field(j, key), std::string("field '") + key + "'"); }
-
-std::uint64_t bounded(const json& j, const char* key, std::uint64_t max) {
-  const std::uint64_t v = u64(j, key);
-  if (v > max) corrupt(std::string("field '") + key + "' = " + std::to_string(v) + " is out of range");
-  return v;
-}
+[[noreturn]] void refuse(const std::string& what) { throw io::BadFile(what); }
+[[noreturn]] void corrupt(const std::string& what) { refuse(std::string(kCorrupt) + what); }
 
 json samplerJson(const TailRequest& r) {
   return {{"population", r.population},   {"replicas", r.replicas},
@@ -56,10 +41,10 @@ json stateJson(const TailState& s) {
       levels.push_back(json::array({c.population, c.survivors, c.ancestors, c.proposals, c.accepted}));
     json walkers = json::array();
     for (std::size_t w = 0; w < x.walkers.size(); ++w) {
-      const OrbitState& o = x.walkers[w].state;
-      walkers.push_back(json::array({o.z.X, o.z.Y, o.block, o.draws, o.length, o.start.z.X, o.start.z.Y, o.start.block,
-                                     o.start.draws, x.walkers[w].ancestor,
-                                     w < x.alive.size() ? static_cast<unsigned>(x.alive[w]) : 0u}));
+      json walker = orbitStateJson(x.walkers[w].state);  // then its ancestor and its alive flag
+      walker.push_back(x.walkers[w].ancestor);
+      walker.push_back(w < x.alive.size() ? static_cast<unsigned>(x.alive[w]) : 0u);
+      walkers.push_back(std::move(walker));
     }
     replicas.push_back({{"orbits_done", x.orbitsDone}, {"trials", x.trials}, {"levels", levels}, {"walkers", walkers},
                         {"alive", !x.alive.empty()}});
@@ -73,10 +58,94 @@ json stateJson(const TailState& s) {
           {"replicas", replicas}};
 }
 
-UnitState unitState(const json& a, std::size_t i) {
-  const UnitState z{valueU64(a[i], "a walker's X"), valueU64(a[i + 1], "a walker's Y")};
-  if (z.X >= fixedpoint::kOne || z.Y >= fixedpoint::kOne) corrupt("a walker's state lies outside [0, 2^52)");
-  return z;
+/// The sampler's settings ("sampler" and the run's "parameters"), checked as a request.
+TailRequest requestFrom(const io::JsonField& root) {
+  TailRequest r;
+  try {
+    r.run = spec::parametersFromJson(root["parameters"].value(), /*complete=*/true);
+  } catch (const io::BadFile& e) {
+    corrupt(std::string("parameters: ") + e.what());
+  }
+  const io::JsonField js = root["sampler"];
+  r.population = static_cast<std::uint32_t>(js["population"].whole(kMaxTailPopulation));
+  r.replicas = static_cast<std::uint32_t>(js["replicas"].whole(kMaxTailReplicas));
+  r.firstSteps = js["first"].whole();
+  r.maxSteps = js["t_max"].whole();
+  r.binsPerLevel = static_cast<std::uint32_t>(js["level_bins"].whole(kMaxBinsPerLevel));
+  r.epsilon = js["epsilon"].whole();
+  const io::JsonField clones = js["clones"];
+  const auto rule = clones.value().is_string() ? cloneRuleByName(clones.value().get<std::string>()) : std::nullopt;
+  if (!rule) clones.refuseValue("must be \"perturb\" or \"metropolis\"");
+  r.clones = *rule;
+  r.metropolisSteps = static_cast<std::uint32_t>(js["metropolis_steps"].whole(kMaxMetropolisSteps));
+  r.warmupBlocks = js["warmup"].whole(kMaxWarmupBlocks);
+  r.minAncestors = js["min_ancestors"].whole();
+  if (auto e = tailRequestError(r)) corrupt("invalid sampler settings: " + *e);
+  return r;
+}
+
+/// The coefficients and the levels, as this program derives them from the request (in `s`).
+void checkCoefficientsAndLevels(const io::JsonField& root, const TailState& s) {
+  const io::JsonField jc = root["coefficients"];
+  const MapCoefficients stored{jc["A"].integer(), jc["B"].integer(), jc["C"].integer(),
+                               static_cast<int>(jc["m"].integer(INT_MIN, INT_MAX))};
+  if (!(stored == s.coefficients))
+    refuse("tail file coefficients (A, B, C, m) differ from those this program derives from K, xmin, xmax");
+  const io::JsonField jl = root["level_blocks"];
+  if (!jl.value().is_array() || jl.value().size() != s.levels.size())
+    corrupt("the levels differ from those of the sampler's settings");
+  for (std::size_t k = 0; k < s.levels.size(); ++k)
+    if (jl[k].whole() != s.levels[k]) corrupt("the levels differ from those of the sampler's settings");
+}
+
+/// A walker: orbitStateJson's 9 numbers, its ancestor and its alive flag (0 or 1, kept when the replica keeps flags).
+void readWalker(const io::JsonField& w, TailReplica& x, bool hasAlive) {
+  w.tuple(kOrbitStateRowSize + 2, "[X, Y, block, draws, length, X0, Y0, block0, draws0, ancestor, alive]");
+  TailWalker t;
+  t.state = orbitStateFromJson(w);
+  t.ancestor = static_cast<std::uint32_t>(w[kOrbitStateRowSize].whole(UINT32_MAX));
+  const std::uint64_t alive = w[kOrbitStateRowSize + 1].whole(1);
+  x.walkers.push_back(t);
+  if (hasAlive) x.alive.push_back(static_cast<std::uint8_t>(alive));
+}
+
+TailReplica replicaFrom(const io::JsonField& jr, std::size_t levels) {
+  TailReplica x;
+  x.orbitsDone = jr["orbits_done"].whole();
+  x.trials = jr["trials"].whole();
+  const io::JsonField lv = jr["levels"];
+  for (std::size_t k = 0, n = lv.array(levels); k < n; ++k) {
+    const io::JsonField c = lv[k];
+    c.tuple(5, "[population, survivors, ancestors, proposals, accepted]");
+    x.levels.push_back({c[0].whole(), c[1].whole(), c[2].whole(), c[3].whole(), c[4].whole()});
+  }
+  // Stage 0 may hold more successes than N (about 2N); a walker takes ~200 bytes of text, so the file's size
+  // (kMaxTailFileBytes) bounds their number.
+  const io::JsonField jw = jr["walkers"];
+  const bool hasAlive = jr["alive"].boolean();
+  for (std::size_t k = 0, n = jw.array(); k < n; ++k) readWalker(jw[k], x, hasAlive);
+  return x;
+}
+
+/// The sampler's state ("state"), into `s` started from its request.
+void readState(const io::JsonField& st, TailState& s) {
+  s.next = static_cast<std::size_t>(st["next"].whole(s.levels.size()));
+  s.age = st["age"].whole();
+  const io::JsonField pilot = st["pilot"];
+  s.pilotOrbits = pilot["orbits"].whole();
+  s.pilotTrials = pilot["trials"].whole();
+  s.pilotSuccesses = pilot["successes"].whole();
+  s.entryOrbits = st["entry_orbits"].whole();
+  const io::JsonField sal = st["steps_at_level"];
+  for (std::size_t k = 0, n = sal.array(s.levels.size()); k < n; ++k) s.stepsAtLevel.push_back(sal[k].whole());
+  // A slice's replicas (TailSampler.hpp, "slice"); files written before slices existed hold every replica from 0.
+  const auto first = st.find("first_replica");
+  s.firstReplica = first ? static_cast<std::uint32_t>(first->whole(s.request.replicas - 1)) : 0;
+  const io::JsonField reps = st["replicas"];
+  const std::size_t n = reps.array(s.request.replicas - s.firstReplica);
+  if (n == 0) reps.refuse("must hold one entry per replica of the run or of its slice");
+  s.replicas.clear();
+  for (std::size_t rep = 0; rep < n; ++rep) s.replicas.push_back(replicaFrom(reps[rep], s.levels.size()));
 }
 
 }  // namespace
@@ -127,120 +196,27 @@ TailState parseTailFile(const std::string& text) {
   json j;
   try {
     j = io::parseJson(text);
-  } catch (const std::invalid_argument& e) {
-    throw std::runtime_error(std::string("corrupt or truncated tail file: ") + e.what());
+  } catch (const io::BadFile& e) {
+    refuse(std::string("corrupt or truncated tail file: ") + e.what());
   }
   if (!j.is_object() || !j.contains("format") || j["format"] != kTailFileFormatName)
-    throw std::runtime_error("not an Archipelago tail file (missing \"format\": \"archipelago-tail\")");
-  const json& version = field(j, "version");
+    refuse("not an Archipelago tail file (missing \"format\": \"archipelago-tail\")");
+  const io::JsonField root(j, "the tail file", kCorrupt);
+  const json& version = root["version"].value();
   if (!version.is_number_unsigned() || version.get<std::uint64_t>() != kTailFileFormatVersion)
-    throw std::runtime_error("tail file version " + io::describeJson(version) + " is not supported (this program reads version " +
-                             std::to_string(kTailFileFormatVersion) + ")");
-  const json& sum = field(j, "checksum");
-  if (!sum.is_string()) corrupt("field 'checksum' must be a string");
-  const std::string stored = sum.get<std::string>();
+    refuse("tail file version " + io::describeJson(version) + " is not supported (this program reads version " +
+           std::to_string(kTailFileFormatVersion) + ")");
+  const std::string stored = root["checksum"].string();
   j.erase("checksum");
   if (stored != io::jsonChecksum(j))
-    throw std::runtime_error("tail file was modified after it was written (its checksum does not match its content)");
+    refuse("tail file was modified after it was written (its checksum does not match its content)");
 
-  TailRequest r;
-  try {
-    r.run = spec::parametersFromJson(field(j, "parameters"), /*complete=*/true);
-  } catch (const std::invalid_argument& e) {
-    corrupt(std::string("parameters: ") + e.what());
-  }
-  const json& js = field(j, "sampler");
-  r.population = static_cast<std::uint32_t>(bounded(js, "population", kMaxTailPopulation));
-  r.replicas = static_cast<std::uint32_t>(bounded(js, "replicas", kMaxTailReplicas));
-  r.firstSteps = u64(js, "first");
-  r.maxSteps = u64(js, "t_max");
-  r.binsPerLevel = static_cast<std::uint32_t>(bounded(js, "level_bins", kMaxBinsPerLevel));
-  r.epsilon = u64(js, "epsilon");
-  const json& clones = field(js, "clones");
-  const auto rule = clones.is_string() ? cloneRuleByName(clones.get<std::string>()) : std::nullopt;
-  if (!rule) corrupt("field 'clones' must be \"perturb\" or \"metropolis\"");
-  r.clones = *rule;
-  r.metropolisSteps = static_cast<std::uint32_t>(bounded(js, "metropolis_steps", kMaxMetropolisSteps));
-  r.warmupBlocks = bounded(js, "warmup", kMaxWarmupBlocks);
-  r.minAncestors = u64(js, "min_ancestors");
-  if (auto e = tailRequestError(r)) corrupt("invalid sampler settings: " + *e);
-
-  TailState s = startTail(r);
-  const json& jc = field(j, "coefficients");
-  const auto i64 = [&](const char* key) {
-    const json& v = field(jc, key);
-    if (!v.is_number_integer()) corrupt(std::string("field '") + key + "' must be an integer");
-    return v.get<std::int64_t>();
-  };
-  const MapCoefficients stored_{i64("A"), i64("B"), i64("C"), static_cast<int>(i64("m"))};
-  if (!(stored_ == s.coefficients))
-    throw std::runtime_error("tail file coefficients (A, B, C, m) differ from those this program derives from K, xmin, xmax");
-  const json& jl = field(j, "level_blocks");
-  if (!jl.is_array() || jl.size() != s.levels.size()) corrupt("the levels differ from those of the sampler's settings");
-  for (std::size_t k = 0; k < s.levels.size(); ++k)
-    if (valueU64(jl[k], "a level") != s.levels[k]) corrupt("the levels differ from those of the sampler's settings");
-  s.steps = u64(j, "steps");
-  const json& elapsed = field(j, "elapsedSeconds");
-  if (!elapsed.is_number() || !(elapsed.get<double>() >= 0)) corrupt("field 'elapsedSeconds' must be a number >= 0");
-  s.elapsedSeconds = elapsed.get<double>();
-  const json& kernel = field(j, "kernel");
-  if (!kernel.is_string()) corrupt("field 'kernel' must be a string");
-  s.kernel = kernel.get<std::string>();
-
-  const json& st = field(j, "state");
-  s.next = static_cast<std::size_t>(bounded(st, "next", s.levels.size()));
-  s.age = u64(st, "age");
-  const json& pilot = field(st, "pilot");
-  s.pilotOrbits = u64(pilot, "orbits");
-  s.pilotTrials = u64(pilot, "trials");
-  s.pilotSuccesses = u64(pilot, "successes");
-  s.entryOrbits = u64(st, "entry_orbits");
-  const json& sal = field(st, "steps_at_level");
-  if (!sal.is_array() || sal.size() > s.levels.size()) corrupt("field 'steps_at_level' must list one count per level reached");
-  for (const json& v : sal) s.stepsAtLevel.push_back(valueU64(v, "a level's steps"));
-  // A slice's replicas (TailSampler.hpp, "slice"); files written before slices existed hold every replica from 0.
-  s.firstReplica = st.contains("first_replica")
-                       ? static_cast<std::uint32_t>(bounded(st, "first_replica", s.request.replicas - 1))
-                       : 0;
-  const json& reps = field(st, "replicas");
-  if (!reps.is_array() || reps.empty() || reps.size() > s.request.replicas - s.firstReplica)
-    corrupt("expected one entry per replica of the run or of its slice");
-  s.replicas.resize(reps.size());
-  for (std::size_t rep = 0; rep < s.replicas.size(); ++rep) {
-    TailReplica& x = s.replicas[rep];
-    const json& jr = reps[rep];
-    x.orbitsDone = u64(jr, "orbits_done");
-    x.trials = u64(jr, "trials");
-    const json& lv = field(jr, "levels");
-    if (!lv.is_array() || lv.size() > s.levels.size()) corrupt("a replica lists more levels than the sampler has");
-    for (const json& c : lv) {
-      if (!c.is_array() || c.size() != 5) corrupt("a level count must be [population, survivors, ancestors, proposals, accepted]");
-      x.levels.push_back({valueU64(c[0], "a count"), valueU64(c[1], "a count"), valueU64(c[2], "a count"), valueU64(c[3], "a count"),
-                          valueU64(c[4], "a count")});
-    }
-    const json& jw = field(jr, "walkers");
-    // Stage 0 may hold more successes than N (about 2N); a walker takes ~200 bytes of text, so the file's size
-    // (kMaxTailFileBytes) bounds their number.
-    if (!jw.is_array()) corrupt("a replica's walkers must be an array");
-    const json& hasAlive = field(jr, "alive");
-    if (!hasAlive.is_boolean()) corrupt("field 'alive' must be true or false");
-    for (const json& w : jw) {
-      if (!w.is_array() || w.size() != 11) corrupt("a walker must have 11 non-negative integers");
-      TailWalker t;
-      t.state.z = unitState(w, 0);
-      t.state.block = valueU64(w[2], "a walker's block");
-      t.state.draws = valueU64(w[3], "a walker's draws");
-      t.state.length = valueU64(w[4], "a walker's age");
-      t.state.start = {unitState(w, 5), valueU64(w[7], "a walker's start block"), valueU64(w[8], "a walker's start draws")};
-      const std::uint64_t ancestor = valueU64(w[9], "a walker's ancestor");
-      if (ancestor > UINT32_MAX) corrupt("a walker's ancestor is out of range");
-      t.ancestor = static_cast<std::uint32_t>(ancestor);
-      const std::uint64_t alive = valueU64(w[10], "a walker's alive flag");
-      if (alive > 1) corrupt("a walker's alive flag must be 0 or 1");
-      x.walkers.push_back(t);
-      if (hasAlive.get<bool>()) x.alive.push_back(static_cast<std::uint8_t>(alive));
-    }
-  }
+  TailState s = startTail(requestFrom(root));
+  checkCoefficientsAndLevels(root, s);
+  s.steps = root["steps"].whole();
+  s.elapsedSeconds = root["elapsedSeconds"].nonNegative();
+  s.kernel = root["kernel"].string();
+  readState(root["state"], s);
   if (auto e = tailStateError(s)) corrupt(*e);
   return s;
 }
@@ -264,6 +240,8 @@ TailState loadTailFile(const std::filesystem::path& path) {
     text = io::readRegularFile(path, kMaxTailFileBytes);
     io::checkParseMemory(text.size(), path.string());
     return parseTailFile(text);
+  } catch (const io::BadFile& e) {
+    refuse(path.string() + ": " + e.what());
   } catch (const std::exception& e) {
     throw std::runtime_error(path.string() + ": " + e.what());
   }

@@ -42,7 +42,7 @@ inline constexpr std::uintmax_t kMaxTailFileBytes = std::uintmax_t{4} << 30;
 
 /// The JSON text of a tail file.
 [[nodiscard]] std::string tailFileText(const TailState& state);
-/// Parses and validates tail-file text.  Throws std::runtime_error with one line for anything wrong (not JSON,
+/// Parses and validates tail-file text.  Throws io::BadFile (a std::runtime_error) with one line for anything wrong (not JSON,
 /// another format or version, a checksum that does not match, a field missing or of the wrong type, a request
 /// out of range, levels or coefficients this program would not derive, an inconsistent state).
 [[nodiscard]] TailState parseTailFile(const std::string& text);
@@ -53,7 +53,7 @@ inline constexpr std::uintmax_t kMaxTailFileBytes = std::uintmax_t{4} << 30;
 
 /// Writes atomically.  Throws std::runtime_error naming the path.
 void saveTailFile(const std::filesystem::path& path, const TailState& state);
-/// Reads and validates.  Throws std::runtime_error naming the path.
+/// Reads and validates.  Throws std::runtime_error naming the path (io::BadFile for a file refused for its content).
 [[nodiscard]] TailState loadTailFile(const std::filesystem::path& path);
 
 /// The CSV of the levels: a "# key: value" header (the process, the sampler's settings, the steps) and

@@ -196,4 +196,17 @@ std::uint64_t randomizingThreshold(double Xr) noexcept {
   return static_cast<std::uint64_t>(std::floor(std::ldexp(Xr, FixedPointMap::kBits)));
 }
 
+OrbitStateRow orbitStateRow(const OrbitState& o) noexcept {
+  return {o.z.X, o.z.Y, o.block, o.draws, o.length, o.start.z.X, o.start.z.Y, o.start.block, o.start.draws};
+}
+
+OrbitState orbitStateOfRow(const OrbitStateRow& r) noexcept {
+  return {{r[0], r[1]}, r[2], r[3], r[4], {{r[5], r[6]}, r[7], r[8]}};
+}
+
+std::uint64_t orbitStateRowMax(std::size_t column) noexcept {
+  const bool coordinate = column == 0 || column == 1 || column == 5 || column == 6;
+  return coordinate ? FixedPointMap::kOne - 1 : UINT64_MAX;
+}
+
 }  // namespace archipelago

@@ -2,6 +2,7 @@
 /// \file TrappingParameters.hpp
 /// \brief Settings of a trapping-statistics run (Karney 1983, §3 and appendix B, steps 1–9).
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -124,6 +125,16 @@ struct OrbitState {
   SegmentStart start;        ///< where the open segment started
   friend bool operator==(const OrbitState&, const OrbitState&) = default;
 };
+
+/// An orbit's state as one row of 9 numbers: X, Y, block, draws, length, start X, start Y, start block, start draws.
+/// The one order of the run file's "orbits", the tail file's walkers and the Python module's orbit_states().
+inline constexpr std::size_t kOrbitStateRowSize = 9;
+using OrbitStateRow = std::array<std::uint64_t, kOrbitStateRowSize>;
+[[nodiscard]] OrbitStateRow orbitStateRow(const OrbitState& o) noexcept;
+/// The state of a row (X, Y and start X, Y < 2^52: the reader's to check, orbitStateRowMax).
+[[nodiscard]] OrbitState orbitStateOfRow(const OrbitStateRow& row) noexcept;
+/// The largest value of each column of a row: 2^52 − 1 for the four coordinates, 2^64 − 1 for the counts.
+[[nodiscard]] std::uint64_t orbitStateRowMax(std::size_t column) noexcept;
 
 /// A finished segment with its start state.
 struct SegmentRecord {

@@ -23,7 +23,7 @@
 
 namespace archipelago::fuzz {
 
-/// Run files: parseRunFile() throws std::runtime_error for any bad content.  A file it accepts must be
+/// Run files: parseRunFile() throws io::BadFile for any bad content.  A file it accepts must be
 /// written back identically (the parse is exact) and validated again.
 inline void runFile(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
@@ -43,19 +43,19 @@ inline void runFile(const std::uint8_t* data, std::size_t size) {
       }
       const std::string again = runFileText(s);
       if (!(parseRunFile(again).params == s.params)) throw std::logic_error("run file round trip changed it");
-    } catch (const std::runtime_error&) {
+    } catch (const io::BadFile&) {
     }
   }
 }
 
-/// Run specs (presets, --spec files, saved settings): parseRunSpec() throws std::invalid_argument.  An
+/// Run specs (presets, --spec files, saved settings): parseRunSpec() throws io::BadFile.  An
 /// accepted spec round-trips exactly.
 inline void runSpec(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
   try {
     const RunSpec s = parseRunSpec(text);
     if (!(parseRunSpec(runSpecJson(s)) == s)) throw std::logic_error("run spec round trip changed it");
-  } catch (const std::invalid_argument&) {
+  } catch (const io::BadFile&) {
   }
 }
 
@@ -83,7 +83,7 @@ inline void numbers(const std::uint8_t* data, std::size_t size) {
   }
 }
 
-/// Session files (.archipelago): parseSession() throws std::invalid_argument.  An accepted session is written
+/// Session files (.archipelago): parseSession() throws io::BadFile.  An accepted session is written
 /// back to the same text (the codec is exact) and parsed again.
 inline void session(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
@@ -91,11 +91,11 @@ inline void session(const std::uint8_t* data, std::size_t size) {
     const Session s = parseSession(text);
     const std::string again = sessionText(s);
     if (sessionText(parseSession(again)) != again) throw std::logic_error("session round trip changed it");
-  } catch (const std::invalid_argument&) {
+  } catch (const io::BadFile&) {
   }
 }
 
-/// Run manifests (MPI checkpoints, core/runfile/RunFileMerge.hpp): parseRunManifest() throws std::runtime_error;
+/// Run manifests (MPI checkpoints, core/runfile/RunFileMerge.hpp): parseRunManifest() throws io::BadFile;
 /// an accepted manifest is written back to a manifest that reads the same.
 inline void manifest(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
@@ -104,12 +104,12 @@ inline void manifest(const std::uint8_t* data, std::size_t size) {
     const RunManifest again = parseRunManifest(runManifestText(m), "manifest");
     if (again.parts.size() != m.parts.size() || again.blocksDone != m.blocksDone)
       throw std::logic_error("manifest round trip changed it");
-  } catch (const std::runtime_error&) {
+  } catch (const io::BadFile&) {
   }
 }
 
 /// Tail files (core/tail/TailFile.hpp, the rare-event sampler's checkpoints): parseTailFile() throws
-/// std::runtime_error.  A JSON object's checksum is first signed again over its content, as the writer does, so
+/// io::BadFile.  A JSON object's checksum is first signed again over its content, as the writer does, so
 /// that the fuzzer reaches the fields behind it (an edited file is refused by the checksum before any of them is
 /// read).  An accepted file is written back to a text that reads the same.
 inline void tailFile(const std::uint8_t* data, std::size_t size) {
@@ -121,13 +121,13 @@ inline void tailFile(const std::uint8_t* data, std::size_t size) {
       j["checksum"] = io::jsonChecksum(j);
       text = j.dump(1);
     }
-  } catch (const std::invalid_argument&) {
+  } catch (const io::BadFile&) {
   }
   try {
     const TailState s = parseTailFile(text);
     const std::string again = tailFileText(s);
     if (tailFileText(parseTailFile(again)) != again) throw std::logic_error("tail file round trip changed it");
-  } catch (const std::runtime_error&) {
+  } catch (const io::BadFile&) {
   }
 }
 
@@ -224,7 +224,7 @@ inline void tailState(const std::uint8_t* data, std::size_t size) {
   TailState s;
   try {
     s = parseTailFile(j.dump(1));
-  } catch (const std::runtime_error&) {
+  } catch (const io::BadFile&) {
     return;  // refused: what an inconsistent state must be
   }
   detail::checkTailInvariants(s);

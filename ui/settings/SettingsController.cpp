@@ -10,6 +10,8 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "core/io/BadFile.hpp"
+
 namespace archipelago::ui {
 
 QRect SettingsController::clampToScreen(const QRect& wanted, const QRect& available) {
@@ -59,7 +61,7 @@ std::optional<RunSpec> SettingsController::lastSpec(QString* error) {
   if (text.isEmpty()) return std::nullopt;
   try {
     return parseRunSpec(text.toStdString());
-  } catch (const std::invalid_argument& e) {
+  } catch (const io::BadFile& e) {
     if (error) *error = QString::fromStdString(e.what());
     return std::nullopt;
   }

@@ -6,6 +6,7 @@
 #include <malloc.h>
 
 #include <chrono>
+#include <cmath>
 #include <functional>
 #include <string>
 
@@ -42,7 +43,7 @@ TEST(Json, DeepNesting_Issue23_IsRefusedQuicklyWithOneShortLine) {
 
 TEST(Json, DepthLimitIsExact) {
   EXPECT_NO_THROW((void)parseJson(nested(kMaxJsonDepth)));
-  EXPECT_THROW((void)parseJson(nested(kMaxJsonDepth + 1)), std::invalid_argument);
+  EXPECT_THROW((void)parseJson(nested(kMaxJsonDepth + 1)), BadFile);
   // Brackets inside strings (with escaped quotes) are text, not nesting.
   EXPECT_NO_THROW((void)parseJson("[\"" + std::string(100, '[') + "\\\"" + std::string(100, '{') + "\"]"));
 }
@@ -136,6 +137,50 @@ TEST(Json, ParseMemoryCheck_Issue23_RefusesWhatCannotFit) {
   EXPECT_NO_THROW(checkMemory(1 << 20, "a little"));
   const std::string what = message([] { checkMemory(std::uintmax_t{1} << 60, "the Markov series"); });
   EXPECT_EQ(what.rfind("the Markov series needs about ", 0), 0u) << what;
+}
+
+// Issue 51: one reader of every document's fields, one wording per kind, the field named by its path, one exception.
+TEST(JsonField, NamesTheFieldByItsPathWithOneWordingPerKind) {
+  const nlohmann::json j = parseJson(R"({"n": -1, "r": "x", "s": 3, "b": 1, "a": {"list": [1, [2, 3.5]]},
+                                          "big": 7, "long": "abcdef", "i": 5, "neg": -0.5, "spec": 2e7, "o": []})");
+  const JsonField root(j, "the file", "bad file: ");
+  const auto says = [](const std::function<void()>& f) {
+    try {
+      f();
+    } catch (const BadFile& e) {
+      return std::string(e.what());
+    }
+    return std::string("(no BadFile)");
+  };
+  EXPECT_EQ(says([&] { (void)root["n"].whole(); }), "bad file: n = -1 must be a whole number in [0, 18446744073709551615]");
+  EXPECT_EQ(says([&] { (void)root["big"].whole(6, 1); }), "bad file: big = 7 must be a whole number in [1, 6]");
+  EXPECT_EQ(says([&] { (void)root["a"]["list"][1][1].whole(); }),
+            "bad file: a.list[1][1] = 3.5 must be a whole number in [0, 18446744073709551615]");
+  EXPECT_EQ(says([&] { (void)root["missing"]; }), "bad file: the file has no 'missing'");
+  EXPECT_EQ(says([&] { (void)root["a"]["other"]; }), "bad file: a has no 'other'");
+  EXPECT_EQ(says([&] { (void)root["s"]["x"]; }), "bad file: s must be a JSON object, not 3");
+  EXPECT_EQ(says([&] { (void)root["r"].real(); }), "bad file: r must be a number, not \"x\"");
+  EXPECT_EQ(says([&] { (void)root["neg"].nonNegative(); }), "bad file: neg = -0.5 must be ≥ 0");
+  EXPECT_EQ(says([&] { (void)root["s"].string(); }), "bad file: s must be a string, not 3");
+  EXPECT_EQ(says([&] { (void)root["long"].string(3); }), "bad file: long is longer than 3 bytes");
+  EXPECT_EQ(says([&] { (void)root["b"].boolean(); }), "bad file: b must be true or false, not 1");
+  EXPECT_EQ(says([&] { (void)root["s"].array(); }), "bad file: s must be an array, not 3");
+  EXPECT_EQ(says([&] { (void)root["a"]["list"].array(1); }), "bad file: a.list has 2 entries; at most 1");
+  EXPECT_EQ(says([&] { root["a"]["list"].tuple(3, "[x, y, z]"); }), "bad file: a.list must be [x, y, z], not an array of 2 entries");
+  EXPECT_EQ(says([&] { (void)root["i"].integer(-1, 1); }), "bad file: i = 5 must be an integer in [-1, 1]");
+  EXPECT_EQ(says([&] { root["a"].keys({"list"}, {"x"}); root["a"].keys({"list", "y"}); }), "bad file: a has no 'y'");
+  EXPECT_EQ(says([&] { root.keys({}, {"n"}); }), "bad file: unknown key 'a' in the file");
+  EXPECT_EQ(says([&] { root["o"].refuseValue("must be full"); }), "bad file: o = an array of 0 entries must be full");
+  // Read as they are: a whole number, an exact real of a hand-written spec, a null as the writer's non-finite value.
+  EXPECT_EQ(root["a"]["list"][0].whole(), 1u);
+  EXPECT_EQ(root["spec"].wholeOrExactReal(20000000), 20000000u);
+  EXPECT_EQ(says([&] { (void)root["spec"].wholeOrExactReal(19999999); }),
+            "bad file: spec = 20000000.0 must be a whole number in [0, 19999999]");
+  EXPECT_TRUE(std::isnan(JsonField(nlohmann::json(nullptr), "v").realOr(NAN)));
+  EXPECT_FALSE(root.find("missing"));
+  EXPECT_EQ(root.find("i")->integer(), 5);
+  // Text that is not JSON is a BadFile too.
+  EXPECT_THROW((void)parseJson("[1, 2"), BadFile);
 }
 
 }  // namespace

@@ -104,7 +104,7 @@ TEST(RunFile, BadFilesGiveClearErrors) {
   expectRejected(replaced(good, "\"subsets\": 5", "\"subsets\": 4"), "one histogram per subset");
   expectRejected(replaced(good, "\"A\": ", "\"A\": 1"), "coefficients (A, B, C, m) differ");
   expectRejected(replaced(good, "\"blocksDone\": 5000", "\"blocksDone\": 4999"), "block count differs");
-  expectRejected(replaced(good, "\"orbits\"", "\"orbitz\""), "missing field 'orbits'");
+  expectRejected(replaced(good, "\"orbits\"", "\"orbitz\""), "the run file has no 'orbits'");
 }
 
 // --- issue 12, finding 4: run files that were accepted with wrong results ----------------------------------

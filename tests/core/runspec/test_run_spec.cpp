@@ -11,6 +11,7 @@
 
 #include <unistd.h>
 
+#include "core/io/BadFile.hpp"
 #include "core/runfile/RunFile.hpp"
 #include "core/runspec/RunSpec.hpp"
 
@@ -25,7 +26,7 @@ void expectRejected(const std::string& text, const std::string& mention) {
   try {
     (void)parseRunSpec(text);
     ADD_FAILURE() << "accepted: " << text;
-  } catch (const std::invalid_argument& e) {
+  } catch (const io::BadFile& e) {
     EXPECT_NE(std::string(e.what()).find(mention), std::string::npos) << e.what() << "\n  expected: " << mention;
   }
 }
@@ -111,14 +112,14 @@ TEST(RunSpec, FilesAreReadWithTheirPathInErrors) {
   EXPECT_EQ(loadRunSpec(good), RunSpec{});
   const auto broken = dir / "broken.json";
   std::ofstream(broken) << "{\"format\": \"archipelago-spec\", \"version\": 1, \"parameters\": {\"M\": -1}}";
-  EXPECT_THROW((void)loadRunSpec(broken), std::invalid_argument);
+  EXPECT_THROW((void)loadRunSpec(broken), io::BadFile);
   try {
     (void)loadRunSpec(dir);  // a folder is no spec, and says so (not "unexpected end of input")
     ADD_FAILURE();
-  } catch (const std::invalid_argument& e) {
+  } catch (const io::BadFile& e) {
     EXPECT_NE(std::string(e.what()).find("not a regular file"), std::string::npos) << e.what();
   }
-  EXPECT_THROW((void)loadRunSpec(dir / "missing.json"), std::invalid_argument);
+  EXPECT_THROW((void)loadRunSpec(dir / "missing.json"), io::BadFile);
   std::filesystem::remove_all(dir);
 }
 
