@@ -29,6 +29,7 @@
 #include "core/runfile/RunFile.hpp"
 #include "core/session/SessionFile.hpp"
 #include "ui/plots/StatisticsPlot.hpp"
+#include "ui/portrait/AtlasPanel.hpp"
 #include "ui/portrait/OrbitListPanel.hpp"
 #include "ui/portrait/PortraitController.hpp"
 #include "ui/portrait/PortraitPanel.hpp"
@@ -210,6 +211,25 @@ class TestIssue53 : public QObject {
                                        .arg(colour.name()).arg(icon.x()).arg(icon.y()).arg(out)));
     }
     QVERIFY(entries >= 3);
+  }
+
+  // Finding 9: "Model P_t…" was greyed out on a stopped atlas with no reason: its tooltip and the page's progress line
+  // give core's (markovTreeAtlasError).
+  void finding9_modelPtSaysWhyAStoppedAtlasHasNone() {
+    MainWindow w;
+    w.setConfirmations(false);
+    AtlasPanel& panel = *w.portraitPanel()->atlasPanel();
+    archipelago::Atlas stopped;
+    stopped.request = panel.request();
+    stopped.nodes.emplace_back();  // the centre, known and not measured
+    stopped.cancelled = true;
+    stopped.stopReason = "stopped";
+    panel.restoreAtlas(stopped);
+    const QString why = QStringLiteral("the atlas was stopped before its end (stopped)");
+    QVERIFY(!panel.markovTreeButton()->isEnabled());
+    QVERIFY2(panel.markovTreeButton()->toolTip().contains(why), qPrintable(panel.markovTreeButton()->toolTip()));
+    QVERIFY2(panel.progressText().contains(QStringLiteral("Model P_t")) && panel.progressText().contains(why),
+             qPrintable(panel.progressText()));
   }
 
   // Finding 10: Ctrl+Z right after the Orbits page's Clear did nothing (the focus fell into Steps, which took the

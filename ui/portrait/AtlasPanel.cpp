@@ -205,8 +205,7 @@ void AtlasPanel::createFileButtons() {
 void AtlasPanel::createMarkovTreeWidgets() {
   modelButton_ = new QPushButton(tr("Model P_t…"), this);
   modelButton_->setObjectName(QStringLiteral("atlasMarkovTree"));
-  modelButton_->setToolTip(tr("The Meiss–Ott Markov tree of this atlas (states between barriers, rates flux / area, "
-                              "docs/markov-tree.md): its P_t drawn on the P_t plot, each level's share below"));
+  modelButton_->setToolTip(modelTip());
   connect(modelButton_, &QPushButton::clicked, this, &AtlasPanel::markovTreeAsked);
   modelText_ = new QLabel(this);
   modelText_->setObjectName(QStringLiteral("atlasMarkovTreeText"));
@@ -465,6 +464,7 @@ void AtlasPanel::updateProgress() {
                        : tr("%1 islands in %2").arg(a.nodes.size()).arg(formatDuration(a.seconds));
     text += tr(" (depth %1, periods ≤ %2)").arg(a.request.depth).arg(a.request.maxPeriod);
     if (restored_) text = source_.isEmpty() ? tr("From the session: %1").arg(text) : tr("From %1: %2").arg(source_, text);
+    if (const QString why = markovTreeMissing(); !why.isEmpty()) text += tr(". Model P_t: %1").arg(why);
   }
   if (atlas_ && !ofPortraitMap())
     text += tr(". This atlas is of K = %1; the portrait shows K = %2: set K = %1 again to draw its islands")
@@ -541,7 +541,22 @@ void AtlasPanel::updateButtons() {
   stop_->setEnabled(busy());
   json_->setEnabled(atlas_ && !busy());
   csv_->setEnabled(atlas_ && !busy());
-  modelButton_->setEnabled(atlas_ && !busy() && !atlas_->cancelled && !markovTreePending());
+  const QString why = markovTreeMissing();
+  modelButton_->setEnabled(why.isEmpty() && !markovTreePending());
+  modelButton_->setToolTip(why.isEmpty() ? modelTip() : tr("No model of P_t: %1").arg(why));
+}
+
+QString AtlasPanel::modelTip() {
+  return tr("The Meiss–Ott Markov tree of this atlas (states between barriers, rates flux / area, "
+            "docs/markov-tree.md): its P_t drawn on the P_t plot, each level's share below");
+}
+
+QString AtlasPanel::markovTreeMissing() const {
+  if (!atlas_) return tr("there is no atlas: compute or open one first");
+  if (busy()) return tr("the atlas is still being computed");
+  if (const auto e = markovTreeAtlasError(*atlas_))  // core's rule: a stopped atlas, one without the centre's flux
+    return tr("%1 (Compute measures it to its end)").arg(QString::fromStdString(*e));
+  return {};
 }
 
 bool AtlasPanel::openAtlasFile(const QString& path, QString* error) {
@@ -571,9 +586,9 @@ bool AtlasPanel::computeMarkovTree(double alpha, double b2, QString* error) {
   r.needsP = true;  // the page draws P_t: core refuses a missing, impossible or absurd α or b₂ (issue 54)
   r.at = shareTimes();
   r.atlasSource = "the Atlas page";
-  if (!atlas_) why = tr("there is no atlas: compute or open one first");
-  else if (busy()) why = tr("the atlas is still being computed");
-  else if (const auto e = validationError(r)) why = QString::fromStdString(*e);
+  why = markovTreeMissing();
+  if (why.isEmpty())
+    if (const auto e = validationError(r)) why = QString::fromStdString(*e);
   if (!why.isEmpty()) {
     if (error) *error = why;
     Q_EMIT statusMessage(tr("Markov tree: %1").arg(why));

@@ -145,6 +145,10 @@ class AtlasPanel : public QWidget {
   void updateDetails();
   void updateButtons();
   void fillShares();
+  /// Why the atlas shown has no Markov tree (none, computing, or core's markovTreeAtlasError), empty when it can.
+  [[nodiscard]] QString markovTreeMissing() const;
+  /// "Model P_t…"'s tooltip when it can be pressed.
+  [[nodiscard]] static QString modelTip();
   [[nodiscard]] bool ofPortraitMap() const;
 
   PortraitController* controller_;
