@@ -12,6 +12,7 @@
 #include <QImage>
 #include <QLabel>
 #include <QLineEdit>
+#include <QMessageBox>
 #include <QPushButton>
 #include <QScreen>
 #include <QSignalSpy>
@@ -268,6 +269,56 @@ class TestIssue53 : public QObject {
       QCOMPARE(c.launchedOrbits()[i].backward, before[i].backward);
     }
     QTRY_VERIFY_WITH_TIMEOUT(c.orbitsSettled(), 900000);
+  }
+
+  // Finding 11: File ▸ Open Atlas… replaced a computed atlas in no file and Quit asked nothing (runs get Save,
+  // Discard, Cancel); the replaced atlas's boundary circle stayed drawn.
+  void finding11_anUnsavedAtlasIsAskedForAndItsCircleGoes() {
+    QTemporaryDir dir;
+    MainWindow w;  // confirmations on: the questions are asked
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    AtlasPanel& panel = *w.portraitPanel()->atlasPanel();
+    PortraitController& c = *w.portraitPanel()->controller();
+    QSignalSpy ended(&panel, &AtlasPanel::computationEnded);
+    archipelago::AtlasRequest r = panel.request();
+    r.depth = 1;
+    QVERIFY(panel.compute(r));
+    panel.stop();  // a stopped atlas is work too
+    QTRY_COMPARE_WITH_TIMEOUT(ended.count(), 1, 900000);
+    const std::shared_ptr<const archipelago::Atlas> computed = panel.atlas();
+    QVERIFY(computed);
+    QString asked;
+    const auto cancel = [&asked](QDialog& d) {
+      asked = d.windowTitle();
+      auto* box = qobject_cast<QMessageBox*>(&d);
+      if (box && box->button(QMessageBox::Cancel)) box->button(QMessageBox::Cancel)->click();
+      else d.reject();
+    };
+    onModal(cancel);
+    QVERIFY(!w.close());  // Quit: Cancel keeps the window and the atlas
+    QCOMPARE(asked, QStringLiteral("Unsaved atlas"));
+    QAction* open = nullptr;
+    for (QAction* a : w.findChildren<QAction*>())
+      if (a->text() == QStringLiteral("Open &Atlas…")) open = a;
+    QVERIFY(open);
+    asked.clear();
+    onModal(cancel);
+    open->trigger();  // File ▸ Open Atlas…: asked before the file dialog, Cancel keeps the atlas
+    QCOMPARE(asked, QStringLiteral("Unsaved atlas"));
+    QCOMPARE(panel.atlas(), computed);
+    // An island's circle drawn, then the atlas exported (nothing left to ask) and another opened: the circle goes.
+    archipelago::AtlasNode centre;
+    centre.boundaryFound = true;
+    centre.boundaryPoint = {0.0L, 0.01L};
+    centre.centre = centre.boundaryPoint;
+    c.showAtlasIsland(centre, QStringLiteral("centre"), {});
+    QTRY_VERIFY_WITH_TIMEOUT(c.atlasIslandSettled() && c.atlasIsland(), 900000);
+    const QString file = dir.filePath(QStringLiteral("atlas.json"));
+    QVERIFY(panel.exportJson(file));
+    QVERIFY(panel.openAtlasFile(file));
+    QVERIFY(!c.atlasIsland());
+    QVERIFY(w.close());  // the atlas is in a file: nothing asked
   }
 
   // Finding 17: K = 1e300 marked xmin red ("must be < −√K = -1e+150"), though no xmin can hold it: K is named.

@@ -177,23 +177,13 @@ void AtlasPanel::createFileButtons() {
   json_->setToolTip(tr("The atlas as `archipelago-cli atlas --json` writes it"));
   csv_ = new QPushButton(tr("Export CSV…"), this);
   csv_->setToolTip(tr("One row per island, as `archipelago-cli atlas --csv` writes it"));
-  const auto exportDialog = [this](bool json) {
-    const QString name = json ? QStringLiteral("atlas.json") : QStringLiteral("atlas.csv");
-    const QString path = QFileDialog::getSaveFileName(
-        this, json ? tr("Export the atlas as JSON") : tr("Export the atlas as CSV"),
-        QDir(SettingsController::lastFolder()).filePath(name), json ? tr("JSON files (*.json)") : tr("CSV files (*.csv)"));
-    if (path.isEmpty()) return;
-    SettingsController::rememberFolder(path);
-    QString error;
-    const bool ok = json ? exportJson(path, &error) : exportCsv(path, &error);
-    Q_EMIT statusMessage(ok ? tr("Wrote %1").arg(path) : tr("Export failed: %1").arg(error));
-  };
-  connect(json_, &QPushButton::clicked, this, [exportDialog] { exportDialog(true); });
-  connect(csv_, &QPushButton::clicked, this, [exportDialog] { exportDialog(false); });
+  connect(json_, &QPushButton::clicked, this, [this] { exportWithDialog(true); });
+  connect(csv_, &QPushButton::clicked, this, [this] { exportWithDialog(false); });
 
   open_ = new QPushButton(tr("Open…"), this);
   open_->setToolTip(tr("Show an atlas file (archipelago-cli atlas --json, Export JSON) instead of computing one"));
   connect(open_, &QPushButton::clicked, this, [this] {
+    if (!confirmDiscard(tr("opening another atlas"))) return;
     const QString path = QFileDialog::getOpenFileName(this, tr("Open an atlas"), SettingsController::lastFolder(),
                                                       tr("Atlas files (*.json);;All files (*)"));
     if (path.isEmpty()) return;
@@ -201,6 +191,27 @@ void AtlasPanel::createFileButtons() {
     openAtlasFile(path);
   });
 }
+
+bool AtlasPanel::exportWithDialog(bool json) {
+  const QString name = json ? QStringLiteral("atlas.json") : QStringLiteral("atlas.csv");
+  const QString path = QFileDialog::getSaveFileName(
+      this, json ? tr("Export the atlas as JSON") : tr("Export the atlas as CSV"),
+      QDir(SettingsController::lastFolder()).filePath(name), json ? tr("JSON files (*.json)") : tr("CSV files (*.csv)"));
+  if (path.isEmpty()) return false;
+  SettingsController::rememberFolder(path);
+  QString error;
+  const bool ok = json ? exportJson(path, &error) : exportCsv(path, &error);
+  Q_EMIT statusMessage(ok ? tr("Wrote %1").arg(path) : tr("Export failed: %1").arg(error));
+  return ok;
+}
+
+void AtlasPanel::markSaved() {
+  if (!busy()) saved_ = true;  // an atlas under way has more to come than the file holds
+}
+
+bool AtlasPanel::unsavedWork() const { return (busy() || atlas_) && !restored_ && !saved_; }
+
+bool AtlasPanel::confirmDiscard(const QString& action) { return !unsavedWork() || !confirm_ || confirm_(action); }
 
 void AtlasPanel::createMarkovTreeWidgets() {
   modelButton_ = new QPushButton(tr("Model P_t…"), this);
@@ -289,10 +300,12 @@ bool AtlasPanel::compute(const AtlasRequest& r) {
     return false;
   }
   jobs_->cancel();
+  controller_->clearAtlasIsland();  // the replaced atlas's island
   tree_->clear();
   items_.clear();
   atlas_.reset();
   restored_ = false;
+  saved_ = false;
   stopping_ = false;
   done_ = 0;
   stage_.clear();
@@ -364,6 +377,7 @@ std::optional<Atlas> AtlasPanel::sessionAtlas() const {
 
 void AtlasPanel::restoreAtlas(const std::optional<Atlas>& atlas) {
   jobs_->cancel();
+  controller_->clearAtlasIsland();  // the replaced atlas's island
   request_ = 0;
   stopping_ = false;
   clock_->stop();
@@ -717,7 +731,11 @@ bool AtlasPanel::exportWith(void (*write)(const std::filesystem::path&, const At
   return true;
 }
 
-bool AtlasPanel::exportJson(const QString& path, QString* error) { return exportWith(&writeAtlasJson, path, error); }
+bool AtlasPanel::exportJson(const QString& path, QString* error) {
+  if (!exportWith(&writeAtlasJson, path, error)) return false;
+  markSaved();  // the file reads back as this atlas
+  return true;
+}
 bool AtlasPanel::exportCsv(const QString& path, QString* error) { return exportWith(&writeAtlasCsv, path, error); }
 
 }  // namespace archipelago::ui
