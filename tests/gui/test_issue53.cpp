@@ -421,6 +421,25 @@ class TestIssue53 : public QObject {
     QVERIFY(said);
   }
 
+  // Finding 22: a deep view in Island-orbits mode was black and the readout said "raise the budget": the seeds' orbits
+  // leave such a view (here 10⁻⁶ wide about the hyperbolic fixed point), so an indicator mode is the advice.
+  void finding22_aDeepOrbitsViewAdvisesAnIndicator() {
+    PortraitPanel panel;
+    PortraitController& c = *panel.controller();
+    c.setMode(archipelago::PortraitMode::Orbits);
+    c.setPointBudget(100000);
+    QString error;
+    QVERIFY2(c.goTo(0.316227766L, 0.0L, 1e-6L, &error), qPrintable(error));
+    panel.resize(800, 600);
+    panel.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&panel));
+    const PortraitView& v = *c.view();
+    QTRY_VERIFY_WITH_TIMEOUT(v.renderState() == RenderState::done, 900000);
+    QVERIFY2(v.readout().contains(QStringLiteral("Fast Lyapunov indicator")) &&
+                 !v.readout().contains(QStringLiteral("raise the budget")),
+             qPrintable(v.readout()));
+  }
+
   // Finding 23: Help ▸ Keyboard Shortcuts did not list Shift+click, and its Action column wrapped.
   void finding23_theShortcutsListShiftClickAndFit() {
     MainWindow w;

@@ -529,6 +529,25 @@ TEST(PortraitRenderer, OrbitsModeFlagsTheSeedsThatWrap) {
   EXPECT_LT(wrapped, 36);  // … seeds on KAM curves around the islands do not
 }
 
+// Issue 53 finding 22: the seeds' orbits leave a view 10⁻⁶ wide about the hyperbolic fixed point (the GUI advised a
+// larger budget there, and an indicator map is what shows it); they stay in the whole box.
+TEST(PortraitRenderer, OrbitsLeaveADeepViewAndStayInTheBox) {
+  PortraitRequest req;
+  req.map = kPaper;
+  req.width = req.height = 40;
+  req.mode = PortraitMode::Orbits;
+  req.points = 100'000;
+  const long double x = 0.316227766L, half = 5e-7L;
+  req.view = Viewport::fromPhysical(kPaper, {x - half, x + half, -half, half});
+  const PortraitRaster deep = renderPortrait(req).raster;
+  EXPECT_TRUE(deep.orbitsLeaveView()) << deep.pointsBinned << " of " << deep.pointsIterated;
+  req.view = Viewport::fromPhysical(kPaper, {-0.8L, 0.5L, -0.65L, 0.65L});
+  const PortraitRaster box = renderPortrait(req).raster;
+  EXPECT_FALSE(box.orbitsLeaveView()) << box.pointsBinned << " of " << box.pointsIterated;
+  req.mode = PortraitMode::Density;  // an Orbits-mode rule
+  EXPECT_FALSE(renderPortrait(req).raster.orbitsLeaveView());
+}
+
 TEST(MapOverlays, FixedPointsOfThePaperBox) {
   const auto points = fixedPoints(kPaper);
   ASSERT_EQ(points.size(), 2u);
