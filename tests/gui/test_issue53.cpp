@@ -23,9 +23,12 @@
 #include <QTimer>
 #include <QtTest>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 #include "GuiTestSupport.hpp"
+#include "core/colour/ColourMap.hpp"
 #include "core/run/TrappingRun.hpp"
 #include "core/runfile/RunFile.hpp"
 #include "core/session/SessionFile.hpp"
@@ -319,6 +322,25 @@ class TestIssue53 : public QObject {
     QVERIFY(panel.openAtlasFile(file));
     QVERIFY(!c.atlasIsland());
     QVERIFY(w.close());  // the atlas is in a file: nothing asked
+  }
+
+  // Finding 14: launched orbits took the portrait's palette (orbitColour(id): the id-th seed's orbit's colour in
+  // Island-orbits mode), so a clicked curve could not be told apart.  Each launched orbit's colour is now 80 or more
+  // away, in some channel, from the colour of every orbit of the seed grid.
+  void finding14_launchedOrbitsStandApartFromThePortraitsColours() {
+    PortraitPanel panel;
+    PortraitController& c = *panel.controller();
+    c.setPointBudget(10000);
+    for (int k = 0; k < 12; ++k) QVERIFY(c.launchOrbit(-0.3L + 0.05L * k, 0.01L));
+    for (const LaunchedOrbit& o : c.launchedOrbits())
+      for (std::uint32_t label = 1; label <= 24 * 24; ++label) {
+        const archipelago::Rgb p = archipelago::orbitColour(label);
+        const int apart = std::max({std::abs(o.colour.red() - p.r), std::abs(o.colour.green() - p.g),
+                                    std::abs(o.colour.blue() - p.b)});
+        QVERIFY2(apart >= 80, qPrintable(QStringLiteral("orbit %1 (%2) and the portrait's label %3: %4 apart")
+                                             .arg(o.id).arg(o.colour.name()).arg(label).arg(apart)));
+      }
+    QTRY_VERIFY_WITH_TIMEOUT(c.orbitsSettled(), 900000);
   }
 
   // Finding 17: K = 1e300 marked xmin red ("must be < −√K = -1e+150"), though no xmin can hold it: K is named.

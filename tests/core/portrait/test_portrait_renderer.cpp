@@ -5,6 +5,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <array>
 #include <set>
 #include <atomic>
@@ -546,6 +547,18 @@ TEST(PortraitRenderer, OrbitsLeaveADeepViewAndStayInTheBox) {
   EXPECT_FALSE(box.orbitsLeaveView()) << box.pointsBinned << " of " << box.pointsIterated;
   req.mode = PortraitMode::Density;  // an Orbits-mode rule
   EXPECT_FALSE(renderPortrait(req).raster.orbitsLeaveView());
+}
+
+// Issue 53 finding 14: a launched orbit's colour stands apart from every orbit colour of the portrait (they were the
+// same palette: orbit 1 had label 1's colour).
+TEST(ColourMap, LaunchedOrbitsStandApartFromThePortraitsOrbits) {
+  for (std::uint32_t id = 1; id <= 1000; ++id)
+    for (std::uint32_t label = 1; label <= 1000; ++label) {
+      const Rgb a = launchedOrbitColour(id), b = orbitColour(label);
+      const int apart = std::max({std::abs(a.r - b.r), std::abs(a.g - b.g), std::abs(a.b - b.b)});
+      ASSERT_GE(apart, 102) << id << ", " << label;
+    }
+  EXPECT_NE(launchedOrbitColour(1), launchedOrbitColour(2));
 }
 
 TEST(MapOverlays, FixedPointsOfThePaperBox) {
