@@ -393,7 +393,7 @@ void AtlasPanel::restoreAtlas(const std::optional<Atlas>& atlas) {
 }
 
 void AtlasPanel::show(std::shared_ptr<const Atlas> atlas, int done, const QString& stage) {
-  if (atlas != atlas_ && (model_ || treeRequest_)) {  // the model was another atlas's
+  if (atlas != atlas_ && (model_ || treeRequest_ || !modelText_->text().isEmpty())) {  // another atlas's model
     jobs_->cancel(1);
     treeRequest_ = 0;
     model_.reset();
@@ -606,6 +606,7 @@ bool AtlasPanel::computeMarkovTree(double alpha, double b2, QString* error) {
   if (!why.isEmpty()) {
     if (error) *error = why;
     Q_EMIT statusMessage(tr("Markov tree: %1").arg(why));
+    showModelRefusal(why);
     return false;
   }
   Job<std::shared_ptr<const MarkovTreeResult>> job;  // latest wins
@@ -630,6 +631,7 @@ bool AtlasPanel::computeMarkovTree(double alpha, double b2, QString* error) {
       model_.reset();
     }
     fillShares();
+    if (!failure.isEmpty()) showModelRefusal(failure);
     updateButtons();
     Q_EMIT statusMessage(failure.isEmpty() ? tr("Markov tree of the atlas: %1 states").arg(model_->tree.states.size())
                                            : tr("Markov tree: %1").arg(failure));
@@ -643,6 +645,11 @@ bool AtlasPanel::computeMarkovTree(double alpha, double b2, QString* error) {
 }
 
 QString AtlasPanel::markovTreeText() const { return modelText_->text(); }
+
+void AtlasPanel::showModelRefusal(const QString& why) {
+  modelText_->setText(tr("No model: %1").arg(why));
+  modelText_->show();
+}
 
 void AtlasPanel::fillShares() {
   shares_->clear();

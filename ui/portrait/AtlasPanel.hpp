@@ -159,6 +159,8 @@ class AtlasPanel : public QWidget {
   void updateDetails();
   void updateButtons();
   void fillShares();
+  /// The model's refusal (core's reason, whole) below "Model P_t…".
+  void showModelRefusal(const QString& why);
   /// Why the atlas shown has no Markov tree (none, computing, or core's markovTreeAtlasError), empty when it can.
   [[nodiscard]] QString markovTreeMissing() const;
   /// "Model P_t…"'s tooltip when it can be pressed.
