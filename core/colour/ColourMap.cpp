@@ -89,12 +89,13 @@ Rgb ColourMap::at(double t) const noexcept {
   return table_[static_cast<std::size_t>(std::lround(t * 255.0))];
 }
 
-Rgb orbitColour(std::uint32_t label) noexcept {
-  // Golden-ratio steps in hue give neighbouring labels well separated colours; full saturation and value.
+namespace {
+
+/// Hue `label` golden-ratio steps round the circle (neighbouring labels well separated) at saturation s, value v.
+Rgb goldenHue(std::uint32_t label, double s, double v) noexcept {
   const double golden = 0.6180339887498949;
   const double h = std::fmod(static_cast<double>(label) * golden, 1.0) * 6.0;
   const double f = h - std::floor(h);
-  const double s = 0.75, v = 1.0;
   const double p = v * (1 - s), q = v * (1 - s * f), u = v * (1 - s * (1 - f));
   double r = v, g = u, b = p;
   switch (static_cast<int>(h)) {
@@ -107,5 +108,11 @@ Rgb orbitColour(std::uint32_t label) noexcept {
   }
   return {toByte(r), toByte(g), toByte(b)};
 }
+
+}  // namespace
+
+Rgb orbitColour(std::uint32_t label) noexcept { return goldenHue(label, 0.75, 1.0); }
+
+Rgb launchedOrbitColour(std::uint32_t id) noexcept { return goldenHue(id, 0.35, 1.0); }
 
 }  // namespace archipelago

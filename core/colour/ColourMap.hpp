@@ -46,8 +46,14 @@ class ColourMap {
   std::array<Rgb, 256> table_;
 };
 
-/// The colour of orbit label `label` (≥ 1) in Orbits mode.
+/// The colour of orbit label `label` (≥ 1) in Orbits mode: golden-ratio steps in hue, saturation 0.75 and value 1
+/// (each channel at least 64 and one at 255).
 [[nodiscard]] Rgb orbitColour(std::uint32_t label) noexcept;
+
+/// The colour of orbit `id` (≥ 1) launched over the portrait (issue 53, finding 14): the same steps in hue, pale
+/// (saturation 0.35, each channel at least 166), so that it stands apart from every orbit of the portrait: 102 or more
+/// in the channel where theirs is lowest.
+[[nodiscard]] Rgb launchedOrbitColour(std::uint32_t id) noexcept;
 
 /// A raster as RGB, row 0 at the top, and the range of the scale for a colour bar.
 struct RasterImage {

@@ -40,31 +40,40 @@ std::string nameOf(const Atlas& a, int i) {
   return s;
 }
 
-/// The atlas's rules for a tree: finished, every island measured, a flux through the centre's loop, and every
-/// flux, layer and zone found finite and positive.
-void checkAtlasForTree(const Atlas& a) {
-  if (a.nodes.empty()) refuse("the atlas has no island");
+}  // namespace
+
+std::optional<std::string> markovTreeAtlasError(const Atlas& a) {
+  if (a.nodes.empty()) return "the atlas has no island";
   if (a.cancelled)
-    refuse("the atlas was stopped before its end (" + a.stopReason +
-           "): resume the atlas to its end before building the tree");
+    return "the atlas was stopped before its end (" + a.stopReason +
+           "): resume the atlas to its end before building the tree";
   for (std::size_t i = 0; i < a.nodes.size(); ++i)
     if (!a.nodes[i].measured)
-      refuse("island " + atlasPath(a, static_cast<int>(i)) +
-             " is not measured (an atlas stopped early): resume the atlas to its end first");
+      return "island " + atlasPath(a, static_cast<int>(i)) +
+             " is not measured (an atlas stopped early): resume the atlas to its end first";
   const AtlasNode& centre = a.nodes[0];
   if (!centre.flux.found)
-    refuse("the atlas has no flux through the centre's loop (" +
+    return "the atlas has no flux through the centre's loop (" +
            (centre.flux.failure.empty() ? std::string("not computed") : centre.flux.failure) +
-           "): the tree has no entry");
+           "): the tree has no entry";
   for (std::size_t i = 0; i < a.nodes.size(); ++i) {
     const AtlasFlux& f = a.nodes[i].flux;
     if (!f.found) continue;
     const std::string who = atlasPath(a, static_cast<int>(i));
-    if (!positiveFinite(f.flux)) refuse("the flux of " + who + " = " + sci(f.flux) + " must be finite and > 0");
+    if (!positiveFinite(f.flux)) return "the flux of " + who + " = " + sci(f.flux) + " must be finite and > 0";
     if (!positiveFinite(f.layerArea))
-      refuse("the layer of " + who + " = " + sci(f.layerArea) + " must be finite and > 0");
-    if (!positiveFinite(f.zoneArea)) refuse("the zone of " + who + " = " + sci(f.zoneArea) + " must be finite and > 0");
+      return "the layer of " + who + " = " + sci(f.layerArea) + " must be finite and > 0";
+    if (!positiveFinite(f.zoneArea))
+      return "the zone of " + who + " = " + sci(f.zoneArea) + " must be finite and > 0";
   }
+  return std::nullopt;
+}
+
+namespace {
+
+/// The atlas's rules for a tree (markovTreeAtlasError's), thrown.
+void checkAtlasForTree(const Atlas& a) {
+  if (auto e = markovTreeAtlasError(a)) refuse(*e);
 }
 
 /// The chains about island i that are barriers, outermost first (by zone area), checked against the twist.

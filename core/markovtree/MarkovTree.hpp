@@ -99,6 +99,11 @@ struct MarkovTree {
   long double boxArea = 0;              ///< L² of the atlas's box (appendix A's b₀) to 12 digits: the largest b₂
 };
 
+/// Why `atlas` cannot make a tree, one wording for every front end (markovTreeFromAtlas throws it): empty, stopped
+/// before the end (nodes not measured), no flux through the centre's loop, a non-positive or non-finite flux or
+/// layer; nothing when it can (the nesting of the zones is checked while the tree is built).
+[[nodiscard]] std::optional<std::string> markovTreeAtlasError(const Atlas& atlas);
+
 /// The tree of `atlas`.  Throws std::invalid_argument with a clear message when the atlas cannot make one: empty,
 /// stopped before the end (nodes not measured), no flux through the centre's loop, a non-positive or non-finite
 /// flux or layer, chains about one island whose zones do not nest as their rotations say, a state of area ≤ 0.

@@ -12,6 +12,7 @@
 #include <QImage>
 #include <QLabel>
 #include <QLineEdit>
+#include <QMessageBox>
 #include <QPushButton>
 #include <QScreen>
 #include <QSignalSpy>
@@ -22,13 +23,17 @@
 #include <QTimer>
 #include <QtTest>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 #include "GuiTestSupport.hpp"
+#include "core/colour/ColourMap.hpp"
 #include "core/run/TrappingRun.hpp"
 #include "core/runfile/RunFile.hpp"
 #include "core/session/SessionFile.hpp"
 #include "ui/plots/StatisticsPlot.hpp"
+#include "ui/portrait/AtlasPanel.hpp"
 #include "ui/portrait/OrbitListPanel.hpp"
 #include "ui/portrait/PortraitController.hpp"
 #include "ui/portrait/PortraitPanel.hpp"
@@ -212,6 +217,25 @@ class TestIssue53 : public QObject {
     QVERIFY(entries >= 3);
   }
 
+  // Finding 9: "Model P_t…" was greyed out on a stopped atlas with no reason: its tooltip and the page's progress line
+  // give core's (markovTreeAtlasError).
+  void finding9_modelPtSaysWhyAStoppedAtlasHasNone() {
+    MainWindow w;
+    w.setConfirmations(false);
+    AtlasPanel& panel = *w.portraitPanel()->atlasPanel();
+    archipelago::Atlas stopped;
+    stopped.request = panel.request();
+    stopped.nodes.emplace_back();  // the centre, known and not measured
+    stopped.cancelled = true;
+    stopped.stopReason = "stopped";
+    panel.restoreAtlas(stopped);
+    const QString why = QStringLiteral("the atlas was stopped before its end (stopped)");
+    QVERIFY(!panel.markovTreeButton()->isEnabled());
+    QVERIFY2(panel.markovTreeButton()->toolTip().contains(why), qPrintable(panel.markovTreeButton()->toolTip()));
+    QVERIFY2(panel.progressText().contains(QStringLiteral("Model P_t")) && panel.progressText().contains(why),
+             qPrintable(panel.progressText()));
+  }
+
   // Finding 10: Ctrl+Z right after the Orbits page's Clear did nothing (the focus fell into Steps, which took the
   // key), and Undo brought the orbits back renumbered and recoloured.
   void finding10_undoRightAfterClearBringsTheSameOrbitsBack() {
@@ -247,6 +271,75 @@ class TestIssue53 : public QObject {
       QCOMPARE(c.launchedOrbits()[i].steps, before[i].steps);
       QCOMPARE(c.launchedOrbits()[i].backward, before[i].backward);
     }
+    QTRY_VERIFY_WITH_TIMEOUT(c.orbitsSettled(), 900000);
+  }
+
+  // Finding 11: File ▸ Open Atlas… replaced a computed atlas in no file and Quit asked nothing (runs get Save,
+  // Discard, Cancel); the replaced atlas's boundary circle stayed drawn.
+  void finding11_anUnsavedAtlasIsAskedForAndItsCircleGoes() {
+    QTemporaryDir dir;
+    MainWindow w;  // confirmations on: the questions are asked
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    AtlasPanel& panel = *w.portraitPanel()->atlasPanel();
+    PortraitController& c = *w.portraitPanel()->controller();
+    QSignalSpy ended(&panel, &AtlasPanel::computationEnded);
+    archipelago::AtlasRequest r = panel.request();
+    r.depth = 1;
+    QVERIFY(panel.compute(r));
+    panel.stop();  // a stopped atlas is work too
+    QTRY_COMPARE_WITH_TIMEOUT(ended.count(), 1, 900000);
+    const std::shared_ptr<const archipelago::Atlas> computed = panel.atlas();
+    QVERIFY(computed);
+    QString asked;
+    const auto cancel = [&asked](QDialog& d) {
+      asked = d.windowTitle();
+      auto* box = qobject_cast<QMessageBox*>(&d);
+      if (box && box->button(QMessageBox::Cancel)) box->button(QMessageBox::Cancel)->click();
+      else d.reject();
+    };
+    onModal(cancel);
+    QVERIFY(!w.close());  // Quit: Cancel keeps the window and the atlas
+    QCOMPARE(asked, QStringLiteral("Unsaved atlas"));
+    QAction* open = nullptr;
+    for (QAction* a : w.findChildren<QAction*>())
+      if (a->text() == QStringLiteral("Open &Atlas…")) open = a;
+    QVERIFY(open);
+    asked.clear();
+    onModal(cancel);
+    open->trigger();  // File ▸ Open Atlas…: asked before the file dialog, Cancel keeps the atlas
+    QCOMPARE(asked, QStringLiteral("Unsaved atlas"));
+    QCOMPARE(panel.atlas(), computed);
+    // An island's circle drawn, then the atlas exported (nothing left to ask) and another opened: the circle goes.
+    archipelago::AtlasNode centre;
+    centre.boundaryFound = true;
+    centre.boundaryPoint = {0.0L, 0.01L};
+    centre.centre = centre.boundaryPoint;
+    c.showAtlasIsland(centre, QStringLiteral("centre"), {});
+    QTRY_VERIFY_WITH_TIMEOUT(c.atlasIslandSettled() && c.atlasIsland(), 900000);
+    const QString file = dir.filePath(QStringLiteral("atlas.json"));
+    QVERIFY(panel.exportJson(file));
+    QVERIFY(panel.openAtlasFile(file));
+    QVERIFY(!c.atlasIsland());
+    QVERIFY(w.close());  // the atlas is in a file: nothing asked
+  }
+
+  // Finding 14: launched orbits took the portrait's palette (orbitColour(id): the id-th seed's orbit's colour in
+  // Island-orbits mode), so a clicked curve could not be told apart.  Each launched orbit's colour is now 80 or more
+  // away, in some channel, from the colour of every orbit of the seed grid.
+  void finding14_launchedOrbitsStandApartFromThePortraitsColours() {
+    PortraitPanel panel;
+    PortraitController& c = *panel.controller();
+    c.setPointBudget(10000);
+    for (int k = 0; k < 12; ++k) QVERIFY(c.launchOrbit(-0.3L + 0.05L * k, 0.01L));
+    for (const LaunchedOrbit& o : c.launchedOrbits())
+      for (std::uint32_t label = 1; label <= 24 * 24; ++label) {
+        const archipelago::Rgb p = archipelago::orbitColour(label);
+        const int apart = std::max({std::abs(o.colour.red() - p.r), std::abs(o.colour.green() - p.g),
+                                    std::abs(o.colour.blue() - p.b)});
+        QVERIFY2(apart >= 80, qPrintable(QStringLiteral("orbit %1 (%2) and the portrait's label %3: %4 apart")
+                                             .arg(o.id).arg(o.colour.name()).arg(label).arg(apart)));
+      }
     QTRY_VERIFY_WITH_TIMEOUT(c.orbitsSettled(), 900000);
   }
 
@@ -348,6 +441,25 @@ class TestIssue53 : public QObject {
     for (const QList<QVariant>& m : messages)
       said = said || m.front().toString().contains(QStringLiteral("steps = 999999999 must lie in [1, 100000000]"));
     QVERIFY(said);
+  }
+
+  // Finding 22: a deep view in Island-orbits mode was black and the readout said "raise the budget": the seeds' orbits
+  // leave such a view (here 10⁻⁶ wide about the hyperbolic fixed point), so an indicator mode is the advice.
+  void finding22_aDeepOrbitsViewAdvisesAnIndicator() {
+    PortraitPanel panel;
+    PortraitController& c = *panel.controller();
+    c.setMode(archipelago::PortraitMode::Orbits);
+    c.setPointBudget(100000);
+    QString error;
+    QVERIFY2(c.goTo(0.316227766L, 0.0L, 1e-6L, &error), qPrintable(error));
+    panel.resize(800, 600);
+    panel.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&panel));
+    const PortraitView& v = *c.view();
+    QTRY_VERIFY_WITH_TIMEOUT(v.renderState() == RenderState::done, 900000);
+    QVERIFY2(v.readout().contains(QStringLiteral("Fast Lyapunov indicator")) &&
+                 !v.readout().contains(QStringLiteral("raise the budget")),
+             qPrintable(v.readout()));
   }
 
   // Finding 23: Help ▸ Keyboard Shortcuts did not list Shift+click, and its Action column wrapped.

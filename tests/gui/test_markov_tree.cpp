@@ -168,6 +168,9 @@ class TestMarkovTree : public QObject {
     const QString huge = drawAndWait(1e300, kB2);
     QVERIFY2(huge.contains(QStringLiteral("P_1 = w S(1)")) && huge.contains(QStringLiteral("cannot exceed 1")),
              qPrintable(huge));
+    // The page says it too, whole (the status bar cuts a long reason off), and nothing is drawn.
+    QVERIFY2(panel_->markovTreeText().contains(QStringLiteral("cannot exceed 1")), qPrintable(panel_->markovTreeText()));
+    QVERIFY(!panel_->markovTree());
     const QString box = drawAndWait(kAlpha, 100);
     QVERIFY2(box.contains(QStringLiteral("b2 = 100 must lie in (0, 1.69")), qPrintable(box));
   }

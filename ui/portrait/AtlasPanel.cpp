@@ -177,23 +177,13 @@ void AtlasPanel::createFileButtons() {
   json_->setToolTip(tr("The atlas as `archipelago-cli atlas --json` writes it"));
   csv_ = new QPushButton(tr("Export CSV…"), this);
   csv_->setToolTip(tr("One row per island, as `archipelago-cli atlas --csv` writes it"));
-  const auto exportDialog = [this](bool json) {
-    const QString name = json ? QStringLiteral("atlas.json") : QStringLiteral("atlas.csv");
-    const QString path = QFileDialog::getSaveFileName(
-        this, json ? tr("Export the atlas as JSON") : tr("Export the atlas as CSV"),
-        QDir(SettingsController::lastFolder()).filePath(name), json ? tr("JSON files (*.json)") : tr("CSV files (*.csv)"));
-    if (path.isEmpty()) return;
-    SettingsController::rememberFolder(path);
-    QString error;
-    const bool ok = json ? exportJson(path, &error) : exportCsv(path, &error);
-    Q_EMIT statusMessage(ok ? tr("Wrote %1").arg(path) : tr("Export failed: %1").arg(error));
-  };
-  connect(json_, &QPushButton::clicked, this, [exportDialog] { exportDialog(true); });
-  connect(csv_, &QPushButton::clicked, this, [exportDialog] { exportDialog(false); });
+  connect(json_, &QPushButton::clicked, this, [this] { exportWithDialog(true); });
+  connect(csv_, &QPushButton::clicked, this, [this] { exportWithDialog(false); });
 
   open_ = new QPushButton(tr("Open…"), this);
   open_->setToolTip(tr("Show an atlas file (archipelago-cli atlas --json, Export JSON) instead of computing one"));
   connect(open_, &QPushButton::clicked, this, [this] {
+    if (!confirmDiscard(tr("opening another atlas"))) return;
     const QString path = QFileDialog::getOpenFileName(this, tr("Open an atlas"), SettingsController::lastFolder(),
                                                       tr("Atlas files (*.json);;All files (*)"));
     if (path.isEmpty()) return;
@@ -202,11 +192,31 @@ void AtlasPanel::createFileButtons() {
   });
 }
 
+bool AtlasPanel::exportWithDialog(bool json) {
+  const QString name = json ? QStringLiteral("atlas.json") : QStringLiteral("atlas.csv");
+  const QString path = QFileDialog::getSaveFileName(
+      this, json ? tr("Export the atlas as JSON") : tr("Export the atlas as CSV"),
+      QDir(SettingsController::lastFolder()).filePath(name), json ? tr("JSON files (*.json)") : tr("CSV files (*.csv)"));
+  if (path.isEmpty()) return false;
+  SettingsController::rememberFolder(path);
+  QString error;
+  const bool ok = json ? exportJson(path, &error) : exportCsv(path, &error);
+  Q_EMIT statusMessage(ok ? tr("Wrote %1").arg(path) : tr("Export failed: %1").arg(error));
+  return ok;
+}
+
+void AtlasPanel::markSaved() {
+  if (!busy()) saved_ = true;  // an atlas under way has more to come than the file holds
+}
+
+bool AtlasPanel::unsavedWork() const { return (busy() || atlas_) && !restored_ && !saved_; }
+
+bool AtlasPanel::confirmDiscard(const QString& action) { return !unsavedWork() || !confirm_ || confirm_(action); }
+
 void AtlasPanel::createMarkovTreeWidgets() {
   modelButton_ = new QPushButton(tr("Model P_t…"), this);
   modelButton_->setObjectName(QStringLiteral("atlasMarkovTree"));
-  modelButton_->setToolTip(tr("The Meiss–Ott Markov tree of this atlas (states between barriers, rates flux / area, "
-                              "docs/markov-tree.md): its P_t drawn on the P_t plot, each level's share below"));
+  modelButton_->setToolTip(modelTip());
   connect(modelButton_, &QPushButton::clicked, this, &AtlasPanel::markovTreeAsked);
   modelText_ = new QLabel(this);
   modelText_->setObjectName(QStringLiteral("atlasMarkovTreeText"));
@@ -290,10 +300,12 @@ bool AtlasPanel::compute(const AtlasRequest& r) {
     return false;
   }
   jobs_->cancel();
+  controller_->clearAtlasIsland();  // the replaced atlas's island
   tree_->clear();
   items_.clear();
   atlas_.reset();
   restored_ = false;
+  saved_ = false;
   stopping_ = false;
   done_ = 0;
   stage_.clear();
@@ -365,6 +377,7 @@ std::optional<Atlas> AtlasPanel::sessionAtlas() const {
 
 void AtlasPanel::restoreAtlas(const std::optional<Atlas>& atlas) {
   jobs_->cancel();
+  controller_->clearAtlasIsland();  // the replaced atlas's island
   request_ = 0;
   stopping_ = false;
   clock_->stop();
@@ -380,7 +393,7 @@ void AtlasPanel::restoreAtlas(const std::optional<Atlas>& atlas) {
 }
 
 void AtlasPanel::show(std::shared_ptr<const Atlas> atlas, int done, const QString& stage) {
-  if (atlas != atlas_ && (model_ || treeRequest_)) {  // the model was another atlas's
+  if (atlas != atlas_ && (model_ || treeRequest_ || !modelText_->text().isEmpty())) {  // another atlas's model
     jobs_->cancel(1);
     treeRequest_ = 0;
     model_.reset();
@@ -465,6 +478,7 @@ void AtlasPanel::updateProgress() {
                        : tr("%1 islands in %2").arg(a.nodes.size()).arg(formatDuration(a.seconds));
     text += tr(" (depth %1, periods ≤ %2)").arg(a.request.depth).arg(a.request.maxPeriod);
     if (restored_) text = source_.isEmpty() ? tr("From the session: %1").arg(text) : tr("From %1: %2").arg(source_, text);
+    if (const QString why = markovTreeMissing(); !why.isEmpty()) text += tr(". Model P_t: %1").arg(why);
   }
   if (atlas_ && !ofPortraitMap())
     text += tr(". This atlas is of K = %1; the portrait shows K = %2: set K = %1 again to draw its islands")
@@ -541,7 +555,22 @@ void AtlasPanel::updateButtons() {
   stop_->setEnabled(busy());
   json_->setEnabled(atlas_ && !busy());
   csv_->setEnabled(atlas_ && !busy());
-  modelButton_->setEnabled(atlas_ && !busy() && !atlas_->cancelled && !markovTreePending());
+  const QString why = markovTreeMissing();
+  modelButton_->setEnabled(why.isEmpty() && !markovTreePending());
+  modelButton_->setToolTip(why.isEmpty() ? modelTip() : tr("No model of P_t: %1").arg(why));
+}
+
+QString AtlasPanel::modelTip() {
+  return tr("The Meiss–Ott Markov tree of this atlas (states between barriers, rates flux / area, "
+            "docs/markov-tree.md): its P_t drawn on the P_t plot, each level's share below");
+}
+
+QString AtlasPanel::markovTreeMissing() const {
+  if (!atlas_) return tr("there is no atlas: compute or open one first");
+  if (busy()) return tr("the atlas is still being computed");
+  if (const auto e = markovTreeAtlasError(*atlas_))  // core's rule: a stopped atlas, one without the centre's flux
+    return tr("%1 (Compute measures it to its end)").arg(QString::fromStdString(*e));
+  return {};
 }
 
 bool AtlasPanel::openAtlasFile(const QString& path, QString* error) {
@@ -571,12 +600,13 @@ bool AtlasPanel::computeMarkovTree(double alpha, double b2, QString* error) {
   r.needsP = true;  // the page draws P_t: core refuses a missing, impossible or absurd α or b₂ (issue 54)
   r.at = shareTimes();
   r.atlasSource = "the Atlas page";
-  if (!atlas_) why = tr("there is no atlas: compute or open one first");
-  else if (busy()) why = tr("the atlas is still being computed");
-  else if (const auto e = validationError(r)) why = QString::fromStdString(*e);
+  why = markovTreeMissing();
+  if (why.isEmpty())
+    if (const auto e = validationError(r)) why = QString::fromStdString(*e);
   if (!why.isEmpty()) {
     if (error) *error = why;
     Q_EMIT statusMessage(tr("Markov tree: %1").arg(why));
+    showModelRefusal(why);
     return false;
   }
   Job<std::shared_ptr<const MarkovTreeResult>> job;  // latest wins
@@ -601,6 +631,7 @@ bool AtlasPanel::computeMarkovTree(double alpha, double b2, QString* error) {
       model_.reset();
     }
     fillShares();
+    if (!failure.isEmpty()) showModelRefusal(failure);
     updateButtons();
     Q_EMIT statusMessage(failure.isEmpty() ? tr("Markov tree of the atlas: %1 states").arg(model_->tree.states.size())
                                            : tr("Markov tree: %1").arg(failure));
@@ -614,6 +645,11 @@ bool AtlasPanel::computeMarkovTree(double alpha, double b2, QString* error) {
 }
 
 QString AtlasPanel::markovTreeText() const { return modelText_->text(); }
+
+void AtlasPanel::showModelRefusal(const QString& why) {
+  modelText_->setText(tr("No model: %1").arg(why));
+  modelText_->show();
+}
 
 void AtlasPanel::fillShares() {
   shares_->clear();
@@ -702,7 +738,11 @@ bool AtlasPanel::exportWith(void (*write)(const std::filesystem::path&, const At
   return true;
 }
 
-bool AtlasPanel::exportJson(const QString& path, QString* error) { return exportWith(&writeAtlasJson, path, error); }
+bool AtlasPanel::exportJson(const QString& path, QString* error) {
+  if (!exportWith(&writeAtlasJson, path, error)) return false;
+  markSaved();  // the file reads back as this atlas
+  return true;
+}
 bool AtlasPanel::exportCsv(const QString& path, QString* error) { return exportWith(&writeAtlasCsv, path, error); }
 
 }  // namespace archipelago::ui

@@ -25,6 +25,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -98,6 +99,19 @@ class AtlasPanel : public QWidget {
   /// session's atlas is shown, stopping any computation; false with core's reason (also in the status bar).
   bool openAtlasFile(const QString& path, QString* error = nullptr);
 
+  /// True when the atlas shown was computed here (finished, stopped or under way) and is in no file: neither
+  /// exported as JSON nor held by a saved session.  Replacing it or quitting loses the work.
+  [[nodiscard]] bool unsavedWork() const;
+  /// The atlas shown is in a file now (Export JSON, a saved session); one under way stays unsaved.
+  void markSaved();
+  /// Who is asked before an unsaved atlas goes (the window: Save, Discard or Cancel): true to go on, false to keep
+  /// it.  `action` says what would replace it ("opening another atlas").  Without one nothing is asked.
+  void setConfirmDiscard(std::function<bool(const QString& action)> confirm) { confirm_ = std::move(confirm); }
+  /// True when the atlas shown may go for `action`: nothing unsaved, or the one asked said so.
+  bool confirmDiscard(const QString& action);
+  /// Export JSON… / CSV…'s file dialog and export; true when the file was written.
+  bool exportWithDialog(bool json);
+
   /// The t (steps) at which the page shows each level's share of the model's survivors: 10⁴, 10⁵, 10⁶.
   [[nodiscard]] static std::vector<std::uint64_t> shareTimes();
   /// Computes the Markov tree of the atlas shown and its P_t = w S(t), w = α Φ_centre / b₂ (α the run's mean segment
@@ -145,6 +159,12 @@ class AtlasPanel : public QWidget {
   void updateDetails();
   void updateButtons();
   void fillShares();
+  /// The model's refusal (core's reason, whole) below "Model P_t…".
+  void showModelRefusal(const QString& why);
+  /// Why the atlas shown has no Markov tree (none, computing, or core's markovTreeAtlasError), empty when it can.
+  [[nodiscard]] QString markovTreeMissing() const;
+  /// "Model P_t…"'s tooltip when it can be pressed.
+  [[nodiscard]] static QString modelTip();
   [[nodiscard]] bool ofPortraitMap() const;
 
   PortraitController* controller_;
@@ -170,6 +190,8 @@ class AtlasPanel : public QWidget {
   int done_ = -1;                         // islands finished while computing (−1: not computing)
   QString stage_;                         // what core is doing ("island 6 > 138")
   bool restored_ = false;                 // atlas_ came from a session or a file
+  bool saved_ = false;                    // atlas_ was exported as JSON or saved in a session
+  std::function<bool(const QString&)> confirm_;
   QString source_;                        // … that file's name (openAtlasFile), empty for a session
   bool stopping_ = false;                 // Stop was asked; the island under way ends first
   quint64 request_ = 0;

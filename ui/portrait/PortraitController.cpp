@@ -59,7 +59,7 @@ std::vector<QPointF> toQt(const std::vector<PhysicalPoint>& points) {
 }
 
 QColor launchedColour(quint64 id) {
-  const Rgb c = orbitColour(static_cast<std::uint32_t>(id));
+  const Rgb c = launchedOrbitColour(static_cast<std::uint32_t>(id));  // apart from the portrait's orbits
   return QColor(c.r, c.g, c.b);
 }
 

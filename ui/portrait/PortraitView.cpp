@@ -525,6 +525,10 @@ bool PortraitView::sparse() const {
          static_cast<double>(frame_->nonEmptyPixels()) < kSparseFraction * static_cast<double>(frame_->pixelCount());
 }
 
+double PortraitView::visitedPercent() const {
+  return 100.0 * static_cast<double>(frame_->nonEmptyPixels()) / static_cast<double>(frame_->pixelCount());
+}
+
 QString PortraitView::readout() const {
   const QLocale locale;
   if (indicator_) {
@@ -555,10 +559,15 @@ QString PortraitView::readout() const {
     case RenderState::accumulating:
       return tr("%1 points, %2 pixels — accumulating…").arg(points, pixels) + allSea();
     case RenderState::done:
+      if (sparse() && frame_->raster->orbitsLeaveView())  // core's rule: the budget would add little here
+        return tr("%1 points, %2 pixels (%3 %) — done; sparse: the seeds' orbits leave this deep view, a larger "
+                  "budget (Ctrl+B) adds little: choose an indicator map (Fast Lyapunov indicator) to see it")
+            .arg(points, pixels)
+            .arg(visitedPercent(), 0, 'f', 0);
       if (sparse())
         return tr("%1 points, %2 pixels (%3 %) — done; sparse: raise the budget (Ctrl+B)")
                    .arg(points, pixels)
-                   .arg(100.0 * static_cast<double>(frame_->nonEmptyPixels()) / static_cast<double>(frame_->pixelCount()), 0, 'f', 0);
+                   .arg(visitedPercent(), 0, 'f', 0);
       return tr("%1 points, %2 pixels — done (budget reached)").arg(points, pixels) + allSea();
     case RenderState::stopped: return tr("%1 points, %2 pixels — stopped").arg(points, pixels) + allSea();
     case RenderState::noSea:

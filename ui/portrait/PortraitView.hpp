@@ -97,7 +97,8 @@ class PortraitView : public QWidget {
   [[nodiscard]] std::uint64_t pointsSoFar() const noexcept { return pointsSoFar_; }
   /// One line for the panel's readout: points so far, pixels visited, and the state in words.
   [[nodiscard]] QString readout() const;
-  /// True when the render ended with fewer than kSparseFraction of its pixels visited (a larger budget helps).
+  /// True when the render ended with fewer than kSparseFraction of its pixels visited (a larger budget helps, unless
+  /// the seeds' orbits leave the view: PortraitRaster::orbitsLeaveView).
   [[nodiscard]] bool sparse() const;
   /// The raster size a render of the current canvas asks for (canvas size × device pixel ratio, clamped).
   [[nodiscard]] QSize rasterSize() const;
@@ -160,6 +161,8 @@ class PortraitView : public QWidget {
   void resizeEvent(QResizeEvent* event) override;
 
  private:
+  /// The done frame's share of pixels visited, in %.
+  [[nodiscard]] double visitedPercent() const;
   friend class PortraitController;
 
   /// Shows this map and view (axes at once) and renders it.

@@ -198,6 +198,20 @@ void MainWindow::connectAtlasPage() {
   AtlasPanel* atlas = portrait_->atlasPanel();
   connect(atlas, &AtlasPanel::markovTreeAsked, this, &MainWindow::askMarkovTree);
   connect(atlas, &AtlasPanel::markovTreeFinished, this, &MainWindow::onMarkovTreeFinished);
+  atlas->setConfirmDiscard([this](const QString& action) { return askAtlasDiscard(action); });
+}
+
+bool MainWindow::askAtlasDiscard(const QString& action) {
+  // A run's question and answers (Save, Discard, Cancel; nothing asked without confirmations): Save is Export JSON.
+  const RunQuestion q{RunQuestion::Kind::discardUnsaved, tr("Unsaved atlas"),
+                      tr("The atlas on the Atlas page was computed here and is in no file. Save it as JSON before %1?")
+                          .arg(action)};
+  switch (askUser(q)) {
+    case RunAnswer::cancel: return false;
+    case RunAnswer::discard: return true;
+    case RunAnswer::save: return portrait_->atlasPanel()->exportWithDialog(true);
+  }
+  return false;
 }
 
 void MainWindow::onMarkovTreeFinished(std::shared_ptr<const MarkovTreeResult> model, const QString& error) {
@@ -251,6 +265,7 @@ void MainWindow::createActions() {
   openAtlasAction_->setStatusTip(tr("Show an atlas file (archipelago-cli atlas --json) on the portrait's Atlas page; "
                                     "its Markov tree draws a model of P_t"));
   connect(openAtlasAction_, &QAction::triggered, this, [this] {
+    if (!portrait_->atlasPanel()->confirmDiscard(tr("opening another atlas"))) return;
     const QString path = QFileDialog::getOpenFileName(this, tr("Open Atlas"), SettingsController::lastFolder(),
                                                       tr("Atlas files (*.json);;All files (*)"));
     if (path.isEmpty()) return;
@@ -821,6 +836,7 @@ bool MainWindow::saveSession(const QString& path, QString* error) {
     message(tr("Cannot save the session: %1").arg(why), 0);
     return false;
   }
+  portrait_->atlasPanel()->markSaved();  // the session holds the atlas
   message(tr("Session saved to %1").arg(path));
   return true;
 }
@@ -877,6 +893,7 @@ void MainWindow::openDialog() {
 
 void MainWindow::openInteractively(const QString& path) {
   if (path.endsWith(QLatin1String(".archipelago"), Qt::CaseInsensitive)) {
+    if (!portrait_->atlasPanel()->confirmDiscard(tr("opening the session"))) return;
     QString error;
     if (!openSession(path, &error) && error != tr("Cancelled"))
       showOpenError(tr("Cannot open session"), path, tr("%1\n\nNothing was changed.").arg(error));
@@ -963,8 +980,9 @@ void MainWindow::discardCheckpoint() {
 
 void MainWindow::closeEvent(QCloseEvent* event) {
   // The controller asks what to do with a live or unsaved run; when it must first stop the run, it calls close()
-  // again (closeReady) once the checkpoint is kept.
-  if (!run_->requestClose()) {
+  // again (closeReady) once the checkpoint is kept.  Then the Atlas page asks for an unsaved atlas (once: after the
+  // run's stop).
+  if (!run_->requestClose() || !portrait_->atlasPanel()->confirmDiscard(tr("quitting"))) {
     event->ignore();
     return;
   }

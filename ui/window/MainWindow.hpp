@@ -183,6 +183,8 @@ class MainWindow : public QMainWindow {
   void updateStaleNote();
   [[nodiscard]] RunSettings runSettings() const;
   RunAnswer askUser(const RunQuestion& question);
+  /// Asks before the Atlas page's unsaved atlas goes for `action` (Save: Export JSON's dialog); true to go on.
+  bool askAtlasDiscard(const QString& action);
 
   void openDialog();
   void openSessionDialog();

@@ -325,6 +325,20 @@ TEST(MarkovTree, RefusesAnAtlasThatCannotMakeATree) {
   EXPECT_THROW((void)markovTreeGrid(0.5), std::invalid_argument);
 }
 
+// Issue 53 finding 9: a front end says why an atlas makes no tree before it is asked (the GUI's "Model P_t…" was
+// greyed out with no reason): markovTreeAtlasError gives the words markovTreeFromAtlas throws, nothing for a good one.
+TEST(MarkovTree, TheAtlasErrorIsTheRefusalsWordsBeforeTheTree) {
+  EXPECT_EQ(markovTreeAtlasError(k01()), std::nullopt);
+  Atlas a = k01();
+  a.cancelled = true;
+  a.stopReason = "stopped";
+  const std::optional<std::string> e = markovTreeAtlasError(a);
+  ASSERT_TRUE(e);
+  EXPECT_EQ(*e, "the atlas was stopped before its end (stopped): resume the atlas to its end before building the tree");
+  EXPECT_EQ(refusal(a), "markov tree: " + *e);
+  EXPECT_EQ(markovTreeAtlasError(Atlas{}), std::optional<std::string>("the atlas has no island"));
+}
+
 TEST(MarkovTree, GridAndEntryWeight) {
   const std::vector<std::uint64_t> g = markovTreeGrid(1e9, 10);
   EXPECT_EQ(g.front(), 1u);

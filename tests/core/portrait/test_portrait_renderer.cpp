@@ -5,6 +5,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <array>
 #include <set>
 #include <atomic>
@@ -527,6 +528,37 @@ TEST(PortraitRenderer, OrbitsModeFlagsTheSeedsThatWrap) {
   EXPECT_FALSE(raster.allOrbitsWrapped());
   EXPECT_GT(wrapped, 0);   // seeds in the sea wrap …
   EXPECT_LT(wrapped, 36);  // … seeds on KAM curves around the islands do not
+}
+
+// Issue 53 finding 22: the seeds' orbits leave a view 10⁻⁶ wide about the hyperbolic fixed point (the GUI advised a
+// larger budget there, and an indicator map is what shows it); they stay in the whole box.
+TEST(PortraitRenderer, OrbitsLeaveADeepViewAndStayInTheBox) {
+  PortraitRequest req;
+  req.map = kPaper;
+  req.width = req.height = 40;
+  req.mode = PortraitMode::Orbits;
+  req.points = 100'000;
+  const long double x = 0.316227766L, half = 5e-7L;
+  req.view = Viewport::fromPhysical(kPaper, {x - half, x + half, -half, half});
+  const PortraitRaster deep = renderPortrait(req).raster;
+  EXPECT_TRUE(deep.orbitsLeaveView()) << deep.pointsBinned << " of " << deep.pointsIterated;
+  req.view = Viewport::fromPhysical(kPaper, {-0.8L, 0.5L, -0.65L, 0.65L});
+  const PortraitRaster box = renderPortrait(req).raster;
+  EXPECT_FALSE(box.orbitsLeaveView()) << box.pointsBinned << " of " << box.pointsIterated;
+  req.mode = PortraitMode::Density;  // an Orbits-mode rule
+  EXPECT_FALSE(renderPortrait(req).raster.orbitsLeaveView());
+}
+
+// Issue 53 finding 14: a launched orbit's colour stands apart from every orbit colour of the portrait (they were the
+// same palette: orbit 1 had label 1's colour).
+TEST(ColourMap, LaunchedOrbitsStandApartFromThePortraitsOrbits) {
+  for (std::uint32_t id = 1; id <= 1000; ++id)
+    for (std::uint32_t label = 1; label <= 1000; ++label) {
+      const Rgb a = launchedOrbitColour(id), b = orbitColour(label);
+      const int apart = std::max({std::abs(a.r - b.r), std::abs(a.g - b.g), std::abs(a.b - b.b)});
+      ASSERT_GE(apart, 102) << id << ", " << label;
+    }
+  EXPECT_NE(launchedOrbitColour(1), launchedOrbitColour(2));
 }
 
 TEST(MapOverlays, FixedPointsOfThePaperBox) {
