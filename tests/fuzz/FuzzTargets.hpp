@@ -29,7 +29,7 @@ inline void runFile(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
   for (const bool allowModified : {false, true}) {
     try {
-      TrappingState s = parseRunFile(text, {.allowModified = allowModified});
+      TrappingState s = parseRunFile(text, {.allowModified = allowModified, .allowModifiedName = "--allow-modified"});
       if (s.unverified != allowModified && s.unverified) throw std::logic_error("unverified without the opt-in");
       // An unverified state is never written as a verified file (issue #23): check that, then round-trip the
       // content as if it were verified.
