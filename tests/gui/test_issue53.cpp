@@ -8,6 +8,7 @@
 #include <QDialogButtonBox>
 #include <QDockWidget>
 #include <QFile>
+#include <QFileInfo>
 #include <QHeaderView>
 #include <QImage>
 #include <QLabel>
@@ -28,17 +29,22 @@
 #include <cstdlib>
 
 #include "GuiTestSupport.hpp"
+#include "core/atlas/AtlasExport.hpp"
 #include "core/colour/ColourMap.hpp"
+#include "core/tail/TailFile.hpp"
+#include "core/tail/TailSampler.hpp"
 #include "core/run/TrappingRun.hpp"
 #include "core/runfile/RunFile.hpp"
 #include "core/session/SessionFile.hpp"
 #include "ui/plots/StatisticsPlot.hpp"
 #include "ui/portrait/AtlasPanel.hpp"
+#include "ui/portrait/ManifoldsPanel.hpp"
 #include "ui/portrait/OrbitListPanel.hpp"
 #include "ui/portrait/PortraitController.hpp"
 #include "ui/portrait/PortraitPanel.hpp"
 #include "ui/portrait/PortraitView.hpp"
 #include "ui/segments/LongSegmentsPanel.hpp"
+#include "ui/window/MainWindow.hpp"
 #include "ui/window/StatisticsView.hpp"
 
 using namespace archipelago;
@@ -59,6 +65,30 @@ const TrappingState& finishedRun() {
     return runTrapping(startTrapping(p), o);
   }();
   return state;
+}
+
+/// A depth-1 atlas of K = 0.1, periods ≤ 200, by core (test_markov_tree's), in `path`.
+void writeSmallAtlas(const QString& path, const MapParameters& map) {
+  AtlasRequest r;
+  r.map = map;
+  r.depth = 1;
+  r.maxPeriod = 200;
+  r.scanSteps = 0;
+  writeAtlasJson(path.toStdString(), computeAtlas(r));
+}
+
+/// A tail file of finishedRun()'s process (test_tail_estimate's sampler, small), in `path`.
+void writeSmallTail(const QString& path) {
+  TailRequest r;
+  r.run = finishedRun().params;
+  r.population = 100;
+  r.replicas = 4;
+  r.firstSteps = 100;
+  r.maxSteps = 100'000;
+  r.minAncestors = 4;
+  TailRunOptions o;
+  o.threads = 2;
+  saveTailFile(path.toStdString(), runTail(startTail(r), o));
 }
 
 /// True when `w` is `ancestor` or inside it.
@@ -170,6 +200,107 @@ class TestIssue53 : public QObject {
     // A new orbit takes the next number, not one of theirs.
     QCOMPARE(c.launchOrbit(0.01L, 0.01L), quint64{4});
     QTRY_VERIFY_WITH_TIMEOUT(c.orbitsSettled(), 900000);
+  }
+
+  // Finding 3 and "sessions that keep the chosen side page" (the issue's Done-when: a session round trip keeps launched
+  // orbits' steps and direction, the Markov model's inputs and curve, the tail estimate's file and the side page):
+  // the model's P_t, the tail's estimate and the Atlas page's shares were lost, and the side page was the Run page.
+  void finding3_sessionsKeepTheModelTheTailAndTheSidePage() {
+    QTemporaryDir dir;
+    const QString run = dir.filePath(QStringLiteral("run.json")), atlas = dir.filePath(QStringLiteral("atlas.json"));
+    const QString tail = dir.filePath(QStringLiteral("tail.json")), path = dir.filePath(QStringLiteral("s.archipelago"));
+    saveRunFile(run.toStdString(), finishedRun());
+    writeSmallAtlas(atlas, finishedRun().params.map);
+    writeSmallTail(tail);
+    QVector<QPointF> model, estimate;
+    int shareRows = 0;
+    {
+      MainWindow w;
+      w.setConfirmations(false);
+      PortraitController& c = *w.portraitPanel()->controller();
+      c.setPointBudget(10000);
+      QVERIFY(w.openRunFile(run));
+      QTRY_VERIFY_WITH_TIMEOUT(w.latestSnapshot() && w.latestSnapshot()->hasStatistics && !isLive(w.runStatus()), 900000);
+      w.refreshNow();
+      QVERIFY(w.openAtlasFile(atlas));
+      QSignalSpy drawn(&w, &MainWindow::markovTreeDrawn), tailed(&w, &MainWindow::tailEstimateFinished);
+      QVERIFY(w.drawMarkovTree(18.9043, 1.362484));
+      QVERIFY(w.openTailEstimate(tail));
+      QTRY_VERIFY_WITH_TIMEOUT(drawn.count() == 1 && tailed.count() == 1, 900000);
+      QCOMPARE(drawn.front().front().toString(), QString());
+      QCOMPARE(tailed.front().at(1).toString(), QString());
+      QVERIFY(c.launchOrbit(0.06L, 0.0974L, 100000, true));
+      w.portraitPanel()->sidePages()->setCurrentWidget(w.portraitPanel()->atlasPanel());
+      const StatisticsPlot& p = *w.statisticsView()->plot(Statistic::P);
+      model = p.modelPoints();
+      estimate = p.estimatePoints();
+      shareRows = w.portraitPanel()->atlasPanel()->sharesTable()->rowCount();
+      QVERIFY(!model.isEmpty() && !estimate.isEmpty() && shareRows > 0);
+      QString error;
+      QVERIFY2(w.saveSession(path, &error), qPrintable(error));
+      QTRY_VERIFY_WITH_TIMEOUT(c.orbitsSettled(), 900000);
+    }
+    MainWindow w;
+    w.setConfirmations(false);
+    w.portraitPanel()->controller()->setPointBudget(10000);
+    QSignalSpy drawn(&w, &MainWindow::markovTreeDrawn), tailed(&w, &MainWindow::tailEstimateFinished);
+    QString error;
+    QVERIFY2(w.openSession(path, &error), qPrintable(error));
+    QCOMPARE(w.portraitPanel()->sidePages()->currentWidget(), static_cast<QWidget*>(w.portraitPanel()->atlasPanel()));
+    QTRY_VERIFY_WITH_TIMEOUT(drawn.count() == 1 && tailed.count() == 1, 900000);
+    QCOMPARE(drawn.front().front().toString(), QString());
+    QCOMPARE(tailed.front().at(1).toString(), QString());
+    const StatisticsPlot& p = *w.statisticsView()->plot(Statistic::P);
+    QCOMPARE(p.modelPoints(), model);
+    QCOMPARE(p.estimatePoints(), estimate);
+    const AtlasPanel& page = *w.portraitPanel()->atlasPanel();
+    QVERIFY(page.markovTree());
+    QCOMPARE(page.markovTree()->request.alpha, 18.9043);
+    QCOMPARE(page.markovTree()->request.b2, 1.362484);
+    QCOMPARE(page.sharesTable()->rowCount(), shareRows);
+    QCOMPARE(QFileInfo(w.tailEstimateFile()), QFileInfo(tail));
+    const std::vector<LaunchedOrbit>& orbits = w.portraitPanel()->controller()->launchedOrbits();
+    QCOMPARE(orbits.size(), std::size_t{1});
+    QCOMPARE(orbits.front().steps, std::uint64_t{100000});
+    QVERIFY(orbits.front().backward);
+    QCOMPARE(w.portraitPanel()->sidePages()->currentWidget(), static_cast<QWidget*>(w.portraitPanel()->atlasPanel()));
+    // The file holds the inputs, not the curves; the tail file beside the session by its name.
+    const Session s = loadSession(path.toStdString());
+    QVERIFY(s.markovTree && s.markovTree->alpha == 18.9043 && s.markovTree->b2 == 1.362484);
+    QCOMPARE(s.sidePage, std::string("Atlas"));
+    QFile text(path);
+    QVERIFY(text.open(QIODevice::ReadOnly));
+    QVERIFY(text.readAll().contains(R"("file": "tail.json")"));
+    QTRY_VERIFY_WITH_TIMEOUT(w.portraitPanel()->controller()->orbitsSettled(), 900000);
+  }
+
+  // Finding 3: a session of before (no "markovTree", "tail" or "sidePage") still opens, as it did.
+  void finding3_anOldSessionStillOpens() {
+    Session old;
+    old.tab = "Phase portrait";
+    QString text = QString::fromStdString(sessionText(old));
+    QVERIFY(!text.contains(QStringLiteral("sidePage")) && !text.contains(QStringLiteral("markovTree")) &&
+            !text.contains(QStringLiteral("\"tail\"")));
+    const Session back = parseSession(text.toStdString());
+    QVERIFY(!back.markovTree && !back.tailFile && back.sidePage.empty());
+    QTemporaryDir dir;
+    const QString path = dir.filePath(QStringLiteral("old.archipelago"));
+    saveSession(path.toStdString(), old);
+    MainWindow w;
+    w.setConfirmations(false);
+    w.portraitPanel()->sidePages()->setCurrentWidget(w.portraitPanel()->manifoldsPanel());
+    QString error;
+    QVERIFY2(w.openSession(path, &error), qPrintable(error));
+    QCOMPARE(w.portraitPanel()->sidePages()->currentWidget(), static_cast<QWidget*>(w.portraitPanel()->manifoldsPanel()));
+    // A model needs its atlas: refused, naming the key.
+    QString withModel = text;
+    withModel.replace(QStringLiteral("\"tab\""), QStringLiteral("\"markovTree\": {\"alpha\": 18.9, \"b2\": 1.36}, \"tab\""));
+    try {
+      (void)parseSession(withModel.toStdString());
+      QFAIL("a model without its atlas was read");
+    } catch (const std::exception& e) {
+      QVERIFY2(QString::fromUtf8(e.what()).contains(QStringLiteral("markovTree")), e.what());
+    }
   }
 
   // Finding 4: the exported P_t.png (945×650) wrapped the three "asymptotic (literature)" entries onto two lines,

@@ -104,7 +104,8 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   createStatusBar();
   createDocks();
   sessions_ = new SessionController({panel_, run_, statistics_, portrait_, segments_, tabs_, [this] { refreshView(); },
-                                     [this](int rank) { showLongSegment(rank, false); }},
+                                     [this](int rank) { showLongSegment(rank, false); },
+                                     [this] { return tailFile_; }, [this](const QString& path) { openTailEstimate(path); }},
                                     this);
   connectAtlasPage();
   connectParameterPanel();
@@ -142,6 +143,7 @@ void MainWindow::createRunController() {
   connect(run_, &RunController::runReplaced, this, [this] {
     shown_.reset();
     statistics_->clear();
+    tailFile_.clear();
     glance_->clear();
     segments_->clear();
   });
@@ -739,6 +741,7 @@ bool MainWindow::openTailEstimate(const QString& path, QString* error) {
       if (e.factor != 1)  // spliced statistics count the q = 1 process's segments
         details += tr(", × %1 (α₁/α_q)").arg(QLocale::c().toString(e.factor, 'g', 3));
       p->setEstimate(e.levels, tr("P_t by splitting (tail)"));
+      tailFile_ = QFileInfo(path).absoluteFilePath();
       p->refresh();
       message(tr("Drew %1 levels of %2 to t = %3 steps on P_t (%4)")
                   .arg(e.levels.x.size())

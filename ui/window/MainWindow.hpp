@@ -71,6 +71,8 @@ class MainWindow : public QMainWindow {
   bool openTailEstimate(const QString& path, QString* error = nullptr);
   /// A tail file is being read or its levels computed (the File menu's entry is disabled meanwhile).
   [[nodiscard]] bool tailEstimatePending() const noexcept { return tailRequest_ != 0; }
+  /// The tail file whose estimate P_t shows (absolute; empty: none, or the run it was drawn for was replaced).
+  [[nodiscard]] QString tailEstimateFile() const { return tailFile_; }
   /// File ▸ Open Atlas: shows an atlas file on the portrait's Atlas page (AtlasPanel::openAtlasFile).
   bool openAtlasFile(const QString& path, QString* error = nullptr);
   /// The entry's numbers offered for the Markov tree's P_t = w S(t) (issue 40), each with where it comes from, or 0
@@ -240,6 +242,7 @@ class MainWindow : public QMainWindow {
   RunSnapshotPtr shown_;       // the snapshot on screen
   bool confirmations_ = true;
   quint64 tailRequest_ = 0;    // openTailEstimate()'s job in flight (0: none)
+  QString tailFile_;           // the tail file drawn on P_t (sessions keep it)
   // Last: destroyed first, so that no job outlives what its handlers use (BackgroundJobs.hpp, "Lifetime").
   std::unique_ptr<BackgroundJobs> jobs_;
 };
