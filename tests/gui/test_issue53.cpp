@@ -23,6 +23,11 @@
 #include <QTemporaryDir>
 #include <QTimer>
 #include <QtTest>
+#include <qwt_plot.h>
+#include <qwt_scale_div.h>
+#include <qwt_scale_draw.h>
+#include <qwt_scale_widget.h>
+#include <qwt_text.h>
 
 #include <algorithm>
 #include <cmath>
@@ -35,6 +40,7 @@
 #include "core/tail/TailSampler.hpp"
 #include "core/run/TrappingRun.hpp"
 #include "core/runfile/RunFile.hpp"
+#include "core/stats/RunStatistics.hpp"
 #include "core/session/SessionFile.hpp"
 #include "ui/plots/StatisticsPlot.hpp"
 #include "ui/portrait/AtlasPanel.hpp"
@@ -346,6 +352,51 @@ class TestIssue53 : public QObject {
                                        .arg(colour.name()).arg(icon.x()).arg(icon.y()).arg(out)));
     }
     QVERIFY(entries >= 3);
+  }
+
+  // Finding 8: the Atlas page's "area ± error" was explained as "± the change with half the points" (the curve's
+  // convergence), where the atlas's ± now covers the interval [areaLower, areaUpper]: the header and each cell say so.
+  void finding8_theAreasErrorSaysWhatItCovers() {
+    MainWindow w;
+    w.setConfirmations(false);
+    AtlasPanel& panel = *w.portraitPanel()->atlasPanel();
+    archipelago::Atlas atlas;
+    atlas.request = panel.request();
+    AtlasNode centre;
+    centre.period = 1;
+    centre.boundaryFound = true;
+    centre.area = centre.circleArea = 0.2392;
+    centre.areaLower = 0.2391;
+    centre.areaUpper = 0.2415;
+    centre.areaError = 0.0023;
+    centre.polygonError = 2e-9;
+    atlas.nodes.push_back(centre);
+    panel.restoreAtlas(atlas);
+    const QString header = panel.tree()->headerItem()->toolTip(AtlasPanel::area);
+    QVERIFY2(header.contains(QStringLiteral("covers")) && !header.contains(QStringLiteral("half the points")),
+             qPrintable(header));
+    const QString cell = panel.item(0)->toolTip(AtlasPanel::area);
+    QVERIFY2(cell.contains(QStringLiteral("[0.2391, 0.2415]")) && cell.contains(QStringLiteral("± 0.0023 covers")) &&
+                 cell.contains(QStringLiteral("convergence (2e-09)")),
+             qPrintable(cell));
+  }
+
+  // Finding 19 (in part): the Atlas table's notes were ~150 characters of 20-digit numbers; the cell cuts them to 4
+  // digits, its tooltip keeps the whole.
+  void finding19_theAtlasNotesAreShort() {
+    MainWindow w;
+    w.setConfirmations(false);
+    AtlasPanel& panel = *w.portraitPanel()->atlasPanel();
+    archipelago::Atlas atlas;
+    atlas.request = panel.request();
+    AtlasNode centre;
+    centre.period = 1;
+    centre.boundaryFailure = "no circle between r = 0.12345678901234567890 and r = -1.2345678901234567e-05";
+    atlas.nodes.push_back(centre);
+    panel.restoreAtlas(atlas);
+    const QString cell = panel.item(0)->text(AtlasPanel::note);
+    QCOMPARE(cell, QStringLiteral("no circle between r = 0.1235 and r = -1.235e-05"));
+    QCOMPARE(panel.item(0)->toolTip(AtlasPanel::note), QString::fromStdString(centre.boundaryFailure));
   }
 
   // Finding 9: "Model P_t…" was greyed out on a stopped atlas with no reason: its tooltip and the page's progress line

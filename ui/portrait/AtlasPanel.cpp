@@ -10,6 +10,7 @@
 #include <QHeaderView>
 #include <QLabel>
 #include <QPushButton>
+#include <QRegularExpression>
 #include <QScrollArea>
 #include <QSpinBox>
 #include <QStringList>
@@ -70,6 +71,31 @@ QString point(PhysicalPoint p) {
 bool measured(const AtlasNode& n) { return n.boundaryFound || !n.boundaryFailure.empty(); }
 
 QString path(const Atlas& a, int i) { return QString::fromStdString(atlasPath(a, i)); }
+
+/// A note with its long numbers (core writes up to 20 digits) cut to 4 significant ones, for the table's cell (issue
+/// 53, finding 19: notes of ~150 characters); the cell's tooltip keeps the whole.
+QString shortNumbers(const QString& text) {
+  static const QRegularExpression longNumber(QStringLiteral("-?\\d+\\.\\d{5,}(?:[eE][-+]?\\d+)?"));
+  QString out;
+  qsizetype from = 0;
+  for (auto it = longNumber.globalMatch(text); it.hasNext();) {
+    const QRegularExpressionMatch m = it.next();
+    out += text.mid(from, m.capturedStart() - from) + QString::number(m.captured().toDouble(), 'g', 4);
+    from = m.capturedEnd();
+  }
+  return out + text.mid(from);
+}
+
+/// What an island's "area ± error" covers (issue 53, finding 8: the ± was read as the scan's resolution).
+QString areaTip(const AtlasNode& n) {
+  return QObject::tr("The true area lies in [%1, %2]: from the proven circle's polygon less its convergence (%3) to "
+                     "the circle scaled to the nearest orbits that leave the island; ± %4 covers both ends. A deeper "
+                     "atlas may find a larger circle, inside [%1, %2].")
+      .arg(QString::number(static_cast<double>(n.areaLower), 'g', 10),
+           QString::number(static_cast<double>(n.areaUpper), 'g', 10),
+           QString::number(static_cast<double>(n.polygonError), 'g', 2),
+           QString::number(static_cast<double>(n.areaError), 'g', 2));
+}
 
 QString rotationText(const AtlasNode& n) {
   return n.aboutParent ? QString::fromStdString(toString(*n.aboutParent)) : QStringLiteral("–");
@@ -146,8 +172,10 @@ void AtlasPanel::createIslandTree() {
                           tr("residence"), tr("note")});
   tree_->headerItem()->setToolTip(island, tr("The periods from the centre down (core's atlasPath)"));
   tree_->headerItem()->setToolTip(rotation, tr("The chain's rotation about its parent island"));
-  tree_->headerItem()->setToolTip(area, tr("One island's area (Green's theorem on its boundary circle) ± the change "
-                                           "with half the points"));
+  tree_->headerItem()->setToolTip(area, tr("One island's area (Green's theorem on its proven boundary circle) ± an "
+                                           "error that covers its true area: the interval from the circle's polygon "
+                                           "less its convergence to the circle scaled to the nearest orbits that "
+                                           "leave the island (each cell's tooltip gives it)"));
   tree_->headerItem()->setToolTip(flux, tr("The turnstile's lobe area: the area crossing the chain's barrier per step"));
   tree_->headerItem()->setToolTip(layer, tr("The area inside the barrier less the islands in it"));
   tree_->headerItem()->setToolTip(residence, tr("Mean residence time inside the barrier: layer / flux, in steps (Kac)"));
@@ -443,11 +471,12 @@ void AtlasPanel::fillTree() {
     const QString state = busy() && index == done_ ? tr("measuring…") : busy() ? tr("waiting") : tr("not measured");
     row->setText(area, n.boundaryFound ? tr("%1 ± %2").arg(number(n.area), number(n.areaError, 1))
                                        : done ? QStringLiteral("–") : state);
+    row->setToolTip(area, n.boundaryFound ? areaTip(n) : QString());
     row->setText(flux, n.flux.found ? number(n.flux.flux) : QStringLiteral("–"));
     row->setText(layer, n.flux.found ? number(n.flux.layerArea) : QStringLiteral("–"));
     row->setText(residence, n.flux.found ? steps(n.flux.residence) : QStringLiteral("–"));
     const QString noteShown = done ? noteText(n) : busy() ? state : tr("not measured (stopped)");
-    row->setText(note, noteShown);
+    row->setText(note, shortNumbers(noteShown));
     row->setToolTip(note, noteShown);
     for (int c = 0; c < columns; ++c) row->setFont(c, done ? plain : italic);
   }
