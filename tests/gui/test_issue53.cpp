@@ -381,6 +381,31 @@ class TestIssue53 : public QObject {
              qPrintable(cell));
   }
 
+  // Finding 12: after a spliced run "Model P_t…" offered the q = 1 companion's α (2.72), called only "the run's mean
+  // segment length", where the tail and `markov-tree --alpha` want the q process's (18.9).
+  void finding12_theModelsAlphaIsTheQProcesss() {
+    QTemporaryDir dir;
+    const std::string run = dir.filePath(QStringLiteral("run.json")).toStdString();
+    TrappingRunOptions o;
+    o.threads = 1;
+    saveRunFile(run, finishedRun());
+    saveRunFile(companionRunFile(run), runTrapping(startTrapping(companionParameters(finishedRun().params, 1.0)), o));
+    MainWindow w;
+    w.setConfirmations(false);
+    w.portraitPanel()->controller()->setPointBudget(10000);
+    QVERIFY(w.openRunFile(QString::fromStdString(run)));
+    QTRY_VERIFY_WITH_TIMEOUT(w.latestSnapshot() && w.latestSnapshot()->hasStatistics && !isLive(w.runStatus()), 900000);
+    QVERIFY2(w.latestSnapshot()->statistics.splicedAt > 0, "the run and its companion did not splice");
+    const double q = statisticsOf(finishedRun()).alpha, spliced = w.latestSnapshot()->statistics.alpha;
+    QVERIFY(q > 2 * spliced);
+    const MainWindow::MarkovTreeEntry e = w.markovTreeEntry();
+    QCOMPARE(e.alpha, q);
+    QVERIFY2(e.alphaSource.contains(QStringLiteral("q = 16 process")) &&
+                 e.alphaSource.contains(QStringLiteral("markov-tree --alpha %1").arg(QLocale::c().toString(q, 'g', 8))) &&
+                 e.alphaSource.contains(QStringLiteral("q = 1 companion")),
+             qPrintable(e.alphaSource));
+  }
+
   // Finding 19 (in part): the Atlas table's notes were ~150 characters of 20-digit numbers; the cell cuts them to 4
   // digits, its tooltip keeps the whole.
   void finding19_theAtlasNotesAreShort() {

@@ -45,6 +45,7 @@
 #include <functional>
 
 #include "core/markovtree/MarkovTreeExport.hpp"
+#include "core/stats/RunStatistics.hpp"
 #include "core/tail/BruteForceSurvival.hpp"
 #include "core/tail/TailFile.hpp"
 #include "core/tail/TailResult.hpp"
@@ -776,13 +777,29 @@ MainWindow::MarkovTreeEntry MainWindow::markovTreeEntry() const {
   const MapParameters atlasMap = atlas ? atlas->request.map : given ? given->map : MapParameters{};
   const RunSnapshotPtr shown = run_->latest();
   std::optional<MapParameters> runMap;
-  double runAlpha = 0;
+  double runAlpha = 0, splicedAlpha = 0;
   if (shown && shown->hasStatistics) {
     runMap = shown->state.params.map;
     runAlpha = shown->statistics.alpha;
+    // Spliced statistics' α is the q = 1 companion's: the model, a tail file and `markov-tree --alpha` want the α of
+    // the run's own process, blocks of q steps (issue 53, finding 12: 2.72 was offered where the tail's is 18.9).
+    if (shown->statistics.splicedAt > 0) {
+      splicedAlpha = runAlpha;
+      runAlpha = statisticsOf(shown->state).alpha;
+    }
   }
   const MarkovTreeEntryOffer o = markovTreeEntryOffer(atlasMap, runMap, runAlpha);
-  return {o.alpha, o.b2, QString::fromStdString(o.alphaSource), QString::fromStdString(o.b2Source)};
+  QString alphaSource = QString::fromStdString(o.alphaSource);
+  if (runAlpha > 0 && o.alpha == runAlpha) {
+    const QLocale c = QLocale::c();
+    alphaSource += tr(", of the q = %1 process, the one a tail file of this run samples (archipelago-cli markov-tree "
+                      "--alpha %2)")
+                       .arg(shown->state.params.q)
+                       .arg(c.toString(runAlpha, 'g', 8));
+    if (splicedAlpha > 0)
+      alphaSource += tr("; the spliced statistics' α, %1, is the q = 1 companion's").arg(c.toString(splicedAlpha, 'g', 4));
+  }
+  return {o.alpha, o.b2, alphaSource, QString::fromStdString(o.b2Source)};
 }
 
 bool MainWindow::drawMarkovTree(double alpha, double b2, QString* error) {

@@ -77,7 +77,8 @@ class MainWindow : public QMainWindow {
   bool openAtlasFile(const QString& path, QString* error = nullptr);
   /// The entry's numbers offered for the Markov tree's P_t = w S(t) (issue 40), each with where it comes from, or 0
   /// (an empty field) with why there is none: core's markovTreeEntryOffer for the Atlas page's atlas (the parameters'
-  /// map without one) and the shown run — α the run's mean segment length when its map is the atlas's, else
+  /// map without one) and the shown run — α the run's mean segment length when its map is the atlas's (of its process
+  /// of blocks of q steps, named with q, also after splicing: the q = 1 companion's α is not the tail's), else
   /// docs/markov-tree.md's for an atlas at K = 0.1 in the default box; b₂ docs/markov-tree.md's for that map only.
   struct MarkovTreeEntry {
     double alpha = 0, b2 = 0;
