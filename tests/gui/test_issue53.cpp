@@ -97,6 +97,24 @@ void writeSmallTail(const QString& path) {
   saveTailFile(path.toStdString(), runTail(startTail(r), o));
 }
 
+/// The portrait's x-axis tick labels closer to a neighbour than a digit's width (run together), as "label | label"
+/// (empty: none), and all its labels.
+QStringList overlappingTicks(const QwtPlot& plot, QStringList* labels) {
+  const QwtScaleDraw& draw = *plot.axisScaleDraw(QwtPlot::xBottom);
+  const QFont font = plot.axisWidget(QwtPlot::xBottom)->font();
+  QList<double> ticks = plot.axisScaleDiv(QwtPlot::xBottom).ticks(QwtScaleDiv::MajorTick);
+  std::sort(ticks.begin(), ticks.end());
+  QStringList overlaps;
+  for (int i = 0; i < ticks.size(); ++i) {
+    *labels << draw.label(ticks[i]).text();
+    if (i == 0) continue;
+    const double gap = plot.transform(QwtPlot::xBottom, ticks[i]) - plot.transform(QwtPlot::xBottom, ticks[i - 1]);
+    const double room = (draw.labelSize(font, ticks[i]).width() + draw.labelSize(font, ticks[i - 1]).width()) / 2;
+    if (gap < room + QFontMetrics(font).horizontalAdvance(QLatin1Char('0'))) overlaps << draw.label(ticks[i - 1]).text() + QStringLiteral(" | ") + draw.label(ticks[i]).text();
+  }
+  return overlaps;
+}
+
 /// True when `w` is `ancestor` or inside it.
 bool inside(const QWidget* w, const QWidget* ancestor) {
   for (; w; w = w->parentWidget())
@@ -352,6 +370,43 @@ class TestIssue53 : public QObject {
                                        .arg(colour.name()).arg(icon.x()).arg(icon.y()).arg(out)));
     }
     QVERIFY(entries >= 3);
+  }
+
+  // Finding 5: at 1280×800 the thin island 13 (2/13) of a depth-1 atlas was framed in a view 1:4 wide, whose x
+  // ticks ran together ("-0.54542.5458 36").  No two tick labels come closer than a digit's width now.
+  void finding5_theThinIslandsTicksDoNotOverlap() {
+    QTemporaryDir dir;
+    const QString atlas = dir.filePath(QStringLiteral("atlas.json"));
+    MainWindow w;
+    w.setConfirmations(false);
+    w.portraitPanel()->controller()->setPointBudget(10000);
+    writeSmallAtlas(atlas, w.portraitPanel()->controller()->map());
+    w.resize(1200, 760);  // the window on a 1280×800 screen (Xvfb, no window manager)
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    QVERIFY(w.openAtlasFile(atlas));
+    AtlasPanel& panel = *w.portraitPanel()->atlasPanel();
+    int thin = -1;
+    for (int i = 0; panel.item(i); ++i)
+      if (panel.item(i)->text(AtlasPanel::island) == QStringLiteral("13") &&
+          panel.item(i)->text(AtlasPanel::rotation) == QStringLiteral("2/13"))
+        thin = i;
+    QVERIFY2(thin >= 0, "no island 13 2/13 in the atlas");
+    PortraitController& c = *w.portraitPanel()->controller();
+    QVERIFY(panel.showIsland(thin));
+    QTRY_VERIFY_WITH_TIMEOUT(c.atlasIslandSettled() && c.atlasIsland(), 900000);
+    QCoreApplication::processEvents();
+    const QwtPlot* plot = w.portraitPanel()->view()->findChild<QwtPlot*>();
+    QVERIFY(plot);
+    QStringList labels;
+    const QStringList overlaps = overlappingTicks(*plot, &labels);
+    QVERIFY2(labels.size() >= 2, qPrintable(labels.join(QStringLiteral(", "))));
+    QVERIFY2(overlaps.isEmpty(), qPrintable(QStringLiteral("%1 in %2 (canvas %3 px wide)")
+                                                .arg(overlaps.join(QStringLiteral("; ")), labels.join(QStringLiteral(", ")))
+                                                .arg(plot->canvas()->width())));
+    if (const QString shots = qEnvironmentVariable("ARCHIPELAGO_SCREENSHOT_DIR"); !shots.isEmpty())
+      QVERIFY(w.grab().save(shots + QStringLiteral("/thin-island-1280.png")));
+    QTRY_VERIFY_WITH_TIMEOUT(c.orbitsSettled(), 900000);
   }
 
   // Finding 8: the Atlas page's "area ± error" was explained as "± the change with half the points" (the curve's
