@@ -14,10 +14,14 @@
 #include <QLabel>
 #include <QLineEdit>
 #include <QMessageBox>
+#include <QMenu>
+#include <QProgressBar>
 #include <QPushButton>
 #include <QScreen>
 #include <QSignalSpy>
 #include <QSpinBox>
+#include <QStatusBar>
+#include <QTabWidget>
 #include <QTableView>
 #include <QTableWidget>
 #include <QTemporaryDir>
@@ -41,6 +45,7 @@
 #include "core/run/TrappingRun.hpp"
 #include "core/runfile/RunFile.hpp"
 #include "core/stats/RunStatistics.hpp"
+#include "ui/run/RunWorker.hpp"
 #include "core/session/SessionFile.hpp"
 #include "ui/plots/StatisticsPlot.hpp"
 #include "ui/portrait/AtlasPanel.hpp"
@@ -477,6 +482,80 @@ class TestIssue53 : public QObject {
     const QString cell = panel.item(0)->text(AtlasPanel::note);
     QCOMPARE(cell, QStringLiteral("no circle between r = 0.1235 and r = -1.235e-05"));
     QCOMPARE(panel.item(0)->toolTip(AtlasPanel::note), QString::fromStdString(centre.boundaryFailure));
+  }
+
+  // Finding 19 (in part): at 1280×800 the q = 1 companion's label was clipped in the progress bar ("q = 1 companion
+  // run: 40 % · then t < 160 steps come from it" in at most 320 pixels).
+  void finding19_theCompanionsLabelFitsTheBar() {
+    MainWindow w;
+    w.setConfirmations(false);
+    w.resize(1200, 760);
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    TrappingParameters p = finishedRun().params;
+    p.T = 2000;
+    auto* bar = w.findChild<QProgressBar*>();
+    QVERIFY(bar);
+    QStringList clipped, shown;
+    connect(&w.worker(), &RunWorker::snapshotReady, &w, [&](const RunSnapshotPtr& s) {
+      if (!s || !s->companionRunning) return;
+      QTimer::singleShot(0, &w, [&] {
+        w.refreshNow();
+        shown << bar->text();
+        if (bar->fontMetrics().horizontalAdvance(bar->text()) + 8 > bar->width())
+          clipped << QStringLiteral("'%1' in %2 pixels").arg(bar->text()).arg(bar->width());
+      });
+    });
+    RunSettings settings;
+    settings.threads = 1;
+    settings.companion = 1.0;
+    QString error;
+    QVERIFY2(w.runController()->start(p, settings, &error), qPrintable(error));
+    QTRY_VERIFY_WITH_TIMEOUT(w.runStatus() == RunStatus::finished, 900000);
+    QTRY_VERIFY_WITH_TIMEOUT(!shown.isEmpty(), 900000);
+    QVERIFY2(shown.front().contains(QStringLiteral("companion")), qPrintable(shown.front()));
+    QVERIFY2(clipped.isEmpty(), qPrintable(clipped.join(QStringLiteral("; "))));
+    QVERIFY2(bar->toolTip().contains(QStringLiteral("t < 160 steps")) || !w.latestSnapshot()->companionRunning,
+             qPrintable(bar->toolTip()));
+  }
+
+  // Finding 19 (in part) and "a way to enlarge one plot" (missing): P_t with a model and a tail had ~230×180 pixels
+  // and its menu offered only Reset zoom.  Its menu enlarges it (a double click too) over the room of all six, and
+  // Esc shows all six again; the menu exports it too.
+  void finding19_aPlotEnlargesAndItsMenuOffersMore() {
+    MainWindow w;
+    w.setConfirmations(false);
+    w.resize(1200, 760);
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    w.tabs()->setCurrentWidget(w.statisticsView());
+    StatisticsView& view = *w.statisticsView();
+    StatisticsPlot& p = *view.plot(Statistic::P);
+    QTRY_VERIFY(p.isVisible());
+    const QSize small = p.size();
+    std::unique_ptr<QMenu> menu(p.createContextMenu(&p));
+    QStringList entries;
+    for (QAction* a : menu->actions()) entries << a->text();
+    QVERIFY2(entries.size() >= 3 && entries.contains(QStringLiteral("Export…")), qPrintable(entries.join(QStringLiteral(", "))));
+    QAction* enlarge = menu->actions().at(1);
+    QVERIFY2(enlarge->text().startsWith(QStringLiteral("Enlarge")), qPrintable(enlarge->text()));
+    enlarge->trigger();
+    QCOMPARE(view.enlargedPlot(), &p);
+    QTRY_VERIFY(p.width() > 2 * small.width() && p.height() > 3 * small.height() / 2);
+    const QSize big = p.size();
+    for (StatisticsPlot* other : view.plots())
+      if (other != &p) QVERIFY(!other->isVisible());
+    menu.reset(p.createContextMenu(&p));
+    QVERIFY2(menu->actions().at(1)->text().startsWith(QStringLiteral("Show All Plots")), qPrintable(menu->actions().at(1)->text()));
+    p.canvas()->setFocus();
+    QTest::keyClick(p.canvas(), Qt::Key_Escape);
+    QCOMPARE(view.enlargedPlot(), static_cast<StatisticsPlot*>(nullptr));
+    QTRY_VERIFY(2 * p.width() < big.width());
+    for (StatisticsPlot* other : view.plots()) QVERIFY(other->isVisible());
+    QTest::mouseDClick(p.canvas(), Qt::LeftButton, {}, p.canvas()->rect().center());
+    QCOMPARE(view.enlargedPlot(), &p);
+    QTest::mouseDClick(p.canvas(), Qt::LeftButton, {}, p.canvas()->rect().center());
+    QCOMPARE(view.enlargedPlot(), static_cast<StatisticsPlot*>(nullptr));
   }
 
   // Finding 9: "Model P_t…" was greyed out on a stopped atlas with no reason: its tooltip and the page's progress line

@@ -352,9 +352,11 @@ void MainWindow::createMenus() {
   file->addSeparator();
   file->addAction(exportAllAction_);
   QMenu* exportMenu = file->addMenu(tr("Export &Plot"));
-  for (int i = 0; i < statistics_->plots().size(); ++i)
+  for (int i = 0; i < statistics_->plots().size(); ++i) {
     exportMenu->addAction(statistics_->plots().at(i)->displayName() + QStringLiteral("…"), this,
                           [this, i] { exportPlotDialog(i); });
+    connect(statistics_->plots().at(i), &StatisticsPlot::exportRequested, this, [this, i] { exportPlotDialog(i); });
+  }
   file->addSeparator();
   file->addAction(quitAction_);
 
@@ -635,10 +637,12 @@ void MainWindow::showProgress(const RunSnapshot& s) {
   if (s.companionRunning && live) {
     // The run is done; its q = 1 companion gives the statistics below 10 q steps (issue 37, finding 7).
     progress_->setValue(static_cast<int>(1000 * s.companionFraction + 0.5));
-    progress_->setFormat(tr("q = 1 companion run: %p % · then t < %1 steps come from it").arg(10 * s.state.params.q));
+    // A short label: the bar is at most 320 pixels (issue 53, finding 19: the longer one was clipped at 1280×800).
+    progress_->setFormat(tr("q = 1 companion: %p %"));
     progress_->setToolTip(tr("The run has finished; its q = 1 companion (a fraction of its steps) now runs, so that "
-                             "the statistics below 10 q steps are not those of blocks of q steps. When it ends, the "
-                             "plots and α show the spliced statistics."));
+                             "the statistics below 10 q steps are not those of blocks of q steps: t < %1 steps will "
+                             "come from it. When it ends, the plots and α show the spliced statistics.")
+                              .arg(10 * s.state.params.q));
     rateLabel_->setText(QString());
     etaLabel_->setText(tr("companion run"));
     if (!s.kernel.empty()) kernelLabel_->setText(tr("kernel: %1").arg(QString::fromStdString(s.kernel)));
