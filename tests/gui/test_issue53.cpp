@@ -558,6 +558,48 @@ class TestIssue53 : public QObject {
     QCOMPARE(view.enlargedPlot(), static_cast<StatisticsPlot*>(nullptr));
   }
 
+  // Missing: keyboard and menu access to the side pages (Run, Orbits, Manifolds, Profile, Atlas) and to the Atlas
+  // page's Compute and Model P_t….
+  void missing_theSidePagesAndTheAtlasByTheKeyboard() {
+    MainWindow w;
+    w.setConfirmations(false);
+    w.portraitPanel()->controller()->setPointBudget(10000);
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    w.activateWindow();
+    QVERIFY(QTest::qWaitForWindowActive(&w));
+    w.tabs()->setCurrentWidget(w.statisticsView());
+    QTabWidget& side = *w.portraitPanel()->sidePages();
+    const QStringList pages = {QStringLiteral("Run"), QStringLiteral("Orbits"), QStringLiteral("Manifolds"),
+                               QStringLiteral("Profile"), QStringLiteral("Atlas")};
+    for (int i = static_cast<int>(pages.size()) - 1; i >= 0; --i) {
+      QTest::keyClick(&w, static_cast<Qt::Key>(Qt::Key_1 + i), Qt::ControlModifier);
+      QCOMPARE(w.tabs()->currentWidget(), static_cast<QWidget*>(w.portraitPanel()));
+      QCOMPARE(side.tabText(side.currentIndex()).remove(QLatin1Char('&')), pages[i]);
+    }
+    const auto keys = w.keyboardShortcuts();
+    const auto listed = [&keys](const QString& action) {
+      return std::any_of(keys.begin(), keys.end(), [&](const auto& row) { return row.first.endsWith(action); });
+    };
+    QVERIFY(listed(QStringLiteral("View ▸ Atlas Page")) && listed(QStringLiteral("Tools ▸ Compute Atlas")) &&
+            listed(QStringLiteral("Tools ▸ Model P_t of the Atlas…")));
+    // Model P_t… without an atlas: the page shown, and why not in the status bar.
+    side.setCurrentIndex(0);
+    QTest::keyClick(&w, Qt::Key_M, Qt::ControlModifier | Qt::ShiftModifier);
+    AtlasPanel& atlas = *w.portraitPanel()->atlasPanel();
+    QCOMPARE(side.currentWidget(), static_cast<QWidget*>(&atlas));
+    QVERIFY2(w.statusBar()->currentMessage().contains(atlas.markovTreeButton()->toolTip()),
+             qPrintable(w.statusBar()->currentMessage()));
+    // Compute: the page's request, started.
+    atlas.depthBox()->setValue(1);
+    QSignalSpy ended(&atlas, &AtlasPanel::computationEnded);
+    QTest::keyClick(&w, Qt::Key_A, Qt::ControlModifier | Qt::ShiftModifier);
+    QVERIFY(atlas.busy());
+    atlas.stop();
+    QTRY_COMPARE_WITH_TIMEOUT(ended.count(), 1, 900000);
+    QTRY_VERIFY_WITH_TIMEOUT(w.portraitPanel()->controller()->orbitsSettled(), 900000);
+  }
+
   // Finding 9: "Model P_t…" was greyed out on a stopped atlas with no reason: its tooltip and the page's progress line
   // give core's (markovTreeAtlasError).
   void finding9_modelPtSaysWhyAStoppedAtlasHasNone() {

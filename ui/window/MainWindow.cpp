@@ -376,9 +376,12 @@ void MainWindow::createMenus() {
     a->setShortcut(QKeySequence(QStringLiteral("Alt+%1").arg(i + 1)));
   }
 
+  addSidePageActions(view);
+
   menuBar()->addMenu(portrait_->menu());
 
   QMenu* tools = menuBar()->addMenu(tr("&Tools"));
+  addAtlasActions(tools);
   QAction* periodic = tools->addAction(tr("Find &Periodic Orbit…"), this, &MainWindow::showPeriodicOrbitDialog);
   periodic->setShortcut(QKeySequence(QStringLiteral("Ctrl+Shift+P")));
   periodic->setStatusTip(tr("Periodic orbits of Q with their residues; overlay them on the phase portrait"));
@@ -404,6 +407,39 @@ void MainWindow::createMenus() {
   bar->addAction(stopAction_);
   bar->addSeparator();
   bar->addAction(exportAllAction_);
+}
+
+void MainWindow::addSidePageActions(QMenu* view) {
+  // The pages beside the portrait by the keyboard (issue 53, missing): Ctrl+1 … Ctrl+5, the portrait's tab shown.
+  view->addSeparator();
+  QTabWidget* side = portrait_->sidePages();
+  for (int i = 0; i < side->count(); ++i) {
+    QAction* a = view->addAction(tr("%1 Page").arg(QString(side->tabText(i)).remove(QLatin1Char('&'))), this, [this, i] {
+      tabs_->setCurrentWidget(portrait_);
+      portrait_->sidePages()->setCurrentIndex(i);
+    });
+    a->setShortcut(QKeySequence(QStringLiteral("Ctrl+%1").arg(i + 1)));
+  }
+}
+
+void MainWindow::addAtlasActions(QMenu* tools) {
+  // The Atlas page's Compute and Model P_t… by the menu and the keyboard (issue 53, missing): the page is shown and
+  // its button pressed; a button that cannot be pressed says why in the status bar (its tooltip).
+  const auto press = [this](QPushButton* button) {
+    tabs_->setCurrentWidget(portrait_);
+    portrait_->sidePages()->setCurrentWidget(portrait_->atlasPanel());
+    if (button->isEnabled()) button->click();
+    else message(tr("%1: %2").arg(button->text(), button->toolTip()), 10000);
+  };
+  tools->addSeparator();
+  QAction* compute = tools->addAction(tr("Compute &Atlas"), this,
+                                      [this, press] { press(portrait_->atlasPanel()->computeButton()); });
+  compute->setShortcut(QKeySequence(QStringLiteral("Ctrl+Shift+A")));
+  compute->setStatusTip(tr("The Atlas page's Compute: the islands around islands of the portrait's K"));
+  QAction* model = tools->addAction(tr("&Model P_t of the Atlas…"), this,
+                                    [this, press] { press(portrait_->atlasPanel()->markovTreeButton()); });
+  model->setShortcut(QKeySequence(QStringLiteral("Ctrl+Shift+M")));
+  model->setStatusTip(tr("The Atlas page's Model P_t…: the Markov tree of the atlas drawn on P_t"));
 }
 
 void MainWindow::createStatusBar() {

@@ -172,6 +172,9 @@ class MainWindow : public QMainWindow {
   void onMarkovTreeFinished(std::shared_ptr<const MarkovTreeResult> model, const QString& error);
   void createActions();
   void createMenus();
+  /// View ▸ Run Page … Atlas Page (Ctrl+1 … Ctrl+5); Tools ▸ Compute Atlas, Model P_t of the Atlas….
+  void addSidePageActions(QMenu* view);
+  void addAtlasActions(QMenu* tools);
   void createStatusBar();
   QWidget* createParameterDock();
   void createCheckpointBanner();
