@@ -56,6 +56,7 @@
 #include "ui/portrait/PortraitView.hpp"
 #include "ui/segments/LongSegmentsPanel.hpp"
 #include "ui/window/MainWindow.hpp"
+#include "ui/window/ParameterPanel.hpp"
 #include "ui/window/StatisticsView.hpp"
 
 using namespace archipelago;
@@ -824,6 +825,37 @@ class TestIssue53 : public QObject {
     for (const QList<QVariant>& m : messages)
       said = said || m.front().toString().contains(QStringLiteral("steps = 999999999 must lie in [1, 100000000]"));
     QVERIFY(said);
+  }
+
+  // Finding 21 (the rest): the fields of a paused run looked editable and dropped the keys without a word; they look
+  // read-only now (the window's background) and a note above them says why and how to edit.
+  void finding21_aPausedRunsFieldsLookReadOnlyAndSayWhy() {
+    MainWindow w;
+    w.setConfirmations(false);
+    w.portraitPanel()->controller()->setPointBudget(10000);
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    ParameterPanel& panel = *w.parameterPanel();
+    QLineEdit& K = *panel.field(QStringLiteral("K"));
+    const QColor editable = K.palette().color(QPalette::Base);
+    auto* note = panel.findChild<QLabel*>(QStringLiteral("parametersLocked"));
+    QVERIFY2(!note || !note->isVisible(), "the note shows with editable fields");
+    TrappingParameters p = finishedRun().params;
+    p.T = 100'000'000;
+    panel.setParameters(p, 1);
+    QVERIFY(w.startRun());
+    QVERIFY(w.pauseRun());
+    QTRY_COMPARE_WITH_TIMEOUT(w.runStatus(), RunStatus::paused, 900000);
+    QVERIFY(K.isReadOnly());
+    QVERIFY2(note && note->isVisible() && note->text().contains(QStringLiteral("Read-only")) &&
+                 note->text().contains(QStringLiteral("Shift+F5")),
+             note ? qPrintable(note->text()) : "no note");
+    QVERIFY2(K.palette().color(QPalette::Base) != editable, qPrintable(K.palette().color(QPalette::Base).name()));
+    QVERIFY(w.stopRun());
+    QTRY_COMPARE_WITH_TIMEOUT(w.runStatus(), RunStatus::stopped, 900000);
+    QVERIFY(!K.isReadOnly());
+    QVERIFY(!note->isVisible());
+    QCOMPARE(K.palette().color(QPalette::Base), editable);
   }
 
   // Finding 22: a deep view in Island-orbits mode was black and the readout said "raise the budget": the seeds' orbits
