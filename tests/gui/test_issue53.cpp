@@ -708,6 +708,37 @@ class TestIssue53 : public QObject {
     QVERIFY(w.close());  // the atlas is in a file: nothing asked
   }
 
+  // Compute over an unsaved atlas replaced it without a question (File ▸ Open Atlas… and Open… asked): it asks the
+  // same way now, and Cancel keeps the atlas.
+  void computeOverAnUnsavedAtlasAsks() {
+    MainWindow w;  // confirmations on: the question is asked
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    w.portraitPanel()->controller()->setPointBudget(10000);
+    AtlasPanel& panel = *w.portraitPanel()->atlasPanel();
+    QSignalSpy ended(&panel, &AtlasPanel::computationEnded);
+    archipelago::AtlasRequest r = panel.request();
+    r.depth = 1;
+    QVERIFY(panel.compute(r));
+    panel.stop();
+    QTRY_COMPARE_WITH_TIMEOUT(ended.count(), 1, 900000);
+    const std::shared_ptr<const archipelago::Atlas> computed = panel.atlas();
+    QVERIFY(computed && panel.unsavedWork());
+    QString asked;
+    onModal([&asked](QDialog& d) {
+      asked = d.windowTitle();
+      auto* box = qobject_cast<QMessageBox*>(&d);
+      if (box && box->button(QMessageBox::Cancel)) box->button(QMessageBox::Cancel)->click();
+      else d.reject();
+    });
+    panel.computeButton()->click();
+    QCOMPARE(asked, QStringLiteral("Unsaved atlas"));
+    QVERIFY(!panel.busy());
+    QCOMPARE(panel.atlas(), computed);
+    w.setConfirmations(false);  // the window closes without asking
+    QTRY_VERIFY_WITH_TIMEOUT(w.portraitPanel()->controller()->orbitsSettled(), 900000);
+  }
+
   // Finding 14: launched orbits took the portrait's palette (orbitColour(id): the id-th seed's orbit's colour in
   // Island-orbits mode), so a clicked curve could not be told apart.  Each launched orbit's colour is now 80 or more
   // away, in some channel, from the colour of every orbit of the seed grid.

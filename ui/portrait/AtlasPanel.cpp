@@ -156,7 +156,10 @@ void AtlasPanel::createRequestControls() {
                           "measured)"));
   stop_ = new QPushButton(tr("Stop"), this);
   stop_->setToolTip(tr("Stop: the islands measured so far stay"));
-  connect(compute_, &QPushButton::clicked, this, [this] { compute(request()); });
+  // An atlas computed here and in no file is asked for first, as Open… asks (issue 53: Compute replaced it silently).
+  connect(compute_, &QPushButton::clicked, this, [this] {
+    if (confirmDiscard(tr("computing another atlas"))) compute(request());
+  });
   connect(stop_, &QPushButton::clicked, this, &AtlasPanel::stop);
 
   progress_ = new QLabel(this);
