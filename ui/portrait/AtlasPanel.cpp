@@ -29,6 +29,7 @@
 #include "core/manifolds/ManifoldExport.hpp"
 #include "core/periodic/PeriodicOrbitFinder.hpp"
 #include "core/periodic/SegmentAnalysis.hpp"
+#include "core/tail/TailFile.hpp"
 #include "ui/jobs/BackgroundJobs.hpp"
 #include "ui/jobs/DurationText.hpp"
 #include "ui/portrait/PortraitController.hpp"
@@ -261,6 +262,15 @@ void AtlasPanel::createMarkovTreeWidgets() {
   shares_->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
   shares_->verticalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
   shares_->hide();
+  comparison_ = new QTableWidget(this);
+  comparison_->setObjectName(QStringLiteral("atlasMarkovTreeComparison"));
+  comparison_->setEditTriggers(QAbstractItemView::NoEditTriggers);
+  comparison_->setSelectionMode(QAbstractItemView::NoSelection);
+  comparison_->setToolTip(tr("The model's P_t = w S(t) at each reliable level of the tail file, as archipelago-cli "
+                             "markov-tree --tail prints it"));
+  comparison_->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
+  comparison_->verticalHeader()->hide();
+  comparison_->hide();
 }
 
 void AtlasPanel::layOut() {
@@ -300,6 +310,7 @@ void AtlasPanel::layOut() {
   layout->addLayout(model);
   layout->addWidget(modelText_);
   layout->addWidget(shares_);
+  layout->addWidget(comparison_, 1);
   layout->addLayout(exports);
 }
 
@@ -429,6 +440,7 @@ void AtlasPanel::show(std::shared_ptr<const Atlas> atlas, int done, const QStrin
     treeRequest_ = 0;
     model_.reset();
     fillShares();
+    fillComparison();
   }
   atlas_ = std::move(atlas);
   done_ = done;
@@ -624,7 +636,7 @@ bool AtlasPanel::openAtlasFile(const QString& path, QString* error) {
 
 std::vector<std::uint64_t> AtlasPanel::shareTimes() { return {10'000, 100'000, 1'000'000}; }
 
-bool AtlasPanel::computeMarkovTree(double alpha, double b2, QString* error) {
+bool AtlasPanel::computeMarkovTree(double alpha, double b2, QString* error, const QString& tailFile) {
   QString why;
   MarkovTreeRequest r;
   r.alpha = alpha;
@@ -632,6 +644,7 @@ bool AtlasPanel::computeMarkovTree(double alpha, double b2, QString* error) {
   r.needsP = true;  // the page draws P_t: core refuses a missing, impossible or absurd α or b₂ (issue 54)
   r.at = shareTimes();
   r.atlasSource = "the Atlas page";
+  r.tailSource = QFileInfo(tailFile).fileName().toStdString();
   why = markovTreeMissing();
   if (why.isEmpty())
     if (const auto e = validationError(r)) why = QString::fromStdString(*e);
@@ -643,11 +656,19 @@ bool AtlasPanel::computeMarkovTree(double alpha, double b2, QString* error) {
   }
   Job<std::shared_ptr<const MarkovTreeResult>> job;  // latest wins
   job.channel = 1;
-  job.work = [atlas = atlas_, r](JobContext<NoProgress>& context)
+  job.work = [atlas = atlas_, r, file = tailFile.toStdString()](JobContext<NoProgress>& context)
       -> std::optional<std::shared_ptr<const MarkovTreeResult>> {
+    std::optional<TailState> tail;
+    if (!file.empty()) {
+      try {
+        tail = loadTailFile(file);
+      } catch (const std::exception&) {  // its own reading said why when it was opened: the model alone
+      }
+      if (tail && !(tail->request.run.map == atlas->request.map)) tail.reset();
+    }
     try {  // throws: core's reason; Cancel or closing the window stops it within milliseconds (issue 54)
       return std::make_shared<const MarkovTreeResult>(
-          archipelago::computeMarkovTree(*atlas, r, nullptr, context.stopToken()));
+          archipelago::computeMarkovTree(*atlas, r, tail ? &*tail : nullptr, context.stopToken()));
     } catch (const OperationStopped&) {
       return std::nullopt;
     }
@@ -663,6 +684,7 @@ bool AtlasPanel::computeMarkovTree(double alpha, double b2, QString* error) {
       model_.reset();
     }
     fillShares();
+    fillComparison();
     if (!failure.isEmpty()) showModelRefusal(failure);
     updateButtons();
     Q_EMIT statusMessage(failure.isEmpty() ? tr("Markov tree of the atlas: %1 states").arg(model_->tree.states.size())
@@ -728,6 +750,38 @@ void AtlasPanel::fillShares() {
   shares_->setFixedHeight(shares_->horizontalHeader()->sizeHint().height() +
                           levels * shares_->verticalHeader()->defaultSectionSize() + 2 * shares_->frameWidth());
   shares_->show();
+}
+
+void AtlasPanel::fillComparison() {
+  comparison_->clear();
+  if (!model_ || !model_->comparison) {
+    comparison_->hide();
+    return;
+  }
+  const MarkovTreeComparison& c = *model_->comparison;
+  // The CLI's line and table (MarkovTreeCommand's printTree): the numbers are core's, the page only formats them.
+  modelText_->setText(modelText_->text() + QLatin1Char('\n') +
+                      tr("Against the tail %1: model / measured within a factor %2 last at t = %3 (the reach).")
+                          .arg(QString::fromStdString(model_->request.tailSource))
+                          .arg(c.factor)
+                          .arg(c.reach > 0 ? QString::fromStdString(io::shortestText(c.reach)) : tr("none")));
+  comparison_->setColumnCount(5);
+  comparison_->setHorizontalHeaderLabels({tr("t"), tr("measured"), tr("model"), tr("ratio"), tr("level (share)")});
+  comparison_->setRowCount(static_cast<int>(c.levels.size()));
+  for (int row = 0; row < static_cast<int>(c.levels.size()); ++row) {
+    const MarkovTreeLevelComparison& m = c.levels[static_cast<std::size_t>(row)];
+    const QString cells[] = {QString::number(m.t, 'f', 0), tr("%1 ± %2").arg(number(m.measured, 4), number(m.measuredError, 2)),
+                             number(m.model, 4), number(m.ratio, 3),
+                             m.holdingLevel >= 0 ? tr("%1 (%2 %)").arg(m.holdingLevel).arg(100 * m.holdingShare, 0, 'f', 0)
+                                                 : QStringLiteral("–")};
+    for (int col = 0; col < 5; ++col) {
+      auto* cell = new QTableWidgetItem(cells[col]);
+      cell->setTextAlignment(Qt::AlignRight | Qt::AlignVCenter);
+      comparison_->setItem(row, col, cell);
+    }
+    comparison_->item(row, 3)->setData(Qt::UserRole, static_cast<double>(m.ratio));
+  }
+  comparison_->show();
 }
 
 bool AtlasPanel::showIsland(int index) {

@@ -783,6 +783,9 @@ bool MainWindow::openTailEstimate(const QString& path, QString* error) {
         details += tr(", × %1 (α₁/α_q)").arg(QLocale::c().toString(e.factor, 'g', 3));
       p->setEstimate(e.levels, tr("P_t by splitting (tail)"));
       tailFile_ = QFileInfo(path).absoluteFilePath();
+      // A model drawn already is set against this tail now (the Atlas page's comparison, issue 53, missing).
+      if (const auto model = portrait_->atlasPanel()->markovTree())
+        drawMarkovTree(model->request.alpha, model->request.b2);
       p->refresh();
       message(tr("Drew %1 levels of %2 to t = %3 steps on P_t (%4)")
                   .arg(e.levels.x.size())
@@ -844,7 +847,7 @@ MainWindow::MarkovTreeEntry MainWindow::markovTreeEntry() const {
 
 bool MainWindow::drawMarkovTree(double alpha, double b2, QString* error) {
   QString why;
-  if (!portrait_->atlasPanel()->computeMarkovTree(alpha, b2, &why)) {
+  if (!portrait_->atlasPanel()->computeMarkovTree(alpha, b2, &why, tailFile_)) {
     if (error) *error = why;
     message(tr("Cannot draw the Markov tree: %1").arg(why), 0);
     return false;

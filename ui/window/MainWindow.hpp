@@ -88,7 +88,8 @@ class MainWindow : public QMainWindow {
   /// Draws P_t of the Markov tree of the Atlas page's atlas on the P_t plot, titled "Markov tree (atlas depth N)",
   /// and fills the page's shares: computed by a background job (AtlasPanel::computeMarkovTree); true when that
   /// started, and markovTreeDrawn() says how it ended; false at once with the reason (no finished atlas, α or b₂
-  /// refused by core).
+  /// refused by core).  With a tail estimate drawn, the page sets the model against its file (and opening a tail
+  /// file draws the model shown again against it).
   bool drawMarkovTree(double alpha, double b2, QString* error = nullptr);
   /// The Atlas page's "Model P_t…": a small dialog asking α and b₂, prefilled with markovTreeEntry().
   void askMarkovTree();

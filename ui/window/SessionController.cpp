@@ -220,8 +220,9 @@ void SessionController::applyRunDependent(const Session& s) {
 
 void SessionController::redrawModels(const Session& s) {
   // Both are background jobs; each says how it ended as when asked from the menu (a tail file gone: its dialog).
-  if (s.markovTree) parts_.portrait->atlasPanel()->computeMarkovTree(s.markovTree->alpha, s.markovTree->b2);
-  if (s.tailFile) parts_.openTail(QString::fromStdString(s.tailFile->string()));
+  const QString tail = s.tailFile ? QString::fromStdString(s.tailFile->string()) : QString();
+  if (s.markovTree) parts_.portrait->atlasPanel()->computeMarkovTree(s.markovTree->alpha, s.markovTree->b2, nullptr, tail);
+  if (s.tailFile) parts_.openTail(tail);
 }
 
 void SessionController::selectTab(const std::string& tab) { selectPage(*parts_.tabs, tab); }
