@@ -76,15 +76,7 @@ ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
   descriptionArea->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
   descriptionArea->setWidget(presetDescription_);
   descriptionArea->setFixedHeight(presetDescription_->fontMetrics().lineSpacing() * 5 + 4);
-  lockedNote_ = new QLabel(tr("Read-only: the parameters of the run on screen, which computes or can be resumed. "
-                               "Stop it (Shift+F5), or open or start another run, to change them."),
-                            this);
-  lockedNote_->setObjectName(QStringLiteral("parametersLocked"));
-  lockedNote_->setWordWrap(true);
-  lockedNote_->setStyleSheet(QStringLiteral("#parametersLocked { background: #eef3fb; border: 1px solid #b8c8e0; "
-                                            "padding: 3px; }"));
-  lockedNote_->hide();
-  layout->addWidget(lockedNote_);
+  layout->addWidget(createLockedNote());
   auto* presetForm = new QFormLayout;
   presetForm->addRow(tr("Preset"), presetBox_);
   layout->addLayout(presetForm);
@@ -257,6 +249,18 @@ bool ParameterPanel::applyPreset(const QString& nameOrId) {
   setParameters(preset->spec.parameters, threads());
   showPreset(preset);
   return true;
+}
+
+QLabel* ParameterPanel::createLockedNote() {
+  lockedNote_ = new QLabel(tr("Read-only: the parameters of the run on screen, which computes or can be resumed. "
+                               "Stop it (Shift+F5), or open or start another run, to change them."),
+                            this);
+  lockedNote_->setObjectName(QStringLiteral("parametersLocked"));
+  lockedNote_->setWordWrap(true);
+  lockedNote_->setStyleSheet(QStringLiteral("#parametersLocked { background: #eef3fb; border: 1px solid #b8c8e0; "
+                                            "padding: 3px; }"));
+  lockedNote_->hide();
+  return lockedNote_;
 }
 
 void ParameterPanel::setEditable(bool editable) {

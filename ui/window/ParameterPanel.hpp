@@ -66,6 +66,8 @@ class ParameterPanel : public QWidget {
 
  private:
   void addField(QFormLayout* form, const QString& name, const QString& label, const QString& tooltip);
+  /// The note shown above the fields while they are read-only (setEditable).
+  QLabel* createLockedNote();
   void revalidate();
   void markField(const QString& name, const QString& error);
   void showDerived(const std::optional<TrappingParameters>& p);
