@@ -4,6 +4,7 @@
 #include <QApplication>
 #include <QComboBox>
 #include <QEventLoop>
+#include <QFontMetrics>
 #include <QKeyEvent>
 #include <QLineEdit>
 #include <QLocale>
@@ -27,6 +28,7 @@
 #include <qwt_plot_layout.h>
 #include <qwt_plot_picker.h>
 #include <qwt_plot_renderer.h>
+#include <qwt_scale_div.h>
 #include <qwt_scale_draw.h>
 #include <qwt_scale_map.h>
 #include <qwt_scale_widget.h>
@@ -366,6 +368,7 @@ void PortraitView::layoutPlot() {
   }
   plot_->setGeometry(r);
   plot_->updateLayout();
+  fitXTicks();
 }
 
 void PortraitView::updateAxes() {
@@ -376,7 +379,34 @@ void PortraitView::updateAxes() {
   plot_->setAxisTitle(QwtPlot::yLeft, QStringLiteral("y") + QString::fromStdString(axisTitleSuffix(yScale_->labels())));
   plot_->setAxisScale(QwtPlot::xBottom, r.left(), r.right());
   plot_->setAxisScale(QwtPlot::yLeft, r.top(), r.bottom());
+  fitXTicks();
   plot_->replot();
+}
+
+namespace {
+/// True when two neighbouring major ticks' labels of `axis` come closer than `gap` pixels.
+bool ticksRunTogether(const QwtPlot& plot, int axis, double gap) {
+  const QwtScaleDraw& draw = *plot.axisScaleDraw(axis);
+  const QFont font = plot.axisWidget(axis)->font();
+  QList<double> ticks = plot.axisScaleDiv(axis).ticks(QwtScaleDiv::MajorTick);
+  std::sort(ticks.begin(), ticks.end());
+  for (qsizetype i = 1; i < ticks.size(); ++i) {
+    const double apart = plot.transform(axis, ticks[i]) - plot.transform(axis, ticks[i - 1]);
+    const double room = (draw.labelSize(font, ticks[i]).width() + draw.labelSize(font, ticks[i - 1]).width()) / 2;
+    if (apart < room + gap) return true;
+  }
+  return false;
+}
+}  // namespace
+
+void PortraitView::fitXTicks() {
+  constexpr int kMostTicks = 8;  // Qwt's default
+  const double gap = QFontMetrics(plot_->axisWidget(QwtPlot::xBottom)->font()).horizontalAdvance(QLatin1Char('0'));
+  for (int most = kMostTicks; most >= 1; --most) {
+    plot_->setAxisMaxMajor(QwtPlot::xBottom, most);
+    plot_->updateAxes();
+    if (!ticksRunTogether(*plot_, QwtPlot::xBottom, gap)) return;
+  }
 }
 
 void PortraitView::updateColourBar() {

@@ -192,6 +192,9 @@ class PortraitView : public QWidget {
   void onFrame(const PortraitFrame& frame);
   void onRectangleSelected(const QRectF& rect);
   void updateAxes();
+  /// As many x ticks as their labels have room for on the canvas, a digit's width apart at least (issue 53, finding
+  /// 5: a thin island's view, narrow on screen, ran them together): Qwt's 8 at most, fewer while two come closer.
+  void fitXTicks();
   void updateColourBar();
   void layoutPlot();
   void replotSoon();
