@@ -1,5 +1,6 @@
 #include "ui/portrait/AtlasPanel.hpp"
 
+#include <QCheckBox>
 #include <QDir>
 #include <QElapsedTimer>
 #include <QFileDialog>
@@ -152,6 +153,12 @@ void AtlasPanel::createRequestControls() {
   maxPeriod_->setValue(static_cast<int>(defaults.maxPeriod));
   maxPeriod_->setGroupSeparatorShown(true);
   maxPeriod_->setToolTip(tr("The largest period of a chain (the product of the q's from the centre)"));
+  cantori_ = new QCheckBox(tr("cantori"), this);
+  cantori_->setObjectName(QStringLiteral("atlasCantori"));
+  cantori_->setChecked(defaults.cantori);
+  cantori_->setToolTip(tr("Once the islands are measured, the cantori between the centre's chains: their "
+                          "MacKay–Meiss–Percival flux and layer, barriers of the Markov tree (a few seconds each; "
+                          "docs/atlas.md)"));
   compute_ = new QPushButton(tr("Compute"), this);
   compute_->setToolTip(tr("The atlas of the portrait's K, the first levels first (the tree fills as each island is "
                           "measured)"));
@@ -280,6 +287,7 @@ void AtlasPanel::layOut() {
   numbers->addWidget(depth_);
   numbers->addWidget(new QLabel(tr("max period"), this));
   numbers->addWidget(maxPeriod_, 1);
+  numbers->addWidget(cantori_);
   form->addRow(tr("Depth"), numbers);
   auto* buttons = new QHBoxLayout;
   buttons->addWidget(compute_);
@@ -333,6 +341,7 @@ AtlasRequest AtlasPanel::request() const {
   r.map = controller_->map();
   r.depth = depth_->value();
   r.maxPeriod = static_cast<std::uint64_t>(maxPeriod_->value());
+  r.cantori = cantori_->isChecked();
   return r;
 }
 
@@ -430,6 +439,7 @@ void AtlasPanel::restoreAtlas(const std::optional<Atlas>& atlas) {
   if (atlas) {  // the controls say what it was computed with (Compute again gives the same atlas)
     depth_->setValue(std::min(atlas->request.depth, depth_->maximum()));
     maxPeriod_->setValue(static_cast<int>(std::min<std::uint64_t>(atlas->request.maxPeriod, maxPeriod_->maximum())));
+    cantori_->setChecked(atlas->request.cantori);
   }
   show(atlas ? std::make_shared<const Atlas>(*atlas) : nullptr, -1, QString());
 }

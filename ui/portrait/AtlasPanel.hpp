@@ -35,6 +35,7 @@
 #include "core/atlas/Atlas.hpp"
 #include "core/markovtree/MarkovTreeExport.hpp"
 
+class QCheckBox;
 class QElapsedTimer;
 class QLabel;
 class QPushButton;
@@ -64,6 +65,7 @@ class AtlasPanel : public QWidget {
 
   [[nodiscard]] QSpinBox* depthBox() const noexcept { return depth_; }
   [[nodiscard]] QSpinBox* maxPeriodBox() const noexcept { return maxPeriod_; }
+  [[nodiscard]] QCheckBox* cantoriBox() const noexcept { return cantori_; }
   [[nodiscard]] QPushButton* computeButton() const noexcept { return compute_; }
   [[nodiscard]] QPushButton* stopButton() const noexcept { return stop_; }
   [[nodiscard]] QTreeWidget* tree() const noexcept { return tree_; }
@@ -178,6 +180,7 @@ class AtlasPanel : public QWidget {
   PortraitController* controller_;
   QSpinBox* depth_ = nullptr;
   QSpinBox* maxPeriod_ = nullptr;
+  QCheckBox* cantori_ = nullptr;
   QPushButton* compute_ = nullptr;
   QPushButton* stop_ = nullptr;
   QLabel* progress_ = nullptr;
