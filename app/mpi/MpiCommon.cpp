@@ -80,4 +80,21 @@ void waitWithoutSpinning(MPI_Request& request) {
   }
 }
 
+bool MpiRanks::all(bool mine) {
+  int one = mine ? 1 : 0;
+  int every = 0;
+  MPI_Request request = MPI_REQUEST_NULL;
+  MPI_Iallreduce(&one, &every, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD, &request);
+  waitWithoutSpinning(request);  // ranks that finish early do not spin while the others compute
+  return every == 1;
+}
+
+std::vector<std::string> MpiRanks::gather(const std::string& text) {
+  std::vector<std::string> texts;
+  if (w_.rank != 0) sendText(text, 0);
+  else
+    for (int r = 1; r < w_.size; ++r) texts.push_back(receiveText(r));
+  return texts;
+}
+
 }  // namespace archipelago::mpi

@@ -1,11 +1,15 @@
 #pragma once
 /// \file MpiCommon.hpp
-/// \brief What archipelago-mpi's commands share (run: MpiRun.hpp; tail: MpiTail.hpp): the world, errors agreed
-/// by every rank, text sent between ranks, and waiting for a collective without spinning.
+/// \brief What archipelago-mpi's commands share (run: MpiRun.hpp; tail: MpiTail.hpp): the world and its ranks as
+/// core's jobs see them, errors agreed by every rank, text sent between ranks, and waiting for a collective without
+/// spinning.
 
 #include <mpi.h>
 
 #include <string>
+#include <vector>
+
+#include "core/job/Ranks.hpp"
 
 namespace archipelago::mpi {
 
@@ -25,19 +29,21 @@ struct World {
 /// failing rank's message on rank 0.
 void agree(const World& w, bool ok, const std::string& message);
 
-/// Runs `f` on every rank; an exception on any rank becomes one error on all (printed by rank 0).
-template <class F>
-void together(const World& w, F&& f) {
-  std::string message;
-  bool ok = true;
-  try {
-    f();
-  } catch (const std::exception& e) {
-    ok = false;
-    message = e.what();
-  }
-  agree(w, ok, message);
-}
+/// The ranks of MPI_COMM_WORLD as core's jobs see them (core/job/Ranks.hpp): each runs its slice of the job; errors
+/// agreed by every rank (agree()), a collective waited for without spinning, texts gathered on rank 0.
+class MpiRanks final : public Ranks {
+public:
+  MpiRanks() : w_(world()) {}
+  [[nodiscard]] int rank() const override { return w_.rank; }
+  [[nodiscard]] int size() const override { return w_.size; }
+  [[nodiscard]] bool sliced() const override { return true; }
+  void agree(bool ok, const std::string& message) override { mpi::agree(w_, ok, message); }
+  [[nodiscard]] bool all(bool mine) override;
+  [[nodiscard]] std::vector<std::string> gather(const std::string& text) override;
+
+private:
+  World w_;
+};
 
 /// Text of any length from this rank to `dest` (sendText) and from `source` (receiveText), in pieces below
 /// MPI's int counts.

@@ -333,6 +333,7 @@ void gatherAndWrite(const World& w, const cli::RunOptions& o, TrappingState stat
 
 int mpiRun(const cli::RunOptions& o, const std::vector<std::string>& explicitParameters, const CLI::App& cmd) {
   const World w = world();
+  MpiRanks ranks;
   const bool root = w.rank == 0;
   const std::optional<cli::RunOptions> run = checkedRun(w, o, explicitParameters, cmd);
   if (!run) return 0;  // --print-spec
@@ -340,7 +341,7 @@ int mpiRun(const cli::RunOptions& o, const std::vector<std::string>& explicitPar
   if (manifest == o.out) throw std::invalid_argument("--checkpoint must differ from --out (it is a manifest of parts)");
   // The files: checked and locked by rank 0, every rank told the outcome.
   std::vector<io::FileLock> locks;
-  together(w, [&] {
+  together(ranks, [&] {
     if (!root) return;
     io::checkWritableTarget(o.out);
     io::checkWritableTarget(manifest);
@@ -348,7 +349,7 @@ int mpiRun(const cli::RunOptions& o, const std::vector<std::string>& explicitPar
   });
   TrappingState state;
   std::vector<std::string> previousParts;  // rank 0: the parts of the manifest written last
-  together(w, [&] { state = rankState(w, *run, manifest, previousParts); });  // errors found alike on every rank
+  together(ranks, [&] { state = rankState(w, *run, manifest, previousParts); });  // errors found alike on every rank
   if (root) removeStaleParts(manifest, previousParts);
   if (root) cli::warnIfBoxCutsIsland(state.params);  // as archipelago-cli run says it (issue 39), once
   cli::installInterruptHandlers();
