@@ -1,8 +1,8 @@
 #pragma once
 /// \file MpiCommon.hpp
 /// \brief What archipelago-mpi's commands share (run: MpiRun.hpp; tail: MpiTail.hpp): the world and its ranks as
-/// core's jobs see them, errors agreed by every rank, text sent between ranks, and waiting for a collective without
-/// spinning.
+/// core's jobs see them, errors agreed by every rank, text sent between ranks, waiting for a collective without
+/// spinning, and the end of the job.
 
 #include <mpi.h>
 
@@ -20,10 +20,6 @@ struct World {
 
 /// This process's rank and the number of ranks (MPI initialized).
 [[nodiscard]] World world();
-
-/// An error of this rank alone (its file, its memory): printed with the rank, and the whole job aborted, since
-/// the others would wait for it forever.
-[[noreturn]] void abortJob(const World& w, const std::string& what);
 
 /// Every rank's `ok`: returns when all are; otherwise throws std::runtime_error on every rank, with the lowest
 /// failing rank's message on rank 0.
@@ -44,6 +40,13 @@ public:
 private:
   World w_;
 };
+
+/// The end of every rank, with the status of the job: 0, or the largest of the ranks' (issue 54, finding 8).  A
+/// non-zero status ends the job once every rank has come here (rank 0's ERROR line written) through PMIx's abort,
+/// which ends it with that status and no word: a rank exiting non-zero makes Open MPI's mpirun follow the ERROR line
+/// with its block ("mpirun detected that one or more processes exited with non-zero status …"), and MPI_Abort with
+/// its "MPI_ABORT was invoked …" banner.  Without PMIx (another MPI), MPI_Finalize and the status.
+[[nodiscard]] int endJob(int status);
 
 /// Text of any length from this rank to `dest` (sendText) and from `source` (receiveText), in pieces below
 /// MPI's int counts.
