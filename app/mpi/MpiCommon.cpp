@@ -3,11 +3,14 @@
 #include <algorithm>
 #include <chrono>
 #include <climits>
+#include <csignal>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
 #include <thread>
+
+#include <dlfcn.h>
 
 namespace archipelago::mpi {
 
@@ -16,13 +19,6 @@ World world() {
   MPI_Comm_rank(MPI_COMM_WORLD, &w.rank);
   MPI_Comm_size(MPI_COMM_WORLD, &w.size);
   return w;
-}
-
-[[noreturn]] void abortJob(const World& w, const std::string& what) {
-  std::fprintf(stderr, "ERROR: rank %d: %s\n", w.rank, what.c_str());
-  std::fflush(stderr);
-  MPI_Abort(MPI_COMM_WORLD, 1);
-  std::_Exit(1);
 }
 
 void agree(const World& w, bool ok, const std::string& message) {
@@ -78,6 +74,49 @@ void waitWithoutSpinning(MPI_Request& request) {
     std::this_thread::sleep_for(std::chrono::microseconds(100));
     MPI_Test(&request, &done, MPI_STATUS_IGNORE);
   }
+}
+
+bool MpiRanks::all(bool mine) {
+  int one = mine ? 1 : 0;
+  int every = 0;
+  MPI_Request request = MPI_REQUEST_NULL;
+  MPI_Iallreduce(&one, &every, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD, &request);
+  waitWithoutSpinning(request);  // ranks that finish early do not spin while the others compute
+  return every == 1;
+}
+
+std::vector<std::string> MpiRanks::gather(const std::string& text) {
+  std::vector<std::string> texts;
+  if (w_.rank != 0) sendText(text, 0);
+  else
+    for (int r = 1; r < w_.size; ++r) texts.push_back(receiveText(r));
+  return texts;
+}
+
+int endJob(int status) {
+  std::fflush(stdout);
+  std::fflush(stderr);
+  int worst = 0;
+  MPI_Allreduce(&status, &worst, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);  // every rank here: its lines are written
+  if (worst == 0) {
+    MPI_Finalize();
+    return 0;
+  }
+  // PMIx_Abort(status, message, procs, nprocs): the PMIx standard's end of a job (Open MPI's mpirun, Slurm's srun
+  // --mpi=pmix), looked up where the MPI library loaded it; no message, every process.  It returns once the launcher
+  // has the request; the launcher then ends every rank, which waits for it (Ctrl-C and SIGTERM end it at once now).
+  using PmixAbort = int (*)(int, const char*, void*, std::size_t);
+  const auto pmixAbort = reinterpret_cast<PmixAbort>(::dlsym(RTLD_DEFAULT, "PMIx_Abort"));
+  if (pmixAbort == nullptr) {
+    MPI_Finalize();
+    return worst;
+  }
+  if (world().rank == 0 && pmixAbort(worst, nullptr, nullptr, 0) != 0)
+    MPI_Abort(MPI_COMM_WORLD, worst);  // PMIx refused: MPI's own abort, with its banner
+  std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
+  for (int waited = 0; waited < 600; ++waited) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  std::_Exit(worst);  // not ended within a minute: the status, whatever the launcher says
 }
 
 }  // namespace archipelago::mpi

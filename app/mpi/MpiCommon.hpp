@@ -1,11 +1,15 @@
 #pragma once
 /// \file MpiCommon.hpp
-/// \brief What archipelago-mpi's commands share (run: MpiRun.hpp; tail: MpiTail.hpp): the world, errors agreed
-/// by every rank, text sent between ranks, and waiting for a collective without spinning.
+/// \brief What archipelago-mpi's commands share (run: MpiRun.hpp; tail: MpiTail.hpp): the world and its ranks as
+/// core's jobs see them, errors agreed by every rank, text sent between ranks, waiting for a collective without
+/// spinning, and the end of the job.
 
 #include <mpi.h>
 
 #include <string>
+#include <vector>
+
+#include "core/job/Ranks.hpp"
 
 namespace archipelago::mpi {
 
@@ -17,27 +21,32 @@ struct World {
 /// This process's rank and the number of ranks (MPI initialized).
 [[nodiscard]] World world();
 
-/// An error of this rank alone (its file, its memory): printed with the rank, and the whole job aborted, since
-/// the others would wait for it forever.
-[[noreturn]] void abortJob(const World& w, const std::string& what);
-
 /// Every rank's `ok`: returns when all are; otherwise throws std::runtime_error on every rank, with the lowest
 /// failing rank's message on rank 0.
 void agree(const World& w, bool ok, const std::string& message);
 
-/// Runs `f` on every rank; an exception on any rank becomes one error on all (printed by rank 0).
-template <class F>
-void together(const World& w, F&& f) {
-  std::string message;
-  bool ok = true;
-  try {
-    f();
-  } catch (const std::exception& e) {
-    ok = false;
-    message = e.what();
-  }
-  agree(w, ok, message);
-}
+/// The ranks of MPI_COMM_WORLD as core's jobs see them (core/job/Ranks.hpp): each runs its slice of the job; errors
+/// agreed by every rank (agree()), a collective waited for without spinning, texts gathered on rank 0.
+class MpiRanks final : public Ranks {
+public:
+  MpiRanks() : w_(world()) {}
+  [[nodiscard]] int rank() const override { return w_.rank; }
+  [[nodiscard]] int size() const override { return w_.size; }
+  [[nodiscard]] bool sliced() const override { return true; }
+  void agree(bool ok, const std::string& message) override { mpi::agree(w_, ok, message); }
+  [[nodiscard]] bool all(bool mine) override;
+  [[nodiscard]] std::vector<std::string> gather(const std::string& text) override;
+
+private:
+  World w_;
+};
+
+/// The end of every rank, with the status of the job: 0, or the largest of the ranks' (issue 54, finding 8).  A
+/// non-zero status ends the job once every rank has come here (rank 0's ERROR line written) through PMIx's abort,
+/// which ends it with that status and no word: a rank exiting non-zero makes Open MPI's mpirun follow the ERROR line
+/// with its block ("mpirun detected that one or more processes exited with non-zero status …"), and MPI_Abort with
+/// its "MPI_ABORT was invoked …" banner.  Without PMIx (another MPI), MPI_Finalize and the status.
+[[nodiscard]] int endJob(int status);
 
 /// Text of any length from this rank to `dest` (sendText) and from `source` (receiveText), in pieces below
 /// MPI's int counts.

@@ -42,6 +42,9 @@ std::pair<std::uint64_t, std::uint64_t> rankRange(std::uint64_t M, int r, int R)
 /// rounds of 1 s (2.4 % and 2.3 % of the time waiting for the slowest): the wait is the ranks' imbalance, not the number of rounds.
 constexpr double kRoundSeconds = 1.0;
 
+/// The numbers each rank reports at a round's end: its compute seconds, whether it was asked to stop, whether it failed.
+constexpr std::size_t kReport = 3;
+
 std::string partName(const std::string& manifest, std::uint64_t blocks, int rank) {
   return std::filesystem::path(manifest).filename().string() + ".b" + std::to_string(blocks) + ".r" +
          std::to_string(rank) + ".json";
@@ -221,14 +224,16 @@ void drawRoundProgress(const cli::RunOptions& o, const TrappingState& state, Rou
   r.lastLine = now;
 }
 
-/// Rank 0 decides for all from the gathered reports ({compute seconds, asked to stop} per rank): the next round's
-/// length, a checkpoint, a stop — {blocks, checkpoint, stop}.
-std::array<std::uint64_t, 3> decideRound(const std::vector<double>& reports, const cli::RunOptions& o,
+/// Rank 0 decides for all from the gathered reports ({compute seconds, asked to stop, failed} per rank): the next
+/// round's length, a checkpoint, a stop, a failure — {blocks, checkpoint, stop, failed}.
+std::array<std::uint64_t, 4> decideRound(const std::vector<double>& reports, const cli::RunOptions& o,
                                          const TrappingState& state, Rounds& r, const World& w) {
   bool stopAny = false;
+  bool failedAny = false;
   for (int k = 0; k < w.size; ++k) {
-    r.seconds[static_cast<std::size_t>(k)] = reports[2 * static_cast<std::size_t>(k)];
-    stopAny = stopAny || reports[2 * static_cast<std::size_t>(k) + 1] != 0;
+    r.seconds[static_cast<std::size_t>(k)] = reports[kReport * static_cast<std::size_t>(k)];
+    stopAny = stopAny || reports[kReport * static_cast<std::size_t>(k) + 1] != 0;
+    failedAny = failedAny || reports[kReport * static_cast<std::size_t>(k) + 2] != 0;
   }
   const double slowest = *std::max_element(r.seconds.begin(), r.seconds.end());
   for (std::size_t k = 0; k < r.seconds.size(); ++k) {
@@ -236,7 +241,7 @@ std::array<std::uint64_t, 3> decideRound(const std::vector<double>& reports, con
     r.busy[k] += r.seconds[k];
   }
   ++r.count;
-  std::array<std::uint64_t, 3> decision{r.blocks, 0, 0};
+  std::array<std::uint64_t, 4> decision{r.blocks, 0, 0, failedAny ? 1U : 0U};
   const double perBlock = slowest / static_cast<double>(r.blocks);
   if (perBlock > 0)
     decision[0] = static_cast<std::uint64_t>(std::clamp(kRoundSeconds / perBlock, 1.0, 4.0 * static_cast<double>(r.blocks)));
@@ -263,27 +268,29 @@ bool runRounds(const World& w, const cli::RunOptions& o, const cli::RunOptions& 
   options.threads = run.threads;
   options.maxChunkBlocks = o.maxChunkBlocks;
   const std::uint64_t T = state.params.T;
-  std::vector<double> reports(root ? 2 * static_cast<std::size_t>(w.size) : 2);
+  std::vector<double> reports(root ? kReport * static_cast<std::size_t>(w.size) : kReport);
   while (state.blocksDone < T) {
     options.untilBlocks = std::min(T, state.blocksDone + r.blocks);
     const auto t0 = Clock::now();
+    std::string error;  // an error of this rank alone (its memory): told to every rank at the round's end
     try {
       state = runTrapping(std::move(state), options);
     } catch (const std::exception& e) {
-      abortJob(w, e.what());
+      error = e.what();
     }
-    const double mine[2] = {std::chrono::duration<double>(Clock::now() - t0).count(),
-                            cli::interruptRequested() ? 1.0 : 0.0};
+    const double mine[kReport] = {std::chrono::duration<double>(Clock::now() - t0).count(),
+                                  cli::interruptRequested() ? 1.0 : 0.0, error.empty() ? 0.0 : 1.0};
     MPI_Request request = MPI_REQUEST_NULL;
-    MPI_Igather(mine, 2, MPI_DOUBLE, reports.data(), 2, MPI_DOUBLE, 0, MPI_COMM_WORLD, &request);
+    MPI_Igather(mine, kReport, MPI_DOUBLE, reports.data(), kReport, MPI_DOUBLE, 0, MPI_COMM_WORLD, &request);
     waitWithoutSpinning(request);
-    std::array<std::uint64_t, 3> decision{r.blocks, 0, 0};  // blocks, checkpoint, stop
+    std::array<std::uint64_t, 4> decision{r.blocks, 0, 0, 0};  // blocks, checkpoint, stop, failed
     if (root) {
       decision = decideRound(reports, o, state, r, w);
       drawRoundProgress(o, state, r, w, kernel, tty);
     }
-    MPI_Ibcast(decision.data(), 3, MPI_UINT64_T, 0, MPI_COMM_WORLD, &request);
+    MPI_Ibcast(decision.data(), 4, MPI_UINT64_T, 0, MPI_COMM_WORLD, &request);
     waitWithoutSpinning(request);
+    if (decision[3] != 0) agree(w, error.empty(), error);  // throws on every rank: one ERROR, by rank 0
     r.blocks = decision[0];
     if (decision[1] != 0 && writeCollectiveCheckpoint(w, state, manifest, previousParts, root && tty && !o.quiet))
       r.lastCheckpoint = Clock::now();
@@ -293,7 +300,8 @@ bool runRounds(const World& w, const cli::RunOptions& o, const cli::RunOptions& 
 }
 
 /// Rank 0's end: the other ranks' states gathered and merged, the run file written (rescued when that fails), the
-/// superseded checkpoint removed, the summary printed; the other ranks send their state.
+/// superseded checkpoint removed, the summary printed; the other ranks send their state.  Run together(): rank 0's
+/// error is every rank's.
 void gatherAndWrite(const World& w, const cli::RunOptions& o, TrappingState state, const Rounds& r,
                     const std::string& manifest, const std::vector<std::string>& previousParts,
                     double computeSeconds, double sessionSteps) {
@@ -333,6 +341,7 @@ void gatherAndWrite(const World& w, const cli::RunOptions& o, TrappingState stat
 
 int mpiRun(const cli::RunOptions& o, const std::vector<std::string>& explicitParameters, const CLI::App& cmd) {
   const World w = world();
+  MpiRanks ranks;
   const bool root = w.rank == 0;
   const std::optional<cli::RunOptions> run = checkedRun(w, o, explicitParameters, cmd);
   if (!run) return 0;  // --print-spec
@@ -340,7 +349,7 @@ int mpiRun(const cli::RunOptions& o, const std::vector<std::string>& explicitPar
   if (manifest == o.out) throw std::invalid_argument("--checkpoint must differ from --out (it is a manifest of parts)");
   // The files: checked and locked by rank 0, every rank told the outcome.
   std::vector<io::FileLock> locks;
-  together(w, [&] {
+  together(ranks, [&] {
     if (!root) return;
     io::checkWritableTarget(o.out);
     io::checkWritableTarget(manifest);
@@ -348,7 +357,7 @@ int mpiRun(const cli::RunOptions& o, const std::vector<std::string>& explicitPar
   });
   TrappingState state;
   std::vector<std::string> previousParts;  // rank 0: the parts of the manifest written last
-  together(w, [&] { state = rankState(w, *run, manifest, previousParts); });  // errors found alike on every rank
+  together(ranks, [&] { state = rankState(w, *run, manifest, previousParts); });  // errors found alike on every rank
   if (root) removeStaleParts(manifest, previousParts);
   if (root) cli::warnIfBoxCutsIsland(state.params);  // as archipelago-cli run says it (issue 39), once
   cli::installInterruptHandlers();
@@ -372,10 +381,10 @@ int mpiRun(const cli::RunOptions& o, const std::vector<std::string>& explicitPar
                    manifest.c_str(), manifest.c_str());
     return 130;
   }
-  gatherAndWrite(w, o, std::move(state), r, manifest, previousParts, computeSeconds, sessionSteps);
-  int status = 0;
-  MPI_Bcast(&status, 1, MPI_INT, 0, MPI_COMM_WORLD);
-  return status;
+  together(ranks, [&] {
+    gatherAndWrite(w, o, std::move(state), r, manifest, previousParts, computeSeconds, sessionSteps);
+  });
+  return 0;
 }
 
 }  // namespace archipelago::mpi

@@ -8,7 +8,8 @@
 /// file unless --checkpoint), and writes it when it stops, finished or not.  When every rank has finished, rank 0
 /// gathers the slices, merges them (mergeTailSlices: the one-process run, bit for bit, steps included), writes
 /// --out and removes the slice files; otherwise it says how to resume: --resume NAME on the same number of ranks
-/// (each rank reads its own slice file; a finished slice is not run again).
+/// (each rank reads its own slice file; a finished slice is not run again).  The session is core's
+/// (core/tail/TailJob.hpp: runTailSession on MpiRanks), as archipelago-cli's is on one process.
 
 #include "TailSession.hpp"
 

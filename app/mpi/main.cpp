@@ -1,7 +1,8 @@
 // archipelago-mpi: `archipelago-cli run` over MPI ranks (issue #15, MpiRun.hpp), and with the subcommand tail,
 // `archipelago-cli tail` with its replicas over the ranks (issue #29, MpiTail.hpp).  The options are `run`'s
-// (shared/RunOptions.hpp) and `tail`'s (shared/TailSession.hpp).  An error every rank finds alike (a bad option) is printed once, by rank 0; an error of
-// one rank (its file) is printed by that rank and aborts the job.
+// (shared/RunOptions.hpp) and `tail`'s (shared/TailSession.hpp).  An error every rank finds alike (a bad option) is
+// printed once, by rank 0; an error of one rank (its file, its memory) is agreed by every rank and printed by rank 0
+// with the rank's number; the job then ends with its status and nothing after the ERROR line (endJob).
 
 #include <mpi.h>
 
@@ -11,6 +12,7 @@
 #include <exception>
 #include <string>
 
+#include "MpiCommon.hpp"
 #include "MpiRun.hpp"
 #include "MpiTail.hpp"
 #include "CliCommon.hpp"
@@ -39,11 +41,10 @@ int main(int argc, char** argv) {
                                : archipelago::mpi::mpiRun(o, archipelago::cli::givenSpecOptions(app), app);
   } catch (const CLI::ParseError& e) {
     if (rank == 0) status = archipelago::cli::parseErrorStatus(app, e);  // one "ERROR:" line, as archipelago-cli
-    else status = e.get_exit_code() != 0 ? e.get_exit_code() : 2;
-  } catch (const std::exception& e) {
+    MPI_Bcast(&status, 1, MPI_INT, 0, MPI_COMM_WORLD);                  // rank 0's (--help: 0) on every rank
+  } catch (const std::exception& e) {  // every rank's alike, or agreed by the ranks (MpiCommon.hpp: agree)
     if (rank == 0) std::fprintf(stderr, "ERROR: %s\n", e.what());
     status = 1;
   }
-  MPI_Finalize();
-  return status;
+  return archipelago::mpi::endJob(status);  // the ERROR line, and no banner of MPI's after it
 }

@@ -48,10 +48,8 @@ void addSpecOptions(CLI::App& cmd, SpecOptions& o, std::initializer_list<std::st
 /// randomizing zone cuts the central island: the run goes on, but it is not the paper's process (issue 39).
 void warnIfBoxCutsIsland(const TrappingParameters& p);
 
-/// The run's files, locked for the whole run (issue #12, finding 7): a second process on the same --out,
-/// checkpoint or resumed file is refused before it reads or writes anything, and the temporaries a killed
-/// writer left beside them are removed once the lock is held.  The resumed file is locked too (resuming the
-/// checkpoint of a live run would fork it), unless its folder is read-only.
+/// The run's files (--out, the checkpoint, --resume), locked for the whole run: core's lockJobFiles()
+/// (core/job/Job.hpp), which every job's files go through.
 [[nodiscard]] std::vector<io::FileLock> lockRunFiles(const std::string& out, const std::string& checkpoint,
                                                      const std::string& resume);
 

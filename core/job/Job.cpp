@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <stdexcept>
 
@@ -30,6 +31,24 @@ void writeCheckpoint(const std::function<void()>& write, const std::string& path
   } catch (const std::exception& e) {
     if (warning) warning(e.what(), retrySeconds);
   }
+}
+
+std::vector<io::FileLock> lockJobFiles(const std::string& out, const std::string& checkpoint, const std::string& resume) {
+  std::vector<io::FileLock> locks;
+  std::vector<std::filesystem::path> held;
+  const std::filesystem::path resumeFolder = std::filesystem::path(resume).parent_path();
+  const bool lockResume = !resume.empty() && ::access(resumeFolder.empty() ? "." : resumeFolder.c_str(), W_OK) == 0;
+  for (const std::string& path : {out, checkpoint, lockResume ? resume : std::string()}) {
+    if (path.empty()) continue;
+    std::error_code ec;  // a link the system alone can follow (/proc/self/fd/1 of a pipe) has no canonical path
+    std::filesystem::path same = std::filesystem::weakly_canonical(path, ec);  // one lock per file, however named
+    if (ec) same = path;
+    if (std::find(held.begin(), held.end(), same) != held.end()) continue;
+    locks.push_back(io::FileLock::acquire(path));
+    held.push_back(same);
+    io::removeStaleTemporaries(path);
+  }
+  return locks;
 }
 
 std::vector<std::filesystem::path> rescueFolders() {

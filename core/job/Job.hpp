@@ -19,6 +19,8 @@
 #include <string_view>
 #include <vector>
 
+#include "core/io/AtomicFile.hpp"
+
 namespace archipelago {
 
 /// Where the last good copy of a job's work is (the file resumed from, until a checkpoint is written).
@@ -59,6 +61,13 @@ void writeCheckpoint(const std::function<void()>& write, const std::string& path
 /// was written and the <noun> could not be saved in <the folders tried>".
 void saveOrRescue(const std::filesystem::path& path, const std::function<void(const std::filesystem::path&)>& save,
                   const std::string& noun, const std::string& amount, const std::string& kept);
+
+/// A job's files, locked for the whole job (issue #12, finding 7): a second process on the same output, checkpoint
+/// or resumed file is refused before it reads or writes anything, and the temporaries a killed writer left beside
+/// them are removed once the lock is held.  The resumed file is locked too (resuming the checkpoint of a live job
+/// would fork it), unless its folder is read-only.  Empty paths are skipped; a file named twice is locked once.
+[[nodiscard]] std::vector<io::FileLock> lockJobFiles(const std::string& out, const std::string& checkpoint,
+                                                     const std::string& resume);
 
 /// The rescue folders tried by saveOrRescue(), in order: $TMPDIR (else /tmp), then $HOME when set.
 [[nodiscard]] std::vector<std::filesystem::path> rescueFolders();

@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/atlas/BoxIslandCheck.hpp"
 #include "core/io/CommandFiles.hpp"
 #include "core/io/NumberText.hpp"
 #include "core/limits/Limits.hpp"
@@ -37,6 +38,13 @@ std::string TailPlanOptions::nameOf(std::string_view role) const {
 TailPlan planTail(const TailPlanOptions& o) {
   const auto name = [&o](std::string_view role) { return o.nameOf(role); };
   const std::string& resume = o.resumeFile.empty() ? o.resume : o.resumeFile;
+  std::optional<ReplicaRange> slice = o.slice;
+  if (o.sliceText) {  // given empty is an error too, not the whole run (issue 36)
+    if (!o.resume.empty())
+      throw std::invalid_argument(name("resume") + " takes the slice from the tail file; do not also give " +
+                                  name("slice"));
+    slice = parseReplicaSlice(name("slice"), *o.sliceText, o.request.replicas);
+  }
   if (!o.resume.empty()) {
     if (!o.givenSpec.empty())
       throw std::invalid_argument(name("resume") + " takes the spec from the tail file; do not also give " +
@@ -55,13 +63,17 @@ TailPlan planTail(const TailPlanOptions& o) {
   if (o.resume.empty()) {
     if (!o.spec) throw std::invalid_argument("a new tail run needs its spec");
     const RunSpec spec = o.spec();
+    if (o.warning) {
+      if (const BoxIslandCheck c = checkBoxAgainstIsland(spec.parameters.map, spec.parameters.Xr); c.cuts())
+        o.warning(c.warning);
+    }
     TailRequest request = o.request;
     request.run = spec.parameters;
     plan.threads = spec.threads;
     plan.kernel = spec.kernel == "auto" ? std::string() : spec.kernel;
     request.clones = parseCloneRule(o.clones, name("clones"));
     if (auto e = tailRequestError(request)) throw std::invalid_argument(*e);
-    plan.state = o.slice ? startTailSlice(request, *o.slice) : startTail(request);
+    plan.state = slice ? startTailSlice(request, *slice) : startTail(request);
     if (o.printLevels) {
       plan.printLevelsOnly = true;
       return plan;

@@ -28,7 +28,7 @@ namespace archipelago {
 
 /// What a front end filled: its options as given, and how it names them.  Core's messages name each setting and
 /// file by its role ("resume", "checkpoint-interval", "compare-csv", "out", "checkpoint", "csv", "spec", "compare",
-/// "print-levels", "clones"); `optionName` maps a role to the front end's own name (archipelago-cli: "--resume";
+/// "print-levels", "clones", "slice"); `optionName` maps a role to the front end's own name (archipelago-cli: "--resume";
 /// Python: "resume"), so that nobody is told of an option their front end does not have.
 struct TailPlanOptions {
   std::function<std::string(std::string_view role)> optionName;  ///< empty: the role itself
@@ -48,6 +48,10 @@ struct TailPlanOptions {
   double checkpointSeconds = 60;    ///< checkpointIntervalError()'s rule
   bool printLevels = false;         ///< a new run's levels only: nothing read, nothing run
   std::optional<ReplicaRange> slice;  ///< a new run's replicas; none: all
+  std::optional<std::string> sliceText;  ///< the slice as given, "I/N" (parseReplicaSlice(), role "slice"); replaces slice
+  /// Core's warning about a new run (checkBoxAgainstIsland(): the box or its zone cuts the central island), given
+  /// when the spec is resolved; empty: none is looked for.
+  std::function<void(const std::string& warning)> warning;
   std::string resume;               ///< --resume as given: the tail file of the run to continue; empty: a new run
   std::string resumeFile;           ///< the file actually read (archipelago-mpi: this rank's slice); empty: resume
   std::string out = "tail.json";    ///< --out
@@ -67,7 +71,8 @@ struct TailPlan {
   std::string kernel;               ///< a new run's: the spec's ("" for auto); resumed: empty (the front end's)
 };
 
-/// Checks the options and starts or reads the run, in this order: the options a resumed run must not repeat;
+/// Checks the options and starts or reads the run, in this order: the slice as given (not with a resumed run); the
+/// options a resumed run must not repeat;
 /// the threads and the checkpoint interval; a new run's spec, clone rule and request (and, for printLevels, its
 /// levels: then it returns); the files (no output over another or over an input, a run compared once); the
 /// resumed file (not already finished, unless resumeFile is given: a rank's finished slice); each compared run,

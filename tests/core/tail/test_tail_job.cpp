@@ -1,12 +1,16 @@
 // The tail sampler as a job (core/tail/TailJob.hpp, issue 51): checkpoints on the job's clock, a checkpoint that cannot
-// be written warned and retried while the sampler goes on, and a final write that rescues the work and says where.
+// be written warned and retried while the sampler goes on, and a final write that rescues the work and says where;
+// the tail command's session on one process and on sliced ranks (core/job/Ranks.hpp).
 #include <gtest/gtest.h>
 
 #include <unistd.h>
 
 #include <filesystem>
 #include <stdexcept>
+#include <stop_token>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "core/tail/TailFile.hpp"
 #include "core/tail/TailJob.hpp"
@@ -96,6 +100,79 @@ TEST(TailJob, TheComparisonCsvHasItsColumnsAndEmptyCellsForNumbersThatAreNot) {
                      "measured\n100,0.25,"),
             std::string::npos) << csv;
   EXPECT_NE(csv.find(",,"), std::string::npos) << "a NaN is an empty cell: " << csv;
+}
+
+/// One rank that slices its job as archipelago-mpi's ranks do (its slice file, then the merge), without MPI.
+class OneSlicedRank final : public Ranks {
+public:
+  [[nodiscard]] int rank() const override { return 0; }
+  [[nodiscard]] int size() const override { return 1; }
+  [[nodiscard]] bool sliced() const override { return true; }
+  void agree(bool ok, const std::string& message) override {
+    if (!ok) throw std::runtime_error(message);
+  }
+  [[nodiscard]] bool all(bool mine) override { return mine; }
+  [[nodiscard]] std::vector<std::string> gather(const std::string&) override { return {}; }
+};
+
+TailSessionOptions sessionIn(const std::filesystem::path& dir) {
+  TailSessionOptions o;
+  o.plan.request = smallRequest();
+  o.plan.spec = [] {
+    RunSpec s;
+    s.threads = 1;
+    return s;
+  };
+  o.plan.out = (dir / "tail.json").string();
+  o.plan.csv = (dir / "tail.csv").string();
+  o.plan.optionName = [](std::string_view role) { return "--" + std::string(role); };
+  return o;
+}
+
+TEST(TailJob, TheSessionOnOneProcessAndOnSlicedRanksWritesTheWholeRunsFiles) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "archipelago_test_tail_session";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const TailState whole = runTail(startTail(smallRequest()), {});
+  OneProcess one;
+  const TailSessionOutcome a = runTailSession(sessionIn(dir), one);
+  ASSERT_EQ(a.end, TailSessionOutcome::End::finished);
+  const TailState written = loadTailFile(dir / "tail.json");
+  EXPECT_EQ(tailCsvText(written, tailResult(written)), tailCsvText(whole, tailResult(whole)));
+  EXPECT_TRUE(std::filesystem::exists(dir / "tail.csv"));
+  EXPECT_EQ(a.report, tailLevelsText(whole, tailResult(whole)));
+  EXPECT_EQ(a.report.rfind("# tail: K = 0.1, q = 16, N = 16, R = 2", 0), 0U) << a.report;
+  std::filesystem::remove(dir / "tail.json");
+  std::filesystem::remove(dir / "tail.csv");
+  OneSlicedRank sliced;  // its slice file, then the merge of the one slice: the same tail file, no slice left
+  const TailSessionOutcome b = runTailSession(sessionIn(dir), sliced);
+  ASSERT_EQ(b.end, TailSessionOutcome::End::finished);
+  const TailState merged = loadTailFile(dir / "tail.json");
+  EXPECT_EQ(tailCsvText(merged, tailResult(merged)), tailCsvText(whole, tailResult(whole)));
+  EXPECT_FALSE(std::filesystem::exists(dir / "tail.slice-0-of-1.json"));
+  std::filesystem::remove_all(dir);
+}
+
+TEST(TailJob, AStoppedSessionSavesItsCheckpointAndPrintLevelsRunsNothing) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "archipelago_test_tail_session_stop";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  std::stop_source stop;
+  stop.request_stop();
+  OneProcess one;
+  const TailSessionOutcome r = runTailSession(sessionIn(dir), one, stop.get_token());
+  ASSERT_EQ(r.end, TailSessionOutcome::End::interrupted);
+  EXPECT_EQ(r.checkpoint, (dir / "tail.json").string());
+  EXPECT_FALSE(loadTailFile(dir / "tail.json").finished());
+  EXPECT_FALSE(std::filesystem::exists(dir / "tail.csv"));
+  TailSessionOptions levels = sessionIn(dir);
+  levels.plan.printLevels = true;
+  std::filesystem::remove(dir / "tail.json");
+  const TailSessionOutcome l = runTailSession(levels, one);
+  EXPECT_EQ(l.end, TailSessionOutcome::End::levelsOnly);
+  EXPECT_EQ(l.state.levels, startTail(smallRequest()).levels);
+  EXPECT_FALSE(std::filesystem::exists(dir / "tail.json"));
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
