@@ -11,6 +11,13 @@
 
 namespace archipelago::ui {
 
+std::vector<QPointF> toQt(const std::vector<PhysicalPoint>& points) {
+  std::vector<QPointF> out;
+  out.reserve(points.size());
+  for (const PhysicalPoint& p : points) out.emplace_back(static_cast<double>(p.x), static_cast<double>(p.y));
+  return out;
+}
+
 PointsItem::PointsItem(Style style, std::vector<QPointF> points, QColor colour)
     : style_(style), points_(std::move(points)), colour_(colour) {
   switch (style_) {

@@ -2,9 +2,10 @@
 /// \file PortraitLayers.hpp
 /// \brief The overlay layers drawn over a phase portrait, and the plot item that draws points for them.
 ///
-/// The PortraitController owns what each layer shows and hands the PortraitView fresh items for a layer
-/// (PortraitView::setLayer); the view attaches them to its plot and deletes them when the layer is replaced
-/// or the view goes.  Nothing else touches the view's plot.
+/// The PortraitController's layers (ViewLayer, LaunchedOrbitsLayer, ManifoldsLayer, AtlasIslandLayer, OverlayLayer)
+/// own what each layer shows and hand the PortraitView fresh items for a layer (PortraitView::setLayer); the view
+/// attaches them to its plot and deletes them when the layer is replaced or the view goes.  Nothing else touches the
+/// view's plot.
 
 #include <QColor>
 #include <QPointF>
@@ -12,7 +13,12 @@
 
 #include <vector>
 
+#include "core/map/FixedPointMap.hpp"
+
 namespace archipelago::ui {
+
+/// Physical points (long double) as the plot's points (double).
+[[nodiscard]] std::vector<QPointF> toQt(const std::vector<PhysicalPoint>& points);
 
 /// The layers, bottom to top.
 enum class PortraitLayer {

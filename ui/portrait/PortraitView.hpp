@@ -2,7 +2,7 @@
 // PortraitView: the phase-portrait widget (Qwt plot of a raster rendered by core on a worker thread).
 //
 // The view draws; the PortraitController decides.  The map, the view rectangle, the render settings and the
-// overlay layers are set only by the controller (the setters are private, the controller is a friend).
+// overlay layers are set only by the controller's layers (the setters are private, the layers are friends).
 // Mouse and keys become requests (zoomRequested, …) that the controller turns into views.  A middle-drag
 // moves a picture of the canvas while dragging (QwtPanner) and then asks the controller for the pan: the axes
 // only ever show the controller's view (issue 25, finding 2: QwtPlotPanner used to move them past the box).
@@ -163,7 +163,13 @@ class PortraitView : public QWidget {
  private:
   /// The done frame's share of pixels visited, in %.
   [[nodiscard]] double visitedPercent() const;
+  // The portrait's layers set what it draws (PortraitController.hpp).
   friend class PortraitController;
+  friend class ViewLayer;
+  friend class LaunchedOrbitsLayer;
+  friend class ManifoldsLayer;
+  friend class AtlasIslandLayer;
+  friend class OverlayLayer;
 
   /// Shows this map and view (axes at once) and renders it.
   void display(const MapParameters& map, const Viewport& view);
