@@ -27,6 +27,7 @@
 #include <qwt_plot_layout.h>
 #include <qwt_plot_picker.h>
 #include <qwt_plot_renderer.h>
+#include <qwt_scale_div.h>
 #include <qwt_scale_draw.h>
 #include <qwt_scale_map.h>
 #include <qwt_scale_widget.h>
@@ -374,9 +375,22 @@ void PortraitView::updateAxes() {
   yScale_->setLabels(axisLabelsFor(r.top(), r.bottom()));
   plot_->setAxisTitle(QwtPlot::xBottom, QStringLiteral("x") + QString::fromStdString(axisTitleSuffix(xScale_->labels())));
   plot_->setAxisTitle(QwtPlot::yLeft, QStringLiteral("y") + QString::fromStdString(axisTitleSuffix(yScale_->labels())));
-  plot_->setAxisScale(QwtPlot::xBottom, r.left(), r.right());
-  plot_->setAxisScale(QwtPlot::yLeft, r.top(), r.bottom());
+  setAxisTicks(QwtPlot::xBottom, xScale_->labels(), r.left(), r.right());
+  setAxisTicks(QwtPlot::yLeft, yScale_->labels(), r.top(), r.bottom());
   plot_->replot();
+}
+
+void PortraitView::setAxisTicks(int axis, const AxisLabels& labels, double lo, double hi) {
+  if (!labels.offset) {
+    plot_->setAxisScale(axis, lo, hi);  // Qwt's ticks: round while the view is wide against its coordinates
+    return;
+  }
+  // Deep views: core's round ticks from the labels' reference (Qwt's began at the view's edge, issue 53, finding 7).
+  const AxisTicks ticks = axisTicks(labels, lo, hi, plot_->axisMaxMajor(axis), plot_->axisMaxMinor(axis));
+  QList<double> lists[QwtScaleDiv::NTickTypes];
+  lists[QwtScaleDiv::MajorTick] = QList<double>(ticks.major.begin(), ticks.major.end());
+  lists[QwtScaleDiv::MinorTick] = QList<double>(ticks.minor.begin(), ticks.minor.end());
+  plot_->setAxisScaleDiv(axis, QwtScaleDiv(lo, hi, lists));
 }
 
 void PortraitView::updateColourBar() {

@@ -43,6 +43,7 @@ class QwtPlotTextLabel;
 class QTimer;
 
 namespace archipelago {
+struct AxisLabels;
 struct IndicatorRequest;
 struct PixelSize;
 }  // namespace archipelago
@@ -198,6 +199,8 @@ class PortraitView : public QWidget {
   void onFrame(const PortraitFrame& frame);
   void onRectangleSelected(const QRectF& rect);
   void updateAxes();
+  /// The axis's scale for [lo, hi]: Qwt's ticks for plain labels, core's round ticks (axisTicks) for offset ones.
+  void setAxisTicks(int axis, const AxisLabels& labels, double lo, double hi);
   void updateColourBar();
   void layoutPlot();
   void replotSoon();

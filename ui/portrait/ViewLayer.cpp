@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "core/portrait/MapOverlays.hpp"
+#include "core/view/DeepestZoom.hpp"
 #include "ui/portrait/PortraitLayers.hpp"
 #include "ui/portrait/PortraitView.hpp"
 
@@ -35,6 +36,11 @@ void ViewLayer::showMap() {
 
 void ViewLayer::zoomAt(double fx, double fy, double factor) {
   show(true, viewport().zoomedAboutFraction(fx, fy, factor));
+  if (factor > 1) noteDeepestZoom();
+}
+
+void ViewLayer::noteDeepestZoom() {
+  if (atDeepestZoom(viewport())) Q_EMIT statusMessage(QString::fromStdString(deepestZoomNote(map_)));
 }
 
 void ViewLayer::panBy(double fx, double fy) {
@@ -50,6 +56,11 @@ void ViewLayer::panBy(double fx, double fy) {
 }
 
 void ViewLayer::crop(double fx0, double fx1, double fy0, double fy1) {
+  cropView(fx0, fx1, fy0, fy1);
+  noteDeepestZoom();
+}
+
+void ViewLayer::cropView(double fx0, double fx1, double fy0, double fy1) {
   if (!equalAspect() || !view_) {
     show(true, viewport().cropped(fx0, fx1, fy0, fy1));
     return;

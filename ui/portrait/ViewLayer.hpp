@@ -42,11 +42,13 @@ class ViewLayer : public QObject {
   /// Shows `view` and records it in the history (a new view drops the forward history, as in a browser).
   void setViewport(const Viewport& view) { show(true, view); }
   [[nodiscard]] const Viewport& viewport() const noexcept { return history_[historyIndex_]; }
-  /// Zoom by `factor` (> 1 in) about the point at fractions (fx, fy) of the view (0,0 bottom-left).
+  /// Zoom by `factor` (> 1 in) about the point at fractions (fx, fy) of the view (0,0 bottom-left).  A zoom in that
+  /// reaches the resolution limit says so, and why (core's deepestZoomNote; issue 53, finding 7).
   void zoomAt(double fx, double fy, double factor);
   /// Move by fractions of the view; a pan that cannot move says so (issue 25, finding 12).
   void panBy(double fx, double fy);
   /// The sub-rectangle [fx0, fx1] × [fy0, fy1] of the view; with equal aspect no thinner than 1:4 (framedInBox).
+  /// At the resolution limit it says so, as zoomAt().
   void crop(double fx0, double fx1, double fy0, double fy1);
   /// Frames `region` to the canvas's aspect inside the box and shows it; false when it does not fit this map.
   bool zoomToRegion(const SegmentRegion& region);
@@ -88,6 +90,9 @@ class ViewLayer : public QObject {
 
  private:
   void show(bool record, const Viewport& view);
+  void cropView(double fx0, double fx1, double fy0, double fy1);
+  /// Says that the view is the deepest there is, when it is.
+  void noteDeepestZoom();
   void updateFixedPoints();
 
   QPointer<PortraitView> view_;
