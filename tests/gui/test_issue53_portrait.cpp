@@ -12,6 +12,7 @@
 #include <cmath>
 
 #include "GuiTestSupport.hpp"
+#include "core/periodic/PeriodicOrbitFinder.hpp"
 #include "core/view/DeepestZoom.hpp"
 #include "ui/portrait/PortraitController.hpp"
 #include "ui/portrait/PortraitPanel.hpp"
@@ -21,6 +22,17 @@ using namespace archipelago;
 using namespace archipelago::ui;
 
 namespace {
+
+/// The period-6 orbit of K = 0.1 about the centre's chain of six: elliptic or hyperbolic.
+PeriodicOrbit sixChain(bool stable) {
+  PeriodicOrbitSearch search;
+  search.period = 6;
+  search.near = {0.0509L, 0.0974L};
+  search.searchRadius = 0.1L;
+  for (const PeriodicOrbit& o : findSymmetricPeriodicOrbits(0.1L, search))
+    if (o.classification().stable() == stable) return o;
+  return {};
+}
 
 /// The labels of an axis's major ticks, as numbers, with the ticks.
 struct AxisTicksShown {
@@ -78,6 +90,31 @@ class TestIssue53Portrait : public QObject {
         QVERIFY2(std::fabs(k - std::round(k)) < 1e-9, qPrintable(QString::number(label)));
       }
     }
+  }
+
+  // Finding 13: after K 0.1 → 0.15 → 0.1 the period-13 orbit came back, but its manifolds were the fixed point's.
+  void finding13_aKRoundTripBringsBackTheManifoldsOrbit() {
+    PortraitPanel panel;
+    panel.resize(800, 600);
+    panel.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&panel));
+    PortraitController& c = *panel.controller();
+    c.setPointBudget(10000);
+    const PeriodicOrbit partner = sixChain(false);
+    QCOMPARE(partner.period, 6);
+    c.showPeriodicOrbit(partner);
+    c.setManifoldOrbit(partner);
+    const MapParameters first = c.map();
+    MapParameters other = first;
+    other.K = 0.15;
+    QVERIFY(c.setMap(other, c.Xr()));
+    QVERIFY(!c.manifoldOrbit());
+    QVERIFY(c.setMap(first, c.Xr()));
+    QVERIFY(c.shownPeriodicOrbit());
+    QVERIFY(c.manifoldOrbit());
+    QCOMPARE(c.manifoldOrbit()->period, 6);
+    QVERIFY(c.manifoldsShown());
+    QTRY_VERIFY_WITH_TIMEOUT(c.manifoldsSettled() && c.manifolds(), 900000);
   }
 };
 

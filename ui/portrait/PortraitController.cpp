@@ -128,7 +128,7 @@ void PortraitController::clearLayers() {
 }
 
 bool PortraitController::hasWork() const {
-  return orbitCount() > 0 || history().size() > 1 || shownPeriodicOrbit().has_value();
+  return orbitCount() > 0 || history().size() > 1 || shownPeriodicOrbit().has_value() || manifoldOrbit().has_value();
 }
 
 std::optional<MapParameters> PortraitController::keptMap() const {
@@ -184,6 +184,9 @@ void PortraitController::restoreSession(const SessionPortrait& state, const MapP
   setColourMap(state.colours);
   if (state.budget > 0) setPointBudget(state.budget);
   restoreWork(state, map);
+}
+
+void PortraitController::restoreManifolds(const SessionPortrait& state, const MapParameters& map) {
   // The manifolds layer (issue 37, finding 4): of the fixed point, or of the orbit found again by core's Newton
   // from its first point (the session keeps double coordinates; the manifolds need the orbit to quad precision).
   if (!state.manifolds) {
@@ -216,6 +219,9 @@ void PortraitController::restoreWork(const SessionPortrait& state, const MapPara
     for (const auto& p : overlay.points) orbit.points.push_back({p[0], p[1]});
     showPeriodicOrbit(orbit);
   }
+  // The manifolds of the orbit they were of (issue 53, finding 13: after K 0.1 → 0.15 → 0.1 the period-13 orbit
+  // came back with the fixed point's manifolds).
+  restoreManifolds(state, map);
 }
 
 }  // namespace archipelago::ui

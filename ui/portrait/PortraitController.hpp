@@ -205,8 +205,10 @@ class PortraitController : public QObject {
   void showIslandChain(const AtlasIslandPtr& island, bool centre);
   /// Every layer cleared for a new map.
   void clearLayers();
-  /// The views, launched orbits and periodic overlay of `state` (after a map change cleared them).
+  /// The views, launched orbits, periodic overlay and manifolds of `state` (after a map change cleared them).
   void restoreWork(const SessionPortrait& state, const MapParameters& map);
+  /// The manifolds layer of `state`: hidden, of the fixed point, or of its orbit found again at map.K.
+  void restoreManifolds(const SessionPortrait& state, const MapParameters& map);
   [[nodiscard]] bool hasWork() const;
 
   QPointer<PortraitView> view_;
