@@ -116,6 +116,64 @@ class TestIssue53Portrait : public QObject {
     QVERIFY(c.manifoldsShown());
     QTRY_VERIFY_WITH_TIMEOUT(c.manifoldsSettled() && c.manifolds(), 900000);
   }
+
+  // Finding 15: stale legend entries piled up (5 layers listed in an FLI view 7·10⁻⁸ wide containing none of them).
+  void finding15_theLegendListsOnlyWhatTheViewShows() {
+    PortraitPanel panel;
+    panel.resize(800, 600);
+    panel.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&panel));
+    PortraitController& c = *panel.controller();
+    c.setPointBudget(10000);
+    c.showPeriodicOrbit(sixChain(true));
+    c.setManifoldsShown(true);
+    QTRY_VERIFY_WITH_TIMEOUT(c.manifoldsSettled() && c.manifolds(), 900000);
+    const auto legend = [&] { return panel.view()->legendText(); };
+    QVERIFY2(legend().contains(QStringLiteral("periodic orbit of period 6")), qPrintable(legend()));
+    QVERIFY2(legend().contains(QStringLiteral("manifold")), qPrintable(legend()));
+    // A view 7·10⁻⁸ wide at the elliptic fixed point: neither the six's points nor the manifolds are in it.
+    QVERIFY(c.goTo(-std::sqrt(0.1L), 0, 7e-8L));
+    QTRY_VERIFY_WITH_TIMEOUT(c.manifoldsSettled(), 900000);
+    QVERIFY2(!legend().contains(QStringLiteral("periodic orbit")), qPrintable(legend()));
+    QVERIFY2(!legend().contains(QStringLiteral("manifold")), qPrintable(legend()));
+    c.back();  // the whole box again: both listed again
+    QTRY_VERIFY_WITH_TIMEOUT(c.manifoldsSettled() && legend().contains(QStringLiteral("manifold")), 900000);
+    QVERIFY2(legend().contains(QStringLiteral("periodic orbit of period 6")), qPrintable(legend()));
+  }
+
+  // Finding 16: the manifolds' "lobe area" label was drawn under the launched orbits (after a session reopen), cut
+  // to "obe area …" in the exported PNG.
+  void finding16_theLobeAreaIsOverTheOrbitsAndInsideTheCanvas() {
+    PortraitPanel panel;
+    panel.resize(800, 600);
+    panel.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&panel));
+    PortraitController& c = *panel.controller();
+    c.setPointBudget(10000);
+    c.setManifoldsShown(true);
+    QVERIFY(c.launchOrbit(0.3L, -0.2L) != 0);  // an orbit of the sea, over the lobes
+    QTRY_VERIFY_WITH_TIMEOUT(c.manifoldsSettled() && c.flux() && c.orbitsSettled(), 900000);
+    QVERIFY2(c.flux()->flux.has_value(), qPrintable(c.flux()->error));
+    const PointsItem* label = nullptr;
+    for (const PortraitLayer layer : {PortraitLayer::lobes, PortraitLayer::lobeLabel})
+      for (const QwtPlotItem* item : panel.view()->layerItems(layer))
+        if (item->rtti() == PointsItem::kRtti && !static_cast<const PointsItem*>(item)->label().isEmpty())
+          label = static_cast<const PointsItem*>(item);
+    QVERIFY(label);
+    QVERIFY(label->label().startsWith(QStringLiteral("lobe area ")));
+    const auto& orbits = panel.view()->layerItems(PortraitLayer::launchedOrbits);
+    QVERIFY(!orbits.empty());
+    for (const QwtPlotItem* orbit : orbits) QVERIFY2(label->z() > orbit->z(), qPrintable(QString::number(label->z())));
+    // Whole inside the canvas, wherever the lobe is: at the right edge it moves left, at the left edge right.
+    const QRectF canvas(0, 0, 400, 300);
+    const QSizeF size(120, 18);
+    for (const QPointF anchor : {QPointF(395, 150), QPointF(-30, 150), QPointF(200, 299), QPointF(200, 2)}) {
+      const QRectF at = PointsItem::labelRect(anchor, size, canvas);
+      QVERIFY2(canvas.contains(at), qPrintable(QStringLiteral("%1,%2 %3×%4").arg(at.x()).arg(at.y()).arg(at.width()).arg(at.height())));
+      QCOMPARE(at.size(), size);
+    }
+    QCOMPARE(PointsItem::labelRect({100, 150}, size, canvas).topLeft(), QPointF(108, 141));  // right of it, as before
+  }
 };
 
 ARCHIPELAGO_GUI_TEST_MAIN(TestIssue53Portrait)

@@ -72,9 +72,10 @@ void AtlasIslandLayer::clearAtlasIsland() {
   Q_EMIT legendChanged();
 }
 
-QStringList AtlasIslandLayer::legendLines() const {
+std::vector<LegendLine> AtlasIslandLayer::legendLines() const {
   if (label_.isEmpty()) return {};
-  return {tr("<span style='color:#78ff50'>●</span> boundary circle of the atlas island %1").arg(label_.toHtmlEscaped())};
+  return {{PortraitLayer::atlasIsland,
+           tr("<span style='color:#78ff50'>●</span> boundary circle of the atlas island %1").arg(label_.toHtmlEscaped())}};
 }
 
 }  // namespace archipelago::ui

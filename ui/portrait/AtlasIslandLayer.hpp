@@ -9,7 +9,6 @@
 #include <QPointF>
 #include <QPointer>
 #include <QString>
-#include <QStringList>
 
 #include <memory>
 #include <optional>
@@ -18,6 +17,7 @@
 #include "core/atlas/Atlas.hpp"
 #include "core/periodic/PeriodicOrbit.hpp"
 #include "core/periodic/SegmentAnalysis.hpp"
+#include "ui/portrait/PortraitLayers.hpp"
 
 namespace archipelago::ui {
 
@@ -52,7 +52,7 @@ class AtlasIslandLayer : public QObject {
   [[nodiscard]] AtlasIslandPtr atlasIsland() const noexcept { return island_; }
   [[nodiscard]] bool atlasIslandSettled() const noexcept { return request_ == 0; }
   /// The legend's line for the boundary circle drawn (none when none is).
-  [[nodiscard]] QStringList legendLines() const;
+  [[nodiscard]] std::vector<LegendLine> legendLines() const;
 
  Q_SIGNALS:
   /// The island is framed and its circle drawn: `centre` when it is the central island (the fixed point's loop is

@@ -37,10 +37,9 @@ void ManifoldsLayer::setManifoldsShown(bool shown) {
     jobs_->cancel(kManifoldChannel);
     jobs_->cancel(kFluxChannel);
     manifoldsRequest_ = fluxRequest_ = 0;
-    if (view_) {
-      view_->setLayer(PortraitLayer::manifolds, {});
-      view_->setLayer(PortraitLayer::lobes, {});
-    }
+    if (view_)
+      for (PortraitLayer layer : {PortraitLayer::manifolds, PortraitLayer::lobes, PortraitLayer::lobeLabel})
+        view_->setLayer(layer, {});
   }
   Q_EMIT legendChanged();
   Q_EMIT manifoldsChanged();
@@ -73,11 +72,12 @@ void ManifoldsLayer::recompute() {
 
 void ManifoldsLayer::followView() { requestManifolds(); }
 
-QStringList ManifoldsLayer::legendLines() const {
+std::vector<LegendLine> ManifoldsLayer::legendLines() const {
   if (!shown_ || !manifolds_) return {};
-  return {tr("<span style='color:#ff5050'>━</span> unstable, <span style='color:#50a0ff'>━</span> stable manifold "
-             "of %1")
-              .arg(orbit_ ? tr("the period-%1 orbit").arg(orbit_->period) : tr("the hyperbolic fixed point"))};
+  return {{PortraitLayer::manifolds,
+           tr("<span style='color:#ff5050'>━</span> unstable, <span style='color:#50a0ff'>━</span> stable manifold "
+              "of %1")
+               .arg(orbit_ ? tr("the period-%1 orbit").arg(orbit_->period) : tr("the hyperbolic fixed point"))}};
 }
 
 void ManifoldsLayer::requestManifolds() {
@@ -169,21 +169,22 @@ void ManifoldsLayer::drawManifolds() {
     add(manifolds_->unstable, QColor(255, 80, 80));
   }
   view_->setLayer(PortraitLayer::manifolds, std::move(curves));
-  std::vector<QwtPlotItem*> lobes;
+  std::vector<QwtPlotItem*> lobes, label;
   if (flux_ && flux_->flux) {
     const TurnstileFlux& f = *flux_->flux;
     // The turnstile: the lobe that leaves the zone in one step (orange) and the one that enters (green), each
-    // of area the flux per step; labelled with it.
-    const QString area = tr("lobe area %1").arg(areaText(f.lobeArea));
+    // of area the flux per step; the exit lobe labelled with it, over every orbit (issue 53, finding 16).
     if (f.exitLobe.size() > 2) {
-      auto* exit = new PointsItem(PointsItem::Style::polygon, toQt(f.exitLobe), QColor(255, 170, 40));
-      exit->setLabel(area);
-      lobes.push_back(exit);
+      lobes.push_back(new PointsItem(PointsItem::Style::polygon, toQt(f.exitLobe), QColor(255, 170, 40)));
+      auto* area = new PointsItem(PointsItem::Style::label, toQt(f.exitLobe));
+      area->setLabel(tr("lobe area %1").arg(areaText(f.lobeArea)));
+      label.push_back(area);
     }
     if (f.entryLobe.size() > 2)  // the same area: one label is enough
       lobes.push_back(new PointsItem(PointsItem::Style::polygon, toQt(f.entryLobe), QColor(60, 220, 120)));
   }
   view_->setLayer(PortraitLayer::lobes, std::move(lobes));
+  view_->setLayer(PortraitLayer::lobeLabel, std::move(label));
 }
 
 }  // namespace archipelago::ui

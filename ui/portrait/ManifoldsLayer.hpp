@@ -9,7 +9,6 @@
 #include <QObject>
 #include <QPointer>
 #include <QString>
-#include <QStringList>
 
 #include <memory>
 #include <optional>
@@ -18,6 +17,7 @@
 #include "core/manifolds/ManifoldCurve.hpp"
 #include "core/manifolds/TurnstileFlux.hpp"
 #include "core/periodic/PeriodicOrbit.hpp"
+#include "ui/portrait/PortraitLayers.hpp"
 
 namespace archipelago::ui {
 
@@ -64,7 +64,7 @@ class ManifoldsLayer : public QObject {
   /// The view changed: the manifolds are refined anew in it, when shown.
   void followView();
   /// The legend's line for the manifolds drawn (none when none are).
-  [[nodiscard]] QStringList legendLines() const;
+  [[nodiscard]] std::vector<LegendLine> legendLines() const;
 
  Q_SIGNALS:
   /// The manifolds or the flux changed (computed, cleared).

@@ -127,17 +127,25 @@ void OverlayLayer::showProfileLine(std::optional<std::pair<PhysicalPoint, Physic
   view_->setLayer(PortraitLayer::profileLine, std::move(items));
 }
 
-QStringList OverlayLayer::legendLines() const {
-  QStringList lines = SegmentOverlay::legendLines(replay_, chain_, periodic_ ? periodic_->period : 0);
+std::vector<LegendLine> OverlayLayer::legendLines() const {
+  std::vector<LegendLine> lines;
+  const auto add = [&lines](PortraitLayer layer, const QStringList& texts) {
+    for (const QString& text : texts) lines.push_back({layer, text});
+  };
+  add(PortraitLayer::segment, SegmentOverlay::legendLines(replay_, nullptr, 0));
+  add(PortraitLayer::segmentChain, SegmentOverlay::legendLines(nullptr, chain_, 0));
+  add(PortraitLayer::periodicOrbits, SegmentOverlay::legendLines(nullptr, nullptr, periodic_ ? periodic_->period : 0));
   if (clickedPeriodic_) {  // the chain a click named (issue 37, finding 16), its phrases one per line
-    lines << tr("&nbsp;&nbsp;&nbsp;%1, residue %2, found at a click in the chain:")
+    QStringList found;
+    found << tr("&nbsp;&nbsp;&nbsp;%1, residue %2, found at a click in the chain:")
                  .arg(QString::fromLatin1(toString(clickedPeriodic_->orbit.classification().stability)))
                  .arg(static_cast<double>(clickedPeriodic_->orbit.residue), 0, 'g', 6);
     // Each phrase on a line of its own, a long one cut (the legend is not wrapped; the status bar has it whole).
     for (QString phrase : QString::fromStdString(clickedPeriodic_->chain.summary).split(QStringLiteral("; "))) {
       if (phrase.size() > 52) phrase = phrase.left(51) + QStringLiteral("…");
-      lines << QStringLiteral("&nbsp;&nbsp;&nbsp;") + phrase.toHtmlEscaped();
+      found << QStringLiteral("&nbsp;&nbsp;&nbsp;") + phrase.toHtmlEscaped();
     }
+    add(PortraitLayer::periodicOrbits, found);
   }
   return lines;
 }

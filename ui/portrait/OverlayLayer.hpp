@@ -16,6 +16,7 @@
 
 #include "core/measures/PeriodicOrbitAt.hpp"
 #include "core/periodic/PeriodicOrbit.hpp"
+#include "ui/portrait/PortraitLayers.hpp"
 #include "ui/portrait/SegmentResults.hpp"
 
 namespace archipelago::ui {
@@ -51,7 +52,7 @@ class OverlayLayer : public QObject {
   /// The rotation-profile line (none: hidden).
   void showProfileLine(std::optional<std::pair<PhysicalPoint, PhysicalPoint>> line);
   /// The legend's lines for the segment, its chain, the periodic overlay and what a click found.
-  [[nodiscard]] QStringList legendLines() const;
+  [[nodiscard]] std::vector<LegendLine> legendLines() const;
 
  Q_SIGNALS:
   /// A click's search ended: `text` says what it found, or why nothing.

@@ -60,6 +60,7 @@ void PortraitController::wireLayers() {
   // A new view refines the manifolds in it before anyone hears of it.
   connect(viewLayer_.get(), &ViewLayer::viewportChanged, this, [this] {
     manifolds_->followView();
+    updateLegend();
     Q_EMIT viewportChanged();
   });
   connect(viewLayer_.get(), &ViewLayer::settingsChanged, this, &PortraitController::settingsChanged);
@@ -144,9 +145,13 @@ void PortraitController::showIslandChain(const AtlasIslandPtr& island, bool cent
 }
 
 void PortraitController::updateLegend() {
-  QStringList lines = overlay_->legendLines();
-  lines << atlas_->legendLines() << manifolds_->legendLines();
-  if (view_) view_->setLegend(lines.join(QStringLiteral("<br>")));
+  if (!view_) return;
+  // Only what the view shows (issue 53, finding 15: five layers were listed in a view containing none of them).
+  QStringList lines;
+  for (const auto& layer : {overlay_->legendLines(), atlas_->legendLines(), manifolds_->legendLines()})
+    for (const LegendLine& line : layer)
+      if (view_->layerInView(line.layer)) lines << line.text;
+  view_->setLegend(lines.join(QStringLiteral("<br>")));
 }
 
 // ------------------------------------------------------------------------------------------------- sessions

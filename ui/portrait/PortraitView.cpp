@@ -311,6 +311,16 @@ const std::vector<QwtPlotItem*>& PortraitView::layerItems(PortraitLayer layer) c
   return it == layers_.end() ? none : it->second;
 }
 
+bool PortraitView::layerInView(PortraitLayer layer) const {
+  const QRectF view = physicalRect(view_, map_).normalized();
+  const auto& items = layerItems(layer);
+  return std::any_of(items.begin(), items.end(), [&view](const QwtPlotItem* item) {
+    return item->rtti() != PointsItem::kRtti || static_cast<const PointsItem*>(item)->anyPointIn(view);
+  });
+}
+
+QString PortraitView::legendText() const { return legend_->text().text(); }
+
 void PortraitView::setLegend(const QString& html) {
   if (html.isEmpty()) {
     legend_->setText(QwtText());

@@ -118,6 +118,11 @@ class PortraitView : public QWidget {
   [[nodiscard]] const PortraitFrame* currentFrame() const noexcept { return frame_.get(); }
   /// The items of a layer (tests).
   [[nodiscard]] const std::vector<QwtPlotItem*>& layerItems(PortraitLayer layer) const;
+  /// True when the layer shows something in the view: a point of one of its items inside it (an item of another
+  /// kind, e.g. a marker, counts as shown).
+  [[nodiscard]] bool layerInView(PortraitLayer layer) const;
+  /// The legend's text as set (rich text; empty: no legend).
+  [[nodiscard]] QString legendText() const;
   /// The canvas (tests send it mouse events); the plot itself stays private to the view.
   [[nodiscard]] QWidget* canvas() const;
   /// The x and y axis ranges shown (tests).
