@@ -24,7 +24,7 @@ const AtlasRequest kAtlas{};
 
 py::dict atlas(double K, double xmin, double xmax, int depth, std::uint64_t maxPeriod, double minArea,
                std::uint64_t iterations, double threshold, int scanPoints, double scanSteps, int bisections,
-               int threads, double timeBudget, const py::object& resume) {
+               int threads, double timeBudget, bool cantori, const py::object& resume) {
   AtlasRequest r;
   r.map = mapOf(K, xmin, xmax);
   r.depth = depth;
@@ -37,6 +37,7 @@ py::dict atlas(double K, double xmin, double xmax, int depth, std::uint64_t maxP
   r.bisections = bisections;
   r.threads = threads;
   r.timeBudget = timeBudget;
+  r.cantori = cantori;
   if (auto e = validationError(r)) throw std::invalid_argument(*e);
   // resume: an atlas dict stopped early (its 'cancelled' true), continued by core from its finished islands.
   std::optional<Atlas> previous;
@@ -54,11 +55,12 @@ void bindAtlas(py::module_& m) {
         py::arg("threshold") = kAtlas.digitsThreshold, py::arg("scan_points") = kAtlas.scanPoints,
         py::arg("scan_steps") = kAtlas.scanSteps,
         py::arg("bisections") = kAtlas.bisections, py::arg("threads") = kAtlas.threads,
-        py::arg("time_budget") = kAtlas.timeBudget, py::arg("resume") = py::none(),
+        py::arg("time_budget") = kAtlas.timeBudget, py::arg("cantori") = kAtlas.cantori, py::arg("resume") = py::none(),
         "The atlas of the islands around islands from the centre (-sqrt K, 0) (core/atlas/Atlas.hpp, docs/atlas.md):\n"
         "each island's boundary circle and area, the chains just outside it with their period, p/q about the parent,\n"
         "turnstile flux, zone and layer areas and mean residence time, to `depth` levels.  The same dict as\n"
         "`archipelago-cli atlas --json`: 'nodes' is the tree (each with its 'parent' index).  time_budget (seconds, 0:\n"
         "none) stops it keeping the finished islands ('cancelled', 'stop_reason'); resume=<such a dict> continues it\n"
-        "with the same arguments.  ValueError for bad input.");
+        "with the same arguments; cantori=True adds the cantori between the centre's chains ('cantori': MacKay-Meiss-\n"
+        "Percival flux and layer).  ValueError for bad input.");
 }

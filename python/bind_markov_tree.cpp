@@ -27,8 +27,10 @@ namespace {
 const MarkovTreeRequest kTree{};
 
 py::dict markovTree(const py::object& atlas, double alpha, double b2, double tMax, int perDecade,
-                    const std::vector<std::uint64_t>& at, double exponentFrom, const py::object& tail) {
+                    const std::vector<std::uint64_t>& at, double exponentFrom, const py::object& tail,
+                    bool innerSeparatrices, bool cantori, int levels) {
   MarkovTreeRequest r;
+  r.barriers = {.innerSeparatrices = innerSeparatrices, .cantori = cantori, .maxLevel = levels};
   r.alpha = alpha;
   r.b2 = b2;
   r.tMax = tMax;
@@ -81,7 +83,8 @@ void bindMarkovTree(py::module_& m) {
   m.def("markov_tree", &markovTree, py::arg("atlas"), py::kw_only(), py::arg("alpha") = kTree.alpha,
         py::arg("b2") = kTree.b2, py::arg("t_max") = kTree.tMax, py::arg("per_decade") = kTree.perDecade,
         py::arg("at") = std::vector<std::uint64_t>{}, py::arg("exponent_from") = kTree.exponentFrom,
-        py::arg("tail") = py::none(),
+        py::arg("tail") = py::none(), py::arg("inner_separatrices") = kTree.barriers.innerSeparatrices,
+        py::arg("cantori") = kTree.barriers.cantori, py::arg("levels") = kTree.barriers.maxLevel,
         "The Meiss-Ott Markov tree of an atlas (core/markovtree/MarkovTree.hpp, docs/markov-tree.md): `atlas` is an\n"
         "atlas dict (atlas()) or the path of an atlas JSON file.  States between successive barriers, rates flux / area\n"
         "(each with its source), chains without a flux lumped; S(t) exactly on a grid of per_decade points a decade to\n"
@@ -89,5 +92,7 @@ void bindMarkovTree(py::module_& m) {
         "length, steps) and b2 (the stochastic area) also P_t = alpha flux / b2 S(t).  The same dict as\n"
         "`archipelago-cli markov-tree --json`; with `tail` (the path of a tail sampler's file of the atlas's map, and\n"
         "alpha and b2) also \"comparison\": the model over each reliable level from 10^3 steps, and the reach (the last\n"
-        "t within a factor 3).  ValueError for bad input or an atlas that cannot make a tree.");
+        "t within a factor 3) and \"ablation\" (each variant's reach).  inner_separatrices=False, cantori=False and\n"
+        "levels=L leave those barriers out (issue 50; markov-tree --without, --levels).  ValueError for bad input or an\n"
+        "atlas that cannot make a tree.");
 }

@@ -45,6 +45,15 @@ void printTable(const Atlas& a) {
     const std::string note = n.measured ? n.note : "not measured yet";
     std::printf("%s%s\n", note.empty() ? "" : "  # ", note.c_str());
   }
+  for (const AtlasCantorus& c : a.cantori) {
+    if (c.found)
+      std::printf("# cantorus between %s and %s: flux %.10Le +- %.1Le per step (MMP, %s), layer %.6Le (zone %.6Le +- %.1Le)\n",
+                  toString(c.outer).c_str(), toString(c.inner).c_str(), c.flux, c.fluxUncertainty,
+                  toString(c.convergents.back()).c_str(), c.layerArea, c.zoneArea, c.zoneSpread);
+    else
+      std::printf("# cantorus between %s and %s: not a barrier: %s\n", toString(c.outer).c_str(),
+                  toString(c.inner).c_str(), c.failure.c_str());
+  }
   std::printf("# %zu islands in %.1f s%s\n", a.nodes.size(), a.seconds, a.cancelled ? (" (" + a.stopReason + ": the rest not computed)").c_str() : "");
 }
 
@@ -102,6 +111,9 @@ void addAtlasCommand(CLI::App& app, int& status) {
   addNumberOption(*cmd, "--threads", o->request.threads, "threads (0: one per core)");
   addNumberOption(*cmd, "--time-budget", o->request.timeBudget,
                   "seconds: then stop as Ctrl-C does, keeping the finished islands (0: none)");
+  cmd->add_flag("--cantori", o->request.cantori,
+                "once the islands are measured, the cantori between the centre's chains: their MacKay-Meiss-Percival "
+                "flux and layer, barriers of markov-tree (a few seconds each; with --resume, added to a finished atlas)");
   cmd->add_option("--resume", o->resume,
                   "continue the atlas in this JSON file (one stopped early), with the same options; its finished "
                   "islands are kept");

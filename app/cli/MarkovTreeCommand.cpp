@@ -26,6 +26,7 @@ struct MarkovTreeOptions {
   std::string at;
   std::string csv;
   std::string json;
+  std::string without;
   MarkovTreeRequest request;
   bool quiet = false;
 };
@@ -46,17 +47,31 @@ std::vector<std::uint64_t> parseTimes(const std::string& text) {
   return t;
 }
 
+/// Each variant's reach and its ratio at each compared level (issue 50's ablation).
+void printAblation(const MarkovTreeResult& r) {
+  if (r.ablation.empty() || !r.comparison) return;
+  std::printf("# ablation: the reach with and without each kind of barrier (model / measured at each level)\n");
+  std::printf("# %-26s %6s %12s", "variant", "states", "reach");
+  for (const MarkovTreeLevelComparison& m : r.comparison->levels) std::printf(" %9.3g", m.t);
+  std::printf("\n");
+  for (const MarkovTreeAblationRow& a : r.ablation) {
+    std::printf("  %-26s %6zu %12s", a.variant.c_str(), a.states, a.reach > 0 ? shortestDecimal(a.reach).c_str() : "-");
+    for (long double x : a.ratio) std::printf(" %9.3Lg", x);
+    std::printf("\n");
+  }
+}
+
 void printTree(const MarkovTreeResult& r) {
   const MarkovTree& t = r.tree;
   std::printf("# Markov tree of %s (K = %s, depth %d, %zu islands): %zu states, Meiss & Ott (1986)\n",
               r.request.atlasSource.c_str(), shortestDecimal(r.map.K).c_str(), r.atlasDepth, r.atlasIslands,
               t.states.size());
-  std::printf("# %-3s %-12s %5s %9s %13s %13s %12s  %s\n", "st", "barrier", "level", "container", "flux", "area",
-              "area/flux", "area source");
+  std::printf("# %-3s %-18s %-16s %5s %9s %13s %13s %12s  %s\n", "st", "state", "barrier", "level", "container",
+              "flux", "area", "area/flux", "area source");
   for (std::size_t i = 0; i < t.states.size(); ++i) {
     const MarkovTreeState& s = t.states[i];
-    std::printf("  %-3zu %-12s %5d %9d %13.6Le %13.6Le %12.6Lg  %s\n", i, s.path.c_str(), s.level, s.container, s.flux,
-                s.area, s.area / s.flux, s.source.c_str());
+    std::printf("  %-3zu %-18s %-16s %5d %9d %13.6Le %13.6Le %12.6Lg  %s\n", i, s.path.c_str(), toString(s.barrier),
+                s.level, s.container, s.flux, s.area, s.area / s.flux, s.source.c_str());
   }
   for (const MarkovTreeLumped& l : t.lumped)
     std::printf("# lumped into state %d: %s (%s)\n", l.state, l.path.c_str(), l.reason.c_str());
@@ -91,10 +106,26 @@ void printTree(const MarkovTreeResult& r) {
     if (m.holdingLevel >= 0) std::printf("  %d (%.0f %%)", m.holdingLevel, 100 * m.holdingShare);
     std::printf("\n");
   }
+  printAblation(r);
+}
+
+/// "inner,cantori": the barriers --without leaves out.
+void parseWithout(const std::string& text, archipelago::MarkovTreeOptions& barriers) {
+  std::size_t begin = 0;
+  while (!text.empty()) {
+    const std::size_t comma = text.find(',', begin);
+    const std::string item = text.substr(begin, comma == std::string::npos ? std::string::npos : comma - begin);
+    if (item == "inner") barriers.innerSeparatrices = false;
+    else if (item == "cantori") barriers.cantori = false;
+    else throw std::invalid_argument("--without: '" + io::shortText(item) + "' is not inner or cantori");
+    if (comma == std::string::npos) break;
+    begin = comma + 1;
+  }
 }
 
 int runMarkovTree(MarkovTreeOptions o) {
   o.request.at = parseTimes(o.at);
+  parseWithout(o.without, o.request.barriers);
   o.request.atlasSource = o.atlas;
   if (auto e = validationError(o.request)) throw std::invalid_argument(*e);
   o.request.tailSource = o.tail;
@@ -148,6 +179,11 @@ void addMarkovTreeCommand(CLI::App& app, int& status) {
                   "the run's mean segment length alpha (steps; archipelago-cli stats): with --b2, P_t = alpha flux / b2 S(t)");
   addNumberOption(*cmd, "--b2", o->request.b2, "the stochastic area b2 of the run's box (archipelago-cli stochastic-area)");
   addNumberOption(*cmd, "--exponent-from", o->request.exponentFrom, "gamma's windows start at or above this t (steps)");
+  cmd->add_option("--without", o->without,
+                  "leave out these barriers, comma-separated: inner (the chains' inner separatrices), cantori "
+                  "(issue 50's ablation; --tail prints every variant's reach)");
+  addNumberOption(*cmd, "--levels", o->request.barriers.maxLevel,
+                  "take the chains of the atlas's levels up to this one as barriers, lump the deeper ones");
   cmd->add_option("--json", o->json, "write the tree, its rates' sources and the survival as JSON here");
   cmd->add_option("--csv", o->csv, "write t, S, P, each level's and each state's share as CSV here");
   cmd->add_flag("--quiet", o->quiet, "no table");

@@ -1,4 +1,5 @@
 #include "core/atlas/Atlas.hpp"
+#include "core/atlas/AtlasCantori.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -331,6 +332,11 @@ void settleAreaInterval(AtlasNode& node, long double widest) {
   node.areaError = std::max(node.area - node.areaLower, node.areaUpper - node.area);
 }
 
+/// The closed curves of a chain's two separatrices' zones (TurnstileFlux::zoneBoundary), for the layers.
+struct BarrierZones {
+  std::vector<std::vector<PhysicalPoint>> outer, inner;
+};
+
 /// `zone`: where the zone's closed curves go (TurnstileFlux::zoneBoundary), for the layers (settleLayers).
 /// One separatrix's turnstile (side `side` of the partner's manifolds, or the fixed point's loop), checked: the two
 /// methods agree and the lobe is a small part of what it encloses (a partner whose primary points were found far
@@ -368,14 +374,14 @@ SeparatrixFlux separatrixFlux(long double K, const std::optional<PeriodicOrbit>&
 /// the zones, not by the label "outward" (at K = 0.12 the 11/63 chain's "outward" side gave the inner separatrix's
 /// lobe, zone 0.343767, and "inward" the outer one, zone 0.344536, with a lobe 2.5 times larger).  Where only one
 /// side is found it is taken with its label (`outerByZone` false).  At the centre the barrier is the fixed point's
-/// loop (no inner side).  `zone`: where the outer zone's closed curves go (TurnstileFlux::zoneBoundary), for the
-/// layers (settleLayers).
+/// loop (no inner side).  `zone`: where the outer and inner zones' closed curves go (TurnstileFlux::zoneBoundary),
+/// for the layers (settleLayers).
 AtlasFlux chainFlux(long double K, const std::optional<PeriodicOrbit>& chain, std::stop_token stop,
-                    std::vector<std::vector<PhysicalPoint>>& zone) {
+                    BarrierZones& zone) {
   AtlasFlux f;
   SeparatrixFlux outer;
   if (!chain) {
-    outer = separatrixFlux(K, std::nullopt, defaultSide(true), stop, zone);
+    outer = separatrixFlux(K, std::nullopt, defaultSide(true), stop, zone.outer);
   } else {
     if (chain->period > kMaxFluxPeriod) {
       f.failure = "not computed: period " + std::to_string(chain->period) + " above the atlas's flux limit " +
@@ -394,7 +400,8 @@ AtlasFlux chainFlux(long double K, const std::optional<PeriodicOrbit>& chain, st
     const bool swap = f.outerByZone ? inward.zoneArea > outward.zoneArea : !outward.found && inward.found;
     outer = swap ? inward : outward;
     f.inner = swap ? outward : inward;
-    zone = swap ? inwardZone : outwardZone;
+    zone.outer = swap ? inwardZone : outwardZone;
+    zone.inner = swap ? outwardZone : inwardZone;
   }
   f.found = outer.found;
   f.failure = outer.failure;
@@ -413,23 +420,33 @@ constexpr int kBoundaryTries = 8;
 constexpr long double kQuickTolerance = 1e-2L;
 constexpr int kZooms = 2;
 constexpr int kMinCircleSteps = 8;
-/// Each barrier's layer: its zone less the atlas's islands inside its curves (each island counted by its centre, a
-/// member of its chain's elliptic orbit: an island never crosses a separatrix), and the residence time layer / flux.
-/// `zones` holds each flux's zone as a region, by node (built once: a zone of a long chain has ~10⁵ vertices).
-void settleLayers(Atlas& atlas, const std::map<int, PolygonRegion>& zones) {
-  for (const auto& [index, zone] : zones) {
+/// The regions of the barriers' zones, by node (built once: a zone of a long chain has ~10⁵ vertices).
+struct ZoneRegions {
+  std::map<int, PolygonRegion> outer, inner;
+  void add(int node, const BarrierZones& z, const AtlasFlux& f) {
+    if (f.found && !z.outer.empty()) outer.emplace(node, PolygonRegion(z.outer));
+    if (f.inner.found && !z.inner.empty()) inner.emplace(node, PolygonRegion(z.inner));
+  }
+  void erase(int node) {
+    outer.erase(node);
+    inner.erase(node);
+  }
+};
+
+/// Each barrier's layer: its zone less the atlas's islands inside its curves, and the residence time layer / flux;
+/// the same for each chain's inner separatrix (issue 50: the band between it and the next barrier inwards).
+void settleLayers(Atlas& atlas, const ZoneRegions& zones) {
+  for (const auto& [index, zone] : zones.outer) {
     AtlasFlux& f = atlas.nodes[static_cast<std::size_t>(index)].flux;
-    f.enclosedIslands = 0;
-    f.enclosedCount = 0;
-    for (const AtlasNode& other : atlas.nodes) {
-      if (!other.boundaryFound) continue;
-      int inside = 0;
-      for (const PhysicalPoint& p : other.orbit.points) inside += zone.contains(p.x, p.y) ? 1 : 0;
-      f.enclosedIslands += static_cast<long double>(inside) * other.area;
-      f.enclosedCount += inside;
-    }
+    std::tie(f.enclosedIslands, f.enclosedCount) = atlasIslandsInside(atlas, zone);
     f.layerArea = f.zoneArea - f.enclosedIslands;
     f.residence = static_cast<double>(f.layerArea / f.flux);
+    refuseEmptyLayer(f);
+  }
+  for (const auto& [index, zone] : zones.inner) {
+    SeparatrixFlux& f = atlas.nodes[static_cast<std::size_t>(index)].flux.inner;
+    std::tie(f.enclosedIslands, f.enclosedCount) = atlasIslandsInside(atlas, zone);
+    f.layerArea = f.zoneArea - f.enclosedIslands;
     refuseEmptyLayer(f);
   }
 }
@@ -485,6 +502,7 @@ class AtlasBuilder {
     if (resume) {
       // The measured islands are kept; their barriers' zones (not in the files) are computed again for the layers.
       atlas.nodes = resume->nodes;
+      atlas.cantori = resume->cantori;
       for (std::size_t i = 0; i < atlas.nodes.size(); ++i) {
         AtlasNode& node = atlas.nodes[i];
         // A file keeps each chain's measured member only: the orbit is found again from it (Newton in __float128).
@@ -506,11 +524,11 @@ class AtlasBuilder {
         }
         ++done;
         if (!node.flux.found) continue;
-        std::vector<std::vector<PhysicalPoint>> zone;
+        BarrierZones zone;
         const AtlasFlux again =
             chainFlux(K_, i == 0 ? std::nullopt : std::optional<PeriodicOrbit>(node.orbit), stop_, zone);
         if (stop_.stop_requested()) break;
-        if (again.found && !zone.empty()) zones_.emplace(static_cast<int>(i), PolygonRegion(zone));
+        zones_.add(static_cast<int>(i), zone, again);
       }
     } else {
       // The central island: the elliptic fixed point (−√K, 0), on both lines; scanned along S₂.
@@ -551,8 +569,9 @@ class AtlasBuilder {
     }
     atlas.cancelled = !queue.empty();
     if (atlas.cancelled && atlas.stopReason.empty()) atlas.stopReason = "stopped";
-    atlas.seconds = (resume ? resume->seconds : 0) + elapsed();  // every part of a resumed atlas
     settleLayers(atlas, zones_);
+    if (!atlas.cancelled && r_.cantori) addCantori(atlas, done);
+    atlas.seconds = (resume ? resume->seconds : 0) + elapsed();  // every part of a resumed atlas
     if (progress_) progress_(atlas, done, atlas.cancelled ? atlas.stopReason : "done");
     return atlas;
   }
@@ -784,13 +803,31 @@ class AtlasBuilder {
     return widest;
   }
 
+  /// Step 6 (issue 50): the cantori between the centre's successive chains, once every island is measured (their
+  /// layers need the islands inside); kept from a resumed atlas that has them.  A stop leaves the atlas unfinished
+  /// (cancelled): a resume computes them.
+  void addCantori(Atlas& atlas, int done) {
+    if (!atlas.cantori.empty()) return;
+    if (progress_) progress_(atlas, done, "cantori between the centre's chains");
+    try {
+      atlas.cantori = centreCantori(atlas, stop_);
+    } catch (const OperationStopped&) {
+      atlas.cantori.clear();
+    }
+    if (stop_.stop_requested()) {
+      atlas.cantori.clear();
+      atlas.cancelled = true;
+      atlas.stopReason = "stopped";
+    }
+  }
+
   /// Step 4: the flux through the chain's separatrix (at the centre: the fixed point (√K, 0)'s loop).  Its zone
   /// encloses the islands of the parent (one per closed curve) or, at the centre, the central island: the layer
   /// between is what an orbit that crossed the barrier moves in.
   void measureFlux(AtlasNode& node, int index) {
-    std::vector<std::vector<PhysicalPoint>> zone;
+    BarrierZones zone;
     node.flux = chainFlux(K_, index == 0 ? std::nullopt : std::optional<PeriodicOrbit>(node.orbit), stop_, zone);
-    if (node.flux.found && !zone.empty()) zones_.emplace(index, PolygonRegion(zone));
+    zones_.add(index, zone, node.flux);
   }
 
   /// Step 5a: the rationals the rays crossed.  Those inside a ray's last circle, or whose rotation is not beyond the
@@ -930,12 +967,25 @@ class AtlasBuilder {
 
   const AtlasRequest& r_;
   const AtlasProgress& progress_;
-  std::map<int, PolygonRegion> zones_;  ///< each found flux's zone, by node (settleLayers)
+  ZoneRegions zones_;  ///< each found flux's zones, by node (settleLayers)
   std::stop_token stop_;
   long double K_;
 };
 
 }  // namespace
+
+std::pair<long double, int> atlasIslandsInside(const Atlas& atlas, const PolygonRegion& zone) {
+  long double area = 0;
+  int count = 0;
+  for (const AtlasNode& other : atlas.nodes) {
+    if (!other.boundaryFound) continue;
+    int inside = 0;
+    for (const PhysicalPoint& p : other.orbit.points) inside += zone.contains(p.x, p.y) ? 1 : 0;
+    area += static_cast<long double>(inside) * other.area;
+    count += inside;
+  }
+  return {area, count};
+}
 
 void refuseEmptyLayer(AtlasFlux& f) {
   if (!f.found || f.layerArea > 0) return;
@@ -943,6 +993,14 @@ void refuseEmptyLayer(AtlasFlux& f) {
   f.failure = "its zone, " + number(f.zoneArea) + ", is no larger than the " + std::to_string(f.enclosedCount) +
               " islands of the atlas inside it, " + number(f.enclosedIslands) +
               ": the separatrix's curves do not enclose this chain's layer";
+}
+
+void refuseEmptyLayer(SeparatrixFlux& f) {
+  if (!f.found || f.layerArea > 0 || (f.enclosedCount == 0 && f.layerArea == 0)) return;
+  f.found = false;
+  f.failure = "its zone, " + number(f.zoneArea) + ", is no larger than the " + std::to_string(f.enclosedCount) +
+              " islands of the atlas inside it, " + number(f.enclosedIslands) +
+              ": the inner separatrix's curves do not enclose the band inside this chain";
 }
 
 std::optional<std::string> validationError(const AtlasRequest& r) {

@@ -78,6 +78,9 @@ struct AtlasRequest {
   double timeBudget = 0;                             ///< seconds, 0 … 1e7 (0: none): reached, the atlas stops as on a
                                                      ///< stop request, keeping what is finished (Atlas::stopReason);
                                                      ///< checked between islands, after the first of the computation
+  bool cantori = false;                              ///< once every island is measured, the cantori between the
+                                                     ///< centre's chains (AtlasCantori.hpp; Atlas::cantori): ~3 s
+                                                     ///< each at K = 0.1 on two quiet cores, four there
 };
 
 inline constexpr int kMaxAtlasDepth = 6;
@@ -95,6 +98,12 @@ struct SeparatrixFlux {
   long double zoneArea = 0;       ///< the area the separatrix encloses (all its closed curves)
   long double fluxDigits = 0;     ///< digits on which the action and the polygon agree for the lobe
   long double zoneDigits = 0;     ///< the same for the zone
+  /// The inner separatrix's layer (issue 50), settled as the outer's (settleLayers; 0 in a file from before): its
+  /// zone less the atlas's islands inside it — the region between it and the next barrier inwards (the island's
+  /// boundary circle, or the next chain's outer separatrix), where an orbit that crossed it inwards moves.
+  long double enclosedIslands = 0;
+  int enclosedCount = 0;
+  long double layerArea = 0;
 };
 
 /// The flux through a chain's separatrix (the fixed point (√K, 0)'s loop at the centre).
@@ -125,6 +134,8 @@ struct AtlasFlux {
 /// island of 21 gave a zone of 4.5e−4 round islands of 8.7e−4, a layer of −4.2e−4 and a residence of −1.5e9 steps).
 /// Such a flux is refused (found = false, `failure` says why); the computation's layers and a file read back obey it.
 void refuseEmptyLayer(AtlasFlux& f);
+/// The same rule for an inner separatrix whose layer is settled (> 0 enclosed or a layer given): a layer ≤ 0 is refused.
+void refuseEmptyLayer(SeparatrixFlux& f);
 
 /// One island of the tree (with its chain: all the islands that are its images).
 struct AtlasNode {
@@ -163,9 +174,26 @@ struct AtlasNode {
   std::string note;                      ///< why the recursion stopped here, when it did
 };
 
+/// A cantorus between two successive chains about the central island (issue 50; AtlasCantori.hpp): a barrier with
+/// the MacKay–Meiss–Percival flux, splitting the band between the two chains' separatrices.
+struct AtlasCantorus {
+  Rational outer, inner;                 ///< the chains about the centre it lies between (p/q about the centre)
+  std::vector<Rational> convergents;     ///< the terms of ΔW, in order (the last gives the zone)
+  bool found = false;
+  std::string failure;                   ///< why not, when not found
+  long double flux = 0;                  ///< the last term's ΔW: the area crossing it per step
+  long double fluxUncertainty = 0;       ///< the tail bound of the convergents' limit (convergentLimit)
+  long double zoneArea = 0;              ///< the polygon of the last term's minimax orbit, by angle about the centre
+  long double zoneSpread = 0;            ///< |the minimizing orbit's polygon − zoneArea|: the polygons' disagreement
+  long double enclosedIslands = 0;       ///< the atlas's islands inside the zone (as AtlasFlux::enclosedIslands)
+  int enclosedCount = 0;
+  long double layerArea = 0;             ///< zoneArea − enclosedIslands
+};
+
 struct Atlas {
   AtlasRequest request;
   std::vector<AtlasNode> nodes;          ///< nodes[0] is the central island; parents precede children
+  std::vector<AtlasCantorus> cantori;    ///< between the centre's successive chains, outermost first (issue 50)
   bool cancelled = false;                ///< stopped before the end: the nodes not `measured` are to do
   std::string stopReason;                ///< why: "stopped" (a stop request) or "time budget of … s reached"
   double seconds = 0;                    ///< of the computation, every part of a resumed one (a 44-min atlas
@@ -181,12 +209,13 @@ using AtlasProgress = std::function<void(const Atlas& sofar, int done, const std
 /// stop request or the time budget returns what is finished (cancelled set).  With `resume` (an atlas stopped early,
 /// e.g. read back by atlasFromJson), its measured islands are kept and the others measured: the result is the
 /// atlas an uninterrupted computation gives (the barriers' zones, which the files do not hold, are computed again
-/// for the layers: seconds each).  Throws std::invalid_argument when `resume` was computed with another request
+/// for the layers: seconds each); a finished atlas resumed with `cantori` gains them.  Throws std::invalid_argument when `resume` was computed with another request
 /// (its threads and time budget aside) or is not a tree this request could have made.
 [[nodiscard]] Atlas computeAtlas(const AtlasRequest& request, const AtlasProgress& progress = {},
                                  std::stop_token stop = {}, const Atlas* resume = nullptr);
 
-/// Why `resume` cannot continue `request` (the first field that differs), or nothing.
+/// Why `resume` cannot continue `request` (the first field that differs, threads, time budget and cantori aside), or
+/// nothing.
 [[nodiscard]] std::optional<std::string> resumeError(const AtlasRequest& request, const Atlas& resume);
 
 /// "centre", "6", "6 > 138": the periods from the centre down to node i.

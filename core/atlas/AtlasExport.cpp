@@ -45,6 +45,32 @@ std::string text(long double v, int digits = 17) {
   if (!std::isfinite(v)) return "";
   return io::formatC("%.*Lg", digits, v);
 }
+
+/// The cantori between the centre's chains (issue 50): what they lie between, ΔW's terms, flux, zone and layer.
+json cantoriJson(const std::vector<AtlasCantorus>& cantori) {
+  json out = json::array();
+  for (const AtlasCantorus& c : cantori) {
+    json o;
+    o["outer"] = toString(c.outer);
+    o["inner"] = toString(c.inner);
+    json terms = json::array();
+    for (const Rational& r : c.convergents) terms.push_back(toString(r));
+    o["convergents"] = terms;
+    o["found"] = c.found;
+    if (!c.failure.empty()) o["failure"] = c.failure;
+    if (c.flux > 0) {
+      o["flux_per_step"] = num(c.flux);
+      o["flux_uncertainty"] = num(c.fluxUncertainty);
+      o["zone_area"] = num(c.zoneArea);
+      o["zone_spread"] = num(c.zoneSpread);
+      o["enclosed_islands_area"] = num(c.enclosedIslands);
+      o["enclosed_islands"] = c.enclosedCount;
+      o["layer_area"] = num(c.layerArea);
+    }
+    out.push_back(o);
+  }
+  return out;
+}
 }  // namespace
 
 std::string atlasJson(const Atlas& a) {
@@ -64,7 +90,8 @@ std::string atlasJson(const Atlas& a) {
                   {"scan_points", a.request.scanPoints},
                   {"scan_steps", a.request.scanSteps},
                   {"bisections", a.request.bisections},
-                  {"time_budget", a.request.timeBudget}};
+                  {"time_budget", a.request.timeBudget},
+                  {"cantori", a.request.cantori}};
   j["cancelled"] = a.cancelled;
   j["stop_reason"] = a.stopReason;
   j["seconds"] = a.seconds;
@@ -125,6 +152,11 @@ std::string atlasJson(const Atlas& a) {
       else {
         in["flux_per_step"] = num(n.flux.inner.flux);
         in["zone_area"] = num(n.flux.inner.zoneArea);
+        if (n.flux.inner.layerArea > 0) {  // settled: the band inside the chain (issue 50)
+          in["enclosed_islands_area"] = num(n.flux.inner.enclosedIslands);
+          in["enclosed_islands"] = n.flux.inner.enclosedCount;
+          in["layer_area"] = num(n.flux.inner.layerArea);
+        }
         in["flux_agreeing_digits"] = num(n.flux.inner.fluxDigits);
         in["zone_agreeing_digits"] = num(n.flux.inner.zoneDigits);
       }
@@ -139,6 +171,7 @@ std::string atlasJson(const Atlas& a) {
     nodes.push_back(o);
   }
   j["nodes"] = nodes;
+  if (!a.cantori.empty()) j["cantori"] = cantoriJson(a.cantori);
   // Signed as run and tail files are (issue 54): any edit of the file, consistent or not, is refused on load.
   j["checksum"] = io::jsonChecksum(nlohmann::json::parse(j.dump()));
   return j.dump(2) + "\n";
@@ -206,7 +239,7 @@ AtlasRequest requestFrom(const JsonField& root) {
   r.map.xmax = map["xmax"].real();
   const JsonField q = root["request"];
   q.keys({"depth", "max_period", "min_area", "iterations", "digits_threshold", "scan_points", "scan_steps", "bisections"},
-         {"time_budget"});  // absent in the first files
+         {"time_budget", "cantori"});  // absent in the first files
   r.depth = static_cast<int>(q["depth"].whole(kMaxAtlasDepth));
   r.maxPeriod = q["max_period"].whole(PeriodicOrbitSearch::kMaxPeriod, 1);
   r.minArea = q["min_area"].real();
@@ -216,6 +249,7 @@ AtlasRequest requestFrom(const JsonField& root) {
   r.scanSteps = q["scan_steps"].real();
   r.bisections = static_cast<int>(q["bisections"].whole(kIntMax));
   if (const auto t = q.find("time_budget")) r.timeBudget = t->nonNegative();
+  if (const auto c = q.find("cantori")) r.cantori = c->boolean();
   if (auto e = validationError(r)) refuse("request: " + *e);
   return r;
 }
@@ -366,6 +400,19 @@ void readOuterFlux(const JsonField& f, const Atlas& atlas, AtlasFlux& flux) {
   refuseEmptyLayer(flux);  // a file written before the rule, or edited, obeys it as the computation does
 }
 
+/// The inner separatrix's layer when the file has it (written since its layers were settled): all three fields, the
+/// layer the zone less the islands, positive.
+void readInnerLayer(const JsonField& in, SeparatrixFlux& inner) {
+  const auto layer = in.find("layer_area");
+  if (!layer) return;
+  inner.enclosedIslands = in["enclosed_islands_area"].nonNegative();
+  inner.enclosedCount = static_cast<int>(in["enclosed_islands"].whole(kIntMax));
+  inner.layerArea = layer->real();
+  const long double expected = inner.zoneArea - inner.enclosedIslands;
+  if (!(inner.layerArea > 0) || std::fabs(inner.layerArea - expected) > 1e-9L * inner.zoneArea)
+    layer->refuse("must be zone_area − enclosed_islands_area = " + shortestDecimal(expected) + " and > 0");
+}
+
 /// The inner separatrix (issue 50), no larger a zone than the outer when the zones chose the outer.
 void readInnerFlux(const JsonField& in, AtlasFlux& flux) {
   SeparatrixFlux& inner = flux.inner;
@@ -375,8 +422,10 @@ void readInnerFlux(const JsonField& in, AtlasFlux& flux) {
     inner.failure = in["failure"].string();
     return;
   }
-  in.keys({"found", "flux_per_step", "zone_area", "flux_agreeing_digits", "zone_agreeing_digits"});
+  in.keys({"found", "flux_per_step", "zone_area", "flux_agreeing_digits", "zone_agreeing_digits"},
+          {"enclosed_islands_area", "enclosed_islands", "layer_area"});
   readLobe(in, inner.flux, inner.zoneArea, inner.fluxDigits, inner.zoneDigits);
+  readInnerLayer(in, inner);
   if (flux.found && flux.outerByZone && !(inner.zoneArea <= flux.zoneArea))
     refuse(in["zone_area"].name() + " = " + shortestDecimal(static_cast<double>(inner.zoneArea)) +
            " exceeds the outer separatrix's " + shortestDecimal(static_cast<double>(flux.zoneArea)) +
@@ -478,10 +527,46 @@ void checkTree(const Atlas& a) {
       if (!a.nodes[i].measured) refuse("nodes[" + std::to_string(i) + "] is not measured in an atlas not cancelled");
 }
 
+/// The cantori (absent in a file from before issue 50's): each between two chains about the centre, its flux and
+/// layer positive and finite, the layer its zone less its islands, within the box.
+void readCantori(const JsonField& list, Atlas& a) {
+  const long double box = boxArea(a);
+  for (std::size_t k = 0, size = list.array(kMaxAtlasNodes); k < size; ++k) {
+    const JsonField o = list[k];
+    o.keys({"outer", "inner", "convergents", "found"},
+           {"failure", "flux_per_step", "flux_uncertainty", "zone_area", "zone_spread", "enclosed_islands_area",
+            "enclosed_islands", "layer_area"});
+    AtlasCantorus c;
+    c.outer = rational(o["outer"]);
+    c.inner = rational(o["inner"]);
+    const JsonField terms = o["convergents"];
+    for (std::size_t t = 0, n = terms.array(); t < n; ++t) c.convergents.push_back(rational(terms[t]));
+    c.found = o["found"].boolean();
+    if (const auto f = o.find("failure")) c.failure = f->string();
+    if (c.found != c.failure.empty()) o["found"].refuse("must be true exactly when there is no failure");
+    if (o.find("flux_per_step")) {
+      c.flux = o["flux_per_step"].real();
+      if (!(c.flux > 0)) o["flux_per_step"].refuse("must be > 0");
+      c.fluxUncertainty = o["flux_uncertainty"].nonNegative();
+      c.zoneArea = o["zone_area"].nonNegative();
+      if (!(c.zoneArea <= box)) o["zone_area"].refuse("exceeds the box's area " + shortestDecimal(static_cast<double>(box)));
+      c.zoneSpread = o["zone_spread"].nonNegative();
+      c.enclosedIslands = o["enclosed_islands_area"].nonNegative();
+      c.enclosedCount = static_cast<int>(o["enclosed_islands"].whole(kIntMax));
+      c.layerArea = o["layer_area"].real();
+      if (std::fabs(c.layerArea - (c.zoneArea - c.enclosedIslands)) > 1e-9L * c.zoneArea)
+        o["layer_area"].refuse("must be zone_area − enclosed_islands_area");
+    } else if (c.found) {
+      o.refuseDocument(o.name() + ": a cantorus found has a flux");
+    }
+    a.cantori.push_back(std::move(c));
+  }
+}
+
 Atlas atlasFrom(rjson j) {
   const JsonField root(j, "the atlas");
   root.keys({"format", "program", "provenance", "map", "request", "cancelled", "seconds", "nodes"},
-            {"stop_reason", "format_version", "checksum"});
+            {"stop_reason", "format_version", "checksum", "cantori"});
   checkSignature(j, root);
   (void)root["program"].string();  // written anew
   (void)root["provenance"].object();
@@ -496,6 +581,7 @@ Atlas atlasFrom(rjson j) {
   a.nodes.reserve(n);
   for (std::size_t i = 0; i < n; ++i) a.nodes.push_back(nodeFrom(nodes[i], i, a));
   checkTree(a);
+  if (const auto c = root.find("cantori")) readCantori(*c, a);
   return a;
 }
 

@@ -42,6 +42,15 @@ std::string nameOf(const Atlas& a, int i) {
 
 }  // namespace
 
+const char* toString(MarkovTreeBarrier b) {
+  switch (b) {
+    case MarkovTreeBarrier::OuterSeparatrix: return "outer separatrix";
+    case MarkovTreeBarrier::InnerSeparatrix: return "inner separatrix";
+    case MarkovTreeBarrier::Cantorus: return "cantorus";
+  }
+  return "?";
+}
+
 std::optional<std::string> markovTreeAtlasError(const Atlas& a) {
   if (a.nodes.empty()) return "the atlas has no island";
   if (a.cancelled)
@@ -76,12 +85,14 @@ void checkAtlasForTree(const Atlas& a) {
   if (auto e = markovTreeAtlasError(a)) refuse(*e);
 }
 
-/// The chains about island i that are barriers, outermost first (by zone area), checked against the twist.
-std::vector<int> barrierChildren(const Atlas& a, int i) {
+/// The chains about island i that are barriers (a flux, level ≤ maxLevel), outermost first (by zone area), checked
+/// against the twist.
+std::vector<int> barrierChildren(const Atlas& a, int i, int maxLevel) {
   const AtlasNode& p = a.nodes[static_cast<std::size_t>(i)];
   std::vector<int> kids;
   for (int c : p.children)
-    if (a.nodes[static_cast<std::size_t>(c)].flux.found) kids.push_back(c);
+    if (a.nodes[static_cast<std::size_t>(c)].flux.found && a.nodes[static_cast<std::size_t>(c)].level <= maxLevel)
+      kids.push_back(c);
   std::stable_sort(kids.begin(), kids.end(), [&](int x, int y) {
     return a.nodes[static_cast<std::size_t>(x)].flux.zoneArea > a.nodes[static_cast<std::size_t>(y)].flux.zoneArea;
   });
@@ -99,65 +110,130 @@ std::vector<int> barrierChildren(const Atlas& a, int i) {
   return kids;
 }
 
-/// The tree's states, built from the atlas's barriers; stateOf[node] is the node's state (−1: none, lumped).
+/// One barrier of the tree: a chain's outer or inner separatrix, a cantorus, or the centre's loop (issue 50).
+struct Barrier {
+  MarkovTreeBarrier kind = MarkovTreeBarrier::OuterSeparatrix;
+  int node = -1;              ///< the chain's atlas node (−1: a cantorus)
+  int level = 0;
+  long double flux = 0, layer = 0;
+  std::string path;           ///< the state's name
+};
+
+/// The tree's states, built from the atlas's barriers about each island, outermost first: each chain's outer
+/// separatrix, its inner one, the cantorus to the next chain (about the centre), the next chain's outer one, …  The
+/// state inside a barrier is its layer less the layers of the barriers just inside it (its children): the next one
+/// about the same island, and — inside a chain's outer separatrix — the outermost barrier about the chain's own
+/// islands, which lie between its two separatrices.  stateOf[node]: the state inside the node's outer separatrix
+/// (where its islands' subtrees open), bandOf[node]: the innermost of its states (where chains lumped below it lie).
 struct TreeStates {
   const Atlas& a;
   MarkovTree& tree;
-  std::vector<int> stateOf;
+  const MarkovTreeOptions& options;
+  std::vector<int> stateOf, bandOf;
 
-  /// The state of barrier c, opening onto `container`, with its inner sibling (or −1), and those of its barriers.
-  void addState(int c, int container, int innerSibling) {
-    const AtlasNode& n = a.nodes[static_cast<std::size_t>(c)];
+  const AtlasNode& node(int i) const { return a.nodes[static_cast<std::size_t>(i)]; }
+
+  /// Whether node i's chain is a barrier of this tree (a flux, within the levels asked for).
+  bool isBarrier(int i) const { return node(i).flux.found && node(i).level <= options.maxLevel; }
+
+  int add(const Barrier& b, int container) {
     MarkovTreeState s;
-    s.node = c;
-    s.path = atlasPath(a, c);
-    s.level = n.level;
+    s.node = b.node;
+    s.barrier = b.kind;
+    s.path = b.path;
+    s.level = b.level;
     s.container = container;
-    s.flux = n.flux.flux;
-    s.layer = n.flux.layerArea;
-    s.area = s.layer;
+    s.flux = b.flux;
+    s.layer = b.layer;
+    s.area = b.layer;
     s.source = "layer of " + s.path + " (" + sci(s.layer) + ")";
-    const std::vector<int> kids = barrierChildren(a, c);
-    if (innerSibling >= 0) s.subtracted.push_back(innerSibling);
-    if (!kids.empty()) s.subtracted.push_back(kids.front());
-    for (int d : s.subtracted) {
-      const long double l = a.nodes[static_cast<std::size_t>(d)].flux.layerArea;
-      s.area -= l;
-      s.source += " - layer of " + atlasPath(a, d) + " (" + sci(l) + ")";
-    }
-    if (!(s.area > 0))
-      refuse("the state of " + s.path + " has area " + sci(s.area) + " = " + s.source +
-             ": the layers inside its barrier exceed its own");
-    const int index = static_cast<int>(tree.states.size());
-    stateOf[static_cast<std::size_t>(c)] = index;
     tree.states.push_back(s);
-    for (std::size_t k = 0; k < kids.size(); ++k)
-      addState(kids[k], k == 0 ? index : stateOf[static_cast<std::size_t>(kids[k - 1])],
-               k + 1 < kids.size() ? kids[k + 1] : -1);
+    return static_cast<int>(tree.states.size()) - 1;
+  }
+
+  /// The inner separatrix of chain c as a barrier, when the tree takes it and its layer is settled inside the outer's.
+  std::optional<Barrier> innerOf(int c) const {
+    const AtlasFlux& f = node(c).flux;
+    if (!options.innerSeparatrices || !f.inner.found || !(f.inner.layerArea > 0)) return std::nullopt;
+    if (!(f.inner.layerArea < f.layerArea))
+      refuse("the inner separatrix of " + atlasPath(a, c) + " has a layer " + sci(f.inner.layerArea) +
+             " not inside its outer one's " + sci(f.layerArea));
+    return Barrier{MarkovTreeBarrier::InnerSeparatrix, c, node(c).level, f.inner.flux, f.inner.layerArea,
+                   atlasPath(a, c) + " inner"};
+  }
+
+  /// The cantorus between the centre's chains `outer` and `inner`, when the tree takes cantori and the atlas found it.
+  std::optional<Barrier> cantorusBetween(int outer, int inner) const {
+    if (!options.cantori || node(outer).parent != 0) return std::nullopt;
+    for (const AtlasCantorus& c : a.cantori)
+      if (c.found && node(outer).aboutParent == c.outer && node(inner).aboutParent == c.inner)
+        return Barrier{MarkovTreeBarrier::Cantorus, -1, node(outer).level, c.flux, c.layerArea,
+                       "cantorus " + toString(c.outer) + "-" + toString(c.inner)};
+    return std::nullopt;
+  }
+
+  /// The barriers about island i (the centre, or a chain's islands) from outside in, opening onto `container`.
+  void addIsland(int i, int container) {
+    const std::vector<int> kids = barrierChildren(a, i, options.maxLevel);
+    int outside = container;
+    for (std::size_t k = 0; k < kids.size(); ++k) {
+      const int c = kids[k];
+      const int r = add({MarkovTreeBarrier::OuterSeparatrix, c, node(c).level, node(c).flux.flux,
+                         node(c).flux.layerArea, atlasPath(a, c)},
+                        outside);
+      stateOf[static_cast<std::size_t>(c)] = r;
+      addIsland(c, r);
+      outside = r;
+      if (auto in = innerOf(c)) outside = add(*in, outside);
+      bandOf[static_cast<std::size_t>(c)] = outside;
+      if (k + 1 < kids.size())
+        if (auto cantorus = cantorusBetween(c, kids[k + 1])) outside = add(*cantorus, outside);
+    }
+  }
+
+  /// Each state's area: its layer less its children's layers (the barriers just inside it), checked positive.
+  void settleAreas() {
+    for (const MarkovTreeState& s : tree.states) {
+      if (s.container < 0) continue;
+      MarkovTreeState& out = tree.states[static_cast<std::size_t>(s.container)];
+      out.area -= s.layer;
+      out.source += " - layer of " + s.path + " (" + sci(s.layer) + ")";
+    }
+    for (std::size_t k = 0; k < tree.states.size(); ++k) {
+      if (tree.states[k].container >= 0)
+        tree.states[static_cast<std::size_t>(tree.states[k].container)].subtracted.push_back(static_cast<int>(k));
+    }
+    for (const MarkovTreeState& s : tree.states)
+      if (!(s.area > 0))
+        refuse("the state of " + s.path + " has area " + sci(s.area) + " = " + s.source +
+               ": the layers inside its barrier exceed its own");
   }
 
   /// A node without a barrier: lumped, with its subtree, into the state whose region holds it.
-  void lump(int node, int state, const std::string& reason) {
-    tree.lumped.push_back({node, atlasPath(a, node), reason, state});
-    for (int c : a.nodes[static_cast<std::size_t>(node)].children)
-      lump(c, state, "inside " + atlasPath(a, node) + ", which has no barrier in the tree");
+  void lump(int n, int state, const std::string& reason) {
+    tree.lumped.push_back({n, atlasPath(a, n), reason, state});
+    for (int c : node(n).children)
+      lump(c, state, "inside " + atlasPath(a, n) + ", which has no barrier in the tree");
   }
 
-  /// Every node without a barrier whose parent has a state: into the innermost barrier about the parent that lies
-  /// farther out than it; none: the parent's own state.
+  /// Every node without a barrier whose parent has a state: into the band inside the innermost barrier chain about
+  /// the parent that lies farther out than it; none: the parent's own state.
   void lumpNodesWithoutBarrier() {
     for (std::size_t i = 0; i < a.nodes.size(); ++i) {
       if (stateOf[i] < 0) continue;  // lumped nodes' children are handled by lump()
       const AtlasNode& p = a.nodes[i];
-      const std::vector<int> kids = barrierChildren(a, static_cast<int>(i));
+      const std::vector<int> kids = barrierChildren(a, static_cast<int>(i), options.maxLevel);
       for (int f : p.children) {
-        const AtlasNode& n = a.nodes[static_cast<std::size_t>(f)];
-        if (n.flux.found) continue;
+        if (isBarrier(f)) continue;
         int holder = stateOf[i];
         for (int c : kids)
-          if (twistDistance(p, a.nodes[static_cast<std::size_t>(c)]) > twistDistance(p, n))
-            holder = stateOf[static_cast<std::size_t>(c)];
-        lump(f, holder, n.flux.failure.empty() ? std::string("no flux") : "no flux: " + n.flux.failure);
+          if (twistDistance(p, node(c)) > twistDistance(p, node(f))) holder = bandOf[static_cast<std::size_t>(c)];
+        const AtlasNode& n = node(f);
+        const std::string why = !n.flux.found
+                                    ? (n.flux.failure.empty() ? std::string("no flux") : "no flux: " + n.flux.failure)
+                                    : "level " + std::to_string(n.level) + " is below the tree's levels (at most " +
+                                          std::to_string(options.maxLevel) + ")";
+        lump(f, holder, why);
       }
     }
   }
@@ -199,8 +275,9 @@ void checkRatesOut(const MarkovTree& tree) {
 
 }  // namespace
 
-MarkovTree markovTreeFromAtlas(const Atlas& a) {
+MarkovTree markovTreeFromAtlas(const Atlas& a, const MarkovTreeOptions& options) {
   checkAtlasForTree(a);
+  if (options.maxLevel < 0) refuse("the tree's levels = " + std::to_string(options.maxLevel) + " must be >= 0");
   const AtlasNode& centre = a.nodes[0];
   MarkovTree tree;
   tree.entryFlux = centre.flux.flux;
@@ -208,8 +285,13 @@ MarkovTree markovTreeFromAtlas(const Atlas& a) {
   // L² to 12 digits (1.69, not 1.6900000000000002 of 1.3 · 1.3 in binary): the bound b₂'s rule states.
   tree.boxArea =
       io::parseLongDoubleC(sci(static_cast<long double>(a.request.map.width()) * a.request.map.width(), 11)).value_or(0);
-  TreeStates states{a, tree, std::vector<int>(a.nodes.size(), -1)};
-  states.addState(0, -1, -1);
+  TreeStates states{a, tree, options, std::vector<int>(a.nodes.size(), -1), std::vector<int>(a.nodes.size(), -1)};
+  const int top = states.add({MarkovTreeBarrier::OuterSeparatrix, 0, 0, centre.flux.flux, centre.flux.layerArea,
+                              atlasPath(a, 0)},
+                             -1);
+  states.stateOf[0] = states.bandOf[0] = top;
+  states.addIsland(0, top);
+  states.settleAreas();
   states.lumpNodesWithoutBarrier();
   addRates(tree);
   checkRatesOut(tree);
@@ -674,6 +756,31 @@ MarkovTreeComparison compareMarkovTreeWithTail(const MarkovTree& tree, double al
     if (m.ratio >= 1 / static_cast<long double>(factor) && m.ratio <= factor) c.reach = m.t;
   }
   return c;
+}
+
+std::vector<MarkovTreeAblationRow> markovTreeAblation(const Atlas& atlas, double alpha, double b2,
+                                                     const TailResult& tail, std::stop_token stop) {
+  std::vector<MarkovTreeAblationRow> rows;
+  auto add = [&](std::string variant, MarkovTreeOptions options) {
+    MarkovTreeAblationRow row;
+    row.variant = std::move(variant);
+    row.options = options;
+    const MarkovTree tree = markovTreeFromAtlas(atlas, options);
+    row.states = tree.states.size();
+    const MarkovTreeComparison c = compareMarkovTreeWithTail(tree, alpha, b2, tail, kMarkovTreeCompareFrom,
+                                                             kMarkovTreeAgreementFactor, stop);
+    row.reach = c.reach;
+    for (const MarkovTreeLevelComparison& m : c.levels) row.ratio.push_back(m.ratio);
+    rows.push_back(std::move(row));
+  };
+  add("every barrier", {});
+  add("no inner separatrices", {.innerSeparatrices = false});
+  add("no cantori", {.cantori = false});
+  add("outer separatrices only", {.innerSeparatrices = false, .cantori = false});
+  int deepest = 0;
+  for (const AtlasNode& n : atlas.nodes) deepest = std::max(deepest, n.level);
+  for (int L = deepest - 1; L >= 0; --L) add("levels <= " + std::to_string(L), {.maxLevel = L});
+  return rows;
 }
 
 }  // namespace archipelago

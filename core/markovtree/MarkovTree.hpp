@@ -7,20 +7,18 @@
 /// Meiss & Ott, Physica D 20 (1986) 387; MacKay, Meiss & Percival, Physica D 13 (1984) 55; Meiss, RMP 64 (1992) 795.
 /// Karney's appendix-C model (core/markov) is another thing: a sea and segments of fixed lengths.
 ///
-/// **The states.**  Each node of the atlas with a flux (AtlasFlux::found) is a barrier: the separatrix of its chain
-/// (the fixed point (√K, 0)'s loop at the centre), enclosing a zone whose layer ℓ (the zone less the atlas's islands
-/// inside it, AtlasFlux::layerArea) an orbit that crossed the barrier moves in.  The chains about one island nest: each
-/// one's zone encloses the island and every chain closer to it (at K = 0.1 the loop ⊃ 2/13 ⊃ 3/19 ⊃ 5/31 ⊃ 1/6 about
-/// the centre, and 1/12 ⊃ 2/23 ⊃ 3/34 ⊃ 5/54 ⊃ 4/43 about the island of six: docs/atlas.md), ordered by zone area and
-/// checked against the twist (the farther a chain's p/q from the island's boundary rotation, the farther out it lies).
-/// The children of a chain's own islands lie in the annulus between its barrier and the next inner one.  So the
-/// state of barrier c is its layer less the layer of the next chain inside it about the same island (its inner
-/// sibling) and less the layer of the outermost chain about its own islands (its outermost child):
-///     A_c = ℓ_c − ℓ_{inner sibling} − ℓ_{outermost child},
-/// and the state it opens onto (its container) is the state of its outer sibling, or its parent's state for the
-/// outermost chain about an island; the centre's loop opens onto the sea.  Every layer but the centre's is subtracted
-/// once, so Σ_c A_c = ℓ_centre.  (The literal tree — each island's layer less all its children's — would subtract
-/// the nested layers several times: at K = 0.1 the centre's would be negative.)
+/// **The states.**  The barriers about each island, from outside in (issue 50): each chain's outer separatrix (the
+/// loop of (√K, 0) at the centre), its inner separatrix (AtlasFlux::inner, when its layer is settled), and between two
+/// successive chains about the centre the cantorus of the noble rotation between them (Atlas::cantori, when found).
+/// Each encloses a zone whose layer ℓ (the zone less the atlas's islands inside it) an orbit that crossed it moves
+/// in.  The chains about one island nest, ordered by zone area and checked against the twist (the farther a chain's
+/// p/q from the island's boundary rotation, the farther out it lies).  The state of barrier b is its layer less the
+/// layers of the barriers just inside it (its children), A_b = ℓ_b − Σ ℓ_children, opening onto the state just outside
+/// (its container).  Just inside a chain's outer separatrix lie the next barrier about the same island and the
+/// outermost chain about its own islands (which lie between its separatrices): the tree branches there.  Every layer
+/// but the centre's is subtracted once, so Σ A = ℓ_centre.  (The literal tree — each island's layer less all its
+/// children's — would subtract the nested layers several times: at K = 0.1 the centre's would be negative.)
+/// MarkovTreeOptions leaves inner separatrices, cantori or deep levels out (issue 50's ablation).
 ///
 /// **The rates.**  Through barrier c (flux Φ_c, the turnstile lobe of its chain: area crossing per step each way):
 /// state c → its container with probability Φ_c / A_c per step, container → c with Φ_c / A_container; the top state
@@ -58,15 +56,21 @@
 
 namespace archipelago {
 
-/// A state of the tree: the region inside barrier `node` less the zones of the barriers inside it.
+/// What bounds a state (issue 50): a chain's outer separatrix (the centre's loop for the top state), its inner one,
+/// or a cantorus between two chains about the centre.
+enum class MarkovTreeBarrier { OuterSeparatrix, InnerSeparatrix, Cantorus };
+[[nodiscard]] const char* toString(MarkovTreeBarrier b);
+
+/// A state of the tree: the region inside its barrier less the regions inside the barriers just inside it.
 struct MarkovTreeState {
-  int node = 0;                 ///< the atlas node whose barrier bounds it (0: the centre's loop)
-  std::string path;             ///< its atlas path ("centre", "6 > 138")
+  int node = 0;                 ///< the atlas node whose separatrix bounds it (0: the centre's loop; −1: a cantorus)
+  MarkovTreeBarrier barrier = MarkovTreeBarrier::OuterSeparatrix;
+  std::string path;             ///< its atlas path ("centre", "6 > 138"); "13 inner", "cantorus 5/31-1/6"
   int level = 0;                ///< that node's level in the atlas
   int container = -1;           ///< the state beyond its barrier (−1: the sea)
   long double flux = 0;         ///< Φ through its barrier: atlas nodes[node].flux.flux
   long double layer = 0;        ///< ℓ: atlas nodes[node].flux.layerArea
-  std::vector<int> subtracted;  ///< atlas nodes whose layers are subtracted (inner sibling, outermost child)
+  std::vector<int> subtracted;  ///< the states just inside it (its children), whose barriers' layers are subtracted
   long double area = 0;         ///< A = ℓ − Σ ℓ of `subtracted`
   std::string source;           ///< "layer of 6 (2.9719e-02) − layer of 6 > 72 (7.853e-03)"
 };
@@ -104,10 +108,18 @@ struct MarkovTree {
 /// layer; nothing when it can (the nesting of the zones is checked while the tree is built).
 [[nodiscard]] std::optional<std::string> markovTreeAtlasError(const Atlas& atlas);
 
+/// Which barriers the tree takes (issue 50's ablation: the reach with and without each ingredient).  Left out, an
+/// inner separatrix or a cantorus merges the two states it divides; a level above maxLevel is lumped.
+struct MarkovTreeOptions {
+  bool innerSeparatrices = true;
+  bool cantori = true;
+  int maxLevel = kMaxAtlasDepth;  ///< chains of a deeper atlas level are lumped into the state around them
+};
+
 /// The tree of `atlas`.  Throws std::invalid_argument with a clear message when the atlas cannot make one: empty,
 /// stopped before the end (nodes not measured), no flux through the centre's loop, a non-positive or non-finite
 /// flux or layer, chains about one island whose zones do not nest as their rotations say, a state of area ≤ 0.
-[[nodiscard]] MarkovTree markovTreeFromAtlas(const Atlas& atlas);
+[[nodiscard]] MarkovTree markovTreeFromAtlas(const Atlas& atlas, const MarkovTreeOptions& options = {});
 
 /// The substochastic matrix M (row i: where state i goes), M[i][i] = 1 − Σ of its rates (the sea included).
 [[nodiscard]] std::vector<std::vector<long double>> markovTreeMatrix(const MarkovTree& tree);
@@ -204,5 +216,20 @@ inline constexpr double kMarkovTreeCompareFrom = 1e3;
                                                              double from = kMarkovTreeCompareFrom,
                                                              double factor = kMarkovTreeAgreementFactor,
                                                              std::stop_token stop = {});
+
+/// One variant of the tree against the tail (issue 50's ablation): which barriers it takes, its states and reach.
+struct MarkovTreeAblationRow {
+  std::string variant;          ///< "every barrier", "no inner separatrices", "no cantori", "outer separatrices
+                                ///< only", "levels <= L"
+  MarkovTreeOptions options;
+  std::size_t states = 0;
+  double reach = 0;             ///< compareMarkovTreeWithTail's reach (0: none)
+  std::vector<long double> ratio;  ///< model / measured at each compared level (the full tree's levels)
+};
+/// The tree of `atlas` with every barrier, without inner separatrices, without cantori, with outer separatrices
+/// only, and cut at each level above 0, each against `tail` (compareMarkovTreeWithTail with its defaults): which
+/// ingredient carries which decade of the tail.  Throws as markovTreeFromAtlas and compareMarkovTreeWithTail.
+[[nodiscard]] std::vector<MarkovTreeAblationRow> markovTreeAblation(const Atlas& atlas, double alpha, double b2,
+                                                                    const TailResult& tail, std::stop_token stop = {});
 
 }  // namespace archipelago

@@ -1,5 +1,7 @@
 #include "core/markovtree/MarkovTreeExport.hpp"
 
+#include "core/limits/Limits.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -56,6 +58,7 @@ std::optional<std::string> validationError(const MarkovTreeRequest& r) {
   if (a || b || r.needsP)
     if (auto e = markovTreeEntryError(r.alpha, r.b2)) return e;
   if (!(std::isfinite(r.exponentFrom) && r.exponentFrom >= 1)) return "the exponent's first window must start at >= 1";
+  if (auto e = rangeError("levels", r.barriers.maxLevel, 0, kMaxAtlasDepth)) return e;
   return std::nullopt;
 }
 
@@ -67,7 +70,7 @@ MarkovTreeResult computeMarkovTree(const Atlas& atlas, const MarkovTreeRequest& 
   r.map = atlas.request.map;
   r.atlasDepth = atlas.request.depth;
   r.atlasIslands = atlas.nodes.size();
-  r.tree = markovTreeFromAtlas(atlas);
+  r.tree = markovTreeFromAtlas(atlas, request.barriers);
   if (request.alpha != 0) r.weight = markovTreeEntryWeight(r.tree, request.alpha, request.b2);  // the entry's rules
   if (tail) {  // checked before any work
     const MapParameters& m = tail->request.run.map;
@@ -87,6 +90,7 @@ MarkovTreeResult computeMarkovTree(const Atlas& atlas, const MarkovTreeRequest& 
   if (tail)
     r.comparison = compareMarkovTreeWithTail(r.tree, request.alpha, request.b2, tailResult(*tail),
                                              kMarkovTreeCompareFrom, kMarkovTreeAgreementFactor, stop);
+  if (tail) r.ablation = markovTreeAblation(atlas, request.alpha, request.b2, tailResult(*tail), stop);
   return r;
 }
 
@@ -172,6 +176,7 @@ std::string markovTreeJson(const MarkovTreeResult& r) {
     json sub = json::array();
     for (int d : s.subtracted) sub.push_back(d);
     states.push_back({{"node", s.node},
+                      {"barrier", toString(s.barrier)},
                       {"path", s.path},
                       {"level", s.level},
                       {"container", s.container},
@@ -237,6 +242,15 @@ std::string markovTreeJson(const MarkovTreeResult& r) {
                     {"holding_level", m.holdingLevel},
                     {"holding_share", m.holdingShare}});
     j["comparison"] = {{"tail", r.request.tailSource}, {"factor", c.factor}, {"reach", c.reach}, {"levels", lv}};
+  }
+  if (!r.ablation.empty()) {
+    json ab = json::array();
+    for (const MarkovTreeAblationRow& a : r.ablation) {
+      json ratio = json::array();
+      for (long double x : a.ratio) ratio.push_back(number(x));
+      ab.push_back({{"variant", a.variant}, {"states", a.states}, {"reach", a.reach}, {"ratio", ratio}});
+    }
+    j["ablation"] = ab;
   }
   return j.dump(2) + "\n";
 }

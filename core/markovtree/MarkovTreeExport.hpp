@@ -27,6 +27,7 @@ struct MarkovTreeRequest {
   double exponentFrom = 10;          ///< the running exponent's windows start at or above this (steps), ≥ 1
   std::string atlasSource;           ///< where the atlas came from (a file name), recorded in the outputs
   std::string tailSource;            ///< where the tail compared with came from (computeMarkovTree's `tail`), if any
+  MarkovTreeOptions barriers;        ///< which barriers the tree takes (all by default; issue 50's ablation)
 };
 
 /// The entry numbers docs/markov-tree.md uses at K = 0.1 (the default box): α, the mean segment length of the q = 16
@@ -63,6 +64,7 @@ struct MarkovTreeResult {
   std::optional<long double> weight;         ///< w = α Φ_centre / b₂ when α and b₂ are given: P_t = w S(t)
   std::vector<MarkovTreeExponent> exponents;
   std::optional<MarkovTreeComparison> comparison;  ///< against the tail sampler's levels, when a tail was given
+  std::vector<MarkovTreeAblationRow> ablation;     ///< with a tail: markovTreeAblation (each variant's reach)
 };
 
 /// The tree of `atlas` and its survival, and with `tail` (a tail sampler's state: its reliable levels) the comparison

@@ -196,6 +196,25 @@ void readAtlas(const io::JsonField& a, Session& s) {
         " in [" + shortestDecimal(map.xmin) + ", " + shortestDecimal(map.xmax) + "))");
 }
 
+/// "markovTree": the model's α and b₂, which need the session's atlas.
+void readMarkovTree(const io::JsonField& m, Session& s) {
+  m.keys({"alpha", "b2"});
+  if (!s.atlas) m.refuse("needs the session's atlas");
+  SessionMarkovTree t{m["alpha"].real(), m["b2"].real()};
+  if (!(t.alpha > 0)) m["alpha"].refuseValue("must be positive");
+  if (!(t.b2 > 0)) m["b2"].refuseValue("must be positive");
+  s.markovTree = t;
+}
+
+/// "tail": the tail file drawn on P_t.
+void readTail(const io::JsonField& t, Session& s) {
+  t.keys({"file"});
+  const std::string path = t["file"].string(4096);
+  if (path.empty()) t["file"].refuse("must not be empty");
+  if (path.find('\0') != std::string::npos) t["file"].refuse("must not contain a NUL character");
+  s.tailFile = std::filesystem::path(path);
+}
+
 }  // namespace
 
 std::string sessionText(const Session& s) {
@@ -227,6 +246,9 @@ std::string sessionText(const Session& s) {
   j["plots"] = json::array();
   for (const SessionPlotZoom& z : s.plots) j["plots"].push_back({{"name", z.name}, {"zoom", rectJson(z.zoom)}});
   if (s.atlas) j["atlas"] = json::parse(atlasJson(*s.atlas));
+  if (s.atlas && s.markovTree) j["markovTree"] = {{"alpha", s.markovTree->alpha}, {"b2", s.markovTree->b2}};
+  if (s.tailFile) j["tail"] = {{"file", s.tailFile->generic_string()}};
+  if (!s.sidePage.empty()) j["sidePage"] = s.sidePage;
   return j.dump(1) + "\n";
 }
 
@@ -234,7 +256,8 @@ namespace {
 Session sessionFromJson(json j) {
   spec::checkVersionedDocument(j, kSessionFormatName, kSessionFormatVersion, "an", "Archipelago session");
   const io::JsonField root(j, "the session");
-  root.keys({"spec"}, {"format", "version", "run", "tab", "portrait", "segment", "plots", "atlas"});
+  root.keys({"spec"}, {"format", "version", "run", "tab", "portrait", "segment", "plots", "atlas",
+                          "markovTree", "tail", "sidePage"});
   Session s;
   try {
     s.spec = parseRunSpec(root["spec"].value().dump());
@@ -251,6 +274,9 @@ Session sessionFromJson(json j) {
   }
   if (const auto plots = root.find("plots")) readPlots(*plots, s.plots);
   if (const auto a = root.find("atlas")) readAtlas(*a, s);
+  if (const auto m = root.find("markovTree")) readMarkovTree(*m, s);
+  if (const auto t = root.find("tail")) readTail(*t, s);
+  if (const auto page = root.find("sidePage")) s.sidePage = page->string(256);
   return s;
 }
 
@@ -278,6 +304,7 @@ Session loadSession(const std::filesystem::path& path) {
     bad(path.string() + ": " + e.what());
   }
   if (s.runFile && s.runFile->is_relative()) s.runFile = path.parent_path() / *s.runFile;
+  if (s.tailFile && s.tailFile->is_relative()) s.tailFile = path.parent_path() / *s.tailFile;
   if (s.runFile && !std::filesystem::is_regular_file(*s.runFile))
     bad(path.string() + ": its run file " + s.runFile->string() + " does not exist");
   return s;

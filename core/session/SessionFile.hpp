@@ -22,7 +22,10 @@
 ///                 "manifolds": {"orbit": null | [[x, y], …]}},   (only when the manifolds are shown)
 ///    "segment": {"rank": 0, "position": 1234},
 ///    "plots": [{"name": "f_t", "zoom": [xmin, xmax, ymin, ymax]}, …],
-///    "atlas": {…atlas…}}   (only when the window holds one)
+///    "atlas": {…atlas…},   (only when the window holds one)
+///    "markovTree": {"alpha": α, "b2": b₂},   (only with the atlas: its Markov tree's P_t was drawn)
+///    "tail": {"file": "tail.json"},   (only when a tail estimate was drawn on P_t)
+///    "sidePage": "Atlas"}   (the page beside the portrait: Run, Orbits, Manifolds, Profile, Atlas)
 ///
 /// A launched orbit keeps its steps, direction and number (the number is its colour; issue 53, finding 2: sessions
 /// before kept only the start, `[x, y]`, and reopened 100 000 steps backward as 20 000 forward, renumbered and
@@ -30,6 +33,12 @@
 ///
 /// The atlas of the islands (issue 38, the Atlas page) is core/atlas's document as atlasJson() writes it, read back by
 /// atlasFromJson() (no recomputation); it must be of the session's map (its K and box), else the session is refused.
+///
+/// The Markov tree of that atlas and the tail estimate drawn on P_t are kept by their inputs, not their curves (issue
+/// 53, finding 3: both were lost): the model's α and b₂ (computed again on opening, in the background: cheap), the
+/// tail file's path (read again; relative to the session file when it was saved beside it, as the run file's).  A
+/// tail file that is gone does not refuse the session: reading it again says so.  Sessions without these keys (and
+/// without "sidePage") are read as before.
 
 #include <array>
 #include <cstdint>
@@ -111,6 +120,13 @@ struct SessionPlotZoom {
   friend bool operator==(const SessionPlotZoom&, const SessionPlotZoom&) = default;
 };
 
+/// The inputs of the Markov tree's P_t = w S(t), w = α Φ_centre / b₂ (core/markovtree): positive and finite.
+struct SessionMarkovTree {
+  double alpha = 0;
+  double b2 = 0;
+  friend bool operator==(const SessionMarkovTree&, const SessionMarkovTree&) = default;
+};
+
 struct Session {
   RunSpec spec;
   std::optional<std::filesystem::path> runFile;  ///< a referenced run file (as written: relative or absolute)
@@ -122,6 +138,9 @@ struct Session {
   std::uint64_t segmentPosition = 0;             ///< its replay position (index of the current point)
   std::vector<SessionPlotZoom> plots;            ///< plots the user zoomed (others follow their data)
   std::optional<Atlas> atlas;                    ///< the atlas of the islands shown (of the session's map)
+  std::optional<SessionMarkovTree> markovTree;   ///< its Markov tree's inputs (only with `atlas`)
+  std::optional<std::filesystem::path> tailFile; ///< the tail estimate drawn on P_t (as written: relative or absolute)
+  std::string sidePage;                          ///< the page beside the portrait, by its title ("" = as it is)
 };
 
 /// The document's text (embedding the run when `embeddedRun` is set).
@@ -131,7 +150,7 @@ struct Session {
 /// Writes atomically.  Throws std::runtime_error (with the path) when it cannot.
 void saveSession(const std::filesystem::path& path, const Session& session);
 /// Reads (bounded, regular files only), parses and validates; a referenced run file's relative path is
-/// resolved against the session file's folder and must exist.  Throws io::BadFile naming the file and the problem
+/// resolved against the session file's folder and must exist (a tail file's is resolved too, and may be gone).  Throws io::BadFile naming the file and the problem
 /// (a file that cannot be read included).
 [[nodiscard]] Session loadSession(const std::filesystem::path& path);
 

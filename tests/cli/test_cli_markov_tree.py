@@ -3,7 +3,8 @@ up to 40): every state's area is the atlas file's layer less the layers inside i
 that area, the mean visit the atlas's residence of the loop (Kac), P_t = alpha flux / b2 S(t); the CSV is the JSON's
 survival with its provenance; one flux edited in the atlas file changes exactly the two rates through that barrier;
 bad options and bad atlases are one ERROR line and nothing written; --tail sets the model against a tail sampler's
-levels (ratio, reach) and refuses a tail of another map."""
+levels (ratio, reach) and refuses a tail of another map; issue 50: inner separatrices are states of their own,
+--without and --levels leave barriers out, and --tail gives the ablation."""
 import csv, io, json, os, tempfile
 from clitest import check, finish, run, signed
 
@@ -15,14 +16,14 @@ with tempfile.TemporaryDirectory() as d:
     nodes = a["nodes"]
     j, c = os.path.join(d, "m.json"), os.path.join(d, "m.csv")
     r = run("markov-tree", "--atlas", atlas, "--alpha", "18.9043", "--b2", "1.362484", "--t-max", "1e6",
-            "--at", "1008,2160", "--json", j, "--csv", c)
+            "--at", "1008,2160", "--json", j, "--csv", c, "--without", "inner,cantori")
     check(r.returncode == 0, f"markov-tree exits 0 ({r.returncode}: {r.stderr[-300:]})")
     m = json.load(open(j))
     check(m["format"] == "archipelago markov tree" and m["map"]["K"] == 0.1, "the JSON names its format and map")
     layer = {i: n["flux"]["layer_area"] for i, n in enumerate(nodes) if n["flux"]["found"]}
     flux = {i: n["flux"]["flux_per_step"] for i, n in enumerate(nodes) if n["flux"]["found"]}
     states = m["states"]
-    check(len(states) == len(layer), f"one state per chain with a flux ({len(states)} vs {len(layer)})")
+    check(len(states) == len(layer), f"without inner separatrices and cantori, one state per chain with a flux ({len(states)} vs {len(layer)})")
     # The chains about the centre nest: the outermost (largest zone) opens onto the top state, each next one onto it.
     kids = sorted((i for i in layer if i > 0), key=lambda i: -nodes[i]["flux"]["zone_area"])
     chain = [0] + kids
@@ -53,6 +54,34 @@ with tempfile.TemporaryDirectory() as d:
     check("# K: 0.1" in text and "# Software: archipelago" in text and "# Atlas: " + atlas in text,
           "the CSV carries its provenance and the atlas it was built from")
 
+    # Issue 50: with every barrier (the default), each chain whose inner separatrix has a layer gets a second state
+    # inside it, opening onto the chain's own; every state's area is its barrier's layer less the layers of the
+    # states that open onto it (the file's numbers), the mean visit still the loop's residence (Kac).
+    jf = os.path.join(d, "full.json")
+    r = run("markov-tree", "--atlas", atlas, "--json", jf, "--quiet")
+    check(r.returncode == 0, f"markov-tree with every barrier exits 0 ({r.returncode}: {r.stderr[-300:]})")
+    full = json.load(open(jf))["states"]
+    inner = {i: n["flux"]["inner"]["layer_area"] for i, n in enumerate(nodes)
+             if i in layer and "layer_area" in n["flux"].get("inner", {})}
+    check(len(inner) >= 3 and len(full) == len(layer) + len(inner),
+          f"one more state per chain with an inner layer ({len(full)} = {len(layer)} + {len(inner)})")
+    own = [layer[s["node"]] if s["barrier"] == "outer separatrix" else inner.get(s["node"], -1) for s in full]
+    ok = all(s["barrier"] in ("outer separatrix", "inner separatrix") for s in full)
+    for k, s in enumerate(full):
+        inside = [i for i, x in enumerate(full) if x["container"] == k]
+        ok &= abs(s["area"] - (own[k] - sum(own[i] for i in inside))) <= 1e-13 * own[k] and s["subtracted"] == inside
+        if s["barrier"] == "inner separatrix":
+            ok &= full[s["container"]]["node"] == s["node"] and full[s["container"]]["barrier"] == "outer separatrix"
+    check(ok, "each state's area is its layer less its children's; an inner state opens onto its chain's outer one")
+    check(abs(json.load(open(jf))["mean_visit"] - residence) <= 1e-9 * residence, "with every barrier the mean visit is still the loop's residence")
+    r = run("markov-tree", "--atlas", atlas, "--without", "inner,other", "--json", os.path.join(d, "no.json"))
+    check(r.returncode != 0 and r.stderr.count("\n") == 1 and "--without: 'other'" in r.stderr
+          and not os.path.exists(os.path.join(d, "no.json")), f"--without other is one ERROR line ({r.stderr!r})")
+    r = run("markov-tree", "--atlas", atlas, "--levels", "0", "--json", os.path.join(d, "l0.json"), "--quiet")
+    l0 = json.load(open(os.path.join(d, "l0.json")))
+    check(r.returncode == 0 and len(l0["states"]) == 1 and len(l0["lumped"]) == len(nodes) - 1,
+          "--levels 0: the centre's state alone, every chain lumped into it")
+
     # One flux edited: the two rates through that barrier change, no other.
     edited = os.path.join(d, "edited.json")
     target = kids[1]
@@ -61,7 +90,7 @@ with tempfile.TemporaryDirectory() as d:
     f["residence"] = f["layer_area"] / f["flux_per_step"]  # kept consistent, and the file signed again
     json.dump(signed(a), open(edited, "w"))
     j2 = os.path.join(d, "m2.json")
-    r = run("markov-tree", "--atlas", edited, "--t-max", "1e6", "--json", j2, "--quiet")
+    r = run("markov-tree", "--atlas", edited, "--t-max", "1e6", "--json", j2, "--quiet", "--without", "inner,cantori")
     m2 = json.load(open(j2))
     changed = [x["flux_node"] for x, y in zip(m["rates"], m2["rates"]) if x["per_step"] != y["per_step"]]
     check(r.returncode == 0 and changed == [target, target], f"editing the flux of node {target} changes its two rates ({changed})")
@@ -109,6 +138,13 @@ with tempfile.TemporaryDirectory() as d:
     reach = max([x["t"] for x in lv if 1 / 3 <= x["ratio"] <= 3], default=0)
     check(comp.get("factor") == 3 and comp.get("reach") == reach and comp.get("tail") == tail,
           f"the reach is the last level within a factor 3 ({comp.get('reach')} vs {reach})")
+    # The ablation (issue 50): every barrier, none of the inner ones, no cantori, outer only, level 0 alone — each
+    # with its reach; the first is the comparison's own.
+    ab = mt.get("ablation", [])
+    check([x["variant"] for x in ab] == ["every barrier", "no inner separatrices", "no cantori",
+                                         "outer separatrices only", "levels <= 0"]
+          and ab[0]["reach"] == comp.get("reach") and all(len(x["ratio"]) == len(lv) for x in ab)
+          and "# ablation" in r.stdout, f"the ablation's five variants, the first the comparison ({[x.get('variant') for x in ab]})")
     other = os.path.join(d, "t15.json")
     r = run("tail", "--K", "0.15", "--xmin=-0.9746", "--xmax", "0.5873", "--population", "20", "--replicas", "2",
             "--t-max", "2e3", "--quiet", "--out", other)

@@ -4,6 +4,7 @@
 // its chain and its partner's manifolds; Stop keeps what is finished; the exports are core's text; a session keeps
 // the atlas and gives back the same tree.
 #include <algorithm>
+#include <QCheckBox>
 #include <QFile>
 #include <QJsonArray>
 #include <QJsonDocument>
@@ -128,6 +129,16 @@ class TestAtlas : public QObject {
     QVERIFY(panel_->computeButton()->isEnabled());
     QVERIFY(!panel_->stopButton()->isEnabled());
     QVERIFY(panel_->depthBox()->maximum() <= archipelago::kMaxAtlasDepth);
+  }
+
+  // Issue 50: the page asks for the cantori as the CLI's --cantori does (core's default, off: a few seconds each).
+  void theCantoriAreAskedForByTheirBox() {
+    QVERIFY(panel_->cantoriBox() != nullptr);
+    QCOMPARE(panel_->cantoriBox()->isChecked(), archipelago::AtlasRequest{}.cantori);
+    panel_->cantoriBox()->setChecked(true);
+    QVERIFY(panel_->request().cantori);
+    panel_->cantoriBox()->setChecked(false);
+    QVERIFY(!panel_->request().cantori);
   }
 
   // The tree fills as core measures the islands (the centre first, its chains listed before they are measured), and

@@ -8,37 +8,58 @@
 #include <QDialogButtonBox>
 #include <QDockWidget>
 #include <QFile>
+#include <QFileInfo>
 #include <QHeaderView>
 #include <QImage>
 #include <QLabel>
 #include <QLineEdit>
 #include <QMessageBox>
+#include <QMenu>
+#include <QProgressBar>
 #include <QPushButton>
 #include <QScreen>
 #include <QSignalSpy>
 #include <QSpinBox>
+#include <QStatusBar>
+#include <QTabWidget>
 #include <QTableView>
 #include <QTableWidget>
 #include <QTemporaryDir>
 #include <QTimer>
 #include <QtTest>
+#include <qwt_plot.h>
+#include <qwt_scale_div.h>
+#include <qwt_scale_draw.h>
+#include <qwt_scale_widget.h>
+#include <qwt_text.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 
 #include "GuiTestSupport.hpp"
+#include "core/atlas/AtlasExport.hpp"
+#include "core/io/AtomicFile.hpp"
+#include "core/io/NumberText.hpp"
+#include "core/markovtree/MarkovTreeExport.hpp"
 #include "core/colour/ColourMap.hpp"
+#include "core/tail/TailFile.hpp"
+#include "core/tail/TailSampler.hpp"
 #include "core/run/TrappingRun.hpp"
 #include "core/runfile/RunFile.hpp"
+#include "core/stats/RunStatistics.hpp"
+#include "ui/run/RunWorker.hpp"
 #include "core/session/SessionFile.hpp"
 #include "ui/plots/StatisticsPlot.hpp"
 #include "ui/portrait/AtlasPanel.hpp"
+#include "ui/portrait/ManifoldsPanel.hpp"
 #include "ui/portrait/OrbitListPanel.hpp"
 #include "ui/portrait/PortraitController.hpp"
 #include "ui/portrait/PortraitPanel.hpp"
 #include "ui/portrait/PortraitView.hpp"
 #include "ui/segments/LongSegmentsPanel.hpp"
+#include "ui/window/MainWindow.hpp"
+#include "ui/window/ParameterPanel.hpp"
 #include "ui/window/StatisticsView.hpp"
 
 using namespace archipelago;
@@ -59,6 +80,48 @@ const TrappingState& finishedRun() {
     return runTrapping(startTrapping(p), o);
   }();
   return state;
+}
+
+/// A depth-1 atlas of K = 0.1, periods ≤ 200, by core (test_markov_tree's), in `path`.
+void writeSmallAtlas(const QString& path, const MapParameters& map) {
+  AtlasRequest r;
+  r.map = map;
+  r.depth = 1;
+  r.maxPeriod = 200;
+  r.scanSteps = 0;
+  writeAtlasJson(path.toStdString(), computeAtlas(r));
+}
+
+/// A tail file of finishedRun()'s process (test_tail_estimate's sampler, small), in `path`.
+void writeSmallTail(const QString& path) {
+  TailRequest r;
+  r.run = finishedRun().params;
+  r.population = 100;
+  r.replicas = 4;
+  r.firstSteps = 100;
+  r.maxSteps = 100'000;
+  r.minAncestors = 4;
+  TailRunOptions o;
+  o.threads = 2;
+  saveTailFile(path.toStdString(), runTail(startTail(r), o));
+}
+
+/// The portrait's x-axis tick labels closer to a neighbour than a digit's width (run together), as "label | label"
+/// (empty: none), and all its labels.
+QStringList overlappingTicks(const QwtPlot& plot, QStringList* labels) {
+  const QwtScaleDraw& draw = *plot.axisScaleDraw(QwtPlot::xBottom);
+  const QFont font = plot.axisWidget(QwtPlot::xBottom)->font();
+  QList<double> ticks = plot.axisScaleDiv(QwtPlot::xBottom).ticks(QwtScaleDiv::MajorTick);
+  std::sort(ticks.begin(), ticks.end());
+  QStringList overlaps;
+  for (int i = 0; i < ticks.size(); ++i) {
+    *labels << draw.label(ticks[i]).text();
+    if (i == 0) continue;
+    const double gap = plot.transform(QwtPlot::xBottom, ticks[i]) - plot.transform(QwtPlot::xBottom, ticks[i - 1]);
+    const double room = (draw.labelSize(font, ticks[i]).width() + draw.labelSize(font, ticks[i - 1]).width()) / 2;
+    if (gap < room + QFontMetrics(font).horizontalAdvance(QLatin1Char('0'))) overlaps << draw.label(ticks[i - 1]).text() + QStringLiteral(" | ") + draw.label(ticks[i]).text();
+  }
+  return overlaps;
 }
 
 /// True when `w` is `ancestor` or inside it.
@@ -172,6 +235,111 @@ class TestIssue53 : public QObject {
     QTRY_VERIFY_WITH_TIMEOUT(c.orbitsSettled(), 900000);
   }
 
+  // Finding 3 and "sessions that keep the chosen side page" (the issue's Done-when: a session round trip keeps launched
+  // orbits' steps and direction, the Markov model's inputs and curve, the tail estimate's file and the side page):
+  // the model's P_t, the tail's estimate and the Atlas page's shares were lost, and the side page was the Run page.
+  void finding3_sessionsKeepTheModelTheTailAndTheSidePage() {
+    QTemporaryDir dir;
+    const QString run = dir.filePath(QStringLiteral("run.json")), atlas = dir.filePath(QStringLiteral("atlas.json"));
+    const QString tail = dir.filePath(QStringLiteral("tail.json")), path = dir.filePath(QStringLiteral("s.archipelago"));
+    saveRunFile(run.toStdString(), finishedRun());
+    writeSmallAtlas(atlas, finishedRun().params.map);
+    writeSmallTail(tail);
+    QVector<QPointF> model, estimate;
+    int shareRows = 0, comparedRows = 0;
+    {
+      MainWindow w;
+      w.setConfirmations(false);
+      PortraitController& c = *w.portraitPanel()->controller();
+      c.setPointBudget(10000);
+      QVERIFY(w.openRunFile(run));
+      QTRY_VERIFY_WITH_TIMEOUT(w.latestSnapshot() && w.latestSnapshot()->hasStatistics && !isLive(w.runStatus()), 900000);
+      w.refreshNow();
+      QVERIFY(w.openAtlasFile(atlas));
+      QSignalSpy drawn(&w, &MainWindow::markovTreeDrawn), tailed(&w, &MainWindow::tailEstimateFinished);
+      QVERIFY(w.drawMarkovTree(18.9043, 1.362484));
+      QVERIFY(w.openTailEstimate(tail));
+      QTRY_VERIFY_WITH_TIMEOUT(drawn.count() >= 1 && tailed.count() == 1 &&
+                                   !w.portraitPanel()->atlasPanel()->markovTreePending(), 900000);
+      QCOMPARE(drawn.back().front().toString(), QString());
+      QCOMPARE(tailed.front().at(1).toString(), QString());
+      QVERIFY(c.launchOrbit(0.06L, 0.0974L, 100000, true));
+      w.portraitPanel()->sidePages()->setCurrentWidget(w.portraitPanel()->atlasPanel());
+      const StatisticsPlot& p = *w.statisticsView()->plot(Statistic::P);
+      model = p.modelPoints();
+      estimate = p.estimatePoints();
+      shareRows = w.portraitPanel()->atlasPanel()->sharesTable()->rowCount();
+      comparedRows = w.portraitPanel()->atlasPanel()->comparisonTable()->rowCount();
+      QVERIFY(!model.isEmpty() && !estimate.isEmpty() && shareRows > 0 && comparedRows > 0);
+      QString error;
+      QVERIFY2(w.saveSession(path, &error), qPrintable(error));
+      QTRY_VERIFY_WITH_TIMEOUT(c.orbitsSettled(), 900000);
+    }
+    MainWindow w;
+    w.setConfirmations(false);
+    w.portraitPanel()->controller()->setPointBudget(10000);
+    QSignalSpy drawn(&w, &MainWindow::markovTreeDrawn), tailed(&w, &MainWindow::tailEstimateFinished);
+    QString error;
+    QVERIFY2(w.openSession(path, &error), qPrintable(error));
+    QCOMPARE(w.portraitPanel()->sidePages()->currentWidget(), static_cast<QWidget*>(w.portraitPanel()->atlasPanel()));
+    QTRY_VERIFY_WITH_TIMEOUT(drawn.count() >= 1 && tailed.count() == 1 &&
+                                 !w.portraitPanel()->atlasPanel()->markovTreePending(), 900000);
+    QCOMPARE(drawn.back().front().toString(), QString());
+    QCOMPARE(tailed.front().at(1).toString(), QString());
+    const StatisticsPlot& p = *w.statisticsView()->plot(Statistic::P);
+    QCOMPARE(p.modelPoints(), model);
+    QCOMPARE(p.estimatePoints(), estimate);
+    const AtlasPanel& page = *w.portraitPanel()->atlasPanel();
+    QVERIFY(page.markovTree());
+    QCOMPARE(page.markovTree()->request.alpha, 18.9043);
+    QCOMPARE(page.markovTree()->request.b2, 1.362484);
+    QCOMPARE(page.sharesTable()->rowCount(), shareRows);
+    QCOMPARE(page.comparisonTable()->rowCount(), comparedRows);
+    QCOMPARE(QFileInfo(w.tailEstimateFile()), QFileInfo(tail));
+    const std::vector<LaunchedOrbit>& orbits = w.portraitPanel()->controller()->launchedOrbits();
+    QCOMPARE(orbits.size(), std::size_t{1});
+    QCOMPARE(orbits.front().steps, std::uint64_t{100000});
+    QVERIFY(orbits.front().backward);
+    QCOMPARE(w.portraitPanel()->sidePages()->currentWidget(), static_cast<QWidget*>(w.portraitPanel()->atlasPanel()));
+    // The file holds the inputs, not the curves; the tail file beside the session by its name.
+    const Session s = loadSession(path.toStdString());
+    QVERIFY(s.markovTree && s.markovTree->alpha == 18.9043 && s.markovTree->b2 == 1.362484);
+    QCOMPARE(s.sidePage, std::string("Atlas"));
+    QFile text(path);
+    QVERIFY(text.open(QIODevice::ReadOnly));
+    QVERIFY(text.readAll().contains(R"("file": "tail.json")"));
+    QTRY_VERIFY_WITH_TIMEOUT(w.portraitPanel()->controller()->orbitsSettled(), 900000);
+  }
+
+  // Finding 3: a session of before (no "markovTree", "tail" or "sidePage") still opens, as it did.
+  void finding3_anOldSessionStillOpens() {
+    Session old;
+    old.tab = "Phase portrait";
+    QString text = QString::fromStdString(sessionText(old));
+    QVERIFY(!text.contains(QStringLiteral("sidePage")) && !text.contains(QStringLiteral("markovTree")) &&
+            !text.contains(QStringLiteral("\"tail\"")));
+    const Session back = parseSession(text.toStdString());
+    QVERIFY(!back.markovTree && !back.tailFile && back.sidePage.empty());
+    QTemporaryDir dir;
+    const QString path = dir.filePath(QStringLiteral("old.archipelago"));
+    saveSession(path.toStdString(), old);
+    MainWindow w;
+    w.setConfirmations(false);
+    w.portraitPanel()->sidePages()->setCurrentWidget(w.portraitPanel()->manifoldsPanel());
+    QString error;
+    QVERIFY2(w.openSession(path, &error), qPrintable(error));
+    QCOMPARE(w.portraitPanel()->sidePages()->currentWidget(), static_cast<QWidget*>(w.portraitPanel()->manifoldsPanel()));
+    // A model needs its atlas: refused, naming the key.
+    QString withModel = text;
+    withModel.replace(QStringLiteral("\"tab\""), QStringLiteral("\"markovTree\": {\"alpha\": 18.9, \"b2\": 1.36}, \"tab\""));
+    try {
+      (void)parseSession(withModel.toStdString());
+      QFAIL("a model without its atlas was read");
+    } catch (const std::exception& e) {
+      QVERIFY2(QString::fromUtf8(e.what()).contains(QStringLiteral("markovTree")), e.what());
+    }
+  }
+
   // Finding 4: the exported P_t.png (945×650) wrapped the three "asymptotic (literature)" entries onto two lines,
   // their exponents lost.
   void finding4_theExportedPtLegendIsWhole() {
@@ -215,6 +383,272 @@ class TestIssue53 : public QObject {
                                        .arg(colour.name()).arg(icon.x()).arg(icon.y()).arg(out)));
     }
     QVERIFY(entries >= 3);
+  }
+
+  // Finding 5: at 1280×800 the thin island 13 (2/13) of a depth-1 atlas was framed in a view 1:4 wide, whose x
+  // ticks ran together ("-0.54542.5458 36").  No two tick labels come closer than a digit's width now.
+  void finding5_theThinIslandsTicksDoNotOverlap() {
+    QTemporaryDir dir;
+    const QString atlas = dir.filePath(QStringLiteral("atlas.json"));
+    MainWindow w;
+    w.setConfirmations(false);
+    w.portraitPanel()->controller()->setPointBudget(10000);
+    writeSmallAtlas(atlas, w.portraitPanel()->controller()->map());
+    w.resize(1200, 760);  // the window on a 1280×800 screen (Xvfb, no window manager)
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    QVERIFY(w.openAtlasFile(atlas));
+    AtlasPanel& panel = *w.portraitPanel()->atlasPanel();
+    int thin = -1;
+    for (int i = 0; panel.item(i); ++i)
+      if (panel.item(i)->text(AtlasPanel::island) == QStringLiteral("13") &&
+          panel.item(i)->text(AtlasPanel::rotation) == QStringLiteral("2/13"))
+        thin = i;
+    QVERIFY2(thin >= 0, "no island 13 2/13 in the atlas");
+    PortraitController& c = *w.portraitPanel()->controller();
+    QVERIFY(panel.showIsland(thin));
+    QTRY_VERIFY_WITH_TIMEOUT(c.atlasIslandSettled() && c.atlasIsland(), 900000);
+    QCoreApplication::processEvents();
+    const QwtPlot* plot = w.portraitPanel()->view()->findChild<QwtPlot*>();
+    QVERIFY(plot);
+    QStringList labels;
+    const QStringList overlaps = overlappingTicks(*plot, &labels);
+    QVERIFY2(labels.size() >= 2, qPrintable(labels.join(QStringLiteral(", "))));
+    QVERIFY2(overlaps.isEmpty(), qPrintable(QStringLiteral("%1 in %2 (canvas %3 px wide)")
+                                                .arg(overlaps.join(QStringLiteral("; ")), labels.join(QStringLiteral(", ")))
+                                                .arg(plot->canvas()->width())));
+    if (const QString shots = qEnvironmentVariable("ARCHIPELAGO_SCREENSHOT_DIR"); !shots.isEmpty())
+      QVERIFY(w.grab().save(shots + QStringLiteral("/thin-island-1280.png")));
+    QTRY_VERIFY_WITH_TIMEOUT(c.orbitsSettled(), 900000);
+  }
+
+  // Finding 8: the Atlas page's "area ± error" was explained as "± the change with half the points" (the curve's
+  // convergence), where the atlas's ± now covers the interval [areaLower, areaUpper]: the header and each cell say so.
+  void finding8_theAreasErrorSaysWhatItCovers() {
+    MainWindow w;
+    w.setConfirmations(false);
+    AtlasPanel& panel = *w.portraitPanel()->atlasPanel();
+    archipelago::Atlas atlas;
+    atlas.request = panel.request();
+    AtlasNode centre;
+    centre.period = 1;
+    centre.boundaryFound = true;
+    centre.area = centre.circleArea = 0.2392;
+    centre.areaLower = 0.2391;
+    centre.areaUpper = 0.2415;
+    centre.areaError = 0.0023;
+    centre.polygonError = 2e-9;
+    atlas.nodes.push_back(centre);
+    panel.restoreAtlas(atlas);
+    const QString header = panel.tree()->headerItem()->toolTip(AtlasPanel::area);
+    QVERIFY2(header.contains(QStringLiteral("covers")) && !header.contains(QStringLiteral("half the points")),
+             qPrintable(header));
+    const QString cell = panel.item(0)->toolTip(AtlasPanel::area);
+    QVERIFY2(cell.contains(QStringLiteral("[0.2391, 0.2415]")) && cell.contains(QStringLiteral("± 0.0023 covers")) &&
+                 cell.contains(QStringLiteral("convergence (2e-09)")),
+             qPrintable(cell));
+  }
+
+  // Finding 12: after a spliced run "Model P_t…" offered the q = 1 companion's α (2.72), called only "the run's mean
+  // segment length", where the tail and `markov-tree --alpha` want the q process's (18.9).
+  void finding12_theModelsAlphaIsTheQProcesss() {
+    QTemporaryDir dir;
+    const std::string run = dir.filePath(QStringLiteral("run.json")).toStdString();
+    TrappingRunOptions o;
+    o.threads = 1;
+    saveRunFile(run, finishedRun());
+    saveRunFile(companionRunFile(run), runTrapping(startTrapping(companionParameters(finishedRun().params, 1.0)), o));
+    MainWindow w;
+    w.setConfirmations(false);
+    w.portraitPanel()->controller()->setPointBudget(10000);
+    QVERIFY(w.openRunFile(QString::fromStdString(run)));
+    QTRY_VERIFY_WITH_TIMEOUT(w.latestSnapshot() && w.latestSnapshot()->hasStatistics && !isLive(w.runStatus()), 900000);
+    QVERIFY2(w.latestSnapshot()->statistics.splicedAt > 0, "the run and its companion did not splice");
+    const double q = statisticsOf(finishedRun()).alpha, spliced = w.latestSnapshot()->statistics.alpha;
+    QVERIFY(q > 2 * spliced);
+    const MainWindow::MarkovTreeEntry e = w.markovTreeEntry();
+    QCOMPARE(e.alpha, q);
+    QVERIFY2(e.alphaSource.contains(QStringLiteral("q = 16 process")) &&
+                 e.alphaSource.contains(QStringLiteral("markov-tree --alpha %1").arg(QLocale::c().toString(q, 'g', 8))) &&
+                 e.alphaSource.contains(QStringLiteral("q = 1 companion")),
+             qPrintable(e.alphaSource));
+  }
+
+  // Finding 19 (in part): the Atlas table's notes were ~150 characters of 20-digit numbers; the cell cuts them to 4
+  // digits, its tooltip keeps the whole.
+  void finding19_theAtlasNotesAreShort() {
+    MainWindow w;
+    w.setConfirmations(false);
+    AtlasPanel& panel = *w.portraitPanel()->atlasPanel();
+    archipelago::Atlas atlas;
+    atlas.request = panel.request();
+    AtlasNode centre;
+    centre.period = 1;
+    centre.boundaryFailure = "no circle between r = 0.12345678901234567890 and r = -1.2345678901234567e-05";
+    atlas.nodes.push_back(centre);
+    panel.restoreAtlas(atlas);
+    const QString cell = panel.item(0)->text(AtlasPanel::note);
+    QCOMPARE(cell, QStringLiteral("no circle between r = 0.1235 and r = -1.235e-05"));
+    QCOMPARE(panel.item(0)->toolTip(AtlasPanel::note), QString::fromStdString(centre.boundaryFailure));
+  }
+
+  // Finding 19 (in part): at 1280×800 the q = 1 companion's label was clipped in the progress bar ("q = 1 companion
+  // run: 40 % · then t < 160 steps come from it" in at most 320 pixels).
+  void finding19_theCompanionsLabelFitsTheBar() {
+    MainWindow w;
+    w.setConfirmations(false);
+    w.resize(1200, 760);
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    TrappingParameters p = finishedRun().params;
+    p.T = 2000;
+    auto* bar = w.findChild<QProgressBar*>();
+    QVERIFY(bar);
+    QStringList clipped, shown;
+    connect(&w.worker(), &RunWorker::snapshotReady, &w, [&](const RunSnapshotPtr& s) {
+      if (!s || !s->companionRunning) return;
+      QTimer::singleShot(0, &w, [&] {
+        w.refreshNow();
+        shown << bar->text();
+        if (bar->fontMetrics().horizontalAdvance(bar->text()) + 8 > bar->width())
+          clipped << QStringLiteral("'%1' in %2 pixels").arg(bar->text()).arg(bar->width());
+      });
+    });
+    RunSettings settings;
+    settings.threads = 1;
+    settings.companion = 1.0;
+    QString error;
+    QVERIFY2(w.runController()->start(p, settings, &error), qPrintable(error));
+    QTRY_VERIFY_WITH_TIMEOUT(w.runStatus() == RunStatus::finished, 900000);
+    QTRY_VERIFY_WITH_TIMEOUT(!shown.isEmpty(), 900000);
+    QVERIFY2(shown.front().contains(QStringLiteral("companion")), qPrintable(shown.front()));
+    QVERIFY2(clipped.isEmpty(), qPrintable(clipped.join(QStringLiteral("; "))));
+    QVERIFY2(bar->toolTip().contains(QStringLiteral("t < 160 steps")) || !w.latestSnapshot()->companionRunning,
+             qPrintable(bar->toolTip()));
+  }
+
+  // Finding 19 (in part) and "a way to enlarge one plot" (missing): P_t with a model and a tail had ~230×180 pixels
+  // and its menu offered only Reset zoom.  Its menu enlarges it (a double click too) over the room of all six, and
+  // Esc shows all six again; the menu exports it too.
+  void finding19_aPlotEnlargesAndItsMenuOffersMore() {
+    MainWindow w;
+    w.setConfirmations(false);
+    w.resize(1200, 760);
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    w.tabs()->setCurrentWidget(w.statisticsView());
+    StatisticsView& view = *w.statisticsView();
+    StatisticsPlot& p = *view.plot(Statistic::P);
+    QTRY_VERIFY(p.isVisible());
+    const QSize small = p.size();
+    std::unique_ptr<QMenu> menu(p.createContextMenu(&p));
+    QStringList entries;
+    for (QAction* a : menu->actions()) entries << a->text();
+    QVERIFY2(entries.size() >= 3 && entries.contains(QStringLiteral("Export…")), qPrintable(entries.join(QStringLiteral(", "))));
+    QAction* enlarge = menu->actions().at(1);
+    QVERIFY2(enlarge->text().startsWith(QStringLiteral("Enlarge")), qPrintable(enlarge->text()));
+    enlarge->trigger();
+    QCOMPARE(view.enlargedPlot(), &p);
+    QTRY_VERIFY(p.width() > 2 * small.width() && p.height() > 3 * small.height() / 2);
+    const QSize big = p.size();
+    for (StatisticsPlot* other : view.plots())
+      if (other != &p) QVERIFY(!other->isVisible());
+    menu.reset(p.createContextMenu(&p));
+    QVERIFY2(menu->actions().at(1)->text().startsWith(QStringLiteral("Show All Plots")), qPrintable(menu->actions().at(1)->text()));
+    p.canvas()->setFocus();
+    QTest::keyClick(p.canvas(), Qt::Key_Escape);
+    QCOMPARE(view.enlargedPlot(), static_cast<StatisticsPlot*>(nullptr));
+    QTRY_VERIFY(2 * p.width() < big.width());
+    for (StatisticsPlot* other : view.plots()) QVERIFY(other->isVisible());
+    QTest::mouseDClick(p.canvas(), Qt::LeftButton, {}, p.canvas()->rect().center());
+    QCOMPARE(view.enlargedPlot(), &p);
+    QTest::mouseDClick(p.canvas(), Qt::LeftButton, {}, p.canvas()->rect().center());
+    QCOMPARE(view.enlargedPlot(), static_cast<StatisticsPlot*>(nullptr));
+  }
+
+  // Missing: keyboard and menu access to the side pages (Run, Orbits, Manifolds, Profile, Atlas) and to the Atlas
+  // page's Compute and Model P_t….
+  void missing_theSidePagesAndTheAtlasByTheKeyboard() {
+    MainWindow w;
+    w.setConfirmations(false);
+    w.portraitPanel()->controller()->setPointBudget(10000);
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    w.activateWindow();
+    QVERIFY(QTest::qWaitForWindowActive(&w));
+    w.tabs()->setCurrentWidget(w.statisticsView());
+    QTabWidget& side = *w.portraitPanel()->sidePages();
+    const QStringList pages = {QStringLiteral("Run"), QStringLiteral("Orbits"), QStringLiteral("Manifolds"),
+                               QStringLiteral("Profile"), QStringLiteral("Atlas")};
+    for (int i = static_cast<int>(pages.size()) - 1; i >= 0; --i) {
+      QTest::keyClick(&w, static_cast<Qt::Key>(Qt::Key_1 + i), Qt::ControlModifier);
+      QCOMPARE(w.tabs()->currentWidget(), static_cast<QWidget*>(w.portraitPanel()));
+      QCOMPARE(side.tabText(side.currentIndex()).remove(QLatin1Char('&')), pages[i]);
+    }
+    const auto keys = w.keyboardShortcuts();
+    const auto listed = [&keys](const QString& action) {
+      return std::any_of(keys.begin(), keys.end(), [&](const auto& row) { return row.first.endsWith(action); });
+    };
+    QVERIFY(listed(QStringLiteral("View ▸ Atlas Page")) && listed(QStringLiteral("Tools ▸ Compute Atlas")) &&
+            listed(QStringLiteral("Tools ▸ Model P_t of the Atlas…")));
+    // Model P_t… without an atlas: the page shown, and why not in the status bar.
+    side.setCurrentIndex(0);
+    QTest::keyClick(&w, Qt::Key_M, Qt::ControlModifier | Qt::ShiftModifier);
+    AtlasPanel& atlas = *w.portraitPanel()->atlasPanel();
+    QCOMPARE(side.currentWidget(), static_cast<QWidget*>(&atlas));
+    QVERIFY2(w.statusBar()->currentMessage().contains(atlas.markovTreeButton()->toolTip()),
+             qPrintable(w.statusBar()->currentMessage()));
+    // Compute: the page's request, started.
+    atlas.depthBox()->setValue(1);
+    QSignalSpy ended(&atlas, &AtlasPanel::computationEnded);
+    QTest::keyClick(&w, Qt::Key_A, Qt::ControlModifier | Qt::ShiftModifier);
+    QVERIFY(atlas.busy());
+    atlas.stop();
+    QTRY_COMPARE_WITH_TIMEOUT(ended.count(), 1, 900000);
+    QTRY_VERIFY_WITH_TIMEOUT(w.portraitPanel()->controller()->orbitsSettled(), 900000);
+  }
+
+  // Missing: the model against the tail in the GUI (ratio per level, reach, the level holding the survivors, as
+  // `markov-tree --tail` prints them): the page's table and line are core's comparison of the same atlas and tail.
+  void missing_theModelAgainstTheTailIsShown() {
+    QTemporaryDir dir;
+    const QString run = dir.filePath(QStringLiteral("run.json")), atlas = dir.filePath(QStringLiteral("atlas.json"));
+    const QString tail = dir.filePath(QStringLiteral("tail.json"));
+    saveRunFile(run.toStdString(), finishedRun());
+    writeSmallAtlas(atlas, finishedRun().params.map);
+    writeSmallTail(tail);
+    MainWindow w;
+    w.setConfirmations(false);
+    w.portraitPanel()->controller()->setPointBudget(10000);
+    QVERIFY(w.openRunFile(run));
+    QTRY_VERIFY_WITH_TIMEOUT(w.latestSnapshot() && w.latestSnapshot()->hasStatistics && !isLive(w.runStatus()), 900000);
+    QVERIFY(w.openAtlasFile(atlas));
+    AtlasPanel& page = *w.portraitPanel()->atlasPanel();
+    QSignalSpy tailed(&w, &MainWindow::tailEstimateFinished);
+    QVERIFY(w.openTailEstimate(tail));
+    QTRY_COMPARE_WITH_TIMEOUT(tailed.count(), 1, 900000);
+    QVERIFY(w.drawMarkovTree(18.9043, 1.362484));
+    QTRY_VERIFY_WITH_TIMEOUT(!page.markovTreePending() && page.markovTree(), 900000);
+    MarkovTreeRequest r;
+    r.alpha = 18.9043;
+    r.b2 = 1.362484;
+    r.needsP = true;
+    r.at = AtlasPanel::shareTimes();
+    const TailState state = loadTailFile(tail.toStdString());
+    const MarkovTreeResult expected = computeMarkovTree(atlasFromJson(io::readRegularFile(atlas.toStdString(), 1 << 26)), r, &state);
+    QVERIFY(expected.comparison && !expected.comparison->levels.empty());
+    const MarkovTreeComparison& c = *expected.comparison;
+    const QTableWidget& table = *page.comparisonTable();
+    QVERIFY(table.isVisibleTo(&page));
+    QCOMPARE(table.rowCount(), static_cast<int>(c.levels.size()));
+    for (int row = 0; row < table.rowCount(); ++row) {
+      const MarkovTreeLevelComparison& m = c.levels[static_cast<std::size_t>(row)];
+      QCOMPARE(table.item(row, 0)->text(), QString::number(m.t, 'f', 0));
+      QCOMPARE(table.item(row, 3)->data(Qt::UserRole).toDouble(), static_cast<double>(m.ratio));
+      if (m.holdingLevel >= 0) QVERIFY(table.item(row, 4)->text().startsWith(QString::number(m.holdingLevel)));
+    }
+    const QString reach = c.reach > 0 ? QString::fromStdString(io::shortestText(c.reach)) : QStringLiteral("none");
+    QVERIFY2(page.markovTreeText().contains(QStringLiteral("last at t = %1").arg(reach)), qPrintable(page.markovTreeText()));
   }
 
   // Finding 9: "Model P_t…" was greyed out on a stopped atlas with no reason: its tooltip and the page's progress line
@@ -322,6 +756,37 @@ class TestIssue53 : public QObject {
     QVERIFY(panel.openAtlasFile(file));
     QVERIFY(!c.atlasIsland());
     QVERIFY(w.close());  // the atlas is in a file: nothing asked
+  }
+
+  // Compute over an unsaved atlas replaced it without a question (File ▸ Open Atlas… and Open… asked): it asks the
+  // same way now, and Cancel keeps the atlas.
+  void computeOverAnUnsavedAtlasAsks() {
+    MainWindow w;  // confirmations on: the question is asked
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    w.portraitPanel()->controller()->setPointBudget(10000);
+    AtlasPanel& panel = *w.portraitPanel()->atlasPanel();
+    QSignalSpy ended(&panel, &AtlasPanel::computationEnded);
+    archipelago::AtlasRequest r = panel.request();
+    r.depth = 1;
+    QVERIFY(panel.compute(r));
+    panel.stop();
+    QTRY_COMPARE_WITH_TIMEOUT(ended.count(), 1, 900000);
+    const std::shared_ptr<const archipelago::Atlas> computed = panel.atlas();
+    QVERIFY(computed && panel.unsavedWork());
+    QString asked;
+    onModal([&asked](QDialog& d) {
+      asked = d.windowTitle();
+      auto* box = qobject_cast<QMessageBox*>(&d);
+      if (box && box->button(QMessageBox::Cancel)) box->button(QMessageBox::Cancel)->click();
+      else d.reject();
+    });
+    panel.computeButton()->click();
+    QCOMPARE(asked, QStringLiteral("Unsaved atlas"));
+    QVERIFY(!panel.busy());
+    QCOMPARE(panel.atlas(), computed);
+    w.setConfirmations(false);  // the window closes without asking
+    QTRY_VERIFY_WITH_TIMEOUT(w.portraitPanel()->controller()->orbitsSettled(), 900000);
   }
 
   // Finding 14: launched orbits took the portrait's palette (orbitColour(id): the id-th seed's orbit's colour in
@@ -441,6 +906,37 @@ class TestIssue53 : public QObject {
     for (const QList<QVariant>& m : messages)
       said = said || m.front().toString().contains(QStringLiteral("steps = 999999999 must lie in [1, 100000000]"));
     QVERIFY(said);
+  }
+
+  // Finding 21 (the rest): the fields of a paused run looked editable and dropped the keys without a word; they look
+  // read-only now (the window's background) and a note above them says why and how to edit.
+  void finding21_aPausedRunsFieldsLookReadOnlyAndSayWhy() {
+    MainWindow w;
+    w.setConfirmations(false);
+    w.portraitPanel()->controller()->setPointBudget(10000);
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    ParameterPanel& panel = *w.parameterPanel();
+    QLineEdit& K = *panel.field(QStringLiteral("K"));
+    const QColor editable = K.palette().color(QPalette::Base);
+    auto* note = panel.findChild<QLabel*>(QStringLiteral("parametersLocked"));
+    QVERIFY2(!note || !note->isVisible(), "the note shows with editable fields");
+    TrappingParameters p = finishedRun().params;
+    p.T = 100'000'000;
+    panel.setParameters(p, 1);
+    QVERIFY(w.startRun());
+    QVERIFY(w.pauseRun());
+    QTRY_COMPARE_WITH_TIMEOUT(w.runStatus(), RunStatus::paused, 900000);
+    QVERIFY(K.isReadOnly());
+    QVERIFY2(note && note->isVisible() && note->text().contains(QStringLiteral("Read-only")) &&
+                 note->text().contains(QStringLiteral("Shift+F5")),
+             note ? qPrintable(note->text()) : "no note");
+    QVERIFY2(K.palette().color(QPalette::Base) != editable, qPrintable(K.palette().color(QPalette::Base).name()));
+    QVERIFY(w.stopRun());
+    QTRY_COMPARE_WITH_TIMEOUT(w.runStatus(), RunStatus::stopped, 900000);
+    QVERIFY(!K.isReadOnly());
+    QVERIFY(!note->isVisible());
+    QCOMPARE(K.palette().color(QPalette::Base), editable);
   }
 
   // Finding 22: a deep view in Island-orbits mode was black and the readout said "raise the budget": the seeds' orbits

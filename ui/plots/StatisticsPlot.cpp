@@ -168,6 +168,7 @@ StatisticsPlot::StatisticsPlot(Statistic statistic, QWidget* parent) : QwtPlot(p
   createLegend();
   createMouseTools();
   createPlaceholder();
+  canvas()->installEventFilter(this);  // a double click enlarges
   setMinimumSize(200, 160);  // three columns and the parameter dock fit a 1024-pixel-wide window
 }
 
@@ -714,11 +715,28 @@ bool StatisticsPlot::exportImage(const QString& path, QString* error, const Prov
   return publishBytes(bytes, path, error);
 }
 
+QMenu* StatisticsPlot::createContextMenu(QWidget* parent) {
+  auto* menu = new QMenu(parent);
+  menu->addAction(tr("Reset zoom"), this, &StatisticsPlot::resetZoom);
+  menu->addAction(enlarged_ ? tr("Show All Plots (Esc)") : tr("Enlarge (double-click)"), this,
+                  &StatisticsPlot::enlargeToggled);
+  menu->addAction(tr("Export…"), this, &StatisticsPlot::exportRequested);
+  return menu;
+}
+
 void StatisticsPlot::contextMenuEvent(QContextMenuEvent* event) {
   // The canvas uses the right button for the zoomer; the menu opens over the axes and title.
-  QMenu menu(this);
-  menu.addAction(tr("Reset zoom"), this, &StatisticsPlot::resetZoom);
-  menu.exec(event->globalPos());
+  QMenu* menu = createContextMenu(this);
+  menu->exec(event->globalPos());
+  delete menu;
+}
+
+bool StatisticsPlot::eventFilter(QObject* watched, QEvent* event) {
+  if (watched == canvas() && event->type() == QEvent::MouseButtonDblClick) {
+    Q_EMIT enlargeToggled();
+    return true;
+  }
+  return QwtPlot::eventFilter(watched, event);
 }
 
 }  // namespace archipelago::ui

@@ -29,6 +29,7 @@
 #include "core/theory/TheoryCurves.hpp"
 
 class QFont;
+class QMenu;
 class QwtPlotCurve;
 class QwtPlotIntervalCurve;
 class QwtPlotMarker;
@@ -106,8 +107,22 @@ class StatisticsPlot : public QwtPlot {
   bool exportImage(const QString& path, QString* error = nullptr, const Provenance& provenance = {},
                    const QString& footnote = {});
 
+  /// Shown alone, enlarged over the other plots (the view says so: the menu then offers the way back).
+  void setEnlarged(bool enlarged) noexcept { enlarged_ = enlarged; }
+  [[nodiscard]] bool enlarged() const noexcept { return enlarged_; }
+  /// The menu a right click over the axes or the title opens (issue 53, finding 19: it offered only Reset zoom):
+  /// Reset zoom, Enlarge / Show All Plots, Export….
+  [[nodiscard]] QMenu* createContextMenu(QWidget* parent);
+
+ Q_SIGNALS:
+  /// A double click on the canvas, or the menu's Enlarge / Show All Plots: the view shows it alone, or all again.
+  void enlargeToggled();
+  /// The menu's Export…: the window asks where.
+  void exportRequested();
+
  protected:
   void contextMenuEvent(QContextMenuEvent* event) override;
+  bool eventFilter(QObject* watched, QEvent* event) override;
   void resizeEvent(QResizeEvent* event) override;
 
  private:
@@ -144,6 +159,7 @@ class StatisticsPlot : public QwtPlot {
   QwtPlotPicker* crosshair_ = nullptr;
   QwtInterval autoX_, autoY_;  // the ranges last chosen by autoscaling; anything else is the user's view
   bool forceFollow_ = true;
+  bool enlarged_ = false;
   double legendPointSize_ = 8;
 };
 

@@ -1,5 +1,6 @@
 #include "ui/portrait/AtlasPanel.hpp"
 
+#include <QCheckBox>
 #include <QDir>
 #include <QElapsedTimer>
 #include <QFileDialog>
@@ -10,6 +11,7 @@
 #include <QHeaderView>
 #include <QLabel>
 #include <QPushButton>
+#include <QRegularExpression>
 #include <QScrollArea>
 #include <QSpinBox>
 #include <QStringList>
@@ -28,6 +30,7 @@
 #include "core/manifolds/ManifoldExport.hpp"
 #include "core/periodic/PeriodicOrbitFinder.hpp"
 #include "core/periodic/SegmentAnalysis.hpp"
+#include "core/tail/TailFile.hpp"
 #include "ui/jobs/BackgroundJobs.hpp"
 #include "ui/jobs/DurationText.hpp"
 #include "ui/portrait/PortraitController.hpp"
@@ -70,6 +73,31 @@ QString point(PhysicalPoint p) {
 bool measured(const AtlasNode& n) { return n.boundaryFound || !n.boundaryFailure.empty(); }
 
 QString path(const Atlas& a, int i) { return QString::fromStdString(atlasPath(a, i)); }
+
+/// A note with its long numbers (core writes up to 20 digits) cut to 4 significant ones, for the table's cell (issue
+/// 53, finding 19: notes of ~150 characters); the cell's tooltip keeps the whole.
+QString shortNumbers(const QString& text) {
+  static const QRegularExpression longNumber(QStringLiteral("-?\\d+\\.\\d{5,}(?:[eE][-+]?\\d+)?"));
+  QString out;
+  qsizetype from = 0;
+  for (auto it = longNumber.globalMatch(text); it.hasNext();) {
+    const QRegularExpressionMatch m = it.next();
+    out += text.mid(from, m.capturedStart() - from) + QString::number(m.captured().toDouble(), 'g', 4);
+    from = m.capturedEnd();
+  }
+  return out + text.mid(from);
+}
+
+/// What an island's "area ± error" covers (issue 53, finding 8: the ± was read as the scan's resolution).
+QString areaTip(const AtlasNode& n) {
+  return QObject::tr("The true area lies in [%1, %2]: from the proven circle's polygon less its convergence (%3) to "
+                     "the circle scaled to the nearest orbits that leave the island; ± %4 covers both ends. A deeper "
+                     "atlas may find a larger circle, inside [%1, %2].")
+      .arg(QString::number(static_cast<double>(n.areaLower), 'g', 10),
+           QString::number(static_cast<double>(n.areaUpper), 'g', 10),
+           QString::number(static_cast<double>(n.polygonError), 'g', 2),
+           QString::number(static_cast<double>(n.areaError), 'g', 2));
+}
 
 QString rotationText(const AtlasNode& n) {
   return n.aboutParent ? QString::fromStdString(toString(*n.aboutParent)) : QStringLiteral("–");
@@ -125,12 +153,21 @@ void AtlasPanel::createRequestControls() {
   maxPeriod_->setValue(static_cast<int>(defaults.maxPeriod));
   maxPeriod_->setGroupSeparatorShown(true);
   maxPeriod_->setToolTip(tr("The largest period of a chain (the product of the q's from the centre)"));
+  cantori_ = new QCheckBox(tr("cantori"), this);
+  cantori_->setObjectName(QStringLiteral("atlasCantori"));
+  cantori_->setChecked(defaults.cantori);
+  cantori_->setToolTip(tr("Once the islands are measured, the cantori between the centre's chains: their "
+                          "MacKay–Meiss–Percival flux and layer, barriers of the Markov tree (a few seconds each; "
+                          "docs/atlas.md)"));
   compute_ = new QPushButton(tr("Compute"), this);
   compute_->setToolTip(tr("The atlas of the portrait's K, the first levels first (the tree fills as each island is "
                           "measured)"));
   stop_ = new QPushButton(tr("Stop"), this);
   stop_->setToolTip(tr("Stop: the islands measured so far stay"));
-  connect(compute_, &QPushButton::clicked, this, [this] { compute(request()); });
+  // An atlas computed here and in no file is asked for first, as Open… asks (issue 53: Compute replaced it silently).
+  connect(compute_, &QPushButton::clicked, this, [this] {
+    if (confirmDiscard(tr("computing another atlas"))) compute(request());
+  });
   connect(stop_, &QPushButton::clicked, this, &AtlasPanel::stop);
 
   progress_ = new QLabel(this);
@@ -146,8 +183,10 @@ void AtlasPanel::createIslandTree() {
                           tr("residence"), tr("note")});
   tree_->headerItem()->setToolTip(island, tr("The periods from the centre down (core's atlasPath)"));
   tree_->headerItem()->setToolTip(rotation, tr("The chain's rotation about its parent island"));
-  tree_->headerItem()->setToolTip(area, tr("One island's area (Green's theorem on its boundary circle) ± the change "
-                                           "with half the points"));
+  tree_->headerItem()->setToolTip(area, tr("One island's area (Green's theorem on its proven boundary circle) ± an "
+                                           "error that covers its true area: the interval from the circle's polygon "
+                                           "less its convergence to the circle scaled to the nearest orbits that "
+                                           "leave the island (each cell's tooltip gives it)"));
   tree_->headerItem()->setToolTip(flux, tr("The turnstile's lobe area: the area crossing the chain's barrier per step"));
   tree_->headerItem()->setToolTip(layer, tr("The area inside the barrier less the islands in it"));
   tree_->headerItem()->setToolTip(residence, tr("Mean residence time inside the barrier: layer / flux, in steps (Kac)"));
@@ -230,6 +269,15 @@ void AtlasPanel::createMarkovTreeWidgets() {
   shares_->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
   shares_->verticalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
   shares_->hide();
+  comparison_ = new QTableWidget(this);
+  comparison_->setObjectName(QStringLiteral("atlasMarkovTreeComparison"));
+  comparison_->setEditTriggers(QAbstractItemView::NoEditTriggers);
+  comparison_->setSelectionMode(QAbstractItemView::NoSelection);
+  comparison_->setToolTip(tr("The model's P_t = w S(t) at each reliable level of the tail file, as archipelago-cli "
+                             "markov-tree --tail prints it"));
+  comparison_->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
+  comparison_->verticalHeader()->hide();
+  comparison_->hide();
 }
 
 void AtlasPanel::layOut() {
@@ -239,6 +287,7 @@ void AtlasPanel::layOut() {
   numbers->addWidget(depth_);
   numbers->addWidget(new QLabel(tr("max period"), this));
   numbers->addWidget(maxPeriod_, 1);
+  numbers->addWidget(cantori_);
   form->addRow(tr("Depth"), numbers);
   auto* buttons = new QHBoxLayout;
   buttons->addWidget(compute_);
@@ -269,6 +318,7 @@ void AtlasPanel::layOut() {
   layout->addLayout(model);
   layout->addWidget(modelText_);
   layout->addWidget(shares_);
+  layout->addWidget(comparison_, 1);
   layout->addLayout(exports);
 }
 
@@ -291,6 +341,7 @@ AtlasRequest AtlasPanel::request() const {
   r.map = controller_->map();
   r.depth = depth_->value();
   r.maxPeriod = static_cast<std::uint64_t>(maxPeriod_->value());
+  r.cantori = cantori_->isChecked();
   return r;
 }
 
@@ -388,6 +439,7 @@ void AtlasPanel::restoreAtlas(const std::optional<Atlas>& atlas) {
   if (atlas) {  // the controls say what it was computed with (Compute again gives the same atlas)
     depth_->setValue(std::min(atlas->request.depth, depth_->maximum()));
     maxPeriod_->setValue(static_cast<int>(std::min<std::uint64_t>(atlas->request.maxPeriod, maxPeriod_->maximum())));
+    cantori_->setChecked(atlas->request.cantori);
   }
   show(atlas ? std::make_shared<const Atlas>(*atlas) : nullptr, -1, QString());
 }
@@ -398,6 +450,7 @@ void AtlasPanel::show(std::shared_ptr<const Atlas> atlas, int done, const QStrin
     treeRequest_ = 0;
     model_.reset();
     fillShares();
+    fillComparison();
   }
   atlas_ = std::move(atlas);
   done_ = done;
@@ -443,11 +496,12 @@ void AtlasPanel::fillTree() {
     const QString state = busy() && index == done_ ? tr("measuring…") : busy() ? tr("waiting") : tr("not measured");
     row->setText(area, n.boundaryFound ? tr("%1 ± %2").arg(number(n.area), number(n.areaError, 1))
                                        : done ? QStringLiteral("–") : state);
+    row->setToolTip(area, n.boundaryFound ? areaTip(n) : QString());
     row->setText(flux, n.flux.found ? number(n.flux.flux) : QStringLiteral("–"));
     row->setText(layer, n.flux.found ? number(n.flux.layerArea) : QStringLiteral("–"));
     row->setText(residence, n.flux.found ? steps(n.flux.residence) : QStringLiteral("–"));
     const QString noteShown = done ? noteText(n) : busy() ? state : tr("not measured (stopped)");
-    row->setText(note, noteShown);
+    row->setText(note, shortNumbers(noteShown));
     row->setToolTip(note, noteShown);
     for (int c = 0; c < columns; ++c) row->setFont(c, done ? plain : italic);
   }
@@ -592,7 +646,7 @@ bool AtlasPanel::openAtlasFile(const QString& path, QString* error) {
 
 std::vector<std::uint64_t> AtlasPanel::shareTimes() { return {10'000, 100'000, 1'000'000}; }
 
-bool AtlasPanel::computeMarkovTree(double alpha, double b2, QString* error) {
+bool AtlasPanel::computeMarkovTree(double alpha, double b2, QString* error, const QString& tailFile) {
   QString why;
   MarkovTreeRequest r;
   r.alpha = alpha;
@@ -600,6 +654,7 @@ bool AtlasPanel::computeMarkovTree(double alpha, double b2, QString* error) {
   r.needsP = true;  // the page draws P_t: core refuses a missing, impossible or absurd α or b₂ (issue 54)
   r.at = shareTimes();
   r.atlasSource = "the Atlas page";
+  r.tailSource = QFileInfo(tailFile).fileName().toStdString();
   why = markovTreeMissing();
   if (why.isEmpty())
     if (const auto e = validationError(r)) why = QString::fromStdString(*e);
@@ -611,11 +666,19 @@ bool AtlasPanel::computeMarkovTree(double alpha, double b2, QString* error) {
   }
   Job<std::shared_ptr<const MarkovTreeResult>> job;  // latest wins
   job.channel = 1;
-  job.work = [atlas = atlas_, r](JobContext<NoProgress>& context)
+  job.work = [atlas = atlas_, r, file = tailFile.toStdString()](JobContext<NoProgress>& context)
       -> std::optional<std::shared_ptr<const MarkovTreeResult>> {
+    std::optional<TailState> tail;
+    if (!file.empty()) {
+      try {
+        tail = loadTailFile(file);
+      } catch (const std::exception&) {  // its own reading said why when it was opened: the model alone
+      }
+      if (tail && !(tail->request.run.map == atlas->request.map)) tail.reset();
+    }
     try {  // throws: core's reason; Cancel or closing the window stops it within milliseconds (issue 54)
       return std::make_shared<const MarkovTreeResult>(
-          archipelago::computeMarkovTree(*atlas, r, nullptr, context.stopToken()));
+          archipelago::computeMarkovTree(*atlas, r, tail ? &*tail : nullptr, context.stopToken()));
     } catch (const OperationStopped&) {
       return std::nullopt;
     }
@@ -631,6 +694,7 @@ bool AtlasPanel::computeMarkovTree(double alpha, double b2, QString* error) {
       model_.reset();
     }
     fillShares();
+    fillComparison();
     if (!failure.isEmpty()) showModelRefusal(failure);
     updateButtons();
     Q_EMIT statusMessage(failure.isEmpty() ? tr("Markov tree of the atlas: %1 states").arg(model_->tree.states.size())
@@ -696,6 +760,38 @@ void AtlasPanel::fillShares() {
   shares_->setFixedHeight(shares_->horizontalHeader()->sizeHint().height() +
                           levels * shares_->verticalHeader()->defaultSectionSize() + 2 * shares_->frameWidth());
   shares_->show();
+}
+
+void AtlasPanel::fillComparison() {
+  comparison_->clear();
+  if (!model_ || !model_->comparison) {
+    comparison_->hide();
+    return;
+  }
+  const MarkovTreeComparison& c = *model_->comparison;
+  // The CLI's line and table (MarkovTreeCommand's printTree): the numbers are core's, the page only formats them.
+  modelText_->setText(modelText_->text() + QLatin1Char('\n') +
+                      tr("Against the tail %1: model / measured within a factor %2 last at t = %3 (the reach).")
+                          .arg(QString::fromStdString(model_->request.tailSource))
+                          .arg(c.factor)
+                          .arg(c.reach > 0 ? QString::fromStdString(io::shortestText(c.reach)) : tr("none")));
+  comparison_->setColumnCount(5);
+  comparison_->setHorizontalHeaderLabels({tr("t"), tr("measured"), tr("model"), tr("ratio"), tr("level (share)")});
+  comparison_->setRowCount(static_cast<int>(c.levels.size()));
+  for (int row = 0; row < static_cast<int>(c.levels.size()); ++row) {
+    const MarkovTreeLevelComparison& m = c.levels[static_cast<std::size_t>(row)];
+    const QString cells[] = {QString::number(m.t, 'f', 0), tr("%1 ± %2").arg(number(m.measured, 4), number(m.measuredError, 2)),
+                             number(m.model, 4), number(m.ratio, 3),
+                             m.holdingLevel >= 0 ? tr("%1 (%2 %)").arg(m.holdingLevel).arg(100 * m.holdingShare, 0, 'f', 0)
+                                                 : QStringLiteral("–")};
+    for (int col = 0; col < 5; ++col) {
+      auto* cell = new QTableWidgetItem(cells[col]);
+      cell->setTextAlignment(Qt::AlignRight | Qt::AlignVCenter);
+      comparison_->setItem(row, col, cell);
+    }
+    comparison_->item(row, 3)->setData(Qt::UserRole, static_cast<double>(m.ratio));
+  }
+  comparison_->show();
 }
 
 bool AtlasPanel::showIsland(int index) {

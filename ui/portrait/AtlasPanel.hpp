@@ -18,7 +18,8 @@
 /// Below the tree, the Meiss–Ott Markov tree of the atlas shown (core/markovtree, docs/markov-tree.md, issue 40):
 /// "Model P_t…" asks the window for the entry's α and b₂, computeMarkovTree() runs core's computeMarkovTree on a
 /// background job, and markovTreeFinished() hands the result on (the window draws its P_t on the P_t plot); the page
-/// shows each atlas level's share of the model's survivors at t = 10⁴, 10⁵, 10⁶ (core's markovTreeLevelShares).
+/// shows each atlas level's share of the model's survivors at t = 10⁴, 10⁵, 10⁶ (core's markovTreeLevelShares), and,
+/// with a tail file, the model against the tail as `archipelago-cli markov-tree --tail` prints it (core's comparison).
 
 #include <QString>
 #include <QWidget>
@@ -34,6 +35,7 @@
 #include "core/atlas/Atlas.hpp"
 #include "core/markovtree/MarkovTreeExport.hpp"
 
+class QCheckBox;
 class QElapsedTimer;
 class QLabel;
 class QPushButton;
@@ -63,6 +65,7 @@ class AtlasPanel : public QWidget {
 
   [[nodiscard]] QSpinBox* depthBox() const noexcept { return depth_; }
   [[nodiscard]] QSpinBox* maxPeriodBox() const noexcept { return maxPeriod_; }
+  [[nodiscard]] QCheckBox* cantoriBox() const noexcept { return cantori_; }
   [[nodiscard]] QPushButton* computeButton() const noexcept { return compute_; }
   [[nodiscard]] QPushButton* stopButton() const noexcept { return stop_; }
   [[nodiscard]] QTreeWidget* tree() const noexcept { return tree_; }
@@ -118,12 +121,18 @@ class AtlasPanel : public QWidget {
   /// length, b₂ its stochastic area), on a background job; markovTreeFinished() says how it ended.  False at once,
   /// with the reason (core's for the numbers), when there is no finished atlas or the request is refused.  A second
   /// request replaces the first (latest wins).
-  bool computeMarkovTree(double alpha, double b2, QString* error = nullptr);
+  /// With `tailFile` (a tail file of the atlas's map, as `markov-tree --tail`), the model is set against its levels:
+  /// core's comparison (model / measured per level, the reach, the level holding the survivors) fills
+  /// comparisonTable() and a line of the page (issue 53, missing); a file that cannot be read or is of another map
+  /// gives the model alone.
+  bool computeMarkovTree(double alpha, double b2, QString* error = nullptr, const QString& tailFile = {});
   [[nodiscard]] bool markovTreePending() const noexcept { return treeRequest_ != 0; }
   /// The model shown (null: none; a new atlas removes it).
   [[nodiscard]] std::shared_ptr<const MarkovTreeResult> markovTree() const noexcept { return model_; }
   /// The shares: one row per atlas level, one column per shareTimes() (Qt::UserRole holds the share as a double).
   [[nodiscard]] QTableWidget* sharesTable() const noexcept { return shares_; }
+  /// The model against the tail: one row per level compared (t, measured ± error, model, ratio, level holding).
+  [[nodiscard]] QTableWidget* comparisonTable() const noexcept { return comparison_; }
   [[nodiscard]] QPushButton* markovTreeButton() const noexcept { return modelButton_; }
   [[nodiscard]] QPushButton* openButton() const noexcept { return open_; }
   [[nodiscard]] QString markovTreeText() const;
@@ -159,6 +168,7 @@ class AtlasPanel : public QWidget {
   void updateDetails();
   void updateButtons();
   void fillShares();
+  void fillComparison();
   /// The model's refusal (core's reason, whole) below "Model P_t…".
   void showModelRefusal(const QString& why);
   /// Why the atlas shown has no Markov tree (none, computing, or core's markovTreeAtlasError), empty when it can.
@@ -170,6 +180,7 @@ class AtlasPanel : public QWidget {
   PortraitController* controller_;
   QSpinBox* depth_ = nullptr;
   QSpinBox* maxPeriod_ = nullptr;
+  QCheckBox* cantori_ = nullptr;
   QPushButton* compute_ = nullptr;
   QPushButton* stop_ = nullptr;
   QLabel* progress_ = nullptr;
@@ -182,6 +193,7 @@ class AtlasPanel : public QWidget {
   QPushButton* modelButton_ = nullptr;
   QLabel* modelText_ = nullptr;
   QTableWidget* shares_ = nullptr;
+  QTableWidget* comparison_ = nullptr;
   std::shared_ptr<const MarkovTreeResult> model_;
   quint64 treeRequest_ = 0;
   std::unique_ptr<QElapsedTimer> elapsed_;

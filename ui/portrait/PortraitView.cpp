@@ -4,6 +4,7 @@
 #include <QApplication>
 #include <QComboBox>
 #include <QEventLoop>
+#include <QFontMetrics>
 #include <QKeyEvent>
 #include <QLineEdit>
 #include <QLocale>
@@ -377,6 +378,7 @@ void PortraitView::layoutPlot() {
   }
   plot_->setGeometry(r);
   plot_->updateLayout();
+  fitXTicks();
 }
 
 void PortraitView::updateAxes() {
@@ -387,6 +389,7 @@ void PortraitView::updateAxes() {
   plot_->setAxisTitle(QwtPlot::yLeft, QStringLiteral("y") + QString::fromStdString(axisTitleSuffix(yScale_->labels())));
   setAxisTicks(QwtPlot::xBottom, xScale_->labels(), r.left(), r.right());
   setAxisTicks(QwtPlot::yLeft, yScale_->labels(), r.top(), r.bottom());
+  fitXTicks();
   plot_->replot();
 }
 
@@ -401,6 +404,34 @@ void PortraitView::setAxisTicks(int axis, const AxisLabels& labels, double lo, d
   lists[QwtScaleDiv::MajorTick] = QList<double>(ticks.major.begin(), ticks.major.end());
   lists[QwtScaleDiv::MinorTick] = QList<double>(ticks.minor.begin(), ticks.minor.end());
   plot_->setAxisScaleDiv(axis, QwtScaleDiv(lo, hi, lists));
+}
+
+namespace {
+/// True when two neighbouring major ticks' labels of `axis` come closer than `gap` pixels.
+bool ticksRunTogether(const QwtPlot& plot, int axis, double gap) {
+  const QwtScaleDraw& draw = *plot.axisScaleDraw(axis);
+  const QFont font = plot.axisWidget(axis)->font();
+  QList<double> ticks = plot.axisScaleDiv(axis).ticks(QwtScaleDiv::MajorTick);
+  std::sort(ticks.begin(), ticks.end());
+  for (qsizetype i = 1; i < ticks.size(); ++i) {
+    const double apart = plot.transform(axis, ticks[i]) - plot.transform(axis, ticks[i - 1]);
+    const double room = (draw.labelSize(font, ticks[i]).width() + draw.labelSize(font, ticks[i - 1]).width()) / 2;
+    if (apart < room + gap) return true;
+  }
+  return false;
+}
+}  // namespace
+
+void PortraitView::fitXTicks() {
+  constexpr int kMostTicks = 8;  // Qwt's default
+  const double gap = QFontMetrics(plot_->axisWidget(QwtPlot::xBottom)->font()).horizontalAdvance(QLatin1Char('0'));
+  const QRectF r = physicalRect(view_, map_);
+  for (int most = kMostTicks; most >= 1; --most) {
+    plot_->setAxisMaxMajor(QwtPlot::xBottom, most);
+    setAxisTicks(QwtPlot::xBottom, xScale_->labels(), r.left(), r.right());  // a deep view's core ticks, `most` at most
+    plot_->updateAxes();
+    if (!ticksRunTogether(*plot_, QwtPlot::xBottom, gap)) return;
+  }
 }
 
 void PortraitView::updateColourBar() {

@@ -206,6 +206,9 @@ class PortraitView : public QWidget {
   void updateAxes();
   /// The axis's scale for [lo, hi]: Qwt's ticks for plain labels, core's round ticks (axisTicks) for offset ones.
   void setAxisTicks(int axis, const AxisLabels& labels, double lo, double hi);
+  /// As many x ticks as their labels have room for on the canvas, a digit's width apart at least (issue 53, finding
+  /// 5: a thin island's view, narrow on screen, ran them together): Qwt's 8 at most, fewer while two come closer.
+  void fitXTicks();
   void updateColourBar();
   void layoutPlot();
   void replotSoon();

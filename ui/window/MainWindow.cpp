@@ -45,6 +45,7 @@
 #include <functional>
 
 #include "core/markovtree/MarkovTreeExport.hpp"
+#include "core/stats/RunStatistics.hpp"
 #include "core/tail/BruteForceSurvival.hpp"
 #include "core/tail/TailFile.hpp"
 #include "core/tail/TailResult.hpp"
@@ -104,7 +105,8 @@ MainWindow::MainWindow(QWidget* parent) : QMainWindow(parent) {
   createStatusBar();
   createDocks();
   sessions_ = new SessionController({panel_, run_, statistics_, portrait_, segments_, tabs_, [this] { refreshView(); },
-                                     [this](int rank) { showLongSegment(rank, false); }},
+                                     [this](int rank) { showLongSegment(rank, false); },
+                                     [this] { return tailFile_; }, [this](const QString& path) { openTailEstimate(path); }},
                                     this);
   connectAtlasPage();
   connectParameterPanel();
@@ -142,6 +144,7 @@ void MainWindow::createRunController() {
   connect(run_, &RunController::runReplaced, this, [this] {
     shown_.reset();
     statistics_->clear();
+    tailFile_.clear();
     glance_->clear();
     segments_->clear();
   });
@@ -349,9 +352,11 @@ void MainWindow::createMenus() {
   file->addSeparator();
   file->addAction(exportAllAction_);
   QMenu* exportMenu = file->addMenu(tr("Export &Plot"));
-  for (int i = 0; i < statistics_->plots().size(); ++i)
+  for (int i = 0; i < statistics_->plots().size(); ++i) {
     exportMenu->addAction(statistics_->plots().at(i)->displayName() + QStringLiteral("…"), this,
                           [this, i] { exportPlotDialog(i); });
+    connect(statistics_->plots().at(i), &StatisticsPlot::exportRequested, this, [this, i] { exportPlotDialog(i); });
+  }
   file->addSeparator();
   file->addAction(quitAction_);
 
@@ -371,9 +376,12 @@ void MainWindow::createMenus() {
     a->setShortcut(QKeySequence(QStringLiteral("Alt+%1").arg(i + 1)));
   }
 
+  addSidePageActions(view);
+
   menuBar()->addMenu(portrait_->menu());
 
   QMenu* tools = menuBar()->addMenu(tr("&Tools"));
+  addAtlasActions(tools);
   QAction* periodic = tools->addAction(tr("Find &Periodic Orbit…"), this, &MainWindow::showPeriodicOrbitDialog);
   periodic->setShortcut(QKeySequence(QStringLiteral("Ctrl+Shift+P")));
   periodic->setStatusTip(tr("Periodic orbits of Q with their residues; overlay them on the phase portrait"));
@@ -399,6 +407,39 @@ void MainWindow::createMenus() {
   bar->addAction(stopAction_);
   bar->addSeparator();
   bar->addAction(exportAllAction_);
+}
+
+void MainWindow::addSidePageActions(QMenu* view) {
+  // The pages beside the portrait by the keyboard (issue 53, missing): Ctrl+1 … Ctrl+5, the portrait's tab shown.
+  view->addSeparator();
+  QTabWidget* side = portrait_->sidePages();
+  for (int i = 0; i < side->count(); ++i) {
+    QAction* a = view->addAction(tr("%1 Page").arg(QString(side->tabText(i)).remove(QLatin1Char('&'))), this, [this, i] {
+      tabs_->setCurrentWidget(portrait_);
+      portrait_->sidePages()->setCurrentIndex(i);
+    });
+    a->setShortcut(QKeySequence(QStringLiteral("Ctrl+%1").arg(i + 1)));
+  }
+}
+
+void MainWindow::addAtlasActions(QMenu* tools) {
+  // The Atlas page's Compute and Model P_t… by the menu and the keyboard (issue 53, missing): the page is shown and
+  // its button pressed; a button that cannot be pressed says why in the status bar (its tooltip).
+  const auto press = [this](QPushButton* button) {
+    tabs_->setCurrentWidget(portrait_);
+    portrait_->sidePages()->setCurrentWidget(portrait_->atlasPanel());
+    if (button->isEnabled()) button->click();
+    else message(tr("%1: %2").arg(button->text(), button->toolTip()), 10000);
+  };
+  tools->addSeparator();
+  QAction* compute = tools->addAction(tr("Compute &Atlas"), this,
+                                      [this, press] { press(portrait_->atlasPanel()->computeButton()); });
+  compute->setShortcut(QKeySequence(QStringLiteral("Ctrl+Shift+A")));
+  compute->setStatusTip(tr("The Atlas page's Compute: the islands around islands of the portrait's K"));
+  QAction* model = tools->addAction(tr("&Model P_t of the Atlas…"), this,
+                                    [this, press] { press(portrait_->atlasPanel()->markovTreeButton()); });
+  model->setShortcut(QKeySequence(QStringLiteral("Ctrl+Shift+M")));
+  model->setStatusTip(tr("The Atlas page's Model P_t…: the Markov tree of the atlas drawn on P_t"));
 }
 
 void MainWindow::createStatusBar() {
@@ -632,10 +673,12 @@ void MainWindow::showProgress(const RunSnapshot& s) {
   if (s.companionRunning && live) {
     // The run is done; its q = 1 companion gives the statistics below 10 q steps (issue 37, finding 7).
     progress_->setValue(static_cast<int>(1000 * s.companionFraction + 0.5));
-    progress_->setFormat(tr("q = 1 companion run: %p % · then t < %1 steps come from it").arg(10 * s.state.params.q));
+    // A short label: the bar is at most 320 pixels (issue 53, finding 19: the longer one was clipped at 1280×800).
+    progress_->setFormat(tr("q = 1 companion: %p %"));
     progress_->setToolTip(tr("The run has finished; its q = 1 companion (a fraction of its steps) now runs, so that "
-                             "the statistics below 10 q steps are not those of blocks of q steps. When it ends, the "
-                             "plots and α show the spliced statistics."));
+                             "the statistics below 10 q steps are not those of blocks of q steps: t < %1 steps will "
+                             "come from it. When it ends, the plots and α show the spliced statistics.")
+                              .arg(10 * s.state.params.q));
     rateLabel_->setText(QString());
     etaLabel_->setText(tr("companion run"));
     if (!s.kernel.empty()) kernelLabel_->setText(tr("kernel: %1").arg(QString::fromStdString(s.kernel)));
@@ -739,6 +782,10 @@ bool MainWindow::openTailEstimate(const QString& path, QString* error) {
       if (e.factor != 1)  // spliced statistics count the q = 1 process's segments
         details += tr(", × %1 (α₁/α_q)").arg(QLocale::c().toString(e.factor, 'g', 3));
       p->setEstimate(e.levels, tr("P_t by splitting (tail)"));
+      tailFile_ = QFileInfo(path).absoluteFilePath();
+      // A model drawn already is set against this tail now (the Atlas page's comparison, issue 53, missing).
+      if (const auto model = portrait_->atlasPanel()->markovTree())
+        drawMarkovTree(model->request.alpha, model->request.b2);
       p->refresh();
       message(tr("Drew %1 levels of %2 to t = %3 steps on P_t (%4)")
                   .arg(e.levels.x.size())
@@ -773,18 +820,34 @@ MainWindow::MarkovTreeEntry MainWindow::markovTreeEntry() const {
   const MapParameters atlasMap = atlas ? atlas->request.map : given ? given->map : MapParameters{};
   const RunSnapshotPtr shown = run_->latest();
   std::optional<MapParameters> runMap;
-  double runAlpha = 0;
+  double runAlpha = 0, splicedAlpha = 0;
   if (shown && shown->hasStatistics) {
     runMap = shown->state.params.map;
     runAlpha = shown->statistics.alpha;
+    // Spliced statistics' α is the q = 1 companion's: the model, a tail file and `markov-tree --alpha` want the α of
+    // the run's own process, blocks of q steps (issue 53, finding 12: 2.72 was offered where the tail's is 18.9).
+    if (shown->statistics.splicedAt > 0) {
+      splicedAlpha = runAlpha;
+      runAlpha = statisticsOf(shown->state).alpha;
+    }
   }
   const MarkovTreeEntryOffer o = markovTreeEntryOffer(atlasMap, runMap, runAlpha);
-  return {o.alpha, o.b2, QString::fromStdString(o.alphaSource), QString::fromStdString(o.b2Source)};
+  QString alphaSource = QString::fromStdString(o.alphaSource);
+  if (runAlpha > 0 && o.alpha == runAlpha) {
+    const QLocale c = QLocale::c();
+    alphaSource += tr(", of the q = %1 process, the one a tail file of this run samples (archipelago-cli markov-tree "
+                      "--alpha %2)")
+                       .arg(shown->state.params.q)
+                       .arg(c.toString(runAlpha, 'g', 8));
+    if (splicedAlpha > 0)
+      alphaSource += tr("; the spliced statistics' α, %1, is the q = 1 companion's").arg(c.toString(splicedAlpha, 'g', 4));
+  }
+  return {o.alpha, o.b2, alphaSource, QString::fromStdString(o.b2Source)};
 }
 
 bool MainWindow::drawMarkovTree(double alpha, double b2, QString* error) {
   QString why;
-  if (!portrait_->atlasPanel()->computeMarkovTree(alpha, b2, &why)) {
+  if (!portrait_->atlasPanel()->computeMarkovTree(alpha, b2, &why, tailFile_)) {
     if (error) *error = why;
     message(tr("Cannot draw the Markov tree: %1").arg(why), 0);
     return false;

@@ -71,11 +71,14 @@ class MainWindow : public QMainWindow {
   bool openTailEstimate(const QString& path, QString* error = nullptr);
   /// A tail file is being read or its levels computed (the File menu's entry is disabled meanwhile).
   [[nodiscard]] bool tailEstimatePending() const noexcept { return tailRequest_ != 0; }
+  /// The tail file whose estimate P_t shows (absolute; empty: none, or the run it was drawn for was replaced).
+  [[nodiscard]] QString tailEstimateFile() const { return tailFile_; }
   /// File ▸ Open Atlas: shows an atlas file on the portrait's Atlas page (AtlasPanel::openAtlasFile).
   bool openAtlasFile(const QString& path, QString* error = nullptr);
   /// The entry's numbers offered for the Markov tree's P_t = w S(t) (issue 40), each with where it comes from, or 0
   /// (an empty field) with why there is none: core's markovTreeEntryOffer for the Atlas page's atlas (the parameters'
-  /// map without one) and the shown run — α the run's mean segment length when its map is the atlas's, else
+  /// map without one) and the shown run — α the run's mean segment length when its map is the atlas's (of its process
+  /// of blocks of q steps, named with q, also after splicing: the q = 1 companion's α is not the tail's), else
   /// docs/markov-tree.md's for an atlas at K = 0.1 in the default box; b₂ docs/markov-tree.md's for that map only.
   struct MarkovTreeEntry {
     double alpha = 0, b2 = 0;
@@ -85,7 +88,8 @@ class MainWindow : public QMainWindow {
   /// Draws P_t of the Markov tree of the Atlas page's atlas on the P_t plot, titled "Markov tree (atlas depth N)",
   /// and fills the page's shares: computed by a background job (AtlasPanel::computeMarkovTree); true when that
   /// started, and markovTreeDrawn() says how it ended; false at once with the reason (no finished atlas, α or b₂
-  /// refused by core).
+  /// refused by core).  With a tail estimate drawn, the page sets the model against its file (and opening a tail
+  /// file draws the model shown again against it).
   bool drawMarkovTree(double alpha, double b2, QString* error = nullptr);
   /// The Atlas page's "Model P_t…": a small dialog asking α and b₂, prefilled with markovTreeEntry().
   void askMarkovTree();
@@ -169,6 +173,9 @@ class MainWindow : public QMainWindow {
   void onMarkovTreeFinished(std::shared_ptr<const MarkovTreeResult> model, const QString& error);
   void createActions();
   void createMenus();
+  /// View ▸ Run Page … Atlas Page (Ctrl+1 … Ctrl+5); Tools ▸ Compute Atlas, Model P_t of the Atlas….
+  void addSidePageActions(QMenu* view);
+  void addAtlasActions(QMenu* tools);
   void createStatusBar();
   QWidget* createParameterDock();
   void createCheckpointBanner();
@@ -240,6 +247,7 @@ class MainWindow : public QMainWindow {
   RunSnapshotPtr shown_;       // the snapshot on screen
   bool confirmations_ = true;
   quint64 tailRequest_ = 0;    // openTailEstimate()'s job in flight (0: none)
+  QString tailFile_;           // the tail file drawn on P_t (sessions keep it)
   // Last: destroyed first, so that no job outlives what its handlers use (BackgroundJobs.hpp, "Lifetime").
   std::unique_ptr<BackgroundJobs> jobs_;
 };

@@ -4,6 +4,7 @@
 #include <QFormLayout>
 #include <QGroupBox>
 #include <QLabel>
+#include <QPalette>
 #include <QLineEdit>
 #include <QLocale>
 #include <QScrollArea>
@@ -75,6 +76,7 @@ ParameterPanel::ParameterPanel(QWidget* parent) : QWidget(parent) {
   descriptionArea->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
   descriptionArea->setWidget(presetDescription_);
   descriptionArea->setFixedHeight(presetDescription_->fontMetrics().lineSpacing() * 5 + 4);
+  layout->addWidget(createLockedNote());
   auto* presetForm = new QFormLayout;
   presetForm->addRow(tr("Preset"), presetBox_);
   layout->addLayout(presetForm);
@@ -249,10 +251,29 @@ bool ParameterPanel::applyPreset(const QString& nameOrId) {
   return true;
 }
 
+QLabel* ParameterPanel::createLockedNote() {
+  lockedNote_ = new QLabel(tr("Read-only: the parameters of the run on screen, which computes or can be resumed. "
+                               "Stop it (Shift+F5), or open or start another run, to change them."),
+                            this);
+  lockedNote_->setObjectName(QStringLiteral("parametersLocked"));
+  lockedNote_->setWordWrap(true);
+  lockedNote_->setStyleSheet(QStringLiteral("#parametersLocked { background: #eef3fb; border: 1px solid #b8c8e0; "
+                                            "padding: 3px; }"));
+  lockedNote_->hide();
+  return lockedNote_;
+}
+
 void ParameterPanel::setEditable(bool editable) {
-  for (QLineEdit* edit : std::as_const(fields_)) edit->setReadOnly(!editable);
-  fields_.value(QStringLiteral("threads"))->setReadOnly(!editable);
+  // Read-only fields look it (the window's background, not the editable white) and the note above them says why
+  // (issue 53, finding 21: a paused run's fields looked editable and dropped the keys without a word).
+  for (QLineEdit* edit : std::as_const(fields_)) {
+    edit->setReadOnly(!editable);
+    QPalette look = edit->palette();
+    look.setColor(QPalette::Base, palette().color(editable ? QPalette::Base : QPalette::Window));
+    edit->setPalette(look);
+  }
   presetBox_->setEnabled(editable);
+  lockedNote_->setVisible(!editable);
 }
 
 void ParameterPanel::markField(const QString& name, const QString& error) {

@@ -54,7 +54,8 @@ class ParameterPanel : public QWidget {
   [[nodiscard]] QStringList presetNames() const;
   /// Loads the preset of that name or id (core's findPreset); false when there is none.
   bool applyPreset(const QString& nameOrId);
-  /// Fields are read-only while a run computes (its parameters cannot change under it).
+  /// Fields are read-only while a run computes or can be resumed (its parameters cannot change under it): they then
+  /// look it, and a note above them says why and how to edit.
   void setEditable(bool editable);
   /// The text field of a parameter ("K", "xmin", "xmax", "Xr", "q", "T", "M", "seed", "subsets", "threads").
   [[nodiscard]] QLineEdit* field(const QString& name) const { return fields_.value(name); }
@@ -65,6 +66,8 @@ class ParameterPanel : public QWidget {
 
  private:
   void addField(QFormLayout* form, const QString& name, const QString& label, const QString& tooltip);
+  /// The note shown above the fields while they are read-only (setEditable).
+  QLabel* createLockedNote();
   void revalidate();
   void markField(const QString& name, const QString& error);
   void showDerived(const std::optional<TrappingParameters>& p);
@@ -75,6 +78,7 @@ class ParameterPanel : public QWidget {
   QComboBox* presetBox_ = nullptr;
   QLabel* presetDescription_ = nullptr;
   QLabel* message_ = nullptr;
+  QLabel* lockedNote_ = nullptr;   ///< shown while the fields are read-only
   QMap<QString, QLineEdit*> fields_;
   QMap<QString, QLabel*> derived_;
   std::optional<TrappingParameters> parsed_;

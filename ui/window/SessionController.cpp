@@ -19,9 +19,32 @@
 
 namespace archipelago::ui {
 
+namespace {
+/// A file's path as a session refers to it: relative to the session's folder when it lies inside it.
+std::filesystem::path pathFromSession(const QString& sessionPath, const QString& file) {
+  const QDir folder = QFileInfo(sessionPath).absoluteDir();
+  const QString relative = folder.relativeFilePath(QFileInfo(file).absoluteFilePath());
+  return (relative.startsWith(QLatin1String("..")) ? QFileInfo(file).absoluteFilePath() : relative).toStdString();
+}
+
+/// A page's title without its mnemonic.
+std::string pageName(const QTabWidget& tabs, int i) { return tabs.tabText(i).remove(QLatin1Char('&')).toStdString(); }
+
+bool hasPage(const QTabWidget& tabs, const std::string& name) {
+  for (int i = 0; i < tabs.count(); ++i)
+    if (pageName(tabs, i) == name) return true;
+  return false;
+}
+
+void selectPage(QTabWidget& tabs, const std::string& name) {
+  for (int i = 0; i < tabs.count(); ++i)
+    if (pageName(tabs, i) == name) tabs.setCurrentIndex(i);
+}
+}  // namespace
+
 SessionController::SessionController(SessionParts parts, QObject* parent) : QObject(parent), parts_(std::move(parts)) {
   Q_ASSERT(parts_.parameters && parts_.run && parts_.statistics && parts_.portrait && parts_.segments &&
-           parts_.tabs && parts_.refreshNow && parts_.showSegment);
+           parts_.tabs && parts_.refreshNow && parts_.showSegment && parts_.tailFile && parts_.openTail);
 }
 
 Session SessionController::capture(const QString& sessionPath) const {
@@ -34,22 +57,26 @@ Session SessionController::capture(const QString& sessionPath) const {
   if (const auto& latest = run.latest()) {
     const QString file = run.currentFile();
     if (!file.isEmpty() && !run.unsaved() && file != RunController::checkpointPath() && QFileInfo::exists(file)) {
-      const QDir folder = QFileInfo(sessionPath).absoluteDir();
-      const QString relative = folder.relativeFilePath(QFileInfo(file).absoluteFilePath());
-      s.runFile = (relative.startsWith(QLatin1String("..")) ? QFileInfo(file).absoluteFilePath() : relative).toStdString();
+      s.runFile = pathFromSession(sessionPath, file);
     } else {
       s.embeddedRun = latest->state;
     }
     s.runStopped = run.status() == RunStatus::stopped;
   }
 
-  s.tab = parts_.tabs->tabText(parts_.tabs->currentIndex()).remove(QLatin1Char('&')).toStdString();
+  s.tab = pageName(*parts_.tabs, parts_.tabs->currentIndex());
+  s.sidePage = pageName(*parts_.portrait->sidePages(), parts_.portrait->sidePages()->currentIndex());
   s.portrait = parts_.portrait->sessionState();
-  // The Atlas page's atlas, when it is of the map the session opens with (core refuses another map's).
-  if (auto atlas = parts_.portrait->atlasPanel()->sessionAtlas()) {
+  // The Atlas page's atlas, when it is of the map the session opens with (core refuses another map's), with the inputs
+  // of its Markov tree when one is drawn.
+  const AtlasPanel& atlasPage = *parts_.portrait->atlasPanel();
+  if (auto atlas = atlasPage.sessionAtlas()) {
     const MapParameters& map = s.embeddedRun ? s.embeddedRun->params.map : s.spec.parameters.map;
     if (atlas->request.map == map) s.atlas = std::move(atlas);
   }
+  if (const auto model = atlasPage.markovTree(); model && s.atlas)
+    s.markovTree = SessionMarkovTree{model->request.alpha, model->request.b2};
+  if (const QString tail = parts_.tailFile(); !tail.isEmpty() && run.latest()) s.tailFile = pathFromSession(sessionPath, tail);
 
   const LongSegmentsPanel& segments = *parts_.segments;
   if (run.latest() && segments.selectedRow() >= 0) {
@@ -75,12 +102,10 @@ bool SessionController::save(const QString& path, QString* error) {
 }
 
 std::optional<QString> SessionController::windowError(const Session& s) const {
-  if (!s.tab.empty()) {
-    bool found = false;
-    for (int i = 0; i < parts_.tabs->count(); ++i)
-      found = found || parts_.tabs->tabText(i).remove(QLatin1Char('&')).toStdString() == s.tab;
-    if (!found) return tr("tab \"%1\" is not a tab of this window").arg(QString::fromStdString(s.tab));
-  }
+  if (!s.tab.empty() && !hasPage(*parts_.tabs, s.tab))
+    return tr("tab \"%1\" is not a tab of this window").arg(QString::fromStdString(s.tab));
+  if (!s.sidePage.empty() && !hasPage(*parts_.portrait->sidePages(), s.sidePage))
+    return tr("page \"%1\" is not a page beside the portrait").arg(QString::fromStdString(s.sidePage));
   for (const SessionPlotZoom& z : s.plots) {
     bool found = false;
     for (const StatisticsPlot* plot : parts_.statistics->plots())
@@ -150,6 +175,7 @@ bool SessionController::apply(const Session& s, QString* error) {
 
 void SessionController::applyViews(const Session& s) {
   selectTab(s.tab);
+  selectSidePage(s.sidePage);
   const TrappingParameters& p =
       s.embeddedRun ? s.embeddedRun->params : s.spec.parameters;
   parts_.portrait->restoreSessionState(s.portrait, p.map, p.Xr);
@@ -162,6 +188,7 @@ void SessionController::applyRunDependent(const Session& s) {
   // A resumable run shows its own parameters (read-only); otherwise the panel holds the session's.
   if (parts_.run->status() != RunStatus::paused) parts_.parameters->setSpec(s.spec);
   parts_.refreshNow();
+  redrawModels(s);
   for (StatisticsPlot* plot : parts_.statistics->plots()) {
     plot->resetZoom();
     for (const SessionPlotZoom& z : s.plots)
@@ -182,6 +209,7 @@ void SessionController::applyRunDependent(const Session& s) {
                           QTimer::singleShot(0, this, [this, s] {
                             parts_.segments->setCurrentIndex(static_cast<std::size_t>(s.segmentPosition));
                             selectTab(s.tab);
+                            selectSidePage(s.sidePage);
                             if (!s.portrait.history.empty())
                               parts_.portrait->controller()->restoreHistory(s.portrait.history, s.portrait.current);
                             Q_EMIT restored();
@@ -190,9 +218,15 @@ void SessionController::applyRunDependent(const Session& s) {
   parts_.showSegment(s.segmentRank);
 }
 
-void SessionController::selectTab(const std::string& tab) {
-  for (int i = 0; i < parts_.tabs->count(); ++i)
-    if (parts_.tabs->tabText(i).remove(QLatin1Char('&')).toStdString() == tab) parts_.tabs->setCurrentIndex(i);
+void SessionController::redrawModels(const Session& s) {
+  // Both are background jobs; each says how it ended as when asked from the menu (a tail file gone: its dialog).
+  const QString tail = s.tailFile ? QString::fromStdString(s.tailFile->string()) : QString();
+  if (s.markovTree) parts_.portrait->atlasPanel()->computeMarkovTree(s.markovTree->alpha, s.markovTree->b2, nullptr, tail);
+  if (s.tailFile) parts_.openTail(tail);
 }
+
+void SessionController::selectTab(const std::string& tab) { selectPage(*parts_.tabs, tab); }
+
+void SessionController::selectSidePage(const std::string& page) { selectPage(*parts_.portrait->sidePages(), page); }
 
 }  // namespace archipelago::ui

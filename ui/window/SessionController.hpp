@@ -5,7 +5,9 @@
 /// A session holds the parameters, the run (referenced when it is saved in a file and unchanged since, else
 /// embedded), the portrait's exact view with its history, mode, colour map, points budget, launched orbits and
 /// periodic-orbit overlays, the selected long segment with its replay position, the plots the user zoomed, the
-/// active tab, and the Atlas page's atlas (of the session's map; while it computes, the islands finished so far).  Opening reads and validates the whole file first (core), then checks what only the window
+/// active tab and the page beside the portrait, the Atlas page's atlas (of the session's map; while it computes, the
+/// islands finished so far) with its Markov tree's α and b₂ (computed again on opening), and the tail file drawn on
+/// P_t (read again once the run's statistics are back; issue 53, finding 3).  Opening reads and validates the whole file first (core), then checks what only the window
 /// knows (plot and tab names): a bad or foreign file changes nothing and the reason is returned.  Discarding
 /// unsaved work asks (the run controller).  What depends on the run (the segment table, plot ranges) is applied
 /// when its analysis has come back.
@@ -43,6 +45,9 @@ struct SessionParts {
   std::function<void()> refreshNow;
   /// Selects the long segment of this rank as soon as the segment table has it (the window raises its dock).
   std::function<void(int rank)> showSegment;
+  /// The tail file whose estimate P_t shows (empty: none), and drawing one again (MainWindow::openTailEstimate).
+  std::function<QString()> tailFile;
+  std::function<void(const QString& path)> openTail;
 };
 
 class SessionController : public QObject {
@@ -71,6 +76,9 @@ class SessionController : public QObject {
   void applyViews(const Session& session);
   void applyRunDependent(const Session& session);
   void selectTab(const std::string& tab);
+  void selectSidePage(const std::string& page);
+  /// The Markov tree's and the tail estimate's curves, from their inputs (once the run's statistics are shown).
+  void redrawModels(const Session& session);
 
   SessionParts parts_;
   std::optional<Session> pending_;

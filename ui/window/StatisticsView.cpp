@@ -4,6 +4,7 @@
 #include <QGridLayout>
 #include <QLabel>
 #include <QLocale>
+#include <QShortcut>
 #include <QTextDocument>
 #include <QVBoxLayout>
 
@@ -44,11 +45,22 @@ StatisticsView::StatisticsView(QWidget* parent) : QWidget(parent) {
   for (const StatisticInfo& info : statisticsTable()) {
     if (!info.plotted) continue;
     auto* plot = new StatisticsPlot(info.statistic, this);
+    connect(plot, &StatisticsPlot::enlargeToggled, this, [this, plot] { enlarge(enlarged_ == plot ? nullptr : plot); });
     plots_.append(plot);
     grid->addWidget(plot, i / 3, i % 3);
     ++i;
   }
   layout->addLayout(grid, 1);
+  auto* back = new QShortcut(QKeySequence(Qt::Key_Escape), this, [this] { enlarge(nullptr); });
+  back->setContext(Qt::WidgetWithChildrenShortcut);
+}
+
+void StatisticsView::enlarge(StatisticsPlot* plot) {
+  enlarged_ = plot;
+  for (StatisticsPlot* p : std::as_const(plots_)) {
+    p->setVisible(!plot || p == plot);
+    p->setEnlarged(p == plot);
+  }
 }
 
 StatisticsPlot* StatisticsView::plot(Statistic statistic) const {

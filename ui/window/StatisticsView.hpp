@@ -39,6 +39,10 @@ class StatisticsView : public QWidget {
   /// Core's run summary of the snapshot (its statistics and, once judged, the run's tail analysis): what the view
   /// shows and what "Export all" writes in summary.csv.
   [[nodiscard]] static RunSummary summaryOf(const RunSnapshot& snapshot);
+  /// Shows `plot` alone, over the room of all six (null: all of them again); a double click on a plot or its menu's
+  /// Enlarge toggles it, Esc shows all again (issue 53, missing: P_t with a model and a tail had ~230×180 pixels).
+  void enlarge(StatisticsPlot* plot);
+  [[nodiscard]] StatisticsPlot* enlargedPlot() const noexcept { return enlarged_; }
 
  private:
   /// The exact longest segment (the first kept record), in steps.
@@ -51,6 +55,7 @@ class StatisticsView : public QWidget {
   QList<StatisticsPlot*> plots_;
   QLabel* summary_ = nullptr;
   QLabel* tail_ = nullptr;
+  StatisticsPlot* enlarged_ = nullptr;
   quint64 refreshes_ = 0;
   double refreshSeconds_ = 0;
 };

@@ -265,6 +265,43 @@ TEST(Atlas, HoldsBothSeparatricesOfEveryChainTheOuterEnclosingTheLargerZone) {
   ASSERT_NE(six, nullptr);
   ASSERT_TRUE(six->flux.inner.found) << six->flux.inner.failure;
   EXPECT_GT(six->flux.inner.zoneArea, a.nodes[0].areaLower);
+  // Its layer (issue 50): the inner zone less the one island inside it, the centre's — the band between 1/6's inner
+  // separatrix and the central island's boundary circle, the tree's innermost state.
+  EXPECT_EQ(six->flux.inner.enclosedCount, 1);
+  EXPECT_EQ(six->flux.inner.enclosedIslands, a.nodes[0].area);
+  EXPECT_EQ(six->flux.inner.layerArea, six->flux.inner.zoneArea - a.nodes[0].area);
+  EXPECT_LT(six->flux.inner.layerArea, six->flux.layerArea);
+}
+
+// Issue 50, item 4: the cantori between the centre's chains are barriers of the atlas.  Between 5/31 and 1/6 the
+// noble [0; 6, 5, 1, 1, …]: ΔW over its convergents 5/31 … 45/278 tends to MMP's flux, 1.1631691829474e-5 per step
+// (docs/markov-tree.md: to 118/729, its terms checked by an independent mpmath computation to 28 digits); the
+// atlas's limit carries a tail bound that must cover it, and its layer lies between the layers of 5/31 and 1/6.
+TEST(Atlas, HoldsTheCantorusBetween5Over31And1Over6WithItsMmpFluxAsABarrier) {
+  AtlasRequest r = depthOne();
+  r.cantori = true;
+  const Atlas a = computeAtlas(r);
+  const AtlasCantorus* c = nullptr;
+  for (const AtlasCantorus& x : a.cantori)
+    if (x.outer == Rational{5, 31} && x.inner == Rational{1, 6}) c = &x;
+  ASSERT_NE(c, nullptr) << a.cantori.size() << " cantori";
+  ASSERT_TRUE(c->found) << c->failure;
+  EXPECT_EQ(c->convergents,
+            (std::vector<Rational>{{5, 31}, {6, 37}, {11, 68}, {17, 105}, {28, 173}, {45, 278}}));
+  EXPECT_LT(c->fluxUncertainty, 1e-9L);
+  EXPECT_LE(std::fabs(c->flux - 1.1631691829474e-5L), c->fluxUncertainty);
+  const AtlasNode* c31 = chainOf(a, 0, 5, 31);
+  const AtlasNode* c6 = chainOf(a, 0, 1, 6);
+  ASSERT_TRUE(c31 && c6);
+  EXPECT_LT(c->layerArea, c31->flux.layerArea);
+  EXPECT_GT(c->layerArea, c6->flux.layerArea);
+  EXPECT_NEAR(static_cast<double>(c->layerArea), static_cast<double>(c->zoneArea - c->enclosedIslands), 1e-15);
+  // Every pair of successive barriers about the centre has its record (found or why not), outermost first.
+  EXPECT_EQ(a.cantori.front().outer, (Rational{2, 13}));
+  // The file keeps them.
+  const Atlas back = atlasFromJson(atlasJson(a));
+  ASSERT_EQ(back.cantori.size(), a.cantori.size());
+  EXPECT_NEAR(static_cast<double>(back.cantori.back().flux / a.cantori.back().flux), 1.0, 1e-15);  // a double's text
 }
 
 TEST(Atlas, RefusesBadRequestsNamingTheField) {

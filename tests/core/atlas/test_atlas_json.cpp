@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/atlas/AtlasExport.hpp"
+#include "core/io/BadFile.hpp"
 #include "core/io/Json.hpp"
 
 namespace archipelago {
@@ -431,6 +432,53 @@ TEST(AtlasJson, ABarrierWhoseZoneIsNoLargerThanItsIslandsIsRefused) {
   EXPECT_EQ(again["nodes"][1]["flux"]["found"], false);
   EXPECT_FALSE(again["nodes"][1]["flux"].contains("residence"));
   EXPECT_TRUE(atlasFromJson(atlasJson(handBuilt())).nodes[1].flux.found);  // the untouched file keeps it
+}
+
+// Issue 50: the cantori read back; edited (and signed again) against their
+// invariants — a layer that is not its zone less its islands, a flux ≤ 0, a zone above the box's, a found cantorus
+// without a flux or with a failure, a fraction that is no fraction — they are refused, naming the field.
+TEST(AtlasJson, TheCantoriReadBackAndForgedOnesAreRefused) {
+  Atlas a = handBuilt();
+  AtlasCantorus c;
+  c.outer = {5, 31};
+  c.inner = {1, 6};
+  c.convergents = {{5, 31}, {6, 37}, {11, 68}};
+  c.found = true;
+  c.flux = 1.1632e-5L;
+  c.fluxUncertainty = 5e-10L;
+  c.zoneArea = 0.3189L;
+  c.zoneSpread = 1.3e-3L;
+  c.enclosedIslands = 0.2794L;
+  c.enclosedCount = 7;
+  c.layerArea = c.zoneArea - c.enclosedIslands;
+  AtlasCantorus refused = c;
+  refused.found = false;
+  refused.failure = "its layer does not lie between the layers of the barriers about it";
+  a.cantori = {c, refused};
+  const std::string text = atlasJson(a);
+  const Atlas back = atlasFromJson(text);
+  ASSERT_EQ(back.cantori.size(), 2u);
+  EXPECT_EQ(back.cantori[0].convergents, c.convergents);
+  EXPECT_TRUE(back.cantori[0].found);
+  EXPECT_FALSE(back.cantori[1].found);
+  EXPECT_EQ(back.cantori[1].failure, refused.failure);
+  EXPECT_EQ(atlasJson(back), text);
+  const auto refusedWith = [&](const std::function<void(ojson&)>& edit, const std::string& word) {
+    ojson j = ojson::parse(text);
+    edit(j);
+    try {
+      (void)atlasFromJson(signedAgain(j));
+      ADD_FAILURE() << "accepted: " << word;
+    } catch (const io::BadFile& e) {
+      EXPECT_NE(std::string(e.what()).find(word), std::string::npos) << e.what();
+    }
+  };
+  refusedWith([](ojson& j) { j["cantori"][0]["layer_area"] = 0.05; }, "layer_area");
+  refusedWith([](ojson& j) { j["cantori"][0]["flux_per_step"] = -1e-5; }, "flux_per_step");
+  refusedWith([](ojson& j) { j["cantori"][0]["zone_area"] = 1e308; }, "zone_area");
+  refusedWith([](ojson& j) { j["cantori"][1]["found"] = true; }, "found");
+  refusedWith([](ojson& j) { j["cantori"][0]["outer"] = "5/-31"; }, "outer");
+  refusedWith([](ojson& j) { j["cantori"][0].erase("flux_per_step"); }, "flux");
 }
 
 TEST(AtlasJson, RandomEditsAreRefusedOrReadConsistently) {

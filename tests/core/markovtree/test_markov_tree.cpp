@@ -96,6 +96,9 @@ Atlas k01() {
   return a;
 }
 
+/// The states of k01(): the centre, 2/13, 3/19, 5/31, 1/6 and the five chains about the six.
+constexpr std::size_t k01States = 10;
+
 /// A legal atlas of `chains` chains about the centre whose zones nest (issue 54's hostile atlas: 1000 of them ran past
 /// 360 s, 20,000 asked 6.4 GB): chain k has p/q = 1/(k + 6) (farther from the boundary rotation 0 the farther out),
 /// layer ℓ₁ (chains + 1 − k)/chains, so that each state's area is ℓ₁/chains, and a flux of 10⁻³ of that area.
@@ -237,7 +240,8 @@ TEST(MarkovTree, IsRecomputedFromAnAtlasFileWithEveryRateFromItsNumbers) {
   const auto st = statesByNode(tree);
   auto areaOf = [&](int n) {
     long double A = layer(n);
-    for (int d : tree.states[static_cast<std::size_t>(st.at(n))].subtracted) A -= layer(d);
+    for (int d : tree.states[static_cast<std::size_t>(st.at(n))].subtracted)  // the states just inside it
+      A -= layer(tree.states[static_cast<std::size_t>(d)].node);
     return A;
   };
   ASSERT_EQ(tree.rates.size(), 2 * tree.states.size() - 1);
@@ -252,6 +256,100 @@ TEST(MarkovTree, IsRecomputedFromAnAtlasFileWithEveryRateFromItsNumbers) {
   }
   EXPECT_EQ(tree.rates[0].to, -1);
   EXPECT_NEAR(static_cast<double>(tree.rates[0].perStep), flux(0) / (layer(0) - layer(2)), 1e-15);
+}
+
+/// k01() with issue 50's barriers: the inner separatrices of 2/13 and 1/6 (the latter's band down to the central
+/// island's boundary circle, 1/6's inner lobe 2.13e-8 as docs/atlas.md's K = 0.1 atlas gives it) and the cantorus
+/// between 5/31 and 1/6 (MMP's 1.1632e-5, docs/markov-tree.md), its layer between theirs.
+Atlas k01WithInnerSeparatricesAndACantorus() {
+  Atlas a = k01();
+  auto inner = [](AtlasNode& n, long double flux, long double layer) {
+    n.flux.inner.found = true;
+    n.flux.inner.flux = flux;
+    n.flux.inner.zoneArea = layer + 0.2L;
+    n.flux.inner.enclosedIslands = 0.2L;
+    n.flux.inner.layerArea = layer;
+    n.flux.outerByZone = true;
+  };
+  inner(a.nodes[2], 6.5e-5L, 0.0737L);      // 2/13
+  inner(a.nodes[1], 2.13e-8L, 1.35e-4L);    // 1/6
+  AtlasCantorus c;
+  c.outer = {5, 31};
+  c.inner = {1, 6};
+  c.found = true;
+  c.flux = 1.1632e-5L;
+  c.zoneArea = 0.3189L;
+  c.layerArea = 0.0395L;
+  c.enclosedIslands = c.zoneArea - c.layerArea;
+  a.cantori = {c};
+  return a;
+}
+
+const MarkovTreeState& stateOf(const MarkovTree& t, int node, MarkovTreeBarrier kind) {
+  for (const MarkovTreeState& s : t.states)
+    if (s.node == node && s.barrier == kind) return s;
+  throw std::logic_error("no such state");
+}
+
+// Issue 50: the tree is a tree — the state inside 1/6's outer separatrix opens both into the band inside its inner
+// separatrix and into the subtree of its islands; inner separatrices and cantori are states; each area is its layer
+// less its children's, the whole the loop's layer; the mean visit is still the loop's residence (Kac).
+TEST(MarkovTree, InnerSeparatricesAndCantoriAreStatesAndTheTreeBranches) {
+  const Atlas a = k01WithInnerSeparatricesAndACantorus();
+  const MarkovTree tree = markovTreeFromAtlas(a);
+  ASSERT_EQ(tree.states.size(), k01States + 3);
+  const auto index = [&](const MarkovTreeState& s) { return static_cast<int>(&s - tree.states.data()); };
+  const MarkovTreeState& six = stateOf(tree, 1, MarkovTreeBarrier::OuterSeparatrix);
+  const MarkovTreeState& sixInner = stateOf(tree, 1, MarkovTreeBarrier::InnerSeparatrix);
+  const MarkovTreeState& thirteenInner = stateOf(tree, 2, MarkovTreeBarrier::InnerSeparatrix);
+  const MarkovTreeState& cantorus = stateOf(tree, -1, MarkovTreeBarrier::Cantorus);
+  const MarkovTreeState& thirtyOne = stateOf(tree, 5, MarkovTreeBarrier::OuterSeparatrix);
+  const MarkovTreeState& seventyTwo = stateOf(tree, 6, MarkovTreeBarrier::OuterSeparatrix);
+  EXPECT_EQ(six.subtracted, (std::vector<int>{index(seventyTwo), index(sixInner)}));  // branching: two children
+  EXPECT_EQ(sixInner.container, index(six));
+  EXPECT_EQ(seventyTwo.container, index(six));
+  EXPECT_EQ(six.container, index(cantorus));
+  EXPECT_EQ(cantorus.container, index(thirtyOne));
+  EXPECT_EQ(thirteenInner.container, index(stateOf(tree, 2, MarkovTreeBarrier::OuterSeparatrix)));
+  EXPECT_NEAR(static_cast<double>(six.area), 0.029719 - 7.853e-3 - 1.35e-4, 1e-15);
+  EXPECT_NEAR(static_cast<double>(sixInner.area), 1.35e-4, 1e-18);
+  EXPECT_NEAR(static_cast<double>(cantorus.area), 0.0395 - 0.029719, 1e-15);
+  EXPECT_NEAR(static_cast<double>(thirtyOne.area), 0.042958 - 0.0395, 1e-15);
+  EXPECT_NEAR(static_cast<double>(thirteenInner.area), 0.0737 - 0.066583, 1e-15);
+  long double total = 0;
+  for (const MarkovTreeState& s : tree.states) total += s.area;
+  EXPECT_NEAR(static_cast<double>(total / 0.22957L), 1.0, 1e-15);
+  // The rates through the cantorus and 1/6's inner separatrix are their fluxes over the area they leave.
+  bool throughCantorus = false, throughInner = false;
+  for (const MarkovTreeRate& r : tree.rates) {
+    if (r.from == index(cantorus) && r.to == index(thirtyOne)) {
+      EXPECT_NEAR(static_cast<double>(r.perStep / (1.1632e-5L / cantorus.area)), 1.0, 1e-15);
+      throughCantorus = true;
+    }
+    if (r.from == index(sixInner) && r.to == index(six)) {
+      EXPECT_NEAR(static_cast<double>(r.perStep / (2.13e-8L / 1.35e-4L)), 1.0, 1e-15);
+      throughInner = true;
+    }
+  }
+  EXPECT_TRUE(throughCantorus && throughInner);
+  EXPECT_NEAR(static_cast<double>(markovTreeSurvival(tree, {1}).meanVisit / (0.22957L / 3.843389e-3L)), 1.0, 1e-14);
+
+  // Left out, each ingredient merges the states it divides; a level left out is lumped.
+  EXPECT_EQ(markovTreeFromAtlas(a, {.innerSeparatrices = false}).states.size(), k01States + 1);
+  EXPECT_EQ(markovTreeFromAtlas(a, {.cantori = false}).states.size(), k01States + 2);
+  const MarkovTree outerOnly = markovTreeFromAtlas(a, {.innerSeparatrices = false, .cantori = false});
+  ASSERT_EQ(outerOnly.states.size(), k01States);
+  const MarkovTree old = markovTreeFromAtlas(k01());
+  for (std::size_t s = 0; s < old.states.size(); ++s)
+    EXPECT_EQ(outerOnly.states[s].area, old.states[s].area) << s;
+  const MarkovTree level1 = markovTreeFromAtlas(a, {.maxLevel = 1});
+  for (const MarkovTreeState& s : level1.states) EXPECT_LE(s.level, 1);
+  EXPECT_EQ(level1.states.size(), k01States + 3 - 5);  // the five chains about the six are lumped into its state
+
+  // A cantorus whose layer is not inside the barrier outside it leaves a state of no area: refused.
+  Atlas bad = a;
+  bad.cantori[0].layerArea = 0.05L;
+  EXPECT_THROW((void)markovTreeFromAtlas(bad), std::invalid_argument);
 }
 
 TEST(MarkovTree, ChangingOneFluxChangesTheRatesThroughThatBarrierOnly) {
