@@ -6,6 +6,7 @@
 /// plain labels "−0.1500000015000000…" ran together).
 
 #include <string>
+#include <vector>
 
 namespace archipelago {
 
@@ -24,6 +25,16 @@ struct AxisLabels {
 [[nodiscard]] int axisDigits(double lo, double hi);
 /// The label of the tick at `value`: plain ("−0.15", "0.0734") or the offset ("−2.5", "0", "5").
 [[nodiscard]] std::string axisTickLabel(const AxisLabels& labels, double value);
+/// The ticks of an axis showing [lo, hi]: major ticks a round step apart (1, 2 or 5 × 10^k, the smallest giving at
+/// most maxMajor steps), at whole multiples of the step from `labels`' reference (0 for plain labels), so that the
+/// labels are round and evenly spaced at any depth (issue 53, finding 7: at a view 3·10⁻¹³ wide Qwt's own ticks began
+/// at the view's edge, "−1.268, −0.7676, …", the last interval 0.456); minor ticks the same way, at most maxMinor
+/// steps per major step.  Empty for a degenerate or non-finite range.
+struct AxisTicks {
+  std::vector<double> major;
+  std::vector<double> minor;
+};
+[[nodiscard]] AxisTicks axisTicks(const AxisLabels& labels, double lo, double hi, int maxMajor = 8, int maxMinor = 5);
 /// What the axis title adds in offset notation: " − (−0.1500000) [×10⁻⁷]" (UTF-8), empty for plain labels.
 [[nodiscard]] std::string axisTitleSuffix(const AxisLabels& labels);
 

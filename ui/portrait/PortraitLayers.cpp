@@ -11,6 +11,13 @@
 
 namespace archipelago::ui {
 
+std::vector<QPointF> toQt(const std::vector<PhysicalPoint>& points) {
+  std::vector<QPointF> out;
+  out.reserve(points.size());
+  for (const PhysicalPoint& p : points) out.emplace_back(static_cast<double>(p.x), static_cast<double>(p.y));
+  return out;
+}
+
 PointsItem::PointsItem(Style style, std::vector<QPointF> points, QColor colour)
     : style_(style), points_(std::move(points)), colour_(colour) {
   switch (style_) {
@@ -21,6 +28,7 @@ PointsItem::PointsItem(Style style, std::vector<QPointF> points, QColor colour)
     case Style::diamonds: setZ(35); break;
     case Style::polyline: setZ(12); break;
     case Style::polygon: setZ(10); break;
+    case Style::label: setZ(38); break;
   }
   setItemAttribute(QwtPlotItem::AutoScale, false);
 }
@@ -48,6 +56,7 @@ void PointsItem::draw(QPainter* painter, const QwtScaleMap& xMap, const QwtScale
     case Style::diamonds: drawMarks(painter, canvas); break;
     case Style::polyline: drawPolyline(painter, canvas); break;
     case Style::polygon: drawPolygon(painter, canvas); break;
+    case Style::label: drawLabel(painter, canvas); break;
   }
   painter->restore();
 }
@@ -177,18 +186,35 @@ void PointsItem::drawPolygon(QPainter* painter, const Canvas& canvas) const {
   painter->setPen(QPen(colour_, 1));
   painter->setBrush(fill);
   painter->drawPolygon(polygon);
-  if (!label_.isEmpty()) {
-    const QPointF c = polygon.boundingRect().center();
-    if (canvas.rect.contains(c)) {
-      const QRectF box = painter->fontMetrics().boundingRect(label_).adjusted(-4, -2, 4, 2);
-      const QRectF at(c.x() + 8, c.y() - box.height() / 2, box.width(), box.height());
-      painter->setPen(Qt::NoPen);
-      painter->setBrush(QColor(0, 0, 0, 170));
-      painter->drawRoundedRect(at, 3, 3);
-      painter->setPen(Qt::white);
-      painter->drawText(at, Qt::AlignCenter, label_);
-    }
-  }
+}
+
+QRectF PointsItem::labelRect(const QPointF& anchor, const QSizeF& size, const QRectF& canvas) {
+  QRectF at(anchor.x() + 8, anchor.y() - size.height() / 2, size.width(), size.height());
+  if (at.right() > canvas.right()) at.moveRight(canvas.right());
+  if (at.left() < canvas.left()) at.moveLeft(canvas.left());
+  if (at.bottom() > canvas.bottom()) at.moveBottom(canvas.bottom());
+  if (at.top() < canvas.top()) at.moveTop(canvas.top());
+  return at;
+}
+
+void PointsItem::drawLabel(QPainter* painter, const Canvas& canvas) const {
+  if (label_.isEmpty()) return;
+  QPolygonF polygon;
+  polygon.reserve(static_cast<int>(points_.size()));
+  for (const QPointF& p : points_) polygon.append(canvas.at(p));
+  const QPointF c = polygon.boundingRect().center();
+  if (!canvas.rect.contains(c)) return;
+  const QRectF box = painter->fontMetrics().boundingRect(label_).adjusted(-4, -2, 4, 2);
+  const QRectF at = labelRect(c, box.size(), canvas.rect);
+  painter->setPen(Qt::NoPen);
+  painter->setBrush(QColor(0, 0, 0, 170));
+  painter->drawRoundedRect(at, 3, 3);
+  painter->setPen(Qt::white);
+  painter->drawText(at, Qt::AlignCenter, label_);
+}
+
+bool PointsItem::anyPointIn(const QRectF& rect) const {
+  return std::any_of(points_.begin(), points_.end(), [&rect](const QPointF& p) { return rect.contains(p); });
 }
 
 }  // namespace archipelago::ui

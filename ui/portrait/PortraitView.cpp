@@ -312,6 +312,16 @@ const std::vector<QwtPlotItem*>& PortraitView::layerItems(PortraitLayer layer) c
   return it == layers_.end() ? none : it->second;
 }
 
+bool PortraitView::layerInView(PortraitLayer layer) const {
+  const QRectF view = physicalRect(view_, map_).normalized();
+  const auto& items = layerItems(layer);
+  return std::any_of(items.begin(), items.end(), [&view](const QwtPlotItem* item) {
+    return item->rtti() != PointsItem::kRtti || static_cast<const PointsItem*>(item)->anyPointIn(view);
+  });
+}
+
+QString PortraitView::legendText() const { return legend_->text().text(); }
+
 void PortraitView::setLegend(const QString& html) {
   if (html.isEmpty()) {
     legend_->setText(QwtText());
@@ -377,10 +387,23 @@ void PortraitView::updateAxes() {
   yScale_->setLabels(axisLabelsFor(r.top(), r.bottom()));
   plot_->setAxisTitle(QwtPlot::xBottom, QStringLiteral("x") + QString::fromStdString(axisTitleSuffix(xScale_->labels())));
   plot_->setAxisTitle(QwtPlot::yLeft, QStringLiteral("y") + QString::fromStdString(axisTitleSuffix(yScale_->labels())));
-  plot_->setAxisScale(QwtPlot::xBottom, r.left(), r.right());
-  plot_->setAxisScale(QwtPlot::yLeft, r.top(), r.bottom());
+  setAxisTicks(QwtPlot::xBottom, xScale_->labels(), r.left(), r.right());
+  setAxisTicks(QwtPlot::yLeft, yScale_->labels(), r.top(), r.bottom());
   fitXTicks();
   plot_->replot();
+}
+
+void PortraitView::setAxisTicks(int axis, const AxisLabels& labels, double lo, double hi) {
+  if (!labels.offset) {
+    plot_->setAxisScale(axis, lo, hi);  // Qwt's ticks: round while the view is wide against its coordinates
+    return;
+  }
+  // Deep views: core's round ticks from the labels' reference (Qwt's began at the view's edge, issue 53, finding 7).
+  const AxisTicks ticks = axisTicks(labels, lo, hi, plot_->axisMaxMajor(axis), plot_->axisMaxMinor(axis));
+  QList<double> lists[QwtScaleDiv::NTickTypes];
+  lists[QwtScaleDiv::MajorTick] = QList<double>(ticks.major.begin(), ticks.major.end());
+  lists[QwtScaleDiv::MinorTick] = QList<double>(ticks.minor.begin(), ticks.minor.end());
+  plot_->setAxisScaleDiv(axis, QwtScaleDiv(lo, hi, lists));
 }
 
 namespace {
@@ -402,8 +425,10 @@ bool ticksRunTogether(const QwtPlot& plot, int axis, double gap) {
 void PortraitView::fitXTicks() {
   constexpr int kMostTicks = 8;  // Qwt's default
   const double gap = QFontMetrics(plot_->axisWidget(QwtPlot::xBottom)->font()).horizontalAdvance(QLatin1Char('0'));
+  const QRectF r = physicalRect(view_, map_);
   for (int most = kMostTicks; most >= 1; --most) {
     plot_->setAxisMaxMajor(QwtPlot::xBottom, most);
+    setAxisTicks(QwtPlot::xBottom, xScale_->labels(), r.left(), r.right());  // a deep view's core ticks, `most` at most
     plot_->updateAxes();
     if (!ticksRunTogether(*plot_, QwtPlot::xBottom, gap)) return;
   }

@@ -2,7 +2,7 @@
 // PortraitView: the phase-portrait widget (Qwt plot of a raster rendered by core on a worker thread).
 //
 // The view draws; the PortraitController decides.  The map, the view rectangle, the render settings and the
-// overlay layers are set only by the controller (the setters are private, the controller is a friend).
+// overlay layers are set only by the controller's layers (the setters are private, the layers are friends).
 // Mouse and keys become requests (zoomRequested, …) that the controller turns into views.  A middle-drag
 // moves a picture of the canvas while dragging (QwtPanner) and then asks the controller for the pan: the axes
 // only ever show the controller's view (issue 25, finding 2: QwtPlotPanner used to move them past the box).
@@ -43,6 +43,7 @@ class QwtPlotTextLabel;
 class QTimer;
 
 namespace archipelago {
+struct AxisLabels;
 struct IndicatorRequest;
 struct PixelSize;
 }  // namespace archipelago
@@ -117,6 +118,11 @@ class PortraitView : public QWidget {
   [[nodiscard]] const PortraitFrame* currentFrame() const noexcept { return frame_.get(); }
   /// The items of a layer (tests).
   [[nodiscard]] const std::vector<QwtPlotItem*>& layerItems(PortraitLayer layer) const;
+  /// True when the layer shows something in the view: a point of one of its items inside it (an item of another
+  /// kind, e.g. a marker, counts as shown).
+  [[nodiscard]] bool layerInView(PortraitLayer layer) const;
+  /// The legend's text as set (rich text; empty: no legend).
+  [[nodiscard]] QString legendText() const;
   /// The canvas (tests send it mouse events); the plot itself stays private to the view.
   [[nodiscard]] QWidget* canvas() const;
   /// The x and y axis ranges shown (tests).
@@ -163,7 +169,13 @@ class PortraitView : public QWidget {
  private:
   /// The done frame's share of pixels visited, in %.
   [[nodiscard]] double visitedPercent() const;
+  // The portrait's layers set what it draws (PortraitController.hpp).
   friend class PortraitController;
+  friend class ViewLayer;
+  friend class LaunchedOrbitsLayer;
+  friend class ManifoldsLayer;
+  friend class AtlasIslandLayer;
+  friend class OverlayLayer;
 
   /// Shows this map and view (axes at once) and renders it.
   void display(const MapParameters& map, const Viewport& view);
@@ -192,6 +204,8 @@ class PortraitView : public QWidget {
   void onFrame(const PortraitFrame& frame);
   void onRectangleSelected(const QRectF& rect);
   void updateAxes();
+  /// The axis's scale for [lo, hi]: Qwt's ticks for plain labels, core's round ticks (axisTicks) for offset ones.
+  void setAxisTicks(int axis, const AxisLabels& labels, double lo, double hi);
   /// As many x ticks as their labels have room for on the canvas, a digit's width apart at least (issue 53, finding
   /// 5: a thin island's view, narrow on screen, ran them together): Qwt's 8 at most, fewer while two come closer.
   void fitXTicks();

@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "core/view/DeepestZoom.hpp"
 #include "core/view/Viewport.hpp"
 
 namespace archipelago {
@@ -112,6 +113,18 @@ TEST(Viewport, CroppedToARubberBand) {
   EXPECT_EQ(c.centre().X, FixedPointMap::kHalf);
   EXPECT_EQ(c.centre().Y, FixedPointMap::kHalf + FixedPointMap::kOne / 16);
   EXPECT_EQ(v.cropped(0.5L, 0.5L, 0, 1), v);  // empty: unchanged
+}
+
+TEST(Viewport, TheDeepestZoomIsKnownAndSaysWhy_Issue53Finding7) {
+  const MapParameters map{0.1, -0.8, 0.5};
+  Viewport v;
+  EXPECT_FALSE(atDeepestZoom(v));
+  for (int i = 0; i < 60; ++i) v = v.zoomedAboutFraction(0.5L, 0.5L, 2);
+  EXPECT_TRUE(atDeepestZoom(v));
+  EXPECT_EQ(v.zoomedAboutFraction(0.5L, 0.5L, 2), v);
+  const std::string note = deepestZoomNote(map);
+  EXPECT_NE(note.find("1024 grid cells (3e-13) wide"), std::string::npos) << note;
+  EXPECT_NE(note.find("2^52"), std::string::npos) << note;
 }
 
 }  // namespace
