@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/io/Json.hpp"
 #include "core/io/NumberText.hpp"
 #include "core/provenance/Provenance.hpp"
 
@@ -147,6 +148,7 @@ std::optional<std::vector<double>> markovTreeLevelShares(const MarkovTreeSurviva
 std::string markovTreeJson(const MarkovTreeResult& r) {
   json j;
   j["format"] = "archipelago markov tree";
+  j["format_version"] = kMarkovTreeFormatVersion;
   j["program"] = programDescription();
   json prov = json::object();
   for (const auto& [k, v] : provenanceOf(r).fields) prov[k] = v;
@@ -238,6 +240,8 @@ std::string markovTreeJson(const MarkovTreeResult& r) {
                     {"holding_share", m.holdingShare}});
     j["comparison"] = {{"tail", r.request.tailSource}, {"factor", c.factor}, {"reach", c.reach}, {"levels", lv}};
   }
+  // Signed as run, tail and atlas files are (issue 54): any edit of the file is refused on load.
+  j["checksum"] = io::jsonChecksum(nlohmann::json::parse(j.dump()));
   return j.dump(2) + "\n";
 }
 
