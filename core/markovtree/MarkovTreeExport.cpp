@@ -27,7 +27,9 @@ json number(long double v) {
 
 std::string text(long double v) { return io::formatC("%.12Lg", v); }
 
-Provenance provenanceOf(const MarkovTreeResult& r) {
+}  // namespace
+
+Provenance markovTreeProvenance(const MarkovTreeResult& r) {
   Provenance p = mapProvenance(r.map);
   p.add("Model", "Meiss-Ott Markov tree of the atlas (docs/markov-tree.md)");
   p.add("Atlas", r.request.atlasSource.empty() ? std::string("(given)") : r.request.atlasSource);
@@ -42,7 +44,6 @@ Provenance provenanceOf(const MarkovTreeResult& r) {
   if (r.comparison) p.add("Tail", r.request.tailSource.empty() ? std::string("(given)") : r.request.tailSource);
   return p;
 }
-}  // namespace
 
 std::optional<std::string> validationError(const MarkovTreeRequest& r) {
   if (!(std::isfinite(r.tMax) && r.tMax >= 1 && r.tMax <= 1e18)) return "t-max must be a number of steps 1 ... 1e18";
@@ -151,7 +152,7 @@ std::string markovTreeJson(const MarkovTreeResult& r) {
   j["format_version"] = kMarkovTreeFormatVersion;
   j["program"] = programDescription();
   json prov = json::object();
-  for (const auto& [k, v] : provenanceOf(r).fields) prov[k] = v;
+  for (const auto& [k, v] : markovTreeProvenance(r).fields) prov[k] = v;
   j["provenance"] = prov;
   j["map"] = {{"K", r.map.K}, {"xmin", r.map.xmin}, {"xmax", r.map.xmax}};
   j["request"] = {{"t_max", r.request.tMax},
@@ -247,7 +248,7 @@ std::string markovTreeJson(const MarkovTreeResult& r) {
 
 std::string markovTreeCsv(const MarkovTreeResult& r) {
   std::ostringstream out;
-  for (const auto& [k, v] : provenanceOf(r).fields) out << "# " << k << ": " << v << "\n";
+  for (const auto& [k, v] : markovTreeProvenance(r).fields) out << "# " << k << ": " << v << "\n";
   out << "t,S,P";
   for (std::size_t l = 0; l < r.survival.level.size(); ++l) out << ",level_" << l;
   for (const MarkovTreeState& s : r.tree.states) out << ",state " << s.path;

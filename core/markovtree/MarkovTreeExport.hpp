@@ -11,6 +11,7 @@
 
 #include "core/atlas/Atlas.hpp"
 #include "core/markovtree/MarkovTree.hpp"
+#include "core/provenance/Provenance.hpp"
 #include "core/stats/TrappingStatistics.hpp"
 #include "core/tail/TailSampler.hpp"
 
@@ -82,6 +83,10 @@ struct MarkovTreeResult {
 /// Each atlas level's share of the survivors at t (its part of S(t) / S(t)), level 0 first, or nothing when t is
 /// not on the survival's grid or S(t) is 0.
 [[nodiscard]] std::optional<std::vector<double>> markovTreeLevelShares(const MarkovTreeSurvival& s, std::uint64_t t);
+
+/// Where a tree came from (its JSON's "provenance", its CSV's header, the report's figure's PNG): the program, the
+/// atlas's map, the model, the atlas and its depth, t max, the grid, α, b₂ and w when given, the tail compared with.
+[[nodiscard]] Provenance markovTreeProvenance(const MarkovTreeResult& r);
 
 /// The file format's version: 2 is signed (issue 54); files without a version (before) are read unsigned.
 inline constexpr int kMarkovTreeFormatVersion = 2;
