@@ -11,6 +11,7 @@
 #include "core/io/Json.hpp"
 #include "core/io/NumberText.hpp"
 #include "core/provenance/Provenance.hpp"
+#include "core/limits/Limits.hpp"
 
 namespace archipelago {
 
@@ -46,8 +47,8 @@ Provenance markovTreeProvenance(const MarkovTreeResult& r) {
 }
 
 std::optional<std::string> validationError(const MarkovTreeRequest& r) {
-  if (!(std::isfinite(r.tMax) && r.tMax >= 1 && r.tMax <= 1e18)) return "t-max must be a number of steps 1 ... 1e18";
-  if (r.perDecade < 1 || r.perDecade > 1000) return "points per decade must be a whole number 1 ... 1000";
+  if (auto e = realRangeError("t-max", r.tMax, 1, 1e18, "steps")) return e;
+  if (auto e = rangeError("points per decade", r.perDecade, 1, 1000)) return e;
   for (std::uint64_t t : r.at)
     if (t > kMarkovTreeMaxT) return "t = " + std::to_string(t) + " must be at most 2^62";
   if (r.at.size() > 100000) return "at most 100000 extra t";
@@ -57,7 +58,9 @@ std::optional<std::string> validationError(const MarkovTreeRequest& r) {
            "(P_t = alpha flux / b2 S(t)) or neither (S(t) only)";
   if (a || b || r.needsP)
     if (auto e = markovTreeEntryError(r.alpha, r.b2)) return e;
-  if (!(std::isfinite(r.exponentFrom) && r.exponentFrom >= 1)) return "the exponent's first window must start at >= 1";
+  if (auto e = realIntervalError("exponent from", r.exponentFrom, 1, false, std::numeric_limits<double>::infinity(),
+                                 "the first window's start, steps"))
+    return e;
   return std::nullopt;
 }
 

@@ -10,6 +10,7 @@
 
 #include "core/io/Json.hpp"
 #include "core/markovtree/MarkovTreeExport.hpp"
+#include "core/limits/Limits.hpp"
 
 namespace archipelago {
 
@@ -49,7 +50,7 @@ double positive(const JsonField& f) {
 /// A probability: a real in [0, 1], or null (written for a value below the smallest double) as 0.
 double probability(const JsonField& f) {
   const double v = f.realOr(0);
-  if (!(v >= 0 && v <= 1)) f.refuseValue("must lie in [0, 1] (a probability)");
+  if (auto e = realRangeError(f.name(), v, 0, 1, "a probability")) f.refuseDocument(*e);
   return v;
 }
 
@@ -114,7 +115,8 @@ void readRates(const JsonField& root, MarkovTree& tree) {
     if (container(x.from) != x.to && (x.to < 0 || container(x.to) != x.from))
       o["to"].refuseValue("must be the container of state " + std::to_string(x.from) + " or one of its children");
     x.perStep = o["per_step"].real();
-    if (!(x.perStep > 0 && x.perStep <= 1)) o["per_step"].refuseValue("must lie in (0, 1] (a probability per step)");
+    if (auto e = realIntervalError(o["per_step"].name(), static_cast<double>(x.perStep), 0, true, 1, "a probability per step"))
+      o.refuseDocument(*e);
     x.fluxNode = static_cast<int>(o["flux_node"].whole(kIntMax));
     x.source = o["source"].string();
     tree.rates.push_back(std::move(x));
