@@ -15,6 +15,7 @@
 
 #include "core/atlas/AtlasExport.hpp"
 #include "core/atlas/AtlasJob.hpp"
+#include "core/export/StatisticsCsv.hpp"
 #include "core/markovtree/MarkovTreeExport.hpp"
 #include "core/tail/BruteForceSurvival.hpp"
 #include "core/tail/TailResult.hpp"
@@ -22,6 +23,7 @@
 #include "core/io/NumberText.hpp"
 #include "core/paper/PaperTable.hpp"
 #include "core/portrait/PortraitColours.hpp"
+#include "core/portrait/PortraitExport.hpp"
 #include "core/report/FigureRequests.hpp"
 #include "core/report/LongOrbit.hpp"
 #include "core/report/ReportPlan.hpp"
@@ -203,11 +205,11 @@ class Report {
   fs::path figure(const std::string& stem) const { return o_.out / "figures" / stem; }
   QString base(const std::string& stem) const { return QString::fromStdString(figure(stem).string()); }
 
-  void statisticFigure(Statistic s, const TrappingParameters& params, const TrappingStatistics& st,
-                       const std::string& stem, const std::string& number, const std::string& caption) {
+  void statisticFigure(Statistic s, const TrappingState& run, const TrappingStatistics& st, const std::string& stem,
+                       const std::string& number, const std::string& caption) {
     if (!drawing_) return;
     QString error;
-    check(ui::report::writeStatisticFigure(s, st, theoryCurves(params, st), base(stem), &error), error);
+    check(ui::report::writeStatisticFigure(s, run, st, theoryCurves(run.params, st), base(stem), &error), error);
     figures_.push_back({number, caption, stem});
   }
 
@@ -217,7 +219,8 @@ class Report {
     const PhysicalRect v = r.view.physical(r.map);
     QString error;
     check(ui::report::writePortraitFigure(colourize(portrait.raster, ColourMapName::Inferno), double(v.x0),
-                                          double(v.x1), double(v.y0), double(v.y1), title, base(stem), &error, markers),
+                                          double(v.x1), double(v.y0), double(v.y1), title, base(stem),
+                                          portraitProvenance(r), &error, markers),
           error);
     figures_.push_back({number, caption, stem});
   }
@@ -261,12 +264,14 @@ class Report {
       check(ui::report::writeLevelCurveFigure(
                 [sign](double X, double Y) { return report::smallKHamiltonian(X, Y, sign); }, -3, 3, -4, 4, levels,
                 QStringLiteral("Fig. %1 — level curves, H = 0, ±0.5, …").arg(QString::fromStdString(number)),
-                base(stem), &error),
+                base(stem), report::levelCurveProvenance(sign, {-3, 3, -4, 4}), &error),
             error);
       figures_.push_back({number, report::html(std::string(four.panels[i].content)), stem});
     }
     QString error;
-    check(ui::report::writeTrappingTimeFigures(base("fig5"), &error), error);
+    check(ui::report::writeTrappingTimeFigures(
+              base("fig5"), report::figureProvenance("small-K theory for K < 0: T(X0) and F(T)"), &error),
+          error);
     const paper::Figure& five = paper::figure(5);
     for (const paper::FigurePanel& p : five.panels)
       figures_.push_back({paper::panelName(five, p), report::html(std::string(p.content)), "fig" + paper::panelName(five, p)});
@@ -285,7 +290,7 @@ class Report {
     const TrappingState* runsOf[] = {&a, &b, &c};
     for (std::size_t i = 0; i < three.panels.size(); ++i) {
       const TrappingState& r = *runsOf[i];
-      statisticFigure(Statistic::f, r.params, statisticsOf(r), "fig" + paper::panelName(three, three.panels[i]),
+      statisticFigure(Statistic::f, r, statisticsOf(r), "fig" + paper::panelName(three, three.panels[i]),
                       paper::panelName(three, three.panels[i]),
                       io::formatC("f<sub>t</sub> at K = %g with the small-K theory (%.3g steps)", r.params.map.K,
                                   r.stepsDone()));
@@ -345,19 +350,19 @@ class Report {
       for (const paper::FigurePanel& p : f.panels) {
         const auto s = statisticWithKey(p.statisticKey);
         if (!s) continue;
-        statisticFigure(*s, run.params, st, "fig" + paper::panelName(f, p), paper::panelName(f, p),
+        statisticFigure(*s, run, st, "fig" + paper::panelName(f, p), paper::panelName(f, p),
                         std::string(statisticInfo(*s).symbolRich) + steps);
       }
     }
     longOrbitFigures(run, made.file);
     stopIfInterrupted();
-    tailFigure(tail);
+    tailFigure(run, tail);
     {
       QString error;
       double factor = 1;
       const Series levels = reliableSurvivalIn(samplerResult, run, st, &factor);
       check(ui::report::writeStatisticFigure(
-                Statistic::P, st, theoryCurves(run.params, st), levels,
+                Statistic::P, run, st, theoryCurves(run.params, st), levels,
                 QStringLiteral("P_t by splitting (tail, %1 × %2), reliable levels × %3")
                     .arg(sampler.population)
                     .arg(sampler.replicas)
@@ -395,7 +400,7 @@ class Report {
       QString error;
       check(ui::report::writePointsFigure(qPoints(v.points), double(v.view.x0), double(v.view.x1), double(v.view.y0),
                                           double(v.view.y1), QString::fromUtf8(title.c_str()), base("fig" + number),
-                                          &error, centre),
+                                          report::longOrbitProvenance(run, v), &error, centre),
             error);
       figures_.push_back({number,
                           what + " segment " + std::to_string(v.rank) + " of the K = 0.1 run (" +
@@ -418,7 +423,7 @@ class Report {
   }
 
   // Not in the paper: the running exponent γ(t) of P_t against the later literature's asymptotic exponents.
-  void tailFigure(const TailAnalysis& tail) {
+  void tailFigure(const TrappingState& run, const TailAnalysis& tail) {
     ui::report::FigureCurve windows;
     windows.name = QStringLiteral("γ(t) over log-spaced windows (95 % bootstrap intervals)");
     windows.symbols = true;
@@ -441,7 +446,7 @@ class Report {
     QString error;
     check(ui::report::writeCurvesFigure(curves, {QStringLiteral("P_t ~ t^−γ: the running exponent γ(t) at K = 0.1"),
                                                  QStringLiteral("t (steps)"), QStringLiteral("γ"), true, false},
-                                        base("tail-gamma"), &error),
+                                        base("tail-gamma"), runProvenance(run), &error),
           error);
     figures_.push_back({"T", "the running exponent γ(t) of P<sub>t</sub> ~ t<sup>−γ</sup> over log-spaced windows (the "
                              "last ends where 10 segments remain beyond it), beside the later literature's asymptotic "
@@ -457,7 +462,9 @@ class Report {
     items_.push_back(report::kScanStatement(runs, full_, report::kScanCommand(o_.size)));
     if (!drawing_) return;
     QString error;
-    check(ui::report::writeScanFigures(runs, base("kscan"), &error), error);
+    check(ui::report::writeScanFigures(
+              runs, base("kscan"), report::figureProvenance("K scan of §5", report::kScanCommand(o_.size)), &error),
+          error);
     const std::string command =
         " (<code>" + report::html(report::kScanCommand(o_.size)) + "</code>; the GUI's Tools ▸ K Scan…)";
     figures_.push_back({"S1", "the K scan of §5: f<sub>t</sub> for the 26 K, each in its own box" + command, "kscan-ft"});
@@ -537,7 +544,7 @@ class Report {
     check(ui::report::writeCurvesFigure({line, levels},
                                         {QStringLiteral("P_t at K = 0.1: the Markov tree of the atlas against the tail"),
                                          QStringLiteral("t (steps)"), QStringLiteral("P_t"), true, true},
-                                        base("markov-tree"), &error),
+                                        base("markov-tree"), markovTreeProvenance(tree), &error),
           error);
     figures_.push_back({"M", io::formatC("the Meiss–Ott Markov tree built from the atlas of depth %d (no fitted "
                                          "parameter) against the tail sampler's P<sub>t</sub> (docs/markov-tree.md)",
@@ -555,7 +562,9 @@ class Report {
     QString error;
     check(ui::report::writeCurvesFigure({eps}, {QStringLiteral("Markov model (appendix C): ε(τ), m = 20, N = 1000"),
                                                 QStringLiteral("τ"), QStringLiteral("ε(τ)")},
-                                        base("markov-epsilon"), &error),
+                                        base("markov-epsilon"),
+                                        report::figureProvenance("Markov model of appendix C: epsilon(tau)", c.command),
+                                        &error),
           error);
     figures_.push_back({"C", "the Markov model's ε(τ) = (C(τ) − C<sub>is</sub>(τ))/C<sub>is</sub>(0) for one segment of "
                              "m = 20 among N = 1000 (<code>" + report::html(c.command) + "</code>)",

@@ -3,16 +3,49 @@
 #include <CLI/CLI.hpp>
 #include <QApplication>
 
+#include <stdlib.h>  // mkdtemp
+
 #include <clocale>
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 #include <string>
+#include <system_error>
 
 #include "Report.hpp"
 #include "core/paper/PaperTable.hpp"
 #include "core/runspec/InputRules.hpp"
 
 using namespace archipelago;
+
+namespace {
+
+/// Qt's platform start looks up its runtime folder (QStandardPaths::RuntimeLocation: a flatpak's marker) and warns
+/// on stderr when XDG_RUNTIME_DIR is not set, as for a user without a login session (`nobody`, cron, a batch job;
+/// issue 54, finding 7).  Then this gives Qt a folder of the program's own for the run — private (mkdtemp: 0700, the
+/// user's), in the temporary folder — and removes it at the end.  A set XDG_RUNTIME_DIR is left as it is.
+class RuntimeFolder {
+ public:
+  RuntimeFolder() {
+    if (!qEnvironmentVariableIsEmpty("XDG_RUNTIME_DIR")) return;
+    std::error_code e;
+    std::string folder = (std::filesystem::temp_directory_path(e) / "archipelago-runtime-XXXXXX").string();
+    if (e || ::mkdtemp(folder.data()) == nullptr) return;  // Qt then says itself what it lacks
+    folder_ = folder;
+    qputenv("XDG_RUNTIME_DIR", QByteArray::fromStdString(folder_));
+  }
+  ~RuntimeFolder() {
+    std::error_code ignored;
+    if (!folder_.empty()) std::filesystem::remove_all(folder_, ignored);
+  }
+  RuntimeFolder(const RuntimeFolder&) = delete;
+  RuntimeFolder& operator=(const RuntimeFolder&) = delete;
+
+ private:
+  std::string folder_;
+};
+
+}  // namespace
 
 int main(int argc, char** argv) {
   if (qEnvironmentVariableIsEmpty("QT_QPA_PLATFORM")) qputenv("QT_QPA_PLATFORM", "offscreen");
@@ -63,6 +96,7 @@ int main(int argc, char** argv) {
   }
   options.out = outdir;
   options.size = full ? report::ReportSize::full : report::ReportSize::quick;
+  const RuntimeFolder runtime;  // before Qt starts, removed after it has ended
   QApplication qapp(argc, argv);
   // Qt sets the user's locale for the C library; printf-style text of this program is never localised (a
   // decimal comma once split items.csv's columns and changed statement ids, issue #23).  Qt's own text uses

@@ -1014,12 +1014,10 @@ std::optional<std::string> validationError(const AtlasRequest& r) {
   if (!(r.minArea >= 0) || !std::isfinite(r.minArea))
     return "min area = " + shortestDecimal(r.minArea) + " must be a finite number ≥ 0";
   if (auto e = rangeError("scan points", r.scanPoints, 16, kMaxScanPoints)) return e;
-  if (!(r.scanSteps >= 0 && r.scanSteps <= 1e13))
-    return "scan steps = " + shortestDecimal(r.scanSteps) + " must lie in [0, 1e13]";
+  if (auto e = realRangeError("scan steps", r.scanSteps, 0, 1e13)) return e;
   if (auto e = rangeError("bisections", r.bisections, 0, 60)) return e;
   if (auto e = threadsError(r.threads)) return e;
-  if (!(r.timeBudget >= 0 && r.timeBudget <= 1e7))
-    return "time budget = " + shortestDecimal(r.timeBudget) + " must lie in [0, 1e7] seconds (0: none)";
+  if (auto e = realRangeError("time budget", r.timeBudget, 0, 1e7, "seconds; 0: none")) return e;
   return std::nullopt;
 }
 

@@ -70,6 +70,15 @@ std::optional<std::string> realIntervalError(std::string_view name, double value
   return s;
 }
 
+std::optional<std::string> realOpenIntervalError(std::string_view name, double value, double lo, double hi,
+                                                 std::string_view note) {
+  if (value > lo && value < hi) return std::nullopt;
+  std::string s = std::string(name) + " = " + shortest(value) + " must lie in (" + shortest(lo) + ", " + shortest(hi) +
+                  ")";
+  if (!note.empty()) s += " (" + std::string(note) + ")";
+  return s;
+}
+
 std::string wholeRangeError(std::string_view name, std::string_view text, std::string_view range) {
   return std::string(name) + " = " + std::string(text) + " must lie in " + std::string(range);
 }
@@ -82,8 +91,8 @@ std::optional<std::string> rasterSizeError(long long width, long long height, st
   if (width >= 1 && width <= limits::kRasterSide && height >= 1 && height <= limits::kRasterSide &&
       static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height) <= maxPixels)
     return std::nullopt;
-  std::string s = "raster size " + std::to_string(width) + "x" + std::to_string(height) + " must be 1 ... " +
-                  std::to_string(limits::kRasterSide) + " pixels each way";
+  std::string s = "raster size = " + std::to_string(width) + "x" + std::to_string(height) + " must lie in [1, " +
+                  std::to_string(limits::kRasterSide) + "] pixels each way";
   if (maxPixels < static_cast<std::uint64_t>(limits::kRasterSide) * limits::kRasterSide)
     s += " and at most 2^" + std::to_string(std::bit_width(maxPixels) - 1) + " in all";
   return s;

@@ -72,6 +72,17 @@ template <class T>
   return s;
 }
 
+/// The same for a whole number with a lower bound only: "<name> = <value> must be at least <lo>" (and " (<note>)"),
+/// as realIntervalError words a real without an upper bound, or nothing when lo ≤ value.
+template <class T>
+[[nodiscard]] std::optional<std::string> lowerBoundError(std::string_view name, T value, long long lo,
+                                                         std::string_view note = {}) {
+  if (std::cmp_greater_equal(value, lo)) return std::nullopt;
+  std::string s = std::string(name) + " = " + std::to_string(value) + " must be at least " + std::to_string(lo);
+  if (!note.empty()) s += " (" + std::string(note) + ")";
+  return s;
+}
+
 /// The same for a whole number a front end holds only as text (a Python int of any size, before it is converted to a
 /// 64- or 32-bit integer): "<name> = <text> must lie in <range>".
 [[nodiscard]] std::string wholeRangeError(std::string_view name, std::string_view text, std::string_view range);
@@ -87,10 +98,15 @@ template <class T>
 [[nodiscard]] std::optional<std::string> realIntervalError(std::string_view name, double value, double lo, bool openLow,
                                                            double hi, std::string_view note = {});
 
+/// The same for an interval open at both ends: "<name> = <value> must lie in (<lo>, <hi>)" (and " (<note>)"), or
+/// nothing.  NaN and infinities are outside every range.
+[[nodiscard]] std::optional<std::string> realOpenIntervalError(std::string_view name, double value, double lo,
+                                                               double hi, std::string_view note = {});
+
 /// The thread count's rule: "threads = <n> must lie in [0, 256] (0: one per core)", or nothing.
 [[nodiscard]] std::optional<std::string> threadsError(std::int64_t threads);
 
-/// A raster's size: "raster size <w>x<h> must be 1 ... 16384 pixels each way", and "… and at most 2^<k> in all"
+/// A raster's size: "raster size = <w>x<h> must lie in [1, 16384] pixels each way", and "… and at most 2^<k> in all"
 /// when `maxPixels` (a power of two) is below 16384², or nothing.
 [[nodiscard]] std::optional<std::string> rasterSizeError(
     long long width, long long height,

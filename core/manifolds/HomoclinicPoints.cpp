@@ -10,6 +10,7 @@
 #include "core/manifolds/GeneratingFunction.hpp"
 #include "core/parallel/ParallelFor.hpp"
 #include "core/periodic/PeriodicOrbitFinder.hpp"  // NotFound
+#include "core/limits/Limits.hpp"
 
 namespace archipelago {
 
@@ -100,7 +101,7 @@ void checkHeteroclinicRequest(const ManifoldParameterization& unstable, const Ma
   if (!reversedIndex(orbit, Reversor::I1, 0) || !reversedIndex(orbit, Reversor::I2, 0))
     throw std::invalid_argument("the orbit is not symmetric (the involutions I1, I2 do not map it onto itself): its "
                                 "heteroclinic points are not on the symmetry lines");
-  if (maxDomains < 0 || maxDomains > 1000) throw std::invalid_argument("maxDomains must be in [0, 1000]");
+  if (auto e = rangeError("maxDomains", maxDomains, 0, 1000)) throw std::invalid_argument(*e);
 }
 
 /// The scan for the crossings of the symmetry lines by the unstable branches on one side.  It runs over the
@@ -296,7 +297,8 @@ void computeAction(const ManifoldParameterization& unstable, const ManifoldParam
 std::vector<Point<quad>> heteroclinicOrbit(const ManifoldParameterization& unstable,
                                           const ManifoldParameterization& stable, const HeteroclinicPoint& h,
                                           int past, int future) {
-  if (past < 0 || future < 0) throw std::invalid_argument("heteroclinicOrbit: past and future must be >= 0");
+  for (const auto& [name, steps] : {std::pair{"past", past}, std::pair{"future", future}})
+    if (auto e = lowerBoundError(name, steps, 0)) throw std::invalid_argument("heteroclinicOrbit: " + *e);
   std::vector<Point<quad>> orbit(static_cast<std::size_t>(past) + static_cast<std::size_t>(future) + 1);
   quad s = h.sigma;
   orbit[static_cast<std::size_t>(past)] = unstable.point(0, s);

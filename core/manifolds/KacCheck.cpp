@@ -175,12 +175,9 @@ std::optional<std::string> validationError(const KacRequest& r) {
   if (r.orbit && r.orbit->K != r.K)
     return "the orbit's K = " + shortestDecimal(static_cast<double>(r.orbit->K)) + " differs from K = " +
            shortestDecimal(static_cast<double>(r.K));
-  if (r.entrySamples < 1 || r.entrySamples > 1'000'000'000ULL)
-    return "entry samples = " + std::to_string(r.entrySamples) + " must be in [1, 1000000000]";
-  if (r.zoneSamples < 1 || r.zoneSamples > 1'000'000'000ULL)
-    return "zone samples = " + std::to_string(r.zoneSamples) + " must be in [1, 1000000000]";
-  if (r.maxSteps < 1 || r.maxSteps > 1'000'000'000'000ULL)
-    return "maximum steps = " + std::to_string(r.maxSteps) + " must be in [1, 1000000000000]";
+  if (auto e = rangeError("entry samples", r.entrySamples, 1, 1'000'000'000)) return e;
+  if (auto e = rangeError("zone samples", r.zoneSamples, 1, 1'000'000'000)) return e;
+  if (auto e = rangeError("maximum steps", r.maxSteps, 1, 1'000'000'000'000)) return e;
   if (auto e = threadsError(r.threads)) return e;
   return std::nullopt;
 }

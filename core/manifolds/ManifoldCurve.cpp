@@ -10,6 +10,7 @@
 #include "core/io/Memory.hpp"
 #include "core/io/NumberText.hpp"  // shortText
 #include "core/random/CounterRng.hpp"  // mix64, for the wrap signatures
+#include "core/limits/Limits.hpp"
 
 namespace archipelago {
 
@@ -235,20 +236,14 @@ std::optional<std::string> validationError(const ManifoldCurveRequest& r) {
            shortestDecimal(static_cast<double>(r.K));
   const int period = r.orbit ? r.orbit->period : 1;
   if (auto e = orbitPointError(r.point, period)) return e;
-  if (!(r.length > 0) || !(r.length <= 1e6L))
-    return "length = " + shortestDecimal(static_cast<double>(r.length)) + " must be in (0, 1e6] (physical units)";
-  if (r.maxDomains < 1 || r.maxDomains > 10000) return "domains = " + std::to_string(r.maxDomains) + " must be in [1, 10000]";
-  if (!(r.maxSpacing >= kMinManifoldSpacing) || !(r.maxSpacing <= 1))
-    return "spacing = " + shortestDecimal(static_cast<double>(r.maxSpacing)) + " must be in [" +
-           shortestDecimal(static_cast<double>(kMinManifoldSpacing)) + ", 1]";
-  if (!(r.maxAngle > 0) || !(r.maxAngle <= 1))
-    return "angle = " + shortestDecimal(static_cast<double>(r.maxAngle)) + " must be in (0, 1] (radians)";
-  if (r.initialPoints < 2 || r.initialPoints > 1000000)
-    return "initial points per domain = " + std::to_string(r.initialPoints) + " must be in [2, 1000000]";
-  if (!(r.escapeRadius >= 0.1L) || !(r.escapeRadius <= 1e6L))
-    return "escape radius = " + shortestDecimal(static_cast<double>(r.escapeRadius)) + " must be in [0.1, 1e6]";
-  if (r.maxPoints < 16 || r.maxPoints > 100'000'000)
-    return "maximum points = " + std::to_string(r.maxPoints) + " must be in [16, 100000000]";
+  if (auto e = realIntervalError("length", static_cast<double>(r.length), 0, true, 1e6, "physical units")) return e;
+  if (auto e = rangeError("domains", r.maxDomains, 1, 10000)) return e;
+  if (auto e = realRangeError("spacing", static_cast<double>(r.maxSpacing), static_cast<double>(kMinManifoldSpacing), 1))
+    return e;
+  if (auto e = realIntervalError("angle", static_cast<double>(r.maxAngle), 0, true, 1, "radians")) return e;
+  if (auto e = rangeError("initial points per domain", r.initialPoints, 2, 1000000)) return e;
+  if (auto e = realRangeError("escape radius", static_cast<double>(r.escapeRadius), 0.1, 1e6)) return e;
+  if (auto e = rangeError("maximum points", r.maxPoints, 16, 100'000'000)) return e;
   if (r.view) {
     const PhysicalRect& v = *r.view;
     if (!std::isfinite(v.x0) || !std::isfinite(v.x1) || !std::isfinite(v.y0) || !std::isfinite(v.y1) || !(v.x0 < v.x1) ||

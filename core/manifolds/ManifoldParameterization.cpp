@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/io/NumberText.hpp"  // shortText
+#include "core/limits/Limits.hpp"
 
 namespace archipelago {
 
@@ -230,8 +231,7 @@ BranchSide parseBranchSide(const std::string& text, bool fixedPoint, const std::
 
 ManifoldParameterization::ManifoldParameterization(HyperbolicOrbit orbit, ManifoldKind kind, int order)
     : orbit_(std::move(orbit)), kind_(kind), order_(order) {
-  if (order < 2 || order > 200)
-    throw std::invalid_argument("the order of the manifold's series = " + std::to_string(order) + " must be in [2, 200]");
+  if (auto e = rangeError("the order of the manifold's series", order, 2, 200)) throw std::invalid_argument(*e);
   const int n = orbit_.period;
   if (n < 1 || orbit_.points.size() != static_cast<std::size_t>(n))
     throw std::invalid_argument("the hyperbolic orbit has no points");

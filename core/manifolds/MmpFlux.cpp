@@ -14,6 +14,7 @@
 #include "core/manifolds/HyperbolicOrbit.hpp"
 #include "core/manifolds/ManifoldParameterization.hpp"  // reverse(), Reversor
 #include "core/manifolds/QuadText.hpp"
+#include "core/limits/Limits.hpp"
 
 namespace archipelago {
 
@@ -80,9 +81,9 @@ BirkhoffOrbit inQuad(const PeriodicOrbit& found) {
 
 std::optional<std::string> validationError(const MmpRequest& r) {
   if (auto e = manifoldKError(r.K)) return e;
-  if (r.q < 2 || r.q > PeriodicOrbitSearch::kMaxPeriod)
-    return "q = " + std::to_string(r.q) + " must lie in [2, " + std::to_string(PeriodicOrbitSearch::kMaxPeriod) + "]";
-  if (r.p < 1 || r.p >= r.q) return "p = " + std::to_string(r.p) + " must lie in [1, q − 1] (q = " + std::to_string(r.q) + ")";
+  if (auto e = rangeError("q", r.q, 2, PeriodicOrbitSearch::kMaxPeriod)) return e;
+  if (auto e = rangeError("p", r.p, 1, static_cast<long long>(r.q) - 1, "q − 1 at most, q = " + std::to_string(r.q)))
+    return e;
   if (std::gcd(r.p, static_cast<long>(r.q)) != 1)
     return "p/q = " + std::to_string(r.p) + "/" + std::to_string(r.q) + " must be in lowest terms";
   if (!std::isfinite(r.innerRadius) || !std::isfinite(r.outerRadius) || !(r.innerRadius > 0) ||

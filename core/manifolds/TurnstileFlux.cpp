@@ -9,6 +9,7 @@
 #include "core/manifolds/GeneratingFunction.hpp"
 #include "core/periodic/PeriodicOrbitFinder.hpp"  // NotFound
 #include "core/manifolds/QuadText.hpp"
+#include "core/limits/Limits.hpp"
 
 namespace archipelago {
 
@@ -79,14 +80,10 @@ std::optional<std::string> validationError(const TurnstileRequest& r) {
   if (r.orbit && r.orbit->K != r.K)
     return "the orbit's K = " + shortestDecimal(static_cast<double>(r.orbit->K)) + " differs from K = " +
            shortestDecimal(static_cast<double>(r.K));
-  if (r.maxDomains < 0 || r.maxDomains > 1000)
-    return "the domains scanned = " + std::to_string(r.maxDomains) + " must be in [0, 1000] (0: automatic)";
-  if (r.firstVertices < 4) return "the first level's vertices per arc = " + std::to_string(r.firstVertices) + " must be >= 4";
-  if (r.maxVertices < r.firstVertices || r.maxVertices > (1 << 20))
-    return "the finest level's vertices per arc = " + std::to_string(r.maxVertices) + " must be in [" +
-           std::to_string(r.firstVertices) + ", 1048576]";
-  if (r.boundaryVertices < 8 || r.boundaryVertices > (1 << 20))
-    return "the boundary's vertices per arc = " + std::to_string(r.boundaryVertices) + " must be in [8, 1048576]";
+  if (auto e = rangeError("the domains scanned", r.maxDomains, 0, 1000, "0: automatic")) return e;
+  if (auto e = lowerBoundError("the first level's vertices per arc", r.firstVertices, 4)) return e;
+  if (auto e = rangeError("the finest level's vertices per arc", r.maxVertices, r.firstVertices, 1 << 20)) return e;
+  if (auto e = rangeError("the boundary's vertices per arc", r.boundaryVertices, 8, 1 << 20)) return e;
   return std::nullopt;
 }
 

@@ -31,9 +31,8 @@ void validate(const MarkovModel& model) {
   std::int64_t m = 0;
   for (std::size_t k = 0; k < model.segmentLengths.size(); ++k) {
     const std::int64_t mk = model.segmentLengths[k];
-    if (mk < 1 || mk > MarkovModel::kMaxTrappedPoints)
-      throw std::invalid_argument("segment length m_" + std::to_string(k + 1) + " = " + std::to_string(mk) +
-                                  " must be 1 ... " + std::to_string(MarkovModel::kMaxTrappedPoints));
+    if (auto e = rangeError("segment length m_" + std::to_string(k + 1), mk, 1, MarkovModel::kMaxTrappedPoints))
+      throw std::invalid_argument(*e);
     m += mk;
     if (m > MarkovModel::kMaxTrappedPoints)
       throw std::invalid_argument("trapped points m = sum m_k must be <= " +
@@ -157,7 +156,7 @@ std::vector<long double> scaledCorrelation(const MarkovModel& model, const Lumpe
 // N·C_is(τ) = h₀² Σ_k max(m_k − τ, 0).
 std::vector<long double> scaledIslandCorrelation(const MarkovModel& model, std::int64_t tauMax, double h0) {
   validate(model);
-  if (tauMax < 0) throw std::invalid_argument("tauMax = " + std::to_string(tauMax) + " must be >= 0");
+  if (auto e = lowerBoundError("tauMax", tauMax, 0)) throw std::invalid_argument(*e);
   checkSeriesMemory(tauMax);
   std::vector<long double> C(static_cast<std::size_t>(tauMax) + 1);
   for (std::int64_t tau = 0; tau <= tauMax; ++tau) {

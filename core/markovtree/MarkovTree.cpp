@@ -277,7 +277,7 @@ void checkRatesOut(const MarkovTree& tree) {
 
 MarkovTree markovTreeFromAtlas(const Atlas& a, const MarkovTreeOptions& options) {
   checkAtlasForTree(a);
-  if (options.maxLevel < 0) refuse("the tree's levels = " + std::to_string(options.maxLevel) + " must be >= 0");
+  if (auto e = rangeError("levels", options.maxLevel, 0, kMaxAtlasDepth)) refuse(*e);
   const AtlasNode& centre = a.nodes[0];
   MarkovTree tree;
   tree.entryFlux = centre.flux.flux;
@@ -693,10 +693,8 @@ MarkovTreeSurvival markovTreeSurvival(const MarkovTree& tree, const std::vector<
 }
 
 std::vector<std::uint64_t> markovTreeGrid(double tMax, int perDecade) {
-  if (!(std::isfinite(tMax) && tMax >= 1 && tMax <= 1e18))
-    throw std::invalid_argument("markov tree: t-max must be a number of steps 1 ... 1e18");
-  if (perDecade < 1 || perDecade > 1000)
-    throw std::invalid_argument("markov tree: points per decade must be 1 ... 1000");
+  if (auto e = realRangeError("t-max", tMax, 1, 1e18, "steps")) throw std::invalid_argument("markov tree: " + *e);
+  if (auto e = rangeError("points per decade", perDecade, 1, 1000)) throw std::invalid_argument("markov tree: " + *e);
   std::vector<std::uint64_t> t;
   for (int k = 0;; ++k) {
     const auto v = static_cast<std::uint64_t>(std::ceil(std::pow(10.0L, static_cast<long double>(k) / perDecade)));

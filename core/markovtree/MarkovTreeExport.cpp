@@ -10,8 +10,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/io/Json.hpp"
 #include "core/io/NumberText.hpp"
 #include "core/provenance/Provenance.hpp"
+#include "core/limits/Limits.hpp"
 
 namespace archipelago {
 
@@ -28,7 +30,9 @@ json number(long double v) {
 
 std::string text(long double v) { return io::formatC("%.12Lg", v); }
 
-Provenance provenanceOf(const MarkovTreeResult& r) {
+}  // namespace
+
+Provenance markovTreeProvenance(const MarkovTreeResult& r) {
   Provenance p = mapProvenance(r.map);
   p.add("Model", "Meiss-Ott Markov tree of the atlas (docs/markov-tree.md)");
   p.add("Atlas", r.request.atlasSource.empty() ? std::string("(given)") : r.request.atlasSource);
@@ -43,11 +47,10 @@ Provenance provenanceOf(const MarkovTreeResult& r) {
   if (r.comparison) p.add("Tail", r.request.tailSource.empty() ? std::string("(given)") : r.request.tailSource);
   return p;
 }
-}  // namespace
 
 std::optional<std::string> validationError(const MarkovTreeRequest& r) {
-  if (!(std::isfinite(r.tMax) && r.tMax >= 1 && r.tMax <= 1e18)) return "t-max must be a number of steps 1 ... 1e18";
-  if (r.perDecade < 1 || r.perDecade > 1000) return "points per decade must be a whole number 1 ... 1000";
+  if (auto e = realRangeError("t-max", r.tMax, 1, 1e18, "steps")) return e;
+  if (auto e = rangeError("points per decade", r.perDecade, 1, 1000)) return e;
   for (std::uint64_t t : r.at)
     if (t > kMarkovTreeMaxT) return "t = " + std::to_string(t) + " must be at most 2^62";
   if (r.at.size() > 100000) return "at most 100000 extra t";
@@ -57,7 +60,9 @@ std::optional<std::string> validationError(const MarkovTreeRequest& r) {
            "(P_t = alpha flux / b2 S(t)) or neither (S(t) only)";
   if (a || b || r.needsP)
     if (auto e = markovTreeEntryError(r.alpha, r.b2)) return e;
-  if (!(std::isfinite(r.exponentFrom) && r.exponentFrom >= 1)) return "the exponent's first window must start at >= 1";
+  if (auto e = realIntervalError("exponent from", r.exponentFrom, 1, false, std::numeric_limits<double>::infinity(),
+                                 "the first window's start, steps"))
+    return e;
   if (auto e = rangeError("levels", r.barriers.maxLevel, 0, kMaxAtlasDepth)) return e;
   return std::nullopt;
 }
@@ -151,16 +156,20 @@ std::optional<std::vector<double>> markovTreeLevelShares(const MarkovTreeSurviva
 std::string markovTreeJson(const MarkovTreeResult& r) {
   json j;
   j["format"] = "archipelago markov tree";
+  j["format_version"] = kMarkovTreeFormatVersion;
   j["program"] = programDescription();
   json prov = json::object();
-  for (const auto& [k, v] : provenanceOf(r).fields) prov[k] = v;
+  for (const auto& [k, v] : markovTreeProvenance(r).fields) prov[k] = v;
   j["provenance"] = prov;
   j["map"] = {{"K", r.map.K}, {"xmin", r.map.xmin}, {"xmax", r.map.xmax}};
   j["request"] = {{"t_max", r.request.tMax},
                   {"per_decade", r.request.perDecade},
                   {"alpha", r.request.alpha},
                   {"b2", r.request.b2},
-                  {"exponent_from", r.request.exponentFrom}};
+                  {"exponent_from", r.request.exponentFrom},
+                  {"inner_separatrices", r.request.barriers.innerSeparatrices},
+                  {"cantori", r.request.barriers.cantori},
+                  {"levels", r.request.barriers.maxLevel}};
   j["atlas"] = {{"source", r.request.atlasSource}, {"depth", r.atlasDepth}, {"islands", r.atlasIslands}};
   if (r.weight)
     j["entry"] = {{"state", 0},
@@ -252,12 +261,14 @@ std::string markovTreeJson(const MarkovTreeResult& r) {
     }
     j["ablation"] = ab;
   }
+  // Signed as run, tail and atlas files are (issue 54): any edit of the file is refused on load.
+  j["checksum"] = io::jsonChecksum(nlohmann::json::parse(j.dump()));
   return j.dump(2) + "\n";
 }
 
 std::string markovTreeCsv(const MarkovTreeResult& r) {
   std::ostringstream out;
-  for (const auto& [k, v] : provenanceOf(r).fields) out << "# " << k << ": " << v << "\n";
+  for (const auto& [k, v] : markovTreeProvenance(r).fields) out << "# " << k << ": " << v << "\n";
   out << "t,S,P";
   for (std::size_t l = 0; l < r.survival.level.size(); ++l) out << ",level_" << l;
   for (const MarkovTreeState& s : r.tree.states) out << ",state " << s.path;

@@ -11,6 +11,7 @@
 
 #include "core/atlas/Atlas.hpp"
 #include "core/markovtree/MarkovTree.hpp"
+#include "core/provenance/Provenance.hpp"
 #include "core/stats/TrappingStatistics.hpp"
 #include "core/tail/TailSampler.hpp"
 
@@ -85,12 +86,30 @@ struct MarkovTreeResult {
 /// not on the survival's grid or S(t) is 0.
 [[nodiscard]] std::optional<std::vector<double>> markovTreeLevelShares(const MarkovTreeSurvival& s, std::uint64_t t);
 
-/// {"format": "archipelago markov tree", "program", "provenance", "map", "request", "atlas", "entry", "residence",
-///  "mean_visit", "states", "rates", "lumped", "survival": {"t", "S", "P", "levels", "states"}, "exponents"} and,
+/// Where a tree came from (its JSON's "provenance", its CSV's header, the report's figure's PNG): the program, the
+/// atlas's map, the model, the atlas and its depth, t max, the grid, α, b₂ and w when given, the tail compared with.
+[[nodiscard]] Provenance markovTreeProvenance(const MarkovTreeResult& r);
+
+/// The file format's version: 2 is signed (issue 54); files without a version (before) are read unsigned.
+inline constexpr int kMarkovTreeFormatVersion = 2;
+
+/// {"format": "archipelago markov tree", "format_version": 2, "program", "provenance", "map", "request", "atlas",
+///  "entry", "entry_flux", "residence", "mean_visit", "states", "rates", "lumped", "survival": {"t", "S", "P", "levels", "states"}, "exponents"} and,
 ///  with a tail, "comparison": {"tail", "factor", "reach", "levels": [{"t", "measured", "measured_error", "model",
 ///  "log10_model", "ratio", "log10_ratio", "holding_level", "holding_share"}]} (model and ratio null below the
-///  smallest double, their log10 always finite).
+///  smallest double, their log10 always finite), and last "checksum": "sha256:…" (io::jsonChecksum's, as run, tail
+///  and atlas files have: any edit is refused on load).
 [[nodiscard]] std::string markovTreeJson(const MarkovTreeResult& r);
+
+/// Reads back what markovTreeJson wrote (a signed file, or an unsigned one from before the version): the request,
+/// the map, the atlas's depth and islands, w, the tree's states (with the entry flux and the residence) and rates,
+/// the survival (t, S, each level's and state's part, the mean visit) and the exponents; the comparison's tail is
+/// kept as its source only.  Every invariant of a computed tree is checked: the checksum, the request's rules
+/// (validationError), every number finite, each state's container a state before it, its flux, layer and area > 0
+/// with area ≤ layer, the rates between a state and its container with per-step probabilities in (0, 1], t
+/// increasing, S(t), P(t) and every part of S in [0, 1], S non-increasing, w = α Φ_centre / b₂.  Throws io::BadFile
+/// naming the field and its value.
+[[nodiscard]] MarkovTreeResult markovTreeFromJson(const std::string& text);
 /// "# key: value" provenance lines, then t,S,P,level_0,…,state_<path>,… one row per t.
 [[nodiscard]] std::string markovTreeCsv(const MarkovTreeResult& r);
 

@@ -8,6 +8,7 @@
 #include "core/measures/OrbitMeasures.hpp"  // MeasureSettings, boxPointError
 #include "core/periodic/PeriodicOrbitFinder.hpp"
 #include "core/periodic/SmoothQuadraticMap.hpp"
+#include "core/limits/Limits.hpp"
 
 namespace archipelago {
 
@@ -97,8 +98,8 @@ std::string describeEnd(const RotationMeasurement& m, std::uint64_t T) {
 std::optional<Rational> smallestDenominatorRational(double lo, double hi, std::int64_t maxDenominator) {
   if (!std::isfinite(lo) || !std::isfinite(hi) || lo > hi)
     throw std::invalid_argument("smallestDenominatorRational: need finite lo <= hi");
-  if (maxDenominator < 1 || maxDenominator > (std::int64_t{1} << 31))
-    throw std::invalid_argument("smallestDenominatorRational: maxDenominator must be 1 ... 2^31");
+  if (auto e = rangeError("maxDenominator", maxDenominator, 1, std::int64_t{1} << 31))
+    throw std::invalid_argument("smallestDenominatorRational: " + *e);
   if (std::fabs(lo) > kMaxBound || std::fabs(hi) > kMaxBound)
     throw std::invalid_argument("smallestDenominatorRational: bounds must lie within ±2^31");
   if (lo <= 0 && hi >= 0) return Rational{0, 1};
@@ -124,13 +125,11 @@ namespace {
 /// The request's map and bounds, checked before any measurement (the rotation measurement validates the rest).
 void checkChainRequest(const ChainRequest& r) {
   if (auto e = mapError(r.map)) throw std::invalid_argument(*e);
-  if (!(r.map.K > 0 && r.map.K < 1))
-    throw std::invalid_argument("K = " + shortestDecimal(r.map.K) +
-                                " must be in (0, 1) for island chains: only there is the centre (−√K, 0) elliptic");
-  if (r.maxPeriod < 1 || r.maxPeriod > static_cast<std::uint64_t>(PeriodicOrbitSearch::kMaxPeriod))
-    throw std::invalid_argument("maxPeriod = " + std::to_string(r.maxPeriod) + " must be 1 ... 100000");
-  if (r.maxLevels < 0 || r.maxLevels > 16)
-    throw std::invalid_argument("maxLevels = " + std::to_string(r.maxLevels) + " must be 0 ... 16");
+  if (auto e = realOpenIntervalError("K", r.map.K, 0, 1,
+                                     "for island chains: only there is the centre (−√K, 0) elliptic"))
+    throw std::invalid_argument(*e);
+  if (auto e = rangeError("maxPeriod", r.maxPeriod, 1, PeriodicOrbitSearch::kMaxPeriod)) throw std::invalid_argument(*e);
+  if (auto e = rangeError("maxLevels", r.maxLevels, 0, 16)) throw std::invalid_argument(*e);
 }
 
 /// One step of the descent (the header): names the last level's rotation as a rational, confirms the island it

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <sstream>
 #include <stdexcept>
 
 #include "core/limits/Limits.hpp"
@@ -67,16 +66,9 @@ std::size_t IndicatorRaster::count(OrbitVerdict v) const noexcept {
 
 std::optional<std::string> validationError(const IndicatorRequest& r) {
   if (auto e = validationError(r.measure)) return e;
-  std::ostringstream s;
   if (auto e = rasterSizeError(r.width, r.height, limits::kIndicatorPixels)) return e;
-  if (r.passes < 1 || r.passes > kMaxPasses) {
-    s << "passes = " << r.passes << " must be 1 ... " << kMaxPasses;
-    return s.str();
-  }
-  if (r.roundPixels < 1 || r.roundPixels > (1u << 26)) {
-    s << "roundPixels = " << r.roundPixels << " must be 1 ... 2^26";
-    return s.str();
-  }
+  if (auto e = rangeError("passes", r.passes, 1, kMaxPasses)) return e;
+  if (auto e = rangeError("roundPixels", r.roundPixels, 1, 1u << 26)) return e;
   if (auto e = threadsError(r.threads)) return e;
   return std::nullopt;
 }

@@ -5,12 +5,12 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
-#include <sstream>
 #include <stdexcept>
 
 #include "core/io/NumberText.hpp"
 #include "core/measures/MeasureKernels.hpp"
 #include "core/parallel/ParallelFor.hpp"
+#include "core/limits/Limits.hpp"
 
 namespace archipelago {
 
@@ -33,16 +33,11 @@ std::string_view toString(OrbitVerdict verdict) noexcept {
 
 std::optional<std::string> validationError(const MeasureSettings& s) {
   if (auto e = mapError(s.map)) return e;
-  if (s.iterations < kMinIterations || s.iterations > kMaxIterations) {
-    std::ostringstream m;
-    m << "iterations = " << s.iterations << " must be " << kMinIterations << " ... " << kMaxIterations;
-    return m.str();
-  }
-  if (!(s.digitsThreshold >= 0 && s.digitsThreshold <= kMaxDigits))
-    return "digits threshold = " + shortestDecimal(s.digitsThreshold) + " must be in [0, 16]";
-  if (s.kind == IndicatorKind::Rotation && !(s.map.K > 0 && s.map.K < 1))
-    return "K = " + shortestDecimal(s.map.K) +
-           " must be in (0, 1) for rotation numbers: only there is the centre (−√K, 0) elliptic";
+  if (auto e = rangeError("iterations", s.iterations, kMinIterations, kMaxIterations)) return e;
+  if (auto e = realRangeError("digits threshold", s.digitsThreshold, 0, kMaxDigits)) return e;
+  if (s.kind == IndicatorKind::Rotation)
+    return realOpenIntervalError("K", s.map.K, 0, 1,
+                                 "for rotation numbers: only there is the centre (−√K, 0) elliptic");
   return std::nullopt;
 }
 

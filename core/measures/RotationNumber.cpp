@@ -10,6 +10,7 @@
 namespace archipelago {
 namespace {
 #include "core/measures/MeasureMath.inl"
+#include "core/limits/Limits.hpp"
 
 constexpr std::uint64_t kMaxPower = 100'000;
 constexpr std::uint64_t kStopCheckSteps = std::uint64_t{1} << 16;
@@ -31,13 +32,11 @@ RotationCentre centralFixedPoint(const MapParameters& map) noexcept { return {ro
 
 RotationMeasurement measureRotation(const RotationRequest& r, std::stop_token stop) {
   if (auto e = mapError(r.map)) throw std::invalid_argument(*e);
-  if (r.power < 1 || r.power > kMaxPower)
-    throw std::invalid_argument("power = " + std::to_string(r.power) + " must be 1 ... " + std::to_string(kMaxPower));
+  if (auto e = rangeError("power", r.power, 1, kMaxPower)) throw std::invalid_argument(*e);
   if (r.centre.sense != 1 && r.centre.sense != -1) throw std::invalid_argument("sense must be +1 or -1");
   if (!std::isfinite(r.centre.units.x) || !std::isfinite(r.centre.units.y))
     throw std::invalid_argument("the rotation centre must be finite");
-  if (!(r.digitsThreshold >= 0 && r.digitsThreshold <= kMaxDigits))
-    throw std::invalid_argument("digits threshold = " + shortestDecimal(r.digitsThreshold) + " must be in [0, 16]");
+  if (auto e = realRangeError("digits threshold", r.digitsThreshold, 0, kMaxDigits)) throw std::invalid_argument(*e);
   const BirkhoffWeights w = birkhoffWeights(r.iterations, stop);  // validates the iterations
   if (stop.stop_requested()) return {};
   const MapCoefficients k = computeCoefficients(r.map);

@@ -28,10 +28,8 @@ std::optional<std::string> validationError(const RotationProfileRequest& r) {
   MeasureSettings s = r.measure;
   s.kind = IndicatorKind::Rotation;
   if (auto e = validationError(s)) return e;
-  if (r.points < 1 || r.points > kMaxPoints)
-    return "points = " + std::to_string(r.points) + " must be 1 ... " + std::to_string(kMaxPoints);
-  if (r.maxDenominator < 1 || r.maxDenominator > 1'000'000)
-    return "maxDenominator = " + std::to_string(r.maxDenominator) + " must be 1 ... 1000000";
+  if (auto e = rangeError("points", r.points, 1, kMaxPoints)) return e;
+  if (auto e = rangeError("maxDenominator", r.maxDenominator, 1, 1'000'000)) return e;
   if (auto e = boxPointError("from", r.measure.map, r.from)) return e;
   if (auto e = boxPointError("to", r.measure.map, r.to)) return e;
   if (auto e = threadsError(r.threads)) return e;

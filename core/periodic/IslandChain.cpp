@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/periodic/PeriodicOrbitFinder.hpp"
+#include "core/limits/Limits.hpp"
 
 namespace archipelago {
 
@@ -118,9 +119,9 @@ LevelTest testLevel(std::span<const PhysicalPoint> segment, std::size_t parent, 
 }
 
 void validate(const IslandChainOptions& o) {
-  if (o.maxPeriod < 1) throw std::invalid_argument("maxPeriod = " + std::to_string(o.maxPeriod) + " must be >= 1");
-  if (!(o.confinementRatio > 0 && o.confinementRatio < 1))
-    throw std::invalid_argument("confinementRatio must be in (0, 1)");
+  if (auto e = lowerBoundError("maxPeriod", o.maxPeriod, 1)) throw std::invalid_argument(*e);
+  if (auto e = realOpenIntervalError("confinementRatio", static_cast<double>(o.confinementRatio), 0, 1))
+    throw std::invalid_argument(*e);
   if (!(o.minTurns > 0)) throw std::invalid_argument("minTurns must be > 0");
   if (o.minPointsPerPhase < 2 || o.phasesSampled < 1 || o.pointsPerPhase < o.minPointsPerPhase)
     throw std::invalid_argument(
@@ -130,8 +131,8 @@ void validate(const IslandChainOptions& o) {
 }  // namespace
 
 long double subsequenceSpread(std::span<const PhysicalPoint> segment, int lag, const IslandChainOptions& options) {
-  if (lag < 1 || segment.size() < static_cast<std::size_t>(lag))
-    throw std::invalid_argument("lag = " + std::to_string(lag) + " must be in [1, segment length]");
+  if (auto e = rangeError("lag", lag, 1, static_cast<long long>(segment.size()), "at most the segment's length"))
+    throw std::invalid_argument(*e);
   const auto n = static_cast<std::size_t>(lag);
   std::vector<long double> spreads;
   for (std::size_t phase : sampledPhases(n, options))

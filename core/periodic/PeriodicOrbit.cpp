@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "core/io/NumberText.hpp"
+#include "core/limits/Limits.hpp"
 
 namespace archipelago {
 
@@ -89,7 +90,7 @@ long clockwiseTurns(std::span<const PhysicalPoint> points, long double cx, long 
 }
 
 PeriodicOrbit analysePeriodicOrbit(long double K, int period, quad x0, quad y0, OrbitSymmetry symmetry) {
-  if (period < 1) throw std::invalid_argument("period = " + std::to_string(period) + " must be >= 1");
+  if (auto e = lowerBoundError("period", period, 1)) throw std::invalid_argument(*e);
   using Point = smooth::Point<quad>;
   const quad k = K;
   PeriodicOrbit orbit;

@@ -11,6 +11,7 @@
 
 #include "core/io/NumberText.hpp"
 #include "core/periodic/SmoothQuadraticMap.hpp"
+#include "core/limits/Limits.hpp"
 
 namespace archipelago {
 
@@ -146,17 +147,14 @@ bool sameOrbit(const PeriodicOrbit& a, const PeriodicOrbit& b) {
 
 void validate(long double K, const PeriodicOrbitSearch& search) {
   if (!std::isfinite(K)) throw std::invalid_argument("K = " + formatNumber(K) + " must be a finite number");
-  if (search.period < 1 || search.period > PeriodicOrbitSearch::kMaxPeriod)
-    throw std::invalid_argument("period = " + std::to_string(search.period) + " must be in [1, " +
-                                std::to_string(PeriodicOrbitSearch::kMaxPeriod) + "]");
+  if (auto e = rangeError("period", search.period, 1, PeriodicOrbitSearch::kMaxPeriod)) throw std::invalid_argument(*e);
   if (!std::isfinite(search.near.x) || !std::isfinite(search.near.y))
     throw std::invalid_argument("the guess (" + formatNumber(search.near.x) + ", " + formatNumber(search.near.y) +
                                 ") must be finite");
   if (!(search.searchRadius > 0) || !std::isfinite(search.searchRadius))
     throw std::invalid_argument("search radius = " + formatNumber(search.searchRadius) +
                                 " must be a positive number");
-  if (search.samplesPerWindow < 8)
-    throw std::invalid_argument("samples per window = " + std::to_string(search.samplesPerWindow) + " must be >= 8");
+  if (auto e = lowerBoundError("samples per window", search.samplesPerWindow, 8)) throw std::invalid_argument(*e);
 }
 
 namespace {
@@ -307,7 +305,7 @@ std::optional<smooth::Point<quad>> polishPeriodicPoint(long double K, int period
 }
 
 quad polishSymmetricPoint(long double K, int period, SymmetryLine line, quad s, quad maxStep) {
-  if (period < 1) throw std::invalid_argument("period = " + std::to_string(period) + " must be >= 1");
+  if (auto e = lowerBoundError("period", period, 1)) throw std::invalid_argument(*e);
   return polishOnLine(shotFor(line, period), quad(K), s, maxStep);
 }
 

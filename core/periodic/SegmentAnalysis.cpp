@@ -7,6 +7,7 @@
 #include <numeric>
 #include <stdexcept>
 #include <tuple>
+#include <limits>
 #include <utility>
 
 #include "core/io/NumberText.hpp"
@@ -14,6 +15,7 @@
 
 #include "core/io/AtomicFile.hpp"
 #include "core/io/Npy.hpp"
+#include "core/limits/Limits.hpp"
 
 namespace archipelago {
 
@@ -40,7 +42,7 @@ std::size_t SegmentTrace::indexNear(std::uint64_t step) const noexcept {
 
 std::optional<SegmentTrace> traceSegment(const TrappingParameters& params, const SegmentRecord& record,
                                          std::uint64_t maxPoints, std::stop_token stop) {
-  if (maxPoints < 3) throw std::invalid_argument("maxPoints = " + std::to_string(maxPoints) + " must be >= 3");
+  if (auto e = lowerBoundError("maxPoints", maxPoints, 3)) throw std::invalid_argument(*e);
   validate(params);
   SegmentTrace trace;
   trace.record = record;
@@ -84,9 +86,9 @@ std::optional<std::vector<PhysicalPoint>> segmentPrefix(const TrappingParameters
 
 SegmentRegion dwellRegion(std::span<const PhysicalPoint> points, double fraction, int grid, double margin) {
   if (points.empty()) throw std::invalid_argument("dwellRegion: no points");
-  if (!(fraction > 0 && fraction <= 1)) throw std::invalid_argument("dwellRegion: fraction must be in (0, 1]");
-  if (grid < 1) throw std::invalid_argument("dwellRegion: grid must be >= 1");
-  if (!(margin >= 0) || !std::isfinite(margin)) throw std::invalid_argument("dwellRegion: margin must be >= 0");
+  if (auto e = realIntervalError("fraction", fraction, 0, true, 1)) throw std::invalid_argument("dwellRegion: " + *e);
+  if (auto e = lowerBoundError("grid", grid, 1)) throw std::invalid_argument("dwellRegion: " + *e);
+  if (auto e = realIntervalError("margin", margin, 0, false, std::numeric_limits<double>::infinity())) throw std::invalid_argument("dwellRegion: " + *e);
   long double x0 = points.front().x, x1 = x0, y0 = points.front().y, y1 = y0;
   for (const PhysicalPoint& p : points) {
     x0 = std::min(x0, p.x);
@@ -142,7 +144,8 @@ SegmentRegion dwellRegion(std::span<const PhysicalPoint> points, double fraction
 
 SegmentRegion framedInBox(const SegmentRegion& r, const MapParameters& map, double aspect, long double minSize) {
   if (!(aspect > 0) || !std::isfinite(aspect)) throw std::invalid_argument("framedInBox: aspect must be > 0");
-  if (!(minSize >= 0) || !std::isfinite(minSize)) throw std::invalid_argument("framedInBox: minSize must be >= 0");
+  if (auto e = realIntervalError("minSize", minSize, 0, false, std::numeric_limits<double>::infinity()))
+    throw std::invalid_argument("framedInBox: " + *e);
   const long double a = aspect;
   long double w = std::max(r.width(), minSize);
   long double h = std::max(r.height(), minSize);
@@ -179,7 +182,7 @@ std::optional<SegmentChain> identifySegmentChain(const TrappingParameters& param
 }
 
 SegmentRegion islandRegion(std::span<const PhysicalPoint> consecutive, int level, double fraction, double margin) {
-  if (level < 1) throw std::invalid_argument("islandRegion: level must be >= 1");
+  if (auto e = lowerBoundError("level", level, 1)) throw std::invalid_argument("islandRegion: " + *e);
   std::vector<PhysicalPoint> sub;
   sub.reserve(consecutive.size() / static_cast<std::size_t>(level) + 1);
   for (std::size_t i = 0; i < consecutive.size(); i += static_cast<std::size_t>(level)) sub.push_back(consecutive[i]);
@@ -195,8 +198,7 @@ void writeSegmentCsv(const std::string& path, const SegmentTrace& trace) {
 }
 
 std::optional<std::string> strideError(std::uint64_t stride) {
-  if (stride == 0) return std::string("stride = 0 must be >= 1");
-  return std::nullopt;
+  return lowerBoundError("stride", stride, 1);
 }
 
 std::uint64_t writeSegmentCsv(const std::string& path, const TrappingParameters& params, const SegmentRecord& record,

@@ -10,7 +10,6 @@
 #include "core/limits/Limits.hpp"
 #include "core/kernels/ScalarLanes.hpp"
 #include "core/parallel/ParallelFor.hpp"
-#include "core/limits/RangeCheck.hpp"
 #include "core/random/CounterRng.hpp"
 #include "core/trapping/BlockKernel.hpp"
 
@@ -92,23 +91,20 @@ std::optional<std::string> validationError(const PortraitRequest& r) {
   if (auto e = mapError(r.map)) return e;
   std::ostringstream s;
   if (auto e = rasterSizeError(r.width, r.height)) return e;
-  if (r.points < 1) return "points = 0 must be >= 1";
+  if (auto e = lowerBoundError("points", r.points, 1)) return e;
   if (r.points > (std::uint64_t{1} << 50)) return "points must be < 2^50";
   if (r.mode != PortraitMode::Orbits)
-    if (auto e = outsideRange("orbits", r.orbits, 1, limits::kRasterOrbits)) return e;
-  if (r.mode == PortraitMode::Orbits &&
-      (r.seedColumns < 1 || r.seedColumns > limits::kSeedGridSide || r.seedRows < 1 ||
-       r.seedRows > limits::kSeedGridSide)) {
-    s << "seed grid " << r.seedColumns << "x" << r.seedRows << " must be 1 ... " << limits::kSeedGridSide
-      << " each way";
-    return s.str();
+    if (auto e = rangeError("orbits", r.orbits, 1, limits::kRasterOrbits)) return e;
+  if (r.mode == PortraitMode::Orbits) {
+    if (auto e = rangeError("seed grid columns", r.seedColumns, 1, limits::kSeedGridSide)) return e;
+    if (auto e = rangeError("seed grid rows", r.seedRows, 1, limits::kSeedGridSide)) return e;
   }
   // Xr and q are checked in every mode (the renderer builds its block settings from them whatever the mode): a
   // value given for a mode that does not use it is still refused, never carried as a silent nonsense.
   if (auto e = randomizingZoneError(r.Xr)) return e;
-  if (auto e = outsideRange("q", r.q, 1, limits::kRasterQ)) return e;
-  if (auto e = outsideRange("passes", r.passes, 1, 30)) return e;
-  if (auto e = outsideRange("chunkSteps", r.chunkSteps, 1, 1u << 20, "2^20"))
+  if (auto e = rangeError("q", r.q, 1, limits::kRasterQ)) return e;
+  if (auto e = rangeError("passes", r.passes, 1, 30)) return e;
+  if (auto e = rangeError("chunkSteps", r.chunkSteps, 1, 1u << 20))
     return e;
   if (!forEachPassEnd(r, kMaxPasses, [](std::uint64_t) {})) {
     s << "passPoints = " << r.passPoints << " splits the " << r.points << " points into more than 2^16 passes";

@@ -2,6 +2,7 @@
 
 #include "core/io/NumberText.hpp"
 #include "core/report/TheoryStatements.hpp"
+#include "core/view/ViewExport.hpp"
 
 namespace archipelago::report {
 
@@ -58,6 +59,20 @@ PortraitRequest chain138NeighbourhoodRequest(ReportSize size) {
 
 double smallKHamiltonian(double X, double Y, int sign) noexcept {
   return 0.5 * Y * Y - (2.0 / 3.0) * X * X * X + 2.0 * sign * X;
+}
+
+Provenance figureProvenance(const std::string& image, const std::string& command) {
+  Provenance p = programProvenance();
+  p.add("Image", image);
+  if (!command.empty()) p.add("Command", command);
+  return p;
+}
+
+Provenance levelCurveProvenance(int sign, const PhysicalRect& view) {
+  Provenance p = figureProvenance(sign == 0 ? "level curves of H = Y^2/2 - 2X^3/3 (K = 0)"
+                                            : "level curves of H = Y^2/2 - 2X^3/3 + 2X (K > 0)");
+  addView(p, view);
+  return p;
 }
 
 }  // namespace archipelago::report

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/portrait/PortraitRenderer.hpp"
+#include "core/provenance/Provenance.hpp"
 #include "core/report/ReportRuns.hpp"
 
 namespace archipelago::report {
@@ -27,5 +28,11 @@ namespace archipelago::report {
 /// Fig. 4: the small-K Hamiltonians in scaled variables, H = ½Y² − ⅔X³ + s·2X with s = 0 (K = 0, eq. ham, panel a)
 /// and s = +1 (K > 0, eq. hamb, panel b) (core/theory/SmallKTheory.hpp's file comment).
 [[nodiscard]] double smallKHamiltonian(double X, double Y, int sign) noexcept;
+
+/// The text chunks of a figure that is neither a picture of the map's plane (portraitProvenance, longOrbitProvenance)
+/// nor a run's statistic (runProvenance): the program, the image and, when it has one, the command that computes it.
+[[nodiscard]] Provenance figureProvenance(const std::string& image, const std::string& command = {});
+/// Fig. 4's panel of `sign` (s = 0: a, s = +1: b): figureProvenance's, the Hamiltonian and its scaled view (X, Y).
+[[nodiscard]] Provenance levelCurveProvenance(int sign, const PhysicalRect& view);
 
 }  // namespace archipelago::report

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "core/paper/PaperTable.hpp"
+#include "core/view/ViewExport.hpp"
 
 namespace archipelago::report {
 
@@ -60,6 +61,16 @@ LongOrbitFigures longOrbitFigures(const TrappingState& run, std::size_t candidat
     }
   }
   return f;
+}
+
+Provenance longOrbitProvenance(const TrappingState& run, const LongOrbitView& v) {
+  Provenance p = mapProvenance(run.params.map);
+  addView(p, PhysicalRect{v.view.x0, v.view.x1, v.view.y0, v.view.y1});
+  p.add("Image", "segment replayed, its states as dots");
+  p.add("Orbit", std::to_string(v.record.orbit));
+  p.add("Steps", std::to_string(v.steps));
+  p.add("Command", v.command);
+  return p;
 }
 
 }  // namespace archipelago::report

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/periodic/SegmentAnalysis.hpp"
+#include "core/provenance/Provenance.hpp"
 #include "core/run/TrappingRun.hpp"
 
 namespace archipelago::report {
@@ -42,5 +43,9 @@ struct LongOrbitFigures {
 /// `runFile` names the run in the commands.  Segments too short to identify are skipped.
 [[nodiscard]] LongOrbitFigures longOrbitFigures(const TrappingState& run, std::size_t candidates,
                                                 std::uint64_t maxPoints, const std::string& runFile);
+
+/// Where a replayed segment's figure came from (its PNG's text): the run's map (K, the box), the view (the frame
+/// drawn, `v.view`), the image, the orbit, the segment's steps and the replay's command.
+[[nodiscard]] Provenance longOrbitProvenance(const TrappingState& run, const LongOrbitView& v);
 
 }  // namespace archipelago::report

@@ -199,8 +199,7 @@ std::uint64_t replaySegment(const TrappingParameters& params, const SegmentRecor
 }
 
 std::optional<std::string> chunkSecondsError(double chunkSeconds) {
-  if (std::isfinite(chunkSeconds) && chunkSeconds > 0 && chunkSeconds <= 3600) return std::nullopt;
-  return "chunk_seconds = " + io::shortestText(chunkSeconds) + " must lie in (0, 3600]";
+  return realIntervalError("chunk_seconds", chunkSeconds, 0, true, 3600);
 }
 
 std::optional<std::string> subsetIndexError(std::uint64_t index, std::uint64_t count) {

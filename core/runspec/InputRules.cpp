@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "core/io/NumberText.hpp"
+#include "core/limits/Limits.hpp"
 
 namespace archipelago {
 
@@ -35,8 +36,7 @@ ParameterValue readInput(std::string_view key, std::string_view text) {
                                   std::string(rule->range));
     // A parameter's range is validationErrors()'s rule (one message: "must lie in"); a setting's is checked here.
     if (findParameterRule(key) == nullptr && (*v < rule->min || *v > rule->max))
-      throw std::invalid_argument(std::string(key) + " = " + std::to_string(*v) + " must lie in " +
-                                  std::string(rule->range));
+      throw std::invalid_argument(wholeRangeError(key, std::to_string(*v), rule->range));
     return *v;
   }
   const std::optional<double> v = io::toNumber<double>(text);

@@ -10,6 +10,7 @@
 #include "core/io/Json.hpp"
 #include "core/kernels/KernelDispatch.hpp"
 #include "core/runspec/RunSpecJson.hpp"
+#include "core/limits/Limits.hpp"
 
 namespace archipelago {
 
@@ -91,8 +92,7 @@ std::optional<std::string> validationError(const RunSpec& s) {
   }
   if (auto e = threadsError(s.threads)) return e;
   if (s.companion != 0) {
-    if (!(s.companion > 0 && s.companion <= 1))
-      return "companion = " + io::shortestText(s.companion) + " must lie in (0, 1] (the fraction of the run's steps)";
+    if (auto e = realIntervalError("companion", s.companion, 0, true, 1, "the fraction of the run's steps")) return e;
     if (s.parameters.q <= 1) return "companion: a run of q = 1 needs no q = 1 companion (remove it)";
   }
   return std::nullopt;

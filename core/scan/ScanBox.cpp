@@ -6,15 +6,15 @@
 #include <stdexcept>
 
 #include "core/io/NumberText.hpp"
+#include "core/limits/Limits.hpp"
 
 namespace archipelago {
 
 MapParameters scanBox(double K) {
-  if (!(K >= 0 && K <= kScanMaxK)) {
-    const std::string text = io::formatC("K = %.17g must lie in [0, %g] for a scan (its box is -2 sqrt(K) - %g ... sqrt(K) + %g)",
-                                         K, kScanMaxK, kScanBoxMargin, kScanBoxMargin);
-    throw std::invalid_argument(text);
-  }
+  if (auto e = realRangeError("K", K, 0, kScanMaxK,
+                              io::formatC("for a scan: its box is -2 sqrt(K) - %g to sqrt(K) + %g", kScanBoxMargin,
+                                          kScanBoxMargin)))
+    throw std::invalid_argument(*e);
   const double r = std::sqrt(K);
   MapParameters box;
   box.K = K;

@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "core/io/NumberText.hpp"
+#include "core/limits/Limits.hpp"
 
 namespace archipelago {
 
@@ -64,9 +65,7 @@ std::optional<std::string> stochasticAreaError(std::string_view name, const MapP
 }
 
 std::optional<std::string> visitedFractionError(std::string_view name, double fraction) {
-  if (fraction >= 0 && fraction <= 1) return std::nullopt;
-  return std::string(name) + " = " + io::shortestText(fraction) +
-         " must lie in [0, 1] (the visited fraction stochastic_area gives)";
+  return realRangeError(name, fraction, 0, 1, "the visited fraction stochastic_area gives");
 }
 
 std::optional<std::string> diffusionInputError(double D, double DError) {

@@ -8,7 +8,6 @@
 #include "core/limits/Limits.hpp"
 #include "core/map/FixedPointMap.hpp"
 #include "core/parallel/ParallelFor.hpp"
-#include "core/limits/RangeCheck.hpp"
 #include "core/kernels/TracedBlocks.hpp"
 
 namespace archipelago {
@@ -16,11 +15,11 @@ namespace archipelago {
 std::optional<std::string> validationError(const StochasticAreaRequest& r) {
   if (auto e = mapError(r.map)) return e;
   if (auto e = randomizingZoneError(r.Xr)) return e;
-  if (auto e = outsideRange("q", r.q, 1, limits::kRasterQ)) return e;
-  if (auto e = outsideRange("orbits", r.orbits, 1, limits::kRasterOrbits)) return e;
-  if (auto e = outsideRange("gridBits", r.gridBits, 1, 12)) return e;
-  if (auto e = outsideRange("iterations", r.iterations, 1, 1LL << 50, "2^50")) return e;
-  if (r.firstCheckpoint < 1) return "firstCheckpoint = 0 must be >= 1";
+  if (auto e = rangeError("q", r.q, 1, limits::kRasterQ)) return e;
+  if (auto e = rangeError("orbits", r.orbits, 1, limits::kRasterOrbits)) return e;
+  if (auto e = rangeError("gridBits", r.gridBits, 1, 12)) return e;
+  if (auto e = rangeError("iterations", r.iterations, 1, 1LL << 50)) return e;
+  if (auto e = lowerBoundError("firstCheckpoint", r.firstCheckpoint, 1)) return e;
   return std::nullopt;
 }
 

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "core/periodic/PeriodicOrbitFinder.hpp"
+#include "core/limits/Limits.hpp"
 
 namespace archipelago::paper {
 
@@ -93,8 +94,7 @@ double nextBifurcation(int period, double bornAt, double previousGap, const Phys
 }  // namespace
 
 PeriodDoublingCascade periodDoublingCascade(int levels) {
-  if (levels < 3 || levels > 7)
-    throw std::invalid_argument("levels = " + std::to_string(levels) + " must be 3 ... 7");
+  if (auto e = rangeError("levels", levels, 3, 7)) throw std::invalid_argument(*e);
   PeriodDoublingCascade c;
   c.bifurcations = {kFirstPeriodDoubling, kSecondPeriodDoubling};
   // The period-2 orbit at K₁ = 5/4: x = −1 ∓ √(K − 1) = −1 ∓ ½ (PaperNumbers.hpp).

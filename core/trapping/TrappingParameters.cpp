@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/trapping/TrappingHistogram.hpp"
+#include "core/limits/Limits.hpp"
 
 namespace archipelago {
 
@@ -99,15 +100,15 @@ void setParameterValue(TrappingParameters& p, std::string_view key, const Parame
   // …) is validationError()'s, so that each rule has one message.
   const std::uint64_t v = std::get<std::uint64_t>(value);
   if (a.u32 && v > a.rule.max)
-    throw std::invalid_argument(std::string(key) + " = " + std::to_string(v) + " must lie in " + std::string(a.rule.range));
+    throw std::invalid_argument(wholeRangeError(key, std::to_string(v), a.rule.range));
   if (a.u32) p.*a.u32 = static_cast<std::uint32_t>(v);
   else p.*a.u64 = v;
 }
 
 TrappingParameters companionParameters(const TrappingParameters& p, double fraction) {
   if (p.q <= 1) throw std::invalid_argument("a run of q = 1 needs no q = 1 companion");
-  if (!(fraction > 0 && fraction <= 1))
-    throw std::invalid_argument("the companion's fraction of the run's steps must lie in (0, 1]");
+  if (auto e = realIntervalError("companion", fraction, 0, true, 1, "the fraction of the run's steps"))
+    throw std::invalid_argument(*e);
   TrappingParameters c = p;
   c.q = 1;
   const long double steps = static_cast<long double>(fraction) * p.q * static_cast<long double>(p.T);
@@ -160,7 +161,7 @@ std::vector<ParameterError> validationErrors(const TrappingParameters& p) {
     if (!r.integer) continue;
     const std::uint64_t v = std::get<std::uint64_t>(parameterValue(p, r.key));
     if (v < r.min || v > r.max) {
-      errors.push_back({{std::string(r.key)}, std::string(r.key) + " = " + std::to_string(v) + " must lie in " + std::string(r.range)});
+      errors.push_back({{std::string(r.key)}, wholeRangeError(r.key, std::to_string(v), r.range)});
       integersInRange = false;
     }
   }

@@ -43,7 +43,10 @@ std::string sidecarPath(const std::string& npyPath) {
 }
 
 void addView(Provenance& provenance, const MapParameters& map, const Viewport& view) {
-  const PhysicalRect b = view.physical(map);
+  addView(provenance, view.physical(map));
+}
+
+void addView(Provenance& provenance, const PhysicalRect& b) {
   provenance.add("View x0", b.x0).add("View x1", b.x1).add("View y0", b.y0).add("View y1", b.y1);
 }
 

@@ -18,5 +18,7 @@ namespace archipelago {
 /// The view's edges as the fields "View x0", "View x1", "View y0", "View y1" (physical coordinates, shortest exact
 /// text of the long doubles): the view of every image of the phase plane.
 void addView(Provenance& provenance, const MapParameters& map, const Viewport& view);
+/// The same fields for edges already physical (a replayed orbit's frame in the report).
+void addView(Provenance& provenance, const PhysicalRect& edges);
 
 }  // namespace archipelago

@@ -46,7 +46,7 @@ started = time.monotonic()
 # ------------------------------------------------------------------------------------------ work without bound
 for spacing in ["1e-17", "1e-16", "1e-300"]:
     case("work without bound", f"manifold --length 1 --spacing {spacing}",
-         ["manifold", "--length", "1", "--spacing", spacing], f"spacing = {spacing} must be in [1e-14, 1]")
+         ["manifold", "--length", "1", "--spacing", spacing], f"spacing = {spacing} must lie in [1e-14, 1]")
 if under_asan:
     print("skipped under ASan: manifold --max-points 1e8 (an address-space limit cannot hold ASan's shadow memory)")
 else:

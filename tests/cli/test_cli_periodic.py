@@ -52,7 +52,7 @@ check(header.get("rotation_number", "").startswith("0 = 0/1 ") and "nan" not in 
 
 # Bad input: one clear line, non-zero exit, no crash.
 for args, mention in [
-    (["periodic", "--period", "0", "--near", "0,0"], "period = 0 must be in [1, 100000]"),
+    (["periodic", "--period", "0", "--near", "0,0"], "period = 0 must lie in [1, 100000]"),
     (["periodic", "--period", "6", "--near", "0.05"], "--near '0.05' must be two finite numbers x,y"),
     (["periodic", "--period", "6", "--near", "a,b"], "--near 'a,b'"),
     (["periodic", "--period", "6"], "--near is required"),

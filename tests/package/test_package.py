@@ -111,6 +111,15 @@ try:
           "archipelago-cli run: a small run " + r.stderr.strip())
     r = sh("archipelago-cli", "stats", "run.json", env=env, cwd=work, timeout=300)
     check(r.returncode == 0 and "D" in r.stdout, "archipelago-cli stats run.json " + r.stderr.strip()[-300:])
+    # Issue 54, finding 7: a command-line run by a user without a login session (nobody: no XDG_RUNTIME_DIR) once
+    # printed Qt's "QStandardPaths: XDG_RUNTIME_DIR not set" on stderr.
+    if "archipelago-reproduce" in programs and os.geteuid() == 0 and shutil.which("runuser"):
+        quiet = tempfile.mkdtemp(dir=work)
+        os.chmod(quiet, 0o777)
+        r = sh("runuser", "-u", "nobody", "--", "env", "-u", "XDG_RUNTIME_DIR", "archipelago-reproduce", "--only", "tmax",
+               os.path.join(quiet, "report"), env=env, cwd=quiet, timeout=300)
+        check(r.returncode == 0 and r.stderr == "",
+              f"archipelago-reproduce --only tmax as nobody without XDG_RUNTIME_DIR: nothing on stderr ({r.stderr.strip()!r})")
     code = ("import archipelago as ap, json; r = ap.start(K=0.1, M=16, q=4, T=1000); r.advance(threads=1); "
             "print(json.dumps({'file': ap.__file__, 'version': ap.__version__, 'finished': r.finished}))")
     if any("python3" in f for f in files):

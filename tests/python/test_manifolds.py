@@ -93,7 +93,7 @@ def test_flux_bad_input():
 # took ~12 GB unchecked.  Refused before work: the bound each exceeds (MemoryError under a 4 GiB address space).
 @pytest.mark.parametrize("spacing", [1e-17, 1e-16, 1e-300])
 def test_manifold_spacing_below_the_points_precision_is_refused_Issue36(spacing):
-    with pytest.raises(ValueError, match=r"spacing = .* must be in \[1e-14, 1\]"):
+    with pytest.raises(ValueError, match=r"spacing = .* must lie in \[1e-14, 1\]"):
         ap.manifold(0.1, length=1, spacing=spacing)
 
 

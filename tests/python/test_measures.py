@@ -65,7 +65,7 @@ def test_profile_equals_cli_csv_and_orbit_measures(cli, tmp_path):
 
 
 def test_bad_input_raises_value_error():
-    with pytest.raises(ValueError, match=r"must be in \(0, 1\)"):
+    with pytest.raises(ValueError, match=r"must lie in \(0, 1\)"):
         ap.rotation(-0.3, 0.0, K=1.5, xmin=-2.0)
     with pytest.raises(ValueError, match="must lie in the box"):
         ap.rotation(3.0, 0.0)

@@ -3,7 +3,7 @@ status, every statement that can be checked at this size (no unexplained 'DIFFER
 and that index.html, the figures (PNG and SVG) and the PDF exist and are not trivial.  Then runs it again into
 the same folder to check that finished runs (and the K scan) are reused, and interrupts a third one with SIGINT:
 it must save its work, exit 130, and finish on the next invocation with the same statements."""
-import csv, glob, os, random, resource, shutil, signal, subprocess, sys, tempfile, time
+import csv, glob, os, random, resource, shutil, signal, struct, subprocess, sys, tempfile, time, zlib
 
 exe = sys.argv[1]
 failures = 0
@@ -13,6 +13,26 @@ def check(cond, what):
     global failures
     print(("ok   " if cond else "FAIL ") + what, flush=True)
     failures += 0 if cond else 1
+
+
+def png_text(path):
+    """The text chunks of a PNG (tEXt, zTXt, iTXt) as a dict."""
+    data, text, at = open(path, "rb").read(), {}, 8
+    while at + 8 <= len(data):
+        length, kind = struct.unpack(">I4s", data[at:at + 8])
+        body = data[at + 8:at + 8 + length]
+        at += 12 + length
+        key, _, rest = body.partition(b"\0")
+        if kind == b"tEXt":
+            text[key.decode("latin-1")] = rest.decode("latin-1")
+        elif kind == b"zTXt":
+            text[key.decode("latin-1")] = zlib.decompress(rest[1:]).decode("latin-1")
+        elif kind == b"iTXt":
+            compressed, rest = rest[0], rest[2:]
+            _, _, rest = rest.partition(b"\0")  # language tag
+            _, _, rest = rest.partition(b"\0")  # translated keyword
+            text[key.decode("latin-1")] = (zlib.decompress(rest) if compressed else rest).decode("utf-8")
+    return text
 
 
 with tempfile.TemporaryDirectory() as out:
@@ -59,6 +79,21 @@ with tempfile.TemporaryDirectory() as out:
         check(os.path.exists(svg) and os.path.getsize(svg) > 10000 and b"<svg" in open(svg, "rb").read(),
               f"{fig}.svg is a non-trivial SVG")
         check(f"figures/{fig}.png" in index, f"index.html shows {fig}")
+    # Issue 54, finding 6: every figure carries the parameters of what it shows (the README's promise), not only
+    # Software, Version and Commit: a picture of the plane K and the view, a statistic the run's parameters.
+    plane = ["K", "xmin", "xmax", "View x0", "View x1", "View y0", "View y1"]
+    statistic = ["K", "xmin", "xmax", "Xr", "q", "T", "M", "seed", "blocks_done"]
+    for fig, keys in [("fig1", plane + ["Image", "Points"]), ("fig2a", plane), ("fig8a", plane), ("fig6a", statistic),
+                      ("fig3a", statistic), ("tail-splitting", statistic), ("fig4a", ["View x0", "View y1", "Image"]),
+                      ("markov-tree", ["K", "Atlas depth", "alpha", "b2"])]:
+        text = png_text(os.path.join(out, "figures", fig + ".png"))
+        missing = [k for k in keys if not text.get(k)]
+        check(not missing and text.get("Software", "").startswith("archipelago"),
+              f"{fig}.png carries what it shows ({missing} missing of {sorted(text)})")
+    check(png_text(os.path.join(out, "figures", "fig1.png")).get("K") == "0.1", "fig1.png: K = 0.1")
+    bare = [os.path.basename(f) for f in glob.glob(os.path.join(out, "figures", "*.png"))
+            if set(png_text(f)) <= {"Software", "Version", "Commit"}]
+    check(not bare, f"no figure carries only the program's version ({bare})")
     pdf = os.path.join(out, "report.pdf")
     check(os.path.exists(pdf) and os.path.getsize(pdf) > 100000 and open(pdf, "rb").read(5) == b"%PDF-",
           "report.pdf is a non-trivial PDF")

@@ -26,6 +26,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/export/StatisticsCsv.hpp"
 #include "core/theory/SmallKTheory.hpp"
 #include "ui/plots/LogScaleDraw.hpp"
 #include "ui/plots/StatisticsPlot.hpp"
@@ -34,27 +35,32 @@
 
 namespace archipelago::ui::report {
 
-bool writeStatisticFigure(Statistic statistic, const TrappingStatistics& stats, const std::vector<TheoryCurve>& theory,
-                          const QString& base, QString* error) {
-  return writeStatisticFigure(statistic, stats, theory, Series{}, QString(), base, error);
+bool writeStatisticFigure(Statistic statistic, const TrappingState& run, const TrappingStatistics& stats,
+                          const std::vector<TheoryCurve>& theory, const QString& base, QString* error) {
+  return writeStatisticFigure(statistic, run, stats, theory, Series{}, QString(), base, error);
 }
 
-bool writeStatisticFigure(Statistic statistic, const TrappingStatistics& stats, const std::vector<TheoryCurve>& theory,
-                          const Series& estimate, const QString& estimateTitle, const QString& base, QString* error) {
+bool writeStatisticFigure(Statistic statistic, const TrappingState& run, const TrappingStatistics& stats,
+                          const std::vector<TheoryCurve>& theory, const Series& estimate, const QString& estimateTitle,
+                          const QString& base, QString* error) {
   StatisticsPlot plot(statistic);
   plot.resize(800, 550);
   plot.setData(seriesOf(stats, statistic), theory);
   plot.setBlockAffectedBelow(stats.blockAffectedBelow);
   plot.setEstimate(estimate, estimateTitle);
   plot.refresh();
-  return plot.exportImage(base + QStringLiteral(".png"), error) && plot.exportImage(base + QStringLiteral(".svg"), error);
+  const Provenance provenance = runProvenance(run);  // the GUI's plots' fields and line (ui/window/ExportActions)
+  const QString footnote = QString::fromStdString(runParametersLine(run));
+  return plot.exportImage(base + QStringLiteral(".png"), error, provenance, footnote) &&
+         plot.exportImage(base + QStringLiteral(".svg"), error, provenance, footnote);
 }
 
 namespace {
 
-/// The plot as BASE.png and BASE.svg, laid out at `widget` pixels and drawn into `rect`.
-bool renderPlot(QwtPlot& plot, const QString& base, QString* error, QSize widget = {800, 550},
-                QRectF rect = {0, 0, 945, 650}) {
+/// The plot as BASE.png (with `provenance` as its text chunks) and BASE.svg, laid out at `widget` pixels and drawn
+/// into `rect`.
+bool renderPlot(QwtPlot& plot, const QString& base, const Provenance& provenance, QString* error,
+                QSize widget = {800, 550}, QRectF rect = {0, 0, 945, 650}) {
   plot.resize(widget);
   plot.replot();
   QwtPlotRenderer renderer;
@@ -65,7 +71,7 @@ bool renderPlot(QwtPlot& plot, const QString& base, QString* error, QSize widget
     QPainter painter(&image);
     renderer.render(&plot, &painter, rect);
   }
-  if (!writePngFile(image, base + QStringLiteral(".png"), error)) return false;
+  if (!writePngFile(image, base + QStringLiteral(".png"), error, provenance)) return false;
   QByteArray svg;
   QBuffer buffer(&svg);
   buffer.open(QIODevice::WriteOnly);
@@ -129,7 +135,7 @@ QColor paletteColour(int i) {
 
 }  // namespace
 
-bool writeTrappingTimeFigures(const QString& base, QString* error) {
+bool writeTrappingTimeFigures(const QString& base, const Provenance& provenance, QString* error) {
   const auto& mx = smallk::negativeKMaximum();
   {  // (a) T(X0)
     QwtPlot plot;
@@ -145,7 +151,7 @@ bool writeTrappingTimeFigures(const QString& base, QString* error) {
     }
     addCurve(plot, pts, QStringLiteral("T(X₀)"), QColor(0, 90, 180));
     plot.setAxisScale(QwtPlot::yLeft, 0, 6);
-    if (!renderPlot(plot, base + QStringLiteral("a"), error)) return false;
+    if (!renderPlot(plot, base + QStringLiteral("a"), provenance, error)) return false;
   }
   {  // (b) F(T) with its two limits
     QwtPlot plot;
@@ -167,7 +173,7 @@ bool writeTrappingTimeFigures(const QString& base, QString* error) {
     addCurve(plot, small, QStringLiteral("6.205·10⁵ T⁻⁷"), QColor(200, 60, 40))->setPen(QColor(200, 60, 40), 1, Qt::DashLine);
     addCurve(plot, cut, QStringLiteral("3.024 (T_max − T)^−½"), QColor(40, 150, 60))->setPen(QColor(40, 150, 60), 1, Qt::DashLine);
     plot.setAxisScale(QwtPlot::yLeft, 0.5, 1e4);
-    if (!renderPlot(plot, base + QStringLiteral("b"), error)) return false;
+    if (!renderPlot(plot, base + QStringLiteral("b"), provenance, error)) return false;
   }
   return true;
 }
@@ -177,7 +183,8 @@ namespace {
 /// An image on the physical rectangle [x0, x1] × [y0, y1] with x, y axes and `markers`, as `base`.png/.svg: the
 /// portraits and the replayed segments.
 bool writeRasterFigure(const QImage& raster, double x0, double x1, double y0, double y1, const QString& title,
-                       const QString& base, QString* error, const FigureMarkers& markers) {
+                       const QString& base, const Provenance& provenance, QString* error,
+                       const FigureMarkers& markers) {
   QwtPlot plot;
   plot.setTitle(title);
   plot.setCanvasBackground(Qt::white);
@@ -187,20 +194,22 @@ bool writeRasterFigure(const QImage& raster, double x0, double x1, double y0, do
   plot.setAxisScale(QwtPlot::xBottom, x0, x1);
   plot.setAxisScale(QwtPlot::yLeft, y0, y1);
   addMarkers(plot, markers);
-  return renderPlot(plot, base, error, {800, 800}, QRectF(0, 0, 800, 800));
+  return renderPlot(plot, base, provenance, error, {800, 800}, QRectF(0, 0, 800, 800));
 }
 
 }  // namespace
 
 bool writePortraitFigure(const RasterImage& image, double x0, double x1, double y0, double y1, const QString& title,
-                         const QString& base, QString* error, const FigureMarkers& markers) {
+                         const QString& base, const Provenance& provenance, QString* error,
+                         const FigureMarkers& markers) {
   // A deep copy: QImage must not borrow the vector past this scope's end.
   const QImage raster = QImage(image.rgb.data(), image.width, image.height, 3 * image.width, QImage::Format_RGB888).copy();
-  return writeRasterFigure(raster, x0, x1, y0, y1, title, base, error, markers);
+  return writeRasterFigure(raster, x0, x1, y0, y1, title, base, provenance, error, markers);
 }
 
 bool writePointsFigure(const std::vector<QPointF>& points, double x0, double x1, double y0, double y1,
-                       const QString& title, const QString& base, QString* error, const FigureMarkers& markers) {
+                       const QString& title, const QString& base, const Provenance& provenance, QString* error,
+                       const FigureMarkers& markers) {
   if (!(x1 > x0) || !(y1 > y0)) {
     if (error) *error = QStringLiteral("%1: an empty view").arg(base);
     return false;
@@ -213,10 +222,11 @@ bool writePointsFigure(const std::vector<QPointF>& points, double x0, double x1,
     if (!(fx >= 0 && fx < 1 && fy >= 0 && fy < 1)) continue;
     raster.setPixelColor(static_cast<int>(fx * n), static_cast<int>(fy * n), Qt::black);
   }
-  return writeRasterFigure(raster, x0, x1, y0, y1, title, base, error, markers);
+  return writeRasterFigure(raster, x0, x1, y0, y1, title, base, provenance, error, markers);
 }
 
-bool writeScanFigures(const std::vector<ScanRunSummary>& runs, const QString& base, QString* error) {
+bool writeScanFigures(const std::vector<ScanRunSummary>& runs, const QString& base, const Provenance& provenance,
+                      QString* error) {
   KScanPlots plots;
   plots.showRuns(runs);
   for (const char* name : {"ft", "heatMap", "D", "long"}) {
@@ -225,13 +235,13 @@ bool writeScanFigures(const std::vector<ScanRunSummary>& runs, const QString& ba
       if (error) *error = QStringLiteral("the K-scan plots have no plot %1").arg(QLatin1String(name));
       return false;
     }
-    if (!renderPlot(*plot, base + QLatin1Char('-') + QString::fromLatin1(name).toLower(), error)) return false;
+    if (!renderPlot(*plot, base + QLatin1Char('-') + QString::fromLatin1(name).toLower(), provenance, error)) return false;
   }
   return true;
 }
 
 bool writeCurvesFigure(const std::vector<FigureCurve>& curves, const FigureAxes& axes, const QString& base,
-                       QString* error) {
+                       const Provenance& provenance, QString* error) {
   QwtPlot plot;
   plot.setCanvasBackground(Qt::white);
   plot.setTitle(axes.title);
@@ -280,12 +290,12 @@ bool writeCurvesFigure(const std::vector<FigureCurve>& curves, const FigureAxes&
     }
   }
   if (named > 1) plot.insertLegend(new QwtLegend, QwtPlot::RightLegend);
-  return renderPlot(plot, base, error);
+  return renderPlot(plot, base, provenance, error);
 }
 
 bool writeLevelCurveFigure(const std::function<double(double, double)>& z, double x0, double x1, double y0, double y1,
                            const std::vector<double>& levels, const QString& title, const QString& base,
-                           QString* error) {
+                           const Provenance& provenance, QString* error) {
   constexpr int n = 300;
   QVector<double> values;
   values.reserve(n * n);
@@ -317,7 +327,7 @@ bool writeLevelCurveFigure(const std::function<double(double, double)>& z, doubl
   spectrogram->setDefaultContourPen(QPen(QColor(0, 90, 180), 1.2));
   spectrogram->setContourLevels(QList<double>(levels.begin(), levels.end()));
   spectrogram->attach(&plot);
-  return renderPlot(plot, base, error);
+  return renderPlot(plot, base, provenance, error);
 }
 
 bool writePdf(const QString& html, const QString& dir, const QStringList& images, const QString& pdfPath,

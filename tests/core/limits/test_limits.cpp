@@ -102,7 +102,7 @@ TEST(Limits, RastersOneRule) {
   portrait.height = limits::kRasterSide;
   EXPECT_EQ(validationError(portrait), std::nullopt);
   portrait.width = limits::kRasterSide + 1;
-  EXPECT_EQ(validationError(portrait), "raster size 16385x16384 must be 1 ... 16384 pixels each way");
+  EXPECT_EQ(validationError(portrait), "raster size = 16385x16384 must lie in [1, 16384] pixels each way");
 
   IndicatorRequest indicator;
   indicator.width = 4096;
@@ -110,9 +110,9 @@ TEST(Limits, RastersOneRule) {
   EXPECT_EQ(validationError(indicator), std::nullopt);
   indicator.height = 4097;
   EXPECT_EQ(validationError(indicator),
-            "raster size 4096x4097 must be 1 ... 16384 pixels each way and at most 2^24 in all");
+            "raster size = 4096x4097 must lie in [1, 16384] pixels each way and at most 2^24 in all");
   indicator.height = 0;
-  EXPECT_EQ(validationError(indicator), "raster size 4096x0 must be 1 ... 16384 pixels each way and at most 2^24 in all");
+  EXPECT_EQ(validationError(indicator), "raster size = 4096x0 must lie in [1, 16384] pixels each way and at most 2^24 in all");
 }
 
 }  // namespace

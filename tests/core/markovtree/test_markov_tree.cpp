@@ -20,6 +20,8 @@
 
 #include "core/atlas/AtlasExport.hpp"
 #include "core/io/AtomicFile.hpp"
+#include "core/io/BadFile.hpp"
+#include "core/io/Json.hpp"
 #include "core/markovtree/MarkovTree.hpp"
 #include "core/markovtree/MarkovTreeExport.hpp"
 #include "core/limits/Limits.hpp"
@@ -490,6 +492,73 @@ TEST(MarkovTree, CurveIsWTimesSAndSharesSumToOne) {
   EXPECT_FALSE(markovTreeLevelShares(m.survival, 12346));  // not on the grid
   r.alpha = r.b2 = 0;  // no entry: no P_t to draw
   EXPECT_TRUE(markovTreeCurve(computeMarkovTree(a, r)).x.empty());
+}
+
+/// The refusal of markovTreeFromJson for `j` signed again after an edit (as the writer signs), or "" when it reads.
+std::string treeFileRefusal(nlohmann::ordered_json j) {
+  j.erase("checksum");
+  if (j.contains("format_version")) j["checksum"] = io::jsonChecksum(nlohmann::json::parse(j.dump()));
+  try {
+    (void)markovTreeFromJson(j.dump(2));
+  } catch (const io::BadFile& e) {
+    return e.what();
+  }
+  return {};
+}
+
+// Markov-tree files are signed and checked as atlases are (issue 54): read back whole; an edit refused by its
+// checksum; a forger who signs again refused by the invariants, naming the field and its value; a file from before
+// the version (unsigned) read.
+TEST(MarkovTree, AFileIsReadBackAndAnEditedOneIsRefused) {
+  MarkovTreeRequest r;
+  r.tMax = 1e5;
+  r.perDecade = 10;
+  r.alpha = 20;
+  r.b2 = 1.5;
+  const MarkovTreeResult m = computeMarkovTree(twoStates(), r);
+  const std::string text = markovTreeJson(m);
+  const MarkovTreeResult back = markovTreeFromJson(text);
+  EXPECT_EQ(back.survival.t, m.survival.t);
+  EXPECT_EQ(back.survival.S[5], static_cast<double>(m.survival.S[5]));
+  EXPECT_EQ(back.tree.rates[1].perStep, static_cast<double>(m.tree.rates[1].perStep));
+  ASSERT_TRUE(back.weight);
+  EXPECT_EQ(back.tree.states.size(), 2u);
+  auto j = nlohmann::ordered_json::parse(text);
+  EXPECT_EQ(j["format_version"], kMarkovTreeFormatVersion);
+  auto edited = j;
+  edited["survival"]["S"][3] = 0.5;
+  try {
+    (void)markovTreeFromJson(edited.dump(2));
+    ADD_FAILURE() << "an edited file was read";
+  } catch (const io::BadFile& e) {
+    EXPECT_NE(std::string(e.what()).find("checksum does not match"), std::string::npos) << e.what();
+  }
+  auto unsignedOld = j;  // a file from before the version
+  unsignedOld.erase("format_version");
+  EXPECT_EQ(treeFileRefusal(unsignedOld), "");
+  edited = j;
+  edited["survival"]["S"][4] = edited["survival"]["S"][2];
+  EXPECT_NE(treeFileRefusal(edited).find("survival.S[4] = "), std::string::npos) << treeFileRefusal(edited);
+  EXPECT_NE(treeFileRefusal(edited).find("S(t) does not increase"), std::string::npos);
+  edited = j;
+  edited["survival"]["levels"][1][4] = 1.5;
+  EXPECT_EQ(treeFileRefusal(edited), "markov tree file: survival.levels[1][4] = 1.5 must lie in [0, 1] (a probability)");
+  edited = j;
+  edited["states"][1]["container"] = 1;
+  EXPECT_NE(treeFileRefusal(edited).find("states[1].container = 1 must be"), std::string::npos) << treeFileRefusal(edited);
+  edited = j;
+  edited["rates"][0]["per_step"] = 1e308;
+  EXPECT_NE(treeFileRefusal(edited).find("rates[0].per_step = 1e+308 must lie in (0, 1]"), std::string::npos)
+      << treeFileRefusal(edited);
+  edited = j;
+  edited["entry"]["weight"] = 2 * edited["entry"]["weight"].get<double>();
+  EXPECT_NE(treeFileRefusal(edited).find("entry.weight = "), std::string::npos) << treeFileRefusal(edited);
+  edited = j;
+  edited["states"][0]["area"] = -1;
+  EXPECT_EQ(treeFileRefusal(edited), "markov tree file: states[0].area = -1 must be > 0");
+  edited = j;
+  edited["format"] = "archipelago atlas";
+  EXPECT_NE(treeFileRefusal(edited).find("format = "), std::string::npos);
 }
 
 // What a front end prefills for α and b₂ (issue 40, found by a session: the GUI offered K = 0.1's b₂ and the run's α
