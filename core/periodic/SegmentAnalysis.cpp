@@ -144,7 +144,7 @@ SegmentRegion dwellRegion(std::span<const PhysicalPoint> points, double fraction
 
 SegmentRegion framedInBox(const SegmentRegion& r, const MapParameters& map, double aspect, long double minSize) {
   if (!(aspect > 0) || !std::isfinite(aspect)) throw std::invalid_argument("framedInBox: aspect must be > 0");
-  if (auto e = realIntervalError("minSize", minSize, 0, false, std::numeric_limits<double>::infinity()))
+  if (auto e = realIntervalError("minSize", static_cast<double>(minSize), 0, false, std::numeric_limits<double>::infinity()))
     throw std::invalid_argument("framedInBox: " + *e);
   const long double a = aspect;
   long double w = std::max(r.width(), minSize);

@@ -78,7 +78,7 @@ void checkTailRequest(const Ensemble& e, const BootstrapOptions& bo) {
   if (e.members.empty()) throw std::invalid_argument("an ensemble needs at least one run");
   if (bo.replicates < 20 || bo.replicates > 100000)
     throw std::invalid_argument("a bootstrap needs 20 to 100000 replicates, not " + std::to_string(bo.replicates));
-  if (auto e = realOpenIntervalError("confidence", bo.confidence, 0, 1)) throw std::invalid_argument(*e);
+  if (auto error = realOpenIntervalError("confidence", bo.confidence, 0, 1)) throw std::invalid_argument(*error);
 }
 
 /// D over seeds: each member's D, their mean, median, range and standard error (an ensemble of several runs).

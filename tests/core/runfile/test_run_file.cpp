@@ -77,7 +77,7 @@ TEST(RunFile, SaveIsAtomicAndLeavesNoTemporaryFiles) {
 // says so), and these tests are about what the whole-file validation finds behind that.
 void expectRejected(const std::string& text, const std::string& mention) {
   try {
-    (void)parseRunFile(text, {.allowModified = true});
+    (void)parseRunFile(text, {.allowModified = true, .allowModifiedName = {}});
     ADD_FAILURE() << "accepted: " << mention;
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find(mention), std::string::npos) << e.what();
@@ -132,7 +132,7 @@ TEST(RunFile, AnyEditIsDetectedByTheChecksum) {
     EXPECT_NE(std::string(e.what()).find("modified after it was written"), std::string::npos) << e.what();
   }
   // Forensic reading: allowed on request, still validated (this edit breaks the bin's length sum).
-  EXPECT_THROW((void)parseRunFile(text, {.allowModified = true}), std::runtime_error);
+  EXPECT_THROW((void)parseRunFile(text, {.allowModified = true, .allowModifiedName = {}}), std::runtime_error);
   // Re-indenting is not an edit of the content.
   EXPECT_NO_THROW((void)parseRunFile(json::parse(good).dump(4)));
 }
@@ -161,7 +161,7 @@ TEST(RunFile, VersionDowngrade_Issue23_IsRefusedWithoutOptIn) {
     EXPECT_EQ(std::string(e.what()).find("--"), std::string::npos) << e.what();
   }
   // Inspection on request: read, validated, and marked unverified.
-  const TrappingState read = parseRunFile(text, {.allowModified = true});
+  const TrappingState read = parseRunFile(text, {.allowModified = true, .allowModifiedName = {}});
   EXPECT_TRUE(read.unverified);
   EXPECT_EQ(read.params.seed, 100u);
   EXPECT_FALSE(parseRunFile(runFileText(sampleRun())).unverified);
@@ -170,7 +170,7 @@ TEST(RunFile, VersionDowngrade_Issue23_IsRefusedWithoutOptIn) {
 TEST(RunFile, UnverifiedState_Issue23_IsNeverWrittenAsAVerifiedFile) {
   json j = json::parse(runFileText(sampleRun(16)));
   j["elapsedSeconds"] = 1e9;  // an edit the consistency checks cannot see: only the checksum can
-  TrappingState s = parseRunFile(j.dump(1), {.allowModified = true});
+  TrappingState s = parseRunFile(j.dump(1), {.allowModified = true, .allowModifiedName = {}});
   ASSERT_TRUE(s.unverified);
   EXPECT_THROW((void)runFileText(s), std::runtime_error);
   const auto path = std::filesystem::temp_directory_path() / "archipelago-test-launder.json";
@@ -194,7 +194,7 @@ TEST(RunFile, DeepJson_Issue23_IsACleanError) {
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("nested deeper than"), std::string::npos) << e.what();
   }
-  EXPECT_THROW((void)parseRunFile(text, {.allowModified = true}), std::runtime_error);
+  EXPECT_THROW((void)parseRunFile(text, {.allowModified = true, .allowModifiedName = {}}), std::runtime_error);
 }
 
 TEST(RunFile, CountsWhoseSumPassesTwoToTheSixtyFourAreRejected) {
