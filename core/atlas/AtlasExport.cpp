@@ -73,6 +73,50 @@ json cantoriJson(const std::vector<AtlasCantorus>& cantori) {
 }
 }  // namespace
 
+namespace {
+
+/// A node's barrier: the outer separatrix's flux, zone, layer and residence (or why not), its partner, and the inner
+/// separatrix (issue 50: its own flux and zone, and its layer once settled).
+json fluxJson(const AtlasNode& n) {
+  json f;
+  f["found"] = n.flux.found;
+  if (!n.flux.found) f["failure"] = n.flux.failure;
+  if (n.flux.partner) {
+    f["partner"] = {{"point", pointJson(n.flux.partner->points.front())}, {"residue", num(n.flux.partner->residue)}};
+  }
+  if (n.flux.found) {
+    f["flux_per_step"] = num(n.flux.flux);
+    f["zone_area"] = num(n.flux.zoneArea);
+    f["enclosed_islands_area"] = num(n.flux.enclosedIslands);
+    f["enclosed_islands"] = n.flux.enclosedCount;
+    f["layer_area"] = num(n.flux.layerArea);
+    f["flux_agreeing_digits"] = num(n.flux.fluxDigits);
+    f["zone_agreeing_digits"] = num(n.flux.zoneDigits);
+    f["residence"] = n.flux.residence;
+  }
+  if (n.parent >= 0 && n.flux.partner) {  // both separatrices of a chain (issue 50)
+    f["outer_by"] = n.flux.outerByZone ? "zone" : "label";
+    json in;
+    in["found"] = n.flux.inner.found;
+    if (!n.flux.inner.found) in["failure"] = n.flux.inner.failure;
+    else {
+      in["flux_per_step"] = num(n.flux.inner.flux);
+      in["zone_area"] = num(n.flux.inner.zoneArea);
+      if (n.flux.inner.layerArea > 0) {  // settled: the band inside the chain (issue 50)
+        in["enclosed_islands_area"] = num(n.flux.inner.enclosedIslands);
+        in["enclosed_islands"] = n.flux.inner.enclosedCount;
+        in["layer_area"] = num(n.flux.inner.layerArea);
+      }
+      in["flux_agreeing_digits"] = num(n.flux.inner.fluxDigits);
+      in["zone_agreeing_digits"] = num(n.flux.inner.zoneDigits);
+    }
+    f["inner"] = in;
+  }
+  return f;
+}
+
+}  // namespace
+
 std::string atlasJson(const Atlas& a) {
   json j;
   j["format"] = "archipelago atlas";
@@ -128,41 +172,7 @@ std::string atlasJson(const Atlas& a) {
     o["polygon_error"] = num(n.polygonError);
     o["area_points"] = n.areaPoints;
     o["islands_area"] = num(n.area * static_cast<long double>(n.period));
-    json f;
-    f["found"] = n.flux.found;
-    if (!n.flux.found) f["failure"] = n.flux.failure;
-    if (n.flux.partner) {
-      f["partner"] = {{"point", pointJson(n.flux.partner->points.front())}, {"residue", num(n.flux.partner->residue)}};
-    }
-    if (n.flux.found) {
-      f["flux_per_step"] = num(n.flux.flux);
-      f["zone_area"] = num(n.flux.zoneArea);
-      f["enclosed_islands_area"] = num(n.flux.enclosedIslands);
-      f["enclosed_islands"] = n.flux.enclosedCount;
-      f["layer_area"] = num(n.flux.layerArea);
-      f["flux_agreeing_digits"] = num(n.flux.fluxDigits);
-      f["zone_agreeing_digits"] = num(n.flux.zoneDigits);
-      f["residence"] = n.flux.residence;
-    }
-    if (n.parent >= 0 && n.flux.partner) {  // both separatrices of a chain (issue 50)
-      f["outer_by"] = n.flux.outerByZone ? "zone" : "label";
-      json in;
-      in["found"] = n.flux.inner.found;
-      if (!n.flux.inner.found) in["failure"] = n.flux.inner.failure;
-      else {
-        in["flux_per_step"] = num(n.flux.inner.flux);
-        in["zone_area"] = num(n.flux.inner.zoneArea);
-        if (n.flux.inner.layerArea > 0) {  // settled: the band inside the chain (issue 50)
-          in["enclosed_islands_area"] = num(n.flux.inner.enclosedIslands);
-          in["enclosed_islands"] = n.flux.inner.enclosedCount;
-          in["layer_area"] = num(n.flux.inner.layerArea);
-        }
-        in["flux_agreeing_digits"] = num(n.flux.inner.fluxDigits);
-        in["zone_agreeing_digits"] = num(n.flux.inner.zoneDigits);
-      }
-      f["inner"] = in;
-    }
-    o["flux"] = f;
+    o["flux"] = fluxJson(n);
     json internal = json::array();
     for (const Rational& r : n.internal) internal.push_back(toString(r));
     o["internal"] = internal;

@@ -153,6 +153,80 @@ std::optional<std::vector<double>> markovTreeLevelShares(const MarkovTreeSurviva
   return shares;
 }
 
+namespace {
+
+/// The tree's states, each with its barrier, layer, children and area's source.
+json statesJson(const MarkovTree& tree) {
+  json states = json::array();
+  for (const MarkovTreeState& s : tree.states) {
+    json sub = json::array();
+    for (int d : s.subtracted) sub.push_back(d);
+    states.push_back({{"node", s.node},
+                      {"barrier", toString(s.barrier)},
+                      {"path", s.path},
+                      {"level", s.level},
+                      {"container", s.container},
+                      {"flux", static_cast<double>(s.flux)},
+                      {"layer", static_cast<double>(s.layer)},
+                      {"subtracted", sub},
+                      {"area", static_cast<double>(s.area)},
+                      {"source", s.source}});
+  }
+  return states;
+}
+
+/// Each row of `rows` (a level's or a state's part of S) as numbers.
+json rowsJson(const std::vector<std::vector<long double>>& rows) {
+  json out = json::array();
+  for (const auto& row : rows) {
+    json l = json::array();
+    for (long double v : row) l.push_back(number(v));
+    out.push_back(l);
+  }
+  return out;
+}
+
+/// The survival on its grid: t, S, P (null without w) and the parts of S per level and per state.
+json survivalJson(const MarkovTreeResult& r) {
+  const MarkovTreeSurvival& s = r.survival;
+  json tj = json::array(), Sj = json::array(), Pj = json::array();
+  for (std::size_t i = 0; i < s.t.size(); ++i) {
+    tj.push_back(s.t[i]);
+    Sj.push_back(number(s.S[i]));
+    Pj.push_back(r.weight ? number(*r.weight * s.S[i]) : json(nullptr));
+  }
+  return {{"t", tj}, {"S", Sj}, {"P", Pj}, {"levels", rowsJson(s.level)}, {"states", rowsJson(s.state)}};
+}
+
+/// The model against the tail: each level's model, ratio and holding level, and the reach.
+json comparisonJson(const MarkovTreeComparison& c, const std::string& tail) {
+  json lv = json::array();
+  for (const MarkovTreeLevelComparison& m : c.levels)
+    lv.push_back({{"t", m.t},
+                  {"measured", m.measured},
+                  {"measured_error", number(m.measuredError)},
+                  {"model", number(m.model)},
+                  {"log10_model", m.model > 0 ? json(static_cast<double>(std::log10(m.model))) : json(nullptr)},
+                  {"ratio", number(m.ratio)},
+                  {"log10_ratio", m.ratio > 0 ? json(static_cast<double>(std::log10(m.ratio))) : json(nullptr)},
+                  {"holding_level", m.holdingLevel},
+                  {"holding_share", m.holdingShare}});
+  return {{"tail", tail}, {"factor", c.factor}, {"reach", c.reach}, {"levels", lv}};
+}
+
+/// The ablation (issue 50): each variant's states, reach and ratios.
+json ablationJson(const std::vector<MarkovTreeAblationRow>& rows) {
+  json ab = json::array();
+  for (const MarkovTreeAblationRow& a : rows) {
+    json ratio = json::array();
+    for (long double x : a.ratio) ratio.push_back(number(x));
+    ab.push_back({{"variant", a.variant}, {"states", a.states}, {"reach", a.reach}, {"ratio", ratio}});
+  }
+  return ab;
+}
+
+}  // namespace
+
 std::string markovTreeJson(const MarkovTreeResult& r) {
   json j;
   j["format"] = "archipelago markov tree";
@@ -180,22 +254,7 @@ std::string markovTreeJson(const MarkovTreeResult& r) {
   j["entry_flux"] = static_cast<double>(r.tree.entryFlux);
   j["residence"] = static_cast<double>(r.tree.residence);
   j["mean_visit"] = static_cast<double>(r.survival.meanVisit);
-  json states = json::array();
-  for (const MarkovTreeState& s : r.tree.states) {
-    json sub = json::array();
-    for (int d : s.subtracted) sub.push_back(d);
-    states.push_back({{"node", s.node},
-                      {"barrier", toString(s.barrier)},
-                      {"path", s.path},
-                      {"level", s.level},
-                      {"container", s.container},
-                      {"flux", static_cast<double>(s.flux)},
-                      {"layer", static_cast<double>(s.layer)},
-                      {"subtracted", sub},
-                      {"area", static_cast<double>(s.area)},
-                      {"source", s.source}});
-  }
-  j["states"] = states;
+  j["states"] = statesJson(r.tree);
   json rates = json::array();
   for (const MarkovTreeRate& x : r.tree.rates)
     rates.push_back({{"from", x.from},
@@ -208,59 +267,12 @@ std::string markovTreeJson(const MarkovTreeResult& r) {
   for (const MarkovTreeLumped& l : r.tree.lumped)
     lumped.push_back({{"node", l.node}, {"path", l.path}, {"reason", l.reason}, {"state", l.state}});
   j["lumped"] = lumped;
-  json surv;
-  const MarkovTreeSurvival& s = r.survival;
-  json tj = json::array(), Sj = json::array(), Pj = json::array();
-  for (std::size_t i = 0; i < s.t.size(); ++i) {
-    tj.push_back(s.t[i]);
-    Sj.push_back(number(s.S[i]));
-    Pj.push_back(r.weight ? number(*r.weight * s.S[i]) : json(nullptr));
-  }
-  surv["t"] = tj;
-  surv["S"] = Sj;
-  surv["P"] = Pj;
-  json levels = json::array();
-  for (const auto& level : s.level) {
-    json l = json::array();
-    for (long double v : level) l.push_back(number(v));
-    levels.push_back(l);
-  }
-  surv["levels"] = levels;
-  json byState = json::array();
-  for (const auto& st : s.state) {
-    json l = json::array();
-    for (long double v : st) l.push_back(number(v));
-    byState.push_back(l);
-  }
-  surv["states"] = byState;
-  j["survival"] = surv;
+  j["survival"] = survivalJson(r);
   json ex = json::array();
   for (const MarkovTreeExponent& e : r.exponents) ex.push_back({{"from", e.from}, {"to", e.to}, {"gamma", e.gamma}});
   j["exponents"] = ex;
-  if (r.comparison) {
-    const MarkovTreeComparison& c = *r.comparison;
-    json lv = json::array();
-    for (const MarkovTreeLevelComparison& m : c.levels)
-      lv.push_back({{"t", m.t},
-                    {"measured", m.measured},
-                    {"measured_error", number(m.measuredError)},
-                    {"model", number(m.model)},
-                    {"log10_model", m.model > 0 ? json(static_cast<double>(std::log10(m.model))) : json(nullptr)},
-                    {"ratio", number(m.ratio)},
-                    {"log10_ratio", m.ratio > 0 ? json(static_cast<double>(std::log10(m.ratio))) : json(nullptr)},
-                    {"holding_level", m.holdingLevel},
-                    {"holding_share", m.holdingShare}});
-    j["comparison"] = {{"tail", r.request.tailSource}, {"factor", c.factor}, {"reach", c.reach}, {"levels", lv}};
-  }
-  if (!r.ablation.empty()) {
-    json ab = json::array();
-    for (const MarkovTreeAblationRow& a : r.ablation) {
-      json ratio = json::array();
-      for (long double x : a.ratio) ratio.push_back(number(x));
-      ab.push_back({{"variant", a.variant}, {"states", a.states}, {"reach", a.reach}, {"ratio", ratio}});
-    }
-    j["ablation"] = ab;
-  }
+  if (r.comparison) j["comparison"] = comparisonJson(*r.comparison, r.request.tailSource);
+  if (!r.ablation.empty()) j["ablation"] = ablationJson(r.ablation);
   // Signed as run, tail and atlas files are (issue 54): any edit of the file is refused on load.
   j["checksum"] = io::jsonChecksum(nlohmann::json::parse(j.dump()));
   return j.dump(2) + "\n";

@@ -8,6 +8,7 @@
 #include "core/limits/Limits.hpp"
 #include "core/parallel/ParallelFor.hpp"
 #include "core/io/AtomicFile.hpp"
+#include "core/io/NumberText.hpp"
 #include "core/provenance/Provenance.hpp"
 
 namespace archipelago {
@@ -93,6 +94,21 @@ RotationProfile computeRotationProfile(const RotationProfileRequest& r, const Ro
     if (observer) observer(first + n, starts.size());
   }
   return profile;
+}
+
+Provenance rotationProfileProvenance(const RotationProfileRequest& r) {
+  Provenance p = mapProvenance(r.measure.map);
+  p.add("From", shortestDecimal(static_cast<double>(r.from.x)) + "," + shortestDecimal(static_cast<double>(r.from.y)));
+  p.add("To", shortestDecimal(static_cast<double>(r.to.x)) + "," + shortestDecimal(static_cast<double>(r.to.y)));
+  p.add("Points", std::to_string(r.points));
+  p.add("Iterations", std::to_string(r.measure.iterations));
+  p.add("Digits threshold", r.measure.digitsThreshold);
+  p.add("Max denominator", std::to_string(r.maxDenominator));
+  if (r.about) {
+    p.add("About", shortestDecimal(static_cast<double>(r.about->x)) + "," + shortestDecimal(static_cast<double>(r.about->y)));
+    p.add("Period", std::to_string(r.power));
+  }
+  return p;
 }
 
 void writeRotationProfileCsv(const std::string& path, const RotationProfileRequest& r, const RotationProfile& profile) {

@@ -18,6 +18,7 @@
 
 #include "core/measures/ChainIdentification.hpp"
 #include "core/measures/OrbitMeasures.hpp"
+#include "core/provenance/Provenance.hpp"
 
 namespace archipelago {
 
@@ -60,6 +61,11 @@ using RotationProfileObserver = std::function<void(std::uint64_t done, std::uint
 [[nodiscard]] RotationProfile computeRotationProfile(const RotationProfileRequest& request,
                                                      const RotationProfileObserver& observer = {},
                                                      std::stop_token stop = {});
+
+/// What a picture of the profile shows (issue 54: every PNG carries its parameters): mapProvenance's map, the line
+/// (from, to), its points, the iterations and threshold of each measurement, the largest q named and, about an
+/// island, its centre and period — the numbers the CSV's header gives.
+[[nodiscard]] Provenance rotationProfileProvenance(const RotationProfileRequest& r);
 
 /// The profile as CSV: '#' lines with the parameters, then the header "index,x,y,rotation,digits,verdict,rational"
 /// and one line per point (x, y with 19 significant digits, rotation with 17, empty when the point has none),

@@ -3,6 +3,9 @@
 // `archipelago-cli rotation --json` (the Python module's are compared with the CLI's in tests/python); each
 // indicator mode renders progressively with a titled colour bar and core's own numbers, and exports .npy with
 // its sidecar; the rotation-profile tool gives the CLI's profile.
+#include <map>
+#include <vector>
+
 #include <QAction>
 #include <QDir>
 #include <QFile>
@@ -21,6 +24,7 @@
 #include <cmath>
 
 #include "GuiTestSupport.hpp"
+#include "core/io/Png.hpp"
 #include "core/measures/IndicatorMap.hpp"
 #include "ui/portrait/LaunchedOrbits.hpp"
 #include "ui/portrait/OrbitListPanel.hpp"
@@ -178,6 +182,16 @@ class TestInstruments : public QObject {
     QCOMPARE(g.size(), 41);
     QCOMPARE(g, c);
     QVERIFY(profile.exportPng(dir.filePath(QStringLiteral("profile.png"))));
+    // Issue 54: the PNG carries what it shows, the map and the line measured (it carried only the version and commit).
+    QFile png(dir.filePath(QStringLiteral("profile.png")));
+    QVERIFY(png.open(QIODevice::ReadOnly));
+    const QByteArray bytes = png.readAll();
+    std::map<std::string, std::string> text;
+    for (const auto& [k, v] : archipelago::io::readPngText(std::vector<std::uint8_t>(bytes.begin(), bytes.end()))) text[k] = v;
+    QCOMPARE(QString::fromStdString(text["K"]), QStringLiteral("0.1"));
+    QCOMPARE(QString::fromStdString(text["From"]), QStringLiteral("-0.45,0"));
+    QCOMPARE(QString::fromStdString(text["To"]), QStringLiteral("-0.1,0"));
+    QCOMPARE(QString::fromStdString(text["Points"]), QStringLiteral("40"));
   }
 };
 

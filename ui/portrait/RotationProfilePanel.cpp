@@ -284,7 +284,7 @@ bool RotationProfilePanel::exportPng(const QString& path, QString* error) {
     QwtPlotRenderer renderer;
     renderer.render(plot_, &painter, QRectF(0, 0, 900, 600));
   }
-  return writePngFile(image, path, error);
+  return writePngFile(image, path, error, rotationProfileProvenance(lastRequest_));  // its parameters (issue 54)
 }
 
 }  // namespace archipelago::ui
