@@ -449,6 +449,7 @@ void AtlasPanel::show(std::shared_ptr<const Atlas> atlas, int done, const QStrin
     jobs_->cancel(1);
     treeRequest_ = 0;
     model_.reset();
+    modelInputs_.reset();
     fillShares();
     fillComparison();
   }
@@ -702,6 +703,7 @@ bool AtlasPanel::computeMarkovTree(double alpha, double b2, QString* error, cons
     Q_EMIT markovTreeFinished(model_, failure);
   };
   treeRequest_ = jobs_->submit(std::move(job));
+  modelInputs_ = std::pair{alpha, b2};
   modelText_->setText(tr("Computing the Markov tree…"));
   modelText_->show();
   updateButtons();

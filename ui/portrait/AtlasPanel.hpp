@@ -29,6 +29,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -127,6 +128,9 @@ class AtlasPanel : public QWidget {
   /// gives the model alone.
   bool computeMarkovTree(double alpha, double b2, QString* error = nullptr, const QString& tailFile = {});
   [[nodiscard]] bool markovTreePending() const noexcept { return treeRequest_ != 0; }
+  /// The α and b₂ of the model shown or being computed (none: no model asked for this atlas): what a tail opened
+  /// meanwhile sets the model against again — a model still computing was asked for without it.
+  [[nodiscard]] std::optional<std::pair<double, double>> markovTreeInputs() const noexcept { return modelInputs_; }
   /// The model shown (null: none; a new atlas removes it).
   [[nodiscard]] std::shared_ptr<const MarkovTreeResult> markovTree() const noexcept { return model_; }
   /// The shares: one row per atlas level, one column per shareTimes() (Qt::UserRole holds the share as a double).
@@ -196,6 +200,7 @@ class AtlasPanel : public QWidget {
   QTableWidget* comparison_ = nullptr;
   std::shared_ptr<const MarkovTreeResult> model_;
   quint64 treeRequest_ = 0;
+  std::optional<std::pair<double, double>> modelInputs_;  ///< α, b₂ of the model asked for last (this atlas)
   std::unique_ptr<QElapsedTimer> elapsed_;
   std::vector<QTreeWidgetItem*> items_;   // items_[i] shows atlas_->nodes[i]
   std::shared_ptr<const Atlas> atlas_;

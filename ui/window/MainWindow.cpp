@@ -783,9 +783,9 @@ bool MainWindow::openTailEstimate(const QString& path, QString* error) {
         details += tr(", × %1 (α₁/α_q)").arg(QLocale::c().toString(e.factor, 'g', 3));
       p->setEstimate(e.levels, tr("P_t by splitting (tail)"));
       tailFile_ = QFileInfo(path).absoluteFilePath();
-      // A model drawn already is set against this tail now (the Atlas page's comparison, issue 53, missing).
-      if (const auto model = portrait_->atlasPanel()->markovTree())
-        drawMarkovTree(model->request.alpha, model->request.b2);
+      // A model drawn already, or still computing without the tail, is set against this tail now (the Atlas page's
+      // comparison, issue 53, missing; a model asked for before the tail was read came back without a comparison).
+      if (const auto inputs = portrait_->atlasPanel()->markovTreeInputs()) drawMarkovTree(inputs->first, inputs->second);
       p->refresh();
       message(tr("Drew %1 levels of %2 to t = %3 steps on P_t (%4)")
                   .arg(e.levels.x.size())
