@@ -222,7 +222,7 @@ void readAblation(const JsonField& list, MarkovTreeResult& r) {
     const JsonField ratio = o["ratio"];
     for (std::size_t i = 0, n = ratio.array(); i < n; ++i) {  // null: below the smallest double (written so)
       const double x = ratio[i].realOr(0);
-      if (!(x >= 0)) ratio[i].refuseValue("must be >= 0 (a ratio of two probabilities)");
+      if (!(x >= 0)) ratio[i].refuseValue("is negative: a ratio of two probabilities is not");
       row.ratio.push_back(x);
     }
     r.ablation.push_back(std::move(row));

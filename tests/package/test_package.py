@@ -113,10 +113,11 @@ try:
     check(r.returncode == 0 and "D" in r.stdout, "archipelago-cli stats run.json " + r.stderr.strip()[-300:])
     # Issue 54, finding 7: a command-line run by a user without a login session (nobody: no XDG_RUNTIME_DIR) once
     # printed Qt's "QStandardPaths: XDG_RUNTIME_DIR not set" on stderr.
-    if "archipelago-reproduce" in programs and os.geteuid() == 0 and shutil.which("runuser"):
+    runuser = shutil.which("runuser")  # in /usr/sbin, outside the PATH the installed programs run with
+    if "archipelago-reproduce" in programs and os.geteuid() == 0 and runuser:
         quiet = tempfile.mkdtemp(dir=work)
         os.chmod(quiet, 0o777)
-        r = sh("runuser", "-u", "nobody", "--", "env", "-u", "XDG_RUNTIME_DIR", "archipelago-reproduce", "--only", "tmax",
+        r = sh(runuser, "-u", "nobody", "--", "env", "-u", "XDG_RUNTIME_DIR", "archipelago-reproduce", "--only", "tmax",
                os.path.join(quiet, "report"), env=env, cwd=quiet, timeout=300)
         check(r.returncode == 0 and r.stderr == "",
               f"archipelago-reproduce --only tmax as nobody without XDG_RUNTIME_DIR: nothing on stderr ({r.stderr.strip()!r})")
