@@ -510,16 +510,7 @@ void checkSignature(rjson& j, const JsonField& root) {
   if (!format.value().is_string() || format.value().get<std::string>() != "archipelago atlas")
     refuse("format = " + io::describeJson(format.value()) + ": not an atlas (\"archipelago atlas\")");
   // Version 2 (issue 54) is signed; a file without a version is one from before (read as it was, unsigned).
-  if (const auto version = root.find("format_version")) {
-    (void)version->whole(kAtlasFormatVersion, kAtlasFormatVersion);
-    if (!root.contains("checksum") || !root["checksum"].value().is_string())
-      refuse("checksum: a signed atlas (version 2) must have one");
-    const std::string sum = root["checksum"].string();
-    j.erase("checksum");
-    if (io::jsonChecksum(j) != sum) refuse("the atlas was modified after it was written (its checksum does not match its content)");
-  } else if (root.contains("checksum")) {
-    refuse("checksum without format_version");
-  }
+  io::checkSignature(j, root, kAtlasFormatVersion, "atlas", "the atlas", [](const std::string& why) { refuse(why); });
 }
 
 /// Each child names its parent, every island but the centre is a child once, and a finished atlas measured them all.

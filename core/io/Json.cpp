@@ -264,4 +264,23 @@ std::string JsonField::string(std::size_t maxBytes) const {
   return s;
 }
 
+void checkSignature(nlohmann::json& j, const JsonField& root, std::uint64_t version, std::string_view noun,
+                    std::string_view subject, const std::function<void(const std::string&)>& refuse) {
+  const auto breach = [&](const std::string& why) {
+    refuse(why);
+    throw BadFile(why);
+  };
+  if (const auto given = root.find("format_version")) {
+    (void)given->whole(version, version);
+    if (!root.contains("checksum") || !root["checksum"].value().is_string())
+      breach("checksum: a signed " + std::string(noun) + " (version " + std::to_string(version) + ") must have one");
+    const std::string sum = root["checksum"].string();
+    j.erase("checksum");
+    if (jsonChecksum(j) != sum)
+      breach(std::string(subject) + " was modified after it was written (its checksum does not match its content)");
+  } else if (root.contains("checksum")) {
+    breach("checksum without format_version");
+  }
+}
+
 }  // namespace archipelago::io

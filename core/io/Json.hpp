@@ -22,6 +22,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <initializer_list>
 #include <optional>
 #include <string>
@@ -140,5 +141,13 @@ class JsonField {
   std::string path_;  // empty at the top
   std::string_view document_, prefix_;
 };
+
+/// The signature of a signed document (atlas and Markov-tree files; issue 54), the one rule for both: with a
+/// format_version (which must be `version`) a "checksum" string equal to jsonChecksum of the rest — `j` loses its
+/// checksum on the way; without one, no checksum (a file from before, read unsigned).  A breach goes to `refuse`,
+/// worded "checksum: a signed <noun> (version N) must have one", "<subject> was modified after it was written (its
+/// checksum does not match its content)" or "checksum without format_version" (should `refuse` return, BadFile).
+void checkSignature(nlohmann::json& j, const JsonField& root, std::uint64_t version, std::string_view noun,
+                    std::string_view subject, const std::function<void(const std::string&)>& refuse);
 
 }  // namespace archipelago::io

@@ -27,17 +27,8 @@ void checkSignature(rjson& j, const JsonField& root) {
   const JsonField format = root["format"];
   if (!format.value().is_string() || format.value().get<std::string>() != "archipelago markov tree")
     format.refuseValue("is not a Markov tree (\"archipelago markov tree\")");
-  if (const auto version = root.find("format_version")) {
-    (void)version->whole(kMarkovTreeFormatVersion, kMarkovTreeFormatVersion);
-    if (!root.contains("checksum") || !root["checksum"].value().is_string())
-      root.refuseDocument("checksum: a signed Markov tree (version 2) must have one");
-    const std::string sum = root["checksum"].string();
-    j.erase("checksum");
-    if (io::jsonChecksum(j) != sum)
-      root.refuseDocument("the file was modified after it was written (its checksum does not match its content)");
-  } else if (root.contains("checksum")) {
-    root.refuseDocument("checksum without format_version");
-  }
+  io::checkSignature(j, root, kMarkovTreeFormatVersion, "Markov tree", "the file",
+                     [&root](const std::string& why) { root.refuseDocument(why); });
 }
 
 /// A real > 0.

@@ -78,7 +78,7 @@ TEST(Json, DescribeJsonIsShortAndFlat) {
   std::string greek;
   for (int i = 0; i < 30; ++i) greek += "α";
   const std::string cut = describeJson(nlohmann::json(greek));  // dump() would throw on a broken sequence
-  EXPECT_NO_THROW((void)nlohmann::json::parse(cut));
+  EXPECT_NO_THROW({ const auto parsed = nlohmann::json::parse(cut); (void)parsed; });
   EXPECT_LT(cut.size(), 50u);
 }
 
