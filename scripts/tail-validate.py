@@ -2,9 +2,12 @@
 """Validation of `archipelago-cli tail` (issue 29, deliverable 2) against brute force, to t = 10^7 steps.
 
   scripts/tail-validate.py [--cli build/default/app/archipelago-cli] [--dir tail-validation] [--brute-steps 3e11]
-                           [--t-max 1e7] [--replicas 16] [--seeds 0] [--quick]
+                           [--t-max 1e7] [--replicas 16] [--seeds 0] [--K K] [--brute-only] [--quick]
 
-Everything at the paper's K = 0.1 box, Xr = 0.02, q = 16 (the default spec), niced:
+Everything at the paper's K = 0.1 box, Xr = 0.02, q = 16 (the default spec), niced; with --K, at that K in the box
+of the K scan's rule (core/scan/ScanBox.hpp: xmin = -2 sqrt(K) - 0.2, xmax = sqrt(K) + 0.2), the box the tail scan
+(issue 55) uses at each K.  --brute-only: (a) and (c) alone, the second estimator of issue 55 (brute force shares
+nothing with splitting on segment age) against the sampler at one K.
 
  (a) brute force: `run` of --brute-steps steps (M = 256 orbits) and `stats` of it (DIR/stats/*.csv); the sampler
      (N = 200, --replicas, epsilon = the default) set against it with `tail --compare`: at every level where the run
@@ -38,8 +41,13 @@ p.add_argument("--brute-steps", type=float, default=3e11)
 p.add_argument("--t-max", type=float, default=1e7)
 p.add_argument("--replicas", type=int, default=16)
 p.add_argument("--seeds", type=int, default=0, help="(d): this many more seeds of (a)'s sampler, pooled")
+p.add_argument("--K", type=float, default=None, help="this K in the scan's box (default: the default spec's K = 0.1 box)")
+p.add_argument("--brute-only", action="store_true", help="(a) and (c) only: the sampler against brute force")
 p.add_argument("--quick", action="store_true")
 a = p.parse_args()
+# The spec options of every run and tail: the default spec, or K in the scan box's rule.
+spec = [] if a.K is None else ["--K", repr(a.K), "--xmin", repr(-2 * math.sqrt(a.K) - 0.2),
+                               "--xmax", repr(math.sqrt(a.K) + 0.2)]
 if a.quick:
     a.brute_steps, a.t_max, a.replicas = 3e9, 1e5, 8
 os.makedirs(a.dir, exist_ok=True)
@@ -75,16 +83,18 @@ def num(x):
 T = int(a.brute_steps / (M * Q))
 brute = os.path.join(a.dir, f"brute-M{M}-T{T}.json")
 if not os.path.exists(brute):
-    cli("run", "--M", M, "--T", T, "--out", brute, "--quiet")
+    cli("run", *spec, "--M", M, "--T", T, "--out", brute, "--quiet")
 cli("stats", brute, "--csv", os.path.join(a.dir, "stats"))
 
 
 def tail(name, *args):
     out = os.path.join(a.dir, name + ".json")
     cmp = os.path.join(a.dir, name + ".compare.csv")
-    if not (os.path.exists(out) and os.path.exists(cmp)):
-        cli("tail", "--t-max", int(a.t_max), "--replicas", a.replicas, *args, "--out", out, "--csv",
-            os.path.join(a.dir, name + ".csv"), "--compare", brute, "--compare-csv", cmp, "--quiet")
+    text = os.path.join(a.dir, name + ".txt")  # its report: the levels and the comparison with its pooled test
+    if not (os.path.exists(out) and os.path.exists(cmp) and os.path.exists(text)):
+        r = cli("tail", *spec, "--t-max", int(a.t_max), "--replicas", a.replicas, *args, "--out", out, "--csv",
+                os.path.join(a.dir, name + ".csv"), "--compare", brute, "--compare-csv", cmp)
+        open(text, "w").write(r.stdout)
     return json.load(open(out)), table(cmp)
 
 
@@ -100,11 +110,19 @@ for row, L in zip(compared, base["levels"]):
         worst = max(worst, abs(z))
         check(abs(z) < 3, f"t = {num(row['t']):.0f}: |z| = {abs(z):.2f} < 3")
 
+# The one test of the comparison: the levels pooled with the covariance of both estimators (core's pooledBias).
+pooled = [l for l in open(os.path.join(a.dir, "base.txt")) if l.startswith("# pooled")]
+print(pooled[0].rstrip() if pooled else "# pooled: not in the tail's report")
+
 # (b) independence of epsilon and N --------------------------------------------------------------------------
 runs = {}
-for seed, eps in ((21, 1), (22, 1000), (23, 1000000)):
+if a.brute_only:
+    seedsAndEps, seedsAndN = (), ()
+else:
+    seedsAndEps, seedsAndN = ((21, 1), (22, 1000), (23, 1000000)), ((31, 50), (32, 200), (33, 800))
+for seed, eps in seedsAndEps:
     runs[f"eps={eps}"] = tail(f"eps{eps}", "--population", 200, "--epsilon", eps, "--seed", seed)[0]
-for seed, n in ((31, 50), (32, 200), (33, 800)):
+for seed, n in seedsAndN:
     runs[f"N={n}"] = tail(f"N{n}", "--population", n, "--seed", seed)[0]
 
 
@@ -112,7 +130,8 @@ def pairs(keys):
     return [(x, y) for i, x in enumerate(keys) for y in keys[i + 1:]]
 
 
-for title, keys in (("epsilon", ["eps=1", "eps=1000", "eps=1000000"]), ("N", ["N=50", "N=200", "N=800"])):
+for title, keys in (() if a.brute_only else
+                    (("epsilon", ["eps=1", "eps=1000", "eps=1000000"]), ("N", ["N=50", "N=200", "N=800"]))):
     print(f"\n(b) independence of {title}: P (error) at each level, * reliable")
     print(f"{'t':>10} " + " ".join(f"{k:>24}" for k in keys))
     levels = min(len(runs[k]["levels"]) for k in keys)

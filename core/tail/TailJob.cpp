@@ -210,6 +210,20 @@ std::string tailLevelsText(const TailState& s, const TailResult& r) {
   return out;
 }
 
+namespace {
+
+/// The comparison's one test (pooledBias): the levels pooled with both estimators' covariance, and the bias it can see.
+std::string pooledBiasText(const TailPooledBias& p) {
+  if (p.levels == 0 || !std::isfinite(p.z)) return "# pooled: no level where both have data (reliable, 10 segments)\n";
+  return io::formatC("# pooled: %zu levels (%.4g <= t <= %.4g) with the covariance of both estimators: ln(P/brute_P) = "
+                     "%+.4f +- %.4f (z = %+.2f); a uniform bias of %.3g %% is found half of the time, %.3g %% 97.7 %% "
+                     "of the time\n",
+                     p.levels, p.tFrom, p.tTo, p.logRatio, p.logRatioError, p.z, 100 * p.detectableHalf,
+                     100 * p.detectable);
+}
+
+}  // namespace
+
 std::string tailComparisonText(const TailComparison& c) {
   std::string out = io::formatC("# against brute force: %s steps of run, alpha = %.4g steps\n",
                                 io::formatC("%.4g", c.bruteSteps).c_str(), c.alpha);
@@ -221,7 +235,7 @@ std::string tailComparisonText(const TailComparison& c) {
                        l.bruteStepsSameError, l.bruteStepsMeasured ? "" : "e");
   out += "# brute_steps*: steps a brute-force run needs for the sampler's relative error at t (from the runs' own "
          "error; e: estimated alpha/(P r^2) where they have none)\n";
-  return out;
+  return out + pooledBiasText(pooledBias(c));
 }
 
 TailState runTailJob(TailState state, const TailJobOptions& options, LastCheckpoint& last,

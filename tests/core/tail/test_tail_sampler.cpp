@@ -9,6 +9,7 @@
 #include <stop_token>
 #include <string>
 
+#include "core/io/NumberText.hpp"
 #include "core/kernels/KernelDispatch.hpp"
 #include "core/run/TrappingRun.hpp"
 #include "core/random/CounterRng.hpp"
@@ -17,6 +18,7 @@
 #include "core/stats/TrappingStatistics.hpp"
 #include "core/tail/BruteForceSurvival.hpp"
 #include "core/tail/TailFile.hpp"
+#include "core/tail/TailJob.hpp"
 #include "core/trapping/BlockKernel.hpp"
 #include "core/trapping/TrappingHistogram.hpp"
 #include "tests/core/kernels/KernelsUnderTest.hpp"
@@ -520,6 +522,22 @@ TEST(TailSampler, PooledLevelsDetectASamplerBiasedBy20Percent) {
     EXPECT_NEAR(b.logRatioError, p.logRatioError, 1e-12);
     std::printf("scale %.1f: pooled z = %+.2f, the largest |z| of one level %.2f\n", scale, b.z, largestLevelZ);
   }
+}
+
+// Issue 55, deliverable 2: `tail --compare` states the one test of the comparison, the pooled levels with both
+// estimators' covariance, with the numbers of pooledBias; without a level to pool it says so.
+TEST(TailSampler, TheComparisonTextStatesThePooledTest) {
+  const SamplerAndRun& x = samplerAndRun();
+  const TailComparison c = compareWithRuns(x.sampler, x.result, {x.run});
+  const TailPooledBias p = pooledBias(c);
+  const std::string text = tailComparisonText(c);
+  const std::string expected = io::formatC("# pooled: %zu levels (%.4g <= t <= %.4g)", p.levels, p.tFrom, p.tTo);
+  EXPECT_NE(text.find(expected), std::string::npos) << text;
+  EXPECT_NE(text.find(io::formatC("ln(P/brute_P) = %+.4f +- %.4f (z = %+.2f)", p.logRatio, p.logRatioError, p.z)),
+            std::string::npos) << text;
+  TailComparison none = c;
+  for (TailComparisonLevel& l : none.levels) l.bruteSegments = 0;
+  EXPECT_NE(tailComparisonText(none).find("# pooled: no level where both have data"), std::string::npos);
 }
 
 // The covariance matters: levels that are copies of one level (correlation 1) pool to that level's error, not to
