@@ -2,7 +2,7 @@
 """Validation of `archipelago-cli tail` (issue 29, deliverable 2) against brute force, to t = 10^7 steps.
 
   scripts/tail-validate.py [--cli build/default/app/archipelago-cli] [--dir tail-validation] [--brute-steps 3e11]
-                           [--t-max 1e7] [--replicas 16] [--seeds 0] [--K K] [--brute-only] [--quick]
+                           [--t-max 1e7] [--replicas 16] [--seeds 0] [--K K] [--first T] [--brute-only] [--quick]
 
 Everything at the paper's K = 0.1 box, Xr = 0.02, q = 16 (the default spec), niced; with --K, at that K in the box
 of the K scan's rule (core/scan/ScanBox.hpp: xmin = -2 sqrt(K) - 0.2, xmax = sqrt(K) + 0.2), the box the tail scan
@@ -42,6 +42,8 @@ p.add_argument("--t-max", type=float, default=1e7)
 p.add_argument("--replicas", type=int, default=16)
 p.add_argument("--seeds", type=int, default=0, help="(d): this many more seeds of (a)'s sampler, pooled")
 p.add_argument("--K", type=float, default=None, help="this K in the scan's box (default: the default spec's K = 0.1 box)")
+p.add_argument("--first", type=float, default=None, help="the sampler's first level (tail --first; at K = 0.3 "
+               "few segments last 10^3 steps)")
 p.add_argument("--brute-only", action="store_true", help="(a) and (c) only: the sampler against brute force")
 p.add_argument("--quick", action="store_true")
 a = p.parse_args()
@@ -92,7 +94,8 @@ def tail(name, *args):
     cmp = os.path.join(a.dir, name + ".compare.csv")
     text = os.path.join(a.dir, name + ".txt")  # its report: the levels and the comparison with its pooled test
     if not (os.path.exists(out) and os.path.exists(cmp) and os.path.exists(text)):
-        r = cli("tail", *spec, "--t-max", int(a.t_max), "--replicas", a.replicas, *args, "--out", out, "--csv",
+        first = [] if a.first is None else ["--first", int(a.first)]
+        r = cli("tail", *spec, *first, "--t-max", int(a.t_max), "--replicas", a.replicas, *args, "--out", out, "--csv",
                 os.path.join(a.dir, name + ".csv"), "--compare", brute, "--compare-csv", cmp)
         open(text, "w").write(r.stdout)
     return json.load(open(out)), table(cmp)

@@ -42,7 +42,7 @@ constexpr std::int64_t kClassifyDenominator = 2000;
 /// iterates a circle's rotation is known to ~10⁻¹⁴, and the rationals of denominator ≤ 10⁴ lie ~10⁻⁸ apart, so an
 /// invariant circle is taken for one of them with a probability of ~10⁻⁵.
 constexpr std::int64_t kProofDenominator = 10000;
-/// The largest period of the chains about the centre enumerated by their rotation (AtlasBuilder::addFareyChains), and
+/// The largest q of the chains p/q about an island enumerated by their rotation (AtlasBuilder::addFareyChains), and
 /// the spacing of that search along the lines (the MMP code's: it brackets the roots of the chains to period 729).
 constexpr std::uint64_t kFareyPeriod = 50;
 constexpr long double kFareySpacing = 1e-6L;
@@ -669,7 +669,7 @@ class AtlasBuilder {
       return {};
     }
     std::vector<AtlasNode> children = chainsOutside(atlas, index, rays, outside);
-    if (index == 0 && !stop_.stop_requested()) addFareyChains(atlas, atlas.nodes[0], rays.front().island.reach, children);
+    if (!stop_.stop_requested()) addFareyChains(atlas, index, rays, children);
     return children;
   }
 
@@ -920,49 +920,98 @@ class AtlasBuilder {
     return true;
   }
 
-  /// Every symmetric chain about the centre of period ≤ kFareyPeriod whose rotation lies between the boundary circle's
-  /// and the slowest chain the scan found (issue 50): the Farey rationals p/q of that interval, each solved for its
-  /// symmetric orbits of period q on the lines between the boundary and the fixed point's distance (the MMP code's
-  /// scan, MmpFlux.hpp), kept when elliptic, well ordered about the centre with p turns, and not already found.  At
-  /// K = 0.1 the scan stepped over the 4/25 chain (islands ≈ 7·10⁻⁵ wide along S₁, the scan's step).
-  void addFareyChains(const Atlas& atlas, const AtlasNode& node, long double reach, std::vector<AtlasNode>& children) {
-    const long double hi = std::fabs(static_cast<long double>(node.boundaryRotation));
-    long double lo = hi;
-    for (const AtlasNode& c : children)
-      lo = std::min(lo, static_cast<long double>(c.aboutParent->p) / static_cast<long double>(c.aboutParent->q));
+  /// Every symmetric chain about the island of period ≤ n·kFareyPeriod whose rotation about it lies between the
+  /// boundary circle's and the farthest chain the scan found (issue 50): the Farey rationals p/q of that interval, each
+  /// solved for its symmetric orbits of period n·q on the lines beyond the boundary (fareyWindows), kept when elliptic,
+  /// a chain about the island (its Qⁿ-images turn p times about the member c, well ordered about it) and not already
+  /// found.  At K = 0.1 the scan stepped over the 4/25 chain about the centre (islands ≈ 7·10⁻⁵ wide along S₁, the
+  /// scan's step).
+  void addFareyChains(const Atlas& atlas, int index, const std::vector<Ray>& rays, std::vector<AtlasNode>& children) {
+    const AtlasNode& node = atlas.nodes[static_cast<std::size_t>(index)];
+    const long double boundary = std::fabs(static_cast<long double>(node.boundaryRotation));
+    long double lo = boundary, hi = boundary;
+    for (const AtlasNode& c : children) {
+      if (c.parent != index || !c.aboutParent) continue;
+      const long double v = std::fabs(static_cast<long double>(c.aboutParent->p) / c.aboutParent->q);
+      lo = std::min(lo, v);
+      hi = std::max(hi, v);
+    }
     if (!(lo < hi)) return;
-    const long double inner = std::sqrt(node.areaLower / std::numbers::pi_v<long double>) / 2;
-    const std::vector<LineWindow> windows = annulusWindows(K_, inner, reach);
-    const std::uint64_t maxQ = std::min<std::uint64_t>(kFareyPeriod, r_.maxPeriod);
+    const std::vector<LineWindow> windows = fareyWindows(node, index, rays);
+    if (windows.empty()) return;
+    const std::uint64_t maxQ = std::min<std::uint64_t>(kFareyPeriod, r_.maxPeriod / node.period);
     for (std::int64_t q = 2; q <= static_cast<std::int64_t>(maxQ); ++q) {
       for (std::int64_t p = static_cast<std::int64_t>(std::ceil(lo * q)); p * hi > 0 && p < hi * q; ++p) {
         if (stop_.stop_requested()) return;
-        if (std::gcd(p, q) != 1 || static_cast<long double>(p) < lo * q) continue;
+        if (std::gcd(p, q) != 1 || static_cast<long double>(p) <= lo * q) continue;
         const Rational pq{p, q};
-        auto known = [&](const AtlasNode& c) { return c.parent == 0 && c.aboutParent && *c.aboutParent == pq; };
+        auto known = [&](const AtlasNode& c) { return c.parent == index && c.aboutParent && *c.aboutParent == pq; };
         if (std::any_of(children.begin(), children.end(), known)) continue;
         std::vector<PeriodicOrbit> orbits;
         try {
-          orbits = findSymmetricPeriodicOrbitsIn(K_, static_cast<int>(q), windows, kFareySpacing, stop_);
+          orbits = findSymmetricPeriodicOrbitsIn(K_, static_cast<int>(node.period * static_cast<std::uint64_t>(q)),
+                                                 windows, kFareySpacing, stop_);
         } catch (const OperationStopped&) {
           return;
         }
-        for (const PeriodicOrbit& orbit : orbits) {
-          if (orbit.windingTurns != p || !orbit.stable() || !wellOrdered(orbit.points, node.centre)) continue;
-          const auto member = memberOnLine(orbit, orbit.points.front());
-          if (!member) continue;
-          AtlasNode child;
-          child.parent = 0;
-          child.level = 1;
-          child.period = static_cast<std::uint64_t>(q);
-          child.aboutParent = pq;
-          child.orbit = orbit.rotatedToStart(member->first);
-          child.centre = child.orbit.points.front();
-          if (addChain(atlas, std::move(child), member->second, children))
+        for (const PeriodicOrbit& orbit : orbits)
+          if (orbit.stable() && addFareyChain(atlas, index, rays, orbit, pq, children))
             break;  // one elliptic orbit per p/q: its images are the chain
-        }
       }
     }
+  }
+
+  /// The windows of the lines the Farey step searches: at the centre both lines between half the radius of the
+  /// island's equal-area disc and the fixed point's distance (the MMP code's annulus); about a chain's island each ray
+  /// from its proven circle to the ray's end (the island's cell: half the distance to the chain's next island).
+  std::vector<LineWindow> fareyWindows(const AtlasNode& node, int index, const std::vector<Ray>& rays) const {
+    if (index == 0) {
+      const long double inner = std::sqrt(node.areaLower / std::numbers::pi_v<long double>) / 2;
+      return annulusWindows(K_, inner, rays.front().island.reach);
+    }
+    std::vector<LineWindow> windows;
+    for (const Ray& ray : rays) {
+      if (!ray.circleX) continue;
+      const long double end = ray.island.centre.x + ray.direction * ray.island.range;
+      windows.push_back({ray.island.line, std::min(*ray.circleX, end), std::max(*ray.circleX, end)});
+    }
+    return windows;
+  }
+
+  /// Adds a symmetric orbit of period n·q found by the Farey step as the chain p/q about the island when it is one
+  /// (isFareyChainAbout), started at its member on a line nearest the point found (at the centre) or nearest the
+  /// member c of a ray it is a chain about.  Whether it was added.
+  bool addFareyChain(const Atlas& atlas, int index, const std::vector<Ray>& rays, const PeriodicOrbit& orbit,
+                     const Rational& pq, std::vector<AtlasNode>& children) const {
+    const AtlasNode& node = atlas.nodes[static_cast<std::size_t>(index)];
+    for (const Ray& ray : rays) {
+      const PhysicalPoint c = ray.island.centre;
+      const auto member = memberOnLine(orbit, node.period == 1 ? orbit.points.front() : c);
+      if (!member) return false;
+      const PeriodicOrbit chain = orbit.rotatedToStart(member->first);
+      if (!isFareyChainAbout(chain, c, node.period, pq, ray.island.reach)) continue;
+      AtlasNode child;
+      child.parent = index;
+      child.level = node.level + 1;
+      child.period = chain.points.size();
+      child.aboutParent = pq;
+      child.orbit = chain;
+      child.centre = chain.points.front();
+      return addChain(atlas, std::move(child), member->second, children);
+    }
+    return false;
+  }
+
+  /// Whether `chain` is the chain p/q about the island of period n at its member c: at the centre (n = 1) it winds p
+  /// times about c and is well ordered about it; else its Qⁿ-images z_0, z_n, … (z_0 the member nearest c) lie within
+  /// 2·reach of c, turn p times about it (surrounds) and are well ordered about it.
+  static bool isFareyChainAbout(const PeriodicOrbit& chain, PhysicalPoint c, std::uint64_t n, const Rational& pq,
+                                long double reach) {
+    if (n == 1) return chain.windingTurns == pq.p && wellOrdered(chain.points, c);
+    if (!surrounds(chain, c, n, pq, 2 * reach)) return false;
+    std::vector<PhysicalPoint> images;
+    for (std::size_t k = 0; k < chain.points.size(); k += n) images.push_back(chain.points[k]);
+    return wellOrdered(images, c);
   }
 
   const AtlasRequest& r_;

@@ -31,11 +31,12 @@
 ///     scaled about c by the widest ratio of those distances (AtlasNode::areaLower, areaUpper, areaError).
 ///  3. The chains: the chain points beyond the boundary (turning about c in the sense of its circles), grouped by p/q, each group's middle point giving the
 ///     elliptic orbit of period n·q (ChainIdentification.hpp, ellipticOrbitAround); kept when it is stable.  Chain
-///     points inside the boundary are listed as internal rationals and not followed.  About the centre, every
-///     symmetric chain of period ≤ 50 whose rotation lies between the boundary's and the slowest chain found is
-///     sought by its rotation (the Farey rationals of that interval, each solved for its symmetric orbits on the
-///     lines, kept when elliptic and well ordered): the scan steps over chains whose islands are narrower than its
-///     step (the 4/25 chain at K = 0.1).
+///     points inside the boundary are listed as internal rationals and not followed.  About each island followed,
+///     every symmetric chain of period ≤ 50·n whose rotation lies between the boundary's and the farthest chain found
+///     is sought by its rotation (the Farey rationals of that interval, each solved for its symmetric orbits of
+///     period n·q on the lines beyond the boundary, kept when elliptic and a well-ordered chain about the island):
+///     the scan steps over chains whose islands are narrower than its step (the 4/25 chain about the centre at
+///     K = 0.1) or misses them by chance (the 1/11 chain about the island of six).
 ///  4. For each chain: its hyperbolic partner (HyperbolicPartner.hpp) and the turnstile flux through its separatrix
 ///     and the area the separatrix encloses (TurnstileFlux.hpp's zone: around the parent island, or around each of the
 ///     parent chain's islands).  The layer is that area less the parent islands it encloses, and the mean residence
