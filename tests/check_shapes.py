@@ -38,8 +38,6 @@ RANGES = {
     ("core/map/FixedPointMap.cpp", "must lie in [0, 2^52)"): "a unit coordinate given as text, open above",
     ("core/map/OrbitIterator.cpp", "must lie in [0, 2^52)"): "a unit coordinate, open above",
     ("core/view/Viewport.cpp", "grid units must lie in ["): "a long double size against 2^52",
-    ("core/tail/TailSampler.cpp", 'must lie in ["'): "to convert: core/tail is another helper's this session",
-    ("core/tail/TailSampler.cpp", "the slice must lie in [0, "): "to convert: core/tail is another helper's this session",
 }
 RANGE = re.compile(r'"(\\.|[^"\\])*?(must (lie|be) in [\[(]|must be >= |must be [^"]*\d \.\.\. )')
 FLAG = re.compile(r'"(\\.|[^"\\])*?(?<![A-Za-z0-9-])--[a-z][a-z0-9]*(-[a-z0-9]+)*')

@@ -232,11 +232,105 @@ std::optional<CircleArea> circleArea(const FixedPointMap& N, const Island& islan
   return a;
 }
 
+/// The central island on `line`: the elliptic fixed point `centre` (−√K, 0), scanned to 2√K (its distance to the
+/// hyperbolic fixed point (√K, 0), whose loop encloses the island).
+Island centreIsland(PhysicalPoint centre, long double K, smooth::SymmetryLine line) {
+  const long double rootK = std::sqrt(K);
+  return {centre, 1, 1, line, 2 * rootK, 2 * rootK};
+}
+
 /// One side of the scan: the classified points, the boundary's bracket and the chains beyond it.
 struct SideScan {
   std::vector<ScanPoint> points;
   int lastCircle = -1;  ///< index of the outermost circle point (−1: none)
 };
+
+/// Step 1 on one ray: `points` points from the island's centre outwards (towards `direction`) over its range,
+/// classified in parallel.
+SideScan scanSide(const Classifier& c, const Island& island, int direction, int points, std::stop_token stop,
+                  int threads) {
+  SideScan s;
+  const auto n = static_cast<std::size_t>(points);
+  s.points.resize(n);
+  parallelFor(
+      n,
+      [&](std::size_t i, int) {
+        const long double x = island.centre.x + direction * island.range * static_cast<long double>(i + 1) /
+                                                    static_cast<long double>(n);
+        s.points[i] = c.classify(x, stop);
+      },
+      stop, threads);
+  for (std::size_t i = 0; i < n; ++i)
+    if (s.points[i].kind == PointKind::Circle) s.lastCircle = static_cast<int>(i);
+  return s;
+}
+
+/// Candidate circles tried inwards on a ray before giving up, and the largest relative change of the area between
+/// 4096 and 8192 points that a circle's polygon may show (a converged invariant circle changes by ~1e−9).
+constexpr int kBoundaryTries = 8;
+constexpr long double kQuickTolerance = 1e-2L;
+constexpr long double kCircleTolerance = 1e-4L;
+
+/// A candidate that is not a circle after all: marked outside; the next circle inwards (or −1).
+int dropCircle(SideScan& s, int candidate) {
+  s.points[static_cast<std::size_t>(candidate)].kind = PointKind::Outside;
+  do --candidate;
+  while (candidate >= 0 && s.points[static_cast<std::size_t>(candidate)].kind != PointKind::Circle);
+  s.lastCircle = candidate;
+  return candidate;
+}
+
+/// A ray's boundary circle (step 2 of the header): the circle point, its polygon and the bisection's bracket.
+struct ProvenCircle {
+  ScanPoint point;          ///< the bisection's inner end, a proven circle point
+  CircleArea polygon;       ///< its orbit's polygon (8192 points)
+  long double x = 0;        ///< the point's x
+  long double bracket = 0;  ///< the bisection's last step, signed
+  bool lastPoint = false;   ///< circles to the end of the ray: no bracket
+};
+
+/// Step 2 on one ray: the outermost circle point of `s`, bisected `bisections` times against its outer neighbour,
+/// whose orbit closes into a converged curve about the centre and whose rotation is proven (a sticky chaotic orbit
+/// that passed for regular does not: it is marked outside in `s` and the next circle inwards tried, kBoundaryTries
+/// times at most); or nothing.
+std::optional<ProvenCircle> provenCircle(const Classifier& c, const Island& island, int direction, SideScan& s,
+                                         int bisections, std::stop_token stop) {
+  const auto step = island.range / static_cast<long double>(s.points.size());
+  for (int candidate = s.lastCircle, tries = 0; candidate >= 0 && tries < kBoundaryTries;) {
+    // A quick look first (1024 points: a circle's polygon is already within 1e−5 of its area there): sticky
+    // chaotic orbits beyond the island that passed for regular are dropped without a bisection.
+    const ScanPoint& at = s.points[static_cast<std::size_t>(candidate)];
+    if (const auto quick = circleArea(c.map(), island, at.point, at.rotation, 10);
+        !quick || quick->error > kQuickTolerance * quick->area) {
+      candidate = dropCircle(s, candidate);
+      continue;
+    }
+    ++tries;
+    long double lo = island.centre.x + direction * step * (candidate + 1);
+    long double hi = lo + direction * step;
+    ScanPoint inner = s.points[static_cast<std::size_t>(candidate)];
+    const bool lastPoint = candidate + 1 == static_cast<int>(s.points.size());  // circles to the end of the ray: no bracket
+    for (int b = 0; b < bisections && !lastPoint && !stop.stop_requested(); ++b) {
+      const long double mid = (lo + hi) / 2;
+      const ScanPoint p = c.classify(mid, stop);
+      if (p.kind == PointKind::Circle) {
+        lo = mid;
+        inner = p;
+      } else {
+        hi = mid;
+      }
+    }
+    std::optional<CircleArea> a = circleArea(c.map(), island, inner.point, inner.rotation, 13);
+    if (!a || a->error > kCircleTolerance * a->area || a->perimeterChange > kCircleTolerance ||
+        !c.rotationProven(inner, stop)) {
+      candidate = dropCircle(s, candidate);  // not a circle after all
+      continue;
+    }
+    s.lastCircle = candidate;
+    return ProvenCircle{inner, std::move(*a), lo, hi - lo, lastPoint};
+  }
+  return std::nullopt;
+}
 
 std::string number(long double v) { return shortestDecimal(v); }
 
@@ -414,10 +508,8 @@ AtlasFlux chainFlux(long double K, const std::optional<PeriodicOrbit>& chain, st
   return f;
 }
 
-/// Candidate circles tried inwards on a ray before giving up, and the largest relative change of the area between
-/// 4096 and 8192 points that a circle's polygon may show (a converged invariant circle changes by ~1e−9).
-constexpr int kBoundaryTries = 8;
-constexpr long double kQuickTolerance = 1e-2L;
+/// Rescans of an island's rays near its centre (AtlasBuilder::zoomForBoundary), and the fewest steps of a ray its
+/// circles must span for the scan to be taken as resolved.
 constexpr int kZooms = 2;
 constexpr int kMinCircleSteps = 8;
 /// The regions of the barriers' zones, by node (built once: a zone of a long chain has ~10⁵ vertices).
@@ -452,7 +544,6 @@ void settleLayers(Atlas& atlas, const ZoneRegions& zones) {
 }
 
 constexpr int kMaxScanPoints = 10000;
-constexpr long double kCircleTolerance = 1e-4L;
 
 /// Whether `chain` (period n·q) surrounds the island of period n at c as p/q: its points z_0, z_n, …, z_{(q−1)n} (the
 /// images under Qⁿ, which fixes c) lie within `reach` of c and their angles about c advance by |p| turns in all.
@@ -577,24 +668,6 @@ class AtlasBuilder {
   }
 
  private:
-  /// The points of one ray, from the centre outwards, classified in parallel.
-  SideScan scanSide(const Classifier& c, const Island& island, int direction, int points) {
-    SideScan s;
-    const auto n = static_cast<std::size_t>(points);
-    s.points.resize(n);
-    parallelFor(
-        n,
-        [&](std::size_t i, int) {
-          const long double x = island.centre.x + direction * island.range * static_cast<long double>(i + 1) /
-                                                      static_cast<long double>(n);
-          s.points[i] = c.classify(x, stop_);
-        },
-        stop_, r_.threads);
-    for (std::size_t i = 0; i < n; ++i)
-      if (s.points[i].kind == PointKind::Circle) s.lastCircle = static_cast<int>(i);
-    return s;
-  }
-
   /// Points a side: at the last level a quarter of the request's (only the boundary is wanted there; fewer, down to
   /// 16, where `scanSteps` is short for a long period), else the
   /// request's or as many as `scanSteps` steps of the map allow over all sides, up to kMaxScanPoints: the chains around
@@ -616,7 +689,7 @@ class AtlasBuilder {
     std::vector<Island> out;
     if (index == 0) {
       for (smooth::SymmetryLine line : {smooth::SymmetryLine::S2, smooth::SymmetryLine::S1})
-        out.push_back({node.centre, 1, 1, line, 2 * std::sqrt(K_), 2 * std::sqrt(K_)});
+        out.push_back(centreIsland(node.centre, K_, line));
       return out;
     }
     for (std::size_t i = 0; i < node.orbit.points.size(); ++i) {
@@ -679,66 +752,24 @@ class AtlasBuilder {
     for (const Island& island : origins)
       for (int direction : {+1, -1}) {
         const Classifier c(r_, island);
-        rays.push_back({island, direction, scanSide(c, island, direction, points), std::nullopt});
+        rays.push_back({island, direction, scanSide(c, island, direction, points, stop_, r_.threads), std::nullopt});
         if (stop_.stop_requested()) return rays;
       }
     return rays;
   }
 
-  /// Step 2: the boundary circle on each ray: the outermost circle point, bisected against its outer neighbour, whose
-  /// orbit closes into a converged curve about the centre (a sticky chaotic orbit that passed for regular does not:
-  /// the next circle inwards is tried); of all rays the largest area is the outermost circle, kept in `node`.
+  /// Step 2: the boundary circle on each ray (provenCircle); of all rays the largest area is the outermost circle,
+  /// kept in `node`.
   void findBoundary(std::vector<Ray>& set, AtlasNode& node, std::vector<PhysicalPoint>& kept) {
     for (Ray& ray : set) {
-      SideScan& s = ray.scan;
       const Classifier c(r_, ray.island);
-      const auto step = ray.island.range / static_cast<long double>(s.points.size());
-      for (int candidate = s.lastCircle, tries = 0; candidate >= 0 && tries < kBoundaryTries;) {
-        // A quick look first (1024 points: a circle's polygon is already within 1e−5 of its area there): sticky
-        // chaotic orbits beyond the island that passed for regular are dropped without a bisection.
-        const ScanPoint& at = s.points[static_cast<std::size_t>(candidate)];
-        if (const auto quick = circleArea(c.map(), ray.island, at.point, at.rotation, 10);
-            !quick || quick->error > kQuickTolerance * quick->area) {
-          candidate = dropCircle(s, candidate);
-          continue;
-        }
-        ++tries;
-        long double lo = ray.island.centre.x + ray.direction * step * (candidate + 1);
-        long double hi = lo + ray.direction * step;
-        ScanPoint inner = s.points[static_cast<std::size_t>(candidate)];
-        const bool lastPoint = candidate + 1 == static_cast<int>(s.points.size());  // circles to the end of the ray: no bracket
-        for (int b = 0; b < r_.bisections && !lastPoint && !stop_.stop_requested(); ++b) {
-          const long double mid = (lo + hi) / 2;
-          const ScanPoint p = c.classify(mid, stop_);
-          if (p.kind == PointKind::Circle) {
-            lo = mid;
-            inner = p;
-          } else {
-            hi = mid;
-          }
-        }
-        const std::optional<CircleArea> a = circleArea(c.map(), ray.island, inner.point, inner.rotation, 13);
-        if (!a || a->error > kCircleTolerance * a->area || a->perimeterChange > kCircleTolerance ||
-            !c.rotationProven(inner, stop_)) {
-          candidate = dropCircle(s, candidate);  // not a circle after all
-          continue;
-        }
-        s.lastCircle = candidate;
-        ray.circleX = lo;
-        if (!node.boundaryFound || a->area > node.circleArea) keepBoundary(node, kept, ray, inner, *a, lastPoint, hi - lo);
-        break;
+      if (const auto circle = provenCircle(c, ray.island, ray.direction, ray.scan, r_.bisections, stop_)) {
+        ray.circleX = circle->x;
+        if (!node.boundaryFound || circle->polygon.area > node.circleArea)
+          keepBoundary(node, kept, ray, circle->point, circle->polygon, circle->lastPoint, circle->bracket);
       }
       if (stop_.stop_requested()) return;
     }
-  }
-
-  /// A candidate that is not a circle after all: marked outside; the next circle inwards (or −1).
-  static int dropCircle(SideScan& s, int candidate) {
-    s.points[static_cast<std::size_t>(candidate)].kind = PointKind::Outside;
-    do --candidate;
-    while (candidate >= 0 && s.points[static_cast<std::size_t>(candidate)].kind != PointKind::Circle);
-    s.lastCircle = candidate;
-    return candidate;
   }
 
   /// The proven circle `a` through `inner` on `ray` becomes the node's boundary circle.
@@ -773,7 +804,7 @@ class AtlasBuilder {
     for (int zoom = 0; zoom < kZooms && (!node.boundaryFound || coarse(zoomRays)) && !stop_.stop_requested(); ++zoom) {
       for (Ray& ray : zoomRays) {
         ray.island.range = 2 * ray.island.range / static_cast<long double>(ray.scan.points.size());
-        ray.scan = scanSide(Classifier(r_, ray.island), ray.island, ray.direction, points);
+        ray.scan = scanSide(Classifier(r_, ray.island), ray.island, ray.direction, points, stop_, r_.threads);
       }
       findBoundary(zoomRays, node, kept);
     }
@@ -1104,6 +1135,21 @@ Atlas computeAtlas(const AtlasRequest& request, const AtlasProgress& progress, s
   if (resume)
     if (auto e = resumeError(request, *resume)) throw std::invalid_argument(*e);
   return AtlasBuilder(request, progress, std::move(stop)).build(resume);
+}
+
+std::optional<BoundaryCircle> centralBoundaryCircle(const AtlasRequest& request, long double range,
+                                                    std::stop_token stop) {
+  if (auto e = validationError(request)) throw std::invalid_argument(*e);
+  const auto K = static_cast<long double>(request.map.K);
+  Island island = centreIsland({-std::sqrt(K), 0}, K, smooth::SymmetryLine::S2);
+  if (auto e = realIntervalError("range", static_cast<double>(range), 0, true, static_cast<double>(island.range)))
+    throw std::invalid_argument(*e);
+  island.range = range;
+  const Classifier c(request, island);
+  SideScan s = scanSide(c, island, -1, request.scanPoints, stop, request.threads);
+  std::optional<ProvenCircle> circle = provenCircle(c, island, -1, s, request.bisections, stop);
+  if (!circle) return std::nullopt;
+  return BoundaryCircle{circle->point.point, circle->point.rotation, std::move(circle->polygon.curve)};
 }
 
 std::string atlasPath(const Atlas& atlas, int node) {

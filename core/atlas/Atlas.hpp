@@ -219,6 +219,21 @@ using AtlasProgress = std::function<void(const Atlas& sofar, int done, const std
 /// nothing.
 [[nodiscard]] std::optional<std::string> resumeError(const AtlasRequest& request, const Atlas& resume);
 
+/// The central island's boundary circle as the atlas finds it on one ray — steps 1 and 2 of the header alone, the
+/// scan's classifier (the rational test, rationalOfRotation), the bisection and the proof (the polygon's convergence,
+/// the rotation measured again) — for a look at the island without the tree, at the resolution the caller chooses
+/// (BoxIslandCheck.hpp: 64 points over √K).  The ray is S₂ from the centre (−√K, 0) towards smaller x, over `range`
+/// (0 < range ≤ 2√K), in request.map's box, with request.scanPoints points, request.iterations, digitsThreshold,
+/// maxPeriod, bisections and threads.  Nothing when the ray shows no proven circle.  Throws std::invalid_argument
+/// when validationError(request) is set or the range is outside its own.
+struct BoundaryCircle {
+  PhysicalPoint point;               ///< the circle's point on the ray: the bisection's inner end
+  double rotation = 0;               ///< its rotation number about the centre (turns per step)
+  std::vector<PhysicalPoint> curve;  ///< its orbit ordered by k·ω mod 1 (8192 points): the polygon of its area
+};
+[[nodiscard]] std::optional<BoundaryCircle> centralBoundaryCircle(const AtlasRequest& request, long double range,
+                                                                  std::stop_token stop = {});
+
 /// "centre", "6", "6 > 138": the periods from the centre down to node i.
 [[nodiscard]] std::string atlasPath(const Atlas& atlas, int node);
 

@@ -4,80 +4,48 @@
 #include <cmath>
 #include <vector>
 
+#include "core/atlas/Atlas.hpp"
 #include "core/io/NumberText.hpp"
-#include "core/map/FixedPointMap.hpp"
-#include "core/map/OrbitIterator.hpp"
 #include "core/measures/BirkhoffAverage.hpp"
-#include "core/measures/ChainIdentification.hpp"
-#include "core/measures/OrbitMeasures.hpp"
-#include "core/measures/RotationNumber.hpp"
-#include "core/parallel/ParallelFor.hpp"
 #include "core/scan/ScanBox.hpp"
 
 namespace archipelago {
 
 namespace {
 
-constexpr int kScanPoints = 64;          // points of S₂ from the centre to −2√K
-constexpr int kBisections = 16;          // halvings of the outermost circle's bracket
-constexpr std::size_t kOrbitPoints = 4096;  // points of the circle's orbit for its extent
-constexpr std::int64_t kCircleDenominator = 2000;  // as the atlas's classification (Atlas.cpp)
+constexpr int kScanPoints = 64;  // points of S₂ from the centre to −2√K
+constexpr int kBisections = 16;  // halvings of the outermost circle's bracket
 
-/// Whether the orbit through (x, 0) lies on an invariant circle about the centre.
-bool isCircle(const MapParameters& box, const FixedPointMap& N, double x) {
-  RotationRequest r;
-  r.map = box;
-  r.start = N.toUnit(x, 0);
-  r.centre = centralFixedPoint(box);
-  r.iterations = kDefaultIterations;
-  r.digitsThreshold = kDefaultDigitsThreshold;
-  const RotationMeasurement m = measureRotation(r);
-  if (m.verdict != OrbitVerdict::Regular) return false;
-  return !rationalOfRotation(m.rotation, m.difference, kCircleDenominator);
-}
-
-/// The extent of the orbit through (x, 0), or nothing when it leaves the separatrix's box (a sticky chaotic orbit).
-std::optional<CentralIslandExtent> extentOf(const MapParameters& box, const FixedPointMap& N, double x) {
-  const double rootK = std::sqrt(box.K);
+/// The extent of the boundary circle's polygon.
+CentralIslandExtent extentOf(const BoundaryCircle& circle, double K) {
   CentralIslandExtent e;
   e.found = true;
-  e.K = box.K;
-  e.crossing = x;
-  e.xLeft = e.xRight = x;
-  const auto extend = [&](std::uint64_t, const UnitState& z) {
-    const PhysicalPoint p = N.toPhysical(z);
+  e.K = K;
+  e.crossing = static_cast<double>(circle.point.x);
+  e.rotation = circle.rotation;
+  e.xLeft = e.xRight = e.crossing;
+  for (const PhysicalPoint& p : circle.curve) {
     e.xLeft = std::min(e.xLeft, static_cast<double>(p.x));
     e.xRight = std::max(e.xRight, static_cast<double>(p.x));
     e.yMax = std::max(e.yMax, static_cast<double>(std::fabs(p.y)));
-    return true;
-  };
-  if (iteratePower(N, N.toUnit(x, 0), 1, kOrbitPoints, extend) == PowerOrbitEnd::wrapped) return std::nullopt;
-  if (e.xLeft < -2 * rootK || e.xRight > rootK) return std::nullopt;  // outside the separatrix (eq. hamb)
+  }
   return e;
 }
 
+/// The island's boundary circle by the atlas's method (centralBoundaryCircle) at the check's coarse resolution, in
+/// the K scan's box, so that the island is measured on Q, not on the run's Q*.
 CentralIslandExtent centralIsland(double K) {
   CentralIslandExtent none;
   none.K = K;
   if (!(K > 0 && K < 1)) return none;
-  const MapParameters box = scanBox(K);
-  const FixedPointMap N(box);
-  const double rootK = std::sqrt(K);
-  const double step = rootK / kScanPoints;  // from −√K to −2√K
-  std::vector<char> circle(kScanPoints + 1, 0);
-  parallelFor(kScanPoints, [&](std::size_t i, int) {
-    circle[i + 1] = isCircle(box, N, -rootK - step * static_cast<double>(i + 1)) ? 1 : 0;
-  });
-  for (int last = kScanPoints; last >= 1; --last) {
-    if (!circle[static_cast<std::size_t>(last)]) continue;
-    double in = -rootK - step * last, out = in - step;
-    for (int b = 0; b < kBisections && last < kScanPoints; ++b) {
-      const double mid = (in + out) / 2;
-      (isCircle(box, N, mid) ? in : out) = mid;
-    }
-    if (const auto e = extentOf(box, N, in)) return *e;
-  }
-  return none;
+  AtlasRequest r;
+  r.map = scanBox(K);
+  r.iterations = kDefaultIterations;
+  r.digitsThreshold = kDefaultDigitsThreshold;
+  r.scanPoints = kScanPoints;
+  r.bisections = kBisections;
+  const std::optional<BoundaryCircle> circle = centralBoundaryCircle(r, std::sqrt(static_cast<long double>(K)));
+  return circle ? extentOf(*circle, K) : none;
 }
 
 std::string fixed(double v) { return io::formatC("%.3f", v); }

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "core/kernels/ScalarLanes.hpp"
+#include "core/limits/Limits.hpp"
 #include "core/parallel/ParallelFor.hpp"
 #include "core/random/CounterRng.hpp"
 #include "core/trapping/BlockKernel.hpp"
@@ -124,23 +125,19 @@ std::uint64_t entryOrbitsPerReplica(std::uint32_t population, std::uint64_t pilo
 
 std::optional<std::string> tailRequestError(const TailRequest& r) {
   if (auto e = validationError(r.run)) return e;
-  const auto range = [](const char* name, std::uint64_t v, std::uint64_t lo, std::uint64_t hi) -> std::optional<std::string> {
-    if (v >= lo && v <= hi) return std::nullopt;
-    return std::string(name) + " = " + std::to_string(v) + " must lie in [" + std::to_string(lo) + ", " +
-           std::to_string(hi) + "]";
-  };
-  if (auto e = range("population", r.population, 2, kMaxTailPopulation)) return e;
-  if (auto e = range("replicas", r.replicas, 1, kMaxTailReplicas)) return e;
+  // Every bound lies below 2^63 (t-max's is 2^60, the walkers' below kMaxTailWalkers): within rangeError's long long.
+  if (auto e = rangeError("population", r.population, 2, kMaxTailPopulation)) return e;
+  if (auto e = rangeError("replicas", r.replicas, 1, kMaxTailReplicas)) return e;
   if (std::uint64_t{r.population} * r.replicas > kMaxTailWalkers)
     return "population x replicas = " + std::to_string(std::uint64_t{r.population} * r.replicas) +
            " walkers exceeds the limit of " + std::to_string(kMaxTailWalkers);
-  if (auto e = range("t-max", r.maxSteps, 1, kMaxTailSteps)) return e;
-  if (auto e = range("first", r.firstSteps, 1, r.maxSteps)) return e;
-  if (auto e = range("level-bins", r.binsPerLevel, 1, kMaxBinsPerLevel)) return e;
-  if (auto e = range("epsilon", r.epsilon, 1, kMaxTailEpsilon)) return e;
-  if (auto e = range("metropolis-steps", r.metropolisSteps, 1, kMaxMetropolisSteps)) return e;
-  if (auto e = range("warmup", r.warmupBlocks, 1, kMaxWarmupBlocks)) return e;
-  if (auto e = range("min-ancestors", r.minAncestors, 1, std::uint64_t{r.population} * r.replicas)) return e;
+  if (auto e = rangeError("t-max", r.maxSteps, 1, kMaxTailSteps)) return e;
+  if (auto e = rangeError("first", r.firstSteps, 1, r.maxSteps)) return e;
+  if (auto e = rangeError("level-bins", r.binsPerLevel, 1, kMaxBinsPerLevel)) return e;
+  if (auto e = rangeError("epsilon", r.epsilon, 1, kMaxTailEpsilon)) return e;
+  if (auto e = rangeError("metropolis-steps", r.metropolisSteps, 1, kMaxMetropolisSteps)) return e;
+  if (auto e = rangeError("warmup", r.warmupBlocks, 1, kMaxWarmupBlocks)) return e;
+  if (auto e = rangeError("min-ancestors", r.minAncestors, 1, std::uint64_t{r.population} * r.replicas)) return e;
   return std::nullopt;
 }
 
@@ -164,9 +161,9 @@ std::vector<std::uint64_t> tailLevels(const TailRequest& r) {
 TailState startTail(const TailRequest& request) { return startTailSlice(request, {0, request.replicas}); }
 
 ReplicaRange replicaSlice(std::uint32_t replicas, std::uint32_t i, std::uint32_t n) {
-  if (n == 0 || i >= n)
-    throw std::invalid_argument("slice " + std::to_string(i) + " of " + std::to_string(n) + ": the slice must lie in [0, " +
-                                std::to_string(n) + ")");
+  if (auto e = lowerBoundError("slices", n, 1)) throw std::invalid_argument(*e);
+  const std::string which = "one of the " + std::to_string(n) + " slices, counted from 0";
+  if (auto e = rangeError("slice", i, 0, std::int64_t{n} - 1, which)) throw std::invalid_argument(*e);
   if (n > replicas)
     throw std::invalid_argument(std::to_string(n) + " slices of " + std::to_string(replicas) +
                                 " replicas: every slice needs a replica (at most " + std::to_string(replicas) + " slices)");

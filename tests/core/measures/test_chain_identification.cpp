@@ -19,6 +19,19 @@ std::optional<Rational> bruteForce(double lo, double hi, std::int64_t maxQ) {
   return std::nullopt;
 }
 
+TEST(ChainIdentification, ARotationNamesTheRationalOfSmallestDenominatorWithinEightTimesItsDifference) {
+  // The one step from a measured rotation to p/q (issue 51: the chain identification, the rotation profile, the
+  // atlas's classifier and its proof, and the box check call it): within 8 × the blocks' difference, at least 2^−50.
+  EXPECT_EQ(rotationAccuracy(1e-12), 8e-12);
+  EXPECT_EQ(rotationAccuracy(0), 0x1p-50);
+  EXPECT_EQ(rationalOfRotation(1.0 / 6 + 7e-12, 1e-12, 2000), (Rational{1, 6}));
+  EXPECT_EQ(rationalOfRotation(1.0 / 6 + 9e-12, 1e-12, 2000), std::nullopt);  // an invariant circle at that accuracy
+  EXPECT_EQ(rationalOfRotation(-2.0 / 23, 0, 2000), (Rational{-2, 23}));
+  EXPECT_EQ(rationalOfRotation(16.0 / 113, 1e-7, 1000), (Rational{16, 113}));
+  EXPECT_EQ(rationalOfRotation(16.0 / 113, 1e-7, 112), std::nullopt);  // beyond the largest denominator
+  EXPECT_EQ(rationalOfRotation(1e-4, 1e-4, 5), (Rational{0, 1}));  // not turning: 0 lies within 8e-4
+}
+
 TEST(ChainIdentification, SternBrocotFindsTheSmallestDenominator) {
   EXPECT_EQ(smallestDenominatorRational(0.33, 0.34, 100), (Rational{1, 3}));
   EXPECT_EQ(smallestDenominatorRational(1.0 / 6 - 1e-14, 1.0 / 6 + 1e-14, 10000), (Rational{1, 6}));

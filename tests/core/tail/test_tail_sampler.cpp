@@ -289,8 +289,17 @@ TEST(TailSlices, PartitionTheReplicasLikeTheRanks) {
       EXPECT_EQ(next, R);
     }
   EXPECT_THROW((void)replicaSlice(3, 0, 4), std::invalid_argument);  // a slice without a replica
-  EXPECT_THROW((void)replicaSlice(3, 3, 3), std::invalid_argument);
-  EXPECT_THROW((void)replicaSlice(3, 0, 0), std::invalid_argument);
+  // In core/limits' one wording (issue 51): the slice's index and the number of slices.
+  const auto message = [](std::uint32_t i, std::uint32_t n) {
+    try {
+      (void)replicaSlice(3, i, n);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message(3, 3), "slice = 3 must lie in [0, 2] (one of the 3 slices, counted from 0)");
+  EXPECT_EQ(message(0, 0), "slices = 0 must be at least 1");
   EXPECT_THROW((void)startTailSlice(smallRequest(), {2, 2}), std::invalid_argument);  // beyond R = 3
   EXPECT_THROW((void)startTailSlice(smallRequest(), {0, 0}), std::invalid_argument);
 }
