@@ -72,7 +72,6 @@ ScanSettings checkedSettings(const TailScanRequest& r, const Ranks& ranks) {
     if (auto e = tailRequestError(s.requests.back())) throw std::invalid_argument(*e);
   }
   if (r.dir.empty()) throw std::invalid_argument(r.nameOf("dir") + " is empty: give a folder");
-  if (auto e = scanFolderError(r.dir)) throw std::runtime_error(*e);
   s.mine = shareOf(s.K.size(), task, ranks);
   s.kernel = &selectKernel(r.base.kernel == "auto" ? std::string() : r.base.kernel);
   return s;
@@ -349,9 +348,12 @@ TailScanOutcome runTailScan(const TailScanRequest& r, const TailScanView& view, 
   std::vector<ScanItem> items;
   onEveryRank(ranks, [&] {
     s = checkedSettings(r, ranks);
-    std::error_code ec;
-    std::filesystem::create_directory(r.dir, ec);  // a rank may find it made by another
-    if (!std::filesystem::is_directory(r.dir)) throw std::runtime_error("cannot create the folder " + r.dir);
+    if (ranks.rank() != 0) return;  // rank 0 makes the folder, then the others find it
+    if (auto e = scanFolderError(r.dir)) throw std::runtime_error(*e);
+    std::filesystem::create_directory(r.dir);
+  });
+  onEveryRank(ranks, [&] {
+    if (!std::filesystem::is_directory(r.dir)) throw std::runtime_error("cannot find the folder " + r.dir);
     for (const std::string& csv : r.csv.empty() ? std::vector<std::string>{} : tailScanCsvFiles(r.csv))
       io::checkWritableTarget(csv);  // after the folder is made: the CSVs may be in it
     for (const std::size_t i : s.mine) {
