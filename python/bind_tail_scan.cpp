@@ -81,9 +81,12 @@ py::dict summaryDict(const TailScanSummary& s) {
 }
 
 // The scan on a worker thread without the GIL, this thread checking for Ctrl-C every 50 ms; progress(dict) between
-// chunks.  A pending exception stops the running K at a consistent point, saved in its file, then is raised.
-py::dict runScan(const TailScanRequest& request, const py::object& progress) {
+// chunks.  A pending exception stops the running K at a consistent point, saved in its file, then is raised.  Core's
+// warnings about a K's box are kept and given as RuntimeWarning once the scan has returned (this thread holds the GIL).
+py::dict runScan(TailScanRequest request, const py::object& progress) {
   Interruption interruption;
+  std::vector<std::string> warnings;
+  request.warning = [&warnings](const std::string& w) { warnings.push_back(w); };
   TailScanView view;
   view.progress = [&](std::size_t index, double K, const TailState&, const TailProgress& p) {
     interruption.check(progress, [&] {
@@ -101,6 +104,8 @@ py::dict runScan(const TailScanRequest& request, const py::object& progress) {
     OneProcess process;
     return runTailScan(request, view, process, stop);
   });
+  for (const std::string& w : warnings)
+    if (PyErr_WarnEx(PyExc_RuntimeWarning, w.c_str(), 1) != 0) throw py::error_already_set();
   interruption.raisePending();
   if (outcome.end == TailScanOutcome::End::interrupted)
     throw std::runtime_error("the scan stopped: " + outcome.checkpoint + " holds the checkpoint");
@@ -146,7 +151,6 @@ void bindTailScan(py::module_& m) {
         r.checkpointSeconds = checkpointInterval;
         if (!task.is_none()) r.task = task.cast<std::string>();
         if (!csv.is_none()) r.csv = pathArgument(csv, "csv");
-        r.warning = [](const std::string& w) { PyErr_WarnEx(PyExc_RuntimeWarning, w.c_str(), 1); };
         return runScan(r, progress);
       },
       py::arg("K"), py::arg("directory"), py::arg("t_max") = kScanTail.maxSteps,
