@@ -17,7 +17,7 @@ void addTailScanCommand(CLI::App& app, int& status) {
     const TailScanRequest request = tailScanRequest(*o, *cmd);
     OneProcess process;
     const TailScanOutcome outcome = runTailScan(request, tailScanView(o->quiet), process, interruptToken());
-    status = tailScanEnd(outcome, *o, "the same archipelago-cli tail-scan command");
+    status = tailScanEnd(outcome, *o, "archipelago-cli tail-scan");
   });
 }
 

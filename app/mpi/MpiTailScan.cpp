@@ -14,7 +14,7 @@ int mpiTailScan(cli::TailScanOptions& o, const CLI::App& cmd) {
   const TailScanRequest request = cli::tailScanRequest(o, cmd);
   const TailScanOutcome outcome = runTailScan(request, cli::tailScanView(quiet), ranks, cli::interruptToken());
   if (ranks.rank() != 0) return outcome.end == TailScanOutcome::End::interrupted ? 130 : 0;
-  return cli::tailScanEnd(outcome, o, "the same mpirun archipelago-mpi tail-scan command");
+  return cli::tailScanEnd(outcome, o, "mpirun archipelago-mpi tail-scan");
 }
 
 }  // namespace archipelago::mpi

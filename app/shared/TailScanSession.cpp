@@ -76,7 +76,7 @@ TailScanView tailScanView(bool quiet) {
 
 int tailScanEnd(const TailScanOutcome& r, const TailScanOptions& o, const std::string& resume) {
   if (r.end == TailScanOutcome::End::interrupted) {
-    std::fprintf(stderr, "interrupted: %s holds the checkpoint; run the same command again to resume (%s)\n",
+    std::fprintf(stderr, "interrupted: %s holds the checkpoint; run the same %s command again to resume\n",
                  r.checkpoint.empty() ? "each K's file" : r.checkpoint.c_str(), resume.c_str());
     return 130;
   }

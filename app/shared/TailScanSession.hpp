@@ -38,7 +38,7 @@ void addTailScanOptions(CLI::App& cmd, TailScanOptions& o);
 [[nodiscard]] TailScanView tailScanView(bool quiet);
 
 /// The end of a scan in the command line's words, by rank 0: the summary on stdout, then how to resume a stopped
-/// scan (`resume`: the command to run again; status 130), the K still waiting for other tasks, or what was done.
+/// scan (`resume`: the program and command to run again, e.g. "archipelago-cli tail-scan"; status 130), the K still waiting for other tasks, or what was done.
 int tailScanEnd(const TailScanOutcome& r, const TailScanOptions& o, const std::string& resume);
 
 }  // namespace archipelago::cli

@@ -89,7 +89,7 @@ with tempfile.TemporaryDirectory() as d:
     out, err = interrupt(p)
     check(p.returncode in (0, 130), f"the resumed scan stops on SIGINT or finishes ({p.returncode})")
     if p.returncode == 130:
-        check("resumed" in err and "run the same command again to resume" in err, f"exit 130 says how ({err.strip()[-200:]})")
+        check("resumed" in err and "run the same archipelago-cli tail-scan command again to resume" in err, f"exit 130 says how ({err.strip()[-200:]})")
     r = scan(b)
     check(r.returncode == 0 and r.stdout == summary, f"resumed to the end: the uninterrupted summary ({r.stderr.strip()[-200:]})")
     check(all(results(os.path.join(b, f"tail-K{k}.json")) == results(os.path.join(a, f"tail-K{k}.json"))
