@@ -27,6 +27,7 @@ void bindPeriodic(py::module_& m);   // bind_periodic.cpp: periodic orbits and i
 void bindManifolds(py::module_& m);  // bind_manifolds.cpp: stable and unstable manifolds, the turnstile flux
 void bindMeasures(py::module_& m);   // bind_measures.cpp: rotation numbers, island chains, indicator maps
 void bindTail(py::module_& m);       // bind_tail.cpp: the tail of P_t beyond brute force
+void bindTailScan(py::module_& m);   // bind_tail_scan.cpp: the tail sampler over K, its summary
 void bindAtlas(py::module_& m);      // bind_atlas.cpp: the atlas of the islands around islands
 void bindMarkovTree(py::module_& m);  // bind_markov_tree.cpp: the Markov tree of an atlas
 
@@ -59,6 +60,7 @@ PYBIND11_MODULE(_archipelago, m) {
   bindManifolds(m);
   bindMeasures(m);
   bindTail(m);
+  bindTailScan(m);
   bindAtlas(m);
   bindMarkovTree(m);
 }

@@ -32,6 +32,7 @@
 #include "FluxCommand.hpp"
 #include "CantorusCommand.hpp"
 #include "TailCommand.hpp"
+#include "TailScanCommand.hpp"
 
 namespace {
 /// Issue 36, class 2: what a command printed must have reached stdout, as a file's content must reach the disk (a
@@ -73,6 +74,7 @@ int main(int argc, char** argv) {
   archipelago::cli::addAtlasCommand(app, status);
   archipelago::cli::addMarkovTreeCommand(app, status);
   archipelago::cli::addTailCommand(app, status);
+  archipelago::cli::addTailScanCommand(app, status);
   if (argc > 1 && argv[1][0] != '-') {  // name an unknown command instead of CLI11's generic message
     std::string names;
     bool known = false;

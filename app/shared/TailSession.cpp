@@ -102,24 +102,27 @@ void printTailOutcome(const TailSessionOutcome& r) {
   std::fputs(r.report.c_str(), stdout);
 }
 
+void addSamplerOptions(CLI::App& cmd, TailRequest& r, std::string& clones) {
+  addNumberOption(cmd, "--population", r.population, "N: walkers per replica (2 to " + std::to_string(kMaxTailPopulation) + ")");
+  addNumberOption(cmd, "--replicas", r.replicas, "R: independent replicas; the error of P is their spread (1 to " +
+                                                      std::to_string(kMaxTailReplicas) + ")");
+  addNumberOption(cmd, "--first", r.firstSteps, "the first level is the lowest at or above this t (steps): entries are sampled by brute force up to it");
+  addNumberOption(cmd, "--t-max", r.maxSteps, "the last level is the lowest at or above this t (steps)");
+  addNumberOption(cmd, "--level-bins", r.binsPerLevel, "levels every this many histogram bins (30 a decade; 10: x2.15)");
+  addNumberOption(cmd, "--epsilon", r.epsilon, "clones move by up to this many lattice units (2^-52 of the box) in X and Y");
+  cmd.add_option("--clones", clones, "perturb (a move) or metropolis (a move kept only when the exact inverse map "
+                                     "shows the state has the survivor's age)")->capture_default_str();
+  addNumberOption(cmd, "--metropolis-steps", r.metropolisSteps, "Metropolis moves per clone (--clones metropolis)");
+  addNumberOption(cmd, "--warmup", r.warmupBlocks, "blocks an entry orbit runs before its window of trials (stage 0)");
+  addNumberOption(cmd, "--min-ancestors", r.minAncestors,
+                  "a level is reliable when its survivors descend from at least this many entries (all replicas)");
+}
+
 void addTailOptions(CLI::App& cmd_, TailOptions& o_, bool withSlice) {
   CLI::App* cmd = &cmd_;
   TailOptions* o = &o_;
   addSpecOptions(*cmd, *o, {"T", "M", "subsets", "longestKept"});
-  TailRequest& r = o->request;
-  addNumberOption(*cmd, "--population", r.population, "N: walkers per replica (2 to " + std::to_string(kMaxTailPopulation) + ")");
-  addNumberOption(*cmd, "--replicas", r.replicas, "R: independent replicas; the error of P is their spread (1 to " +
-                                                       std::to_string(kMaxTailReplicas) + ")");
-  addNumberOption(*cmd, "--first", r.firstSteps, "the first level is the lowest at or above this t (steps): entries are sampled by brute force up to it");
-  addNumberOption(*cmd, "--t-max", r.maxSteps, "the last level is the lowest at or above this t (steps)");
-  addNumberOption(*cmd, "--level-bins", r.binsPerLevel, "levels every this many histogram bins (30 a decade; 10: x2.15)");
-  addNumberOption(*cmd, "--epsilon", r.epsilon, "clones move by up to this many lattice units (2^-52 of the box) in X and Y");
-  cmd->add_option("--clones", o->clones, "perturb (a move) or metropolis (a move kept only when the exact inverse map "
-                                         "shows the state has the survivor's age)")->capture_default_str();
-  addNumberOption(*cmd, "--metropolis-steps", r.metropolisSteps, "Metropolis moves per clone (--clones metropolis)");
-  addNumberOption(*cmd, "--warmup", r.warmupBlocks, "blocks an entry orbit runs before its window of trials (stage 0)");
-  addNumberOption(*cmd, "--min-ancestors", r.minAncestors,
-                  "a level is reliable when its survivors descend from at least this many entries (all replicas)");
+  addSamplerOptions(*cmd, o->request, o->clones);
   addNumberOption(*cmd, "--threads", o->threads, "OpenMP threads (0: all cores; at most " + std::to_string(kMaxThreads) + ")");
   addKernelOption(*cmd, o->kernel);
   cmd->add_option("--out", o->out, "tail file written at the end (JSON: levels, exponents, the resumable state)")

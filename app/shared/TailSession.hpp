@@ -31,6 +31,10 @@ struct TailOptions : SpecOptions {
   bool warnings = true;    // core's warnings about the run (the box and the island) on stderr: archipelago-mpi's rank 0 only
 };
 
+/// The sampler's own options (--population, --replicas, --first, --t-max, --level-bins, --epsilon, --clones,
+/// --metropolis-steps, --warmup, --min-ancestors): `tail`'s and `tail-scan`'s.
+void addSamplerOptions(CLI::App& cmd, TailRequest& r, std::string& clones);
+
 /// Every option of `tail` on `cmd` (`withSlice`: --slice too; archipelago-mpi takes the slice from its rank).
 void addTailOptions(CLI::App& cmd, TailOptions& o, bool withSlice);
 

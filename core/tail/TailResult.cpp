@@ -10,12 +10,18 @@ namespace archipelago {
 
 namespace {
 
+/// A level's (1 − p)/(n p), p its survivors over its population pooled over the replicas (n walkers): the relative
+/// variance of its survival fraction if every walker were independent (the binomial floor's term).
+double binomialTerm(const TailLevelResult& L) {
+  const double pooled = L.population > 0 ? static_cast<double>(L.survivors) / static_cast<double>(L.population) : 0;
+  return pooled > 0 ? (1 - pooled) / (static_cast<double>(L.population) * pooled) : 0;
+}
+
 /// Level k pooled over the replicas: each replica's P the running product of its survival fractions (`running`,
-/// carried from level to level), P their mean, its errors (TailResult.hpp).  `binomialOfLevel` receives the level's
-/// (1 − p)/(n p) and `relative` their sum over the levels so far: the relative variance of P if every walker were
-/// independent (the binomial floor).
+/// carried from level to level), P their mean, its errors (TailResult.hpp).  `relative` receives the sum of the
+/// levels' binomialTerm() so far: the relative variance of P if every walker were independent (the binomial floor).
 TailLevelResult pooledLevel(const TailState& s, std::size_t k, double stepsNow, std::vector<double>& running,
-                            std::vector<double>& binomialOfLevel, double& relative) {
+                            double& relative) {
   const TailRequest& r = s.request;
   const std::size_t R = s.replicas.size();
   TailLevelResult L;
@@ -41,9 +47,7 @@ TailLevelResult pooledLevel(const TailState& s, std::size_t k, double stepsNow, 
   for (double p : L.replicaP) mean += p;
   mean /= static_cast<double>(R);
   L.P = mean;
-  const double pooled = L.population > 0 ? static_cast<double>(L.survivors) / static_cast<double>(L.population) : 0;
-  binomialOfLevel.push_back(pooled > 0 ? (1 - pooled) / (static_cast<double>(L.population) * pooled) : 0);
-  relative += binomialOfLevel.back();
+  relative += binomialTerm(L);
   L.PErrorBinomial = mean * std::sqrt(relative);
   if (R > 1) {
     double ss = 0;
@@ -94,27 +98,45 @@ double exponentError(const TailResult& out, std::size_t R, const std::vector<std
   return std::sqrt(std::max(var, floor));
 }
 
+/// The reliable levels as the fit sees them: P, the level of each point, and every level's binomialTerm().
+struct ReliablePoints {
+  Series P;
+  std::vector<std::size_t> levelOf;
+  std::vector<double> binomialOfLevel;
+};
+
+ReliablePoints reliablePoints(const TailResult& out) {
+  ReliablePoints r{reliableSurvival(out), {}, {}};
+  for (std::size_t k = 0; k < out.levels.size(); ++k) {
+    if (out.levels[k].reliable) r.levelOf.push_back(k);
+    r.binomialOfLevel.push_back(binomialTerm(out.levels[k]));
+  }
+  return r;
+}
+
+/// γ over window w (TailResult.hpp): fitLogSlope() of P at the reliable levels, its error with R > 1 replicas.
+TailExponent exponentOver(const TailResult& out, const ReliablePoints& points, const LogWindow& w) {
+  TailExponent e;
+  e.tFrom = w.from;
+  e.tTo = w.to;
+  e.t = std::sqrt(w.from * w.to);
+  e.gamma = fitLogSlope(points.P, w.from, w.to, &e.points);
+  const std::size_t R = out.levels.empty() ? 0 : out.levels.front().replicaP.size();
+  if (std::isfinite(e.gamma) && R > 1)
+    e.gammaError = exponentError(out, R, points.levelOf, fitWeights(points.P, w), points.binomialOfLevel);
+  return e;
+}
+
 /// The running exponent γ(t) (TailResult.hpp): over the windows of the statistics' own (runningExponentWindows),
 /// fitLogSlope() of P at the reliable levels.
-std::vector<TailExponent> runningExponents(const TailResult& out, std::size_t R, std::uint32_t q,
-                                           const std::vector<double>& binomialOfLevel) {
+std::vector<TailExponent> runningExponents(const TailResult& out, std::uint32_t q) {
   std::vector<TailExponent> exponents;
-  const Series P = reliableSurvival(out);
-  if (P.x.empty()) return exponents;
-  std::vector<std::size_t> levelOf;  // the level of each point of P
-  for (std::size_t k = 0; k < out.levels.size(); ++k)
-    if (out.levels[k].reliable) levelOf.push_back(k);
-  const double lowest = std::max({P.x.front(), 10.0, 2.0 * q});
-  for (const LogWindow& w : runningExponentWindows(P.x.back(), lowest)) {
-    TailExponent e;
-    e.tFrom = w.from;
-    e.tTo = w.to;
-    e.t = std::sqrt(w.from * w.to);
-    e.gamma = fitLogSlope(P, w.from, w.to, &e.points);
-    if (!std::isfinite(e.gamma)) continue;
-    const std::vector<double> weight = fitWeights(P, w);
-    if (R > 1) e.gammaError = exponentError(out, R, levelOf, weight, binomialOfLevel);
-    exponents.push_back(e);
+  const ReliablePoints points = reliablePoints(out);
+  if (points.P.x.empty()) return exponents;
+  const double lowest = std::max({points.P.x.front(), 10.0, 2.0 * q});
+  for (const LogWindow& w : runningExponentWindows(points.P.x.back(), lowest)) {
+    TailExponent e = exponentOver(out, points, w);
+    if (std::isfinite(e.gamma)) exponents.push_back(e);
   }
   return exponents;
 }
@@ -130,12 +152,14 @@ TailResult tailResult(const TailState& s) {
   for (const TailReplica& x : s.replicas) reached = std::min(reached, x.levels.size());
   if (R == 0 || reached == SIZE_MAX) return out;
   std::vector<double> running(R, 0);
-  std::vector<double> binomialOfLevel;
   double relative = 0;
-  for (std::size_t k = 0; k < reached; ++k)
-    out.levels.push_back(pooledLevel(s, k, out.steps, running, binomialOfLevel, relative));
-  out.exponents = runningExponents(out, R, s.request.run.q, binomialOfLevel);
+  for (std::size_t k = 0; k < reached; ++k) out.levels.push_back(pooledLevel(s, k, out.steps, running, relative));
+  out.exponents = runningExponents(out, s.request.run.q);
   return out;
+}
+
+TailExponent tailExponentOver(const TailResult& result, double from, double to) {
+  return exponentOver(result, reliablePoints(result), LogWindow{from, to});
 }
 
 TailResult runTailSampler(const TailRequest& request, const TailRunOptions& options, const TailObserver& observer,

@@ -86,6 +86,12 @@ struct TailResult {
 [[nodiscard]] TailResult runTailSampler(const TailRequest& request, const TailRunOptions& options = {},
                                         const TailObserver& observer = {}, std::stop_token stop = {});
 
+/// γ over the window [from, to] (steps) by the running exponent's one definition (above): fitLogSlope() of P at the
+/// reliable levels, its error from the replicas' covariance with the binomial floor (NaN with one replica); gamma NaN
+/// when the window holds fewer than 3 grid points of them.  `exponents` uses runningExponentWindows(); a K scan
+/// (TailScan.hpp) uses windows fixed for every K.
+[[nodiscard]] TailExponent tailExponentOver(const TailResult& result, double from, double to);
+
 /// The largest t of a reliable level, or 0 when none is.
 [[nodiscard]] double largestReliableT(const TailResult& result) noexcept;
 

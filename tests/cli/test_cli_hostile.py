@@ -104,6 +104,9 @@ def baseline(command, d):
                   "--json", os.path.join(d, "at.json"), "--quiet"],
         "tail": ["tail", "--first", "16", "--t-max", "100", "--population", "4", "--replicas", "2", "--warmup", "8",
                  "--min-ancestors", "1", "--out", os.path.join(d, "t.json"), "--quiet", "--threads", "1"],
+        "tail-scan": ["tail-scan", "--K", "0.1", "--first", "16", "--t-max", "100", "--population", "4", "--replicas", "2",
+                      "--warmup", "8", "--min-ancestors", "1", "--dir", os.path.join(d, "ts"), "--quiet", "--threads",
+                      "1"],
     }.get(command)
 
 

@@ -6,7 +6,9 @@ with the same spec (all but timing and kernel name):
   * k01-array.sbatch (2 array tasks of `archipelago-cli run --orbits`), then k01-merge.sbatch (afterok);
   * the time limit: k01-mpi.sbatch with a 1-minute limit and a run that outlasts it; Slurm's signal before the
     limit makes the run checkpoint, the script requeues the job, it resumes (--resume), and its k01.json is the
-    uninterrupted run's.
+    uninterrupted run's;
+  * tail-scan-array.sbatch (2 array tasks of `archipelago-cli tail-scan --task`, after the merge): every K's tail file
+    and the summary's CSVs are those of the one-process `archipelago-cli tail-scan` (issue 55).
 The cluster: munged, slurmctld and slurmd started here as this test's own processes, with a slurm.conf for this
 host (2 CPUs) in a temporary folder (their own ports, state, spool and munge socket there), stopped by PID at the
 end.  Nothing is installed here (scripts/install-deps.sh installs slurm-wlm and munge).  When Slurm is missing,
@@ -68,7 +70,8 @@ for port in (PORT, PORT + 1):
         except OSError as e:
             skip(f"TCP port {port} is taken ({e.strerror}): a Slurm or another run of this test is using it; this "
                  f"test never touches another Slurm (another base port: ARCHIPELAGO_SLURM_PORT)")
-scripts = {n: os.path.join(docs, n) for n in ("k01-mpi.sbatch", "k01-array.sbatch", "k01-merge.sbatch")}
+scripts = {n: os.path.join(docs, n) for n in ("k01-mpi.sbatch", "k01-array.sbatch", "k01-merge.sbatch",
+                                              "tail-scan-array.sbatch")}
 page = open(os.path.join(os.path.dirname(docs), "cluster.md")).read()
 check(all(f"cluster/{n}" in page for n in scripts), "docs/cluster.md includes the scripts submitted here")
 
@@ -82,7 +85,7 @@ def p(*names):
     return os.path.join(tmp, *names)
 
 
-for d in ("state", "spool", "log", "mpi", "array", "timelimit"):
+for d in ("state", "spool", "log", "mpi", "array", "timelimit", "tailscan"):
     os.mkdir(p(d))
 with open(os.open(p("munge.key"), os.O_WRONLY | os.O_CREAT, 0o600), "wb") as f:
     f.write(os.urandom(1024))
@@ -247,6 +250,15 @@ try:
                                     scripts["k01-array.sbatch"])
     jobs["merge (afterok)"] = sbatch("array", f"--dependency=afterok:{jobs['array, 2 tasks']}", "--time=10",
                                      scripts["k01-merge.sbatch"])
+    # The tail scan over K (issue 55): two K, two tasks, after the merge; its reference is the one-process scan.
+    scan_args = ["--K", "0.1,0.15", "--t-max", "3e4", "--first", "100", "--population", "40", "--replicas", "4",
+                 "--min-ancestors", "4"]
+    open(p("tailscan", "tail-scan.args"), "w").write(" ".join(scan_args) + "\n")
+    run(cli, "tail-scan", *scan_args, "--dir", p("ref-scan"), "--csv", p("ref-scan", "tail-scan"), "--threads", "1",
+        "--quiet")
+    jobs["tail-scan array, 2 tasks"] = sbatch("tailscan", f"--dependency=afterok:{jobs['merge (afterok)']}",
+                                              "--array=0-1", "--cpus-per-task=1", "--time=10",
+                                              scripts["tail-scan-array.sbatch"])
     submitted_at = now()
     reference = subprocess.Popen([cli, "run", "--spec", p("timelimit", "k01.spec.json"), "--threads", "1",
                                   "--out", p("ref-long.json"), "--quiet"], env=env)
@@ -309,7 +321,7 @@ try:
     print("     slurmctld's time-limit checks at " + ", ".join(f"{c - epoch:.1f}" for c in checks() if c >= epoch))
 
     every = [r for rs in records.values() for r in rs]
-    check(len(every) == 5 and all(r["JobState"] == "COMPLETED" and r["ExitCode"] == "0:0" for r in every),
+    check(len(every) == 7 and all(r["JobState"] == "COMPLETED" and r["ExitCode"] == "0:0" for r in every),
           "every job COMPLETED with status 0: " + ", ".join(f"{r['JobId']} {r['JobState']} {r['ExitCode']} "
                                                              f"({r.get('Reason')})" for r in every))
     ref_small = content(p("ref-small.json"))
@@ -322,6 +334,15 @@ try:
     merge, array = records["merge (afterok)"], records["array, 2 tasks"]
     check(merge and array and all(merge[0].get("StartTime", "") >= a.get("EndTime", "~") for a in array),
           "the merge ran after every array task ended")
+
+    scan_files = ["tail-K0.1.json", "tail-K0.15.json"]
+    same = all(os.path.exists(p("tailscan", "tail-scan", f)) and
+               content(p("tailscan", "tail-scan", f)) == content(p("ref-scan", f)) for f in scan_files)
+    csvs = [f"tail-scan_{n}.csv" for n in ("P", "gamma", "average")]
+    same_csv = all(os.path.exists(p("tailscan", f)) and
+                   open(p("tailscan", f), "rb").read() == open(p("ref-scan", f), "rb").read() for f in csvs)
+    check(same and same_csv, "tail-scan-array.sbatch (2 tasks): every K's tail file and the summary's CSVs are "
+          "archipelago-cli tail-scan's of the same settings")
 
     tl = records["time limit, 1 task"]
     restarts = int(tl[0].get("Restarts", 0)) if tl else 0

@@ -1,0 +1,383 @@
+#include "core/tail/TailScan.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+
+#include "core/atlas/BoxIslandCheck.hpp"
+#include "core/io/AtomicFile.hpp"
+#include "core/io/NumberText.hpp"
+#include "core/job/Job.hpp"
+#include "core/limits/Limits.hpp"
+#include "core/scan/ScanBox.hpp"
+#include "core/scan/ScanRun.hpp"
+#include "core/tail/TailFile.hpp"
+#include "core/tail/TailJob.hpp"
+#include "core/tail/TailPlan.hpp"
+
+namespace archipelago {
+
+namespace {
+
+/// The scan's settings checked whole, and what follows from them.
+struct ScanSettings {
+  std::vector<double> K;
+  std::vector<std::size_t> mine;   ///< the indices of this process's K
+  std::vector<TailRequest> requests;  ///< per K
+  const KernelInfo* kernel = nullptr;
+};
+
+/// Task "I/N" (role "task"): whole numbers with I < N.
+std::pair<std::uint32_t, std::uint32_t> parseTask(const std::string& option, const std::string& text) {
+  const std::string rule = "I/N, whole numbers with I < N (task I of N)";
+  const std::vector<std::uint32_t> v = io::parseNumbers<std::uint32_t>(option, text, '/', 2, rule);
+  if (!(v[0] < v[1])) throw std::invalid_argument(option + " '" + io::shortText(text) + "' must be " + rule);
+  return {v[0], v[1]};
+}
+
+/// This process's K: those of its task (i mod N = I), then the m-th of them on rank m mod size.
+std::vector<std::size_t> shareOf(std::size_t count, std::pair<std::uint32_t, std::uint32_t> task, const Ranks& ranks) {
+  std::vector<std::size_t> mine;
+  std::size_t m = 0;
+  for (std::size_t i = task.first; i < count; i += task.second, ++m)
+    if (m % static_cast<std::size_t>(ranks.size()) == static_cast<std::size_t>(ranks.rank())) mine.push_back(i);
+  return mine;
+}
+
+/// The sampler's request at K: the base's process in the box of scanBox(K), the settings and the clone rule given.
+TailRequest requestAt(const TailScanRequest& r, double K) {
+  TailRequest request = r.request;
+  request.run = r.base.parameters;
+  request.run.map = scanBox(K);
+  request.clones = parseCloneRule(r.clones, r.nameOf("clones"));
+  return request;
+}
+
+ScanSettings checkedSettings(const TailScanRequest& r, const Ranks& ranks) {
+  ScanSettings s;
+  try {
+    s.K = parseScanValues(r.K);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(r.nameOf("K") + ": " + e.what());
+  }
+  const auto task = r.task ? parseTask(r.nameOf("task"), *r.task) : std::pair<std::uint32_t, std::uint32_t>{0, 1};
+  if (auto e = threadsError(r.base.threads)) throw std::invalid_argument(*e);
+  if (auto e = checkpointIntervalError(r.nameOf("checkpoint-interval"), r.checkpointSeconds))
+    throw std::invalid_argument(*e);
+  for (const double K : s.K) {
+    RunSpec spec = r.base;
+    spec.parameters.map = scanBox(K);
+    if (auto e = validationError(spec)) throw std::invalid_argument("K = " + scanKText(K) + ": " + *e);
+    s.requests.push_back(requestAt(r, K));
+    if (auto e = tailRequestError(s.requests.back())) throw std::invalid_argument(*e);
+  }
+  if (r.dir.empty()) throw std::invalid_argument(r.nameOf("dir") + " is empty: give a folder");
+  s.mine = shareOf(s.K.size(), task, ranks);
+  s.kernel = &selectKernel(r.base.kernel == "auto" ? std::string() : r.base.kernel);
+  return s;
+}
+
+/// The first setting in which two requests differ: its role, or what it is.
+std::string firstDifference(const TailRequest& file, const TailRequest& wanted) {
+  if (!(file.run.map == wanted.run.map)) return "the map or its box";
+  if (file.run.seed != wanted.run.seed) return "seed";
+  if (file.population != wanted.population) return "population";
+  if (file.replicas != wanted.replicas) return "replicas";
+  if (file.maxSteps != wanted.maxSteps) return "t-max";
+  if (file.firstSteps != wanted.firstSteps) return "first";
+  if (file.clones != wanted.clones) return "clones";
+  return "the process or the sampler's settings";
+}
+
+/// A role by the front end's name; a description (with a blank) as it is.
+std::string nameOrWhat(const TailScanRequest& r, const std::string& role) {
+  return role.find(' ') == std::string::npos ? r.nameOf(role) : role;
+}
+
+/// The run of K in its file, checked to be the scan's (a whole run of the same request); none when absent.
+std::optional<TailState> readScanFile(const TailScanRequest& r, const std::filesystem::path& file, double K,
+                                      const TailRequest& wanted) {
+  std::error_code ec;
+  if (!std::filesystem::exists(file, ec)) return std::nullopt;
+  TailState state = loadTailFile(file);
+  if (!(state.request == wanted))
+    throw std::invalid_argument(file.string() + " holds a tail run of other settings than this scan's K = " +
+                                scanKText(K) + " (" + nameOrWhat(r, firstDifference(state.request, wanted)) +
+                                " differs): another folder, or remove the file");
+  if (state.firstReplica != 0 || state.replicas.size() != wanted.replicas)
+    throw std::invalid_argument(file.string() + " holds a slice of the replicas, not the whole run of K = " +
+                                scanKText(K));
+  return state;
+}
+
+/// One K of this process: its file and its run as planned.
+struct ScanItem {
+  std::size_t index = 0;
+  std::filesystem::path file;
+  TailState state;
+  std::string how;  ///< reused, resumed, started
+};
+
+std::vector<ScanItem> planItems(const TailScanRequest& r, const ScanSettings& s) {
+  std::vector<ScanItem> items;
+  for (const std::size_t i : s.mine) {
+    ScanItem item{i, tailScanFile(r.dir, s.K[i]), {}, {}};
+    if (std::optional<TailState> state = readScanFile(r, item.file, s.K[i], s.requests[i])) {
+      item.how = state->finished() ? "reused" : "resumed";
+      item.state = std::move(*state);
+    } else {
+      item.how = "started";
+      item.state = startTail(s.requests[i]);
+    }
+    items.push_back(std::move(item));
+  }
+  return items;
+}
+
+/// Runs one K to its end or the stop; the file holds it either way.  Whether it finished.
+bool runItem(ScanItem& item, const TailScanRequest& r, const ScanSettings& s, const TailScanView& view,
+             std::stop_token stop) {
+  const double K = s.K[item.index];
+  if (view.begins) view.begins(item.index, s.K.size(), K, item.how);
+  if (item.how == "started" && r.warning)
+    if (const BoxIslandCheck c = checkBoxAgainstIsland(item.state.request.run.map, item.state.request.run.Xr); c.cuts())
+      r.warning("K = " + scanKText(K) + ": " + c.warning);
+  if (!item.state.finished()) {
+    TailJobOptions job;
+    job.run.threads = r.base.threads;
+    job.run.kernel = s.kernel;
+    job.checkpoint = item.file;
+    job.checkpointSeconds = r.checkpointSeconds;
+    job.warning = view.checkpointWarning;
+    LastCheckpoint last{item.how == "resumed" ? item.file.string() : std::string(), 0};
+    TailObserver progress;
+    if (view.progress)
+      progress = [&](const TailState& state, const TailProgress& p) { view.progress(item.index, K, state, p); };
+    item.state = runTailJob(std::move(item.state), job, last, progress, std::move(stop));
+    saveTailOrSayWhere(item.file, item.state, last, ": run the same scan again to resume it");
+  }
+  if (item.state.finished() && view.finished) view.finished(item.index, K, item.state);
+  return item.state.finished();
+}
+
+/// Every K's finished run from the folder, or the K not finished yet.
+std::vector<double> unfinished(const TailScanRequest& r, const ScanSettings& s, std::vector<TailState>& states) {
+  std::vector<double> waiting;
+  for (std::size_t i = 0; i < s.K.size(); ++i) {
+    std::optional<TailState> state = readScanFile(r, tailScanFile(r.dir, s.K[i]), s.K[i], s.requests[i]);
+    if (!state || !state->finished()) waiting.push_back(s.K[i]);
+    else states.push_back(std::move(*state));
+  }
+  return waiting;
+}
+
+/// Rank 0's end of a scan whose K on every rank are finished: the summary when every K of the list is, its CSVs.
+TailScanOutcome summaryOutcome(const TailScanRequest& r, const ScanSettings& s) {
+  TailScanOutcome out;
+  out.K = s.K;
+  std::vector<TailState> states;
+  out.waitingFor = unfinished(r, s, states);
+  if (!out.waitingFor.empty()) {
+    out.end = TailScanOutcome::End::waiting;
+    return out;
+  }
+  out.summary = tailScanSummary(s.K, std::move(states));
+  if (!r.csv.empty()) {
+    const std::vector<std::string> files = tailScanCsvFiles(r.csv);
+    io::OutputBatch outputs;
+    io::writeFileAtomically(files[0], tailScanPCsv(out.summary));
+    io::writeFileAtomically(files[1], tailScanGammaCsv(out.summary));
+    io::writeFileAtomically(files[2], tailScanAverageCsv(out.summary));
+    outputs.commit();
+  }
+  return out;
+}
+
+/// Runs `f` on every rank, an error on any being one on all; one process: its error as thrown.
+template <class F>
+void onEveryRank(Ranks& ranks, F&& f) {
+  if (ranks.sliced()) together(ranks, std::forward<F>(f));
+  else f();
+}
+
+/// Whether K reaches window w: a reliable level at or below its start and one at or above its end.
+bool reaches(const TailResult& result, const LogWindow& w) {
+  bool below = false, above = false;
+  for (const TailLevelResult& L : result.levels) {
+    below = below || (L.reliable && L.t <= w.from);
+    above = above || (L.reliable && L.t >= w.to);
+  }
+  return below && above;
+}
+
+/// The K-average of a window over the K whose γ is given there (TailScan.hpp).
+TailScanWindow averageOver(const std::vector<std::vector<TailExponent>>& gamma, std::size_t w, const LogWindow& window) {
+  TailScanWindow a;
+  a.from = window.from;
+  a.to = window.to;
+  a.t = std::sqrt(window.from * window.to);
+  double sum = 0, variance = 0;
+  for (const std::vector<TailExponent>& of : gamma)
+    if (std::isfinite(of[w].gamma)) {
+      ++a.count;
+      sum += of[w].gamma;
+      variance += of[w].gammaError * of[w].gammaError;
+    }
+  if (a.count == 0) return a;
+  const auto n = static_cast<double>(a.count);
+  a.mean = sum / n;
+  a.error = std::sqrt(variance) / n;
+  if (a.count < 2) return a;
+  double squares = 0;
+  for (const std::vector<TailExponent>& of : gamma)
+    if (std::isfinite(of[w].gamma)) squares += (of[w].gamma - a.mean) * (of[w].gamma - a.mean);
+  a.spread = std::sqrt(squares / (n - 1));
+  return a;
+}
+
+/// A number with 17 significant digits, empty when not finite (the CSVs').
+std::string csvNumber(double v) { return std::isfinite(v) ? io::formatC("%.17g", v) : std::string(); }
+
+}  // namespace
+
+std::string TailScanRequest::nameOf(std::string_view role) const {
+  return optionName ? optionName(role) : std::string(role);
+}
+
+std::filesystem::path tailScanFile(const std::filesystem::path& dir, double K) {
+  return dir / ("tail-K" + scanKText(K) + ".json");
+}
+
+std::vector<std::string> tailScanCsvFiles(const std::string& prefix) {
+  return {prefix + "_P.csv", prefix + "_gamma.csv", prefix + "_average.csv"};
+}
+
+std::vector<LogWindow> tailScanWindows(double lowest, double largest) {
+  std::vector<LogWindow> windows;
+  if (!(lowest > 0 && largest > 0 && std::isfinite(lowest) && std::isfinite(largest))) return windows;
+  for (int j = static_cast<int>(std::ceil(2 * std::log10(lowest) - 1e-9));; ++j) {
+    const LogWindow w{std::pow(10.0, j / 2.0), std::pow(10.0, j / 2.0 + 1)};
+    if (w.from < lowest) continue;  // rounding of the logarithm
+    if (w.to > largest) break;
+    windows.push_back(w);
+  }
+  return windows;
+}
+
+TailScanSummary tailScanSummary(const std::vector<double>& K, std::vector<TailState> states) {
+  if (states.empty() || states.size() != K.size()) throw std::invalid_argument("a tail scan's summary needs a run per K");
+  for (const TailState& s : states) {
+    if (!s.finished()) throw std::invalid_argument("a tail scan's summary needs finished runs");
+    if (s.levels != states.front().levels || s.request.run.q != states.front().request.run.q)
+      throw std::invalid_argument("the runs of a tail scan's summary must have the same levels");
+  }
+  TailScanSummary out;
+  out.K = K;
+  const double q = states.front().request.run.q;
+  const double lowest = std::max({static_cast<double>(states.front().levels.front()) * q, 10.0, 2 * q});
+  out.windows = tailScanWindows(lowest, static_cast<double>(states.front().levels.back()) * q);
+  for (const TailState& s : states) {
+    out.results.push_back(tailResult(s));
+    std::vector<TailExponent>& of = out.gamma.emplace_back();
+    for (const LogWindow& w : out.windows) {
+      of.push_back(reaches(out.results.back(), w) ? tailExponentOver(out.results.back(), w.from, w.to)
+                                                  : TailExponent{w.from, w.to, std::sqrt(w.from * w.to), 0,
+                                                                 std::numeric_limits<double>::quiet_NaN()});
+    }
+  }
+  for (std::size_t w = 0; w < out.windows.size(); ++w) out.average.push_back(averageOver(out.gamma, w, out.windows[w]));
+  out.states = std::move(states);
+  return out;
+}
+
+std::string tailScanText(const TailScanSummary& s) {
+  const TailRequest& r = s.states.front().request;
+  std::string out = io::formatC("# tail-scan: %zu K; q = %u, seed = %llu, N = %u, R = %u, clones = %s, t_max = %s\n",
+                                s.K.size(), r.run.q, static_cast<unsigned long long>(r.run.seed), r.population,
+                                r.replicas, cloneRuleName(r.clones), io::shortestText(r.maxSteps).c_str());
+  out += "# P_t per K and level\n" + io::formatC("%8s %12s %12s %10s %9s\n", "K", "t", "P", "P_error", "reliable");
+  for (std::size_t k = 0; k < s.K.size(); ++k)
+    for (const TailLevelResult& L : s.results[k].levels)
+      out += io::formatC("%8s %12.0f %12.5g %10.3g %9s\n", scanKText(s.K[k]).c_str(), L.t, L.P, L.PError,
+                         L.reliable ? "yes" : "no");
+  out += "# gamma = -dlnP/dlnt per K over the windows (reached: a reliable level at or below t_from and one at or "
+         "above t_to)\n" +
+         io::formatC("%8s %12s %12s %8s %8s\n", "K", "t_from", "t_to", "gamma", "error");
+  for (std::size_t k = 0; k < s.K.size(); ++k)
+    for (const TailExponent& e : s.gamma[k])
+      if (std::isfinite(e.gamma))
+        out += io::formatC("%8s %12.0f %12.0f %8.4f %8.3g\n", scanKText(s.K[k]).c_str(), e.tFrom, e.tTo, e.gamma,
+                           e.gammaError);
+  out += "# the K-average of gamma per window: over the K that reach it; spread: standard deviation over K; error: "
+         "sqrt(sum of the K's error^2)/K\n" +
+         io::formatC("%12s %12s %4s %8s %8s %8s\n", "t_from", "t_to", "K", "gamma", "spread", "error");
+  for (const TailScanWindow& a : s.average)
+    out += io::formatC("%12.0f %12.0f %4zu %8.4f %8.3g %8.3g\n", a.from, a.to, a.count, a.mean, a.spread, a.error);
+  return out;
+}
+
+std::string tailScanPCsv(const TailScanSummary& s) {
+  std::string out = "K,t,P,P_error,reliable\n";
+  for (std::size_t k = 0; k < s.K.size(); ++k)
+    for (const TailLevelResult& L : s.results[k].levels)
+      out += csvNumber(s.K[k]) + "," + csvNumber(L.t) + "," + csvNumber(L.P) + "," + csvNumber(L.PError) + "," +
+             (L.reliable ? "1" : "0") + "\n";
+  return out;
+}
+
+std::string tailScanGammaCsv(const TailScanSummary& s) {
+  std::string out = "K,t_from,t_to,t,points,gamma,gamma_error\n";
+  for (std::size_t k = 0; k < s.K.size(); ++k)
+    for (const TailExponent& e : s.gamma[k])
+      out += csvNumber(s.K[k]) + "," + csvNumber(e.tFrom) + "," + csvNumber(e.tTo) + "," + csvNumber(e.t) + "," +
+             std::to_string(e.points) + "," + csvNumber(e.gamma) + "," + csvNumber(e.gammaError) + "\n";
+  return out;
+}
+
+std::string tailScanAverageCsv(const TailScanSummary& s) {
+  std::string out = "t_from,t_to,t,K_count,gamma_mean,gamma_spread,gamma_mean_error\n";
+  for (const TailScanWindow& a : s.average)
+    out += csvNumber(a.from) + "," + csvNumber(a.to) + "," + csvNumber(a.t) + "," + std::to_string(a.count) + "," +
+           csvNumber(a.mean) + "," + csvNumber(a.spread) + "," + csvNumber(a.error) + "\n";
+  return out;
+}
+
+TailScanOutcome runTailScan(const TailScanRequest& r, const TailScanView& view, Ranks& ranks, std::stop_token stop) {
+  ScanSettings s;
+  std::vector<io::FileLock> locks;
+  std::vector<ScanItem> items;
+  onEveryRank(ranks, [&] {
+    s = checkedSettings(r, ranks);
+    if (ranks.rank() != 0) return;  // rank 0 makes the folder, then the others find it
+    if (auto e = scanFolderError(r.dir)) throw std::runtime_error(*e);
+    std::filesystem::create_directory(r.dir);
+  });
+  onEveryRank(ranks, [&] {
+    if (!std::filesystem::is_directory(r.dir)) throw std::runtime_error("cannot find the folder " + r.dir);
+    for (const std::string& csv : r.csv.empty() ? std::vector<std::string>{} : tailScanCsvFiles(r.csv))
+      io::checkWritableTarget(csv);  // after the folder is made: the CSVs may be in it
+    for (const std::size_t i : s.mine) {
+      const std::string file = tailScanFile(r.dir, s.K[i]).string();
+      for (io::FileLock& lock : lockJobFiles(file, file, {})) locks.push_back(std::move(lock));
+    }
+    items = planItems(r, s);
+  });
+  bool finished = true;
+  std::string stoppedFile;
+  onEveryRank(ranks, [&] {
+    for (ScanItem& item : items) {
+      if (runItem(item, r, s, view, stop)) continue;
+      finished = false;
+      stoppedFile = item.file.string();
+      break;
+    }
+  });
+  if (!ranks.all(finished)) return {TailScanOutcome::End::interrupted, s.K, stoppedFile, {}, {}};
+  TailScanOutcome out{TailScanOutcome::End::finished, s.K, {}, {}, {}};
+  onEveryRank(ranks, [&] {
+    if (ranks.rank() == 0) out = summaryOutcome(r, s);
+  });
+  return out;
+}
+
+}  // namespace archipelago

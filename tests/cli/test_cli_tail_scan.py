@@ -1,0 +1,136 @@
+#!/usr/bin/env python3
+"""archipelago-cli tail-scan, end to end (issue 55): a tail file per K, each the run of `tail` in the scan's box; the
+summary and its CSVs; a rerun from the files giving the same bytes; a scan killed (SIGKILL) and stopped (SIGINT, exit
+130) whose resumes give the uninterrupted scan's files bit for bit; the K shared over tasks; and hostile input (one
+ERROR line, a non-zero exit, nothing written)."""
+import csv, json, os, shutil, signal, subprocess, tempfile
+
+from clitest import check, cli, finish, interrupt, run, wait_for_file, wait_for_handler
+
+SETTINGS = {"--K": "0.1,0.15", "--t-max": "3e4", "--first": "100", "--population": "40", "--replicas": "4",
+            "--min-ancestors": "4", "--threads": "2"}
+SMALL = [x for kv in SETTINGS.items() for x in kv]
+
+
+def small_with(args):
+    """SMALL with the options of `args` replacing its own."""
+    given = {x for x in args if x.startswith("--")}
+    return [x for k, v in SETTINGS.items() if k not in given for x in (k, v)] + list(args)
+
+
+def results(path):
+    """What a tail file says, without what may differ between sessions (time, kernel)."""
+    d = json.load(open(path))
+    for key in ("elapsedSeconds", "kernel", "checksum"):
+        d.pop(key)
+    return d
+
+
+def scan(folder, *extra):
+    return run("tail-scan", *SMALL, "--dir", folder, *extra)
+
+
+def files(folder):
+    return sorted(os.listdir(folder)) if os.path.isdir(folder) else []
+
+
+with tempfile.TemporaryDirectory() as d:
+    a = os.path.join(d, "a")
+    r = scan(a, "--csv", os.path.join(a, "sum"), "--checkpoint-interval", "0.2")
+    check(r.returncode == 0, f"tail-scan exits 0 ({r.stderr.strip()[-300:]})")
+    check(files(a) == ["sum_P.csv", "sum_average.csv", "sum_gamma.csv", "tail-K0.1.json", "tail-K0.15.json"],
+          f"a tail file per K and the three CSVs ({files(a)})")
+    check("WARNING" not in r.stderr, "K = 0.1 and 0.15: the scan's boxes hold the island (no warning)")
+    check(r.stderr.count("started") == 2 and "finished" in r.stderr, "progress per K")
+    summary = r.stdout
+    average = list(csv.DictReader(open(os.path.join(a, "sum_average.csv"))))
+    check(len(average) >= 2 and all(row["K_count"] == "2" for row in average),
+          f"every window reached by both K ({[row['K_count'] for row in average]})")
+    gamma = list(csv.DictReader(open(os.path.join(a, "sum_gamma.csv"))))
+    for row in average:
+        g = [float(x["gamma"]) for x in gamma if x["t_from"] == row["t_from"]]
+        check(abs(float(row["gamma_mean"]) - sum(g) / 2) <= 1e-15 * abs(sum(g))
+              and abs(float(row["gamma_spread"]) - abs(g[0] - g[1]) / 2 ** 0.5) <= 1e-12,
+              f"the K-average and spread of window {row['t_from']}..{row['t_to']} from the gamma CSV")
+    P = list(csv.DictReader(open(os.path.join(a, "sum_P.csv"))))
+    doc = json.load(open(os.path.join(a, "tail-K0.1.json")))
+    check([float(x["P"]) for x in P if x["K"] == "0.10000000000000001"] == [L["P"] for L in doc["levels"]],
+          "the P CSV holds each tail file's levels")
+    check(doc["finished"] and doc["parameters"]["K"] == 0.1, "a finished tail file of K = 0.1")
+
+    # Each K's file is the run `tail` makes with the same settings in the scan's box.
+    par = doc["parameters"]
+    one = os.path.join(d, "one.json")
+    r = run("tail", *SMALL[2:], "--K", "0.1", "--xmin", repr(par["xmin"]), "--xmax", repr(par["xmax"]), "--out", one,
+            "--quiet")
+    check(r.returncode == 0 and results(one) == results(os.path.join(a, "tail-K0.1.json")),
+          f"K = 0.1's file is tail's run in the box of scanBox(0.1) ({r.stderr.strip()[-200:]})")
+
+    # A rerun from the files: every K reused, the same summary, byte for byte.
+    before = {n: open(os.path.join(a, n), "rb").read() for n in files(a)}
+    r = scan(a, "--csv", os.path.join(a, "sum"))
+    check(r.returncode == 0 and r.stderr.count("reused") == 2, f"a rerun reuses every K ({r.stderr.strip()[-200:]})")
+    check(r.stdout == summary, "the rerun's summary: the same bytes")
+    check(all(open(os.path.join(a, n), "rb").read() == before[n] for n in before), "the same files, byte for byte")
+
+    # Killed (SIGKILL) once a checkpoint exists, then stopped (SIGINT): each resume goes on from the files, and the
+    # end is the uninterrupted scan's, bit for bit.
+    b = os.path.join(d, "b")
+    p = subprocess.Popen([cli, "tail-scan", *SMALL, "--dir", b, "--checkpoint-interval", "0.05", "--quiet"],
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    check(wait_for_file(os.path.join(b, "tail-K0.1.json"), p), "a checkpoint appears")
+    p.kill()
+    p.communicate()
+    killed = json.load(open(os.path.join(b, "tail-K0.1.json")))
+    check(not killed["finished"] or p.returncode == 0, "killed mid-way: K = 0.1's checkpoint is unfinished")
+    p = subprocess.Popen([cli, "tail-scan", *SMALL, "--dir", b, "--checkpoint-interval", "0.05"],
+                         stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    wait_for_handler(p)
+    out, err = interrupt(p)
+    check(p.returncode in (0, 130), f"the resumed scan stops on SIGINT or finishes ({p.returncode})")
+    if p.returncode == 130:
+        check("resumed" in err and "run the same archipelago-cli tail-scan command again to resume" in err, f"exit 130 says how ({err.strip()[-200:]})")
+    r = scan(b)
+    check(r.returncode == 0 and r.stdout == summary, f"resumed to the end: the uninterrupted summary ({r.stderr.strip()[-200:]})")
+    check(all(results(os.path.join(b, f"tail-K{k}.json")) == results(os.path.join(a, f"tail-K{k}.json"))
+              for k in ("0.1", "0.15")), "resumed: every tail file's results bit for bit")
+
+    # Two tasks of an array: each its K; the summary once both are done.
+    c = os.path.join(d, "c")
+    r = scan(c, "--task", "1/2")
+    check(r.returncode == 0 and files(c) == ["tail-K0.15.json"] and "waits for K = 0.1" in r.stderr,
+          f"task 1/2 runs K = 0.15 only and waits ({r.stderr.strip()[-200:]})")
+    r = scan(c, "--task", "0/2")
+    check(r.returncode == 0 and r.stdout == summary, "task 0/2 ends the scan: the one-process summary")
+
+    # Hostile input: one ERROR line, non-zero, nothing written.
+    h = os.path.join(d, "h")
+    os.makedirs(h)
+    truncated = os.path.join(d, "truncated")
+    os.makedirs(truncated)
+    with open(os.path.join(truncated, "tail-K0.1.json"), "w") as f:
+        f.write(open(os.path.join(a, "tail-K0.1.json")).read()[:5000])
+    other = os.path.join(d, "other")
+    shutil.copytree(a, other)
+    swapped = os.path.join(d, "swapped")
+    os.makedirs(swapped)
+    shutil.copy(os.path.join(a, "tail-K0.1.json"), os.path.join(swapped, "tail-K0.15.json"))
+    for args, folder, mention in [
+        (["--K", "nan"], h, "--K: "),
+        (["--K", "0.1,0.1"], h, "twice"),
+        (["--t-max", "-5"], h, "--t-max = -5 must be an integer"),
+        (["--task", "3/2"], h, "--task '3/2' must be I/N, whole numbers with I < N"),
+        (["--task", ""], h, "--task"),
+        (["--checkpoint-interval", "-1"], h, "--checkpoint-interval"),
+        (["--clones", "magic"], h, "--clones 'magic'"),
+        ([], truncated, "tail-K0.1.json"),
+        (["--population", "41"], other, "--population differs"),
+        ([], swapped, "the map or its box differs"),
+    ]:
+        listed = files(folder)
+        r = run("tail-scan", *small_with(args), "--dir", folder)
+        lines = r.stderr.strip().splitlines()
+        check(r.returncode != 0 and len(lines) == 1 and lines[0].startswith("ERROR: ") and mention in lines[0]
+              and files(folder) == listed, f"{' '.join(args)[:40] or folder} -> {lines[:1]}")
+
+finish()

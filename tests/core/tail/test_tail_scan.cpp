@@ -1,0 +1,143 @@
+// The tail sampler scanned over K (core/tail/TailScan.hpp, issue 55): the windows common to every K, γ per K and
+// window with its error from the replicas' covariance, and the K-average with its spread, each against a hand
+// computation on small synthetic runs.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "core/tail/TailScan.hpp"
+
+namespace archipelago {
+namespace {
+
+/// One replica's counts at the levels t = 10, 100, 1000 (q = 1): {population, survivors, ancestors} each.
+TailReplica replica(const std::vector<std::array<std::uint64_t, 3>>& counts) {
+  TailReplica r;
+  for (const auto& c : counts) r.levels.push_back({c[0], c[1], c[2], 0, 0});
+  return r;
+}
+
+/// A finished synthetic run of two replicas at the levels 10, 100 and 1000 steps.
+TailState synthetic(TailReplica a, TailReplica b) {
+  TailState s;
+  s.request.run.q = 1;
+  s.request.replicas = 2;
+  s.request.minAncestors = 20;
+  s.levels = {10, 100, 1000};
+  s.next = s.levels.size();
+  s.replicas = {std::move(a), std::move(b)};
+  return s;
+}
+
+// K1: every level reliable.  P_A = 0.1, 0.025, 0.003; P_B = 0.12, 0.012, 0.0012.
+TailState firstK() {
+  return synthetic(replica({{1000, 100, 100}, {100, 25, 20}, {100, 12, 12}}),
+                   replica({{1000, 120, 120}, {100, 10, 10}, {100, 10, 10}}));
+}
+
+// K2: the last level unreliable (5 + 5 lineages < 20).  P_A = 0.09, 0.0225; P_B = 0.11, 0.022.
+TailState secondK() {
+  return synthetic(replica({{1000, 90, 90}, {100, 25, 25}, {100, 8, 5}}),
+                   replica({{1000, 110, 110}, {100, 20, 20}, {100, 9, 5}}));
+}
+
+/// The hand computation of γ over a decade between two levels i < j (no level inside): γ = −ln(P_j/P_i)/ln 10, its
+/// variance to first order (C_ii/P_i² − 2 C_ij/(P_i P_j) + C_jj/P_j²)/ln²10 with C the replicas' covariance of the
+/// mean, at least the binomial floor b_j/ln²10 (the levels after i up to j: only j's term survives).
+struct Hand {
+  double gamma, error;
+};
+Hand hand(const std::vector<double>& A, const std::vector<double>& B, std::size_t i, std::size_t j, double bj) {
+  const double Pi = (A[i] + B[i]) / 2, Pj = (A[j] + B[j]) / 2;
+  const auto cov = [&](std::size_t m, std::size_t n) {
+    const double Pm = (A[m] + B[m]) / 2, Pn = (A[n] + B[n]) / 2;
+    return ((A[m] - Pm) * (A[n] - Pn) + (B[m] - Pm) * (B[n] - Pn)) / 2;  // Σ_r …/(R(R − 1)), R = 2
+  };
+  const double ln10 = std::log(10.0);
+  const double var = (cov(i, i) / (Pi * Pi) - 2 * cov(i, j) / (Pi * Pj) + cov(j, j) / (Pj * Pj)) / (ln10 * ln10);
+  return {-std::log(Pj / Pi) / ln10, std::sqrt(std::max(var, bj / (ln10 * ln10)))};
+}
+
+TEST(TailScan, WindowsAreDecadesSteppedByHalfADecadeFromLowestToLargest) {
+  const std::vector<LogWindow> w = tailScanWindows(10, 1000);
+  ASSERT_EQ(w.size(), 3u);
+  EXPECT_EQ(w[0].from, 10);
+  EXPECT_EQ(w[0].to, 100);
+  EXPECT_DOUBLE_EQ(w[1].from, std::sqrt(1000.0));
+  EXPECT_DOUBLE_EQ(w[1].to, std::sqrt(100000.0));
+  EXPECT_EQ(w[2].from, 100);
+  EXPECT_EQ(w[2].to, 1000);
+  const std::vector<LogWindow> v = tailScanWindows(1077, 1.2e5);  // a first level above 10^3, t_max 10^5
+  ASSERT_EQ(v.size(), 2u);
+  EXPECT_DOUBLE_EQ(v[0].from, std::sqrt(1e7));
+  EXPECT_EQ(v[1].from, 1e4);
+  EXPECT_EQ(v[1].to, 1e5);
+  EXPECT_TRUE(tailScanWindows(100, 999).empty());
+}
+
+TEST(TailScan, GammaPerKAndWindowIsTheHandComputationWithTheReplicasCovariance) {
+  const TailScanSummary s = tailScanSummary({0.1, 0.15}, {firstK(), secondK()});
+  ASSERT_EQ(s.windows.size(), 3u);
+  ASSERT_EQ(s.gamma.size(), 2u);
+  // K1 over [10, 100]: the replicas' covariance of the two ends (negative here: it adds to the variance).
+  const std::vector<double> A1{0.1, 0.025, 0.003}, B1{0.12, 0.012, 0.0012};
+  const Hand g1 = hand(A1, B1, 0, 1, (1 - 35.0 / 200) / 35);
+  EXPECT_NEAR(s.gamma[0][0].gamma, g1.gamma, 1e-12);
+  EXPECT_NEAR(s.gamma[0][0].gammaError, g1.error, 1e-12);
+  EXPECT_GT(g1.error * g1.error * std::log(10.0) * std::log(10.0), (1 - 35.0 / 200) / 35)
+      << "the replicas' term, not the floor, is tested";
+  // K1 over [100, 1000].
+  const Hand h1 = hand(A1, B1, 1, 2, (1 - 22.0 / 200) / 22);
+  EXPECT_NEAR(s.gamma[0][2].gamma, h1.gamma, 1e-12);
+  EXPECT_NEAR(s.gamma[0][2].gammaError, h1.error, 1e-12);
+  // K2 over [10, 100]; its last level is unreliable, so it reaches neither [√10³, √10⁵] nor [100, 1000].
+  const std::vector<double> A2{0.09, 0.0225, 0.0018}, B2{0.11, 0.022, 0.00198};
+  const Hand g2 = hand(A2, B2, 0, 1, (1 - 45.0 / 200) / 45);
+  EXPECT_NEAR(s.gamma[1][0].gamma, g2.gamma, 1e-12);
+  EXPECT_NEAR(s.gamma[1][0].gammaError, g2.error, 1e-12);
+  EXPECT_TRUE(std::isnan(s.gamma[1][1].gamma));
+  EXPECT_TRUE(std::isnan(s.gamma[1][2].gamma));
+  EXPECT_TRUE(std::isfinite(s.gamma[0][1].gamma)) << "K1 reaches the middle window: levels 10 and 1000 are reliable";
+}
+
+TEST(TailScan, TheKAverageIsOverTheKThatReachTheWindowWithItsSpreadAndError) {
+  const TailScanSummary s = tailScanSummary({0.1, 0.15}, {firstK(), secondK()});
+  ASSERT_EQ(s.average.size(), 3u);
+  const double g1 = s.gamma[0][0].gamma, g2 = s.gamma[1][0].gamma;
+  const double e1 = s.gamma[0][0].gammaError, e2 = s.gamma[1][0].gammaError;
+  EXPECT_EQ(s.average[0].count, 2u);
+  EXPECT_NEAR(s.average[0].mean, (g1 + g2) / 2, 1e-14);
+  EXPECT_NEAR(s.average[0].spread, std::abs(g1 - g2) / std::sqrt(2.0), 1e-14);  // the sample deviation, n − 1 = 1
+  EXPECT_NEAR(s.average[0].error, std::sqrt(e1 * e1 + e2 * e2) / 2, 1e-14);
+  EXPECT_EQ(s.average[2].count, 1u);
+  EXPECT_EQ(s.average[2].mean, s.gamma[0][2].gamma);
+  EXPECT_EQ(s.average[2].error, s.gamma[0][2].gammaError);
+  EXPECT_TRUE(std::isnan(s.average[2].spread)) << "no spread over one K";
+}
+
+TEST(TailScan, TheRunningExponentIsTheOneDefinitionOverAnyWindow) {
+  const TailState k1 = firstK();
+  const TailResult r = tailResult(k1);
+  ASSERT_FALSE(r.exponents.empty());
+  for (const TailExponent& e : r.exponents) {
+    const TailExponent again = tailExponentOver(r, e.tFrom, e.tTo);
+    EXPECT_EQ(again.gamma, e.gamma);
+    EXPECT_EQ(again.gammaError, e.gammaError);
+    EXPECT_EQ(again.points, e.points);
+  }
+}
+
+TEST(TailScan, ASummaryRefusesUnfinishedRunsAndRunsOfOtherLevels) {
+  TailState unfinished = secondK();
+  unfinished.next = 2;
+  EXPECT_THROW((void)tailScanSummary({0.1, 0.15}, {firstK(), unfinished}), std::invalid_argument);
+  TailState other = secondK();
+  other.levels = {10, 100, 2000};
+  EXPECT_THROW((void)tailScanSummary({0.1, 0.15}, {firstK(), other}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace archipelago
