@@ -123,6 +123,7 @@ AtlasPanel::AtlasPanel(PortraitController* controller, QWidget* parent)
   createFileButtons();
   markovTree_ = new MarkovTreePanel([this] { return atlas_; }, [this] { return busy(); }, this);
   connect(this, &AtlasPanel::atlasChanged, markovTree_, &MarkovTreePanel::atlasChanged);
+  connect(markovTree_, &MarkovTreePanel::pageMessage, this, &AtlasPanel::statusMessage);
 
   clock_ = new QTimer(this);
   clock_->setInterval(1000);

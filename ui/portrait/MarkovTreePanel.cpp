@@ -242,7 +242,7 @@ bool MarkovTreePanel::compute(double alpha, double b2, QString* error, const QSt
     if (const auto e = validationError(r)) why = QString::fromStdString(*e);
   if (!why.isEmpty()) {
     if (error) *error = why;
-    Q_EMIT statusMessage(tr("Markov tree: %1").arg(why));
+    Q_EMIT pageMessage(tr("Markov tree: %1").arg(why));
     showRefusal(why);
     return false;
   }
@@ -270,6 +270,8 @@ void MarkovTreePanel::finish(std::shared_ptr<const MarkovTreeResult> model, cons
   fillComparison();
   if (!failure.isEmpty()) showRefusal(failure);
   updateButton();
+  Q_EMIT pageMessage(failure.isEmpty() ? tr("Markov tree of the atlas: %1 states").arg(model_->tree.states.size())
+                                       : tr("Markov tree: %1").arg(failure));
   if (!model_ || !failure.isEmpty()) {
     Q_EMIT statusMessage(tr("Cannot draw the Markov tree: %1").arg(failure));
     Q_EMIT drawn(failure.isEmpty() ? tr("no model") : failure);

@@ -106,6 +106,8 @@ class MarkovTreePanel : public QWidget {
   void drawn(const QString& error);
   /// A line for the window's status bar (kept until the next).
   void statusMessage(const QString& text);
+  /// A line for the Atlas page's own messages (AtlasPanel::statusMessage: shown a while with the portrait).
+  void pageMessage(const QString& text);
 
  private:
   void finish(std::shared_ptr<const MarkovTreeResult> model, const QString& failure);

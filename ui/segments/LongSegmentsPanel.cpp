@@ -378,7 +378,7 @@ void LongSegmentsPanel::setCurrentIndex(std::size_t index) {
       const SegmentRegion& region = replay_->region;
       if (p.x >= region.x0 && p.x <= region.x1 && p.y >= region.y0 && p.y <= region.y1)
         portrait_->zoomToRegion(region);
-      if (!portrait_->shows(p.x, p.y)) portrait_->ensureVisible(p.x, p.y);
+      if (!portrait_->shows(p.x, p.y)) portrait_->viewLayer().ensureVisible(p.x, p.y);
     }
   }
   Q_EMIT currentIndexChanged(index_);
