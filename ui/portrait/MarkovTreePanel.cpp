@@ -187,7 +187,7 @@ MarkovTreePanel::Entry MarkovTreePanel::entry() const {
 
 void MarkovTreePanel::ask() {
   const Entry e = entry();
-  QDialog dialog(this);
+  QDialog dialog(window());
   dialog.setWindowTitle(tr("Markov tree of the atlas"));
   auto* intro = new QLabel(tr("The model's P_t = w S(t) with w = α Φ_centre / b₂ visits per segment "
                               "(docs/markov-tree.md)."), &dialog);
@@ -210,7 +210,7 @@ void MarkovTreePanel::ask() {
   if (!okA) why = tr("α '%1' is not a number").arg(alpha->text());
   else if (!okB) why = tr("b₂ '%1' is not a number").arg(b2->text());
   else if (draw(a, b, &why)) return;
-  QMessageBox::warning(this, tr("Markov tree"), tr("Cannot draw the Markov tree: %1").arg(why));
+  QMessageBox::warning(window(), tr("Markov tree"), tr("Cannot draw the Markov tree: %1").arg(why));
 }
 
 bool MarkovTreePanel::draw(double alpha, double b2, QString* error) {
