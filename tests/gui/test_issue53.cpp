@@ -53,6 +53,7 @@
 #include "ui/plots/StatisticsPlot.hpp"
 #include "ui/portrait/AtlasPanel.hpp"
 #include "ui/portrait/ManifoldsPanel.hpp"
+#include "ui/portrait/MarkovTreePanel.hpp"
 #include "ui/portrait/OrbitListPanel.hpp"
 #include "ui/portrait/PortraitController.hpp"
 #include "ui/portrait/PortraitPanel.hpp"
@@ -61,6 +62,7 @@
 #include "ui/window/MainWindow.hpp"
 #include "ui/window/ParameterPanel.hpp"
 #include "ui/window/StatisticsView.hpp"
+#include "ui/window/TailEstimateController.hpp"
 
 using namespace archipelago;
 using namespace archipelago::ui;
@@ -256,13 +258,14 @@ class TestIssue53 : public QObject {
       QTRY_VERIFY_WITH_TIMEOUT(w.latestSnapshot() && w.latestSnapshot()->hasStatistics && !isLive(w.runStatus()), 900000);
       w.refreshNow();
       QVERIFY(w.openAtlasFile(atlas));
-      QSignalSpy drawn(&w, &MainWindow::markovTreeDrawn), tailed(&w, &MainWindow::tailEstimateFinished);
-      QVERIFY(w.drawMarkovTree(18.9043, 1.362484));
-      QVERIFY(w.openTailEstimate(tail));
+      QSignalSpy drawn(w.portraitPanel()->atlasPanel()->markovTreePanel(), &MarkovTreePanel::drawn),
+        tailed(w.tailEstimates(), &TailEstimateController::finished);
+      QVERIFY(w.portraitPanel()->atlasPanel()->markovTreePanel()->draw(18.9043, 1.362484));
+      QVERIFY(w.tailEstimates()->open(tail));
       // The model is drawn twice: alone, then against the tail once it is read (wait for the second: its comparison).
       QTRY_VERIFY_WITH_TIMEOUT(drawn.count() >= 1 && tailed.count() == 1 &&
-                                   !w.portraitPanel()->atlasPanel()->markovTreePending() &&
-                                   w.portraitPanel()->atlasPanel()->comparisonTable()->rowCount() > 0, 900000);
+                                   !w.portraitPanel()->atlasPanel()->markovTreePanel()->pending() &&
+                                   w.portraitPanel()->atlasPanel()->markovTreePanel()->comparisonTable()->rowCount() > 0, 900000);
       QCOMPARE(drawn.back().front().toString(), QString());
       QCOMPARE(tailed.front().at(1).toString(), QString());
       QVERIFY(c.launchOrbit(0.06L, 0.0974L, 100000, true));
@@ -270,8 +273,8 @@ class TestIssue53 : public QObject {
       const StatisticsPlot& p = *w.statisticsView()->plot(Statistic::P);
       model = p.modelPoints();
       estimate = p.estimatePoints();
-      shareRows = w.portraitPanel()->atlasPanel()->sharesTable()->rowCount();
-      comparedRows = w.portraitPanel()->atlasPanel()->comparisonTable()->rowCount();
+      shareRows = w.portraitPanel()->atlasPanel()->markovTreePanel()->sharesTable()->rowCount();
+      comparedRows = w.portraitPanel()->atlasPanel()->markovTreePanel()->comparisonTable()->rowCount();
       QVERIFY(!model.isEmpty() && !estimate.isEmpty() && shareRows > 0 && comparedRows > 0);
       QString error;
       QVERIFY2(w.saveSession(path, &error), qPrintable(error));
@@ -280,25 +283,26 @@ class TestIssue53 : public QObject {
     MainWindow w;
     w.setConfirmations(false);
     w.portraitPanel()->controller()->setPointBudget(10000);
-    QSignalSpy drawn(&w, &MainWindow::markovTreeDrawn), tailed(&w, &MainWindow::tailEstimateFinished);
+    QSignalSpy drawn(w.portraitPanel()->atlasPanel()->markovTreePanel(), &MarkovTreePanel::drawn),
+        tailed(w.tailEstimates(), &TailEstimateController::finished);
     QString error;
     QVERIFY2(w.openSession(path, &error), qPrintable(error));
     QCOMPARE(w.portraitPanel()->sidePages()->currentWidget(), static_cast<QWidget*>(w.portraitPanel()->atlasPanel()));
     QTRY_VERIFY_WITH_TIMEOUT(drawn.count() >= 1 && tailed.count() == 1 &&
-                                 !w.portraitPanel()->atlasPanel()->markovTreePending() &&
-                                 w.portraitPanel()->atlasPanel()->comparisonTable()->rowCount() > 0, 900000);
+                                 !w.portraitPanel()->atlasPanel()->markovTreePanel()->pending() &&
+                                 w.portraitPanel()->atlasPanel()->markovTreePanel()->comparisonTable()->rowCount() > 0, 900000);
     QCOMPARE(drawn.back().front().toString(), QString());
     QCOMPARE(tailed.front().at(1).toString(), QString());
     const StatisticsPlot& p = *w.statisticsView()->plot(Statistic::P);
     QCOMPARE(p.modelPoints(), model);
     QCOMPARE(p.estimatePoints(), estimate);
     const AtlasPanel& page = *w.portraitPanel()->atlasPanel();
-    QVERIFY(page.markovTree());
-    QCOMPARE(page.markovTree()->request.alpha, 18.9043);
-    QCOMPARE(page.markovTree()->request.b2, 1.362484);
-    QCOMPARE(page.sharesTable()->rowCount(), shareRows);
-    QCOMPARE(page.comparisonTable()->rowCount(), comparedRows);
-    QCOMPARE(QFileInfo(w.tailEstimateFile()), QFileInfo(tail));
+    QVERIFY(page.markovTreePanel()->model());
+    QCOMPARE(page.markovTreePanel()->model()->request.alpha, 18.9043);
+    QCOMPARE(page.markovTreePanel()->model()->request.b2, 1.362484);
+    QCOMPARE(page.markovTreePanel()->sharesTable()->rowCount(), shareRows);
+    QCOMPARE(page.markovTreePanel()->comparisonTable()->rowCount(), comparedRows);
+    QCOMPARE(QFileInfo(w.tailEstimates()->file()), QFileInfo(tail));
     const std::vector<LaunchedOrbit>& orbits = w.portraitPanel()->controller()->launchedOrbits();
     QCOMPARE(orbits.size(), std::size_t{1});
     QCOMPARE(orbits.front().steps, std::uint64_t{100000});
@@ -469,7 +473,7 @@ class TestIssue53 : public QObject {
     QVERIFY2(w.latestSnapshot()->statistics.splicedAt > 0, "the run and its companion did not splice");
     const double q = statisticsOf(finishedRun()).alpha, spliced = w.latestSnapshot()->statistics.alpha;
     QVERIFY(q > 2 * spliced);
-    const MainWindow::MarkovTreeEntry e = w.markovTreeEntry();
+    const MarkovTreePanel::Entry e = w.portraitPanel()->atlasPanel()->markovTreePanel()->entry();
     QCOMPARE(e.alpha, q);
     QVERIFY2(e.alphaSource.contains(QStringLiteral("q = 16 process")) &&
                  e.alphaSource.contains(QStringLiteral("markov-tree --alpha %1").arg(QLocale::c().toString(q, 'g', 8))) &&
@@ -599,7 +603,7 @@ class TestIssue53 : public QObject {
     QTest::keyClick(&w, Qt::Key_M, Qt::ControlModifier | Qt::ShiftModifier);
     AtlasPanel& atlas = *w.portraitPanel()->atlasPanel();
     QCOMPARE(side.currentWidget(), static_cast<QWidget*>(&atlas));
-    QVERIFY2(w.statusBar()->currentMessage().contains(atlas.markovTreeButton()->toolTip()),
+    QVERIFY2(w.statusBar()->currentMessage().contains(atlas.markovTreePanel()->button()->toolTip()),
              qPrintable(w.statusBar()->currentMessage()));
     // Compute: the page's request, started.
     atlas.depthBox()->setValue(1);
@@ -627,21 +631,21 @@ class TestIssue53 : public QObject {
     QTRY_VERIFY_WITH_TIMEOUT(w.latestSnapshot() && w.latestSnapshot()->hasStatistics && !isLive(w.runStatus()), 900000);
     QVERIFY(w.openAtlasFile(atlas));
     AtlasPanel& page = *w.portraitPanel()->atlasPanel();
-    QSignalSpy tailed(&w, &MainWindow::tailEstimateFinished);
-    QVERIFY(w.openTailEstimate(tail));
+    QSignalSpy tailed(w.tailEstimates(), &TailEstimateController::finished);
+    QVERIFY(w.tailEstimates()->open(tail));
     QTRY_COMPARE_WITH_TIMEOUT(tailed.count(), 1, 900000);
-    QVERIFY(w.drawMarkovTree(18.9043, 1.362484));
-    QTRY_VERIFY_WITH_TIMEOUT(!page.markovTreePending() && page.markovTree(), 900000);
+    QVERIFY(w.portraitPanel()->atlasPanel()->markovTreePanel()->draw(18.9043, 1.362484));
+    QTRY_VERIFY_WITH_TIMEOUT(!page.markovTreePanel()->pending() && page.markovTreePanel()->model(), 900000);
     MarkovTreeRequest r;
     r.alpha = 18.9043;
     r.b2 = 1.362484;
     r.needsP = true;
-    r.at = AtlasPanel::shareTimes();
+    r.at = MarkovTreePanel::shareTimes();
     const TailState state = loadTailFile(tail.toStdString());
     const MarkovTreeResult expected = computeMarkovTree(atlasFromJson(io::readRegularFile(atlas.toStdString(), 1 << 26)), r, &state);
     QVERIFY(expected.comparison && !expected.comparison->levels.empty());
     const MarkovTreeComparison& c = *expected.comparison;
-    const QTableWidget& table = *page.comparisonTable();
+    const QTableWidget& table = *page.markovTreePanel()->comparisonTable();
     QVERIFY(table.isVisibleTo(&page));
     QCOMPARE(table.rowCount(), static_cast<int>(c.levels.size()));
     for (int row = 0; row < table.rowCount(); ++row) {
@@ -651,7 +655,7 @@ class TestIssue53 : public QObject {
       if (m.holdingLevel >= 0) QVERIFY(table.item(row, 4)->text().startsWith(QString::number(m.holdingLevel)));
     }
     const QString reach = c.reach > 0 ? QString::fromStdString(io::shortestText(c.reach)) : QStringLiteral("none");
-    QVERIFY2(page.markovTreeText().contains(QStringLiteral("last at t = %1").arg(reach)), qPrintable(page.markovTreeText()));
+    QVERIFY2(page.markovTreePanel()->text().contains(QStringLiteral("last at t = %1").arg(reach)), qPrintable(page.markovTreePanel()->text()));
   }
 
   // Finding 9: "Model P_t…" was greyed out on a stopped atlas with no reason: its tooltip and the page's progress line
@@ -667,8 +671,8 @@ class TestIssue53 : public QObject {
     stopped.stopReason = "stopped";
     panel.restoreAtlas(stopped);
     const QString why = QStringLiteral("the atlas was stopped before its end (stopped)");
-    QVERIFY(!panel.markovTreeButton()->isEnabled());
-    QVERIFY2(panel.markovTreeButton()->toolTip().contains(why), qPrintable(panel.markovTreeButton()->toolTip()));
+    QVERIFY(!panel.markovTreePanel()->button()->isEnabled());
+    QVERIFY2(panel.markovTreePanel()->button()->toolTip().contains(why), qPrintable(panel.markovTreePanel()->button()->toolTip()));
     QVERIFY2(panel.progressText().contains(QStringLiteral("Model P_t")) && panel.progressText().contains(why),
              qPrintable(panel.progressText()));
   }

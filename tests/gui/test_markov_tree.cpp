@@ -22,6 +22,7 @@
 #include "core/markovtree/MarkovTreeExport.hpp"
 #include "ui/plots/StatisticsPlot.hpp"
 #include "ui/portrait/AtlasPanel.hpp"
+#include "ui/portrait/MarkovTreePanel.hpp"
 #include "ui/portrait/PortraitController.hpp"
 #include "ui/portrait/PortraitPanel.hpp"
 #include "ui/window/MainWindow.hpp"
@@ -30,6 +31,7 @@
 using archipelago::AtlasRequest;
 using archipelago::ui::AtlasPanel;
 using archipelago::ui::MainWindow;
+using archipelago::ui::MarkovTreePanel;
 using archipelago::ui::StatisticsPlot;
 
 namespace {
@@ -63,14 +65,17 @@ class TestMarkovTree : public QObject {
   QString atlasFile_;
   QJsonObject cliJson_;
 
-  /// drawMarkovTree() and its signal: the reason it failed, or empty when drawn.
+  /// The Atlas page's Markov tree.
+  MarkovTreePanel* tree() const { return panel_->markovTreePanel(); }
+
+  /// MarkovTreePanel::draw() and its signal: the reason it failed, or empty when drawn.
   QString drawAndWait(double alpha, double b2) {
-    QSignalSpy drawn(w_.get(), &MainWindow::markovTreeDrawn);
+    QSignalSpy drawn(tree(), &MarkovTreePanel::drawn);
     QString error;
-    if (!w_->drawMarkovTree(alpha, b2, &error)) return error.isEmpty() ? QStringLiteral("(refused, no reason)") : error;
-    if (!panel_->markovTreePending()) return QStringLiteral("(no job in flight after the call)");
-    if (!drawn.wait(kWait) && drawn.isEmpty()) return QStringLiteral("(no markovTreeDrawn signal)");
-    if (panel_->markovTreePending()) return QStringLiteral("(still pending after its signal)");
+    if (!tree()->draw(alpha, b2, &error)) return error.isEmpty() ? QStringLiteral("(refused, no reason)") : error;
+    if (!tree()->pending()) return QStringLiteral("(no job in flight after the call)");
+    if (!drawn.wait(kWait) && drawn.isEmpty()) return QStringLiteral("(no drawn signal)");
+    if (tree()->pending()) return QStringLiteral("(still pending after its signal)");
     return drawn.takeFirst().at(0).toString();
   }
 
@@ -114,15 +119,15 @@ class TestMarkovTree : public QObject {
   // Without an atlas there is nothing to model: refused at once with the reason, nothing drawn.
   void refusedWithoutAnAtlas() {
     QString error;
-    QVERIFY(!w_->drawMarkovTree(kAlpha, kB2, &error));
+    QVERIFY(!tree()->draw(kAlpha, kB2, &error));
     QVERIFY2(error.contains(QStringLiteral("no atlas")), qPrintable(error));
-    QVERIFY(!panel_->markovTreeButton()->isEnabled());
+    QVERIFY(!tree()->button()->isEnabled());
     QVERIFY(w_->statisticsView()->plot(archipelago::Statistic::P)->modelPoints().isEmpty());
   }
 
   // Without a run, the dialog offers docs/markov-tree.md's α and b₂, saying so.
   void theEntryWithoutARunIsTheDocs() {
-    const MainWindow::MarkovTreeEntry e = w_->markovTreeEntry();
+    const MarkovTreePanel::Entry e = tree()->entry();
     QCOMPARE(e.alpha, kAlpha);
     QCOMPARE(e.b2, kB2);
     QVERIFY2(e.alphaSource.contains(QStringLiteral("markov-tree.md")), qPrintable(e.alphaSource));
@@ -135,7 +140,7 @@ class TestMarkovTree : public QObject {
     QVERIFY(panel_->atlas());
     QVERIFY(w_->portraitPanel()->sidePages()->currentWidget() == panel_);
     QVERIFY2(panel_->progressText().startsWith(QStringLiteral("From a.json")), qPrintable(panel_->progressText()));
-    QVERIFY(panel_->markovTreeButton()->isEnabled());
+    QVERIFY(tree()->button()->isEnabled());
     // A file that is not an atlas is refused with core's reason.
     const QString bad = dir_.filePath(QStringLiteral("bad.json"));
     QFile b(bad);
@@ -150,15 +155,15 @@ class TestMarkovTree : public QObject {
   // Bad α or b₂: refused at once with core's reason.
   void refusesCoresBadNumbers() {
     QString error;
-    QVERIFY(!w_->drawMarkovTree(0, kB2, &error));
+    QVERIFY(!tree()->draw(0, kB2, &error));
     QVERIFY2(error.contains(QStringLiteral("alpha")), qPrintable(error));
-    QVERIFY(!w_->drawMarkovTree(kAlpha, -1, &error));
+    QVERIFY(!tree()->draw(kAlpha, -1, &error));
     QVERIFY2(error.contains(QStringLiteral("b2")), qPrintable(error));
     // Issue 53 finding 6, issue 54 item 2: α = β = 0 drew an empty "model", α below one step was taken; both are
     // refused at once with core's words.
-    QVERIFY(!w_->drawMarkovTree(0, 0, &error));
+    QVERIFY(!tree()->draw(0, 0, &error));
     QVERIFY2(error.contains(QStringLiteral("alpha = 0 must be finite and at least 1")), qPrintable(error));
-    QVERIFY(!w_->drawMarkovTree(1e-300, kB2, &error));
+    QVERIFY(!tree()->draw(1e-300, kB2, &error));
     QVERIFY2(error.contains(QStringLiteral("alpha = 1e-300")), qPrintable(error));
   }
 
@@ -169,8 +174,8 @@ class TestMarkovTree : public QObject {
     QVERIFY2(huge.contains(QStringLiteral("P_1 = w S(1)")) && huge.contains(QStringLiteral("cannot exceed 1")),
              qPrintable(huge));
     // The page says it too, whole (the status bar cuts a long reason off), and nothing is drawn.
-    QVERIFY2(panel_->markovTreeText().contains(QStringLiteral("cannot exceed 1")), qPrintable(panel_->markovTreeText()));
-    QVERIFY(!panel_->markovTree());
+    QVERIFY2(tree()->text().contains(QStringLiteral("cannot exceed 1")), qPrintable(tree()->text()));
+    QVERIFY(!tree()->model());
     const QString box = drawAndWait(kAlpha, 100);
     QVERIFY2(box.contains(QStringLiteral("b2 = 100 must lie in (0, 1.69")), qPrintable(box));
   }
@@ -200,7 +205,7 @@ class TestMarkovTree : public QObject {
     // w = α Φ_centre / b₂ with the loop's flux in the file and the docs' α, b₂ (the CLI's entry weight).
     const double flux = cliJson_.value(QStringLiteral("entry_flux")).toDouble();
     QVERIFY(flux > 0);
-    QVERIFY(near(static_cast<double>(panel_->markovTree()->weight.value_or(0)), kAlpha * flux / kB2, 1e-12));
+    QVERIFY(near(static_cast<double>(tree()->model()->weight.value_or(0)), kAlpha * flux / kB2, 1e-12));
     QVERIFY(near(cliJson_.value(QStringLiteral("entry")).toObject().value(QStringLiteral("weight")).toDouble(),
                  kAlpha * flux / kB2, 1e-12));
   }
@@ -208,14 +213,14 @@ class TestMarkovTree : public QObject {
   // The Atlas page's shares: each level's part of S(t) / S(t) at 10⁴, 10⁵, 10⁶ as the CLI's JSON gives them, summing
   // to 1 in each column.
   void theSharesAreTheClisAndSumToOne() {
-    QTableWidget* table = panel_->sharesTable();
+    QTableWidget* table = tree()->sharesTable();
     QVERIFY(table->isVisible());
     const QJsonObject s = cliJson_.value(QStringLiteral("survival")).toObject();
     const QJsonArray t = s.value(QStringLiteral("t")).toArray(), S = s.value(QStringLiteral("S")).toArray();
     const QJsonArray levels = s.value(QStringLiteral("levels")).toArray();
     QCOMPARE(table->rowCount(), static_cast<int>(levels.size()));
     QCOMPARE(table->rowCount(), 2);  // depth 1: the centre's level and the chains about it
-    const std::vector<std::uint64_t> times = AtlasPanel::shareTimes();
+    const std::vector<std::uint64_t> times = MarkovTreePanel::shareTimes();
     QCOMPARE(table->columnCount(), static_cast<int>(times.size()));
     for (int c = 0; c < table->columnCount(); ++c) {
       int i = -1;
@@ -244,8 +249,8 @@ class TestMarkovTree : public QObject {
   void anotherAtlasRemovesTheShares() {
     QString error;
     QVERIFY2(w_->openAtlasFile(atlasFile_, &error), qPrintable(error));
-    QVERIFY(!panel_->markovTree());
-    QVERIFY(!panel_->sharesTable()->isVisible());
+    QVERIFY(!tree()->model());
+    QVERIFY(!tree()->sharesTable()->isVisible());
   }
 
   // With a run shown, the entry's α is the run's mean segment length; a new run clears the curve with its other
@@ -260,7 +265,7 @@ class TestMarkovTree : public QObject {
     QVERIFY(p->modelPoints().isEmpty());
     const double runAlpha = w_->latestSnapshot()->statistics.alpha;
     QVERIFY(runAlpha > 1 && runAlpha != kAlpha);
-    const MainWindow::MarkovTreeEntry e = w_->markovTreeEntry();
+    const MarkovTreePanel::Entry e = tree()->entry();
     QCOMPARE(e.alpha, runAlpha);
     QVERIFY2(e.alphaSource.contains(QStringLiteral("run")), qPrintable(e.alphaSource));
     QCOMPARE(e.b2, kB2);
@@ -293,7 +298,7 @@ class TestMarkovTree : public QObject {
     const double runAlpha = w_->latestSnapshot()->statistics.alpha;
     QVERIFY(runAlpha > 1 && runAlpha != kAlpha);
     QVERIFY(panel_->atlas() && panel_->atlas()->request.map.K == 0.1);
-    const MainWindow::MarkovTreeEntry e = w_->markovTreeEntry();
+    const MarkovTreePanel::Entry e = tree()->entry();
     QCOMPARE(e.alpha, kAlpha);
     QCOMPARE(e.b2, kB2);
     QVERIFY2(e.alphaSource.contains(QStringLiteral("another map: K = 0.15")), qPrintable(e.alphaSource));

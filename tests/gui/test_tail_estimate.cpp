@@ -15,6 +15,7 @@
 #include "ui/run/RunController.hpp"
 #include "ui/window/MainWindow.hpp"
 #include "ui/window/StatisticsView.hpp"
+#include "ui/window/TailEstimateController.hpp"
 
 using namespace archipelago;
 using namespace archipelago::ui;
@@ -45,16 +46,16 @@ TailState sampled(const TrappingParameters& run) {
 // Opens `path` and waits for the job's end (the signal; the event loop runs meanwhile): the reason it was
 // refused, or empty when drawn.  A refusal before any work (no run) is returned at once, with no signal.
 QString openAndWait(MainWindow& window, const QString& path) {
-  QSignalSpy finished(&window, &MainWindow::tailEstimateFinished);
+  QSignalSpy finished(window.tailEstimates(), &TailEstimateController::finished);
   QString error;
-  if (!window.openTailEstimate(path, &error)) {
+  if (!window.tailEstimates()->open(path, &error)) {
     if (error.isEmpty()) return QStringLiteral("(refused without a reason)");
     return error;
   }
   // Nothing is read on the GUI thread: the call returned with the job in flight, its result not drawn yet.
-  if (!window.tailEstimatePending()) return QStringLiteral("(no job in flight after the call)");
-  if (!finished.wait(900000) && finished.isEmpty()) return QStringLiteral("(no tailEstimateFinished signal)");
-  if (window.tailEstimatePending()) return QStringLiteral("(still pending after its signal)");
+  if (!window.tailEstimates()->pending()) return QStringLiteral("(no job in flight after the call)");
+  if (!finished.wait(900000) && finished.isEmpty()) return QStringLiteral("(no finished signal)");
+  if (window.tailEstimates()->pending()) return QStringLiteral("(still pending after its signal)");
   const QList<QVariant> args = finished.takeFirst();
   if (args.at(0).toString() != path) return QStringLiteral("(the signal names another file)");
   return args.at(1).toString();
@@ -82,10 +83,10 @@ class TestTailEstimate : public QObject {
     QString error;
     // No run yet: refused, with the reason.
     {
-      QSignalSpy finished(&window, &MainWindow::tailEstimateFinished);
-      QVERIFY(!window.openTailEstimate(tailFile, &error));
+      QSignalSpy finished(window.tailEstimates(), &TailEstimateController::finished);
+      QVERIFY(!window.tailEstimates()->open(tailFile, &error));
       QVERIFY2(error.contains(QStringLiteral("no run")), qPrintable(error));
-      QVERIFY(!window.tailEstimatePending());
+      QVERIFY(!window.tailEstimates()->pending());
       QCoreApplication::processEvents();
       QCOMPARE(finished.count(), 0);
     }
@@ -96,13 +97,13 @@ class TestTailEstimate : public QObject {
     QVERIFY(P);
     QVERIFY(P->estimatePoints().isEmpty());
     {
-      QSignalSpy finished(&window, &MainWindow::tailEstimateFinished);
-      QVERIFY2(window.openTailEstimate(tailFile, &error), qPrintable(error));
-      QVERIFY(window.tailEstimatePending());
+      QSignalSpy finished(window.tailEstimates(), &TailEstimateController::finished);
+      QVERIFY2(window.tailEstimates()->open(tailFile, &error), qPrintable(error));
+      QVERIFY(window.tailEstimates()->pending());
       QVERIFY(P->estimatePoints().isEmpty());  // not drawn by the call: the job's result comes by the event loop
       QTRY_COMPARE_WITH_TIMEOUT(finished.count(), 1, 60000);
       QVERIFY2(finished.at(0).at(1).toString().isEmpty(), qPrintable(finished.at(0).at(1).toString()));
-      QVERIFY(!window.tailEstimatePending());
+      QVERIFY(!window.tailEstimates()->pending());
     }
     const QVector<QPointF> drawn = P->estimatePoints();
     QCOMPARE(static_cast<std::size_t>(drawn.size()), expected.x.size());

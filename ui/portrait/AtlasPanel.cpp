@@ -15,7 +15,6 @@
 #include <QScrollArea>
 #include <QSpinBox>
 #include <QStringList>
-#include <QTableWidget>
 #include <QTimer>
 #include <QTreeWidget>
 #include <QVBoxLayout>
@@ -30,9 +29,9 @@
 #include "core/manifolds/ManifoldExport.hpp"
 #include "core/periodic/PeriodicOrbitFinder.hpp"
 #include "core/periodic/SegmentAnalysis.hpp"
-#include "core/tail/TailFile.hpp"
 #include "ui/jobs/BackgroundJobs.hpp"
 #include "ui/jobs/DurationText.hpp"
+#include "ui/portrait/MarkovTreePanel.hpp"
 #include "ui/portrait/PortraitController.hpp"
 #include "ui/settings/SettingsController.hpp"
 
@@ -118,11 +117,13 @@ AtlasPanel::AtlasPanel(PortraitController* controller, QWidget* parent)
     : QWidget(parent),
       controller_(controller),
       elapsed_(std::make_unique<QElapsedTimer>()),
-      jobs_(std::make_unique<BackgroundJobs>(this, 2, JobPriority::background)) {  // 0: the atlas, 1: its tree
+      jobs_(std::make_unique<BackgroundJobs>(this, 1, JobPriority::background)) {
   createRequestControls();
   createIslandTree();
   createFileButtons();
-  createMarkovTreeWidgets();
+  markovTree_ = new MarkovTreePanel([this] { return atlas_; }, [this] { return busy(); }, this);
+  connect(this, &AtlasPanel::atlasChanged, markovTree_, &MarkovTreePanel::atlasChanged);
+  connect(markovTree_, &MarkovTreePanel::pageMessage, this, &AtlasPanel::statusMessage);
 
   clock_ = new QTimer(this);
   clock_->setInterval(1000);
@@ -252,34 +253,6 @@ bool AtlasPanel::unsavedWork() const { return (busy() || atlas_) && !restored_ &
 
 bool AtlasPanel::confirmDiscard(const QString& action) { return !unsavedWork() || !confirm_ || confirm_(action); }
 
-void AtlasPanel::createMarkovTreeWidgets() {
-  modelButton_ = new QPushButton(tr("Model P_t…"), this);
-  modelButton_->setObjectName(QStringLiteral("atlasMarkovTree"));
-  modelButton_->setToolTip(modelTip());
-  connect(modelButton_, &QPushButton::clicked, this, &AtlasPanel::markovTreeAsked);
-  modelText_ = new QLabel(this);
-  modelText_->setObjectName(QStringLiteral("atlasMarkovTreeText"));
-  modelText_->setWordWrap(true);
-  modelText_->hide();
-  shares_ = new QTableWidget(this);
-  shares_->setObjectName(QStringLiteral("atlasMarkovTreeShares"));
-  shares_->setEditTriggers(QAbstractItemView::NoEditTriggers);
-  shares_->setSelectionMode(QAbstractItemView::NoSelection);
-  shares_->setToolTip(tr("Where the model's survivors sit: each atlas level's share of S(t) at t steps"));
-  shares_->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
-  shares_->verticalHeader()->setSectionResizeMode(QHeaderView::ResizeToContents);
-  shares_->hide();
-  comparison_ = new QTableWidget(this);
-  comparison_->setObjectName(QStringLiteral("atlasMarkovTreeComparison"));
-  comparison_->setEditTriggers(QAbstractItemView::NoEditTriggers);
-  comparison_->setSelectionMode(QAbstractItemView::NoSelection);
-  comparison_->setToolTip(tr("The model's P_t = w S(t) at each reliable level of the tail file, as archipelago-cli "
-                             "markov-tree --tail prints it"));
-  comparison_->horizontalHeader()->setSectionResizeMode(QHeaderView::Stretch);
-  comparison_->verticalHeader()->hide();
-  comparison_->hide();
-}
-
 void AtlasPanel::layOut() {
   auto* form = new QFormLayout;
   form->setContentsMargins(0, 0, 0, 0);
@@ -312,13 +285,7 @@ void AtlasPanel::layOut() {
   layout->addWidget(progress_);
   layout->addWidget(tree_, 3);
   layout->addWidget(detailsArea, 2);
-  auto* model = new QHBoxLayout;
-  model->addWidget(modelButton_);
-  model->addStretch(1);
-  layout->addLayout(model);
-  layout->addWidget(modelText_);
-  layout->addWidget(shares_);
-  layout->addWidget(comparison_, 1);
+  layout->addWidget(markovTree_, 1);
   layout->addLayout(exports);
 }
 
@@ -405,6 +372,7 @@ bool AtlasPanel::compute(const AtlasRequest& r) {
   updateProgress();
   updateButtons();
   updateDetails();
+  Q_EMIT atlasChanged();  // none yet (the Markov tree's button waits for it)
   Q_EMIT statusMessage(tr("Computing the atlas of K = %1 to depth %2…").arg(QString::fromStdString(io::shortestText(r.map.K))).arg(r.depth));
   return true;
 }
@@ -445,14 +413,6 @@ void AtlasPanel::restoreAtlas(const std::optional<Atlas>& atlas) {
 }
 
 void AtlasPanel::show(std::shared_ptr<const Atlas> atlas, int done, const QString& stage) {
-  if (atlas != atlas_ && (model_ || treeRequest_ || !modelText_->text().isEmpty())) {  // another atlas's model
-    jobs_->cancel(1);
-    treeRequest_ = 0;
-    model_.reset();
-    modelInputs_.reset();
-    fillShares();
-    fillComparison();
-  }
   atlas_ = std::move(atlas);
   done_ = done;
   stage_ = stage;
@@ -533,7 +493,7 @@ void AtlasPanel::updateProgress() {
                        : tr("%1 islands in %2").arg(a.nodes.size()).arg(formatDuration(a.seconds));
     text += tr(" (depth %1, periods ≤ %2)").arg(a.request.depth).arg(a.request.maxPeriod);
     if (restored_) text = source_.isEmpty() ? tr("From the session: %1").arg(text) : tr("From %1: %2").arg(source_, text);
-    if (const QString why = markovTreeMissing(); !why.isEmpty()) text += tr(". Model P_t: %1").arg(why);
+    if (const QString why = MarkovTreePanel::missing(&a, false); !why.isEmpty()) text += tr(". Model P_t: %1").arg(why);
   }
   if (atlas_ && !ofPortraitMap())
     text += tr(". This atlas is of K = %1; the portrait shows K = %2: set K = %1 again to draw its islands")
@@ -610,22 +570,6 @@ void AtlasPanel::updateButtons() {
   stop_->setEnabled(busy());
   json_->setEnabled(atlas_ && !busy());
   csv_->setEnabled(atlas_ && !busy());
-  const QString why = markovTreeMissing();
-  modelButton_->setEnabled(why.isEmpty() && !markovTreePending());
-  modelButton_->setToolTip(why.isEmpty() ? modelTip() : tr("No model of P_t: %1").arg(why));
-}
-
-QString AtlasPanel::modelTip() {
-  return tr("The Meiss–Ott Markov tree of this atlas (states between barriers, rates flux / area, "
-            "docs/markov-tree.md): its P_t drawn on the P_t plot, each level's share below");
-}
-
-QString AtlasPanel::markovTreeMissing() const {
-  if (!atlas_) return tr("there is no atlas: compute or open one first");
-  if (busy()) return tr("the atlas is still being computed");
-  if (const auto e = markovTreeAtlasError(*atlas_))  // core's rule: a stopped atlas, one without the centre's flux
-    return tr("%1 (Compute measures it to its end)").arg(QString::fromStdString(*e));
-  return {};
 }
 
 bool AtlasPanel::openAtlasFile(const QString& path, QString* error) {
@@ -643,157 +587,6 @@ bool AtlasPanel::openAtlasFile(const QString& path, QString* error) {
   updateProgress();
   Q_EMIT statusMessage(tr("Atlas of %1 islands read from %2").arg(atlas->nodes.size()).arg(path));
   return true;
-}
-
-std::vector<std::uint64_t> AtlasPanel::shareTimes() { return {10'000, 100'000, 1'000'000}; }
-
-bool AtlasPanel::computeMarkovTree(double alpha, double b2, QString* error, const QString& tailFile) {
-  QString why;
-  MarkovTreeRequest r;
-  r.alpha = alpha;
-  r.b2 = b2;
-  r.needsP = true;  // the page draws P_t: core refuses a missing, impossible or absurd α or b₂ (issue 54)
-  r.at = shareTimes();
-  r.atlasSource = "the Atlas page";
-  r.tailSource = QFileInfo(tailFile).fileName().toStdString();
-  why = markovTreeMissing();
-  if (why.isEmpty())
-    if (const auto e = validationError(r)) why = QString::fromStdString(*e);
-  if (!why.isEmpty()) {
-    if (error) *error = why;
-    Q_EMIT statusMessage(tr("Markov tree: %1").arg(why));
-    showModelRefusal(why);
-    return false;
-  }
-  Job<std::shared_ptr<const MarkovTreeResult>> job;  // latest wins
-  job.channel = 1;
-  job.work = [atlas = atlas_, r, file = tailFile.toStdString()](JobContext<NoProgress>& context)
-      -> std::optional<std::shared_ptr<const MarkovTreeResult>> {
-    std::optional<TailState> tail;
-    if (!file.empty()) {
-      try {
-        tail = loadTailFile(file);
-      } catch (const std::exception&) {  // its own reading said why when it was opened: the model alone
-      }
-      if (tail && !(tail->request.run.map == atlas->request.map)) tail.reset();
-    }
-    try {  // throws: core's reason; Cancel or closing the window stops it within milliseconds (issue 54)
-      return std::make_shared<const MarkovTreeResult>(
-          archipelago::computeMarkovTree(*atlas, r, tail ? &*tail : nullptr, context.stopToken()));
-    } catch (const OperationStopped&) {
-      return std::nullopt;
-    }
-  };
-  job.done = [this](JobResult<std::shared_ptr<const MarkovTreeResult>> result) {
-    if (result.id != treeRequest_) return;
-    treeRequest_ = 0;
-    QString failure;
-    if (result.ok()) {
-      model_ = *result.value;
-    } else {
-      failure = result.error;
-      model_.reset();
-    }
-    fillShares();
-    fillComparison();
-    if (!failure.isEmpty()) showModelRefusal(failure);
-    updateButtons();
-    Q_EMIT statusMessage(failure.isEmpty() ? tr("Markov tree of the atlas: %1 states").arg(model_->tree.states.size())
-                                           : tr("Markov tree: %1").arg(failure));
-    Q_EMIT markovTreeFinished(model_, failure);
-  };
-  treeRequest_ = jobs_->submit(std::move(job));
-  modelInputs_ = std::pair{alpha, b2};
-  modelText_->setText(tr("Computing the Markov tree…"));
-  modelText_->show();
-  updateButtons();
-  return true;
-}
-
-QString AtlasPanel::markovTreeText() const { return modelText_->text(); }
-
-void AtlasPanel::showModelRefusal(const QString& why) {
-  modelText_->setText(tr("No model: %1").arg(why));
-  modelText_->show();
-}
-
-void AtlasPanel::fillShares() {
-  shares_->clear();
-  if (!model_) {
-    shares_->hide();
-    modelText_->setText(QString());
-    modelText_->hide();
-    return;
-  }
-  modelText_->show();
-  const MarkovTreeResult& m = *model_;
-  modelText_->setText(tr("Markov tree: %1 states (chains lumped: %2), mean visit %3 steps, w = %4 visits per segment. "
-                          "Each level's share of the survivors at t steps:")
-                          .arg(m.tree.states.size())
-                          .arg(m.tree.lumped.size())
-                          .arg(number(m.survival.meanVisit, 6))
-                          .arg(m.weight ? number(*m.weight, 4) : QStringLiteral("–")));
-  const std::vector<std::uint64_t> times = shareTimes();
-  const auto levels = static_cast<int>(m.survival.level.size());
-  shares_->setRowCount(levels);
-  shares_->setColumnCount(static_cast<int>(times.size()));
-  QStringList heads, rows;
-  static const QString powers[] = {QStringLiteral("10⁴"), QStringLiteral("10⁵"), QStringLiteral("10⁶")};
-  for (std::size_t c = 0; c < times.size(); ++c)
-    heads << tr("t = %1").arg(c < 3 ? powers[c] : QString::number(times[c]));
-  for (int l = 0; l < levels; ++l) rows << (l == 0 ? tr("level 0 (centre)") : tr("level %1").arg(l));
-  shares_->setHorizontalHeaderLabels(heads);
-  shares_->setVerticalHeaderLabels(rows);
-  for (std::size_t c = 0; c < times.size(); ++c) {
-    const auto shares = markovTreeLevelShares(m.survival, times[c]);
-    for (int l = 0; l < levels; ++l) {
-      auto* cell = new QTableWidgetItem;
-      cell->setTextAlignment(Qt::AlignRight | Qt::AlignVCenter);
-      if (shares && l < static_cast<int>(shares->size())) {
-        const double v = (*shares)[static_cast<std::size_t>(l)];
-        cell->setText(QStringLiteral("%1 %").arg(100 * v, 0, 'f', 1));
-        cell->setData(Qt::UserRole, v);
-      } else {
-        cell->setText(QStringLiteral("–"));
-      }
-      shares_->setItem(l, static_cast<int>(c), cell);
-    }
-  }
-  shares_->setFixedHeight(shares_->horizontalHeader()->sizeHint().height() +
-                          levels * shares_->verticalHeader()->defaultSectionSize() + 2 * shares_->frameWidth());
-  shares_->show();
-}
-
-void AtlasPanel::fillComparison() {
-  comparison_->clear();
-  if (!model_ || !model_->comparison) {
-    comparison_->hide();
-    return;
-  }
-  const MarkovTreeComparison& c = *model_->comparison;
-  // The CLI's line and table (MarkovTreeCommand's printTree): the numbers are core's, the page only formats them.
-  modelText_->setText(modelText_->text() + QLatin1Char('\n') +
-                      tr("Against the tail %1: model / measured within a factor %2 last at t = %3 (the reach).")
-                          .arg(QString::fromStdString(model_->request.tailSource))
-                          .arg(c.factor)
-                          .arg(c.reach > 0 ? QString::fromStdString(io::shortestText(c.reach)) : tr("none")));
-  comparison_->setColumnCount(5);
-  comparison_->setHorizontalHeaderLabels({tr("t"), tr("measured"), tr("model"), tr("ratio"), tr("level (share)")});
-  comparison_->setRowCount(static_cast<int>(c.levels.size()));
-  for (int row = 0; row < static_cast<int>(c.levels.size()); ++row) {
-    const MarkovTreeLevelComparison& m = c.levels[static_cast<std::size_t>(row)];
-    const QString cells[] = {QString::number(m.t, 'f', 0), tr("%1 ± %2").arg(number(m.measured, 4), number(m.measuredError, 2)),
-                             number(m.model, 4), number(m.ratio, 3),
-                             m.holdingLevel >= 0 ? tr("%1 (%2 %)").arg(m.holdingLevel).arg(100 * m.holdingShare, 0, 'f', 0)
-                                                 : QStringLiteral("–")};
-    for (int col = 0; col < 5; ++col) {
-      auto* cell = new QTableWidgetItem(cells[col]);
-      cell->setTextAlignment(Qt::AlignRight | Qt::AlignVCenter);
-      comparison_->setItem(row, col, cell);
-    }
-    comparison_->item(row, 3)->setData(Qt::UserRole, static_cast<double>(m.ratio));
-  }
-  comparison_->show();
 }
 
 bool AtlasPanel::showIsland(int index) {

@@ -15,11 +15,8 @@
 /// islands are not drawn until that map is shown again.
 ///
 /// An atlas file (`archipelago-cli atlas --json`, Export JSON) can be opened instead of computed (openAtlasFile).
-/// Below the tree, the Meiss–Ott Markov tree of the atlas shown (core/markovtree, docs/markov-tree.md, issue 40):
-/// "Model P_t…" asks the window for the entry's α and b₂, computeMarkovTree() runs core's computeMarkovTree on a
-/// background job, and markovTreeFinished() hands the result on (the window draws its P_t on the P_t plot); the page
-/// shows each atlas level's share of the model's survivors at t = 10⁴, 10⁵, 10⁶ (core's markovTreeLevelShares), and,
-/// with a tail file, the model against the tail as `archipelago-cli markov-tree --tail` prints it (core's comparison).
+/// Below the tree, the Meiss–Ott Markov tree of the atlas shown (core/markovtree, docs/markov-tree.md, issue 40): a
+/// MarkovTreePanel, which owns it from its button to the curve it hands to the P_t plot.
 
 #include <QString>
 #include <QWidget>
@@ -34,14 +31,12 @@
 #include <vector>
 
 #include "core/atlas/Atlas.hpp"
-#include "core/markovtree/MarkovTreeExport.hpp"
 
 class QCheckBox;
 class QElapsedTimer;
 class QLabel;
 class QPushButton;
 class QSpinBox;
-class QTableWidget;
 class QTimer;
 class QTreeWidget;
 class QTreeWidgetItem;
@@ -49,6 +44,7 @@ class QTreeWidgetItem;
 namespace archipelago::ui {
 
 class BackgroundJobs;
+class MarkovTreePanel;
 class PortraitController;
 
 class AtlasPanel : public QWidget {
@@ -116,38 +112,13 @@ class AtlasPanel : public QWidget {
   /// Export JSON… / CSV…'s file dialog and export; true when the file was written.
   bool exportWithDialog(bool json);
 
-  /// The t (steps) at which the page shows each level's share of the model's survivors: 10⁴, 10⁵, 10⁶.
-  [[nodiscard]] static std::vector<std::uint64_t> shareTimes();
-  /// Computes the Markov tree of the atlas shown and its P_t = w S(t), w = α Φ_centre / b₂ (α the run's mean segment
-  /// length, b₂ its stochastic area), on a background job; markovTreeFinished() says how it ended.  False at once,
-  /// with the reason (core's for the numbers), when there is no finished atlas or the request is refused.  A second
-  /// request replaces the first (latest wins).
-  /// With `tailFile` (a tail file of the atlas's map, as `markov-tree --tail`), the model is set against its levels:
-  /// core's comparison (model / measured per level, the reach, the level holding the survivors) fills
-  /// comparisonTable() and a line of the page (issue 53, missing); a file that cannot be read or is of another map
-  /// gives the model alone.
-  bool computeMarkovTree(double alpha, double b2, QString* error = nullptr, const QString& tailFile = {});
-  [[nodiscard]] bool markovTreePending() const noexcept { return treeRequest_ != 0; }
-  /// The α and b₂ of the model shown or being computed (none: no model asked for this atlas): what a tail opened
-  /// meanwhile sets the model against again — a model still computing was asked for without it.
-  [[nodiscard]] std::optional<std::pair<double, double>> markovTreeInputs() const noexcept { return modelInputs_; }
-  /// The model shown (null: none; a new atlas removes it).
-  [[nodiscard]] std::shared_ptr<const MarkovTreeResult> markovTree() const noexcept { return model_; }
-  /// The shares: one row per atlas level, one column per shareTimes() (Qt::UserRole holds the share as a double).
-  [[nodiscard]] QTableWidget* sharesTable() const noexcept { return shares_; }
-  /// The model against the tail: one row per level compared (t, measured ± error, model, ratio, level holding).
-  [[nodiscard]] QTableWidget* comparisonTable() const noexcept { return comparison_; }
-  [[nodiscard]] QPushButton* markovTreeButton() const noexcept { return modelButton_; }
+  /// The Markov tree of the atlas shown, below the tree ("Model P_t…", its shares and comparison).
+  [[nodiscard]] MarkovTreePanel* markovTreePanel() const noexcept { return markovTree_; }
   [[nodiscard]] QPushButton* openButton() const noexcept { return open_; }
-  [[nodiscard]] QString markovTreeText() const;
 
  Q_SIGNALS:
-  /// "Model P_t…" was pressed: the window asks α and b₂ and calls computeMarkovTree().
-  void markovTreeAsked();
-  /// computeMarkovTree()'s end: the model (null on failure) and the failure's reason (empty on success).
-  void markovTreeFinished(std::shared_ptr<const archipelago::MarkovTreeResult> model, const QString& error);
   void statusMessage(const QString& text);
-  /// The atlas shown changed: a step of the computation, its end, a restore.
+  /// The atlas shown changed: a computation's start, a step of it, its end, a restore.
   void atlasChanged();
   /// The computation ended (finished or stopped) or failed.
   void computationEnded();
@@ -158,11 +129,10 @@ class AtlasPanel : public QWidget {
 
   /// The constructor's steps, in the order the widgets are made (the order of the Tab chain): depth, largest
   /// period, Compute, Stop and the progress line; the tree and the selected island's details; Export JSON / CSV
-  /// and Open; "Model P_t…" with its text and shares; then the page's layout.
+  /// and Open; the Markov tree's panel; then the page's layout.
   void createRequestControls();
   void createIslandTree();
   void createFileButtons();
-  void createMarkovTreeWidgets();
   void layOut();
 
   struct Snapshot;
@@ -171,14 +141,6 @@ class AtlasPanel : public QWidget {
   void updateProgress();
   void updateDetails();
   void updateButtons();
-  void fillShares();
-  void fillComparison();
-  /// The model's refusal (core's reason, whole) below "Model P_t…".
-  void showModelRefusal(const QString& why);
-  /// Why the atlas shown has no Markov tree (none, computing, or core's markovTreeAtlasError), empty when it can.
-  [[nodiscard]] QString markovTreeMissing() const;
-  /// "Model P_t…"'s tooltip when it can be pressed.
-  [[nodiscard]] static QString modelTip();
   [[nodiscard]] bool ofPortraitMap() const;
 
   PortraitController* controller_;
@@ -194,13 +156,7 @@ class AtlasPanel : public QWidget {
   QPushButton* csv_ = nullptr;
   QTimer* clock_ = nullptr;
   QPushButton* open_ = nullptr;
-  QPushButton* modelButton_ = nullptr;
-  QLabel* modelText_ = nullptr;
-  QTableWidget* shares_ = nullptr;
-  QTableWidget* comparison_ = nullptr;
-  std::shared_ptr<const MarkovTreeResult> model_;
-  quint64 treeRequest_ = 0;
-  std::optional<std::pair<double, double>> modelInputs_;  ///< α, b₂ of the model asked for last (this atlas)
+  MarkovTreePanel* markovTree_ = nullptr;
   std::unique_ptr<QElapsedTimer> elapsed_;
   std::vector<QTreeWidgetItem*> items_;   // items_[i] shows atlas_->nodes[i]
   std::shared_ptr<const Atlas> atlas_;

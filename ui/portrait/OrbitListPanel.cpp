@@ -160,14 +160,14 @@ void OrbitListPanel::createClickControls() {
   steps_ = steps;
   steps_->setObjectName(QStringLiteral("orbitSteps"));
   steps_->setRange(1, static_cast<int>(limits::kOrbitLength));  // core's one table
-  steps_->setValue(static_cast<int>(controller_->clickSteps()));
+  steps_->setValue(static_cast<int>(controller_->orbitsLayer().clickSteps()));
   steps_->setGroupSeparatorShown(true);
   steps_->setToolTip(tr("Steps of each launched orbit (a click or Launch)"));
   backward_ = new QCheckBox(tr("backward (N⁻¹)"), this);
   backward_->setObjectName(QStringLiteral("orbitBackward"));
   backward_->setToolTip(tr("Iterate the inverse map: the orbit's past"));
   const auto applyClick = [this] {
-    controller_->setClickOrbit(static_cast<std::uint64_t>(steps_->value()), backward_->isChecked());
+    controller_->orbitsLayer().setClickOrbit(static_cast<std::uint64_t>(steps_->value()), backward_->isChecked());
   };
   connect(steps_, qOverload<int>(&QSpinBox::valueChanged), this, applyClick);
   connect(backward_, &QCheckBox::toggled, this, applyClick);

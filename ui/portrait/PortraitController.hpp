@@ -69,13 +69,11 @@ class PortraitController : public QObject {
   void setViewport(const Viewport& view) { viewLayer_->setViewport(view); }
   [[nodiscard]] const Viewport& viewport() const noexcept { return viewLayer_->viewport(); }
   void zoomAt(double fx, double fy, double factor) { viewLayer_->zoomAt(fx, fy, factor); }
-  void panBy(double fx, double fy) { viewLayer_->panBy(fx, fy); }
   void crop(double fx0, double fx1, double fy0, double fy1) { viewLayer_->crop(fx0, fx1, fy0, fy1); }
   bool zoomToRegion(const SegmentRegion& region) { return viewLayer_->zoomToRegion(region); }
   bool goTo(long double x, long double y, long double width, QString* error = nullptr) {
     return viewLayer_->goTo(x, y, width, error);
   }
-  void ensureVisible(long double x, long double y) { viewLayer_->ensureVisible(x, y); }
   [[nodiscard]] bool shows(long double x, long double y) const noexcept { return viewLayer_->shows(x, y); }
   [[nodiscard]] const std::vector<Viewport>& history() const noexcept { return viewLayer_->history(); }
   [[nodiscard]] std::size_t historyIndex() const noexcept { return viewLayer_->historyIndex(); }
@@ -84,18 +82,15 @@ class PortraitController : public QObject {
   }
   [[nodiscard]] bool canGoBack() const noexcept { return viewLayer_->canGoBack(); }
   [[nodiscard]] bool canGoForward() const noexcept { return viewLayer_->canGoForward(); }
-  void setEqualAspect(bool on) { viewLayer_->setEqualAspect(on); }
   [[nodiscard]] bool equalAspect() const noexcept { return viewLayer_->equalAspect(); }
   void setMode(PortraitMode mode) { viewLayer_->setMode(mode); }
   [[nodiscard]] PortraitMode mode() const noexcept { return viewLayer_->mode(); }
-  void setIndicator(std::optional<IndicatorKind> kind) { viewLayer_->setIndicator(kind); }
   [[nodiscard]] std::optional<IndicatorKind> indicator() const noexcept { return viewLayer_->indicator(); }
   void setColourMap(ColourMapName colours) { viewLayer_->setColourMap(colours); }
   [[nodiscard]] ColourMapName colourMap() const noexcept { return viewLayer_->colourMap(); }
   void setPointBudget(std::uint64_t points) { viewLayer_->setPointBudget(points); }
   [[nodiscard]] std::uint64_t pointBudget() const noexcept { return viewLayer_->pointBudget(); }
   void stopRendering() { viewLayer_->stopRendering(); }
-  void setRenderPaused(bool paused) { viewLayer_->setRenderPaused(paused); }
 
   // --- Launched orbits (LaunchedOrbitsLayer) -------------------------------------------------------------
   quint64 launchOrbit(long double x, long double y, std::uint64_t steps = kLaunchedOrbitSteps, bool backward = false,
@@ -105,9 +100,6 @@ class PortraitController : public QObject {
   int launchOrbitFamily(const OrbitFamily& family, std::uint64_t steps = kLaunchedOrbitSteps, bool backward = false) {
     return orbits_->launchOrbitFamily(family, steps, backward);
   }
-  void setClickOrbit(std::uint64_t steps, bool backward) { orbits_->setClickOrbit(steps, backward); }
-  [[nodiscard]] std::uint64_t clickSteps() const noexcept { return orbits_->clickSteps(); }
-  [[nodiscard]] bool clickBackward() const noexcept { return orbits_->clickBackward(); }
   bool exportOrbitCsv(quint64 id, const QString& path, QString* error = nullptr) const {
     return orbits_->exportOrbitCsv(id, path, error);
   }
@@ -131,16 +123,10 @@ class PortraitController : public QObject {
   }
   void clearSegment() { overlay_->clearSegment(); }
   void findPeriodicOrbitAt(long double x, long double y) { overlay_->findPeriodicOrbitAt(x, y); }
-  void setClickFindsPeriodicOrbit(bool on) { overlay_->setClickFindsPeriodicOrbit(on); }
-  [[nodiscard]] bool clickFindsPeriodicOrbit() const noexcept { return overlay_->clickFindsPeriodicOrbit(); }
   [[nodiscard]] std::shared_ptr<const PeriodicOrbitAt> clickedPeriodicOrbit() const noexcept {
     return overlay_->clickedPeriodicOrbit();
   }
   [[nodiscard]] bool periodicSearchPending() const noexcept { return overlay_->periodicSearchPending(); }
-  [[nodiscard]] static QString periodicOrbitText(const PeriodicOrbitAt& found) {
-    return OverlayLayer::periodicOrbitText(found);
-  }
-  void clearPeriodicOrbit() { overlay_->clearPeriodicOrbit(); }
   void showProfileLine(std::optional<std::pair<PhysicalPoint, PhysicalPoint>> line) {
     overlay_->showProfileLine(std::move(line));
   }

@@ -309,10 +309,10 @@ void PortraitPanel::createViewActions() {
   connect(reset_, &QAction::triggered, c, &PortraitController::resetView);
   connect(zoomIn_, &QAction::triggered, c, &PortraitController::zoomIn);
   connect(zoomOut_, &QAction::triggered, c, &PortraitController::zoomOut);
-  connect(panLeft_, &QAction::triggered, c, [c] { c->panBy(-0.1, 0); });
-  connect(panRight_, &QAction::triggered, c, [c] { c->panBy(0.1, 0); });
-  connect(panUp_, &QAction::triggered, c, [c] { c->panBy(0, 0.1); });
-  connect(panDown_, &QAction::triggered, c, [c] { c->panBy(0, -0.1); });
+  connect(panLeft_, &QAction::triggered, c, [c] { c->viewLayer().panBy(-0.1, 0); });
+  connect(panRight_, &QAction::triggered, c, [c] { c->viewLayer().panBy(0.1, 0); });
+  connect(panUp_, &QAction::triggered, c, [c] { c->viewLayer().panBy(0, 0.1); });
+  connect(panDown_, &QAction::triggered, c, [c] { c->viewLayer().panBy(0, -0.1); });
 }
 
 void PortraitPanel::createViewOptionActions() {
@@ -321,7 +321,7 @@ void PortraitPanel::createViewOptionActions() {
   equalAspect_->setCheckable(true);
   equalAspect_->setChecked(true);
   equalAspect_->setStatusTip(tr("A unit of x as long on screen as a unit of y (rectangle zooms keep their shape)"));
-  connect(equalAspect_, &QAction::toggled, c, &PortraitController::setEqualAspect);
+  connect(equalAspect_, &QAction::toggled, &c->viewLayer(), &ViewLayer::setEqualAspect);
 
   raiseBudget_ = new QAction(tr("Raise Points Budget ×10"), this);
   raiseBudget_->setShortcut(QKeySequence(QStringLiteral("Ctrl+B")));
@@ -400,7 +400,7 @@ void PortraitPanel::createOrbitActions() {
   findPeriodic_->setIconText(tr("Find orbit"));
   findPeriodic_->setStatusTip(tr("A click (or Shift+click at any time) finds the periodic orbit there: its island chain "
                                  "named, its elliptic orbit found by Newton and drawn"));
-  connect(findPeriodic_, &QAction::toggled, c, &PortraitController::setClickFindsPeriodicOrbit);
+  connect(findPeriodic_, &QAction::toggled, &c->overlayLayer(), &OverlayLayer::setClickFindsPeriodicOrbit);
   profileTool_ = new QAction(tr("Rotation Profile Tool"), this);
   profileTool_->setCheckable(true);
   profileTool_->setShortcut(QKeySequence(QStringLiteral("Ctrl+L")));
@@ -512,9 +512,9 @@ PortraitDisplay PortraitPanel::display() const { return {controller_->mode(), co
 
 void PortraitPanel::setDisplay(const PortraitDisplay& d) {
   if (d.indicator) {
-    controller_->setIndicator(d.indicator);
+    controller_->viewLayer().setIndicator(d.indicator);
   } else {
-    controller_->setIndicator(std::nullopt);
+    controller_->viewLayer().setIndicator(std::nullopt);
     controller_->setMode(d.mode);
   }
   syncControls();
@@ -613,7 +613,7 @@ void PortraitPanel::showStochasticArea() {
 SessionPortrait PortraitPanel::sessionState() const { return controller_->sessionState(); }
 
 void PortraitPanel::restoreSessionState(const SessionPortrait& state, const MapParameters& map, double Xr) {
-  controller_->setIndicator(std::nullopt);
+  controller_->viewLayer().setIndicator(std::nullopt);
   controller_->restoreSession(state, map, Xr);
   syncControls();
 }

@@ -46,6 +46,11 @@ LongSegmentsPanel::LongSegmentsPanel(QWidget* parent) : QWidget(parent) {
   // a live run for every new top segment, at the portrait's idle priority, so that the run keeps the cores
   // (issue 41: at normal priority they took half the CPU of two cores from a run at nice 10).
   jobs_ = std::make_unique<BackgroundJobs>(this, std::vector<JobPriority>{JobPriority::normal, JobPriority::idle});
+  connect(this, &LongSegmentsPanel::chainReady, this, [this] {
+    if (!pendingIsland_) return;
+    pendingIsland_ = false;
+    zoomToIsland();
+  });
 
   createTable();
   createInfoLabels();
@@ -190,6 +195,23 @@ LongSegmentsPanel::~LongSegmentsPanel() {
 }
 
 void LongSegmentsPanel::updateSegments(const TrappingParameters& params, const LongestSegments& longest) {
+  showSegments(params, longest);
+  selectPending();
+}
+
+void LongSegmentsPanel::selectWhenListed(int rank, bool island) {
+  pendingRow_ = rank;
+  pendingIsland_ = island;
+  selectPending();
+}
+
+void LongSegmentsPanel::selectPending() {
+  if (pendingRow_ < 0 || pendingRow_ >= model_->rowCount()) return;
+  selectRow(pendingRow_);
+  pendingRow_ = -1;
+}
+
+void LongSegmentsPanel::showSegments(const TrappingParameters& params, const LongestSegments& longest) {
   const quint64 generation = model_->generation();
   const bool changed = model_->setSegments(params, longest.items());
   hint_->setVisible(model_->rowCount() == 0);
@@ -356,7 +378,7 @@ void LongSegmentsPanel::setCurrentIndex(std::size_t index) {
       const SegmentRegion& region = replay_->region;
       if (p.x >= region.x0 && p.x <= region.x1 && p.y >= region.y0 && p.y <= region.y1)
         portrait_->zoomToRegion(region);
-      if (!portrait_->shows(p.x, p.y)) portrait_->ensureVisible(p.x, p.y);
+      if (!portrait_->shows(p.x, p.y)) portrait_->viewLayer().ensureVisible(p.x, p.y);
     }
   }
   Q_EMIT currentIndexChanged(index_);

@@ -63,6 +63,9 @@ class LongSegmentsPanel : public QWidget {
 
   /// Selects the segment of rank `row` (0: the longest), which replays it.
   void selectRow(int row);
+  /// Selects the segment of rank `rank` as soon as the table lists it (now, or when updateSegments() brings it) and,
+  /// when `island`, zooms to one island of its chain once the chain is known.  (Scripts, sessions, screenshots.)
+  void selectWhenListed(int rank, bool island);
   [[nodiscard]] int selectedRow() const;
 
   /// The replay shown (null before the first one).
@@ -118,6 +121,9 @@ class LongSegmentsPanel : public QWidget {
   void createZoomButtons();
   void layOut(QLayout* steps);
   void onSelectionChanged();
+  /// updateSegments() less the pending selection (selectWhenListed).
+  void showSegments(const TrappingParameters& params, const LongestSegments& longest);
+  void selectPending();
   void requestReplay(const SegmentRecord& record);
   void requestChain(const SegmentRecord& record, bool urgent);
   void requestTopChains();
@@ -160,6 +166,8 @@ class LongSegmentsPanel : public QWidget {
   std::uint64_t maxReplayPoints_ = 1'000'000;
   std::uint64_t chainPoints_ = kChainIdentificationPoints;
   int autoRows_ = 10;
+  int pendingRow_ = -1;          // selectWhenListed(): the rank to select when the table has it
+  bool pendingIsland_ = false;   // … and to zoom to one island of its chain once known
 };
 
 }  // namespace archipelago::ui

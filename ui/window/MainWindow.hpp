@@ -3,8 +3,11 @@
 /// \brief The main window of `archipelago`: layout and wiring only.
 ///
 /// The run on screen — its state machine, worker, files and checkpoint — belongs to the RunController; what the
-/// window remembers between starts to the SettingsController.  The window lays out the parameter panel, the
-/// tabs (statistics, phase portrait), the long-segments dock, menus, toolbar and status bar, and connects them:
+/// window remembers between starts to the SettingsController; the File menu's flows to the FileController, the tail
+/// estimates to the TailEstimateController, sessions to the SessionController, the Markov tree to the Atlas page's
+/// MarkovTreePanel (its curve handed to the P_t plot), the checkpoint's banner, the stale run's note and the run's
+/// progress to their widgets (RunNotes, RunProgressLabels).  The window lays out the parameter panel, the tabs
+/// (statistics, phase portrait), the long-segments dock, menus, toolbar and status bar, and connects them:
 /// the refresh timer (15 Hz) shows the controller's newest snapshot, so the event loop stays free however fast
 /// chunks end.  Closing during a run asks, stops at the next chunk boundary, keeps a checkpoint and then closes;
 /// the next start offers to resume it.
@@ -25,17 +28,13 @@ class QDockWidget;
 class QFrame;
 class QLabel;
 class QMenu;
-class QProgressBar;
 class QTabWidget;
 class QTimer;
 
-namespace archipelago {
-struct MarkovTreeResult;
-}  // namespace archipelago
-
 namespace archipelago::ui {
 
-class BackgroundJobs;
+class CheckpointBanner;
+class FileController;
 class LongSegmentsPanel;
 class PeriodicOrbitDialog;
 class KScanDialog;
@@ -43,7 +42,10 @@ class PortraitPanel;
 
 class ParameterPanel;
 class RunGlanceView;
+class RunProgressLabels;
 class SessionController;
+class StaleRunNote;
+class TailEstimateController;
 class StatisticsView;
 
 class MainWindow : public QMainWindow {
@@ -62,37 +64,10 @@ class MainWindow : public QMainWindow {
 
   // Files.  Errors go to the status bar and, when `error` is given, to it.
   bool openRunFile(const QString& path, QString* error = nullptr);
-  /// Draws P_t of a tail file (`archipelago-cli tail --out …`, core/tail) beside the run's own P_t, at its reliable
-  /// levels (issue #29).  The file is read and its levels computed off the GUI thread (a background job): true
-  /// when that started, and tailEstimateFinished() says how it ended; false at once, with the reason (in `error`
-  /// and a dialog), without a run.  Refused, with the reason, when the file's process is not the run's (map, box,
-  /// Xr, q: core's tailRunMismatch), the file cannot be read, or it has no reliable level.  A second file opened
-  /// before the first is drawn replaces it (latest wins).
-  bool openTailEstimate(const QString& path, QString* error = nullptr);
-  /// A tail file is being read or its levels computed (the File menu's entry is disabled meanwhile).
-  [[nodiscard]] bool tailEstimatePending() const noexcept { return tailRequest_ != 0; }
-  /// The tail file whose estimate P_t shows (absolute; empty: none, or the run it was drawn for was replaced).
-  [[nodiscard]] QString tailEstimateFile() const { return tailFile_; }
+  /// File ▸ Open Tail Estimate: P_t of a tail file beside the run's own (issue #29).
+  [[nodiscard]] TailEstimateController* tailEstimates() const noexcept { return tails_; }
   /// File ▸ Open Atlas: shows an atlas file on the portrait's Atlas page (AtlasPanel::openAtlasFile).
   bool openAtlasFile(const QString& path, QString* error = nullptr);
-  /// The entry's numbers offered for the Markov tree's P_t = w S(t) (issue 40), each with where it comes from, or 0
-  /// (an empty field) with why there is none: core's markovTreeEntryOffer for the Atlas page's atlas (the parameters'
-  /// map without one) and the shown run — α the run's mean segment length when its map is the atlas's (of its process
-  /// of blocks of q steps, named with q, also after splicing: the q = 1 companion's α is not the tail's), else
-  /// docs/markov-tree.md's for an atlas at K = 0.1 in the default box; b₂ docs/markov-tree.md's for that map only.
-  struct MarkovTreeEntry {
-    double alpha = 0, b2 = 0;
-    QString alphaSource, b2Source;
-  };
-  [[nodiscard]] MarkovTreeEntry markovTreeEntry() const;
-  /// Draws P_t of the Markov tree of the Atlas page's atlas on the P_t plot, titled "Markov tree (atlas depth N)",
-  /// and fills the page's shares: computed by a background job (AtlasPanel::computeMarkovTree); true when that
-  /// started, and markovTreeDrawn() says how it ended; false at once with the reason (no finished atlas, α or b₂
-  /// refused by core).  With a tail estimate drawn, the page sets the model against its file (and opening a tail
-  /// file draws the model shown again against it).
-  bool drawMarkovTree(double alpha, double b2, QString* error = nullptr);
-  /// The Atlas page's "Model P_t…": a small dialog asking α and b₂, prefilled with markovTreeEntry().
-  void askMarkovTree();
   bool saveRunFile(const QString& path, QString* error = nullptr);
   /// Writes every plot (PNG, SVG, PDF) and every CSV file of the run on screen (as `stats --csv` does) into `folder`.
   bool exportAllTo(const QString& folder, QString* error = nullptr);
@@ -147,11 +122,6 @@ class MainWindow : public QMainWindow {
 
  Q_SIGNALS:
   void runStatusChanged(archipelago::ui::RunStatus status);
-  /// openTailEstimate()'s end: error is empty when the estimate is drawn, else the reason it was refused (also
-  /// shown in a dialog).
-  void tailEstimateFinished(const QString& path, const QString& error);
-  /// drawMarkovTree()'s end: error is empty when the model's P_t is drawn, else the reason.
-  void markovTreeDrawn(const QString& error);
 
  protected:
   void closeEvent(QCloseEvent* event) override;
@@ -161,30 +131,34 @@ class MainWindow : public QMainWindow {
  private:
   /// The constructor's steps: the run's controller and its signals; the tabs (the portrait with the Run page, the
   /// statistics); the central widget (the checkpoint banner, the note of a stale run, the tabs); after the actions,
-  /// menus and status bar, the docks (parameters, long segments); the Atlas page's Markov tree; the parameters'
-  /// signals.
+  /// menus and status bar, the docks (parameters, long segments); the owners of the tail estimates, sessions and
+  /// files; the tail estimates' and the Atlas page's signals (its Markov tree's curve to the P_t plot); the
+  /// parameters' signals.
   void createRunController();
   void createTabs();
   void createCentralWidget();
   void createDocks();
+  void createControllers();
+  void connectTailEstimates();
   void connectAtlasPage();
   void connectParameterPanel();
-  /// The Atlas page's Markov tree computed (or failed): its P_t drawn on the P_t plot, markovTreeDrawn() emitted.
-  void onMarkovTreeFinished(std::shared_ptr<const MarkovTreeResult> model, const QString& error);
   void createActions();
+  void createFileActions();
+  void createRunActions();
   void createMenus();
+  void createFileMenu();
+  void createToolsAndHelpMenus();
+  void createToolBar();
   /// View ▸ Run Page … Atlas Page (Ctrl+1 … Ctrl+5); Tools ▸ Compute Atlas, Model P_t of the Atlas….
   void addSidePageActions(QMenu* view);
   void addAtlasActions(QMenu* tools);
   void createStatusBar();
   QWidget* createParameterDock();
-  void createCheckpointBanner();
   void createLongSegmentsDock(QDockWidget* parametersDock);
   void restoreSettings();
   void saveSettings() const;
 
   void refreshView();
-  void showProgress(const RunSnapshot& snapshot);
   void onStatusChanged(RunStatus status);
   void updateActions();
   void updateStaleNote();
@@ -193,16 +167,6 @@ class MainWindow : public QMainWindow {
   /// Asks before the Atlas page's unsaved atlas goes for `action` (Save: Export JSON's dialog); true to go on.
   bool askAtlasDiscard(const QString& action);
 
-  void openDialog();
-  void openSessionDialog();
-  void showOpenError(const QString& title, const QString& path, const QString& reason);
-  bool saveSessionDialog();
-  bool saveDialog();
-  void exportAllDialog();
-  void exportPlotDialog(int plotIndex);
-  void fillRecentMenu();
-  void resumeCheckpoint();
-  void discardCheckpoint();
   void showAbout();
   void message(const QString& text, int timeoutMs = 6000);
 
@@ -216,19 +180,14 @@ class MainWindow : public QMainWindow {
   QDockWidget* segmentsDock_ = nullptr;
   PeriodicOrbitDialog* periodicDialog_ = nullptr;
   KScanDialog* kScanDialog_ = nullptr;
-  int pendingSegment_ = -1;       // showLongSegment(): the rank to select when the table has it
-  bool pendingIsland_ = false;
   SessionController* sessions_ = nullptr;
+  FileController* files_ = nullptr;
   QTabWidget* tabs_ = nullptr;
   QTimer* refreshTimer_ = nullptr;
-  QFrame* checkpointBanner_ = nullptr;
-  QLabel* checkpointLabel_ = nullptr;
-  QLabel* staleNote_ = nullptr;
+  CheckpointBanner* checkpointBanner_ = nullptr;
+  StaleRunNote* staleNote_ = nullptr;
 
-  QProgressBar* progress_ = nullptr;
-  QLabel* rateLabel_ = nullptr;
-  QLabel* etaLabel_ = nullptr;
-  QLabel* kernelLabel_ = nullptr;
+  RunProgressLabels* progress_ = nullptr;
 
   QAction* openAction_ = nullptr;
   QAction* openTailAction_ = nullptr;
@@ -246,10 +205,7 @@ class MainWindow : public QMainWindow {
 
   RunSnapshotPtr shown_;       // the snapshot on screen
   bool confirmations_ = true;
-  quint64 tailRequest_ = 0;    // openTailEstimate()'s job in flight (0: none)
-  QString tailFile_;           // the tail file drawn on P_t (sessions keep it)
-  // Last: destroyed first, so that no job outlives what its handlers use (BackgroundJobs.hpp, "Lifetime").
-  std::unique_ptr<BackgroundJobs> jobs_;
+  TailEstimateController* tails_ = nullptr;
 };
 
 }  // namespace archipelago::ui

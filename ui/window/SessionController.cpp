@@ -11,8 +11,10 @@
 #include "ui/window/ParameterPanel.hpp"
 #include "ui/run/RunController.hpp"
 #include "ui/window/StatisticsView.hpp"
+#include "ui/window/TailEstimateController.hpp"
 #include "ui/plots/StatisticsPlot.hpp"
 #include "ui/portrait/AtlasPanel.hpp"
+#include "ui/portrait/MarkovTreePanel.hpp"
 #include "ui/portrait/PortraitController.hpp"
 #include "ui/portrait/PortraitPanel.hpp"
 #include "ui/segments/LongSegmentsPanel.hpp"
@@ -44,7 +46,7 @@ void selectPage(QTabWidget& tabs, const std::string& name) {
 
 SessionController::SessionController(SessionParts parts, QObject* parent) : QObject(parent), parts_(std::move(parts)) {
   Q_ASSERT(parts_.parameters && parts_.run && parts_.statistics && parts_.portrait && parts_.segments &&
-           parts_.tabs && parts_.refreshNow && parts_.showSegment && parts_.tailFile && parts_.openTail);
+           parts_.tabs && parts_.tailEstimates && parts_.refreshNow && parts_.showSegment);
 }
 
 Session SessionController::capture(const QString& sessionPath) const {
@@ -74,9 +76,9 @@ Session SessionController::capture(const QString& sessionPath) const {
     const MapParameters& map = s.embeddedRun ? s.embeddedRun->params.map : s.spec.parameters.map;
     if (atlas->request.map == map) s.atlas = std::move(atlas);
   }
-  if (const auto model = atlasPage.markovTree(); model && s.atlas)
+  if (const auto model = atlasPage.markovTreePanel()->model(); model && s.atlas)
     s.markovTree = SessionMarkovTree{model->request.alpha, model->request.b2};
-  if (const QString tail = parts_.tailFile(); !tail.isEmpty() && run.latest()) s.tailFile = pathFromSession(sessionPath, tail);
+  if (const QString tail = parts_.tailEstimates->file(); !tail.isEmpty() && run.latest()) s.tailFile = pathFromSession(sessionPath, tail);
 
   const LongSegmentsPanel& segments = *parts_.segments;
   if (run.latest() && segments.selectedRow() >= 0) {
@@ -221,8 +223,8 @@ void SessionController::applyRunDependent(const Session& s) {
 void SessionController::redrawModels(const Session& s) {
   // Both are background jobs; each says how it ended as when asked from the menu (a tail file gone: its dialog).
   const QString tail = s.tailFile ? QString::fromStdString(s.tailFile->string()) : QString();
-  if (s.markovTree) parts_.portrait->atlasPanel()->computeMarkovTree(s.markovTree->alpha, s.markovTree->b2, nullptr, tail);
-  if (s.tailFile) parts_.openTail(tail);
+  if (s.markovTree) parts_.portrait->atlasPanel()->markovTreePanel()->compute(s.markovTree->alpha, s.markovTree->b2, nullptr, tail);
+  if (s.tailFile) parts_.tailEstimates->open(tail);
 }
 
 void SessionController::selectTab(const std::string& tab) { selectPage(*parts_.tabs, tab); }

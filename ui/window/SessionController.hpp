@@ -32,6 +32,7 @@ class ParameterPanel;
 class PortraitPanel;
 class RunController;
 class StatisticsView;
+class TailEstimateController;
 
 /// What a session captures and restores: the window's parts (none may be null) and two of its actions.
 struct SessionParts {
@@ -41,13 +42,12 @@ struct SessionParts {
   PortraitPanel* portrait = nullptr;
   LongSegmentsPanel* segments = nullptr;
   QTabWidget* tabs = nullptr;
+  /// The tail file whose estimate P_t shows, and drawing one again.
+  TailEstimateController* tailEstimates = nullptr;
   /// Shows the run's newest snapshot now (plots, segment table), instead of at the window's next refresh.
   std::function<void()> refreshNow;
   /// Selects the long segment of this rank as soon as the segment table has it (the window raises its dock).
   std::function<void(int rank)> showSegment;
-  /// The tail file whose estimate P_t shows (empty: none), and drawing one again (MainWindow::openTailEstimate).
-  std::function<QString()> tailFile;
-  std::function<void(const QString& path)> openTail;
 };
 
 class SessionController : public QObject {
