@@ -3,9 +3,9 @@
 summary and its CSVs; a rerun from the files giving the same bytes; a scan killed (SIGKILL) and stopped (SIGINT, exit
 130) whose resumes give the uninterrupted scan's files bit for bit; the K shared over tasks; and hostile input (one
 ERROR line, a non-zero exit, nothing written)."""
-import csv, json, os, shutil, signal, subprocess, tempfile
+import csv, json, os, shutil, signal, subprocess, tempfile, time
 
-from clitest import check, cli, finish, interrupt, run, wait_for_file, wait_for_handler
+from clitest import check, cli, finish, interrupt, run, wait_for_handler
 
 SETTINGS = {"--K": "0.1,0.15", "--t-max": "3e4", "--first": "100", "--population": "40", "--replicas": "4",
             "--min-ancestors": "4", "--threads": "2"}
@@ -24,6 +24,18 @@ def results(path):
     for key in ("elapsedSeconds", "kernel", "checksum"):
         d.pop(key)
     return d
+
+
+def wait_for_unfinished(path, process, seconds=600):
+    """Waits until `path` holds an unfinished tail file (True), or the file is finished, `process` has ended or
+    `seconds` have passed (False).  Each checkpoint replaces the file whole."""
+    deadline = time.monotonic() + seconds
+    while time.monotonic() < deadline and process.poll() is None:
+        try:
+            return not json.load(open(path))["finished"]
+        except (OSError, ValueError, KeyError):
+            time.sleep(0.02)
+    return False
 
 
 def scan(folder, *extra):
@@ -76,23 +88,30 @@ with tempfile.TemporaryDirectory() as d:
     # Killed (SIGKILL) once a checkpoint exists, then stopped (SIGINT): each resume goes on from the files, and the
     # end is the uninterrupted scan's, bit for bit.
     b = os.path.join(d, "b")
-    p = subprocess.Popen([cli, "tail-scan", *SMALL, "--dir", b, "--checkpoint-interval", "0.05", "--quiet"],
+    # A longer scan (t_max 10^7, N = 200) than SMALL's, which can end within its first chunk: the kill comes once
+    # K = 0.1's file holds an unfinished checkpoint, whatever the machine's speed.
+    LONG = small_with(["--t-max", "1e7", "--population", "200"])
+    ref = os.path.join(d, "ref")
+    r = run("tail-scan", *LONG, "--dir", ref, "--quiet")
+    check(r.returncode == 0, f"the longer scan, uninterrupted ({r.stderr.strip()[-200:]})")
+    p = subprocess.Popen([cli, "tail-scan", *LONG, "--dir", b, "--checkpoint-interval", "0.05", "--quiet"],
                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-    check(wait_for_file(os.path.join(b, "tail-K0.1.json"), p), "a checkpoint appears")
+    check(wait_for_unfinished(os.path.join(b, "tail-K0.1.json"), p), "an unfinished checkpoint of K = 0.1 appears")
     p.kill()
     p.communicate()
     killed = json.load(open(os.path.join(b, "tail-K0.1.json")))
-    check(not killed["finished"] or p.returncode == 0, "killed mid-way: K = 0.1's checkpoint is unfinished")
-    p = subprocess.Popen([cli, "tail-scan", *SMALL, "--dir", b, "--checkpoint-interval", "0.05"],
+    check(not killed["finished"], "killed mid-way: K = 0.1's checkpoint is unfinished")
+    p = subprocess.Popen([cli, "tail-scan", *LONG, "--dir", b, "--checkpoint-interval", "0.05"],
                          stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     wait_for_handler(p)
     out, err = interrupt(p)
     check(p.returncode in (0, 130), f"the resumed scan stops on SIGINT or finishes ({p.returncode})")
     if p.returncode == 130:
         check("resumed" in err and "run the same archipelago-cli tail-scan command again to resume" in err, f"exit 130 says how ({err.strip()[-200:]})")
-    r = scan(b)
-    check(r.returncode == 0 and r.stdout == summary, f"resumed to the end: the uninterrupted summary ({r.stderr.strip()[-200:]})")
-    check(all(results(os.path.join(b, f"tail-K{k}.json")) == results(os.path.join(a, f"tail-K{k}.json"))
+    r = run("tail-scan", *LONG, "--dir", b)
+    check(r.returncode == 0 and r.stdout == run("tail-scan", *LONG, "--dir", ref).stdout,
+          f"resumed to the end: the uninterrupted summary ({r.stderr.strip()[-200:]})")
+    check(all(results(os.path.join(b, f"tail-K{k}.json")) == results(os.path.join(ref, f"tail-K{k}.json"))
               for k in ("0.1", "0.15")), "resumed: every tail file's results bit for bit")
 
     # Two tasks of an array: each its K; the summary once both are done.
