@@ -42,9 +42,12 @@ constexpr std::int64_t kClassifyDenominator = 2000;
 /// iterates a circle's rotation is known to ~10⁻¹⁴, and the rationals of denominator ≤ 10⁴ lie ~10⁻⁸ apart, so an
 /// invariant circle is taken for one of them with a probability of ~10⁻⁵.
 constexpr std::int64_t kProofDenominator = 10000;
-/// The largest q of the chains p/q about an island enumerated by their rotation (AtlasBuilder::addFareyChains), and
-/// the spacing of that search along the lines (the MMP code's: it brackets the roots of the chains to period 729).
+/// The largest q of the chains p/q about an island enumerated by their rotation (AtlasBuilder::addFareyChains), the
+/// largest period n·q of those about a chain's island (the search's cost grows as q² n: about the island of 13 at
+/// K = 0.1, q ≤ 50 took more than 20 minutes), and the spacing of that search along the lines (the MMP code's: it
+/// brackets the roots of the chains to period 729).
 constexpr std::uint64_t kFareyPeriod = 50;
+constexpr std::uint64_t kFareyChainPeriod = 300;
 constexpr long double kFareySpacing = 1e-6L;
 
 /// Fundamental domains searched for a chain's primary heteroclinic points (TurnstileRequest::maxDomains): the search
@@ -951,11 +954,11 @@ class AtlasBuilder {
     return true;
   }
 
-  /// Every symmetric chain about the island of period ≤ n·kFareyPeriod whose rotation about it lies between the
-  /// boundary circle's and the farthest chain the scan found (issue 50): the Farey rationals p/q of that interval, each
-  /// solved for its symmetric orbits of period n·q on the lines beyond the boundary (fareyWindows), kept when elliptic,
-  /// a chain about the island (its Qⁿ-images turn p times about the member c, well ordered about it) and not already
-  /// found.  At K = 0.1 the scan stepped over the 4/25 chain about the centre (islands ≈ 7·10⁻⁵ wide along S₁, the
+  /// Every symmetric chain p/q about the island, q ≤ kFareyPeriod (and period n·q ≤ kFareyChainPeriod about a chain's
+  /// island), whose rotation about it lies between the boundary circle's and the farthest chain the scan found (issue
+  /// 50): the Farey rationals p/q of that interval, each solved for its symmetric orbits of period n·q on the lines
+  /// beyond the boundary (fareyWindows), kept when elliptic, a chain about the island (its Qⁿ-images turn p times
+  /// about the member c, well ordered about it) and not already found.  At K = 0.1 the scan stepped over the 4/25 chain about the centre (islands ≈ 7·10⁻⁵ wide along S₁, the
   /// scan's step).
   void addFareyChains(const Atlas& atlas, int index, const std::vector<Ray>& rays, std::vector<AtlasNode>& children) {
     const AtlasNode& node = atlas.nodes[static_cast<std::size_t>(index)];
@@ -970,7 +973,8 @@ class AtlasBuilder {
     if (!(lo < hi)) return;
     const std::vector<LineWindow> windows = fareyWindows(node, index, rays);
     if (windows.empty()) return;
-    const std::uint64_t maxQ = std::min<std::uint64_t>(kFareyPeriod, r_.maxPeriod / node.period);
+    const std::uint64_t maxPeriod = index == 0 ? r_.maxPeriod : std::min(r_.maxPeriod, kFareyChainPeriod);
+    const std::uint64_t maxQ = std::min<std::uint64_t>(kFareyPeriod, maxPeriod / node.period);
     for (std::int64_t q = 2; q <= static_cast<std::int64_t>(maxQ); ++q) {
       for (std::int64_t p = static_cast<std::int64_t>(std::ceil(lo * q)); p * hi > 0 && p < hi * q; ++p) {
         if (stop_.stop_requested()) return;
@@ -980,8 +984,10 @@ class AtlasBuilder {
         if (std::any_of(children.begin(), children.end(), known)) continue;
         std::vector<PeriodicOrbit> orbits;
         try {
-          orbits = findSymmetricPeriodicOrbitsIn(K_, static_cast<int>(node.period * static_cast<std::uint64_t>(q)),
-                                                 windows, kFareySpacing, stop_);
+          orbits = findSymmetricPeriodicOrbitsIn(
+              K_, static_cast<int>(node.period * static_cast<std::uint64_t>(q)), windows, kFareySpacing, stop_,
+              index == 0 ? std::function<bool(PhysicalPoint)>{}
+                         : [&](PhysicalPoint z) { return mayBeChainAbout(z, rays, node.period, pq); });
         } catch (const OperationStopped&) {
           return;
         }
@@ -1029,6 +1035,29 @@ class AtlasBuilder {
       child.orbit = chain;
       child.centre = chain.points.front();
       return addChain(atlas, std::move(child), member->second, children);
+    }
+    return false;
+  }
+
+  /// The finder's cheap test of a root z on a ray's line, before its quad polish (in a chaotic band most roots are
+  /// not chains about the island): its Qⁿ-images in long double stay within twice the ray's reach of the ray's member
+  /// c and turn p times about it in q steps (as surrounds() checks the polished orbit).
+  bool mayBeChainAbout(PhysicalPoint z, const std::vector<Ray>& rays, std::uint64_t n, const Rational& pq) const {
+    const long double pi = std::numbers::pi_v<long double>;
+    for (const Ray& ray : rays) {
+      const PhysicalPoint c = ray.island.centre;
+      if (distance(z, c) > 2 * ray.island.reach) continue;
+      smooth::Point<long double> w{z.x, z.y};
+      long double turns = 0, angle = std::atan2(w.y - c.y, w.x - c.x);
+      bool near = true;
+      for (std::int64_t k = 0; k < pq.q && near; ++k) {
+        for (std::uint64_t i = 0; i < n; ++i) w = smooth::step(K_, w);
+        near = std::hypot(w.x - c.x, w.y - c.y) <= 2 * ray.island.reach;
+        const long double next = std::atan2(w.y - c.y, w.x - c.x);
+        turns += std::remainder(next - angle, 2 * pi);
+        angle = next;
+      }
+      if (near && std::fabs(std::fabs(turns) / (2 * pi) - static_cast<long double>(std::llabs(pq.p))) < 0.5L) return true;
     }
     return false;
   }

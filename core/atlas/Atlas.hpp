@@ -32,7 +32,8 @@
 ///  3. The chains: the chain points beyond the boundary (turning about c in the sense of its circles), grouped by p/q, each group's middle point giving the
 ///     elliptic orbit of period n·q (ChainIdentification.hpp, ellipticOrbitAround); kept when it is stable.  Chain
 ///     points inside the boundary are listed as internal rationals and not followed.  About each island followed,
-///     every symmetric chain of period ≤ 50·n whose rotation lies between the boundary's and the farthest chain found
+///     every symmetric chain p/q (q ≤ 50; below the centre of period n·q ≤ 300) whose rotation lies between the
+///     boundary's and the farthest chain found
 ///     is sought by its rotation (the Farey rationals of that interval, each solved for its symmetric orbits of
 ///     period n·q on the lines beyond the boundary, kept when elliptic and a well-ordered chain about the island):
 ///     the scan steps over chains whose islands are narrower than its step (the 4/25 chain about the centre at
