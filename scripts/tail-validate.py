@@ -2,7 +2,8 @@
 """Validation of `archipelago-cli tail` (issue 29, deliverable 2) against brute force, to t = 10^7 steps.
 
   scripts/tail-validate.py [--cli build/default/app/archipelago-cli] [--dir tail-validation] [--brute-steps 3e11]
-                           [--t-max 1e7] [--replicas 16] [--seeds 0] [--K K] [--first T] [--brute-only] [--quick]
+                           [--t-max 1e7] [--replicas 16] [--seeds 0] [--K K] [--first T] [--level-bins B]
+                           [--population N] [--brute-only] [--quick]
 
 Everything at the paper's K = 0.1 box, Xr = 0.02, q = 16 (the default spec), niced; with --K, at that K in the box
 of the K scan's rule (core/scan/ScanBox.hpp: xmin = -2 sqrt(K) - 0.2, xmax = sqrt(K) + 0.2), the box the tail scan
@@ -44,6 +45,9 @@ p.add_argument("--seeds", type=int, default=0, help="(d): this many more seeds o
 p.add_argument("--K", type=float, default=None, help="this K in the scan's box (default: the default spec's K = 0.1 box)")
 p.add_argument("--first", type=float, default=None, help="the sampler's first level (tail --first; at K = 0.3 "
                "few segments last 10^3 steps)")
+p.add_argument("--level-bins", type=int, default=None, help="tail --level-bins (3: levels x1.26 apart, where P falls "
+               "steeply between levels, K = 0.3)")
+p.add_argument("--population", type=int, default=200, help="(a)'s sampler's N")
 p.add_argument("--brute-only", action="store_true", help="(a) and (c) only: the sampler against brute force")
 p.add_argument("--quick", action="store_true")
 a = p.parse_args()
@@ -94,15 +98,16 @@ def tail(name, *args):
     cmp = os.path.join(a.dir, name + ".compare.csv")
     text = os.path.join(a.dir, name + ".txt")  # its report: the levels and the comparison with its pooled test
     if not (os.path.exists(out) and os.path.exists(cmp) and os.path.exists(text)):
-        first = [] if a.first is None else ["--first", int(a.first)]
+        first = ([] if a.first is None else ["--first", int(a.first)]) + \
+                ([] if a.level_bins is None else ["--level-bins", a.level_bins])
         r = cli("tail", *spec, *first, "--t-max", int(a.t_max), "--replicas", a.replicas, *args, "--out", out, "--csv",
                 os.path.join(a.dir, name + ".csv"), "--compare", brute, "--compare-csv", cmp)
         open(text, "w").write(r.stdout)
     return json.load(open(out)), table(cmp)
 
 
-base, compared = tail("base", "--population", 200, "--seed", 11)
-print(f"\n(a) tail (N = 200, R = {a.replicas}) against brute force ({a.brute_steps:.3g} steps)")
+base, compared = tail("base", "--population", a.population, "--seed", 11)
+print(f"\n(a) tail (N = {a.population}, R = {a.replicas}) against brute force ({a.brute_steps:.3g} steps)")
 print(f"{'t':>10} {'P_tail':>11} {'err':>9} {'P_brute':>11} {'err':>9} {'segments':>8} {'z':>6}  ancestors reliable")
 worst = 0
 for row, L in zip(compared, base["levels"]):
