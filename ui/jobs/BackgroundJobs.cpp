@@ -10,6 +10,7 @@
 #endif
 
 #include <algorithm>
+#include <cerrno>
 #include <new>
 #include <stdexcept>
 
@@ -26,9 +27,12 @@ void lowerComputePriority(int nice) {
 #if defined(__linux__)
   // Linux gives every thread its own nice value and a new thread inherits its creator's: niced here, the
   // OpenMP team that a job starts from this thread is niced too.  The GUI thread then keeps the upper hand
-  // over the computation (and over nothing else), so it stays responsive while every core computes.
+  // over the computation (and over nothing else), so it stays responsive while every core computes.  Relative
+  // to the thread's own (at most 19): a GUI started under `nice 10` keeps it too (gui.jobs under nice ctest).
   const auto tid = static_cast<id_t>(syscall(SYS_gettid));
-  setpriority(PRIO_PROCESS, tid, nice);
+  errno = 0;
+  const int own = getpriority(PRIO_PROCESS, tid);
+  setpriority(PRIO_PROCESS, tid, errno == 0 ? std::min(own + nice, 19) : nice);
 #else
   (void)nice;
 #endif
