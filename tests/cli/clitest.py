@@ -30,6 +30,20 @@ def parse_report(stdout):
     return header, list(csv.DictReader(io.StringIO("\n".join(body))))
 
 
+def options_with(settings, args):
+    """The options of `settings` (a dict of option to value), those that `args` gives replaced by `args`."""
+    given = {a for a in args if a.startswith("--")}
+    return [x for k, v in settings.items() if k not in given for x in (k, v)] + list(args)
+
+
+def tail_results(path):
+    """What a tail file says, without what may differ between sessions (time, kernel)."""
+    d = json.load(open(path))
+    for key in ("elapsedSeconds", "kernel", "checksum"):
+        d.pop(key)
+    return d
+
+
 def wait_for_file(path, process, seconds=60):
     """Waits until `path` exists (True), `process` has ended or `seconds` have passed (False)."""
     deadline = time.monotonic() + seconds

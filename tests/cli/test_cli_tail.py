@@ -4,7 +4,7 @@ kernels, Ctrl-C (exit 130, a checkpoint) and --resume giving the uninterrupted r
 the same process, and bad input (one ERROR line each, nothing written)."""
 import csv, io, json, os, subprocess, tempfile
 
-from clitest import check, cli, finish, interrupt, leftovers, run, wait_for_file
+from clitest import check, cli, finish, interrupt, leftovers, run, wait_for_file, options_with, tail_results
 
 SETTINGS = {"--first": "150", "--t-max": "4000", "--population": "20", "--replicas": "3", "--min-ancestors": "4"}
 SMALL = [x for kv in SETTINGS.items() for x in kv]
@@ -12,16 +12,10 @@ SMALL = [x for kv in SETTINGS.items() for x in kv]
 
 def small_with(args):
     """SMALL with the options of `args` replacing its own."""
-    given = {a for a in args if a.startswith("--")}
-    return [x for k, v in SETTINGS.items() if k not in given for x in (k, v)] + list(args)
+    return options_with(SETTINGS, args)
 
 
-def results(path):
-    """What a tail file says, without what may differ between sessions (time, kernel)."""
-    d = json.load(open(path))
-    for key in ("elapsedSeconds", "kernel", "checksum"):
-        d.pop(key)
-    return d
+results = tail_results
 
 
 with tempfile.TemporaryDirectory() as d:

@@ -5,7 +5,7 @@ summary and its CSVs; a rerun from the files giving the same bytes; a scan kille
 ERROR line, a non-zero exit, nothing written)."""
 import csv, json, os, shutil, signal, subprocess, tempfile, time
 
-from clitest import check, cli, finish, interrupt, run, wait_for_handler
+from clitest import check, cli, finish, interrupt, run, wait_for_handler, options_with, tail_results
 
 SETTINGS = {"--K": "0.1,0.15", "--t-max": "3e4", "--first": "100", "--population": "40", "--replicas": "4",
             "--min-ancestors": "4", "--threads": "2"}
@@ -14,16 +14,10 @@ SMALL = [x for kv in SETTINGS.items() for x in kv]
 
 def small_with(args):
     """SMALL with the options of `args` replacing its own."""
-    given = {x for x in args if x.startswith("--")}
-    return [x for k, v in SETTINGS.items() if k not in given for x in (k, v)] + list(args)
+    return options_with(SETTINGS, args)
 
 
-def results(path):
-    """What a tail file says, without what may differ between sessions (time, kernel)."""
-    d = json.load(open(path))
-    for key in ("elapsedSeconds", "kernel", "checksum"):
-        d.pop(key)
-    return d
+results = tail_results
 
 
 def wait_for_unfinished(path, process, seconds=600):
