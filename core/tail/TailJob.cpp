@@ -73,6 +73,7 @@ TailState runOnRank(TailPlan plan, const KernelInfo& kernel, const TailSessionOp
   job.checkpoint = f.checkpoint;
   job.checkpointSeconds = o.plan.checkpointSeconds;
   job.warning = o.view.checkpointWarning;
+  job.optionName = o.plan.optionName;
   TailState state;
   onEveryRank(ranks, [&] { state = runTailJob(std::move(plan.state), job, last, o.view.progress, std::move(stop)); });
   if (o.view.runEnded) o.view.runEnded();
@@ -248,7 +249,12 @@ TailState runTailJob(TailState state, const TailJobOptions& options, LastCheckpo
                       options.checkpointSeconds, options.warning);
     if (progress) progress(s, p);
   };
-  return runTail(std::move(state), options.run, observer, std::move(stop));
+  try {
+    return runTail(std::move(state), options.run, observer, std::move(stop));
+  } catch (const TailSettingOutOfReach& e) {
+    if (!options.optionName) throw;
+    throw std::invalid_argument(e.namedAs(options.optionName(e.role())));
+  }
 }
 
 void saveTailOrSayWhere(const std::filesystem::path& path, const TailState& state, const LastCheckpoint& last,

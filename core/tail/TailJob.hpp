@@ -11,6 +11,7 @@
 #include <functional>
 #include <stop_token>
 #include <string>
+#include <string_view>
 
 #include <optional>
 #include <vector>
@@ -30,11 +31,14 @@ struct TailJobOptions {
   double checkpointSeconds = 60;     ///< between checkpoints (checkpointIntervalError()'s rule)
   /// A checkpoint that could not be written: the reason and the seconds until the next attempt.  Empty: silent.
   std::function<void(const std::string& reason, double retrySeconds)> warning;
+  /// The front end's name of a setting's role (TailSettingOutOfReach); empty: the role itself.
+  std::function<std::string(std::string_view role)> optionName;
 };
 
 /// Advances `state` with runTail() until it is finished or `stop` is requested, writing options.checkpoint every
 /// checkpointSeconds while unfinished (a failed write goes to `warning` and is retried at the next interval) and
-/// calling `progress` at every chunk.  `last` becomes the checkpoint at each one written.
+/// calling `progress` at every chunk.  `last` becomes the checkpoint at each one written.  A setting found out of
+/// reach while running (TailSettingOutOfReach) is thrown as std::invalid_argument naming it by options.optionName.
 [[nodiscard]] TailState runTailJob(TailState state, const TailJobOptions& options, LastCheckpoint& last,
                                    const TailObserver& progress = {}, std::stop_token stop = {});
 

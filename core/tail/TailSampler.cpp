@@ -492,15 +492,18 @@ class Sampler {
       // islands, K ≤ 0, or a first level too high).  Said after a second or two, rather than after hours.
       // The request cannot start (its first level is out of this map's reach): invalid_argument, Python's ValueError
       // (issue 54: it was a RuntimeError), named by its role, not a flag.
-      throw std::invalid_argument("only " + std::to_string(s_.pilotSuccesses) + " of the pilot's " +
-                                  std::to_string(s_.pilotTrials) + " segments lasted longer than the first level t = " +
-                                  std::to_string(s_.levels[0] * s_.request.run.q) +
-                                  " steps: give a lower first level (first)");
+      throw TailSettingOutOfReach("only " + std::to_string(s_.pilotSuccesses) + " of the pilot's " +
+                                      std::to_string(s_.pilotTrials) +
+                                      " segments lasted longer than the first level t = " +
+                                      std::to_string(s_.levels[0] * s_.request.run.q) +
+                                      " steps: give a lower first level",
+                                  "first");
     } else if (s_.pilotOrbits >= kMaxPilotOrbits) {
-      throw std::invalid_argument(
+      throw TailSettingOutOfReach(
           "the pilot's " + std::to_string(s_.pilotTrials) + " segments of " + std::to_string(s_.pilotOrbits) +
-          " entry orbits gave " + std::to_string(s_.pilotSuccesses) + " longer than the first level t = " +
-          std::to_string(s_.levels[0] * s_.request.run.q) + " steps: give a lower first level (first)");
+              " entry orbits gave " + std::to_string(s_.pilotSuccesses) + " longer than the first level t = " +
+              std::to_string(s_.levels[0] * s_.request.run.q) + " steps: give a lower first level",
+          "first");
     }
     return true;
   }

@@ -71,8 +71,10 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <stdexcept>
 #include <stop_token>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/kernels/KernelDispatch.hpp"
@@ -82,6 +84,21 @@
 namespace archipelago {
 
 enum class CloneRule { perturb, metropolis };
+
+/// A request the sampler finds out of the map's reach only while it runs (the pilot of stage 0: the first level is
+/// too high for this map), naming the setting to change by its role ("first"); runTailJob (TailJob.hpp) names it as
+/// the front end does (--first, first=…).  what() ends "(role)".
+class TailSettingOutOfReach : public std::invalid_argument {
+ public:
+  TailSettingOutOfReach(const std::string& text, std::string role)
+      : std::invalid_argument(text + " (" + role + ")"), text_(text), role_(std::move(role)) {}
+  [[nodiscard]] const std::string& role() const noexcept { return role_; }
+  /// The text with the setting named `name`.
+  [[nodiscard]] std::string namedAs(const std::string& name) const { return text_ + " (" + name + ")"; }
+
+ private:
+  std::string text_, role_;
+};
 
 /// "perturb" or "metropolis".
 [[nodiscard]] const char* cloneRuleName(CloneRule rule) noexcept;

@@ -149,11 +149,16 @@ bool runItem(ScanItem& item, const TailScanRequest& r, const ScanSettings& s, co
     job.checkpoint = item.file;
     job.checkpointSeconds = r.checkpointSeconds;
     job.warning = view.checkpointWarning;
+    job.optionName = [&r](std::string_view role) { return r.nameOf(role); };
     LastCheckpoint last{item.how == "resumed" ? item.file.string() : std::string(), 0};
     TailObserver progress;
     if (view.progress)
       progress = [&](const TailState& state, const TailProgress& p) { view.progress(item.index, K, state, p); };
-    item.state = runTailJob(std::move(item.state), job, last, progress, std::move(stop));
+    try {
+      item.state = runTailJob(std::move(item.state), job, last, progress, std::move(stop));
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument("K = " + scanKText(K) + ": " + e.what());
+    }
     saveTailOrSayWhere(item.file, item.state, last, ": run the same scan again to resume it");
   }
   if (item.state.finished() && view.finished) view.finished(item.index, K, item.state);

@@ -146,4 +146,19 @@ with tempfile.TemporaryDirectory() as d:
         check(r.returncode != 0 and len(lines) == 1 and lines[0].startswith("ERROR: ") and mention in lines[0]
               and files(folder) == listed, f"{' '.join(args)[:40] or folder} -> {lines[:1]}")
 
+    # A first level out of the map's reach, found only by stage 0's pilot while running (K = 0.3: P(1008) ~ 10^-7):
+    # one ERROR line naming the K and the option by this front end's name, and the K's file not written; `tail`
+    # itself names the option the same way.
+    r = run("tail-scan", *small_with(["--K", "0.3", "--first", "1000"]), "--dir", h)
+    lines = r.stderr.strip().splitlines()
+    check(r.returncode == 1 and sum(x.startswith("ERROR") for x in lines) == 1
+          and lines[-1].startswith("ERROR: K = 0.3: ") and lines[-1].endswith("give a lower first level (--first)")
+          and files(h) == [], f"K = 0.3 at first level 1008 -> {lines[-1:]}")
+    out = os.path.join(d, "k03.json")
+    r = run("tail", "--K", "0.3", "--xmin", "-1.3", "--xmax", "0.75", "--t-max", "1e4", "--threads", "2",
+            "--out", out)
+    lines = r.stderr.strip().splitlines()
+    check(r.returncode == 1 and lines[-1:] and lines[-1].startswith("ERROR: only ")
+          and lines[-1].endswith("give a lower first level (--first)"), f"tail at K = 0.3 -> {lines[-1:]}")
+
 finish()
