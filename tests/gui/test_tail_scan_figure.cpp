@@ -113,8 +113,8 @@ class TailScanFigureTest : public QObject {
     int references = 0;
     for (QwtPlotItem* item : windows->itemList(QwtPlotItem::Rtti_PlotCurve)) {
       const QString title = item->title().text();
-      const double gamma = title.startsWith(QStringLiteral("γ = 1.57")) ? 1.57
-                           : title.startsWith(QStringLiteral("γ = 1.44")) ? 1.44 : 0;
+      const double gamma = title.startsWith(QStringLiteral("1.57: ")) ? 1.57
+                           : title.startsWith(QStringLiteral("1.44: ")) ? 1.44 : 0;
       if (gamma == 0) continue;
       ++references;
       const auto* line = static_cast<QwtPlotCurve*>(item);

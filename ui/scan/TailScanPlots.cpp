@@ -42,13 +42,13 @@ QwtPlotCurve* addCurve(QwtPlot* plot, const QString& title, const QVector<QPoint
 TailScanPlots::TailScanPlots(QWidget* parent) : QWidget(parent) {
   setObjectName(QStringLiteral("tailScanPlots"));
   // γ(t, K): K across, log t upwards (as tail-scan's PREFIX_gamma.png), the colour bar on the right.
-  mapPlot_ = makePlot(this, tr("K"), tr("t (steps): the window's centre"), false, true);
+  mapPlot_ = makePlot(this, tr("K"), tr("t (steps)"), false, true);
   mapPlot_->setObjectName(QStringLiteral("tailGammaMap"));
   mapPlot_->setTitle(tr("tail scan: γ = −d ln P_t / d ln t over K and t"));
-  mapPlot_->setFooter(tr("each row a window [t/√10, t·√10]; grey: the K does not reach it (no reliable level at or "
-                         "below its start and one at or above its end); colours stop at 0 and %1")
+  mapPlot_->setFooter(tr("each row a window [t/√10, t·√10] about its centre t; grey: the K does not reach it (no "
+                         "reliable level at or below its start and one at or above its end); colours stop at 0 and %1")
                           .arg(kTailGammaTop));
-  map_ = addHeatMap(mapPlot_, tr("γ"), tr("γ = −d ln P_t / d ln t"), QStringLiteral("t"), kTailGammaTop);
+  map_ = addHeatMap(mapPlot_, tr("γ"), tr("γ"), QStringLiteral("t"), kTailGammaTop);
 
   windowsPlot_ = makePlot(this, tr("t (steps): the window's centre"), tr("γ = −d ln P_t / d ln t"), true, false);
   windowsPlot_->setObjectName(QStringLiteral("tailGammaWindows"));
@@ -59,6 +59,7 @@ TailScanPlots::TailScanPlots(QWidget* parent) : QWidget(parent) {
   auto* splitter = new QSplitter(Qt::Vertical, this);
   splitter->addWidget(mapPlot_);
   splitter->addWidget(windowsPlot_);
+  splitter->setSizes({900, 1100});  // whatever the plots' size hints (the legend, the footers)
   auto* layout = new QVBoxLayout(this);
   layout->setContentsMargins(0, 0, 0, 0);
   layout->addWidget(splitter);
@@ -127,6 +128,7 @@ void TailScanPlots::addAverage(const TailScanSummary& s) {
   }
   auto* bars = new QwtPlotIntervalCurve(tr("spread over K"));
   bars->setStyle(QwtPlotIntervalCurve::NoCurve);
+  bars->setItemAttribute(QwtPlotItem::Legend, false);  // the footer says what the bars are
   bars->setSymbol(new QwtIntervalSymbol(QwtIntervalSymbol::Bar));
   bars->setSamples(spread);
   bars->attach(windowsPlot_);
@@ -142,15 +144,15 @@ void TailScanPlots::addReferences(const TailScanSummary& s) {
   for (std::size_t i = 0; i < references.size(); ++i) {
     const ReferenceExponent& r = references[i];
     const QString gamma = QString::number(r.gamma, 'g', 3);
-    QwtPlotCurve* line = addCurve(windowsPlot_, tr("γ = %1: %2").arg(gamma, QString::fromUtf8(r.source)),
+    QwtPlotCurve* line = addCurve(windowsPlot_, tr("%1: %2").arg(gamma, QString::fromUtf8(r.source)),
                                   {QPointF(from, r.gamma), QPointF(to, r.gamma)});
     line->setPen(kReferenceColours[i % 2], 1.5, Qt::DashLine);
-    auto* label = new QwtPlotMarker;  // the line's value at its right end, above it
+    auto* label = new QwtPlotMarker;  // the line's value at its right end: the first (1.57) above, the next below
     label->setValue(to, r.gamma);
     QwtText text(gamma);
     text.setColor(kReferenceColours[i % 2]);
     label->setLabel(text);
-    label->setLabelAlignment(Qt::AlignLeft | Qt::AlignTop);
+    label->setLabelAlignment(Qt::AlignLeft | (i == 0 ? Qt::AlignTop : Qt::AlignBottom));
     label->attach(windowsPlot_);
   }
 }
