@@ -17,8 +17,6 @@
 #include "CliCommon.hpp"
 #include "RunSession.hpp"
 #include "core/runfile/CheckpointedRun.hpp"
-#include "core/io/Png.hpp"
-#include "core/provenance/Provenance.hpp"
 #include "core/scan/ScanHeatMap.hpp"
 #include "core/scan/ScanRun.hpp"
 #include "core/kernels/KernelDispatch.hpp"
@@ -43,35 +41,6 @@ std::vector<double> parseKList(const std::string& text) {
   } catch (const std::invalid_argument& e) {
     throw std::invalid_argument(std::string("--K: ") + e.what());
   }
-}
-
-/// The heat map of the local exponent as an image: a column of cells per K (left to right), log τ upwards at 30
-/// rows per decade (each row the grid τ nearest in log τ), coloured by core's one scale (heatMapColour: white at 0
-/// through orange to dark red at 2 and more, grey where undefined), as the K-scan dialog and the report colour it.
-void writeHeatMapPng(const std::filesystem::path& path, const ScanHeatMap& map) {
-  if (map.K.empty() || map.tau.empty() || !(map.tau.front() > 0)) return;
-  constexpr int kRowsPerDecade = 30, cellH = 4;
-  const double lo = std::log10(map.tau.front()), hi = std::log10(map.tau.back());
-  const int rows = static_cast<int>(std::ceil((hi - lo) * kRowsPerDecade)) + 1;
-  const int cellW = std::max(4, 480 / static_cast<int>(map.K.size()));
-  const int width = cellW * static_cast<int>(map.K.size()), height = cellH * rows;
-  std::vector<std::uint8_t> rgb(static_cast<std::size_t>(width) * height * 3);
-  for (int y = 0; y < height; ++y) {
-    const double logTau = hi - static_cast<double>(y / cellH) / kRowsPerDecade;  // large τ on top
-    auto it = std::lower_bound(map.tau.begin(), map.tau.end(), std::pow(10.0, logTau));
-    if (it == map.tau.end() || (it != map.tau.begin() && logTau - std::log10(*(it - 1)) < std::log10(*it) - logTau)) --it;
-    const auto row = static_cast<std::size_t>(it - map.tau.begin());
-    for (int x = 0; x < width; ++x) {
-      const Rgb c = heatMapColour(map.value[row * map.K.size() + static_cast<std::size_t>(x / cellW)]);
-      std::uint8_t* px = &rgb[(static_cast<std::size_t>(y) * width + x) * 3];
-      px[0] = c.r;
-      px[1] = c.g;
-      px[2] = c.b;
-    }
-  }
-  Provenance provenance = programProvenance();
-  provenance.add("Image", "K scan: local exponent over K and tau").add("K first", map.K.front()).add("K last", map.K.back());
-  io::writePng(path.string(), width, height, rgb, provenance.fields);
 }
 
 int scanCommand(const ScanOptions& o, const RunSpec& base, const std::vector<double>& Ks) {
@@ -118,7 +87,7 @@ int scanCommand(const ScanOptions& o, const RunSpec& base, const std::vector<dou
   }
   const std::vector<ScanRunSummary>& runs = outcome.runs;
   // The summaries, from the run files (all finished now) and, when asked, b₂ of every box.
-  writeHeatMapPng(dir / "scan_local_exponent.png", localExponentHeatMap(runs));
+  writeHeatMapPng(dir / "scan_local_exponent.png", localExponentHeatMap(runs), "K scan: local exponent over K and tau");
   std::printf("K, box xmin..xmax, D +- error (bootstrap over segments; 'dominated': the longest segments dominate "
               "D, no error), longest (steps), time in segments >= 1e4 steps%s\n",
               o.b2Iterations > 0 ? ", b2 (area), b2*D" : "");

@@ -25,7 +25,9 @@ void addTailScanOptions(CLI::App& cmd, TailScanOptions& o) {
   addNumberOption(cmd, "--checkpoint-interval", o.checkpointSeconds, "seconds between checkpoints of the K running");
   cmd.add_option("--task", o.task, "I/N: only the K of task I of N (K number i when i mod N = I; a Slurm array: "
                                    "$SLURM_ARRAY_TASK_ID/$SLURM_ARRAY_TASK_COUNT)");
-  cmd.add_option("--csv", o.csv, "the summary as PREFIX_P.csv, PREFIX_gamma.csv and PREFIX_average.csv");
+  cmd.add_option("--csv", o.csv, "the summary as PREFIX_P.csv, PREFIX_gamma.csv and PREFIX_average.csv, and the figure "
+                                 "gamma(t, K) as PREFIX_gamma.png (K across, log t up; written once every K is "
+                                 "finished)");
   cmd.add_flag("--quiet", o.quiet, "no progress or summary");
 }
 
@@ -90,7 +92,7 @@ int tailScanEnd(const TailScanOutcome& r, const TailScanOptions& o, const std::s
   if (!o.quiet) std::fputs(tailScanText(r.summary).c_str(), stdout);
   if (!o.quiet)
     std::fprintf(stderr, "done: %zu K in %s%s%s\n", r.K.size(), o.dir.c_str(), o.csv.empty() ? "" : "; wrote ",
-                 o.csv.empty() ? "" : (o.csv + "_{P,gamma,average}.csv").c_str());
+                 o.csv.empty() ? "" : (o.csv + "_{P,gamma,average}.csv and " + o.csv + "_gamma.png").c_str());
   return 0;
 }
 

@@ -52,6 +52,9 @@ inline constexpr double kGammaCristadoroKetzmerick = 1.57;  ///< PRL 100, 184101
 inline constexpr double kGammaVenegeroles = 1.5;            ///< 2009
 inline constexpr double kGammaShepelyansky = 1.3;           ///< 2010
 inline constexpr double kGammaChirikovShepelyansky = 3.0;   ///< 1999
+/// The ultrametric estimate ln 2/ln(1 + r_g) = 1.440…, r_g = (√5 − 1)/2 the critical rotation number (Avetisov &
+/// Nechaev, arXiv:0909.4513, 2009), which the tail scan's γ(t, K) is set against (core/tail/TailScan.hpp).
+inline constexpr double kGammaUltrametric = 1.44;
 
 /// One panel of a figure ("6d").  A panel that plots a statistic names its key (core/stats/StatisticsTable.hpp).
 struct FigurePanel {

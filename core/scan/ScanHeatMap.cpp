@@ -2,7 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+
+#include "core/io/Png.hpp"
+#include "core/provenance/Provenance.hpp"
 
 namespace archipelago {
 
@@ -32,9 +36,9 @@ std::span<const HeatMapStop> heatMapStops() noexcept {
   return stops;
 }
 
-Rgb heatMapColour(double value) noexcept {
+Rgb heatMapColour(double value, double top) noexcept {
   if (std::isnan(value)) return kHeatMapNoData;
-  const double s = std::clamp(value / kHeatMapTop, 0.0, 1.0);
+  const double s = std::clamp(value / top, 0.0, 1.0);
   const auto stops = heatMapStops();
   std::size_t i = 1;
   while (i + 1 < stops.size() && s > stops[i].position) ++i;
@@ -45,6 +49,32 @@ Rgb heatMapColour(double value) noexcept {
     return static_cast<std::uint8_t>(std::lround((1 - w) * x + w * y));
   };
   return {mix(a.colour.r, b.colour.r), mix(a.colour.g, b.colour.g), mix(a.colour.b, b.colour.b)};
+}
+
+void writeHeatMapPng(const std::filesystem::path& path, const ScanHeatMap& map, const std::string& image) {
+  if (map.K.empty() || map.tau.empty() || !(map.tau.front() > 0)) return;
+  constexpr int kRowsPerDecade = 30, cellH = 4;
+  const double lo = std::log10(map.tau.front()), hi = std::log10(map.tau.back());
+  const int rows = static_cast<int>(std::ceil((hi - lo) * kRowsPerDecade)) + 1;
+  const int cellW = std::max(4, 480 / static_cast<int>(map.K.size()));
+  const int width = cellW * static_cast<int>(map.K.size()), height = cellH * rows;
+  std::vector<std::uint8_t> rgb(static_cast<std::size_t>(width) * height * 3);
+  for (int y = 0; y < height; ++y) {
+    const double logTau = hi - static_cast<double>(y / cellH) / kRowsPerDecade;  // large τ on top
+    auto it = std::lower_bound(map.tau.begin(), map.tau.end(), std::pow(10.0, logTau));
+    if (it == map.tau.end() || (it != map.tau.begin() && logTau - std::log10(*(it - 1)) < std::log10(*it) - logTau)) --it;
+    const auto row = static_cast<std::size_t>(it - map.tau.begin());
+    for (int x = 0; x < width; ++x) {
+      const Rgb c = heatMapColour(map.value[row * map.K.size() + static_cast<std::size_t>(x / cellW)], map.top);
+      std::uint8_t* px = &rgb[(static_cast<std::size_t>(y) * width + x) * 3];
+      px[0] = c.r;
+      px[1] = c.g;
+      px[2] = c.b;
+    }
+  }
+  Provenance provenance = programProvenance();
+  provenance.add("Image", image).add("K first", map.K.front()).add("K last", map.K.back());
+  io::writePng(path.string(), width, height, rgb, provenance.fields);
 }
 
 }  // namespace archipelago

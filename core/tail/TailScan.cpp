@@ -1,6 +1,8 @@
 #include "core/tail/TailScan.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <regex>
 #include <stdexcept>
 #include <utility>
 
@@ -9,6 +11,7 @@
 #include "core/io/NumberText.hpp"
 #include "core/job/Job.hpp"
 #include "core/limits/Limits.hpp"
+#include "core/paper/PaperTable.hpp"
 #include "core/scan/ScanBox.hpp"
 #include "core/scan/ScanRun.hpp"
 #include "core/tail/TailFile.hpp"
@@ -193,6 +196,7 @@ TailScanOutcome summaryOutcome(const TailScanRequest& r, const ScanSettings& s) 
     io::writeFileAtomically(files[0], tailScanPCsv(out.summary));
     io::writeFileAtomically(files[1], tailScanGammaCsv(out.summary));
     io::writeFileAtomically(files[2], tailScanAverageCsv(out.summary));
+    writeHeatMapPng(tailScanPngFile(r.csv), tailGammaHeatMap(out.summary), "tail scan: gamma over K and t");
     outputs.commit();
   }
   return out;
@@ -240,6 +244,49 @@ TailScanWindow averageOver(const std::vector<std::vector<TailExponent>>& gamma, 
   return a;
 }
 
+/// The tail files of a scan's folder (tail-K<K>.json), sorted by name.
+std::vector<std::filesystem::path> tailFilesIn(const std::filesystem::path& dir) {
+  std::error_code ec;
+  if (!std::filesystem::is_directory(dir, ec)) throw std::runtime_error(dir.string() + " is not a folder");
+  static const std::regex name(R"(tail-K[^/]+\.json)");
+  std::vector<std::filesystem::path> files;
+  for (std::filesystem::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+    if (std::regex_match(it->path().filename().string(), name)) files.push_back(it->path());
+  if (ec) throw std::runtime_error("cannot list " + dir.string() + ": " + ec.message());
+  if (files.empty())
+    throw std::runtime_error(dir.string() + " holds no tail file (tail-K<K>.json): not the folder of a tail scan");
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+/// The first tail file of a folder read, whose settings the others must have.
+struct FolderSettings {
+  std::filesystem::path file;
+  TailRequest request;
+};
+
+/// The run of a scan folder's file, checked to be a tail scan's run of its K (loadTailScan's rules), with the
+/// settings of `first` but the box; none given: the first file.
+TailState folderRun(const std::filesystem::path& file, const std::optional<FolderSettings>& first) {
+  TailState state = loadTailFile(file);
+  const double K = state.request.run.map.K;
+  const std::string where = file.string() + " ";
+  if (!(state.request.run.map == scanBox(K)))
+    throw std::runtime_error(where + "is not a tail scan's file: its box is not the scan's box of K = " + scanKText(K));
+  if (file.filename() != tailScanFile({}, K).filename())
+    throw std::runtime_error(where + "holds the run of K = " + scanKText(K) + ", not that of its name");
+  if (state.firstReplica != 0 || state.replicas.size() != state.request.replicas)
+    throw std::runtime_error(where + "holds a slice of the replicas, not the whole run of K = " + scanKText(K));
+  if (first) {
+    TailRequest wanted = first->request;
+    wanted.run.map = state.request.run.map;
+    if (!(state.request == wanted))
+      throw std::runtime_error(where + "holds a tail run of other settings than " + first->file.filename().string() +
+                               " (" + firstDifference(state.request, wanted) + " differs): not one scan");
+  }
+  return state;
+}
+
 /// A number with 17 significant digits, empty when not finite (the CSVs').
 std::string csvNumber(double v) { return std::isfinite(v) ? io::formatC("%.17g", v) : std::string(); }
 
@@ -255,6 +302,50 @@ std::filesystem::path tailScanFile(const std::filesystem::path& dir, double K) {
 
 std::vector<std::string> tailScanCsvFiles(const std::string& prefix) {
   return {prefix + "_P.csv", prefix + "_gamma.csv", prefix + "_average.csv"};
+}
+
+std::string tailScanPngFile(const std::string& prefix) { return prefix + "_gamma.png"; }
+
+ScanHeatMap tailGammaHeatMap(const TailScanSummary& s) {
+  ScanHeatMap map;
+  map.K = s.K;
+  map.top = kTailGammaTop;
+  for (const TailScanWindow& w : s.average) map.tau.push_back(w.t);
+  map.value.resize(map.tau.size() * map.K.size());
+  for (std::size_t k = 0; k < s.K.size(); ++k)
+    for (std::size_t w = 0; w < map.tau.size(); ++w) map.value[w * map.K.size() + k] = s.gamma[k][w].gamma;
+  return map;
+}
+
+const std::vector<ReferenceExponent>& tailScanReferenceExponents() {
+  static const std::vector<ReferenceExponent> table = {
+      {paper::kGammaCristadoroKetzmerick, "Cristadoro & Ketzmerick 2008; Alus, Fishman & Meiss 2017"},
+      {paper::kGammaUltrametric, "ultrametric, ln 2/ln(1 + r_g)"},
+  };
+  return table;
+}
+
+TailScanFolder loadTailScan(const std::filesystem::path& dir) {
+  TailScanFolder out;
+  std::vector<TailState> finished;
+  std::optional<FolderSettings> first;
+  for (const std::filesystem::path& file : tailFilesIn(dir)) {
+    TailState state = folderRun(file, first);
+    if (!first) first = FolderSettings{file, state.request};
+    if (state.finished()) finished.push_back(std::move(state));
+    else out.unfinished.push_back(state.request.run.map.K);
+  }
+  if (finished.empty())
+    throw std::runtime_error(dir.string() + " holds no finished tail file yet (" +
+                             std::to_string(out.unfinished.size()) + " unfinished)");
+  std::sort(finished.begin(), finished.end(), [](const TailState& a, const TailState& b) {
+    return a.request.run.map.K < b.request.run.map.K;
+  });
+  std::sort(out.unfinished.begin(), out.unfinished.end());
+  std::vector<double> K;
+  for (const TailState& s : finished) K.push_back(s.request.run.map.K);
+  out.summary = tailScanSummary(K, std::move(finished));
+  return out;
 }
 
 std::vector<LogWindow> tailScanWindows(double lowest, double largest) {
@@ -361,6 +452,7 @@ TailScanOutcome runTailScan(const TailScanRequest& r, const TailScanView& view, 
     if (!std::filesystem::is_directory(r.dir)) throw std::runtime_error("cannot find the folder " + r.dir);
     for (const std::string& csv : r.csv.empty() ? std::vector<std::string>{} : tailScanCsvFiles(r.csv))
       io::checkWritableTarget(csv);  // after the folder is made: the CSVs may be in it
+    if (!r.csv.empty()) io::checkWritableTarget(tailScanPngFile(r.csv));
     for (const std::size_t i : s.mine) {
       const std::string file = tailScanFile(r.dir, s.K[i]).string();
       for (io::FileLock& lock : lockJobFiles(file, file, {})) locks.push_back(std::move(lock));

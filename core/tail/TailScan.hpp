@@ -25,6 +25,11 @@
 ///     standard deviation over K; NaN for n < 2), and the standard error of the average from each K's error,
 ///     √(Σσ²)/n (the K are independent runs; NaN when an error is).  The spread is how γ varies with K — physics,
 ///     not noise — so it is not divided into the error.
+///
+/// The figure γ(t, K) (issue 55): tailGammaHeatMap(), the summary's γ as a heat map of the K scan's kind
+/// (core/scan/ScanHeatMap.hpp: K across, log t up, the one colour scale up to kTailGammaTop), written as
+/// PREFIX_gamma.png beside the CSVs, and drawn with γ per window against the literature's exponents
+/// (tailScanReferenceExponents()) by the GUI's K-scan dialog, which reads a scan's folder with loadTailScan().
 
 #include <cstddef>
 #include <cstdint>
@@ -38,7 +43,9 @@
 
 #include "core/job/Ranks.hpp"
 #include "core/runspec/RunSpec.hpp"
+#include "core/scan/ScanHeatMap.hpp"
 #include "core/stats/LogFits.hpp"
+#include "core/stats/ReferenceSlopes.hpp"
 #include "core/tail/TailResult.hpp"
 #include "core/tail/TailSampler.hpp"
 
@@ -62,6 +69,7 @@ struct TailScanRequest {
   double checkpointSeconds = 60;   ///< checkpointIntervalError()'s rule
   std::optional<std::string> task; ///< "I/N", whole numbers with I < N: this task's K (i mod N = I); none: all
   std::string csv;                 ///< PREFIX: the summary's CSVs PREFIX_P.csv, PREFIX_gamma.csv, PREFIX_average.csv
+                                   ///< and its figure PREFIX_gamma.png
   /// Core's warning about a K whose box or zone cuts the central island (checkBoxAgainstIsland), once per K
   /// started; empty: none is looked for.
   std::function<void(const std::string& warning)> warning;
@@ -102,6 +110,32 @@ struct TailScanSummary {
 [[nodiscard]] std::string tailScanAverageCsv(const TailScanSummary& s);
 /// PREFIX_P.csv, PREFIX_gamma.csv, PREFIX_average.csv.
 [[nodiscard]] std::vector<std::string> tailScanCsvFiles(const std::string& prefix);
+/// PREFIX_gamma.png: the figure γ(t, K) (tailGammaHeatMap() as writeHeatMapPng() draws it).
+[[nodiscard]] std::string tailScanPngFile(const std::string& prefix);
+
+/// The colour scale's top for γ: 0 white, 1.5 orange (the literature's exponents lie about it), 3 and more dark red.
+inline constexpr double kTailGammaTop = 3;
+/// The figure γ(t, K) as a heat map: K[column] the summary's K in its order, tau[row] the centre t of window row
+/// (the summary's windows, increasing), value[row · K.size() + column] = γ of that K over that window (NaN where
+/// the K does not reach it), top kTailGammaTop.  The summary's numbers, none computed here.
+[[nodiscard]] ScanHeatMap tailGammaHeatMap(const TailScanSummary& s);
+/// The asymptotic exponents γ is set against: 1.57 (Cristadoro & Ketzmerick, PRL 100 (2008) 184101; Alus, Fishman
+/// & Meiss, PRE 96 (2017) 032204) and 1.44, the ultrametric estimate ln 2/ln(1 + r_g) (Avetisov & Nechaev,
+/// arXiv:0909.4513), from core/paper's table.
+[[nodiscard]] const std::vector<ReferenceExponent>& tailScanReferenceExponents();
+
+/// A scan's folder as loadTailScan() read it.
+struct TailScanFolder {
+  TailScanSummary summary;          ///< of the finished K, by increasing K
+  std::vector<double> unfinished;   ///< the K whose file is not finished yet (a scan still running): not summarized
+};
+/// The summary of the finished tail files of a folder written by tail-scan (its files tail-K<K>.json; other files
+/// are ignored), for a front end that shows a scan.  Each file is read whole and checked: a run of K in the scan's
+/// box of K (scanBox) under the name of its K, every replica, the sampler's settings of the folder's other files.
+/// Throws std::runtime_error with one line naming the folder or the file: not a folder, no tail file in it, none
+/// finished yet, a file unreadable, truncated or edited (loadTailFile's reason), a file of another box, K or
+/// settings.
+[[nodiscard]] TailScanFolder loadTailScan(const std::filesystem::path& dir);
 
 /// How a front end shows a scan (every member may be empty); `index` is the K's place in the list.
 struct TailScanView {

@@ -2,8 +2,9 @@
 """archipelago-cli tail-scan, end to end (issue 55): a tail file per K, each the run of `tail` in the scan's box; the
 summary and its CSVs; a rerun from the files giving the same bytes; a scan killed (SIGKILL) and stopped (SIGINT, exit
 130) whose resumes give the uninterrupted scan's files bit for bit; the K shared over tasks; and hostile input (one
-ERROR line, a non-zero exit, nothing written)."""
-import csv, json, os, shutil, signal, subprocess, tempfile, time
+ERROR line, a non-zero exit, nothing written).  The figure gamma(t, K), PREFIX_gamma.png: a valid PNG of a column
+per K and a band of rows per window, grey exactly where the gamma CSV has no gamma, written only with the summary."""
+import csv, json, math, os, shutil, signal, struct, subprocess, tempfile, time, zlib
 
 from clitest import check, cli, finish, interrupt, run, wait_for_handler, options_with, tail_results
 
@@ -32,6 +33,40 @@ def wait_for_unfinished(path, process, seconds=600):
     return False
 
 
+def png_image(path):
+    """A PNG file's (width, height, rows of (r, g, b) pixels), its chunks' CRCs checked; 8-bit RGB, no interlace, rows
+    filtered with None or Sub (what core/io/Png writes).  None when it is not such a PNG."""
+    data = open(path, "rb").read() if os.path.exists(path) else b""
+    if data[:8] != b"\x89PNG\r\n\x1a\n":
+        return None
+    i, chunks = 8, []
+    while i + 12 <= len(data):
+        n, kind = struct.unpack(">I4s", data[i:i + 8])
+        body = data[i + 8:i + 8 + n]
+        if struct.unpack(">I", data[i + 8 + n:i + 12 + n])[0] != zlib.crc32(kind + body):
+            return None
+        chunks.append((kind, body))
+        i += 12 + n
+    if not chunks or chunks[0][0] != b"IHDR" or chunks[-1][0] != b"IEND":
+        return None
+    width, height, depth, colour, _, _, interlace = struct.unpack(">IIBBBBB", chunks[0][1])
+    if (depth, colour, interlace) != (8, 2, 0):
+        return None
+    raw = zlib.decompress(b"".join(body for kind, body in chunks if kind == b"IDAT"))
+    if len(raw) != height * (1 + 3 * width):
+        return None
+    rows = []
+    for y in range(height):
+        line = bytearray(raw[y * (1 + 3 * width) + 1:(y + 1) * (1 + 3 * width)])
+        kind = raw[y * (1 + 3 * width)]
+        if kind not in (0, 1):
+            return None
+        for x in range(3, len(line)) if kind == 1 else ():
+            line[x] = (line[x] + line[x - 3]) & 0xFF
+        rows.append([tuple(line[3 * x:3 * x + 3]) for x in range(width)])
+    return width, height, rows
+
+
 def scan(folder, *extra):
     return run("tail-scan", *SMALL, "--dir", folder, *extra)
 
@@ -44,8 +79,8 @@ with tempfile.TemporaryDirectory() as d:
     a = os.path.join(d, "a")
     r = scan(a, "--csv", os.path.join(a, "sum"), "--checkpoint-interval", "0.2")
     check(r.returncode == 0, f"tail-scan exits 0 ({r.stderr.strip()[-300:]})")
-    check(files(a) == ["sum_P.csv", "sum_average.csv", "sum_gamma.csv", "tail-K0.1.json", "tail-K0.15.json"],
-          f"a tail file per K and the three CSVs ({files(a)})")
+    check(files(a) == ["sum_P.csv", "sum_average.csv", "sum_gamma.csv", "sum_gamma.png", "tail-K0.1.json",
+                       "tail-K0.15.json"], f"a tail file per K, the three CSVs and the figure ({files(a)})")
     check("WARNING" not in r.stderr, "K = 0.1 and 0.15: the scan's boxes hold the island (no warning)")
     check(r.stderr.count("started") == 2 and "finished" in r.stderr, "progress per K")
     summary = r.stdout
@@ -110,11 +145,38 @@ with tempfile.TemporaryDirectory() as d:
 
     # Two tasks of an array: each its K; the summary once both are done.
     c = os.path.join(d, "c")
-    r = scan(c, "--task", "1/2")
+    r = scan(c, "--task", "1/2", "--csv", os.path.join(c, "s"))
     check(r.returncode == 0 and files(c) == ["tail-K0.15.json"] and "waits for K = 0.1" in r.stderr,
-          f"task 1/2 runs K = 0.15 only and waits ({r.stderr.strip()[-200:]})")
-    r = scan(c, "--task", "0/2")
+          f"task 1/2 runs K = 0.15 only and waits, no summary nor figure ({r.stderr.strip()[-200:]})")
+    r = scan(c, "--task", "0/2", "--csv", os.path.join(c, "s"))
     check(r.returncode == 0 and r.stdout == summary, "task 0/2 ends the scan: the one-process summary")
+    check(open(os.path.join(c, "s_gamma.png"), "rb").read() == open(os.path.join(a, "sum_gamma.png"), "rb").read(),
+          "with the summary, its figure: the one-process scan's, byte for byte")
+
+    # The figure of a tiny scan (two K, 10 to 10^4 steps, N = 200, R = 2: K = 0.15 reaches no window, K = 0.1 every
+    # one, on this seed): PREFIX_gamma.png, a column of 240 pixels per K,
+    # log t up at 30 rows of 4 pixels a decade from the first window's centre to the last's (core's heat-map PNG);
+    # the band of each window grey (190, 190, 190) exactly where the gamma CSV gives no gamma.
+    f = os.path.join(d, "figure")
+    r = run("tail-scan", *small_with(["--t-max", "1e4", "--first", "10", "--population", "200", "--replicas", "2"]), "--dir", f,
+            "--csv", os.path.join(f, "s"), "--quiet")
+    check(r.returncode == 0, f"the tiny scan ({r.stderr.strip()[-200:]})")
+    image = png_image(os.path.join(f, "s_gamma.png"))
+    windows = [float(row["t"]) for row in csv.DictReader(open(os.path.join(f, "s_average.csv")))]
+    gamma = list(csv.DictReader(open(os.path.join(f, "s_gamma.csv"))))
+    check(image is not None and len(windows) >= 2, f"s_gamma.png is a valid PNG; {len(windows)} windows")
+    if image is not None and len(windows) >= 2:
+        width, height, rows = image
+        lo, hi = math.log10(windows[0]), math.log10(windows[-1])
+        check((width, height) == (2 * 240, 4 * (math.ceil((hi - lo) * 30) + 1)),
+              f"s_gamma.png: 2 K x {len(windows)} windows in {width} x {height} pixels")
+        cells = []
+        for row in gamma:
+            y = 4 * round((hi - math.log10(float(row["t"]))) * 30) + 1
+            x = 240 * (0 if row["K"].startswith("0.1000") else 1) + 120
+            cells.append((rows[y][x] == (190, 190, 190)) == (row["gamma"] == ""))
+        check(len(cells) == 2 * len(windows) and all(cells) and "" in [row["gamma"] for row in gamma],
+              f"grey exactly where no gamma: {[row['gamma'][:5] or 'none' for row in gamma]}")
 
     # Hostile input: one ERROR line, non-zero, nothing written.
     h = os.path.join(d, "h")

@@ -10,6 +10,8 @@
 #include <QMessageBox>
 #include <QProgressBar>
 #include <QPushButton>
+#include <QStringList>
+#include <QTabWidget>
 #include <QVBoxLayout>
 
 #include <cmath>
@@ -20,6 +22,7 @@
 #include "core/io/NumberText.hpp"
 #include "core/runspec/InputRules.hpp"
 #include "ui/scan/KScanPlots.hpp"
+#include "ui/scan/TailScanPlots.hpp"
 
 #include <variant>
 
@@ -111,30 +114,44 @@ KScanDialog::KScanDialog(const RunSpec& base, QWidget* parent) : QDialog(parent)
   stopButton_->setAutoDefault(false);
   exportButton_ = buttons->addButton(tr("&Export CSV…"), QDialogButtonBox::ActionRole);
   exportButton_->setAutoDefault(false);
+  tailButton_ = buttons->addButton(tr("Open t&ail scan…"), QDialogButtonBox::ActionRole);
+  tailButton_->setAutoDefault(false);
+  tailButton_->setToolTip(tr("Show γ(t, K) of a folder written by archipelago-cli tail-scan"));
   QPushButton* closeButton = buttons->addButton(QDialogButtonBox::Close);
   closeButton->setAutoDefault(false);
   connect(startButton_, &QPushButton::clicked, this, [this] { start(); });
   connect(stopButton_, &QPushButton::clicked, this, &KScanDialog::stop);
   connect(exportButton_, &QPushButton::clicked, this, &KScanDialog::exportInteractively);
+  connect(tailButton_, &QPushButton::clicked, this, &KScanDialog::openTailScanInteractively);
   connect(closeButton, &QPushButton::clicked, this, &KScanDialog::reject);
 
-  // The results: KScanPlots (the report draws its figures with it too).
-  plots_ = new KScanPlots(this);
-  plots_->clear();  // the fixed typical ranges until a K finishes (issue 37, finding 12: an empty log axis spanned
-                    // 10⁻¹⁵⁰ … 1)
+  createResults();
   auto* left = new QVBoxLayout;
   left->addWidget(settings);
   left->addStretch(1);
   auto* top = new QHBoxLayout;
   settings->setMaximumWidth(420);
   top->addLayout(left);
-  top->addWidget(plots_, 1);
+  top->addWidget(results_, 1);
   auto* layout = new QVBoxLayout(this);
   layout->addLayout(top, 1);
   layout->addWidget(buttons);
   resize(1200, 740);  // fits 1280 × 800 with the window frame
   setRunning(false);
   exportButton_->setEnabled(false);
+}
+
+void KScanDialog::createResults() {
+  // KScanPlots (the report draws its figures with it too) and the tail scan's figure, a tab each.
+  plots_ = new KScanPlots(this);
+  plots_->clear();  // the fixed typical ranges until a K finishes (issue 37, finding 12: an empty log axis spanned
+                    // 10⁻¹⁵⁰ … 1)
+  tailPlots_ = new TailScanPlots(this);
+  tailPlots_->clear();
+  results_ = new QTabWidget(this);
+  results_->setObjectName(QStringLiteral("resultTabs"));
+  results_->addTab(plots_, tr("K scan"));
+  results_->addTab(tailPlots_, tr("Tail scan γ(t, K)"));
 }
 
 KScanDialog::~KScanDialog() = default;  // jobs_ stops the scan (its K saved) and waits for it
@@ -338,6 +355,50 @@ bool KScanDialog::exportCsv(const QString& dir) {
 void KScanDialog::exportInteractively() {
   const QString dir = QFileDialog::getExistingDirectory(this, tr("Export the scan CSVs into"), folder_->text());
   if (!dir.isEmpty()) exportCsv(dir);
+}
+
+void KScanDialog::openTailScan(const QString& dir) {
+  Job<TailScanFolder> job;
+  job.channel = 1;
+  job.work = [path = std::filesystem::path(dir.toStdString())](JobContext<NoProgress>&) -> std::optional<TailScanFolder> {
+    return loadTailScan(path);
+  };
+  job.done = [this, dir](JobResult<TailScanFolder> result) {
+    tailButton_->setEnabled(true);
+    if (!result.ok()) {
+      showMessage(tr("Tail scan not shown: %1").arg(result.error), true);
+      Q_EMIT tailScanOpened(false);
+      return;
+    }
+    showTailScan(dir, *result.value);
+    Q_EMIT tailScanOpened(true);
+  };
+  tailButton_->setEnabled(false);
+  showMessage(tr("Reading the tail scan in %1…").arg(dir), false);
+  jobs_.submit(std::move(job));
+}
+
+void KScanDialog::showTailScan(const QString& dir, const TailScanFolder& folder) {
+  const TailScanSummary& s = folder.summary;
+  tailPlots_->showSummary(s);
+  results_->setCurrentWidget(tailPlots_);
+  QString text = tr("Tail scan %1: %2 K (%3 to %4), %5 windows of a decade.")
+                     .arg(dir)
+                     .arg(s.K.size())
+                     .arg(QString::fromStdString(scanKText(s.K.front())), QString::fromStdString(scanKText(s.K.back())))
+                     .arg(s.windows.size());
+  if (!folder.unfinished.empty()) {
+    QStringList K;
+    for (const double k : folder.unfinished) K << QString::fromStdString(scanKText(k));
+    text += tr(" Not finished yet, not shown: K = %1.").arg(K.join(QStringLiteral(", ")));
+  }
+  showMessage(text, false);
+}
+
+void KScanDialog::openTailScanInteractively() {
+  const QString dir = QFileDialog::getExistingDirectory(this, tr("Tail scan folder (archipelago-cli tail-scan --dir)"),
+                                                        folder_->text());
+  if (!dir.isEmpty()) openTailScan(dir);
 }
 
 }  // namespace archipelago::ui

@@ -7,7 +7,9 @@
 /// finished K.  Progress and ETA per K and for the whole scan.  As each K finishes, its results appear in the
 /// dialog's KScanPlots (f_t per K, the local exponent's heat map and curves, D(K), the long segments, b₂, a
 /// table).  The summaries (core/scan/ScanSummary.hpp) are written into the folder at the end and can be exported
-/// elsewhere.  No maths here: every number comes from core.  The plots' two tab widgets in a splitter keep it
+/// elsewhere.  "Open tail scan…" shows the figure γ(t, K) of a folder written by `archipelago-cli tail-scan` (issue
+/// 55) in the "Tail scan" tab (TailScanPlots), its files read in the background by core's loadTailScan; a K scan may
+/// run meanwhile.  No maths here: every number comes from core.  The plots' two tab widgets in a splitter keep it
 /// inside a 1280 × 800 screen.
 ///
 /// Keys: Enter starts (the default button), Esc closes (asking first while a scan runs; closing stops it,
@@ -20,16 +22,19 @@
 #include <vector>
 
 #include "core/scan/ScanRun.hpp"
+#include "core/tail/TailScan.hpp"
 #include "ui/jobs/BackgroundJobs.hpp"
 
 class QLabel;
 class QLineEdit;
 class QProgressBar;
 class QPushButton;
+class QTabWidget;
 
 namespace archipelago::ui {
 
 class KScanPlots;
+class TailScanPlots;
 
 class KScanDialog : public QDialog {
   Q_OBJECT
@@ -51,6 +56,9 @@ class KScanDialog : public QDialog {
   [[nodiscard]] const std::vector<ScanRunSummary>& results() const noexcept { return finishedRuns_; }
   /// Writes the scan CSVs of the last finished scan into `dir`; false, with the reason shown, when it cannot.
   bool exportCsv(const QString& dir);
+  /// Reads the tail scan of folder `dir` in the background (core's loadTailScan) and shows its figure in the "Tail
+  /// scan" tab; tailScanOpened() tells how it ended, the message why.
+  void openTailScan(const QString& dir);
   /// The last message shown (an error, or where the scan is).
   [[nodiscard]] QString message() const;
 
@@ -60,12 +68,16 @@ class KScanDialog : public QDialog {
   [[nodiscard]] QLineEdit* folderField() const noexcept { return folder_; }
   /// The results on screen: the plots and the table of the K finished so far.
   [[nodiscard]] KScanPlots* plots() const noexcept { return plots_; }
+  /// The tail scan on screen (openTailScan's).
+  [[nodiscard]] TailScanPlots* tailPlots() const noexcept { return tailPlots_; }
 
  Q_SIGNALS:
   /// The scan ended: finished (every K and the summaries written), stopped, or failed.
   void scanEnded(bool finished);
   /// The fraction of the whole scan done (steps), at each progress report.
   void progressed(double fractionScan);
+  /// openTailScan() ended: shown, or refused (the message says why).
+  void tailScanOpened(bool shown);
 
  public Q_SLOTS:
   void reject() override;  // Esc / Close: asks first while a scan runs
@@ -76,6 +88,7 @@ class KScanDialog : public QDialog {
     std::optional<std::pair<std::size_t, ScanRunSummary>> finished;
     QString warning;
   };
+  void createResults();  // plots_, tailPlots_ and the tabs holding them
   void setRunning(bool running);
   void showMessage(const QString& text, bool error);
   void showProgress(const KScanProgress& p);
@@ -83,6 +96,8 @@ class KScanDialog : public QDialog {
   void clearResults();
   void browse();
   void exportInteractively();
+  void openTailScanInteractively();
+  void showTailScan(const QString& dir, const TailScanFolder& folder);
 
   RunSpec base_;
   QLineEdit* kValues_ = nullptr;
@@ -96,17 +111,21 @@ class KScanDialog : public QDialog {
   QPushButton* startButton_ = nullptr;
   QPushButton* stopButton_ = nullptr;
   QPushButton* exportButton_ = nullptr;
+  QPushButton* tailButton_ = nullptr;
   QProgressBar* kProgress_ = nullptr;
   QProgressBar* scanProgress_ = nullptr;
   QLabel* kEta_ = nullptr;
   QLabel* scanEta_ = nullptr;
   QLabel* message_ = nullptr;
   KScanPlots* plots_ = nullptr;
+  TailScanPlots* tailPlots_ = nullptr;
+  QTabWidget* results_ = nullptr;  // the K scan's plots, the tail scan's
   std::vector<std::optional<ScanRunSummary>> shown_;  // per K of the running scan, as they finish
   std::vector<ScanRunSummary> finishedRuns_;
   bool running_ = false;
   quint64 jobId_ = 0;
-  BackgroundJobs jobs_{this, 1, JobPriority::background};  // last: destroyed first, it stops the scan and joins
+  // Channel 0 the scan, 1 the reading of a tail scan.  Last: destroyed first, it stops the scan and joins.
+  BackgroundJobs jobs_{this, 2, JobPriority::background};
 };
 
 }  // namespace archipelago::ui

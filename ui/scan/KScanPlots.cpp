@@ -5,20 +5,12 @@
 #include <QTabWidget>
 #include <QTableWidget>
 #include <QVBoxLayout>
-#include <qwt_color_map.h>
-#include <qwt_interval.h>
 #include <qwt_interval_symbol.h>
 #include <qwt_legend.h>
-#include <qwt_picker_machine.h>
 #include <qwt_plot.h>
 #include <qwt_plot_curve.h>
-#include <qwt_plot_grid.h>
 #include <qwt_plot_intervalcurve.h>
-#include <qwt_plot_picker.h>
 #include <qwt_plot_spectrogram.h>
-#include <qwt_raster_data.h>
-#include <qwt_scale_engine.h>
-#include <qwt_scale_widget.h>
 #include <qwt_symbol.h>
 
 #include <algorithm>
@@ -26,153 +18,16 @@
 #include <cmath>
 #include <initializer_list>
 #include <limits>
-#include <numeric>
 #include <utility>
 
 #include "core/scan/ScanBox.hpp"
 #include "core/scan/ScanHeatMap.hpp"
-#include "ui/plots/LogScaleDraw.hpp"
 #include "ui/plots/QwtCompat.hpp"
+#include "ui/scan/ScanPlotParts.hpp"
 
 namespace archipelago::ui {
 
-QColor KScanPlots::heatMapColour(double exponent) {
-  const Rgb c = archipelago::heatMapColour(exponent);  // core's one scale (core/scan/ScanHeatMap.hpp)
-  return {c.r, c.g, c.b};
-}
-
-namespace {
-
-#if QWT_VERSION >= 0x060200
-constexpr int kAxisYRight = QwtAxis::YRight;
-#else
-constexpr int kAxisYRight = QwtPlot::yRight;
-#endif
-
-QwtPlot* makePlot(QWidget* parent, const QString& x, const QString& y, bool logX, bool logY) {
-  auto* plot = new QwtPlot(parent);
-  plot->setCanvasBackground(Qt::white);
-  plot->setAxisTitle(kAxisX, x);
-  plot->setAxisTitle(kAxisY, y);
-  if (logX) {
-    plot->setAxisScaleEngine(kAxisX, new QwtLogScaleEngine);
-    plot->setAxisScaleDraw(kAxisX, new LogScaleDraw);
-  }
-  if (logY) {
-    plot->setAxisScaleEngine(kAxisY, new QwtLogScaleEngine);
-    plot->setAxisScaleDraw(kAxisY, new LogScaleDraw);
-  }
-  auto* grid = new QwtPlotGrid;
-  grid->setMajorPen(QColor(0, 0, 0, 40), 0, Qt::DotLine);
-  grid->attach(plot);
-  return plot;
-}
-
-/// The colour of K number `i` of `n`: blue (small K) through red (large K).
-QColor colourOf(std::size_t i, std::size_t n) {
-  const float s = n > 1 ? static_cast<float>(i) / static_cast<float>(n - 1) : 0.0f;
-  return QColor::fromHsvF(0.66f * (1 - s), 0.85f, 0.8f);
-}
-
-QString kText(double K) { return QString::fromStdString(scanKText(K)); }
-
-/// The heat map's colours (KScanPlots::heatMapColour, whatever interval Qwt passes: the scale is absolute); a cell
-/// without data (NaN) transparent, so that the canvas, painted in the no-data colour, shows through.
-/// (A QwtLinearColorMap only for the rest of QwtColorMap's interface, which differs between Qwt 6.1 and 6.2;
-/// its own stops are never used: the map is drawn in RGB format, through rgb().)
-class HeatColours : public QwtLinearColorMap {
- public:
-  QRgb rgb(const QwtInterval&, double value) const override {
-    return std::isnan(value) ? qRgba(0, 0, 0, 0) : KScanPlots::heatMapColour(value).rgb();
-  }
-};
-
-/// The cells of a ScanHeatMap (core's localExponentHeatMap) over x = K, y = τ: each K a column reaching half
-/// way to its neighbours, each grid τ a row reaching to the τ nearest in log τ (the lookup of the CLI's PNG),
-/// nothing below the first τ or above the last.
-/// No values of its own: value() returns the map's number of the cell, or NaN.
-class HeatMapData : public QwtRasterData {
- public:
-  explicit HeatMapData(ScanHeatMap map) : map_(std::move(map)) {
-    order_.resize(map_.K.size());
-    std::iota(order_.begin(), order_.end(), std::size_t{0});
-    std::sort(order_.begin(), order_.end(), [&](std::size_t a, std::size_t b) { return map_.K[a] < map_.K[b]; });
-    // Column edges: half way between neighbouring K; the outer ones as far out as the nearest inner one
-    // (±0.025 for a single K, the paper's half step).
-    const std::size_t n = order_.size();
-    edges_.resize(n + 1);
-    for (std::size_t i = 1; i < n; ++i) edges_[i] = (map_.K[order_[i - 1]] + map_.K[order_[i]]) / 2;
-    if (n == 1) {
-      edges_[0] = map_.K[order_[0]] - 0.025;
-      edges_[1] = map_.K[order_[0]] + 0.025;
-    } else if (n > 1) {
-      edges_[0] = 2 * map_.K[order_[0]] - edges_[1];
-      edges_[n] = 2 * map_.K[order_[n - 1]] - edges_[n - 1];
-    }
-    x_ = n > 0 ? QwtInterval(edges_.front(), edges_.back()) : QwtInterval();
-    y_ = map_.tau.empty() ? QwtInterval() : QwtInterval(map_.tau.front(), map_.tau.back());
-    z_ = QwtInterval(0, KScanPlots::kHeatMapTop);
-#if QWT_VERSION < 0x060200
-    setInterval(Qt::XAxis, x_);
-    setInterval(Qt::YAxis, y_);
-    setInterval(Qt::ZAxis, z_);
-#endif
-  }
-#if QWT_VERSION >= 0x060200
-  QwtInterval interval(Qt::Axis axis) const override {
-    return axis == Qt::XAxis ? x_ : axis == Qt::YAxis ? y_ : z_;
-  }
-#endif
-  [[nodiscard]] bool empty() const { return map_.K.empty() || map_.tau.empty(); }
-
-  double value(double K, double tau) const override {
-    constexpr double nan = std::numeric_limits<double>::quiet_NaN();
-    if (empty() || !x_.contains(K) || !y_.contains(tau)) return nan;  // outside every cell
-    const auto column = static_cast<std::size_t>(
-        std::min<std::ptrdiff_t>(std::upper_bound(edges_.begin() + 1, edges_.end() - 1, K) - (edges_.begin() + 1),
-                                 static_cast<std::ptrdiff_t>(order_.size()) - 1));
-    const std::vector<double>& t = map_.tau;
-    auto it = std::lower_bound(t.begin(), t.end(), tau);
-    if (it != t.begin() && tau * tau < *it * *(it - 1)) {
-      --it;  // nearer in log τ to the grid τ below
-    }
-    const auto row = static_cast<std::size_t>(it - t.begin());
-    return map_.value[row * map_.K.size() + order_[column]];
-  }
-
- private:
-  ScanHeatMap map_;
-  std::vector<std::size_t> order_;  // the columns by increasing K
-  std::vector<double> edges_;
-  QwtInterval x_, y_, z_;
-};
-
-/// The heat map's value under the mouse: the pointer's K and τ and the cell's number (the colours stop at 0 and
-/// kHeatMapTop; this says what lies beyond), or "no data".
-class HeatMapPicker : public QwtPlotPicker {
- public:
-  HeatMapPicker(QwtPlot* plot, const QwtPlotSpectrogram* map)
-      : QwtPlotPicker(kAxisX, kAxisY, QwtPicker::NoRubberBand, QwtPicker::AlwaysOn, plot->canvas()), map_(map) {
-    setStateMachine(new QwtPickerTrackerMachine);
-    setTrackerPen(QPen(Qt::black));
-  }
-
- protected:
-  QwtText trackerTextF(const QPointF& pos) const override {
-    const double v = map_->data()->value(pos.x(), pos.y());
-    QwtText text(QStringLiteral("K %1, τ %2: %3")
-                     .arg(pos.x(), 0, 'f', 3)
-                     .arg(pos.y(), 0, 'g', 3)
-                     .arg(std::isnan(v) ? QObject::tr("no data") : QString::number(v, 'g', 4)));
-    text.setBackgroundBrush(QColor(255, 255, 255, 220));
-    return text;
-  }
-
- private:
-  const QwtPlotSpectrogram* map_;
-};
-
-}  // namespace
+QColor KScanPlots::heatMapColour(double exponent) { return heatMapQColour(exponent, kHeatMapTop); }
 
 KScanPlots::KScanPlots(QWidget* parent) : QWidget(parent) {
   setObjectName(QStringLiteral("kScanPlots"));
@@ -189,21 +44,8 @@ KScanPlots::KScanPlots(QWidget* parent) : QWidget(parent) {
   heatMapPlot_->setTitle(tr("local exponent −d log C_τ / d log τ over K and τ"));
   heatMapPlot_->setFooter(tr("grey: no data (C_τ = 0, or τ beyond that K's run); colours stop at 0 and %1")
                               .arg(kHeatMapTop));
-  heatMapPlot_->setCanvasBackground(heatMapColour(std::numeric_limits<double>::quiet_NaN()));
-  heatMapPlot_->detachItems(QwtPlotItem::Rtti_PlotGrid, true);
-  heatMap_ = new QwtPlotSpectrogram(tr("local exponent"));
-  heatMap_->setRenderThreadCount(1);
-  heatMap_->setColorMap(new HeatColours);
-  heatMap_->setData(new HeatMapData(ScanHeatMap{}));
-  heatMap_->attach(heatMapPlot_);
-  new HeatMapPicker(heatMapPlot_, heatMap_);  // owned by the canvas
-  heatMapPlot_->enableAxis(kAxisYRight);
-  QwtScaleWidget* colourBar = heatMapPlot_->axisWidget(kAxisYRight);
-  colourBar->setColorBarEnabled(true);
-  colourBar->setColorBarWidth(14);
-  colourBar->setColorMap(QwtInterval(0, kHeatMapTop), new HeatColours);
-  heatMapPlot_->setAxisScale(kAxisYRight, 0, kHeatMapTop);
-  heatMapPlot_->setAxisTitle(kAxisYRight, tr("−d log C_τ / d log τ"));
+  heatMap_ = addHeatMap(heatMapPlot_, tr("local exponent"), tr("−d log C_τ / d log τ"), QStringLiteral("τ"),
+                        kHeatMapTop);
 
   // The long segments: the longest (log, left) and the fraction of the steps in segments ≥ 10⁴ (right).
   longPlot_ = makePlot(this, tr("K"), tr("longest segment (steps)"), false, true);
@@ -402,19 +244,7 @@ void KScanPlots::drawAgainstK(const AgainstK& k, const std::vector<ScanRunSummar
 
 void KScanPlots::showHeatMap(const std::vector<ScanRunSummary>& done) {
   // The heat map: core's localExponentHeatMap of the K finished (the numbers of scan_local_exponent.csv).
-  auto* cells = new HeatMapData(localExponentHeatMap(done));
-  const bool mapEmpty = cells->empty();
-  heatMap_->setData(cells);
-  // The heat map spans its cells exactly (autoscale would pad them with no-data grey).
-  if (mapEmpty) {
-    heatMapPlot_->setAxisScale(kAxisX, 0, 1.3);
-    heatMapPlot_->setAxisScale(kAxisY, 1, 1e6);
-  } else {
-    const QwtInterval x = cells->interval(Qt::XAxis), y = cells->interval(Qt::YAxis);
-    heatMapPlot_->setAxisScale(kAxisX, x.minValue(), x.maxValue());
-    heatMapPlot_->setAxisScale(kAxisY, y.minValue(), y.maxValue());
-  }
-  heatMapPlot_->replot();
+  archipelago::ui::showHeatMap(heatMapPlot_, heatMap_, localExponentHeatMap(done), {0, 1.3, 1, 1e6});
 }
 
 void KScanPlots::rescale(bool empty) {

@@ -1,13 +1,19 @@
 // The tail sampler scanned over K (core/tail/TailScan.hpp, issue 55): the windows common to every K, γ per K and
 // window with its error from the replicas' covariance, and the K-average with its spread, each against a hand
-// computation on small synthetic runs.
+// computation on small synthetic runs.  The figure γ(t, K): the heat map of a hand-made summary, cell by cell; the
+// folder of a tiny scan read back (loadTailScan) as the scan summarized it, and its refusals.
 #include <gtest/gtest.h>
 
 #include <array>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <limits>
+#include <sstream>
 #include <vector>
 
+#include "core/job/Ranks.hpp"
+#include "core/tail/TailFile.hpp"
 #include "core/tail/TailScan.hpp"
 
 namespace archipelago {
@@ -137,6 +143,126 @@ TEST(TailScan, ASummaryRefusesUnfinishedRunsAndRunsOfOtherLevels) {
   TailState other = secondK();
   other.levels = {10, 100, 2000};
   EXPECT_THROW((void)tailScanSummary({0.1, 0.15}, {firstK(), other}), std::invalid_argument);
+}
+
+TEST(TailScan, TheGammaHeatMapHoldsEachKsGammaPerWindowAndNaNWhereNotReached) {
+  // Two K, three windows: the values put in, a column per K, a row per window at its centre t.
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  TailScanSummary s;
+  s.K = {0.1, 0.2};
+  const std::array<double, 3> from = {10, std::sqrt(1000.0), 100}, to = {100, std::sqrt(1e5), 1000};
+  const std::array<std::array<double, 3>, 2> gamma = {{{1.25, 1.5, nan}, {0.75, nan, nan}}};
+  for (std::size_t w = 0; w < 3; ++w) {
+    s.windows.push_back({from[w], to[w]});
+    s.average.push_back(TailScanWindow{from[w], to[w], std::sqrt(from[w] * to[w]), 0, nan, nan, nan});
+  }
+  for (std::size_t k = 0; k < 2; ++k) {
+    s.gamma.emplace_back();
+    for (std::size_t w = 0; w < 3; ++w)
+      s.gamma[k].push_back(TailExponent{from[w], to[w], std::sqrt(from[w] * to[w]), 3, gamma[k][w], 0.1});
+  }
+  const ScanHeatMap map = tailGammaHeatMap(s);
+  EXPECT_EQ(map.K, (std::vector<double>{0.1, 0.2}));
+  ASSERT_EQ(map.tau.size(), 3u);
+  EXPECT_DOUBLE_EQ(map.tau[0], std::sqrt(1000.0));
+  EXPECT_DOUBLE_EQ(map.tau[1], 100);
+  EXPECT_DOUBLE_EQ(map.tau[2], std::sqrt(1e5));
+  ASSERT_EQ(map.value.size(), 6u);
+  EXPECT_EQ(map.value[0], 1.25);  // row 0 (t = 31.6): K = 0.1, then K = 0.2
+  EXPECT_EQ(map.value[1], 0.75);
+  EXPECT_EQ(map.value[2], 1.5);   // row 1 (t = 100)
+  EXPECT_TRUE(std::isnan(map.value[3])) << "K = 0.2 does not reach the second window";
+  EXPECT_TRUE(std::isnan(map.value[4]));
+  EXPECT_TRUE(std::isnan(map.value[5]));
+  // Its colour scale: the K scan's one scale, up to 3 (the middle stop, orange, at 1.5).
+  EXPECT_EQ(map.top, 3);
+  const auto stops = heatMapStops();
+  EXPECT_EQ(heatMapColour(1.5, map.top), stops[1].colour);
+  EXPECT_EQ(heatMapColour(3, map.top), stops[2].colour);
+  EXPECT_EQ(heatMapColour(1, kHeatMapTop), stops[1].colour) << "the K scan's top stays 2";
+}
+
+TEST(TailScan, TheReferenceExponentsAreTheLiteratures) {
+  const std::vector<ReferenceExponent>& r = tailScanReferenceExponents();
+  ASSERT_EQ(r.size(), 2u);
+  EXPECT_EQ(r[0].gamma, 1.57);  // Cristadoro & Ketzmerick; Alus, Fishman & Meiss
+  EXPECT_EQ(r[1].gamma, 1.44);  // ln 2/ln(1 + r_g)
+  EXPECT_NEAR(r[1].gamma, std::log(2.0) / std::log(1 + (std::sqrt(5.0) - 1) / 2), 0.005);
+}
+
+/// A tiny scan of K = 0.1 and 0.15 into `dir` (N = 50, R = 4, 10 to 10^4 steps: a second each).
+TailScanOutcome tinyScan(const std::filesystem::path& dir, std::uint32_t population = 50, std::stop_token stop = {}) {
+  TailScanRequest r;
+  r.K = "0.1,0.15";
+  r.base.threads = 2;
+  r.request.population = population;
+  r.request.replicas = 4;
+  r.request.minAncestors = 4;
+  r.request.firstSteps = 10;
+  r.request.maxSteps = 10000;
+  r.dir = dir.string();
+  OneProcess one;
+  return runTailScan(r, {}, one, std::move(stop));
+}
+
+/// The message of loadTailScan(dir)'s error; empty when it reads the folder.
+std::string loadError(const std::filesystem::path& dir) {
+  try {
+    (void)loadTailScan(dir);
+  } catch (const std::runtime_error& e) {
+    return e.what();
+  }
+  return {};
+}
+
+TEST(TailScan, AFolderIsReadBackAsTheScanSummarizedItAndRefusedWhenNotOneScans) {
+  namespace fs = std::filesystem;
+  const fs::path root = fs::temp_directory_path() / "archipelago_test_tail_scan_folder";
+  fs::remove_all(root);
+  fs::create_directories(root);
+  const TailScanOutcome scan = tinyScan(root / "scan");
+  ASSERT_EQ(scan.end, TailScanOutcome::End::finished);
+  const TailScanFolder read = loadTailScan(root / "scan");
+  EXPECT_TRUE(read.unfinished.empty());
+  EXPECT_EQ(tailScanGammaCsv(read.summary), tailScanGammaCsv(scan.summary));
+  EXPECT_EQ(tailScanAverageCsv(read.summary), tailScanAverageCsv(scan.summary));
+  EXPECT_EQ(read.summary.K, (std::vector<double>{0.1, 0.15}));
+
+  // A folder holding one unfinished K (the scan stopped at once: K = 0.1's checkpoint only), then a finished K
+  // beside it: the finished K summarized, the other named.
+  std::stop_source stop;
+  stop.request_stop();
+  (void)tinyScan(root / "running", 50, stop.get_token());
+  ASSERT_FALSE(loadTailFile(tailScanFile(root / "running", 0.1)).finished());
+  EXPECT_NE(loadError(root / "running").find("holds no finished tail file yet (1 unfinished)"), std::string::npos)
+      << loadError(root / "running");
+  fs::copy_file(tailScanFile(root / "scan", 0.15), tailScanFile(root / "running", 0.15));
+  const TailScanFolder partial = loadTailScan(root / "running");
+  EXPECT_EQ(partial.summary.K, (std::vector<double>{0.15}));
+  EXPECT_EQ(partial.unfinished, (std::vector<double>{0.1}));
+
+  // Refusals: one line naming the folder or the file and the reason.
+  const auto expectError = [&](const fs::path& dir, const std::string& part) {
+    const std::string e = loadError(dir);
+    EXPECT_NE(e.find(part), std::string::npos) << dir << ": " << e;
+    EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+  };
+  expectError(root / "none", "is not a folder");
+  fs::create_directories(root / "empty");
+  std::ofstream(root / "empty" / "notes.txt") << "not a tail file";
+  expectError(root / "empty", "holds no tail file");
+  fs::create_directories(root / "truncated");
+  std::ostringstream whole;
+  whole << std::ifstream(tailScanFile(root / "scan", 0.1)).rdbuf();
+  std::ofstream(tailScanFile(root / "truncated", 0.1)) << whole.str().substr(0, 5000);
+  expectError(root / "truncated", "tail-K0.1.json");
+  fs::create_directories(root / "swapped");
+  fs::copy_file(tailScanFile(root / "scan", 0.1), tailScanFile(root / "swapped", 0.15));
+  expectError(root / "swapped", "holds the run of K = 0.1, not that of its name");
+  (void)tinyScan(root / "other", 60);
+  fs::copy_file(tailScanFile(root / "scan", 0.1), tailScanFile(root / "other", 0.1), fs::copy_options::overwrite_existing);
+  expectError(root / "other", "tail-K0.15.json holds a tail run of other settings than tail-K0.1.json (population differs)");
+  fs::remove_all(root);
 }
 
 }  // namespace
