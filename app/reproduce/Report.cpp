@@ -19,6 +19,7 @@
 #include "core/markovtree/MarkovTreeExport.hpp"
 #include "core/tail/BruteForceSurvival.hpp"
 #include "core/tail/TailResult.hpp"
+#include "core/tail/TailScan.hpp"
 #include "core/io/AtomicFile.hpp"
 #include "core/io/NumberText.hpp"
 #include "core/paper/PaperTable.hpp"
@@ -32,6 +33,7 @@
 #include "core/report/TheoryStatements.hpp"
 #include "core/runfile/CheckpointedRun.hpp"
 #include "core/runfile/RunFile.hpp"
+#include "core/scan/ScanBox.hpp"
 #include "core/stats/ReferenceSlopes.hpp"
 #include "core/stats/RunEnsemble.hpp"
 #include "core/stats/RunStatistics.hpp"
@@ -124,6 +126,34 @@ std::vector<ScanRunSummary> scanOrReuse(KScanRequest r, int threads) {
   return outcome.runs;
 }
 
+/// Runs (or resumes, or reuses) the report's tail scan (core's runTailScan in one process: a tail file per K).
+TailScanSummary tailScanOrReuse(TailScanRequest r, int threads) {
+  r.base.threads = threads;
+  r.warning = [](const std::string& w) { std::fprintf(stderr, "WARNING: %s\n", w.c_str()); };
+  std::stop_source stop;
+  auto last = std::chrono::steady_clock::now();
+  TailScanView view;
+  view.progress = [&](std::size_t, double K, const TailState&, const TailProgress& p) {
+    if (gInterrupted) stop.request_stop();
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last > std::chrono::seconds(60)) {
+      last = now;
+      std::fprintf(stderr, "tail scan: K = %s, level %zu of %zu\n", scanKText(K).c_str(), p.level, p.levels);
+    }
+  };
+  view.checkpointWarning = [](const std::string& reason, double retry) {
+    std::fprintf(stderr, "WARNING: checkpoint not written: %s; the sampler goes on and retries in %g s\n",
+                 reason.c_str(), retry);
+  };
+  OneProcess process;
+  const TailScanOutcome outcome = runTailScan(r, view, process, stop.get_token());
+  if (outcome.end != TailScanOutcome::End::finished) {
+    std::fprintf(stderr, "interrupted: the tail scan is saved in %s\n", outcome.checkpoint.c_str());
+    throw Interrupted{};
+  }
+  return outcome.summary;
+}
+
 std::vector<QPointF> qPoints(const std::vector<PhysicalPoint>& points) {
   std::vector<QPointF> out;
   out.reserve(points.size());
@@ -156,6 +186,8 @@ class Report {
       k01(needs.count(report::Need::b2) > 0 || atlas, atlas);
     stopIfInterrupted();
     if (needs.count(report::Need::scan)) scan();
+    stopIfInterrupted();
+    if (needs.count(report::Need::tailScan)) tailScan();
     if (needs.count(report::Need::timing))
       for (auto& it : report::timingStatements(report::measureStepTiming(o_.threads))) items_.push_back(std::move(it));
     stopIfInterrupted();
@@ -195,7 +227,7 @@ class Report {
                     std::string(s.id).c_str(), std::string(s.section).c_str(), std::string(s.words).c_str(),
                     std::string(s.paperText).c_str(), report::numberText(it.ours, it.error).c_str(),
                     it.reference ? ("compared with: " + report::numberText(it.reference) + "\n").c_str() : "",
-                    io::shortestText(s.tolerance).c_str(), std::string(s.toleranceWhy).c_str(),
+                    io::shortestText(it.toleranceUsed()).c_str(), std::string(s.toleranceWhy).c_str(),
                     report::markText(it.mark), it.note.c_str(), it.command.c_str());
         return it.mark == report::Mark::differs ? 2 : 0;
       }
@@ -475,6 +507,16 @@ class Report {
     figures_.push_back({"S4", "the longest segment and the fraction of the steps in segments ≥ 10<sup>4</sup> against "
                               "K: the slow algebraic decay of §5 shows as segments beyond 10<sup>4</sup> steps",
                         "kscan-long"});
+  }
+
+  // §7 (later work, issue 55): the tail sampler over K (its files in runs/, reused or resumed), its exponent over
+  // 10⁴–10⁶ averaged over K.
+  void tailScan() {
+    const TailScanSummary summary = tailScanOrReuse(
+        report::tailScanRequest(o_.size, o_.out / "runs" / (std::string("tailscan-") + report::sizeName(o_.size))),
+        o_.threads);
+    items_.push_back(report::tailGammaKStatement(summary.K, report::tailGammaKExponents(summary), full_,
+                                                 report::tailScanCommand(o_.size)));
   }
 
   // §7 (later work, issue 40): the atlas of the run's map (kept in runs/, resumed when stopped), its Markov tree and

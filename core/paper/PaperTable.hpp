@@ -110,6 +110,9 @@ struct Statement {
   double tolerance = 0;            ///< see `comparison`
   std::string_view toleranceWhy;   ///< why the tolerance is what it is
   bool needsFullSize = false;      ///< only a run of the paper's size can decide it (quick: "not at this size")
+  /// The report computes the tolerance from its data (core/report's makeItemWithin: tail-gamma-K's from its errors
+  /// and spread); `tolerance` is then 0 and `toleranceWhy` states the rule.
+  bool toleranceFromData = false;
 };
 
 /// Every statement, in the order of the report (the paper's order of sections).

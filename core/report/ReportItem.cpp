@@ -45,6 +45,21 @@ ReportItem makeItem(std::string_view id, std::optional<double> ours, double erro
   return it;
 }
 
+ReportItem makeItemWithin(std::string_view id, std::optional<double> ours, double error, double tolerance,
+                          bool fullSize, std::string command, std::string note) {
+  ReportItem it = makeItem(id, ours, error, fullSize, std::move(command), std::move(note));
+  if (std::isfinite(tolerance) && tolerance >= 0) it.tolerance = tolerance;
+  if (it.mark != Mark::agrees && it.mark != Mark::differs) return it;
+  if (!it.tolerance) {
+    it.mark = Mark::notComputed;
+    return it;
+  }
+  paper::Statement within = *it.statement;
+  within.tolerance = *it.tolerance;
+  it.mark = passes(within, it.ours, 0, it.target()) ? Mark::agrees : Mark::differs;
+  return it;
+}
+
 void explainDifference(ReportItem& item, const std::string& reason) {
   if (item.mark != Mark::differs) return;
   item.mark = Mark::differsExplained;

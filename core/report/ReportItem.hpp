@@ -13,7 +13,9 @@
 ///   reported          the paper's open question (Comparison::openQuestion): a value, never a verdict;
 ///   notComputed       no value (the computation could not be done; the note says why).
 /// The target is the paper's value, or `reference` when the statement compares with a prediction of ours (the
-/// longest segment in the run's finite box, not the paper's infinite-box t_max).
+/// longest segment in the run's finite box, not the paper's infinite-box t_max).  The tolerance is the table's, or
+/// `tolerance` when the report computes it from its data (makeItemWithin: tail-gamma-K's, from the errors and the
+/// spread over K).
 
 #include <optional>
 #include <string>
@@ -32,6 +34,7 @@ struct ReportItem {
   std::optional<double> ours;
   double error = 0;                      ///< one sigma of ours (0: exact to rounding, or unknown)
   std::optional<double> reference;       ///< compared instead of the paper's value (see the file comment)
+  std::optional<double> tolerance;       ///< replaces the table's (makeItemWithin), every error included
   Mark mark = Mark::notComputed;
   std::string command;                   ///< one command that reproduces it alone
   std::string note;                      ///< how this value came about, or why it differs
@@ -39,6 +42,8 @@ struct ReportItem {
   [[nodiscard]] std::string_view id() const noexcept { return statement->id; }
   /// The value ours is compared with: `reference`, else the paper's.
   [[nodiscard]] std::optional<double> target() const noexcept { return reference ? reference : statement->paper; }
+  /// The tolerance ours was checked against: `tolerance`, else the table's.
+  [[nodiscard]] double toleranceUsed() const noexcept { return tolerance.value_or(statement->tolerance); }
 };
 
 /// Whether `ours ± error` passes the statement's comparison against `target` (false without a value).
@@ -51,6 +56,13 @@ struct ReportItem {
 [[nodiscard]] ReportItem makeItem(std::string_view id, std::optional<double> ours, double error, bool fullSize,
                                   std::string command, std::string note,
                                   std::optional<double> reference = std::nullopt);
+
+/// An item whose tolerance the report computes from its data (the table's tolerance is 0 and its words give the
+/// rule): makeItem()'s marks, but the comparison's slack is `tolerance` alone, which holds every error (no 3σ is
+/// added); kept in the item for its files.  A tolerance that is not a finite number ≥ 0 gives notComputed where a
+/// mark was due.
+[[nodiscard]] ReportItem makeItemWithin(std::string_view id, std::optional<double> ours, double error, double tolerance,
+                                        bool fullSize, std::string command, std::string note);
 
 /// A differing item with a known reason: differsExplained, the reason added to the note.  Any other mark is kept.
 void explainDifference(ReportItem& item, const std::string& reason);

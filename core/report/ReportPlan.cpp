@@ -12,7 +12,7 @@ namespace archipelago::report {
 namespace {
 // Every statement of core/paper/PaperTable.hpp and the part that computes it (tests/core/report checks that the two
 // lists name the same statements).
-constexpr std::array<std::pair<std::string_view, Need>, 36> kNeeds{{
+constexpr std::array<std::pair<std::string_view, Need>, 37> kNeeds{{
     {"cos-alpha", Need::theory},      {"pd-first", Need::theory},        {"pd-accumulation", Need::theory},
     {"tmax", Need::theory},           {"tmax-X0", Need::theory},         {"F-smallT", Need::theory},
     {"F-cutoff", Need::theory},       {"A-const", Need::theory},         {"t7", Need::smallK},
@@ -23,7 +23,7 @@ constexpr std::array<std::pair<std::string_view, Need>, 36> kNeeds{{
     {"kscan", Need::scan},            {"longest", Need::k01},            {"factor056", Need::b2},
     {"enhancement", Need::b2},        {"chain138-x", Need::theory},      {"chain138-y", Need::theory},
     {"tail-gamma", Need::k01},        {"tail-forecast", Need::k01},      {"tail-splitting", Need::k01},
-    {"markov-tree", Need::atlas},
+    {"markov-tree", Need::atlas},     {"tail-gamma-K", Need::tailScan},
     {"cray-ns", Need::timing},
     {"cray-hours", Need::timing},     {"markov-dmark", Need::theory},    {"markov-eps", Need::theory},
     {"markov-period", Need::theory},
@@ -37,7 +37,7 @@ Need needOf(std::string_view id) {
 }
 
 std::set<Need> allNeeds() {
-  return {Need::theory, Need::smallK, Need::k01, Need::b2, Need::atlas, Need::scan, Need::timing};
+  return {Need::theory, Need::smallK, Need::k01, Need::b2, Need::atlas, Need::scan, Need::tailScan, Need::timing};
 }
 
 }  // namespace archipelago::report

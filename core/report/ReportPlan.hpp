@@ -16,6 +16,7 @@ enum class Need {
   b2,      ///< b₂ of the paper-sized box and of the run's box (with the K = 0.1 run for b₂·D)
   atlas,   ///< the atlas of the K = 0.1 run's map and its Markov tree, against the tail sampler (with k01 and b2)
   scan,    ///< §5's K scan
+  tailScan,  ///< the tail sampler over K (tail-gamma-K)
   timing,  ///< appendix B's timing
 };
 

@@ -122,6 +122,24 @@ std::string kScanCommand(ReportSize size) {
                     " --seed " + std::to_string(r.base.parameters.seed) + " --dir scan");
 }
 
+TailScanRequest tailScanRequest(ReportSize size, const std::filesystem::path& dir) {
+  const bool full = size == ReportSize::full;
+  TailScanRequest r;
+  r.K = full ? "0.05:0.25:0.01" : "0.1,0.15,0.2";
+  r.request.population = full ? 800 : 400;
+  r.request.replicas = full ? 16 : 8;
+  r.request.maxSteps = 1'000'000;
+  r.dir = dir.string();
+  return r;
+}
+
+std::string tailScanCommand(ReportSize size) {
+  const TailScanRequest r = tailScanRequest(size, "tailscan");
+  return cliCommand(io::formatC("tail-scan --K %s --population %u --replicas %u --t-max %llu --dir %s", r.K.c_str(),
+                                r.request.population, r.request.replicas,
+                                static_cast<unsigned long long>(r.request.maxSteps), r.dir.c_str()));
+}
+
 MapParameters paperSizedBox() { return {0.1, -0.7, 0.3}; }
 
 StochasticAreaRequest stochasticAreaRequest(ReportSize size, const MapParameters& box) {

@@ -10,6 +10,10 @@
 ///   decay      K = 10⁻³ and 10⁻² (§4: "similar agreement"): the small-k-positive preset at that K in the box
 ///              ±5√K (the preset's box is ±5√K at K = 10⁻⁴: the island of width 3√K inside, the same shape)
 ///   K scan     §5's 26 K (core/scan), q = 16, M = 64, T = 2·10⁵ (quick) or 5·10⁶ (full), seed 1983
+///   tail scan  the tail sampler at K in its working range, 0.05–0.25 (core/tail/TailScan.hpp; issue 55, item
+///              tail-gamma-K), to t_max = 10⁶ steps: full — 21 K, 0.05:0.25:0.01, N = 800, R = 16; quick — K = 0.1,
+///              0.15, 0.2, N = 400, R = 8 (the fewest walkers that reach 10⁶ reliably at those K); folder
+///              "tailscan-SIZE", a tail file per K
 ///   atlas      the islands around islands of the k01 run's map (core/atlas) for the Markov tree: depth 1 (quick,
 ///              seconds) or 2 (full, minutes), file "atlas-SIZE.json"
 /// Run files are kept in OUTDIR/runs under the names below, so that a report resumes and reuses them.
@@ -21,6 +25,7 @@
 #include "core/stochasticarea/StochasticArea.hpp"
 #include "core/scan/ScanRun.hpp"
 #include "core/tail/TailSampler.hpp"
+#include "core/tail/TailScan.hpp"
 #include "core/trapping/TrappingParameters.hpp"
 
 namespace archipelago::report {
@@ -60,6 +65,11 @@ struct ReportRun {
 /// §5's K scan in `dir`, and the command that makes it.
 [[nodiscard]] KScanRequest kScanRequest(ReportSize size, const std::filesystem::path& dir);
 [[nodiscard]] std::string kScanCommand(ReportSize size);
+
+/// The tail sampler over K in `dir` (the tail's default process in each K's scan box, seed 1), and the command that
+/// makes it.
+[[nodiscard]] TailScanRequest tailScanRequest(ReportSize size, const std::filesystem::path& dir);
+[[nodiscard]] std::string tailScanCommand(ReportSize size);
 
 /// b₂ (§5, an area) of `box` at K = 0.1: 2²⁷ (quick) or 2³⁰ (full) steps of box counting on 1024² boxes.
 [[nodiscard]] StochasticAreaRequest stochasticAreaRequest(ReportSize size, const MapParameters& box);

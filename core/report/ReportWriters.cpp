@@ -43,8 +43,8 @@ std::string itemsCsv(const std::vector<ReportItem>& items) {
     const paper::Statement& s = *it.statement;
     out += std::string(s.id) + ',' + csvField(s.section) + ',' + csvField(s.words) + ',' + csvField(s.paperText) + ',' +
            num(s.paper) + ',' + num(it.ours) + ',' + io::formatC("%.3g", it.error) + ',' + num(it.reference) + ',' +
-           io::formatC("%.3g", s.tolerance) + ',' + csvField(markText(it.mark)) + ',' + csvField(it.command) + ',' +
-           csvField(it.note) + '\n';
+           io::formatC("%.3g", it.toleranceUsed()) + ',' + csvField(markText(it.mark)) + ',' + csvField(it.command) +
+           ',' + csvField(it.note) + '\n';
   }
   return out;
 }
@@ -84,7 +84,8 @@ std::string indexHtml(const ReportPage& page) {
          "</td><td>" + html(std::string(s.words)) + "<br><small>" + html(it.note) + "<br><i>tolerance: " +
          html(std::string(s.toleranceWhy)) + "</i></small></td><td>" + html(std::string(s.paperText)) + "</td><td>" +
          ours + "</td><td>" +
-         (s.comparison == paper::Comparison::openQuestion ? std::string("—") : io::formatC("%.2g", s.tolerance)) +
+         (s.comparison == paper::Comparison::openQuestion ? std::string("—")
+                                                          : io::formatC("%.2g", it.toleranceUsed())) +
          "</td><td>" + markText(it.mark) + "</td><td><code>" + html(it.command) + "</code></td></tr>\n";
   }
   h += "</table>\n<h2>Figures</h2>\n";

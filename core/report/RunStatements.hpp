@@ -19,6 +19,7 @@
 #include "core/stats/TailAnalysis.hpp"
 #include "core/stats/TrappingStatistics.hpp"
 #include "core/tail/BruteForceSurvival.hpp"
+#include "core/tail/TailScan.hpp"
 
 namespace archipelago::report {
 
@@ -43,6 +44,19 @@ struct DecayFit {
 /// the smallest uniform bias the test detects at the report's size.
 inline constexpr std::uint64_t kTailSplittingMinSegments = 10;
 [[nodiscard]] ReportItem tailSplittingStatement(const TailComparison& comparison, const std::string& command);
+
+/// §7 (later work, issue 55): tail-gamma-K, the exponent of P_t over the one window [kTailGammaKFrom, kTailGammaKTo]
+/// (steps) averaged over K, against Cristadoro & Ketzmerick's 1.57 averaged over parameters.  `gamma` holds each K's
+/// γ there (tailGammaKExponents; gamma NaN where the K does not reach 10⁶ reliably: left out, the note names it);
+/// γ̄, its error √(Σσ_K²)/n and the spread s over K are the tail scan's (tailScanAverage).  The item agrees when
+/// |γ̄ − 1.57| ≤ 2√(error² + s²/n) (makeItemWithin): the K are a sample of parameters, so s/√n is the sampling error
+/// of an average over them, the error the sampler's.  Fewer than two K, or an unknown error: no value.
+inline constexpr double kTailGammaKFrom = 1e4;
+inline constexpr double kTailGammaKTo = 1e6;
+[[nodiscard]] ReportItem tailGammaKStatement(const std::vector<double>& K, const std::vector<TailExponent>& gamma,
+                                             bool full, const std::string& command);
+/// Each K's γ over [kTailGammaKFrom, kTailGammaKTo] (tailScanExponentOver), in the scan's order of K.
+[[nodiscard]] std::vector<TailExponent> tailGammaKExponents(const TailScanSummary& scan);
 
 /// §7 (later work, issue 40): markov-tree, the Meiss–Ott tree of an atlas of the run's map (core/markovtree, no
 /// fitted parameter) against the tail sampler's reliable levels from 10³ steps: ours is the comparison's reach, the

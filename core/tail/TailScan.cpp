@@ -219,31 +219,6 @@ bool reaches(const TailResult& result, const LogWindow& w) {
   return below && above;
 }
 
-/// The K-average of a window over the K whose γ is given there (TailScan.hpp).
-TailScanWindow averageOver(const std::vector<std::vector<TailExponent>>& gamma, std::size_t w, const LogWindow& window) {
-  TailScanWindow a;
-  a.from = window.from;
-  a.to = window.to;
-  a.t = std::sqrt(window.from * window.to);
-  double sum = 0, variance = 0;
-  for (const std::vector<TailExponent>& of : gamma)
-    if (std::isfinite(of[w].gamma)) {
-      ++a.count;
-      sum += of[w].gamma;
-      variance += of[w].gammaError * of[w].gammaError;
-    }
-  if (a.count == 0) return a;
-  const auto n = static_cast<double>(a.count);
-  a.mean = sum / n;
-  a.error = std::sqrt(variance) / n;
-  if (a.count < 2) return a;
-  double squares = 0;
-  for (const std::vector<TailExponent>& of : gamma)
-    if (std::isfinite(of[w].gamma)) squares += (of[w].gamma - a.mean) * (of[w].gamma - a.mean);
-  a.spread = std::sqrt(squares / (n - 1));
-  return a;
-}
-
 /// The tail files of a scan's folder (tail-K<K>.json), sorted by name.
 std::vector<std::filesystem::path> tailFilesIn(const std::filesystem::path& dir) {
   std::error_code ec;
@@ -348,6 +323,36 @@ TailScanFolder loadTailScan(const std::filesystem::path& dir) {
   return out;
 }
 
+TailExponent tailScanExponentOver(const TailResult& result, const LogWindow& w) {
+  return reaches(result, w) ? tailExponentOver(result, w.from, w.to)
+                            : TailExponent{w.from, w.to, std::sqrt(w.from * w.to), 0,
+                                           std::numeric_limits<double>::quiet_NaN()};
+}
+
+TailScanWindow tailScanAverage(const std::vector<TailExponent>& ofK, const LogWindow& window) {
+  TailScanWindow a;
+  a.from = window.from;
+  a.to = window.to;
+  a.t = std::sqrt(window.from * window.to);
+  double sum = 0, variance = 0;
+  for (const TailExponent& e : ofK)
+    if (std::isfinite(e.gamma)) {
+      ++a.count;
+      sum += e.gamma;
+      variance += e.gammaError * e.gammaError;
+    }
+  if (a.count == 0) return a;
+  const auto n = static_cast<double>(a.count);
+  a.mean = sum / n;
+  a.error = std::sqrt(variance) / n;
+  if (a.count < 2) return a;
+  double squares = 0;
+  for (const TailExponent& e : ofK)
+    if (std::isfinite(e.gamma)) squares += (e.gamma - a.mean) * (e.gamma - a.mean);
+  a.spread = std::sqrt(squares / (n - 1));
+  return a;
+}
+
 std::vector<LogWindow> tailScanWindows(double lowest, double largest) {
   std::vector<LogWindow> windows;
   if (!(lowest > 0 && largest > 0 && std::isfinite(lowest) && std::isfinite(largest))) return windows;
@@ -375,13 +380,13 @@ TailScanSummary tailScanSummary(const std::vector<double>& K, std::vector<TailSt
   for (const TailState& s : states) {
     out.results.push_back(tailResult(s));
     std::vector<TailExponent>& of = out.gamma.emplace_back();
-    for (const LogWindow& w : out.windows) {
-      of.push_back(reaches(out.results.back(), w) ? tailExponentOver(out.results.back(), w.from, w.to)
-                                                  : TailExponent{w.from, w.to, std::sqrt(w.from * w.to), 0,
-                                                                 std::numeric_limits<double>::quiet_NaN()});
-    }
+    for (const LogWindow& w : out.windows) of.push_back(tailScanExponentOver(out.results.back(), w));
   }
-  for (std::size_t w = 0; w < out.windows.size(); ++w) out.average.push_back(averageOver(out.gamma, w, out.windows[w]));
+  for (std::size_t w = 0; w < out.windows.size(); ++w) {
+    std::vector<TailExponent> ofK;
+    for (const std::vector<TailExponent>& of : out.gamma) ofK.push_back(of[w]);
+    out.average.push_back(tailScanAverage(ofK, out.windows[w]));
+  }
   out.states = std::move(states);
   return out;
 }

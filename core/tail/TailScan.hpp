@@ -96,6 +96,14 @@ struct TailScanSummary {
 /// The windows [10^(j/2), 10^(j/2+1)] from the first at or above `lowest` to the last ending at or below `largest`.
 [[nodiscard]] std::vector<LogWindow> tailScanWindows(double lowest, double largest);
 
+/// γ of one K over window w (the file comment): tailExponentOver() when the K reaches it (a reliable level at or below
+/// its start and one at or above its end), else gamma NaN.  The summary's windows and any other (the report's
+/// tail-gamma-K: [10⁴, 10⁶]) by the one rule.
+[[nodiscard]] TailExponent tailScanExponentOver(const TailResult& result, const LogWindow& w);
+
+/// The K-average of window w over the K whose γ there (`ofK`, one per K) is finite (the file comment).
+[[nodiscard]] TailScanWindow tailScanAverage(const std::vector<TailExponent>& ofK, const LogWindow& w);
+
 /// The summary of finished runs, one per K (the file comment).  A pure function.  Throws std::invalid_argument when
 /// the runs are not of one scan's settings (their levels differ) or one is unfinished.
 [[nodiscard]] TailScanSummary tailScanSummary(const std::vector<double>& K, std::vector<TailState> states);

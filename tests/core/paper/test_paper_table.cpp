@@ -46,8 +46,9 @@ TEST(PaperTable, StatementsAreWholeAndUnique) {
     EXPECT_FALSE(s.method.empty()) << s.id;
     EXPECT_FALSE(s.toleranceWhy.empty()) << s.id;
     if (!s.panel.empty()) EXPECT_TRUE(panels.count(std::string(s.panel))) << s.id << ": panel " << s.panel;
-    if (s.comparison == Comparison::value || s.comparison == Comparison::range)
+    if ((s.comparison == Comparison::value || s.comparison == Comparison::range) && !s.toleranceFromData)
       EXPECT_GT(s.tolerance, 0) << s.id << ": a value compared needs a tolerance";
+    if (s.toleranceFromData) EXPECT_EQ(s.tolerance, 0) << s.id << ": the report computes it";
     if (s.comparison != Comparison::openQuestion) EXPECT_TRUE(s.paper.has_value()) << s.id;
     EXPECT_EQ(findStatement(s.id), &s);
   }

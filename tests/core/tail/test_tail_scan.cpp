@@ -124,6 +124,20 @@ TEST(TailScan, TheKAverageIsOverTheKThatReachTheWindowWithItsSpreadAndError) {
   EXPECT_TRUE(std::isnan(s.average[2].spread)) << "no spread over one K";
 }
 
+// A window of the caller's (the report's tail-gamma-K: 10⁴–10⁶), by the summary's rule: γ where the K reaches it,
+// NaN where its end is past the last reliable level; the average over the K that reach it.
+TEST(TailScan, AnyWindowByTheSummarysRuleAndItsAverage) {
+  const LogWindow whole{10, 1000};
+  const TailExponent k1 = tailScanExponentOver(tailResult(firstK()), whole);
+  const TailExponent expected = tailExponentOver(tailResult(firstK()), 10, 1000);
+  EXPECT_EQ(k1.gamma, expected.gamma);
+  EXPECT_EQ(k1.gammaError, expected.gammaError);
+  EXPECT_TRUE(std::isnan(tailScanExponentOver(tailResult(secondK()), whole).gamma));
+  const TailScanWindow a = tailScanAverage({k1, tailScanExponentOver(tailResult(secondK()), whole)}, whole);
+  EXPECT_EQ(a.count, 1u);
+  EXPECT_EQ(a.mean, k1.gamma);
+}
+
 TEST(TailScan, TheRunningExponentIsTheOneDefinitionOverAnyWindow) {
   const TailState k1 = firstK();
   const TailResult r = tailResult(k1);
