@@ -10,6 +10,7 @@
 #include <numeric>
 #include <tuple>
 #include <numbers>
+#include <span>
 #include <stdexcept>
 
 #include "core/limits/Limits.hpp"
@@ -548,23 +549,90 @@ void settleLayers(Atlas& atlas, const ZoneRegions& zones) {
 
 constexpr int kMaxScanPoints = 10000;
 
-/// Whether `chain` (period n·q) surrounds the island of period n at c as p/q: its points z_0, z_n, …, z_{(q−1)n} (the
-/// images under Qⁿ, which fixes c) lie within `reach` of c and their angles about c advance by |p| turns in all.
-bool surrounds(const PeriodicOrbit& chain, PhysicalPoint c, std::uint64_t n, const Rational& pq, long double reach) {
-  const std::size_t size = chain.points.size();
-  if (n == 0 || size % n != 0 || size / n != static_cast<std::size_t>(pq.q)) return false;
-  const long double pi = std::numbers::pi_v<long double>;
-  long double turns = 0;
-  for (std::size_t k = 0; k < static_cast<std::size_t>(pq.q); ++k) {
-    const PhysicalPoint a = chain.points[(k * n) % size], b = chain.points[((k + 1) * n) % size];
-    if (std::hypot(a.x - c.x, a.y - c.y) > reach) return false;
-    long double d = std::atan2(b.y - c.y, b.x - c.x) - std::atan2(a.y - c.y, a.x - c.x);
-    if (d > pi) d -= 2 * pi;
-    if (d <= -pi) d += 2 * pi;
-    turns += d;
+/// The angle of z − c in `sense` (+1: clockwise), radians.
+long double angleAbout(PhysicalPoint z, PhysicalPoint c, int sense) {
+  return -sense * std::atan2(z.y - c.y, z.x - c.x);
+}
+
+/// Rational{p, q} in lowest terms, or nothing (a cycle of q images that turns p times with gcd(p, q) > 1 is no chain).
+std::optional<Rational> chainRational(std::int64_t p, std::int64_t q) {
+  if (std::gcd(p, q) != 1) return std::nullopt;
+  return Rational{p, q};
+}
+
+/// The images' rotation by their order about c (issue 50): a chain p/q is well ordered, z_{kn} the (k·p mod q)-th from
+/// z_0 in the sense of the rotation, in any coordinates; p in (−q/2, q/2] (the rotation nearest 0 mod 1, as rotations
+/// are measured).  Nothing when two images lie on one ray, they are not well ordered, or (q ≥ 3) they leave a gap of
+/// half a turn or more (they do not surround c).
+std::optional<Rational> orderRotation(std::span<const PhysicalPoint> images, PhysicalPoint c, int sense) {
+  const std::size_t q = images.size();
+  const long double twoPi = 2 * std::numbers::pi_v<long double>;
+  const long double start = angleAbout(images[0], c, sense);
+  std::vector<std::pair<long double, std::size_t>> angles;  // from z_0, in [0, 2π), and k
+  for (std::size_t k = 0; k < q; ++k) {
+    const long double a = angleAbout(images[k], c, sense) - start;
+    angles.emplace_back(a - twoPi * std::floor(a / twoPi), k);
   }
-  turns = std::fabs(turns) / (2 * pi);
-  return std::fabs(turns - static_cast<long double>(std::llabs(pq.p))) < 1e-6L;
+  std::sort(angles.begin(), angles.end());
+  std::vector<std::size_t> position(q);
+  for (std::size_t r = 0; r < q; ++r) {
+    const long double next = r + 1 < q ? angles[r + 1].first : angles[0].first + twoPi;
+    const long double gap = next - angles[r].first;
+    if (gap == 0 || (q >= 3 && gap >= twoPi / 2)) return std::nullopt;
+    position[angles[r].second] = r;
+  }
+  const std::size_t shift = position[1];
+  for (std::size_t k = 0; k < q; ++k)
+    if ((position[(k + 1) % q] + q - position[k]) % q != shift) return std::nullopt;
+  const auto p = static_cast<std::int64_t>(shift), qq = static_cast<std::int64_t>(q);
+  return chainRational(2 * p > qq ? p - qq : p, qq);
+}
+
+/// An increment of an angle about an island larger than this (turns) may be a fold: one of more than half a turn
+/// read backwards (at K = 0.13 the 2/5 chain's 0.504 about a member of the six, read as −0.496).
+constexpr long double kUnfoldedTurn = 0.45L;
+
+/// The images' rotation by the sum of their angles' increments about c over the cycle z_0 → z_n → … → z_0, each taken
+/// in (−½, ½] turn; nothing when one of them lies within 1/2 − kUnfoldedTurn of half a turn (it may be folded).
+std::optional<Rational> incrementRotation(std::span<const PhysicalPoint> images, PhysicalPoint c, int sense) {
+  const std::size_t q = images.size();
+  const long double twoPi = 2 * std::numbers::pi_v<long double>;
+  long double turns = 0;
+  for (std::size_t k = 0; k < q; ++k) {
+    const long double step =
+        std::remainder(angleAbout(images[(k + 1) % q], c, sense) - angleAbout(images[k], c, sense), twoPi) / twoPi;
+    if (std::fabs(step) > kUnfoldedTurn) return std::nullopt;
+    turns += step;
+  }
+  return chainRational(std::llround(turns), static_cast<std::int64_t>(q));
+}
+
+/// The rotation p/q about an island's member c of the images z_0, z_n, …, z_{(q−1)n} of a chain of period n·q (Qⁿ fixes
+/// c), in `sense` (+1: clockwise; issue 50).  By the images' order about c (orderRotation) and by the sum of their
+/// angles' increments (incrementRotation): the increments fold about a long, thin island — at K = 0.13 (the six's
+/// residue 0.96) the 2/5 chain about the island of six turns by 0.41, 0.48, 0.49, 0.43 and 0.20 of a turn, twice in
+/// five steps, about one member of the six, and by 0.23, 0.48, −0.50, 0.48 and 0.30 about another (a step of 0.504
+/// read as −0.496): once, and the scan, whose rotation numbers are such sums, named it 1/5 — while the order is not
+/// decided where the chain is not star-shaped about c (the 4/29 chain about the centre at K = 0.1, far out, turns by
+/// 0.02 … 0.38 of a turn, four times, but out of order).  Either decides; both must agree.  Nothing — the rotation is
+/// not decided here — when neither does, they disagree, or an image is farther than `reach` from c.
+std::optional<Rational> rotationAbout(std::span<const PhysicalPoint> images, PhysicalPoint c, int sense,
+                                      long double reach) {
+  if (images.size() < 2) return std::nullopt;
+  for (const PhysicalPoint& z : images)
+    if (std::hypot(z.x - c.x, z.y - c.y) > reach || (z.x == c.x && z.y == c.y)) return std::nullopt;
+  const std::optional<Rational> byOrder = orderRotation(images, c, sense);
+  const std::optional<Rational> byTurns = incrementRotation(images, c, sense);
+  if (byOrder && byTurns && *byOrder != *byTurns) return std::nullopt;
+  return byOrder ? byOrder : byTurns;
+}
+
+/// The images z_0, z_n, …, z_{(q−1)n} under Qⁿ of the member of `chain` (period n·q) nearest c.
+std::vector<PhysicalPoint> imagesNear(const PeriodicOrbit& chain, PhysicalPoint c, std::uint64_t n) {
+  const std::size_t size = chain.points.size(), first = chain.nearestIndex(c);
+  std::vector<PhysicalPoint> images;
+  for (std::size_t k = 0; k < size / n; ++k) images.push_back(chain.points[(first + k * n) % size]);
+  return images;
 }
 
 /// A node as its parent's expansion made it (before its own expansion, stopped midway, filled part of it).
@@ -869,15 +937,6 @@ class AtlasBuilder {
   /// from ν₀ through the boundary's, so a chain between the two lies inside the boundary even where a ray's own last
   /// circle is further in), are internal chains, listed in the node; those beyond it are returned: the chains outside.
   OutsideChains sortChains(AtlasNode& node, const std::vector<Ray>& rays) const {
-    const long double centreRotation =
-        std::asin(std::sqrt(std::clamp(node.orbit.residue, 0.0L, 1.0L))) / std::numbers::pi_v<long double>;
-    const long double boundaryRotation = std::fabs(static_cast<long double>(node.boundaryRotation));
-    const long double outwards = boundaryRotation - centreRotation;  // the sign of the twist, outwards
-    auto beyondBoundary = [&](const Rational& r) {
-      if (!(std::fabs(outwards) > 1e-9L)) return true;  // no measurable twist: the rays decide
-      const long double rotation = std::fabs(static_cast<long double>(r.p) / static_cast<long double>(r.q));
-      return (rotation - boundaryRotation) * outwards > 0;
-    };
     OutsideChains outside;
     for (std::size_t k = 0; k < rays.size(); ++k) {
       const SideScan& s = rays[k].scan;
@@ -888,7 +947,7 @@ class AtlasBuilder {
         // turns the other way about c).
         if ((p.rational.p > 0) != (node.boundaryRotation > 0)) continue;
         if (node.period * static_cast<std::uint64_t>(p.rational.q) > r_.maxPeriod) continue;  // beyond the tree's periods
-        if (static_cast<int>(i) < s.lastCircle || !beyondBoundary(p.rational)) {
+        if (static_cast<int>(i) < s.lastCircle || !beyondBoundary(node, p.rational)) {
           if (std::find(node.internal.begin(), node.internal.end(), p.rational) == node.internal.end())
             node.internal.push_back(p.rational);
         } else {
@@ -899,6 +958,36 @@ class AtlasBuilder {
     std::sort(node.internal.begin(), node.internal.end(),
               [](const Rational& a, const Rational& b) { return a.q != b.q ? a.q < b.q : a.p < b.p; });
     return outside;
+  }
+
+  /// Whether the rotation p/q about the node's island lies beyond its boundary circle's, counted from the centre's
+  /// linear rotation ν₀ (R = sin²(πν₀)) in the sense of the twist; true where no twist is measurable (the rays decide).
+  static bool beyondBoundary(const AtlasNode& node, const Rational& r) {
+    const long double centreRotation =
+        std::asin(std::sqrt(std::clamp(node.orbit.residue, 0.0L, 1.0L))) / std::numbers::pi_v<long double>;
+    const long double boundaryRotation = std::fabs(static_cast<long double>(node.boundaryRotation));
+    const long double outwards = boundaryRotation - centreRotation;  // the sign of the twist, outwards
+    if (!(std::fabs(outwards) > 1e-9L)) return true;
+    const long double rotation = std::fabs(static_cast<long double>(r.p) / static_cast<long double>(r.q));
+    return (rotation - boundaryRotation) * outwards > 0;
+  }
+
+  /// The rotation of `chain` (period n·q) about the island of period n (issue 50): rotationAbout at the member c of
+  /// each ray whose cell holds the chain (its points within twice the ray's reach of c), where it is decided; nothing
+  /// when it is decided about none, or two members disagree.
+  static std::optional<Rational> chainRotation(const PeriodicOrbit& chain, const std::vector<Ray>& rays,
+                                               std::uint64_t n) {
+    std::optional<Rational> rotation;
+    for (const Ray& ray : rays) {
+      const PhysicalPoint c = ray.island.centre;
+      const long double reach = 2 * ray.island.reach;
+      if (chain.distanceTo(c) > reach) continue;  // the chain lies about another member
+      const std::optional<Rational> about = rotationAbout(imagesNear(chain, c, n), c, ray.island.sense, reach);
+      if (!about) continue;
+      if (rotation && *rotation != *about) return std::nullopt;
+      rotation = about;
+    }
+    return rotation;
   }
 
   /// Step 5b: the chains outside: the middle of each rational's run of points gives its elliptic orbit, kept when it
@@ -922,19 +1011,21 @@ class AtlasBuilder {
       child.parent = index;
       child.level = node.level + 1;
       child.period = period;
-      child.aboutParent = Rational{pq.first, pq.second};
       const EllipticOrbitGuess guess = ellipticOrbitAround(r_.map, N.toUnit(start.x, start.y), period, r_.iterations);
       if (!guess.orbit || !guess.orbit->stable()) continue;  // not an island chain (a chaotic band's mean, a saddle)
       const auto member = memberOnLine(*guess.orbit, start);
       if (!member) continue;  // not symmetric: the scan cannot measure it (docs/atlas.md)
       child.orbit = guess.orbit->rotatedToStart(member->first);
       child.centre = child.orbit.points.front();
-      // The orbit must be a chain about this island: its points in the island's cell, Qⁿ-images of each other,
-      // turn p times about the island's member in q steps (a chaotic band's elliptic orbit of the same period that
-      // the scan's rotation named p/q does not), and it must not be a chain already in the atlas (the same
-      // period-247 orbit was named 2/19 and 7/19 about the island of 13 and 1/13 about the island of 19).
-      if (!surrounds(child.orbit, rays[k].island.centre, node.period, *child.aboutParent, 2 * rays[k].island.reach))
-        continue;
+      // The orbit must be a chain about this island: its points in the island's cell, Qⁿ-images of each other, well
+      // ordered about the island's member and surrounding it (a chaotic band's elliptic orbit of the period the scan
+      // named does not), turning in the sense the scan's points did and beyond the boundary; its label is its own
+      // rotation, not the scan's (issue 50: the scan's increments fold about a long island, chainRotation).  And it
+      // must not be a chain already in the atlas (the same period-247 orbit was named 2/19 and 7/19 about the island
+      // of 13 and 1/13 about the island of 19).
+      child.aboutParent = chainRotation(child.orbit, rays, node.period);
+      const std::optional<Rational>& turned = child.aboutParent;
+      if (!turned || (turned->p > 0) != (pq.first > 0) || !beyondBoundary(node, *turned)) continue;
       addChain(atlas, std::move(child), member->second, children);
     }
     return children;
@@ -1021,12 +1112,13 @@ class AtlasBuilder {
   bool addFareyChain(const Atlas& atlas, int index, const std::vector<Ray>& rays, const PeriodicOrbit& orbit,
                      const Rational& pq, std::vector<AtlasNode>& children) const {
     const AtlasNode& node = atlas.nodes[static_cast<std::size_t>(index)];
+    if (node.period > 1 && chainRotation(orbit, rays, node.period) != pq) return false;
     for (const Ray& ray : rays) {
       const PhysicalPoint c = ray.island.centre;
       const auto member = memberOnLine(orbit, node.period == 1 ? orbit.points.front() : c);
       if (!member) return false;
       const PeriodicOrbit chain = orbit.rotatedToStart(member->first);
-      if (!isFareyChainAbout(chain, c, node.period, pq, ray.island.reach)) continue;
+      if (!isFareyChainAbout(chain, ray, node.period, pq)) continue;
       AtlasNode child;
       child.parent = index;
       child.level = node.level + 1;
@@ -1040,38 +1132,32 @@ class AtlasBuilder {
   }
 
   /// The finder's cheap test of a root z on a ray's line, before its quad polish (in a chaotic band most roots are
-  /// not chains about the island): its Qⁿ-images in long double stay within twice the ray's reach of the ray's member
-  /// c and turn p times about it in q steps (as surrounds() checks the polished orbit).
+  /// not chains about the island): z and its Qⁿ-images in long double lie within twice the ray's reach of the ray's
+  /// member c and their order about it is p/q's (rotationAbout, as addFareyChain checks the polished orbit).
   bool mayBeChainAbout(PhysicalPoint z, const std::vector<Ray>& rays, std::uint64_t n, const Rational& pq) const {
-    const long double pi = std::numbers::pi_v<long double>;
     for (const Ray& ray : rays) {
       const PhysicalPoint c = ray.island.centre;
       if (distance(z, c) > 2 * ray.island.reach) continue;
       smooth::Point<long double> w{z.x, z.y};
-      long double turns = 0, angle = std::atan2(w.y - c.y, w.x - c.x);
-      bool near = true;
-      for (std::int64_t k = 0; k < pq.q && near; ++k) {
+      std::vector<PhysicalPoint> images{z};
+      for (std::int64_t k = 1; k < pq.q; ++k) {
         for (std::uint64_t i = 0; i < n; ++i) w = smooth::step(K_, w);
-        near = std::hypot(w.x - c.x, w.y - c.y) <= 2 * ray.island.reach;
-        const long double next = std::atan2(w.y - c.y, w.x - c.x);
-        turns += std::remainder(next - angle, 2 * pi);
-        angle = next;
+        images.push_back({w.x, w.y});
       }
-      if (near && std::fabs(std::fabs(turns) / (2 * pi) - static_cast<long double>(std::llabs(pq.p))) < 0.5L) return true;
+      if (rotationAbout(images, c, ray.island.sense, 2 * ray.island.reach) == pq) return true;
     }
     return false;
   }
 
-  /// Whether `chain` is the chain p/q about the island of period n at its member c: at the centre (n = 1) it winds p
-  /// times about c and is well ordered about it; else its Qⁿ-images z_0, z_n, … (z_0 the member nearest c) lie within
-  /// 2·reach of c, turn p times about it (surrounds) and are well ordered about it.
-  static bool isFareyChainAbout(const PeriodicOrbit& chain, PhysicalPoint c, std::uint64_t n, const Rational& pq,
-                                long double reach) {
+  /// Whether `chain` is the chain p/q about the island of period n at the ray's member c: at the centre (n = 1) it
+  /// winds p times about c and is well ordered about it; else its Qⁿ-images z_0, z_n, … (z_0 its first point) lie
+  /// within twice the ray's reach of c and their order about it is p/q's (rotationAbout).
+  static bool isFareyChainAbout(const PeriodicOrbit& chain, const Ray& ray, std::uint64_t n, const Rational& pq) {
+    const PhysicalPoint c = ray.island.centre;
     if (n == 1) return chain.windingTurns == pq.p && wellOrdered(chain.points, c);
-    if (!surrounds(chain, c, n, pq, 2 * reach)) return false;
     std::vector<PhysicalPoint> images;
     for (std::size_t k = 0; k < chain.points.size(); k += n) images.push_back(chain.points[k]);
-    return wellOrdered(images, c);
+    return rotationAbout(images, c, ray.island.sense, 2 * ray.island.reach) == pq;
   }
 
   const AtlasRequest& r_;

@@ -30,7 +30,10 @@
 ///     Qⁿ).  The area is an interval: from below the circle's polygon less its convergence, from above the circle
 ///     scaled about c by the widest ratio of those distances (AtlasNode::areaLower, areaUpper, areaError).
 ///  3. The chains: the chain points beyond the boundary (turning about c in the sense of its circles), grouped by p/q, each group's middle point giving the
-///     elliptic orbit of period n·q (ChainIdentification.hpp, ellipticOrbitAround); kept when it is stable.  Chain
+///     elliptic orbit of period n·q (ChainIdentification.hpp, ellipticOrbitAround); kept when it is stable, and
+///     labelled by that orbit's own rotation about c (issue 50: the order of its Qⁿ-images about c, or the sum of
+///     their angles' increments where none may be folded; not the scan's, whose increments fold about a long, thin
+///     island), refused when that is not decided.  Chain
 ///     points inside the boundary are listed as internal rationals and not followed.  About each island followed,
 ///     every symmetric chain p/q (q ≤ 50; below the centre of period n·q ≤ 300) whose rotation lies between the
 ///     boundary's and the farthest chain found

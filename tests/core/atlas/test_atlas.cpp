@@ -271,6 +271,39 @@ TEST(Atlas, HoldsThePeriod66ChainAboutTheIslandOfSixThatTheScanMisses) {
   EXPECT_NEAR(y, static_cast<double>(c66->centre.y), 1e-9);
 }
 
+// Issue 50: at K = 0.13 the chain of period 30 about an island of the centre's six was labelled 1/5; it is 2/5.  The
+// six's islands are long and thin (residue 0.96, rotation 0.437 per Q⁶ at the centre, 0.4065 at the boundary): the
+// chain's Q⁶-images move by up to half a turn a step about the six's members, and a step taken in (−½, ½] turn folds
+// about four of them (twice in five steps about two members, once about the four others), so the scan's rotation,
+// and the turn count that checked the orbit, named it 1/5.  The reference is independent code (its own map, the
+// angle unwrapped in the coordinates of DQ⁶'s rotation, and the images' order about every member of the six):
+//   archipelago-cli atlas --K 0.13 --depth 2 --max-period 150 --scan-steps 0 --json k013.json
+//   python3 scripts/atlas-rotation-check.py k013.json
+//   6 > 30  atlas 1/5  measured 2/5  MISMATCH  about the nearest member: 2000 turns in 5000 steps of M^6 …
+// With 64 points a side the scan meets the chain on a ray where the steps fold (100 points happen to give 2/5).
+TEST(Atlas, LabelsTheChainOfThirtyAboutTheIslandOfSixAtK013ByItsOrbitsTurnsNotTheScansFoldedRotation) {
+  AtlasRequest r;
+  r.map.K = 0.13;
+  r.depth = 2;
+  r.maxPeriod = 30;    // below the six only q ≤ 5
+  r.minArea = 1e-4;    // the islands of 17 and 28 not followed; the six (2·10⁻⁴) and 11 (10⁻³) are
+  r.scanPoints = 64;
+  r.scanSteps = 0;
+  const Atlas a = computeAtlas(r);
+  const AtlasNode* six = chainOf(a, 0, 1, 6);
+  ASSERT_NE(six, nullptr);
+  const int sixIndex = static_cast<int>(six - a.nodes.data());
+  std::vector<std::string> labels;
+  for (int child : six->children)
+    labels.push_back(std::to_string(a.nodes[static_cast<std::size_t>(child)].aboutParent->p) + "/" +
+                     std::to_string(a.nodes[static_cast<std::size_t>(child)].aboutParent->q));
+  EXPECT_EQ(chainOf(a, sixIndex, 1, 5), nullptr) << "a chain labelled 1/5 about the six";
+  const AtlasNode* c30 = chainOf(a, sixIndex, 2, 5);
+  ASSERT_NE(c30, nullptr) << "no chain 2/5 about the six; its chains: " << ::testing::PrintToString(labels);
+  EXPECT_EQ(c30->period, 30u);
+  EXPECT_TRUE(c30->orbit.stable());
+}
+
 // Issue 50, finding 2: at K = 0.12 (depth 1) the centre's "boundary circle" was an orbit of the 25/143 chain (its
 // rotation 0.1748251677 = 25/143; its polygon's area converged to 4e−5 and passed), with an area of 0.34259 against
 // the true last circle's 0.340245399 (scripts/atlas-validate.py --K 0.12 --points 2000 --T 6000 --zooms 4), and the
