@@ -780,7 +780,8 @@ class AtlasBuilder {
     SideScan scan;
     std::optional<long double> circleX;  ///< x of the ray's outermost proven circle point
   };
-  using OutsideChains = std::map<std::pair<std::int64_t, std::int64_t>, std::pair<std::size_t, int>>;  // p/q → (ray, index)
+  using RunStart = std::pair<std::size_t, int>;  // (ray, index of the run's first point)
+  using OutsideChains = std::map<std::pair<std::int64_t, std::int64_t>, std::vector<RunStart>>;  // p/q → its runs
 
   /// Fills the island's boundary circle, area and flux, and returns the chains outside it as children: the five steps
   /// of the header (scan, boundary, area, flux, chains).
@@ -935,7 +936,8 @@ class AtlasBuilder {
   /// Step 5a: the rationals the rays crossed.  Those inside a ray's last circle, or whose rotation is not beyond the
   /// boundary circle's (counted from the centre's linear rotation ν₀, R = sin²(πν₀): the twist carries the rotation
   /// from ν₀ through the boundary's, so a chain between the two lies inside the boundary even where a ray's own last
-  /// circle is further in), are internal chains, listed in the node; those beyond it are returned: the chains outside.
+  /// circle is further in), are internal chains, listed in the node; those beyond it are returned: the chains outside,
+  /// each with the starts of its runs of points (its first point beyond, then each later run, in the rays' order).
   OutsideChains sortChains(AtlasNode& node, const std::vector<Ray>& rays) const {
     OutsideChains outside;
     for (std::size_t k = 0; k < rays.size(); ++k) {
@@ -951,13 +953,39 @@ class AtlasBuilder {
           if (std::find(node.internal.begin(), node.internal.end(), p.rational) == node.internal.end())
             node.internal.push_back(p.rational);
         } else {
-          outside.try_emplace({p.rational.p, p.rational.q}, k, static_cast<int>(i));
+          std::vector<RunStart>& runs = outside[{p.rational.p, p.rational.q}];
+          if (runs.empty() || i == 0 || !sameChainPoint(s.points[i - 1], p)) runs.emplace_back(k, static_cast<int>(i));
         }
       }
     }
     std::sort(node.internal.begin(), node.internal.end(),
               [](const Rational& a, const Rational& b) { return a.q != b.q ? a.q < b.q : a.p < b.p; });
     return outside;
+  }
+
+  /// Whether `a` is a chain point of the chain point `b`'s rational (the two in one run).
+  static bool sameChainPoint(const ScanPoint& a, const ScanPoint& b) {
+    return a.kind == PointKind::Chain && a.rational == b.rational;
+  }
+
+  /// The index of the last point of the run of chain points that starts at `first`.
+  static int runEnd(const SideScan& s, int first) {
+    int last = first;
+    while (last + 1 < static_cast<int>(s.points.size()) && sameChainPoint(s.points[last + 1], s.points[first])) ++last;
+    return last;
+  }
+
+  /// The runs a rational's orbit is sought from, in turn: its first run, then its longest other one.  The first can be
+  /// a sticky orbit of the chaotic layer about the chain's islands that passed for regular at T (issue 50: at K = 0.13
+  /// the first 1/6 point beyond the centre's boundary on S₁, x = 0.12684, 9.1 digits, a run of one, leaves the island
+  /// of six within 3000 steps of Q⁶; the island's own run starts two points further out).
+  static std::vector<RunStart> runsToTry(const std::vector<Ray>& rays, const std::vector<RunStart>& runs) {
+    std::vector<RunStart> out{runs.front()};
+    auto length = [&](const RunStart& r) { return runEnd(rays[r.first].scan, r.second) - r.second; };
+    const auto longest = std::max_element(runs.begin() + 1, runs.end(),
+                                          [&](const RunStart& a, const RunStart& b) { return length(a) < length(b); });
+    if (longest != runs.end()) out.push_back(*longest);
+    return out;
   }
 
   /// Whether the rotation p/q about the node's island lies beyond its boundary circle's, counted from the centre's
@@ -990,45 +1018,51 @@ class AtlasBuilder {
     return rotation;
   }
 
-  /// Step 5b: the chains outside: the middle of each rational's run of points gives its elliptic orbit, kept when it
-  /// is a symmetric chain about this island not already in the atlas.
+  /// Step 5b: the chains outside: the middle of a rational's run of points (runsToTry: its first, else its longest)
+  /// gives its elliptic orbit, kept when it is a symmetric chain about this island not already in the atlas.
   std::vector<AtlasNode> chainsOutside(const Atlas& atlas, int index, const std::vector<Ray>& rays,
                                        const OutsideChains& outside) {
-    const AtlasNode& node = atlas.nodes[static_cast<std::size_t>(index)];
     std::vector<AtlasNode> children;
-    const FixedPointMap N(r_.map);
-    for (const auto& [pq, where] : outside) {
-      if (stop_.stop_requested()) return {};
-      const auto& [k, first] = where;
-      const SideScan& s = rays[k].scan;
-      int last = first;
-      while (last + 1 < static_cast<int>(s.points.size()) && s.points[last + 1].kind == PointKind::Chain &&
-             s.points[last + 1].rational == s.points[first].rational)
-        ++last;
-      const PhysicalPoint start = s.points[static_cast<std::size_t>((first + last) / 2)].point;
-      const std::uint64_t period = node.period * static_cast<std::uint64_t>(pq.second);
-      AtlasNode child;
-      child.parent = index;
-      child.level = node.level + 1;
-      child.period = period;
-      const EllipticOrbitGuess guess = ellipticOrbitAround(r_.map, N.toUnit(start.x, start.y), period, r_.iterations);
-      if (!guess.orbit || !guess.orbit->stable()) continue;  // not an island chain (a chaotic band's mean, a saddle)
-      const auto member = memberOnLine(*guess.orbit, start);
-      if (!member) continue;  // not symmetric: the scan cannot measure it (docs/atlas.md)
-      child.orbit = guess.orbit->rotatedToStart(member->first);
-      child.centre = child.orbit.points.front();
-      // The orbit must be a chain about this island: its points in the island's cell, Qⁿ-images of each other, well
-      // ordered about the island's member and surrounding it (a chaotic band's elliptic orbit of the period the scan
-      // named does not), turning in the sense the scan's points did and beyond the boundary; its label is its own
-      // rotation, not the scan's (issue 50: the scan's increments fold about a long island, chainRotation).  And it
-      // must not be a chain already in the atlas (the same period-247 orbit was named 2/19 and 7/19 about the island
-      // of 13 and 1/13 about the island of 19).
-      child.aboutParent = chainRotation(child.orbit, rays, node.period);
-      const std::optional<Rational>& turned = child.aboutParent;
-      if (!turned || (turned->p > 0) != (pq.first > 0) || !beyondBoundary(node, *turned)) continue;
-      addChain(atlas, std::move(child), member->second, children);
-    }
+    for (const auto& [pq, runs] : outside)
+      for (const auto& [k, first] : runsToTry(rays, runs)) {
+        if (stop_.stop_requested()) return {};
+        auto found = chainFromRun(atlas.nodes[static_cast<std::size_t>(index)], index, rays, rays[k].scan, first, pq);
+        if (!found) continue;
+        addChain(atlas, std::move(found->first), found->second, children);
+        break;
+      }
     return children;
+  }
+
+  /// The chain about the island that the run of `s` from `first` (named p/q) gives, with the line its member lies on:
+  /// the elliptic orbit of period n·q from the run's middle point, when it is a symmetric chain about this island.
+  using ChainFound = std::optional<std::pair<AtlasNode, smooth::SymmetryLine>>;
+  ChainFound chainFromRun(const AtlasNode& node, int index, const std::vector<Ray>& rays, const SideScan& s, int first,
+                          const std::pair<std::int64_t, std::int64_t>& pq) const {
+    const PhysicalPoint start = s.points[static_cast<std::size_t>((first + runEnd(s, first)) / 2)].point;
+    const std::uint64_t period = node.period * static_cast<std::uint64_t>(pq.second);
+    AtlasNode child;
+    child.parent = index;
+    child.level = node.level + 1;
+    child.period = period;
+    const FixedPointMap N(r_.map);
+    const EllipticOrbitGuess guess = ellipticOrbitAround(r_.map, N.toUnit(start.x, start.y), period, r_.iterations);
+    // Not an island chain (a chaotic band's mean, a saddle, a sticky orbit that left the island).
+    if (!guess.orbit || !guess.orbit->stable()) return std::nullopt;
+    const auto member = memberOnLine(*guess.orbit, start);
+    if (!member) return std::nullopt;  // not symmetric: the scan cannot measure it (docs/atlas.md)
+    child.orbit = guess.orbit->rotatedToStart(member->first);
+    child.centre = child.orbit.points.front();
+    // The orbit must be a chain about this island: its points in the island's cell, Qⁿ-images of each other, well
+    // ordered about the island's member and surrounding it (a chaotic band's elliptic orbit of the period the scan
+    // named does not), turning in the sense the scan's points did and beyond the boundary; its label is its own
+    // rotation, not the scan's (issue 50: the scan's increments fold about a long island, chainRotation).  And it
+    // must not be a chain already in the atlas (addChain: the same period-247 orbit was named 2/19 and 7/19 about the
+    // island of 13 and 1/13 about the island of 19).
+    child.aboutParent = chainRotation(child.orbit, rays, node.period);
+    const std::optional<Rational>& turned = child.aboutParent;
+    if (!turned || (turned->p > 0) != (pq.first > 0) || !beyondBoundary(node, *turned)) return std::nullopt;
+    return std::pair{std::move(child), member->second};
   }
 
   /// Adds `child` (its orbit and centre set, its member on `line`) to `children` unless the same chain (its period and

@@ -29,7 +29,8 @@
 ///     the island (farther from c than the next member of its orbit, or out of the box, within 2 T applications of
 ///     Qⁿ).  The area is an interval: from below the circle's polygon less its convergence, from above the circle
 ///     scaled about c by the widest ratio of those distances (AtlasNode::areaLower, areaUpper, areaError).
-///  3. The chains: the chain points beyond the boundary (turning about c in the sense of its circles), grouped by p/q, each group's middle point giving the
+///  3. The chains: the chain points beyond the boundary (turning about c in the sense of its circles), grouped by p/q,
+///     the middle point of a group's first run (else of its longest: the first can be a sticky orbit) giving the
 ///     elliptic orbit of period n·q (ChainIdentification.hpp, ellipticOrbitAround); kept when it is stable, and
 ///     labelled by that orbit's own rotation about c (issue 50: the order of its Qⁿ-images about c, or the sum of
 ///     their angles' increments where none may be folded; not the scan's, whose increments fold about a long, thin

@@ -15,6 +15,7 @@
 #include "core/map/FixedPointMap.hpp"
 #include "core/measures/RotationNumber.hpp"
 #include "core/parallel/ParallelFor.hpp"
+#include "core/scan/ScanBox.hpp"
 
 namespace archipelago {
 namespace {
@@ -302,6 +303,38 @@ TEST(Atlas, LabelsTheChainOfThirtyAboutTheIslandOfSixAtK013ByItsOrbitsTurnsNotTh
   ASSERT_NE(c30, nullptr) << "no chain 2/5 about the six; its chains: " << ::testing::PrintToString(labels);
   EXPECT_EQ(c30->period, 30u);
   EXPECT_TRUE(c30->orbit.stable());
+}
+
+// Issue 50: at K = 0.13 in the K scan's box the centre's 1/6 chain, the lowest period outside the central island
+// (boundary rotation ≈ 0.183), was missing from the atlas: the first 1/6 point beyond the boundary on S₁
+// (x = 0.12684, 9.1 digits, a run of one) is a sticky orbit of the layer about the six's islands, not in them (it
+// leaves the island within 3000 steps of Q⁶), so its orbit gave no elliptic orbit, and the rational's other runs
+// (the island's own, two points further out) were not tried.  The paper's box (−0.8, 0.5) meets the same point.  The
+// expected orbit is independent code, the symmetric period-6 orbit as a root of the offset of Q³(x, K − x²) from S₁:
+//   python3 -c "from mpmath import mp, mpf, findroot
+//   mp.dps = 40; K = mpf('0.13')
+//   def Q(x, y, n):
+//       for _ in range(n): y += 2 * (x * x - K); x += y
+//       return x, y
+//   f = lambda x: Q(x, K - x * x, 3)[1] - (K - Q(x, K - x * x, 3)[0] ** 2)
+//   for x0 in (0.15, -0.74): x = findroot(f, x0); print(mp.nstr(x, 20), Q(x, K - x * x, 6)[0] - x)"
+// gives its members on S₁, x = 0.14909668517222712945 and −0.73868826645486771513 (Q⁶ closes to 10⁻⁴¹); its residue
+// (2 − trace DQ⁶)/4 along them is 0.960759276325: elliptic.
+TEST(Atlas, HoldsTheCentresChainOfSixAtK013InTheScansBoxWhoseFirstRunIsAStickyOrbit) {
+  AtlasRequest r;
+  r.map = scanBox(0.13);
+  r.depth = 1;
+  r.maxPeriod = 12;
+  const Atlas a = computeAtlas(r);
+  const AtlasNode* six = chainOf(a, 0, 1, 6);
+  ASSERT_NE(six, nullptr) << "no chain 1/6 about the centre";
+  EXPECT_EQ(six->period, 6u);
+  EXPECT_TRUE(six->orbit.stable());
+  EXPECT_NEAR(static_cast<double>(six->orbit.residue), 0.960759276325, 1e-9);
+  for (const long double x : {0.14909668517222712945L, -0.73868826645486771513L}) {
+    const PhysicalPoint member{x, 0.13L - x * x};
+    EXPECT_LT(six->orbit.distanceTo(member), 1e-12L) << "no member at x = " << static_cast<double>(x);
+  }
 }
 
 // Issue 50, finding 2: at K = 0.12 (depth 1) the centre's "boundary circle" was an orbit of the 25/143 chain (its
