@@ -3,9 +3,12 @@
 // window and the other none) draws in the "Tail scan" tab the summary's γ in every cell of the heat map (no data where
 // the K does not reach the window), its γ per window one point per K, the K-average, and the literature's 1.57 and
 // 1.44 as lines; a folder with a truncated file, or without tail files, gives a one-line message and shows nothing
-// new, the dialog alive.
+// new, the dialog alive; the folder chooser starts at the tail scan last opened.
 
 #include <QFile>
+#include <QFileDialog>
+#include <QPushButton>
+#include <QTimer>
 #include <QSignalSpy>
 #include <QTabWidget>
 #include <QTemporaryDir>
@@ -147,6 +150,30 @@ class TailScanFigureTest : public QObject {
     QVERIFY2(d.message().contains(QStringLiteral("holds no tail file")), qPrintable(d.message()));
     QVERIFY(!opened(d, tmp_.filePath(QStringLiteral("no-such-folder"))));
     QVERIFY2(d.message().contains(QStringLiteral("is not a folder")), qPrintable(d.message()));
+  }
+
+  // "Open tail scan…" starts where the last tail scan was opened, not in the K scan's folder ("scan").
+  void theFolderChooserStartsAtTheLastTailScan() {
+    KScanDialog d{RunSpec{}};
+    QPushButton* open = nullptr;
+    for (QPushButton* b : d.findChildren<QPushButton*>())
+      if (b->text().remove(u'&') == QStringLiteral("Open tail scan…")) open = b;
+    QVERIFY(open);
+    const auto startsIn = [&] {
+      QString seen;
+      QTimer::singleShot(0, [&] {
+        auto* chooser = qobject_cast<QFileDialog*>(QApplication::activeModalWidget());
+        if (chooser) {
+          seen = chooser->directory().absolutePath();
+          chooser->reject();
+        }
+      });
+      open->click();
+      return seen;
+    };
+    QVERIFY(startsIn() != QDir(scan_).absolutePath());
+    QVERIFY(opened(d, scan_));
+    QCOMPARE(startsIn(), QDir(scan_).absolutePath());
   }
 };
 

@@ -358,6 +358,7 @@ void KScanDialog::exportInteractively() {
 }
 
 void KScanDialog::openTailScan(const QString& dir) {
+  tailFolder_ = dir;
   Job<TailScanFolder> job;
   job.channel = 1;
   job.work = [path = std::filesystem::path(dir.toStdString())](JobContext<NoProgress>&) -> std::optional<TailScanFolder> {
@@ -397,7 +398,7 @@ void KScanDialog::showTailScan(const QString& dir, const TailScanFolder& folder)
 
 void KScanDialog::openTailScanInteractively() {
   const QString dir = QFileDialog::getExistingDirectory(this, tr("Tail scan folder (archipelago-cli tail-scan --dir)"),
-                                                        folder_->text());
+                                                        tailFolder_.isEmpty() ? folder_->text() : tailFolder_);
   if (!dir.isEmpty()) openTailScan(dir);
 }
 

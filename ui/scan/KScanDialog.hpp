@@ -120,6 +120,7 @@ class KScanDialog : public QDialog {
   KScanPlots* plots_ = nullptr;
   TailScanPlots* tailPlots_ = nullptr;
   QTabWidget* results_ = nullptr;  // the K scan's plots, the tail scan's
+  QString tailFolder_;  // the tail scan last opened: where "Open tail scan…" starts (else the K scan's folder)
   std::vector<std::optional<ScanRunSummary>> shown_;  // per K of the running scan, as they finish
   std::vector<ScanRunSummary> finishedRuns_;
   bool running_ = false;
