@@ -950,17 +950,21 @@ class AtlasBuilder {
         if ((p.rational.p > 0) != (node.boundaryRotation > 0)) continue;
         if (node.period * static_cast<std::uint64_t>(p.rational.q) > r_.maxPeriod) continue;  // beyond the tree's periods
         if (static_cast<int>(i) < s.lastCircle || !beyondBoundary(node, p.rational)) {
-          if (std::find(node.internal.begin(), node.internal.end(), p.rational) == node.internal.end())
-            node.internal.push_back(p.rational);
+          addInternal(node, p.rational);
         } else {
           std::vector<RunStart>& runs = outside[{p.rational.p, p.rational.q}];
           if (runs.empty() || i == 0 || !sameChainPoint(s.points[i - 1], p)) runs.emplace_back(k, static_cast<int>(i));
         }
       }
     }
-    std::sort(node.internal.begin(), node.internal.end(),
-              [](const Rational& a, const Rational& b) { return a.q != b.q ? a.q < b.q : a.p < b.p; });
     return outside;
+  }
+
+  /// Lists `r` among the node's internal rationals (in the order of q, then p) unless it is there.
+  static void addInternal(AtlasNode& node, const Rational& r) {
+    auto before = [](const Rational& a, const Rational& b) { return a.q != b.q ? a.q < b.q : a.p < b.p; };
+    const auto at = std::lower_bound(node.internal.begin(), node.internal.end(), r, before);
+    if (at == node.internal.end() || *at != r) node.internal.insert(at, r);
   }
 
   /// Whether `a` is a chain point of the chain point `b`'s rational (the two in one run).
@@ -988,11 +992,15 @@ class AtlasBuilder {
     return out;
   }
 
+  /// The linear rotation ν₀ at the island's centre, in turns per Qⁿ: R = sin²(πν₀).
+  static long double linearRotation(const AtlasNode& node) {
+    return std::asin(std::sqrt(std::clamp(node.orbit.residue, 0.0L, 1.0L))) / std::numbers::pi_v<long double>;
+  }
+
   /// Whether the rotation p/q about the node's island lies beyond its boundary circle's, counted from the centre's
   /// linear rotation ν₀ (R = sin²(πν₀)) in the sense of the twist; true where no twist is measurable (the rays decide).
   static bool beyondBoundary(const AtlasNode& node, const Rational& r) {
-    const long double centreRotation =
-        std::asin(std::sqrt(std::clamp(node.orbit.residue, 0.0L, 1.0L))) / std::numbers::pi_v<long double>;
+    const long double centreRotation = linearRotation(node);
     const long double boundaryRotation = std::fabs(static_cast<long double>(node.boundaryRotation));
     const long double outwards = boundaryRotation - centreRotation;  // the sign of the twist, outwards
     if (!(std::fabs(outwards) > 1e-9L)) return true;
@@ -1019,15 +1027,23 @@ class AtlasBuilder {
   }
 
   /// Step 5b: the chains outside: the middle of a rational's run of points (runsToTry: its first, else its longest)
-  /// gives its elliptic orbit, kept when it is a symmetric chain about this island not already in the atlas.
-  std::vector<AtlasNode> chainsOutside(const Atlas& atlas, int index, const std::vector<Ray>& rays,
+  /// gives its elliptic orbit, kept when it is a symmetric chain about this island beyond the boundary not already in
+  /// the atlas.  A chain whose own rotation is not beyond the boundary's lies inside the boundary circle: its rotation
+  /// is listed as internal (issue 50: at K = 0.1, depth 2, the island of six's run named 1/25 gives the 3/25 chain of
+  /// period 150, inside the six's boundary, dropped unlisted before) and the rational's next run is tried.
+  std::vector<AtlasNode> chainsOutside(Atlas& atlas, int index, const std::vector<Ray>& rays,
                                        const OutsideChains& outside) {
+    AtlasNode& node = atlas.nodes[static_cast<std::size_t>(index)];
     std::vector<AtlasNode> children;
     for (const auto& [pq, runs] : outside)
       for (const auto& [k, first] : runsToTry(rays, runs)) {
         if (stop_.stop_requested()) return {};
-        auto found = chainFromRun(atlas.nodes[static_cast<std::size_t>(index)], index, rays, rays[k].scan, first, pq);
+        auto found = chainFromRun(node, index, rays, rays[k].scan, first, pq);
         if (!found) continue;
+        if (!beyondBoundary(node, *found->first.aboutParent)) {
+          addInternal(node, *found->first.aboutParent);
+          continue;
+        }
         addChain(atlas, std::move(found->first), found->second, children);
         break;
       }
@@ -1035,7 +1051,8 @@ class AtlasBuilder {
   }
 
   /// The chain about the island that the run of `s` from `first` (named p/q) gives, with the line its member lies on:
-  /// the elliptic orbit of period n·q from the run's middle point, when it is a symmetric chain about this island.
+  /// the elliptic orbit of period n·q from the run's middle point, when it is a symmetric chain about this island
+  /// (beyond the boundary or not: chainsOutside decides).
   using ChainFound = std::optional<std::pair<AtlasNode, smooth::SymmetryLine>>;
   ChainFound chainFromRun(const AtlasNode& node, int index, const std::vector<Ray>& rays, const SideScan& s, int first,
                           const std::pair<std::int64_t, std::int64_t>& pq) const {
@@ -1055,13 +1072,13 @@ class AtlasBuilder {
     child.centre = child.orbit.points.front();
     // The orbit must be a chain about this island: its points in the island's cell, Qⁿ-images of each other, well
     // ordered about the island's member and surrounding it (a chaotic band's elliptic orbit of the period the scan
-    // named does not), turning in the sense the scan's points did and beyond the boundary; its label is its own
+    // named does not), turning in the sense the scan's points did; its label is its own
     // rotation, not the scan's (issue 50: the scan's increments fold about a long island, chainRotation).  And it
     // must not be a chain already in the atlas (addChain: the same period-247 orbit was named 2/19 and 7/19 about the
     // island of 13 and 1/13 about the island of 19).
     child.aboutParent = chainRotation(child.orbit, rays, node.period);
     const std::optional<Rational>& turned = child.aboutParent;
-    if (!turned || (turned->p > 0) != (pq.first > 0) || !beyondBoundary(node, *turned)) return std::nullopt;
+    if (!turned || (turned->p > 0) != (pq.first > 0)) return std::nullopt;
     return std::pair{std::move(child), member->second};
   }
 
