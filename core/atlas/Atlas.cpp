@@ -1097,47 +1097,64 @@ class AtlasBuilder {
   }
 
   /// Every symmetric chain p/q about the island, q ≤ kFareyPeriod (and period n·q ≤ kFareyChainPeriod about a chain's
-  /// island), whose rotation about it lies between the boundary circle's and the farthest chain the scan found (issue
-  /// 50): the Farey rationals p/q of that interval, each solved for its symmetric orbits of period n·q on the lines
-  /// beyond the boundary (fareyWindows), kept when elliptic, a chain about the island (its Qⁿ-images turn p times
-  /// about the member c, well ordered about it) and not already found.  At K = 0.1 the scan stepped over the 4/25 chain about the centre (islands ≈ 7·10⁻⁵ wide along S₁, the
-  /// scan's step).
+  /// island), whose rotation about it lies between the boundary circle's and the barrier's (fareyInterval, issue 50):
+  /// for each q the symmetric orbits of period n·q on the lines beyond the boundary (fareyWindows) are found once for
+  /// the interval's Farey rationals p/q not yet found (fareyRationals), and each p/q's first that is elliptic and a
+  /// chain about the island (its Qⁿ-images turn p times about the member c, well ordered about it) is kept.  At
+  /// K = 0.1 the scan stepped over the 4/25 chain about the centre (islands ≈ 7·10⁻⁵ wide along S₁, the scan's step).
   void addFareyChains(const Atlas& atlas, int index, const std::vector<Ray>& rays, std::vector<AtlasNode>& children) {
     const AtlasNode& node = atlas.nodes[static_cast<std::size_t>(index)];
-    const long double boundary = std::fabs(static_cast<long double>(node.boundaryRotation));
-    long double lo = boundary, hi = boundary;
-    for (const AtlasNode& c : children) {
-      if (c.parent != index || !c.aboutParent) continue;
-      const long double v = std::fabs(static_cast<long double>(c.aboutParent->p) / c.aboutParent->q);
-      lo = std::min(lo, v);
-      hi = std::max(hi, v);
-    }
+    const auto [lo, hi] = fareyInterval(node);
     if (!(lo < hi)) return;
     const std::vector<LineWindow> windows = fareyWindows(node, index, rays);
     if (windows.empty()) return;
     const std::uint64_t maxPeriod = index == 0 ? r_.maxPeriod : std::min(r_.maxPeriod, kFareyChainPeriod);
     const std::uint64_t maxQ = std::min<std::uint64_t>(kFareyPeriod, maxPeriod / node.period);
-    for (std::int64_t q = 2; q <= static_cast<std::int64_t>(maxQ); ++q) {
-      for (std::int64_t p = static_cast<std::int64_t>(std::ceil(lo * q)); p * hi > 0 && p < hi * q; ++p) {
-        if (stop_.stop_requested()) return;
-        if (std::gcd(p, q) != 1 || static_cast<long double>(p) <= lo * q) continue;
-        const Rational pq{p, q};
-        auto known = [&](const AtlasNode& c) { return c.parent == index && c.aboutParent && *c.aboutParent == pq; };
-        if (std::any_of(children.begin(), children.end(), known)) continue;
-        std::vector<PeriodicOrbit> orbits;
-        try {
-          orbits = findSymmetricPeriodicOrbitsIn(
-              K_, static_cast<int>(node.period * static_cast<std::uint64_t>(q)), windows, kFareySpacing, stop_,
-              index == 0 ? std::function<bool(PhysicalPoint)>{}
-                         : [&](PhysicalPoint z) { return mayBeChainAbout(z, rays, node.period, pq); });
-        } catch (const OperationStopped&) {
-          return;
-        }
+    for (std::int64_t q = 2; q <= static_cast<std::int64_t>(maxQ) && !stop_.stop_requested(); ++q) {
+      const std::vector<Rational> sought = fareyRationals(index, q, lo, hi, children);
+      if (sought.empty()) continue;
+      std::vector<PeriodicOrbit> orbits;
+      try {
+        orbits = findSymmetricPeriodicOrbitsIn(
+            K_, static_cast<int>(node.period * static_cast<std::uint64_t>(q)), windows, kFareySpacing, stop_,
+            index == 0 ? std::function<bool(PhysicalPoint)>{}
+                       : [&](PhysicalPoint z) { return mayBeChainAbout(z, rays, node.period, sought); });
+      } catch (const OperationStopped&) {
+        return;
+      }
+      for (const Rational& pq : sought)
         for (const PeriodicOrbit& orbit : orbits)
           if (orbit.stable() && addFareyChain(atlas, index, rays, orbit, pq, children))
             break;  // one elliptic orbit per p/q: its images are the chain
-      }
     }
+  }
+
+  /// The rotations about the island the Farey step searches (issue 50): from the boundary circle's outwards to the
+  /// barrier's, where the windows end (the fixed point (√K, 0) about the centre, the chain's separatrix about a
+  /// chain's island).  Outwards is the side the twist leads to, measured from the centre's linear rotation ν₀ to the
+  /// boundary's (beyondBoundary); the barrier's orbit is a fixed point of Qⁿ, and the orbits beside it turn ever more
+  /// slowly about c — to 0 turns per Qⁿ where the rotation falls outwards (the centre and every island at K = 0.1),
+  /// to ½ (a reflection) where it rises.  Not the farthest rotation the scan measured: at K = 0.1 the island of 13's
+  /// regular points end at the 7/19 chain on S₁, while its 4/11 chain lies further out, and its rays along S₂ cross
+  /// the centre's circles, whose "rotations" about c (0.105, 0.111) are not turns about it.  Empty without a twist.
+  static std::pair<long double, long double> fareyInterval(const AtlasNode& node) {
+    const long double boundary = std::fabs(static_cast<long double>(node.boundaryRotation));
+    const long double outwards = boundary - linearRotation(node);
+    if (outwards < -1e-9L) return {0, boundary};
+    if (outwards > 1e-9L) return {boundary, 0.5L};
+    return {boundary, boundary};
+  }
+
+  /// The Farey rationals p/q of (lo, hi), p > 0, that are not yet among the island's chains.
+  static std::vector<Rational> fareyRationals(int index, std::int64_t q, long double lo, long double hi,
+                                              const std::vector<AtlasNode>& children) {
+    std::vector<Rational> out;
+    for (std::int64_t p = std::max<std::int64_t>(1, static_cast<std::int64_t>(std::floor(lo * q)) + 1); p < hi * q; ++p) {
+      const Rational pq{p, q};
+      auto known = [&](const AtlasNode& c) { return c.parent == index && c.aboutParent && *c.aboutParent == pq; };
+      if (std::gcd(p, q) == 1 && std::none_of(children.begin(), children.end(), known)) out.push_back(pq);
+    }
+    return out;
   }
 
   /// The windows of the lines the Farey step searches: at the centre both lines between half the radius of the
@@ -1184,18 +1201,21 @@ class AtlasBuilder {
 
   /// The finder's cheap test of a root z on a ray's line, before its quad polish (in a chaotic band most roots are
   /// not chains about the island): z and its Qⁿ-images in long double lie within twice the ray's reach of the ray's
-  /// member c and their order about it is p/q's (rotationAbout, as addFareyChain checks the polished orbit).
-  bool mayBeChainAbout(PhysicalPoint z, const std::vector<Ray>& rays, std::uint64_t n, const Rational& pq) const {
+  /// member c and their order about it is one of the `sought` p/q's (rotationAbout, as addFareyChain checks the
+  /// polished orbit); the sought share their q.
+  bool mayBeChainAbout(PhysicalPoint z, const std::vector<Ray>& rays, std::uint64_t n,
+                       const std::vector<Rational>& sought) const {
     for (const Ray& ray : rays) {
       const PhysicalPoint c = ray.island.centre;
       if (distance(z, c) > 2 * ray.island.reach) continue;
       smooth::Point<long double> w{z.x, z.y};
       std::vector<PhysicalPoint> images{z};
-      for (std::int64_t k = 1; k < pq.q; ++k) {
+      for (std::int64_t k = 1; k < sought.front().q; ++k) {
         for (std::uint64_t i = 0; i < n; ++i) w = smooth::step(K_, w);
         images.push_back({w.x, w.y});
       }
-      if (rotationAbout(images, c, ray.island.sense, 2 * ray.island.reach) == pq) return true;
+      const std::optional<Rational> about = rotationAbout(images, c, ray.island.sense, 2 * ray.island.reach);
+      if (about && std::find(sought.begin(), sought.end(), *about) != sought.end()) return true;
     }
     return false;
   }
