@@ -1149,7 +1149,8 @@ class AtlasBuilder {
   static std::vector<Rational> fareyRationals(int index, std::int64_t q, long double lo, long double hi,
                                               const std::vector<AtlasNode>& children) {
     std::vector<Rational> out;
-    for (std::int64_t p = std::max<std::int64_t>(1, static_cast<std::int64_t>(std::floor(lo * q)) + 1); p < hi * q; ++p) {
+    const auto first = std::max<std::int64_t>(1, static_cast<std::int64_t>(std::floor(lo * q)) + 1);  // p/q > lo
+    for (std::int64_t p = first; p < hi * q; ++p) {
       const Rational pq{p, q};
       auto known = [&](const AtlasNode& c) { return c.parent == index && c.aboutParent && *c.aboutParent == pq; };
       if (std::gcd(p, q) == 1 && std::none_of(children.begin(), children.end(), known)) out.push_back(pq);
