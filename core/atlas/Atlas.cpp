@@ -950,17 +950,21 @@ class AtlasBuilder {
         if ((p.rational.p > 0) != (node.boundaryRotation > 0)) continue;
         if (node.period * static_cast<std::uint64_t>(p.rational.q) > r_.maxPeriod) continue;  // beyond the tree's periods
         if (static_cast<int>(i) < s.lastCircle || !beyondBoundary(node, p.rational)) {
-          if (std::find(node.internal.begin(), node.internal.end(), p.rational) == node.internal.end())
-            node.internal.push_back(p.rational);
+          addInternal(node, p.rational);
         } else {
           std::vector<RunStart>& runs = outside[{p.rational.p, p.rational.q}];
           if (runs.empty() || i == 0 || !sameChainPoint(s.points[i - 1], p)) runs.emplace_back(k, static_cast<int>(i));
         }
       }
     }
-    std::sort(node.internal.begin(), node.internal.end(),
-              [](const Rational& a, const Rational& b) { return a.q != b.q ? a.q < b.q : a.p < b.p; });
     return outside;
+  }
+
+  /// Lists `r` among the node's internal rationals (in the order of q, then p) unless it is there.
+  static void addInternal(AtlasNode& node, const Rational& r) {
+    auto before = [](const Rational& a, const Rational& b) { return a.q != b.q ? a.q < b.q : a.p < b.p; };
+    const auto at = std::lower_bound(node.internal.begin(), node.internal.end(), r, before);
+    if (at == node.internal.end() || *at != r) node.internal.insert(at, r);
   }
 
   /// Whether `a` is a chain point of the chain point `b`'s rational (the two in one run).
@@ -988,11 +992,15 @@ class AtlasBuilder {
     return out;
   }
 
+  /// The linear rotation ν₀ at the island's centre, in turns per Qⁿ: R = sin²(πν₀).
+  static long double linearRotation(const AtlasNode& node) {
+    return std::asin(std::sqrt(std::clamp(node.orbit.residue, 0.0L, 1.0L))) / std::numbers::pi_v<long double>;
+  }
+
   /// Whether the rotation p/q about the node's island lies beyond its boundary circle's, counted from the centre's
   /// linear rotation ν₀ (R = sin²(πν₀)) in the sense of the twist; true where no twist is measurable (the rays decide).
   static bool beyondBoundary(const AtlasNode& node, const Rational& r) {
-    const long double centreRotation =
-        std::asin(std::sqrt(std::clamp(node.orbit.residue, 0.0L, 1.0L))) / std::numbers::pi_v<long double>;
+    const long double centreRotation = linearRotation(node);
     const long double boundaryRotation = std::fabs(static_cast<long double>(node.boundaryRotation));
     const long double outwards = boundaryRotation - centreRotation;  // the sign of the twist, outwards
     if (!(std::fabs(outwards) > 1e-9L)) return true;
@@ -1019,15 +1027,23 @@ class AtlasBuilder {
   }
 
   /// Step 5b: the chains outside: the middle of a rational's run of points (runsToTry: its first, else its longest)
-  /// gives its elliptic orbit, kept when it is a symmetric chain about this island not already in the atlas.
-  std::vector<AtlasNode> chainsOutside(const Atlas& atlas, int index, const std::vector<Ray>& rays,
+  /// gives its elliptic orbit, kept when it is a symmetric chain about this island beyond the boundary not already in
+  /// the atlas.  A chain whose own rotation is not beyond the boundary's lies inside the boundary circle: its rotation
+  /// is listed as internal (issue 50: at K = 0.1, depth 2, the island of six's run named 1/25 gives the 3/25 chain of
+  /// period 150, inside the six's boundary, dropped unlisted before) and the rational's next run is tried.
+  std::vector<AtlasNode> chainsOutside(Atlas& atlas, int index, const std::vector<Ray>& rays,
                                        const OutsideChains& outside) {
+    AtlasNode& node = atlas.nodes[static_cast<std::size_t>(index)];
     std::vector<AtlasNode> children;
     for (const auto& [pq, runs] : outside)
       for (const auto& [k, first] : runsToTry(rays, runs)) {
         if (stop_.stop_requested()) return {};
-        auto found = chainFromRun(atlas.nodes[static_cast<std::size_t>(index)], index, rays, rays[k].scan, first, pq);
+        auto found = chainFromRun(node, index, rays, rays[k].scan, first, pq);
         if (!found) continue;
+        if (!beyondBoundary(node, *found->first.aboutParent)) {
+          addInternal(node, *found->first.aboutParent);
+          continue;
+        }
         addChain(atlas, std::move(found->first), found->second, children);
         break;
       }
@@ -1035,7 +1051,8 @@ class AtlasBuilder {
   }
 
   /// The chain about the island that the run of `s` from `first` (named p/q) gives, with the line its member lies on:
-  /// the elliptic orbit of period n·q from the run's middle point, when it is a symmetric chain about this island.
+  /// the elliptic orbit of period n·q from the run's middle point, when it is a symmetric chain about this island
+  /// (beyond the boundary or not: chainsOutside decides).
   using ChainFound = std::optional<std::pair<AtlasNode, smooth::SymmetryLine>>;
   ChainFound chainFromRun(const AtlasNode& node, int index, const std::vector<Ray>& rays, const SideScan& s, int first,
                           const std::pair<std::int64_t, std::int64_t>& pq) const {
@@ -1055,13 +1072,13 @@ class AtlasBuilder {
     child.centre = child.orbit.points.front();
     // The orbit must be a chain about this island: its points in the island's cell, Qⁿ-images of each other, well
     // ordered about the island's member and surrounding it (a chaotic band's elliptic orbit of the period the scan
-    // named does not), turning in the sense the scan's points did and beyond the boundary; its label is its own
+    // named does not), turning in the sense the scan's points did; its label is its own
     // rotation, not the scan's (issue 50: the scan's increments fold about a long island, chainRotation).  And it
     // must not be a chain already in the atlas (addChain: the same period-247 orbit was named 2/19 and 7/19 about the
     // island of 13 and 1/13 about the island of 19).
     child.aboutParent = chainRotation(child.orbit, rays, node.period);
     const std::optional<Rational>& turned = child.aboutParent;
-    if (!turned || (turned->p > 0) != (pq.first > 0) || !beyondBoundary(node, *turned)) return std::nullopt;
+    if (!turned || (turned->p > 0) != (pq.first > 0)) return std::nullopt;
     return std::pair{std::move(child), member->second};
   }
 
@@ -1080,47 +1097,65 @@ class AtlasBuilder {
   }
 
   /// Every symmetric chain p/q about the island, q ≤ kFareyPeriod (and period n·q ≤ kFareyChainPeriod about a chain's
-  /// island), whose rotation about it lies between the boundary circle's and the farthest chain the scan found (issue
-  /// 50): the Farey rationals p/q of that interval, each solved for its symmetric orbits of period n·q on the lines
-  /// beyond the boundary (fareyWindows), kept when elliptic, a chain about the island (its Qⁿ-images turn p times
-  /// about the member c, well ordered about it) and not already found.  At K = 0.1 the scan stepped over the 4/25 chain about the centre (islands ≈ 7·10⁻⁵ wide along S₁, the
-  /// scan's step).
+  /// island), whose rotation about it lies between the boundary circle's and the barrier's (fareyInterval, issue 50):
+  /// for each q the symmetric orbits of period n·q on the lines beyond the boundary (fareyWindows) are found once for
+  /// the interval's Farey rationals p/q not yet found (fareyRationals), and each p/q's first that is elliptic and a
+  /// chain about the island (its Qⁿ-images turn p times about the member c, well ordered about it) is kept.  At
+  /// K = 0.1 the scan stepped over the 4/25 chain about the centre (islands ≈ 7·10⁻⁵ wide along S₁, the scan's step).
   void addFareyChains(const Atlas& atlas, int index, const std::vector<Ray>& rays, std::vector<AtlasNode>& children) {
     const AtlasNode& node = atlas.nodes[static_cast<std::size_t>(index)];
-    const long double boundary = std::fabs(static_cast<long double>(node.boundaryRotation));
-    long double lo = boundary, hi = boundary;
-    for (const AtlasNode& c : children) {
-      if (c.parent != index || !c.aboutParent) continue;
-      const long double v = std::fabs(static_cast<long double>(c.aboutParent->p) / c.aboutParent->q);
-      lo = std::min(lo, v);
-      hi = std::max(hi, v);
-    }
+    const auto [lo, hi] = fareyInterval(node);
     if (!(lo < hi)) return;
     const std::vector<LineWindow> windows = fareyWindows(node, index, rays);
     if (windows.empty()) return;
     const std::uint64_t maxPeriod = index == 0 ? r_.maxPeriod : std::min(r_.maxPeriod, kFareyChainPeriod);
     const std::uint64_t maxQ = std::min<std::uint64_t>(kFareyPeriod, maxPeriod / node.period);
-    for (std::int64_t q = 2; q <= static_cast<std::int64_t>(maxQ); ++q) {
-      for (std::int64_t p = static_cast<std::int64_t>(std::ceil(lo * q)); p * hi > 0 && p < hi * q; ++p) {
-        if (stop_.stop_requested()) return;
-        if (std::gcd(p, q) != 1 || static_cast<long double>(p) <= lo * q) continue;
-        const Rational pq{p, q};
-        auto known = [&](const AtlasNode& c) { return c.parent == index && c.aboutParent && *c.aboutParent == pq; };
-        if (std::any_of(children.begin(), children.end(), known)) continue;
-        std::vector<PeriodicOrbit> orbits;
-        try {
-          orbits = findSymmetricPeriodicOrbitsIn(
-              K_, static_cast<int>(node.period * static_cast<std::uint64_t>(q)), windows, kFareySpacing, stop_,
-              index == 0 ? std::function<bool(PhysicalPoint)>{}
-                         : [&](PhysicalPoint z) { return mayBeChainAbout(z, rays, node.period, pq); });
-        } catch (const OperationStopped&) {
-          return;
-        }
+    for (std::int64_t q = 2; q <= static_cast<std::int64_t>(maxQ) && !stop_.stop_requested(); ++q) {
+      const std::vector<Rational> sought = fareyRationals(index, q, lo, hi, children);
+      if (sought.empty()) continue;
+      std::vector<PeriodicOrbit> orbits;
+      try {
+        orbits = findSymmetricPeriodicOrbitsIn(
+            K_, static_cast<int>(node.period * static_cast<std::uint64_t>(q)), windows, kFareySpacing, stop_,
+            index == 0 ? std::function<bool(PhysicalPoint)>{}
+                       : [&](PhysicalPoint z) { return mayBeChainAbout(z, rays, node.period, sought); });
+      } catch (const OperationStopped&) {
+        return;
+      }
+      for (const Rational& pq : sought)
         for (const PeriodicOrbit& orbit : orbits)
           if (orbit.stable() && addFareyChain(atlas, index, rays, orbit, pq, children))
             break;  // one elliptic orbit per p/q: its images are the chain
-      }
     }
+  }
+
+  /// The rotations about the island the Farey step searches (issue 50): from the boundary circle's outwards to the
+  /// barrier's, where the windows end (the fixed point (√K, 0) about the centre, the chain's separatrix about a
+  /// chain's island).  Outwards is the side the twist leads to, measured from the centre's linear rotation ν₀ to the
+  /// boundary's (beyondBoundary); the barrier's orbit is a fixed point of Qⁿ, and the orbits beside it turn ever more
+  /// slowly about c — to 0 turns per Qⁿ where the rotation falls outwards (the centre and every island at K = 0.1),
+  /// to ½ (a reflection) where it rises.  Not the farthest rotation the scan measured: at K = 0.1 the island of 13's
+  /// regular points end at the 7/19 chain on S₁, while its 4/11 chain lies further out, and its rays along S₂ cross
+  /// the centre's circles, whose "rotations" about c (0.105, 0.111) are not turns about it.  Empty without a twist.
+  static std::pair<long double, long double> fareyInterval(const AtlasNode& node) {
+    const long double boundary = std::fabs(static_cast<long double>(node.boundaryRotation));
+    const long double outwards = boundary - linearRotation(node);
+    if (outwards < -1e-9L) return {0, boundary};
+    if (outwards > 1e-9L) return {boundary, 0.5L};
+    return {boundary, boundary};
+  }
+
+  /// The Farey rationals p/q of (lo, hi), p > 0, that are not yet among the island's chains.
+  static std::vector<Rational> fareyRationals(int index, std::int64_t q, long double lo, long double hi,
+                                              const std::vector<AtlasNode>& children) {
+    std::vector<Rational> out;
+    const auto first = std::max<std::int64_t>(1, static_cast<std::int64_t>(std::floor(lo * q)) + 1);  // p/q > lo
+    for (std::int64_t p = first; p < hi * q; ++p) {
+      const Rational pq{p, q};
+      auto known = [&](const AtlasNode& c) { return c.parent == index && c.aboutParent && *c.aboutParent == pq; };
+      if (std::gcd(p, q) == 1 && std::none_of(children.begin(), children.end(), known)) out.push_back(pq);
+    }
+    return out;
   }
 
   /// The windows of the lines the Farey step searches: at the centre both lines between half the radius of the
@@ -1167,18 +1202,21 @@ class AtlasBuilder {
 
   /// The finder's cheap test of a root z on a ray's line, before its quad polish (in a chaotic band most roots are
   /// not chains about the island): z and its Qⁿ-images in long double lie within twice the ray's reach of the ray's
-  /// member c and their order about it is p/q's (rotationAbout, as addFareyChain checks the polished orbit).
-  bool mayBeChainAbout(PhysicalPoint z, const std::vector<Ray>& rays, std::uint64_t n, const Rational& pq) const {
+  /// member c and their order about it is one of the `sought` p/q's (rotationAbout, as addFareyChain checks the
+  /// polished orbit); the sought share their q.
+  bool mayBeChainAbout(PhysicalPoint z, const std::vector<Ray>& rays, std::uint64_t n,
+                       const std::vector<Rational>& sought) const {
     for (const Ray& ray : rays) {
       const PhysicalPoint c = ray.island.centre;
       if (distance(z, c) > 2 * ray.island.reach) continue;
       smooth::Point<long double> w{z.x, z.y};
       std::vector<PhysicalPoint> images{z};
-      for (std::int64_t k = 1; k < pq.q; ++k) {
+      for (std::int64_t k = 1; k < sought.front().q; ++k) {
         for (std::uint64_t i = 0; i < n; ++i) w = smooth::step(K_, w);
         images.push_back({w.x, w.y});
       }
-      if (rotationAbout(images, c, ray.island.sense, 2 * ray.island.reach) == pq) return true;
+      const std::optional<Rational> about = rotationAbout(images, c, ray.island.sense, 2 * ray.island.reach);
+      if (about && std::find(sought.begin(), sought.end(), *about) != sought.end()) return true;
     }
     return false;
   }

@@ -35,11 +35,12 @@
 ///     labelled by that orbit's own rotation about c (issue 50: the order of its Qⁿ-images about c, or the sum of
 ///     their angles' increments where none may be folded; not the scan's, whose increments fold about a long, thin
 ///     island), refused when that is not decided.  Chain
-///     points inside the boundary are listed as internal rationals and not followed.  About each island followed,
-///     every symmetric chain p/q (q ≤ 50; below the centre of period n·q ≤ 300) whose rotation lies between the
-///     boundary's and the farthest chain found
-///     is sought by its rotation (the Farey rationals of that interval, each solved for its symmetric orbits of
-///     period n·q on the lines beyond the boundary, kept when elliptic and a well-ordered chain about the island):
+///     points inside the boundary, and the chains whose own rotation is not beyond the boundary's, are listed as
+///     internal rationals and not followed.  About each island followed, every symmetric chain p/q (q ≤ 50; below the
+///     centre of period n·q ≤ 300) whose rotation lies between the boundary's and the barrier's (0 turns per Qⁿ where
+///     the rotation falls outwards, ½ where it rises: the rotation beside the barrier's hyperbolic fixed point of Qⁿ)
+///     is sought by its rotation (the Farey rationals of that interval, for each q the symmetric orbits of period n·q
+///     on the lines from the boundary to the cell's end, kept when elliptic and a well-ordered chain about the island):
 ///     the scan steps over chains whose islands are narrower than its step (the 4/25 chain about the centre at
 ///     K = 0.1) or misses them by chance (the 1/11 chain about the island of six).
 ///  4. For each chain: its hyperbolic partner (HyperbolicPartner.hpp) and the turnstile flux through its separatrix

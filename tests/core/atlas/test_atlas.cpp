@@ -218,6 +218,28 @@ TEST(Atlas, HoldsThePeriod25ChainAboutTheCentreThatTheScanStepsOver) {
   EXPECT_TRUE(wellOrdered(chain->orbit.points, a.nodes[0].centre));
 }
 
+// Issue 50, deliverable 2: the Farey step searched only between the boundary's rotation and the farthest chain the
+// scan found, so a chain further out was found only where the scan hit it.  With 64 points a side and chains to period
+// 13, the scan of the centre at K = 0.1 finds the six (1/6) and steps over the 2/13 chain beyond it (the rotation falls
+// outwards: 0.169 at the boundary, 0.154 at 2/13): the Farey step now searches from the boundary's rotation out to
+// the barrier's, 0 at the fixed point (√K, 0) where its windows end, and finds it.  Seen failing before (the atlas:
+// the centre and the six).
+TEST(Atlas, SeeksTheCentresChainsBeyondTheFarthestChainTheScanFound) {
+  AtlasRequest r;  // K = 0.1 in the paper's box
+  r.depth = 1;
+  r.maxPeriod = 13;
+  r.scanPoints = 64;
+  r.scanSteps = 0;
+  const Atlas a = computeAtlas(r);
+  ASSERT_NE(chainOf(a, 0, 1, 6), nullptr) << "the six, the farthest chain the scan finds";
+  const AtlasNode* c13 = chainOf(a, 0, 2, 13);
+  ASSERT_NE(c13, nullptr) << "no chain 2/13 about the centre";
+  EXPECT_EQ(c13->period, 13u);
+  EXPECT_TRUE(c13->orbit.stable());
+  EXPECT_EQ(c13->orbit.windingTurns, 2);
+  EXPECT_TRUE(wellOrdered(c13->orbit.points, a.nodes[0].centre));
+}
+
 // Issue 50, deliverable 2, below the centre: about each island followed, the Farey rationals between its boundary's
 // rotation and the farthest chain the scan found are each solved for their symmetric orbits.  At K = 0.1 the scan of
 // the island of six (10⁴ points a side at depth 2) never named the 1/11 chain (period 66), whose islands (2·10⁻⁵) are
