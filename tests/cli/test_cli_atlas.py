@@ -4,13 +4,9 @@ written; an output that cannot be written fails loudly."""
 import csv, io, json, os, tempfile
 from clitest import check, finish, run, signed
 
-# The centre scanned with 1000 points a side (--scan-steps 0), as in the core tests' atlas (tests/core/atlas), not
-# the default's 10⁴: the same chain of six and facts checked here, the atlas computed twice at a fraction of the cost.
-QUICK = ["--scan-steps", "0"]
-
 with tempfile.TemporaryDirectory() as d:
     j, c = os.path.join(d, "a.json"), os.path.join(d, "a.csv")
-    r = run("atlas", "--K", "0.1", "--depth", "1", "--max-period", "200", *QUICK, "--json", j, "--csv", c)
+    r = run("atlas", "--K", "0.1", "--depth", "1", "--max-period", "200", "--json", j, "--csv", c)
     check(r.returncode == 0, f"atlas exits 0 ({r.returncode}: {r.stderr[-300:]})")
     a = json.load(open(j))
     nodes = a["nodes"]
@@ -41,7 +37,7 @@ with tempfile.TemporaryDirectory() as d:
     # A time budget stops it as Ctrl-C does (exit 0: the request's own end), keeping the finished islands; --resume
     # continues from the file and ends where the uninterrupted run ended.
     t = os.path.join(d, "t.json")
-    r = run("atlas", "--K", "0.1", "--depth", "1", "--max-period", "200", *QUICK, "--time-budget", "0.001", "--json", t)
+    r = run("atlas", "--K", "0.1", "--depth", "1", "--max-period", "200", "--time-budget", "0.001", "--json", t)
     part = json.load(open(t)) if os.path.exists(t) else {}
     check(r.returncode == 0 and part.get("cancelled") is True and "time budget" in part.get("stop_reason", "")
           and "--resume" in r.stderr, f"--time-budget 0.001 stops after the first island, keeping it ({r.returncode}, {r.stderr[-200:]})")
@@ -49,7 +45,7 @@ with tempfile.TemporaryDirectory() as d:
     check(measured[:1] == [True] and measured.count(True) == 1, f"the centre is measured, its chains not yet ({measured})")
     part["seconds"] = 2640.0  # as if the first part had taken 44 min: the resumed atlas's time includes it
     json.dump(signed(part), open(t, "w"))
-    r = run("atlas", "--K", "0.1", "--depth", "1", "--max-period", "200", *QUICK, "--resume", t, "--json", t)
+    r = run("atlas", "--K", "0.1", "--depth", "1", "--max-period", "200", "--resume", t, "--json", t)
     done = json.load(open(t))
     check(done.get("seconds", 0) > 2640.0, f"the resumed atlas's seconds count every part ({done.get('seconds')})")
     check(r.returncode == 0 and done["cancelled"] is False and all(n["measured"] for n in done["nodes"]),
@@ -62,20 +58,20 @@ with tempfile.TemporaryDirectory() as d:
     check(same, "the resumed atlas is the uninterrupted one (islands, areas, fluxes, residences)")
     for args, word in [(["--depth", "2"], "depth"), (["--depth", "1", "--K", "0.2"], "map"),
                        (["--depth", "1", "--max-period", "300"], "max period")]:
-        r = run("atlas", "--max-period", "200", *QUICK, *args, "--resume", t, "--quiet") if "--max-period" not in args \
-            else run("atlas", *QUICK, *args, "--resume", t, "--quiet")
+        r = run("atlas", "--max-period", "200", *args, "--resume", t, "--quiet") if "--max-period" not in args else \
+            run("atlas", *args, "--resume", t, "--quiet")
         check(r.returncode == 1 and "ERROR" in r.stderr and word in r.stderr,
               f"--resume with another {word}: refused ({r.returncode}: {r.stderr.strip()[:200]})")
     bad = os.path.join(d, "bad-resume.json")
     with open(bad, "w") as f:
         f.write(open(t).read()[:-40])
-    r = run("atlas", "--depth", "1", "--max-period", "200", *QUICK, "--resume", bad, "--quiet")
+    r = run("atlas", "--depth", "1", "--max-period", "200", "--resume", bad, "--quiet")
     check(r.returncode == 1 and "ERROR" in r.stderr and "--resume" in r.stderr,
           f"a truncated --resume file: refused ({r.returncode}: {r.stderr.strip()[:200]})")
     r = run("atlas", "--time-budget", "-1", "--quiet")
     check(r.returncode == 1 and "time budget" in r.stderr, f"--time-budget -1 refused ({r.stderr.strip()[:120]})")
 
-    r = run("atlas", "--depth", "0", *QUICK, "--quiet", "--json", "/dev/full")
+    r = run("atlas", "--depth", "0", "--quiet", "--json", "/dev/full")
     check(r.returncode != 0 and "ERROR" in r.stderr, f"--json /dev/full fails loudly ({r.returncode})")
 
 finish()
