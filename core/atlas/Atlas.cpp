@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <deque>
+#include <functional>
 #include <map>
 #include <numeric>
 #include <tuple>
@@ -26,6 +27,7 @@
 #include "core/measures/RotationNumber.hpp"
 #include "core/parallel/ParallelFor.hpp"
 #include "core/provenance/Provenance.hpp"
+#include "core/periodic/FloquetFrame.hpp"
 #include "core/periodic/HyperbolicPartner.hpp"
 #include "core/periodic/PeriodicOrbitFinder.hpp"
 #include "core/periodic/SmoothQuadraticMap.hpp"
@@ -81,7 +83,24 @@ struct Island {
   smooth::SymmetryLine line = smooth::SymmetryLine::S2;
   long double range = 0;  ///< R: how far along the line (in x) to scan on each side
   long double reach = 0;  ///< how far from c a circle about c may reach (half the distance to the chain's next point)
+  std::optional<FloquetFrame> frame;  ///< a thin island's normal-form frame at c (thinIslandFrame), else none
 };
+
+/// A thin island's angles are taken in its normal-form frame (issue 50) when the linear map's largest step of the
+/// angle of z − c lies within this of half a turn (FloquetFrame::foldMargin): a little way out, where the circles are
+/// no longer the eigen-ellipses, steps fold (the margin below which the chains' labels call a step folded,
+/// kUnfoldedTurn).  At K = 0.1 about the 2/13 chain's member on S₁ (axis ratio 54, ν = 0.4025) the margin is 0.0019
+/// turn and the scan's rotation numbers were garbage beyond 6·10⁻⁵ of c (the island reaches ~10⁻³ there); about its
+/// member on S₂ (axis ratio 4.9) 0.021; about the island of six 0.35 and 0.14 (0.0089 and 0.0029 at K = 0.13, residue
+/// 0.96); about the centre 0.21 (it is scanned as it was: its angles never fold).
+constexpr long double kFrameFoldMargin = 0.05L;
+
+/// The frame at the member c of an elliptic orbit of period n when the island is thin by that measure, else none.
+std::optional<FloquetFrame> thinIslandFrame(long double K, PhysicalPoint c, std::uint64_t n) {
+  std::optional<FloquetFrame> f = floquetFrame(K, c, static_cast<long>(n));
+  if (f && f->foldMargin < kFrameFoldMargin) return f;
+  return std::nullopt;
+}
 
 class Classifier {
  public:
@@ -104,7 +123,7 @@ class Classifier {
     m.power = island_.n;
     m.iterations = request_.iterations;
     m.digitsThreshold = request_.digitsThreshold;
-    const RotationMeasurement r = measureRotation(m, stop);
+    const RotationMeasurement r = rotation(m, stop);
     s.rotation = r.rotation;
     s.digits = r.digits;
     if (r.verdict != OrbitVerdict::Regular) return s;
@@ -133,19 +152,18 @@ class Classifier {
     m.power = island_.n;
     m.iterations = std::min<std::uint64_t>(4 * request_.iterations, kMaxIterations);
     m.digitsThreshold = request_.digitsThreshold;
-    const RotationMeasurement r = measureRotation(m, stop);
+    const RotationMeasurement r = rotation(m, stop);
     if (r.verdict != OrbitVerdict::Regular) return false;
     if (std::fabs(r.rotation - s.rotation) > rotationAccuracy(r.difference) + rotationAccuracy(std::pow(10.0, -s.digits)))
       return false;
     return !rationalOfRotation(r.rotation, r.difference, kProofDenominator);
   }
 
-  /// Whether the orbit of the line's point at x is proven to leave the island: within 2 T applications of Qⁿ it
-  /// leaves the box or goes farther from c than the nearest other member of c's orbit (no island of the chain reaches
-  /// another's centre; at the centre, twice the distance 2√K to the hyperbolic fixed point).  An orbit that stays is
-  /// not proven inside: it may be a sticky orbit of the layer.
-  [[nodiscard]] bool leavesIsland(long double x, std::stop_token stop) const {
-    const PhysicalPoint p = at(x);
+  /// Whether the orbit of p is proven to leave the island: within 2 T applications of Qⁿ it leaves the box or goes
+  /// farther from c than the nearest other member of c's orbit (no island of the chain reaches another's centre; at
+  /// the centre, twice the distance 2√K to the hyperbolic fixed point).  An orbit that stays is not proven inside: it
+  /// may be a sticky orbit of the layer.
+  [[nodiscard]] bool leavesIsland(PhysicalPoint p, std::stop_token stop) const {
     if (boxPointError("p", request_.map, p)) return true;
     if (stop.stop_requested()) return false;
     const long double far = 2 * island_.reach;
@@ -163,6 +181,47 @@ class Classifier {
   [[nodiscard]] const FixedPointMap& map() const { return map_; }
 
  private:
+  /// The rotation about c under Qⁿ (measureRotation), in a thin island's normal-form frame where it has one
+  /// (frameRotation).
+  [[nodiscard]] RotationMeasurement rotation(const RotationRequest& m, std::stop_token stop) const {
+    return island_.frame ? frameRotation(m, stop) : measureRotation(m, stop);
+  }
+
+  /// measureRotation's measurement (the weighted Birkhoff averages of the clockwise angle's increments over two
+  /// blocks of T applications of Qⁿ, its digits and verdict) with the angle of z − c taken in the island's
+  /// normal-form coordinates, where each step turns by about ν < ½ and none folds (issue 50).
+  [[nodiscard]] RotationMeasurement frameRotation(const RotationRequest& m, std::stop_token stop) const {
+    const BirkhoffWeights w = birkhoffWeights(m.iterations, stop);
+    if (stop.stop_requested()) return {};
+    const FloquetFrame& f = *island_.frame;
+    const PhysicalPoint c = island_.centre;
+    const auto normal = [&](const UnitState& z) {
+      const PhysicalPoint p = map_.toPhysical(z);
+      return f.normal({p.x - c.x, p.y - c.y});
+    };
+    const std::uint64_t T = m.iterations;
+    PhysicalPoint u = normal(m.start);
+    long double sums[2] = {0, 0};
+    const PowerOrbitEnd end = iteratePower(map_, m.start, island_.n, 2 * T, [&](std::uint64_t k, const UnitState& z) {
+      if ((k & 1023) == 0 && stop.stop_requested()) return false;
+      const PhysicalPoint v = normal(z);
+      sums[k > T ? 1 : 0] += w.g[(k - 1) % T] * std::atan2(u.y * v.x - u.x * v.y, u.x * v.x + u.y * v.y);
+      u = v;
+      return true;
+    });
+    if (end == PowerOrbitEnd::stopped) return {};
+    const long double turn = 2 * std::numbers::pi_v<long double>;
+    const auto a = static_cast<double>(sums[0] / w.sum / turn), b = static_cast<double>(sums[1] / w.sum / turn);
+    RotationMeasurement r;
+    r.digits = convergenceDigits(a, b);
+    r.difference = std::fabs(a - b);
+    if (end == PowerOrbitEnd::wrapped) r.verdict = OrbitVerdict::Escaping;
+    else if (!(r.digits >= m.digitsThreshold)) r.verdict = OrbitVerdict::Chaotic;
+    else r.verdict = OrbitVerdict::Regular;
+    if (r.verdict == OrbitVerdict::Regular) r.rotation = (a + b) / 2 * m.centre.sense;
+    return r;
+  }
+
   const AtlasRequest& request_;
   Island island_;
   FixedPointMap map_;
@@ -240,7 +299,7 @@ std::optional<CircleArea> circleArea(const FixedPointMap& N, const Island& islan
 /// hyperbolic fixed point (√K, 0), whose loop encloses the island).
 Island centreIsland(PhysicalPoint centre, long double K, smooth::SymmetryLine line) {
   const long double rootK = std::sqrt(K);
-  return {centre, 1, 1, line, 2 * rootK, 2 * rootK};
+  return {centre, 1, 1, line, 2 * rootK, 2 * rootK, std::nullopt};
 }
 
 /// One side of the scan: the classified points, the boundary's bracket and the chains beyond it.
@@ -366,20 +425,38 @@ long double halfSpacing(const PeriodicOrbit& orbit, std::size_t i) {
 
 long double distance(PhysicalPoint a, PhysicalPoint b) { return std::hypot(a.x - b.x, a.y - b.y); }
 
-/// The nearest point beyond the circle point at x = `circle` on a ray (towards `direction`) whose orbit is proven to
-/// leave the island (Classifier::leavesIsland): offsets doubling from 2^−20 of the ray's range until one leaves (the
-/// ray's end, the island's reach by construction, if none does), the stretch up to it sampled at kEscapeSamples
-/// points (in parallel) for the innermost that leaves, then bisected (kEscapeBisections) against its inner neighbour.
-/// Its distance from the island's centre.
+/// A ray outwards from an island's centre for the escape search: its point at parameter s (on a symmetry line s is x,
+/// on a ray of a thin island's frame the distance from c), s from `from` (the circle's crossing) to `end` in the
+/// sense of `direction`, and the first offset tried.
+struct EscapeRay {
+  std::function<PhysicalPoint(long double)> at;
+  long double from = 0, end = 0, firstStep = 0;
+  int direction = 1;
+};
+
+/// The ray along the island's line from the circle point at x = `circle` towards `direction`, to the line's range.
+EscapeRay lineEscapeRay(const Classifier& c, const Island& island, int direction, long double circle) {
+  return {[&c](long double x) { return c.at(x); }, circle, island.centre.x + direction * island.range,
+          island.range * 0x1p-20L, direction};
+}
+
+/// The nearest point beyond the circle on a ray whose orbit is proven to leave the island (Classifier::leavesIsland):
+/// offsets doubling from the ray's first step (2^−20 of its range) until one leaves (the ray's end, the island's
+/// reach by construction, if none does), the stretch up to it sampled at kEscapeSamples points (in parallel) for the
+/// innermost that leaves, then bisected (kEscapeBisections) against its inner neighbour.  Its distance from the
+/// island's centre.
 constexpr int kEscapeSamples = 64;
+/// The rays of a thin island's area interval, equally spaced in angle in its frame (AtlasBuilder::widestFrameBracket).
+constexpr int kFrameRays = 16;
 constexpr int kEscapeBisections = 12;
-long double escapeRadius(const Classifier& c, const Island& island, int direction, long double circle,
-                         std::stop_token stop, int threads) {
-  const long double end = island.centre.x + direction * island.range;
+long double escapeRadius(const Classifier& c, const Island& island, const EscapeRay& ray, std::stop_token stop,
+                         int threads) {
+  const long double circle = ray.from, end = ray.end;
+  const int direction = ray.direction;
   long double reach = (end - circle) * direction;
-  for (long double d = island.range * 0x1p-20L; d < reach; d *= 2) {
+  for (long double d = ray.firstStep; d < reach; d *= 2) {
     if (stop.stop_requested()) break;
-    if (c.leavesIsland(circle + direction * d, stop)) {
+    if (c.leavesIsland(ray.at(circle + direction * d), stop)) {
       reach = d;
       break;
     }
@@ -388,7 +465,8 @@ long double escapeRadius(const Classifier& c, const Island& island, int directio
   parallelFor(
       leaves.size(),
       [&](std::size_t i, int) {
-        leaves[i] = c.leavesIsland(circle + direction * reach * static_cast<long double>(i + 1) / kEscapeSamples, stop);
+        leaves[i] = c.leavesIsland(
+            ray.at(circle + direction * reach * static_cast<long double>(i + 1) / kEscapeSamples), stop);
       },
       stop, threads);
   const auto first = std::find(leaves.begin(), leaves.end(), 1);
@@ -397,9 +475,26 @@ long double escapeRadius(const Classifier& c, const Island& island, int directio
   long double outside = first == leaves.end() ? end : circle + direction * reach * (k + 1) / kEscapeSamples;
   for (int b = 0; b < kEscapeBisections && first != leaves.end() && !stop.stop_requested(); ++b) {
     const long double mid = (inside + outside) / 2;
-    (c.leavesIsland(mid, stop) ? outside : inside) = mid;
+    (c.leavesIsland(ray.at(mid), stop) ? outside : inside) = mid;
   }
-  return distance(c.at(outside), island.centre);
+  return distance(ray.at(outside), island.centre);
+}
+
+/// Where the ordered polygon `curve` crosses the straight ray from c along the unit vector `heading`: the distance
+/// from c of the crossing nearest c (the polygon's edges interpolated; a vertex on the ray counted once, as
+/// crossingX does), or nothing.
+std::optional<long double> crossingAlong(const std::vector<PhysicalPoint>& curve, PhysicalPoint c, PhysicalPoint heading) {
+  const auto side = [&](PhysicalPoint p) { return heading.x * (p.y - c.y) - heading.y * (p.x - c.x); };
+  std::optional<long double> best;
+  for (std::size_t i = 0; i < curve.size(); ++i) {
+    const PhysicalPoint a = curve[i], b = curve[(i + 1) % curve.size()];
+    const long double fa = side(a), fb = side(b);
+    if ((fa > 0) == (fb > 0)) continue;
+    const long double w = fa / (fa - fb);
+    const long double t = (a.x - c.x + w * (b.x - a.x)) * heading.x + (a.y - c.y + w * (b.y - a.y)) * heading.y;
+    if (t > 0 && (!best || t < *best)) best = t;
+  }
+  return best;
 }
 
 /// Where the ordered polygon `curve` crosses the ray from c along `line` towards `direction`: the x of the crossing
@@ -768,7 +863,7 @@ class AtlasBuilder {
       for (smooth::SymmetryLine line : {smooth::SymmetryLine::S2, smooth::SymmetryLine::S1})
         if (std::fabs(smooth::offsetFromLine(line, K_, smooth::Point<long double>{z.x, z.y})) <= 1e-9L)
           out.push_back({z, node.period, rotationSense(K_, z, node.period), line, halfSpacing(node.orbit, i),
-                         halfSpacing(node.orbit, i)});
+                         halfSpacing(node.orbit, i), thinIslandFrame(K_, z, node.period)});
     }
     return out;
   }
@@ -884,9 +979,16 @@ class AtlasBuilder {
   }
 
   /// Step 3: the bracket's widest ratio over the rays (the kept circle's crossing, or on another member's ray its own
-  /// outermost circle, which lies inside the boundary's image there; and the nearest escaping point beyond).
+  /// outermost circle, which lies inside the boundary's image there; and the nearest escaping point beyond); for a
+  /// thin island over rays equally spaced in its normal-form frame instead (widestFrameBracket).
   long double widestBracket(const std::vector<Ray>& rays, const std::vector<Ray>& zoomRays, const AtlasNode& node,
                             const std::vector<PhysicalPoint>& kept) {
+    const auto thin = [](const Ray& ray) { return ray.island.frame.has_value(); };
+    const auto home = [&](const Ray& ray) { return distance(ray.island.centre, node.centre) == 0; };
+    const auto homeRay = std::find_if(rays.begin(), rays.end(), home);  // a ray of the kept circle's member
+    if (homeRay != rays.end() && std::any_of(rays.begin(), rays.end(), thin))
+      if (const auto frame = floquetFrame(K_, node.centre, static_cast<long>(node.period)))
+        if (const auto widest = widestFrameBracket(homeRay->island, *frame, kept)) return *widest;
     long double widest = 1;
     std::vector<std::tuple<smooth::SymmetryLine, int, long double, long double>> done;  // line, direction, c.x, c.y
     for (const std::vector<Ray>* set : {&rays, &zoomRays})
@@ -900,9 +1002,36 @@ class AtlasBuilder {
         if (distance(ray.island.centre, node.centre) == 0)
           if (const auto cross = crossingX(kept, K_, ray.island.line, node.centre, ray.direction)) x = *cross;
         const long double circle = distance(c.at(x), ray.island.centre);
-        const long double escape = escapeRadius(c, ray.island, ray.direction, x, stop_, r_.threads);
+        const long double escape = escapeRadius(c, ray.island, lineEscapeRay(c, ray.island, ray.direction, x), stop_, r_.threads);
         widest = std::max(widest, escape / circle);
       }
+    return widest;
+  }
+
+  /// Step 3 for a thin island (issue 50; thin about one of its scanned members at least, thinIslandFrame): kFrameRays
+  /// straight rays from the kept circle's member c, equally spaced in angle in the normal-form frame at c (each the
+  /// image of a direction of that frame), from the kept circle's crossing to the island's reach: the widest ratio of
+  /// the nearest escaping point's distance to the crossing's.
+  /// Along the lines the rays meet a thin island at two angles of its frame only, and about its other members at
+  /// their own outermost circles, which the folded angles kept deep inside (at K = 0.1 the 2/13 island's circle on
+  /// S₁ at 6·10⁻⁵ of c, the first escaping point beyond the zoomed ray's end: a ratio of 13).  Nothing when a ray does
+  /// not cross the circle within the reach (the lines' rays decide then).
+  std::optional<long double> widestFrameBracket(const Island& island, const FloquetFrame& frame,
+                                                const std::vector<PhysicalPoint>& kept) {
+    const Classifier c(r_, island);
+    long double widest = 1;
+    for (int k = 0; k < kFrameRays && !stop_.stop_requested(); ++k) {
+      const long double phi = 2 * std::numbers::pi_v<long double> * k / kFrameRays;
+      const PhysicalPoint d = frame.physical({std::cos(phi), std::sin(phi)});
+      const long double length = std::hypot(d.x, d.y);
+      const PhysicalPoint heading{d.x / length, d.y / length};
+      const std::optional<long double> crossing = crossingAlong(kept, island.centre, heading);
+      if (!crossing || !(*crossing < island.reach)) return std::nullopt;
+      const EscapeRay ray{[&](long double t) { return PhysicalPoint{island.centre.x + t * heading.x,
+                                                                    island.centre.y + t * heading.y}; },
+                          *crossing, island.reach, island.reach * 0x1p-20L, 1};
+      widest = std::max(widest, escapeRadius(c, island, ray, stop_, r_.threads) / *crossing);
+    }
     return widest;
   }
 

@@ -15,7 +15,9 @@
 ///     its orbit) are classified by their rotation number about c under Qⁿ (RotationNumber.hpp, T iterations per
 ///     block, in the sense DQⁿ turns there): a **circle** is regular with no rational p/q (q ≤ maxPeriod/n) within
 ///     its measured accuracy; a **chain** point regular at such a p/q ≠ 0; anything else (chaotic, escaping, not
-///     turning about c) is **outside**.
+///     turning about c) is **outside**.  About a thin island's member — where the linear map's largest step of the
+///     angle of z − c lies within 0.05 of half a turn (FloquetFrame::foldMargin) and steps a little way out fold — the
+///     angle is taken in its normal-form (Floquet) coordinates (FloquetFrame.hpp, issue 50).
 ///  2. The boundary circle on one side is the outermost circle point (a circle about c lies in c's island: orbits
 ///     of the chains and circles outside it turn at a rational or not at all about c), bisected against its outer
 ///     neighbour (`bisections` halvings).  Its orbit under Qⁿ (8192 points), ordered by the angle k·ω mod 1 that
@@ -28,7 +30,8 @@
 ///     The other side of the bracket: on every ray, the nearest point beyond the circle whose orbit is proven to leave
 ///     the island (farther from c than the next member of its orbit, or out of the box, within 2 T applications of
 ///     Qⁿ).  The area is an interval: from below the circle's polygon less its convergence, from above the circle
-///     scaled about c by the widest ratio of those distances (AtlasNode::areaLower, areaUpper, areaError).
+///     scaled about c by the widest ratio of those distances (AtlasNode::areaLower, areaUpper, areaError); for a thin
+///     island over 16 straight rays from the kept circle's member equally spaced in angle in its normal-form frame.
 ///  3. The chains: the chain points beyond the boundary (turning about c in the sense of its circles), grouped by p/q,
 ///     the middle point of a group's first run (else of its longest: the first can be a sticky orbit) giving the
 ///     elliptic orbit of period n·q (ChainIdentification.hpp, ellipticOrbitAround); kept when it is stable, and

@@ -207,6 +207,33 @@ TEST(Atlas, IslandAreasAreIntervalsThatHoldTheIndependentlyMeasuredArea) {
   }
 }
 
+// Issue 50, deliverable 1: a thin island scanned in its own normal-form (Floquet) frame.  At K = 0.1 the 2/13 chain's
+// islands are long and thin (DQ¹³'s eigen-ellipses 4.9 times longer than wide at its member on S₂, 54 at its member on
+// S₁; ν = 0.4025): about the member on S₁ the angle of z − c steps by up to 0.498 turn per Q¹³ and, beyond 6·10⁻⁵ of c,
+// folds, so that ray's circles stopped there and its first escaping orbit lay beyond the zoomed ray's end: the
+// interval was [2.82e−5, 4.89e−3] (upper 173 × lower).  The independent area (scripts/atlas-validate.py: its own map,
+// rotation numbers, rational test and polygon, along S₂ only):
+//   /usr/bin/python3 scripts/atlas-validate.py --K 0.1 --chain 2/13 --points 1000 --T 3000 --zooms 3
+//   K = 0.1  2/13: area 6.14083301e-05 …  S2 +1: circle at 0.002317904 …, first escape 0.0023596272816387375
+// so that on that ray the true boundary lies within (2.35963/2.31790)² = 1.036 of its area: the interval must hold
+// 6.14083301e−5 and lie within a factor 2 of it at both ends.
+TEST(Atlas, ScansTheThinIslandsOfThe2Over13ChainInTheirNormalFormFrameAndBoundsTheirAreaTightly) {
+  AtlasRequest r;  // K = 0.1 in the paper's box
+  r.depth = 1;
+  r.maxPeriod = 13;  // the chains of six and 13 about the centre only
+  r.scanSteps = 0;
+  const Atlas a = computeAtlas(r);
+  const AtlasNode* chain = chainOf(a, 0, 2, 13);
+  ASSERT_NE(chain, nullptr) << "no chain 2/13 about the centre";
+  ASSERT_TRUE(chain->boundaryFound);
+  constexpr long double reference = 6.14083301e-5L;
+  std::printf("2/13: [%.6Lg, %.6Lg], independent %.9Lg\n", chain->areaLower, chain->areaUpper, reference);
+  EXPECT_LE(chain->areaLower, reference);
+  EXPECT_GE(chain->areaUpper, reference);
+  EXPECT_GT(chain->areaLower, reference / 2);
+  EXPECT_LT(chain->areaUpper, 2 * reference);
+}
+
 // Issue 50, finding 4: the 4/25 chain (period 25, between 3/19 and 5/31, elliptic orbit on S₁) has islands about as
 // wide along S₁ as the centre scan's step: the scan stepped over it.  The Farey rationals between the boundary's
 // rotation and the slowest chain found, each solved for its symmetric orbits, find it.
