@@ -237,14 +237,20 @@ TEST(Atlas, ScansTheThinIslandsOfThe2Over13ChainInTheirNormalFormFrameAndBoundsT
 // Issue 50, finding 4: the 4/25 chain (period 25, between 3/19 and 5/31, elliptic orbit on S₁) has islands about as
 // wide along S₁ as the centre scan's step: the scan stepped over it.  The Farey rationals between the boundary's
 // rotation and the slowest chain found, each solved for its symmetric orbits, find it.
-TEST(Atlas, HoldsThePeriod25ChainAboutTheCentreThatTheScanStepsOver) {
-  const Atlas& a = atlasK01();
-  const AtlasNode* chain = chainOf(a, 0, 4, 25);
-  ASSERT_NE(chain, nullptr) << "no chain 4/25 about the centre";
-  EXPECT_EQ(chain->period, 25u);
+namespace {
+/// The atlas holds the chain p/q about the centre: of period q, elliptic, turning p times, well ordered about it.
+void expectCentreChain(const Atlas& a, std::int64_t p, std::int64_t q) {
+  const AtlasNode* chain = chainOf(a, 0, p, q);
+  ASSERT_NE(chain, nullptr) << "no chain " << p << "/" << q << " about the centre";
+  EXPECT_EQ(chain->period, static_cast<std::uint64_t>(q));
   EXPECT_TRUE(chain->orbit.stable());
-  EXPECT_EQ(chain->orbit.windingTurns, 4);
+  EXPECT_EQ(chain->orbit.windingTurns, p);
   EXPECT_TRUE(wellOrdered(chain->orbit.points, a.nodes[0].centre));
+}
+}  // namespace
+
+TEST(Atlas, HoldsThePeriod25ChainAboutTheCentreThatTheScanStepsOver) {
+  expectCentreChain(atlasK01(), 4, 25);
 }
 
 // Issue 50, deliverable 2: the Farey step searched only between the boundary's rotation and the farthest chain the
@@ -261,12 +267,7 @@ TEST(Atlas, SeeksTheCentresChainsBeyondTheFarthestChainTheScanFound) {
   r.scanSteps = 0;
   const Atlas a = computeAtlas(r);
   ASSERT_NE(chainOf(a, 0, 1, 6), nullptr) << "the six, the farthest chain the scan finds";
-  const AtlasNode* c13 = chainOf(a, 0, 2, 13);
-  ASSERT_NE(c13, nullptr) << "no chain 2/13 about the centre";
-  EXPECT_EQ(c13->period, 13u);
-  EXPECT_TRUE(c13->orbit.stable());
-  EXPECT_EQ(c13->orbit.windingTurns, 2);
-  EXPECT_TRUE(wellOrdered(c13->orbit.points, a.nodes[0].centre));
+  expectCentreChain(a, 2, 13);
 }
 
 // Issue 50, deliverable 2, below the centre: about each island followed, the Farey rationals between its boundary's
