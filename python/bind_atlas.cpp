@@ -38,7 +38,7 @@ py::dict atlas(double K, double xmin, double xmax, int depth, std::uint64_t maxP
   r.threads = threads;
   r.timeBudget = timeBudget;
   r.cantori = cantori;
-  if (auto e = validationError(r)) throw std::invalid_argument(*e);
+  if (auto e = atlasRequestError(r)) throw std::invalid_argument(*e);
   // resume: an atlas dict stopped early (its 'cancelled' true), continued by core from its finished islands.
   std::optional<Atlas> previous;
   if (!resume.is_none()) previous = atlasToResume(r, jsonArgument(resume, "resume"), "resume");

@@ -59,7 +59,7 @@ void printTable(const Atlas& a) {
 
 int runAtlas(AtlasOptions o) {
   o.request.map = o.map;
-  if (auto e = validationError(o.request)) throw std::invalid_argument(*e);
+  if (auto e = atlasRequestError(o.request)) throw std::invalid_argument(*e);
   io::checkCommandFiles({{"--resume", o.resume, io::FileUse::ResumedState},
                          {"--json", o.json, io::FileUse::SavedState},
                          {"--csv", o.csv, io::FileUse::Output}});

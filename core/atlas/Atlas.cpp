@@ -1,5 +1,6 @@
 #include "core/atlas/Atlas.hpp"
 #include "core/atlas/AtlasCantori.hpp"
+#include "core/atlas/BoxIslandCheck.hpp"
 
 #include <algorithm>
 #include <atomic>
@@ -1417,6 +1418,11 @@ std::optional<std::string> validationError(const AtlasRequest& r) {
   return std::nullopt;
 }
 
+std::optional<std::string> atlasRequestError(const AtlasRequest& r) {
+  if (auto e = validationError(r)) return e;
+  return atlasBoxError(r.map);
+}
+
 std::optional<std::string> resumeError(const AtlasRequest& r, const Atlas& a) {
   const AtlasRequest& q = a.request;
   auto differs = [](const char* field, const std::string& was, const std::string& is) {
@@ -1447,7 +1453,7 @@ std::optional<std::string> resumeError(const AtlasRequest& r, const Atlas& a) {
 
 Atlas computeAtlas(const AtlasRequest& request, const AtlasProgress& progress, std::stop_token stop,
                    const Atlas* resume) {
-  if (auto e = validationError(request)) throw std::invalid_argument(*e);
+  if (auto e = atlasRequestError(request)) throw std::invalid_argument(*e);
   if (resume)
     if (auto e = resumeError(request, *resume)) throw std::invalid_argument(*e);
   return AtlasBuilder(request, progress, std::move(stop)).build(resume);

@@ -100,6 +100,11 @@ inline constexpr std::uintmax_t kMaxAtlasFileBytes = std::uintmax_t{1} << 28;
 /// The first violated rule, naming the field, or nothing.
 [[nodiscard]] std::optional<std::string> validationError(const AtlasRequest& r);
 
+/// What computeAtlas refuses, for a front end to say before it starts: validationError, then a box that does not
+/// hold the central island and its loop (atlasBoxError, BoxIslandCheck.hpp: tens of milliseconds, it measures the
+/// island's circle).
+[[nodiscard]] std::optional<std::string> atlasRequestError(const AtlasRequest& r);
+
 /// One separatrix's turnstile: the lobe area crossing it per step and the zone it encloses.
 struct SeparatrixFlux {
   bool found = false;

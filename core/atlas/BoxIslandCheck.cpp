@@ -50,6 +50,41 @@ CentralIslandExtent centralIsland(double K) {
 
 std::string fixed(double v) { return io::formatC("%.3f", v); }
 
+/// What the box's edges cut of the boundary circle (the check's cutLeft, cutRight, cutY), one phrase each.
+std::vector<std::string> circleCuts(const BoxIslandCheck& c, const MapParameters& map) {
+  std::vector<std::string> what;
+  if (!c.island.found) return what;
+  if (c.cutLeft > 0)
+    what.push_back("the box's left edge xmin = " + io::shortestText(map.xmin) + " cuts its boundary circle by " +
+                   fixed(c.cutLeft) + " in x");
+  if (c.cutRight > 0)
+    what.push_back("the box's right edge xmax = " + io::shortestText(map.xmax) + " cuts its boundary circle by " +
+                   fixed(c.cutRight) + " in x");
+  if (c.cutY > 0)
+    what.push_back("the box's height L = " + fixed(map.xmax - map.xmin) + " cuts its boundary circle by " +
+                   fixed(c.cutY) + " in y");
+  return what;
+}
+
+/// The right edge inside the loop's hyperbolic point, when it does not already cut the circle.
+void addLoopCutRight(const BoxIslandCheck& c, const MapParameters& map, std::vector<std::string>& what) {
+  if (c.cutRight <= 0 && c.loopCutRight > 0)
+    what.push_back("the box's right edge xmax = " + io::shortestText(map.xmax) + " lies " + fixed(c.loopCutRight) +
+                   " inside the loop's hyperbolic point x = sqrt(K)");
+}
+
+std::string joined(const std::vector<std::string>& what) {
+  std::string list;
+  for (std::size_t i = 0; i < what.size(); ++i) list += (i == 0 ? "" : "; ") + what[i];
+  return list;
+}
+
+std::string circleExtent(const CentralIslandExtent& I) {
+  return I.found ? " (its boundary circle spans x in [" + fixed(I.xLeft) + ", " + fixed(I.xRight) + "], |y| <= " +
+                       fixed(I.yMax) + ")"
+                 : std::string();
+}
+
 }  // namespace
 
 BoxIslandCheck checkBoxAgainstIsland(const MapParameters& map, double Xr) {
@@ -65,46 +100,47 @@ BoxIslandCheck checkBoxAgainstIsland(const MapParameters& map, double Xr) {
   c.loopCutRight = c.loopRight - map.xmax;
   c.island = centralIsland(map.K);
   const CentralIslandExtent& I = c.island;
-  std::vector<std::string> what;
   if (I.found) {
     c.zoneDepth = c.zoneEdge - I.xLeft;
     c.cutLeft = map.xmin - I.xLeft;
     c.cutRight = I.xRight - map.xmax;
     c.cutY = I.yMax - L / 2;
-    if (c.cutLeft > 0)
-      what.push_back("the box's left edge xmin = " + io::shortestText(map.xmin) + " cuts its boundary circle by " +
-                     fixed(c.cutLeft) + " in x");
-    if (c.zoneDepth > 0)
-      what.push_back("the randomizing zone (x <= xmin + Xr*L = " + fixed(c.zoneEdge) + ") reaches " +
-                     fixed(c.zoneDepth) + " into its boundary circle in x");
-    if (c.cutRight > 0)
-      what.push_back("the box's right edge xmax = " + io::shortestText(map.xmax) + " cuts its boundary circle by " +
-                     fixed(c.cutRight) + " in x");
-    if (c.cutY > 0)
-      what.push_back("the box's height L = " + fixed(L) + " cuts its boundary circle by " + fixed(c.cutY) + " in y");
   }
+  std::vector<std::string> what = circleCuts(c, map);
+  if (c.zoneDepth > 0)
+    what.insert(what.begin() + (c.cutLeft > 0 ? 1 : 0),
+                "the randomizing zone (x <= xmin + Xr*L = " + fixed(c.zoneEdge) + ") reaches " + fixed(c.zoneDepth) +
+                    " into its boundary circle in x");
   if (c.zoneDepth <= 0 && c.loopDepth > 0)
     what.push_back("the randomizing zone (x <= xmin + Xr*L = " + fixed(c.zoneEdge) + ") reaches " +
                    fixed(c.loopDepth) + " into the separatrix loop around it (" + fixed(c.loopLeft) +
                    " <= x <= " + fixed(c.loopRight) + ", eq. hamb)" +
                    (I.found ? ", within " + fixed(-c.zoneDepth) + " of its boundary circle" : std::string()));
-  if (c.cutRight <= 0 && c.loopCutRight > 0)
-    what.push_back("the box's right edge xmax = " + io::shortestText(map.xmax) + " lies " + fixed(c.loopCutRight) +
-                   " inside the loop's hyperbolic point x = sqrt(K)");
+  addLoopCutRight(c, map, what);
   if (what.empty()) return c;
-  std::string list;
-  for (std::size_t i = 0; i < what.size(); ++i)
-    list += (i == 0 ? "" : "; ") + what[i];
-  const std::string circle =
-      I.found ? " (its boundary circle spans x in [" + fixed(I.xLeft) + ", " + fixed(I.xRight) + "], |y| <= " +
-                    fixed(I.yMax) + ")"
-              : std::string();
-  c.warning = "the box does not hold the central island at K = " + io::shortestText(map.K) + circle + ": " + list +
+  c.warning = "the box does not hold the central island at K = " + io::shortestText(map.K) + circleExtent(I) + ": " +
+              joined(what) +
               ". Orbits trapped in or near the island are randomized or wrapped, so the run is not the paper's "
               "process (appendix B); a box holds it when xmin + Xr*L < " + fixed(c.loopLeft) + " and xmax > " +
               fixed(c.loopRight) + (I.found ? " and L/2 > " + fixed(I.yMax) : std::string()) +
               " (the K scan's box, xmin = -2*sqrt(K) - 0.2, xmax = sqrt(K) + 0.2, does).";
   return c;
+}
+
+std::optional<std::string> atlasBoxError(const MapParameters& map) {
+  const BoxIslandCheck c = checkBoxAgainstIsland(map, 0);  // no randomizing zone: the atlas iterates Q* alone
+  std::vector<std::string> what = circleCuts(c, map);
+  if (c.cutLeft <= 0 && c.loopDepth > 0)
+    what.push_back("the box's left edge xmin = " + io::shortestText(map.xmin) + " lies " + fixed(c.loopDepth) +
+                   " inside the separatrix loop around it");
+  addLoopCutRight(c, map, what);
+  if (what.empty()) return std::nullopt;
+  const MapParameters box = scanBox(map.K);
+  return "the box does not hold the central island at K = " + io::shortestText(map.K) + circleExtent(c.island) +
+         ": " + joined(what) + ". The atlas maps the island of Q and its chains out to the separatrix loop around it (" +
+         fixed(c.loopLeft) + " <= x <= " + fixed(c.loopRight) + ", eq. hamb); in this box their orbits wrap round, "
+         "and the circles and chains it would find are not Q's. The K scan's box (xmin = -2*sqrt(K) - 0.2 = " +
+         fixed(box.xmin) + ", xmax = sqrt(K) + 0.2 = " + fixed(box.xmax) + ") holds it.";
 }
 
 }  // namespace archipelago

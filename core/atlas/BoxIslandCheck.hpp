@@ -72,4 +72,13 @@ struct BoxIslandCheck {
 /// and K outside (0, 1) give no warning: the first are refused by the parameters' rules, the second have no island.
 [[nodiscard]] BoxIslandCheck checkBoxAgainstIsland(const MapParameters& map, double Xr);
 
+/// The atlas's rule (issue 50): the atlas maps the central island of Q and its chains out to the separatrix loop, so
+/// its box must hold both, or their orbits wrap round the box and the circles and chains found are not Q's.  At
+/// K = 0.22 in the default box (−0.8, 0.5) the centre's "boundary circle" had an area of 0.33445 (its point on the
+/// box's edge) against Q's 0.40059 (scripts/atlas-validate.py), and its 2/9 chain was not followed; in the K scan's
+/// box both hold the independent values.  Nothing when the box holds the circle (checkBoxAgainstIsland's cutLeft,
+/// cutRight, cutY) and the loop (loopDepth with no zone, loopCutRight); else why, naming the K scan's box, which
+/// holds them.  computeAtlas refuses such a box.  K outside (0, 1) and invalid maps give nothing (validationError's).
+[[nodiscard]] std::optional<std::string> atlasBoxError(const MapParameters& map);
+
 }  // namespace archipelago

@@ -348,6 +348,26 @@ class TestAtlas : public QObject {
     QVERIFY(panel_->showIsland(0));
   }
 
+  // Issue 50: a box that does not hold the central island is refused before anything is cleared (core's
+  // atlasRequestError: at K = 0.22 the default box cuts the island's circle), and the atlas shown stays.
+  void aBoxThatCutsTheIslandIsRefusedAndTheAtlasShownStays() {
+    QVERIFY(panel_->atlas());
+    const std::size_t shown = panel_->atlas()->nodes.size();
+    const int listed = rows(*panel_->tree());
+    AtlasRequest r = depthOne(*panel_);
+    r.map.K = 0.22;
+    QSignalSpy said(panel_, &AtlasPanel::statusMessage);
+    QVERIFY(!panel_->compute(r));
+    QVERIFY(!panel_->busy());
+    QCOMPARE(said.count(), 1);
+    const QString message = said.at(0).at(0).toString();
+    QVERIFY2(message.startsWith(QStringLiteral("Atlas: the box does not hold the central island at K = 0.22")) &&
+                 message.contains(QStringLiteral("The K scan's box")),
+             qPrintable(message));
+    QVERIFY(panel_->atlas() && panel_->atlas()->nodes.size() == shown);
+    QCOMPARE(rows(*panel_->tree()), listed);
+  }
+
   // Stop during the computation keeps the islands finished: a partial tree, marked stopped.
   void aStopKeepsAPartialTree() {
     AtlasRequest r = depthOne(*panel_);

@@ -313,7 +313,7 @@ AtlasRequest AtlasPanel::request() const {
 }
 
 bool AtlasPanel::compute(const AtlasRequest& r) {
-  if (const auto e = validationError(r)) {
+  if (const auto e = atlasRequestError(r)) {  // before the atlas shown is cleared
     Q_EMIT statusMessage(tr("Atlas: %1").arg(QString::fromStdString(*e)));
     return false;
   }

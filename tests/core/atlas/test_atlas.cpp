@@ -10,6 +10,7 @@
 #include <cstdio>
 
 #include "core/atlas/AtlasExport.hpp"
+#include "core/atlas/BoxIslandCheck.hpp"
 #include "core/manifolds/MmpFlux.hpp"
 #include "core/manifolds/TurnstileFlux.hpp"
 #include "core/map/FixedPointMap.hpp"
@@ -504,6 +505,46 @@ TEST(Atlas, RefusesBadRequestsNamingTheField) {
   EXPECT_NE(message(r).find("iterations"), std::string::npos);
   EXPECT_THROW((void)computeAtlas(r), std::invalid_argument);
   EXPECT_EQ(validationError(depthOne()), std::nullopt);
+}
+
+// Issue 50: at K = 0.22 in the default box (−0.8, 0.5) the atlas gave the centre a "boundary circle" of area 0.33445
+// whose point lay on the box's left edge, against Q's 0.40059 (scripts/atlas-validate.py --K 0.22, independent code),
+// and did not follow its 2/9 chain: the box cuts the island's circle and the loop.  Such a box is refused, naming the
+// box that holds the island; the K scan's box at 0.22 and the paper's at K = 0.1 are not.
+TEST(Atlas, RefusesABoxThatDoesNotHoldTheCentralIsland) {
+  AtlasRequest r;  // cheap, should it be computed: the centre alone, coarsely
+  r.map.K = 0.22;  // in the default box
+  r.depth = 0;
+  r.scanPoints = 16;
+  r.bisections = 4;
+  ASSERT_EQ(validationError(r), std::nullopt);  // the plain rules hold: the box is the only fault
+  const std::string cut = atlasBoxError(r.map).value_or("");
+  EXPECT_NE(cut.find("the box's left edge xmin = -0.8 cuts its boundary circle by"), std::string::npos) << cut;
+  const MapParameters holds = scanBox(0.22);
+  EXPECT_NE(cut.find("out to the separatrix loop around it (-0.938 <= x <= 0.469"), std::string::npos) << cut;
+  EXPECT_NE(cut.find("The K scan's box (xmin = -2*sqrt(K) - 0.2 = -1.138, xmax = sqrt(K) + 0.2 = 0.669) holds it"),
+            std::string::npos)
+      << cut;
+  try {
+    (void)computeAtlas(r);
+    ADD_FAILURE() << "an atlas in a box that cuts the island was computed";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()), cut);
+  }
+  EXPECT_EQ(atlasBoxError(holds), std::nullopt);
+  EXPECT_EQ(atlasBoxError(MapParameters{}), std::nullopt);  // K = 0.1 in the paper's box
+  // The loop alone: at K = 0.18 the default box holds the circle, but its left edge lies inside the loop (−2√K).
+  MapParameters loop;
+  loop.K = 0.18;
+  const std::string inLoop = atlasBoxError(loop).value_or("");
+  EXPECT_EQ(inLoop.find("cuts its boundary circle"), std::string::npos) << inLoop;
+  EXPECT_NE(inLoop.find("the box's left edge xmin = -0.8 lies 0.049 inside the separatrix loop around it"), std::string::npos)
+      << inLoop;
+  // The right edge short of the hyperbolic point √K = 0.316 at K = 0.1.
+  MapParameters right;
+  right.xmax = 0.3;
+  const std::string shortRight = atlasBoxError(right).value_or("");
+  EXPECT_NE(shortRight.find("xmax = 0.3"), std::string::npos) << shortRight;
 }
 
 TEST(Atlas, AStopKeepsTheIslandsFinished) {
