@@ -366,6 +366,18 @@ class TestAtlas : public QObject {
              qPrintable(message));
     QVERIFY(panel_->atlas() && panel_->atlas()->nodes.size() == shown);
     QCOMPARE(rows(*panel_->tree()), listed);
+    // The whole reason on the page (the status line cuts it short at 1280 wide), above what the page said before,
+    // until the map changes.
+    QVERIFY2(panel_->progressText().startsWith(QStringLiteral("Not computed: ") + message.mid(7)) &&
+                 panel_->progressText().contains(QStringLiteral("islands in")),
+             qPrintable(panel_->progressText()));
+    auto* c = w_->portraitPanel()->controller();
+    const archipelago::MapParameters k01 = c->map();
+    archipelago::MapParameters other = k01;
+    other.K = 0.11;
+    QVERIFY(c->setMap(other, c->Xr()));
+    QVERIFY(c->setMap(k01, c->Xr()));
+    QVERIFY2(!panel_->progressText().contains(QStringLiteral("Not computed")), qPrintable(panel_->progressText()));
   }
 
   // Stop during the computation keeps the islands finished: a partial tree, marked stopped.

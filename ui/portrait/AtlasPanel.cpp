@@ -130,6 +130,7 @@ AtlasPanel::AtlasPanel(PortraitController* controller, QWidget* parent)
   connect(clock_, &QTimer::timeout, this, &AtlasPanel::updateProgress);
   // A new map keeps the atlas (a change of K loses no work); it says whose it is, and draws nothing of another map.
   connect(controller_, &PortraitController::mapChanged, this, [this] {
+    refusal_.clear();
     updateProgress();
     updateButtons();
   });
@@ -314,9 +315,12 @@ AtlasRequest AtlasPanel::request() const {
 
 bool AtlasPanel::compute(const AtlasRequest& r) {
   if (const auto e = atlasRequestError(r)) {  // before the atlas shown is cleared
-    Q_EMIT statusMessage(tr("Atlas: %1").arg(QString::fromStdString(*e)));
+    refusal_ = QString::fromStdString(*e);     // on the page too: the status line cuts a long reason short
+    updateProgress();
+    Q_EMIT statusMessage(tr("Atlas: %1").arg(refusal_));
     return false;
   }
+  refusal_.clear();
   jobs_->cancel();
   controller_->clearAtlasIsland();  // the replaced atlas's island
   tree_->clear();
@@ -495,6 +499,7 @@ void AtlasPanel::updateProgress() {
     if (restored_) text = source_.isEmpty() ? tr("From the session: %1").arg(text) : tr("From %1: %2").arg(source_, text);
     if (const QString why = MarkovTreePanel::missing(&a, false); !why.isEmpty()) text += tr(". Model P_t: %1").arg(why);
   }
+  if (!refusal_.isEmpty() && !busy()) text = tr("Not computed: %1\n\n%2").arg(refusal_, text);
   if (atlas_ && !ofPortraitMap())
     text += tr(". This atlas is of K = %1; the portrait shows K = %2: set K = %1 again to draw its islands")
                 .arg(QString::fromStdString(io::shortestText(atlas_->request.map.K)))

@@ -163,6 +163,7 @@ class AtlasPanel : public QWidget {
   int done_ = -1;                         // islands finished while computing (−1: not computing)
   QString stage_;                         // what core is doing ("island 6 > 138")
   bool restored_ = false;                 // atlas_ came from a session or a file
+  QString refusal_;                       // why the last Compute was refused (core's words), until the map changes
   bool saved_ = false;                    // atlas_ was exported as JSON or saved in a session
   std::function<bool(const QString&)> confirm_;
   QString source_;                        // … that file's name (openAtlasFile), empty for a session
