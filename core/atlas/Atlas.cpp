@@ -450,7 +450,7 @@ struct EscapeRay {
 
 /// The ray along the island's line from the circle point at x = `circle` towards `direction`, to the line's range.
 EscapeRay lineEscapeRay(const Classifier& c, const Island& island, int direction, long double circle) {
-  return {[&c](long double x) { return c.at(x); }, circle, island.centre.x + direction * island.range,
+  return {lineScanRay(c, island, direction).at, circle, island.centre.x + direction * island.range,
           island.range * 0x1p-20L, direction};
 }
 
@@ -868,19 +868,27 @@ class AtlasBuilder {
   }
 
  private:
-  /// Points a side: at the last level a quarter of the request's (only the boundary is wanted there; fewer, down to
-  /// 16, where `scanSteps` is short for a long period), else the
-  /// request's or as many as `scanSteps` steps of the map allow over all sides, up to kMaxScanPoints: the chains around
-  /// an island of short period can be narrow (the 138-chain's islands cross S₁ over 4·10⁻⁵ around the island of six).
+  /// Points a side: at the last level boundaryPoints (only the boundary is wanted there), else the request's or as
+  /// many as `scanSteps` steps of the map allow over all sides, up to kMaxScanPoints: the chains around an island of
+  /// short period can be narrow (the 138-chain's islands cross S₁ over 4·10⁻⁵ around the island of six).
   [[nodiscard]] int scanPoints(const AtlasNode& node, std::size_t sides) const {
-    const double perPoint = 2.0 * static_cast<double>(r_.iterations) * static_cast<double>(node.period) *
-                            static_cast<double>(std::max<std::size_t>(sides, 1));
-    if (node.level >= r_.depth) {  // a quarter of the request's, fewer where the step budget is short (long periods)
-      const double quarter = std::max(16.0, r_.scanPoints / 4.0);
-      return static_cast<int>(r_.scanSteps > 0 ? std::clamp(r_.scanSteps / perPoint, 16.0, quarter) : quarter);
-    }
-    return static_cast<int>(std::clamp(r_.scanSteps / perPoint, static_cast<double>(r_.scanPoints),
+    if (node.level >= r_.depth) return boundaryPoints(node, sides);
+    return static_cast<int>(std::clamp(r_.scanSteps / stepsPerPoint(node, sides), static_cast<double>(r_.scanPoints),
                                        static_cast<double>(kMaxScanPoints)));
+  }
+
+  /// Points a side where only the boundary is wanted (the last level's scan, a thin island's frame rays): a quarter of
+  /// the request's, fewer, down to 16, where `scanSteps` is short for a long period.
+  [[nodiscard]] int boundaryPoints(const AtlasNode& node, std::size_t sides) const {
+    const double quarter = std::max(16.0, r_.scanPoints / 4.0);
+    return static_cast<int>(r_.scanSteps > 0 ? std::clamp(r_.scanSteps / stepsPerPoint(node, sides), 16.0, quarter)
+                                             : quarter);
+  }
+
+  /// Steps of the map a point of the scan costs over all `sides` of the island (2 T applications of Qⁿ each).
+  [[nodiscard]] double stepsPerPoint(const AtlasNode& node, std::size_t sides) const {
+    return 2.0 * static_cast<double>(r_.iterations) * static_cast<double>(node.period) *
+           static_cast<double>(std::max<std::size_t>(sides, 1));
   }
 
   /// The lines an island is scanned along: at the centre S₂ and S₁ (both pass through it), else every member of the
@@ -926,7 +934,8 @@ class AtlasBuilder {
     const std::vector<Ray> zoomRays = zoomForBoundary(rays, points, node, kept);
     if (stop_.stop_requested()) return {};
     if (node.boundaryFound) {
-      seekFrameCircles(rays, points, node, kept);  // the lower end first: the upper end is measured against it
+      // The lower end first: the upper end is measured against the circle kept.
+      seekFrameCircles(rays, boundaryPoints(node, 2 * origins.size()), node, kept);
       settleAreaInterval(node, widestBracket(rays, zoomRays, node, kept));
     }
     measureFlux(node, index);
@@ -1081,9 +1090,10 @@ class AtlasBuilder {
   }
 
   /// Step 2c for a thin island (issue 50): circles beyond the kept one sought on the kFrameRays straight rays of its
-  /// frame (widestFrameBracket's): on each, `points` points from the kept circle's crossing out to the nearest
-  /// escaping point (escapeRadius: no circle about c lies beyond it), the outermost circle point bisected and proven
-  /// as on the lines (provenCircle); one whose polygon encloses more than the kept circle's becomes the boundary.
+  /// frame (widestFrameBracket's): on each, `points` points (boundaryPoints: only the boundary is wanted) from the kept
+  /// circle's crossing out to the nearest escaping point (escapeRadius: no circle about c lies beyond it), the
+  /// outermost circle point bisected and proven as on the lines (provenCircle); one whose polygon encloses more than
+  /// the kept circle's becomes the boundary.
   /// Along the lines the bisection stops inside a thin island's boundary (at K = 0.1 the 2/13 island's circle was 27 %
   /// below the independent one: the lines meet it at two angles of its frame per member, and the folded angles keep
   /// the member on S₁'s circles deep inside).  The upper end is measured afterwards, against the circle kept.
