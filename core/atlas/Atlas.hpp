@@ -26,7 +26,9 @@
 ///     converge (4096 against 8192 points), and its rotation measured again with 4 T iterates agrees and names no
 ///     rational of denominator ≤ 10⁴ (an orbit of a long chain, or a sticky chaotic orbit, passed the scan's test: at
 ///     K = 0.12 one of the 25/143 chain did); a candidate that fails is dropped and the next circle inwards tried.  Of
-///     all sides the largest area is kept (the outermost circle).
+///     all sides the largest area is kept (the outermost circle).  About a thin island circles are then sought the same
+///     way on 8 of the 16 rays of its frame (below), each from the kept circle's crossing to the nearest escaping
+///     point, and a larger one kept (issue 50: along the lines the bisection stops inside such an island's boundary).
 ///     The other side of the bracket: on every ray, the nearest point beyond the circle whose orbit is proven to leave
 ///     the island (farther from c than the next member of its orbit, or out of the box, within 2 T applications of
 ///     Qⁿ).  The area is an interval: from below the circle's polygon less its convergence, from above the circle
@@ -167,7 +169,8 @@ struct AtlasNode {
                                          ///< last level from the run of the parent's scan that found it)
   bool boundaryFound = false;
   std::string boundaryFailure;           ///< why not, when not found
-  PhysicalPoint boundaryPoint;           ///< a point of the boundary circle about `centre`, on a symmetry line
+  PhysicalPoint boundaryPoint;           ///< a point of the boundary circle about `centre`: on a symmetry line, or
+                                         ///< on a ray of a thin island's normal-form frame (docs/atlas.md, step 3)
   double boundaryRotation = 0;           ///< its rotation number about `centre` (turns per Qⁿ)
   double boundaryDigits = 0;
   long double gap = 0;                   ///< the bisection's last step: the circle point's distance to the next point

@@ -216,8 +216,16 @@ TEST(Atlas, IslandAreasAreIntervalsThatHoldTheIndependentlyMeasuredArea) {
 // rotation numbers, rational test and polygon, along S₂ only):
 //   /usr/bin/python3 scripts/atlas-validate.py --K 0.1 --chain 2/13 --points 1000 --T 3000 --zooms 3
 //   K = 0.1  2/13: area 6.14083301e-05 …  S2 +1: circle at 0.002317904 …, first escape 0.0023596272816387375
-// so that on that ray the true boundary lies within (2.35963/2.31790)² = 1.036 of its area: the interval must hold
-// 6.14083301e−5 and lie within a factor 2 of it at both ends.
+// so that on that ray the true boundary lies within (2.35963/2.31790)² = 1.036 of its area.
+// With the frame's rays for the upper end only the lower end was still the lines' circle, 4.486e−5, 27 % below the
+// independent one: circles are now sought on the frame's 16 rays too.  The circle kept lies just outside the
+// independent one, 6.14423e−5, and is a circle by the independent code's own tests too (its point
+// (−0.5465973947858628, −0.010275057862865294) about c = (−0.540361006765074, 0): rotation 0.3690791613 to 11.3
+// digits at 48000 iterates of Q¹³ a block, no rational of denominator ≤ 4000 within 8 × its accuracy, its polygon's
+// area converging to 2·10⁻⁹ at 2¹⁶ points); the same script with --zooms 6 finds the same circle on S₂ and its first
+// escape at 0.002331686780520803, so that the boundary lies there within (2.331687/2.317904)² = 1.0119 of the
+// independent area, 6.2141e−5.  The lower end must lie above 99.9 % of the independent circle's area and below that
+// estimate from above, and the upper end within 10 % of the independent area.
 TEST(Atlas, ScansTheThinIslandsOfThe2Over13ChainInTheirNormalFormFrameAndBoundsTheirAreaTightly) {
   AtlasRequest r;  // K = 0.1 in the paper's box
   r.depth = 1;
@@ -228,11 +236,13 @@ TEST(Atlas, ScansTheThinIslandsOfThe2Over13ChainInTheirNormalFormFrameAndBoundsT
   ASSERT_NE(chain, nullptr) << "no chain 2/13 about the centre";
   ASSERT_TRUE(chain->boundaryFound);
   constexpr long double reference = 6.14083301e-5L;
-  std::printf("2/13: [%.6Lg, %.6Lg], independent %.9Lg\n", chain->areaLower, chain->areaUpper, reference);
-  EXPECT_LE(chain->areaLower, reference);
+  constexpr long double referenceAbove = 1.0119278L * reference;  // the circle scaled to the first escape on S₂
+  std::printf("2/13: [%.6Lg, %.6Lg], independent %.9Lg (at most %.6Lg)\n", chain->areaLower, chain->areaUpper,
+              reference, referenceAbove);
+  EXPECT_GT(chain->areaLower, 0.999L * reference);
+  EXPECT_LE(chain->areaLower, referenceAbove);
   EXPECT_GE(chain->areaUpper, reference);
-  EXPECT_GT(chain->areaLower, reference / 2);
-  EXPECT_LT(chain->areaUpper, 2 * reference);
+  EXPECT_LT(chain->areaUpper, 1.1L * reference);
 }
 
 // Issue 50, finding 4: the 4/25 chain (period 25, between 3/19 and 5/31, elliptic orbit on S₁) has islands about as
