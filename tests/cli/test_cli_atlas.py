@@ -4,9 +4,13 @@ written; an output that cannot be written fails loudly."""
 import csv, io, json, os, tempfile
 from clitest import check, finish, run, signed
 
+# The hang bound of a depth-1 atlas, not a speed claim: about a minute on two quiet cores, minutes under ASan beside
+# other tests (the 300 s of run() is too close once thin islands seek their circles on their frame's rays).
+ATLAS_HANG = 1800
+
 with tempfile.TemporaryDirectory() as d:
     j, c = os.path.join(d, "a.json"), os.path.join(d, "a.csv")
-    r = run("atlas", "--K", "0.1", "--depth", "1", "--max-period", "200", "--json", j, "--csv", c)
+    r = run("atlas", "--K", "0.1", "--depth", "1", "--max-period", "200", "--json", j, "--csv", c, timeout=ATLAS_HANG)
     check(r.returncode == 0, f"atlas exits 0 ({r.returncode}: {r.stderr[-300:]})")
     a = json.load(open(j))
     nodes = a["nodes"]
@@ -37,7 +41,7 @@ with tempfile.TemporaryDirectory() as d:
     # A time budget stops it as Ctrl-C does (exit 0: the request's own end), keeping the finished islands; --resume
     # continues from the file and ends where the uninterrupted run ended.
     t = os.path.join(d, "t.json")
-    r = run("atlas", "--K", "0.1", "--depth", "1", "--max-period", "200", "--time-budget", "0.001", "--json", t)
+    r = run("atlas", "--K", "0.1", "--depth", "1", "--max-period", "200", "--time-budget", "0.001", "--json", t, timeout=ATLAS_HANG)
     part = json.load(open(t)) if os.path.exists(t) else {}
     check(r.returncode == 0 and part.get("cancelled") is True and "time budget" in part.get("stop_reason", "")
           and "--resume" in r.stderr, f"--time-budget 0.001 stops after the first island, keeping it ({r.returncode}, {r.stderr[-200:]})")
@@ -45,7 +49,7 @@ with tempfile.TemporaryDirectory() as d:
     check(measured[:1] == [True] and measured.count(True) == 1, f"the centre is measured, its chains not yet ({measured})")
     part["seconds"] = 2640.0  # as if the first part had taken 44 min: the resumed atlas's time includes it
     json.dump(signed(part), open(t, "w"))
-    r = run("atlas", "--K", "0.1", "--depth", "1", "--max-period", "200", "--resume", t, "--json", t)
+    r = run("atlas", "--K", "0.1", "--depth", "1", "--max-period", "200", "--resume", t, "--json", t, timeout=ATLAS_HANG)
     done = json.load(open(t))
     check(done.get("seconds", 0) > 2640.0, f"the resumed atlas's seconds count every part ({done.get('seconds')})")
     check(r.returncode == 0 and done["cancelled"] is False and all(n["measured"] for n in done["nodes"]),

@@ -10,7 +10,7 @@ from clitest import check, finish, run, signed
 
 with tempfile.TemporaryDirectory() as d:
     atlas = os.path.join(d, "a.json")
-    r = run("atlas", "--K", "0.1", "--depth", "1", "--max-period", "40", "--quiet", "--json", atlas)
+    r = run("atlas", "--K", "0.1", "--depth", "1", "--max-period", "40", "--quiet", "--json", atlas, timeout=1800)  # a hang bound: the atlas takes about a minute
     check(r.returncode == 0, f"atlas exits 0 ({r.returncode}: {r.stderr[-300:]})")
     a = json.load(open(atlas))
     nodes = a["nodes"]
