@@ -167,13 +167,19 @@ class Classifier {
   [[nodiscard]] bool leavesIsland(PhysicalPoint p, std::stop_token stop) const {
     if (boxPointError("p", request_.map, p)) return true;
     if (stop.stop_requested()) return false;
-    const long double far = 2 * island_.reach;
+    // In unit coordinates (the grid is square): the offset's integer parts subtracted exactly, as measureRotation does.
+    const PhysicalPoint c = centre_.units;
+    const long double cx = std::floor(c.x), cy = std::floor(c.y);
+    const double ix = static_cast<double>(cx), iy = static_cast<double>(cy);
+    const double fx = static_cast<double>(c.x - cx), fy = static_cast<double>(c.y - cy);
+    const auto far = static_cast<double>(2 * island_.reach / map_.gridUnit());
+    const double far2 = far * far;
     bool left = false;
     const PowerOrbitEnd end =
         iteratePower(map_, map_.toUnit(p.x, p.y), island_.n, 2 * request_.iterations, [&](std::uint64_t k, const UnitState& z) {
           if ((k & 1023) == 0 && stop.stop_requested()) return false;
-          const PhysicalPoint q = map_.toPhysical(z);
-          left = std::hypot(q.x - island_.centre.x, q.y - island_.centre.y) > far;
+          const double dx = (static_cast<double>(z.X) - ix) - fx, dy = (static_cast<double>(z.Y) - iy) - fy;
+          left = dx * dx + dy * dy > far2;
           return !left;
         });
     return end == PowerOrbitEnd::wrapped || left;
@@ -182,45 +188,13 @@ class Classifier {
   [[nodiscard]] const FixedPointMap& map() const { return map_; }
 
  private:
-  /// The rotation about c under Qⁿ (measureRotation), in a thin island's normal-form frame where it has one
-  /// (frameRotation).
-  [[nodiscard]] RotationMeasurement rotation(const RotationRequest& m, std::stop_token stop) const {
-    return island_.frame ? frameRotation(m, stop) : measureRotation(m, stop);
-  }
-
-  /// measureRotation's measurement (the weighted Birkhoff averages of the clockwise angle's increments over two
-  /// blocks of T applications of Qⁿ, its digits and verdict) with the angle of z − c taken in the island's
-  /// normal-form coordinates, where each step turns by about ν < ½ and none folds (issue 50).
-  [[nodiscard]] RotationMeasurement frameRotation(const RotationRequest& m, std::stop_token stop) const {
-    const BirkhoffWeights w = birkhoffWeights(m.iterations, stop);
-    if (stop.stop_requested()) return {};
-    const FloquetFrame& f = *island_.frame;
-    const PhysicalPoint c = island_.centre;
-    const auto normal = [&](const UnitState& z) {
-      const PhysicalPoint p = map_.toPhysical(z);
-      return f.normal({p.x - c.x, p.y - c.y});
-    };
-    const std::uint64_t T = m.iterations;
-    PhysicalPoint u = normal(m.start);
-    long double sums[2] = {0, 0};
-    const PowerOrbitEnd end = iteratePower(map_, m.start, island_.n, 2 * T, [&](std::uint64_t k, const UnitState& z) {
-      if ((k & 1023) == 0 && stop.stop_requested()) return false;
-      const PhysicalPoint v = normal(z);
-      sums[k > T ? 1 : 0] += w.g[(k - 1) % T] * std::atan2(u.y * v.x - u.x * v.y, u.x * v.x + u.y * v.y);
-      u = v;
-      return true;
-    });
-    if (end == PowerOrbitEnd::stopped) return {};
-    const long double turn = 2 * std::numbers::pi_v<long double>;
-    const auto a = static_cast<double>(sums[0] / w.sum / turn), b = static_cast<double>(sums[1] / w.sum / turn);
-    RotationMeasurement r;
-    r.digits = convergenceDigits(a, b);
-    r.difference = std::fabs(a - b);
-    if (end == PowerOrbitEnd::wrapped) r.verdict = OrbitVerdict::Escaping;
-    else if (!(r.digits >= m.digitsThreshold)) r.verdict = OrbitVerdict::Chaotic;
-    else r.verdict = OrbitVerdict::Regular;
-    if (r.verdict == OrbitVerdict::Regular) r.rotation = (a + b) / 2 * m.centre.sense;
-    return r;
+  /// The rotation about c under Qⁿ (measureRotation), in a thin island's normal-form frame where it has one.
+  [[nodiscard]] RotationMeasurement rotation(RotationRequest m, std::stop_token stop) const {
+    if (island_.frame) {
+      const auto& B = island_.frame->toNormal;
+      m.frame = {static_cast<double>(B.xx), static_cast<double>(B.xy), static_cast<double>(B.yx), static_cast<double>(B.yy)};
+    }
+    return measureRotation(m, stop);
   }
 
   const AtlasRequest& request_;

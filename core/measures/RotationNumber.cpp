@@ -37,15 +37,28 @@ RotationMeasurement measureRotation(const RotationRequest& r, std::stop_token st
   if (!std::isfinite(r.centre.units.x) || !std::isfinite(r.centre.units.y))
     throw std::invalid_argument("the rotation centre must be finite");
   if (auto e = realRangeError("digits threshold", r.digitsThreshold, 0, kMaxDigits)) throw std::invalid_argument(*e);
+  if (r.frame) {
+    const std::array<double, 4>& B = *r.frame;
+    const double det = B[0] * B[3] - B[1] * B[2];
+    if (!std::isfinite(det) || !std::isnormal(det)) throw std::invalid_argument("the frame must be finite and invertible");
+  }
   const BirkhoffWeights w = birkhoffWeights(r.iterations, stop);  // validates the iterations
   if (stop.stop_requested()) return {};
   const MapCoefficients k = computeCoefficients(r.map);
   const SplitCentre c(r.centre.units);
   const std::uint64_t T = r.iterations;
 
+  // The offset z − c (unit coordinates: the integer parts subtracted exactly), in the frame B where one is given.
+  const auto offset = [&c, B = r.frame.value_or(std::array<double, 4>{1, 0, 0, 1}), framed = r.frame.has_value()](
+                          const UnitState& z, double& ox, double& oy) {
+    const double dx = (static_cast<double>(z.X) - c.x) - c.fx, dy = (static_cast<double>(z.Y) - c.y) - c.fy;
+    ox = framed ? B[0] * dx + B[1] * dy : dx;
+    oy = framed ? B[2] * dx + B[3] * dy : dy;
+  };
   UnitState z{r.start.X & FixedPointMap::kMask, r.start.Y & FixedPointMap::kMask};
   bool wrapped = false;
-  double px = (static_cast<double>(z.X) - c.x) - c.fx, py = (static_cast<double>(z.Y) - c.y) - c.fy;
+  double px = 0, py = 0;
+  offset(z, px, py);
   double hi = 0, lo = 0, firstBlock = 0;
   std::uint64_t sinceCheck = 0;
   for (std::uint64_t step = 0; step < 2 * T; ++step) {
@@ -55,7 +68,8 @@ RotationMeasurement measureRotation(const RotationRequest& r, std::stop_token st
       sinceCheck = 0;
       if (stop.stop_requested()) return {};
     }
-    const double dx = (static_cast<double>(z.X) - c.x) - c.fx, dy = (static_cast<double>(z.Y) - c.y) - c.fy;
+    double dx = 0, dy = 0;
+    offset(z, dx, dy);
     twoSumAdd(hi, lo, w.g[step < T ? step : step - T] * clockwiseAngle(px, py, dx, dy));
     px = dx;
     py = dy;

@@ -19,8 +19,10 @@
 /// OrbitMeasures.hpp (tests/core/measures checks it bit for bit).  An orbit whose steps wrap (it left the box,
 /// where Q* ≠ Q) is Escaping; one with fewer digits than the threshold is Chaotic; neither gets a number.
 
+#include <array>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <stop_token>
 
 #include "core/map/FixedPointMap.hpp"
@@ -55,6 +57,10 @@ struct RotationRequest {
   std::uint64_t power = 1;                           ///< n ≥ 1: the rotation of Qⁿ (1 … 10⁵)
   std::uint64_t iterations = kDefaultIterations;     ///< T: points of w per block (kMinIterations … kMaxIterations)
   double digitsThreshold = kDefaultDigitsThreshold;  ///< Regular when digits ≥ this
+  /// The angle of z − c taken in the coordinates B·(z − c), B = {xx, xy, yx, yy} finite and invertible: a thin
+  /// island's normal-form frame (FloquetFrame::toNormal), where each step turns by about ν < ½ and none folds, as
+  /// it may in (x, y) (issue 50).  Empty: B = 1.  The grid is square, so B acts on unit offsets as on physical ones.
+  std::optional<std::array<double, 4>> frame;
 };
 
 /// Measures it on the calling thread (2T·n steps of N, scalar), checking the stop token every 2^16 steps; a

@@ -29,10 +29,15 @@ AtlasRequest depthOne() {
   return r;
 }
 
-/// Computed once per process: the tests that read it run as one ctest, Atlas.K01DepthOne (CMakeLists.txt here lists
-/// them; a test added here that reads it belongs in that list).
+/// Computed once per process, with the cantori between the centre's chains (computed after every island, which they
+/// leave as they are): the tests that read it run as one ctest, Atlas.K01DepthOne (CMakeLists.txt here lists them; a
+/// test added here that reads it belongs in that list).
 const Atlas& atlasK01() {
-  static const Atlas atlas = computeAtlas(depthOne());
+  static const Atlas atlas = [] {
+    AtlasRequest r = depthOne();
+    r.cantori = true;
+    return computeAtlas(r);
+  }();
   return atlas;
 }
 
@@ -461,9 +466,7 @@ TEST(Atlas, HoldsBothSeparatricesOfEveryChainTheOuterEnclosingTheLargerZone) {
 // (docs/markov-tree.md: to 118/729, its terms checked by an independent mpmath computation to 28 digits); the
 // atlas's limit carries a tail bound that must cover it, and its layer lies between the layers of 5/31 and 1/6.
 TEST(Atlas, HoldsTheCantorusBetween5Over31And1Over6WithItsMmpFluxAsABarrier) {
-  AtlasRequest r = depthOne();
-  r.cantori = true;
-  const Atlas a = computeAtlas(r);
+  const Atlas& a = atlasK01();
   const AtlasCantorus* c = nullptr;
   for (const AtlasCantorus& x : a.cantori)
     if (x.outer == Rational{5, 31} && x.inner == Rational{1, 6}) c = &x;
@@ -569,9 +572,10 @@ TEST(Atlas, AStopKeepsTheIslandsFinished) {
       },
       stop.get_token());
   EXPECT_TRUE(a.cancelled);
-  ASSERT_FALSE(a.nodes.empty());
+  ASSERT_GT(a.nodes.size(), 1u);  // the centre and the chains it found about it
+  EXPECT_TRUE(a.nodes[0].measured);
   EXPECT_TRUE(a.nodes[0].boundaryFound);
-  EXPECT_LT(a.nodes.size(), atlasK01().nodes.size() + 1);
+  for (std::size_t i = 1; i < a.nodes.size(); ++i) EXPECT_FALSE(a.nodes[i].measured) << i;  // known, to do on resume
 }
 
 TEST(Atlas, JsonAndCsvCarryTheTreeAndItsParameters) {

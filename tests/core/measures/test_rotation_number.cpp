@@ -182,6 +182,40 @@ TEST(RotationNumber, TheRotationIndicatorIsTheLevelZeroMeasurementBitForBit) {
   }
 }
 
+// A frame B (issue 50: a thin island's normal-form coordinates) changes the angles measured, not the rotation of an
+// orbit whose steps do not fold: the identity and 2·1 (exact) give the same bits as no frame, a shear the same rotation
+// within the two measurements' accuracies, a reflection its negative.  A frame that is not finite or not invertible is
+// refused.
+TEST(RotationNumber, AFrameChangesTheAnglesNotTheRotation) {
+  const MapParameters paper{0.1, -0.8, 0.5};
+  const FixedPointMap map(paper);
+  RotationRequest r;
+  r.map = paper;
+  r.centre = centralFixedPoint(paper);
+  r.start = map.toUnit(-std::sqrt(0.1L) + 0.05L, 0.01L);
+  const RotationMeasurement plain = measureRotation(r);
+  ASSERT_EQ(plain.verdict, OrbitVerdict::Regular);
+  const auto framed = [&](std::array<double, 4> B) {
+    RotationRequest f = r;
+    f.frame = B;
+    return measureRotation(f);
+  };
+  for (const std::array<double, 4> B : {std::array<double, 4>{1, 0, 0, 1}, std::array<double, 4>{2, 0, 0, 2}}) {
+    const RotationMeasurement m = framed(B);
+    EXPECT_EQ(m.rotation, plain.rotation);
+    EXPECT_EQ(m.digits, plain.digits);
+  }
+  const RotationMeasurement sheared = framed({3, 1, 0, 0.5});
+  ASSERT_EQ(sheared.verdict, OrbitVerdict::Regular);
+  EXPECT_NEAR(sheared.rotation, plain.rotation, 2 * (sheared.difference + plain.difference));
+  EXPECT_NEAR(framed({1, 0, 0, -1}).rotation, -plain.rotation, 2 * plain.difference);
+  const double nan = std::nan(""), inf = HUGE_VAL;
+  for (const std::array<double, 4> B : {std::array<double, 4>{nan, 0, 0, 1}, std::array<double, 4>{inf, 0, 0, 1},
+                                        std::array<double, 4>{1, 2, 2, 4}, std::array<double, 4>{0, 0, 0, 0},
+                                        std::array<double, 4>{1e300, 0, 0, 1e300}})
+    EXPECT_THROW((void)framed(B), std::invalid_argument) << B[0] << " " << B[1] << " " << B[2] << " " << B[3];
+}
+
 TEST(RotationNumber, RejectsInvalidRequests) {
   RotationRequest r;
   r.power = 0;
