@@ -1007,8 +1007,9 @@ class AtlasBuilder {
     return zoomRays;
   }
 
-  /// Step 3: the bracket's widest ratio over the rays (the kept circle's crossing, or on another member's ray its own
-  /// outermost circle, which lies inside the boundary's image there; and the nearest escaping point beyond); for a
+  /// Step 3: the bracket's widest ratio over the rays (the kept circle's crossing; on another member's ray the crossing
+  /// of the kept circle's image there, keptImageAbout, or that ray's own outermost circle where it lies further out;
+  /// and the nearest escaping point beyond); for a
   /// thin island over rays equally spaced in its normal-form frame instead (widestFrameBracket).
   long double widestBracket(const std::vector<Ray>& rays, const std::vector<Ray>& zoomRays, const AtlasNode& node,
                             const std::vector<PhysicalPoint>& kept) {
@@ -1024,13 +1025,40 @@ class AtlasBuilder {
         done.push_back(key);
         const Classifier c(r_, ray.island);
         long double x = *ray.circleX;
-        if (distance(ray.island.centre, node.centre) == 0)
-          if (const auto cross = crossingX(kept, K_, ray.island.line, node.centre, ray.direction)) x = *cross;
+        const bool home = distance(ray.island.centre, node.centre) == 0;
+        if (const auto image = keptImageAbout(kept, node, ray.island))
+          if (const auto cross = crossingX(*image, K_, ray.island.line, ray.island.centre, ray.direction))
+            if (home || distance(c.at(*cross), ray.island.centre) > distance(c.at(x), ray.island.centre)) x = *cross;
         const long double circle = distance(c.at(x), ray.island.centre);
         const long double escape = escapeRadius(c, ray.island, lineEscapeRay(c, ray.island, ray.direction, x), stop_, r_.threads);
         widest = std::max(widest, escape / circle);
       }
     return widest;
+  }
+
+  /// The kept circle about the node's member c, carried to the member `island` of its orbit: Q^j of each of its
+  /// points (the smooth map in long double), j the first power that carries c there; nothing when none below the
+  /// period does.  Another member's own outermost circle on the lines can lie deep inside the boundary's image there
+  /// (issue 50: at K = 0.1 the 6 > 204 island's interval was [1.2·10⁻⁶, 8.7·10⁻³], one such ray's escaping point 85 ×
+  /// that circle's radius); the image is the boundary itself, crossing the line where the island's circle does.
+  std::optional<std::vector<PhysicalPoint>> keptImageAbout(const std::vector<PhysicalPoint>& kept, const AtlasNode& node,
+                                                           const Island& island) const {
+    const long double tolerance = 1e-6L * island.reach;
+    const auto at = [&](smooth::Point<long double> z) {
+      return std::hypot(z.x - island.centre.x, z.y - island.centre.y) < tolerance;
+    };
+    smooth::Point<long double> c{node.centre.x, node.centre.y};
+    std::uint64_t power = 0;
+    while (!at(c) && ++power < node.period) c = smooth::step(K_, c);
+    if (power == node.period) return std::nullopt;
+    std::vector<PhysicalPoint> image;
+    image.reserve(kept.size());
+    for (const PhysicalPoint& p : kept) {
+      smooth::Point<long double> z{p.x, p.y};
+      for (std::uint64_t j = 0; j < power; ++j) z = smooth::step(K_, z);
+      image.push_back({z.x, z.y});
+    }
+    return image;
   }
 
   /// Step 3 for a thin island (issue 50; thin about one of its scanned members at least, thinIslandFrame): kFrameRays
