@@ -53,6 +53,15 @@ PhysicalPoint unitsOf(const MapParameters& box, PhysicalPoint p) {
   return {(p.x - box.xmin) / L * one, (p.y + L / 2) / L * one};
 }
 
+/// A request about the central fixed point of `box` (clockwise), from the physical point (x, y).
+RotationRequest aboutTheCentre(const MapParameters& box, long double x, long double y) {
+  RotationRequest r;
+  r.map = box;
+  r.centre = centralFixedPoint(box);
+  r.start = FixedPointMap(box).toUnit(x, y);
+  return r;
+}
+
 TEST(RotationNumber, TendsToAlphaOverTwoPiNearTheEllipticFixedPoint) {
   for (double K : {0.01, 0.1, 0.5, 0.9}) {
     SCOPED_TRACE(K);
@@ -63,11 +72,7 @@ TEST(RotationNumber, TendsToAlphaOverTwoPiNearTheEllipticFixedPoint) {
   }
   // The paper's value at K = 0.1: α/2π = 0.1900993 (to the 7 digits quoted).
   const MapParameters paper{0.1, -0.8, 0.5};
-  const FixedPointMap map(paper);
-  RotationRequest r;
-  r.map = paper;
-  r.centre = centralFixedPoint(paper);
-  r.start = map.toUnit(-std::sqrt(0.1L) + 1e-4L, 0);
+  const RotationRequest r = aboutTheCentre(paper, -std::sqrt(0.1L) + 1e-4L, 0);
   EXPECT_NEAR(measureRotation(r).rotation, 0.1900993, 5e-8);
 }
 
@@ -137,10 +142,7 @@ TEST(RotationNumber, SensesOfTheLevelsOfThe138Chain) {
 TEST(RotationNumber, ChaoticAndEscapingOrbitsGetNoNumber) {
   const MapParameters box{0.1, -0.8, 0.5};
   const FixedPointMap map(box);
-  RotationRequest r;
-  r.map = box;
-  r.centre = centralFixedPoint(box);
-  r.start = map.toUnit(0.3L, 0.3L);  // the chaotic sea, soon out of the box
+  RotationRequest r = aboutTheCentre(box, 0.3L, 0.3L);  // the chaotic sea, soon out of the box
   const RotationMeasurement escaping = measureRotation(r);
   EXPECT_EQ(escaping.verdict, OrbitVerdict::Escaping);
   EXPECT_TRUE(std::isnan(escaping.rotation));
@@ -187,12 +189,7 @@ TEST(RotationNumber, TheRotationIndicatorIsTheLevelZeroMeasurementBitForBit) {
 // within the two measurements' accuracies, a reflection its negative.  A frame that is not finite or not invertible is
 // refused.
 TEST(RotationNumber, AFrameChangesTheAnglesNotTheRotation) {
-  const MapParameters paper{0.1, -0.8, 0.5};
-  const FixedPointMap map(paper);
-  RotationRequest r;
-  r.map = paper;
-  r.centre = centralFixedPoint(paper);
-  r.start = map.toUnit(-std::sqrt(0.1L) + 0.05L, 0.01L);
+  const RotationRequest r = aboutTheCentre({0.1, -0.8, 0.5}, -std::sqrt(0.1L) + 0.05L, 0.01L);
   const RotationMeasurement plain = measureRotation(r);
   ASSERT_EQ(plain.verdict, OrbitVerdict::Regular);
   const auto framed = [&](std::array<double, 4> B) {
