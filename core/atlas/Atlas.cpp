@@ -1025,10 +1025,12 @@ class AtlasBuilder {
         done.push_back(key);
         const Classifier c(r_, ray.island);
         long double x = *ray.circleX;
-        const bool home = distance(ray.island.centre, node.centre) == 0;
-        if (const auto image = keptImageAbout(kept, node, ray.island))
+        if (distance(ray.island.centre, node.centre) == 0) {
+          if (const auto cross = crossingX(kept, K_, ray.island.line, node.centre, ray.direction)) x = *cross;
+        } else if (const auto image = keptImageAbout(kept, node, ray.island)) {
           if (const auto cross = crossingX(*image, K_, ray.island.line, ray.island.centre, ray.direction))
-            if (home || distance(c.at(*cross), ray.island.centre) > distance(c.at(x), ray.island.centre)) x = *cross;
+            if (distance(c.at(*cross), ray.island.centre) > distance(c.at(x), ray.island.centre)) x = *cross;
+        }
         const long double circle = distance(c.at(x), ray.island.centre);
         const long double escape = escapeRadius(c, ray.island, lineEscapeRay(c, ray.island, ray.direction, x), stop_, r_.threads);
         widest = std::max(widest, escape / circle);
@@ -1036,7 +1038,7 @@ class AtlasBuilder {
     return widest;
   }
 
-  /// The kept circle about the node's member c, carried to the member `island` of its orbit: Q^j of each of its
+  /// The kept circle about the node's member c, carried to another member `island` of its orbit: Q^j of each of its
   /// points (the smooth map in long double), j the first power that carries c there; nothing when none below the
   /// period does.  Another member's own outermost circle on the lines can lie deep inside the boundary's image there
   /// (issue 50: at K = 0.1, depth 1, the six's upper end was 8.53·10⁻³ against its rays' own circles and is 7.88·10⁻³
