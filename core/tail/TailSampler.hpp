@@ -245,10 +245,19 @@ struct TailRunOptions {
   const KernelInfo* kernel = nullptr;  ///< nullptr: bestKernel(); every path gives the same result
   /// When set: return once the walkers head for this level (or beyond); a test's way to stop at a known point.
   std::size_t untilLevel = SIZE_MAX;
+  /// A first level out of the map's reach (tailFirstLevelRefusal()): false: TailSettingOutOfReach is thrown; true:
+  /// the state is returned as the pilot left it (a scan keeps it in the K's file and goes on to the next K).
+  bool returnRefused = false;
 };
 
+/// Why the first level of `state` is out of this map's reach, once its pilot has shown it ("stage 0" above: fewer
+/// than kPilotSuccesses/8 successes in kPilotTrials segments, P(t_0) ≲ 2·10⁻⁷, or kMaxPilotOrbits entry orbits
+/// without kPilotSuccesses), naming the pilot's counts; nothing otherwise (not yet known, or within reach).
+[[nodiscard]] std::optional<std::string> tailFirstLevelRefusal(const TailState& state);
+
 /// Advances `state` until finished or `stop` is requested (checked between chunks; a stopped state is at a
-/// consistent point and resumes bit for bit).  The observer is called on this thread between chunks.
+/// consistent point and resumes bit for bit).  The observer is called on this thread between chunks.  A first level
+/// out of reach throws TailSettingOutOfReach (role "first"), or returns the state (options.returnRefused).
 [[nodiscard]] TailState runTail(TailState state, const TailRunOptions& options, const TailObserver& observer = {},
                                 std::stop_token stop = {});
 
