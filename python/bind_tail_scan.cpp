@@ -77,6 +77,14 @@ py::dict summaryDict(const TailScanSummary& s) {
   d["gamma_spread"] = toArray(spread);
   d["gamma_mean_error"] = toArray(error);
   d["K_count"] = toArray(count);
+  std::vector<double> outK;
+  py::list reasons;
+  for (const TailScanRefusal& k : s.outOfReach) {
+    outK.push_back(k.K);
+    reasons.append(k.reason);
+  }
+  d["out_of_reach_K"] = toArray(outK);
+  d["out_of_reach_reason"] = reasons;
   return d;
 }
 
@@ -164,5 +172,6 @@ void bindTailScan(py::module_& m) {
       "`directory` (tail-K0.1.json, ...), each in the box of scan_box(K), started, resumed or reused; then the summary\n"
       "from the files.  Returns a dict: K; t (the levels, steps); P, P_error, reliable (K x levels); the windows\n"
       "t_from, t_to, t_window; gamma, gamma_error (K x windows, NaN where a K does not reach the window); gamma_mean,\n"
-      "gamma_spread, gamma_mean_error, K_count per window.  With task='I/N' and other K unfinished: K and waiting_for.");
+      "gamma_spread, gamma_mean_error, K_count per window; out_of_reach_K and out_of_reach_reason: the K whose first\n"
+      "level is out of reach (the pilot's reason; not in K).  With task='I/N' and other K unfinished: K and waiting_for.");
 }

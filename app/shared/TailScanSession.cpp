@@ -73,6 +73,10 @@ TailScanView tailScanView(bool quiet) {
                  scanKText(K).c_str(), largestReliableT(tailResult(s)), static_cast<double>(s.steps),
                  s.elapsedSeconds);
   };
+  view.outOfReach = [tty](std::size_t, double K, const std::string& reason) {
+    std::fprintf(stderr, "%sK = %s: out of reach, %s; the scan goes on without it\n", tty ? "\r" : "",
+                 scanKText(K).c_str(), reason.c_str());
+  };
   return view;
 }
 

@@ -126,7 +126,7 @@ std::vector<ScanItem> planItems(const TailScanRequest& r, const ScanSettings& s)
   for (const std::size_t i : s.mine) {
     ScanItem item{i, tailScanFile(r.dir, s.K[i]), {}, {}};
     if (std::optional<TailState> state = readScanFile(r, item.file, s.K[i], s.requests[i])) {
-      item.how = state->finished() ? "reused" : "resumed";
+      item.how = state->finished() ? "reused" : tailFirstLevelRefusal(*state) ? "out of reach" : "resumed";
       item.state = std::move(*state);
     } else {
       item.how = "started";
@@ -137,7 +137,10 @@ std::vector<ScanItem> planItems(const TailScanRequest& r, const ScanSettings& s)
   return items;
 }
 
-/// Runs one K to its end or the stop; the file holds it either way.  Whether it finished.
+/// Whether a K's run is done: finished, or its first level out of reach.
+bool done(const TailState& state) { return state.finished() || tailFirstLevelRefusal(state).has_value(); }
+
+/// Runs one K to its end (finished or out of reach) or the stop; the file holds it either way.  Whether it is done.
 bool runItem(ScanItem& item, const TailScanRequest& r, const ScanSettings& s, const TailScanView& view,
              std::stop_token stop) {
   const double K = s.K[item.index];
@@ -145,9 +148,10 @@ bool runItem(ScanItem& item, const TailScanRequest& r, const ScanSettings& s, co
   if (item.how == "started" && r.warning)
     if (const BoxIslandCheck c = checkBoxAgainstIsland(item.state.request.run.map, item.state.request.run.Xr); c.cuts())
       r.warning("K = " + scanKText(K) + ": " + c.warning);
-  if (!item.state.finished()) {
+  if (!done(item.state)) {
     TailJobOptions job;
     job.run.threads = r.base.threads;
+    job.run.returnRefused = true;
     job.run.kernel = s.kernel;
     job.checkpoint = item.file;
     job.checkpointSeconds = r.checkpointSeconds;
@@ -165,15 +169,17 @@ bool runItem(ScanItem& item, const TailScanRequest& r, const ScanSettings& s, co
     saveTailOrSayWhere(item.file, item.state, last, ": run the same scan again to resume it");
   }
   if (item.state.finished() && view.finished) view.finished(item.index, K, item.state);
-  return item.state.finished();
+  if (const std::optional<std::string> why = tailFirstLevelRefusal(item.state); why && view.outOfReach)
+    view.outOfReach(item.index, K, *why);
+  return done(item.state);
 }
 
-/// Every K's finished run from the folder, or the K not finished yet.
+/// Every K's done run from the folder (finished, or out of reach), or the K not done yet.
 std::vector<double> unfinished(const TailScanRequest& r, const ScanSettings& s, std::vector<TailState>& states) {
   std::vector<double> waiting;
   for (std::size_t i = 0; i < s.K.size(); ++i) {
     std::optional<TailState> state = readScanFile(r, tailScanFile(r.dir, s.K[i]), s.K[i], s.requests[i]);
-    if (!state || !state->finished()) waiting.push_back(s.K[i]);
+    if (!state || !done(*state)) waiting.push_back(s.K[i]);
     else states.push_back(std::move(*state));
   }
   return waiting;
@@ -189,6 +195,9 @@ TailScanOutcome summaryOutcome(const TailScanRequest& r, const ScanSettings& s) 
     out.end = TailScanOutcome::End::waiting;
     return out;
   }
+  if (std::all_of(states.begin(), states.end(), [](const TailState& x) { return !x.finished(); }))
+    throw std::invalid_argument("no K of the scan reached its first level; K = " + scanKText(s.K.front()) + ": " +
+                                *tailFirstLevelRefusal(states.front()) + " (" + r.nameOf("first") + ")");
   out.summary = tailScanSummary(s.K, std::move(states));
   if (!r.csv.empty()) {
     const std::vector<std::string> files = tailScanCsvFiles(r.csv);
@@ -307,7 +316,7 @@ TailScanFolder loadTailScan(const std::filesystem::path& dir) {
   for (const std::filesystem::path& file : tailFilesIn(dir)) {
     TailState state = folderRun(file, first);
     if (!first) first = FolderSettings{file, state.request};
-    if (state.finished()) finished.push_back(std::move(state));
+    if (done(state)) finished.push_back(std::move(state));
     else out.unfinished.push_back(state.request.run.map.K);
   }
   if (finished.empty())
@@ -319,7 +328,11 @@ TailScanFolder loadTailScan(const std::filesystem::path& dir) {
   std::sort(out.unfinished.begin(), out.unfinished.end());
   std::vector<double> K;
   for (const TailState& s : finished) K.push_back(s.request.run.map.K);
-  out.summary = tailScanSummary(K, std::move(finished));
+  try {
+    out.summary = tailScanSummary(K, std::move(finished));
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error(dir.string() + ": " + e.what());
+  }
   return out;
 }
 
@@ -365,18 +378,28 @@ std::vector<LogWindow> tailScanWindows(double lowest, double largest) {
   return windows;
 }
 
-TailScanSummary tailScanSummary(const std::vector<double>& K, std::vector<TailState> states) {
-  if (states.empty() || states.size() != K.size()) throw std::invalid_argument("a tail scan's summary needs a run per K");
-  for (const TailState& s : states) {
-    if (!s.finished()) throw std::invalid_argument("a tail scan's summary needs finished runs");
-    if (s.levels != states.front().levels || s.request.run.q != states.front().request.run.q)
-      throw std::invalid_argument("the runs of a tail scan's summary must have the same levels");
-  }
+TailScanSummary tailScanSummary(const std::vector<double>& allK, std::vector<TailState> all) {
+  if (all.empty() || all.size() != allK.size()) throw std::invalid_argument("a tail scan's summary needs a run per K");
   TailScanSummary out;
-  out.K = K;
-  const double q = states.front().request.run.q;
-  const double lowest = std::max({static_cast<double>(states.front().levels.front()) * q, 10.0, 2 * q});
-  out.windows = tailScanWindows(lowest, static_cast<double>(states.front().levels.back()) * q);
+  std::vector<TailState> states;
+  const std::vector<std::uint64_t> levels = all.front().levels;
+  const std::uint32_t q = all.front().request.run.q;
+  for (std::size_t k = 0; k < all.size(); ++k) {
+    if (all[k].levels != levels || all[k].request.run.q != q)
+      throw std::invalid_argument("the runs of a tail scan's summary must have the same levels");
+    if (const std::optional<std::string> why = tailFirstLevelRefusal(all[k])) {
+      out.outOfReach.push_back({allK[k], *why});
+      continue;
+    }
+    if (!all[k].finished()) throw std::invalid_argument("a tail scan's summary needs finished runs");
+    out.K.push_back(allK[k]);
+    states.push_back(std::move(all[k]));
+  }
+  if (states.empty())
+    throw std::invalid_argument("no K of the scan reached its first level: K = " + scanKText(out.outOfReach.front().K) +
+                                ": " + out.outOfReach.front().reason);
+  const double lowest = std::max({static_cast<double>(levels.front()) * q, 10.0, 2.0 * q});
+  out.windows = tailScanWindows(lowest, static_cast<double>(levels.back()) * q);
   for (const TailState& s : states) {
     out.results.push_back(tailResult(s));
     std::vector<TailExponent>& of = out.gamma.emplace_back();
@@ -396,6 +419,8 @@ std::string tailScanText(const TailScanSummary& s) {
   std::string out = io::formatC("# tail-scan: %zu K; q = %u, seed = %llu, N = %u, R = %u, clones = %s, t_max = %s\n",
                                 s.K.size(), r.run.q, static_cast<unsigned long long>(r.run.seed), r.population,
                                 r.replicas, cloneRuleName(r.clones), io::shortestText(r.maxSteps).c_str());
+  if (!s.outOfReach.empty())
+    out += io::formatC("# and %zu K whose first level is out of reach (listed at the end)\n", s.outOfReach.size());
   out += "# P_t per K and level\n" + io::formatC("%8s %12s %12s %10s %9s\n", "K", "t", "P", "P_error", "reliable");
   for (std::size_t k = 0; k < s.K.size(); ++k)
     for (const TailLevelResult& L : s.results[k].levels)
@@ -414,6 +439,8 @@ std::string tailScanText(const TailScanSummary& s) {
          io::formatC("%12s %12s %4s %8s %8s %8s\n", "t_from", "t_to", "K", "gamma", "spread", "error");
   for (const TailScanWindow& a : s.average)
     out += io::formatC("%12.0f %12.0f %4zu %8.4f %8.3g %8.3g\n", a.from, a.to, a.count, a.mean, a.spread, a.error);
+  if (!s.outOfReach.empty()) out += "# K whose first level is out of reach (no P_t, no gamma; not in the averages)\n";
+  for (const TailScanRefusal& k : s.outOfReach) out += "#   K = " + scanKText(k.K) + ": " + k.reason + "\n";
   return out;
 }
 

@@ -84,13 +84,21 @@ struct TailScanWindow {
   double error = std::numeric_limits<double>::quiet_NaN();
 };
 
+/// A K of the scan whose first level is out of the map's reach (no P_t there beyond the fast decay: at K = 0.55 …
+/// 0.65, 1.2 and 1.3 no segment of 8·10⁹ steps lasted 10³, docs/tail.md).
+struct TailScanRefusal {
+  double K = 0;
+  std::string reason;  ///< tailFirstLevelRefusal()'s
+};
+
 struct TailScanSummary {
-  std::vector<double> K;
+  std::vector<double> K;                        ///< the K whose run is finished (the rest below are of these)
   std::vector<TailState> states;                ///< per K: its finished run (the process, the settings)
   std::vector<TailResult> results;              ///< per K: tailResult()
   std::vector<LogWindow> windows;               ///< common to every K
   std::vector<std::vector<TailExponent>> gamma; ///< [K][window]; gamma NaN where the K does not reach the window
   std::vector<TailScanWindow> average;          ///< per window
+  std::vector<TailScanRefusal> outOfReach;      ///< the K whose first level is out of reach, in the list's order
 };
 
 /// The windows [10^(j/2), 10^(j/2+1)] from the first at or above `lowest` to the last ending at or below `largest`.
@@ -104,8 +112,9 @@ struct TailScanSummary {
 /// The K-average of window w over the K whose γ there (`ofK`, one per K) is finite (the file comment).
 [[nodiscard]] TailScanWindow tailScanAverage(const std::vector<TailExponent>& ofK, const LogWindow& w);
 
-/// The summary of finished runs, one per K (the file comment).  A pure function.  Throws std::invalid_argument when
-/// the runs are not of one scan's settings (their levels differ) or one is unfinished.
+/// The summary of the runs, one per K (the file comment): each finished, or refused (its first level out of reach:
+/// tailFirstLevelRefusal(), listed in outOfReach).  A pure function.  Throws std::invalid_argument when the runs are
+/// not of one scan's settings (their levels differ), one is neither finished nor refused, or none is finished.
 [[nodiscard]] TailScanSummary tailScanSummary(const std::vector<double>& K, std::vector<TailState> states);
 
 /// The summary as the command prints it: the settings, P per K and level, γ per K and window, the K-average.
@@ -134,14 +143,14 @@ inline constexpr double kTailGammaTop = 3;
 
 /// A scan's folder as loadTailScan() read it.
 struct TailScanFolder {
-  TailScanSummary summary;          ///< of the finished K, by increasing K
+  TailScanSummary summary;          ///< of the finished K (and those out of reach), by increasing K
   std::vector<double> unfinished;   ///< the K whose file is not finished yet (a scan still running): not summarized
 };
 /// The summary of the finished tail files of a folder written by tail-scan (its files tail-K<K>.json; other files
 /// are ignored), for a front end that shows a scan.  Each file is read whole and checked: a run of K in the scan's
 /// box of K (scanBox) under the name of its K, every replica, the sampler's settings of the folder's other files.
 /// Throws std::runtime_error with one line naming the folder or the file: not a folder, no tail file in it, none
-/// finished yet, a file unreadable, truncated or edited (loadTailFile's reason), a file of another box, K or
+/// finished yet (or every one out of reach), a file unreadable, truncated or edited (loadTailFile's reason), a file of another box, K or
 /// settings.
 [[nodiscard]] TailScanFolder loadTailScan(const std::filesystem::path& dir);
 
@@ -151,6 +160,8 @@ struct TailScanView {
   std::function<void(std::size_t index, std::size_t count, double K, const std::string& how)> begins;
   std::function<void(std::size_t index, double K, const TailState&, const TailProgress&)> progress;
   std::function<void(std::size_t index, double K, const TailState&)> finished;  ///< just now, or reused
+  /// The K's first level is out of reach (just now, or a file that says so): the scan goes on to the next K.
+  std::function<void(std::size_t index, double K, const std::string& reason)> outOfReach;
   std::function<void(const std::string& reason, double retrySeconds)> checkpointWarning;
 };
 

@@ -209,13 +209,20 @@ with tempfile.TemporaryDirectory() as d:
               and files(folder) == listed, f"{' '.join(args)[:40] or folder} -> {lines[:1]}")
 
     # A first level out of the map's reach, found only by stage 0's pilot while running (K = 0.3: P(1008) ~ 10^-7):
-    # one ERROR line naming the K and the option by this front end's name, and the K's file not written; `tail`
-    # itself names the option the same way.
-    r = run("tail-scan", *small_with(["--K", "0.3", "--first", "1000"]), "--dir", h)
+    # the K's file keeps the pilot's counts and the scan goes on without it, saying so; the summary lists it apart.
+    # A scan whose every K is out of reach is one ERROR line naming the option by this front end's name.
+    r = run("tail-scan", *small_with(["--K", "0.1,0.3", "--first", "1000"]), "--dir", h)
+    lines = r.stderr.strip().splitlines()
+    check(r.returncode == 0 and any(x.startswith("K = 0.3: out of reach, only ") for x in lines)
+          and "#   K = 0.3: only " in r.stdout and files(h) == ["tail-K0.1.json", "tail-K0.3.json"],
+          f"K = 0.1, 0.3 at first level 1008 -> {lines[-2:]}")
+    h2 = os.path.join(d, "h2")
+    r = run("tail-scan", *small_with(["--K", "0.3", "--first", "1000"]), "--dir", h2)
     lines = r.stderr.strip().splitlines()
     check(r.returncode == 1 and sum(x.startswith("ERROR") for x in lines) == 1
-          and lines[-1].startswith("ERROR: K = 0.3: ") and lines[-1].endswith("give a lower first level (--first)")
-          and files(h) == [], f"K = 0.3 at first level 1008 -> {lines[-1:]}")
+          and lines[-1].startswith("ERROR: no K of the scan reached its first level; K = 0.3: only ")
+          and lines[-1].endswith("give a lower first level (--first)") and files(h2) == ["tail-K0.3.json"],
+          f"K = 0.3 alone at first level 1008 -> {lines[-1:]}")
     out = os.path.join(d, "k03.json")
     r = run("tail", "--K", "0.3", "--xmin", "-1.3", "--xmax", "0.75", "--t-max", "1e4", "--threads", "2",
             "--out", out)

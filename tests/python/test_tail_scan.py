@@ -31,6 +31,17 @@ def test_tail_scan_is_the_cli_bit_for_bit(tmp_path, cli):
     assert all(np.array_equal(again[k], r[k], equal_nan=True) for k in ("P", "gamma", "gamma_error", "gamma_spread"))
 
 
+def test_a_k_out_of_reach_is_listed_apart(tmp_path):
+    # K = 1.3: no segment lasts 10^3 steps (docs/tail.md): its first level is out of reach, and the scan goes on.
+    r = ap.tail_scan(K=[0.1, 1.3], directory=tmp_path, t_max=1e4, population=40, replicas=4, min_ancestors=4,
+                     threads=2)
+    assert list(r["K"]) == [0.1] and r["P"].shape[0] == 1
+    assert list(r["out_of_reach_K"]) == [1.3]
+    assert r["out_of_reach_reason"][0].endswith("give a lower first level")
+    with pytest.raises(ValueError, match="no K of the scan reached its first level; K = 1.3: only .* [(]first[)]"):
+        ap.tail_scan(K=[1.3], directory=tmp_path / "alone", t_max=1e4, population=40, replicas=4, threads=2)
+
+
 def test_tail_scan_tasks_wait_for_each_other(tmp_path):
     r = ap.tail_scan(K=[0.1, 0.15], directory=tmp_path, task="1/2", **SMALL)
     assert list(r["waiting_for"]) == [0.1] and "gamma" not in r

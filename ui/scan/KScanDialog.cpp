@@ -393,6 +393,11 @@ void KScanDialog::showTailScan(const QString& dir, const TailScanFolder& folder)
     for (const double k : folder.unfinished) K << QString::fromStdString(scanKText(k));
     text += tr(" Not finished yet, not shown: K = %1.").arg(K.join(QStringLiteral(", ")));
   }
+  if (!s.outOfReach.empty()) {
+    QStringList K;
+    for (const TailScanRefusal& k : s.outOfReach) K << QString::fromStdString(scanKText(k.K));
+    text += tr(" First level out of reach (no tail there), not shown: K = %1.").arg(K.join(QStringLiteral(", ")));
+  }
   showMessage(text, false);
 }
 

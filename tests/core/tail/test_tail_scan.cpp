@@ -157,6 +157,17 @@ TEST(TailScan, ASummaryRefusesUnfinishedRunsAndRunsOfOtherLevels) {
   TailState other = secondK();
   other.levels = {10, 100, 2000};
   EXPECT_THROW((void)tailScanSummary({0.1, 0.15}, {firstK(), other}), std::invalid_argument);
+  // A K whose pilot found its first level out of reach is listed apart, and left out of every average.
+  TailState refused = secondK();
+  refused.next = 0;
+  refused.pilotTrials = kPilotTrials;
+  refused.pilotOrbits = 64;
+  const TailScanSummary s = tailScanSummary({0.1, 0.15}, {firstK(), refused});
+  EXPECT_EQ(s.K, (std::vector<double>{0.1}));
+  ASSERT_EQ(s.outOfReach.size(), 1u);
+  EXPECT_EQ(s.outOfReach[0].K, 0.15);
+  EXPECT_EQ(tailScanAverageCsv(s), tailScanAverageCsv(tailScanSummary({0.1}, {firstK()})));
+  EXPECT_THROW((void)tailScanSummary({0.15}, {refused}), std::invalid_argument);
 }
 
 TEST(TailScan, TheGammaHeatMapHoldsEachKsGammaPerWindowAndNaNWhereNotReached) {
@@ -276,6 +287,100 @@ TEST(TailScan, AFolderIsReadBackAsTheScanSummarizedItAndRefusedWhenNotOneScans) 
   (void)tinyScan(root / "other", 60);
   fs::copy_file(tailScanFile(root / "scan", 0.1), tailScanFile(root / "other", 0.1), fs::copy_options::overwrite_existing);
   expectError(root / "other", "tail-K0.15.json holds a tail run of other settings than tail-K0.1.json (population differs)");
+  fs::remove_all(root);
+}
+
+// The pilot's rule as a state (tailFirstLevelRefusal): out of reach once kPilotTrials segments gave fewer than
+// kPilotSuccesses/8 successes, or kMaxPilotOrbits orbits fewer than kPilotSuccesses; not before, and never once the
+// entry orbits are set.
+TEST(TailScan, TheFirstLevelIsOutOfReachExactlyByThePilotsRule) {
+  TailState s = startTail(TailRequest{});
+  EXPECT_FALSE(tailFirstLevelRefusal(s));
+  s.pilotTrials = kPilotTrials;
+  s.pilotSuccesses = kPilotSuccesses / 8 - 1;
+  s.pilotOrbits = 64;
+  ASSERT_TRUE(tailFirstLevelRefusal(s));
+  EXPECT_NE(tailFirstLevelRefusal(s)->find("segments lasted longer than the first level t = 1008"), std::string::npos)
+      << *tailFirstLevelRefusal(s);
+  s.pilotSuccesses = kPilotSuccesses / 8;
+  EXPECT_FALSE(tailFirstLevelRefusal(s));
+  s.pilotTrials = kPilotTrials - 1;
+  s.pilotSuccesses = 0;
+  EXPECT_FALSE(tailFirstLevelRefusal(s));
+  s.pilotOrbits = kMaxPilotOrbits;
+  s.pilotSuccesses = kPilotSuccesses - 1;
+  EXPECT_TRUE(tailFirstLevelRefusal(s));
+  s.pilotSuccesses = kPilotSuccesses;
+  s.entryOrbits = 100;
+  EXPECT_FALSE(tailFirstLevelRefusal(s));
+}
+
+// A scan over K whose first level is out of reach at one K (K = 1.3: no segment of brute force lasts 10³ steps
+// there) keeps that K's file with the pilot's counts, says so, and goes on: the summary is the other K's, with the
+// refused K listed.  A rerun reuses the file (the pilot is not run again: the file's bytes stay); the folder reads
+// back the same; a folder of refused K alone is refused, naming the pilot's reason.
+TEST(TailScan, AKWhoseFirstLevelIsOutOfReachIsListedAndTheScanGoesOn) {
+  namespace fs = std::filesystem;
+  const fs::path root = fs::temp_directory_path() / "archipelago_test_tail_scan_out_of_reach";
+  fs::remove_all(root);
+  fs::create_directories(root);
+  TailScanRequest r;
+  r.K = "0.1,1.3";
+  r.base.threads = 2;
+  r.request.population = 50;
+  r.request.replicas = 4;
+  r.request.minAncestors = 4;
+  r.request.maxSteps = 10000;
+  r.dir = (root / "scan").string();
+  std::vector<std::string> hows;
+  std::vector<double> refused;
+  TailScanView view;
+  view.begins = [&](std::size_t, std::size_t, double, const std::string& how) { hows.push_back(how); };
+  view.outOfReach = [&](std::size_t, double K, const std::string& reason) {
+    refused.push_back(K);
+    EXPECT_NE(reason.find("give a lower first level"), std::string::npos) << reason;
+  };
+  OneProcess one;
+  const TailScanOutcome first = runTailScan(r, view, one);
+  ASSERT_EQ(first.end, TailScanOutcome::End::finished);
+  EXPECT_EQ(hows, (std::vector<std::string>{"started", "started"}));
+  EXPECT_EQ(refused, (std::vector<double>{1.3}));
+  EXPECT_EQ(first.summary.K, (std::vector<double>{0.1}));
+  ASSERT_EQ(first.summary.outOfReach.size(), 1u);
+  EXPECT_EQ(first.summary.outOfReach[0].K, 1.3);
+  const std::string text = tailScanText(first.summary);
+  EXPECT_NE(text.find("#   K = 1.3: only "), std::string::npos) << text;
+  const TailState kept = loadTailFile(tailScanFile(r.dir, 1.3));
+  EXPECT_FALSE(kept.finished());
+  EXPECT_TRUE(tailFirstLevelRefusal(kept));
+  EXPECT_GE(kept.pilotTrials, kPilotTrials);
+
+  std::ostringstream before;
+  before << std::ifstream(tailScanFile(r.dir, 1.3)).rdbuf();
+  hows.clear();
+  refused.clear();
+  const TailScanOutcome again = runTailScan(r, view, one);
+  ASSERT_EQ(again.end, TailScanOutcome::End::finished);
+  EXPECT_EQ(hows, (std::vector<std::string>{"reused", "out of reach"}));
+  EXPECT_EQ(refused, (std::vector<double>{1.3}));
+  std::ostringstream after;
+  after << std::ifstream(tailScanFile(r.dir, 1.3)).rdbuf();
+  EXPECT_EQ(after.str(), before.str());
+  EXPECT_EQ(tailScanText(again.summary), text);
+
+  const TailScanFolder read = loadTailScan(r.dir);
+  EXPECT_TRUE(read.unfinished.empty());
+  EXPECT_EQ(read.summary.K, (std::vector<double>{0.1}));
+  ASSERT_EQ(read.summary.outOfReach.size(), 1u);
+  EXPECT_EQ(read.summary.outOfReach[0].reason, first.summary.outOfReach[0].reason);
+
+  fs::create_directories(root / "refused");
+  fs::copy_file(tailScanFile(r.dir, 1.3), tailScanFile(root / "refused", 1.3));
+  EXPECT_NE(loadError(root / "refused").find("no K of the scan reached its first level: K = 1.3: only "),
+            std::string::npos)
+      << loadError(root / "refused");
+  // The tail command's way: the same run without returnRefused is an error naming the first level.
+  EXPECT_THROW((void)runTail(kept, {}), TailSettingOutOfReach);
   fs::remove_all(root);
 }
 
