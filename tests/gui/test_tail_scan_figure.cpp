@@ -23,6 +23,8 @@
 
 #include "GuiTestSupport.hpp"
 #include "core/job/Ranks.hpp"
+#include "core/scan/ScanBox.hpp"
+#include "core/tail/TailFile.hpp"
 #include "core/tail/TailScan.hpp"
 #include "ui/scan/KScanDialog.hpp"
 #include "ui/scan/TailScanPlots.hpp"
@@ -127,6 +129,28 @@ class TailScanFigureTest : public QObject {
       QCOMPARE(line->sample(1).x(), s.windows.back().to);
     }
     QCOMPARE(references, 2);
+  }
+
+  // A K whose first level is out of reach (its pilot's counts, as tail-scan keeps them) is named in the message and
+  // drawn nowhere; the finished K are drawn as before.
+  void aKOutOfReachIsNamedAndNotDrawn() {
+    const QString folder = tmp_.filePath(QStringLiteral("reach"));
+    std::filesystem::create_directories(folder.toStdString());
+    std::filesystem::copy(archipelago::tailScanFile(scan_.toStdString(), 0.1),
+                          archipelago::tailScanFile(folder.toStdString(), 0.1));
+    archipelago::TailRequest request = summary_.states.front().request;
+    request.run.map = archipelago::scanBox(1.3);
+    archipelago::TailState refused = archipelago::startTail(request);
+    refused.pilotTrials = archipelago::kPilotTrials;
+    refused.pilotOrbits = 64;
+    QVERIFY(archipelago::tailFirstLevelRefusal(refused));
+    archipelago::saveTailFile(archipelago::tailScanFile(folder.toStdString(), 1.3), refused);
+    KScanDialog d{RunSpec{}};
+    QVERIFY2(opened(d, folder), qPrintable(d.message()));
+    QVERIFY2(d.message().contains(QStringLiteral("1 K (0.1 to 0.1)")) &&
+                 d.message().contains(QStringLiteral("First level out of reach (no tail there), not shown: K = 1.3.")),
+             qPrintable(d.message()));
+    QCOMPARE(d.tailPlots()->heatMapValue(summary_.K[0], summary_.average[0].t), summary_.gamma[0][0].gamma);
   }
 
   void aTruncatedFileOrAnEmptyFolderIsAMessage() {
