@@ -533,10 +533,33 @@ std::optional<long double> crossingX(const std::vector<PhysicalPoint>& curve, lo
 /// the scaled circle holds it where the island's shape between the rays follows its circles').
 void settleAreaInterval(AtlasNode& node, long double widest) {
   node.areaLower = std::max<long double>(node.circleArea - node.polygonError, 0);
-  node.areaUpper = widest * widest * node.circleArea + node.polygonError;
+  node.areaUpper = node.areaUpperRays = widest * widest * node.circleArea + node.polygonError;
   node.area = node.circleArea;
   node.areaError = std::max(node.area - node.areaLower, node.areaUpper - node.area);
 }
+
+}  // namespace
+
+std::optional<long double> atlasEyeArea(const AtlasFlux& f, std::uint64_t n) {
+  if (!f.found || !f.inner.found || n == 0) return std::nullopt;
+  const auto disagreement = [](long double zone, long double digits) {
+    return std::isfinite(digits) ? zone * std::pow(10.0L, -digits) : 0.0L;
+  };
+  const long double band = f.zoneArea - f.inner.zoneArea + disagreement(f.zoneArea, f.zoneDigits) +
+                           disagreement(f.inner.zoneArea, f.inner.zoneDigits);
+  return band / static_cast<long double>(n);
+}
+
+// Settled with the layers (settleLayers), from the separatrices found then.
+void capAreaByEye(AtlasNode& node) {
+  if (!node.boundaryFound || !(node.areaUpperRays >= node.area)) return;  // NaN: a file from before the interval
+  node.areaUpper = node.areaUpperRays;
+  const std::optional<long double> eye = atlasEyeArea(node.flux, node.period);
+  if (eye && *eye >= node.areaLower && *eye < node.areaUpper) node.areaUpper = std::max(*eye, node.area);
+  node.areaError = std::max(node.area - node.areaLower, node.areaUpper - node.area);
+}
+
+namespace {
 
 /// The closed curves of a chain's two separatrices' zones (TurnstileFlux::zoneBoundary), for the layers.
 struct BarrierZones {
@@ -653,6 +676,7 @@ void settleLayers(Atlas& atlas, const ZoneRegions& zones) {
     f.layerArea = f.zoneArea - f.enclosedIslands;
     refuseEmptyLayer(f);
   }
+  for (AtlasNode& node : atlas.nodes) capAreaByEye(node);
 }
 
 constexpr int kMaxScanPoints = 10000;

@@ -180,6 +180,9 @@ struct AtlasNode {
                                          ///< `area` to the ends of [areaLower, areaUpper]
   long double areaLower = 0;             ///< the true area is at least this: the circle's area less polygonError
   long double areaUpper = 0;             ///< and at most this: the circle scaled to the nearest escaping points
+                                         ///< (areaUpperRays), or the chain's eye where smaller (the band between its
+                                         ///< two separatrices over its n islands: each island lies in an eye)
+  long double areaUpperRays = 0;         ///< the rays' upper end alone (not in the files: read back, area_upper)
   long double circleArea = 0;            ///< the proven circle's polygon area (= area)
   long double polygonError = 0;          ///< |polygon area − with every other point|: the curve's convergence only
   int areaPoints = 0;                    ///< points of the polygon
@@ -191,6 +194,19 @@ struct AtlasNode {
   std::vector<int> children;             ///< chains just outside, by index
   std::string note;                      ///< why the recursion stopped here, when it did
 };
+
+/// One eye of a chain of n islands (issue 50): the band between its outer and inner separatrices' zones (each with the
+/// two methods' disagreement, zoneArea·10^−zoneDigits, added) over n.  Each island lies in an eye of its own (the
+/// separatrices are invariant and cross none of its circles), and Q permutes the n eyes and keeps areas, so no island
+/// is larger.  Nothing unless both separatrices were found (and for n = 0).
+[[nodiscard]] std::optional<long double> atlasEyeArea(const AtlasFlux& flux, std::uint64_t n);
+
+/// A measured island's upper end: its rays' (areaUpperRays), or its chain's eye (atlasEyeArea) where that is smaller
+/// (at K = 0.1, depth 2, the island of 6 > 204's rays reached 0.168 for a circle of 1.6·10⁻⁶: orbits near its
+/// resonance stay within 2T applications of Qⁿ).  An eye below the proven circle's lower end is a zone computed
+/// wrong, not a bound: it is not used.  areaError follows.  Nothing for an island without a boundary or without the
+/// rays' end (a file from before the interval).
+void capAreaByEye(AtlasNode& node);
 
 /// A cantorus between two successive chains about the central island (issue 50; AtlasCantori.hpp): a barrier with
 /// the MacKay–Meiss–Percival flux, splitting the band between the two chains' separatrices.

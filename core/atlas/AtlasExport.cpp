@@ -352,10 +352,10 @@ void readArea(const JsonField& o, const Atlas& atlas, AtlasNode& n) {
     n.areaLower = o["area_lower"].nonNegative();
     if (o["area_upper"].isNull()) {  // unknown: an island read from a file from before the interval, resumed
       if (!o["area_error"].isNull()) o["area_error"].refuse("must be null when area_upper is (not known)");
-      n.areaUpper = n.areaError = std::numeric_limits<long double>::quiet_NaN();
+      n.areaUpper = n.areaUpperRays = n.areaError = std::numeric_limits<long double>::quiet_NaN();
       if (!(n.areaLower <= n.area)) refuse(key + ": area " + shortestDecimal(n.area) + " must be at least area_lower");
     } else {
-      n.areaUpper = o["area_upper"].nonNegative();
+      n.areaUpper = n.areaUpperRays = o["area_upper"].nonNegative();
       n.areaError = o["area_error"].nonNegative();
     }
     if (!std::isnan(n.areaUpper) && !(n.areaLower <= n.area && n.area <= n.areaUpper))
@@ -368,7 +368,7 @@ void readArea(const JsonField& o, const Atlas& atlas, AtlasNode& n) {
     // own uncertainty is not known — said as such (NaN: null in the JSON, blank in the CSV).
     n.polygonError = o["area_error"].nonNegative();
     n.areaLower = std::max<long double>(n.area - n.polygonError, 0);
-    n.areaUpper = std::numeric_limits<long double>::quiet_NaN();
+    n.areaUpper = n.areaUpperRays = std::numeric_limits<long double>::quiet_NaN();
     n.areaError = std::numeric_limits<long double>::quiet_NaN();
   }
   n.areaPoints = static_cast<int>(o["area_points"].whole(kIntMax));

@@ -451,6 +451,16 @@ TEST(Atlas, HoldsBothSeparatricesOfEveryChainTheOuterEnclosingTheLargerZone) {
     ++both;
   }
   EXPECT_GE(both, 3);
+  // Each island lies in an eye of its chain, the band between its separatrices over its n islands (atlasEyeArea), and
+  // its upper end is at most that.
+  for (std::size_t i = 1; i < a.nodes.size(); ++i) {
+    const AtlasNode& n = a.nodes[i];
+    const std::optional<long double> eye = atlasEyeArea(n.flux, n.period);
+    if (!eye || !n.boundaryFound) continue;
+    SCOPED_TRACE(atlasPath(a, static_cast<int>(i)));
+    EXPECT_GE(*eye, n.areaLower);
+    EXPECT_LE(n.areaUpper, std::max(*eye, n.area));
+  }
   // The six: the outer separatrix faces the sea (docs/manifolds.md), the inner one the central island, whose area it
   // bounds from above (0.2393).
   const AtlasNode* six = chainOf(a, 0, 1, 6);
@@ -492,6 +502,50 @@ TEST(Atlas, HoldsTheCantorusBetween5Over31And1Over6WithItsMmpFluxAsABarrier) {
   const Atlas back = atlasFromJson(atlasJson(a));
   ASSERT_EQ(back.cantori.size(), a.cantori.size());
   EXPECT_NEAR(static_cast<double>(back.cantori.back().flux / a.cantori.back().flux), 1.0, 1e-15);  // a double's text
+}
+
+// Issue 50: the upper end held to the chain's eye where the rays' is wider (the island of 6 > 204 at K = 0.1, depth 2:
+// a circle of 1.6·10⁻⁶ and rays that reached 0.168), and never to an eye that cannot hold the proven circle.
+TEST(Atlas, AnIslandsUpperEndIsHeldToItsChainsEyeWhereThatIsSmaller) {
+  AtlasNode n;
+  n.boundaryFound = true;
+  n.period = 204;
+  n.area = n.circleArea = 1.6e-6L;
+  n.areaLower = 1.5e-6L;
+  n.areaUpper = n.areaUpperRays = 0.168L;
+  n.flux.found = n.flux.inner.found = true;
+  n.flux.zoneArea = 0.02L;
+  n.flux.inner.zoneArea = 0.0196L;
+  n.flux.zoneDigits = n.flux.inner.zoneDigits = 15;
+  const long double eye = (0.02L - 0.0196L + 0.02L * 1e-15L + 0.0196L * 1e-15L) / 204;
+  ASSERT_TRUE(atlasEyeArea(n.flux, n.period));
+  EXPECT_NEAR(static_cast<double>(*atlasEyeArea(n.flux, n.period)), static_cast<double>(eye), 1e-20);
+  AtlasNode capped = n;
+  capAreaByEye(capped);
+  EXPECT_NEAR(static_cast<double>(capped.areaUpper), static_cast<double>(eye), 1e-20);
+  EXPECT_EQ(capped.areaError, capped.areaUpper - capped.area);
+  capAreaByEye(capped);  // settled again (each progress report): the same
+  EXPECT_NEAR(static_cast<double>(capped.areaUpper), static_cast<double>(eye), 1e-20);
+  // No inner separatrix: no eye, the rays' end.
+  AtlasNode noInner = n;
+  noInner.flux.inner.found = false;
+  EXPECT_FALSE(atlasEyeArea(noInner.flux, noInner.period));
+  capAreaByEye(noInner);
+  EXPECT_EQ(noInner.areaUpper, 0.168L);
+  // An eye below the proven circle is a zone computed wrong: not used.
+  AtlasNode wrong = n;
+  wrong.flux.inner.zoneArea = 0.019999L;
+  capAreaByEye(wrong);
+  EXPECT_EQ(wrong.areaUpper, 0.168L);
+  // An eye wider than the rays' end changes nothing; a file from before the interval (NaN) neither.
+  AtlasNode wide = n;
+  wide.areaUpper = wide.areaUpperRays = 1.7e-6L;
+  capAreaByEye(wide);
+  EXPECT_EQ(wide.areaUpper, 1.7e-6L);
+  AtlasNode old = n;
+  old.areaUpper = old.areaUpperRays = old.areaError = std::numeric_limits<long double>::quiet_NaN();
+  capAreaByEye(old);
+  EXPECT_TRUE(std::isnan(old.areaUpper));
 }
 
 TEST(Atlas, RefusesBadRequestsNamingTheField) {
