@@ -10,7 +10,7 @@
 #
 # Sizes: N = 800 walkers, R = 16 replicas (with N = 200, R = 4 several K lose their lineages before 10⁵ steps);
 # the defaults' first level (1008 steps), q = 16, seed 1.  Stage hi runs the rest of the paper's section 5 range,
-# K = 0.3 … 1.3 by 0.05 (the cheap K first): where no segment lasts the first level (K = 0.55 … 0.65, 1.2, 1.3) the
+# K = 0.3 … 1.3 by 0.05 (the cheap K first): where the first level is out of reach (K = 0.3, 0.55 … 0.7, 1.2, 1.3) the
 # pilot says so within seconds, the K's file keeps it, and the summary lists it apart (docs/tail.md).
 # On a cluster: the same commands with `archipelago-mpi tail-scan` or `--task I/N` (docs/cluster/tail-scan-array.sbatch).
 set -euo pipefail
