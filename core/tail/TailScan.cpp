@@ -291,13 +291,20 @@ std::vector<std::string> tailScanCsvFiles(const std::string& prefix) {
 std::string tailScanPngFile(const std::string& prefix) { return prefix + "_gamma.png"; }
 
 ScanHeatMap tailGammaHeatMap(const TailScanSummary& s) {
+  // The columns: every K of the scan by increasing K, a K out of reach with no γ (so that its neighbours' cells do
+  // not stretch over it).  column → its index in s.K, or none.
+  std::vector<std::pair<double, std::optional<std::size_t>>> columns;
+  for (std::size_t k = 0; k < s.K.size(); ++k) columns.emplace_back(s.K[k], k);
+  for (const TailScanRefusal& r : s.outOfReach) columns.emplace_back(r.K, std::nullopt);
+  std::stable_sort(columns.begin(), columns.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   ScanHeatMap map;
-  map.K = s.K;
+  for (const auto& c : columns) map.K.push_back(c.first);
   map.top = kTailGammaTop;
   for (const TailScanWindow& w : s.average) map.tau.push_back(w.t);
-  map.value.resize(map.tau.size() * map.K.size());
-  for (std::size_t k = 0; k < s.K.size(); ++k)
-    for (std::size_t w = 0; w < map.tau.size(); ++w) map.value[w * map.K.size() + k] = s.gamma[k][w].gamma;
+  map.value.assign(map.tau.size() * map.K.size(), std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t c = 0; c < columns.size(); ++c)
+    if (const std::optional<std::size_t> k = columns[c].second)
+      for (std::size_t w = 0; w < map.tau.size(); ++w) map.value[w * map.K.size() + c] = s.gamma[*k][w].gamma;
   return map;
 }
 

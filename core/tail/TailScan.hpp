@@ -132,9 +132,10 @@ struct TailScanSummary {
 
 /// The colour scale's top for γ: 0 white, 1.5 orange (the literature's exponents lie about it), 3 and more dark red.
 inline constexpr double kTailGammaTop = 3;
-/// The figure γ(t, K) as a heat map: K[column] the summary's K in its order, tau[row] the centre t of window row
-/// (the summary's windows, increasing), value[row · K.size() + column] = γ of that K over that window (NaN where
-/// the K does not reach it), top kTailGammaTop.  The summary's numbers, none computed here.
+/// The figure γ(t, K) as a heat map: K[column] the summary's K and those out of reach, by increasing K, tau[row] the
+/// centre t of window row (the summary's windows, increasing), value[row · K.size() + column] = γ of that K over
+/// that window (NaN where the K does not reach it, and in every row of a K out of reach), top kTailGammaTop.  The
+/// summary's numbers, none computed here.
 [[nodiscard]] ScanHeatMap tailGammaHeatMap(const TailScanSummary& s);
 /// The asymptotic exponents γ is set against: 1.57 (Cristadoro & Ketzmerick, PRL 100 (2008) 184101; Alus, Fishman
 /// & Meiss, PRE 96 (2017) 032204) and 1.44, the ultrametric estimate ln 2/ln(1 + r_g) (Avetisov & Nechaev,

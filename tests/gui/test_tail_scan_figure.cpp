@@ -151,6 +151,9 @@ class TailScanFigureTest : public QObject {
                  d.message().contains(QStringLiteral("First level out of reach (no tail there), not shown: K = 1.3.")),
              qPrintable(d.message()));
     QCOMPARE(d.tailPlots()->heatMapValue(summary_.K[0], summary_.average[0].t), summary_.gamma[0][0].gamma);
+    // Its column is drawn empty: K = 0.1's cells do not stretch over K = 1.3.
+    for (const archipelago::TailScanWindow& w : summary_.average)
+      QVERIFY(std::isnan(d.tailPlots()->heatMapValue(1.3, w.t)));
   }
 
   void aTruncatedFileOrAnEmptyFolderIsAMessage() {

@@ -350,6 +350,13 @@ TEST(TailScan, AKWhoseFirstLevelIsOutOfReachIsListedAndTheScanGoesOn) {
   EXPECT_EQ(first.summary.outOfReach[0].K, 1.3);
   const std::string text = tailScanText(first.summary);
   EXPECT_NE(text.find("#   K = 1.3: only "), std::string::npos) << text;
+  // The figure holds a column for it, with no γ: K = 0.1's cells do not stretch over it.
+  const ScanHeatMap map = tailGammaHeatMap(first.summary);
+  ASSERT_EQ(map.K, (std::vector<double>{0.1, 1.3}));
+  for (std::size_t w = 0; w < map.tau.size(); ++w) {
+    EXPECT_EQ(map.value[w * 2], first.summary.gamma[0][w].gamma);
+    EXPECT_TRUE(std::isnan(map.value[w * 2 + 1]));
+  }
   const TailState kept = loadTailFile(tailScanFile(r.dir, 1.3));
   EXPECT_FALSE(kept.finished());
   EXPECT_TRUE(tailFirstLevelRefusal(kept));
