@@ -9,7 +9,14 @@ centre (a symmetric orbit of this map has a point on one of them), each sign cha
 clockwise turns about the centre and is well ordered, and then refined by two-dimensional Newton on Q^q(z) - z in
 mpmath (--dps digits, default 60), not by shooting along the line.  Prints p/q, both residues and Delta W.
 
+About an island of a chain of period n instead (--about X,Y --stride n: a member of the chain's elliptic orbit): the
+p/q orbits are orbits of period n*q whose every n-th point, from the one nearest (X, Y), turns p times about it (either
+sense), is well ordered and follows the chain (its point nearest to the member m_a is followed by one nearest to
+m_{a+1}); both lines are scanned within rmax of every member (an orbit about the islands may cross the lines at any of
+them).
+
 Usage: scripts/mmp-periodic-action.py [--K 0.1] [--K-long-double] [--dps 60] 1/6 5/31 6/37 11/68 17/105     (/usr/bin/python3: numpy, mpmath)
+       scripts/mmp-periodic-action.py --K-long-double --about 0.0509024128,0.0974089444 --stride 6 --rmin 0.01 --rmax 0.05 1/12
 """
 import argparse, math, sys
 import numpy as np
@@ -23,6 +30,8 @@ def parse():
     ap.add_argument('--samples', type=int, default=400000, help='float64 scan points per side of the centre')
     ap.add_argument('--rmin', type=float, default=0.19)
     ap.add_argument('--rmax', type=float, default=0.44)
+    ap.add_argument('--about', help='X,Y: a member of an island chain (default: the centre (-sqrt K, 0))')
+    ap.add_argument('--stride', type=int, default=1, help="the chain's period n (with --about)")
     ap.add_argument('pq', nargs='+')
     return ap.parse_args()
 
@@ -52,11 +61,11 @@ def orbit64(K, x, y, q):
         if not (abs(x) < 1e3 and abs(y) < 1e3): return None
     return pts
 
-def turns_and_order(pts, c):
-    """Clockwise turns about (c, 0), and whether the orbit is well ordered (every point moves the same number of places
+def turns_and_order(pts, c, cy=0.0):
+    """Clockwise turns about (c, cy), and whether the orbit is well ordered (every point moves the same number of places
     on in the clockwise order of the angles)."""
     q = len(pts)
-    th = [math.atan2(py, px - c) for px, py in pts]
+    th = [math.atan2(py - cy, px - c) for px, py in pts]
     tot = 0.0
     for k in range(q):
         d = th[(k + 1) % q] - th[k]
@@ -104,14 +113,34 @@ def main():
     K = mp.mpf(a.K)
     if a.K_long_double:
         e = mp.floor(mp.log(K, 2)); K = mp.nint(K * mp.mpf(2) ** (63 - e)) / mp.mpf(2) ** (63 - e)
-    K64 = float(a.K); c = -math.sqrt(K64)
+    K64 = float(a.K); c, cy = -math.sqrt(K64), 0.0
+    n = a.stride
+    if a.about: c, cy = map(float, a.about.split(','))
+    members = orbit64(K64, c, cy, n)  # the chain m_0 ... m_{n-1}: an orbit kept must follow it (each point's nearest
+                                      # member followed by the next one's)
+    def follows(pts):
+        if n == 1: return True
+        near = [min(range(n), key=lambda k: math.hypot(px - members[k][0], py - members[k][1])) for px, py in pts]
+        return all(near[(i + 1) % len(near)] == (near[i] + 1) % n for i in range(len(near)))
     for text in a.pq:
-        p, q = map(int, text.split('/'))
+        p, q0 = map(int, text.split('/'))
+        q = n * q0
         found = {}
-        for line, sign in ((2, 1), (2, -1), (1, 1), (1, -1)):
+        if n == 1:
             # on line 1 the abscissa offset u = x - c gives a distance |u| sqrt(1 + (2 sqrt K - u)^2): scan u over the
             # same range (a superset of the radii wanted, as that factor is >= 1)
-            s = c + sign * np.linspace(a.rmin / (1 if line == 2 else 1.5), a.rmax, a.samples)
+            ranges = [(line, c + sign * np.linspace(a.rmin / (1 if line == 2 else 1.5), a.rmax, a.samples))
+                      for line, sign in ((2, 1), (2, -1), (1, 1), (1, -1))]
+        else:
+            # about a chain's islands: both lines wherever they pass any island within rmin ... rmax of its member
+            ranges = []
+            for mx, my in members:
+                for line in (1, 2):
+                    s = np.linspace(mx - a.rmax, mx + a.rmax, a.samples)
+                    xs, ys = start(K64, line, s)
+                    d = np.hypot(xs - mx, ys - my)
+                    if np.any((d >= a.rmin) & (d <= a.rmax)): ranges.append((line, s))
+        for line, s in ranges:
             f = shooting(K64, line, s, q)
             ok = np.isfinite(f[:-1]) & np.isfinite(f[1:]) & (np.sign(f[:-1]) != np.sign(f[1:]))
             for i in np.nonzero(ok)[0]:
@@ -124,9 +153,12 @@ def main():
                 x0, y0 = start(K64, line, np.array([(lo + hi) / 2]))
                 pts = orbit64(K64, float(x0[0]), float(y0[0]), q)
                 if pts is None: continue
-                turns, ordered = turns_and_order(pts, c)
-                if turns != p or not ordered: continue
-                x, y, R = newton(K, pts[0][0], pts[0][1], q)
+                j = min(range(n), key=lambda k: math.hypot(pts[k][0] - c, pts[k][1] - cy))
+                turns, ordered = turns_and_order(pts[j::n], c, cy)
+                if abs(turns) != p if n > 1 else turns != p: continue
+                if not ordered or not follows(pts): continue
+                try: x, y, R = newton(K, pts[0][0], pts[0][1], q)
+                except (RuntimeError, ZeroDivisionError): continue
                 W, xe, ye = action(K, x, y, q)
                 closure = abs(xe - x) + abs(ye - y)
                 found.setdefault(mp.nstr(W, 25), (R, W, closure, x))

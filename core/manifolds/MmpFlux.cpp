@@ -81,7 +81,15 @@ BirkhoffOrbit inQuad(const PeriodicOrbit& found) {
 
 std::optional<std::string> validationError(const MmpRequest& r) {
   if (auto e = manifoldKError(r.K)) return e;
-  if (auto e = rangeError("q", r.q, 2, PeriodicOrbitSearch::kMaxPeriod)) return e;
+  if (auto e = rangeError("stride", r.stride, 1, PeriodicOrbitSearch::kMaxPeriod / 2)) return e;
+  if (auto e = rangeError("q", r.q, 2, PeriodicOrbitSearch::kMaxPeriod / r.stride,
+                          "the period stride·q at most " + std::to_string(PeriodicOrbitSearch::kMaxPeriod)))
+    return e;
+  if (r.stride > 1 && (r.windows.empty() || !std::isfinite(r.about.x) || !std::isfinite(r.about.y)))
+    return std::string("about an island (stride > 1) the windows of the lines and a finite island centre are needed");
+  if (!r.members.empty() && r.members.size() != static_cast<std::size_t>(r.stride))
+    return "the chain's members must be stride = " + std::to_string(r.stride) + " points, not " +
+           std::to_string(r.members.size());
   if (auto e = rangeError("p", r.p, 1, static_cast<long long>(r.q) - 1, "q − 1 at most, q = " + std::to_string(r.q)))
     return e;
   if (std::gcd(r.p, static_cast<long>(r.q)) != 1)
@@ -102,6 +110,41 @@ std::optional<std::string> validationError(const MmpRequest& r) {
              number(kMaxMmpSamples) + " samples at spacing " + number(r.spacing);
   }
   return std::nullopt;
+}
+
+std::vector<PhysicalPoint> stridedAbout(std::span<const PhysicalPoint> points, int stride, PhysicalPoint about) {
+  const std::size_t n = static_cast<std::size_t>(std::max(stride, 1));
+  std::size_t start = 0;
+  long double nearest = -1;
+  for (std::size_t j = 0; j < std::min(n, points.size()); ++j) {
+    const long double d = std::hypot(points[j].x - about.x, points[j].y - about.y);
+    if (nearest < 0 || d < nearest) nearest = d, start = j;
+  }
+  std::vector<PhysicalPoint> out;
+  for (std::size_t k = start; k < points.size(); k += n) out.push_back(points[k]);
+  return out;
+}
+
+bool shadowsChain(std::span<const PhysicalPoint> points, std::span<const PhysicalPoint> members) {
+  const std::size_t n = members.size();
+  if (n <= 1) return true;
+  if (points.empty() || points.size() % n != 0) return false;
+  auto nearest = [&](const PhysicalPoint& z) {
+    std::size_t best = 0;
+    long double bestDistance = -1;
+    for (std::size_t a = 0; a < n; ++a) {
+      const long double d = std::hypot(z.x - members[a].x, z.y - members[a].y);
+      if (bestDistance < 0 || d < bestDistance) bestDistance = d, best = a;
+    }
+    return best;
+  };
+  std::size_t previous = nearest(points.back());
+  for (const PhysicalPoint& z : points) {
+    const std::size_t a = nearest(z);
+    if (a != (previous + 1) % n) return false;
+    previous = a;
+  }
+  return true;
 }
 
 bool wellOrdered(std::span<const PhysicalPoint> points, PhysicalPoint centre) {
@@ -159,35 +202,67 @@ std::vector<LineWindow> annulusWindows(long double K, long double inner, long do
   return windows;
 }
 
+std::vector<LineWindow> lineWindowsAbout(long double K, PhysicalPoint member, long double inner, long double outer) {
+  if (!std::isfinite(inner) || !std::isfinite(outer) || !(inner >= 0) || !(inner < outer))
+    throw std::invalid_argument("the radii " + number(inner) + " and " + number(outer) + " must satisfy 0 <= inner < outer");
+  constexpr int kSamples = 4096;
+  const long double step = 2 * outer / kSamples;
+  std::vector<LineWindow> windows;
+  for (SymmetryLine line : {SymmetryLine::S1, SymmetryLine::S2}) {
+    std::optional<long double> runStart;
+    for (int k = 0; k <= kSamples + 1; ++k) {
+      const long double x = member.x - outer + step * (static_cast<long double>(k) - 0.5L);
+      const smooth::Point<long double> z = smooth::onLine(line, K, x);
+      const long double d = std::hypot(z.x - member.x, z.y - member.y);
+      const bool inside = k <= kSamples && d >= inner && d <= outer;
+      if (inside && !runStart) runStart = x;
+      if (!inside && runStart) {
+        windows.push_back({line, *runStart - step, x});
+        runStart.reset();
+      }
+    }
+  }
+  return windows;
+}
+
 MmpActionDifference mmpActionDifference(const MmpRequest& request, std::stop_token stop) {
   if (auto e = validationError(request)) throw std::invalid_argument(*e);
   const std::vector<LineWindow> windows =
       request.windows.empty() ? annulusWindows(request.K, request.innerRadius, request.outerRadius) : request.windows;
+  const int n = request.stride;
+  const PhysicalPoint centre = n == 1 ? PhysicalPoint{-std::sqrt(request.K), 0.0L} : request.about;
+  // The p turns about the centre (or about the island: every n-th point) in q steps of Qⁿ, either sense about an island.
+  auto turnsP = [&](std::span<const PhysicalPoint> points) {
+    const long turns = clockwiseTurns(points, centre.x, centre.y);
+    return n == 1 ? turns == request.p : std::labs(turns) == request.p;
+  };
   // Roots with another number of turns are dropped before the finder polishes them in quad (most of the roots in a
-  // chaotic layer): q steps in long double, whose rounding (≈ 1e-19 |λ|) does not change the winding.
-  const long double centreX = -std::sqrt(request.K);
-  auto turnsP = [&](PhysicalPoint start) {
-    std::vector<PhysicalPoint> points(static_cast<std::size_t>(request.q));
+  // chaotic layer): n·q steps in long double, whose rounding (≈ 1e-19 |λ|) does not change the winding.
+  // About an island the root may lie at another of the chain's islands: every n-th point from the one nearest it.
+  auto rootTurnsP = [&](PhysicalPoint start) {
+    std::vector<PhysicalPoint> points(static_cast<std::size_t>(n) * static_cast<std::size_t>(request.q));
     smooth::Point<long double> z{start.x, start.y};
     for (auto& point : points) {
       if (!(std::fabs(z.x) < 1e3L && std::fabs(z.y) < 1e3L)) return false;
       point = {z.x, z.y};
       z = smooth::step(request.K, z);
     }
-    return clockwiseTurns(points, centreX, 0) == request.p;
+    return turnsP(stridedAbout(points, n, centre));
   };
   const std::vector<PeriodicOrbit> found =
-      findSymmetricPeriodicOrbitsIn(request.K, request.q, windows, request.spacing, stop, turnsP);
-  const PhysicalPoint centre{-std::sqrt(request.K), 0.0L};
+      findSymmetricPeriodicOrbitsIn(request.K, n * request.q, windows, request.spacing, stop, rootTurnsP);
   MmpActionDifference out;
   out.K = request.K;
   out.p = request.p;
   out.q = request.q;
+  out.stride = n;
   std::vector<const PeriodicOrbit*> birkhoff;
   for (const PeriodicOrbit& orbit : found) {
-    if (orbit.windingTurns != request.p) continue;
+    const std::vector<PhysicalPoint> about = stridedAbout(orbit.points, n, centre);
+    if (n == 1 ? orbit.windingTurns != request.p : !turnsP(about)) continue;
+    if (!shadowsChain(orbit.points, request.members)) continue;
     ++out.symmetricOrbits;
-    if (wellOrdered(orbit.points, centre)) birkhoff.push_back(&orbit);
+    if (wellOrdered(about, centre)) birkhoff.push_back(&orbit);
   }
   out.birkhoffOrbits = static_cast<int>(birkhoff.size());
   const auto negative = std::count_if(birkhoff.begin(), birkhoff.end(), [](const PeriodicOrbit* o) { return o->residue < 0; });
@@ -196,12 +271,15 @@ MmpActionDifference mmpActionDifference(const MmpRequest& request, std::stop_tok
   if (negative != 1 || positive != 1 || birkhoff.size() != 2) {
     std::string residues;
     for (const PeriodicOrbit* o : birkhoff) residues += (residues.empty() ? "" : ", ") + number(o->residue);
-    throw NotFound("the Birkhoff orbits of type " + pq + " are not one with R < 0 and one with R > 0: the scan of " +
+    throw NotFound("the Birkhoff orbits of type " + pq + (n == 1 ? "" : " about the island at " + number(centre.x) + ", " + number(centre.y) + " under Q^" + std::to_string(n)) +
+                   " are not one with R < 0 and one with R > 0: the scan of " +
                    (request.windows.empty() ? "the symmetry lines from " + number(request.innerRadius) + " to " +
                                                   number(request.outerRadius) + " about the centre"
                                             : std::to_string(request.windows.size()) + " windows of the symmetry lines") +
                    " found " + std::to_string(found.size()) + " symmetric orbits of period " + std::to_string(request.q) +
-                   ", " + std::to_string(out.symmetricOrbits) + " with " + std::to_string(request.p) + " turns, " +
+                   (n == 1 ? "" : " (" + std::to_string(n * request.q) + " steps of Q)") + ", " +
+                   std::to_string(out.symmetricOrbits) + " with " + std::to_string(request.p) + " turns" +
+                   (request.members.size() > 1 ? " that follow the chain's islands" : "") + ", " +
                    std::to_string(birkhoff.size()) + " well ordered" + (residues.empty() ? "" : " (R = " + residues + ")") +
                    "; other radii or a finer spacing may separate them");
   }
@@ -221,12 +299,16 @@ ConvergentLimit convergentLimit(std::span<const long double> a) {
   for (long double v : a)
     if (!std::isfinite(v)) throw std::invalid_argument("a term of the sequence is not finite");
   const std::size_t n = a.size() - 1;
-  const long double last = a[n] - a[n - 1], previous = a[n - 1] - a[n - 2];
-  if (previous == 0) throw std::invalid_argument("the difference of the terms before the last is zero");
+  const long double last = a[n] - a[n - 1];
   ConvergentLimit out;
   out.terms = static_cast<int>(a.size());
   out.value = a[n];
-  out.ratio = std::fabs(last / previous);
+  for (std::size_t k = std::max<std::size_t>(2, n - std::min<std::size_t>(n, 2)); k <= n; ++k) {
+    const long double previous = a[k - 1] - a[k - 2];
+    if (previous == 0) throw std::invalid_argument("the difference of the terms " + std::to_string(k - 2) + " and " +
+                                                   std::to_string(k - 1) + " is zero");
+    out.ratio = std::max(out.ratio, std::fabs((a[k] - a[k - 1]) / previous));
+  }
   if (!(out.ratio < 1))
     throw std::invalid_argument("the sequence is not converging: its last differences grow (ratio " + number(out.ratio) + ")");
   out.uncertainty = std::fabs(last) * out.ratio / (1 - out.ratio);
@@ -243,6 +325,10 @@ std::optional<std::string> validationError(const CantorusRequest& r) {
     m.innerRadius = r.innerRadius;
     m.outerRadius = r.outerRadius;
     m.spacing = r.spacing;
+    m.stride = r.stride;
+    m.about = r.about;
+    m.members = r.members;
+    m.windows = r.windows;
     if (auto e = validationError(m)) return e;
   }
   // Convergents in order: each denominator larger than the one before (a repeated or reordered term would make a
@@ -288,7 +374,12 @@ CantorusFlux cantorusFlux(const CantorusRequest& request, std::stop_token stop) 
     wide.innerRadius = request.innerRadius;
     wide.outerRadius = request.outerRadius;
     wide.spacing = request.spacing;
+    wide.stride = request.stride;
+    wide.about = request.about;
+    wide.members = request.members;
+    wide.windows = request.windows;
     MmpRequest narrow = wide;
+    narrow.windows.clear();
     narrow.spacing = request.narrowSpacing;
     std::vector<LineWindow> previous;
     if (!out.terms.empty()) {
@@ -331,6 +422,12 @@ std::string cantorusFluxJson(const CantorusRequest& request, const CantorusFlux&
   json j;
   j["K"] = static_cast<double>(request.K);
   j["method"] = "MacKay-Meiss-Percival: flux = |W(minimax) - W(minimizing)| of the Birkhoff p/q orbits about (-sqrt K, 0)";
+  if (request.stride > 1) {
+    j["method"] = "MacKay-Meiss-Percival: flux = |W(minimax) - W(minimizing)| of the Birkhoff p/q orbits about an island, "
+                  "Q-orbits of period stride*q";
+    j["stride"] = request.stride;
+    j["about"] = json::array({static_cast<double>(request.about.x), static_cast<double>(request.about.y)});
+  }
   j["inner_radius"] = static_cast<double>(request.innerRadius);
   j["outer_radius"] = static_cast<double>(request.outerRadius);
   j["spacing"] = static_cast<double>(request.spacing);

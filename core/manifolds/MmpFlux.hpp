@@ -70,10 +70,30 @@ struct MmpRequest {
   /// roots lie closer than any affordable spacing over the whole annulus (≈ |λ|^(−1/2): 3·10⁻⁸ at q = 729 about the
   /// central island at K = 0.1), narrow windows about the previous convergents' points on the lines.
   std::vector<LineWindow> windows;
+  /// About an island of a chain of period n = `stride` instead of the centre (issue 50): the p/q orbits are then
+  /// Q-orbits of period n·q whose every n-th point, from the one nearest `about` (a member of the chain's elliptic
+  /// orbit), turns p times about it in q steps of Qⁿ (either sense: an island may turn either way) and is well ordered
+  /// about it; W sums the n·q steps, so ΔW is the area crossing the n curves (one about each island) per step of Q, as
+  /// the turnstile flux of a chain about an island is.  `windows` are then required (annulusWindows are the centre's).
+  int stride = 1;
+  PhysicalPoint about{};
+  /// The chain's elliptic orbit m_0 … m_{n−1} (m_{k+1} = Q m_k), when known: an orbit is then kept only if it shadows
+  /// the chain — its point nearest to m_a is followed by one nearest to m_{a+1}, all round (shadowsChain).  At K = 0.1
+  /// about the six, the windows of 2/23 held 8 well-ordered orbits, 6 of them with residues 10⁶–10⁷ that wander
+  /// between the islands; the pair (R = −0.717, 0.689) shadows the chain.
+  std::vector<PhysicalPoint> members;
 };
 
 /// The first invalid field, named, or nothing.
 [[nodiscard]] std::optional<std::string> validationError(const MmpRequest& request);
+
+/// Whether the orbit z_0 … z_{N−1} (N a multiple of n = members.size()) shadows the chain m_0 … m_{n−1}: the member
+/// nearest z_{k+1} follows the member nearest z_k in the chain's order, for every k (cyclically).  True for n ≤ 1.
+[[nodiscard]] bool shadowsChain(std::span<const PhysicalPoint> points, std::span<const PhysicalPoint> members);
+
+/// The points z_j, z_{j+n}, …, z_{j+(q−1)n} of an orbit of period n·q (n = stride), j in [0, n) the index of the point
+/// nearest `about`: the orbit as it turns about that island under Qⁿ.  The whole orbit for stride 1.
+[[nodiscard]] std::vector<PhysicalPoint> stridedAbout(std::span<const PhysicalPoint> points, int stride, PhysicalPoint about);
 
 /// One Birkhoff orbit of type p/q, in __float128.
 struct BirkhoffOrbit {
@@ -89,6 +109,7 @@ struct MmpActionDifference {
   long double K = 0;
   long p = 0;
   int q = 0;
+  int stride = 1;                ///< the chain's period about whose island (1: the centre); the orbits' period stride·q
   BirkhoffOrbit minimizing;      ///< R < 0
   BirkhoffOrbit minimax;         ///< R > 0
   quad planeDifference = 0;      ///< W(minimax) − W(minimizing) in the plane's orientation (see the file comment)
@@ -102,6 +123,15 @@ struct MmpActionDifference {
 /// one each side of the centre.  Throws std::invalid_argument unless 0 < inner < outer and K is valid.
 [[nodiscard]] std::vector<LineWindow> annulusWindows(long double K, long double inner, long double outer);
 
+/// The windows of the symmetry lines S₁ and S₂ where they pass within [inner, outer] of `member` (a point of an island
+/// chain's elliptic orbit), for the Birkhoff orbits about its islands: a symmetric orbit has its points on the lines at
+/// one of the chain's islands, not always one whose member lies on a line (at K = 0.1 the hyperbolic 3/34 orbit about
+/// the six crosses S₁ only at the island about (−0.602, −0.262)).  Each line is sampled (4096 points) over the
+/// member's x ± outer (a line's distance from a point is at least its offset in x) and each run of samples within the
+/// radii kept, a sample wider on each side.  Throws std::invalid_argument unless 0 ≤ inner < outer, both finite.
+[[nodiscard]] std::vector<LineWindow> lineWindowsAbout(long double K, PhysicalPoint member, long double inner,
+                                                       long double outer);
+
 /// Computes ΔW_{p/q}.  Throws std::invalid_argument for an invalid request (validationError), NotFound when the
 /// finder's scan does not give exactly one well-ordered orbit with R < 0 and one with R > 0 (the message says what it
 /// found), and OperationStopped when `stop` is requested.
@@ -113,14 +143,18 @@ struct MmpActionDifference {
 [[nodiscard]] bool wellOrdered(std::span<const PhysicalPoint> points, PhysicalPoint centre);
 
 /// The limit of a converging sequence a_0 … a_n (ΔW over convergents), as its last term with a bound on the tail:
-/// with d_k = a_k − a_{k−1} and r = |d_n / d_{n−1}| < 1, the rest of the sum is at most |d_n| r/(1 − r) if the
-/// differences go on shrinking at least as fast as their last ratio (about the central island at K = 0.1 they shrink
-/// faster: the ratio fell from 0.2 to 2·10⁻⁴ over 5/31 … 118/729, docs/markov-tree.md).  Not an extrapolation: Aitken's
-/// Δ², which assumes a constant ratio, overshoots such a sequence by more than its last difference.
+/// with d_k = a_k − a_{k−1} and r the largest of the last three ratios |d_k / d_{k−1}| (k ≥ 2), r < 1, the rest of the
+/// sum is at most |d_n| r/(1 − r) if the differences go on shrinking at least that fast (about the central island at
+/// K = 0.1 they shrink faster between chains: the ratio fell from 0.2 to 2·10⁻⁴ over 5/31 … 118/729,
+/// docs/markov-tree.md).  The largest of three, not the last alone (until 2026-12-07): near an island's boundary the
+/// ratios wander — between 1/6 and 14/83 they were 0.082, 0.41, 0.17 and ΔW fell towards 0 (a circle, not a cantorus),
+/// while the last ratio alone gave 3.5·10⁻¹¹ ± 2.1·10⁻¹¹ at six terms and 7.8·10⁻¹⁰ ± 1.4·10⁻¹⁰ at four, which the next
+/// terms left.  A bound under that assumption, not a proof.  Not an extrapolation: Aitken's Δ², which assumes a
+/// constant ratio, overshoots such a sequence by more than its last difference.
 struct ConvergentLimit {
   long double value = 0;        ///< a_n
   long double uncertainty = 0;  ///< |d_n| r / (1 − r)
-  long double ratio = 0;        ///< r = |d_n / d_{n−1}|
+  long double ratio = 0;        ///< r: the largest of the last three |d_k / d_{k−1}|
   int terms = 0;
 };
 
@@ -142,6 +176,10 @@ struct CantorusRequest {
   long double spacing = 1e-6L;
   long double narrowHalfWidth = 2e-6L;             ///< > 0
   long double narrowSpacing = 1e-9L;               ///< > 0
+  int stride = 1;                                  ///< about an island: as MmpRequest's stride, about and
+  PhysicalPoint about{};                           ///< members, with `windows` for the first term (the annulus is
+  std::vector<PhysicalPoint> members;              ///< the centre's)
+  std::vector<LineWindow> windows;
 };
 
 [[nodiscard]] std::optional<std::string> validationError(const CantorusRequest& request);

@@ -488,7 +488,9 @@ TEST(Atlas, HoldsTheCantorusBetween5Over31And1Over6WithItsMmpFluxAsABarrier) {
   ASSERT_TRUE(c->found) << c->failure;
   EXPECT_EQ(c->convergents,
             (std::vector<Rational>{{5, 31}, {6, 37}, {11, 68}, {17, 105}, {28, 173}, {45, 278}}));
-  EXPECT_LT(c->fluxUncertainty, 1e-9L);
+  // The tail bound with the largest of the last three ratios (convergentLimit, 2026-12-07): measured 3.4e−9 (5e−10
+  // with the last ratio alone); the MMP limit 9.5e−11 away.
+  EXPECT_LT(c->fluxUncertainty, 1e-8L);
   EXPECT_LE(std::fabs(c->flux - 1.1631691829474e-5L), c->fluxUncertainty);
   const AtlasNode* c31 = chainOf(a, 0, 5, 31);
   const AtlasNode* c6 = chainOf(a, 0, 1, 6);

@@ -91,7 +91,9 @@ TEST(MmpFlux, TheCantorusFluxAgreesWithTheTurnstileOfAConvergentsChainFacingIt) 
   }
   ASSERT_TRUE(cantorus.limit.has_value()) << cantorus.limitProblem;
   const ConvergentLimit limit = *cantorus.limit;
-  EXPECT_LT(limit.uncertainty, 1e-12L * limit.value);  // measured 3.1e−18, 2.7e−13 of it
+  // Measured 5.8e−16, 5.0e−11 of it, with the largest of the last three ratios (convergentLimit since 2026-12-07;
+  // 3.1e−18 with the last ratio alone).
+  EXPECT_LT(limit.uncertainty, 1e-10L * limit.value);
 
   // The turnstile of 28/173, inner separatrix, from the minimizing orbit's point on S₁.
   const PeriodicOrbit& orbit = d173.minimizing.orbit;
@@ -184,6 +186,82 @@ TEST(MmpFlux, TheLimitIsTheLastTermWithTheTailOfAGeometricSequence) {
   EXPECT_THROW((void)convergentLimit(std::vector<long double>{1, 2}), std::invalid_argument);
   EXPECT_THROW((void)convergentLimit(std::vector<long double>{1, 2, 4}), std::invalid_argument);  // not converging
   EXPECT_THROW((void)convergentLimit(std::vector<long double>{1, 1, 2}), std::invalid_argument);
+}
+
+// About an island (issue 50, 2026-12-07): the Birkhoff orbits of type p/q about an island of the six at K = 0.1 are
+// Q-orbits of period 6q (MmpRequest::stride), sought on both lines wherever they pass one of the six's islands
+// (lineWindowsAbout), kept when every sixth point turns p times about the island's member, is well ordered about it,
+// and the orbit follows the chain (shadowsChain).  Reference: scripts/mmp-periodic-action.py --K-long-double --about
+// 0.050902412809567206,0.09740894437016441 --stride 6 --rmin 0.02 --rmax 0.07 2/23 3/34 (mpmath, 60 digits, its own
+// scan, tests and Newton): ΔW 1.75547467089419850105360168e−6 (R = −0.7172101592, 0.6890952616; the atlas's
+// partner of 6 > 138 has R = −0.717) and 6.87692180431712691962758009e−7 (R = −0.9537979707, 0.9025520689).  The
+// 3/34 pair's hyperbolic orbit crosses S₁ only at the island about (−0.602, −0.262), not at the member scanned.
+// Without the chain's members the 2/23 windows hold well-ordered orbits with residues of 10⁴–10⁷ that wander between
+// the islands: refused, as no pair can be chosen.
+TEST(MmpFlux, FindsTheBirkhoffPairsAboutAnIslandOfTheSixAsIndependentCodeDoes) {
+  const long double K = 0.1L;
+  const std::vector<LineWindow> nearSix{{smooth::SymmetryLine::S1, 0.045L, 0.056L}};
+  const std::vector<PeriodicOrbit> six = findSymmetricPeriodicOrbitsIn(K, 6, nearSix, 1e-7L);
+  const PeriodicOrbit* elliptic = nullptr;
+  for (const PeriodicOrbit& o : six)
+    if (o.residue > 0 && o.residue < 1) elliptic = &o;
+  ASSERT_NE(elliptic, nullptr) << six.size() << " orbits of period 6";
+  const PhysicalPoint c{0.050902412809567206L, 0.09740894437016441L};
+  const PeriodicOrbit members = elliptic->rotatedToStart(elliptic->nearestIndex(c));
+  ASSERT_LT(std::hypot(members.points[0].x - c.x, members.points[0].y - c.y), 1e-12L);
+  MmpRequest r;
+  r.K = K;
+  r.stride = 6;
+  r.about = members.points[0];
+  r.members = members.points;
+  for (const PhysicalPoint& m : members.points)
+    for (const LineWindow& w : lineWindowsAbout(K, m, 0.02L, 0.07L)) r.windows.push_back(w);
+  struct Reference {
+    long p;
+    int q;
+    long double flux, minimizing, minimax;
+  };
+  for (const Reference& ref : {Reference{2, 23, 1.75547467089419850105360168e-6L, -0.7172101592L, 0.6890952616L},
+                               Reference{3, 34, 6.87692180431712691962758009e-7L, -0.9537979707L, 0.9025520689L}}) {
+    r.p = ref.p;
+    r.q = ref.q;
+    ASSERT_FALSE(validationError(r).has_value()) << *validationError(r);
+    const MmpActionDifference d = mmpActionDifference(r);
+    EXPECT_EQ(d.stride, 6);
+    EXPECT_EQ(d.minimax.points.size(), static_cast<std::size_t>(6 * ref.q));
+    EXPECT_LT(std::fabs(static_cast<long double>(d.flux) / ref.flux - 1), 1e-20L) << ref.q << ": " << static_cast<double>(d.flux);
+    EXPECT_NEAR(static_cast<double>(d.minimizing.orbit.residue), static_cast<double>(ref.minimizing), 1e-9) << ref.q;
+    EXPECT_NEAR(static_cast<double>(d.minimax.orbit.residue), static_cast<double>(ref.minimax), 1e-9) << ref.q;
+    EXPECT_EQ(d.birkhoffOrbits, 2) << ref.q;
+    EXPECT_TRUE(shadowsChain(d.minimax.orbit.points, members.points));
+    EXPECT_TRUE(wellOrdered(stridedAbout(d.minimizing.orbit.points, 6, c), c));
+  }
+  r.p = 2;
+  r.q = 23;
+  r.members.clear();
+  EXPECT_THROW((void)mmpActionDifference(r), NotFound);
+  // A chain's members in another order (one step on, reversed) are not followed.
+  std::vector<PhysicalPoint> reversed(members.points.rbegin(), members.points.rend());
+  r.members = members.points;
+  const MmpActionDifference d = mmpActionDifference(r);
+  EXPECT_FALSE(shadowsChain(d.minimax.orbit.points, reversed));
+  r.members = {members.points[0]};
+  EXPECT_TRUE(validationError(r).has_value());  // not stride points
+}
+
+// The ratio is the largest of the last three (2026-12-07).  Measured at K = 0.1 between 1/6 and 14/83 (ΔW over
+// 14/83 … 117/694, docs/atlas.md): the ratios 0.082, 0.41, 0.17 and ΔW falling towards 0; the last ratio alone gave
+// 3.5e−11 ± 2.1e−11, a bound that excluded the zero the sequence heads for.  Here a sequence with differences
+// 1, 0.5, 0.05, 0.01 (ratios 0.5, 0.1, 0.2): r = 0.5, not 0.2.  An early ratio above 1 (the first two terms of a noble's
+// convergents are the Farey pair's) is outside the last three and does not refuse it.
+TEST(MmpFlux, TheTailBoundTakesTheLargestOfTheLastThreeRatios) {
+  const std::vector<long double> a = {10, 10.01L, 9.01L, 8.51L, 8.46L, 8.45L};
+  const ConvergentLimit l = convergentLimit(a);
+  EXPECT_EQ(l.value, 8.45L);
+  EXPECT_NEAR(static_cast<double>(l.ratio), 0.5, 1e-12);
+  EXPECT_NEAR(static_cast<double>(l.uncertainty), 0.01 * 0.5 / 0.5, 1e-12);
+  // Four terms: the ratio of the first two differences is among the last three, and it grows: not converging.
+  EXPECT_THROW((void)convergentLimit(std::vector<long double>{10, 10.01L, 9.01L, 8.51L}), std::invalid_argument);
 }
 
 TEST(MmpFlux, RefusesBadRequestsAndSaysWhatTheScanFound) {
