@@ -61,6 +61,7 @@ void bindAtlas(py::module_& m) {
         "turnstile flux, zone and layer areas and mean residence time, to `depth` levels.  The same dict as\n"
         "`archipelago-cli atlas --json`: 'nodes' is the tree (each with its 'parent' index).  time_budget (seconds, 0:\n"
         "none) stops it keeping the finished islands ('cancelled', 'stop_reason'); resume=<such a dict> continues it\n"
-        "with the same arguments; cantori=True adds the cantori between the centre's chains ('cantori': MacKay-Meiss-\n"
-        "Percival flux and layer).  ValueError for bad input.");
+        "with the same arguments; cantori=True adds the cantori about each island, between its chains and its\n"
+        "boundary cantorus ('cantori': 'island', 'boundary', MacKay-Meiss-Percival flux and layer).  ValueError for\n"
+        "bad input.");
 }

@@ -12,6 +12,7 @@
 
 #include "CliCommon.hpp"
 #include "RunSession.hpp"
+#include "core/atlas/AtlasCantori.hpp"
 #include "core/atlas/AtlasExport.hpp"
 #include "core/atlas/AtlasJob.hpp"
 #include "core/io/AtomicFile.hpp"
@@ -47,12 +48,12 @@ void printTable(const Atlas& a) {
   }
   for (const AtlasCantorus& c : a.cantori) {
     if (c.found)
-      std::printf("# cantorus between %s and %s: flux %.10Le +- %.1Le per step (MMP, %s), layer %.6Le (zone %.6Le +- %.1Le)\n",
-                  toString(c.outer).c_str(), toString(c.inner).c_str(), c.flux, c.fluxUncertainty,
-                  toString(c.convergents.back()).c_str(), c.layerArea, c.zoneArea, c.zoneSpread);
+      std::printf("# %s: flux %.10Le +- %.1Le per step (MMP to %s, +- its tail bound), layer %.6Le (zone %.6Le; "
+                  "its two orbits' polygons differ by %.1Le)\n",
+                  atlasCantorusName(a, c).c_str(), c.flux, c.fluxUncertainty, toString(c.convergents.back()).c_str(),
+                  c.layerArea, c.zoneArea, c.zoneSpread);
     else
-      std::printf("# cantorus between %s and %s: not a barrier: %s\n", toString(c.outer).c_str(),
-                  toString(c.inner).c_str(), c.failure.c_str());
+      std::printf("# %s: not a barrier: %s\n", atlasCantorusName(a, c).c_str(), c.failure.c_str());
   }
   std::printf("# %zu islands in %.1f s%s\n", a.nodes.size(), a.seconds, a.cancelled ? (" (" + a.stopReason + ": the rest not computed)").c_str() : "");
 }
@@ -112,8 +113,9 @@ void addAtlasCommand(CLI::App& app, int& status) {
   addNumberOption(*cmd, "--time-budget", o->request.timeBudget,
                   "seconds: then stop as Ctrl-C does, keeping the finished islands (0: none)");
   cmd->add_flag("--cantori", o->request.cantori,
-                "once the islands are measured, the cantori between the centre's chains: their MacKay-Meiss-Percival "
-                "flux and layer, barriers of markov-tree (a few seconds each; with --resume, added to a finished atlas)");
+                "once the islands are measured, the cantori about each island (between its successive chains, and its "
+                "boundary cantorus inside its innermost chain): their MacKay-Meiss-Percival flux and layer, barriers of "
+                "markov-tree (seconds each; with --resume, added to a finished atlas)");
   cmd->add_option("--resume", o->resume,
                   "continue the atlas in this JSON file (one stopped early), with the same options; its finished "
                   "islands are kept");

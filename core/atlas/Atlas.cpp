@@ -1151,14 +1151,15 @@ class AtlasBuilder {
     }
   }
 
-  /// Step 6 (issue 50): the cantori between the centre's successive chains, once every island is measured (their
+  /// Step 6 (issue 50): the cantori about each island (AtlasCantori.hpp), once every island is measured (their
   /// layers need the islands inside); kept from a resumed atlas that has them.  A stop leaves the atlas unfinished
   /// (cancelled): a resume computes them.
   void addCantori(Atlas& atlas, int done) {
-    if (!atlas.cantori.empty()) return;
-    if (progress_) progress_(atlas, done, "cantori between the centre's chains");
+    // A file from before the islands' and boundary cantori (2026-12-07) holds only the centre's: computed again.
+    if (std::any_of(atlas.cantori.begin(), atlas.cantori.end(), [](const AtlasCantorus& c) { return c.boundary; })) return;
+    if (progress_) progress_(atlas, done, "cantori about the islands");
     try {
-      atlas.cantori = centreCantori(atlas, stop_);
+      atlas.cantori = atlasCantori(atlas, stop_);
     } catch (const OperationStopped&) {
       atlas.cantori.clear();
     }

@@ -211,10 +211,16 @@ void capAreaByEye(AtlasNode& node);
 /// A cantorus between two successive chains about the central island (issue 50; AtlasCantori.hpp): a barrier with
 /// the MacKay–Meiss–Percival flux, splitting the band between the two chains' separatrices.
 struct AtlasCantorus {
-  Rational outer, inner;                 ///< the chains about the centre it lies between (p/q about the centre)
+  int island = 0;                        ///< the node about whose island it lies (0: the centre)
+  bool boundary = false;                 ///< the island's boundary cantorus: between its innermost barrier chain
+                                         ///< (`outer`) and its boundary circle; `inner` is then the Farey neighbour of
+                                         ///< `outer` of least q between the two, a rational of no chain of the atlas
+  Rational outer, inner;                 ///< the chains about the island it lies between (p/q about it)
   std::vector<Rational> convergents;     ///< the terms of ΔW, in order (the last gives the zone)
   bool found = false;
   std::string failure;                   ///< why not, when not found
+  std::string note;                      ///< a boundary cantorus: the nobles nearer the boundary tried first, and why
+                                         ///< they were not taken
   long double flux = 0;                  ///< the last term's ΔW: the area crossing it per step
   long double fluxUncertainty = 0;       ///< the tail bound of the convergents' limit (convergentLimit)
   long double zoneArea = 0;              ///< the polygon of the last term's minimax orbit, by angle about the centre
@@ -227,7 +233,8 @@ struct AtlasCantorus {
 struct Atlas {
   AtlasRequest request;
   std::vector<AtlasNode> nodes;          ///< nodes[0] is the central island; parents precede children
-  std::vector<AtlasCantorus> cantori;    ///< between the centre's successive chains, outermost first (issue 50)
+  std::vector<AtlasCantorus> cantori;    ///< about each island, parents first: between its successive chains,
+                                         ///< outermost first, then its boundary cantorus (issue 50)
   bool cancelled = false;                ///< stopped before the end: the nodes not `measured` are to do
   std::string stopReason;                ///< why: "stopped" (a stop request) or "time budget of … s reached"
   double seconds = 0;                    ///< of the computation, every part of a resumed one (a 44-min atlas

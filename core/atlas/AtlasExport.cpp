@@ -46,11 +46,14 @@ std::string text(long double v, int digits = 17) {
   return io::formatC("%.*Lg", digits, v);
 }
 
-/// The cantori between the centre's chains (issue 50): what they lie between, ΔW's terms, flux, zone and layer.
+/// The cantori about the islands (issue 50): about which island, whether its boundary cantorus, what they lie between,
+/// ΔW's terms, flux, zone and layer.
 json cantoriJson(const std::vector<AtlasCantorus>& cantori) {
   json out = json::array();
   for (const AtlasCantorus& c : cantori) {
     json o;
+    o["island"] = c.island;
+    o["boundary"] = c.boundary;
     o["outer"] = toString(c.outer);
     o["inner"] = toString(c.inner);
     json terms = json::array();
@@ -58,6 +61,7 @@ json cantoriJson(const std::vector<AtlasCantorus>& cantori) {
     o["convergents"] = terms;
     o["found"] = c.found;
     if (!c.failure.empty()) o["failure"] = c.failure;
+    if (!c.note.empty()) o["note"] = c.note;
     if (c.flux > 0) {
       o["flux_per_step"] = num(c.flux);
       o["flux_uncertainty"] = num(c.fluxUncertainty);
@@ -535,15 +539,21 @@ void readCantori(const JsonField& list, Atlas& a) {
   for (std::size_t k = 0, size = list.array(kMaxAtlasNodes); k < size; ++k) {
     const JsonField o = list[k];
     o.keys({"outer", "inner", "convergents", "found"},
-           {"failure", "flux_per_step", "flux_uncertainty", "zone_area", "zone_spread", "enclosed_islands_area",
+           {"island", "boundary", "failure", "note", "flux_per_step", "flux_uncertainty", "zone_area", "zone_spread", "enclosed_islands_area",
             "enclosed_islands", "layer_area"});
     AtlasCantorus c;
+    if (const auto i = o.find("island")) {  // absent in a file from before the islands' cantori: the centre's
+      c.island = static_cast<int>(i->whole(a.nodes.empty() ? 0 : static_cast<long long>(a.nodes.size()) - 1));
+      if (!a.nodes[static_cast<std::size_t>(c.island)].boundaryFound) i->refuse("is an island without a boundary circle");
+    }
+    if (const auto b = o.find("boundary")) c.boundary = b->boolean();
     c.outer = rational(o["outer"]);
     c.inner = rational(o["inner"]);
     const JsonField terms = o["convergents"];
     for (std::size_t t = 0, n = terms.array(); t < n; ++t) c.convergents.push_back(rational(terms[t]));
     c.found = o["found"].boolean();
     if (const auto f = o.find("failure")) c.failure = f->string();
+    if (const auto f = o.find("note")) c.note = f->string();
     if (c.found != c.failure.empty()) o["found"].refuse("must be true exactly when there is no failure");
     if (o.find("flux_per_step")) {
       c.flux = o["flux_per_step"].real();

@@ -1,5 +1,7 @@
 #include "core/markovtree/MarkovTree.hpp"
 
+#include "core/atlas/AtlasCantori.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -110,7 +112,8 @@ std::vector<int> barrierChildren(const Atlas& a, int i, int maxLevel) {
   return kids;
 }
 
-/// One barrier of the tree: a chain's outer or inner separatrix, a cantorus, or the centre's loop (issue 50).
+/// One barrier of the tree: a chain's outer or inner separatrix, a cantorus (between two chains about an island, or
+/// the island's boundary cantorus), or the centre's loop (issue 50).
 struct Barrier {
   MarkovTreeBarrier kind = MarkovTreeBarrier::OuterSeparatrix;
   int node = -1;              ///< the chain's atlas node (−1: a cantorus)
@@ -120,7 +123,7 @@ struct Barrier {
 };
 
 /// The tree's states, built from the atlas's barriers about each island, outermost first: each chain's outer
-/// separatrix, its inner one, the cantorus to the next chain (about the centre), the next chain's outer one, …  The
+/// separatrix, its inner one, the cantorus to the next chain, the next chain's outer one, …, the boundary cantorus.  The
 /// state inside a barrier is its layer less the layers of the barriers just inside it (its children): the next one
 /// about the same island, and — inside a chain's outer separatrix — the outermost barrier about the chain's own
 /// islands, which lie between its two separatrices.  stateOf[node]: the state inside the node's outer separatrix
@@ -162,13 +165,14 @@ struct TreeStates {
                    atlasPath(a, c) + " inner"};
   }
 
-  /// The cantorus between the centre's chains `outer` and `inner`, when the tree takes cantori and the atlas found it.
+  /// The cantorus between the chains `outer` and `inner` about one island (or, `inner` = −1, the island's boundary
+  /// cantorus inside `outer`), when the tree takes cantori and the atlas found it.
   std::optional<Barrier> cantorusBetween(int outer, int inner) const {
-    if (!options.cantori || node(outer).parent != 0) return std::nullopt;
+    if (!options.cantori) return std::nullopt;
     for (const AtlasCantorus& c : a.cantori)
-      if (c.found && node(outer).aboutParent == c.outer && node(inner).aboutParent == c.inner)
-        return Barrier{MarkovTreeBarrier::Cantorus, -1, node(outer).level, c.flux, c.layerArea,
-                       "cantorus " + toString(c.outer) + "-" + toString(c.inner)};
+      if (c.found && c.island == node(outer).parent && c.boundary == (inner < 0) && node(outer).aboutParent == c.outer &&
+          (inner < 0 || node(inner).aboutParent == c.inner))
+        return Barrier{MarkovTreeBarrier::Cantorus, -1, node(outer).level, c.flux, c.layerArea, atlasCantorusName(a, c)};
     return std::nullopt;
   }
 
@@ -189,6 +193,10 @@ struct TreeStates {
       if (k + 1 < kids.size())
         if (auto cantorus = cantorusBetween(c, kids[k + 1])) outside = add(*cantorus, outside);
     }
+    // The island's boundary cantorus, between its innermost chain and its boundary circle: a state inside that
+    // chain's band (chains lumped there stay in the band).
+    if (!kids.empty())
+      if (auto cantorus = cantorusBetween(kids.back(), -1)) add(*cantorus, outside);
   }
 
   /// Each state's area: its layer less its children's layers (the barriers just inside it), checked positive.

@@ -9,7 +9,8 @@
 ///
 /// **The states.**  The barriers about each island, from outside in (issue 50): each chain's outer separatrix (the
 /// loop of (√K, 0) at the centre), its inner separatrix (AtlasFlux::inner, when its layer is settled), and between two
-/// successive chains about the centre the cantorus of the noble rotation between them (Atlas::cantori, when found).
+/// successive chains about an island the cantorus of the noble rotation between them, and inside the innermost chain
+/// about an island its boundary cantorus (Atlas::cantori, when found).
 /// Each encloses a zone whose layer ℓ (the zone less the atlas's islands inside it) an orbit that crossed it moves
 /// in.  The chains about one island nest, ordered by zone area and checked against the twist (the farther a chain's
 /// p/q from the island's boundary rotation, the farther out it lies).  The state of barrier b is its layer less the

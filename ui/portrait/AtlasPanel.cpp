@@ -158,9 +158,9 @@ void AtlasPanel::createRequestControls() {
   cantori_ = new QCheckBox(tr("cantori"), this);
   cantori_->setObjectName(QStringLiteral("atlasCantori"));
   cantori_->setChecked(defaults.cantori);
-  cantori_->setToolTip(tr("Once the islands are measured, the cantori between the centre's chains: their "
-                          "MacKay–Meiss–Percival flux and layer, barriers of the Markov tree (a few seconds each; "
-                          "docs/atlas.md)"));
+  cantori_->setToolTip(tr("Once the islands are measured, the cantori about each island (between its chains, and "
+                          "its boundary cantorus inside the innermost one): their MacKay–Meiss–Percival flux and "
+                          "layer, barriers of the Markov tree (seconds each; docs/atlas.md)"));
   compute_ = new QPushButton(tr("Compute"), this);
   compute_->setToolTip(tr("The atlas of the portrait's K, the first levels first (the tree fills as each island is "
                           "measured)"));

@@ -10,6 +10,8 @@
 #include <cstdio>
 
 #include "core/atlas/AtlasExport.hpp"
+#include "core/io/BadFile.hpp"
+#include "core/io/Json.hpp"
 #include "core/atlas/BoxIslandCheck.hpp"
 #include "core/manifolds/MmpFlux.hpp"
 #include "core/manifolds/TurnstileFlux.hpp"
@@ -20,6 +22,15 @@
 
 namespace archipelago {
 namespace {
+
+/// ΔW over the convergents 15/89 … 78/463 of the noble between 1/6 and 15/89 about the centre at K = 0.1L (the centre's
+/// boundary cantorus): scripts/mmp-periodic-action.py --K-long-double --rmin 0.22 --rmax 0.40 (mpmath, 60 digits, no
+/// code shared with core).  The atlas's K, the double 0.1, moves them in the 14th digit.
+constexpr long double kBoundaryNobleDeltaW[] = {2.12931580068460857873854786711971123e-8L,
+                                                 2.12810152359657787581820039133300905e-8L,
+                                                 4.5366727567967991256836652393133548e-9L,
+                                                 2.67120041974805242122164813478967589e-9L,
+                                                 1.61598205662322823355041421717664458e-9L};
 
 AtlasRequest depthOne() {
   AtlasRequest r;  // K = 0.1 in the paper's box
@@ -504,6 +515,76 @@ TEST(Atlas, HoldsTheCantorusBetween5Over31And1Over6WithItsMmpFluxAsABarrier) {
   const Atlas back = atlasFromJson(atlasJson(a));
   ASSERT_EQ(back.cantori.size(), a.cantori.size());
   EXPECT_NEAR(static_cast<double>(back.cantori.back().flux / a.cantori.back().flux), 1.0, 1e-15);  // a double's text
+}
+
+// Issue 50, item 4 (2026-12-07): the central island's boundary cantorus, between its innermost chain 1/6 and its
+// boundary circle (rotation 0.16877).  The Farey neighbour of 1/6 of least q on the boundary's side is 14/83; ΔW over
+// the convergents of the noble between them (14/83 … 307/1821) falls towards 0 — an invariant circle there, not a
+// cantorus: refused and named in the note — and the next neighbour's, 1/6 and 15/89, converges to 1.42526e−9 per step
+// (to 328/1947).  Against independent terms to 78/463 (kBoundaryNobleDeltaW).
+// Its zone lies outside the island (its layer > 0) and inside 1/6's inner separatrix (its layer below that one's).
+TEST(Atlas, HoldsTheCentralIslandsBoundaryCantorusInsideItsInnermostChainAndOutsideItsCircle) {
+  const Atlas& a = atlasK01();
+  const AtlasCantorus* c = nullptr;
+  for (const AtlasCantorus& x : a.cantori)
+    if (x.boundary && x.island == 0) c = &x;
+  ASSERT_NE(c, nullptr) << a.cantori.size() << " cantori";
+  ASSERT_TRUE(c->found) << c->failure;
+  EXPECT_EQ(c->outer, (Rational{1, 6}));
+  EXPECT_EQ(c->inner, (Rational{15, 89}));
+  EXPECT_EQ(c->convergents, (std::vector<Rational>{{15, 89}, {16, 95}, {31, 184}, {47, 279}, {78, 463}, {125, 742},
+                                                   {203, 1205}, {328, 1947}}));
+  EXPECT_NE(c->note.find("1/6-14/83"), std::string::npos) << c->note;
+  EXPECT_NE(c->note.find("falls to"), std::string::npos) << c->note;
+  EXPECT_EQ(c, &a.cantori.back());  // after the cantori between the centre's chains
+  // The independent terms fall, each below the last; their limit lies below the last one and above it less the tail
+  // of the largest of their later ratios (0.11, 0.57): [2.5e−10, 1.62e−9].  The atlas's, over three more terms (to
+  // 328/1947), must lie there — a wrong noble would not (14/83's falls to 1.5e−12, 16/95's converges to 6.2e−9).
+  const long double* w = kBoundaryNobleDeltaW;
+  for (int k = 1; k < 5; ++k) ASSERT_LT(w[k], w[k - 1]) << k;
+  long double r = 0;
+  for (int k = 3; k < 5; ++k) r = std::max(r, std::fabs((w[k] - w[k - 1]) / (w[k - 1] - w[k - 2])));
+  ASSERT_LT(r, 1);
+  const long double below = w[4] - std::fabs(w[4] - w[3]) * r / (1 - r);
+  EXPECT_LE(c->flux - c->fluxUncertainty, w[4]) << static_cast<double>(c->flux);
+  EXPECT_GE(c->flux + c->fluxUncertainty, below) << static_cast<double>(c->flux) << " below " << static_cast<double>(below);
+  EXPECT_LT(c->fluxUncertainty, 1e-3L * c->flux);  // measured 7.8e−14: 5.5e−5 of it
+  const AtlasNode* six = chainOf(a, 0, 1, 6);
+  ASSERT_NE(six, nullptr);
+  ASSERT_TRUE(six->flux.inner.found);
+  EXPECT_GT(c->layerArea, 0);
+  EXPECT_LT(c->layerArea, six->flux.inner.layerArea);
+  EXPECT_EQ(c->enclosedCount, 1);  // the centre alone
+  // The file keeps the island, the kind and the note; a file without them (before 2026-12-07) reads as the centre's.
+  const Atlas back = atlasFromJson(atlasJson(a));
+  ASSERT_EQ(back.cantori.size(), a.cantori.size());
+  EXPECT_TRUE(back.cantori.back().boundary);
+  EXPECT_EQ(back.cantori.back().note, c->note);
+  nlohmann::json j = nlohmann::json::parse(atlasJson(a));
+  for (auto& x : j["cantori"]) {
+    x.erase("island");
+    x.erase("boundary");
+    x.erase("note");
+  }
+  j.erase("checksum");
+  j["checksum"] = io::jsonChecksum(nlohmann::json::parse(j.dump()));  // signed again, as the writer signs
+  const Atlas old = atlasFromJson(j.dump());
+  EXPECT_FALSE(old.cantori.back().boundary);
+  EXPECT_EQ(old.cantori.back().island, 0);
+  // An island index beyond the nodes, or of an island without a boundary circle, is refused.
+  j["cantori"][0]["island"] = a.nodes.size();
+  j.erase("checksum");
+  j["checksum"] = io::jsonChecksum(nlohmann::json::parse(j.dump()));
+  EXPECT_THROW((void)atlasFromJson(j.dump()), io::BadFile);  // "cantori[0].island = …"
+  int unmeasured = -1;  // an island without a boundary circle (the 4/29 chain's, below the area limit, or none)
+  for (std::size_t i = 0; i < a.nodes.size(); ++i)
+    if (!a.nodes[i].boundaryFound) unmeasured = static_cast<int>(i);
+  if (unmeasured >= 0) {
+    j["cantori"][0]["island"] = unmeasured;
+    j.erase("checksum");
+    j["checksum"] = io::jsonChecksum(nlohmann::json::parse(j.dump()));
+    EXPECT_THROW((void)atlasFromJson(j.dump()), io::BadFile);  // "cantori[0].island = …"
+  }
 }
 
 // Issue 50: the upper end held to the chain's eye where the rays' is wider (the island of 6 > 204 at K = 0.1, depth 2:

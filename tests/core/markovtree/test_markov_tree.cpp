@@ -354,6 +354,74 @@ TEST(MarkovTree, InnerSeparatricesAndCantoriAreStatesAndTheTreeBranches) {
   EXPECT_THROW((void)markovTreeFromAtlas(bad), std::invalid_argument);
 }
 
+// Issue 50, item 4 (2026-12-07): the cantori about a chain's island and the boundary cantori are states too.  About
+// the six, between 1/12 and 2/23 (the atlas's 4.81e−7 at K = 0.1, depth 2), its layer between theirs; the centre's
+// boundary cantorus (1/6 and 15/89, 1.449e−9, layer 8.6e−5) inside 1/6's inner separatrix; the six's (4/43 and
+// 11/118; a flux for the test: the atlas does not reach its terms) inside its innermost chain, 4/43.
+TEST(MarkovTree, IslandAndBoundaryCantoriAreStatesInsideTheBarriersTheyFollow) {
+  Atlas a = k01WithInnerSeparatricesAndACantorus();
+  auto cantorus = [](int island, bool boundary, Rational outer, Rational inner, long double flux, long double layer) {
+    AtlasCantorus c;
+    c.island = island;
+    c.boundary = boundary;
+    c.outer = outer;
+    c.inner = inner;
+    c.found = true;
+    c.flux = flux;
+    c.layerArea = layer;
+    c.zoneArea = layer + 0.01L;
+    c.enclosedIslands = 0.01L;
+    return c;
+  };
+  a.cantori.push_back(cantorus(0, true, {1, 6}, {15, 89}, 1.449e-9L, 8.6e-5L));
+  a.cantori.push_back(cantorus(1, false, {1, 12}, {2, 23}, 4.81e-7L, 7.3e-3L));
+  a.cantori.push_back(cantorus(1, true, {4, 43}, {11, 118}, 1e-10L, 5e-5L));
+  const MarkovTree tree = markovTreeFromAtlas(a);
+  ASSERT_EQ(tree.states.size(), k01States + 6);
+  const auto index = [&](const MarkovTreeState& s) { return static_cast<int>(&s - tree.states.data()); };
+  const auto named = [&](const std::string& path) -> const MarkovTreeState& {
+    for (const MarkovTreeState& s : tree.states)
+      if (s.path == path) return s;
+    throw std::logic_error("no state " + path);
+  };
+  const MarkovTreeState& centreBoundary = named("boundary cantorus 1/6-15/89");
+  const MarkovTreeState& aboutSix = named("cantorus 1/12-2/23 about 6");
+  const MarkovTreeState& sixBoundary = named("boundary cantorus 4/43-11/118 of 6");
+  const MarkovTreeState& sixInner = stateOf(tree, 1, MarkovTreeBarrier::InnerSeparatrix);
+  const MarkovTreeState& seventyTwo = stateOf(tree, 6, MarkovTreeBarrier::OuterSeparatrix);
+  const MarkovTreeState& oneThirtyEight = stateOf(tree, 7, MarkovTreeBarrier::OuterSeparatrix);
+  const MarkovTreeState& fortyThree = stateOf(tree, 9, MarkovTreeBarrier::OuterSeparatrix);
+  EXPECT_EQ(centreBoundary.barrier, MarkovTreeBarrier::Cantorus);
+  EXPECT_EQ(centreBoundary.container, index(sixInner));
+  EXPECT_EQ(aboutSix.container, index(seventyTwo));
+  EXPECT_EQ(oneThirtyEight.container, index(aboutSix));
+  EXPECT_EQ(sixBoundary.container, index(fortyThree));
+  EXPECT_EQ(aboutSix.level, 2);
+  EXPECT_NEAR(static_cast<double>(sixInner.area), 1.35e-4 - 8.6e-5, 1e-18);
+  EXPECT_NEAR(static_cast<double>(centreBoundary.area), 8.6e-5, 1e-18);
+  EXPECT_NEAR(static_cast<double>(seventyTwo.area), 7.853e-3 - 7.3e-3, 1e-15);
+  EXPECT_NEAR(static_cast<double>(aboutSix.area), 7.3e-3 - 6.869e-3, 1e-15);
+  EXPECT_NEAR(static_cast<double>(fortyThree.area), 1.319e-4 - 5e-5, 1e-17);
+  long double total = 0;
+  for (const MarkovTreeState& s : tree.states) total += s.area;
+  EXPECT_NEAR(static_cast<double>(total / 0.22957L), 1.0, 1e-15);
+  for (const MarkovTreeRate& r : tree.rates)
+    if (r.from == index(centreBoundary)) {
+      EXPECT_EQ(r.to, index(sixInner));
+      EXPECT_NEAR(static_cast<double>(r.perStep / (1.449e-9L / 8.6e-5L)), 1.0, 1e-15);
+    }
+  // Without cantori all of them go; a boundary record does not stand in for a cantorus between chains, nor the
+  // reverse (an island cantorus with the centre's index is not about the six).
+  EXPECT_EQ(markovTreeFromAtlas(a, {.cantori = false}).states.size(), k01States + 2);
+  Atlas wrongIsland = a;
+  wrongIsland.cantori[2].island = 0;
+  EXPECT_EQ(markovTreeFromAtlas(wrongIsland).states.size(), k01States + 5);
+  // A boundary cantorus whose layer is not inside its chain's band leaves that band no area: refused.
+  Atlas bad = a;
+  bad.cantori[1].layerArea = 2e-4L;
+  EXPECT_THROW((void)markovTreeFromAtlas(bad), std::invalid_argument);
+}
+
 TEST(MarkovTree, ChangingOneFluxChangesTheRatesThroughThatBarrierOnly) {
   const Atlas a = k01();
   Atlas b = a;
