@@ -147,7 +147,7 @@ struct MmpActionDifference {
 /// sum is at most |d_n| r/(1 − r) if the differences go on shrinking at least that fast (about the central island at
 /// K = 0.1 they shrink faster between chains: the ratio fell from 0.2 to 2·10⁻⁴ over 5/31 … 118/729,
 /// docs/markov-tree.md).  The largest of three, not the last alone (until 2026-12-07): near an island's boundary the
-/// ratios wander — between 1/6 and 14/83 they were 0.082, 0.41, 0.17 and ΔW fell towards 0 (a circle, not a cantorus),
+/// ratios wander — between 1/6 and 14/83 they were 0.082, 0.41, 0.17 and ΔW fell towards 0 (as through a circle),
 /// while the last ratio alone gave 3.5·10⁻¹¹ ± 2.1·10⁻¹¹ at six terms and 7.8·10⁻¹⁰ ± 1.4·10⁻¹⁰ at four, which the next
 /// terms left.  A bound under that assumption, not a proof.  Not an extrapolation: Aitken's Δ², which assumes a
 /// constant ratio, overshoots such a sequence by more than its last difference.

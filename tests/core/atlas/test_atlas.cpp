@@ -519,8 +519,8 @@ TEST(Atlas, HoldsTheCantorusBetween5Over31And1Over6WithItsMmpFluxAsABarrier) {
 
 // Issue 50, item 4 (2026-12-07): the central island's boundary cantorus, between its innermost chain 1/6 and its
 // boundary circle (rotation 0.16877).  The Farey neighbour of 1/6 of least q on the boundary's side is 14/83; ΔW over
-// the convergents of the noble between them (14/83 … 307/1821) falls towards 0 — an invariant circle there, not a
-// cantorus: refused and named in the note — and the next neighbour's, 1/6 and 15/89, converges to 1.42526e−9 per step
+// the convergents of the noble between them (14/83 … 307/1821) falls towards 0 within its tail bound — as through an
+// invariant circle; not shown a cantorus: refused and named in the note — and the next neighbour's, 1/6 and 15/89, converges to 1.42526e−9 per step
 // (to 328/1947).  Against independent terms to 78/463 (kBoundaryNobleDeltaW).
 // Its zone lies outside the island (its layer > 0) and inside 1/6's inner separatrix (its layer below that one's).
 TEST(Atlas, HoldsTheCentralIslandsBoundaryCantorusInsideItsInnermostChainAndOutsideItsCircle) {
