@@ -108,7 +108,8 @@ CantorusRequest requestAbout(const Atlas& atlas, const AtlasNode& island, const 
 void measureCantorus(const Atlas& atlas, const AtlasNode& island, const CantorusRequest& r, long double below,
                      long double above, AtlasCantorus& c, std::stop_token stop) {
   try {
-    if (r.windows.empty() && island.parent >= 0) throw NotFound("no member of the island's chain lies on a symmetry line");
+    if (r.windows.empty() && island.parent >= 0)
+      throw NotFound("no symmetry line passes the island's chain between the chains' radii");
     const CantorusFlux f = cantorusFlux(r, stop);
     if (!f.limit) {
       c.failure = "ΔW over the convergents: " + f.limitProblem;
